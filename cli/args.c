@@ -1,0 +1,108 @@
+/* Command-line parsing helpers: numbers (with multiples of pi), counts, options. */
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+
+int cli_usage_error(const char *command, const char *fmt, ...)
+{
+    va_list ap;
+    fputs("dynkit: error: ", stderr);
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    fprintf(stderr, "\nTry 'dynkit %s%s--help'.\n", command ? command : "", command ? " " : "");
+    return CLI_USAGE;
+}
+
+/* "pi" or "*pi" at *p: advance past it and return 1. */
+static int take_pi(const char **p)
+{
+    const char *s = *p;
+    if (*s == '*')
+        s++;
+    if (s[0] == 'p' && s[1] == 'i') {
+        *p = s + 2;
+        return 1;
+    }
+    return 0;
+}
+
+int cli_parse_number(const char *text, double *out)
+{
+    if (!text || !*text)
+        return -1;
+    const char *p = text;
+    double value;
+    int sign = 1;
+    if ((p[0] == '-' || p[0] == '+') && p[1] == 'p') {
+        sign = p[0] == '-' ? -1 : 1;
+        p++;
+    }
+    if (p[0] == 'p') {
+        value = sign;
+    } else {
+        char *end;
+        errno = 0;
+        value = strtod(p, &end);
+        if (end == p || errno == ERANGE)
+            return -1;
+        p = end;
+    }
+    if (take_pi(&p))
+        value *= DYN_PI;
+    if (*p == '/') {
+        char *end;
+        double div = strtod(p + 1, &end);
+        if (end == p + 1 || div == 0.0)
+            return -1;
+        value /= div;
+        p = end;
+    }
+    if (*p != '\0' || !isfinite(value))
+        return -1;
+    *out = value;
+    return 0;
+}
+
+int cli_parse_count(const char *text, long min, long *out)
+{
+    double v;
+    char *end;
+    if (!text || !*text)
+        return -1;
+    errno = 0;
+    v = strtod(text, &end);
+    if (*end != '\0' || errno == ERANGE || !(v >= (double)min) || v > 9.2e18 || v != floor(v))
+        return -1;
+    *out = (long)v;
+    return 0;
+}
+
+int cli_option(int argc, char **argv, int *i, const char *name, const char **value)
+{
+    const char *arg = argv[*i];
+    size_t len = strlen(name);
+    if (strncmp(arg, "--", 2) != 0 || strncmp(arg + 2, name, len) != 0)
+        return 0;
+    if (arg[2 + len] == '=') {
+        *value = arg + 3 + len;
+        return 1;
+    }
+    if (arg[2 + len] != '\0')
+        return 0;
+    if (*i + 1 >= argc)
+        return -1;
+    *value = argv[++*i];
+    return 1;
+}
+
+int cli_flag(const char *arg, const char *name)
+{
+    return strncmp(arg, "--", 2) == 0 && strcmp(arg + 2, name) == 0;
+}
+
+int cli_is_help(const char *arg) { return strcmp(arg, "-h") == 0 || strcmp(arg, "--help") == 0; }

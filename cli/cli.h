@@ -1,0 +1,75 @@
+/* Shared declarations of the dynkit command-line tool (the only part that prints/exits). */
+#ifndef DYNKIT_CLI_H
+#define DYNKIT_CLI_H
+
+#include <stdio.h>
+
+#include "dynkit/dynkit.h"
+
+/* Exit statuses of the contract. */
+enum { CLI_OK = 0, CLI_FAILED = 1, CLI_USAGE = 2 };
+
+/* Print "dynkit: error: <msg>" and a hint to the subcommand's --help; return CLI_USAGE. */
+int cli_usage_error(const char *command, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+/* Parse a finite number: decimal, optionally times pi ("pi/2", "-0.5pi", "2*pi/3").
+ * Returns 0 and *out, or -1 when text is not such a number. */
+int cli_parse_number(const char *text, double *out);
+/* Parse a count >= min (decimal or 1e6 style); 0 on success, -1 otherwise. */
+int cli_parse_count(const char *text, long min, long *out);
+
+/* Option matching: if argv[*i] is "--name" or "--name=VALUE", set *value (taking the next
+ * argument when needed) and return 1; return -1 when the value is missing; 0 otherwise. */
+int cli_option(int argc, char **argv, int *i, const char *name, const char **value);
+/* Flag matching: 1 if argv[i] is exactly "--name". */
+int cli_flag(const char *arg, const char *name);
+/* 1 if arg is -h or --help. */
+int cli_is_help(const char *arg);
+
+/* Everything needed to make one run of a model: parsed from the run options. */
+typedef struct cli_run {
+    const dyn_model *model;
+    const dyn_tableau *method;
+    void *par;            /* model->par_size bytes (owned) */
+    double *y0;           /* model->n_states (owned) */
+    double t0, t1, step;
+    dyn_end_policy end;
+    const char *output_path; /* NULL = stdout */
+    int final_only;
+    int with_outputs;
+    int quiet;
+    long every;
+    long trace_steps;
+} cli_run;
+
+/* Parse "MODEL [options]" of run-like commands into run; unknown options are errors.
+ * Returns CLI_OK or CLI_USAGE (message printed). Free with cli_run_free. */
+int cli_run_parse(const char *command, int argc, char **argv, cli_run *run);
+void cli_run_free(cli_run *run);
+/* Help text of the run options (shared by run-like commands). */
+void cli_run_options_help(FILE *out);
+
+/* Stage-by-stage trace printer for dyn_fixed_opts.trace; ctx is the cli_run. */
+void cli_print_trace(const dyn_trace_stage *st, void *ctx);
+
+/* Progress on stderr for long runs (only when stderr is a terminal). */
+typedef struct cli_progress {
+    int enabled;
+    double start;     /* monotonic seconds */
+    int shown;
+} cli_progress;
+void cli_progress_start(cli_progress *p, int quiet);
+int cli_progress_update(double t, double fraction, void *ctx);
+void cli_progress_finish(cli_progress *p);
+
+/* Subcommands. */
+int cli_cmd_run(int argc, char **argv);
+int cli_cmd_models(int argc, char **argv);
+int cli_cmd_methods(int argc, char **argv);
+int cli_cmd_info(int argc, char **argv);
+
+#endif

@@ -1,0 +1,50 @@
+/* dynkit: command-line entry point; dispatches to the subcommands (cmd_*.c). */
+#include <string.h>
+
+#include "cli.h"
+
+static void main_help(void)
+{
+    puts("dynkit - simulate mechanical systems: integrators, models, analyses.\n"
+         "\n"
+         "Usage: dynkit COMMAND [options]\n"
+         "\n"
+         "Commands:\n"
+         "  run MODEL      integrate a model and write CSV (t and the states)\n"
+         "  models         list the built-in models\n"
+         "  methods        list the integration methods\n"
+         "  info MODEL     states, parameters, units and defaults of a model\n"
+         "\n"
+         "'dynkit COMMAND --help' tells more about each command.\n"
+         "Example: dynkit run vanderpol --method rk4 --step 0.01 --tspan 0:15 --final");
+}
+
+int main(int argc, char **argv)
+{
+    static const struct {
+        const char *name;
+        int (*run)(int, char **);
+    } commands[] = {
+        {"run", cli_cmd_run},
+        {"models", cli_cmd_models},
+        {"methods", cli_cmd_methods},
+        {"info", cli_cmd_info},
+    };
+    if (argc < 2) {
+        main_help();
+        return CLI_USAGE;
+    }
+    if (cli_is_help(argv[1])) {
+        main_help();
+        return CLI_OK;
+    }
+    if (strcmp(argv[1], "--version") == 0) {
+        puts("dynkit 0.1.0");
+        return CLI_OK;
+    }
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+        if (strcmp(argv[1], commands[i].name) == 0)
+            return commands[i].run(argc - 2, argv + 2);
+    return cli_usage_error(NULL, "unknown command '%s' (accepted: run, models, methods, info)",
+                           argv[1]);
+}

@@ -1,0 +1,236 @@
+/* The run options shared by run-like commands: model, method, span, step, parameters,
+ * initial state and output choices (the command-line contract of the design). */
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+
+void cli_run_options_help(FILE *out)
+{
+    fputs("Run options:\n"
+          "  --method NAME        integration method (default: the model's; see 'dynkit methods')\n"
+          "  --step H             step size in s (default: the model's)\n"
+          "  --tspan T0:T1        time span in s (default: the model's)\n"
+          "  --end exact|grid     span not a whole number of steps: 'exact' (default) adds a\n"
+          "                       shorter last step ending at T1; 'grid' stops at the last\n"
+          "                       T0 + k*H <= T1 like MATLAB's T0:H:T1\n"
+          "  --set NAME=VALUE     set a parameter (repeatable; see 'dynkit info MODEL')\n"
+          "  --init NAME=VALUE    set an initial state (repeatable)\n"
+          "                       numbers may be multiples of pi: pi/2, -0.5pi, 2*pi/3\n"
+          "Output options:\n"
+          "  --output FILE        write the CSV to FILE instead of standard output\n"
+          "  --final              write the header and the last sample only\n"
+          "  --every K            keep every K-th sample (the last one is always kept)\n"
+          "  --outputs            add the model's extra outputs (energy, ...) as columns\n"
+          "  --trace N            print each stage of the first N steps on stderr\n"
+          "  --quiet              no progress display on stderr\n",
+          out);
+}
+
+/* Split "NAME=VALUE"; returns 0 and the parts, or -1. */
+static int split_assignment(const char *text, char *name, size_t size, double *value)
+{
+    const char *eq = strchr(text, '=');
+    if (!eq || eq == text || (size_t)(eq - text) >= size)
+        return -1;
+    memcpy(name, text, (size_t)(eq - text));
+    name[eq - text] = '\0';
+    return cli_parse_number(eq + 1, value);
+}
+
+static void list_vars(char *buf, size_t size, const dyn_var *vars, int n)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+    for (int i = 0; i < n && used < size; i++)
+        used += (size_t)snprintf(buf + used, size - used, "%s%s", i ? ", " : "", vars[i].name);
+}
+
+static void list_params(char *buf, size_t size, const dyn_model *m)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+    for (int i = 0; i < m->n_params && used < size; i++)
+        used += (size_t)snprintf(buf + used, size - used, "%s%s", i ? ", " : "",
+                                 m->params[i].name);
+}
+
+static int parse_tspan(const char *command, const char *text, double *t0, double *t1)
+{
+    char first[64];
+    const char *colon = strchr(text, ':');
+    if (!colon || (size_t)(colon - text) >= sizeof first)
+        return cli_usage_error(command, "--tspan '%s' is not accepted: give T0:T1 in s, e.g. 0:15",
+                               text);
+    memcpy(first, text, (size_t)(colon - text));
+    first[colon - text] = '\0';
+    if (cli_parse_number(first, t0) || cli_parse_number(colon + 1, t1))
+        return cli_usage_error(command,
+                               "--tspan '%s' is not accepted: T0 and T1 must be finite numbers "
+                               "(T0:T1 in s, e.g. 0:15)",
+                               text);
+    if (!(*t1 > *t0))
+        return cli_usage_error(command, "--tspan '%s' is not accepted: T1 must be greater than T0",
+                               text);
+    return CLI_OK;
+}
+
+/* --set/--init are applied after all options are read, so record them first. */
+typedef struct assignment {
+    const char *text;
+    int is_param;
+} assignment;
+
+static int apply_assignment(const char *command, cli_run *run, const assignment *as)
+{
+    char name[64], list[512];
+    double value;
+    const dyn_model *m = run->model;
+    const char *opt = as->is_param ? "--set" : "--init";
+    if (split_assignment(as->text, name, sizeof name, &value))
+        return cli_usage_error(command,
+                               "%s '%s' is not accepted: give NAME=VALUE with a finite number",
+                               opt, as->text);
+    if (as->is_param) {
+        int i = dyn_model_param_index(m, name);
+        if (i < 0) {
+            list_params(list, sizeof list, m);
+            return cli_usage_error(command, "--set: model %s has no parameter '%s' (accepted: %s)",
+                                   m->name, name, list);
+        }
+        dyn_model_set_param(m, run->par, i, value);
+    } else {
+        int i = dyn_model_state_index(m, name);
+        if (i < 0) {
+            list_vars(list, sizeof list, m->states, m->n_states);
+            return cli_usage_error(command, "--init: model %s has no state '%s' (accepted: %s)",
+                                   m->name, name, list);
+        }
+        run->y0[i] = value;
+    }
+    return CLI_OK;
+}
+
+static int parse_option(const char *command, int argc, char **argv, int *i, cli_run *run,
+                        assignment *as, int *n_as, const char **method_name)
+{
+    const char *v = NULL;
+    const char *arg = argv[*i];
+    int r;
+#define OPT(name)                                                                      \
+    ((r = cli_option(argc, argv, i, name, &v)) < 0                                     \
+         ? (cli_usage_error(command, "option --%s needs a value", name), 1) : r == 1)
+    if (OPT("method")) {
+        if (r < 0)
+            return CLI_USAGE;
+        *method_name = v;
+    } else if (OPT("step")) {
+        if (r < 0)
+            return CLI_USAGE;
+        if (cli_parse_number(v, &run->step) || !(run->step > 0))
+            return cli_usage_error(command,
+                                   "--step '%s' is not accepted: give a step size in s, a "
+                                   "finite number > 0 (e.g. 0.01)",
+                                   v);
+    } else if (OPT("tspan")) {
+        if (r < 0 || parse_tspan(command, v, &run->t0, &run->t1))
+            return CLI_USAGE;
+    } else if (OPT("end")) {
+        if (r < 0)
+            return CLI_USAGE;
+        if (strcmp(v, "exact") == 0)
+            run->end = DYN_END_EXACT;
+        else if (strcmp(v, "grid") == 0)
+            run->end = DYN_END_GRID;
+        else
+            return cli_usage_error(command, "--end '%s' is not accepted (accepted: exact, grid)", v);
+    } else if (OPT("set")) {
+        if (r < 0)
+            return CLI_USAGE;
+        as[(*n_as)++] = (assignment){v, 1};
+    } else if (OPT("init")) {
+        if (r < 0)
+            return CLI_USAGE;
+        as[(*n_as)++] = (assignment){v, 0};
+    } else if (OPT("output")) {
+        if (r < 0)
+            return CLI_USAGE;
+        run->output_path = v;
+    } else if (OPT("every")) {
+        if (r < 0)
+            return CLI_USAGE;
+        if (cli_parse_count(v, 1, &run->every))
+            return cli_usage_error(command, "--every '%s' is not accepted: give a whole number >= 1",
+                                   v);
+    } else if (OPT("trace")) {
+        if (r < 0)
+            return CLI_USAGE;
+        if (cli_parse_count(v, 0, &run->trace_steps))
+            return cli_usage_error(command,
+                                   "--trace '%s' is not accepted: give the number of steps to "
+                                   "trace, a whole number >= 0",
+                                   v);
+    } else if (cli_flag(arg, "final")) {
+        run->final_only = 1;
+    } else if (cli_flag(arg, "outputs")) {
+        run->with_outputs = 1;
+    } else if (cli_flag(arg, "quiet")) {
+        run->quiet = 1;
+    } else {
+        return cli_usage_error(command, "unknown option '%s'", arg);
+    }
+#undef OPT
+    return CLI_OK;
+}
+
+int cli_run_parse(const char *command, int argc, char **argv, cli_run *run)
+{
+    char names[512], err[256];
+    memset(run, 0, sizeof *run);
+    if (argc < 1 || argv[0][0] == '-')
+        return cli_usage_error(command, "missing MODEL (accepted: %s)",
+                               dyn_model_names(names, sizeof names));
+    run->model = dyn_model_find(argv[0]);
+    if (!run->model)
+        return cli_usage_error(command, "unknown model '%s' (accepted: %s)", argv[0],
+                               dyn_model_names(names, sizeof names));
+    const dyn_model *m = run->model;
+    run->par = calloc(1, m->par_size);
+    run->y0 = calloc((size_t)m->n_states, sizeof *run->y0);
+    assignment *as = calloc((size_t)argc, sizeof *as);
+    if (!run->par || !run->y0 || !as) {
+        free(as);
+        fprintf(stderr, "dynkit: error: out of memory\n");
+        return CLI_FAILED;
+    }
+    dyn_model_default_params(m, run->par, err, sizeof err);
+    memcpy(run->y0, m->y0, (size_t)m->n_states * sizeof *run->y0);
+    run->t0 = m->t0;
+    run->t1 = m->t1;
+    run->step = m->step;
+    run->every = 1;
+    const char *method_name = m->method;
+    int n_as = 0, rc = CLI_OK;
+    for (int i = 1; i < argc && rc == CLI_OK; i++)
+        rc = parse_option(command, argc, argv, &i, run, as, &n_as, &method_name);
+    for (int k = 0; k < n_as && rc == CLI_OK; k++)
+        rc = apply_assignment(command, run, &as[k]);
+    free(as);
+    if (rc != CLI_OK)
+        return rc;
+    if (m->prepare && m->prepare(run->par, err, sizeof err))
+        return cli_usage_error(command, "%s", err);
+    run->method = dyn_method_find(method_name);
+    if (!run->method)
+        return cli_usage_error(command, "unknown method '%s' (accepted: %s)", method_name,
+                               dyn_method_names(names, sizeof names));
+    return CLI_OK;
+}
+
+void cli_run_free(cli_run *run)
+{
+    free(run->par);
+    free(run->y0);
+    run->par = NULL;
+    run->y0 = NULL;
+}

@@ -1,0 +1,10 @@
+/* dynkit/dynkit.h — everything of the dynkit library in one include. */
+#ifndef DYNKIT_DYNKIT_H
+#define DYNKIT_DYNKIT_H
+
+#include "dynkit/ode.h"
+#include "dynkit/model.h"
+#include "dynkit/models.h"
+#include "dynkit/io.h"
+
+#endif

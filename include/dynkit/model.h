@@ -1,0 +1,92 @@
+/* dynkit/model.h — models: named states, parameters and outputs around a right-hand side.
+ *
+ * A model describes a system for people and tools: names, units and defaults of its states
+ * and parameters, the right-hand side, extra outputs computed at each sample (energy,
+ * constraint forces, ...), and its default run (time span, step, method). The CLI and the
+ * report use built-in models only through this interface, so a user's own model in C gets
+ * the same treatment (see examples/).
+ *
+ * Parameters live in a model-specific struct (par_size bytes); each dyn_param names one
+ * double member by offset, so parameters can be set by name. The right-hand side receives a
+ * pointer to that struct as its par argument.
+ */
+#ifndef DYNKIT_MODEL_H
+#define DYNKIT_MODEL_H
+
+#include <stddef.h>
+
+#include "dynkit/ode.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define DYN_PI 3.14159265358979323846
+
+/* A named quantity: a state or an extra output. */
+typedef struct dyn_var {
+    const char *name;
+    const char *unit;        /* SI unit, "1" for dimensionless */
+    const char *description;
+} dyn_var;
+
+/* A named parameter: a double member of the model's parameter struct. */
+typedef struct dyn_param {
+    const char *name;
+    const char *unit;
+    const char *description;
+    size_t offset;           /* offsetof(the struct, member) */
+    double value;            /* default (the seed's value) */
+} dyn_param;
+
+/* Extra outputs at one sample: write n_outputs values into out; return 0 or non-zero. */
+typedef int (*dyn_outputs_fn)(double t, const double *y, const void *par, double *out);
+/* Prepare a parameter struct after parameters changed (derived values); 0 or non-zero
+ * with a message in err. May be NULL. */
+typedef int (*dyn_prepare_fn)(void *par, char *err, size_t errlen);
+
+typedef struct dyn_model {
+    const char *name;          /* e.g. "pendulum" */
+    const char *title;         /* one line */
+    const char *description;   /* a paragraph: equations and conventions, plain text */
+    int n_states;
+    const dyn_var *states;     /* (n_states) */
+    const double *y0;          /* (n_states) default initial state */
+    int n_params;
+    const dyn_param *params;   /* (n_params) */
+    size_t par_size;           /* bytes of the parameter struct */
+    int n_outputs;
+    const dyn_var *outputs;    /* (n_outputs), may be NULL when n_outputs == 0 */
+    dyn_rhs_fn rhs;
+    dyn_outputs_fn compute_outputs;  /* NULL when n_outputs == 0 */
+    dyn_prepare_fn prepare;    /* may be NULL */
+    double t0, t1, step;       /* default time span and step [s] */
+    const char *method;        /* default method name */
+} dyn_model;
+
+/* Built-in models: count, by index (NULL out of range), by name (NULL if unknown). */
+int dyn_model_count(void);
+const dyn_model *dyn_model_at(int i);
+const dyn_model *dyn_model_find(const char *name);
+/* Comma-separated list of built-in model names into buf; returns buf. */
+char *dyn_model_names(char *buf, size_t size);
+
+/* Fill a parameter struct (par_size bytes, caller-owned, zeroed first) with the defaults,
+ * then run prepare. Returns 0 or non-zero with a message in err. */
+int dyn_model_default_params(const dyn_model *m, void *par, char *err, size_t errlen);
+/* Index of a state / parameter / output by name, or -1. */
+int dyn_model_state_index(const dyn_model *m, const char *name);
+int dyn_model_param_index(const dyn_model *m, const char *name);
+int dyn_model_output_index(const dyn_model *m, const char *name);
+/* Read / write parameter i of a parameter struct. */
+double dyn_model_get_param(const dyn_model *m, const void *par, int i);
+void dyn_model_set_param(const dyn_model *m, void *par, int i, double value);
+
+/* For prepare functions: 0 if value is finite and > 0, else 1 with "NAME must be a finite
+ * number > 0 (got V)" in err. */
+int dyn_check_positive(const char *name, double value, char *err, size_t errlen);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* DYNKIT_MODEL_H */

@@ -1,0 +1,183 @@
+/* dynkit/ode.h — the ODE core: systems, Butcher tables, the fixed-step driver.
+ *
+ * A system is dy/dt = f(t, y; par) with the GSL/SUNDIALS calling convention: f writes
+ * dydt and returns 0, or returns non-zero to stop the solve (the value is reported back).
+ * Every explicit Runge–Kutta method is one Butcher table (dyn_tableau) driven by one stage
+ * loop (Hairer, Nørsett & Wanner, "Solving ODEs I", sec. II.1). The fixed-step driver
+ * follows the homework's [tout,yout] = Integrate_X(odefun, tspan, Ts, y0, par): samples at
+ * t0 + k*Ts, the first one being y0.
+ *
+ * Memory: the library never allocates inside a solve. The caller owns the system, the
+ * workspace (dyn_fixed_work_size doubles) and the outputs. Nothing here prints or exits.
+ */
+#ifndef DYNKIT_ODE_H
+#define DYNKIT_ODE_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Right-hand side: write f(t, y) into dydt (n values); return 0, or non-zero to stop. */
+typedef int (*dyn_rhs_fn)(double t, const double *y, double *dydt, void *par);
+
+/* A system of n first-order ODEs; par is handed to f unchanged (the caller owns it). */
+typedef struct dyn_system {
+    dyn_rhs_fn f;
+    int n;
+    void *par;
+} dyn_system;
+
+/* Status of a solve. 0 is success; the others say why a solve stopped. */
+typedef enum dyn_status {
+    DYN_OK = 0,
+    DYN_ERR_ARG = 1,       /* bad argument (message says which and what is accepted) */
+    DYN_ERR_RHS = 2,       /* the right-hand side returned non-zero (see rhs_status) */
+    DYN_ERR_NONFINITE = 3, /* a state became NaN or Inf (see fail_t, fail_index) */
+    DYN_STOPPED = 4,       /* the output callback asked to stop */
+    DYN_ERR_IO = 5,        /* an output could not be written */
+    DYN_CANCELLED = 6      /* the progress callback cancelled the solve */
+} dyn_status;
+
+/* Short English name of a status ("ok", "bad argument", ...); never NULL. */
+const char *dyn_status_name(int status);
+
+/* Kinds of method, so later solvers (adaptive pairs, implicit) share one registry. */
+typedef enum dyn_method_kind {
+    DYN_KIND_EXPLICIT_RK = 0 /* fixed-step explicit Runge–Kutta: a, b, c */
+} dyn_method_kind;
+
+/* Butcher table of an explicit Runge–Kutta method with s stages.
+ * a is (s x s) row-major, strictly lower triangular; b and c have s entries. */
+typedef struct dyn_tableau {
+    const char *name;        /* canonical name, e.g. "rk4" */
+    const char *alias;       /* other accepted name or NULL, e.g. "modified-euler" */
+    const char *title;       /* one line for humans */
+    const char *reference;   /* where the coefficients come from */
+    dyn_method_kind kind;
+    int stages;              /* s */
+    int order;               /* classical order p */
+    const double *a;         /* (s x s) */
+    const double *b;         /* (s) */
+    const double *c;         /* (s) */
+} dyn_tableau;
+
+/* Number of registered methods; dyn_method_at(i) for 0 <= i < count, NULL otherwise. */
+int dyn_method_count(void);
+const dyn_tableau *dyn_method_at(int i);
+/* Method by canonical name or alias (case-sensitive); NULL if unknown. */
+const dyn_tableau *dyn_method_find(const char *name);
+/* Comma-separated list of all accepted method names into buf (for messages); returns buf. */
+char *dyn_method_names(char *buf, size_t size);
+
+/* Largest error in the order conditions of a table up to order p (trees up to order 4
+ * are checked; p > 4 is checked to 4). Returns max |residual|; 0 for an exact table. */
+double dyn_tableau_order_residual(const dyn_tableau *tab, int p);
+
+/* What to do when (t1 - t0) / h is not a whole number of steps (within 1e-10 relative). */
+typedef enum dyn_end_policy {
+    DYN_END_EXACT = 0, /* default: a last, shorter step lands exactly on t1 */
+    DYN_END_GRID = 1   /* MATLAB's t0:h:t1: stop at the last t0 + k*h <= t1 */
+} dyn_end_policy;
+
+/* The sample grid of a fixed-step run. */
+typedef struct dyn_grid {
+    double t0, t1, h;
+    long whole_steps;   /* number of full steps of size h */
+    int partial;        /* 1 if a last step of size t1 - (t0 + whole_steps*h) follows */
+    long samples;       /* whole_steps + partial + 1 */
+    int ends_at_t1;     /* 1 if the last sample is t1 (whole span, or partial step) */
+} dyn_grid;
+
+/* Plan the grid for [t0, t1] with step h > 0 (t1 > t0). Returns DYN_OK or DYN_ERR_ARG with
+ * a message in err (may be NULL). Sample k is t0 + k*h; with a partial step the last is t1. */
+int dyn_grid_plan(double t0, double t1, double h, dyn_end_policy end, dyn_grid *grid,
+                  char *err, size_t errlen);
+/* Time of sample k (0 <= k < samples): t0 + k*h, computed, never accumulated; the last
+ * sample is t1 itself when ends_at_t1. */
+double dyn_grid_time(const dyn_grid *grid, long k);
+
+/* Counters of a solve, filled by the drivers. */
+typedef struct dyn_stats {
+    long steps;      /* steps taken */
+    long rhs_calls;  /* evaluations of f */
+    long samples;    /* samples handed to the output */
+} dyn_stats;
+
+/* Called with every kept sample (k = sample index); return non-zero to stop the solve. */
+typedef int (*dyn_output_fn)(long k, double t, const double *y, void *ctx);
+
+/* One stage of one step, for teaching traces: Y is the stage state y_n + h*sum a_ij k_j,
+ * k = f(t_n + c_i h, Y). After the last stage, stage == stages and y holds y_{n+1}. */
+typedef struct dyn_trace_stage {
+    const dyn_tableau *method;
+    long step;        /* 0-based step index */
+    int stage;        /* 0 .. stages-1; == stages for the step's result */
+    double t_n, h;    /* start time and size of the step */
+    double t_stage;   /* t_n + c_i h (t_n + h for the result) */
+    int n;
+    const double *y_n;     /* state at the start of the step */
+    const double *Y;       /* stage state (the result y_{n+1} when stage == stages) */
+    const double *k;       /* stage derivative (NULL when stage == stages) */
+} dyn_trace_stage;
+typedef void (*dyn_trace_fn)(const dyn_trace_stage *st, void *ctx);
+
+/* Progress of a long solve: time reached and fraction done in [0, 1]; non-zero cancels. */
+typedef int (*dyn_progress_fn)(double t, double fraction, void *ctx);
+
+/* Options of the fixed-step driver; zero-initialise, then set what you need. */
+typedef struct dyn_fixed_opts {
+    dyn_end_policy end;      /* default DYN_END_EXACT */
+    long every;              /* keep every K-th sample (and always the last); 0 or 1 = all */
+    dyn_output_fn output;    /* may be NULL: only the final state is returned */
+    void *output_ctx;
+    dyn_trace_fn trace;      /* may be NULL; called for each stage of the first trace_steps */
+    void *trace_ctx;
+    long trace_steps;
+    int no_finite_check;     /* 1 skips the NaN/Inf check after each step */
+    dyn_progress_fn progress; /* may be NULL; called every progress_steps steps */
+    void *progress_ctx;
+    long progress_steps;     /* 0 = every 65536 steps */
+} dyn_fixed_opts;
+
+/* Result details of a solve: the status, where it failed, and the counters. */
+typedef struct dyn_result {
+    int status;          /* dyn_status */
+    int rhs_status;      /* the non-zero value f returned, for DYN_ERR_RHS */
+    double t;            /* time reached (of the last good state in y) */
+    double fail_t;       /* time of the failing evaluation or state */
+    int fail_index;      /* state index that was not finite, or -1 */
+    dyn_stats stats;
+    char message[256];   /* human-readable reason when status != DYN_OK */
+} dyn_result;
+
+/* Doubles of workspace the fixed-step driver needs for method m and n states. */
+size_t dyn_fixed_work_size(const dyn_tableau *m, int n);
+
+/* Integrate sys from (t0, y0) to t1 with step h using method m.
+ * y (n) receives the last good state (also on failure), or is NULL when only the samples
+ * are wanted; y may equal y0. work has dyn_fixed_work_size
+ * doubles. Output samples stream through opts->output. Never allocates.
+ * Returns res->status (DYN_OK on success). opts may be NULL. */
+int dyn_fixed_solve(const dyn_tableau *m, const dyn_system *sys, double t0, double t1,
+                    double h, const double *y0, double *y, double *work,
+                    const dyn_fixed_opts *opts, dyn_result *res);
+
+/* One step y1 = y0 + h * sum b_i k_i from (t, y0). work as for dyn_fixed_solve.
+ * y1 may equal y0. Returns 0 or the non-zero value of f. Adds s to *rhs_calls if non-NULL. */
+int dyn_rk_step(const dyn_tableau *m, const dyn_system *sys, double t, double h,
+                const double *y0, double *y1, double *work, long *rhs_calls);
+
+/* The homework's [tout, yout] = Integrate_X(odefun, tspan, Ts, y0, par), into caller arrays:
+ * tout has grid->samples entries and yout is (samples x n) row-major, where the grid is
+ * dyn_grid_plan(tspan[0], tspan[1], Ts, DYN_END_EXACT). On failure the rows up to the last
+ * good sample are filled and res says where it stopped. Returns the status. */
+int dyn_integrate(const dyn_tableau *m, dyn_rhs_fn f, const double tspan[2], double Ts,
+                  const double *y0, int n, void *par, double *tout, double *yout,
+                  double *work, dyn_result *res);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* DYNKIT_ODE_H */

@@ -1,0 +1,67 @@
+/* The sample grid of fixed-step runs: t_k = t0 + k*h, computed, never accumulated.
+ *
+ * A span is a whole number of steps when (t1 - t0)/h is within 1e-10 (relative) of an
+ * integer N; the grid then has exactly N + 1 samples, the homework's
+ * tout = (tspan(1):Ts:tspan(end))', and the last one is reported as t1 itself (as MATLAB's
+ * colon operator does) rather than t0 + N*h, which can differ from t1 in the last bit. Otherwise DYN_END_EXACT adds one shorter step that
+ * lands on t1, and DYN_END_GRID stops at the last whole step (MATLAB's colon operator).
+ */
+#include <math.h>
+#include <stdio.h>
+
+#include "dynkit/ode.h"
+
+/* Largest number of steps: k*h stays exact in the index and fits a long everywhere. */
+#define MAX_STEPS 9007199254740992.0 /* 2^53 */
+
+static int fail(char *err, size_t errlen, const char *msg, double value)
+{
+    if (err && errlen)
+        snprintf(err, errlen, msg, value);
+    return DYN_ERR_ARG;
+}
+
+int dyn_grid_plan(double t0, double t1, double h, dyn_end_policy end, dyn_grid *grid,
+                  char *err, size_t errlen)
+{
+    if (!grid)
+        return fail(err, errlen, "no grid to fill%.0s", 0.0);
+    if (!isfinite(t0))
+        return fail(err, errlen, "start time t0 = %g is not finite", t0);
+    if (!isfinite(t1))
+        return fail(err, errlen, "end time t1 = %g is not finite", t1);
+    if (!(t1 >= t0))
+        return fail(err, errlen, "end time must not be before the start time (t1 - t0 = %g)",
+                    t1 - t0);
+    if (!(h > 0.0) || !isfinite(h))
+        return fail(err, errlen, "step %g is not accepted: it must be a finite number > 0", h);
+    if (end != DYN_END_EXACT && end != DYN_END_GRID)
+        return fail(err, errlen, "unknown end policy %g (accepted: exact, grid)", (double)end);
+
+    double ratio = (t1 - t0) / h;
+    if (!(ratio < MAX_STEPS))
+        return fail(err, errlen, "step is too small for the span: %.3g steps (at most 2^53)",
+                    ratio);
+    double nearest = nearbyint(ratio);
+    grid->t0 = t0;
+    grid->t1 = t1;
+    grid->h = h;
+    if (fabs(ratio - nearest) <= 1e-10 * fmax(1.0, nearest)) {
+        grid->whole_steps = (long)nearest;
+        grid->partial = 0;
+        grid->ends_at_t1 = 1;
+    } else {
+        grid->whole_steps = (long)floor(ratio);
+        grid->partial = (end == DYN_END_EXACT);
+        grid->ends_at_t1 = grid->partial;
+    }
+    grid->samples = grid->whole_steps + grid->partial + 1;
+    return DYN_OK;
+}
+
+double dyn_grid_time(const dyn_grid *grid, long k)
+{
+    if (grid->ends_at_t1 && k == grid->samples - 1)
+        return grid->t1; /* t0 + N*h within rounding when whole; the partial step's end */
+    return grid->t0 + (double)k * grid->h;
+}

@@ -1,0 +1,16 @@
+/* Names of solve statuses, for messages. */
+#include "dynkit/ode.h"
+
+const char *dyn_status_name(int status)
+{
+    switch (status) {
+    case DYN_OK: return "ok";
+    case DYN_ERR_ARG: return "bad argument";
+    case DYN_ERR_RHS: return "right-hand side failed";
+    case DYN_ERR_NONFINITE: return "state not finite";
+    case DYN_STOPPED: return "stopped by output";
+    case DYN_ERR_IO: return "output error";
+    case DYN_CANCELLED: return "cancelled";
+    default: return "unknown status";
+    }
+}

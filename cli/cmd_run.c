@@ -14,7 +14,17 @@ typedef struct csv_sink {
     double last_t;
     long rows;
     int io_failed;
+    const char *last_warning; /* each distinct warning is printed once */
 } csv_sink;
+
+static void check_warning(csv_sink *sink, double t, const double *y)
+{
+    const dyn_model *m = sink->run->model;
+    const char *w = m->warn ? m->warn(t, y, sink->run->par) : NULL;
+    if (w && w != sink->last_warning)
+        fprintf(stderr, "dynkit: warning at t = %.6g s: %s\n", t, w);
+    sink->last_warning = w;
+}
 
 static int write_sample(csv_sink *sink, double t, const double *y)
 {
@@ -36,6 +46,7 @@ static int on_sample(long k, double t, const double *y, void *ctx)
 {
     csv_sink *sink = ctx;
     (void)k;
+    check_warning(sink, t, y);
     if (sink->run->final_only) {
         memcpy(sink->last_y, y, (size_t)sink->run->model->n_states * sizeof *y);
         sink->last_t = t;

@@ -44,6 +44,9 @@ typedef int (*dyn_outputs_fn)(double t, const double *y, const void *par, double
 /* Prepare a parameter struct after parameters changed (derived values); 0 or non-zero
  * with a message in err. May be NULL. */
 typedef int (*dyn_prepare_fn)(void *par, char *err, size_t errlen);
+/* A warning about a state (e.g. near a singularity of the coordinates): a static message,
+ * or NULL when all is well. May be NULL. */
+typedef const char *(*dyn_warn_fn)(double t, const double *y, const void *par);
 
 typedef struct dyn_model {
     const char *name;          /* e.g. "pendulum" */
@@ -60,6 +63,7 @@ typedef struct dyn_model {
     dyn_rhs_fn rhs;
     dyn_outputs_fn compute_outputs;  /* NULL when n_outputs == 0 */
     dyn_prepare_fn prepare;    /* may be NULL */
+    dyn_warn_fn warn;          /* may be NULL; checked at each output sample */
     double t0, t1, step;       /* default time span and step [s] */
     const char *method;        /* default method name */
 } dyn_model;

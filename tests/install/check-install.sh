@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Checks an installed dynkit (prefix as $1): the CLI runs, a CMake project finds the
+# package with find_package(dynkit), and pkg-config compiles and links the example.
+set -euo pipefail
+prefix="$1"
+here="$(cd "$(dirname "$0")" && pwd)"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+"$prefix/bin/dynkit" methods >/dev/null
+cmake -S "$here" -B "$work/cmake" -DCMAKE_PREFIX_PATH="$prefix" >/dev/null
+cmake --build "$work/cmake" >/dev/null
+LD_LIBRARY_PATH="$prefix/lib:$prefix/lib64:${LD_LIBRARY_PATH:-}" "$work/cmake/user_example"
+libdir=$(ls -d "$prefix"/lib*/pkgconfig | head -n1)
+PKG_CONFIG_PATH="$libdir" cc -std=c11 "$here/../../examples/vanderpol.c" -o "$work/pc_example" \
+  $(PKG_CONFIG_PATH="$libdir" pkg-config --cflags --libs --static dynkit)
+LD_LIBRARY_PATH="$prefix/lib:$prefix/lib64:${LD_LIBRARY_PATH:-}" "$work/pc_example"
+echo "install check: find_package and pkg-config both work"

@@ -10,11 +10,11 @@ typedef struct csv_sink {
     FILE *out;
     const cli_run *run;
     double *extra;       /* (n_outputs) */
-    double *last_y;      /* (n_states) latest sample, for --final */
-    double last_t;
     long rows;
     int io_failed;
     const char *last_warning; /* each distinct warning is printed once */
+    long every;               /* keep samples k % every == 0 and the last one */
+    long last_k;
 } csv_sink;
 
 static void check_warning(csv_sink *sink, double t, const double *y)
@@ -45,14 +45,11 @@ static int write_sample(csv_sink *sink, double t, const double *y)
 static int on_sample(long k, double t, const double *y, void *ctx)
 {
     csv_sink *sink = ctx;
-    (void)k;
     check_warning(sink, t, y);
-    if (sink->run->final_only) {
-        memcpy(sink->last_y, y, (size_t)sink->run->model->n_states * sizeof *y);
-        sink->last_t = t;
-        sink->rows = 1;
+    if (k % sink->every != 0 && k != sink->last_k)
         return 0;
-    }
+    if (sink->run->final_only)
+        return 0; /* the last good state is written after the solve */
     return write_sample(sink, t, y);
 }
 
@@ -72,17 +69,25 @@ static void run_help(void)
          "up to there are still written), 2 bad command line.");
 }
 
-static void report_failure(const cli_run *run, const dyn_result *res, const csv_sink *sink)
+static void report_failure(const cli_run *run, const dyn_result *res, const double *y_good,
+                           const csv_sink *sink)
 {
     const dyn_model *m = run->model;
     if (res->status == DYN_ERR_NONFINITE && res->fail_index >= 0)
-        fprintf(stderr, "dynkit: run failed: state %s of model %s became not finite at t = %.17g\n",
-                m->states[res->fail_index].name, m->name, res->fail_t);
+        fprintf(stderr,
+                "dynkit: run failed: state %s of model %s became NaN or Inf at t = %.17g "
+                "(method %s, step %g)\n",
+                m->states[res->fail_index].name, m->name, res->fail_t, run->method->name,
+                run->step);
     else
         fprintf(stderr, "dynkit: run failed: %s\n", res->message);
-    fprintf(stderr, "dynkit: %s up to the last good state at t = %.17g %s written\n",
-            run->final_only ? "the last good state" : "the samples", res->t,
-            sink->io_failed ? "could not be" : "were");
+    fprintf(stderr, "dynkit: last good state at t = %.17g:", res->t);
+    for (int i = 0; i < m->n_states; i++)
+        fprintf(stderr, " %s = %.17g", m->states[i].name, y_good[i]);
+    fprintf(stderr, "\ndynkit: %s\n",
+            sink->io_failed ? "the output could not be written"
+            : run->final_only ? "it was written as the final row"
+                              : "the samples up to it were written");
 }
 
 int cli_cmd_run(int argc, char **argv)
@@ -113,13 +118,13 @@ int cli_cmd_run(int argc, char **argv)
     }
     size_t work_size = dyn_fixed_work_size(run.method, n);
     double *work = malloc(work_size * sizeof *work);
-    double *buffers = calloc((size_t)(2 * n + m->n_outputs + 1), sizeof *buffers);
+    double *buffers = calloc((size_t)(n + m->n_outputs + 1), sizeof *buffers);
     if (!work || !buffers) {
         fprintf(stderr, "dynkit: error: out of memory\n");
         rc = CLI_FAILED;
         goto done;
     }
-    csv_sink sink = {.out = out, .run = &run, .extra = buffers + 2 * n, .last_y = buffers + n};
+    csv_sink sink = {.out = out, .run = &run, .extra = buffers + n};
     int n_extra = run.with_outputs ? m->n_outputs : 0;
     if (dyn_csv_write_header(out, m->states, n, m->outputs, n_extra)) {
         fprintf(stderr, "dynkit: error: cannot write the output\n");
@@ -128,9 +133,15 @@ int cli_cmd_run(int argc, char **argv)
     }
     cli_progress progress;
     cli_progress_start(&progress, run.quiet);
+    dyn_grid grid;
+    if (dyn_grid_plan(run.t0, run.t1, run.step, run.end, &grid, NULL, 0) == DYN_OK)
+        sink.last_k = grid.samples - 1;
+    /* the driver thins the samples itself unless the model checks every state for warnings */
+    const long keep = run.final_only ? 0x7fffffffffffffffL : run.every;
+    sink.every = m->warn ? keep : 1;
     dyn_fixed_opts opts = {0};
     opts.end = run.end;
-    opts.every = run.final_only ? 0 : run.every;
+    opts.every = m->warn ? 1 : keep;
     opts.output = on_sample;
     opts.output_ctx = &sink;
     opts.trace = run.trace_steps > 0 ? cli_print_trace : NULL;
@@ -138,8 +149,6 @@ int cli_cmd_run(int argc, char **argv)
     opts.trace_steps = run.trace_steps;
     opts.progress = progress.enabled ? cli_progress_update : NULL;
     opts.progress_ctx = &progress;
-    if (run.final_only)
-        opts.every = 0x7fffffffffffffffL; /* only the first and the last sample */
     dyn_system sys = {m->rhs, n, run.par};
     dyn_result res;
     dyn_fixed_solve(run.method, &sys, run.t0, run.t1, run.step, run.y0, buffers, work, &opts,
@@ -149,14 +158,14 @@ int cli_cmd_run(int argc, char **argv)
         rc = cli_usage_error("run", "%s", res.message);
         goto done;
     }
-    if (run.final_only && sink.rows)
-        write_sample(&sink, sink.last_t, sink.last_y);
+    if (run.final_only && res.status != DYN_ERR_ARG)
+        write_sample(&sink, res.t, buffers); /* the driver leaves the last good state there */
     if (fflush(out) != 0 || sink.io_failed) {
         fprintf(stderr, "dynkit: error: writing the output failed: %s\n", strerror(errno));
         rc = CLI_FAILED;
     }
     if (res.status != DYN_OK) {
-        report_failure(&run, &res, &sink);
+        report_failure(&run, &res, buffers, &sink);
         rc = CLI_FAILED;
     }
 done:

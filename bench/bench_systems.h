@@ -1,0 +1,86 @@
+/* Right-hand sides timed by the benchmarks, written once as static inline functions so the
+ * same arithmetic is called through a dyn_rhs_fn pointer by the library and inlined into
+ * the hand-written loops.
+ *
+ * - van der Pol (homework problem 2): 2 states, mu = 1, y0 = (2, 0), h = 0.01, 1500 steps.
+ *   A cheap right-hand side: the step loop itself is what is measured.
+ * - model plane on a spring (homework problem 3): 12 states (sX, sY, sZ, psi, theta, phi,
+ *   dsX, dsY, dsZ, omegax, omegay, omegaz); spring from the origin to the body point P,
+ *   gravity along +Z, Euler's equations in the body frame, type I Euler-angle rates
+ *   (Greenwood 3.16); h = 0.01, 500 steps. The right-hand side (six trigonometric calls, a
+ *   square root, divisions) dominates. Self-contained on purpose: it does not use the mech
+ *   layer, so the benchmark measures the ODE core only.
+ */
+#ifndef DYNKIT_BENCH_SYSTEMS_H
+#define DYNKIT_BENCH_SYSTEMS_H
+
+#include <math.h>
+
+/* ---- van der Pol ---- */
+typedef struct bench_vdp_par {
+    double mu;
+} bench_vdp_par;
+
+static inline void bench_vdp_eval(const double *y, double *dydt, const bench_vdp_par *p)
+{
+    dydt[0] = y[1];
+    dydt[1] = p->mu * (1.0 - y[0] * y[0]) * y[1] - y[0];
+}
+
+/* ---- model plane hanging on a spring ---- */
+typedef struct bench_plane_par {
+    double m;             /* [kg] */
+    double Ixx, Iyy, Izz; /* [kg m^2] principal moments about the body axes */
+    double g;             /* [m/s^2] along +Z */
+    double l0, k;         /* [m], [N/m] spring rest length and stiffness */
+    double rp[3];         /* [m] spring attachment point P in the body frame */
+} bench_plane_par;
+
+static inline void bench_plane_eval(const double *x, double *dx, const bench_plane_par *p)
+{
+    const double psi = x[3], th = x[4], ph = x[5];
+    const double wx = x[9], wy = x[10], wz = x[11];
+    const double cps = cos(psi), sps = sin(psi);
+    const double cth = cos(th), sth = sin(th);
+    const double cph = cos(ph), sph = sin(ph);
+    /* R = R_phi R_theta R_psi maps N coordinates to B coordinates (row-major 3 x 3). */
+    const double R[9] = {cth * cps,
+                         cth * sps,
+                         -sth,
+                         -cph * sps + sph * sth * cps,
+                         cph * cps + sph * sth * sps,
+                         sph * cth,
+                         sph * sps + cph * sth * cps,
+                         -sph * cps + cph * sth * sps,
+                         cph * cth};
+    /* P in N: s + R^T rp; the spring pulls P towards the origin A. */
+    double d[3];
+    for (int i = 0; i < 3; i++)
+        d[i] = x[i] + R[0 + i] * p->rp[0] + R[3 + i] * p->rp[1] + R[6 + i] * p->rp[2];
+    const double L = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    const double scale = -p->k * (L - p->l0) / L;
+    const double Fs[3] = {scale * d[0], scale * d[1], scale * d[2]};
+    /* Spring force in B and its moment about the centre of mass. */
+    double FB[3];
+    for (int i = 0; i < 3; i++)
+        FB[i] = R[3 * i] * Fs[0] + R[3 * i + 1] * Fs[1] + R[3 * i + 2] * Fs[2];
+    const double Mx = p->rp[1] * FB[2] - p->rp[2] * FB[1];
+    const double My = p->rp[2] * FB[0] - p->rp[0] * FB[2];
+    const double Mz = p->rp[0] * FB[1] - p->rp[1] * FB[0];
+    /* Euler-angle rates (type I, singular at theta = +-90 deg). */
+    const double dpsi = (wy * sph + wz * cph) / cth;
+    dx[0] = x[6];
+    dx[1] = x[7];
+    dx[2] = x[8];
+    dx[3] = dpsi;
+    dx[4] = wy * cph - wz * sph;
+    dx[5] = wx + dpsi * sth;
+    dx[6] = Fs[0] / p->m;
+    dx[7] = Fs[1] / p->m;
+    dx[8] = (Fs[2] + p->m * p->g) / p->m;
+    dx[9] = (Mx - (p->Izz - p->Iyy) * wy * wz) / p->Ixx;
+    dx[10] = (My - (p->Ixx - p->Izz) * wz * wx) / p->Iyy;
+    dx[11] = (Mz - (p->Iyy - p->Ixx) * wx * wy) / p->Izz;
+}
+
+#endif

@@ -4,10 +4,13 @@
 #include <string.h>
 
 #include "dynkit/models.h"
+#include "dynkit/plane.h"
 
 static const dyn_model *const builtin[] = {
     &dyn_model_pendulum,
     &dyn_model_vanderpol,
+    &dyn_model_plane,
+    &dyn_model_plane_quat,
 };
 
 int dyn_model_count(void) { return (int)(sizeof builtin / sizeof builtin[0]); }

@@ -33,7 +33,7 @@ typedef struct dyn_plane_par {
     double k;            /* [N/m] spring stiffness: 20 */
     double px, py, pz;   /* [m] spring attachment P in B: (0.1, 0, -0.1) */
     double m;            /* [kg] mass: 1 */
-    double Ixx, Iyy, Izz; /* [kg m^2] principal inertia about S: Ip/2, Ip/2, Ip, Ip = 0.01 */
+    double Ixx, Iyy, Izz; /* [kg m^2] principal inertia about S: Ip/2, Ip/2, Ip; Ip = 1*.1^2 */
     /* geometry for animations only (the dynamics do not use it) */
     double length_plane; /* [m] fuselage length: 2 */
     double wingspan;     /* [m] wingspan: 4 */

@@ -19,6 +19,8 @@
 #include "dynkit/mech.h"
 
 #define PAR(member) offsetof(dyn_plane_par, member)
+#define DYN_PLANE_IP (1.0 * 0.1 * 0.1)
+#define DYN_PLANE_IXX (0.5 * DYN_PLANE_IP)
 
 const dyn_param dyn_plane_params[DYN_PLANE_N_PARAMS] = {
     {"g", "m/s^2", "acceleration of gravity, along +Z (down)", PAR(g), 9.81},
@@ -28,10 +30,12 @@ const dyn_param dyn_plane_params[DYN_PLANE_N_PARAMS] = {
     {"py", "m", "spring attachment point P: y in B", PAR(py), 0.0},
     {"pz", "m", "spring attachment point P: z in B", PAR(pz), -0.1},
     {"m", "kg", "mass of the plane", PAR(m), 1.0},
-    {"Ixx", "kg m^2", "moment of inertia about the body x axis (Ip/2, Ip = 0.01)", PAR(Ixx),
-     0.005},
-    {"Iyy", "kg m^2", "moment of inertia about the body y axis (Ip/2)", PAR(Iyy), 0.005},
-    {"Izz", "kg m^2", "moment of inertia about the body z axis (Ip)", PAR(Izz), 0.01},
+    /* Ip = 1*.1^2 as in simulate_plane.m (0.010000000000000002 in double), Ixx = Iyy = Ip/2 */
+    {"Ixx", "kg m^2", "moment of inertia about the body x axis (.5*Ip, Ip = 1*.1^2)", PAR(Ixx),
+     DYN_PLANE_IXX},
+    {"Iyy", "kg m^2", "moment of inertia about the body y axis (.5*Ip)", PAR(Iyy),
+     DYN_PLANE_IXX},
+    {"Izz", "kg m^2", "moment of inertia about the body z axis (Ip)", PAR(Izz), DYN_PLANE_IP},
     {"length_plane", "m", "length of the plane's body (animation only)", PAR(length_plane),
      2.0},
     {"wingspan", "m", "wingspan (animation only)", PAR(wingspan), 4.0},

@@ -172,11 +172,18 @@ static void test_bad_steps_and_spans_refused(void **state)
     check_refused(0.0, INFINITY, 0.1, DYN_END_EXACT, "t1");
     check_refused(-INFINITY, 0.0, 0.1, DYN_END_EXACT, "t0");
     check_refused(0.0, 1.0, 0.1, 7, "end policy");
-    /* No grid to fill. */
+}
+
+/* No grid to fill: refused with a message (the message is formatted without reading
+ * arguments that are not there; under ASan a mismatched format crashes here). */
+static void test_null_grid_refused(void **state)
+{
+    (void)state;
     char err[64] = "";
     assert_int_equal(dyn_grid_plan(0.0, 1.0, 0.1, DYN_END_EXACT, NULL, err, sizeof err),
                      DYN_ERR_ARG);
     assert_true(strlen(err) > 0);
+    assert_non_null(strstr(err, "grid"));
 }
 
 /* ---- through the driver ---- */
@@ -308,7 +315,9 @@ static void test_rhs_never_evaluated_past_t1(void **state)
     (void)state;
     int past = 0;
     for (int m = 0; m < dyn_method_count(); m++) {
-        const dyn_tableau *method = dyn_method_at(m);
+        const dyn_tableau *method = fixed_method_at(m);
+        if (!method)
+            continue;
         for (size_t i = 0; i < sizeof spans / sizeof spans[0]; i++) {
             for (int end = DYN_END_EXACT; end <= DYN_END_GRID; end++) {
                 const struct span *s = &spans[i];
@@ -431,6 +440,7 @@ int main(void)
         cmocka_unit_test(test_step_larger_than_span),
         cmocka_unit_test(test_empty_span_has_one_sample),
         cmocka_unit_test(test_bad_steps_and_spans_refused),
+        cmocka_unit_test(test_null_grid_refused),
         cmocka_unit_test(test_output_sees_exactly_the_grid),
         cmocka_unit_test(test_every_keeps_multiples_and_last),
         cmocka_unit_test(test_rhs_never_evaluated_past_t1),

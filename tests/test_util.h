@@ -16,6 +16,14 @@
 /* Largest number of states of a test problem. */
 #define TEST_MAX_N 12
 
+/* The i-th registered method if it is an explicit Runge-Kutta table (what the fixed-step
+ * driver runs), else NULL: other kinds of solver get tests of their own. */
+static inline const dyn_tableau *fixed_method_at(int i)
+{
+    const dyn_tableau *m = dyn_method_at(i);
+    return m && m->kind == DYN_KIND_EXPLICIT_RK ? m : NULL;
+}
+
 /* 1 if a and b have the same bits (so -0 != +0, and a NaN equals only itself). */
 static inline int same_bits(double a, double b) { return memcmp(&a, &b, sizeof a) == 0; }
 

@@ -474,6 +474,9 @@ static void test_rk_step_in_place(void **state)
     double work[TEST_WORK], y0[2] = {1.0, 1.0}, y1[2] = {-5.0, -5.0};
     assert_int_equal(dyn_rk_step(dyn_method_find("rk4"), &bad, 0.4, 0.1, y0, y1, work, &calls), 7);
     assert_int_equal(calls, 4); /* stages at 0.4, 0.45, 0.45, then 0.5 fails */
+    assert_int_equal(dyn_rk_step(dyn_method_find("rk4"), &bad, 0.45, 0.1, y0, y1, work, &calls),
+                     7);
+    assert_int_equal(calls, 4 + 2); /* 0.45, then 0.5 fails */
     assert_true(y1[0] == -5.0 && y1[1] == -5.0);
 }
 

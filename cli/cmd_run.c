@@ -63,7 +63,9 @@ static void run_help(void)
          "Examples:\n"
          "  dynkit run vanderpol --method heun --step 0.01 --tspan 0:15 --final\n"
          "  dynkit run pendulum --method euler --step 0.2 --tspan 0:0.2 --trace 1\n"
-         "  dynkit run pendulum --set l=1 --init dphi=pi/4 --tspan 0:10 --outputs\n");
+         "  dynkit run pendulum --set l=1 --init dphi=pi/4 --tspan 0:10 --outputs\n"
+         "  dynkit inverse cart --output forces.csv   (prints the --init options for:)\n"
+         "  dynkit run cart --forces forces.csv --method heun --init dsX=-20 ...\n");
     cli_run_options_help(stdout);
     puts("\nExit status: 0 success, 1 failed run (e.g. a state became NaN or Inf; the samples\n"
          "up to there are still written), 2 bad command line.");
@@ -109,6 +111,14 @@ int cli_cmd_run(int argc, char **argv)
     }
     const dyn_model *m = run.model;
     const int n = m->n_states;
+    dyn_grid grid;
+    char why[256];
+    if (dyn_grid_plan(run.t0, run.t1, run.step, run.end, &grid, why, sizeof why)) {
+        rc = cli_usage_error("run", "--step %g over --tspan %g:%g: %s", run.step, run.t0, run.t1,
+                             why);
+        cli_run_free(&run);
+        return rc;
+    }
     FILE *out = stdout;
     if (run.output_path && !(out = fopen(run.output_path, "w"))) {
         rc = cli_usage_error("run", "cannot open --output '%s' for writing: %s", run.output_path,
@@ -133,9 +143,7 @@ int cli_cmd_run(int argc, char **argv)
     }
     cli_progress progress;
     cli_progress_start(&progress, run.quiet);
-    dyn_grid grid;
-    if (dyn_grid_plan(run.t0, run.t1, run.step, run.end, &grid, NULL, 0) == DYN_OK)
-        sink.last_k = grid.samples - 1;
+    sink.last_k = grid.samples - 1;
     /* the driver thins the samples itself unless the model checks every state for warnings */
     const long keep = run.final_only ? 0x7fffffffffffffffL : run.every;
     sink.every = m->warn ? keep : 1;

@@ -75,7 +75,8 @@ char *dyn_method_names(char *buf, size_t size);
  * are checked; p > 4 is checked to 4). Returns max |residual|; 0 for an exact table. */
 double dyn_tableau_order_residual(const dyn_tableau *tab, int p);
 
-/* What to do when (t1 - t0) / h is not a whole number of steps (within 1e-10 relative). */
+/* What to do when (t1 - t0) / h is not a whole number of steps (within 1e-10 relative, and
+ * never more than 1e-3 steps). */
 typedef enum dyn_end_policy {
     DYN_END_EXACT = 0, /* default: a last, shorter step lands exactly on t1 */
     DYN_END_GRID = 1   /* MATLAB's t0:h:t1: stop at the last t0 + k*h <= t1 */

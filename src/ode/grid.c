@@ -1,10 +1,11 @@
 /* The sample grid of fixed-step runs: t_k = t0 + k*h, computed, never accumulated.
  *
- * A span is a whole number of steps when (t1 - t0)/h is within 1e-10 (relative) of an
+ * A span is a whole number of steps when (t1 - t0)/h is within 1e-10 (relative; at most
+ * 1e-3 steps, so spans of billions of steps are not rounded to whole ones) of an
  * integer N; the grid then has exactly N + 1 samples, the homework's
  * tout = (tspan(1):Ts:tspan(end))', and the last one is reported as t1 itself (as MATLAB's
- * colon operator does) rather than t0 + N*h, which can differ from t1 in the last bit. Otherwise DYN_END_EXACT adds one shorter step that
- * lands on t1, and DYN_END_GRID stops at the last whole step (MATLAB's colon operator).
+ * colon operator does) rather than t0 + N*h, which can differ from t1 in the last
+ * bit. Otherwise DYN_END_EXACT adds one shorter step that lands on t1, and DYN_END_GRID stops at the last whole step (MATLAB's colon operator).
  */
 #include <math.h>
 #include <stdio.h>
@@ -14,6 +15,9 @@
 /* Largest number of steps: k*h stays exact in the index and fits a long everywhere. */
 #define MAX_STEPS 9007199254740992.0 /* 2^53 */
 
+#if defined(__GNUC__)
+__attribute__((format(printf, 3, 0)))
+#endif
 static int fail(char *err, size_t errlen, const char *msg, double value)
 {
     if (err && errlen)
@@ -25,7 +29,7 @@ int dyn_grid_plan(double t0, double t1, double h, dyn_end_policy end, dyn_grid *
                   char *err, size_t errlen)
 {
     if (!grid)
-        return fail(err, errlen, "no grid to fill%.0s", 0.0);
+        return fail(err, errlen, "no grid to fill%.0f", 0.0);
     if (!isfinite(t0))
         return fail(err, errlen, "start time t0 = %g is not finite", t0);
     if (!isfinite(t1))
@@ -46,7 +50,9 @@ int dyn_grid_plan(double t0, double t1, double h, dyn_end_policy end, dyn_grid *
     grid->t0 = t0;
     grid->t1 = t1;
     grid->h = h;
-    if (fabs(ratio - nearest) <= 1e-10 * fmax(1.0, nearest)) {
+    /* rounding in (t1 - t0)/h is a few ulps of the ratio; never call a span whole that is
+     * more than 1e-3 steps away from it */
+    if (fabs(ratio - nearest) <= fmin(1e-10 * fmax(1.0, nearest), 1e-3)) {
         grid->whole_steps = (long)nearest;
         grid->partial = 0;
         grid->ends_at_t1 = 1;

@@ -44,6 +44,11 @@ typedef struct cli_run {
     int quiet;
     long every;
     long trace_steps;
+    /* --forces FILE: a time table of the model's inputs, columns t and dyn_model.inputs */
+    const char *forces_path;
+    dyn_interp interp;    /* --interp hold|linear */
+    double *input;        /* (input_rows x (1 + n_inputs)), owned; attached to par */
+    long input_rows;
 } cli_run;
 
 /* Parse "MODEL [options]" of run-like commands into run; unknown options are errors.
@@ -71,5 +76,6 @@ int cli_cmd_run(int argc, char **argv);
 int cli_cmd_models(int argc, char **argv);
 int cli_cmd_methods(int argc, char **argv);
 int cli_cmd_info(int argc, char **argv);
+int cli_cmd_inverse(int argc, char **argv);
 
 #endif

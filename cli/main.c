@@ -14,6 +14,7 @@ static void main_help(void)
          "  models         list the built-in models\n"
          "  methods        list the integration methods\n"
          "  info MODEL     states, parameters, units and defaults of a model\n"
+         "  inverse cart   inverse dynamics of the cart: force table of a prescribed motion\n"
          "\n"
          "'dynkit COMMAND --help' tells more about each command.\n"
          "Example: dynkit run vanderpol --method rk4 --step 0.01 --tspan 0:15 --final");
@@ -29,6 +30,7 @@ int main(int argc, char **argv)
         {"models", cli_cmd_models},
         {"methods", cli_cmd_methods},
         {"info", cli_cmd_info},
+        {"inverse", cli_cmd_inverse},
     };
     if (argc < 2) {
         main_help();
@@ -45,6 +47,8 @@ int main(int argc, char **argv)
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
         if (strcmp(argv[1], commands[i].name) == 0)
             return commands[i].run(argc - 2, argv + 2);
-    return cli_usage_error(NULL, "unknown command '%s' (accepted: run, models, methods, info)",
+    return cli_usage_error(NULL,
+                           "unknown command '%s' (accepted: run, models, methods, info, "
+                           "inverse)",
                            argv[1]);
 }

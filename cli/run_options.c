@@ -1,5 +1,6 @@
 /* The run options shared by run-like commands: model, method, span, step, parameters,
  * initial state and output choices (the command-line contract of the design). */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -17,6 +18,12 @@ void cli_run_options_help(FILE *out)
           "  --set NAME=VALUE     set a parameter (repeatable; see 'dynkit info MODEL')\n"
           "  --init NAME=VALUE    set an initial state (repeatable)\n"
           "                       numbers may be multiples of pi: pi/2, -0.5pi, 2*pi/3\n"
+          "  --forces FILE        models with inputs (cart): read the inputs from a CSV table\n"
+          "                       with columns t and the input names (cart: t,Fx,Fy), time\n"
+          "                       increasing; without --step/--tspan the run uses the table's\n"
+          "                       sample time and span ('dynkit inverse cart' writes one)\n"
+          "  --interp hold|linear read the table between samples: 'hold' (default) takes the\n"
+          "                       nearest sample, 'linear' interpolates; end values are held\n"
           "Output options:\n"
           "  --output FILE        write the CSV to FILE instead of standard output\n"
           "  --final              write the header and the last sample only\n"
@@ -111,8 +118,11 @@ static int apply_assignment(const char *command, cli_run *run, const assignment 
     return CLI_OK;
 }
 
+/* Which options were given (the defaults of step and span depend on --forces). */
+enum { GIVEN_STEP = 1, GIVEN_TSPAN = 2, GIVEN_INTERP = 4 };
+
 static int parse_option(const char *command, int argc, char **argv, int *i, cli_run *run,
-                        assignment *as, int *n_as, const char **method_name)
+                        assignment *as, int *n_as, const char **method_name, unsigned *given)
 {
     const char *v = NULL;
     const char *arg = argv[*i];
@@ -132,9 +142,11 @@ static int parse_option(const char *command, int argc, char **argv, int *i, cli_
                                    "--step '%s' is not accepted: give a step size in s, a "
                                    "finite number > 0 (e.g. 0.01)",
                                    v);
+        *given |= GIVEN_STEP;
     } else if (OPT("tspan")) {
         if (r < 0 || parse_tspan(command, v, &run->t0, &run->t1))
             return CLI_USAGE;
+        *given |= GIVEN_TSPAN;
     } else if (OPT("end")) {
         if (r < 0)
             return CLI_USAGE;
@@ -152,6 +164,21 @@ static int parse_option(const char *command, int argc, char **argv, int *i, cli_
         if (r < 0)
             return CLI_USAGE;
         as[(*n_as)++] = (assignment){v, 0};
+    } else if (OPT("forces")) {
+        if (r < 0)
+            return CLI_USAGE;
+        run->forces_path = v;
+    } else if (OPT("interp")) {
+        if (r < 0)
+            return CLI_USAGE;
+        if (strcmp(v, "hold") == 0)
+            run->interp = DYN_INTERP_HOLD;
+        else if (strcmp(v, "linear") == 0)
+            run->interp = DYN_INTERP_LINEAR;
+        else
+            return cli_usage_error(command,
+                                   "--interp '%s' is not accepted (accepted: hold, linear)", v);
+        *given |= GIVEN_INTERP;
     } else if (OPT("output")) {
         if (r < 0)
             return CLI_USAGE;
@@ -183,6 +210,96 @@ static int parse_option(const char *command, int argc, char **argv, int *i, cli_
     return CLI_OK;
 }
 
+/* --forces: read the table, check its columns against the model's inputs, attach it to
+ * the parameters, and take the step and span from it unless they were given. */
+static int load_input(const char *command, cli_run *run, unsigned given)
+{
+    const dyn_model *m = run->model;
+    char err[512], list[512];
+    const char *path = run->forces_path;
+    if (m->n_inputs <= 0 || !m->set_input) {
+        size_t used = 0;
+        list[0] = '\0';
+        for (int i = 0; i < dyn_model_count(); i++)
+            if (dyn_model_at(i)->n_inputs > 0 && used < sizeof list)
+                used += (size_t)snprintf(list + used, sizeof list - used, "%s%s",
+                                         used ? ", " : "", dyn_model_at(i)->name);
+        return cli_usage_error(command,
+                               "--forces: model %s takes no input table (models with inputs: "
+                               "%s)",
+                               m->name, list[0] ? list : "none");
+    }
+    dyn_table table;
+    if (dyn_table_read_file(path, DYN_TABLE_TIME_FIRST, &table, err, sizeof err))
+        return cli_usage_error(command, "--forces: %s", err);
+    const int cols = 1 + m->n_inputs;
+    int index[16];
+    size_t used = 0;
+    list[0] = '\0';
+    for (int j = 0; j < cols && used < sizeof list; j++)
+        used += (size_t)snprintf(list + used, sizeof list - used, "%s%s", j ? "," : "",
+                                 j ? m->inputs[j - 1].name : "t");
+    int rc = CLI_OK;
+    if (cols > (int)(sizeof index / sizeof index[0]))
+        rc = cli_usage_error(command, "--forces: model %s has too many inputs", m->name);
+    for (int j = 0; j < cols && rc == CLI_OK; j++) {
+        const char *name = j ? m->inputs[j - 1].name : "t";
+        index[j] = dyn_table_column(&table, name);
+        if (index[j] < 0)
+            rc = cli_usage_error(command,
+                                 "--forces: %s has no column '%s' (model %s needs the columns "
+                                 "%s; others are ignored)",
+                                 path, name, m->name, list);
+    }
+    if (rc == CLI_OK && index[0] != 0)
+        rc = cli_usage_error(command, "--forces: in %s the first column must be t (needs %s)",
+                             path, list);
+    if (rc == CLI_OK && !(run->input = malloc((size_t)table.rows * (size_t)cols * sizeof(double)))) {
+        fprintf(stderr, "dynkit: error: out of memory\n");
+        rc = CLI_FAILED;
+    }
+    if (rc != CLI_OK) {
+        dyn_table_free(&table);
+        return rc;
+    }
+    for (long k = 0; k < table.rows; k++)
+        for (int j = 0; j < cols; j++)
+            run->input[k * cols + j] = table.data[k * table.cols + index[j]];
+    run->input_rows = table.rows;
+    dyn_table_free(&table);
+    if (m->set_input(run->par, run->input, run->input_rows, run->interp, err, sizeof err))
+        return cli_usage_error(command, "--forces %s: %s", path, err);
+    const double *in = run->input;
+    const long rows = run->input_rows;
+    const double first = in[0], last = in[(rows - 1) * cols];
+    if (!(given & GIVEN_TSPAN)) {
+        if (rows < 2)
+            return cli_usage_error(command,
+                                   "--forces %s has a single row, so it spans no time: give "
+                                   "--tspan T0:T1",
+                                   path);
+        run->t0 = first;
+        run->t1 = last;
+    }
+    if (!(given & GIVEN_STEP)) {
+        /* the sample time is the first spacing (exactly Ts for t_k = k Ts); the table must
+         * be uniform for it to be the step */
+        const double dt = rows > 1 ? in[cols] - in[0] : 0.0;
+        for (long k = 2; k < rows && dt > 0.0; k++)
+            if (!(fabs(in[k * cols] - (first + (double)k * dt)) <= 1e-9 * dt))
+                return cli_usage_error(command,
+                                       "--forces %s: the sample times are not uniform (row "
+                                       "%ld: t = %.17g), so there is no sample time to use as "
+                                       "the step: give --step H",
+                                       path, k + 1, in[k * cols]);
+        if (!(dt > 0.0))
+            return cli_usage_error(command,
+                                   "--forces %s has a single row: give --step H", path);
+        run->step = dt;
+    }
+    return CLI_OK;
+}
+
 int cli_run_parse(const char *command, int argc, char **argv, cli_run *run)
 {
     char names[512], err[256];
@@ -211,8 +328,9 @@ int cli_run_parse(const char *command, int argc, char **argv, cli_run *run)
     run->every = 1;
     const char *method_name = m->method;
     int n_as = 0, rc = CLI_OK;
+    unsigned given = 0;
     for (int i = 1; i < argc && rc == CLI_OK; i++)
-        rc = parse_option(command, argc, argv, &i, run, as, &n_as, &method_name);
+        rc = parse_option(command, argc, argv, &i, run, as, &n_as, &method_name, &given);
     for (int k = 0; k < n_as && rc == CLI_OK; k++)
         rc = apply_assignment(command, run, &as[k]);
     free(as);
@@ -220,6 +338,10 @@ int cli_run_parse(const char *command, int argc, char **argv, cli_run *run)
         return rc;
     if (m->prepare && m->prepare(run->par, err, sizeof err))
         return cli_usage_error(command, "%s", err);
+    if ((given & GIVEN_INTERP) && !run->forces_path)
+        return cli_usage_error(command, "--interp needs --forces FILE (a table to read)");
+    if (run->forces_path && (rc = load_input(command, run, given)) != CLI_OK)
+        return rc;
     run->method = dyn_method_find(method_name);
     if (!run->method)
         return cli_usage_error(command, "unknown method '%s' (accepted: %s)", method_name,
@@ -231,6 +353,8 @@ void cli_run_free(cli_run *run)
 {
     free(run->par);
     free(run->y0);
+    free(run->input);
     run->par = NULL;
     run->y0 = NULL;
+    run->input = NULL;
 }

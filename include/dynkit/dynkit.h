@@ -5,6 +5,7 @@
 #include "dynkit/ode.h"
 #include "dynkit/model.h"
 #include "dynkit/models.h"
+#include "dynkit/cart.h"
 #include "dynkit/plane.h"
 #include "dynkit/io.h"
 

@@ -48,6 +48,19 @@ typedef int (*dyn_prepare_fn)(void *par, char *err, size_t errlen);
  * or NULL when all is well. May be NULL. */
 typedef const char *(*dyn_warn_fn)(double t, const double *y, const void *par);
 
+/* How a model reads a table of input samples between the sample times. */
+typedef enum dyn_interp {
+    DYN_INTERP_HOLD = 0,  /* zero-order hold at the nearest sample (the homework's rule) */
+    DYN_INTERP_LINEAR = 1 /* linear interpolation between the neighbouring samples */
+} dyn_interp;
+
+/* Attach a time table of inputs to a prepared parameter struct: table is (rows x
+ * (1 + n_inputs)) row-major, column 0 the time, strictly increasing, then the inputs in the
+ * order of dyn_model.inputs. The table is borrowed: the caller keeps it alive while par is
+ * used. Returns 0 or non-zero with a message in err. */
+typedef int (*dyn_set_input_fn)(void *par, const double *table, long rows, dyn_interp interp,
+                                char *err, size_t errlen);
+
 typedef struct dyn_model {
     const char *name;          /* e.g. "pendulum" */
     const char *title;         /* one line */
@@ -66,6 +79,11 @@ typedef struct dyn_model {
     dyn_warn_fn warn;          /* may be NULL; checked at each output sample */
     double t0, t1, step;       /* default time span and step [s] */
     const char *method;        /* default method name */
+    /* Optional time-table input (e.g. applied forces), appended last so designated
+     * initializers of models without inputs stay valid: n_inputs == 0 means none. */
+    int n_inputs;
+    const dyn_var *inputs;     /* (n_inputs) the input columns after t, names and units */
+    dyn_set_input_fn set_input; /* NULL when n_inputs == 0 */
 } dyn_model;
 
 /* Built-in models: count, by index (NULL out of range), by name (NULL if unknown). */

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "dynkit/models.h"
+#include "dynkit/cart.h"
 #include "dynkit/plane.h"
 
 static const dyn_model *const builtin[] = {
@@ -11,6 +12,7 @@ static const dyn_model *const builtin[] = {
     &dyn_model_vanderpol,
     &dyn_model_plane,
     &dyn_model_plane_quat,
+    &dyn_model_cart,
 };
 
 int dyn_model_count(void) { return (int)(sizeof builtin / sizeof builtin[0]); }

@@ -77,5 +77,6 @@ int cli_cmd_models(int argc, char **argv);
 int cli_cmd_methods(int argc, char **argv);
 int cli_cmd_info(int argc, char **argv);
 int cli_cmd_inverse(int argc, char **argv);
+int cli_cmd_report(int argc, char **argv);
 
 #endif

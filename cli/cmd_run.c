@@ -12,7 +12,8 @@ typedef struct csv_sink {
     double *extra;       /* (n_outputs) */
     long rows;
     int io_failed;
-    const char *last_warning; /* each distinct warning is printed once */
+    const char *warned[8];    /* each distinct warning is printed once */
+    int n_warned;
     long every;               /* keep samples k % every == 0 and the last one */
     long last_k;
 } csv_sink;
@@ -21,9 +22,14 @@ static void check_warning(csv_sink *sink, double t, const double *y)
 {
     const dyn_model *m = sink->run->model;
     const char *w = m->warn ? m->warn(t, y, sink->run->par) : NULL;
-    if (w && w != sink->last_warning)
-        fprintf(stderr, "dynkit: warning at t = %.6g s: %s\n", t, w);
-    sink->last_warning = w;
+    if (!w)
+        return;
+    for (int i = 0; i < sink->n_warned; i++)
+        if (sink->warned[i] == w)
+            return;
+    fprintf(stderr, "dynkit: warning at t = %.6g s: %s\n", t, w);
+    if (sink->n_warned < (int)(sizeof sink->warned / sizeof sink->warned[0]))
+        sink->warned[sink->n_warned++] = w;
 }
 
 static int write_sample(csv_sink *sink, double t, const double *y)

@@ -15,6 +15,7 @@ static void main_help(void)
          "  methods        list the integration methods\n"
          "  info MODEL     states, parameters, units and defaults of a model\n"
          "  inverse cart   inverse dynamics of the cart: force table of a prescribed motion\n"
+         "  report         every answer of the homework, computed now (--json)\n"
          "\n"
          "'dynkit COMMAND --help' tells more about each command.\n"
          "Example: dynkit run vanderpol --method rk4 --step 0.01 --tspan 0:15 --final");
@@ -31,6 +32,7 @@ int main(int argc, char **argv)
         {"methods", cli_cmd_methods},
         {"info", cli_cmd_info},
         {"inverse", cli_cmd_inverse},
+        {"report", cli_cmd_report},
     };
     if (argc < 2) {
         main_help();
@@ -49,6 +51,6 @@ int main(int argc, char **argv)
             return commands[i].run(argc - 2, argv + 2);
     return cli_usage_error(NULL,
                            "unknown command '%s' (accepted: run, models, methods, info, "
-                           "inverse)",
+                           "inverse, report)",
                            argv[1]);
 }

@@ -8,5 +8,6 @@
 #include "dynkit/cart.h"
 #include "dynkit/plane.h"
 #include "dynkit/io.h"
+#include "dynkit/report.h"
 
 #endif

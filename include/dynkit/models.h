@@ -23,6 +23,12 @@ extern const dyn_model dyn_model_pendulum;
 int dyn_pendulum_rhs(double t, const double *y, double *dydt, void *par);
 /* Total energy [J] (zero at rest at the bottom) of state y = (phi, dphi). */
 double dyn_pendulum_energy(const dyn_pendulum_par *p, const double *y);
+/* Highest point [m] above the bottom reached from state y (problem 1a), from energy
+ * conservation: E / (m g), or 2 l when the energy carries the mass over the top. */
+double dyn_pendulum_max_height(const dyn_pendulum_par *p, const double *y);
+/* Small-angle solution phi(t) [rad] (problem 1c): sin(phi) ~ phi gives harmonic motion
+ * phi0 cos(w t) + dphi0/w sin(w t) with w = sqrt(g/l); y0 = (phi0, dphi0) at t = 0. */
+double dyn_pendulum_small_angle(const dyn_pendulum_par *p, const double *y0, double t);
 
 /* ---- van der Pol oscillator (problem 2): y1' = y2, y2' = mu (1 - y1^2) y2 - y1 ---- */
 typedef struct dyn_vanderpol_par {

@@ -2,6 +2,7 @@
  * length l, angle phi from the downward vertical, gravity g.
  * Equation of motion (Lagrange or Newton about the pivot): m l^2 ddphi = -m g l sin(phi).
  * Defaults: m = 2 kg, l = 9.81 m, g = 9.81 m/s^2, phi(0) = 0, dphi(0) = pi/2 1/s.
+ * Analyses: maximum height from energy (1a) and the small-angle solution (1c).
  */
 #include <math.h>
 #include <stddef.h>
@@ -21,6 +22,18 @@ double dyn_pendulum_energy(const dyn_pendulum_par *p, const double *y)
 {
     const double v = p->l * y[1];
     return 0.5 * p->m * v * v + p->m * p->g * p->l * (1.0 - cos(y[0]));
+}
+
+double dyn_pendulum_max_height(const dyn_pendulum_par *p, const double *y)
+{
+    const double h = dyn_pendulum_energy(p, y) / (p->m * p->g);
+    return h < 2.0 * p->l ? h : 2.0 * p->l;
+}
+
+double dyn_pendulum_small_angle(const dyn_pendulum_par *p, const double *y0, double t)
+{
+    const double w = sqrt(p->g / p->l);
+    return y0[0] * cos(w * t) + y0[1] / w * sin(w * t);
 }
 
 static int pendulum_outputs(double t, const double *y, const void *par, double *out)

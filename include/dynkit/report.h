@@ -1,0 +1,121 @@
+/* dynkit/report.h — the homework's answers (TU Delft Advanced Dynamics, homework 8),
+ * computed at run time, and writers for them as text and JSON.
+ *
+ * dyn_homework_compute runs every analysis of problems 1 to 4 and fills one struct; the
+ * writers only format it. Everything is computed from the models and integrators of the
+ * library: no number is stored.
+ */
+#ifndef DYNKIT_REPORT_H
+#define DYNKIT_REPORT_H
+
+#include <stdio.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Problem 1: pendulum. */
+typedef struct dyn_hw_pendulum {
+    double m, l, g;             /* [kg], [m], [m/s^2] */
+    double y0[2];               /* phi0 [rad], dphi0 [rad/s] */
+    double te;                  /* [s] time of 1c/1e */
+    double max_height_m;        /* 1a: from energy */
+    int goes_over_top;          /* 1a: energy exceeds 2 m g l */
+    double phi_small_angle_rad; /* 1c */
+    double phi_euler_rad;       /* 1e: one Euler step h = te */
+    double dphi_euler;          /* 1e: its angular velocity [rad/s] */
+    double phi_nonlinear_rad;   /* reference: RK4 at ref_step */
+    double ref_step;            /* [s] */
+    double ref_error_estimate;  /* |RK4(ref_step) - RK4(2 ref_step)| [rad] */
+    double error_small_angle;   /* phi_small_angle - phi_nonlinear [rad] */
+    double error_euler;         /* phi_euler - phi_nonlinear [rad] */
+    /* 1f: the two measures, each measured */
+    double euler_10_steps_error;  /* Euler with 10 steps of te/10, error [rad] */
+    double rk4_one_step_error;    /* one RK4 step of te, error [rad] */
+} dyn_hw_pendulum;
+
+/* Problem 2: van der Pol, final state at t1 for each method. */
+typedef struct dyn_hw_vanderpol {
+    double mu, step, t1, y0[2];
+    double euler[2], modified_euler[2], midpoint[2], rk4[2];
+    double reference[2];        /* RK4 at ref_step */
+    double ref_step, ref_error_estimate;
+    double error[4];            /* |final - reference| (2-norm): euler, heun, midpoint, rk4 */
+} dyn_hw_vanderpol;
+
+#define DYN_HW_PERTURBATIONS 8
+
+/* Problem 3: the plane, Euler vs RK4 at the same step. */
+typedef struct dyn_hw_plane {
+    double step_s, end_time_s;
+    double final_euler[12], final_rk4[12];
+    double distance_m;          /* |s_euler - s_rk4| at end_time */
+    double principal_angle_rad; /* rotation between the two final orientations */
+    /* fragility of the Euler answer: runs with one initial state changed by ~1e-14 */
+    int n_perturbed;
+    double perturbation;        /* relative size of the change */
+    double distance_min, distance_max, angle_min, angle_max;
+    double euler_min_theta_margin_rad; /* closest approach of theta to +-pi/2 (Euler run) */
+    double rk4_min_theta_margin_rad;
+    /* converged reference: RK4 at ref_step, checked against 2 ref_step */
+    double reference[12];
+    double ref_step, ref_error_estimate_m;
+    double rk4_distance_to_reference_m, rk4_angle_to_reference_rad;
+    double euler_distance_to_reference_m, euler_angle_to_reference_rad;
+    double energy_drift_euler, energy_drift_rk4; /* relative change of energy over the run */
+} dyn_hw_plane;
+
+/* Problem 4: the cart, prescribed motion, inverse and forward dynamics. */
+#define DYN_HW_CART_STUDY 4
+typedef struct dyn_hw_cart {
+    double v0, f, Ts, te;       /* [m/s], [Hz], [s], [s] */
+    long N;
+    double initial_dsY_mps;     /* 4a */
+    double final_Fx_N, final_Fy_N;  /* 4b: at te */
+    double forward_sX_m, exact_sX_m, forward_error_sX_m; /* 4c: heun, force table held */
+    double max_constraint_force_N;  /* 4d: max |lambda| over the N samples */
+    double t_max_constraint_force;
+    double friction_limit_N;    /* mu (2/3) m g */
+    double mu, g, m;
+    int rear_wheels_slip;
+    double max_constraint_residual; /* of the forward run [m/s] */
+    /* how the forward error behaves as the sampling time (table and step) is halved: the
+     * homework's heun with the table held, and RK4, whose midpoint stages fall between the
+     * samples, with the table held and linearly interpolated */
+    int n_study;
+    double study_Ts[DYN_HW_CART_STUDY];
+    double study_error_heun_hold[DYN_HW_CART_STUDY];
+    double study_error_rk4_hold[DYN_HW_CART_STUDY];
+    double study_error_rk4_linear[DYN_HW_CART_STUDY];
+    double max_constraint_force_prescribed_N; /* along the exact prescribed motion */
+    double t_departure_1cm, t_departure_1m; /* when the 4c run leaves the prescribed path */
+    /* growth rate of a yaw perturbation of straight backward motion, linearised:
+     * sigma = m v0 l / (m l^2/2 + 2 Is) [1/s] */
+    double instability_rate;
+    /* the instability itself: forces of the exact motion at every instant, RK4 at
+     * sensitivity_step, from the exact initial state and from theta(0) + dtheta0 */
+    double sensitivity_step, sensitivity_dtheta0;
+    double sensitivity_error_sX_m;   /* |sX(te) - exact| from the exact initial state */
+    double sensitivity_sX_m;         /* |change of sX(te)| caused by dtheta0 */
+} dyn_hw_cart;
+
+typedef struct dyn_homework {
+    dyn_hw_pendulum pendulum;
+    dyn_hw_vanderpol vanderpol;
+    dyn_hw_plane plane;
+    dyn_hw_cart cart;
+    double compute_seconds;     /* CPU time of dyn_homework_compute */
+} dyn_homework;
+
+/* Compute every answer. Returns 0, or non-zero with a message in err. */
+int dyn_homework_compute(dyn_homework *hw, char *err, size_t errlen);
+
+/* Write the report as text (answers, how they were computed, judgements) or as one flat
+ * JSON object with the dotted keys of the design. Return 0 or non-zero on a write error. */
+int dyn_homework_write_text(const dyn_homework *hw, FILE *out);
+int dyn_homework_write_json(const dyn_homework *hw, FILE *out);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* DYNKIT_REPORT_H */

@@ -1,0 +1,149 @@
+/* The homework report as one flat JSON object: the dotted keys of the design
+ * ("pendulum.max_height_m", ...), SI units, numbers as numbers (%.17g, null if not finite),
+ * vectors as arrays, judgements as booleans or short strings. */
+#include <math.h>
+
+#include "dynkit/report.h"
+
+typedef struct json_out {
+    FILE *out;
+    int count;
+    int bad;
+} json_out;
+
+static void key(json_out *j, const char *name)
+{
+    j->bad |= fprintf(j->out, "%s\n  \"%s\": ", j->count++ ? "," : "", name) < 0;
+}
+
+static void number(json_out *j, double v)
+{
+    if (isfinite(v))
+        j->bad |= fprintf(j->out, "%.17g", v) < 0;
+    else
+        j->bad |= fputs("null", j->out) < 0;
+}
+
+static void num(json_out *j, const char *name, double v)
+{
+    key(j, name);
+    number(j, v);
+}
+
+static void vec(json_out *j, const char *name, const double *v, int n)
+{
+    key(j, name);
+    j->bad |= fputc('[', j->out) == EOF;
+    for (int i = 0; i < n; i++) {
+        if (i)
+            j->bad |= fputs(", ", j->out) < 0;
+        number(j, v[i]);
+    }
+    j->bad |= fputc(']', j->out) == EOF;
+}
+
+static void boolean(json_out *j, const char *name, int v)
+{
+    key(j, name);
+    j->bad |= fputs(v ? "true" : "false", j->out) < 0;
+}
+
+static void string(json_out *j, const char *name, const char *v)
+{
+    key(j, name);
+    j->bad |= fprintf(j->out, "\"%s\"", v) < 0;
+}
+
+static void pendulum(json_out *j, const dyn_hw_pendulum *p)
+{
+    num(j, "pendulum.max_height_m", p->max_height_m);
+    num(j, "pendulum.phi_small_angle_rad", p->phi_small_angle_rad);
+    num(j, "pendulum.phi_euler_rad", p->phi_euler_rad);
+    num(j, "pendulum.phi_nonlinear_rad", p->phi_nonlinear_rad);
+    num(j, "pendulum.te_s", p->te);
+    num(j, "pendulum.dphi_euler_radps", p->dphi_euler);
+    num(j, "pendulum.error_small_angle_rad", p->error_small_angle);
+    num(j, "pendulum.error_euler_rad", p->error_euler);
+    string(j, "pendulum.more_trusted",
+           fabs(p->error_small_angle) < fabs(p->error_euler) ? "small_angle" : "euler");
+    boolean(j, "pendulum.goes_over_top", p->goes_over_top);
+    num(j, "pendulum.euler_10_steps_error_rad", p->euler_10_steps_error);
+    num(j, "pendulum.rk4_one_step_error_rad", p->rk4_one_step_error);
+}
+
+static void vanderpol(json_out *j, const dyn_hw_vanderpol *v)
+{
+    vec(j, "vanderpol.euler", v->euler, 2);
+    vec(j, "vanderpol.modified_euler", v->modified_euler, 2);
+    vec(j, "vanderpol.rk4", v->rk4, 2);
+    vec(j, "vanderpol.midpoint", v->midpoint, 2);
+    vec(j, "vanderpol.reference", v->reference, 2);
+    num(j, "vanderpol.step_s", v->step);
+    num(j, "vanderpol.end_time_s", v->t1);
+    vec(j, "vanderpol.error_euler_heun_midpoint_rk4", v->error, 4);
+}
+
+static void plane(json_out *j, const dyn_hw_plane *p)
+{
+    num(j, "plane.step_s", p->step_s);
+    num(j, "plane.end_time_s", p->end_time_s);
+    num(j, "plane.distance_m", p->distance_m);
+    num(j, "plane.principal_angle_rad", p->principal_angle_rad);
+    vec(j, "plane.final_euler", p->final_euler, 12);
+    vec(j, "plane.final_rk4", p->final_rk4, 12);
+    double dist[2] = {p->distance_min, p->distance_max};
+    double ang[2] = {p->angle_min, p->angle_max};
+    vec(j, "plane.distance_spread_m", dist, 2);
+    vec(j, "plane.principal_angle_spread_rad", ang, 2);
+    num(j, "plane.perturbation_relative", p->perturbation);
+    vec(j, "plane.final_reference", p->reference, 12);
+    num(j, "plane.reference_step_s", p->ref_step);
+    num(j, "plane.rk4_distance_to_reference_m", p->rk4_distance_to_reference_m);
+    num(j, "plane.euler_distance_to_reference_m", p->euler_distance_to_reference_m);
+    num(j, "plane.euler_min_theta_margin_rad", p->euler_min_theta_margin_rad);
+    num(j, "plane.energy_drift_euler", p->energy_drift_euler);
+    num(j, "plane.energy_drift_rk4", p->energy_drift_rk4);
+}
+
+static void cart(json_out *j, const dyn_hw_cart *c)
+{
+    num(j, "cart.initial_dsY_mps", c->initial_dsY_mps);
+    num(j, "cart.final_Fx_N", c->final_Fx_N);
+    num(j, "cart.final_Fy_N", c->final_Fy_N);
+    num(j, "cart.forward_error_sX_m", c->forward_error_sX_m);
+    num(j, "cart.max_constraint_force_N", c->max_constraint_force_N);
+    num(j, "cart.friction_limit_N", c->friction_limit_N);
+    boolean(j, "cart.rear_wheels_slip", c->rear_wheels_slip);
+    num(j, "cart.te_s", c->te);
+    num(j, "cart.N", (double)c->N);
+    num(j, "cart.Ts_s", c->Ts);
+    num(j, "cart.forward_sX_m", c->forward_sX_m);
+    num(j, "cart.exact_sX_m", c->exact_sX_m);
+    num(j, "cart.t_max_constraint_force_s", c->t_max_constraint_force);
+    num(j, "cart.max_constraint_force_prescribed_N", c->max_constraint_force_prescribed_N);
+    vec(j, "cart.study_Ts_s", c->study_Ts, c->n_study);
+    vec(j, "cart.study_error_heun_hold_m", c->study_error_heun_hold, c->n_study);
+    vec(j, "cart.study_error_rk4_hold_m", c->study_error_rk4_hold, c->n_study);
+    vec(j, "cart.study_error_rk4_linear_m", c->study_error_rk4_linear, c->n_study);
+    num(j, "cart.max_constraint_residual_mps", c->max_constraint_residual);
+    num(j, "cart.instability_rate_per_s", c->instability_rate);
+    num(j, "cart.t_departure_1cm_s", c->t_departure_1cm);
+    num(j, "cart.t_departure_1m_s", c->t_departure_1m);
+    num(j, "cart.sensitivity_step_s", c->sensitivity_step);
+    num(j, "cart.sensitivity_dtheta0_rad", c->sensitivity_dtheta0);
+    num(j, "cart.sensitivity_error_sX_m", c->sensitivity_error_sX_m);
+    num(j, "cart.sensitivity_sX_m", c->sensitivity_sX_m);
+}
+
+int dyn_homework_write_json(const dyn_homework *hw, FILE *out)
+{
+    json_out j = {out, 0, 0};
+    j.bad |= fputc('{', out) == EOF;
+    pendulum(&j, &hw->pendulum);
+    vanderpol(&j, &hw->vanderpol);
+    plane(&j, &hw->plane);
+    cart(&j, &hw->cart);
+    num(&j, "compute_seconds", hw->compute_seconds);
+    j.bad |= fputs("\n}\n", out) < 0;
+    return j.bad;
+}

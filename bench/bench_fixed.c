@@ -10,9 +10,10 @@
  * ns per step and the ratio library / hand. Both final states are compared (relative
  * difference at most 1e-12) so the benchmark cannot silently time nothing.
  *
- * Usage: bench_fixed [--quick] [--reps N]
- *   --quick   one solve per sample, 3 repetitions: checks that it runs and agrees (CI)
- *   --reps N  repetitions per system (default 31)
+ * Usage: bench_fixed [--quick] [--reps N] [--system NAME]
+ *   --quick        one solve per sample, 3 repetitions: checks that it runs and agrees (CI)
+ *   --reps N       repetitions per system (default 31)
+ *   --system NAME  only this system (vanderpol or plane), e.g. under a profiler
  * Exit status 0 when every check passes, 1 otherwise, 2 for a usage error.
  */
 #define _POSIX_C_SOURCE 199309L /* clock_gettime */
@@ -79,6 +80,53 @@ static int plane_rhs(double t, const double *y, double *dydt, void *par)
 HAND_RK4(hand_rk4_vdp, 2, bench_vdp_par, bench_vdp_eval)
 HAND_RK4(hand_rk4_plane, 12, bench_plane_par, bench_plane_eval)
 
+/* ---- diagnostic: the same textbook loop with what a compiled library cannot avoid ----
+ * the right-hand side called through a pointer, and n known only at run time. It separates
+ * the cost of the call from the cost of the library's generic stage loop. PIN keeps the
+ * loops scalar (an empty asm on each value), as the library's small-system loops are: a
+ * vector load of two k values written by separate scalar stores of the right-hand side
+ * cannot be forwarded from the store buffer and stalls every stage. */
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+#define PIN(v) __asm__("" : "+x"(v))
+#else
+#define PIN(v) ((void)0)
+#endif
+static void ptr_rk4(dyn_rhs_fn f, void *par, int n, const double *y0, double h, long steps,
+                    double *yout)
+{
+    double y[MAX_N], Y[MAX_N], k1[MAX_N], k2[MAX_N], k3[MAX_N], k4[MAX_N];
+    memcpy(y, y0, (size_t)n * sizeof *y);
+    const double h2 = 0.5 * h, h6 = h / 6.0;
+    for (long step = 0; step < steps; step++) {
+        const double t = (double)step * h;
+        f(t, y, k1, par);
+        for (int q = 0; q < n; q++) {
+            double v = y[q] + h2 * k1[q];
+            PIN(v);
+            Y[q] = v;
+        }
+        f(t + h2, Y, k2, par);
+        for (int q = 0; q < n; q++) {
+            double v = y[q] + h2 * k2[q];
+            PIN(v);
+            Y[q] = v;
+        }
+        f(t + h2, Y, k3, par);
+        for (int q = 0; q < n; q++) {
+            double v = y[q] + h * k3[q];
+            PIN(v);
+            Y[q] = v;
+        }
+        f(t + h, Y, k4, par);
+        for (int q = 0; q < n; q++) {
+            double v = y[q] + h6 * (k1[q] + 2.0 * k2[q] + 2.0 * k3[q] + k4[q]);
+            PIN(v);
+            y[q] = v;
+        }
+    }
+    memcpy(yout, y, (size_t)n * sizeof *y);
+}
+
 typedef void (*hand_fn)(const void *par, const double *y0, double h, long steps, double *y);
 
 typedef struct bench_case {
@@ -89,7 +137,8 @@ typedef struct bench_case {
     long steps;
     dyn_rhs_fn f;
     void *par;
-    hand_fn hand;
+    hand_fn hand; /* rhs inlined: the reference */
+    /* the diagnostic loop ptr_rk4 uses f, par and n */
 } bench_case;
 
 static double now_ns(void)
@@ -129,6 +178,18 @@ static double time_hand(const bench_case *bc, long batch, double *y)
     return now_ns() - t0;
 }
 
+/* The function pointer is read through a volatile so that it cannot be inlined. */
+static double time_ptr(const bench_case *bc, long batch, double *y)
+{
+    dyn_rhs_fn volatile fv = bc->f;
+    double t0 = now_ns();
+    for (long r = 0; r < batch; r++) {
+        ptr_rk4(fv, bc->par, bc->n, bc->y0, bc->h, bc->steps, y);
+        CLOBBER();
+    }
+    return now_ns() - t0;
+}
+
 static int cmp_double(const void *pa, const void *pb)
 {
     double a = *(const double *)pa, b = *(const double *)pb;
@@ -141,10 +202,20 @@ static double median(double *v, int count)
     return count % 2 ? v[count / 2] : 0.5 * (v[count / 2 - 1] + v[count / 2]);
 }
 
+static double rel_diff(const double *a, const double *b, int n)
+{
+    double diff = 0.0, scale = 0.0;
+    for (int q = 0; q < n; q++) {
+        diff = fmax(diff, fabs(a[q] - b[q]));
+        scale = fmax(scale, fabs(b[q]));
+    }
+    return scale > 0 ? diff / scale : diff;
+}
+
 /* Runs one system; prints its table row and check line. Returns 0 if the check passed. */
 static int run_case(const bench_case *bc, const dyn_tableau *m, int reps, int quick)
 {
-    double work[512], ylib[MAX_N], yhand[MAX_N];
+    double work[512], ylib[MAX_N], yhand[MAX_N], yptr[MAX_N];
     if (dyn_fixed_work_size(m, bc->n) > sizeof work / sizeof work[0]) {
         fprintf(stderr, "%s: workspace too small\n", bc->name);
         return 1;
@@ -154,6 +225,7 @@ static int run_case(const bench_case *bc, const dyn_tableau *m, int reps, int qu
     if (one < 0)
         return 1;
     time_hand(bc, 1, yhand);
+    time_ptr(bc, 1, yptr);
     long batch = 1;
     if (!quick) {
         one = time_library(bc, m, 4, ylib, work) / 4.0;
@@ -161,17 +233,19 @@ static int run_case(const bench_case *bc, const dyn_tableau *m, int reps, int qu
         if (batch < 1)
             batch = 1;
     }
-    double *tl = malloc(2 * (size_t)reps * sizeof *tl), *th = tl + reps;
+    /* Samples in ns per step: library, hand (inlined), hand (by pointer). */
+    double *tl = malloc(3 * (size_t)reps * sizeof *tl), *th = tl + reps, *tp = th + reps;
     if (!tl)
         return 1;
     const double per_step = 1.0 / ((double)batch * (double)bc->steps);
     for (int r = 0; r < reps; r++) {
-        if (r % 2 == 0) {
-            tl[r] = time_library(bc, m, batch, ylib, work);
-            th[r] = time_hand(bc, batch, yhand);
-        } else {
-            th[r] = time_hand(bc, batch, yhand);
-            tl[r] = time_library(bc, m, batch, ylib, work);
+        /* Rotate the order so that no variant always runs first or last. */
+        for (int v = 0; v < 3; v++) {
+            switch ((r + v) % 3) {
+            case 0: tl[r] = time_library(bc, m, batch, ylib, work); break;
+            case 1: th[r] = time_hand(bc, batch, yhand); break;
+            default: tp[r] = time_ptr(bc, batch, yptr); break;
+            }
         }
         if (tl[r] < 0) {
             free(tl);
@@ -179,36 +253,37 @@ static int run_case(const bench_case *bc, const dyn_tableau *m, int reps, int qu
         }
         tl[r] *= per_step;
         th[r] *= per_step;
+        tp[r] *= per_step;
     }
-    double lib_med = median(tl, reps), hand_med = median(th, reps);
-    double lib_min = tl[0], hand_min = th[0];
+    /* median() sorts, so [0] is then the minimum */
+    const double lib_med = median(tl, reps), hand_med = median(th, reps);
+    const double ptr_med = median(tp, reps);
+    const double lib_min = tl[0], hand_min = th[0];
     free(tl);
 
-    double diff = 0.0, scale = 0.0;
-    for (int q = 0; q < bc->n; q++) {
-        diff = fmax(diff, fabs(ylib[q] - yhand[q]));
-        scale = fmax(scale, fabs(yhand[q]));
-    }
-    const double rel = scale > 0 ? diff / scale : diff;
-    const int ok = rel <= CHECK_RTOL && isfinite(rel);
-    printf("%-10s %3d %6ld %6ld %9.2f %9.2f %9.2f %9.2f %7.3f %7.3f\n", bc->name, bc->n,
-           bc->steps, batch, lib_med, lib_min, hand_med, hand_min, lib_med / hand_med,
-           lib_min / hand_min);
-    printf("  check %s: final states agree to %.2e relative (limit %.0e): %s; y[0] = %.17g\n",
-           bc->name, rel, CHECK_RTOL, ok ? "ok" : "FAILED", ylib[0]);
+    const double rel = rel_diff(ylib, yhand, bc->n), rel_ptr = rel_diff(yptr, yhand, bc->n);
+    const int ok = rel <= CHECK_RTOL && rel_ptr <= CHECK_RTOL;
+    printf("%-10s %3d %6ld %6ld %9.2f %9.2f %9.2f %9.2f %7.3f %7.3f %9.2f %7.3f\n", bc->name,
+           bc->n, bc->steps, batch, lib_med, lib_min, hand_med, hand_min, lib_med / hand_med,
+           lib_min / hand_min, ptr_med, ptr_med / hand_med);
+    printf("  check %s: final states agree to %.2e relative (by pointer %.2e; limit %.0e): %s;"
+           " y[0] = %.17g\n",
+           bc->name, rel, rel_ptr, CHECK_RTOL, ok ? "ok" : "FAILED", ylib[0]);
     return ok ? 0 : 1;
 }
 
 static void usage(FILE *out)
 {
-    fprintf(out, "usage: bench_fixed [--quick] [--reps N]\n"
-                 "  --quick   one solve per sample, 3 repetitions (checks only, for CI)\n"
-                 "  --reps N  timed repetitions per system, N >= 1 (default 31)\n");
+    fprintf(out, "usage: bench_fixed [--quick] [--reps N] [--system NAME]\n"
+                 "  --quick        one solve per sample, 3 repetitions (checks only, for CI)\n"
+                 "  --reps N       timed repetitions per system, N >= 1 (default 31)\n"
+                 "  --system NAME  only this system: vanderpol or plane\n");
 }
 
 int main(int argc, char **argv)
 {
     int quick = 0, reps = 31, reps_given = 0;
+    const char *only = NULL;
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--quick") == 0) {
             quick = 1;
@@ -222,6 +297,14 @@ int main(int argc, char **argv)
             }
             reps = (int)v;
             reps_given = 1;
+        } else if (strcmp(argv[i], "--system") == 0 && i + 1 < argc) {
+            only = argv[++i];
+            if (strcmp(only, "vanderpol") != 0 && strcmp(only, "plane") != 0) {
+                fprintf(stderr, "bench_fixed: --system %s is not accepted: give vanderpol or "
+                                "plane\n",
+                        only);
+                return 2;
+            }
         } else if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
             usage(stdout);
             return 0;
@@ -253,11 +336,15 @@ int main(int argc, char **argv)
            "hand-written loop (rhs inlined)\n");
     printf("%d repetitions%s; batch = solves per timed sample; times in ns per step\n", reps,
            quick ? " (quick: checks only, timings meaningless)" : "");
-    printf("%-10s %3s %6s %6s %9s %9s %9s %9s %7s %7s\n", "system", "n", "steps", "batch",
-           "lib_med", "lib_min", "hand_med", "hand_min", "ratio", "r_min");
+    printf("ratio = lib_med / hand_med, r_min = lib_min / hand_min; ptr = the hand loop with "
+           "the rhs by pointer and n at run time (diagnostic), r_ptr = ptr_med / hand_med\n");
+    printf("%-10s %3s %6s %6s %9s %9s %9s %9s %7s %7s %9s %7s\n", "system", "n", "steps",
+           "batch", "lib_med", "lib_min", "hand_med", "hand_min", "ratio", "r_min", "ptr_med",
+           "r_ptr");
     int failed = 0;
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
-        failed |= run_case(&cases[i], rk4, reps, quick);
+        if (!only || strcmp(only, cases[i].name) == 0)
+            failed |= run_case(&cases[i], rk4, reps, quick);
     printf("%s\n", failed ? "FAILED" : "all checks passed");
     return failed ? 1 : 0;
 }

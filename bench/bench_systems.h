@@ -21,7 +21,8 @@ typedef struct bench_vdp_par {
     double mu;
 } bench_vdp_par;
 
-static inline void bench_vdp_eval(const double *y, double *dydt, const bench_vdp_par *p)
+static inline void bench_vdp_eval(const double *restrict y, double *restrict dydt,
+                                  const bench_vdp_par *restrict p)
 {
     dydt[0] = y[1];
     dydt[1] = p->mu * (1.0 - y[0] * y[0]) * y[1] - y[0];
@@ -36,7 +37,8 @@ typedef struct bench_plane_par {
     double rp[3];         /* [m] spring attachment point P in the body frame */
 } bench_plane_par;
 
-static inline void bench_plane_eval(const double *x, double *dx, const bench_plane_par *p)
+static inline void bench_plane_eval(const double *restrict x, double *restrict dx,
+                                    const bench_plane_par *restrict p)
 {
     const double psi = x[3], th = x[4], ph = x[5];
     const double wx = x[9], wy = x[10], wz = x[11];

@@ -36,6 +36,41 @@ static int first_nonfinite(const double *y, int n)
     return -1;
 }
 
+/* Whole steps step, step+1, ... (count of them, count >= 1) of size h with the plan p,
+ * without trace or callbacks: the hot loop. *cur holds the state and is advanced; *nxt is
+ * the spare state. Stops at a step whose right-hand side fails (*rc != 0, *fail_stage) or,
+ * with finite_check, whose new state (left in *nxt) is not finite (*nonfinite = 1); that
+ * step is not counted. Returns the number of steps completed. */
+static long plain_steps(const dyn_tableau *m, const dyn_rk_plan *p, dyn_rhs_fn f, void *par,
+                        int n, double t0, double h, double t1, long step, long count,
+                        int finite_check,
+                        double **cur, double **nxt, double *k, double *Y, int *rc,
+                        int *fail_stage, int *nonfinite)
+{
+    double *a = *cur, *b = *nxt;
+    long i = 0;
+    for (; i < count; i++) {
+        const double tn = t0 + (double)(step + i) * h;
+        double finite;
+        const int r = dyn_rk_stages(m, p, f, par, n, tn, h, t1, a, b, k, Y, fail_stage, &finite,
+                                    NULL, NULL, 0);
+        if (r) {
+            *rc = r;
+            break;
+        }
+        if (finite_check && finite != 0.0) {
+            *nonfinite = 1;
+            break;
+        }
+        double *swap = a;
+        a = b;
+        b = swap;
+    }
+    *cur = a;
+    *nxt = b;
+    return i;
+}
+
 static int check_args(const dyn_tableau *m, const dyn_system *sys, const double *y0,
                       const double *work, dyn_result *res)
 {
@@ -100,34 +135,81 @@ int dyn_fixed_solve(const dyn_tableau *m, const dyn_system *sys, double t0, doub
         res->stats.samples = 1;
     }
 
-    double *cur = y, *nxt = spare;
-    long countdown = every;
+    /* Everything the step loop reads is hoisted into locals: the loop then keeps no state
+     * in *res or *opts (which the compiler would have to reload after every call of f). */
+    dyn_rk_plan plan;
+    const int planned = dyn_rk_plan_init(&plan, m, k, n);
+    const dyn_output_fn output = opts->output;
+    void *const output_ctx = opts->output_ctx;
+    const dyn_trace_fn trace = opts->trace;
+    void *const trace_ctx = opts->trace_ctx;
+    const long trace_steps = trace ? opts->trace_steps : 0;
+    const int finite_check = !opts->no_finite_check;
+    const dyn_progress_fn progress = opts->progress;
+    void *const progress_ctx = opts->progress_ctx;
     const long progress_every = opts->progress_steps > 0 ? opts->progress_steps : 65536;
-    long progress_countdown = progress_every;
+    const long whole_steps = grid.whole_steps;
+    const int last_is_t1 = grid.ends_at_t1;
+
+    double *cur = y, *nxt = spare;
+    long countdown = every, progress_countdown = progress_every;
+    long done = 0, samples = res->stats.samples;
+    double t_reached = t0;
     int status = DYN_OK;
-    for (long step = 0; step < steps; step++) {
-        const double tn = dyn_grid_time(&grid, step);
-        const double hn = step < grid.whole_steps ? h : t1 - tn;
-        int fail_stage = 0, rc;
-        if (opts->trace && step < opts->trace_steps)
-            rc = dyn_rk_stages(m, f, par, n, tn, hn, cur, nxt, k, Y, &fail_stage, opts->trace,
-                               opts->trace_ctx, step);
-        else
-            rc = dyn_rk_stages(m, f, par, n, tn, hn, cur, nxt, k, Y, &fail_stage, NULL, NULL,
-                               step);
+    long step = 0;
+    while (step < steps) {
+        int fail_stage = 0, rc = 0, nonfinite = 0;
+        /* A run of plain steps: whole steps, no trace, and no callback due before its end. */
+        long run = planned && step >= trace_steps ? whole_steps - step : 0;
+        if (output && run > countdown - 1)
+            run = countdown - 1;
+        if (output && run > steps - 1 - step)
+            run = steps - 1 - step; /* the last sample is always output */
+        if (progress && run > progress_countdown - 1)
+            run = progress_countdown - 1;
+        if (run > 0) {
+            const long got = plain_steps(m, &plan, f, par, n, t0, h, t1, step, run, finite_check,
+                                         &cur, &nxt, k, Y, &rc, &fail_stage, &nonfinite);
+            done += got;
+            step += got;
+            countdown -= got;
+            progress_countdown -= got;
+            if (got > 0)
+                t_reached = t0 + (double)step * h; /* step < steps: never the last sample */
+            if (!rc && !nonfinite)
+                continue;
+        } else {
+            /* One step with everything: trace, a partial last step, callbacks. */
+            const double tn = t0 + (double)step * h;
+            const double hn = step < whole_steps ? h : t1 - tn;
+            double finite = 0.0;
+            if (!planned)
+                rc = dyn_rk_stages_scan(m, f, par, n, tn, hn, t1, cur, nxt, k, Y, &fail_stage,
+                                        &finite, step < trace_steps ? trace : NULL, trace_ctx,
+                                        step);
+            else
+                rc = dyn_rk_stages(m, &plan, f, par, n, tn, hn, t1, cur, nxt, k, Y, &fail_stage,
+                                   &finite, step < trace_steps ? trace : NULL, trace_ctx, step);
+            nonfinite = !rc && finite_check && finite != 0.0;
+        }
+        /* t_k = t0 + k*h as dyn_grid_time computes it: the last sample is t1 itself when
+         * the grid ends there (a step never starts at the last sample). */
+        const double tn = t0 + (double)step * h;
+        const double hn = step < whole_steps ? h : t1 - tn;
         if (rc) {
-            res->stats.rhs_calls += fail_stage + 1;
+            res->stats.rhs_calls = done * s + fail_stage + 1;
             res->rhs_status = rc;
-            res->fail_t = tn + m->c[fail_stage] * hn;
+            res->fail_t = dyn_rk_stage_time(tn, m->c[fail_stage], hn, t1);
             status = result_fail(res, DYN_ERR_RHS,
                                  "the right-hand side failed at t = %.17g (status %.0f)",
                                  res->fail_t, (double)rc);
             break;
         }
-        res->stats.rhs_calls += s;
-        res->stats.steps++;
-        const double tnext = dyn_grid_time(&grid, step + 1);
-        if (!opts->no_finite_check && (bad = first_nonfinite(nxt, n)) >= 0) {
+        const double tnext =
+            (last_is_t1 && step + 1 == steps) ? t1 : t0 + (double)(step + 1) * h;
+        if (nonfinite && (bad = first_nonfinite(nxt, n)) >= 0) {
+            /* the step was taken (its evaluations count) but its result is not kept */
+            res->stats.rhs_calls = (done + 1) * s;
             res->fail_t = tnext;
             res->fail_index = bad;
             status = result_fail(res, DYN_ERR_NONFINITE,
@@ -135,27 +217,34 @@ int dyn_fixed_solve(const dyn_tableau *m, const dyn_system *sys, double t0, doub
                                  tnext);
             break;
         }
+        done++;
         double *swap = cur;
         cur = nxt;
         nxt = swap;
-        res->t = tnext;
-        if (opts->output && (--countdown == 0 || step + 1 == steps)) {
+        t_reached = tnext;
+        step++;
+        if (output && (--countdown == 0 || step == steps)) {
             countdown = every;
-            res->stats.samples++;
-            if (opts->output(step + 1, tnext, cur, opts->output_ctx)) {
+            samples++;
+            if (output(step, tnext, cur, output_ctx)) {
                 status = result_fail(res, DYN_STOPPED, "output stopped the run at t = %g%.0s",
                                      tnext, 0);
                 break;
             }
         }
-        if (opts->progress && --progress_countdown == 0) {
+        if (progress && --progress_countdown == 0) {
             progress_countdown = progress_every;
-            if (opts->progress(tnext, (double)(step + 1) / (double)steps, opts->progress_ctx)) {
+            if (progress(tnext, (double)step / (double)steps, progress_ctx)) {
                 status = result_fail(res, DYN_CANCELLED, "cancelled at t = %g%.0s", tnext, 0);
                 break;
             }
         }
     }
+    res->stats.steps = done;
+    if (status != DYN_ERR_RHS && status != DYN_ERR_NONFINITE)
+        res->stats.rhs_calls = done * s;
+    res->stats.samples = samples;
+    res->t = t_reached;
     if (cur != y)
         memcpy(y, cur, (size_t)n * sizeof *y);
     res->status = status;

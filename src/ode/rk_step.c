@@ -1,4 +1,6 @@
-/* One explicit Runge–Kutta step through the shared stage loop (rk_stages.h). */
+/* One explicit Runge–Kutta step through the shared stage loop (rk_stages.h), and the
+ * workspace size of the fixed-step driver. */
+#include <math.h>
 #include <string.h>
 
 #include "dynkit/ode.h"
@@ -16,9 +18,15 @@ int dyn_rk_step(const dyn_tableau *m, const dyn_system *sys, double t, double h,
 {
     const int n = sys->n;
     double *k = work, *Y = work + (size_t)m->stages * (size_t)n, *ynew = Y + n;
-    int fail_stage = 0;
-    int rc = dyn_rk_stages(m, sys->f, sys->par, n, t, h, y0, ynew, k, Y, &fail_stage, NULL,
-                           NULL, 0);
+    int fail_stage = 0, rc;
+    double finite; /* not used: dyn_rk_step does not check the state */
+    dyn_rk_plan plan;
+    if (dyn_rk_plan_init(&plan, m, k, n))
+        rc = dyn_rk_stages(m, &plan, sys->f, sys->par, n, t, h, HUGE_VAL, y0, ynew, k, Y,
+                           &fail_stage, &finite, NULL, NULL, 0);
+    else
+        rc = dyn_rk_stages_scan(m, sys->f, sys->par, n, t, h, HUGE_VAL, y0, ynew, k, Y,
+                                &fail_stage, &finite, NULL, NULL, 0);
     if (rhs_calls)
         *rhs_calls += rc ? fail_stage + 1 : m->stages;
     if (!rc)

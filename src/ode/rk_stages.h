@@ -19,8 +19,9 @@
 #ifndef DYNKIT_SRC_ODE_RK_STAGES_H
 #define DYNKIT_SRC_ODE_RK_STAGES_H
 
-#include <math.h>
 #include <stddef.h>
+#include <stdint.h>
+#include <string.h>
 
 #include "dynkit/ode.h"
 
@@ -54,12 +55,14 @@ typedef struct dyn_rk_plan {
 } dyn_rk_plan;
 
 /* 1 if a is +-2^e with |e| <= 64: then h*(a*k) == (h*a)*k for every k and every h of
- * reasonable size, since scaling by a power of two is exact (no underflow or overflow). */
+ * reasonable size, since scaling by a power of two is exact (no underflow or overflow).
+ * The same test as dyn_inl_is_pow2 in dynkit/ode_inline.h. */
 static inline int dyn_rk_is_pow2(double a)
 {
-    int e;
-    const double f = frexp(a, &e);
-    return (f == 0.5 || f == -0.5) && e >= -63 && e <= 65;
+    uint64_t bits;
+    memcpy(&bits, &a, sizeof bits);
+    const uint64_t biased = (bits >> 52) & 0x7ff;
+    return (bits & 0xfffffffffffffULL) == 0 && biased >= 1023 - 64 && biased <= 1023 + 64;
 }
 
 /* Build the plan of table m for the stage derivatives k (stages x n).

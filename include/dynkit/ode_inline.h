@@ -1,0 +1,282 @@
+/* dynkit/ode_inline.h — dyn_fixed_solve compiled into the caller, for speed.
+ *
+ * dyn_fixed_solve (ode.h) calls the right-hand side through a pointer: every stage stores
+ * its state and derivative to memory and calls a function the compiler cannot see. For
+ * small systems that is most of the cost of a step (van der Pol, 2 states: about 1.6x a
+ * hand-written RK4 loop; see docs/performance.md). dyn_fixed_solve_inline is the same
+ * solve as a static inline function: when the right-hand side is defined in the calling
+ * translation unit and sys is built there (dyn_system sys = {my_rhs, 2, &par}), the
+ * compiler inlines my_rhs into the stage loop, unrolls the stages, and keeps the stage
+ * values in registers. When the table itself is a compile-time constant (a static const
+ * dyn_tableau with static const coefficients in the same translation unit), the
+ * coefficients are folded as well.
+ *
+ * Contract: exactly dyn_fixed_solve's (arguments, workspace size dyn_fixed_work_size,
+ * results bit for bit, counters, failure reports), because it runs the same arithmetic:
+ * Y_i = y + h * (sum of the non-zero a_ij k_j, left to right), a single power-of-two
+ * coefficient folded into h ((h*a)*k == h*(a*k) exactly), stage times clamped to t1.
+ * It takes the inline path for explicit tables of 1 to 4 stages and options without
+ * output, trace or progress callbacks (end policy and no_finite_check are honoured), and
+ * calls dyn_fixed_solve for everything else (other tables, callbacks, bad arguments, a
+ * non-finite initial state), so it never behaves differently.
+ * Cost: code size. Each call site gets its own copy of the solver with the right-hand
+ * side inlined up to 4 times per stage count (only one stage count if the table is a
+ * constant). Use it for the hot solve of a program, dyn_fixed_solve elsewhere.
+ */
+#ifndef DYNKIT_ODE_INLINE_H
+#define DYNKIT_ODE_INLINE_H
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "dynkit/ode.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#if defined(__GNUC__)
+#define DYN_INL static inline __attribute__((always_inline))
+#else
+#define DYN_INL static inline
+#endif
+#ifdef __cplusplus
+#define DYN_RESTRICT __restrict
+#else
+#define DYN_RESTRICT restrict
+#endif
+
+/* DYN_INL_SCALAR(v): an empty asm that keeps v in a register of its own, so that the
+ * compiler does not pack two states into one vector register: for small systems the
+ * shuffles cost more latency than the vector arithmetic saves (as in the library). */
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+#define DYN_INL_SCALAR(v) __asm__("" : "+x"(v))
+#elif defined(__GNUC__) && defined(__aarch64__)
+#define DYN_INL_SCALAR(v) __asm__("" : "+w"(v))
+#else
+#define DYN_INL_SCALAR(v) ((void)0)
+#endif
+
+/* 1 if a is +-2^e with |e| <= 64 (scaling by it is exact); as in the library. Bit test
+ * rather than frexp, so that every compiler folds it for a constant a. */
+DYN_INL int dyn_inl_is_pow2(double a)
+{
+    uint64_t bits;
+    memcpy(&bits, &a, sizeof bits);
+    const uint64_t biased = (bits >> 52) & 0x7ff;
+    return (bits & 0xfffffffffffffULL) == 0 && biased >= 1023 - 64 && biased <= 1023 + 64;
+}
+
+/* What the combination of one row of a (or of b) needs besides the row: its number of
+ * non-zero coefficients nt, the first one's column j0, and fold = the only term has a
+ * power-of-two coefficient. Worked out once per solve; only scalars, so that compilers
+ * fold them away when the table is a constant. */
+typedef struct dyn_inl_row {
+    int nt, j0, fold;
+} dyn_inl_row;
+
+DYN_INL dyn_inl_row dyn_inl_row_of(const double *row, int len)
+{
+    dyn_inl_row r = {0, 0, 0};
+    for (int j = len - 1; j >= 0; j--)
+        if (row[j] != 0.0) {
+            r.nt++;
+            r.j0 = j;
+        }
+    r.fold = r.nt == 1 && dyn_inl_is_pow2(row[r.j0]);
+    return r;
+}
+
+/* out = y + h * (sum_{j<len, row[j] != 0} row[j] k_j, left to right) over n states: the
+ * library's arithmetic. Returns the number of terms (0: out is not written). */
+DYN_INL int dyn_inl_combine(int n, double h, const double *DYN_RESTRICT y,
+                            const double *DYN_RESTRICT k, const double *row, int len,
+                            dyn_inl_row r, double *DYN_RESTRICT out)
+{
+    const size_t sn = (size_t)n;
+    if (r.nt == 0)
+        return 0;
+    const double *k0 = k + (size_t)r.j0 * sn;
+    if (r.fold) {
+        const double hc = h * row[r.j0];
+        for (int q = 0; q < n; q++) {
+            double v = y[q] + hc * k0[q];
+            DYN_INL_SCALAR(v);
+            out[q] = v;
+        }
+        return 1;
+    }
+    for (int q = 0; q < n; q++) {
+        double acc = row[r.j0] * k0[q];
+        for (int j = 0; j < len; j++)
+            if (j > r.j0 && row[j] != 0.0)
+                acc += row[j] * k[(size_t)j * sn + (size_t)q];
+        double v = y[q] + h * acc;
+        DYN_INL_SCALAR(v);
+        out[q] = v;
+    }
+    return r.nt;
+}
+
+/* Stage I of an S-stage table (I < S): Y_I, then k_I = f(t + c_I h, Y_I). Returns f's
+ * value. Separate so that the stage loop is unrolled by hand (I constant). */
+DYN_INL int dyn_inl_stage(const int S, const int I, const dyn_tableau *m,
+                          const dyn_inl_row *rows, dyn_rhs_fn f, void *par, int n, double t,
+                          double h, double t1, const double *DYN_RESTRICT y,
+                          double *DYN_RESTRICT k, double *DYN_RESTRICT Y)
+{
+    const double *Yi = y;
+    if (I > 0 && dyn_inl_combine(n, h, y, k, m->a + (size_t)I * (size_t)S, I, rows[I], Y) > 0)
+        Yi = Y;
+    double ti = t + m->c[I] * h;
+    if (ti > t1)
+        ti = t1;
+    return f(ti, Yi, k + (size_t)I * (size_t)n, par);
+}
+
+/* One step of an S-stage table from y into ynew (rows[S] is b). Returns f's non-zero
+ * value with the stage in *stage, or 0 with *nonfinite set if ynew is not finite. */
+DYN_INL int dyn_inl_step(const int S, const dyn_tableau *m, const dyn_inl_row *rows,
+                         dyn_rhs_fn f, void *par, int n, double t, double h, double t1,
+                         const double *DYN_RESTRICT y, double *DYN_RESTRICT ynew,
+                         double *DYN_RESTRICT k, double *DYN_RESTRICT Y, int *stage,
+                         int *nonfinite, int check)
+{
+    int rc;
+#define DYN_INL_STAGE(I)                                                                     \
+    if ((I) < S && (rc = dyn_inl_stage(S, (I) < S ? (I) : 0, m, rows, f, par, n, t, h, t1, \
+                                       y, k, Y)) != 0) {                                     \
+        *stage = (I);                                                                        \
+        return rc;                                                                           \
+    }
+    DYN_INL_STAGE(0)
+    DYN_INL_STAGE(1)
+    DYN_INL_STAGE(2)
+    DYN_INL_STAGE(3)
+#undef DYN_INL_STAGE
+    if (dyn_inl_combine(n, h, y, k, m->b, S, rows[S], ynew) == 0)
+        memcpy(ynew, y, (size_t)n * sizeof *y);
+    if (check) {
+        double z = 0.0; /* sum of x - x: 0, or NaN if some x is NaN or Inf */
+        for (int q = 0; q < n; q++)
+            z += ynew[q] - ynew[q];
+        *nonfinite = z != 0.0;
+    }
+    return 0;
+}
+
+/* The solve for a table of S stages (1 <= S <= 4). */
+DYN_INL int dyn_inl_solve(const int S, const dyn_tableau *m, dyn_rhs_fn f, void *par,
+                          const int n, const dyn_grid *g, double *y, double *work, int check,
+                          dyn_result *res)
+{
+    double *k = work, *Y = work + (size_t)S * (size_t)n, *ya = Y + n, *yb = ya + n;
+    const double t0 = g->t0, t1 = g->t1, h = g->h;
+    dyn_inl_row rows[5];
+    for (int i = 0; i < S; i++)
+        rows[i] = dyn_inl_row_of(m->a + (size_t)i * (size_t)S, i);
+    rows[S] = dyn_inl_row_of(m->b, S);
+    const long steps = g->samples - 1;
+    double *cur = ya;
+    long step = 0;
+    int rc = 0, stage = 0, nonfinite = 0;
+    memcpy(ya, y, (size_t)n * sizeof *y);
+    /* two steps per iteration, ya -> yb -> ya: the buffers are fixed in the loop body, so
+     * the compiler can keep the state in registers from one step to the next */
+    while (step < steps) {
+        double tn = t0 + (double)step * h;
+        rc = dyn_inl_step(S, m, rows, f, par, n, tn, step < g->whole_steps ? h : t1 - tn, t1,
+                          ya, yb, k, Y, &stage, &nonfinite, check);
+        if (rc || nonfinite)
+            break;
+        cur = yb;
+        if (++step == steps)
+            break;
+        tn = t0 + (double)step * h;
+        rc = dyn_inl_step(S, m, rows, f, par, n, tn, step < g->whole_steps ? h : t1 - tn, t1,
+                          yb, ya, k, Y, &stage, &nonfinite, check);
+        if (rc || nonfinite)
+            break;
+        cur = ya;
+        step++;
+    }
+    /* step is the number of kept steps; cur holds the last good state */
+    memcpy(y, cur, (size_t)n * sizeof *y);
+    res->stats.steps = step;
+    res->t = step == 0 ? t0 : (g->ends_at_t1 && step == steps) ? t1 : t0 + (double)step * h;
+    if (rc) {
+        const double tn = t0 + (double)step * h;
+        const double hn = step < g->whole_steps ? h : t1 - tn;
+        double ti = tn + m->c[stage] * hn;
+        res->stats.rhs_calls = step * S + stage + 1;
+        res->rhs_status = rc;
+        res->fail_t = ti > t1 ? t1 : ti;
+        res->status = DYN_ERR_RHS;
+        snprintf(res->message, sizeof res->message,
+                 "the right-hand side failed at t = %.17g (status %.0f)", res->fail_t,
+                 (double)rc);
+    } else if (nonfinite) {
+        const double *bad = cur == ya ? yb : ya;
+        int q = 0;
+        while (q < n && isfinite(bad[q]))
+            q++;
+        res->stats.rhs_calls = (step + 1) * S;
+        res->fail_t = (g->ends_at_t1 && step + 1 == steps) ? t1 : t0 + (double)(step + 1) * h;
+        res->fail_index = q;
+        res->status = DYN_ERR_NONFINITE;
+        snprintf(res->message, sizeof res->message,
+                 "state %.0f became not finite at t = %.17g", (double)q, res->fail_t);
+    } else {
+        res->stats.rhs_calls = step * S;
+    }
+    return res->status;
+}
+
+/* dyn_fixed_solve with the stage loop compiled at the call site: same contract, same
+ * results bit for bit (see the top of this header for when it pays). */
+DYN_INL int dyn_fixed_solve_inline(const dyn_tableau *m, const dyn_system *sys, double t0,
+                                   double t1, double h, const double *y0, double *y,
+                                   double *work, const dyn_fixed_opts *opts, dyn_result *res)
+{
+    if (!sys)
+        return dyn_fixed_solve(m, sys, t0, t1, h, y0, y, work, opts, res);
+    /* read before any call, so that the compiler sees f as the constant it is */
+    const dyn_rhs_fn f = sys->f;
+    const int n = sys->n;
+    void *const par = sys->par;
+    dyn_grid g;
+    dyn_result local;
+    if (!m || m->kind != DYN_KIND_EXPLICIT_RK || m->stages < 1 || m->stages > 4 || !f ||
+        n <= 0 || !y0 || !y || !work || (opts && (opts->output || opts->trace || opts->progress)) ||
+        dyn_grid_plan(t0, t1, h, opts ? opts->end : DYN_END_EXACT, &g, NULL, 0) != DYN_OK)
+        return dyn_fixed_solve(m, sys, t0, t1, h, y0, y, work, opts, res);
+    for (int q = 0; q < n; q++)
+        if (!isfinite(y0[q]))
+            return dyn_fixed_solve(m, sys, t0, t1, h, y0, y, work, opts, res);
+    if (!res)
+        res = &local;
+    memset(res, 0, sizeof *res);
+    res->t = t0;
+    res->fail_t = NAN;
+    res->fail_index = -1;
+    if (y != y0)
+        memmove(y, y0, (size_t)n * sizeof *y);
+    const int check = !(opts && opts->no_finite_check);
+    switch (m->stages) {
+    case 1: return dyn_inl_solve(1, m, f, par, n, &g, y, work, check, res);
+    case 2: return dyn_inl_solve(2, m, f, par, n, &g, y, work, check, res);
+    case 3: return dyn_inl_solve(3, m, f, par, n, &g, y, work, check, res);
+    default: return dyn_inl_solve(4, m, f, par, n, &g, y, work, check, res);
+    }
+}
+
+#undef DYN_INL
+#undef DYN_INL_SCALAR
+#undef DYN_RESTRICT
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* DYNKIT_ODE_INLINE_H */

@@ -84,6 +84,11 @@ typedef struct dyn_model {
     int n_inputs;
     const dyn_var *inputs;     /* (n_inputs) the input columns after t, names and units */
     dyn_set_input_fn set_input; /* NULL when n_inputs == 0 */
+    /* Optional analytic Jacobian of rhs (NULL: finite differences where one is needed). */
+    dyn_jac_fn jacobian;
+    /* Named events of the model (e.g. the pendulum's "turn"), asked for with --event. */
+    int n_events;
+    const dyn_event *events;
 } dyn_model;
 
 /* Built-in models: count, by index (NULL out of range), by name (NULL if unknown). */

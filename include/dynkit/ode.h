@@ -22,6 +22,19 @@ extern "C" {
 /* Right-hand side: write f(t, y) into dydt (n values); return 0, or non-zero to stop. */
 typedef int (*dyn_rhs_fn)(double t, const double *y, double *dydt, void *par);
 
+/* Jacobian df/dy at (t, y) into J (n x n, row-major: J[i*n + j] = d f_i / d y_j);
+ * return 0, or non-zero to stop. Used by the stiff methods. */
+typedef int (*dyn_jac_fn)(double t, const double *y, double *J, void *par);
+
+/* An event: a zero crossing of g(t, y; par), located on the solution. */
+typedef struct dyn_event {
+    const char *name;        /* e.g. "turn" */
+    const char *description; /* one line for humans */
+    double (*g)(double t, const double *y, void *par);
+    int direction;           /* +1 rising (g goes from < 0 to >= 0), -1 falling, 0 both */
+    int terminal;            /* 1: stop the solve at the first occurrence (default for it) */
+} dyn_event;
+
 /* A system of n first-order ODEs; par is handed to f unchanged (the caller owns it). */
 typedef struct dyn_system {
     dyn_rhs_fn f;

@@ -13,7 +13,7 @@
  * Checks, so that the benchmark cannot silently time nothing: every variant's final state
  * agrees with the hand-written loop's (relative difference at most 1e-12); the library and
  * the inline solver agree bit for bit (final states here; with --quick also every method,
- * a partial last step, and failing solves).
+ * a partial last step, and failing solves, and a table too long for the library's plan).
  *
  * Usage: bench_fixed [--quick] [--reps N] [--system NAME]
  *   --quick        one solve per sample, 3 repetitions: checks that it runs and agrees (CI)
@@ -380,6 +380,34 @@ static int check_inline_agrees(void)
     return bad ? 1 : 0;
 }
 
+/* A table of more than 16 stages takes the library's other path (no plan): RK4 padded
+ * with 13 stages that contribute nothing must give RK4's results bit for bit. */
+static int check_unplanned_path(const dyn_tableau *rk4)
+{
+    enum { S = 17 };
+    double a[S * S] = {0}, b[S] = {0}, c[S] = {0};
+    for (int i = 0; i < 4; i++) {
+        for (int j = 0; j < 4; j++)
+            a[i * S + j] = rk4->a[i * 4 + j];
+        b[i] = rk4->b[i];
+        c[i] = rk4->c[i];
+    }
+    const dyn_tableau padded = {"rk4-padded", NULL, "", "", DYN_KIND_EXPLICIT_RK, S, 4, a, b, c};
+    fail_par p = {1.0, INFINITY, 0};
+    const dyn_system sys = {fail_rhs, 2, &p};
+    const double y0[2] = {2.0, 0.0};
+    double w1[64], w2[(S + 3) * 2], y1[2], y2[2];
+    dyn_result r1, r2;
+    dyn_fixed_solve(rk4, &sys, 0.0, 1.234, 0.01, y0, y1, w1, NULL, &r1);
+    dyn_fixed_solve(&padded, &sys, 0.0, 1.234, 0.01, y0, y2, w2, NULL, &r2);
+    const int ok = r1.status == DYN_OK && r2.status == DYN_OK && memcmp(y1, y2, sizeof y1) == 0 &&
+                   r2.stats.rhs_calls == S * r1.stats.steps;
+    printf("check: a 17-stage table (RK4 padded with stages that contribute nothing) gives "
+           "RK4's result bit for bit: %s\n",
+           ok ? "ok" : "FAILED");
+    return ok ? 0 : 1;
+}
+
 static void usage(FILE *out)
 {
     fprintf(out, "usage: bench_fixed [--quick] [--reps N] [--system NAME]\n"
@@ -453,8 +481,10 @@ int main(int argc, char **argv)
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
         if (!only || strcmp(only, cases[i].name) == 0)
             failed |= run_case(&cases[i], rk4, reps, quick);
-    if (quick)
+    if (quick) {
         failed |= check_inline_agrees();
+        failed |= check_unplanned_path(rk4);
+    }
     printf("%s\n", failed ? "FAILED" : "all checks passed");
     return failed ? 1 : 0;
 }

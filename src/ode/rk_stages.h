@@ -4,8 +4,9 @@
  * then y_{n+1} = y_n + h * sum_i b_i k_i (Hairer, Nørsett & Wanner I, eq. II.1.8).
  * Zero coefficients are skipped and each sum starts from its first non-zero term, so the
  * sums are exactly the textbook formulas: Euler is y + h*k1 and Heun y + h*(k1 + k2)/2 bit
- * for bit, as in the homework's MATLAB code. A coefficient 1 alone in its row is not
- * multiplied (1*k == k exactly, so this changes no result).
+ * for bit, as in the homework's MATLAB code. A row whose only coefficient is a power of two
+ * (1, 1/2, ...) is computed as y + (h*a)*k: equal to y + h*(a*k) bit for bit, since scaling
+ * by a power of two is exact, with one multiplication less on the critical path.
  *
  * Speed. Before a solve the table is turned into a plan (dyn_rk_plan): for each row of a
  * and for b, its non-zero coefficients and pointers to the k_j they multiply. A stage is
@@ -13,17 +14,18 @@
  * loops), instead of a scan of all j < i testing every coefficient for every state. The
  * plan is derived from the table's data, so every method still runs through this one loop.
  * Tables with more than DYN_RK_PLAN_MAX_STAGES stages use dyn_rk_stages_scan: the same
- * arithmetic with the coefficients scanned on the fly.
+ * arithmetic with the coefficients scanned on the fly, by the combination code of the
+ * public dyn_fixed_solve_inline (dynkit/ode_inline.h).
  * Static inline so that the driver gets a trace-free copy with the trace branch removed.
  */
 #ifndef DYNKIT_SRC_ODE_RK_STAGES_H
 #define DYNKIT_SRC_ODE_RK_STAGES_H
 
 #include <stddef.h>
-#include <stdint.h>
 #include <string.h>
 
 #include "dynkit/ode.h"
+#include "dynkit/ode_inline.h" /* dyn_inl_combine: the reference combination */
 
 /* Workspace layout (doubles): k (stages x n) | Y (n) | two spare states (n each). */
 #define DYN_RK_WORK(stages, n) ((size_t)((stages) + 3) * (size_t)(n))
@@ -50,20 +52,9 @@ typedef struct dyn_rk_plan {
     int first[DYN_RK_PLAN_MAX_STAGES + 2];
     int col[DYN_RK_PLAN_MAX_TERMS];
     double coef[DYN_RK_PLAN_MAX_TERMS];
-    unsigned char pow2[DYN_RK_PLAN_MAX_TERMS]; /* coef is +-2^e, |e| <= 64 */
+    unsigned char pow2[DYN_RK_PLAN_MAX_TERMS]; /* coef is +-2^e, |e| <= 64 (dyn_inl_is_pow2) */
     const double *kp[DYN_RK_PLAN_MAX_TERMS];
 } dyn_rk_plan;
-
-/* 1 if a is +-2^e with |e| <= 64: then h*(a*k) == (h*a)*k for every k and every h of
- * reasonable size, since scaling by a power of two is exact (no underflow or overflow).
- * The same test as dyn_inl_is_pow2 in dynkit/ode_inline.h. */
-static inline int dyn_rk_is_pow2(double a)
-{
-    uint64_t bits;
-    memcpy(&bits, &a, sizeof bits);
-    const uint64_t biased = (bits >> 52) & 0x7ff;
-    return (bits & 0xfffffffffffffULL) == 0 && biased >= 1023 - 64 && biased <= 1023 + 64;
-}
 
 /* Build the plan of table m for the stage derivatives k (stages x n).
  * Returns 1, or 0 if m has more stages than a plan holds (then use dyn_rk_stages_scan). */
@@ -83,7 +74,7 @@ static inline int dyn_rk_plan_init(dyn_rk_plan *p, const dyn_tableau *m, const d
             if (row[j] != 0.0) {
                 p->col[t] = j;
                 p->coef[t] = row[j];
-                p->pow2[t] = (unsigned char)dyn_rk_is_pow2(row[j]);
+                p->pow2[t] = (unsigned char)dyn_inl_is_pow2(row[j]);
                 p->kp[t] = k + (size_t)j * (size_t)n;
                 t++;
             }
@@ -269,8 +260,10 @@ DYN_RK_INLINE int dyn_rk_stages(const dyn_tableau *m, const dyn_rk_plan *p, dyn_
     return 0;
 }
 
-/* The same step for any stage count, scanning the coefficients on the fly (no plan).
- * Same arithmetic as dyn_rk_stages, term for term, and the same contract. */
+/* The same step for any stage count without a plan: the combinations of the public
+ * dyn_fixed_solve_inline (dynkit/ode_inline.h), whose row summaries are worked out here
+ * for every row of every step. Same arithmetic as dyn_rk_stages, term for term, and the
+ * same contract; used for tables of more than DYN_RK_PLAN_MAX_STAGES stages. */
 static inline int dyn_rk_stages_scan(const dyn_tableau *m, dyn_rhs_fn f, void *par, int n,
                                      double t, double h, double tend, const double *restrict y,
                                      double *restrict ynew, double *restrict k,
@@ -278,45 +271,13 @@ static inline int dyn_rk_stages_scan(const dyn_tableau *m, dyn_rhs_fn f, void *p
                                      dyn_trace_fn trace, void *trace_ctx, long step_index)
 {
     const int s = m->stages;
-    const double *a = m->a, *b = m->b, *c = m->c;
-    for (int i = 0; i <= s; i++) {
-        /* row i of a (strictly lower triangular: i entries), or b (s entries) for i == s */
-        const double *row = i < s ? a + (size_t)i * (size_t)s : b;
-        int nt = 0, j0 = 0;
-        for (int j = i - 1; j >= 0; j--)
-            if (row[j] != 0.0) {
-                nt++;
-                j0 = j;
-            }
-        const int fold = nt == 1 && dyn_rk_is_pow2(row[j0]);
-        const double hc = h * row[j0];
-        double *out = i < s ? Y : ynew;
+    for (int i = 0; i < s; i++) {
+        const double *row = m->a + (size_t)i * (size_t)s; /* strictly lower: i entries */
         const double *Yi = y;
-        if (nt > 0 || i == s) {
-            for (int q = 0; q < n; q++) {
-                double v = y[q];
-                if (fold) {
-                    v = y[q] + hc * k[(size_t)j0 * (size_t)n + (size_t)q];
-                } else if (nt > 0) {
-                    double acc = row[j0] * k[(size_t)j0 * (size_t)n + (size_t)q];
-                    for (int j = j0 + 1; j < i; j++)
-                        if (row[j] != 0.0)
-                            acc += row[j] * k[(size_t)j * (size_t)n + (size_t)q];
-                    v = y[q] + h * acc;
-                }
-                out[q] = v;
-            }
-            Yi = out;
-        }
-        if (i == s) {
-            double z = 0.0;
-            for (int q = 0; q < n; q++)
-                z += ynew[q] - ynew[q];
-            *finite = z;
-            break;
-        }
+        if (dyn_inl_combine(n, h, y, k, row, i, dyn_inl_row_of(row, i), Y) > 0)
+            Yi = Y;
         double *ki = k + (size_t)i * (size_t)n;
-        const double ti = dyn_rk_stage_time(t, c[i], h, tend);
+        const double ti = dyn_rk_stage_time(t, m->c[i], h, tend);
         int rc = f(ti, Yi, ki, par);
         if (rc) {
             *fail_stage = i;
@@ -325,6 +286,12 @@ static inline int dyn_rk_stages_scan(const dyn_tableau *m, dyn_rhs_fn f, void *p
         if (trace)
             dyn_rk_trace(trace, trace_ctx, m, step_index, n, t, h, ti, i, y, Yi, ki);
     }
+    if (dyn_inl_combine(n, h, y, k, m->b, s, dyn_inl_row_of(m->b, s), ynew) == 0)
+        memcpy(ynew, y, (size_t)n * sizeof *y);
+    double z = 0.0;
+    for (int q = 0; q < n; q++)
+        z += ynew[q] - ynew[q];
+    *finite = z;
     if (trace)
         dyn_rk_trace(trace, trace_ctx, m, step_index, n, t, h, t + h, s, y, ynew, NULL);
     return 0;

@@ -183,24 +183,39 @@ DYN_INL int dyn_inl_solve(const int S, const dyn_tableau *m, dyn_rhs_fn f, void 
     long step = 0;
     int rc = 0, stage = 0, nonfinite = 0;
     memcpy(ya, y, (size_t)n * sizeof *y);
-    /* two steps per iteration, ya -> yb -> ya: the buffers are fixed in the loop body, so
-     * the compiler can keep the state in registers from one step to the next */
-    while (step < steps) {
-        double tn = t0 + (double)step * h;
-        rc = dyn_inl_step(S, m, rows, f, par, n, tn, step < g->whole_steps ? h : t1 - tn, t1,
-                          ya, yb, k, Y, &stage, &nonfinite, check);
-        if (rc || nonfinite)
-            break;
-        cur = yb;
-        if (++step == steps)
-            break;
-        tn = t0 + (double)step * h;
-        rc = dyn_inl_step(S, m, rows, f, par, n, tn, step < g->whole_steps ? h : t1 - tn, t1,
-                          yb, ya, k, Y, &stage, &nonfinite, check);
-        if (rc || nonfinite)
-            break;
-        cur = ya;
-        step++;
+    if (n <= 4) {
+        /* two steps per iteration, ya -> yb -> ya: the buffers are fixed in the loop body,
+         * so the compiler can keep a small state in registers from one step to the next */
+        while (step < steps) {
+            double tn = t0 + (double)step * h;
+            rc = dyn_inl_step(S, m, rows, f, par, n, tn, step < g->whole_steps ? h : t1 - tn,
+                              t1, ya, yb, k, Y, &stage, &nonfinite, check);
+            if (rc || nonfinite)
+                break;
+            cur = yb;
+            if (++step == steps)
+                break;
+            tn = t0 + (double)step * h;
+            rc = dyn_inl_step(S, m, rows, f, par, n, tn, step < g->whole_steps ? h : t1 - tn,
+                              t1, yb, ya, k, Y, &stage, &nonfinite, check);
+            if (rc || nonfinite)
+                break;
+            cur = ya;
+            step++;
+        }
+    } else {
+        /* one step per iteration: half the code (the right-hand side is inlined once per
+         * stage, not twice), which matters more than registers for larger systems */
+        while (step < steps) {
+            const double tn = t0 + (double)step * h;
+            double *nxt = cur == ya ? yb : ya;
+            rc = dyn_inl_step(S, m, rows, f, par, n, tn, step < g->whole_steps ? h : t1 - tn,
+                              t1, cur, nxt, k, Y, &stage, &nonfinite, check);
+            if (rc || nonfinite)
+                break;
+            cur = nxt;
+            step++;
+        }
     }
     /* step is the number of kept steps; cur holds the last good state */
     memcpy(y, cur, (size_t)n * sizeof *y);

@@ -58,29 +58,29 @@ static int plane_rhs(double t, const double *y, double *dydt, void *par)
 /* ---- hand-written RK4, right-hand side inlined, n a compile-time constant ----
  * Textbook form: k1..k4, then y += h/6 (k1 + 2 k2 + 2 k3 + k4). Both systems are
  * autonomous, so the stage times are not formed. */
-#define HAND_RK4(NAME, N, PAR_T, EVAL)                                                       \
-    static __attribute__((noinline)) void NAME(const void *vpar, const double *y0, double h, \
-                                               long steps, double *yout)                     \
-    {                                                                                        \
-        const PAR_T *par = vpar;                                                             \
-        double y[N], Y[N], k1[N], k2[N], k3[N], k4[N];                                       \
-        memcpy(y, y0, sizeof y);                                                             \
-        const double h2 = 0.5 * h, h6 = h / 6.0;                                             \
-        for (long step = 0; step < steps; step++) {                                          \
-            EVAL(y, k1, par);                                                                \
-            for (int q = 0; q < N; q++)                                                      \
-                Y[q] = y[q] + h2 * k1[q];                                                    \
-            EVAL(Y, k2, par);                                                                \
-            for (int q = 0; q < N; q++)                                                      \
-                Y[q] = y[q] + h2 * k2[q];                                                    \
-            EVAL(Y, k3, par);                                                                \
-            for (int q = 0; q < N; q++)                                                      \
-                Y[q] = y[q] + h * k3[q];                                                     \
-            EVAL(Y, k4, par);                                                                \
-            for (int q = 0; q < N; q++)                                                      \
-                y[q] += h6 * (k1[q] + 2.0 * k2[q] + 2.0 * k3[q] + k4[q]);                    \
-        }                                                                                    \
-        memcpy(yout, y, sizeof y);                                                           \
+#define HAND_RK4(NAME, N, PAR_T, EVAL)                                                             \
+    static __attribute__((noinline)) void NAME(const void *vpar, const double *y0, double h,       \
+                                               long steps, double *yout)                           \
+    {                                                                                              \
+        const PAR_T *par = vpar;                                                                   \
+        double y[N], Y[N], k1[N], k2[N], k3[N], k4[N];                                             \
+        memcpy(y, y0, sizeof y);                                                                   \
+        const double h2 = 0.5 * h, h6 = h / 6.0;                                                   \
+        for (long step = 0; step < steps; step++) {                                                \
+            EVAL(y, k1, par);                                                                      \
+            for (int q = 0; q < N; q++)                                                            \
+                Y[q] = y[q] + h2 * k1[q];                                                          \
+            EVAL(Y, k2, par);                                                                      \
+            for (int q = 0; q < N; q++)                                                            \
+                Y[q] = y[q] + h2 * k2[q];                                                          \
+            EVAL(Y, k3, par);                                                                      \
+            for (int q = 0; q < N; q++)                                                            \
+                Y[q] = y[q] + h * k3[q];                                                           \
+            EVAL(Y, k4, par);                                                                      \
+            for (int q = 0; q < N; q++)                                                            \
+                y[q] += h6 * (k1[q] + 2.0 * k2[q] + 2.0 * k3[q] + k4[q]);                          \
+        }                                                                                          \
+        memcpy(yout, y, sizeof y);                                                                 \
     }
 
 HAND_RK4(hand_rk4_vdp, 2, bench_vdp_par, bench_vdp_eval)
@@ -142,19 +142,20 @@ static const double rk4_a[16] = {0.0, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0,
                                  0.0, 0.5, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0};
 static const double rk4_b[4] = {1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0};
 static const double rk4_c[4] = {0.0, 0.5, 0.5, 1.0};
-static const dyn_tableau RK4_CONST = {"rk4", NULL, "classical RK4 (constant copy)", "bench",
-                                      DYN_KIND_EXPLICIT_RK, 4, 4, rk4_a, rk4_b, rk4_c};
+static const dyn_tableau RK4_CONST = {
+    "rk4", NULL, "classical RK4 (constant copy)", "bench", DYN_KIND_EXPLICIT_RK, 4, 4, rk4_a,
+    rk4_b, rk4_c};
 
-typedef int (*inline_fn)(const dyn_tableau *m, void *par, double t1, double h,
-                         const double *y0, double *y, double *work, dyn_result *res);
-#define INLINE_SOLVER(NAME, RHS, N, TABLE)                                                   \
-    static __attribute__((noinline)) int NAME(const dyn_tableau *m, void *par, double t1,   \
-                                              double h, const double *y0, double *y,        \
-                                              double *work, dyn_result *res)                \
-    {                                                                                        \
-        const dyn_system sys = {RHS, N, par};                                               \
-        (void)m;                                                                             \
-        return dyn_fixed_solve_inline(TABLE, &sys, 0.0, t1, h, y0, y, work, NULL, res);     \
+typedef int (*inline_fn)(const dyn_tableau *m, void *par, double t1, double h, const double *y0,
+                         double *y, double *work, dyn_result *res);
+#define INLINE_SOLVER(NAME, RHS, N, TABLE)                                                         \
+    static __attribute__((noinline)) int NAME(const dyn_tableau *m, void *par, double t1,          \
+                                              double h, const double *y0, double *y, double *work, \
+                                              dyn_result *res)                                     \
+    {                                                                                              \
+        const dyn_system sys = {RHS, N, par};                                                      \
+        (void)m;                                                                                   \
+        return dyn_fixed_solve_inline(TABLE, &sys, 0.0, t1, h, y0, y, work, NULL, res);            \
     }
 INLINE_SOLVER(inline_vdp, vdp_rhs, 2, m)
 INLINE_SOLVER(inline_plane, plane_rhs, 12, m)
@@ -169,7 +170,7 @@ typedef struct bench_case {
     long steps;
     dyn_rhs_fn f;
     void *par;
-    hand_fn hand;           /* rhs inlined: the reference */
+    hand_fn hand;             /* rhs inlined: the reference */
     inline_fn inl, inl_const; /* dyn_fixed_solve_inline, library table / constant table */
 } bench_case;
 
@@ -187,8 +188,8 @@ static double now_ns(void)
 }
 
 /* batch whole solves of variant v; returns elapsed ns, or -1 if a solve failed. */
-static double time_variant(const bench_case *bc, int v, const dyn_tableau *m, long batch,
-                           double *y, double *work)
+static double time_variant(const bench_case *bc, int v, const dyn_tableau *m, long batch, double *y,
+                           double *work)
 {
     const dyn_system sys = {bc->f, bc->n, bc->par};
     const double t1 = (double)bc->steps * bc->h;
@@ -199,9 +200,13 @@ static double time_variant(const bench_case *bc, int v, const dyn_tableau *m, lo
     for (long r = 0; r < batch && rc == DYN_OK; r++) {
         switch (v) {
         case V_HAND: bc->hand(bc->par, bc->y0, bc->h, bc->steps, y); break;
-        case V_LIB: rc = dyn_fixed_solve(m, &sys, 0.0, t1, bc->h, bc->y0, y, work, NULL, &res); break;
+        case V_LIB:
+            rc = dyn_fixed_solve(m, &sys, 0.0, t1, bc->h, bc->y0, y, work, NULL, &res);
+            break;
         case V_INLINE: rc = bc->inl(m, bc->par, t1, bc->h, bc->y0, y, work, &res); break;
-        case V_INLINE_CONST: rc = bc->inl_const(m, bc->par, t1, bc->h, bc->y0, y, work, &res); break;
+        case V_INLINE_CONST:
+            rc = bc->inl_const(m, bc->par, t1, bc->h, bc->y0, y, work, &res);
+            break;
         default: ptr_rk4(fv, bc->par, bc->n, bc->y0, bc->h, bc->steps, y); break;
         }
         CLOBBER();
@@ -276,8 +281,7 @@ static int run_case(const bench_case *bc, const dyn_tableau *m, int reps, int qu
     }
     free(samples);
 
-    printf("%s: %d states, %ld steps of %g, batch %ld\n", bc->name, bc->n, bc->steps, bc->h,
-           batch);
+    printf("%s: %d states, %ld steps of %g, batch %ld\n", bc->name, bc->n, bc->steps, bc->h, batch);
     int ok = 1;
     for (int v = 0; v < NVARIANT; v++) {
         const double rel = rel_diff(yv[v], yv[V_HAND], bc->n);
@@ -315,8 +319,8 @@ static int fail_rhs(double t, const double *y, double *dydt, void *par)
     return 0;
 }
 
-static int same_result(const dyn_result *a, const dyn_result *b, const double *ya,
-                       const double *yb, int n)
+static int same_result(const dyn_result *a, const dyn_result *b, const double *ya, const double *yb,
+                       int n)
 {
     return a->status == b->status && a->rhs_status == b->rhs_status &&
            memcmp(&a->t, &b->t, sizeof a->t) == 0 &&
@@ -436,8 +440,9 @@ int main(int argc, char **argv)
         } else if (strcmp(argv[i], "--system") == 0 && i + 1 < argc) {
             only = argv[++i];
             if (strcmp(only, "vanderpol") != 0 && strcmp(only, "plane") != 0) {
-                fprintf(stderr, "bench_fixed: --system %s is not accepted: give vanderpol or "
-                                "plane\n",
+                fprintf(stderr,
+                        "bench_fixed: --system %s is not accepted: give vanderpol or "
+                        "plane\n",
                         only);
                 return 2;
             }
@@ -463,8 +468,8 @@ int main(int argc, char **argv)
     static bench_vdp_par vdp = {1.0};
     static const double vdp_y0[2] = {2.0, 0.0};
     static bench_plane_par plane = {1.0, 0.005, 0.005, 0.01, 9.81, 1.0, 20.0, {0.1, 0.0, -0.1}};
-    static const double plane_y0[12] = {-0.1, 0.2, 1.0 + 9.81 / 20.0, 0.0, 0.0, 0.0,
-                                        2.0,  0.0, 0.0,               0.0, 0.0, PI / 40.0};
+    static const double plane_y0[12] = {-0.1, 0.2, 1.0 + 9.81 / 20.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0,
+                                        0.0,  0.0, PI / 40.0};
     const bench_case cases[] = {
         {"vanderpol", 2, vdp_y0, 0.01, 1500, vdp_rhs, &vdp, hand_rk4_vdp, inline_vdp,
          inline_const_vdp},
@@ -475,8 +480,7 @@ int main(int argc, char **argv)
     printf("fixed-step rk4, ns per step: median and minimum over %d repetitions%s; ratios to "
            "the hand-written loop; last column: relative difference of the final state\n",
            reps, quick ? " (quick: checks only, timings meaningless)" : "");
-    printf("  %-43s %9s %9s %7s %7s  %s\n", "variant", "median", "min", "ratio", "r_min",
-           "diff");
+    printf("  %-43s %9s %9s %7s %7s  %s\n", "variant", "median", "min", "ratio", "r_min", "diff");
     int failed = 0;
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
         if (!only || strcmp(only, cases[i].name) == 0)

@@ -92,8 +92,8 @@ DYN_INL dyn_inl_row dyn_inl_row_of(const double *row, int len)
 /* out = y + h * (sum_{j<len, row[j] != 0} row[j] k_j, left to right) over n states: the
  * library's arithmetic. Returns the number of terms (0: out is not written). */
 DYN_INL int dyn_inl_combine(int n, double h, const double *DYN_RESTRICT y,
-                            const double *DYN_RESTRICT k, const double *row, int len,
-                            dyn_inl_row r, double *DYN_RESTRICT out)
+                            const double *DYN_RESTRICT k, const double *row, int len, dyn_inl_row r,
+                            double *DYN_RESTRICT out)
 {
     const size_t sn = (size_t)n;
     if (r.nt == 0)
@@ -122,10 +122,10 @@ DYN_INL int dyn_inl_combine(int n, double h, const double *DYN_RESTRICT y,
 
 /* Stage I of an S-stage table (I < S): Y_I, then k_I = f(t + c_I h, Y_I). Returns f's
  * value. Separate so that the stage loop is unrolled by hand (I constant). */
-DYN_INL int dyn_inl_stage(const int S, const int I, const dyn_tableau *m,
-                          const dyn_inl_row *rows, dyn_rhs_fn f, void *par, int n, double t,
-                          double h, double t1, const double *DYN_RESTRICT y,
-                          double *DYN_RESTRICT k, double *DYN_RESTRICT Y)
+DYN_INL int dyn_inl_stage(const int S, const int I, const dyn_tableau *m, const dyn_inl_row *rows,
+                          dyn_rhs_fn f, void *par, int n, double t, double h, double t1,
+                          const double *DYN_RESTRICT y, double *DYN_RESTRICT k,
+                          double *DYN_RESTRICT Y)
 {
     const double *Yi = y;
     if (I > 0 && dyn_inl_combine(n, h, y, k, m->a + (size_t)I * (size_t)S, I, rows[I], Y) > 0)
@@ -138,18 +138,18 @@ DYN_INL int dyn_inl_stage(const int S, const int I, const dyn_tableau *m,
 
 /* One step of an S-stage table from y into ynew (rows[S] is b). Returns f's non-zero
  * value with the stage in *stage, or 0 with *nonfinite set if ynew is not finite. */
-DYN_INL int dyn_inl_step(const int S, const dyn_tableau *m, const dyn_inl_row *rows,
-                         dyn_rhs_fn f, void *par, int n, double t, double h, double t1,
+DYN_INL int dyn_inl_step(const int S, const dyn_tableau *m, const dyn_inl_row *rows, dyn_rhs_fn f,
+                         void *par, int n, double t, double h, double t1,
                          const double *DYN_RESTRICT y, double *DYN_RESTRICT ynew,
-                         double *DYN_RESTRICT k, double *DYN_RESTRICT Y, int *stage,
-                         int *nonfinite, int check)
+                         double *DYN_RESTRICT k, double *DYN_RESTRICT Y, int *stage, int *nonfinite,
+                         int check)
 {
     int rc;
-#define DYN_INL_STAGE(I)                                                                     \
-    if ((I) < S && (rc = dyn_inl_stage(S, (I) < S ? (I) : 0, m, rows, f, par, n, t, h, t1, \
-                                       y, k, Y)) != 0) {                                     \
-        *stage = (I);                                                                        \
-        return rc;                                                                           \
+#define DYN_INL_STAGE(I)                                                                           \
+    if ((I) < S &&                                                                                 \
+        (rc = dyn_inl_stage(S, (I) < S ? (I) : 0, m, rows, f, par, n, t, h, t1, y, k, Y)) != 0) {  \
+        *stage = (I);                                                                              \
+        return rc;                                                                                 \
     }
     DYN_INL_STAGE(0)
     DYN_INL_STAGE(1)
@@ -168,9 +168,8 @@ DYN_INL int dyn_inl_step(const int S, const dyn_tableau *m, const dyn_inl_row *r
 }
 
 /* The solve for a table of S stages (1 <= S <= 4). */
-DYN_INL int dyn_inl_solve(const int S, const dyn_tableau *m, dyn_rhs_fn f, void *par,
-                          const int n, const dyn_grid *g, double *y, double *work, int check,
-                          dyn_result *res)
+DYN_INL int dyn_inl_solve(const int S, const dyn_tableau *m, dyn_rhs_fn f, void *par, const int n,
+                          const dyn_grid *g, double *y, double *work, int check, dyn_result *res)
 {
     double *k = work, *Y = work + (size_t)S * (size_t)n, *ya = Y + n, *yb = ya + n;
     const double t0 = g->t0, t1 = g->t1, h = g->h;
@@ -188,16 +187,16 @@ DYN_INL int dyn_inl_solve(const int S, const dyn_tableau *m, dyn_rhs_fn f, void 
          * so the compiler can keep a small state in registers from one step to the next */
         while (step < steps) {
             double tn = t0 + (double)step * h;
-            rc = dyn_inl_step(S, m, rows, f, par, n, tn, step < g->whole_steps ? h : t1 - tn,
-                              t1, ya, yb, k, Y, &stage, &nonfinite, check);
+            rc = dyn_inl_step(S, m, rows, f, par, n, tn, step < g->whole_steps ? h : t1 - tn, t1,
+                              ya, yb, k, Y, &stage, &nonfinite, check);
             if (rc || nonfinite)
                 break;
             cur = yb;
             if (++step == steps)
                 break;
             tn = t0 + (double)step * h;
-            rc = dyn_inl_step(S, m, rows, f, par, n, tn, step < g->whole_steps ? h : t1 - tn,
-                              t1, yb, ya, k, Y, &stage, &nonfinite, check);
+            rc = dyn_inl_step(S, m, rows, f, par, n, tn, step < g->whole_steps ? h : t1 - tn, t1,
+                              yb, ya, k, Y, &stage, &nonfinite, check);
             if (rc || nonfinite)
                 break;
             cur = ya;
@@ -209,8 +208,8 @@ DYN_INL int dyn_inl_solve(const int S, const dyn_tableau *m, dyn_rhs_fn f, void 
         while (step < steps) {
             const double tn = t0 + (double)step * h;
             double *nxt = cur == ya ? yb : ya;
-            rc = dyn_inl_step(S, m, rows, f, par, n, tn, step < g->whole_steps ? h : t1 - tn,
-                              t1, cur, nxt, k, Y, &stage, &nonfinite, check);
+            rc = dyn_inl_step(S, m, rows, f, par, n, tn, step < g->whole_steps ? h : t1 - tn, t1,
+                              cur, nxt, k, Y, &stage, &nonfinite, check);
             if (rc || nonfinite)
                 break;
             cur = nxt;
@@ -230,8 +229,7 @@ DYN_INL int dyn_inl_solve(const int S, const dyn_tableau *m, dyn_rhs_fn f, void 
         res->fail_t = ti > t1 ? t1 : ti;
         res->status = DYN_ERR_RHS;
         snprintf(res->message, sizeof res->message,
-                 "the right-hand side failed at t = %.17g (status %.0f)", res->fail_t,
-                 (double)rc);
+                 "the right-hand side failed at t = %.17g (status %.0f)", res->fail_t, (double)rc);
     } else if (nonfinite) {
         const double *bad = cur == ya ? yb : ya;
         int q = 0;
@@ -241,8 +239,8 @@ DYN_INL int dyn_inl_solve(const int S, const dyn_tableau *m, dyn_rhs_fn f, void 
         res->fail_t = (g->ends_at_t1 && step + 1 == steps) ? t1 : t0 + (double)(step + 1) * h;
         res->fail_index = q;
         res->status = DYN_ERR_NONFINITE;
-        snprintf(res->message, sizeof res->message,
-                 "state %.0f became not finite at t = %.17g", (double)q, res->fail_t);
+        snprintf(res->message, sizeof res->message, "state %.0f became not finite at t = %.17g",
+                 (double)q, res->fail_t);
     } else {
         res->stats.rhs_calls = step * S;
     }
@@ -252,8 +250,8 @@ DYN_INL int dyn_inl_solve(const int S, const dyn_tableau *m, dyn_rhs_fn f, void 
 /* dyn_fixed_solve with the stage loop compiled at the call site: same contract, same
  * results bit for bit (see the top of this header for when it pays). */
 DYN_INL int dyn_fixed_solve_inline(const dyn_tableau *m, const dyn_system *sys, double t0,
-                                   double t1, double h, const double *y0, double *y,
-                                   double *work, const dyn_fixed_opts *opts, dyn_result *res)
+                                   double t1, double h, const double *y0, double *y, double *work,
+                                   const dyn_fixed_opts *opts, dyn_result *res)
 {
     if (!sys)
         return dyn_fixed_solve(m, sys, t0, t1, h, y0, y, work, opts, res);
@@ -263,8 +261,8 @@ DYN_INL int dyn_fixed_solve_inline(const dyn_tableau *m, const dyn_system *sys, 
     void *const par = sys->par;
     dyn_grid g;
     dyn_result local;
-    if (!m || m->kind != DYN_KIND_EXPLICIT_RK || m->stages < 1 || m->stages > 4 || !f ||
-        n <= 0 || !y0 || !y || !work || (opts && (opts->output || opts->trace || opts->progress)) ||
+    if (!m || m->kind != DYN_KIND_EXPLICIT_RK || m->stages < 1 || m->stages > 4 || !f || n <= 0 ||
+        !y0 || !y || !work || (opts && (opts->output || opts->trace || opts->progress)) ||
         dyn_grid_plan(t0, t1, h, opts ? opts->end : DYN_END_EXACT, &g, NULL, 0) != DYN_OK)
         return dyn_fixed_solve(m, sys, t0, t1, h, y0, y, work, opts, res);
     for (int q = 0; q < n; q++)

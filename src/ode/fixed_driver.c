@@ -43,9 +43,8 @@ static int first_nonfinite(const double *y, int n)
  * step is not counted. Returns the number of steps completed. */
 static long plain_steps(const dyn_tableau *m, const dyn_rk_plan *p, dyn_rhs_fn f, void *par,
                         int n, double t0, double h, double t1, long step, long count,
-                        int finite_check,
-                        double **cur, double **nxt, double *k, double *Y, int *rc,
-                        int *fail_stage, int *nonfinite)
+                        int finite_check, double **cur, double **nxt, double *k, double *Y,
+                        int *rc, int *fail_stage, int *nonfinite)
 {
     double *a = *cur, *b = *nxt;
     long i = 0;

@@ -38,7 +38,7 @@
 #define DYN_RK_INLINE static inline
 #endif
 
-/* Largest stage count with a plan (the plan lives on the caller's stack, about 3 KB). */
+/* Largest stage count with a plan (the plan lives on the caller's stack, about 2.5 KB). */
 #ifndef DYN_RK_PLAN_MAX_STAGES /* overridable to test the fallback */
 #define DYN_RK_PLAN_MAX_STAGES 16
 #endif
@@ -46,11 +46,10 @@
 
 /* Non-zero coefficients of a table by row: rows 0 .. s-1 are the rows of a, row s is b.
  * The terms of row r are coef[t] * kp[t] for first[r] <= t < first[r + 1], where
- * kp[t] = k + col[t] * n points into the workspace of the solve (dyn_rk_plan_bind). */
+ * kp[t] = k_j = k + j * n points into the workspace of the solve. */
 typedef struct dyn_rk_plan {
     int stages;
     int first[DYN_RK_PLAN_MAX_STAGES + 2];
-    int col[DYN_RK_PLAN_MAX_TERMS];
     double coef[DYN_RK_PLAN_MAX_TERMS];
     unsigned char pow2[DYN_RK_PLAN_MAX_TERMS]; /* coef is +-2^e, |e| <= 64 (dyn_inl_is_pow2) */
     const double *kp[DYN_RK_PLAN_MAX_TERMS];
@@ -72,7 +71,6 @@ static inline int dyn_rk_plan_init(dyn_rk_plan *p, const dyn_tableau *m, const d
         p->first[r] = t;
         for (int j = 0; j < len; j++) {
             if (row[j] != 0.0) {
-                p->col[t] = j;
                 p->coef[t] = row[j];
                 p->pow2[t] = (unsigned char)dyn_inl_is_pow2(row[j]);
                 p->kp[t] = k + (size_t)j * (size_t)n;
@@ -226,9 +224,9 @@ static inline void dyn_rk_trace(dyn_trace_fn trace, void *trace_ctx, const dyn_t
 }
 
 /* Take one step from (t, y) of size h into ynew with the plan p of m, whose k is the k
- * here (stages x n); stage times are clamped to tend (dyn_rk_stage_time). y, ynew, k and Y are distinct. Returns 0, or the non-zero value of f
- * with the failing stage index in *fail_stage. On success *finite is 0 if every ynew[q]
- * is finite, NaN otherwise. */
+ * here (stages x n); stage times are clamped to tend (dyn_rk_stage_time). y, ynew, k and
+ * Y are distinct. Returns 0, or the non-zero value of f with the failing stage index in
+ * *fail_stage. On success *finite is 0 if every ynew[q] is finite, NaN otherwise. */
 DYN_RK_INLINE int dyn_rk_stages(const dyn_tableau *m, const dyn_rk_plan *p, dyn_rhs_fn f,
                                 void *par, int n, double t, double h, double tend,
                                 const double *restrict y, double *restrict ynew,
@@ -256,7 +254,8 @@ DYN_RK_INLINE int dyn_rk_stages(const dyn_tableau *m, const dyn_rk_plan *p, dyn_
     }
     *finite = dyn_rk_combine(n, h, y, p, s, ynew);
     if (trace)
-        dyn_rk_trace(trace, trace_ctx, m, step_index, n, t, h, t + h, s, y, ynew, NULL);
+        dyn_rk_trace(trace, trace_ctx, m, step_index, n, t, h,
+                     dyn_rk_stage_time(t, 1.0, h, tend), s, y, ynew, NULL);
     return 0;
 }
 
@@ -293,7 +292,8 @@ static inline int dyn_rk_stages_scan(const dyn_tableau *m, dyn_rhs_fn f, void *p
         z += ynew[q] - ynew[q];
     *finite = z;
     if (trace)
-        dyn_rk_trace(trace, trace_ctx, m, step_index, n, t, h, t + h, s, y, ynew, NULL);
+        dyn_rk_trace(trace, trace_ctx, m, step_index, n, t, h,
+                     dyn_rk_stage_time(t, 1.0, h, tend), s, y, ynew, NULL);
     return 0;
 }
 

@@ -1,0 +1,165 @@
+/* test_jacobian.c — the forward-difference Jacobian and df/dt (src/ode/jacobian.h) against
+ * analytic derivatives: the error is about sqrt(eps) relative to the scale of the entries,
+ * every column costs one call of f, states of very different sizes get increments of their
+ * own size, the state passed in is left alone, and a failing f is passed through. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+#include <float.h>
+
+#include "ode/jacobian.h"
+#include "test_util.h"
+
+/* A non-autonomous test system with a dense, nonlinear Jacobian:
+ *   f1 = sin(y1) y2 + t^2 y3
+ *   f2 = exp(0.5 y2) - y1 y3 + cos(t)
+ *   f3 = y1^3 / (1 + y3^2) + 1e3 y2 */
+static int f_test(double t, const double *y, double *f, void *par)
+{
+    int *calls = par;
+    if (calls)
+        (*calls)++;
+    f[0] = sin(y[0]) * y[1] + t * t * y[2];
+    f[1] = exp(0.5 * y[1]) - y[0] * y[2] + cos(t);
+    f[2] = y[0] * y[0] * y[0] / (1.0 + y[2] * y[2]) + 1e3 * y[1];
+    return 0;
+}
+
+static void jac_test(double t, const double *y, double *J)
+{
+    const double q = 1.0 + y[2] * y[2];
+    J[0] = cos(y[0]) * y[1];
+    J[1] = sin(y[0]);
+    J[2] = t * t;
+    J[3] = -y[2];
+    J[4] = 0.5 * exp(0.5 * y[1]);
+    J[5] = -y[0];
+    J[6] = 3.0 * y[0] * y[0] / q;
+    J[7] = 1e3;
+    J[8] = -2.0 * y[2] * y[0] * y[0] * y[0] / (q * q);
+}
+
+static void test_difference_jacobian_matches_analytic(void **state)
+{
+    (void)state;
+    int calls = 0;
+    dyn_system sys = {f_test, 3, &calls};
+    const double pts[][4] = {
+        {0.3, 0.7, -1.2, 2.0}, {2.5, -3.0, 0.01, 0.5}, {0.0, 1e-3, 4.0, -7.0}, {10.0, 0, 0, 0}};
+    for (size_t p = 0; p < sizeof pts / sizeof pts[0]; p++) {
+        const double t = pts[p][0], *y = pts[p] + 1;
+        double y_copy[3], f0[3], J[9], Jex[9], work[DYN_FD_JAC_WORK(3)];
+        memcpy(y_copy, y, sizeof y_copy);
+        f_test(t, y, f0, NULL);
+        long rhs = 0;
+        calls = 0;
+        assert_int_equal(dyn_fd_jacobian(&sys, t, y, f0, NULL, J, work, &rhs), 0);
+        assert_int_equal(rhs, 3);
+        assert_int_equal(calls, 3);
+        assert_memory_equal(y, y_copy, sizeof y_copy);
+        jac_test(t, y, Jex);
+        double scale = 0.0;
+        for (int i = 0; i < 9; i++)
+            scale = fmax(scale, fabs(Jex[i]));
+        double e = max_abs_diff(J, Jex, 9);
+        /* truncation ~ d |f''| and rounding ~ eps |f| / d with d ~ 1.5e-8 max(|y|, 1e-5) */
+        CHECK(e < 2e-6 * scale, "point %zu: Jacobian error %.3g (scale %.3g)", p, e, scale);
+    }
+}
+
+/* Robertson's kinetics: states of sizes 1, 1e-5 and 1; an increment of 1.5e-8 in y2
+ * (typical 1) would be larger than y2 and wreck the quadratic term, the default
+ * (typical 1e-5) and a given typical of y2's size are accurate. */
+static int f_rober(double t, const double *y, double *f, void *par)
+{
+    (void)t;
+    (void)par;
+    f[0] = -0.04 * y[0] + 1e4 * y[1] * y[2];
+    f[1] = 0.04 * y[0] - 1e4 * y[1] * y[2] - 3e7 * y[1] * y[1];
+    f[2] = 3e7 * y[1] * y[1];
+    return 0;
+}
+
+static void test_increments_follow_the_size_of_each_state(void **state)
+{
+    (void)state;
+    dyn_system sys = {f_rober, 3, NULL};
+    const double y[3] = {0.9, 3.5e-5, 0.1};
+    const double Jex[9] = {-0.04, 1e4 * y[2],           1e4 * y[1],
+                           0.04,  -1e4 * y[2] - 6e7 * y[1], -1e4 * y[1],
+                           0.0,   6e7 * y[1],           0.0};
+    double f0[3], J[9], work[6];
+    f_rober(0, y, f0, NULL);
+    const double typ[3] = {1.0, 1e-5, 1.0};
+    assert_int_equal(dyn_fd_jacobian(&sys, 0.0, y, f0, typ, J, work, NULL), 0);
+    /* column 2: d^2 f / dy2^2 = 6e7, increment 1.5e-8 * 3.5e-5: error ~ 2e-5 absolute */
+    for (int i = 0; i < 9; i++)
+        CHECK(fabs(J[i] - Jex[i]) <= 1e-6 * fabs(Jex[i]) + 1e-6, "J[%d] = %.17g, exact %.17g", i,
+              J[i], Jex[i]);
+    assert_int_equal(dyn_fd_jacobian(&sys, 0.0, y, f0, NULL, J, work, NULL), 0);
+    for (int i = 0; i < 9; i++)
+        CHECK(fabs(J[i] - Jex[i]) <= 1e-6 * fabs(Jex[i]) + 1e-6, "default: J[%d] = %.17g", i,
+              J[i]);
+    /* with typical 1 for y2 the column is off by 3e7 * 1.5e-8 = 0.45 */
+    const double typ1[3] = {1.0, 1.0, 1.0};
+    assert_int_equal(dyn_fd_jacobian(&sys, 0.0, y, f0, typ1, J, work, NULL), 0);
+    assert_true(fabs(J[4] - Jex[4]) > 0.1);
+}
+
+static void test_time_derivative(void **state)
+{
+    (void)state;
+    int calls = 0;
+    dyn_system sys = {f_test, 3, &calls};
+    const double y[3] = {0.3, -0.4, 1.5};
+    const double ts[] = {0.0, 1.0, -3.0, 1e3};
+    for (size_t k = 0; k < sizeof ts / sizeof ts[0]; k++) {
+        const double t = ts[k];
+        double f0[3], ft[3], work[3];
+        f_test(t, y, f0, NULL);
+        long rhs = 0;
+        assert_int_equal(dyn_fd_dfdt(&sys, t, y, f0, 0.1, ft, work, &rhs), 0);
+        assert_int_equal(rhs, 1);
+        const double ex[3] = {2.0 * t * y[2], -sin(t), 0.0};
+        const double scale = fmax(1.0, fabs(t));
+        for (int i = 0; i < 3; i++)
+            CHECK(fabs(ft[i] - ex[i]) < 1e-6 * scale * fmax(1.0, fabs(ex[i])),
+                  "t = %g: df%d/dt = %.17g, exact %.17g", t, i, ft[i], ex[i]);
+    }
+}
+
+static int f_fails(double t, const double *y, double *f, void *par)
+{
+    (void)t;
+    int *count = par;
+    f[0] = y[0];
+    f[1] = y[1];
+    return ++*count >= 2 ? 7 : 0;
+}
+
+static void test_failing_rhs_is_passed_through(void **state)
+{
+    (void)state;
+    int count = 0;
+    dyn_system sys = {f_fails, 2, &count};
+    double y[2] = {1, 2}, f0[2] = {1, 2}, J[4], work[4], ft[2];
+    long rhs = 0;
+    assert_int_equal(dyn_fd_jacobian(&sys, 0.0, y, f0, NULL, J, work, &rhs), 7);
+    assert_int_equal(rhs, 2);
+    assert_true(y[0] == 1.0 && y[1] == 2.0);
+    assert_int_equal(dyn_fd_dfdt(&sys, 0.0, y, f0, 1.0, ft, work, &rhs), 7);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_difference_jacobian_matches_analytic),
+        cmocka_unit_test(test_increments_follow_the_size_of_each_state),
+        cmocka_unit_test(test_time_derivative),
+        cmocka_unit_test(test_failing_rhs_is_passed_through),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -2,6 +2,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "pages.h"
 
 static void main_help(void)
 {
@@ -15,7 +16,9 @@ static void main_help(void)
          "  methods        list the integration methods\n"
          "  info MODEL     states, parameters, units and defaults of a model\n"
          "  inverse cart   inverse dynamics of the cart: force table of a prescribed motion\n"
-         "  report         every answer of the homework, computed now (--json)\n"
+         "  report         every answer of the homework, computed now (--json, --html FILE)\n"
+         "  animate MODEL  a run as an HTML page that plays the motion (--compare METHOD)\n"
+         "  plot MODEL     a run as an SVG line plot (--y NAME,... [--x NAME])\n"
          "\n"
          "'dynkit COMMAND --help' tells more about each command.\n"
          "Example: dynkit run vanderpol --method rk4 --step 0.01 --tspan 0:15 --final");
@@ -33,6 +36,8 @@ int main(int argc, char **argv)
         {"info", cli_cmd_info},
         {"inverse", cli_cmd_inverse},
         {"report", cli_cmd_report},
+        {"animate", cli_cmd_animate},
+        {"plot", cli_cmd_plot},
     };
     if (argc < 2) {
         main_help();
@@ -51,6 +56,6 @@ int main(int argc, char **argv)
             return commands[i].run(argc - 2, argv + 2);
     return cli_usage_error(NULL,
                            "unknown command '%s' (accepted: run, models, methods, info, "
-                           "inverse, report)",
+                           "inverse, report, animate, plot)",
                            argv[1]);
 }

@@ -115,6 +115,57 @@ int dyn_homework_compute(dyn_homework *hw, char *err, size_t errlen);
 int dyn_homework_write_text(const dyn_homework *hw, FILE *out);
 int dyn_homework_write_json(const dyn_homework *hw, FILE *out);
 
+
+/* ---- the time series behind the answers, for plots and animations (hw_series.c) ---- */
+
+#define DYN_HW_MAX_COLS 24
+#define DYN_HW_MAX_TABLES 16
+
+/* A table of samples: column 0 is the abscissa (the time, or the step size of a study),
+ * the others named quantities with SI units. Names and units are static strings. */
+typedef struct dyn_hw_table {
+    const char *id;            /* e.g. "pendulum.nonlinear", "plane.euler" */
+    const char *title;         /* one line for people, e.g. "RK4, h = 0.01 s" (static) */
+    const char *method;        /* integration method name, or NULL (exact motion, study) */
+    double step;               /* step of the run [s], 0 when not a run */
+    int cols;
+    const char *names[DYN_HW_MAX_COLS];
+    const char *units[DYN_HW_MAX_COLS];
+    long rows;
+    double *data;              /* (rows x cols) row-major, owned: dyn_hw_series_free */
+} dyn_hw_table;
+
+/* Every table of the report page, in a fixed order. */
+typedef struct dyn_hw_series {
+    int count;
+    dyn_hw_table table[DYN_HW_MAX_TABLES];
+} dyn_hw_series;
+
+/* The runs behind hw (filled by dyn_homework_compute), recorded sample by sample with the
+ * same models, methods, steps and initial states, so each answer is a sample of a table
+ * (the last row of "pendulum.step" is phi_nonlinear_rad, of "plane.euler" final_euler, the
+ * largest |lambda| of "cart.forward" max_constraint_force_N, ...), plus longer spans for
+ * the pictures and the final-state error of van der Pol against the step. Tables:
+ *   pendulum.nonlinear  RK4 at 0.01 s over 10 s: t, phi, dphi, energy, height, phi_small_angle,
+ *                       small_angle_error (phi_small_angle - phi)
+ *   pendulum.euler      Euler at te over 10 s: t, phi, dphi, energy, height
+ *   pendulum.step       the reference run over [0, te], every 10th sample, as .nonlinear
+ *   vanderpol.euler, .heun, .midpoint, .rk4   t, y1, y2 at the homework's step
+ *   vanderpol.steps     step, error of euler, heun, midpoint, rk4 at t1 (2-norm)
+ *   plane.euler, plane.rk4   t, the 12 states, energy, spring_length, theta_margin
+ *   plane.compare       t, distance between the two centres of mass, principal angle
+ *   cart.prescribed     t, the exact motion (6 states), the table's Fx, Fy, and lambda
+ *   cart.forward        t, the 4c run's states and the cart's outputs (Fx, Fy, lambda, ...)
+ * s is zeroed first and owns the data; release it with dyn_hw_series_free (also after a
+ * failure). Returns 0, or non-zero with a message in err. */
+int dyn_homework_series(const dyn_homework *hw, dyn_hw_series *s, char *err, size_t errlen);
+/* Release the tables of s and zero it; safe on a zeroed struct. */
+void dyn_hw_series_free(dyn_hw_series *s);
+/* The table called id, or NULL. */
+const dyn_hw_table *dyn_hw_series_find(const dyn_hw_series *s, const char *id);
+/* Index of the column called name in tab, or -1. */
+int dyn_hw_table_column(const dyn_hw_table *tab, const char *name);
+
 #ifdef __cplusplus
 }
 #endif

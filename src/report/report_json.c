@@ -69,6 +69,7 @@ static void pendulum(json_out *j, const dyn_hw_pendulum *p)
     boolean(j, "pendulum.goes_over_top", p->goes_over_top);
     num(j, "pendulum.euler_10_steps_error_rad", p->euler_10_steps_error);
     num(j, "pendulum.rk4_one_step_error_rad", p->rk4_one_step_error);
+    num(j, "pendulum.reference_step_s", p->ref_step);
 }
 
 static void vanderpol(json_out *j, const dyn_hw_vanderpol *v)
@@ -81,6 +82,7 @@ static void vanderpol(json_out *j, const dyn_hw_vanderpol *v)
     num(j, "vanderpol.step_s", v->step);
     num(j, "vanderpol.end_time_s", v->t1);
     vec(j, "vanderpol.error_euler_heun_midpoint_rk4", v->error, 4);
+    num(j, "vanderpol.reference_step_s", v->ref_step);
 }
 
 static void plane(json_out *j, const dyn_hw_plane *p)
@@ -101,6 +103,9 @@ static void plane(json_out *j, const dyn_hw_plane *p)
     num(j, "plane.rk4_distance_to_reference_m", p->rk4_distance_to_reference_m);
     num(j, "plane.euler_distance_to_reference_m", p->euler_distance_to_reference_m);
     num(j, "plane.euler_min_theta_margin_rad", p->euler_min_theta_margin_rad);
+    num(j, "plane.rk4_min_theta_margin_rad", p->rk4_min_theta_margin_rad);
+    num(j, "plane.rk4_angle_to_reference_rad", p->rk4_angle_to_reference_rad);
+    num(j, "plane.euler_angle_to_reference_rad", p->euler_angle_to_reference_rad);
     num(j, "plane.energy_drift_euler", p->energy_drift_euler);
     num(j, "plane.energy_drift_rk4", p->energy_drift_rk4);
 }

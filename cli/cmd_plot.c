@@ -1,0 +1,144 @@
+/* dynkit plot MODEL: a run (and --compare runs) as a standalone SVG line plot of chosen
+ * states or outputs against t or another state. */
+#include <errno.h>
+#include <string.h>
+
+#include "pages.h"
+
+#define MAX_Y 8
+
+static void plot_help(void)
+{
+    puts("Usage: dynkit plot MODEL [run options] --y NAME[,NAME...] [--x NAME]\n"
+         "                   [--compare METHOD[:STEP]]... [--title TEXT] [--output FILE.svg]\n"
+         "\n"
+         "Run MODEL and write a line plot as a standalone SVG file (standard output without\n"
+         "--output): axes with ticks, labels with units, a legend.\n"
+         "\n"
+         "  --y NAMES            what to plot: states or extra outputs of the model, comma-\n"
+         "                       separated (see 'dynkit info MODEL')\n"
+         "  --x NAME             the abscissa: t (default), a state or an output\n"
+         "  --compare M[:H]      overlay a run with method M (and step H; default the run's\n"
+         "                       step), repeatable, e.g. --compare euler --compare rk4:0.001\n"
+         "  --title TEXT         the title (default: the model and the runs)\n"
+         "A long run is thinned to at most 2000 samples per line (first and last kept).\n"
+         "\n"
+         "Examples:\n"
+         "  dynkit plot vanderpol --y y1,y2 --output vdp.svg\n"
+         "  dynkit plot vanderpol --x y1 --y y2 --compare euler --compare heun --output phase.svg\n"
+         "  dynkit plot pendulum --tspan 0:10 --step 0.01 --method rk4 --y energy --output e.svg\n");
+    cli_run_options_help(stdout);
+}
+
+/* Split the comma-separated names of --y/--x into columns of the model's runs. */
+static int parse_names(const char *option, const char *text, const dyn_model *m, int *cols,
+                       int max, int *n)
+{
+    char buf[512], names[1024];
+    if (strlen(text) >= sizeof buf)
+        return cli_usage_error("plot", "--%s: the list is too long", option);
+    strcpy(buf, text);
+    *n = 0;
+    for (char *save = buf, *name; (name = save) != NULL;) {
+        char *comma = strchr(save, ',');
+        if (comma)
+            *comma = '\0';
+        save = comma ? comma + 1 : NULL;
+        int c = cli_series_column(m, name);
+        if (c < 0 || *n >= max)
+            return c < 0 ? cli_usage_error("plot",
+                                           "--%s: model %s has no state or output '%s' "
+                                           "(accepted: %s)",
+                                           option, m->name, name,
+                                           cli_series_column_names(m, names, sizeof names))
+                         : cli_usage_error("plot", "--%s: at most %d names", option, max);
+        cols[(*n)++] = c;
+    }
+    return CLI_OK;
+}
+
+/* "phi, dphi [rad]" when the units agree, else "phi [rad], dphi [rad/s]". */
+static void axis_label(const dyn_model *m, const int *cols, int n, char *buf, size_t size)
+{
+    size_t used = 0;
+    int same = 1;
+    buf[0] = '\0';
+    for (int i = 1; i < n; i++)
+        same &= strcmp(cli_series_column_unit(m, cols[i]), cli_series_column_unit(m, cols[0])) == 0;
+    for (int i = 0; i < n && used < size; i++) {
+        const int unit_here = !same || i == n - 1;
+        used += (size_t)snprintf(buf + used, size - used, "%s%s", i ? ", " : "",
+                                 cli_series_column_name(m, cols[i]));
+        if (unit_here && used < size)
+            used += (size_t)snprintf(buf + used, size - used, " [%s]",
+                                     cli_series_column_unit(m, cols[i]));
+    }
+}
+
+int cli_cmd_plot(int argc, char **argv)
+{
+    for (int i = 0; i < argc; i++)
+        if (cli_is_help(argv[i])) {
+            plot_help();
+            return CLI_OK;
+        }
+    static const char *const extra[] = {"y", "x", "title", NULL};
+    const char *values[3];
+    cli_view v;
+    int rc = cli_view_parse("plot", argc, argv, extra, values, &v);
+    const dyn_model *m = v.run.model;
+    int ycols[MAX_Y], n_y = 0, xcol = 0, n_x = 1;
+    char names[1024];
+    if (rc == CLI_OK && !values[0])
+        rc = cli_usage_error("plot", "missing --y NAME[,NAME...] (what to plot; accepted: %s)",
+                             cli_series_column_names(m, names, sizeof names));
+    if (rc == CLI_OK)
+        rc = parse_names("y", values[0], m, ycols, MAX_Y, &n_y);
+    if (rc == CLI_OK && values[1])
+        rc = parse_names("x", values[1], m, &xcol, 1, &n_x);
+    int run_rc = rc == CLI_OK ? cli_view_record(&v) : rc;
+    if (rc == CLI_OK && (run_rc == CLI_USAGE || v.n_series == 0))
+        rc = run_rc;
+    FILE *out = stdout;
+    if (rc == CLI_OK && v.run.output_path && !(out = fopen(v.run.output_path, "w"))) {
+        rc = cli_usage_error("plot", "cannot open --output '%s' for writing: %s",
+                             v.run.output_path, strerror(errno));
+        out = stdout;
+    }
+    if (rc == CLI_OK) {
+        cli_svg_plot p;
+        char title[256], xlabel[256], ylabel[512];
+        memset(&p, 0, sizeof p);
+        snprintf(title, sizeof title, "%s: %s", m->name, v.series[0].label);
+        for (int k = 1; k < v.n_series; k++)
+            snprintf(title + strlen(title), sizeof title - strlen(title), " | %s",
+                     v.series[k].label);
+        axis_label(m, &xcol, 1, xlabel, sizeof xlabel);
+        axis_label(m, ycols, n_y, ylabel, sizeof ylabel);
+        p.title = values[2] ? values[2] : title;
+        p.xlabel = xlabel;
+        p.ylabel = ylabel;
+        static char labels[CLI_SVG_MAX_LINES][160];
+        for (int k = 0; k < v.n_series; k++)
+            for (int i = 0; i < n_y && p.n_lines < CLI_SVG_MAX_LINES; i++) {
+                const cli_series *s = &v.series[k];
+                char *label = labels[p.n_lines];
+                if (v.n_series == 1)
+                    snprintf(label, sizeof labels[0], "%s", cli_series_column_name(m, ycols[i]));
+                else if (n_y == 1)
+                    snprintf(label, sizeof labels[0], "%s", s->label);
+                else
+                    snprintf(label, sizeof labels[0], "%s (%s)",
+                             cli_series_column_name(m, ycols[i]), s->label);
+                p.lines[p.n_lines++] = (cli_svg_line){label, s->data + xcol, s->data + ycols[i],
+                                                      s->rows, s->cols};
+            }
+        rc = cli_svg_write(out, &p);
+        if (rc == CLI_OK && run_rc != CLI_OK)
+            rc = run_rc;
+    }
+    if (out != stdout)
+        fclose(out);
+    cli_view_free(&v);
+    return rc;
+}

@@ -1,0 +1,150 @@
+/* Shared declarations of the commands that draw (animate, plot, report --html): a JSON
+ * writer, recorded runs, the self-contained HTML page and standalone SVG plots. */
+#ifndef DYNKIT_CLI_PAGES_H
+#define DYNKIT_CLI_PAGES_H
+
+#include <stdio.h>
+
+#include "cli.h"
+
+/* ---- JSON writer (json_write.c) ---- */
+
+#define CLI_JSON_MAX_DEPTH 32
+
+/* Writes one JSON value to out, placing the commas itself. Strings are escaped so the text
+ * can sit inside an HTML <script> element ('<', '>', '&' as \u escapes). */
+typedef struct cli_json {
+    FILE *out;
+    int digits;       /* significant digits of numbers (%.*g) */
+    int depth;
+    int after_key;
+    unsigned char has_items[CLI_JSON_MAX_DEPTH];
+    int bad;          /* a write failed */
+} cli_json;
+
+void cli_json_init(cli_json *j, FILE *out, int digits);
+void cli_json_begin_object(cli_json *j);
+void cli_json_end_object(cli_json *j);
+void cli_json_begin_array(cli_json *j);
+void cli_json_end_array(cli_json *j);
+void cli_json_key(cli_json *j, const char *key);
+/* A number with j->digits significant digits; null when not finite. */
+void cli_json_number(cli_json *j, double v);
+void cli_json_string(cli_json *j, const char *s);
+void cli_json_bool(cli_json *j, int v);
+void cli_json_null(cli_json *j);
+/* A value already in JSON (e.g. an object from another writer), copied as it is. */
+void cli_json_raw(cli_json *j, const char *text, size_t len);
+/* An array of n numbers v[0], v[stride], v[2 stride], ... */
+void cli_json_numbers(cli_json *j, const double *v, long n, long stride);
+
+/* ---- recorded runs (run_record.c) ---- */
+
+/* One run of a model kept in memory for a picture: t, the states and the extra outputs. */
+typedef struct cli_series {
+    char label[96];            /* e.g. "rk4, h = 0.01 s" */
+    const dyn_tableau *method;
+    double step;
+    int cols;                  /* 1 + n_states + n_outputs */
+    long rows;                 /* samples kept */
+    long samples;              /* samples of the run before thinning */
+    double *data;              /* (rows x cols) row-major, owned */
+    int status;                /* dyn_status of the solve */
+    char message[640];         /* why the run stopped, when status != DYN_OK */
+} cli_series;
+
+/* Run run->model (parameters, initial state, span of run) with method at step, keeping every
+ * k-th sample with k the larger of run->every and what keeps at most max_rows samples, and
+ * always the first and the last. Warnings of the model go to stderr once each (unless
+ * run->quiet). Returns CLI_OK; CLI_USAGE for a bad grid (message printed); CLI_FAILED when
+ * out of memory or the solve failed (s->status, s->message; the rows up to there kept). */
+int cli_series_record(const cli_run *run, const dyn_tableau *method, double step, long max_rows,
+                      cli_series *s);
+void cli_series_free(cli_series *s);
+/* The columns of a model's recorded run: 0 is t, then the states, then the outputs.
+ * Index of the column called name, or -1; name and unit of column j. */
+int cli_series_column(const dyn_model *m, const char *name);
+const char *cli_series_column_name(const dyn_model *m, int j);
+const char *cli_series_column_unit(const dyn_model *m, int j);
+/* Accepted column names, comma-separated, into buf (for messages); returns buf. */
+char *cli_series_column_names(const dyn_model *m, char *buf, size_t size);
+
+/* ---- run options of the commands that draw (view_args.c) ---- */
+
+#define CLI_MAX_COMPARE 8
+#define CLI_MAX_ROWS 2000   /* samples per series that a page or a plot keeps */
+
+/* Another run to overlay: --compare METHOD[:STEP]; step 0 means the main run's step. */
+typedef struct cli_compare {
+    const dyn_tableau *method;
+    double step;
+} cli_compare;
+
+/* Parse "METHOD[:STEP]"; CLI_OK, or CLI_USAGE with a message naming what is accepted. */
+int cli_compare_parse(const char *command, const char *text, cli_compare *c);
+
+/* Runs of one picture: the main run (options of cli_run_parse) and the --compare runs. */
+typedef struct cli_view {
+    cli_run run;
+    int n_compare;
+    cli_compare compare[CLI_MAX_COMPARE];
+    int n_series;
+    cli_series series[1 + CLI_MAX_COMPARE];
+} cli_view;
+
+/* Parse the run options of argv, taking out --compare (repeatable) and each option named in
+ * extra (NULL-terminated, e.g. {"y", "x", NULL}; their values into extra_values, NULL when
+ * absent). --final and --trace are refused. Returns CLI_OK or CLI_USAGE (message printed).
+ * Release with cli_view_free. */
+int cli_view_parse(const char *command, int argc, char **argv, const char *const *extra,
+                   const char **extra_values, cli_view *v);
+/* Record the main run and every --compare run. CLI_OK, or the first failure's status (a
+ * failed solve keeps its rows and its message, and the other runs are still made). */
+int cli_view_record(cli_view *v);
+void cli_view_free(cli_view *v);
+
+/* ---- the self-contained HTML page (html_page.c) ---- */
+
+/* Writes the data of a page as one JSON value; returns 0 or non-zero. */
+typedef int (*cli_page_data_fn)(cli_json *j, void *ctx);
+
+/* Write the page: the template web/page.html with the title (HTML-escaped), the style, the
+ * body template body_asset (e.g. "report.html"), the data written by data() and every
+ * script, all inline: the page makes no request. Returns CLI_OK or CLI_FAILED. */
+int cli_html_page_write(FILE *out, const char *title, const char *body_asset,
+                        cli_page_data_fn data, void *ctx);
+/* The model's description for a page: name, title, states, outputs (name, unit,
+ * description) and the values of the parameters in par. */
+void cli_json_model(cli_json *j, const dyn_model *m, const void *par);
+/* A recorded run: label, method, step, status, message, columns, units and the samples,
+ * column by column. */
+void cli_json_series(cli_json *j, const dyn_model *m, const cli_series *s);
+
+/* ---- standalone SVG plots (svg_plot.c) ---- */
+
+#define CLI_SVG_MAX_LINES 32
+
+/* One line of a plot: n points (x[k stride], y[k stride]). */
+typedef struct cli_svg_line {
+    const char *label;
+    const double *x, *y;
+    long n, stride;
+} cli_svg_line;
+
+typedef struct cli_svg_plot {
+    const char *title;
+    const char *xlabel, *ylabel;   /* with their units, e.g. "t [s]" */
+    int n_lines;
+    cli_svg_line lines[CLI_SVG_MAX_LINES];
+} cli_svg_plot;
+
+/* Write the plot as a standalone SVG document: axes with ticks and numbers, the axis labels,
+ * a legend, one polyline per line (a line with non-finite points is split there). Returns
+ * CLI_OK or CLI_FAILED (write error). */
+int cli_svg_write(FILE *out, const cli_svg_plot *p);
+
+/* Subcommands. */
+int cli_cmd_animate(int argc, char **argv);
+int cli_cmd_plot(int argc, char **argv);
+
+#endif

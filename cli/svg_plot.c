@@ -1,0 +1,242 @@
+/* Standalone SVG line plots (SVG 1.1): a frame with ticks at 1, 2 or 5 times a power of ten
+ * and their numbers, grid lines, the axis labels with units, a title, a legend, and one
+ * polyline per line (split where a point is not finite). */
+#include <math.h>
+#include <string.h>
+
+#include "pages.h"
+
+#define W 800.0
+#define H 500.0
+#define LEFT 84.0
+#define RIGHT 24.0
+#define TOP 44.0
+#define BOTTOM 62.0
+
+/* The line colours of the pages (web/js/util.js uses the same). */
+static const char *const palette[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e",
+                                      "#9467bd", "#8c564b", "#e377c2", "#17becf"};
+
+typedef struct axis {
+    double lo, hi;       /* shown range */
+    double step;         /* between ticks */
+} axis;
+
+/* 1, 2 or 5 times a power of ten, about range / target. */
+static double nice_step(double range, int target)
+{
+    double raw = range / target, p = pow(10.0, floor(log10(raw))), f = raw / p;
+    return (f < 1.5 ? 1.0 : f < 3.5 ? 2.0 : f < 7.5 ? 5.0 : 10.0) * p;
+}
+
+static axis make_axis(double lo, double hi, int target)
+{
+    axis a;
+    if (!(lo <= hi)) { /* no finite point */
+        lo = 0.0;
+        hi = 1.0;
+    }
+    if (hi - lo <= 1e-12 * fmax(fabs(lo), fabs(hi))) {
+        double d = lo != 0.0 ? 0.1 * fabs(lo) : 1.0;
+        lo -= d;
+        hi += d;
+    }
+    const double pad = 0.03 * (hi - lo);
+    a.lo = lo - pad;
+    a.hi = hi + pad;
+    a.step = nice_step(a.hi - a.lo, target);
+    return a;
+}
+
+static double to_px_x(const axis *a, double v)
+{
+    return LEFT + (v - a->lo) / (a->hi - a->lo) * (W - LEFT - RIGHT);
+}
+
+static double to_px_y(const axis *a, double v)
+{
+    return H - BOTTOM - (v - a->lo) / (a->hi - a->lo) * (H - TOP - BOTTOM);
+}
+
+/* Tick positions k * step inside the range: first and last k. */
+static void tick_range(const axis *a, long *first, long *last)
+{
+    *first = (long)ceil(a->lo / a->step - 1e-9);
+    *last = (long)floor(a->hi / a->step + 1e-9);
+}
+
+static int text_escaped(FILE *out, const char *s)
+{
+    int bad = 0;
+    for (; s && *s; s++) {
+        if (*s == '<')
+            bad |= fputs("&lt;", out) < 0;
+        else if (*s == '>')
+            bad |= fputs("&gt;", out) < 0;
+        else if (*s == '&')
+            bad |= fputs("&amp;", out) < 0;
+        else
+            bad |= fputc(*s, out) == EOF;
+    }
+    return bad;
+}
+
+/* Tick k * step as text, with no rounding noise (0.30000000000000004) and no "-0". */
+static void tick_label(double v, double step, char *buf, size_t size)
+{
+    if (fabs(v) < 1e-9 * step)
+        v = 0.0;
+    int digits = (int)ceil(-log10(step) - 1e-9);
+    double mag = fmax(fabs(v), step);
+    if (mag >= 1e5 || mag < 1e-3)
+        snprintf(buf, size, "%.3g", v);
+    else
+        snprintf(buf, size, "%.*f", digits > 0 ? digits : 0, v);
+}
+
+static void data_range(const cli_svg_plot *p, int use_x, double *lo, double *hi)
+{
+    *lo = INFINITY;
+    *hi = -INFINITY;
+    for (int i = 0; i < p->n_lines; i++) {
+        const cli_svg_line *l = &p->lines[i];
+        const double *v = use_x ? l->x : l->y;
+        for (long k = 0; k < l->n; k++) {
+            double x = v[k * l->stride];
+            if (isfinite(x) && isfinite((use_x ? l->y : l->x)[k * l->stride])) {
+                *lo = fmin(*lo, x);
+                *hi = fmax(*hi, x);
+            }
+        }
+    }
+}
+
+static int axes(FILE *out, const cli_svg_plot *p, const axis *ax, const axis *ay)
+{
+    int bad = 0;
+    char label[64];
+    const double x0 = LEFT, x1 = W - RIGHT, y0 = H - BOTTOM, y1 = TOP;
+    long kx0, kx1, ky0, ky1;
+    tick_range(ax, &kx0, &kx1);
+    tick_range(ay, &ky0, &ky1);
+    bad |= fputs("<g class=\"grid\" stroke=\"#e4e4e4\" stroke-width=\"1\">\n", out) < 0;
+    for (long k = kx0; k <= kx1; k++)
+        bad |= fprintf(out, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/>\n",
+                       to_px_x(ax, k * ax->step), y0, to_px_x(ax, k * ax->step), y1) < 0;
+    for (long k = ky0; k <= ky1; k++)
+        bad |= fprintf(out, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/>\n", x0,
+                       to_px_y(ay, k * ay->step), x1, to_px_y(ay, k * ay->step)) < 0;
+    bad |= fputs("</g>\n", out) < 0;
+    bad |= fprintf(out,
+                   "<rect class=\"frame\" x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" "
+                   "fill=\"none\" stroke=\"#333\" stroke-width=\"1\"/>\n",
+                   x0, y1, x1 - x0, y0 - y1) < 0;
+    bad |= fputs("<g class=\"ticks\" font-size=\"12\" fill=\"#333\" stroke=\"#333\">\n", out) < 0;
+    for (long k = kx0; k <= kx1; k++) {
+        const double v = (double)k * ax->step;
+        tick_label(v, ax->step, label, sizeof label);
+        bad |= fprintf(out,
+                       "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/><text x=\"%.2f\" "
+                       "y=\"%.2f\" text-anchor=\"middle\" stroke=\"none\">%s</text>\n",
+                       to_px_x(ax, v), y0, to_px_x(ax, v), y0 + 5, to_px_x(ax, v), y0 + 19,
+                       label) < 0;
+    }
+    for (long k = ky0; k <= ky1; k++) {
+        const double v = (double)k * ay->step;
+        tick_label(v, ay->step, label, sizeof label);
+        bad |= fprintf(out,
+                       "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/><text x=\"%.2f\" "
+                       "y=\"%.2f\" text-anchor=\"end\" stroke=\"none\">%s</text>\n",
+                       x0 - 5, to_px_y(ay, v), x0, to_px_y(ay, v), x0 - 8, to_px_y(ay, v) + 4,
+                       label) < 0;
+    }
+    bad |= fputs("</g>\n", out) < 0;
+    bad |= fprintf(out, "<text class=\"xlabel\" x=\"%.2f\" y=\"%.2f\" font-size=\"14\" "
+                        "text-anchor=\"middle\">", (x0 + x1) / 2, H - 18) < 0;
+    bad |= text_escaped(out, p->xlabel);
+    bad |= fprintf(out, "</text>\n<text class=\"ylabel\" x=\"0\" y=\"0\" font-size=\"14\" "
+                        "text-anchor=\"middle\" transform=\"translate(20 %.2f) rotate(-90)\">",
+                   (y0 + y1) / 2) < 0;
+    bad |= text_escaped(out, p->ylabel);
+    bad |= fprintf(out, "</text>\n<text class=\"title\" x=\"%.2f\" y=\"26\" font-size=\"16\" "
+                        "text-anchor=\"middle\">", W / 2) < 0;
+    bad |= text_escaped(out, p->title);
+    bad |= fputs("</text>\n", out) < 0;
+    return bad;
+}
+
+/* One line: polylines of its runs of finite points. */
+static int line(FILE *out, const cli_svg_line *l, const char *color, const axis *ax,
+                const axis *ay)
+{
+    int bad = 0, open = 0;
+    for (long k = 0; k < l->n; k++) {
+        double x = l->x[k * l->stride], y = l->y[k * l->stride];
+        if (!isfinite(x) || !isfinite(y)) {
+            if (open)
+                bad |= fputs("\"/>\n", out) < 0;
+            open = 0;
+            continue;
+        }
+        if (!open)
+            bad |= fprintf(out, "<polyline fill=\"none\" stroke=\"%s\" stroke-width=\"1.6\" "
+                                "stroke-linejoin=\"round\" points=\"", color) < 0;
+        bad |= fprintf(out, "%s%.2f,%.2f", open ? " " : "", to_px_x(ax, x), to_px_y(ay, y)) < 0;
+        open = 1;
+    }
+    if (open)
+        bad |= fputs("\"/>\n", out) < 0;
+    return bad;
+}
+
+static int legend(FILE *out, const cli_svg_plot *p)
+{
+    int bad = 0;
+    size_t longest = 0;
+    for (int i = 0; i < p->n_lines; i++)
+        longest = strlen(p->lines[i].label) > longest ? strlen(p->lines[i].label) : longest;
+    const double w = 40.0 + 7.0 * (double)longest, h = 8.0 + 18.0 * p->n_lines;
+    const double x = W - RIGHT - w - 8, y = TOP + 8;
+    bad |= fprintf(out, "<g class=\"legend\" font-size=\"12\">\n<rect x=\"%.2f\" y=\"%.2f\" "
+                        "width=\"%.2f\" height=\"%.2f\" fill=\"#fff\" fill-opacity=\"0.85\" "
+                        "stroke=\"#bbb\"/>\n", x, y, w, h) < 0;
+    for (int i = 0; i < p->n_lines; i++) {
+        const double ly = y + 16 + 18.0 * i;
+        bad |= fprintf(out, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke=\"%s\" "
+                            "stroke-width=\"2\"/><text x=\"%.2f\" y=\"%.2f\">",
+                       x + 8, ly - 4, x + 30, ly - 4,
+                       palette[i % (int)(sizeof palette / sizeof *palette)], x + 36, ly) < 0;
+        bad |= text_escaped(out, p->lines[i].label);
+        bad |= fputs("</text>\n", out) < 0;
+    }
+    bad |= fputs("</g>\n", out) < 0;
+    return bad;
+}
+
+int cli_svg_write(FILE *out, const cli_svg_plot *p)
+{
+    double lo, hi;
+    data_range(p, 1, &lo, &hi);
+    const axis ax = make_axis(lo, hi, 8);
+    data_range(p, 0, &lo, &hi);
+    const axis ay = make_axis(lo, hi, 6);
+    int bad = fprintf(out, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+                           "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" "
+                           "height=\"%.0f\" viewBox=\"0 0 %.0f %.0f\" "
+                           "font-family=\"sans-serif\">\n"
+                           "<rect width=\"100%%\" height=\"100%%\" fill=\"#fff\"/>\n",
+                      W, H, W, H) < 0;
+    bad |= axes(out, p, &ax, &ay);
+    bad |= fputs("<g class=\"lines\">\n", out) < 0;
+    for (int i = 0; i < p->n_lines; i++)
+        bad |= line(out, &p->lines[i], palette[i % (int)(sizeof palette / sizeof *palette)], &ax,
+                    &ay);
+    bad |= fputs("</g>\n", out) < 0;
+    bad |= legend(out, p);
+    bad |= fputs("</svg>\n", out) < 0;
+    if (bad || fflush(out)) {
+        fprintf(stderr, "dynkit: error: writing the SVG failed\n");
+        return CLI_FAILED;
+    }
+    return CLI_OK;
+}

@@ -1,0 +1,302 @@
+// Checks of dynkit's HTML pages in a real browser (headless Chromium, driven by
+// playwright-core): the report page (`dynkit report --html`) and an animation of every
+// built-in model (`dynkit animate`), plus a model the page knows no picture for.
+// For each page: no console errors, no request but the file itself, every canvas draws
+// something, the picture changes as time runs, and the controls work as a person uses them
+// (play/pause button, time slider, speed slider, space and arrow keys; real time at 1x).
+// Screenshots go to the artifacts directory.
+//
+// Usage: node run.mjs DYNKIT_BINARY [ARTIFACTS_DIR]
+// Exit status: 0 all passed, 1 a check failed, 77 skipped (no Chromium or no node_modules;
+// CTest reports it as skipped).
+import { execFileSync } from 'node:child_process';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { fileURLToPath, pathToFileURL } from 'node:url';
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const SKIP = 77;
+const dynkit = process.argv[2];
+const artifacts = path.resolve(process.argv[3] || path.join(here, '..', '..', 'build', 'tests', 'artifacts'));
+const chromiumPath = process.env.DYNKIT_CHROMIUM || '/usr/bin/chromium';
+
+function skip(why) {
+  console.log(`SKIP: ${why}`);
+  process.exit(SKIP);
+}
+
+if (!dynkit || !fs.existsSync(dynkit)) {
+  console.error(`usage: node run.mjs DYNKIT_BINARY [ARTIFACTS_DIR] (got '${dynkit}')`);
+  process.exit(2);
+}
+if (!fs.existsSync(chromiumPath))
+  skip(`Chromium not found at ${chromiumPath} (install it with 'apt-get install chromium', or run scripts/install-deps.sh)`);
+let chromium;
+try {
+  ({ chromium } = await import(pathToFileURL(path.join(here, 'node_modules', 'playwright-core', 'index.mjs')).href));
+} catch (e) {
+  skip(`playwright-core is not installed in ${here}/node_modules (run 'npm ci' there, or scripts/install-deps.sh)`);
+}
+
+fs.mkdirSync(artifacts, { recursive: true });
+const results = [];
+let current = '';
+function check(ok, what) {
+  results.push({ ok: !!ok, what: `${current}: ${what}` });
+  console.log(`${ok ? 'ok  ' : 'FAIL'} ${current}: ${what}`);
+  return ok;
+}
+const sleep = ms => new Promise(r => setTimeout(r, ms));
+
+// ---- the pages ----
+function run(args) {
+  execFileSync(dynkit, args, { stdio: ['ignore', 'ignore', 'pipe'] });
+}
+const pages = [
+  { name: 'report', args: ['report', '--html'], players: 4 },
+  { name: 'pendulum', args: ['animate', 'pendulum', '--method', 'rk4', '--step', '0.01', '--tspan', '0:10', '--compare', 'euler:0.05'] },
+  { name: 'pendulum-default', args: ['animate', 'pendulum'] },
+  { name: 'vanderpol', args: ['animate', 'vanderpol', '--compare', 'euler', '--compare', 'heun:0.05'] },
+  { name: 'plane', args: ['animate', 'plane', '--compare', 'euler'], scene: true },
+  { name: 'plane-quat', args: ['animate', 'plane-quat', '--compare', 'rk4:0.02'], scene: true },
+  { name: 'cart', args: ['animate', 'cart'] },
+  { name: 'long-run', args: ['animate', 'vanderpol', '--step', '0.001', '--tspan', '0:200'] },
+];
+for (const p of pages) {
+  p.file = path.join(artifacts, `${p.name}.html`);
+  const args = p.args.slice();
+  if (args[0] === 'report') args.push(p.file); else args.push('--output', p.file);
+  run(args);
+}
+// a model without a picture: the van der Pol page with the model renamed
+{
+  const text = fs.readFileSync(path.join(artifacts, 'vanderpol.html'), 'utf8');
+  const file = path.join(artifacts, 'generic.html');
+  fs.writeFileSync(file, text.replace('"name":"vanderpol"', '"name":"my-oscillator"'));
+  pages.push({ name: 'generic', file, generic: true });
+}
+
+// ---- the browser ----
+const userDataDir = fs.mkdtempSync(path.join(os.tmpdir(), 'dynkit-chromium-'));
+const context = await chromium.launchPersistentContext(userDataDir, {
+  executablePath: chromiumPath,
+  headless: true,
+  viewport: { width: 1400, height: 900 },
+  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+    '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+});
+
+// In the page: a fingerprint of each canvas (how many pixels are not the background, and a
+// hash of the pixels), so that "draws something" and "changes" can be checked.
+function canvasPrints() {
+  return [...document.querySelectorAll('canvas')].map(c => {
+    const ctx = c.getContext('2d');
+    const d = ctx.getImageData(0, 0, c.width, c.height).data;
+    let ink = 0, hash = 0;
+    for (let i = 0; i < d.length; i += 4) {
+      const lum = d[i] + d[i + 1] + d[i + 2];
+      if (lum < 720) ink++;
+      hash = (hash * 31 + d[i] * 3 + d[i + 1] * 5 + d[i + 2] * 7) | 0;
+    }
+    return { ink, hash, w: c.width, h: c.height, pixels: d.length / 4 };
+  });
+}
+const playerState = (page, i = 0) => page.evaluate(i => {
+  const p = document.querySelectorAll('.player')[i];
+  return { t: parseFloat(p.dataset.time), speed: parseFloat(p.dataset.speed), playing: p.dataset.playing === '1' };
+}, i);
+
+async function checkPage(spec) {
+  current = spec.name;
+  const page = await context.newPage();
+  const errors = [], requests = [];
+  const url = pathToFileURL(spec.file).href;
+  page.on('console', m => { if (m.type() === 'error') errors.push(m.text()); });
+  page.on('pageerror', e => errors.push(String(e)));
+  await page.route('**/*', route => {
+    const u = route.request().url();
+    if (u === url) return route.continue();
+    requests.push(u);
+    return route.abort();
+  });
+  const t0 = Date.now();
+  await page.goto(url, { waitUntil: 'load' });
+  await page.waitForSelector('body[data-ready="1"]', { timeout: 10000 }).catch(() => {});
+  const openMs = Date.now() - t0;
+  const size = fs.statSync(spec.file).size;
+  check(await page.evaluate(() => document.body.dataset.ready === '1'), `the page builds (${(size / 1024).toFixed(0)} KiB, open in ${openMs} ms)`);
+  check(openMs < 3000, `opens in well under a few seconds (${openMs} ms)`);
+  const html = fs.readFileSync(spec.file, 'utf8');
+  check(!/https?:\/\//.test(html), 'no http(s):// reference in the file');
+
+  // every canvas draws something
+  const prints0 = await page.evaluate(canvasPrints);
+  check(prints0.length > 0, `${prints0.length} canvases`);
+  const blank = prints0.filter(p => p.ink < 0.002 * p.pixels);
+  check(blank.length === 0, `every canvas draws something (${blank.length} blank)`);
+
+  if (spec.generic) {
+    check(await page.evaluate(() => document.body.classList.contains('no-picture')), 'a model without a picture gets the time series only');
+  }
+
+  // controls of the first player: button, slider, keys, speed
+  const player = page.locator('.player').first();
+  const play = player.locator('button.play');
+  const slider = player.locator('input.time');
+  await page.screenshot({ path: path.join(artifacts, `${spec.name}-start.png`) });
+
+  let s = await playerState(page);
+  check(s.speed === 1 && !s.playing, `starts paused at 1x (speed ${s.speed})`);
+  // the slider moves the time
+  const box = await slider.boundingBox();
+  await page.mouse.click(box.x + box.width * 0.6, box.y + box.height / 2);
+  s = await playerState(page);
+  const span = await page.evaluate(() => { const i = document.querySelector('.player input.time'); return [parseFloat(i.min), parseFloat(i.max)]; });
+  const frac = (s.t - span[0]) / (span[1] - span[0]);
+  check(frac > 0.45 && frac < 0.75, `clicking the time slider at 60% seeks there (t = ${s.t.toFixed(3)}, ${(frac * 100).toFixed(0)}%)`);
+  const prints1 = await page.evaluate(canvasPrints);
+  const changed = prints1.filter((p, i) => p.hash !== prints0[i].hash).length;
+  check(changed >= 1, `the picture changes with the time (${changed} of ${prints1.length} canvases)`);
+  // play in real time
+  await page.mouse.click(box.x + 2, box.y + box.height / 2); // back to the start
+  s = await playerState(page);
+  const tStart = s.t;
+  await play.click();
+  const wall0 = Date.now();
+  await sleep(1200);
+  s = await playerState(page);
+  const wall = (Date.now() - wall0) / 1000;
+  check(s.playing || s.t >= span[1], 'the play button starts playing');
+  const rate = (s.t - tStart) / wall;
+  const expectRate = Math.min(1, (span[1] - tStart) / wall);
+  check(Math.abs(rate - expectRate) < 0.35 * Math.max(expectRate, 0.05) + 0.05, `plays in real time at 1x (${rate.toFixed(2)} s per s)`);
+  const prints2 = await page.evaluate(canvasPrints);
+  check(prints2.some((p, i) => p.hash !== prints1[i].hash), 'the picture moves while playing');
+  await page.screenshot({ path: path.join(artifacts, `${spec.name}-playing.png`), fullPage: false });
+  if (s.playing) {
+    await play.click();
+    s = await playerState(page);
+    check(!s.playing, 'the button pauses');
+  } else {
+    check(s.t >= span[1] - 1e-9, `the run ended and stopped there (t = ${s.t})`);
+  }
+  // keys: space, arrows (slowly, so that a short run does not end meanwhile)
+  await player.focus();
+  await page.keyboard.press('Home');
+  for (let k = 0; k < 4; k++) await page.keyboard.press('ArrowDown');
+  check(Math.abs((await playerState(page)).speed - 0.1) < 1e-9, 'down arrows slow down to 0.1x, no further');
+  const tPaused = (await playerState(page)).t;
+  await page.keyboard.press('Space');
+  check((await playerState(page)).playing, 'space plays');
+  await sleep(200);
+  await page.keyboard.press('Space');
+  s = await playerState(page);
+  check(!s.playing && s.t > tPaused, `space pauses again (t = ${s.t.toFixed(4)})`);
+  await page.keyboard.press('Home');
+  s = await playerState(page);
+  check(Math.abs(s.t - span[0]) < 1e-9, 'home goes to the start');
+  await page.keyboard.press('ArrowRight');
+  const s1 = await playerState(page);
+  check(s1.t > s.t, `right arrow steps one sample (${s.t} -> ${s1.t})`);
+  await page.keyboard.press('ArrowLeft');
+  check(Math.abs((await playerState(page)).t - s.t) < 1e-12, 'left arrow steps back');
+  await page.keyboard.press('ArrowRight');
+  await page.keyboard.press('ArrowRight');
+  const s2 = await playerState(page);
+  check(s2.t > s1.t || s2.t >= span[1] - 1e-12, `right arrow again steps on (${s1.t} -> ${s2.t})`);
+  for (let k = 0; k < 4; k++) await page.keyboard.press('ArrowUp');
+  check(Math.abs((await playerState(page)).speed - 1.6) < 1e-9, 'up arrows double the speed');
+  await page.keyboard.press('ArrowDown');
+  await page.keyboard.press('ArrowDown');
+  check(Math.abs((await playerState(page)).speed - 0.4) < 1e-9, 'down arrows halve it');
+  await page.keyboard.press('Shift+ArrowRight');
+  s = await playerState(page);
+  check(Math.abs(s.t - Math.min(s2.t + 1, span[1])) < 1e-9, `shift+right seeks one second (t = ${s.t})`);
+  // the speed slider: its ends are 0.1x and 10x
+  const speed = player.locator('input.speed');
+  const sb = await speed.boundingBox();
+  await page.mouse.click(sb.x + sb.width - 1, sb.y + sb.height / 2);
+  const fast = (await playerState(page)).speed;
+  await page.mouse.click(sb.x + 1, sb.y + sb.height / 2);
+  const slow = (await playerState(page)).speed;
+  check(fast > 8 && fast <= 10 && slow >= 0.1 && slow < 0.13, `the speed slider spans 0.1x to 10x (${slow.toFixed(3)} .. ${fast.toFixed(2)})`);
+  await page.keyboard.press('Home');
+  await page.mouse.click(sb.x + sb.width - 1, sb.y + sb.height / 2);
+  await play.click();
+  const w0 = Date.now();
+  const a = (await playerState(page)).t;
+  await sleep(500);
+  const b = await playerState(page);
+  await page.keyboard.press('Home'); /* pauses (a click could restart a run that just ended) */
+  const fastRate = (b.t - a) / ((Date.now() - w0) / 1000);
+  check(fastRate > 3 || b.t >= span[1] - 1e-9, `at 10x the time runs faster (${fastRate.toFixed(2)} s per s)`);
+
+  if (spec.scene) {
+    // the 3D view turns with the mouse and zooms with the wheel
+    const canvas = page.locator('.dk-scene canvas');
+    const cb = await canvas.boundingBox();
+    const before = (await page.evaluate(canvasPrints))[0].hash;
+    await page.mouse.move(cb.x + cb.width / 2, cb.y + cb.height / 2);
+    await page.mouse.down();
+    await page.mouse.move(cb.x + cb.width / 2 + 120, cb.y + cb.height / 2 + 30, { steps: 6 });
+    await page.mouse.up();
+    const turned = (await page.evaluate(canvasPrints))[0].hash;
+    check(turned !== before, 'dragging turns the 3D view');
+    await page.mouse.wheel(0, -400);
+    await sleep(100);
+    const zoomed = (await page.evaluate(canvasPrints))[0].hash;
+    check(zoomed !== turned, 'the wheel zooms the 3D view');
+    await page.screenshot({ path: path.join(artifacts, `${spec.name}-turned.png`) });
+  }
+  if (spec.players) {
+    const n = await page.locator('.player').count();
+    check(n === spec.players, `${n} players (one per problem)`);
+    for (let i = 1; i < n; i++) {
+      const p = page.locator('.player').nth(i);
+      await p.scrollIntoViewIfNeeded();
+      const before = await page.evaluate(canvasPrints);
+      const tb = await p.locator('input.time').boundingBox();
+      await page.mouse.click(tb.x + tb.width * 0.5, tb.y + tb.height / 2);
+      const st = await playerState(page, i);
+      const after = await page.evaluate(canvasPrints);
+      check(st.t > 0 && after.some((q, k) => q.hash !== before[k].hash), `player ${i + 1} moves its pictures (t = ${st.t.toFixed(2)})`);
+      await page.keyboard.press('Space');
+      await sleep(300);
+      check((await playerState(page, i)).playing, `space plays player ${i + 1}, the one used last`);
+      await page.keyboard.press('Space');
+    }
+    // the numbers of the answers are those of `dynkit report --json`
+    const json = JSON.parse(execFileSync(dynkit, ['report', '--json']).toString());
+    const shown = await page.evaluate(() => JSON.parse(document.getElementById('dynkit-data').textContent).report);
+    const keys = ['pendulum.max_height_m', 'vanderpol.rk4', 'plane.distance_m', 'plane.principal_angle_rad', 'cart.max_constraint_force_N'];
+    check(keys.every(k => JSON.stringify(shown[k]) === JSON.stringify(json[k])), 'the page carries the numbers of report --json');
+    const text = await page.evaluate(() => document.querySelector('#p3 .answer').textContent);
+    check(text.includes(json['plane.distance_m'].toFixed(6)), `the plane's distance is shown (${text})`);
+    const missing = await page.evaluate(() => [...document.querySelectorAll('[data-key]')].filter(e => !e.textContent || e.textContent === '?').length);
+    check(missing === 0, `every answer is filled in (${missing} empty)`);
+    for (const id of ['p1', 'p2', 'p3', 'p4']) {
+      await page.locator('#' + id).screenshot({ path: path.join(artifacts, `report-${id}.png`) });
+    }
+  }
+  check(errors.length === 0, `no console errors${errors.length ? ': ' + errors.join(' | ') : ''}`);
+  check(requests.length === 0, `no network requests${requests.length ? ': ' + requests.join(', ') : ''}`);
+  await page.close();
+}
+
+try {
+  for (const spec of pages) {
+    try {
+      await checkPage(spec);
+    } catch (e) {
+      check(false, `exception: ${e.stack || e}`);
+    }
+  }
+} finally {
+  await context.close();
+  fs.rmSync(userDataDir, { recursive: true, force: true });
+}
+const failed = results.filter(r => !r.ok).length;
+console.log(`\nscreenshots in ${artifacts}`);
+console.log(`${results.length - failed} passed, ${failed} failed`);
+process.exit(failed ? 1 : 0);

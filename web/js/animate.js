@@ -1,0 +1,53 @@
+/* dynkit page: 'dynkit animate' — the picture of the model (if it has one), a player, and a
+ * time series plot of every state and extra output with all runs overlaid. */
+'use strict';
+(function (DK) {
+  /* Runs of the data as the views take them: {label, color, t, cols, raw}. */
+  DK.prepareRuns = function (runs) {
+    return runs.map((r, i) => {
+      const cols = {};
+      r.columns.forEach((name, j) => { cols[name] = r.data[j]; });
+      return { label: r.label, color: DK.colors[i % DK.colors.length], t: r.data[0], cols, raw: r };
+    });
+  };
+
+  /* Which picture a model gets: by name, or by its states for models alike. */
+  function pictureOf(model, params) {
+    const has = names => names.every(n => model.states.some(s => s.name === n));
+    if (model.name.startsWith('plane') && has(['sX', 'sY', 'sZ']) && (has(['psi', 'theta', 'phi']) || has(['qw', 'qx', 'qy', 'qz'])) && params.length_plane) return 'plane';
+    if (model.name === 'cart' && has(['sX', 'sY', 'theta'])) return 'cart';
+    if (model.name === 'pendulum' && has(['phi']) && params.l) return 'pendulum';
+    if (model.name === 'vanderpol' && has(['y1', 'y2'])) return 'phase';
+    return null;
+  }
+
+  DK.buildAnimate = function (data) {
+    const model = data.model, params = model.params;
+    const runs = DK.prepareRuns(data.runs);
+    document.getElementById('title').textContent = model.name + ' — ' + model.title;
+    document.getElementById('subtitle').textContent = runs.map(r => r.label + ' (' + r.raw.samples + ' samples' + (r.raw.samples > r.t.length ? ', ' + r.t.length + ' shown' : '') + ')').join(' · ');
+    const messages = document.getElementById('messages');
+    for (const r of data.runs) if (r.message) messages.appendChild(DK.el('p', { class: 'warning', text: r.message }));
+    const t0 = data.span[0];
+    const t1 = Math.max(...runs.map(r => r.t[r.t.length - 1]));
+    const player = new DK.Player(document.getElementById('player'), { t0, t1, times: runs[0].t, label: model.name });
+    const view = document.getElementById('view');
+    const kind = pictureOf(model, params);
+    if (kind === 'plane') DK.PlaneView(view, runs, params, player);
+    else if (kind === 'cart') DK.CartView(view, runs, params, player);
+    else if (kind === 'pendulum') DK.PendulumView(view, runs, params.l, player);
+    else if (kind === 'phase') DK.PhaseView(view, runs, 'y1', 'y2', player);
+    else view.remove();
+    document.body.classList.toggle('no-picture', !kind);
+    document.getElementById('hint').textContent = 'keys: space play/pause · ←/→ one sample · shift+←/→ one second · ↑/↓ speed · home/end · click a plot to jump there';
+    const plots = document.getElementById('plots');
+    const names = model.states.map(s => s.name).concat(model.outputs.map(s => s.name));
+    for (const name of names) {
+      const cell = DK.el('div', { class: 'plot-cell' });
+      plots.appendChild(cell);
+      DK.timePlot(cell, runs, name, player, { height: 200 });
+    }
+    player.activate();
+    return player;
+  };
+})(window.DK);

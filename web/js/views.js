@@ -1,0 +1,287 @@
+/* dynkit page: the pictures of the models, each following a player's time —
+ * the pendulum (rod and mass), the phase plane (van der Pol), the plane on its spring in 3D
+ * (body, wings and fin from the homework's animation data; the spring from the ceiling
+ * point A to P; the ceiling), the cart from above (the homework's cartanimation: triangle
+ * body, wheels at its corners, the track they leave), and a time series plot per quantity.
+ * A run is {label, color, t, cols: {name: samples}}; several runs are drawn together. */
+'use strict';
+(function (DK) {
+  /* ---- rotations (Greenwood's conventions, as dynkit/mech.h): R maps N to B ---- */
+
+  /* R = R_phi R_theta R_psi of type I Euler angles, row-major. */
+  DK.eulerToMatrix = function (psi, theta, phi) {
+    const cps = Math.cos(psi), sps = Math.sin(psi), cth = Math.cos(theta), sth = Math.sin(theta);
+    const cph = Math.cos(phi), sph = Math.sin(phi);
+    return [cth * cps, cth * sps, -sth,
+      sph * sth * cps - cph * sps, sph * sth * sps + cph * cps, sph * cth,
+      cph * sth * cps + sph * sps, cph * sth * sps - sph * cps, cph * cth];
+  };
+
+  /* R(q) of a quaternion (w, x, y, z), need not be unit (dyn_quat_to_mat). */
+  DK.quatToMatrix = function (w, x, y, z) {
+    const n2 = w * w + x * x + y * y + z * z, s = n2 > 0 ? 2 / n2 : 0;
+    const xx = s * x * x, yy = s * y * y, zz = s * z * z, xy = s * x * y, xz = s * x * z, yz = s * y * z;
+    const wx = s * w * x, wy = s * w * y, wz = s * w * z;
+    return [1 - (yy + zz), xy + wz, xz - wy, xy - wz, 1 - (xx + zz), yz + wx, xz + wy, yz - wx, 1 - (xx + yy)];
+  };
+
+  /* A body point rB to N: s + R^T rB. */
+  DK.bodyToN = function (R, s, rB) {
+    return [s[0] + R[0] * rB[0] + R[3] * rB[1] + R[6] * rB[2],
+      s[1] + R[1] * rB[0] + R[4] * rB[1] + R[7] * rB[2],
+      s[2] + R[2] * rB[0] + R[5] * rB[1] + R[8] * rB[2]];
+  };
+
+  /* ---- time series: one plot per quantity, every run overlaid ---- */
+
+  DK.timePlot = function (container, runs, name, player, o) {
+    const unit = o && o.unit !== undefined ? o.unit : DK.unit(runs[0].raw || runs[0], name);
+    const series = runs.filter(r => r.cols[name]).map(r => ({ label: r.label, x: r.t, y: r.cols[name], color: r.color, dash: r.dash }));
+    const plot = new DK.Plot(container, Object.assign({
+      title: (o && o.title) || name, xlabel: 't [s]', ylabel: name + ' [' + unit + ']', unitY: unit === '1' ? '' : unit,
+      series, onSeek: t => player.seek(t), legend: series.length > 1 ? 'tr' : 'none'
+    }, o || {}));
+    player.onTime(t => plot.setTime(t));
+    return plot;
+  };
+
+  /* ---- pendulum: pivot at the origin, phi from the downward vertical ---- */
+
+  DK.PendulumView = function (container, runs, l, player, o) {
+    const series = runs.map(r => {
+      const phi = r.cols.phi;
+      return { label: r.label, color: r.color, t: r.t, x: phi.map(p => l * Math.sin(p)), y: phi.map(p => -l * Math.cos(p)), trail: true, width: 1.2 };
+    });
+    const R = 1.18 * l;
+    const plot = new DK.Plot(container, Object.assign({
+      title: 'pendulum', xlabel: 'x [m]', ylabel: 'y [m]', equal: true, xrange: [-R, R], yrange: [-R, R * 0.9],
+      series, cursor: 'none', legend: 'tr', legendValues: false, aspect: 0.8,
+      overlay: (ctx, p, t) => {
+        const ox = p.px(0), oy = p.py(0);
+        ctx.strokeStyle = '#555'; ctx.lineWidth = 1;
+        for (let k = -3; k <= 3; k++) { ctx.beginPath(); ctx.moveTo(ox + k * 6, oy); ctx.lineTo(ox + k * 6 + 5, oy - 6); ctx.stroke(); }
+        ctx.beginPath(); ctx.moveTo(ox - 22, oy); ctx.lineTo(ox + 22, oy); ctx.stroke();
+        for (const s of series) {
+          const v = p.valueAt(s, t) || { x: s.x[s.x.length - 1], y: s.y[s.y.length - 1] };
+          if (!isFinite(v.x) || !isFinite(v.y)) continue;
+          ctx.strokeStyle = s.color; ctx.lineWidth = 3;
+          ctx.beginPath(); ctx.moveTo(ox, oy); ctx.lineTo(p.px(v.x), p.py(v.y)); ctx.stroke();
+          ctx.fillStyle = s.color; ctx.strokeStyle = '#fff'; ctx.lineWidth = 2;
+          ctx.beginPath(); ctx.arc(p.px(v.x), p.py(v.y), 10, 0, 2 * Math.PI); ctx.fill(); ctx.stroke();
+        }
+        ctx.fillStyle = '#222'; ctx.beginPath(); ctx.arc(ox, oy, 4, 0, 2 * Math.PI); ctx.fill();
+      }
+    }, o || {}));
+    player.onTime(t => plot.setTime(t));
+    return plot;
+  };
+
+  /* ---- phase plane: x against y of every run, drawn up to the current time ---- */
+
+  DK.PhaseView = function (container, runs, xname, yname, player, o) {
+    const series = runs.map(r => ({ label: r.label, color: r.color, t: r.t, x: r.cols[xname], y: r.cols[yname], trail: true, width: 1.5 }));
+    const ux = DK.unit(runs[0].raw || runs[0], xname), uy = DK.unit(runs[0].raw || runs[0], yname);
+    const plot = new DK.Plot(container, Object.assign({
+      title: 'phase plane', xlabel: xname + ' [' + ux + ']', ylabel: yname + ' [' + uy + ']',
+      series, cursor: 'points', legend: 'tr', legendValues: false, aspect: 0.8
+    }, o || {}));
+    player.onTime(t => plot.setTime(t));
+    return plot;
+  };
+
+  /* ---- the plane on its spring, in 3D ---- */
+
+  /* Shape of the plane in its body frame B (x forward, z down) from the homework's
+   * animation data: fuselage of length_plane, wings of wingspan about r_wingcenter, a fin of
+   * height_fin at the tail (up, i.e. -z). The chords are not in the data: a fifth and a
+   * tenth of the length. */
+  function planeShape(par) {
+    const L = par.length_plane, b = par.wingspan, hf = par.height_fin;
+    const w = [par.wing_x, par.wing_y, par.wing_z];
+    const cr = 0.22 * L, ct = 0.12 * L, sweep = 0.06 * L;
+    const wing = [[w[0] + cr / 2, w[1], w[2]], [w[0] + ct / 2 - sweep, w[1] + b / 2, w[2]], [w[0] - ct / 2 - sweep, w[1] + b / 2, w[2]],
+      [w[0] - cr / 2, w[1], w[2]], [w[0] - ct / 2 - sweep, w[1] - b / 2, w[2]], [w[0] + ct / 2 - sweep, w[1] - b / 2, w[2]]];
+    const fin = [[-L / 2, 0, 0], [-L / 2 + 0.18 * L, 0, 0], [-L / 2 + 0.02 * L, 0, -hf], [-L / 2 - 0.03 * L, 0, -hf]];
+    const r = 0.035 * L; /* fuselage: a slim diamond section */
+    const body = [[L / 2, 0, 0], [0.2 * L, r, 0], [-L / 2, 0, -r * 0.4], [0.2 * L, -r, 0]];
+    const bodyV = [[L / 2, 0, 0], [0.2 * L, 0, -r], [-L / 2, 0, -r * 0.4], [0.2 * L, 0, r]];
+    return { wing, fin, body, bodyV, nose: [L / 2, 0, 0], tail: [-L / 2, 0, 0], P: [par.px, par.py, par.pz] };
+  }
+
+  /* The state of a plane run at time t: position s and matrix R. */
+  function planeAt(run, t) {
+    const pos = DK.locate(run.t, t), c = run.cols;
+    const s = [DK.at(c.sX, pos), DK.at(c.sY, pos), DK.at(c.sZ, pos)];
+    let R;
+    if (c.qw) R = DK.quatToMatrix(DK.at(c.qw, pos), DK.at(c.qx, pos), DK.at(c.qy, pos), DK.at(c.qz, pos));
+    else R = DK.eulerToMatrix(DK.at(c.psi, pos), DK.at(c.theta, pos), DK.at(c.phi, pos));
+    return { s, R, pos };
+  }
+
+  /* N (Z down) to the display frame (z up): a half turn about X. */
+  const D = p => [p[0], -p[1], -p[2]];
+
+  function helix(a, b, turns, radius) {
+    const d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]], len = Math.hypot(d[0], d[1], d[2]) || 1;
+    const e = d.map(v => v / len);
+    const other = Math.abs(e[2]) < 0.9 ? [0, 0, 1] : [1, 0, 0];
+    let u = [e[1] * other[2] - e[2] * other[1], e[2] * other[0] - e[0] * other[2], e[0] * other[1] - e[1] * other[0]];
+    const un = Math.hypot(u[0], u[1], u[2]); u = u.map(v => v / un);
+    const v = [e[1] * u[2] - e[2] * u[1], e[2] * u[0] - e[0] * u[2], e[0] * u[1] - e[1] * u[0]];
+    const pts = [], n = turns * 16, lead = 0.06;
+    for (let k = 0; k <= n; k++) {
+      const f = k / n, along = lead + f * (1 - 2 * lead), ang = 2 * Math.PI * turns * f;
+      const rad = k === 0 || k === n ? 0 : radius;
+      pts.push([0, 1, 2].map(i => a[i] + d[i] * along + rad * (Math.cos(ang) * u[i] + Math.sin(ang) * v[i])));
+    }
+    return [a].concat(pts, [b]);
+  }
+
+  DK.PlaneView = function (container, runs, par, player, o) {
+    o = o || {};
+    const canvas = DK.el('canvas', { class: 'scene-canvas' });
+    const wrap = DK.el('div', { class: 'dk-scene' }, [canvas]);
+    container.appendChild(wrap);
+    container.appendChild(DK.el('p', { class: 'hint', text: 'drag: rotate · wheel: zoom · shift+drag: move · double-click: reset view' }));
+    const shape = planeShape(par);
+    /* look at the middle between A and the motion, from the side and a little above */
+    const mean = ['sX', 'sY', 'sZ'].map(k => runs[0].cols[k].reduce((a, v) => a + v, 0) / runs[0].cols[k].length);
+    const mid = [mean[0] / 2, mean[1] / 2, mean[2] / 2], centre = D(mid);
+    /* radius of what is to be seen: A, the path of S and the plane around it */
+    let radius = Math.hypot(...mid);
+    for (const r of runs) for (let k = 0; k < r.t.length; k++) {
+      const d = Math.hypot(r.cols.sX[k] - mid[0], r.cols.sY[k] - mid[1], r.cols.sZ[k] - mid[2]);
+      if (isFinite(d) && d > radius) radius = d;
+    }
+    radius += 0.5 * Math.max(par.wingspan, par.length_plane);
+    const state = { t: player.t };
+    const scene = new DK.Scene3D(canvas, { target: centre, distance: 2.8 * radius, azimuth: -1.05, elevation: 0.32 }, () => draw());
+    const trails = runs.map(r => r.t.map((_, k) => D([r.cols.sX[k], r.cols.sY[k], r.cols.sZ[k]])));
+    let w = 0, h = 0, dpr = 1;
+    function size() {
+      const nw = Math.max(240, Math.floor(wrap.clientWidth || 600));
+      const nh = Math.floor(o.height || DK.clamp(nw * 0.62, 280, 640));
+      if (nw === w && nh === h) return;
+      w = nw; h = nh; dpr = window.devicePixelRatio || 1;
+      canvas.width = Math.round(w * dpr); canvas.height = Math.round(h * dpr);
+      canvas.style.width = w + 'px'; canvas.style.height = h + 'px';
+    }
+    function draw() {
+      size();
+      const ctx = canvas.getContext('2d'), t = state.t;
+      ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
+      const g = ctx.createLinearGradient(0, 0, 0, h);
+      g.addColorStop(0, '#f4f7fb'); g.addColorStop(1, '#ffffff');
+      ctx.fillStyle = g; ctx.fillRect(0, 0, w, h);
+      scene.begin(w, h);
+      /* the ceiling (Z = 0) around A, and the axes of N at A */
+      const C = Math.max(1, Math.ceil(2 * (Math.hypot(mean[0], mean[1]) + 0.4 * par.wingspan)) / 2);
+      scene.poly([[-C, -C, 0], [C, -C, 0], [C, C, 0], [-C, C, 0]].map(p => D(p)), { fill: '#d9dee6', alpha: 0.35, bias: 1e3 });
+      for (let k = -C; k <= C + 1e-9; k += 0.5) {
+        scene.line([D([k, -C, 0]), D([k, C, 0])], { color: '#b9c1cc', width: 0.8 }, 4);
+        scene.line([D([-C, k, 0]), D([C, k, 0])], { color: '#b9c1cc', width: 0.8 }, 4);
+      }
+      const ax = 0.4;
+      scene.line([D([0, 0, 0]), D([ax, 0, 0])], { color: '#c0392b', width: 2 });
+      scene.line([D([0, 0, 0]), D([0, ax, 0])], { color: '#27ae60', width: 2 });
+      scene.line([D([0, 0, 0]), D([0, 0, ax])], { color: '#2c6fbb', width: 2 });
+      scene.text(D([ax, 0, 0]), 'X', { color: '#c0392b' });
+      scene.text(D([0, ax, 0]), 'Y', { color: '#27ae60' });
+      scene.text(D([0, 0, ax]), 'Z (down)', { color: '#2c6fbb' });
+      scene.point(D([0, 0, 0]), { color: '#222', radius: 4 });
+      scene.text(D([0, 0, -0.08]), 'A', { color: '#222', font: '600 13px system-ui, sans-serif' });
+      runs.forEach((r, i) => {
+        const st = planeAt(r, t);
+        const B = p => D(DK.bodyToN(st.R, st.s, p));
+        /* the path of the centre of mass so far */
+        const upto = trails[i].slice(0, st.pos.i + 1).concat([D(st.s)]);
+        if (upto.length > 1) scene.line(upto, { color: r.color, width: 1.3, alpha: 0.55 }, 12);
+        const P = B(shape.P);
+        scene.line(helix([0, 0, 0], P, 14, 0.035), { color: '#555', width: 1.3 }, 10);
+        scene.point(P, { color: '#111', radius: 2.5 });
+        scene.poly(shape.wing.map(B), { fill: r.color, alpha: 0.55, color: r.color, width: 1.2 });
+        scene.poly(shape.fin.map(B), { fill: r.color, alpha: 0.75, color: r.color, width: 1.2 });
+        scene.poly(shape.body.map(B), { fill: '#333', alpha: 0.8, color: r.color, width: 1 });
+        scene.poly(shape.bodyV.map(B), { fill: '#444', alpha: 0.8, color: r.color, width: 1 });
+        scene.line([B(shape.nose), B(shape.tail)], { color: r.color, width: 3 });
+        scene.point(D(st.s), { color: r.color, radius: 3, ring: '#fff' });
+      });
+      scene.flush(ctx);
+      /* legend */
+      ctx.font = '12px system-ui, sans-serif';
+      ctx.textBaseline = 'middle';
+      runs.forEach((r, i) => {
+        ctx.fillStyle = r.color; ctx.fillRect(10, 12 + 18 * i, 22, 4);
+        ctx.fillStyle = '#222'; ctx.fillText(r.label, 38, 14 + 18 * i);
+      });
+      ctx.fillStyle = '#555';
+      ctx.fillText('t = ' + t.toFixed(3) + ' s', 10, h - 14);
+    }
+    if (window.ResizeObserver) new ResizeObserver(() => draw()).observe(wrap);
+    player.onTime(t => { state.t = t; draw(); });
+    return { canvas, scene, draw };
+  };
+
+  /* ---- the cart from above (the homework's cartanimation) ---- */
+
+  DK.CartView = function (container, runs, par, player, o) {
+    o = o || {};
+    const l = par.length_cart, d = par.width_cart;
+    /* body points in B: rear corners (wheels A, B), the front wheel C, back to the start */
+    const bodyB = [[-l / 2, -d / 2], [-l / 2, d / 2], [l / 2, 0], [-l / 2, -d / 2]];
+    const toN = (sX, sY, th, p) => [sX + Math.cos(th) * p[0] - Math.sin(th) * p[1], sY + Math.sin(th) * p[0] + Math.cos(th) * p[1]];
+    const series = [];
+    runs.forEach(r => {
+      const c = r.cols;
+      const wheel = j => ({ x: r.t.map((_, k) => toN(c.sX[k], c.sY[k], c.theta[k], bodyB[j])[0]), y: r.t.map((_, k) => toN(c.sX[k], c.sY[k], c.theta[k], bodyB[j])[1]) });
+      const a = wheel(0), b = wheel(1), f = wheel(2);
+      series.push({ label: r.label, color: r.color, t: r.t, x: a.x, y: a.y, trail: true, width: 1.4 });
+      series.push({ label: r.label + ' B', noLegend: true, color: r.color, t: r.t, x: b.x, y: b.y, trail: true, width: 1.4 });
+      series.push({ label: r.label + ' C', noLegend: true, color: r.color, t: r.t, x: f.x, y: f.y, trail: true, width: 1, dash: [3, 3] });
+    });
+    const ext = [DK.extent(series.map(s => s.x)), DK.extent(series.map(s => s.y))];
+    const big = Math.max(ext[0][1] - ext[0][0], ext[1][1] - ext[1][0]) > (o.followAbove || 30);
+    const select = DK.el('select', { class: 'view-mode', 'aria-label': 'view' });
+    select.appendChild(DK.el('option', { value: '-1', text: 'whole path' }));
+    runs.forEach((r, i) => select.appendChild(DK.el('option', { value: String(i), text: 'follow ' + r.label })));
+    select.value = big ? String(o.follow || 0) : '-1';
+    container.appendChild(DK.el('div', { class: 'view-controls' }, [DK.el('label', {}, ['view: ', select])]));
+    const win = o.window || 16;
+    const plot = new DK.Plot(container, Object.assign({
+      title: 'cart, seen from above', xlabel: 'X [m]', ylabel: 'Y [m]', equal: true, series, cursor: 'none', legend: 'tr', legendValues: false, aspect: 0.7,
+      viewport: t => {
+        const i = parseInt(select.value, 10);
+        if (i < 0) return null;
+        const r = runs[i], p = DK.locate(r.t, t), x = DK.at(r.cols.sX, p), y = DK.at(r.cols.sY, p);
+        return [[x - win / 2, x + win / 2], [y - win / 2, y + win / 2]];
+      },
+      overlay: (ctx, p, t) => {
+        const ox = p.px(0), oy = p.py(0);
+        ctx.strokeStyle = '#1f4e9c'; ctx.lineWidth = 1.5;
+        ctx.beginPath(); ctx.moveTo(ox - 5, oy - 5); ctx.lineTo(ox + 5, oy + 5); ctx.moveTo(ox - 5, oy + 5); ctx.lineTo(ox + 5, oy - 5); ctx.stroke();
+        for (const r of runs) {
+          const pos = DK.locate(r.t, t), c = r.cols;
+          const sX = DK.at(c.sX, pos), sY = DK.at(c.sY, pos), th = DK.at(c.theta, pos);
+          if (!isFinite(sX) || !isFinite(sY) || !isFinite(th)) continue;
+          const pts = bodyB.map(q => toN(sX, sY, th, q)).map(q => [p.px(q[0]), p.py(q[1])]);
+          ctx.beginPath(); ctx.moveTo(pts[0][0], pts[0][1]);
+          for (let k = 1; k < pts.length; k++) ctx.lineTo(pts[k][0], pts[k][1]);
+          ctx.globalAlpha = 0.18; ctx.fillStyle = r.color; ctx.fill(); ctx.globalAlpha = 1;
+          ctx.strokeStyle = r.color; ctx.lineWidth = 4; ctx.lineJoin = 'round'; ctx.stroke();
+          /* the wheels: red stars at the corners, as in the homework's animation */
+          ctx.strokeStyle = '#e01b1b'; ctx.lineWidth = 2;
+          for (let k = 0; k < 3; k++) {
+            const [x, y] = pts[k];
+            ctx.beginPath();
+            for (let a = 0; a < 3; a++) { const an = a * Math.PI / 3; ctx.moveTo(x - 6 * Math.cos(an), y - 6 * Math.sin(an)); ctx.lineTo(x + 6 * Math.cos(an), y + 6 * Math.sin(an)); }
+            ctx.stroke();
+          }
+          ctx.fillStyle = '#111'; ctx.beginPath(); ctx.arc(p.px(sX), p.py(sY), 2.5, 0, 2 * Math.PI); ctx.fill();
+        }
+      }
+    }, o.plot || {}));
+    select.addEventListener('change', () => plot.draw());
+    player.onTime(t => plot.setTime(t));
+    return plot;
+  };
+})(window.DK);

@@ -229,7 +229,7 @@ DYN_INL int dyn_inl_solve(const int S, const dyn_tableau *m, dyn_rhs_fn f, void 
         res->fail_t = ti > t1 ? t1 : ti;
         res->status = DYN_ERR_RHS;
         snprintf(res->message, sizeof res->message,
-                 "the right-hand side failed at t = %.17g (status %.0f)", res->fail_t, (double)rc);
+                 "the right-hand side failed at t = %.17g (status %d)", res->fail_t, rc);
     } else if (nonfinite) {
         const double *bad = cur == ya ? yb : ya;
         int q = 0;
@@ -239,8 +239,8 @@ DYN_INL int dyn_inl_solve(const int S, const dyn_tableau *m, dyn_rhs_fn f, void 
         res->fail_t = (g->ends_at_t1 && step + 1 == steps) ? t1 : t0 + (double)(step + 1) * h;
         res->fail_index = q;
         res->status = DYN_ERR_NONFINITE;
-        snprintf(res->message, sizeof res->message, "state %.0f became not finite at t = %.17g",
-                 (double)q, res->fail_t);
+        snprintf(res->message, sizeof res->message, "state %d became not finite at t = %.17g", q,
+                 res->fail_t);
     } else {
         res->stats.rhs_calls = step * S;
     }

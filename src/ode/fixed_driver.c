@@ -7,6 +7,7 @@
  * Each new state is checked for NaN/Inf; on any failure y keeps the last good state.
  */
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -21,10 +22,16 @@ static void result_init(dyn_result *res, double t0)
     res->fail_index = -1;
 }
 
-static int result_fail(dyn_result *res, int status, const char *fmt, double a, double b)
+#if defined(__GNUC__)
+__attribute__((format(printf, 3, 4)))
+#endif
+static int result_fail(dyn_result *res, int status, const char *fmt, ...)
 {
+    va_list ap;
     res->status = status;
-    snprintf(res->message, sizeof res->message, fmt, a, b);
+    va_start(ap, fmt);
+    vsnprintf(res->message, sizeof res->message, fmt, ap);
+    va_end(ap);
     return status;
 }
 
@@ -74,20 +81,17 @@ static int check_args(const dyn_tableau *m, const dyn_system *sys, const double 
                       const double *work, dyn_result *res)
 {
     if (!m)
-        return result_fail(res, DYN_ERR_ARG, "no method given%.0s%.0s", 0, 0);
+        return result_fail(res, DYN_ERR_ARG, "no method given");
     if (m->kind != DYN_KIND_EXPLICIT_RK)
         return result_fail(res, DYN_ERR_ARG,
-                           "this method is not a fixed-step explicit Runge-Kutta method%.0s%.0s",
-                           0, 0);
+                           "this method is not a fixed-step explicit Runge-Kutta method");
     if (!sys || !sys->f)
-        return result_fail(res, DYN_ERR_ARG, "no right-hand side given%.0s%.0s", 0, 0);
+        return result_fail(res, DYN_ERR_ARG, "no right-hand side given");
     if (sys->n <= 0)
         return result_fail(res, DYN_ERR_ARG,
-                           "number of states %.0f is not accepted: it must be >= 1%.0s",
-                           (double)sys->n, 0);
+                           "number of states %d is not accepted: it must be >= 1", sys->n);
     if (!y0 || !work)
-        return result_fail(res, DYN_ERR_ARG, "initial state or workspace is NULL%.0s%.0s", 0,
-                           0);
+        return result_fail(res, DYN_ERR_ARG, "initial state or workspace is NULL");
     return DYN_OK;
 }
 
@@ -126,11 +130,11 @@ int dyn_fixed_solve(const dyn_tableau *m, const dyn_system *sys, double t0, doub
         res->fail_t = t0;
         res->fail_index = bad;
         return result_fail(res, DYN_ERR_NONFINITE,
-                           "initial state %.0f is not finite (%g)", (double)bad, y[bad]);
+                           "initial state %d is not finite (%g)", bad, y[bad]);
     }
     if (opts->output) {
         if (opts->output(0, t0, y, opts->output_ctx))
-            return result_fail(res, DYN_STOPPED, "output stopped the run at t = %g%.0s", t0, 0);
+            return result_fail(res, DYN_STOPPED, "output stopped the run at t = %g", t0);
         res->stats.samples = 1;
     }
 
@@ -200,8 +204,8 @@ int dyn_fixed_solve(const dyn_tableau *m, const dyn_system *sys, double t0, doub
             res->rhs_status = rc;
             res->fail_t = dyn_rk_stage_time(tn, m->c[fail_stage], hn, t1);
             status = result_fail(res, DYN_ERR_RHS,
-                                 "the right-hand side failed at t = %.17g (status %.0f)",
-                                 res->fail_t, (double)rc);
+                                 "the right-hand side failed at t = %.17g (status %d)",
+                                 res->fail_t, rc);
             break;
         }
         const double tnext =
@@ -212,8 +216,7 @@ int dyn_fixed_solve(const dyn_tableau *m, const dyn_system *sys, double t0, doub
             res->fail_t = tnext;
             res->fail_index = bad;
             status = result_fail(res, DYN_ERR_NONFINITE,
-                                 "state %.0f became not finite at t = %.17g", (double)bad,
-                                 tnext);
+                                 "state %d became not finite at t = %.17g", bad, tnext);
             break;
         }
         done++;
@@ -226,15 +229,15 @@ int dyn_fixed_solve(const dyn_tableau *m, const dyn_system *sys, double t0, doub
             countdown = every;
             samples++;
             if (output(step, tnext, cur, output_ctx)) {
-                status = result_fail(res, DYN_STOPPED, "output stopped the run at t = %g%.0s",
-                                     tnext, 0);
+                status = result_fail(res, DYN_STOPPED, "output stopped the run at t = %g",
+                                     tnext);
                 break;
             }
         }
         if (progress && --progress_countdown == 0) {
             progress_countdown = progress_every;
             if (progress(tnext, (double)step / (double)steps, progress_ctx)) {
-                status = result_fail(res, DYN_CANCELLED, "cancelled at t = %g%.0s", tnext, 0);
+                status = result_fail(res, DYN_CANCELLED, "cancelled at t = %g", tnext);
                 break;
             }
         }

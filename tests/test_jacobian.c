@@ -1,7 +1,8 @@
 /* test_jacobian.c — the forward-difference Jacobian and df/dt (src/ode/jacobian.h) against
  * analytic derivatives: the error is about sqrt(eps) relative to the scale of the entries,
- * every column costs one call of f, states of very different sizes get increments of their
- * own size, the state passed in is left alone, and a failing f is passed through. */
+ * every column costs one call of f, a state at zero of a stiff system gets a usable
+ * increment, states far below one need a typical size of their own (and get it), the state
+ * passed in is left alone, and a failing f is passed through. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -65,14 +66,15 @@ static void test_difference_jacobian_matches_analytic(void **state)
         for (int i = 0; i < 9; i++)
             scale = fmax(scale, fabs(Jex[i]));
         double e = max_abs_diff(J, Jex, 9);
-        /* truncation ~ d |f''| and rounding ~ eps |f| / d with d ~ 1.5e-8 max(|y|, 1e-5) */
+        /* truncation ~ d |f''| and rounding ~ eps |f| / d with d ~ 1.5e-8 max(|y|, 1) */
         CHECK(e < 2e-6 * scale, "point %zu: Jacobian error %.3g (scale %.3g)", p, e, scale);
     }
 }
 
-/* Robertson's kinetics: states of sizes 1, 1e-5 and 1; an increment of 1.5e-8 in y2
- * (typical 1) would be larger than y2 and wreck the quadratic term, the default
- * (typical 1e-5) and a given typical of y2's size are accurate. */
+/* Robertson's kinetics: states of sizes 1, 1e-5 and 1. With the default typical size (1)
+ * the increment of y2 is 1.5e-8, larger than y2 itself, and the quadratic term 3e7 y2^2
+ * puts an error of 3e7 * 1.5e-8 = 0.45 into d f2 / d y2; with a typical size of y2's own
+ * order (what a driver passes as atol / rtol) the column is accurate. */
 static int f_rober(double t, const double *y, double *f, void *par)
 {
     (void)t;
@@ -100,13 +102,31 @@ static void test_increments_follow_the_size_of_each_state(void **state)
         CHECK(fabs(J[i] - Jex[i]) <= 1e-6 * fabs(Jex[i]) + 1e-6, "J[%d] = %.17g, exact %.17g", i,
               J[i], Jex[i]);
     assert_int_equal(dyn_fd_jacobian(&sys, 0.0, y, f0, NULL, J, work, NULL), 0);
-    for (int i = 0; i < 9; i++)
-        CHECK(fabs(J[i] - Jex[i]) <= 1e-6 * fabs(Jex[i]) + 1e-6, "default: J[%d] = %.17g", i,
-              J[i]);
-    /* with typical 1 for y2 the column is off by 3e7 * 1.5e-8 = 0.45 */
-    const double typ1[3] = {1.0, 1.0, 1.0};
-    assert_int_equal(dyn_fd_jacobian(&sys, 0.0, y, f0, typ1, J, work, NULL), 0);
-    assert_true(fabs(J[4] - Jex[4]) > 0.1);
+    assert_true(fabs(J[4] - Jex[4]) > 0.1 && fabs(J[4] - Jex[4]) < 1.0);
+}
+
+/* A stiff right-hand side with a state at zero: f = -1e6 (y - 1) at y = 0. The default
+ * increment (1.5e-8) keeps the rounding error eps |f| / d at 1.5e-2 on an entry of 1e6;
+ * a floor of 1e-5 (increment 1.5e-13) would make it 1.5e3. */
+static int f_stiff(double t, const double *y, double *f, void *par)
+{
+    (void)t;
+    (void)par;
+    f[0] = -1e6 * (y[0] - 1.0);
+    f[1] = -2e6 * (y[1] - 0.3) + y[0];
+    return 0;
+}
+
+static void test_zero_state_of_a_stiff_system(void **state)
+{
+    (void)state;
+    dyn_system sys = {f_stiff, 2, NULL};
+    const double y[2] = {0.0, 0.0}, Jex[4] = {-1e6, 0.0, 1.0, -2e6};
+    double f0[2], J[4], work[4];
+    f_stiff(0, y, f0, NULL);
+    assert_int_equal(dyn_fd_jacobian(&sys, 0.0, y, f0, NULL, J, work, NULL), 0);
+    for (int i = 0; i < 4; i++)
+        CHECK(fabs(J[i] - Jex[i]) <= 1e-7 * 2e6, "J[%d] = %.17g, exact %.17g", i, J[i], Jex[i]);
 }
 
 static void test_time_derivative(void **state)
@@ -158,6 +178,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_difference_jacobian_matches_analytic),
         cmocka_unit_test(test_increments_follow_the_size_of_each_state),
+        cmocka_unit_test(test_zero_state_of_a_stiff_system),
         cmocka_unit_test(test_time_derivative),
         cmocka_unit_test(test_failing_rhs_is_passed_through),
     };

@@ -16,8 +16,13 @@
 #include "dynkit/ode.h"
 
 /* Typical magnitude of a state component when the caller gives none (typ == NULL): the
- * increment of a component near zero is sqrt(eps) * DYN_FD_TYPICAL. */
-#define DYN_FD_TYPICAL 1e-5
+ * increment of a component near zero is sqrt(eps) * DYN_FD_TYPICAL. One suits the states of
+ * mechanical models (angles, metres, their rates) that start at rest: a smaller floor makes
+ * the increment of a zero state so small that rounding in f (eps |f| / d) spoils the
+ * column. States that live far below one (concentrations, Robertson's y2 ~ 1e-5) need
+ * their own typ; an adaptive driver passes typ_j = atol_j / rtol, the size below which the
+ * absolute tolerance governs, as SUNDIALS scales its increments by the error weights. */
+#define DYN_FD_TYPICAL 1.0
 
 /* Doubles of work dyn_fd_jacobian needs for n states. */
 #define DYN_FD_JAC_WORK(n) (2 * (size_t)(n))

@@ -9,30 +9,31 @@
 
 static void plot_help(void)
 {
-    puts("Usage: dynkit plot MODEL [run options] --y NAME[,NAME...] [--x NAME]\n"
-         "                   [--compare METHOD[:STEP]]... [--title TEXT] [--output FILE.svg]\n"
-         "\n"
-         "Run MODEL and write a line plot as a standalone SVG file (standard output without\n"
-         "--output): axes with ticks, labels with units, a legend.\n"
-         "\n"
-         "  --y NAMES            what to plot: states or extra outputs of the model, comma-\n"
-         "                       separated (see 'dynkit info MODEL')\n"
-         "  --x NAME             the abscissa: t (default), a state or an output\n"
-         "  --compare M[:H]      overlay a run with method M (and step H; default the run's\n"
-         "                       step), repeatable, e.g. --compare euler --compare rk4:0.001\n"
-         "  --title TEXT         the title (default: the model and the runs)\n"
-         "A long run is thinned to at most 2000 samples per line (first and last kept).\n"
-         "\n"
-         "Examples:\n"
-         "  dynkit plot vanderpol --y y1,y2 --output vdp.svg\n"
-         "  dynkit plot vanderpol --x y1 --y y2 --compare euler --compare heun --output phase.svg\n"
-         "  dynkit plot pendulum --tspan 0:10 --step 0.01 --method rk4 --y energy --output e.svg\n");
+    puts(
+        "Usage: dynkit plot MODEL [run options] --y NAME[,NAME...] [--x NAME]\n"
+        "                   [--compare METHOD[:STEP]]... [--title TEXT] [--output FILE.svg]\n"
+        "\n"
+        "Run MODEL and write a line plot as a standalone SVG file (standard output without\n"
+        "--output): axes with ticks, labels with units, a legend.\n"
+        "\n"
+        "  --y NAMES            what to plot: states or extra outputs of the model, comma-\n"
+        "                       separated (see 'dynkit info MODEL')\n"
+        "  --x NAME             the abscissa: t (default), a state or an output\n"
+        "  --compare M[:H]      overlay a run with method M (and step H; default the run's\n"
+        "                       step), repeatable, e.g. --compare euler --compare rk4:0.001\n"
+        "  --title TEXT         the title (default: the model and the runs)\n"
+        "A long run is thinned to at most 2000 samples per line (first and last kept).\n"
+        "\n"
+        "Examples:\n"
+        "  dynkit plot vanderpol --y y1,y2 --output vdp.svg\n"
+        "  dynkit plot vanderpol --x y1 --y y2 --compare euler --compare heun --output phase.svg\n"
+        "  dynkit plot pendulum --tspan 0:10 --step 0.01 --method rk4 --y energy --output e.svg\n");
     cli_run_options_help(stdout);
 }
 
 /* Split the comma-separated names of --y/--x into columns of the model's runs. */
-static int parse_names(const char *option, const char *text, const dyn_model *m, int *cols,
-                       int max, int *n)
+static int parse_names(const char *option, const char *text, const dyn_model *m, int *cols, int max,
+                       int *n)
 {
     char buf[512], names[1024];
     if (strlen(text) >= sizeof buf)
@@ -101,8 +102,8 @@ int cli_cmd_plot(int argc, char **argv)
         rc = run_rc;
     FILE *out = stdout;
     if (rc == CLI_OK && v.run.output_path && !(out = fopen(v.run.output_path, "w"))) {
-        rc = cli_usage_error("plot", "cannot open --output '%s' for writing: %s",
-                             v.run.output_path, strerror(errno));
+        rc = cli_usage_error("plot", "cannot open --output '%s' for writing: %s", v.run.output_path,
+                             strerror(errno));
         out = stdout;
     }
     if (rc == CLI_OK) {
@@ -130,8 +131,8 @@ int cli_cmd_plot(int argc, char **argv)
                 else
                     snprintf(label, sizeof labels[0], "%s (%s)",
                              cli_series_column_name(m, ycols[i]), s->label);
-                p.lines[p.n_lines++] = (cli_svg_line){label, s->data + xcol, s->data + ycols[i],
-                                                      s->rows, s->cols};
+                p.lines[p.n_lines++] =
+                    (cli_svg_line){label, s->data + xcol, s->data + ycols[i], s->rows, s->cols};
             }
         rc = cli_svg_write(out, &p);
         if (rc == CLI_OK && run_rc != CLI_OK)

@@ -68,17 +68,20 @@ static void table_json(cli_json *j, const dyn_hw_table *t)
         cli_json_string(j, t->units[c]);
     cli_json_end_array(j);
     /* thinned to what a screen shows: every k-th row, always the first and the last */
-    const long every = t->rows > CLI_MAX_ROWS ? (t->rows - 1 + CLI_MAX_ROWS - 2) / (CLI_MAX_ROWS - 1)
-                                              : 1;
+    const long every =
+        t->rows > CLI_MAX_ROWS ? (t->rows - 1 + CLI_MAX_ROWS - 2) / (CLI_MAX_ROWS - 1) : 1;
     cli_json_key(j, "data");
     cli_json_begin_array(j);
+    const int digits = j->digits;
     for (int c = 0; c < t->cols; c++) {
+        j->digits = c == 0 ? 9 : digits; /* times finer than the screen, for stepping */
         cli_json_begin_array(j);
         for (long k = 0; k < t->rows; k++)
             if (k % every == 0 || k == t->rows - 1)
                 cli_json_number(j, t->data[k * t->cols + c]);
         cli_json_end_array(j);
     }
+    j->digits = digits;
     cli_json_end_array(j);
     cli_json_end_object(j);
 }

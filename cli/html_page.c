@@ -39,27 +39,18 @@ static int write_escaped(FILE *out, const char *text)
     int bad = 0;
     for (const char *p = text; *p; p++) {
         switch (*p) {
-        case '<':
-            bad |= fputs("&lt;", out) < 0;
-            break;
-        case '>':
-            bad |= fputs("&gt;", out) < 0;
-            break;
-        case '&':
-            bad |= fputs("&amp;", out) < 0;
-            break;
-        case '"':
-            bad |= fputs("&quot;", out) < 0;
-            break;
-        default:
-            bad |= fputc(*p, out) == EOF;
+        case '<': bad |= fputs("&lt;", out) < 0; break;
+        case '>': bad |= fputs("&gt;", out) < 0; break;
+        case '&': bad |= fputs("&amp;", out) < 0; break;
+        case '"': bad |= fputs("&quot;", out) < 0; break;
+        default: bad |= fputc(*p, out) == EOF;
         }
     }
     return bad;
 }
 
-int cli_html_page_write(FILE *out, const char *title, const char *body_asset,
-                        cli_page_data_fn data, void *ctx)
+int cli_html_page_write(FILE *out, const char *title, const char *body_asset, cli_page_data_fn data,
+                        void *ctx)
 {
     static const char marker[] = "<!--dynkit:";
     const cli_web_asset *page = find_asset("page.html");
@@ -91,7 +82,7 @@ int cli_html_page_write(FILE *out, const char *title, const char *body_asset,
             bad |= fwrite(body->data, 1, body->size, out) != body->size;
         } else if (len == 4 && strncmp(name, "data", 4) == 0) {
             cli_json j;
-            cli_json_init(&j, out, 7);
+            cli_json_init(&j, out, 6);
             bad |= data(&j, ctx) || j.bad;
         } else {
             bad |= fwrite(m, 1, (size_t)(close + 3 - m), out) != (size_t)(close + 3 - m);
@@ -181,8 +172,12 @@ void cli_json_series(cli_json *j, const dyn_model *m, const cli_series *s)
     cli_json_end_array(j);
     cli_json_key(j, "data");
     cli_json_begin_array(j);
-    for (int c = 0; c < s->cols; c++)
+    const int digits = j->digits;
+    for (int c = 0; c < s->cols; c++) {
+        j->digits = c == 0 ? 9 : digits; /* times finer than the screen, for stepping */
         cli_json_numbers(j, s->data + c, s->rows, s->cols);
+    }
+    j->digits = digits;
     cli_json_end_array(j);
     cli_json_end_object(j);
 }

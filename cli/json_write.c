@@ -54,23 +54,13 @@ static void put_string(cli_json *j, const char *s)
     j->bad |= fputc('"', out) == EOF;
     for (const unsigned char *p = (const unsigned char *)(s ? s : ""); *p; p++) {
         switch (*p) {
-        case '"':
-            j->bad |= fputs("\\\"", out) < 0;
-            break;
-        case '\\':
-            j->bad |= fputs("\\\\", out) < 0;
-            break;
-        case '\n':
-            j->bad |= fputs("\\n", out) < 0;
-            break;
-        case '\t':
-            j->bad |= fputs("\\t", out) < 0;
-            break;
+        case '"': j->bad |= fputs("\\\"", out) < 0; break;
+        case '\\': j->bad |= fputs("\\\\", out) < 0; break;
+        case '\n': j->bad |= fputs("\\n", out) < 0; break;
+        case '\t': j->bad |= fputs("\\t", out) < 0; break;
         case '<':
         case '>':
-        case '&':
-            j->bad |= fprintf(out, "\\u%04x", *p) < 0;
-            break;
+        case '&': j->bad |= fprintf(out, "\\u%04x", *p) < 0; break;
         default:
             if (*p < 0x20)
                 j->bad |= fprintf(out, "\\u%04x", *p) < 0;

@@ -15,11 +15,11 @@
  * can sit inside an HTML <script> element ('<', '>', '&' as \u escapes). */
 typedef struct cli_json {
     FILE *out;
-    int digits;       /* significant digits of numbers (%.*g) */
+    int digits; /* significant digits of numbers (%.*g) */
     int depth;
     int after_key;
     unsigned char has_items[CLI_JSON_MAX_DEPTH];
-    int bad;          /* a write failed */
+    int bad; /* a write failed */
 } cli_json;
 
 void cli_json_init(cli_json *j, FILE *out, int digits);
@@ -42,15 +42,15 @@ void cli_json_numbers(cli_json *j, const double *v, long n, long stride);
 
 /* One run of a model kept in memory for a picture: t, the states and the extra outputs. */
 typedef struct cli_series {
-    char label[96];            /* e.g. "rk4, h = 0.01 s" */
+    char label[96]; /* e.g. "rk4, h = 0.01 s" */
     const dyn_tableau *method;
     double step;
-    int cols;                  /* 1 + n_states + n_outputs */
-    long rows;                 /* samples kept */
-    long samples;              /* samples of the run before thinning */
-    double *data;              /* (rows x cols) row-major, owned */
-    int status;                /* dyn_status of the solve */
-    char message[640];         /* why the run stopped, when status != DYN_OK */
+    int cols;          /* 1 + n_states + n_outputs */
+    long rows;         /* samples kept */
+    long samples;      /* samples of the run before thinning */
+    double *data;      /* (rows x cols) row-major, owned */
+    int status;        /* dyn_status of the solve */
+    char message[640]; /* why the run stopped, when status != DYN_OK */
 } cli_series;
 
 /* Run run->model (parameters, initial state, span of run) with method at step, keeping every
@@ -72,7 +72,7 @@ char *cli_series_column_names(const dyn_model *m, char *buf, size_t size);
 /* ---- run options of the commands that draw (view_args.c) ---- */
 
 #define CLI_MAX_COMPARE 8
-#define CLI_MAX_ROWS 2000   /* samples per series that a page or a plot keeps */
+#define CLI_MAX_ROWS 2000 /* samples per series that a page or a plot keeps */
 
 /* Another run to overlay: --compare METHOD[:STEP]; step 0 means the main run's step. */
 typedef struct cli_compare {
@@ -111,8 +111,8 @@ typedef int (*cli_page_data_fn)(cli_json *j, void *ctx);
 /* Write the page: the template web/page.html with the title (HTML-escaped), the style, the
  * body template body_asset (e.g. "report.html"), the data written by data() and every
  * script, all inline: the page makes no request. Returns CLI_OK or CLI_FAILED. */
-int cli_html_page_write(FILE *out, const char *title, const char *body_asset,
-                        cli_page_data_fn data, void *ctx);
+int cli_html_page_write(FILE *out, const char *title, const char *body_asset, cli_page_data_fn data,
+                        void *ctx);
 /* The model's description for a page: name, title, states, outputs (name, unit,
  * description) and the values of the parameters in par. */
 void cli_json_model(cli_json *j, const dyn_model *m, const void *par);
@@ -133,7 +133,7 @@ typedef struct cli_svg_line {
 
 typedef struct cli_svg_plot {
     const char *title;
-    const char *xlabel, *ylabel;   /* with their units, e.g. "t [s]" */
+    const char *xlabel, *ylabel; /* with their units, e.g. "t [s]" */
     int n_lines;
     cli_svg_line lines[CLI_SVG_MAX_LINES];
 } cli_svg_plot;

@@ -134,8 +134,8 @@ int cli_series_record(const cli_run *run, const dyn_tableau *method, double step
     opts.output_ctx = &r;
     dyn_system sys = {m->rhs, n, run->par};
     dyn_result res;
-    s->status = dyn_fixed_solve(method, &sys, run->t0, run->t1, step, run->y0, y, work, &opts,
-                                &res);
+    s->status =
+        dyn_fixed_solve(method, &sys, run->t0, run->t1, step, run->y0, y, work, &opts, &res);
     if (s->status == DYN_ERR_NONFINITE && res.fail_index >= 0)
         snprintf(s->message, sizeof s->message,
                  "%s: state %s became NaN or Inf at t = %.17g; the samples up to t = %.17g "

@@ -18,8 +18,8 @@ static const char *const palette[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e"
                                       "#9467bd", "#8c564b", "#e377c2", "#17becf"};
 
 typedef struct axis {
-    double lo, hi;       /* shown range */
-    double step;         /* between ticks */
+    double lo, hi; /* shown range */
+    double step;   /* between ticks */
 } axis;
 
 /* 1, 2 or 5 times a power of ten, about range / target. */
@@ -135,11 +135,11 @@ static int axes(FILE *out, const cli_svg_plot *p, const axis *ax, const axis *ay
     for (long k = kx0; k <= kx1; k++) {
         const double v = (double)k * ax->step;
         tick_label(v, ax->step, label, sizeof label);
-        bad |= fprintf(out,
-                       "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/><text x=\"%.2f\" "
-                       "y=\"%.2f\" text-anchor=\"middle\" stroke=\"none\">%s</text>\n",
-                       to_px_x(ax, v), y0, to_px_x(ax, v), y0 + 5, to_px_x(ax, v), y0 + 19,
-                       label) < 0;
+        bad |=
+            fprintf(out,
+                    "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/><text x=\"%.2f\" "
+                    "y=\"%.2f\" text-anchor=\"middle\" stroke=\"none\">%s</text>\n",
+                    to_px_x(ax, v), y0, to_px_x(ax, v), y0 + 5, to_px_x(ax, v), y0 + 19, label) < 0;
     }
     for (long k = ky0; k <= ky1; k++) {
         const double v = (double)k * ay->step;
@@ -151,23 +151,27 @@ static int axes(FILE *out, const cli_svg_plot *p, const axis *ax, const axis *ay
                        label) < 0;
     }
     bad |= fputs("</g>\n", out) < 0;
-    bad |= fprintf(out, "<text class=\"xlabel\" x=\"%.2f\" y=\"%.2f\" font-size=\"14\" "
-                        "text-anchor=\"middle\">", (x0 + x1) / 2, H - 18) < 0;
+    bad |= fprintf(out,
+                   "<text class=\"xlabel\" x=\"%.2f\" y=\"%.2f\" font-size=\"14\" "
+                   "text-anchor=\"middle\">",
+                   (x0 + x1) / 2, H - 18) < 0;
     bad |= text_escaped(out, p->xlabel);
-    bad |= fprintf(out, "</text>\n<text class=\"ylabel\" x=\"0\" y=\"0\" font-size=\"14\" "
-                        "text-anchor=\"middle\" transform=\"translate(20 %.2f) rotate(-90)\">",
+    bad |= fprintf(out,
+                   "</text>\n<text class=\"ylabel\" x=\"0\" y=\"0\" font-size=\"14\" "
+                   "text-anchor=\"middle\" transform=\"translate(20 %.2f) rotate(-90)\">",
                    (y0 + y1) / 2) < 0;
     bad |= text_escaped(out, p->ylabel);
-    bad |= fprintf(out, "</text>\n<text class=\"title\" x=\"%.2f\" y=\"26\" font-size=\"16\" "
-                        "text-anchor=\"middle\">", W / 2) < 0;
+    bad |= fprintf(out,
+                   "</text>\n<text class=\"title\" x=\"%.2f\" y=\"26\" font-size=\"16\" "
+                   "text-anchor=\"middle\">",
+                   W / 2) < 0;
     bad |= text_escaped(out, p->title);
     bad |= fputs("</text>\n", out) < 0;
     return bad;
 }
 
 /* One line: polylines of its runs of finite points. */
-static int line(FILE *out, const cli_svg_line *l, const char *color, const axis *ax,
-                const axis *ay)
+static int line(FILE *out, const cli_svg_line *l, const char *color, const axis *ax, const axis *ay)
 {
     int bad = 0, open = 0;
     for (long k = 0; k < l->n; k++) {
@@ -179,8 +183,10 @@ static int line(FILE *out, const cli_svg_line *l, const char *color, const axis 
             continue;
         }
         if (!open)
-            bad |= fprintf(out, "<polyline fill=\"none\" stroke=\"%s\" stroke-width=\"1.6\" "
-                                "stroke-linejoin=\"round\" points=\"", color) < 0;
+            bad |= fprintf(out,
+                           "<polyline fill=\"none\" stroke=\"%s\" stroke-width=\"1.6\" "
+                           "stroke-linejoin=\"round\" points=\"",
+                           color) < 0;
         bad |= fprintf(out, "%s%.2f,%.2f", open ? " " : "", to_px_x(ax, x), to_px_y(ay, y)) < 0;
         open = 1;
     }
@@ -197,13 +203,16 @@ static int legend(FILE *out, const cli_svg_plot *p)
         longest = strlen(p->lines[i].label) > longest ? strlen(p->lines[i].label) : longest;
     const double w = 40.0 + 7.0 * (double)longest, h = 8.0 + 18.0 * p->n_lines;
     const double x = W - RIGHT - w - 8, y = TOP + 8;
-    bad |= fprintf(out, "<g class=\"legend\" font-size=\"12\">\n<rect x=\"%.2f\" y=\"%.2f\" "
-                        "width=\"%.2f\" height=\"%.2f\" fill=\"#fff\" fill-opacity=\"0.85\" "
-                        "stroke=\"#bbb\"/>\n", x, y, w, h) < 0;
+    bad |= fprintf(out,
+                   "<g class=\"legend\" font-size=\"12\">\n<rect x=\"%.2f\" y=\"%.2f\" "
+                   "width=\"%.2f\" height=\"%.2f\" fill=\"#fff\" fill-opacity=\"0.85\" "
+                   "stroke=\"#bbb\"/>\n",
+                   x, y, w, h) < 0;
     for (int i = 0; i < p->n_lines; i++) {
         const double ly = y + 16 + 18.0 * i;
-        bad |= fprintf(out, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke=\"%s\" "
-                            "stroke-width=\"2\"/><text x=\"%.2f\" y=\"%.2f\">",
+        bad |= fprintf(out,
+                       "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke=\"%s\" "
+                       "stroke-width=\"2\"/><text x=\"%.2f\" y=\"%.2f\">",
                        x + 8, ly - 4, x + 30, ly - 4,
                        palette[i % (int)(sizeof palette / sizeof *palette)], x + 36, ly) < 0;
         bad |= text_escaped(out, p->lines[i].label);
@@ -220,17 +229,18 @@ int cli_svg_write(FILE *out, const cli_svg_plot *p)
     const axis ax = make_axis(lo, hi, 8);
     data_range(p, 0, &lo, &hi);
     const axis ay = make_axis(lo, hi, 6);
-    int bad = fprintf(out, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-                           "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" "
-                           "height=\"%.0f\" viewBox=\"0 0 %.0f %.0f\" "
-                           "font-family=\"sans-serif\">\n"
-                           "<rect width=\"100%%\" height=\"100%%\" fill=\"#fff\"/>\n",
+    int bad = fprintf(out,
+                      "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+                      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" "
+                      "height=\"%.0f\" viewBox=\"0 0 %.0f %.0f\" "
+                      "font-family=\"sans-serif\">\n"
+                      "<rect width=\"100%%\" height=\"100%%\" fill=\"#fff\"/>\n",
                       W, H, W, H) < 0;
     bad |= axes(out, p, &ax, &ay);
     bad |= fputs("<g class=\"lines\">\n", out) < 0;
     for (int i = 0; i < p->n_lines; i++)
-        bad |= line(out, &p->lines[i], palette[i % (int)(sizeof palette / sizeof *palette)], &ax,
-                    &ay);
+        bad |=
+            line(out, &p->lines[i], palette[i % (int)(sizeof palette / sizeof *palette)], &ax, &ay);
     bad |= fputs("</g>\n", out) < 0;
     bad |= legend(out, p);
     bad |= fputs("</svg>\n", out) < 0;

@@ -6,8 +6,8 @@
 #include <stddef.h>
 
 typedef struct cli_web_asset {
-    const char *name;           /* path under web/, e.g. "page.html", "js/plot.js" */
-    const unsigned char *data;  /* size bytes, followed by a NUL */
+    const char *name;          /* path under web/, e.g. "page.html", "js/plot.js" */
+    const unsigned char *data; /* size bytes, followed by a NUL */
     size_t size;
 } cli_web_asset;
 

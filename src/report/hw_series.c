@@ -94,8 +94,8 @@ static int record(long k, double t, const double *y, void *ctx)
  * extra_cols more columns (zero, for the caller to fill). */
 static dyn_hw_table *record_run(dyn_hw_series *s, const char *id, const char *title,
                                 const dyn_model *m, void *par, const char *method, double t1,
-                                double h, const double *y0, long every, int extra_cols,
-                                char *err, size_t errlen)
+                                double h, const double *y0, long every, int extra_cols, char *err,
+                                size_t errlen)
 {
     dyn_grid grid;
     if (dyn_grid_plan(0.0, t1, h, DYN_END_EXACT, &grid, err, errlen))
@@ -115,8 +115,7 @@ static dyn_hw_table *record_run(dyn_hw_series *s, const char *id, const char *ti
 
 /* ---- problem 1 ---- */
 
-static int pendulum_series(const dyn_hw_pendulum *hw, dyn_hw_series *s, char *err,
-                           size_t errlen)
+static int pendulum_series(const dyn_hw_pendulum *hw, dyn_hw_series *s, char *err, size_t errlen)
 {
     const dyn_model *m = &dyn_model_pendulum;
     dyn_pendulum_par p;
@@ -136,9 +135,9 @@ static int pendulum_series(const dyn_hw_pendulum *hw, dyn_hw_series *s, char *er
         {"pendulum.step", "nonlinear (RK4, reference step)", "rk4", hw->te, hw->ref_step, 10, 1},
     };
     for (int i = 0; i < 3; i++) {
-        dyn_hw_table *tab = record_run(s, runs[i].id, runs[i].title, m, &p, runs[i].method,
-                                       runs[i].t1, runs[i].h, hw->y0, runs[i].every,
-                                       2 * runs[i].small_angle, err, errlen);
+        dyn_hw_table *tab =
+            record_run(s, runs[i].id, runs[i].title, m, &p, runs[i].method, runs[i].t1, runs[i].h,
+                       hw->y0, runs[i].every, 2 * runs[i].small_angle, err, errlen);
         if (!tab)
             return 1;
         if (!runs[i].small_angle)
@@ -161,22 +160,21 @@ static int pendulum_series(const dyn_hw_pendulum *hw, dyn_hw_series *s, char *er
 
 static const double vdp_steps[] = {0.1, 0.05, 0.02, 0.01, 0.005, 0.002, 0.001};
 
-static int vanderpol_series(const dyn_hw_vanderpol *hw, dyn_hw_series *s, char *err,
-                            size_t errlen)
+static int vanderpol_series(const dyn_hw_vanderpol *hw, dyn_hw_series *s, char *err, size_t errlen)
 {
     const dyn_model *m = &dyn_model_vanderpol;
     dyn_vanderpol_par p = {hw->mu};
     static const char *const methods[4] = {"euler", "heun", "midpoint", "rk4"};
-    static const char *const ids[4] = {"vanderpol.euler", "vanderpol.heun",
-                                       "vanderpol.midpoint", "vanderpol.rk4"};
+    static const char *const ids[4] = {"vanderpol.euler", "vanderpol.heun", "vanderpol.midpoint",
+                                       "vanderpol.rk4"};
     static const char *const titles[4] = {"Euler", "modified Euler", "RK2 (midpoint)", "RK4"};
     for (int i = 0; i < 4; i++)
-        if (!record_run(s, ids[i], titles[i], m, &p, methods[i], hw->t1, hw->step, hw->y0, 1,
-                        0, err, errlen))
+        if (!record_run(s, ids[i], titles[i], m, &p, methods[i], hw->t1, hw->step, hw->y0, 1, 0,
+                        err, errlen))
             return 1;
     const int n_steps = (int)(sizeof vdp_steps / sizeof vdp_steps[0]);
-    dyn_hw_table *tab = new_table(s, "vanderpol.steps", "final-state error against the step",
-                                  NULL, 0.0, err, errlen);
+    dyn_hw_table *tab = new_table(s, "vanderpol.steps", "final-state error against the step", NULL,
+                                  0.0, err, errlen);
     if (!tab)
         return 1;
     add_column(tab, "step", "s");
@@ -211,9 +209,9 @@ static int plane_series(const dyn_hw_plane *hw, dyn_hw_series *s, char *err, siz
     const dyn_hw_table *r = e ? record_run(s, "plane.rk4", "RK4", m, &p, "rk4", hw->end_time_s,
                                            hw->step_s, m->y0, 1, 0, err, errlen)
                               : NULL;
-    dyn_hw_table *tab = r ? new_table(s, "plane.compare", "Euler against RK4", NULL, hw->step_s,
-                                      err, errlen)
-                          : NULL;
+    dyn_hw_table *tab =
+        r ? new_table(s, "plane.compare", "Euler against RK4", NULL, hw->step_s, err, errlen)
+          : NULL;
     if (!tab)
         return 1;
     add_column(tab, "t", "s");
@@ -273,8 +271,8 @@ static int cart_series(const dyn_hw_cart *hw, dyn_hw_series *s, char *err, size_
         rc = 1;
     }
     rc = rc ? rc : dyn_cart_set_forces(&p, table, hw->N, DYN_INTERP_HOLD, err, errlen);
-    if (!rc && !record_run(s, "cart.forward", "forward, modified Euler, forces held", m, &p,
-                           "heun", hw->te, hw->Ts, y0, 1, 0, err, errlen))
+    if (!rc && !record_run(s, "cart.forward", "forward, modified Euler, forces held", m, &p, "heun",
+                           hw->te, hw->Ts, y0, 1, 0, err, errlen))
         rc = 1;
     free(table);
     return rc;

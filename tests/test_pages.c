@@ -1,0 +1,389 @@
+/* The commands that draw, through the built binary (DYNKIT_CLI):
+ * - `plot` writes a standalone SVG with a frame, ticks with numbers, axis labels with the
+ *   model's units, a legend, and one polyline per line with one point per sample (thinned
+ *   to at most 2000 for a long run, first and last kept); bad names exit 2 and list what is
+ *   accepted (t, the states and the outputs).
+ * - `animate` and `report --html` write one self-contained page: no http(s) reference, no
+ *   external script, style or image, no marker of the template left, the data inline.
+ * - --compare METHOD[:STEP] is validated (unknown method, bad step, missing value: exit 2),
+ *   and each run it asks for is in the page. */
+#define _POSIX_C_SOURCE 200809L
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "test_util.h"
+
+static char tmpdir[256];
+
+typedef struct run_result {
+    int status;
+    char *out, *err;
+} run_result;
+
+static char *slurp(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    size_t cap = 1 << 16, used = 0, got;
+    char *buf = malloc(cap);
+    assert_non_null(buf);
+    while (f && (got = fread(buf + used, 1, cap - used - 1, f)) > 0) {
+        used += got;
+        if (cap - used < 2) {
+            cap *= 2;
+            buf = realloc(buf, cap);
+            assert_non_null(buf);
+        }
+    }
+    if (f)
+        fclose(f);
+    buf[used] = '\0';
+    return buf;
+}
+
+/* Run `dynkit ARGS` with %s replaced by the temporary directory where given. */
+static run_result dynkit(const char *fmt, ...)
+{
+    char args[2048], cmd[4096], path[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(args, sizeof args, fmt, ap);
+    va_end(ap);
+    snprintf(cmd, sizeof cmd, "'%s' %s >'%s/out' 2>'%s/err' </dev/null", DYNKIT_CLI, args, tmpdir,
+             tmpdir);
+    run_result r;
+    int w = system(cmd);
+    r.status = (w != -1 && WIFEXITED(w)) ? WEXITSTATUS(w) : -1;
+    snprintf(path, sizeof path, "%s/out", tmpdir);
+    r.out = slurp(path);
+    snprintf(path, sizeof path, "%s/err", tmpdir);
+    r.err = slurp(path);
+    return r;
+}
+
+static void done(run_result *r)
+{
+    free(r->out);
+    free(r->err);
+}
+
+static char *file_in_tmp(const char *name)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s", tmpdir, name);
+    return slurp(path);
+}
+
+static int count(const char *text, const char *what)
+{
+    int n = 0;
+    for (const char *p = text; (p = strstr(p, what)) != NULL; p += strlen(what))
+        n++;
+    return n;
+}
+
+/* Points of the k-th polyline (0-based) of an SVG, or -1 when there is none. */
+static long polyline_points(const char *svg, int k)
+{
+    const char *p = svg;
+    for (int i = 0; i <= k; i++) {
+        p = strstr(p, "<polyline");
+        if (!p)
+            return -1;
+        p += 9;
+    }
+    p = strstr(p, "points=\"");
+    assert_non_null(p);
+    p += 8;
+    long n = 1;
+    for (; *p && *p != '"'; p++)
+        n += *p == ' ';
+    return n;
+}
+
+/* The text of the element with class name (first one), into buf. */
+static const char *element_text(const char *svg, const char *cls, char *buf, size_t size)
+{
+    char key[64];
+    snprintf(key, sizeof key, "class=\"%s\"", cls);
+    const char *p = strstr(svg, key);
+    buf[0] = '\0';
+    if (!p || !(p = strchr(p, '>')))
+        return buf;
+    const char *end = strchr(++p, '<');
+    size_t len = end ? (size_t)(end - p) : 0;
+    if (len >= size)
+        len = size - 1;
+    memcpy(buf, p, len);
+    buf[len] = '\0';
+    return buf;
+}
+
+static int setup(void **state)
+{
+    (void)state;
+    const char *base = getenv("TMPDIR");
+    snprintf(tmpdir, sizeof tmpdir, "%s/dynkit_pages_XXXXXX", base && *base ? base : "/tmp");
+    return mkdtemp(tmpdir) ? 0 : -1;
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    static const char *const files[] = {"out",         "err",        "a.svg",     "b.svg", "c.svg",
+                                        "report.html", "plane.html", "cart.html", "x.html"};
+    char path[512];
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+        snprintf(path, sizeof path, "%s/%s", tmpdir, files[i]);
+        unlink(path);
+    }
+    return rmdir(tmpdir);
+}
+
+/* ---- plot ---- */
+
+static void test_plot_svg_has_axes_labels_units_and_every_sample(void **state)
+{
+    (void)state;
+    run_result r = dynkit("plot pendulum --method rk4 --step 0.01 --tspan 0:2 --y phi "
+                          "--output '%s/a.svg'",
+                          tmpdir);
+    CHECK(r.status == 0, "plot exit %d: %s", r.status, r.err);
+    done(&r);
+    char *svg = file_in_tmp("a.svg"), text[256];
+    CHECK(strncmp(svg, "<?xml", 5) == 0 && strstr(svg, "<svg xmlns=\"http://www.w3.org/2000/svg\""),
+          "not an SVG document: %.80s", svg);
+    CHECK(strstr(svg, "</svg>") != NULL, "unterminated SVG");
+    CHECK(strstr(svg, "class=\"frame\"") != NULL, "no frame");
+    CHECK(strcmp(element_text(svg, "xlabel", text, sizeof text), "t [s]") == 0, "x label '%s'",
+          text);
+    CHECK(strcmp(element_text(svg, "ylabel", text, sizeof text), "phi [rad]") == 0, "y label '%s'",
+          text);
+    CHECK(strstr(element_text(svg, "title", text, sizeof text), "pendulum") != NULL, "title '%s'",
+          text);
+    /* ticks: a numbered tick for 0 and 2 on the time axis, several on each axis */
+    CHECK(count(svg, "text-anchor=\"middle\" stroke=\"none\">") >= 4, "too few x ticks");
+    CHECK(count(svg, "text-anchor=\"end\" stroke=\"none\">") >= 4, "too few y ticks");
+    CHECK(strstr(svg, ">0.0</text>") || strstr(svg, ">0</text>"), "no tick at 0");
+    CHECK(strstr(svg, "class=\"legend\"") != NULL, "no legend");
+    CHECK(count(svg, "<polyline") == 1, "%d polylines", count(svg, "<polyline"));
+    CHECK(polyline_points(svg, 0) == 201, "%ld points for 201 samples", polyline_points(svg, 0));
+    free(svg);
+}
+
+static void test_plot_several_names_units_and_compare(void **state)
+{
+    (void)state;
+    run_result r = dynkit("plot pendulum --method rk4 --step 0.01 --tspan 0:1 --y phi,dphi "
+                          "--compare euler:0.02 --output '%s/b.svg'",
+                          tmpdir);
+    CHECK(r.status == 0, "plot exit %d: %s", r.status, r.err);
+    done(&r);
+    char *svg = file_in_tmp("b.svg"), text[256];
+    CHECK(strcmp(element_text(svg, "ylabel", text, sizeof text), "phi [rad], dphi [rad/s]") == 0,
+          "y label '%s'", text);
+    CHECK(count(svg, "<polyline") == 4, "%d polylines for 2 names x 2 runs",
+          count(svg, "<polyline"));
+    CHECK(polyline_points(svg, 0) == 101 && polyline_points(svg, 1) == 101, "main run points");
+    CHECK(polyline_points(svg, 2) == 51 && polyline_points(svg, 3) == 51, "euler:0.02 points");
+    CHECK(strstr(svg, "phi (rk4, h = 0.01 s)") && strstr(svg, "dphi (euler, h = 0.02 s)"),
+          "legend does not name the runs");
+    free(svg);
+    /* another abscissa, and an extra output as a name */
+    r = dynkit("plot vanderpol --x y1 --y y2 --output '%s/c.svg'", tmpdir);
+    CHECK(r.status == 0, "phase plot exit %d: %s", r.status, r.err);
+    done(&r);
+    svg = file_in_tmp("c.svg");
+    CHECK(strstr(element_text(svg, "xlabel", text, sizeof text), "y1 [") == text, "x label '%s'",
+          text);
+    free(svg);
+    r = dynkit("plot pendulum --y energy,height");
+    CHECK(r.status == 0 && strstr(r.out, "energy [J], height [m]"), "outputs as names: %d %s",
+          r.status, r.err);
+    done(&r);
+}
+
+static void test_plot_long_run_is_thinned(void **state)
+{
+    (void)state;
+    run_result r = dynkit("plot vanderpol --step 0.001 --tspan 0:100 --y y1");
+    CHECK(r.status == 0, "plot exit %d: %s", r.status, r.err);
+    long n = polyline_points(r.out, 0);
+    CHECK(n <= 2000 && n >= 1900, "%ld points of 100001 samples (want at most 2000)", n);
+    /* the first point is at the left of the frame, the last at t = 100 */
+    const char *pts = strstr(strstr(r.out, "<polyline"), "points=\"") + 8;
+    double x0 = strtod(pts, NULL);
+    const char *last = strchr(pts, '"');
+    while (last > pts && last[-1] != ' ')
+        last--;
+    double x1 = strtod(last, NULL);
+    CHECK(x0 > 84.0 && x0 < 120.0 && x1 > 700.0 && x1 < 776.0, "ends at %g and %g px", x0, x1);
+    done(&r);
+}
+
+static void test_plot_bad_names_exit_2(void **state)
+{
+    (void)state;
+    run_result r = dynkit("plot vanderpol --y y1,nope --output '%s/a.svg'", tmpdir);
+    CHECK(r.status == 2, "bad --y exit %d", r.status);
+    CHECK(strstr(r.err, "'nope'") && strstr(r.err, "accepted: t, y1, y2"),
+          "message does not list the names: %s", r.err);
+    CHECK(r.out[0] == '\0', "stdout not empty");
+    done(&r);
+    r = dynkit("plot pendulum --x nope --y phi");
+    CHECK(r.status == 2 && strstr(r.err, "t, phi, dphi, energy, height"), "bad --x: %d %s",
+          r.status, r.err);
+    done(&r);
+    r = dynkit("plot pendulum");
+    CHECK(r.status == 2 && strstr(r.err, "missing --y"), "missing --y: %d %s", r.status, r.err);
+    done(&r);
+    r = dynkit("plot pendulum --y");
+    CHECK(r.status == 2, "--y without a value: %d", r.status);
+    done(&r);
+    r = dynkit("plot nomodel --y x");
+    CHECK(r.status == 2 && strstr(r.err, "unknown model"), "unknown model: %d", r.status);
+    done(&r);
+}
+
+/* ---- --compare ---- */
+
+static void test_compare_is_validated(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *value, *says;
+    } bad[] = {
+        {"nope", "unknown method 'nope'"},
+        {"rk4:0", "the step '0'"},
+        {"rk4:-1", "the step '-1'"},
+        {"rk4:abc", "the step 'abc'"},
+        {":0.1", "give METHOD or METHOD:STEP"},
+        {"rk4:", "the step ''"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        run_result r =
+            dynkit("animate vanderpol --compare '%s' --output '%s/x.html'", bad[i].value, tmpdir);
+        CHECK(r.status == 2, "--compare %s: exit %d", bad[i].value, r.status);
+        CHECK(strstr(r.err, bad[i].says) != NULL, "--compare %s: message '%s'", bad[i].value,
+              r.err);
+        if (i == 0)
+            CHECK(strstr(r.err, "rk4") && strstr(r.err, "euler"),
+                  "unknown method: message does not list the methods: %s", r.err);
+        done(&r);
+    }
+    run_result r = dynkit("animate vanderpol --compare");
+    CHECK(r.status == 2 && strstr(r.err, "--compare needs a value"), "missing value: %d %s",
+          r.status, r.err);
+    done(&r);
+    r = dynkit("animate vanderpol --final");
+    CHECK(r.status == 2, "--final accepted by animate");
+    done(&r);
+    r = dynkit("plot vanderpol --y y1 --compare euler --compare rk4:0.001 --compare heun:pi/100");
+    CHECK(r.status == 0 && count(r.out, "<polyline") == 4, "good --compare: %d %s", r.status,
+          r.err);
+    CHECK(strstr(r.out, "heun, h = 0.0314159 s") != NULL, "step pi/100 not read");
+    done(&r);
+}
+
+/* ---- pages ---- */
+
+static void check_self_contained(const char *html, const char *what)
+{
+    CHECK(strncmp(html, "<!DOCTYPE html>", 15) == 0, "%s: no doctype", what);
+    CHECK(strstr(html, "</html>") != NULL, "%s: not complete", what);
+    CHECK(!strstr(html, "http://") && !strstr(html, "https://"), "%s: has an http(s) reference",
+          what);
+    CHECK(!strstr(html, "<link") && !strstr(html, "src=") && !strstr(html, "url("),
+          "%s: refers to another file", what);
+    CHECK(!strstr(html, "<!--dynkit:"), "%s: a template marker is left", what);
+    CHECK(strstr(html, "<style>") && strstr(html, "<script>"), "%s: style or script missing", what);
+    CHECK(strstr(html, "<script id=\"dynkit-data\" type=\"application/json\">{") != NULL,
+          "%s: no data", what);
+    CHECK(count(html, "</script>") == 2, "%s: a script closes early", what);
+    CHECK(strstr(html, "default-src 'none'") != NULL, "%s: no content security policy", what);
+}
+
+static void test_report_html_is_self_contained(void **state)
+{
+    (void)state;
+    run_result r = dynkit("report --html '%s/report.html'", tmpdir);
+    CHECK(r.status == 0, "report --html exit %d: %s", r.status, r.err);
+    CHECK(r.out[0] == '\0', "report --html also printed to stdout");
+    done(&r);
+    char *html = file_in_tmp("report.html");
+    check_self_contained(html, "report");
+    CHECK(strlen(html) < 1000000, "report page of %zu bytes", strlen(html));
+    /* the answers as `report --json` gives them, and the runs behind them */
+    r = dynkit("report --json");
+    CHECK(r.status == 0, "report --json");
+    const char *key = strstr(r.out, "\"plane.distance_m\": ");
+    CHECK(key != NULL, "no plane.distance_m");
+    char want[128];
+    snprintf(want, sizeof want, "%.*s", (int)strcspn(key, ",\n"), key);
+    CHECK(strstr(html, want) != NULL, "page lacks '%s'", want);
+    done(&r);
+    static const char *const series[] = {
+        "\"pendulum.nonlinear\":", "\"vanderpol.steps\":", "\"plane.euler\":",
+        "\"plane.compare\":",      "\"cart.forward\":",    "\"cart.prescribed\":"};
+    for (size_t i = 0; i < sizeof series / sizeof series[0]; i++)
+        CHECK(strstr(html, series[i]) != NULL, "page lacks the series %s", series[i]);
+    free(html);
+    r = dynkit("report --html");
+    CHECK(r.status == 2, "--html without a file: %d", r.status);
+    done(&r);
+}
+
+static void test_animate_pages(void **state)
+{
+    (void)state;
+    run_result r = dynkit("animate plane --compare euler --output '%s/plane.html'", tmpdir);
+    CHECK(r.status == 0, "animate plane exit %d: %s", r.status, r.err);
+    done(&r);
+    char *html = file_in_tmp("plane.html");
+    check_self_contained(html, "plane");
+    CHECK(strstr(html, "\"label\":\"rk4, h = 0.01 s\"") &&
+              strstr(html, "\"label\":\"euler, h = 0.01 s\""),
+          "the two runs are not in the page");
+    CHECK(strstr(html, "\"length_plane\":2") && strstr(html, "\"wingspan\":4") &&
+              strstr(html, "\"height_fin\":0.5"),
+          "the plane's geometry is not in the page");
+    free(html);
+    r = dynkit("animate cart --set length_cart=3 --output '%s/cart.html'", tmpdir);
+    CHECK(r.status == 0, "animate cart exit %d: %s", r.status, r.err);
+    done(&r);
+    html = file_in_tmp("cart.html");
+    check_self_contained(html, "cart");
+    CHECK(strstr(html, "\"length_cart\":3") != NULL, "--set is not in the page");
+    free(html);
+    r = dynkit("animate vanderpol");
+    CHECK(r.status == 0 && strncmp(r.out, "<!DOCTYPE html>", 15) == 0,
+          "without --output the page goes to stdout");
+    done(&r);
+    r = dynkit("animate vanderpol --step 0.001 --tspan 0:100 --output '%s/x.html'", tmpdir);
+    CHECK(r.status == 0, "long run");
+    done(&r);
+    html = file_in_tmp("x.html");
+    CHECK(strlen(html) < 200000, "a long run is not thinned: %zu bytes", strlen(html));
+    CHECK(strstr(html, "\"samples\":100001") != NULL, "the page does not say how many samples");
+    free(html);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_plot_svg_has_axes_labels_units_and_every_sample),
+        cmocka_unit_test(test_plot_several_names_units_and_compare),
+        cmocka_unit_test(test_plot_long_run_is_thinned),
+        cmocka_unit_test(test_plot_bad_names_exit_2),
+        cmocka_unit_test(test_compare_is_validated),
+        cmocka_unit_test(test_report_html_is_self_contained),
+        cmocka_unit_test(test_animate_pages),
+    };
+    return cmocka_run_group_tests(tests, setup, teardown);
+}

@@ -1,18 +1,36 @@
 #!/usr/bin/env bash
 # Install what building and testing dynkit needs on Debian/Ubuntu (as root, or through sudo).
-# The core library needs only a C11 compiler and libm; the rest is for the CLI's tests.
+# The core library needs only a C11 compiler and libm; the rest is for the CLI's tests:
+# cmocka, and for the checks of the HTML pages in a real browser Chromium, node and npm
+# (Debian's packages, each only when missing) and playwright-core from npm (npm ci in
+# tests/browser, only when node_modules does not match package-lock.json). Safe to rerun.
 set -euo pipefail
-packages=(build-essential cmake pkg-config libcmocka-dev clang)
+cd "$(dirname "$0")/.."
+packages=(build-essential cmake pkg-config libcmocka-dev clang chromium)
+# node and npm may come from elsewhere (e.g. a newer nodejs that bundles npm): keep those
+command -v node >/dev/null 2>&1 || packages+=(nodejs)
+command -v npm >/dev/null 2>&1 || packages+=(npm)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 if [ ${#missing[@]} -eq 0 ]; then
-  echo "install-deps: everything is installed"
-  exit 0
+  echo "install-deps: the system packages are installed"
+else
+  SUDO=""
+  [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  echo "install-deps: installing ${missing[*]}"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
-SUDO=""
-[ "$(id -u)" -eq 0 ] || SUDO="sudo"
-echo "install-deps: installing ${missing[*]}"
-$SUDO apt-get update -qq
-DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+
+# playwright-core for tests/browser, at the version of package-lock.json
+browser=tests/browser
+locked=$(node -e "console.log(require('./$browser/package-lock.json').packages['node_modules/playwright-core'].version)")
+installed=$(node -e "try { console.log(require('./$browser/node_modules/playwright-core/package.json').version) } catch (e) { console.log('none') }")
+if [ "$locked" = "$installed" ]; then
+  echo "install-deps: playwright-core $installed is installed in $browser"
+else
+  echo "install-deps: npm ci in $browser (playwright-core $locked)"
+  (cd "$browser" && npm ci --no-audit --no-fund)
+fi

@@ -8,7 +8,8 @@
 //
 // Usage: node run.mjs DYNKIT_BINARY [ARTIFACTS_DIR]
 // Exit status: 0 all passed, 1 a check failed, 77 skipped (no Chromium or no node_modules;
-// CTest reports it as skipped).
+// CTest reports it as skipped). Environment: DYNKIT_CHROMIUM, the browser (default
+// /usr/bin/chromium); DYNKIT_REQUIRE_BROWSER=1 fails instead of skipping.
 import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
@@ -21,7 +22,12 @@ const dynkit = process.argv[2];
 const artifacts = path.resolve(process.argv[3] || path.join(here, '..', '..', 'build', 'tests', 'artifacts'));
 const chromiumPath = process.env.DYNKIT_CHROMIUM || '/usr/bin/chromium';
 
+// DYNKIT_REQUIRE_BROWSER=1 (CI) turns a skip into a failure.
 function skip(why) {
+  if (process.env.DYNKIT_REQUIRE_BROWSER === '1') {
+    console.log(`FAIL: ${why} (DYNKIT_REQUIRE_BROWSER=1)`);
+    process.exit(1);
+  }
   console.log(`SKIP: ${why}`);
   process.exit(SKIP);
 }

@@ -45,7 +45,7 @@
     for (const name of names) {
       const cell = DK.el('div', { class: 'plot-cell' });
       plots.appendChild(cell);
-      DK.timePlot(cell, runs, name, player, { height: 200 });
+      DK.timePlot(cell, runs, name, player, { height: kind ? 240 : 330 });
     }
     player.activate();
     return player;

@@ -286,17 +286,19 @@
         ctx.beginPath(); ctx.moveTo(x, this.m.t); ctx.lineTo(x, this.h - this.m.b); ctx.stroke();
       }
       if (t !== null && o.cursor !== 'none') {
-        for (const s of o.series) {
-          if (s.noCursor) continue;
+        /* the first series' dots are drawn largest, so dots on top of each other all show */
+        const n = o.series.length;
+        o.series.forEach((s, i) => {
+          if (s.noCursor) return;
           const v = this.valueAt(s, t);
-          if (!v || v.y === null || !isFinite(v.y) || !isFinite(v.x)) continue;
+          if (!v || v.y === null || !isFinite(v.y) || !isFinite(v.x)) return;
           ctx.fillStyle = s.color;
           ctx.strokeStyle = '#fff';
           ctx.lineWidth = 1.5;
           ctx.beginPath();
-          ctx.arc(this.px(v.x), this.py(v.y), o.cursor === 'points' ? 5 : 3.5, 0, 2 * Math.PI);
+          ctx.arc(this.px(v.x), this.py(v.y), (o.cursor === 'points' ? 4.5 : 3.5) + 1.5 * Math.min(n - 1 - i, 3), 0, 2 * Math.PI);
           ctx.fill(); ctx.stroke();
-        }
+        });
       }
       ctx.restore();
       this.drawLegend(ctx, t);

@@ -88,7 +88,7 @@
     const dot = (label, err, color) => ({ label, color, x: [te], y: [Math.abs(err)], t: [te], markers: 5, width: 0 });
     const zoom = new DK.Plot(figure('pendulum-zoom', '1e and 1f: |error| against the nonlinear solution at tₑ = 0.2 s, on a log scale; the small-angle error grows from zero during the step.'), {
       title: '|error| at tₑ (1e, 1f)', xlabel: 't [s]', ylabel: '|φ − φ_nonlinear| [rad]', logy: true, cursor: 'none', legend: 'br', unitY: 'rad',
-      xrange: [0, te * 1.08],
+      xrange: [0, te * 1.08], yrange: [1e-9, 1e-2],
       series: [
         { label: 'small-angle', color: C.green, x: tcol, y: err.map(Math.abs), t: tcol },
         dot('one Euler step of 0.2 s', R['pendulum.error_euler_rad'], C.red),

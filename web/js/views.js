@@ -155,7 +155,7 @@
     }
     radius += 0.5 * Math.max(par.wingspan, par.length_plane);
     const state = { t: player.t };
-    const scene = new DK.Scene3D(canvas, { target: centre, distance: 2.8 * radius, azimuth: -1.05, elevation: 0.32 }, () => draw());
+    const scene = new DK.Scene3D(canvas, { target: centre, distance: 3.2 * radius, azimuth: -1.05, elevation: 0.32 }, () => draw());
     const trails = runs.map(r => r.t.map((_, k) => D([r.cols.sX[k], r.cols.sY[k], r.cols.sZ[k]])));
     let w = 0, h = 0, dpr = 1;
     function size() {

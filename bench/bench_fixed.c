@@ -142,9 +142,15 @@ static const double rk4_a[16] = {0.0, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0,
                                  0.0, 0.5, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0};
 static const double rk4_b[4] = {1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0};
 static const double rk4_c[4] = {0.0, 0.5, 0.5, 1.0};
-static const dyn_tableau RK4_CONST = {
-    "rk4", NULL, "classical RK4 (constant copy)", "bench", DYN_KIND_EXPLICIT_RK, 4, 4, rk4_a,
-    rk4_b, rk4_c};
+static const dyn_tableau RK4_CONST = {.name = "rk4",
+                                      .title = "classical RK4 (constant copy)",
+                                      .reference = "bench",
+                                      .kind = DYN_KIND_EXPLICIT_RK,
+                                      .stages = 4,
+                                      .order = 4,
+                                      .a = rk4_a,
+                                      .b = rk4_b,
+                                      .c = rk4_c};
 
 typedef int (*inline_fn)(const dyn_tableau *m, void *par, double t1, double h, const double *y0,
                          double *y, double *work, dyn_result *res);
@@ -396,7 +402,9 @@ static int check_unplanned_path(const dyn_tableau *rk4)
         b[i] = rk4->b[i];
         c[i] = rk4->c[i];
     }
-    const dyn_tableau padded = {"rk4-padded", NULL, "", "", DYN_KIND_EXPLICIT_RK, S, 4, a, b, c};
+    const dyn_tableau padded = {.name = "rk4-padded", .title = "", .reference = "",
+                                .kind = DYN_KIND_EXPLICIT_RK, .stages = S, .order = 4,
+                                .a = a, .b = b, .c = c};
     fail_par p = {1.0, INFINITY, 0};
     const dyn_system sys = {fail_rhs, 2, &p};
     const double y0[2] = {2.0, 0.0};

@@ -1,4 +1,5 @@
 /* dynkit/ode.h — the ODE core: systems, Butcher tables, the fixed-step driver.
+ * (The adaptive driver, dense output and events: dynkit/solve.h.)
  *
  * A system is dy/dt = f(t, y; par) with the GSL/SUNDIALS calling convention: f writes
  * dydt and returns 0, or returns non-zero to stop the solve (the value is reported back).
@@ -26,12 +27,15 @@ typedef int (*dyn_rhs_fn)(double t, const double *y, double *dydt, void *par);
  * return 0, or non-zero to stop. Used by the stiff methods. */
 typedef int (*dyn_jac_fn)(double t, const double *y, double *J, void *par);
 
-/* An event: a zero crossing of g(t, y; par), located on the solution. */
+/* An event: a sign change of g(t, y; par), located on the solution (dyn_solve).
+ * An event happens where g changes sign: from < 0 to > 0 (rising) or > 0 to < 0 (falling),
+ * passing through or jumping over zero. A zero at the start time and a touch of zero
+ * without a change of sign are not events. */
 typedef struct dyn_event {
     const char *name;        /* e.g. "turn" */
     const char *description; /* one line for humans */
     double (*g)(double t, const double *y, void *par);
-    int direction;           /* +1 rising (g goes from < 0 to >= 0), -1 falling, 0 both */
+    int direction;           /* +1 rising only, -1 falling only, 0 both */
     int terminal;            /* 1: stop the solve at the first occurrence (default for it) */
 } dyn_event;
 
@@ -50,19 +54,26 @@ typedef enum dyn_status {
     DYN_ERR_NONFINITE = 3, /* a state became NaN or Inf (see fail_t, fail_index) */
     DYN_STOPPED = 4,       /* the output callback asked to stop */
     DYN_ERR_IO = 5,        /* an output could not be written */
-    DYN_CANCELLED = 6      /* the progress callback cancelled the solve */
+    DYN_CANCELLED = 6,     /* the progress callback cancelled the solve */
+    DYN_ERR_STEP_SIZE = 7, /* adaptive: the step size fell below 16 eps |t| (see fail_t) */
+    DYN_ERR_MAX_STEPS = 8, /* adaptive: the limit on the number of steps was reached */
+    DYN_ERR_CAPACITY = 9   /* a dense-output recorder was full and could not grow */
 } dyn_status;
 
 /* Short English name of a status ("ok", "bad argument", ...); never NULL. */
 const char *dyn_status_name(int status);
 
-/* Kinds of method, so later solvers (adaptive pairs, implicit) share one registry. */
+/* Kinds of method, so every solver (fixed step, adaptive pairs, implicit) shares one
+ * registry. dyn_fixed_solve runs DYN_KIND_EXPLICIT_RK; dyn_solve (solve.h) runs all. */
 typedef enum dyn_method_kind {
-    DYN_KIND_EXPLICIT_RK = 0 /* fixed-step explicit Runge–Kutta: a, b, c */
+    DYN_KIND_EXPLICIT_RK = 0, /* fixed-step explicit Runge–Kutta: a, b, c */
+    DYN_KIND_EMBEDDED_RK = 1  /* adaptive explicit Runge–Kutta pair: a, b, c and e */
 } dyn_method_kind;
 
 /* Butcher table of an explicit Runge–Kutta method with s stages.
- * a is (s x s) row-major, strictly lower triangular; b and c have s entries. */
+ * a is (s x s) row-major, strictly lower triangular; b and c have s entries.
+ * The members after c describe adaptive pairs and dense output; fixed-step tables leave
+ * them zero (designated initializers). */
 typedef struct dyn_tableau {
     const char *name;        /* canonical name, e.g. "rk4" */
     const char *alias;       /* other accepted name or NULL, e.g. "modified-euler" */
@@ -74,6 +85,33 @@ typedef struct dyn_tableau {
     const double *a;         /* (s x s) */
     const double *b;         /* (s) */
     const double *c;         /* (s) */
+    /* ---- embedded pair (DYN_KIND_EMBEDDED_RK) ---- */
+    const double *e;         /* (s) error weights b - bhat: local error estimate h sum e_i k_i */
+    const double *e3;        /* (s) or NULL: a second, lower-order estimate h sum e3_i k_i;
+                              * then the error norm is DOP853's |E5|^2 / sqrt(|E5|^2 +
+                              * 0.01 |E3|^2) (HNW I sec. II.10) */
+    int embedded_order;      /* order of the embedded solution b - e */
+    int error_order;         /* q: the error estimate behaves like h^(q+1), so the step-size
+                              * controller uses the exponent 1/(q+1) */
+    int fsal;                /* 1: first same as last: the last stage is f(t + h, y_{n+1})
+                              * (its row of a equals b, c = 1) and is the next step's first */
+    /* ---- dense output: y(t + theta h) = y + h sum_i k_i sum_{j=1..q} P[i][j-1] theta^j,
+     * q = dense_degree, over dense_stages stages; for a table without FSAL whose dense
+     * output needs more than s stages, stage s is f(t + h, y_{n+1}) and the rows of dense_a
+     * give the stages after it. dense_degree 0: the cubic Hermite interpolant of the step's
+     * end values and derivatives is used. */
+    int dense_degree;        /* q */
+    int dense_stages;        /* number of rows of P */
+    const double *dense;     /* (dense_stages x dense_degree) P */
+    const double *dense_a;   /* ((dense_stages - s - 1) x dense_stages) or NULL */
+    const double *dense_c;   /* (dense_stages - s - 1) or NULL */
+    /* ---- stiffness detection (DOPRI5, HNW I sec. IV.2): |h lambda| estimated from stage
+     * stiff_stage (c = 1) and f(t + h, y_{n+1}); the problem looks stiff when it stays
+     * above stiff_bound, the real stability boundary. stiff_bound 0: no detection. */
+    int stiff_stage;
+    double stiff_bound;
+    /* ---- other kinds of method: their own data (e.g. a Rosenbrock table), or NULL ---- */
+    const void *impl;
 } dyn_tableau;
 
 /* Number of registered methods; dyn_method_at(i) for 0 <= i < count, NULL otherwise. */
@@ -84,9 +122,21 @@ const dyn_tableau *dyn_method_find(const char *name);
 /* Comma-separated list of all accepted method names into buf (for messages); returns buf. */
 char *dyn_method_names(char *buf, size_t size);
 
-/* Largest error in the order conditions of a table up to order p (trees up to order 4
- * are checked; p > 4 is checked to 4). Returns max |residual|; 0 for an exact table. */
+/* 1 if the method adapts its step (embedded pairs and later kinds), 0 for fixed-step tables. */
+int dyn_method_is_adaptive(const dyn_tableau *m);
+/* 1 if the method is meant for stiff problems (implicit kinds), else 0. */
+int dyn_method_is_stiff(const dyn_tableau *m);
+/* Right-hand-side calls per step without rejections: s, or s - 1 for FSAL tables. */
+int dyn_method_calls_per_step(const dyn_tableau *m);
+
+/* Largest error in the order conditions of a table up to order p: for every rooted tree t
+ * with |t| <= min(p, 8) (200 trees), |b . Phi(t) - 1/gamma(t)| (Butcher; HNW I sec. II.2),
+ * and the row sums c_i = sum_j a_ij. Returns max |residual|; 0 for an exact table.
+ * Tables of more than 16 stages are checked to a lower order (6 for 64 stages). */
 double dyn_tableau_order_residual(const dyn_tableau *tab, int p);
+/* The same for other weights w (s) with the table's a and c, e.g. an embedded solution
+ * b - e. */
+double dyn_tableau_weights_residual(const dyn_tableau *tab, const double *w, int p);
 
 /* What to do when (t1 - t0) / h is not a whole number of steps (within 1e-10 relative, and
  * never more than 1e-3 steps). */
@@ -114,9 +164,12 @@ double dyn_grid_time(const dyn_grid *grid, long k);
 
 /* Counters of a solve, filled by the drivers. */
 typedef struct dyn_stats {
-    long steps;      /* steps taken */
+    long steps;      /* steps taken (adaptive: attempted, accepted + rejected) */
     long rhs_calls;  /* evaluations of f */
     long samples;    /* samples handed to the output */
+    long accepted;   /* adaptive: accepted steps (dyn_solve fills it for fixed steps too) */
+    long rejected;   /* adaptive: rejected steps */
+    long jac_calls;  /* evaluations of the Jacobian (stiff methods) */
 } dyn_stats;
 
 /* Called with every kept sample (k = sample index); return non-zero to stop the solve. */
@@ -164,6 +217,14 @@ typedef struct dyn_result {
     int fail_index;      /* state index that was not finite, or -1 */
     dyn_stats stats;
     char message[256];   /* human-readable reason when status != DYN_OK */
+    /* dyn_solve only (zero from the fixed-step driver): */
+    int stopped_by_event;  /* 1: a terminal event ended the solve at t (status DYN_OK) */
+    int event_index;       /* which event, when stopped_by_event */
+    long events;           /* events found (reported through dyn_solve_opts.on_event) */
+    int stiff;             /* 1: the problem looked stiff (see stiff_t, stiff_message) */
+    double stiff_t;        /* time where stiffness was detected first */
+    char stiff_message[192];
+    double h_last;         /* size of the last accepted step */
 } dyn_result;
 
 /* Doubles of workspace the fixed-step driver needs for method m and n states. */

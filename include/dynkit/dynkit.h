@@ -3,6 +3,7 @@
 #define DYNKIT_DYNKIT_H
 
 #include "dynkit/ode.h"
+#include "dynkit/solve.h"
 #include "dynkit/model.h"
 #include "dynkit/models.h"
 #include "dynkit/cart.h"

@@ -1,0 +1,172 @@
+/* dynkit/solve.h — the general driver: adaptive step-size control, dense output, events.
+ *
+ * dyn_solve integrates a system with any registered method. Adaptive pairs (bs23 = ode23,
+ * dp45 = ode45, dop853) choose their steps from the local error estimate: Hairer's norm
+ *     err = sqrt(1/n sum_i (e_i / (atol_i + rtol_i max(|y_i|, |ynew_i|)))^2),
+ * a step is accepted when err <= 1, and the next step comes from a PI controller
+ * (Gustafsson; HNW I sec. II.4 and IV.2, the controller of DOPRI5). Fixed-step tables take
+ * steps t0 + k*h exactly as dyn_fixed_solve does (same numbers, bit for bit).
+ *
+ * Output never forces a step: values at requested times (a grid t0 + k*h, computed, or a
+ * list) are interpolated on the step's dense output (a polynomial in the step: the method's
+ * own interpolant, or the cubic Hermite interpolant of the step's end values and
+ * derivatives for tables without one). Each accepted step can be handed to the caller as a
+ * dense-output view (dyn_dense), and a caller-owned recorder (dyn_dense_record) can keep
+ * every step so that the whole solution can be evaluated after the solve.
+ *
+ * Events (dyn_event, ode.h) are sign changes of g(t, y) along the dense output: g is
+ * sampled at event_samples + 1 points of every step (and a parabola through three samples
+ * is checked for a dip across zero between them), so two crossings inside one step are
+ * seen; each crossing is then located by Brent's method on the interpolant to a few ulps
+ * of t (Shampine & Thompson, "Event location for ordinary differential equations",
+ * Comput. Math. Appl. 39 (2000)). A terminal event ends the solve with the state at the
+ * event.
+ *
+ * Memory: the caller owns everything (workspace of dyn_solve_work_size doubles, outputs,
+ * recorder); the step loop never allocates and nothing prints. Integration runs forward
+ * (t1 > t0).
+ */
+#ifndef DYNKIT_SOLVE_H
+#define DYNKIT_SOLVE_H
+
+#include <stddef.h>
+
+#include "dynkit/ode.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Defaults of the tolerances (MATLAB's ode45 and SciPy's solve_ivp). */
+#define DYN_DEFAULT_RTOL 1e-3
+#define DYN_DEFAULT_ATOL 1e-6
+
+/* The dense output of one step, a polynomial of degree `degree` in theta = (t - t0)/h:
+ *     y(t) = sum_{j=0..degree} coef[j*n + i] theta^j      (coef[i] = y at t0).
+ * A view: coef belongs to whoever made it (the solver's workspace during a callback). */
+typedef struct dyn_dense {
+    double t0, h;          /* the step covers [t0, t0 + h] */
+    int n;                 /* states */
+    int degree;            /* polynomial degree (dp45: 4, dop853: 7, Hermite: 3) */
+    const double *coef;    /* ((degree + 1) x n) */
+} dyn_dense;
+
+/* y(t) (n values) of a step's dense output; t outside the step extrapolates. */
+void dyn_dense_eval(const dyn_dense *d, double t, double *y);
+/* dy/dt (n values) of the dense output at t. */
+void dyn_dense_deriv(const dyn_dense *d, double t, double *dydt);
+
+/* Degree of the dense output dyn_solve gives for method m (3 for tables without their own
+ * interpolant: cubic Hermite), or 0 for NULL. */
+int dyn_method_dense_degree(const dyn_tableau *m);
+
+/* A caller-owned store of the dense output of every accepted step, so the solution can be
+ * evaluated anywhere in the span after the solve. Step i is a block of
+ * dyn_dense_record_block(n, degree) doubles at data + i*block: t0, h, then the coefficients.
+ * Choice: the library never allocates. When the record is full the solver calls grow (the
+ * caller's code, which may reallocate data and raise capacity; it runs between steps, not
+ * inside the library's arithmetic); without grow, or if grow fails, the solve stops with
+ * DYN_ERR_CAPACITY and what was recorded stays valid. */
+typedef struct dyn_dense_record dyn_dense_record;
+typedef int (*dyn_record_grow_fn)(dyn_dense_record *rec, void *ctx); /* 0: grown */
+struct dyn_dense_record {
+    int n, degree;         /* set by dyn_dense_record_init */
+    long capacity;         /* steps data can hold */
+    long count;            /* steps recorded */
+    double *data;          /* (capacity x block) */
+    dyn_record_grow_fn grow; /* may be NULL */
+    void *grow_ctx;
+};
+/* Doubles per recorded step: 2 + (degree + 1) * n. */
+size_t dyn_dense_record_block(int n, int degree);
+/* Start an empty record for n states and the given degree (dyn_method_dense_degree) over
+ * data (capacity blocks; may be NULL with capacity 0 when grow provides the memory). */
+void dyn_dense_record_init(dyn_dense_record *rec, int n, int degree, double *data,
+                           long capacity);
+/* View of recorded step i (0 <= i < count) into d; returns 0, or DYN_ERR_ARG. */
+int dyn_dense_record_step(const dyn_dense_record *rec, long i, dyn_dense *d);
+/* y(t) (n values) from the recorded step that contains t (binary search). Returns 0, or
+ * DYN_ERR_ARG when the record is empty or t lies outside [first t0, last t0 + h]. */
+int dyn_dense_record_eval(const dyn_dense_record *rec, double t, double *y);
+
+/* Called after each accepted step with its dense output; non-zero stops the solve
+ * (DYN_STOPPED). */
+typedef int (*dyn_step_fn)(const dyn_dense *step, void *ctx);
+
+/* Called for each event in time order: index into dyn_solve_opts.events, its time, the
+ * state there (n) and the direction of the crossing (+1 rising, -1 falling). Return
+ * non-zero to make it terminal (stop the solve there). */
+typedef int (*dyn_event_fn)(int index, double t, const double *y, int direction, void *ctx);
+
+/* Options of dyn_solve; zero-initialise, then set what you need. */
+typedef struct dyn_solve_opts {
+    /* accuracy (adaptive methods): scalar tolerances, or per-state ones when rtolv/atolv
+     * are not NULL. rtol 0 and atol 0 mean the defaults DYN_DEFAULT_RTOL, DYN_DEFAULT_ATOL
+     * (give rtolv/atolv with zeros for a purely absolute or relative control). */
+    double rtol, atol;
+    const double *rtolv;   /* (n) or NULL */
+    const double *atolv;   /* (n) or NULL */
+    /* steps */
+    double h;              /* fixed-step methods: the step (required); adaptive: unused */
+    dyn_end_policy end;    /* fixed-step grid and output grid: see dyn_grid_plan */
+    double initial_step;   /* adaptive: first step; 0: chosen automatically (HNW I II.4) */
+    double max_step;       /* adaptive: largest step; 0: t1 - t0 */
+    long max_steps;        /* attempted steps at most; 0: no limit (DYN_ERR_MAX_STEPS) */
+    /* step-size controller (0: defaults of DOPRI5) */
+    double safety;         /* 0.9 */
+    double beta;           /* PI term 0.04; negative: 0 (pure I controller) */
+    double fac_min;        /* smallest step ratio h_new/h, 0.2 */
+    double fac_max;        /* largest step ratio, 10 */
+    long stiff_check;      /* test stiffness every this many accepted steps (1000) */
+    /* output: samples at t0 + k*out_step (with `end`), or at out_times, or (neither) at
+     * every step's end; sample 0 is the initial state except with out_times not starting
+     * at t0. With a terminal event the event is the last sample. */
+    double out_step;
+    const double *out_times; /* (n_out_times) non-decreasing, in [t0, t1] */
+    long n_out_times;
+    dyn_output_fn output;  /* may be NULL */
+    void *output_ctx;
+    dyn_step_fn step;      /* may be NULL: each accepted step's dense output */
+    void *step_ctx;
+    dyn_dense_record *record; /* may be NULL */
+    /* events */
+    const dyn_event *events; /* (n_events) */
+    int n_events;
+    dyn_event_fn on_event; /* may be NULL */
+    void *event_ctx;
+    int event_samples;     /* sub-intervals per step where g is sampled; 0: 8 */
+    /* stiff methods (ignored by explicit ones) */
+    dyn_jac_fn jacobian;   /* analytic df/dy or NULL (finite differences) */
+    int *iwork;            /* dyn_solve_iwork_size ints, or NULL when that is 0 */
+    /* diagnostics */
+    dyn_trace_fn trace;    /* stages of the first trace_steps attempted steps */
+    void *trace_ctx;
+    long trace_steps;
+    dyn_progress_fn progress;
+    void *progress_ctx;
+    long progress_steps;   /* accepted steps between calls; 0: 4096 */
+} dyn_solve_opts;
+
+/* Doubles of workspace dyn_solve needs for method m, n states and the options (the
+ * number of events and event_samples enter); 0 for a bad method or n. */
+size_t dyn_solve_work_size(const dyn_tableau *m, int n, const dyn_solve_opts *opts);
+/* Ints of integer workspace (opts->iwork) for method m and n states; 0 for explicit ones. */
+size_t dyn_solve_iwork_size(const dyn_tableau *m, int n);
+
+/* Integrate sys from (t0, y0) to t1 > t0 with method m. y (n) receives the final state (the
+ * last good one on failure, the event's state after a terminal event); it may equal y0 or be
+ * NULL. work has dyn_solve_work_size doubles. Samples stream through opts->output, steps
+ * through opts->step and opts->record, events through opts->on_event. Never allocates.
+ * Returns res->status: DYN_OK (also when a terminal event ended the run, see
+ * res->stopped_by_event), DYN_ERR_ARG, DYN_ERR_RHS, DYN_ERR_NONFINITE (a state stays NaN or
+ * Inf however small the step), DYN_ERR_STEP_SIZE, DYN_ERR_MAX_STEPS, DYN_ERR_CAPACITY,
+ * DYN_STOPPED or DYN_CANCELLED; res->t is the time reached. opts may be NULL only for
+ * adaptive methods. */
+int dyn_solve(const dyn_tableau *m, const dyn_system *sys, double t0, double t1,
+              const double *y0, double *y, double *work, const dyn_solve_opts *opts,
+              dyn_result *res);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* DYNKIT_SOLVE_H */

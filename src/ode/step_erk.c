@@ -1,0 +1,330 @@
+/* The explicit Runge–Kutta stepper of the general driver: fixed-step tables and embedded
+ * pairs through the one stage loop (rk_stages.h), with
+ * - the local error estimate h sum e_i k_i in Hairer's norm, or DOP853's combination of its
+ *   5th- and 3rd-order estimates (HNW I sec. II.10; dop853.f);
+ * - FSAL: the last stage of bs23 and dp45 is f(t + h, y_{n+1}) and becomes the next step's
+ *   first; tables without FSAL compute f(t + h, y_{n+1}) only when it is needed (dense
+ *   output, stiffness test) and then reuse it as the next step's first stage, so no
+ *   evaluation is wasted (the stage loop skips stage 0 when k[0] holds it already);
+ * - dense output: the table's interpolant (bs23, dp45, DOP853 with its three extra stages),
+ *   or the cubic Hermite interpolant of y_n, y_{n+1}, f_n, f_{n+1} (HNW I sec. II.6);
+ * - stiffness: |h lambda| ~ h |f(Y_j) - f(y_{n+1})| / |Y_j - y_{n+1}| for a stage j at
+ *   c = 1, as in DOPRI5 and DOP853 (HNW I sec. IV.2).
+ */
+#include <math.h>
+#include <string.h>
+
+#include "ode/stepper.h"
+
+static int erk_rhs(double t, const double *y, double *dydt, void *par)
+{
+    struct dyn_erk_rhs *r = par;
+    if (r->skip) {
+        r->skip = 0; /* k[0] already holds f(t, y) */
+        return 0;
+    }
+    r->calls++;
+    return r->f(t, y, dydt, r->par);
+}
+
+/* Stage slots: the table's stages, f(t + h, ynew) at slot s for tables without FSAL, and
+ * the extra stages of the dense output. */
+static int kslots(const dyn_tableau *m)
+{
+    int k = m->fsal ? m->stages : m->stages + 1;
+    return m->dense_stages > k ? m->dense_stages : k;
+}
+
+static size_t erk_work_size(const dyn_tableau *m, int n)
+{
+    return ((size_t)kslots(m) + 2) * (size_t)n;
+}
+
+static size_t erk_iwork_size(const dyn_tableau *m, int n)
+{
+    (void)m;
+    (void)n;
+    return 0;
+}
+
+static int erk_dense_degree(const dyn_tableau *m)
+{
+    return m->dense_degree > 0 && m->dense ? m->dense_degree : 3;
+}
+
+static int erk_start(dyn_stepper *st, double t0, const double *y0)
+{
+    (void)t0;
+    (void)y0;
+    dyn_erk_state *e = &st->u.erk;
+    const dyn_tableau *m = st->m;
+    const int n = st->n;
+    e->kslots = kslots(m);
+    e->k = st->work;
+    e->Y = e->k + (size_t)e->kslots * (size_t)n;
+    e->tmp = e->Y + n;
+    e->planned = dyn_rk_plan_init(&e->plan, m, e->k, n);
+    e->k0_valid = 0;
+    e->fnew_valid = 0;
+    e->ne = e->ne3 = 0;
+    for (int i = 0; i < m->stages && i < DYN_RK_PLAN_MAX_STAGES; i++) {
+        if (m->e && m->e[i] != 0.0)
+            e->ei[e->ne++] = i;
+        if (m->e3 && m->e3[i] != 0.0)
+            e->e3i[e->ne3++] = i;
+    }
+    e->rhs.f = st->f;
+    e->rhs.par = st->par;
+    e->rhs.skip = 0;
+    e->rhs.calls = 0;
+    return 0;
+}
+
+/* Evaluate f into dst, counting it. */
+static int eval(dyn_stepper *st, double t, const double *y, double *dst)
+{
+    st->rhs_calls++;
+    int rc = st->f(t, y, dst, st->par);
+    if (rc)
+        st->fail_t = t;
+    return rc;
+}
+
+static int erk_deriv(dyn_stepper *st, double t, const double *y, const double **f)
+{
+    dyn_erk_state *e = &st->u.erk;
+    if (!e->k0_valid) {
+        int rc = eval(st, t, y, e->k);
+        if (rc)
+            return rc;
+        e->k0_valid = 1;
+    }
+    *f = e->k;
+    return 0;
+}
+
+/* The error norm of the step from the stage derivatives. */
+static double erk_error(dyn_stepper *st, double h, const double *y, const double *ynew)
+{
+    const dyn_erk_state *e = &st->u.erk;
+    const dyn_tableau *m = st->m;
+    const int n = st->n;
+    const double *k = e->k;
+    double s5 = 0.0, s3 = 0.0;
+    for (int i = 0; i < n; i++) {
+        double err = 0.0;
+        for (int q = 0; q < e->ne; q++)
+            err += m->e[e->ei[q]] * k[(size_t)e->ei[q] * (size_t)n + (size_t)i];
+        const double sk = dyn_tol_scale(&st->tol, i, y[i], ynew[i]);
+        const double r = err / sk;
+        s5 += r * r;
+        if (e->ne3) {
+            double err3 = 0.0;
+            for (int q = 0; q < e->ne3; q++)
+                err3 += m->e3[e->e3i[q]] * k[(size_t)e->e3i[q] * (size_t)n + (size_t)i];
+            const double r3 = err3 / sk;
+            s3 += r3 * r3;
+        }
+    }
+    if (!e->ne3)
+        return fabs(h) * sqrt(s5 / n);
+    /* DOP853: |h| |E5|^2 / sqrt(n (|E5|^2 + 0.01 |E3|^2)) */
+    if (s5 == 0.0 && s3 == 0.0)
+        return 0.0;
+    return fabs(h) * s5 / sqrt((s5 + 0.01 * s3) * n);
+}
+
+static int erk_attempt(dyn_stepper *st, double t, double h, const double *y, double *ynew,
+                       double *err, int retry)
+{
+    (void)retry; /* k[0] = f(t, y) stays valid after a rejection */
+    dyn_erk_state *e = &st->u.erk;
+    const dyn_tableau *m = st->m;
+    const int n = st->n;
+    int fail_stage = 0, rc;
+    double finite = 0.0;
+    const dyn_trace_fn trace = st->attempts < st->trace_steps ? st->trace : NULL;
+    e->rhs.skip = e->k0_valid && m->c[0] == 0.0;
+    e->rhs.calls = 0;
+    if (e->planned)
+        rc = dyn_rk_stages(m, &e->plan, erk_rhs, &e->rhs, n, t, h, st->tend, y, ynew, e->k, e->Y,
+                           &fail_stage, &finite, trace, st->trace_ctx, st->attempts);
+    else
+        rc = dyn_rk_stages_scan(m, erk_rhs, &e->rhs, n, t, h, st->tend, y, ynew, e->k, e->Y,
+                                &fail_stage, &finite, trace, st->trace_ctx, st->attempts);
+    st->attempts++;
+    st->rhs_calls += e->rhs.calls;
+    e->fnew_valid = 0;
+    if (rc) {
+        st->fail_t = dyn_rk_stage_time(t, m->c[fail_stage], h, st->tend);
+        e->k0_valid = fail_stage > 0; /* stage 0 was f(t, y) */
+        return rc;
+    }
+    e->k0_valid = 1;
+    if (finite != 0.0) {
+        *err = INFINITY;
+        return 0;
+    }
+    *err = m->e ? erk_error(st, h, y, ynew) : 0.0;
+    return 0;
+}
+
+/* f(t + h, ynew) of the accepted step: the FSAL stage, or slot s evaluated once. */
+static int fnew(dyn_stepper *st, double t, double h, const double *ynew, const double **out)
+{
+    dyn_erk_state *e = &st->u.erk;
+    const dyn_tableau *m = st->m;
+    const int n = st->n;
+    if (m->fsal) {
+        *out = e->k + (size_t)(m->stages - 1) * (size_t)n;
+        return 0;
+    }
+    double *slot = e->k + (size_t)m->stages * (size_t)n;
+    if (!e->fnew_valid) {
+        const double t1 = t + h > st->tend ? st->tend : t + h;
+        int rc = eval(st, t1, ynew, slot);
+        if (rc)
+            return rc;
+        e->fnew_valid = 1;
+    }
+    *out = slot;
+    return 0;
+}
+
+static double erk_stiffness(dyn_stepper *st, double t, double h, const double *y,
+                            const double *ynew)
+{
+    dyn_erk_state *e = &st->u.erk;
+    const dyn_tableau *m = st->m;
+    const int n = st->n, j = m->stiff_stage;
+    if (!(m->stiff_bound > 0.0) || j < 0 || j >= m->stages || m->c[j] != 1.0)
+        return -1.0;
+    const double *f1;
+    if (fnew(st, t, h, ynew, &f1))
+        return -1.0;
+    /* the stage state Y_j again (the stage loop keeps only the last one) */
+    double *Yj = e->tmp;
+    const double *row = m->a + (size_t)j * (size_t)m->stages;
+    for (int i = 0; i < n; i++) {
+        double acc = 0.0;
+        for (int q = 0; q < j; q++)
+            if (row[q] != 0.0)
+                acc += row[q] * e->k[(size_t)q * (size_t)n + (size_t)i];
+        Yj[i] = y[i] + h * acc;
+    }
+    const double *kj = e->k + (size_t)j * (size_t)n;
+    double num = 0.0, den = 0.0;
+    for (int i = 0; i < n; i++) {
+        num += (f1[i] - kj[i]) * (f1[i] - kj[i]);
+        den += (ynew[i] - Yj[i]) * (ynew[i] - Yj[i]);
+    }
+    return den > 0.0 ? fabs(h) * sqrt(num / den) : -1.0;
+}
+
+static int erk_dense(dyn_stepper *st, double t, double h, const double *y, const double *ynew,
+                     double *coef)
+{
+    dyn_erk_state *e = &st->u.erk;
+    const dyn_tableau *m = st->m;
+    const int n = st->n, s = m->stages;
+    const size_t N = (size_t)n;
+    double *k = e->k;
+    memcpy(coef, y, N * sizeof *coef);
+    if (!(m->dense_degree > 0 && m->dense)) {
+        /* cubic Hermite: y + theta h f0 + theta^2 (3 dy - h (2 f0 + f1)) + theta^3 (h (f0 +
+         * f1) - 2 dy), dy = ynew - y */
+        const double *f1;
+        int rc = fnew(st, t, h, ynew, &f1);
+        if (rc)
+            return rc;
+        const double *f0 = k;
+        for (size_t i = 0; i < N; i++) {
+            const double dy = ynew[i] - y[i];
+            coef[N + i] = h * f0[i];
+            coef[2 * N + i] = 3.0 * dy - h * (2.0 * f0[i] + f1[i]);
+            coef[3 * N + i] = h * (f0[i] + f1[i]) - 2.0 * dy;
+        }
+        return 0;
+    }
+    const int q = m->dense_degree, ds = m->dense_stages;
+    if (ds > s && !m->fsal) {
+        const double *f1;
+        int rc = fnew(st, t, h, ynew, &f1);
+        if (rc)
+            return rc;
+        for (int r = s + 1; r < ds; r++) {
+            const double *row = m->dense_a + (size_t)(r - s - 1) * (size_t)ds;
+            double *Y = e->Y;
+            for (size_t i = 0; i < N; i++) {
+                double acc = 0.0;
+                for (int j = 0; j < r; j++)
+                    if (row[j] != 0.0)
+                        acc += row[j] * k[(size_t)j * N + i];
+                Y[i] = y[i] + h * acc;
+            }
+            const double tr = dyn_rk_stage_time(t, m->dense_c[r - s - 1], h, st->tend);
+            rc = eval(st, tr, Y, k + (size_t)r * N);
+            if (rc)
+                return rc;
+        }
+    }
+    for (int j = 1; j <= q; j++) {
+        double *cj = coef + (size_t)j * N;
+        for (size_t i = 0; i < N; i++) {
+            double acc = 0.0;
+            for (int r = 0; r < ds; r++) {
+                const double p = m->dense[(size_t)r * (size_t)q + (size_t)(j - 1)];
+                if (p != 0.0)
+                    acc += p * k[(size_t)r * N + i];
+            }
+            cj[i] = h * acc;
+        }
+    }
+    return 0;
+}
+
+static void erk_accept(dyn_stepper *st, double t, double h, const double *ynew)
+{
+    (void)t;
+    (void)h;
+    (void)ynew;
+    dyn_erk_state *e = &st->u.erk;
+    const dyn_tableau *m = st->m;
+    const size_t N = (size_t)st->n;
+    if (m->fsal) {
+        memcpy(e->k, e->k + (size_t)(m->stages - 1) * N, N * sizeof *e->k);
+        e->k0_valid = 1;
+    } else if (e->fnew_valid) {
+        memcpy(e->k, e->k + (size_t)m->stages * N, N * sizeof *e->k);
+        e->k0_valid = 1;
+    } else {
+        e->k0_valid = 0;
+    }
+    e->fnew_valid = 0;
+}
+
+static const dyn_stepper_ops erk_ops = {
+    .work_size = erk_work_size,
+    .iwork_size = erk_iwork_size,
+    .dense_degree = erk_dense_degree,
+    .start = erk_start,
+    .deriv = erk_deriv,
+    .attempt = erk_attempt,
+    .stiffness = erk_stiffness,
+    .dense = erk_dense,
+    .accept = erk_accept,
+};
+
+const dyn_stepper_ops *dyn_stepper_ops_for(const dyn_tableau *m)
+{
+    if (!m)
+        return NULL;
+    switch (m->kind) {
+    case DYN_KIND_EXPLICIT_RK:
+        return &erk_ops;
+    case DYN_KIND_EMBEDDED_RK:
+        return m->e ? &erk_ops : NULL;
+    default:
+        return NULL;
+    }
+}

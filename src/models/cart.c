@@ -282,6 +282,19 @@ static const dyn_var inputs[] = {
     {"Fy", "N", "body-y force at the front wheel C"},
 };
 
+/* Event: the lateral force on the rear axle reaches the friction limit, |lambda| = mu (2/3) m g
+ * (rising: from below the limit to above it). */
+static double cart_slip(double t, const double *y, void *par)
+{
+    const dyn_cart_par *p = par;
+    double Fx, Fy;
+    return fabs(lambda_at(p, t, y, &Fx, &Fy)) - dyn_cart_friction_limit(p);
+}
+
+static const dyn_event events[] = {
+    {"slip", "the rear wheels start to slip: |lambda| reaches mu (2/3) m g", cart_slip, 1, 0},
+};
+
 const dyn_model dyn_model_cart = {
     .name = "cart",
     .title = "three-wheeled cart with a non-slipping rear axle (homework problem 4)",
@@ -319,4 +332,6 @@ const dyn_model dyn_model_cart = {
     .n_inputs = 2,
     .inputs = inputs,
     .set_input = cart_set_input,
+    .n_events = 1,
+    .events = events,
 };

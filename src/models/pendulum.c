@@ -67,6 +67,27 @@ static const dyn_var outputs[] = {
     {"height", "m", "height of the mass above its bottom position, l (1 - cos phi)"},
 };
 
+/* Events: the turning point (dphi = 0) and the passage through the bottom, phi = 0 mod 2 pi
+ * (sin(phi/2) changes sign there, also for a pendulum going over the top). */
+static double pendulum_turn(double t, const double *y, void *par)
+{
+    (void)t;
+    (void)par;
+    return y[1];
+}
+
+static double pendulum_bottom(double t, const double *y, void *par)
+{
+    (void)t;
+    (void)par;
+    return sin(0.5 * y[0]);
+}
+
+static const dyn_event events[] = {
+    {"turn", "the rod stops and turns back: dphi = 0", pendulum_turn, 0, 0},
+    {"bottom", "the rod passes the downward vertical: phi = 0 (mod 2 pi)", pendulum_bottom, 0, 0},
+};
+
 const dyn_model dyn_model_pendulum = {
     .name = "pendulum",
     .title = "nonlinear pendulum (homework problem 1)",
@@ -89,4 +110,6 @@ const dyn_model dyn_model_pendulum = {
     .t1 = 0.2,
     .step = 0.2,
     .method = "euler",
+    .n_events = 2,
+    .events = events,
 };

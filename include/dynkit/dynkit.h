@@ -8,6 +8,7 @@
 #include "dynkit/models.h"
 #include "dynkit/cart.h"
 #include "dynkit/plane.h"
+#include "dynkit/problems.h"
 #include "dynkit/io.h"
 #include "dynkit/report.h"
 

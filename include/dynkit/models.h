@@ -36,6 +36,8 @@ typedef struct dyn_vanderpol_par {
 } dyn_vanderpol_par;
 extern const dyn_model dyn_model_vanderpol;
 int dyn_vanderpol_rhs(double t, const double *y, double *dydt, void *par);
+/* Jacobian [[0, 1], [-2 mu y1 y2 - 1, mu (1 - y1^2)]] (row-major 2 x 2). */
+int dyn_vanderpol_jac(double t, const double *y, double *J, void *par);
 
 #ifdef __cplusplus
 }

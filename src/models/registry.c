@@ -6,6 +6,7 @@
 #include "dynkit/models.h"
 #include "dynkit/cart.h"
 #include "dynkit/plane.h"
+#include "dynkit/problems.h"
 
 static const dyn_model *const builtin[] = {
     &dyn_model_pendulum,
@@ -13,6 +14,10 @@ static const dyn_model *const builtin[] = {
     &dyn_model_plane,
     &dyn_model_plane_quat,
     &dyn_model_cart,
+    /* verification problems (problems.h) */
+    &dyn_model_arenstorf,
+    &dyn_model_robertson,
+    &dyn_model_hires,
 };
 
 int dyn_model_count(void) { return (int)(sizeof builtin / sizeof builtin[0]); }

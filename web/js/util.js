@@ -44,7 +44,7 @@ window.DK = window.DK || {};
       let v = k * step;
       if (Math.abs(v) < 1e-9 * step) v = 0;
       const mag = Math.max(Math.abs(v), step);
-      const label = mag >= 1e5 || mag < 1e-3 ? Number(v.toPrecision(3)).toExponential().replace('e+', 'e') : v.toFixed(digits);
+      const label = v === 0 ? '0' : mag >= 1e5 || mag < 1e-3 ? Number(v.toPrecision(3)).toExponential().replace('e+', 'e') : v.toFixed(digits);
       out.push({ v: v, label: label });
     }
     return out;

@@ -146,16 +146,30 @@
     const shape = planeShape(par);
     /* look at the middle between A and the motion, from the side and a little above */
     const mean = ['sX', 'sY', 'sZ'].map(k => runs[0].cols[k].reduce((a, v) => a + v, 0) / runs[0].cols[k].length);
-    const mid = [mean[0] / 2, mean[1] / 2, mean[2] / 2], centre = D(mid);
-    /* radius of what is to be seen: A, the path of S and the plane around it */
-    let radius = Math.hypot(...mid);
-    for (const r of runs) for (let k = 0; k < r.t.length; k++) {
-      const d = Math.hypot(r.cols.sX[k] - mid[0], r.cols.sY[k] - mid[1], r.cols.sZ[k] - mid[2]);
-      if (isFinite(d) && d > radius) radius = d;
+    /* what must be seen: A and the centre of mass with the plane's reach around it */
+    const reach = 0.5 * Math.max(par.wingspan, par.length_plane);
+    const keys = [[0, 0, 0]];
+    for (const r of runs) for (let k = 0; k < r.t.length; k += Math.max(1, Math.floor(r.t.length / 60))) {
+      const c = [r.cols.sX[k], r.cols.sY[k], r.cols.sZ[k]];
+      if (!c.every(isFinite)) continue;
+      for (let i = 0; i < 3; i++) for (const sgn of [-1, 1]) { const p = c.slice(); p[i] += sgn * reach; keys.push(D(p)); }
     }
-    radius += 0.5 * Math.max(par.wingspan, par.length_plane);
+    const lo = [0, 1, 2].map(i => Math.min(...keys.map(p => p[i]))), hi = [0, 1, 2].map(i => Math.max(...keys.map(p => p[i])));
+    const centre = [0, 1, 2].map(i => (lo[i] + hi[i]) / 2);
     const state = { t: player.t };
-    const scene = new DK.Scene3D(canvas, { target: centre, distance: 3.2 * radius, azimuth: -1.05, elevation: 0.32 }, () => draw());
+    const scene = new DK.Scene3D(canvas, { target: centre, distance: 10, azimuth: -1.05, elevation: 0.32 }, () => draw());
+    /* the camera's distance: the nearest at which every key point is inside the picture */
+    function fit() {
+      const inside = d => {
+        scene.distance = d;
+        scene.begin(w, h);
+        return keys.every(p => { const q = scene.project(p); return q[2] > 0.1 && q[0] > 0.04 * w && q[0] < 0.96 * w && q[1] > 0.06 * h && q[1] < 0.94 * h; });
+      };
+      let a = 0.2, b = 400;
+      for (let i = 0; i < 40; i++) { const m = Math.sqrt(a * b); if (inside(m)) b = m; else a = m; }
+      scene.home.distance = b;
+      scene.reset();
+    }
     const trails = runs.map(r => r.t.map((_, k) => D([r.cols.sX[k], r.cols.sY[k], r.cols.sZ[k]])));
     let w = 0, h = 0, dpr = 1;
     function size() {
@@ -217,6 +231,8 @@
       ctx.fillStyle = '#555';
       ctx.fillText('t = ' + t.toFixed(3) + ' s', 10, h - 14);
     }
+    size();
+    fit();
     if (window.ResizeObserver) new ResizeObserver(() => draw()).observe(wrap);
     player.onTime(t => { state.t = t; draw(); });
     return { canvas, scene, draw };

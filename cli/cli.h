@@ -49,6 +49,18 @@ typedef struct cli_run {
     dyn_interp interp;    /* --interp hold|linear */
     double *input;        /* (input_rows x (1 + n_inputs)), owned; attached to par */
     long input_rows;
+    /* adaptive methods (dyn_solve): tolerances, output times, step limits */
+    double rtol, atol;    /* 0: the library's defaults (1e-3, 1e-6) */
+    double *rtolv, *atolv; /* (n_states) per-state tolerances, owned, or NULL */
+    double *times;        /* --times: (n_times) output times, owned, or NULL */
+    long n_times;
+    double max_step, initial_step; /* 0: automatic */
+    long max_steps;       /* 0: no limit */
+    int stats;            /* --stats: counts on stderr */
+    /* --event NAME[:stop]: the model's events to locate (copies, terminal as asked) */
+    dyn_event *events;    /* (n_events), owned */
+    int n_events;
+    const char *events_path; /* --events-output FILE, or NULL */
 } cli_run;
 
 /* Parse "MODEL [options]" of run-like commands into run; unknown options are errors.
@@ -57,6 +69,21 @@ int cli_run_parse(const char *command, int argc, char **argv, cli_run *run);
 void cli_run_free(cli_run *run);
 /* Help text of the run options (shared by run-like commands). */
 void cli_run_options_help(FILE *out);
+
+/* Run the parsed run: dyn_fixed_solve for a fixed-step method without events (the
+ * homework's loop, exactly), dyn_solve otherwise (adaptive methods: samples on the --step
+ * grid or at --times by dense output; events). Samples go to output (k, t, y), events to
+ * on_event (may be NULL), stages of the first run->trace_steps steps to the trace printer.
+ * every > 1 lets the fixed-step driver hand over only every K-th sample and the last (the
+ * general driver hands over all). y (n_states) receives the final state (the last good one
+ * on failure). Returns the library's status (res filled), or DYN_ERR_ARG with res->message
+ * for bad options, or -1 when out of memory. */
+int cli_run_solve(const cli_run *run, long every, dyn_output_fn output, void *output_ctx,
+                  dyn_event_fn on_event, void *event_ctx, dyn_progress_fn progress,
+                  void *progress_ctx, double *y, dyn_result *res);
+/* The counts of a solve as one line: "steps=N accepted=N rejected=N rhs=N" (+ " jac=N"
+ * for stiff methods), without a newline, into buf; returns buf. */
+char *cli_stats_line(const cli_run *run, const dyn_result *res, char *buf, size_t size);
 
 /* Stage-by-stage trace printer for dyn_fixed_opts.trace; ctx is the cli_run. */
 void cli_print_trace(const dyn_trace_stage *st, void *ctx);

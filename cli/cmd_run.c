@@ -1,4 +1,5 @@
-/* dynkit run MODEL: integrate a model and stream CSV (header "t,<states>[,<outputs>]"). */
+/* dynkit run MODEL: integrate a model and stream CSV (header "t,<states>[,<outputs>]");
+ * with --event, the events as CSV "event,t,<states>" (--events-output) or on stderr. */
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,8 +16,20 @@ typedef struct csv_sink {
     const char *warned[8];    /* each distinct warning is printed once */
     int n_warned;
     long every;               /* keep samples k % every == 0 and the last one */
-    long last_k;
+    long last_k;              /* index of the last sample, or -1 when not known beforehand */
+    /* when last_k is not known: the latest sample not written yet, written at the end */
+    double *pending_y;        /* (n) */
+    double pending_t;
+    int pending;
+    int seen;                 /* samples seen */
 } csv_sink;
+
+/* Where events go: CSV rows (event,t,<states>) or lines on stderr. */
+typedef struct event_sink {
+    FILE *out;
+    const cli_run *run;
+    int io_failed;
+} event_sink;
 
 static void check_warning(csv_sink *sink, double t, const double *y)
 {
@@ -51,23 +64,61 @@ static int write_sample(csv_sink *sink, double t, const double *y)
 static int on_sample(long k, double t, const double *y, void *ctx)
 {
     csv_sink *sink = ctx;
+    const int n = sink->run->model->n_states;
     check_warning(sink, t, y);
+    sink->seen = 1;
+    if (sink->last_k < 0) { /* keep it in case it turns out to be the last one */
+        memcpy(sink->pending_y, y, (size_t)n * sizeof *y);
+        sink->pending_t = t;
+        sink->pending = 1;
+    }
     if (k % sink->every != 0 && k != sink->last_k)
         return 0;
     if (sink->run->final_only)
-        return 0; /* the last good state is written after the solve */
+        return 0; /* the last sample is written after the solve */
+    sink->pending = 0;
     return write_sample(sink, t, y);
+}
+
+static int on_event(int index, double t, const double *y, int direction, void *ctx)
+{
+    event_sink *es = ctx;
+    const cli_run *run = es->run;
+    const dyn_model *m = run->model;
+    const char *name = run->events[index].name;
+    if (es->out) {
+        if (fprintf(es->out, "%s,%.17g", name, t) < 0)
+            es->io_failed = 1;
+        for (int i = 0; i < m->n_states; i++)
+            if (fprintf(es->out, ",%.17g", y[i]) < 0)
+                es->io_failed = 1;
+        if (fputc('\n', es->out) == EOF)
+            es->io_failed = 1;
+    } else {
+        fprintf(stderr, "dynkit: event %s (%s) at t = %.17g:", name,
+                direction > 0 ? "rising" : "falling", t);
+        for (int i = 0; i < m->n_states; i++)
+            fprintf(stderr, " %s = %.17g", m->states[i].name, y[i]);
+        fputc('\n', stderr);
+    }
+    return 0;
 }
 
 static void run_help(void)
 {
     puts("Usage: dynkit run MODEL [options]\n"
          "\n"
-         "Integrate MODEL with a fixed-step method and write the samples as CSV: a header\n"
-         "t,<state names> and one row per sample t0 + k*step, numbers printed with %.17g.\n"
+         "Integrate MODEL and write the samples as CSV: a header t,<state names> and one row\n"
+         "per sample t0 + k*step, numbers printed with %.17g. Fixed-step methods (euler, heun,\n"
+         "rk4, ...) take steps of --step; adaptive methods (bs23 = ode23, dp45 = ode45,\n"
+         "dop853) choose their steps to meet --rtol/--atol (defaults 1e-3 and 1e-6, like\n"
+         "MATLAB) and interpolate the samples on the --step grid or at --times.\n"
          "\n"
          "Examples:\n"
          "  dynkit run vanderpol --method heun --step 0.01 --tspan 0:15 --final\n"
+         "  dynkit run plane --method dp45 --rtol 1e-8 --atol 1e-10 --final --stats\n"
+         "  dynkit run pendulum --method dp45 --rtol 1e-10 --tspan 0:20 --event turn \\\n"
+         "      --event bottom:stop --events-output events.csv\n"
          "  dynkit run pendulum --method euler --step 0.2 --tspan 0:0.2 --trace 1\n"
          "  dynkit run pendulum --set l=1 --init dphi=pi/4 --tspan 0:10 --outputs\n"
          "  dynkit inverse cart --output forces.csv   (prints the --init options for:)\n"
@@ -81,7 +132,15 @@ static void report_failure(const cli_run *run, const dyn_result *res, const doub
                            const csv_sink *sink)
 {
     const dyn_model *m = run->model;
-    if (res->status == DYN_ERR_NONFINITE && res->fail_index >= 0)
+    if (res->status == DYN_ERR_NONFINITE && res->fail_index >= 0 &&
+        dyn_method_is_adaptive(run->method))
+        fprintf(stderr,
+                "dynkit: run failed: state %s of model %s became NaN or Inf at t = %.17g "
+                "(method %s, rtol %g, atol %g; every smaller step failed too)\n",
+                m->states[res->fail_index].name, m->name, res->fail_t, run->method->name,
+                run->rtol > 0 ? run->rtol : DYN_DEFAULT_RTOL,
+                run->atol > 0 ? run->atol : DYN_DEFAULT_ATOL);
+    else if (res->status == DYN_ERR_NONFINITE && res->fail_index >= 0)
         fprintf(stderr,
                 "dynkit: run failed: state %s of model %s became NaN or Inf at t = %.17g "
                 "(method %s, step %g)\n",
@@ -117,67 +176,102 @@ int cli_cmd_run(int argc, char **argv)
     }
     const dyn_model *m = run.model;
     const int n = m->n_states;
-    dyn_grid grid;
-    char why[256];
-    if (dyn_grid_plan(run.t0, run.t1, run.step, run.end, &grid, why, sizeof why)) {
+    const int general = dyn_method_is_adaptive(run.method) || run.n_events > 0;
+    dyn_grid grid = {0};
+    char why[256], line[160];
+    if (!run.times &&
+        dyn_grid_plan(run.t0, run.t1, run.step, run.end, &grid, why, sizeof why)) {
         rc = cli_usage_error("run", "--step %g over --tspan %g:%g: %s", run.step, run.t0, run.t1,
                              why);
         cli_run_free(&run);
         return rc;
     }
-    FILE *out = stdout;
+    FILE *out = stdout, *evout = NULL;
     if (run.output_path && !(out = fopen(run.output_path, "w"))) {
         rc = cli_usage_error("run", "cannot open --output '%s' for writing: %s", run.output_path,
                              strerror(errno));
         cli_run_free(&run);
         return rc;
     }
-    size_t work_size = dyn_fixed_work_size(run.method, n);
-    double *work = malloc(work_size * sizeof *work);
-    double *buffers = calloc((size_t)(n + m->n_outputs + 1), sizeof *buffers);
-    if (!work || !buffers) {
+    if (run.events_path && !(evout = fopen(run.events_path, "w"))) {
+        rc = cli_usage_error("run", "cannot open --events-output '%s' for writing: %s",
+                             run.events_path, strerror(errno));
+        if (out != stdout)
+            fclose(out);
+        cli_run_free(&run);
+        return rc;
+    }
+    double *buffers = calloc((size_t)(2 * n + m->n_outputs + 1), sizeof *buffers);
+    if (!buffers) {
         fprintf(stderr, "dynkit: error: out of memory\n");
         rc = CLI_FAILED;
         goto done;
     }
-    csv_sink sink = {.out = out, .run = &run, .extra = buffers + n};
+    csv_sink sink = {.out = out, .run = &run, .extra = buffers + n, .pending_y = buffers + n +
+                                                                                 m->n_outputs};
+    event_sink es = {.out = evout, .run = &run};
     int n_extra = run.with_outputs ? m->n_outputs : 0;
     if (dyn_csv_write_header(out, m->states, n, m->outputs, n_extra)) {
         fprintf(stderr, "dynkit: error: cannot write the output\n");
         rc = CLI_FAILED;
         goto done;
     }
+    if (evout) {
+        fputs("event,t", evout);
+        for (int i = 0; i < n; i++)
+            fprintf(evout, ",%s", m->states[i].name);
+        fputc('\n', evout);
+    }
     cli_progress progress;
     cli_progress_start(&progress, run.quiet);
-    sink.last_k = grid.samples - 1;
-    /* the driver thins the samples itself unless the model checks every state for warnings */
+    /* thinning: every K-th sample and the last; the last is known beforehand only for a
+     * fixed-step run without events (the general driver may end early at an event) */
+    sink.last_k = general ? -1 : grid.samples - 1;
     const long keep = run.final_only ? 0x7fffffffffffffffL : run.every;
-    sink.every = m->warn ? keep : 1;
-    dyn_fixed_opts opts = {0};
-    opts.end = run.end;
-    opts.every = m->warn ? 1 : keep;
-    opts.output = on_sample;
-    opts.output_ctx = &sink;
-    opts.trace = run.trace_steps > 0 ? cli_print_trace : NULL;
-    opts.trace_ctx = &run;
-    opts.trace_steps = run.trace_steps;
-    opts.progress = progress.enabled ? cli_progress_update : NULL;
-    opts.progress_ctx = &progress;
-    dyn_system sys = {m->rhs, n, run.par};
+    /* the fixed-step driver thins the samples itself unless the model checks every state for
+     * warnings */
+    sink.every = general || m->warn ? keep : 1;
     dyn_result res;
-    dyn_fixed_solve(run.method, &sys, run.t0, run.t1, run.step, run.y0, buffers, work, &opts,
-                    &res);
+    int solved = cli_run_solve(&run, general || m->warn ? 1 : keep, on_sample, &sink, on_event, &es,
+                               progress.enabled ? cli_progress_update : NULL, &progress, buffers,
+                               &res);
     cli_progress_finish(&progress);
+    if (solved < 0) {
+        fprintf(stderr, "dynkit: error: out of memory\n");
+        rc = CLI_FAILED;
+        goto done;
+    }
     if (res.status == DYN_ERR_ARG) {
         rc = cli_usage_error("run", "%s", res.message);
         goto done;
     }
-    if (run.final_only && res.status != DYN_ERR_ARG)
-        write_sample(&sink, res.t, buffers); /* the driver leaves the last good state there */
+    if (run.final_only) {
+        /* the last sample; after a failure, the last good state */
+        if (general && res.status == DYN_OK && sink.pending)
+            write_sample(&sink, sink.pending_t, sink.pending_y);
+        else
+            write_sample(&sink, res.t, buffers); /* the driver leaves the state there */
+    } else if (sink.pending) {
+        write_sample(&sink, sink.pending_t, sink.pending_y); /* the last one is always kept */
+    }
     if (fflush(out) != 0 || sink.io_failed) {
         fprintf(stderr, "dynkit: error: writing the output failed: %s\n", strerror(errno));
         rc = CLI_FAILED;
     }
+    if (evout && (fflush(evout) != 0 || es.io_failed)) {
+        fprintf(stderr, "dynkit: error: writing --events-output %s failed: %s\n",
+                run.events_path, strerror(errno));
+        rc = CLI_FAILED;
+    }
+    if (res.stiff)
+        fprintf(stderr,
+                "dynkit: warning: %s; a method for stiff problems would need far fewer steps\n",
+                res.stiff_message);
+    if (res.stopped_by_event && !run.quiet)
+        fprintf(stderr, "dynkit: the run stopped at event %s, t = %.17g\n",
+                run.events[res.event_index].name, res.t);
+    if (run.stats)
+        fprintf(stderr, "%s\n", cli_stats_line(&run, &res, line, sizeof line));
     if (res.status != DYN_OK) {
         report_failure(&run, &res, buffers, &sink);
         rc = CLI_FAILED;
@@ -185,7 +279,8 @@ int cli_cmd_run(int argc, char **argv)
 done:
     if (out != stdout)
         fclose(out);
-    free(work);
+    if (evout)
+        fclose(evout);
     free(buffers);
     cli_run_free(&run);
     return rc;

@@ -24,12 +24,30 @@ void cli_run_options_help(FILE *out)
           "                       sample time and span ('dynkit inverse cart' writes one)\n"
           "  --interp hold|linear read the table between samples: 'hold' (default) takes the\n"
           "                       nearest sample, 'linear' interpolates; end values are held\n"
+          "Adaptive methods (bs23 = ode23, dp45 = ode45, dop853; see 'dynkit methods'):\n"
+          "  --rtol R             relative tolerance (default 1e-3, as MATLAB's ode45)\n"
+          "  --atol A             absolute tolerance (default 1e-6); both accept one value per\n"
+          "                       state, comma-separated, e.g. --atol 1e-8,1e-6\n"
+          "                       each step keeps the error estimate below atol + rtol |y|\n"
+          "  --step H             with an adaptive method: write samples at T0 + k*H (default:\n"
+          "                       the model's step), interpolated, never forcing a step\n"
+          "  --times LIST         write samples at these times instead: comma-separated\n"
+          "                       (0,0.5,2) or @FILE with one time per line; without --tspan\n"
+          "                       the run ends at the last time\n"
+          "  --max-step H         largest step size (default: the span)\n"
+          "  --initial-step H     first step size (default: chosen from the problem)\n"
+          "  --max-steps N        stop after N steps (default: no limit)\n"
+          "Events (any method):\n"
+          "  --event NAME[:stop]  locate the model's event NAME (repeatable; 'dynkit info\n"
+          "                       MODEL' lists them); with :stop the run ends at it\n"
+          "  --events-output FILE write the events as CSV: event,t,<states> (default: stderr)\n"
           "Output options:\n"
           "  --output FILE        write the CSV to FILE instead of standard output\n"
           "  --final              write the header and the last sample only\n"
           "  --every K            keep every K-th sample (the last one is always kept)\n"
           "  --outputs            add the model's extra outputs (energy, ...) as columns\n"
           "  --trace N            print each stage of the first N steps on stderr\n"
+          "  --stats              print the counts on stderr: steps=N accepted=N rejected=N rhs=N\n"
           "  --quiet              no progress display on stderr\n",
           out);
 }
@@ -119,7 +137,204 @@ static int apply_assignment(const char *command, cli_run *run, const assignment 
 }
 
 /* Which options were given (the defaults of step and span depend on --forces). */
-enum { GIVEN_STEP = 1, GIVEN_TSPAN = 2, GIVEN_INTERP = 4 };
+enum {
+    GIVEN_STEP = 1,
+    GIVEN_TSPAN = 2,
+    GIVEN_INTERP = 4,
+    GIVEN_RTOL = 8,
+    GIVEN_ATOL = 16,
+    GIVEN_MAX_STEP = 32,
+    GIVEN_INITIAL_STEP = 64,
+    GIVEN_MAX_STEPS = 128
+};
+
+/* A tolerance: one number >= 0 (*scalar), or one per state, comma-separated (*vec, owned). */
+static int parse_tolerance(const char *command, const char *opt, const char *text, int n,
+                           double *scalar, double **vec)
+{
+    free(*vec);
+    *vec = NULL;
+    if (!strchr(text, ',')) {
+        if (cli_parse_number(text, scalar) || !(*scalar > 0))
+            return cli_usage_error(command,
+                                   "%s '%s' is not accepted: give a number > 0 (e.g. 1e-6), or "
+                                   "one per state separated by commas",
+                                   opt, text);
+        return CLI_OK;
+    }
+    double *v = calloc((size_t)n, sizeof *v);
+    if (!v)
+        return cli_usage_error(command, "out of memory");
+    const char *p = text;
+    int count = 0;
+    while (*p) {
+        char item[64];
+        const char *comma = strchr(p, ',');
+        size_t len = comma ? (size_t)(comma - p) : strlen(p);
+        if (len >= sizeof item || count >= n)
+            break;
+        memcpy(item, p, len);
+        item[len] = '\0';
+        if (cli_parse_number(item, &v[count]) || !(v[count] >= 0)) {
+            free(v);
+            return cli_usage_error(command,
+                                   "%s '%s' is not accepted: '%s' is not a number >= 0", opt,
+                                   text, item);
+        }
+        count++;
+        if (!comma) {
+            p += len;
+            break;
+        }
+        p = comma + 1;
+    }
+    if (count != n || *p) {
+        free(v);
+        return cli_usage_error(command,
+                               "%s '%s' is not accepted: give one value, or %d values (one per "
+                               "state) separated by commas",
+                               opt, text, n);
+    }
+    *vec = v;
+    return CLI_OK;
+}
+
+/* Append a time to a growing list. */
+static int push_time(double **times, long *count, long *cap, double t)
+{
+    if (*count == *cap) {
+        long ncap = *cap ? 2 * *cap : 64;
+        double *nt = realloc(*times, (size_t)ncap * sizeof *nt);
+        if (!nt)
+            return -1;
+        *times = nt;
+        *cap = ncap;
+    }
+    (*times)[(*count)++] = t;
+    return 0;
+}
+
+/* --times: "t1,t2,..." or "@FILE" (one time per line; blank lines and lines starting with
+ * '#' are skipped). The times must not decrease. */
+static int parse_times(const char *command, const char *text, cli_run *run)
+{
+    long cap = 0;
+    free(run->times);
+    run->times = NULL;
+    run->n_times = 0;
+    if (text[0] == '@') {
+        FILE *f = fopen(text + 1, "r");
+        if (!f)
+            return cli_usage_error(command, "--times: cannot read '%s'", text + 1);
+        char line[256];
+        long lineno = 0;
+        while (fgets(line, sizeof line, f)) {
+            lineno++;
+            char *p = line, *e = line + strlen(line);
+            while (*p == ' ' || *p == '\t')
+                p++;
+            while (e > p && (e[-1] == '\n' || e[-1] == '\r' || e[-1] == ' ' || e[-1] == '\t'))
+                *--e = '\0';
+            if (!*p || *p == '#')
+                continue;
+            double t;
+            if (cli_parse_number(p, &t)) {
+                fclose(f);
+                return cli_usage_error(command,
+                                       "--times: line %ld of %s ('%s') is not a time in s",
+                                       lineno, text + 1, p);
+            }
+            if (push_time(&run->times, &run->n_times, &cap, t)) {
+                fclose(f);
+                return cli_usage_error(command, "out of memory");
+            }
+        }
+        fclose(f);
+    } else {
+        const char *p = text;
+        while (1) {
+            char item[64];
+            const char *comma = strchr(p, ',');
+            size_t len = comma ? (size_t)(comma - p) : strlen(p);
+            double t;
+            if (len >= sizeof item)
+                return cli_usage_error(command, "--times: '%.20s...' is too long", p);
+            memcpy(item, p, len);
+            item[len] = '\0';
+            if (cli_parse_number(item, &t))
+                return cli_usage_error(command,
+                                       "--times '%s' is not accepted: '%s' is not a time in s "
+                                       "(give times separated by commas, or @FILE)",
+                                       text, item);
+            if (push_time(&run->times, &run->n_times, &cap, t))
+                return cli_usage_error(command, "out of memory");
+            if (!comma)
+                break;
+            p = comma + 1;
+        }
+    }
+    if (run->n_times == 0)
+        return cli_usage_error(command, "--times %s: no times given", text);
+    for (long k = 1; k < run->n_times; k++)
+        if (run->times[k] < run->times[k - 1])
+            return cli_usage_error(command,
+                                   "--times: the times must not decrease (%.17g follows %.17g)",
+                                   run->times[k], run->times[k - 1]);
+    return CLI_OK;
+}
+
+/* --event NAME[:stop]: the model's event as a copy, terminal when :stop. */
+static int add_event(const char *command, const char *text, cli_run *run)
+{
+    const dyn_model *m = run->model;
+    char name[64], list[512];
+    const char *colon = strchr(text, ':');
+    size_t len = colon ? (size_t)(colon - text) : strlen(text);
+    int stop = 0;
+    if (colon) {
+        if (strcmp(colon + 1, "stop") != 0)
+            return cli_usage_error(command,
+                                   "--event '%s' is not accepted: give NAME or NAME:stop", text);
+        stop = 1;
+    }
+    size_t used = 0;
+    list[0] = '\0';
+    for (int i = 0; i < m->n_events && used < sizeof list; i++)
+        used += (size_t)snprintf(list + used, sizeof list - used, "%s%s", i ? ", " : "",
+                                 m->events[i].name);
+    if (len >= sizeof name || m->n_events <= 0)
+        return cli_usage_error(command, "--event: model %s has no event '%.*s' (%s%s)", m->name,
+                               (int)(len < 60 ? len : 60), text,
+                               m->n_events > 0 ? "accepted: " : "it has no events",
+                               m->n_events > 0 ? list : "");
+    memcpy(name, text, len);
+    name[len] = '\0';
+    int found = -1;
+    for (int i = 0; i < m->n_events; i++)
+        if (strcmp(m->events[i].name, name) == 0)
+            found = i;
+    if (found < 0)
+        return cli_usage_error(command, "--event: model %s has no event '%s' (accepted: %s)",
+                               m->name, name, list);
+    dyn_event *ev = realloc(run->events, (size_t)(run->n_events + 1) * sizeof *ev);
+    if (!ev)
+        return cli_usage_error(command, "out of memory");
+    run->events = ev;
+    ev[run->n_events] = m->events[found];
+    ev[run->n_events].terminal = stop;
+    run->n_events++;
+    return CLI_OK;
+}
+
+/* A step-like option: a finite number > 0. */
+static int parse_positive(const char *command, const char *opt, const char *text, double *out)
+{
+    if (cli_parse_number(text, out) || !(*out > 0))
+        return cli_usage_error(command,
+                               "%s '%s' is not accepted: give a time in s, a finite number > 0",
+                               opt, text);
+    return CLI_OK;
+}
 
 static int parse_option(const char *command, int argc, char **argv, int *i, cli_run *run,
                         assignment *as, int *n_as, const char **method_name, unsigned *given)
@@ -197,6 +412,44 @@ static int parse_option(const char *command, int argc, char **argv, int *i, cli_
                                    "--trace '%s' is not accepted: give the number of steps to "
                                    "trace, a whole number >= 0",
                                    v);
+    } else if (OPT("rtol")) {
+        if (r < 0 || parse_tolerance(command, "--rtol", v, run->model->n_states, &run->rtol,
+                                     &run->rtolv))
+            return CLI_USAGE;
+        *given |= GIVEN_RTOL;
+    } else if (OPT("atol")) {
+        if (r < 0 || parse_tolerance(command, "--atol", v, run->model->n_states, &run->atol,
+                                     &run->atolv))
+            return CLI_USAGE;
+        *given |= GIVEN_ATOL;
+    } else if (OPT("times")) {
+        if (r < 0 || parse_times(command, v, run))
+            return CLI_USAGE;
+    } else if (OPT("max-step")) {
+        if (r < 0 || parse_positive(command, "--max-step", v, &run->max_step))
+            return CLI_USAGE;
+        *given |= GIVEN_MAX_STEP;
+    } else if (OPT("initial-step")) {
+        if (r < 0 || parse_positive(command, "--initial-step", v, &run->initial_step))
+            return CLI_USAGE;
+        *given |= GIVEN_INITIAL_STEP;
+    } else if (OPT("max-steps")) {
+        if (r < 0)
+            return CLI_USAGE;
+        if (cli_parse_count(v, 1, &run->max_steps))
+            return cli_usage_error(command,
+                                   "--max-steps '%s' is not accepted: give a whole number >= 1",
+                                   v);
+        *given |= GIVEN_MAX_STEPS;
+    } else if (OPT("event")) {
+        if (r < 0 || add_event(command, v, run))
+            return CLI_USAGE;
+    } else if (OPT("events-output")) {
+        if (r < 0)
+            return CLI_USAGE;
+        run->events_path = v;
+    } else if (cli_flag(arg, "stats")) {
+        run->stats = 1;
     } else if (cli_flag(arg, "final")) {
         run->final_only = 1;
     } else if (cli_flag(arg, "outputs")) {
@@ -300,6 +553,57 @@ static int load_input(const char *command, cli_run *run, unsigned given)
     return CLI_OK;
 }
 
+/* Options that only make sense with some methods, and --times against the span. */
+static int check_method_options(const char *command, cli_run *run, unsigned given)
+{
+    const dyn_tableau *mt = run->method;
+    const int adaptive = dyn_method_is_adaptive(mt);
+    static const struct {
+        unsigned flag;
+        const char *name;
+    } adaptive_only[] = {{GIVEN_RTOL, "--rtol"},
+                         {GIVEN_ATOL, "--atol"},
+                         {GIVEN_MAX_STEP, "--max-step"},
+                         {GIVEN_INITIAL_STEP, "--initial-step"},
+                         {GIVEN_MAX_STEPS, "--max-steps"}};
+    for (size_t i = 0; i < sizeof adaptive_only / sizeof adaptive_only[0] && !adaptive; i++)
+        if (given & adaptive_only[i].flag)
+            return cli_usage_error(command,
+                                   "%s applies to adaptive methods only: %s takes fixed steps of "
+                                   "--step H. Give --method dp45 (or bs23, dop853) to control "
+                                   "the error, or choose the accuracy of %s with --step",
+                                   adaptive_only[i].name, mt->name, mt->name);
+    if (run->times && !adaptive)
+        return cli_usage_error(command,
+                               "--times needs an adaptive method (e.g. --method dp45), whose "
+                               "dense output gives the state at any time; %s writes the samples "
+                               "t0 + k*step",
+                               mt->name);
+    if (run->times && (given & GIVEN_STEP))
+        return cli_usage_error(command,
+                               "give either --step (samples at T0 + k*H) or --times, not both");
+    if (run->events_path && run->n_events == 0)
+        return cli_usage_error(command, "--events-output needs --event NAME (which events to "
+                                        "write)");
+    if (run->times) {
+        const double first = run->times[0], last = run->times[run->n_times - 1];
+        if (!(given & GIVEN_TSPAN)) {
+            if (!(last > run->t0))
+                return cli_usage_error(command,
+                                       "--times: the last time %.17g must be after the start "
+                                       "time %.17g (or give --tspan)",
+                                       last, run->t0);
+            run->t1 = last;
+        }
+        if (first < run->t0 || last > run->t1)
+            return cli_usage_error(command,
+                                   "--times: the times must lie in the span %.17g:%.17g (got "
+                                   "%.17g .. %.17g)",
+                                   run->t0, run->t1, first, last);
+    }
+    return CLI_OK;
+}
+
 int cli_run_parse(const char *command, int argc, char **argv, cli_run *run)
 {
     char names[512], err[256];
@@ -346,7 +650,7 @@ int cli_run_parse(const char *command, int argc, char **argv, cli_run *run)
     if (!run->method)
         return cli_usage_error(command, "unknown method '%s' (accepted: %s)", method_name,
                                dyn_method_names(names, sizeof names));
-    return CLI_OK;
+    return check_method_options(command, run, given);
 }
 
 void cli_run_free(cli_run *run)
@@ -354,7 +658,13 @@ void cli_run_free(cli_run *run)
     free(run->par);
     free(run->y0);
     free(run->input);
+    free(run->rtolv);
+    free(run->atolv);
+    free(run->times);
+    free(run->events);
     run->par = NULL;
     run->y0 = NULL;
     run->input = NULL;
+    run->rtolv = run->atolv = run->times = NULL;
+    run->events = NULL;
 }

@@ -11,6 +11,9 @@ const char *dyn_status_name(int status)
     case DYN_STOPPED: return "stopped by output";
     case DYN_ERR_IO: return "output error";
     case DYN_CANCELLED: return "cancelled";
+    case DYN_ERR_STEP_SIZE: return "step size underflow";
+    case DYN_ERR_MAX_STEPS: return "too many steps";
+    case DYN_ERR_CAPACITY: return "recorder full";
     default: return "unknown status";
     }
 }

@@ -55,8 +55,11 @@ static void table_json(cli_json *j, const dyn_hw_table *t)
         cli_json_string(j, t->method);
     else
         cli_json_null(j);
+    const int digits = j->digits;
+    j->digits = 17; /* the step exactly */
     cli_json_key(j, "step");
     cli_json_number(j, t->step);
+    j->digits = digits;
     cli_json_key(j, "columns");
     cli_json_begin_array(j);
     for (int c = 0; c < t->cols; c++)
@@ -72,7 +75,6 @@ static void table_json(cli_json *j, const dyn_hw_table *t)
         t->rows > CLI_MAX_ROWS ? (t->rows - 1 + CLI_MAX_ROWS - 2) / (CLI_MAX_ROWS - 1) : 1;
     cli_json_key(j, "data");
     cli_json_begin_array(j);
-    const int digits = j->digits;
     for (int c = 0; c < t->cols; c++) {
         j->digits = c == 0 ? 9 : digits; /* times finer than the screen, for stepping */
         cli_json_begin_array(j);

@@ -152,10 +152,13 @@ void cli_json_series(cli_json *j, const dyn_model *m, const cli_series *s)
     cli_json_string(j, s->method->name);
     cli_json_key(j, "method_title");
     cli_json_string(j, s->method->title);
+    const int digits = j->digits;
+    j->digits = 17; /* exactly */
     cli_json_key(j, "step");
     cli_json_number(j, s->step);
     cli_json_key(j, "samples");
     cli_json_number(j, (double)s->samples);
+    j->digits = digits;
     cli_json_key(j, "status");
     cli_json_string(j, dyn_status_name(s->status));
     cli_json_key(j, "message");
@@ -172,7 +175,6 @@ void cli_json_series(cli_json *j, const dyn_model *m, const cli_series *s)
     cli_json_end_array(j);
     cli_json_key(j, "data");
     cli_json_begin_array(j);
-    const int digits = j->digits;
     for (int c = 0; c < s->cols; c++) {
         j->digits = c == 0 ? 9 : digits; /* times finer than the screen, for stepping */
         cli_json_numbers(j, s->data + c, s->rows, s->cols);

@@ -3,7 +3,8 @@
  *
  * dyn_homework_compute runs every analysis of problems 1 to 4 and fills one struct; the
  * writers only format it. Everything is computed from the models and integrators of the
- * library: no number is stored.
+ * library: no number is stored. dyn_homework_series records the runs behind the answers as
+ * tables of samples, for plots and animations (the dynkit tool draws them in a page).
  */
 #ifndef DYNKIT_REPORT_H
 #define DYNKIT_REPORT_H

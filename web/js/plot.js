@@ -208,7 +208,7 @@
       if (l.label) {
         ctx.fillStyle = l.color || '#555';
         ctx.font = FONT;
-        ctx.textAlign = horizontal ? 'left' : 'left';
+        ctx.textAlign = 'left';
         if (horizontal) ctx.fillText(l.label, this.m.l + 6, this.py(l.v) - 4);
         else ctx.fillText(l.label, this.px(l.v) + 4, this.m.t + 14);
       }

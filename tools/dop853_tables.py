@@ -1,5 +1,7 @@
 #!/usr/bin/env python3
-"""Print the DOP853 data of src/ode/tableaus.c (C arrays) from the published coefficients.
+"""Print the DOP853 data of src/ode/tableaus.c (C arrays) from the published coefficients,
+and check in exact rational arithmetic that the dense output's corrections vanish at both
+ends of the step (so the nested form is exact at theta = 0 and 1).
 
 Source of the coefficients: E. Hairer, G. Wanner, dop853.f (Fortran, 1993, unige.ch/~hairer),
 as transcribed in SciPy's scipy/integrate/_ivp/dop853_coefficients.py (same digits); method
@@ -10,9 +12,8 @@ and dense output described in Hairer, Norsett & Wanner, "Solving ODEs I", 2nd ed
 The dense output of DOP853 is given in nested form (Hairer's CONTD8, SciPy's Dop853DenseOutput):
     y(t + x h) = y0 + x (F0 + (1-x) (F1 + x (F2 + (1-x) (F3 + x (F4 + (1-x) (F5 + x F6))))))
 with F0 = dy = h sum b_i k_i, F1 = h k_0 - dy, F2 = 2 dy - h (k_0 + k_12), F(3+m) = h sum D[m][i] k_i.
-This script expands it exactly (rational arithmetic on the decimal literals) into powers of x,
-    y(t + x h) = y0 + h sum_i k_i sum_{j=1..7} P[i][j-1] x^j,
-the form dynkit stores for every method, and prints P rounded to 21 significant digits.
+dynkit stores the dense output in this nested form (dyn_dense, HNW I sec. II.6): F0..F2 are
+the cubic Hermite part every explicit method shares, and the table gives the rows D.
 The method itself has 12 stages (the 13th row of A is b: f(t + h, y_new), which dynkit
 computes after an accepted step and reuses as the next step's first stage).
 Run: python3 tools/dop853_tables.py
@@ -189,8 +190,13 @@ def main():
     emit("dop853_dense_c", [c_num(C[i]) for i in range(s + 1, S)])
     emit("dop853_dense_a", [get(i, j) for i in range(s + 1, S) for j in range(S)],
          comment=lambda r: "stage %d" % (s + 1 + r), per_row=S)
-    emit("dop853_dense", [fmt(v) for row in dense_weights() for v in row],
-         comment=lambda r: "stage %d" % r, per_row=7)
+    emit("dop853_dense", [c_num(D[m][i]) if i in D[m] else "0.0" for m in range(4) for i in range(S)],
+         comment=lambda r: "c%d = h sum_i D[%d][i] k_i" % (4 + r, r), per_row=S)
+    # the expansion, as a check: the full interpolant sums to b at x = 1 and has y'(0) = f0
+    for i, row in enumerate(dense_weights()):
+        bi = Fr(A.get((12, i), "0"))
+        assert sum(row) == bi, "row %d" % i
+        assert row[0] == (1 if i == 0 else 0)
 
 
 if __name__ == "__main__":

@@ -95,14 +95,14 @@ typedef struct dyn_tableau {
                               * controller uses the exponent 1/(q+1) */
     int fsal;                /* 1: first same as last: the last stage is f(t + h, y_{n+1})
                               * (its row of a equals b, c = 1) and is the next step's first */
-    /* ---- dense output: y(t + theta h) = y + h sum_i k_i sum_{j=1..q} P[i][j-1] theta^j,
-     * q = dense_degree, over dense_stages stages; for a table without FSAL whose dense
-     * output needs more than s stages, stage s is f(t + h, y_{n+1}) and the rows of dense_a
-     * give the stages after it. dense_degree 0: the cubic Hermite interpolant of the step's
-     * end values and derivatives is used. */
-    int dense_degree;        /* q */
-    int dense_stages;        /* number of rows of P */
-    const double *dense;     /* (dense_stages x dense_degree) P */
+    /* ---- dense output, in the nested form of dyn_dense (solve.h): the cubic Hermite
+     * interpolant of the step's ends (c0..c3) plus the corrections
+     * c_j = h sum_i D[j-4][i] k_i, j = 4..dense_degree, over dense_stages stages. For a
+     * table without FSAL whose dense output needs more than s stages, stage s is
+     * f(t + h, y_{n+1}) and the rows of dense_a give the stages after it. */
+    int dense_degree;        /* q; 0 or 3: the cubic Hermite interpolant */
+    int dense_stages;        /* length of the rows of D */
+    const double *dense;     /* ((dense_degree - 3) x dense_stages) D, or NULL */
     const double *dense_a;   /* ((dense_stages - s - 1) x dense_stages) or NULL */
     const double *dense_c;   /* (dense_stages - s - 1) or NULL */
     /* ---- stiffness detection (DOPRI5, HNW I sec. IV.2): |h lambda| estimated from stage

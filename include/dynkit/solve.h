@@ -41,9 +41,15 @@ extern "C" {
 #define DYN_DEFAULT_RTOL 1e-3
 #define DYN_DEFAULT_ATOL 1e-6
 
-/* The dense output of one step, a polynomial of degree `degree` in theta = (t - t0)/h:
- *     y(t) = sum_{j=0..degree} coef[j*n + i] theta^j      (coef[i] = y at t0).
- * A view: coef belongs to whoever made it (the solver's workspace during a callback). */
+/* The dense output of one step, a polynomial of degree `degree` in theta = (t - t0)/h in
+ * Hairer's nested form (HNW I sec. II.6; DOPRI5's CONTD5, DOP853's CONTD8):
+ *     y = c0 + theta (c1 + (1-theta) (c2 + theta (c3 + (1-theta) (c4 + theta (...))))),
+ * c_j = coef[j*n .. j*n + n), the factors alternating theta, (1-theta) inward. c0 = y(t0),
+ * c1 = y(t0 + h) - y(t0), so both ends are exact; c2 = h f(t0) - c1 and
+ * c3 = 2 c1 - h (f(t0) + f(t0 + h)) make it the cubic Hermite interpolant, and higher c_j
+ * (multiplied by theta^2 (1-theta)^2 and more) are the method's corrections. Any polynomial
+ * with that degree can be written so. A view: coef belongs to whoever made it (the
+ * solver's workspace during a callback). */
 typedef struct dyn_dense {
     double t0, h;          /* the step covers [t0, t0 + h] */
     int n;                 /* states */

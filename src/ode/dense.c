@@ -1,6 +1,7 @@
-/* Dense output: evaluation of a step's interpolation polynomial (Horner's scheme in
- * theta = (t - t0)/h) and its derivative, and the caller-owned recorder that keeps the
- * dense output of every step (HNW I sec. II.6, "Dense output").
+/* Dense output: evaluation of a step's interpolation polynomial in Hairer's nested form
+ * (a Horner-like scheme with the factors theta and 1 - theta, as DOPRI5's CONTD5 and
+ * DOP853's CONTD8) and its derivative, and the caller-owned recorder that keeps the dense
+ * output of every step (HNW I sec. II.6, "Dense output").
  */
 #include <string.h>
 
@@ -10,26 +11,29 @@
 void dyn_dense_eval(const dyn_dense *d, double t, double *y)
 {
     const int n = d->n, q = d->degree;
-    const double theta = (t - d->t0) / d->h;
+    const double s = (t - d->t0) / d->h, s1 = 1.0 - s;
     const double *c = d->coef;
     for (int i = 0; i < n; i++) {
         double v = c[(size_t)q * (size_t)n + (size_t)i];
-        for (int j = q - 1; j >= 0; j--)
-            v = v * theta + c[(size_t)j * (size_t)n + (size_t)i];
-        y[i] = v;
+        for (int j = q - 1; j >= 1; j--)
+            v = c[(size_t)j * (size_t)n + (size_t)i] + ((j & 1) ? s1 : s) * v;
+        y[i] = c[i] + s * v;
     }
 }
 
 void dyn_dense_deriv(const dyn_dense *d, double t, double *dydt)
 {
     const int n = d->n, q = d->degree;
-    const double theta = (t - d->t0) / d->h;
+    const double s = (t - d->t0) / d->h, s1 = 1.0 - s;
     const double *c = d->coef;
     for (int i = 0; i < n; i++) {
-        double v = 0.0;
-        for (int j = q; j >= 1; j--)
-            v = v * theta + (double)j * c[(size_t)j * (size_t)n + (size_t)i];
-        dydt[i] = v / d->h;
+        double v = c[(size_t)q * (size_t)n + (size_t)i], dv = 0.0; /* value and d/dtheta */
+        for (int j = q - 1; j >= 1; j--) {
+            const double w = (j & 1) ? s1 : s, dw = (j & 1) ? -1.0 : 1.0;
+            dv = dw * v + w * dv;
+            v = c[(size_t)j * (size_t)n + (size_t)i] + w * v;
+        }
+        dydt[i] = (v + s * dv) / d->h;
     }
 }
 

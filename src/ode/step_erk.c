@@ -6,8 +6,9 @@
  *   first; tables without FSAL compute f(t + h, y_{n+1}) only when it is needed (dense
  *   output, stiffness test) and then reuse it as the next step's first stage, so no
  *   evaluation is wasted (the stage loop skips stage 0 when k[0] holds it already);
- * - dense output: the table's interpolant (bs23, dp45, DOP853 with its three extra stages),
- *   or the cubic Hermite interpolant of y_n, y_{n+1}, f_n, f_{n+1} (HNW I sec. II.6);
+ * - dense output in Hairer's nested form (dyn_dense): the cubic Hermite interpolant of y_n,
+ *   y_{n+1}, f_n, f_{n+1}, plus the table's corrections (dp45: one, DOP853: four, with its
+ *   three extra stages) (HNW I sec. II.6; DOPRI5's and DOP853's dense output);
  * - stiffness: |h lambda| ~ h |f(Y_j) - f(y_{n+1})| / |Y_j - y_{n+1}| for a stage j at
  *   c = 1, as in DOPRI5 and DOP853 (HNW I sec. IV.2).
  */
@@ -49,7 +50,7 @@ static size_t erk_iwork_size(const dyn_tableau *m, int n)
 
 static int erk_dense_degree(const dyn_tableau *m)
 {
-    return m->dense_degree > 0 && m->dense ? m->dense_degree : 3;
+    return m->dense_degree > 3 && m->dense ? m->dense_degree : 3;
 }
 
 static int erk_start(dyn_stepper *st, double t0, const double *y0)
@@ -229,54 +230,46 @@ static int erk_dense(dyn_stepper *st, double t, double h, const double *y, const
     const int n = st->n, s = m->stages;
     const size_t N = (size_t)n;
     double *k = e->k;
-    memcpy(coef, y, N * sizeof *coef);
-    if (!(m->dense_degree > 0 && m->dense)) {
-        /* cubic Hermite: y + theta h f0 + theta^2 (3 dy - h (2 f0 + f1)) + theta^3 (h (f0 +
-         * f1) - 2 dy), dy = ynew - y */
-        const double *f1;
-        int rc = fnew(st, t, h, ynew, &f1);
-        if (rc)
-            return rc;
-        const double *f0 = k;
-        for (size_t i = 0; i < N; i++) {
-            const double dy = ynew[i] - y[i];
-            coef[N + i] = h * f0[i];
-            coef[2 * N + i] = 3.0 * dy - h * (2.0 * f0[i] + f1[i]);
-            coef[3 * N + i] = h * (f0[i] + f1[i]) - 2.0 * dy;
-        }
-        return 0;
+    /* the cubic Hermite part (dyn_dense): y0, dy, h f0 - dy, 2 dy - h (f0 + f1) */
+    const double *f1;
+    int rc = fnew(st, t, h, ynew, &f1);
+    if (rc)
+        return rc;
+    const double *f0 = k;
+    for (size_t i = 0; i < N; i++) {
+        const double dy = ynew[i] - y[i];
+        coef[i] = y[i];
+        coef[N + i] = dy;
+        coef[2 * N + i] = h * f0[i] - dy;
+        coef[3 * N + i] = 2.0 * dy - h * (f0[i] + f1[i]);
     }
     const int q = m->dense_degree, ds = m->dense_stages;
-    if (ds > s && !m->fsal) {
-        const double *f1;
-        int rc = fnew(st, t, h, ynew, &f1);
+    if (q <= 3 || !m->dense)
+        return 0;
+    /* the method's corrections c_j = h sum_i D[j-4][i] k_i, j = 4..q, over ds stages */
+    for (int r = s + 1; r < ds; r++) {
+        const double *row = m->dense_a + (size_t)(r - s - 1) * (size_t)ds;
+        double *Y = e->Y;
+        for (size_t i = 0; i < N; i++) {
+            double acc = 0.0;
+            for (int j = 0; j < r; j++)
+                if (row[j] != 0.0)
+                    acc += row[j] * k[(size_t)j * N + i];
+            Y[i] = y[i] + h * acc;
+        }
+        const double tr = dyn_rk_stage_time(t, m->dense_c[r - s - 1], h, st->tend);
+        rc = eval(st, tr, Y, k + (size_t)r * N);
         if (rc)
             return rc;
-        for (int r = s + 1; r < ds; r++) {
-            const double *row = m->dense_a + (size_t)(r - s - 1) * (size_t)ds;
-            double *Y = e->Y;
-            for (size_t i = 0; i < N; i++) {
-                double acc = 0.0;
-                for (int j = 0; j < r; j++)
-                    if (row[j] != 0.0)
-                        acc += row[j] * k[(size_t)j * N + i];
-                Y[i] = y[i] + h * acc;
-            }
-            const double tr = dyn_rk_stage_time(t, m->dense_c[r - s - 1], h, st->tend);
-            rc = eval(st, tr, Y, k + (size_t)r * N);
-            if (rc)
-                return rc;
-        }
     }
-    for (int j = 1; j <= q; j++) {
+    for (int j = 4; j <= q; j++) {
+        const double *D = m->dense + (size_t)(j - 4) * (size_t)ds;
         double *cj = coef + (size_t)j * N;
         for (size_t i = 0; i < N; i++) {
             double acc = 0.0;
-            for (int r = 0; r < ds; r++) {
-                const double p = m->dense[(size_t)r * (size_t)q + (size_t)(j - 1)];
-                if (p != 0.0)
-                    acc += p * k[(size_t)r * N + i];
-            }
+            for (int r = 0; r < ds; r++)
+                if (D[r] != 0.0)
+                    acc += D[r] * k[(size_t)r * N + i];
             cj[i] = h * acc;
         }
     }

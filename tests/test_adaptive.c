@@ -10,6 +10,7 @@
  * - counts: dp45 and bs23 reuse their last stage (FSAL), so rhs = s_eff (accepted +
  *   rejected) + 1 (f(t0)) + 1 (the initial-step probe); DOP853 evaluates f(t + h, y1) only
  *   for the next step: rhs = 11 (accepted + rejected) + accepted + 1;
+ * - a peer: with a pure I controller the pairs take SciPy's steps (same counts and errors);
  * - the plane of homework problem 3 with the seed's ode45 tolerances agrees with RK4 at
  *   h = 1e-4; fixed-step tables run by dyn_solve equal dyn_fixed_solve bit for bit;
  * - statuses: step-size underflow at a blow-up, too many steps, bad arguments; max_step
@@ -277,6 +278,48 @@ static void test_rhs_counts(void **state)
     assert_int_equal(res.stats.rhs_calls, 6 * (res.stats.accepted + res.stats.rejected) + 1);
 }
 
+/* A peer: SciPy 1.10's solve_ivp (RK23, RK45, DOP853) uses the same error norm, the same
+ * initial step (HNW I II.4) and a pure I controller (safety 0.9, ratio in [0.2, 10]). With
+ * beta < 0 (no PI term) our pairs take the same steps: van der Pol mu = 1 on [0, 20] from
+ * (2, 0), rtol = atol = 1e-6 .. 1e-10; SciPy's nfev and error against a tight reference.
+ * (SciPy's DOP853 evaluates f(t + h, y1) also after rejected steps, so only its error is
+ * compared.) Counts may differ slightly where the compiler contracts to FMA. */
+static void test_same_steps_as_scipy_with_i_controller(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *method;
+        long nfev[5];
+        double err[5];
+    } scipy[] = {
+        {"bs23", {2837, 6056, 13055, 28139, 60629}, {8.5e-07, 1.1e-07, 1.4e-08, 1.5e-09, 1.6e-10}},
+        {"dp45", {1142, 1610, 2198, 3284, 5120}, {2.1e-05, 1.4e-06, 1.1e-07, 8.5e-09, 6.8e-10}},
+        {"dop853", {0}, {8.7e-07, 9.4e-08, 2.0e-09, 7.8e-10, 9.5e-11}},
+    };
+    dyn_vanderpol_par par = {.mu = 1.0};
+    dyn_system sys = {dyn_vanderpol_rhs, 2, &par};
+    const double y0[2] = {2.0, 0.0};
+    double yref[2], y[2];
+    exact_or_reference(&problems[2], yref);
+    for (size_t k = 0; k < sizeof scipy / sizeof scipy[0]; k++) {
+        for (int e = 6; e <= 10; e++) {
+            dyn_solve_opts o = {0};
+            o.beta = -1.0;
+            dyn_result res;
+            const double tol = pow(10.0, -e);
+            assert_int_equal(solve(scipy[k].method, &sys, 0.0, 20.0, y0, tol, tol, y, &res, &o),
+                             DYN_OK);
+            const double err = norm_diff(y, yref, 2), ref_err = scipy[k].err[e - 6];
+            const long nfev = scipy[k].nfev[e - 6];
+            if (nfev)
+                CHECK(labs(res.stats.rhs_calls - nfev) <= nfev / 50, "%s rtol %g: %ld calls, SciPy %ld",
+                      scipy[k].method, tol, res.stats.rhs_calls, nfev);
+            CHECK(err < 1.5 * ref_err && err > ref_err / 1.5, "%s rtol %g: error %.3g, SciPy %.3g",
+                  scipy[k].method, tol, err, ref_err);
+        }
+    }
+}
+
 /* ---- the plane with the seed's tolerances ---- */
 
 static void test_plane_dp45_agrees_with_rk4(void **state)
@@ -503,6 +546,7 @@ int main(void)
         cmocka_unit_test(test_dop853_observed_order_is_8),
         cmocka_unit_test(test_error_proportional_to_tolerance),
         cmocka_unit_test(test_rhs_counts),
+        cmocka_unit_test(test_same_steps_as_scipy_with_i_controller),
         cmocka_unit_test(test_plane_dp45_agrees_with_rk4),
         cmocka_unit_test(test_fixed_tables_equal_fixed_driver),
         cmocka_unit_test(test_step_size_underflow_at_blowup),

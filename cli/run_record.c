@@ -1,6 +1,7 @@
 /* Recorded runs for pictures: one run of a model kept in memory (t, states, extra outputs),
- * thinned to a number of samples a screen can show (every k-th sample, always the first and
- * the last), and the names and units of its columns. */
+ * with any method (cli_run_solve: adaptive methods give samples on the --step grid or at
+ * --times), thinned to a number of samples a screen can show (every k-th sample, always the
+ * first and the last), and the names and units of its columns. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -50,7 +51,10 @@ char *cli_series_column_names(const dyn_model *m, char *buf, size_t size)
 typedef struct recorder {
     const cli_run *run;
     cli_series *s;
-    long every, last_k, capacity;
+    long every, capacity;
+    double *latest; /* (n_states) the last sample seen, kept even when thinned away */
+    double latest_t;
+    int have_latest;
     const char *warned[8];
     int n_warned;
 } recorder;
@@ -88,9 +92,24 @@ static int on_sample(long k, double t, const double *y, void *ctx)
 {
     recorder *r = ctx;
     warn_once(r, t, y);
-    if (k % r->every == 0 || k == r->last_k)
+    if (k % r->every == 0)
         store(r, t, y);
+    memcpy(r->latest, y, (size_t)r->run->model->n_states * sizeof *y);
+    r->latest_t = t;
+    r->have_latest = 1;
     return 0;
+}
+
+/* "rk4, h = 0.01 s"; adaptive methods: "dp45, rtol = 0.001, atol = 1e-06". */
+static void label(const cli_run *run, const dyn_tableau *method, double step, char *buf,
+                  size_t size)
+{
+    if (dyn_method_is_adaptive(method))
+        snprintf(buf, size, "%s, rtol = %g, atol = %g", method->name,
+                 run->rtol > 0 ? run->rtol : DYN_DEFAULT_RTOL,
+                 run->atol > 0 ? run->atol : DYN_DEFAULT_ATOL);
+    else
+        snprintf(buf, size, "%s, h = %g s", method->name, step);
 }
 
 int cli_series_record(const cli_run *run, const dyn_tableau *method, double step, long max_rows,
@@ -103,39 +122,44 @@ int cli_series_record(const cli_run *run, const dyn_tableau *method, double step
     s->method = method;
     s->step = step;
     s->cols = 1 + m->n_states + m->n_outputs;
-    snprintf(s->label, sizeof s->label, "%s, h = %g s", method->name, step);
+    label(run, method, step, s->label, sizeof s->label);
+    /* the samples: the grid t0 + k*step (the output grid of adaptive methods), or --times */
     if (dyn_grid_plan(run->t0, run->t1, step, run->end, &grid, why, sizeof why))
         return cli_usage_error(NULL, "%s: --step %g over --tspan %g:%g: %s", s->label, step,
                                run->t0, run->t1, why);
-    recorder r = {.run = run, .s = s, .last_k = grid.samples - 1};
+    const long samples =
+        dyn_method_is_adaptive(method) && run->times ? run->n_times + 1 : grid.samples;
+    recorder r = {.run = run, .s = s};
     /* the smallest k with ceil((samples - 1) / k) + 1 <= max_rows */
-    r.every = max_rows > 1 ? (grid.samples - 1 + max_rows - 2) / (max_rows - 1) : 1;
+    r.every = max_rows > 1 ? (samples - 1 + max_rows - 2) / (max_rows - 1) : 1;
     if (r.every < 1)
         r.every = 1;
     if (run->every > r.every)
         r.every = run->every;
-    r.capacity = (grid.samples + r.every - 1) / r.every + 1;
-    s->samples = grid.samples;
+    r.capacity = (samples + r.every - 1) / r.every + 2;
+    s->samples = samples;
     const int n = m->n_states;
-    double *work = malloc(dyn_fixed_work_size(method, n) * sizeof *work);
-    double *y = malloc((size_t)n * sizeof *y);
+    double *y = malloc(2 * (size_t)n * sizeof *y);
     s->data = malloc((size_t)r.capacity * (size_t)s->cols * sizeof *s->data);
-    if (!work || !y || !s->data) {
-        free(work);
+    if (!y || !s->data) {
         free(y);
         snprintf(s->message, sizeof s->message, "out of memory for %ld samples of %d columns",
                  r.capacity, s->cols);
         s->status = DYN_ERR_ARG;
         return CLI_FAILED;
     }
-    dyn_fixed_opts opts = {0};
-    opts.end = run->end;
-    opts.output = on_sample;
-    opts.output_ctx = &r;
-    dyn_system sys = {m->rhs, n, run->par};
+    r.latest = y + n;
+    /* this run: the options of run with its own method and step */
+    cli_run one = *run;
+    one.method = method;
+    one.step = step;
     dyn_result res;
-    s->status =
-        dyn_fixed_solve(method, &sys, run->t0, run->t1, step, run->y0, y, work, &opts, &res);
+    memset(&res, 0, sizeof res);
+    if (cli_run_solve(&one, 1, on_sample, &r, NULL, NULL, NULL, NULL, y, &res) < 0) {
+        res.status = DYN_ERR_ARG;
+        snprintf(res.message, sizeof res.message, "out of memory for the solver's workspace");
+    }
+    s->status = res.status;
     if (s->status == DYN_ERR_NONFINITE && res.fail_index >= 0)
         snprintf(s->message, sizeof s->message,
                  "%s: state %s became NaN or Inf at t = %.17g; the samples up to t = %.17g "
@@ -144,10 +168,10 @@ int cli_series_record(const cli_run *run, const dyn_tableau *method, double step
     else if (s->status != DYN_OK)
         snprintf(s->message, sizeof s->message, "%s: %s; the samples up to t = %.17g are shown",
                  s->label, res.message, res.t);
-    /* a failed run ends at its last good state */
-    if (s->status != DYN_OK && s->rows > 0 && s->data[(s->rows - 1) * s->cols] < res.t)
-        store(&r, res.t, y);
-    free(work);
+    /* the last sample is always kept */
+    if (r.have_latest && (s->rows == 0 || s->data[(s->rows - 1) * s->cols] < r.latest_t))
+        store(&r, r.latest_t, r.latest);
+    s->samples = s->samples > 0 ? s->samples : s->rows;
     free(y);
     return s->status == DYN_OK ? CLI_OK : CLI_FAILED;
 }

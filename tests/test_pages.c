@@ -6,7 +6,8 @@
  * - `animate` and `report --html` write one self-contained page: no http(s) reference, no
  *   external script, style or image, no marker of the template left, the data inline.
  * - --compare METHOD[:STEP] is validated (unknown method, bad step, missing value: exit 2),
- *   and each run it asks for is in the page. */
+ *   and each run it asks for is in the page or the plot, adaptive methods too (sampled on
+ *   the grid of STEP). */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -288,6 +289,16 @@ static void test_compare_is_validated(void **state)
     CHECK(r.status == 0 && count(r.out, "<polyline") == 4, "good --compare: %d %s", r.status,
           r.err);
     CHECK(strstr(r.out, "heun, h = 0.0314159 s") != NULL, "step pi/100 not read");
+    done(&r);
+    /* adaptive methods: samples on the output grid of STEP (default the run's step) */
+    r = dynkit("plot vanderpol --y y1 --compare dp45 --compare rodas4:0.05");
+    CHECK(r.status == 0 && count(r.out, "<polyline") == 3, "adaptive --compare: %d %s", r.status,
+          r.err);
+    CHECK(polyline_points(r.out, 1) == 1501 && polyline_points(r.out, 2) == 301,
+          "adaptive runs: %ld and %ld points", polyline_points(r.out, 1),
+          polyline_points(r.out, 2));
+    CHECK(strstr(r.out, "dp45, rtol = 0.001, atol = 1e-06") != NULL,
+          "the adaptive run's label does not give its tolerances");
     done(&r);
 }
 

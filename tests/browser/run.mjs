@@ -63,7 +63,7 @@ const pages = [
   { name: 'report', args: ['report', '--html'], players: 4 },
   { name: 'pendulum', args: ['animate', 'pendulum', '--method', 'rk4', '--step', '0.01', '--tspan', '0:10', '--compare', 'euler:0.05'] },
   { name: 'pendulum-default', args: ['animate', 'pendulum'] },
-  { name: 'vanderpol', args: ['animate', 'vanderpol', '--compare', 'euler', '--compare', 'heun:0.05'] },
+  { name: 'vanderpol', args: ['animate', 'vanderpol', '--compare', 'euler', '--compare', 'heun:0.05', '--compare', 'dp45'] },
   { name: 'plane', args: ['animate', 'plane', '--compare', 'euler'], scene: true },
   { name: 'plane-quat', args: ['animate', 'plane-quat', '--compare', 'rk4:0.02'], scene: true },
   { name: 'cart', args: ['animate', 'cart'] },

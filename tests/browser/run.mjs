@@ -1,6 +1,6 @@
 // Checks of dynkit's HTML pages in a real browser (headless Chromium, driven by
 // playwright-core): the report page (`dynkit report --html`) and an animation of every
-// built-in model (`dynkit animate`), plus a model the page knows no picture for.
+// model of the homework (`dynkit animate`), plus models the page knows no picture for.
 // For each page: no console errors, no request but the file itself, every canvas draws
 // something, the picture changes as time runs, and the controls work as a person uses them
 // (play/pause button, time slider, speed slider, space and arrow keys; real time at 1x).
@@ -68,6 +68,7 @@ const pages = [
   { name: 'plane-quat', args: ['animate', 'plane-quat', '--compare', 'rk4:0.02'], scene: true },
   { name: 'cart', args: ['animate', 'cart'] },
   { name: 'long-run', args: ['animate', 'vanderpol', '--step', '0.001', '--tspan', '0:200'] },
+  { name: 'robertson', args: ['animate', 'robertson'], generic: true },
 ];
 for (const p of pages) {
   p.file = path.join(artifacts, `${p.name}.html`);

@@ -19,7 +19,10 @@
  *              (t, y) was rejected (a Jacobian or factorisation may be reused then).
  *   stiffness  (may be NULL) |h lambda| estimate of the accepted step, or < 0 if none.
  *   dense      (only when the driver needs it) the dense output of the accepted step as
- *              ((degree + 1) x n) coefficients of powers of theta, coef[0..n) = y (dyn_dense).
+ *              ((degree + 1) x n) coefficients c_j of Hairer's nested form (dyn_dense):
+ *              y = c0 + theta (c1 + (1-theta) (c2 + theta (c3 + ...))), c0 = y,
+ *              c1 = ynew - y. RODAS's y = (1-theta) y0 + theta (y1 + (1-theta) (q1 +
+ *              theta q2)) is c0 = y0, c1 = y1 - y0, c2 = q1, c3 = q2 (not powers of theta).
  *   accept     the accepted step's end becomes the current point (e.g. FSAL reuse).
  * Operations return 0, or the non-zero value f (or the Jacobian) returned, with
  * st->fail_t set. Counts go to st->rhs_calls and st->jac_calls. Nothing allocates.

@@ -85,11 +85,8 @@ int cli_run_solve(const cli_run *run, long every, dyn_output_fn output, void *ou
 char *cli_stats_line(const cli_run *run, const dyn_result *res, char *buf, size_t size)
 {
     const dyn_stats *s = &res->stats;
-    const int adaptive = dyn_method_is_adaptive(run->method);
-    /* the fixed-step driver counts steps only: all of them are accepted */
-    const long accepted = adaptive || s->accepted ? s->accepted : s->steps;
-    int w = snprintf(buf, size, "steps=%ld accepted=%ld rejected=%ld rhs=%ld", s->steps, accepted,
-                     s->rejected, s->rhs_calls);
+    int w = snprintf(buf, size, "steps=%ld accepted=%ld rejected=%ld rhs=%ld", s->steps,
+                     s->accepted, s->rejected, s->rhs_calls);
     if (dyn_method_is_stiff(run->method) && w >= 0 && (size_t)w < size)
         snprintf(buf + w, size - (size_t)w, " jac=%ld", s->jac_calls);
     return buf;

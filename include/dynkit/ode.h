@@ -67,7 +67,10 @@ const char *dyn_status_name(int status);
  * registry. dyn_fixed_solve runs DYN_KIND_EXPLICIT_RK; dyn_solve (solve.h) runs all. */
 typedef enum dyn_method_kind {
     DYN_KIND_EXPLICIT_RK = 0, /* fixed-step explicit Runge–Kutta: a, b, c */
-    DYN_KIND_EMBEDDED_RK = 1  /* adaptive explicit Runge–Kutta pair: a, b, c and e */
+    DYN_KIND_EMBEDDED_RK = 1, /* adaptive explicit Runge–Kutta pair: a, b, c and e */
+    DYN_KIND_ROSENBROCK = 2   /* linearly implicit Rosenbrock method for stiff problems:
+                               * coefficients in impl (src/ode/rosenbrock.h), c = stage
+                               * times, a and b NULL */
 } dyn_method_kind;
 
 /* Butcher table of an explicit Runge–Kutta method with s stages.
@@ -167,7 +170,7 @@ typedef struct dyn_stats {
     long steps;      /* steps taken (adaptive: attempted, accepted + rejected) */
     long rhs_calls;  /* evaluations of f */
     long samples;    /* samples handed to the output */
-    long accepted;   /* adaptive: accepted steps (dyn_solve fills it for fixed steps too) */
+    long accepted;   /* accepted steps (for fixed steps: every step) */
     long rejected;   /* adaptive: rejected steps */
     long jac_calls;  /* evaluations of the Jacobian (stiff methods) */
 } dyn_stats;

@@ -243,6 +243,7 @@ int dyn_fixed_solve(const dyn_tableau *m, const dyn_system *sys, double t0, doub
         }
     }
     res->stats.steps = done;
+    res->stats.accepted = done; /* every fixed step is accepted */
     if (status != DYN_ERR_RHS && status != DYN_ERR_NONFINITE)
         res->stats.rhs_calls = done * s;
     res->stats.samples = samples;

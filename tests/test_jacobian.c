@@ -18,9 +18,12 @@
  *   f1 = sin(y1) y2 + t^2 y3
  *   f2 = exp(0.5 y2) - y1 y3 + cos(t)
  *   f3 = y1^3 / (1 + y3^2) + 1e3 y2 */
+static double last_t; /* time of the last call of f_test */
+
 static int f_test(double t, const double *y, double *f, void *par)
 {
     int *calls = par;
+    last_t = t;
     if (calls)
         (*calls)++;
     f[0] = sin(y[0]) * y[1] + t * t * y[2];
@@ -148,6 +151,13 @@ static void test_time_derivative(void **state)
         for (int i = 0; i < 3; i++)
             CHECK(fabs(ft[i] - ex[i]) < 1e-6 * scale * fmax(1.0, fabs(ex[i])),
                   "t = %g: df%d/dt = %.17g, exact %.17g", t, i, ft[i], ex[i]);
+        /* backward: the same to first order, and f is not evaluated after t */
+        last_t = -HUGE_VAL;
+        assert_int_equal(dyn_fd_dfdt(&sys, t, y, f0, -0.1, ft, work, &rhs), 0);
+        assert_true(last_t < t);
+        for (int i = 0; i < 3; i++)
+            CHECK(fabs(ft[i] - ex[i]) < 1e-6 * scale * fmax(1.0, fabs(ex[i])),
+                  "backward, t = %g: df%d/dt = %.17g, exact %.17g", t, i, ft[i], ex[i]);
     }
 }
 

@@ -11,7 +11,11 @@
  *   imaginary axis; y' = -1e6 (y - cos t) stays accurate with h = 0.1 (h lambda = -1e5),
  *   and an initial layer of size 1 is damped to 9e-5 in one step;
  * - counters, reuse of the factorisation, singular matrices and failing right-hand sides;
- * - the simple adaptive loop meets its tolerance. */
+ * - the simple adaptive loop meets its tolerance;
+ * - through the general driver (dyn_solve, method "rodas4"): van der Pol mu = 1000 and
+ *   Robertson to 1e11 against their references, with the analytic and the difference
+ *   Jacobian; the dense output at requested times; events; f is never evaluated past t1;
+ *   the integer workspace is required. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -20,6 +24,9 @@
 #include <cmocka.h>
 #include <float.h>
 
+#include "dynkit/models.h"
+#include "dynkit/problems.h"
+#include "dynkit/solve.h"
 #include "ode/linalg.h"
 #include "ode/rosenbrock.h"
 #include "test_util.h"
@@ -628,6 +635,279 @@ static void test_adaptive_loop(void **state)
     }
 }
 
+/* ---- through dyn_solve ---- */
+
+static int run_solve(const char *model_name, double mu, double t1, double rtol,
+                     const double *atolv, double atol, int analytic, const double *out_times,
+                     long n_out, dyn_output_fn out, void *out_ctx, double *y, dyn_result *res)
+{
+    const dyn_tableau *m = dyn_method_find("rodas4");
+    assert_non_null(m);
+    assert_true(dyn_method_is_adaptive(m) && dyn_method_is_stiff(m));
+    const dyn_model *model = dyn_model_find(model_name);
+    assert_non_null(model);
+    double par[16];
+    char err[128];
+    assert_int_equal(dyn_model_default_params(model, par, err, sizeof err), 0);
+    if (mu > 0)
+        ((dyn_vanderpol_par *)par)->mu = mu;
+    dyn_system sys = {model->rhs, model->n_states, par};
+    dyn_solve_opts o = {0};
+    o.rtol = rtol;
+    o.atol = atol;
+    o.atolv = atolv;
+    o.jacobian = analytic ? model->jacobian : NULL;
+    o.out_times = out_times;
+    o.n_out_times = n_out;
+    o.output = out;
+    o.output_ctx = out_ctx;
+    int iwork[8];
+    assert_int_equal(dyn_solve_iwork_size(m, model->n_states), model->n_states);
+    o.iwork = iwork;
+    static double work[4096];
+    assert_true(dyn_solve_work_size(m, model->n_states, &o) <= sizeof work / sizeof work[0]);
+    return dyn_solve(m, &sys, model->t0, t1, model->y0, y, work, &o, res);
+}
+
+static double rel_err(const double *y, const double *ref, int n)
+{
+    double w = 0.0;
+    for (int i = 0; i < n; i++)
+        w = fmax(w, fabs(y[i] - ref[i]) / fabs(ref[i]));
+    return w;
+}
+
+static void test_solve_van_der_pol_stiff(void **state)
+{
+    (void)state;
+    const dyn_reference *r = dyn_reference_find("vanderpol-mu1000-3000");
+    assert_non_null(r);
+    for (int analytic = 1; analytic >= 0; analytic--) {
+        double y[2];
+        dyn_result res;
+        int rc = run_solve("vanderpol", 1000.0, 3000.0, 1e-9, NULL, 1e-11, analytic, NULL, 0,
+                           NULL, NULL, y, &res);
+        CHECK(rc == DYN_OK, "%s", res.message);
+        const double e = rel_err(y, r->y, 2);
+        CHECK(e < 1e-7, "analytic %d: relative error %.3g (%ld steps)", analytic, e,
+              res.stats.steps);
+        assert_true(res.stats.jac_calls > 0 && res.stats.jac_calls <= res.stats.accepted +
+                                                                         res.stats.rejected);
+        /* a stiff problem with a stiff method: thousands of steps, not millions */
+        CHECK(res.stats.steps < 50000, "%ld steps", res.stats.steps);
+        assert_int_equal(res.stiff, 0);
+        /* per attempt: 6 stage evaluations (+1 for df/dt, +2 for a difference Jacobian at
+         * each new point) */
+        const long per = analytic ? 7 : 9;
+        assert_true(res.stats.rhs_calls <= per * res.stats.steps + 2);
+    }
+}
+
+typedef struct rober_log {
+    long count;
+    double worst_mass;
+    double t_last;
+} rober_log;
+
+static int rober_out(long k, double t, const double *y, void *ctx)
+{
+    rober_log *l = ctx;
+    (void)k;
+    l->count++;
+    l->t_last = t;
+    l->worst_mass = fmax(l->worst_mass, fabs(y[0] + y[1] + y[2] - 1.0));
+    return 0;
+}
+
+static void test_solve_robertson_to_1e11(void **state)
+{
+    (void)state;
+    const dyn_reference *r = dyn_reference_find("robertson-1e11");
+    const dyn_reference *r40 = dyn_reference_find("robertson-40");
+    assert_non_null(r);
+    assert_non_null(r40);
+    /* samples at 40 and at 10^k, k = -5 .. 11: the dense output between steps */
+    double times[20];
+    long nt = 0;
+    times[nt++] = 0.0;
+    for (int k = -5; k <= 11; k++) {
+        times[nt++] = pow(10.0, k);
+        if (k == 1)
+            times[nt++] = 40.0;
+    }
+    const double atol[3] = {1e-14, 1e-20, 1e-14};
+    rober_log log = {0};
+    double y[3];
+    dyn_result res;
+    int rc = run_solve("robertson", 0, 1e11, 1e-9, atol, 0, 1, times, nt, rober_out, &log, y,
+                       &res);
+    CHECK(rc == DYN_OK, "%s", res.message);
+    assert_int_equal(log.count, nt);
+    assert_true(log.t_last == 1e11);
+    CHECK(log.worst_mass < 1e-14, "mass off by %.3g at a sample", log.worst_mass);
+    const double e = rel_err(y, r->y, 3);
+    CHECK(e < 1e-6, "relative error %.3g at 1e11 in %ld steps", e, res.stats.steps);
+    /* with the difference Jacobian (increments from atol / rtol: 1e-11 for y2) */
+    rc = run_solve("robertson", 0, 1e11, 1e-9, atol, 0, 0, NULL, 0, NULL, NULL, y, &res);
+    CHECK(rc == DYN_OK, "%s", res.message);
+    const double e2 = rel_err(y, r->y, 3);
+    CHECK(e2 < 1e-6, "difference Jacobian: relative error %.3g", e2);
+}
+
+/* The value at t = 40 comes from the dense output of the step that contains 40. */
+typedef struct at40 {
+    double y[3];
+    int seen;
+} at40;
+
+static int out40(long k, double t, const double *y, void *ctx)
+{
+    at40 *a = ctx;
+    (void)k;
+    if (t == 40.0) {
+        memcpy(a->y, y, sizeof a->y);
+        a->seen = 1;
+    }
+    return 0;
+}
+
+static void test_solve_dense_output(void **state)
+{
+    (void)state;
+    const dyn_reference *r40 = dyn_reference_find("robertson-40");
+    assert_non_null(r40);
+    const double times[3] = {0.0, 40.0, 1e3};
+    const double atol[3] = {1e-12, 1e-18, 1e-12};
+    const double rtols[2] = {1e-6, 1e-9};
+    double errs[2];
+    for (int k = 0; k < 2; k++) {
+        at40 a = {{0}, 0};
+        double y[3];
+        dyn_result res;
+        int rc = run_solve("robertson", 0, 1e3, rtols[k], atol, 0, 1, times, 3, out40, &a, y,
+                           &res);
+        CHECK(rc == DYN_OK, "%s", res.message);
+        assert_true(a.seen);
+        errs[k] = rel_err(a.y, r40->y, 3);
+    }
+    /* the interpolated value follows the tolerance (order 3 interpolant, order 4 steps) */
+    CHECK(errs[0] < 1e-4 && errs[1] < 1e-7 && errs[1] < errs[0] / 50.0,
+          "errors at 40: %.3g (rtol 1e-6), %.3g (rtol 1e-9)", errs[0], errs[1]);
+}
+
+/* Events on the stiff van der Pol: y1 = 0 crossings located on RODAS's dense output agree
+ * with those of DOP853 at a tight tolerance on the non-stiff mu = 1 (where both are
+ * cheap), and one crossing per half period appears for mu = 1000. */
+static double g_y1(double t, const double *y, void *par)
+{
+    (void)t;
+    (void)par;
+    return y[0];
+}
+
+typedef struct ev_log {
+    int count;
+    double t[16];
+} ev_log;
+
+static int on_ev(int index, double t, const double *y, int direction, void *ctx)
+{
+    ev_log *l = ctx;
+    (void)index;
+    (void)y;
+    (void)direction;
+    if (l->count < 16)
+        l->t[l->count] = t;
+    l->count++;
+    return 0;
+}
+
+static void events_with(const char *method, double mu, double t1, double rtol, ev_log *log)
+{
+    const dyn_tableau *m = dyn_method_find(method);
+    assert_non_null(m);
+    dyn_vanderpol_par par = {mu};
+    dyn_system sys = {dyn_vanderpol_rhs, 2, &par};
+    dyn_event ev = {"zero", "y1 = 0", g_y1, 0, 0};
+    dyn_solve_opts o = {0};
+    o.rtol = rtol;
+    o.atol = rtol;
+    o.events = &ev;
+    o.n_events = 1;
+    o.on_event = on_ev;
+    o.event_ctx = log;
+    o.jacobian = dyn_vanderpol_jac;
+    int iwork[2];
+    o.iwork = iwork;
+    static double work[4096];
+    assert_true(dyn_solve_work_size(m, 2, &o) <= sizeof work / sizeof work[0]);
+    const double y0[2] = {2.0, 0.0};
+    double y[2];
+    dyn_result res;
+    int rc = dyn_solve(m, &sys, 0.0, t1, y0, y, work, &o, &res);
+    CHECK(rc == DYN_OK, "%s: %s", method, res.message);
+}
+
+static void test_solve_events(void **state)
+{
+    (void)state;
+    ev_log a = {0}, b = {0};
+    events_with("rodas4", 1.0, 15.0, 1e-10, &a);
+    events_with("dop853", 1.0, 15.0, 1e-13, &b);
+    assert_int_equal(a.count, b.count);
+    assert_true(a.count >= 4);
+    for (int k = 0; k < a.count && k < 16; k++)
+        CHECK(fabs(a.t[k] - b.t[k]) < 1e-7, "crossing %d: rodas4 %.17g, dop853 %.17g", k,
+              a.t[k], b.t[k]);
+    /* mu = 1000: period T ~ (3 - 2 ln 2) mu = 1614 (HNW I sec. I.16, to O(mu^(-1/3)));
+     * from y1 = 2 the slow branch takes half a period, then y1 jumps through zero: crossings
+     * near T/2, T and 3T/2 */
+    ev_log c = {0};
+    events_with("rodas4", 1000.0, 3000.0, 1e-8, &c);
+    assert_int_equal(c.count, 3);
+    const double T = (3.0 - 2.0 * log(2.0)) * 1000.0;
+    for (int k = 0; k < 3; k++)
+        CHECK(fabs(c.t[k] - (k + 1) * T / 2) < 0.05 * T, "crossing %d at %.6g", k, c.t[k]);
+}
+
+/* A right-hand side that refuses times past the end of the span: the difference df/dt
+ * looks backward in the last step. */
+static double t_end_allowed;
+static int strict_f(double t, const double *y, double *f, void *par)
+{
+    (void)par;
+    if (t > t_end_allowed)
+        return 99;
+    f[0] = -1e3 * (y[0] - cos(t));
+    return 0;
+}
+
+static void test_solve_never_past_the_end(void **state)
+{
+    (void)state;
+    const dyn_tableau *m = dyn_method_find("rodas4");
+    dyn_system sys = {strict_f, 1, NULL};
+    dyn_solve_opts o = {0};
+    o.rtol = 1e-8;
+    o.atol = 1e-10;
+    double work[512];
+    const double y0 = 1.0;
+    double y;
+    dyn_result res;
+    /* no iwork: refused with a message */
+    assert_int_equal(dyn_solve(m, &sys, 0.0, 2.0, &y0, &y, work, &o, &res), DYN_ERR_ARG);
+    assert_non_null(strstr(res.message, "iwork"));
+    int iwork[1];
+    o.iwork = iwork;
+    assert_true(dyn_solve_work_size(m, 1, &o) <= 512);
+    t_end_allowed = 2.0;
+    int rc = dyn_solve(m, &sys, 0.0, 2.0, &y0, &y, work, &o, &res);
+    CHECK(rc == DYN_OK, "%s", res.message);
+    const double L = 1e3;
+    const double ex = (L * L * cos(2.0) + L * sin(2.0)) / (L * L + 1.0);
+    CHECK(fabs(y - ex) < 1e-7, "y(2) = %.17g, exact %.17g", y, ex);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -639,6 +919,11 @@ int main(void)
         cmocka_unit_test(test_counters_and_factorisation_reuse),
         cmocka_unit_test(test_singular_and_failures),
         cmocka_unit_test(test_adaptive_loop),
+        cmocka_unit_test(test_solve_van_der_pol_stiff),
+        cmocka_unit_test(test_solve_robertson_to_1e11),
+        cmocka_unit_test(test_solve_dense_output),
+        cmocka_unit_test(test_solve_events),
+        cmocka_unit_test(test_solve_never_past_the_end),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

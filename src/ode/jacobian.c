@@ -43,6 +43,8 @@ int dyn_fd_dfdt(const dyn_system *sys, double t, const double *y, const double *
     double d = sqrt(DBL_EPSILON) * fmax(fabs(t), fabs(tscale));
     if (!(d > 0.0))
         d = sqrt(DBL_EPSILON);
+    if (tscale < 0.0)
+        d = -d;
     const double tp = t + d;
     d = tp - t;
     int rc = sys->f(tp, y, work, sys->par);

@@ -35,9 +35,11 @@
 int dyn_fd_jacobian(const dyn_system *sys, double t, const double *y, const double *f0,
                     const double *typ, double *J, double *work, long *rhs_calls);
 
-/* df/dt (n) at (t, y) by a forward difference with increment sqrt(eps) * max(|t|, tscale);
- * tscale > 0 is a time scale of the problem (the step size is a good one). f0 (n) must hold
- * f(t, y); work has n doubles. Returns 0 or the non-zero value of f; adds 1 to *rhs_calls. */
+/* df/dt (n) at (t, y) by a one-sided difference with increment sqrt(eps) * max(|t|, |tscale|);
+ * |tscale| is a time scale of the problem (the step size is a good one), and its sign the
+ * side: tscale < 0 differences backward (f is then never evaluated after t, e.g. at the end
+ * of the span). f0 (n) must hold f(t, y); work has n doubles. Returns 0 or the non-zero
+ * value of f; adds 1 to *rhs_calls. */
 int dyn_fd_dfdt(const dyn_system *sys, double t, const double *y, const double *f0,
                 double tscale, double *ft, double *work, long *rhs_calls);
 

@@ -59,6 +59,11 @@ extern const dyn_ros_method dyn_ros_rodas4;
 /* Method by name ("rodas4"), or NULL. */
 const dyn_ros_method *dyn_ros_find(const char *name);
 
+/* The stepper of the general driver for registry entries of kind DYN_KIND_ROSENBROCK whose
+ * impl points to a dyn_ros_method (step_rosenbrock.c; the interface is ode/stepper.h). */
+struct dyn_stepper_ops;
+extern const struct dyn_stepper_ops dyn_ros_stepper_ops;
+
 /* What a step needs about the problem. */
 typedef struct dyn_ros_problem {
     dyn_system sys;          /* f, n, par */

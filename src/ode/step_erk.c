@@ -15,6 +15,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "ode/rosenbrock.h"
 #include "ode/stepper.h"
 
 static int erk_rhs(double t, const double *y, double *dydt, void *par)
@@ -317,6 +318,8 @@ const dyn_stepper_ops *dyn_stepper_ops_for(const dyn_tableau *m)
         return &erk_ops;
     case DYN_KIND_EMBEDDED_RK:
         return m->e ? &erk_ops : NULL;
+    case DYN_KIND_ROSENBROCK:
+        return m->impl ? &dyn_ros_stepper_ops : NULL;
     default:
         return NULL;
     }

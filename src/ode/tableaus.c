@@ -27,6 +27,7 @@
 #include <string.h>
 
 #include "dynkit/ode.h"
+#include "ode/rosenbrock.h"
 
 static const double euler_a[] = {0.0};
 static const double euler_b[] = {1.0};
@@ -220,6 +221,8 @@ static const double dop853_dense[] = {
     {.name = nm, .alias = al, .title = ti, .reference = ref, .kind = DYN_KIND_EXPLICIT_RK,     \
      .stages = s, .order = p, .a = pre##_a, .b = pre##_b, .c = pre##_c}
 
+static const double rodas4_stage_times[] = {0.0, 0.386, 0.21, 0.63, 1.0, 1.0};
+
 static const dyn_tableau methods[] = {
     TABLE("euler", NULL, "explicit Euler, y + h f(t, y)", "Euler 1768; HNW I sec. II.1", 1, 1,
           euler),
@@ -288,6 +291,20 @@ static const dyn_tableau methods[] = {
      .dense_c = dop853_dense_c,
      .stiff_stage = 11,
      .stiff_bound = 6.1},
+    /* stiff: Rosenbrock methods, coefficients in src/ode/rosenbrock_tables.c */
+    {.name = "rodas4",
+     .alias = "rodas",
+     .title = "Hairer-Wanner RODAS 4(3): Rosenbrock, L-stable, stiffly accurate, for stiff "
+              "problems",
+     .reference = "Hairer & Wanner II sec. IV.7; rodas.f (ROCOE, METH = 1)",
+     .kind = DYN_KIND_ROSENBROCK,
+     .stages = 6,
+     .order = 4,
+     .c = rodas4_stage_times,
+     .embedded_order = 3,
+     .error_order = 3,
+     .dense_degree = 3,
+     .impl = &dyn_ros_rodas4},
 };
 
 int dyn_method_count(void) { return (int)(sizeof methods / sizeof methods[0]); }

@@ -1,0 +1,215 @@
+/* test_cvode.c — the optional SUNDIALS CVODE backend (dynkit/cvode.h), against RODAS
+ * (rodas4 through dyn_solve) and the references of dynkit/problems.h:
+ * - Robertson to 1e11 and van der Pol mu = 1000 to 3000: CVODE's BDF with the analytic and
+ *   with its difference-quotient Jacobian meets the references to its tolerance, and agrees
+ *   with rodas4;
+ * - samples at requested times keep Robertson's y1 + y2 + y3 = 1;
+ * - counters are filled; a failing right-hand side, too many steps and bad output times
+ *   are reported with their statuses; f is never evaluated past the last output time.
+ * Without SUNDIALS (DYNKIT_HAVE_CVODE undefined) every test is skipped. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "dynkit/models.h"
+#include "dynkit/problems.h"
+#include "dynkit/solve.h"
+#include "test_util.h"
+
+#ifdef DYNKIT_HAVE_CVODE
+#include "dynkit/cvode.h"
+
+static double rel_err(const double *y, const double *ref, int n)
+{
+    double w = 0.0;
+    for (int i = 0; i < n; i++)
+        w = fmax(w, fabs(y[i] - ref[i]) / fabs(ref[i]));
+    return w;
+}
+
+/* rodas4 through the general driver, final state only. */
+static void rodas(const dyn_model *m, void *par, double t1, double rtol, const double *atolv,
+                  double atol, double *y)
+{
+    const dyn_tableau *meth = dyn_method_find("rodas4");
+    assert_non_null(meth);
+    dyn_system sys = {m->rhs, m->n_states, par};
+    dyn_solve_opts o = {0};
+    o.rtol = rtol;
+    o.atol = atol;
+    o.atolv = atolv;
+    o.jacobian = m->jacobian;
+    int iwork[8];
+    o.iwork = iwork;
+    static double work[4096];
+    assert_true(dyn_solve_work_size(meth, m->n_states, &o) <= sizeof work / sizeof work[0]);
+    dyn_result res;
+    int rc = dyn_solve(meth, &sys, m->t0, t1, m->y0, y, work, &o, &res);
+    CHECK(rc == DYN_OK, "rodas4: %s", res.message);
+}
+
+typedef struct mass_log {
+    long count;
+    double worst;
+} mass_log;
+
+static int mass_out(long k, double t, const double *y, void *ctx)
+{
+    mass_log *l = ctx;
+    (void)t;
+    assert_int_equal(k, l->count);
+    l->count++;
+    l->worst = fmax(l->worst, fabs(y[0] + y[1] + y[2] - 1.0));
+    return 0;
+}
+
+static void test_robertson(void **state)
+{
+    (void)state;
+    const dyn_model *m = dyn_model_find("robertson");
+    const dyn_reference *r = dyn_reference_find("robertson-1e11");
+    assert_non_null(m);
+    assert_non_null(r);
+    dyn_robertson_par par;
+    char err[128];
+    assert_int_equal(dyn_model_default_params(m, &par, err, sizeof err), 0);
+    dyn_system sys = {m->rhs, 3, &par};
+    double tout[18];
+    long nt = 0;
+    tout[nt++] = 0.0;
+    for (int k = -5; k <= 11; k++)
+        tout[nt++] = pow(10.0, k);
+    const double atol[3] = {1e-14, 1e-20, 1e-14};
+    double yc[3], yr[3];
+    rodas(m, &par, 1e11, 1e-9, atol, 0, yr);
+    assert_true(rel_err(yr, r->y, 3) < 1e-6);
+    for (int analytic = 1; analytic >= 0; analytic--) {
+        dyn_cvode_opts o = {.rtol = 1e-9, .atolv = atol,
+                            .jacobian = analytic ? m->jacobian : NULL};
+        mass_log log = {0};
+        dyn_result res;
+        int rc = dyn_cvode_solve(&sys, 0.0, m->y0, tout, nt, &o, mass_out, &log, yc, &res);
+        CHECK(rc == DYN_OK, "analytic %d: %s", analytic, res.message);
+        assert_int_equal(log.count, nt);
+        assert_true(res.t == 1e11);
+        CHECK(log.worst < 1e-12, "analytic %d: mass off by %.3g", analytic, log.worst);
+        const double e = rel_err(yc, r->y, 3);
+        CHECK(e < 1e-5, "analytic %d: CVODE relative error %.3g", analytic, e);
+        const double d = rel_err(yc, yr, 3);
+        CHECK(d < 1e-5, "analytic %d: CVODE and rodas4 differ by %.3g", analytic, d);
+        assert_true(res.stats.steps > 100 && res.stats.accepted == res.stats.steps);
+        assert_true(res.stats.jac_calls > 0 && res.stats.rhs_calls > res.stats.steps);
+        assert_int_equal(res.stats.samples, nt);
+    }
+}
+
+static void test_van_der_pol(void **state)
+{
+    (void)state;
+    const dyn_model *m = dyn_model_find("vanderpol");
+    const dyn_reference *r = dyn_reference_find("vanderpol-mu1000-3000");
+    assert_non_null(m);
+    assert_non_null(r);
+    dyn_vanderpol_par par = {1000.0};
+    dyn_system sys = {m->rhs, 2, &par};
+    const double tout[2] = {2000.0, 3000.0};
+    double yr[2], yc[2];
+    rodas(m, &par, 3000.0, 1e-10, NULL, 1e-12, yr);
+    assert_true(rel_err(yr, r->y, 2) < 1e-7);
+    for (int analytic = 1; analytic >= 0; analytic--) {
+        dyn_cvode_opts o = {.rtol = 1e-10, .atol = 1e-12,
+                            .jacobian = analytic ? m->jacobian : NULL};
+        dyn_result res;
+        int rc = dyn_cvode_solve(&sys, 0.0, m->y0, tout, 2, &o, NULL, NULL, yc, &res);
+        CHECK(rc == DYN_OK, "analytic %d: %s", analytic, res.message);
+        const double e = rel_err(yc, r->y, 2);
+        CHECK(e < 1e-6, "analytic %d: CVODE relative error %.3g in %ld steps", analytic, e,
+              res.stats.steps);
+        const double d = rel_err(yc, yr, 2);
+        CHECK(d < 1e-6, "analytic %d: CVODE and rodas4 differ by %.3g", analytic, d);
+        assert_true(res.stats.rejected >= 0 && res.stats.jac_calls > 0);
+    }
+}
+
+/* f refuses times past t_max, and fails on request at t_fail. */
+typedef struct guard {
+    double t_max, t_fail;
+    double t_seen;
+} guard;
+
+static int guarded(double t, const double *y, double *f, void *par)
+{
+    guard *g = par;
+    g->t_seen = fmax(g->t_seen, t);
+    if (t > g->t_max)
+        return 42;
+    if (t >= g->t_fail)
+        return 7;
+    f[0] = -50.0 * (y[0] - cos(t));
+    return 0;
+}
+
+static void test_failures_and_limits(void **state)
+{
+    (void)state;
+    guard g = {2.0, INFINITY, -INFINITY};
+    dyn_system sys = {guarded, 1, &g};
+    const double y0 = 1.0, tout[3] = {0.0, 1.0, 2.0};
+    double y;
+    dyn_result res;
+    dyn_cvode_opts o = {.rtol = 1e-8, .atol = 1e-10};
+    /* never past the last output time */
+    assert_int_equal(dyn_cvode_solve(&sys, 0.0, &y0, tout, 3, &o, NULL, NULL, &y, &res), DYN_OK);
+    assert_true(g.t_seen <= 2.0);
+    const double L = 50.0, ex = (L * L * cos(2.0) + L * sin(2.0)) / (L * L + 1.0);
+    CHECK(fabs(y - ex) < 1e-6, "y(2) = %.17g, exact %.17g", y, ex);
+    /* a failing right-hand side */
+    g.t_fail = 1.5;
+    assert_int_equal(dyn_cvode_solve(&sys, 0.0, &y0, tout, 3, &o, NULL, NULL, &y, &res),
+                     DYN_ERR_RHS);
+    assert_int_equal(res.rhs_status, 7);
+    assert_true(res.fail_t >= 1.5 && res.t == 1.0);
+    /* too many steps */
+    g.t_fail = INFINITY;
+    o.max_steps = 5;
+    assert_int_equal(dyn_cvode_solve(&sys, 0.0, &y0, tout, 3, &o, NULL, NULL, &y, &res),
+                     DYN_ERR_MAX_STEPS);
+    assert_true(strlen(res.message) > 0);
+    /* bad output times */
+    o.max_steps = 0;
+    const double bad[2] = {1.0, 0.5};
+    assert_int_equal(dyn_cvode_solve(&sys, 0.0, &y0, bad, 2, &o, NULL, NULL, &y, &res),
+                     DYN_ERR_ARG);
+    assert_non_null(strstr(res.message, "output time"));
+    assert_true(strlen(dyn_cvode_version()) >= 5);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_robertson),
+        cmocka_unit_test(test_van_der_pol),
+        cmocka_unit_test(test_failures_and_limits),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
+
+#else /* no SUNDIALS: nothing to test */
+
+static void test_cvode_not_built(void **state)
+{
+    (void)state;
+    skip();
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_cvode_not_built),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
+#endif

@@ -241,7 +241,7 @@ int dyn_ros_integrate(const dyn_ros_method *m, const dyn_ros_problem *p, double 
     while (dir * (t1 - t) > 0.0) {
         if (fabs(h) <= 10.0 * DBL_EPSILON * fabs(t)) {
             put_msg(msg, msglen, "step size too small", t, h);
-            return DYN_ERR_ARG;
+            return DYN_ERR_STEP_SIZE;
         }
         int last = 0;
         if (dir * (t + h * 1.0001 - t1) >= 0.0) {
@@ -256,14 +256,14 @@ int dyn_ros_integrate(const dyn_ros_method *m, const dyn_ros_problem *p, double 
         for (;;) { /* attempts from (t, y) with this linearisation */
             if (++attempts > max_steps) {
                 put_msg(msg, msglen, "too many steps", t, h);
-                return DYN_ERR_ARG;
+                return DYN_ERR_MAX_STEPS;
             }
             rc = dyn_ros_step(m, p, t, h, y, ws, y1buf, errbuf, o->on_step ? o->cont : NULL,
                               st);
             if (rc == DYN_ROS_SINGULAR) {
                 if (++n_sing >= 5) {
                     put_msg(msg, msglen, "matrix I/(h gamma) - J repeatedly singular", t, h);
-                    return DYN_ERR_ARG;
+                    return DYN_ERR_STEP_SIZE;
                 }
                 h *= 0.5;
                 reject = 1;
@@ -320,7 +320,7 @@ int dyn_ros_integrate(const dyn_ros_method *m, const dyn_ros_problem *p, double 
                 put_msg(msg, msglen,
                         finite ? "step size too small" : "state not finite even for tiny steps",
                         t, h);
-                return finite ? DYN_ERR_ARG : DYN_ERR_NONFINITE;
+                return finite ? DYN_ERR_STEP_SIZE : DYN_ERR_NONFINITE;
             }
         }
     }

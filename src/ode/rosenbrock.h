@@ -156,9 +156,10 @@ typedef struct dyn_ros_opts {
 
 /* Integrate from (t0, y) to t1 (either direction), y (n) in and out; y1buf and errbuf are
  * (n) caller scratch. Returns a dyn_status: DYN_OK, DYN_ERR_RHS (f or jac failed; value in
- * ws->rhs_status), DYN_ERR_NONFINITE, DYN_STOPPED, or DYN_ERR_ARG with a message in err
- * (errlen bytes; may be NULL) for bad options, too many steps, a step size underflow or a
- * repeatedly singular matrix. *t_reached (may be NULL) is the time of y on return. */
+ * ws->rhs_status), DYN_ERR_NONFINITE, DYN_STOPPED, DYN_ERR_MAX_STEPS, DYN_ERR_STEP_SIZE (step
+ * size underflow or a repeatedly singular matrix) or DYN_ERR_ARG (bad options), with a
+ * message in msg (msglen bytes; may be NULL). *t_reached (may be NULL) is the time of y on
+ * return. (dyn_solve with method "rodas4" is the full driver: output times, events.) */
 int dyn_ros_integrate(const dyn_ros_method *m, const dyn_ros_problem *p, double t0, double t1,
                       double *y, const dyn_ros_opts *o, dyn_ros_ws *ws, double *y1buf,
                       double *errbuf, dyn_ros_stats *st, double *t_reached, char *msg,

@@ -10,22 +10,42 @@
  *   (Greenwood 3.16); h = 0.01, 500 steps. The right-hand side (six trigonometric calls, a
  *   square root, divisions) dominates. Self-contained on purpose: it does not use the mech
  *   layer, so the benchmark measures the ODE core only.
+ * - Arenstorf orbit (HNW I sec. II.0): 4 states, the same arithmetic as the library's
+ *   dyn_arenstorf_rhs (src/models/arenstorf.c), for the adaptive work-precision runs.
+ * - van der Pol's Jacobian, for the stiff runs (mu = 1000).
+ * The header is also compiled as C++ (the Boost.Odeint benchmark), hence BENCH_RESTRICT.
  */
 #ifndef DYNKIT_BENCH_SYSTEMS_H
 #define DYNKIT_BENCH_SYSTEMS_H
 
 #include <math.h>
 
+#ifdef __cplusplus
+#define BENCH_RESTRICT __restrict
+#else
+#define BENCH_RESTRICT restrict
+#endif
+
 /* ---- van der Pol ---- */
 typedef struct bench_vdp_par {
     double mu;
 } bench_vdp_par;
 
-static inline void bench_vdp_eval(const double *restrict y, double *restrict dydt,
-                                  const bench_vdp_par *restrict p)
+static inline void bench_vdp_eval(const double *BENCH_RESTRICT y, double *BENCH_RESTRICT dydt,
+                                  const bench_vdp_par *BENCH_RESTRICT p)
 {
     dydt[0] = y[1];
     dydt[1] = p->mu * (1.0 - y[0] * y[0]) * y[1] - y[0];
+}
+
+/* df/dy (2 x 2, row-major) */
+static inline void bench_vdp_jac(const double *BENCH_RESTRICT y, double *BENCH_RESTRICT J,
+                                 const bench_vdp_par *BENCH_RESTRICT p)
+{
+    J[0] = 0.0;
+    J[1] = 1.0;
+    J[2] = -2.0 * p->mu * y[0] * y[1] - 1.0;
+    J[3] = p->mu * (1.0 - y[0] * y[0]);
 }
 
 /* ---- model plane hanging on a spring ---- */
@@ -37,8 +57,8 @@ typedef struct bench_plane_par {
     double rp[3];         /* [m] spring attachment point P in the body frame */
 } bench_plane_par;
 
-static inline void bench_plane_eval(const double *restrict x, double *restrict dx,
-                                    const bench_plane_par *restrict p)
+static inline void bench_plane_eval(const double *BENCH_RESTRICT x, double *BENCH_RESTRICT dx,
+                                    const bench_plane_par *BENCH_RESTRICT p)
 {
     const double psi = x[3], th = x[4], ph = x[5];
     const double wx = x[9], wy = x[10], wz = x[11];
@@ -83,6 +103,36 @@ static inline void bench_plane_eval(const double *restrict x, double *restrict d
     dx[9] = (Mx - (p->Izz - p->Iyy) * wy * wz) / p->Ixx;
     dx[10] = (My - (p->Ixx - p->Izz) * wz * wx) / p->Iyy;
     dx[11] = (Mz - (p->Iyy - p->Ixx) * wx * wy) / p->Izz;
+}
+
+
+/* The plane's parameters and initial state used by the benchmarks. */
+static inline void bench_plane_defaults(bench_plane_par *p, double *y0)
+{
+    const bench_plane_par par = {1.0, 0.005, 0.005, 0.01, 9.81, 1.0, 20.0, {0.1, 0.0, -0.1}};
+    const double x0[12] = {-0.1, 0.2, 1.0 + 9.81 / 20.0, 0.0, 0.0, 0.0,
+                           2.0,  0.0, 0.0,               0.0, 0.0, 3.14159265358979323846 / 40.0};
+    *p = par;
+    for (int i = 0; i < 12; i++)
+        y0[i] = x0[i];
+}
+
+/* ---- Arenstorf orbit (restricted three-body problem, rotating frame) ---- */
+typedef struct bench_arenstorf_par {
+    double mu; /* Moon / (Earth + Moon) */
+} bench_arenstorf_par;
+
+static inline void bench_arenstorf_eval(const double *BENCH_RESTRICT y, double *BENCH_RESTRICT dydt,
+                                        const bench_arenstorf_par *BENCH_RESTRICT p)
+{
+    const double mu = p->mu, mup = 1.0 - mu;
+    const double x1 = y[0] + mu, x2 = y[0] - mup;
+    const double r1s = x1 * x1 + y[1] * y[1], r2s = x2 * x2 + y[1] * y[1];
+    const double D1 = r1s * sqrt(r1s), D2 = r2s * sqrt(r2s);
+    dydt[0] = y[2];
+    dydt[1] = y[3];
+    dydt[2] = y[0] + 2.0 * y[3] - mup * x1 / D1 - mu * x2 / D2;
+    dydt[3] = y[1] - 2.0 * y[2] - mup * y[1] / D1 - mu * y[1] / D2;
 }
 
 #endif

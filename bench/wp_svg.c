@@ -1,0 +1,218 @@
+/* wp_svg.c — work-precision diagrams as SVG (wp_svg.h): error on a logarithmic x axis,
+ * cost (time or right-hand-side calls) on a logarithmic y axis, one polyline with circle
+ * markers per solver. Sizes, fonts, frame, grid and palette are those of cli/svg_plot.c so
+ * that the pictures in docs/ look like the command line's plots.
+ */
+#include "wp_svg.h"
+
+#include <math.h>
+#include <string.h>
+
+#define W 800.0
+#define H 500.0
+#define LEFT 84.0
+#define RIGHT 24.0
+#define TOP 44.0
+#define BOTTOM 62.0
+
+/* the command line's eight line colours, then four more for the longer legends here */
+static const char *const palette[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e",
+                                      "#9467bd", "#8c564b", "#e377c2", "#17becf",
+                                      "#bcbd22", "#7f7f7f", "#393b79", "#637939"};
+
+typedef struct logaxis {
+    double lo, hi; /* decades shown: 10^lo .. 10^hi */
+} logaxis;
+
+static logaxis make_axis(double vmin, double vmax)
+{
+    logaxis a;
+    if (!(vmin > 0 && vmax >= vmin)) {
+        vmin = 1.0;
+        vmax = 10.0;
+    }
+    a.lo = floor(log10(vmin));
+    a.hi = ceil(log10(vmax));
+    if (a.hi <= a.lo)
+        a.hi = a.lo + 1;
+    return a;
+}
+
+static double px_x(const logaxis *a, double v)
+{
+    return LEFT + (log10(v) - a->lo) / (a->hi - a->lo) * (W - LEFT - RIGHT);
+}
+
+static double px_y(const logaxis *a, double v)
+{
+    return H - BOTTOM - (log10(v) - a->lo) / (a->hi - a->lo) * (H - TOP - BOTTOM);
+}
+
+static int text(FILE *out, const char *s)
+{
+    int bad = 0;
+    for (; s && *s; s++) {
+        if (*s == '<')
+            bad |= fputs("&lt;", out) < 0;
+        else if (*s == '>')
+            bad |= fputs("&gt;", out) < 0;
+        else if (*s == '&')
+            bad |= fputs("&amp;", out) < 0;
+        else
+            bad |= fputc(*s, out) == EOF;
+    }
+    return bad;
+}
+
+/* 10^k as text: 1, 10, 100, 1000, otherwise 1e-5 */
+static void decade_label(int k, char *buf, size_t size)
+{
+    if (k >= 0 && k <= 3)
+        snprintf(buf, size, "%.0f", pow(10.0, k));
+    else
+        snprintf(buf, size, "1e%d", k);
+}
+
+static int axes(FILE *out, const wp_plot *p, const logaxis *ax, const logaxis *ay)
+{
+    int bad = 0;
+    char label[32];
+    const double x0 = LEFT, x1 = W - RIGHT, y0 = H - BOTTOM, y1 = TOP;
+    bad |= fputs("<g class=\"grid\" stroke=\"#e4e4e4\" stroke-width=\"1\">\n", out) < 0;
+    for (int k = (int)ax->lo; k <= (int)ax->hi; k++)
+        bad |= fprintf(out, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/>\n",
+                       px_x(ax, pow(10.0, k)), y0, px_x(ax, pow(10.0, k)), y1) < 0;
+    for (int k = (int)ay->lo; k <= (int)ay->hi; k++)
+        bad |= fprintf(out, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/>\n", x0,
+                       px_y(ay, pow(10.0, k)), x1, px_y(ay, pow(10.0, k))) < 0;
+    bad |= fputs("</g>\n", out) < 0;
+    bad |= fprintf(out,
+                   "<rect class=\"frame\" x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" "
+                   "fill=\"none\" stroke=\"#333\" stroke-width=\"1\"/>\n",
+                   x0, y1, x1 - x0, y0 - y1) < 0;
+    bad |= fputs("<g class=\"ticks\" font-size=\"12\" fill=\"#333\" stroke=\"#333\">\n", out) < 0;
+    for (int k = (int)ax->lo; k <= (int)ax->hi; k++) {
+        const double x = px_x(ax, pow(10.0, k));
+        decade_label(k, label, sizeof label);
+        bad |= fprintf(out,
+                       "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/><text x=\"%.2f\" "
+                       "y=\"%.2f\" text-anchor=\"middle\" stroke=\"none\">%s</text>\n",
+                       x, y0, x, y0 + 5, x, y0 + 19, label) < 0;
+    }
+    for (int k = (int)ay->lo; k <= (int)ay->hi; k++) {
+        const double y = px_y(ay, pow(10.0, k));
+        decade_label(k, label, sizeof label);
+        bad |= fprintf(out,
+                       "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/><text x=\"%.2f\" "
+                       "y=\"%.2f\" text-anchor=\"end\" stroke=\"none\">%s</text>\n",
+                       x0 - 5, y, x0, y, x0 - 8, y + 4, label) < 0;
+    }
+    bad |= fputs("</g>\n", out) < 0;
+    bad |= fprintf(out,
+                   "<text class=\"xlabel\" x=\"%.2f\" y=\"%.2f\" font-size=\"14\" "
+                   "text-anchor=\"middle\">",
+                   (x0 + x1) / 2, H - 18) < 0;
+    bad |= text(out, p->xlabel);
+    bad |= fprintf(out,
+                   "</text>\n<text class=\"ylabel\" x=\"0\" y=\"0\" font-size=\"14\" "
+                   "text-anchor=\"middle\" transform=\"translate(20 %.2f) rotate(-90)\">",
+                   (y0 + y1) / 2) < 0;
+    bad |= text(out, p->ylabel);
+    bad |= fprintf(out,
+                   "</text>\n<text class=\"title\" x=\"%.2f\" y=\"26\" font-size=\"16\" "
+                   "text-anchor=\"middle\">",
+                   W / 2) < 0;
+    bad |= text(out, p->title);
+    bad |= fputs("</text>\n", out) < 0;
+    return bad;
+}
+
+static int ok_point(const wp_line *l, int k)
+{
+    return l->x[k] > 0 && l->y[k] > 0 && isfinite(l->x[k]) && isfinite(l->y[k]);
+}
+
+static int line(FILE *out, const wp_line *l, const char *color, const logaxis *ax,
+                const logaxis *ay)
+{
+    int bad = 0, first = 1;
+    bad |= fprintf(out,
+                   "<polyline fill=\"none\" stroke=\"%s\" stroke-width=\"%s\"%s "
+                   "stroke-linejoin=\"round\" points=\"",
+                   color, l->emphasis ? "2.2" : "1.4",
+                   l->emphasis ? "" : " stroke-dasharray=\"6 3\"") < 0;
+    for (int k = 0; k < l->n; k++)
+        if (ok_point(l, k)) {
+            bad |= fprintf(out, "%s%.2f,%.2f", first ? "" : " ", px_x(ax, l->x[k]),
+                           px_y(ay, l->y[k])) < 0;
+            first = 0;
+        }
+    bad |= fputs("\"/>\n", out) < 0;
+    for (int k = 0; k < l->n; k++) /* markers: filled for dynkit, hollow for the peers */
+        if (ok_point(l, k))
+            bad |= fprintf(out,
+                           "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"%s\" fill=\"%s\" stroke=\"%s\" "
+                           "stroke-width=\"1.2\"/>\n",
+                           px_x(ax, l->x[k]), px_y(ay, l->y[k]), l->emphasis ? "3" : "2.6",
+                           l->emphasis ? color : "#fff", color) < 0;
+    return bad;
+}
+
+static int legend(FILE *out, const wp_plot *p)
+{
+    int bad = 0;
+    size_t longest = 0;
+    for (int i = 0; i < p->n_lines; i++)
+        longest = strlen(p->lines[i].label) > longest ? strlen(p->lines[i].label) : longest;
+    const double w = 40.0 + 6.6 * (double)longest, h = 8.0 + 16.0 * p->n_lines;
+    const double x = W - RIGHT - w - 8, y = TOP + 8;
+    bad |= fprintf(out,
+                   "<g class=\"legend\" font-size=\"11\">\n<rect x=\"%.2f\" y=\"%.2f\" "
+                   "width=\"%.2f\" height=\"%.2f\" fill=\"#fff\" fill-opacity=\"0.85\" "
+                   "stroke=\"#bbb\"/>\n",
+                   x, y, w, h) < 0;
+    for (int i = 0; i < p->n_lines; i++) {
+        const wp_line *l = &p->lines[i];
+        const char *color = palette[i % (int)(sizeof palette / sizeof *palette)];
+        const double ly = y + 15 + 16.0 * i;
+        bad |= fprintf(out,
+                       "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke=\"%s\" "
+                       "stroke-width=\"%s\"%s/><text x=\"%.2f\" y=\"%.2f\">",
+                       x + 8, ly - 4, x + 30, ly - 4, color, l->emphasis ? "2.2" : "1.4",
+                       l->emphasis ? "" : " stroke-dasharray=\"6 3\"", x + 36, ly) < 0;
+        bad |= text(out, l->label);
+        bad |= fputs("</text>\n", out) < 0;
+    }
+    bad |= fputs("</g>\n", out) < 0;
+    return bad;
+}
+
+int wp_svg_write(FILE *out, const wp_plot *p)
+{
+    double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
+    for (int i = 0; i < p->n_lines; i++)
+        for (int k = 0; k < p->lines[i].n; k++)
+            if (ok_point(&p->lines[i], k)) {
+                xmin = fmin(xmin, p->lines[i].x[k]);
+                xmax = fmax(xmax, p->lines[i].x[k]);
+                ymin = fmin(ymin, p->lines[i].y[k]);
+                ymax = fmax(ymax, p->lines[i].y[k]);
+            }
+    const logaxis ax = make_axis(xmin, xmax), ay = make_axis(ymin, ymax);
+    int bad = fprintf(out,
+                      "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+                      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" "
+                      "height=\"%.0f\" viewBox=\"0 0 %.0f %.0f\" "
+                      "font-family=\"sans-serif\">\n"
+                      "<rect width=\"100%%\" height=\"100%%\" fill=\"#fff\"/>\n",
+                      W, H, W, H) < 0;
+    bad |= axes(out, p, &ax, &ay);
+    bad |= fputs("<g class=\"lines\">\n", out) < 0;
+    for (int i = 0; i < p->n_lines; i++)
+        bad |= line(out, &p->lines[i], palette[i % (int)(sizeof palette / sizeof *palette)], &ax,
+                    &ay);
+    bad |= fputs("</g>\n", out) < 0;
+    bad |= legend(out, p);
+    bad |= fputs("</svg>\n", out) < 0;
+    return bad || fflush(out) != 0;
+}

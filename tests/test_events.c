@@ -619,17 +619,25 @@ static void test_cli_methods_columns(void **state)
     const char *dp = strstr(r.out, "\ndp45 ");
     assert_non_null(dp);
     char name[16], alias[16], order[16], kind[16], stiff[8];
-    int stages, calls, dense;
-    assert_int_equal(sscanf(dp + 1, "%15s %15s %15s %d %d %d %15s %7s", name, alias, order, &stages,
-                            &calls, &dense, kind, stiff),
-                     8);
+    int stages, calls, jac, dense;
+    assert_int_equal(sscanf(dp + 1, "%15s %15s %15s %d %d %d %d %15s %7s", name, alias, order,
+                            &stages, &calls, &jac, &dense, kind, stiff),
+                     9);
     assert_string_equal(alias, "ode45");
     assert_string_equal(order, "5(4)");
-    assert_true(stages == 7 && calls == 6 && dense == 4);
+    assert_true(stages == 7 && calls == 6 && jac == 0 && dense == 4);
     assert_string_equal(kind, "adaptive");
     assert_string_equal(stiff, "no");
     assert_non_null(strstr(r.out, "\nbs23 "));
     assert_non_null(strstr(r.out, "\ndop853 "));
+    /* rodas4: f(t, y), five more stages and df/dt, one Jacobian per step */
+    const char *ro = strstr(r.out, "\nrodas4 ");
+    assert_non_null(ro);
+    assert_int_equal(sscanf(ro + 1, "%15s %15s %15s %d %d %d %d %15s %7s", name, alias, order,
+                            &stages, &calls, &jac, &dense, kind, stiff),
+                     9);
+    assert_true(stages == 6 && calls == 7 && jac == 1 && dense == 3);
+    assert_string_equal(stiff, "yes");
     cli_free(&r);
 }
 

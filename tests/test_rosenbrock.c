@@ -700,6 +700,19 @@ static void test_solve_van_der_pol_stiff(void **state)
          * each new point) */
         const long per = analytic ? 7 : 9;
         assert_true(res.stats.rhs_calls <= per * res.stats.steps + 2);
+        /* exactly, as dyn_method_calls_per_step says: each new point f(t, y), df/dt and five
+         * stages, a retry after a rejection five stages; f(t0, y0) and the initial-step
+         * probe once; one Jacobian per new point */
+        const dyn_tableau *m = dyn_method_find("rodas4");
+        assert_int_equal(dyn_method_calls_per_step(m), 7);
+        assert_int_equal(dyn_method_jac_per_step(m), 1);
+        if (analytic) {
+            CHECK(res.stats.rhs_calls == dyn_method_calls_per_step(m) * res.stats.accepted +
+                                             5 * res.stats.rejected + 2,
+                  "rhs %ld, accepted %ld, rejected %ld", res.stats.rhs_calls,
+                  res.stats.accepted, res.stats.rejected);
+            assert_int_equal(res.stats.jac_calls, res.stats.accepted);
+        }
     }
 }
 

@@ -129,8 +129,15 @@ char *dyn_method_names(char *buf, size_t size);
 int dyn_method_is_adaptive(const dyn_tableau *m);
 /* 1 if the method is meant for stiff problems (implicit kinds), else 0. */
 int dyn_method_is_stiff(const dyn_tableau *m);
-/* Right-hand-side calls per step without rejections: s, or s - 1 for FSAL tables. */
+/* Right-hand-side calls per accepted step without rejections: s, or s - 1 for FSAL
+ * tables. Rosenbrock methods: the calls of a step from a new point with an analytic
+ * Jacobian, i.e. f(t, y), each stage that needs its own evaluation and one for df/dt
+ * (rodas4: 7); the Jacobian comes on top (dyn_method_jac_per_step; by differences it
+ * costs n more calls of f), and a rejected step's retry costs only its stages (5). */
 int dyn_method_calls_per_step(const dyn_tableau *m);
+/* Jacobian evaluations per accepted step without rejections: 1 for stiff methods (once
+ * per new point), 0 for explicit ones. */
+int dyn_method_jac_per_step(const dyn_tableau *m);
 
 /* Largest error in the order conditions of a table up to order p: for every rooted tree t
  * with |t| <= min(p, 8) (200 trees), |b . Phi(t) - 1/gamma(t)| (Butcher; HNW I sec. II.2),

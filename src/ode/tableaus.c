@@ -336,11 +336,32 @@ int dyn_method_is_stiff(const dyn_tableau *m)
     return m && m->kind != DYN_KIND_EXPLICIT_RK && m->kind != DYN_KIND_EMBEDDED_RK;
 }
 
+/* Calls of f in a Rosenbrock step from a new point: f(t, y) (the stages with alpha_i = 0
+ * and no a_ij reuse it), one per other stage, and one for df/dt (step_rosenbrock.c). */
+static int ros_calls_per_step(const dyn_ros_method *rm)
+{
+    int calls = 2;
+    for (int i = 0; i < rm->stages; i++) {
+        int own = rm->alpha[i] != 0.0;
+        for (int j = 0; j < i; j++)
+            own |= rm->a[(size_t)i * (size_t)rm->stages + (size_t)j] != 0.0;
+        calls += own;
+    }
+    return calls;
+}
+
 int dyn_method_calls_per_step(const dyn_tableau *m)
 {
     if (!m)
         return 0;
+    if (m->kind == DYN_KIND_ROSENBROCK && m->impl)
+        return ros_calls_per_step((const dyn_ros_method *)m->impl);
     return m->stages - (m->fsal ? 1 : 0);
+}
+
+int dyn_method_jac_per_step(const dyn_tableau *m)
+{
+    return dyn_method_is_stiff(m) ? 1 : 0;
 }
 
 char *dyn_method_names(char *buf, size_t size)

@@ -100,7 +100,8 @@ static void test_robertson(void **state)
         CHECK(e < 1e-5, "analytic %d: CVODE relative error %.3g", analytic, e);
         const double d = rel_err(yc, yr, 3);
         CHECK(d < 1e-5, "analytic %d: CVODE and rodas4 differ by %.3g", analytic, d);
-        assert_true(res.stats.steps > 100 && res.stats.accepted == res.stats.steps);
+        assert_true(res.stats.accepted > 100 &&
+                    res.stats.steps == res.stats.accepted + res.stats.rejected);
         assert_true(res.stats.jac_calls > 0 && res.stats.rhs_calls > res.stats.steps);
         assert_int_equal(res.stats.samples, nt);
     }

@@ -28,6 +28,8 @@ typedef struct cv_user {
     const dyn_system *sys;
     dyn_jac_fn jac;
     double *jbuf;      /* (n x n) row-major Jacobian from the user's function */
+    const double *rtolv, *atolv; /* per-state tolerances (cv_ewt), or NULL */
+    double atol;       /* scalar absolute tolerance when atolv is NULL */
     int rhs_status;    /* non-zero value f or jac returned */
     double fail_t;
     char msg[200];     /* CVODE's last error or warning message */
@@ -91,15 +93,197 @@ static void cv_err(int code, const char *module, const char *function, char *msg
 
 static int fail(dyn_result *res, int status, const char *what, const cv_user *u)
 {
+    const size_t size = sizeof res->message;
     res->status = status;
-    if (u && u->msg[0])
-        snprintf(res->message, sizeof res->message, "%s (%s)", what, u->msg);
-    else
-        snprintf(res->message, sizeof res->message, "%s", what);
+    int w = snprintf(res->message, size, "%s", what);
+    if (u && u->msg[0] && w >= 0 && (size_t)w + 4 < size) /* CVODE's message, cut to fit */
+        snprintf(res->message + w, size - (size_t)w, " (%.*s)", (int)(size - (size_t)w - 4),
+                 u->msg);
     return status;
 }
 
+/* Per-state relative tolerances: CVODE's error weights 1 / (rtol_i |y_i| + atol_i)
+ * (CVodeWFtolerances), the weights of CVodeSVtolerances with a vector rtol. */
+static int cv_ewt(N_Vector y, N_Vector ewt, void *user_data)
+{
+    cv_user *u = user_data;
+    const sunrealtype *yv = N_VGetArrayPointer(y);
+    sunrealtype *w = N_VGetArrayPointer(ewt);
+    for (int i = 0; i < u->sys->n; i++) {
+        const double d = u->rtolv[i] * fabs(yv[i]) + (u->atolv ? u->atolv[i] : u->atol);
+        if (!(d > 0.0))
+            return -1;
+        w[i] = 1.0 / d;
+    }
+    return 0;
+}
+
 const char *dyn_cvode_version(void) { return SUNDIALS_VERSION; }
+
+/* One CVODE solver: what dyn_cvode_solve and dyn_cvode_solve_steps share. */
+typedef struct cv_solver {
+    cv_user u;
+    SUNContext sctx;
+    void *mem;
+    N_Vector yv, av;
+    SUNMatrix A;
+    SUNLinearSolver LS;
+    double *ycur; /* (n) the last state reached */
+} cv_solver;
+
+static void cv_result_init(dyn_result *res, double t0)
+{
+    memset(res, 0, sizeof *res);
+    res->t = t0;
+    res->fail_t = NAN;
+    res->fail_index = -1;
+    res->event_index = -1;
+    res->stiff_t = NAN;
+}
+
+/* Create and set up CVODE for sys from (t0, y0), never past tstop (> t0; or no stop time
+ * when tstop <= t0). Returns DYN_OK or a status with res filled. */
+static int cv_open(cv_solver *cs, const dyn_system *sys, double t0, const double *y0,
+                   double tstop, const dyn_cvode_opts *opts, dyn_result *res)
+{
+    const double rtol = opts->rtol > 0.0 ? opts->rtol : 1e-3;
+    const double atol = opts->atol > 0.0 ? opts->atol : 1e-6;
+    const int n = sys->n;
+    const size_t N = (size_t)n;
+    memset(cs, 0, sizeof *cs);
+    cs->u.sys = sys;
+    cs->u.jac = opts->jacobian;
+    cs->u.rtolv = opts->rtolv;
+    cs->u.atolv = opts->atolv;
+    cs->u.atol = atol;
+    cs->ycur = malloc(N * sizeof *cs->ycur);
+    if (opts->jacobian)
+        cs->u.jbuf = malloc(N * N * sizeof *cs->u.jbuf);
+    if (!cs->ycur || (opts->jacobian && !cs->u.jbuf))
+        return fail(res, DYN_ERR_ARG, "out of memory", NULL);
+    memcpy(cs->ycur, y0, N * sizeof *cs->ycur);
+
+    if (SUNContext_Create(DYN_SUN_COMM, &cs->sctx) != 0) {
+        cs->sctx = NULL;
+        return fail(res, DYN_ERR_ARG, "SUNContext_Create failed", NULL);
+    }
+#if SUNDIALS_VERSION_MAJOR >= 7
+    SUNContext_ClearErrHandlers(cs->sctx);
+    SUNContext_PushErrHandler(cs->sctx, cv_err, &cs->u);
+#endif
+    cs->yv = N_VNew_Serial((sunindextype)n, cs->sctx);
+    if (!cs->yv)
+        return fail(res, DYN_ERR_ARG, "N_VNew_Serial failed", NULL);
+    memcpy(N_VGetArrayPointer(cs->yv), y0, N * sizeof *cs->ycur);
+    cs->mem = CVodeCreate(opts->adams ? CV_ADAMS : CV_BDF, cs->sctx);
+    if (!cs->mem)
+        return fail(res, DYN_ERR_ARG, "CVodeCreate failed", NULL);
+#if SUNDIALS_VERSION_MAJOR < 7
+    CVodeSetErrHandlerFn(cs->mem, cv_err, &cs->u);
+#endif
+    void *mem = cs->mem;
+    int flag = CVodeInit(mem, cv_rhs, t0, cs->yv);
+    if (flag == CV_SUCCESS)
+        flag = CVodeSetUserData(mem, &cs->u);
+    if (flag == CV_SUCCESS) {
+        if (opts->rtolv) {
+            flag = CVodeWFtolerances(mem, cv_ewt);
+        } else if (opts->atolv) {
+            cs->av = N_VNew_Serial((sunindextype)n, cs->sctx);
+            if (!cs->av)
+                return fail(res, DYN_ERR_ARG, "N_VNew_Serial failed", NULL);
+            memcpy(N_VGetArrayPointer(cs->av), opts->atolv, N * sizeof *cs->ycur);
+            flag = CVodeSVtolerances(mem, rtol, cs->av);
+        } else {
+            flag = CVodeSStolerances(mem, rtol, atol);
+        }
+    }
+    if (flag == CV_SUCCESS) {
+        cs->A = SUNDenseMatrix((sunindextype)n, (sunindextype)n, cs->sctx);
+        cs->LS = cs->A ? SUNLinSol_Dense(cs->yv, cs->A, cs->sctx) : NULL;
+        flag = cs->LS ? CVodeSetLinearSolver(mem, cs->LS, cs->A) : -1;
+    }
+    if (flag == CV_SUCCESS && opts->jacobian)
+        flag = CVodeSetJacFn(mem, cv_jac);
+    if (flag == CV_SUCCESS)
+        flag = CVodeSetMaxNumSteps(mem, opts->max_steps > 0 ? opts->max_steps : 100000L);
+    if (flag == CV_SUCCESS && opts->max_order > 0)
+        flag = CVodeSetMaxOrd(mem, opts->max_order);
+    if (flag == CV_SUCCESS && opts->initial_step > 0.0)
+        flag = CVodeSetInitStep(mem, opts->initial_step);
+    if (flag == CV_SUCCESS && opts->max_step > 0.0)
+        flag = CVodeSetMaxStep(mem, opts->max_step);
+    if (flag == CV_SUCCESS && tstop > t0)
+        flag = CVodeSetStopTime(mem, tstop);
+    if (flag != CV_SUCCESS)
+        return fail(res, DYN_ERR_ARG, "CVODE setup failed", &cs->u);
+    return DYN_OK;
+}
+
+/* The status of a failed CVode call (flag < 0) into res; t is the time reached. */
+static void cv_failed(const cv_solver *cs, int flag, double t, dyn_result *res)
+{
+    res->t = t;
+    if (cs->u.rhs_status) {
+        res->rhs_status = cs->u.rhs_status;
+        res->fail_t = cs->u.fail_t;
+        char what[96];
+        snprintf(what, sizeof what,
+                 "the right-hand side or Jacobian failed at t = %.17g (status %d)",
+                 cs->u.fail_t, cs->u.rhs_status);
+        fail(res, DYN_ERR_RHS, what, NULL);
+    } else if (flag == CV_TOO_MUCH_WORK) {
+        fail(res, DYN_ERR_MAX_STEPS, "CVODE reached the limit of steps", &cs->u);
+    } else if (flag == CV_TOO_MUCH_ACC || flag == CV_ERR_FAILURE || flag == CV_CONV_FAILURE) {
+        fail(res, DYN_ERR_STEP_SIZE, "CVODE failed to reach the tolerance", &cs->u);
+    } else {
+        char what[64];
+        snprintf(what, sizeof what, "CVODE failed with flag %d", flag);
+        fail(res, DYN_ERR_ARG, what, &cs->u);
+    }
+}
+
+/* The counters of the solve into res (steps = attempts = accepted + rejected). */
+static void cv_counters(const cv_solver *cs, dyn_result *res)
+{
+    if (!cs->mem)
+        return;
+    long nst = 0, nfe = 0, netf = 0, ncf = 0, nje = 0, nfeLS = 0;
+    CVodeGetNumSteps(cs->mem, &nst);
+    CVodeGetNumRhsEvals(cs->mem, &nfe);
+    CVodeGetNumErrTestFails(cs->mem, &netf);
+    CVodeGetNumNonlinSolvConvFails(cs->mem, &ncf);
+    CVodeGetNumJacEvals(cs->mem, &nje);
+    CVodeGetNumLinRhsEvals(cs->mem, &nfeLS);
+    res->stats.accepted = nst;
+    res->stats.rejected = netf + ncf;
+    res->stats.steps = nst + netf + ncf;
+    res->stats.rhs_calls = nfe + nfeLS;
+    res->stats.jac_calls = nje;
+    sunrealtype hlast = 0;
+    CVodeGetLastStep(cs->mem, &hlast);
+    res->h_last = hlast;
+}
+
+static void cv_close(cv_solver *cs, int n, double *y)
+{
+    if (y && cs->ycur)
+        memcpy(y, cs->ycur, (size_t)n * sizeof *y);
+    if (cs->LS)
+        SUNLinSolFree(cs->LS);
+    if (cs->A)
+        SUNMatDestroy(cs->A);
+    if (cs->av)
+        N_VDestroy(cs->av);
+    if (cs->yv)
+        N_VDestroy(cs->yv);
+    if (cs->mem)
+        CVodeFree(&cs->mem);
+    if (cs->sctx)
+        SUNContext_Free(&cs->sctx);
+    free(cs->u.jbuf);
+    free(cs->ycur);
+}
 
 int dyn_cvode_solve(const dyn_system *sys, double t0, const double *y0, const double *tout,
                     long n_out, const dyn_cvode_opts *opts, dyn_output_fn output, void *ctx,
@@ -109,12 +293,7 @@ int dyn_cvode_solve(const dyn_system *sys, double t0, const double *y0, const do
     dyn_result local;
     if (!res)
         res = &local;
-    memset(res, 0, sizeof *res);
-    res->t = t0;
-    res->fail_t = NAN;
-    res->fail_index = -1;
-    res->event_index = -1;
-    res->stiff_t = NAN;
+    cv_result_init(res, t0);
     if (!opts)
         opts = &no_opts;
     if (!sys || !sys->f || sys->n <= 0 || !y0)
@@ -130,164 +309,95 @@ int dyn_cvode_solve(const dyn_system *sys, double t0, const double *y0, const do
             res->status = DYN_ERR_ARG;
             return DYN_ERR_ARG;
         }
-    const double rtol = opts->rtol > 0.0 ? opts->rtol : 1e-3;
-    const double atol = opts->atol > 0.0 ? opts->atol : 1e-6;
-    const int n = sys->n;
-    const size_t N = (size_t)n;
-
-    cv_user u;
-    memset(&u, 0, sizeof u);
-    u.sys = sys;
-    u.jac = opts->jacobian;
-    SUNContext sctx = NULL;
-    void *mem = NULL;
-    N_Vector yv = NULL, av = NULL;
-    SUNMatrix A = NULL;
-    SUNLinearSolver LS = NULL;
-    double *ycur = malloc(N * sizeof *ycur);
-    if (opts->jacobian)
-        u.jbuf = malloc(N * N * sizeof *u.jbuf);
-    if (!ycur || (opts->jacobian && !u.jbuf)) {
-        fail(res, DYN_ERR_ARG, "out of memory", NULL);
-        goto done;
-    }
-    memcpy(ycur, y0, N * sizeof *ycur);
-
-    if (SUNContext_Create(DYN_SUN_COMM, &sctx) != 0) {
-        fail(res, DYN_ERR_ARG, "SUNContext_Create failed", NULL);
-        goto done;
-    }
-#if SUNDIALS_VERSION_MAJOR >= 7
-    SUNContext_ClearErrHandlers(sctx);
-    SUNContext_PushErrHandler(sctx, cv_err, &u);
-#endif
-    yv = N_VNew_Serial((sunindextype)n, sctx);
-    if (!yv) {
-        fail(res, DYN_ERR_ARG, "N_VNew_Serial failed", NULL);
-        goto done;
-    }
-    memcpy(N_VGetArrayPointer(yv), y0, N * sizeof *ycur);
-    mem = CVodeCreate(opts->adams ? CV_ADAMS : CV_BDF, sctx);
-    if (!mem) {
-        fail(res, DYN_ERR_ARG, "CVodeCreate failed", NULL);
-        goto done;
-    }
-#if SUNDIALS_VERSION_MAJOR < 7
-    CVodeSetErrHandlerFn(mem, cv_err, &u);
-#endif
-    int flag = CVodeInit(mem, cv_rhs, t0, yv);
-    if (flag == CV_SUCCESS)
-        flag = CVodeSetUserData(mem, &u);
-    if (flag == CV_SUCCESS) {
-        if (opts->atolv) {
-            av = N_VNew_Serial((sunindextype)n, sctx);
-            if (!av) {
-                fail(res, DYN_ERR_ARG, "N_VNew_Serial failed", NULL);
-                goto done;
-            }
-            memcpy(N_VGetArrayPointer(av), opts->atolv, N * sizeof *ycur);
-            flag = CVodeSVtolerances(mem, rtol, av);
-        } else {
-            flag = CVodeSStolerances(mem, rtol, atol);
-        }
-    }
-    if (flag == CV_SUCCESS) {
-        A = SUNDenseMatrix((sunindextype)n, (sunindextype)n, sctx);
-        LS = A ? SUNLinSol_Dense(yv, A, sctx) : NULL;
-        flag = LS ? CVodeSetLinearSolver(mem, LS, A) : -1;
-    }
-    if (flag == CV_SUCCESS && opts->jacobian)
-        flag = CVodeSetJacFn(mem, cv_jac);
-    if (flag == CV_SUCCESS)
-        flag = CVodeSetMaxNumSteps(mem, opts->max_steps > 0 ? opts->max_steps : 100000L);
-    if (flag == CV_SUCCESS && opts->max_order > 0)
-        flag = CVodeSetMaxOrd(mem, opts->max_order);
-    if (flag == CV_SUCCESS && opts->initial_step > 0.0)
-        flag = CVodeSetInitStep(mem, opts->initial_step);
-    if (flag == CV_SUCCESS && opts->max_step > 0.0)
-        flag = CVodeSetMaxStep(mem, opts->max_step);
-    if (flag == CV_SUCCESS && tout[n_out - 1] > t0)
-        flag = CVodeSetStopTime(mem, tout[n_out - 1]);
-    if (flag != CV_SUCCESS) {
-        fail(res, DYN_ERR_ARG, "CVODE setup failed", &u);
-        goto done;
-    }
-
-    /* the output times */
-    double t = t0;
-    for (long k = 0; k < n_out; k++) {
-        if (tout[k] > t) {
-            sunrealtype tret = t;
-            flag = CVode(mem, tout[k], yv, &tret, CV_NORMAL);
-            if (flag < 0) {
-                res->t = t;
-                if (u.rhs_status) {
-                    res->rhs_status = u.rhs_status;
-                    res->fail_t = u.fail_t;
-                    char what[96];
-                    snprintf(what, sizeof what,
-                             "the right-hand side or Jacobian failed at t = %.17g (status %d)",
-                             u.fail_t, u.rhs_status);
-                    fail(res, DYN_ERR_RHS, what, NULL);
-                } else if (flag == CV_TOO_MUCH_WORK) {
-                    fail(res, DYN_ERR_MAX_STEPS, "CVODE reached the limit of steps", &u);
-                } else if (flag == CV_TOO_MUCH_ACC || flag == CV_ERR_FAILURE ||
-                           flag == CV_CONV_FAILURE) {
-                    fail(res, DYN_ERR_STEP_SIZE, "CVODE failed to reach the tolerance", &u);
-                } else {
-                    char what[64];
-                    snprintf(what, sizeof what, "CVODE failed with flag %d", flag);
-                    fail(res, DYN_ERR_ARG, what, &u);
+    const size_t N = (size_t)sys->n;
+    cv_solver cs;
+    if (cv_open(&cs, sys, t0, y0, tout[n_out - 1], opts, res) == DYN_OK) {
+        double t = t0;
+        for (long k = 0; k < n_out; k++) {
+            if (tout[k] > t) {
+                sunrealtype tret = t;
+                int flag = CVode(cs.mem, tout[k], cs.yv, &tret, CV_NORMAL);
+                if (flag < 0) {
+                    cv_failed(&cs, flag, t, res);
+                    break;
                 }
-                break;
+                t = tout[k]; /* CV_NORMAL with a stop time: tret == tout[k] */
+                memcpy(cs.ycur, N_VGetArrayPointer(cs.yv), N * sizeof *cs.ycur);
             }
-            t = tout[k]; /* CV_NORMAL with a stop time: tret == tout[k] */
-            memcpy(ycur, N_VGetArrayPointer(yv), N * sizeof *ycur);
+            res->t = t;
+            if (output) {
+                res->stats.samples++;
+                if (output(k, tout[k], cs.ycur, ctx)) {
+                    snprintf(res->message, sizeof res->message,
+                             "output stopped the run at t = %g", tout[k]);
+                    res->status = DYN_STOPPED;
+                    break;
+                }
+            }
         }
-        res->t = t;
+        cv_counters(&cs, res);
+    }
+    cv_close(&cs, sys->n, y);
+    return res->status;
+}
+
+int dyn_cvode_solve_steps(const dyn_system *sys, double t0, double t1, const double *y0,
+                          const dyn_cvode_opts *opts, dyn_output_fn output, void *ctx,
+                          double *y, dyn_result *res)
+{
+    static const dyn_cvode_opts no_opts;
+    dyn_result local;
+    if (!res)
+        res = &local;
+    cv_result_init(res, t0);
+    if (!opts)
+        opts = &no_opts;
+    if (!sys || !sys->f || sys->n <= 0 || !y0)
+        return fail(res, DYN_ERR_ARG, "no system, no right-hand side, n <= 0 or no y0", NULL);
+    if (!isfinite(t0) || !isfinite(t1) || !(t1 > t0))
+        return fail(res, DYN_ERR_ARG, "the span must be finite with t1 > t0", NULL);
+    const size_t N = (size_t)sys->n;
+    cv_solver cs;
+    if (cv_open(&cs, sys, t0, y0, t1, opts, res) == DYN_OK) {
+        long k = 0, steps = 0;
+        double t = t0;
+        int more = 1;
         if (output) {
             res->stats.samples++;
-            if (output(k, tout[k], ycur, ctx)) {
+            if (output(k++, t0, cs.ycur, ctx)) {
                 snprintf(res->message, sizeof res->message, "output stopped the run at t = %g",
-                         tout[k]);
+                         t0);
                 res->status = DYN_STOPPED;
-                break;
+                more = 0;
             }
         }
+        while (more && t < t1) {
+            if (opts->max_steps > 0 && steps >= opts->max_steps) {
+                cv_failed(&cs, CV_TOO_MUCH_WORK, t, res);
+                break;
+            }
+            sunrealtype tret = t;
+            int flag = CVode(cs.mem, t1, cs.yv, &tret, CV_ONE_STEP);
+            if (flag < 0) {
+                cv_failed(&cs, flag, t, res);
+                break;
+            }
+            steps++;
+            t = flag == CV_TSTOP_RETURN ? t1 : tret;
+            memcpy(cs.ycur, N_VGetArrayPointer(cs.yv), N * sizeof *cs.ycur);
+            res->t = t;
+            if (output) {
+                res->stats.samples++;
+                if (output(k++, t, cs.ycur, ctx)) {
+                    snprintf(res->message, sizeof res->message,
+                             "output stopped the run at t = %g", t);
+                    res->status = DYN_STOPPED;
+                    break;
+                }
+            }
+        }
+        cv_counters(&cs, res);
     }
-
-    long nst = 0, nfe = 0, netf = 0, ncf = 0, nje = 0, nfeLS = 0;
-    CVodeGetNumSteps(mem, &nst);
-    CVodeGetNumRhsEvals(mem, &nfe);
-    CVodeGetNumErrTestFails(mem, &netf);
-    CVodeGetNumNonlinSolvConvFails(mem, &ncf);
-    CVodeGetNumJacEvals(mem, &nje);
-    CVodeGetNumLinRhsEvals(mem, &nfeLS);
-    res->stats.steps = nst;
-    res->stats.accepted = nst;
-    res->stats.rejected = netf + ncf;
-    res->stats.rhs_calls = nfe + nfeLS;
-    res->stats.jac_calls = nje;
-    sunrealtype hlast = 0;
-    CVodeGetLastStep(mem, &hlast);
-    res->h_last = hlast;
-
-done:
-    if (y && ycur)
-        memcpy(y, ycur, N * sizeof *y);
-    if (LS)
-        SUNLinSolFree(LS);
-    if (A)
-        SUNMatDestroy(A);
-    if (av)
-        N_VDestroy(av);
-    if (yv)
-        N_VDestroy(yv);
-    if (mem)
-        CVodeFree(&mem);
-    if (sctx)
-        SUNContext_Free(&sctx);
-    free(u.jbuf);
-    free(ycur);
+    cv_close(&cs, sys->n, y);
     return res->status;
 }

@@ -14,4 +14,14 @@ libdir=$(ls -d "$prefix"/lib*/pkgconfig | head -n1)
 PKG_CONFIG_PATH="$libdir" cc -std=c11 "$here/../../examples/vanderpol.c" -o "$work/pc_example" \
   $(PKG_CONFIG_PATH="$libdir" pkg-config --cflags --libs --static dynkit)
 LD_LIBRARY_PATH="$prefix/lib:$prefix/lib64:${LD_LIBRARY_PATH:-}" "$work/pc_example"
+# the optional CVODE backend, when it was built and installed
+if [ -f "$libdir/dynkit-cvode.pc" ]; then
+  [ -x "$work/cmake/user_cvode" ] || { echo "dynkit::cvode not found by find_package"; exit 1; }
+  LD_LIBRARY_PATH="$prefix/lib:$prefix/lib64:${LD_LIBRARY_PATH:-}" "$work/cmake/user_cvode"
+  cc -std=c11 "$here/cvode_user.c" -o "$work/pc_cvode" \
+    $(PKG_CONFIG_PATH="$libdir" pkg-config --cflags --libs dynkit-cvode) -lm
+  LD_LIBRARY_PATH="$prefix/lib:$prefix/lib64:${LD_LIBRARY_PATH:-}" "$work/pc_cvode"
+  "$prefix/bin/dynkit" methods | grep -q '^cvode ' || { echo "dynkit methods lacks cvode"; exit 1; }
+  echo "install check: dynkit::cvode and dynkit-cvode.pc work"
+fi
 echo "install check: find_package and pkg-config both work"

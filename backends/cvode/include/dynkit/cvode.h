@@ -35,6 +35,8 @@ typedef struct dyn_cvode_opts {
     double initial_step;    /* 0: CVODE's estimate */
     double max_step;        /* 0: no limit */
     int adams;              /* 1: Adams-Moulton (non-stiff) instead of BDF */
+    const double *rtolv;    /* (n) relative tolerances, or NULL for rtol: then CVODE's error
+                             * weights are 1 / (rtolv_i |y_i| + atol_i) (CVodeWFtolerances) */
 } dyn_cvode_opts;
 
 /* Integrate sys from (t0, y0) and report the state at each output time tout[0..n_out)
@@ -43,13 +45,22 @@ typedef struct dyn_cvode_opts {
  * time (CVodeSetStopTime). y (n) receives the last state reached (may equal y0 or be NULL).
  * res gets the status (DYN_OK, DYN_ERR_ARG, DYN_ERR_RHS with rhs_status, DYN_ERR_MAX_STEPS,
  * DYN_ERR_STEP_SIZE for CVODE's error-test or convergence failures, DYN_STOPPED), the time
- * reached, CVODE's message, and the counters: steps = accepted = CVODE's steps, rejected =
- * error-test plus convergence failures, rhs_calls = f evaluations including those of the
+ * reached, CVODE's message, and the counters: accepted = CVODE's steps, rejected =
+ * error-test plus convergence failures, steps = accepted + rejected (attempts, as
+ * dyn_solve counts them), rhs_calls = f evaluations including those of the
  * difference-quotient Jacobian, jac_calls = Jacobian evaluations, samples. Returns
  * res->status. */
 int dyn_cvode_solve(const dyn_system *sys, double t0, const double *y0, const double *tout,
                     long n_out, const dyn_cvode_opts *opts, dyn_output_fn output, void *ctx,
                     double *y, dyn_result *res);
+
+/* The same from (t0, y0) to t1 > t0, reporting the state after every step CVODE takes
+ * (CV_ONE_STEP, never past t1): sample 0 is y0 at t0, the last one is t1. opts->max_steps
+ * limits the steps of the whole run (DYN_ERR_MAX_STEPS). Statuses and counters as for
+ * dyn_cvode_solve. */
+int dyn_cvode_solve_steps(const dyn_system *sys, double t0, double t1, const double *y0,
+                          const dyn_cvode_opts *opts, dyn_output_fn output, void *ctx,
+                          double *y, dyn_result *res);
 
 /* Version string of the SUNDIALS the backend was built with, e.g. "6.4.1". */
 const char *dyn_cvode_version(void);

@@ -56,6 +56,7 @@ typedef struct cli_run {
     long n_times;
     double max_step, initial_step; /* 0: automatic */
     long max_steps;       /* 0: no limit */
+    int step_given;       /* --step was given (else step is the model's or the table's) */
     int stats;            /* --stats: counts on stderr */
     /* --event NAME[:stop]: the model's events to locate (copies, terminal as asked) */
     dyn_event *events;    /* (n_events), owned */
@@ -66,13 +67,40 @@ typedef struct cli_run {
 /* Parse "MODEL [options]" of run-like commands into run; unknown options are errors.
  * Returns CLI_OK or CLI_USAGE (message printed). Free with cli_run_free. */
 int cli_run_parse(const char *command, int argc, char **argv, cli_run *run);
+/* The same for commands that make more runs (animate, plot): other_adaptive says that one
+ * of the other runs (--compare) has an adaptive method, so that the tolerances and step
+ * limits are accepted with a fixed-step main method. */
+int cli_run_parse_with(const char *command, int argc, char **argv, int other_adaptive,
+                       cli_run *run);
+
+/* Samples of an adaptive run without --times: on the grid t0 + k*step, or at every accepted
+ * step when the step is the model's default (no --step) and either the model asks for it
+ * (dyn_model.samples) or its grid would have more than CLI_MAX_GRID_SAMPLES samples (a long
+ * span such as Robertson's 0:1e11). */
+#define CLI_MAX_GRID_SAMPLES 1000000L
+int cli_run_at_steps(const cli_run *run);
+
+/* ---- methods of the tool (methods.c): the library's registry plus, when dynkit is built
+ * with SUNDIALS, "cvode" (the CVODE backend, not in the core registry) ---- */
+/* The cvode descriptor (name, title; adaptive and stiff) or NULL when not built. */
+const dyn_tableau *cli_cvode_method(void);
+int cli_method_is_cvode(const dyn_tableau *m);
+/* Method by name or alias, cvode included when built; NULL if not available. */
+const dyn_tableau *cli_method_find(const char *name);
+/* Accepted method names, comma-separated, into buf; returns buf. */
+char *cli_method_names(char *buf, size_t size);
+/* The usage error for a method name cli_method_find refused: built without SUNDIALS
+ * (cvode), or unknown with the accepted names. what names the option, e.g. "--method".
+ * Returns CLI_USAGE. */
+int cli_method_error(const char *command, const char *what, const char *name);
 void cli_run_free(cli_run *run);
 /* Help text of the run options (shared by run-like commands). */
 void cli_run_options_help(FILE *out);
 
 /* Run the parsed run: dyn_fixed_solve for a fixed-step method without events (the
- * homework's loop, exactly), dyn_solve otherwise (adaptive methods: samples on the --step
- * grid or at --times by dense output; events). Samples go to output (k, t, y), events to
+ * homework's loop, exactly), dyn_cvode_solve for cvode (output times from the grid or
+ * --times, or every step: cli_run_at_steps), dyn_solve otherwise (adaptive methods:
+ * samples on the --step grid, at --times by dense output, or at every step; events). Samples go to output (k, t, y), events to
  * on_event (may be NULL), stages of the first run->trace_steps steps to the trace printer.
  * every > 1 lets the fixed-step driver hand over only every K-th sample and the last (the
  * general driver hands over all). y (n_states) receives the final state (the last good one
@@ -82,7 +110,7 @@ int cli_run_solve(const cli_run *run, long every, dyn_output_fn output, void *ou
                   dyn_event_fn on_event, void *event_ctx, dyn_progress_fn progress,
                   void *progress_ctx, double *y, dyn_result *res);
 /* The counts of a solve as one line: "steps=N accepted=N rejected=N rhs=N" (+ " jac=N"
- * for stiff methods), without a newline, into buf; returns buf. */
+ * for stiff methods, cvode included), without a newline, into buf; returns buf. */
 char *cli_stats_line(const cli_run *run, const dyn_result *res, char *buf, size_t size);
 
 /* Stage-by-stage trace printer for dyn_fixed_opts.trace; ctx is the cli_run. */
@@ -105,5 +133,6 @@ int cli_cmd_methods(int argc, char **argv);
 int cli_cmd_info(int argc, char **argv);
 int cli_cmd_inverse(int argc, char **argv);
 int cli_cmd_report(int argc, char **argv);
+int cli_cmd_verify(int argc, char **argv);
 
 #endif

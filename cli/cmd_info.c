@@ -41,5 +41,9 @@ int cli_cmd_info(int argc, char **argv)
     }
     printf("\nDefault run: --method %s --step %g --tspan %g:%g (times in s)\n", m->method,
            m->step, m->t0, m->t1);
+    if (m->samples == DYN_SAMPLES_STEPS)
+        printf("Adaptive methods without --step or --times write a sample at every accepted "
+               "step;\n"
+               "--step H is the step of fixed-step methods.\n");
     return CLI_OK;
 }

@@ -22,6 +22,9 @@ typedef struct csv_sink {
     double pending_t;
     int pending;
     int seen;                 /* samples seen */
+    /* progress by samples (a long output grid inside few steps), besides the driver's */
+    cli_progress *progress;   /* NULL: none */
+    long count;               /* samples seen */
 } csv_sink;
 
 /* Where events go: CSV rows (event,t,<states>) or lines on stderr. */
@@ -67,6 +70,10 @@ static int on_sample(long k, double t, const double *y, void *ctx)
     const int n = sink->run->model->n_states;
     check_warning(sink, t, y);
     sink->seen = 1;
+    if (sink->progress && (++sink->count & 0xffff) == 0) {
+        const cli_run *run = sink->run;
+        cli_progress_update(t, (t - run->t0) / (run->t1 - run->t0), sink->progress);
+    }
     if (sink->last_k < 0) { /* keep it in case it turns out to be the last one */
         memcpy(sink->pending_y, y, (size_t)n * sizeof *y);
         sink->pending_t = t;
@@ -111,12 +118,15 @@ static void run_help(void)
          "Integrate MODEL and write the samples as CSV: a header t,<state names> and one row\n"
          "per sample t0 + k*step, numbers printed with %.17g. Fixed-step methods (euler, heun,\n"
          "rk4, ...) take steps of --step; adaptive methods (bs23 = ode23, dp45 = ode45,\n"
-         "dop853) choose their steps to meet --rtol/--atol (defaults 1e-3 and 1e-6, like\n"
-         "MATLAB) and interpolate the samples on the --step grid or at --times.\n"
+         "dop853; for stiff problems rodas4, and cvode when built with SUNDIALS) choose their\n"
+         "steps to meet --rtol/--atol (defaults 1e-3 and 1e-6, like MATLAB) and interpolate\n"
+         "the samples on the --step grid or at --times (without either: the model's grid, or\n"
+         "every accepted step when that grid exceeds 1e6 samples or the model asks for it).\n"
          "\n"
          "Examples:\n"
          "  dynkit run vanderpol --method heun --step 0.01 --tspan 0:15 --final\n"
          "  dynkit run plane --method dp45 --rtol 1e-8 --atol 1e-10 --final --stats\n"
+         "  dynkit run robertson --tspan 0:1e11 --rtol 1e-8 --atol 1e-14 --stats\n"
          "  dynkit run pendulum --method dp45 --rtol 1e-10 --tspan 0:20 --event turn \\\n"
          "      --event bottom:stop --events-output events.csv\n"
          "  dynkit run pendulum --method euler --step 0.2 --tspan 0:0.2 --trace 1\n"
@@ -179,7 +189,8 @@ int cli_cmd_run(int argc, char **argv)
     const int general = dyn_method_is_adaptive(run.method) || run.n_events > 0;
     dyn_grid grid = {0};
     char why[256], line[160];
-    if (!run.times &&
+    const int at_steps = cli_run_at_steps(&run);
+    if (!run.times && !at_steps &&
         dyn_grid_plan(run.t0, run.t1, run.step, run.end, &grid, why, sizeof why)) {
         rc = cli_usage_error("run", "--step %g over --tspan %g:%g: %s", run.step, run.t0, run.t1,
                              why);
@@ -222,8 +233,14 @@ int cli_cmd_run(int argc, char **argv)
             fprintf(evout, ",%s", m->states[i].name);
         fputc('\n', evout);
     }
+    if (at_steps && m->samples != DYN_SAMPLES_STEPS && !run.quiet)
+        fprintf(stderr,
+                "dynkit: note: the model's step %g over %g:%g would give %.3g samples; writing "
+                "a sample at every accepted step instead (give --step or --times for a grid)\n",
+                run.step, run.t0, run.t1, (run.t1 - run.t0) / run.step + 1.0);
     cli_progress progress;
     cli_progress_start(&progress, run.quiet);
+    sink.progress = progress.enabled ? &progress : NULL;
     /* thinning: every K-th sample and the last; the last is known beforehand only for a
      * fixed-step run without events (the general driver may end early at an event) */
     sink.last_k = general ? -1 : grid.samples - 1;

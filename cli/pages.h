@@ -53,9 +53,12 @@ typedef struct cli_series {
     char message[640]; /* why the run stopped, when status != DYN_OK */
 } cli_series;
 
-/* Run run->model (parameters, initial state, span of run) with method at step, keeping every
- * k-th sample with k the larger of run->every and what keeps at most max_rows samples, and
- * always the first and the last. Warnings of the model go to stderr once each (unless
+/* Run run->model (parameters, initial state, span of run) with method at step (0: the run's
+ * step, given or the model's), keeping every k-th sample with k the larger of run->every and
+ * what keeps at most max_rows samples, and always the first and the last; runs whose sample
+ * count is not known beforehand (an adaptive method at every accepted step,
+ * cli_run_at_steps) are thinned as they come (every other row dropped when the rows fill
+ * up). Warnings of the model go to stderr once each (unless
  * run->quiet). Returns CLI_OK; CLI_USAGE for a bad grid (message printed); CLI_FAILED when
  * out of memory or the solve failed (s->status, s->message; the rows up to there kept). */
 int cli_series_record(const cli_run *run, const dyn_tableau *method, double step, long max_rows,
@@ -74,7 +77,8 @@ char *cli_series_column_names(const dyn_model *m, char *buf, size_t size);
 #define CLI_MAX_COMPARE 8
 #define CLI_MAX_ROWS 2000 /* samples per series that a page or a plot keeps */
 
-/* Another run to overlay: --compare METHOD[:STEP]; step 0 means the main run's step. */
+/* Another run to overlay: --compare METHOD[:STEP]; step 0 means the main run's step (the
+ * given --step or the model's; an adaptive run then samples as the main run would). */
 typedef struct cli_compare {
     const dyn_tableau *method;
     double step;

@@ -24,20 +24,29 @@ void cli_run_options_help(FILE *out)
           "                       sample time and span ('dynkit inverse cart' writes one)\n"
           "  --interp hold|linear read the table between samples: 'hold' (default) takes the\n"
           "                       nearest sample, 'linear' interpolates; end values are held\n"
-          "Adaptive methods (bs23 = ode23, dp45 = ode45, dop853; see 'dynkit methods'):\n"
+          "Adaptive methods (bs23 = ode23, dp45 = ode45, dop853; stiff: rodas4, and cvode\n"
+          "when dynkit is built with SUNDIALS; see 'dynkit methods'):\n"
           "  --rtol R             relative tolerance (default 1e-3, as MATLAB's ode45)\n"
           "  --atol A             absolute tolerance (default 1e-6); both accept one value per\n"
           "                       state, comma-separated, e.g. --atol 1e-8,1e-6\n"
           "                       each step keeps the error estimate below atol + rtol |y|\n"
-          "  --step H             with an adaptive method: write samples at T0 + k*H (default:\n"
-          "                       the model's step), interpolated, never forcing a step\n"
+          "  --step H             with an adaptive method: write samples at T0 + k*H,\n"
+          "                       interpolated, never forcing a step\n"
+          "                       without --step and --times an adaptive method writes the\n"
+          "                       grid of the model's step, or a sample at every accepted\n"
+          "                       step when that grid would exceed 1e6 samples (a long span,\n"
+          "                       e.g. robertson --tspan 0:1e11) or the model asks for it\n"
+          "                       (robertson, hires; 'dynkit info MODEL' says so)\n"
           "  --times LIST         write samples at these times instead: comma-separated\n"
           "                       (0,0.5,2) or @FILE with one time per line; without --tspan\n"
           "                       the run ends at the last time\n"
           "  --max-step H         largest step size (default: the span)\n"
           "  --initial-step H     first step size (default: chosen from the problem)\n"
-          "  --max-steps N        stop after N steps (default: no limit)\n"
-          "Events (any method):\n"
+          "  --max-steps N        stop after N steps (default: no limit; cvode: steps\n"
+          "                       between two samples, default 100000)\n"
+          "  with animate and plot these options are accepted when the main run or a\n"
+          "  --compare run is adaptive; fixed-step runs ignore them\n"
+          "Events (any method but cvode):\n"
           "  --event NAME[:stop]  locate the model's event NAME (repeatable; 'dynkit info\n"
           "                       MODEL' lists them); with :stop the run ends at it\n"
           "  --events-output FILE write the events as CSV: event,t,<states> (default: stderr)\n"
@@ -48,6 +57,7 @@ void cli_run_options_help(FILE *out)
           "  --outputs            add the model's extra outputs (energy, ...) as columns\n"
           "  --trace N            print each stage of the first N steps on stderr\n"
           "  --stats              print the counts on stderr: steps=N accepted=N rejected=N rhs=N\n"
+          "                       (+ jac=N for stiff methods)\n"
           "  --quiet              no progress display on stderr\n",
           out);
 }
@@ -553,11 +563,14 @@ static int load_input(const char *command, cli_run *run, unsigned given)
     return CLI_OK;
 }
 
-/* Options that only make sense with some methods, and --times against the span. */
-static int check_method_options(const char *command, cli_run *run, unsigned given)
+/* Options that only make sense with some methods, and --times against the span.
+ * other_adaptive: another run of the command (--compare) is adaptive. */
+static int check_method_options(const char *command, cli_run *run, unsigned given,
+                                int other_adaptive)
 {
     const dyn_tableau *mt = run->method;
     const int adaptive = dyn_method_is_adaptive(mt);
+    const int view = strcmp(command, "run") != 0; /* animate, plot: --compare runs */
     static const struct {
         unsigned flag;
         const char *name;
@@ -566,13 +579,29 @@ static int check_method_options(const char *command, cli_run *run, unsigned give
                          {GIVEN_MAX_STEP, "--max-step"},
                          {GIVEN_INITIAL_STEP, "--initial-step"},
                          {GIVEN_MAX_STEPS, "--max-steps"}};
-    for (size_t i = 0; i < sizeof adaptive_only / sizeof adaptive_only[0] && !adaptive; i++)
+    for (size_t i = 0; i < sizeof adaptive_only / sizeof adaptive_only[0] && !adaptive &&
+                       !other_adaptive;
+         i++)
         if (given & adaptive_only[i].flag)
             return cli_usage_error(command,
                                    "%s applies to adaptive methods only: %s takes fixed steps of "
-                                   "--step H. Give --method dp45 (or bs23, dop853) to control "
-                                   "the error, or choose the accuracy of %s with --step",
-                                   adaptive_only[i].name, mt->name, mt->name);
+                                   "--step H. Give --method dp45 (or bs23, dop853, rodas4) to "
+                                   "control the error, or choose the accuracy of %s with "
+                                   "--step%s",
+                                   adaptive_only[i].name, mt->name, mt->name,
+                                   view ? " (it is accepted when the main run or a --compare "
+                                          "run is adaptive)"
+                                        : "");
+    if (cli_method_is_cvode(mt) && run->n_events > 0)
+        return cli_usage_error(command,
+                               "--event is not available with --method cvode: the CVODE "
+                               "backend runs without root finding here. Locate events with "
+                               "--method rodas4 (stiff) or dp45");
+    if (cli_method_is_cvode(mt) && run->trace_steps > 0)
+        return cli_usage_error(command,
+                               "--trace prints the stages of a Runge-Kutta step; cvode is a "
+                               "multistep (BDF) method and has none (--stats gives its "
+                               "counts)");
     if (run->times && !adaptive)
         return cli_usage_error(command,
                                "--times needs an adaptive method (e.g. --method dp45), whose "
@@ -605,6 +634,23 @@ static int check_method_options(const char *command, cli_run *run, unsigned give
 }
 
 int cli_run_parse(const char *command, int argc, char **argv, cli_run *run)
+{
+    return cli_run_parse_with(command, argc, argv, 0, run);
+}
+
+int cli_run_at_steps(const cli_run *run)
+{
+    if (!dyn_method_is_adaptive(run->method) || run->times || run->step_given)
+        return 0;
+    if (run->model->samples == DYN_SAMPLES_STEPS)
+        return 1;
+    /* the model's step over the span: more samples than a default should write? */
+    const double samples = (run->t1 - run->t0) / run->step + 1.0;
+    return !(samples <= (double)CLI_MAX_GRID_SAMPLES);
+}
+
+int cli_run_parse_with(const char *command, int argc, char **argv, int other_adaptive,
+                       cli_run *run)
 {
     char names[512], err[256];
     memset(run, 0, sizeof *run);
@@ -646,11 +692,11 @@ int cli_run_parse(const char *command, int argc, char **argv, cli_run *run)
         return cli_usage_error(command, "--interp needs --forces FILE (a table to read)");
     if (run->forces_path && (rc = load_input(command, run, given)) != CLI_OK)
         return rc;
-    run->method = dyn_method_find(method_name);
+    run->method = cli_method_find(method_name);
     if (!run->method)
-        return cli_usage_error(command, "unknown method '%s' (accepted: %s)", method_name,
-                               dyn_method_names(names, sizeof names));
-    return check_method_options(command, run, given);
+        return cli_method_error(command, "--method", method_name);
+    run->step_given = (given & GIVEN_STEP) || run->forces_path;
+    return check_method_options(command, run, given, other_adaptive);
 }
 
 void cli_run_free(cli_run *run)

@@ -1,6 +1,6 @@
 /* Recorded runs for pictures: one run of a model kept in memory (t, states, extra outputs),
- * with any method (cli_run_solve: adaptive methods give samples on the --step grid or at
- * --times), thinned to a number of samples a screen can show (every k-th sample, always the
+ * with any method (cli_run_solve: adaptive methods give samples on the --step grid, at
+ * --times or at every accepted step; cvode when built), thinned to a number of samples a screen can show (every k-th sample, always the
  * first and the last), and the names and units of its columns. */
 #include <math.h>
 #include <stdlib.h>
@@ -52,6 +52,8 @@ typedef struct recorder {
     const cli_run *run;
     cli_series *s;
     long every, capacity;
+    int grows;      /* sample count not known: thin as the rows fill up */
+    long seen;      /* samples seen */
     double *latest; /* (n_states) the last sample seen, kept even when thinned away */
     double latest_t;
     int have_latest;
@@ -88,12 +90,31 @@ static void store(recorder *r, double t, const double *y)
     s->rows++;
 }
 
+/* Rows full with more samples to come: keep rows 0, 2, 4, ... (samples 0, 2k, 4k, ...) and
+ * take every 2k-th sample from now on. */
+static void halve(recorder *r)
+{
+    cli_series *s = r->s;
+    long kept = 0;
+    for (long i = 0; i < s->rows; i += 2, kept++)
+        if (kept != i)
+            memcpy(s->data + kept * s->cols, s->data + i * s->cols,
+                   (size_t)s->cols * sizeof *s->data);
+    s->rows = kept;
+    r->every *= 2;
+}
+
 static int on_sample(long k, double t, const double *y, void *ctx)
 {
     recorder *r = ctx;
     warn_once(r, t, y);
-    if (k % r->every == 0)
-        store(r, t, y);
+    r->seen++;
+    if (k % r->every == 0) {
+        if (r->grows && r->s->rows >= r->capacity - 2)
+            halve(r);
+        if (k % r->every == 0)
+            store(r, t, y);
+    }
     memcpy(r->latest, y, (size_t)r->run->model->n_states * sizeof *y);
     r->latest_t = t;
     r->have_latest = 1;
@@ -118,25 +139,40 @@ int cli_series_record(const cli_run *run, const dyn_tableau *method, double step
     const dyn_model *m = run->model;
     dyn_grid grid;
     char why[256];
+    /* this run: the options of run with its own method and step */
+    cli_run one = *run;
+    one.method = method;
+    if (step > 0.0) {
+        one.step = step;
+        one.step_given = 1;
+    }
+    step = one.step;
     memset(s, 0, sizeof *s);
     s->method = method;
     s->step = step;
     s->cols = 1 + m->n_states + m->n_outputs;
     label(run, method, step, s->label, sizeof s->label);
-    /* the samples: the grid t0 + k*step (the output grid of adaptive methods), or --times */
-    if (dyn_grid_plan(run->t0, run->t1, step, run->end, &grid, why, sizeof why))
-        return cli_usage_error(NULL, "%s: --step %g over --tspan %g:%g: %s", s->label, step,
-                               run->t0, run->t1, why);
-    const long samples =
-        dyn_method_is_adaptive(method) && run->times ? run->n_times + 1 : grid.samples;
     recorder r = {.run = run, .s = s};
-    /* the smallest k with ceil((samples - 1) / k) + 1 <= max_rows */
-    r.every = max_rows > 1 ? (samples - 1 + max_rows - 2) / (max_rows - 1) : 1;
-    if (r.every < 1)
-        r.every = 1;
-    if (run->every > r.every)
-        r.every = run->every;
-    r.capacity = (samples + r.every - 1) / r.every + 2;
+    long samples = -1; /* not known beforehand */
+    if (cli_run_at_steps(&one)) {
+        r.grows = 1;
+        r.every = run->every > 1 ? run->every : 1;
+        r.capacity = max_rows > 4 ? max_rows : 4;
+    } else {
+        /* the samples: the grid t0 + k*step (the output grid of adaptive methods), or
+         * --times */
+        if (dyn_grid_plan(run->t0, run->t1, step, run->end, &grid, why, sizeof why))
+            return cli_usage_error(NULL, "%s: --step %g over --tspan %g:%g: %s", s->label, step,
+                                   run->t0, run->t1, why);
+        samples = dyn_method_is_adaptive(method) && run->times ? run->n_times + 1 : grid.samples;
+        /* the smallest k with ceil((samples - 1) / k) + 1 <= max_rows */
+        r.every = max_rows > 1 ? (samples - 1 + max_rows - 2) / (max_rows - 1) : 1;
+        if (r.every < 1)
+            r.every = 1;
+        if (run->every > r.every)
+            r.every = run->every;
+        r.capacity = (samples + r.every - 1) / r.every + 2;
+    }
     s->samples = samples;
     const int n = m->n_states;
     double *y = malloc(2 * (size_t)n * sizeof *y);
@@ -149,10 +185,6 @@ int cli_series_record(const cli_run *run, const dyn_tableau *method, double step
         return CLI_FAILED;
     }
     r.latest = y + n;
-    /* this run: the options of run with its own method and step */
-    cli_run one = *run;
-    one.method = method;
-    one.step = step;
     dyn_result res;
     memset(&res, 0, sizeof res);
     if (cli_run_solve(&one, 1, on_sample, &r, NULL, NULL, NULL, NULL, y, &res) < 0) {
@@ -168,10 +200,10 @@ int cli_series_record(const cli_run *run, const dyn_tableau *method, double step
     else if (s->status != DYN_OK)
         snprintf(s->message, sizeof s->message, "%s: %s; the samples up to t = %.17g are shown",
                  s->label, res.message, res.t);
-    /* the last sample is always kept */
+    /* the last sample is always kept (a grown series keeps a slot for it) */
     if (r.have_latest && (s->rows == 0 || s->data[(s->rows - 1) * s->cols] < r.latest_t))
         store(&r, r.latest_t, r.latest);
-    s->samples = s->samples > 0 ? s->samples : s->rows;
+    s->samples = s->samples > 0 ? s->samples : r.seen;
     free(y);
     return s->status == DYN_OK ? CLI_OK : CLI_FAILED;
 }

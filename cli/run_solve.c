@@ -1,11 +1,69 @@
 /* One run of a model with the method of the run options: the fixed-step driver for
  * fixed-step methods (the homework's loop), the general driver dyn_solve for adaptive
- * methods and for runs with events. The workspace is allocated here, outside the
- * library's step loop. */
+ * methods and for runs with events, the CVODE backend for cvode (when built). The
+ * workspace is allocated here, outside the library's step loop. */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
+
+#ifdef DYNKIT_HAVE_CVODE
+#include "dynkit/cvode.h"
+
+/* cvode: the output times from --times or the grid (or every step), the tolerances and the
+ * model's Jacobian; the counters come back in res as from dyn_solve. */
+static int solve_cvode(const cli_run *run, const dyn_system *sys, dyn_output_fn output,
+                       void *output_ctx, double *y, dyn_result *res)
+{
+    dyn_cvode_opts o = {0};
+    o.rtol = run->rtol;
+    o.atol = run->atol;
+    o.rtolv = run->rtolv;
+    o.atolv = run->atolv;
+    o.jacobian = run->model->jacobian;
+    o.max_steps = run->max_steps;
+    o.initial_step = run->initial_step;
+    o.max_step = run->max_step;
+    memset(res, 0, sizeof *res);
+    res->t = run->t0;
+    if (run->n_events > 0 || run->trace_steps > 0) {
+        res->status = DYN_ERR_ARG;
+        snprintf(res->message, sizeof res->message,
+                 "cvode runs without events and traces (use rodas4 or dp45 for events)");
+        return DYN_ERR_ARG;
+    }
+    if (cli_run_at_steps(run))
+        return dyn_cvode_solve_steps(sys, run->t0, run->t1, run->y0, &o, output, output_ctx, y,
+                                     res);
+    if (run->times)
+        return dyn_cvode_solve(sys, run->t0, run->y0, run->times, run->n_times, &o, output,
+                               output_ctx, y, res);
+    dyn_grid grid;
+    if (dyn_grid_plan(run->t0, run->t1, run->step, run->end, &grid, res->message,
+                      sizeof res->message)) {
+        res->status = DYN_ERR_ARG;
+        return DYN_ERR_ARG;
+    }
+    if (grid.samples > 100000000L) {
+        res->status = DYN_ERR_ARG;
+        snprintf(res->message, sizeof res->message,
+                 "cvode takes its output times as a list, and --step %g over %g:%g gives %ld of "
+                 "them: give a larger --step or --times",
+                 run->step, run->t0, run->t1, grid.samples);
+        return DYN_ERR_ARG;
+    }
+    double *tout = malloc((size_t)grid.samples * sizeof *tout);
+    if (!tout)
+        return -1;
+    for (long k = 0; k < grid.samples; k++)
+        tout[k] = dyn_grid_time(&grid, k);
+    int rc = dyn_cvode_solve(sys, run->t0, run->y0, tout, grid.samples, &o, output, output_ctx,
+                             y, res);
+    free(tout);
+    return rc;
+}
+#endif
 
 int cli_run_solve(const cli_run *run, long every, dyn_output_fn output, void *output_ctx,
                   dyn_event_fn on_event, void *event_ctx, dyn_progress_fn progress,
@@ -15,6 +73,16 @@ int cli_run_solve(const cli_run *run, long every, dyn_output_fn output, void *ou
     const int n = m->n_states;
     dyn_system sys = {m->rhs, n, run->par};
     const int adaptive = dyn_method_is_adaptive(run->method);
+    if (cli_method_is_cvode(run->method)) {
+#ifdef DYNKIT_HAVE_CVODE
+        return solve_cvode(run, &sys, output, output_ctx, y, res);
+#else
+        memset(res, 0, sizeof *res);
+        res->status = DYN_ERR_ARG;
+        snprintf(res->message, sizeof res->message, "dynkit was built without SUNDIALS");
+        return DYN_ERR_ARG;
+#endif
+    }
     if (!adaptive && run->n_events == 0) {
         size_t size = dyn_fixed_work_size(run->method, n);
         double *work = malloc(size * sizeof *work);
@@ -48,9 +116,9 @@ int cli_run_solve(const cli_run *run, long every, dyn_output_fn output, void *ou
         if (run->times) {
             opts.out_times = run->times;
             opts.n_out_times = run->n_times;
-        } else {
+        } else if (!cli_run_at_steps(run)) {
             opts.out_step = run->step;
-        }
+        } /* else neither: a sample at every accepted step */
     } else {
         opts.h = run->step; /* samples at every step, as the fixed-step driver gives them */
     }

@@ -8,7 +8,7 @@
 
 int cli_compare_parse(const char *command, const char *text, cli_compare *c)
 {
-    char name[64], names[512];
+    char name[64], names[640];
     const char *colon = strchr(text, ':');
     size_t len = colon ? (size_t)(colon - text) : strlen(text);
     memset(c, 0, sizeof *c);
@@ -16,13 +16,15 @@ int cli_compare_parse(const char *command, const char *text, cli_compare *c)
         return cli_usage_error(command,
                                "--compare '%s' is not accepted: give METHOD or METHOD:STEP, e.g. "
                                "euler or rk4:0.001 (methods: %s)",
-                               text, dyn_method_names(names, sizeof names));
+                               text, cli_method_names(names, sizeof names));
     memcpy(name, text, len);
     name[len] = '\0';
-    c->method = dyn_method_find(name);
-    if (!c->method)
-        return cli_usage_error(command, "--compare '%s': unknown method '%s' (accepted: %s)", text,
-                               name, dyn_method_names(names, sizeof names));
+    c->method = cli_method_find(name);
+    if (!c->method) {
+        char what[96];
+        snprintf(what, sizeof what, "--compare '%.60s'", text);
+        return cli_method_error(command, what, name);
+    }
     if (colon && (cli_parse_number(colon + 1, &c->step) || !(c->step > 0)))
         return cli_usage_error(command,
                                "--compare '%s': the step '%s' is not accepted: give a step size "
@@ -68,17 +70,21 @@ int cli_view_parse(const char *command, int argc, char **argv, const char *const
         if (!taken && rc == CLI_OK)
             rest[n_rest++] = argv[i];
     }
+    int other_adaptive = 0;
+    for (int k = 0; k < v->n_compare; k++)
+        other_adaptive |= dyn_method_is_adaptive(v->compare[k].method);
     if (rc == CLI_OK)
-        rc = cli_run_parse(command, n_rest, rest, &v->run);
+        rc = cli_run_parse_with(command, n_rest, rest, other_adaptive, &v->run);
     free(rest);
     if (rc == CLI_OK && v->run.final_only)
         rc = cli_usage_error(command, "--final is not accepted here: a picture shows every "
                                       "sample (--every K thins them)");
     if (rc == CLI_OK && v->run.trace_steps > 0)
         rc = cli_usage_error(command, "--trace is not accepted here (see 'dynkit run --trace')");
-    for (int k = 0; k < v->n_compare; k++)
-        if (v->compare[k].step == 0.0)
-            v->compare[k].step = v->run.step;
+    for (int k = 0; k < v->n_compare && rc == CLI_OK; k++)
+        if (cli_method_is_cvode(v->compare[k].method) && v->run.n_events > 0)
+            rc = cli_usage_error(command, "--compare cvode: the CVODE backend runs without "
+                                          "events here; leave out --event");
     return rc;
 }
 
@@ -87,7 +93,7 @@ int cli_view_record(cli_view *v)
     int rc = CLI_OK;
     for (int k = 0; k <= v->n_compare; k++) {
         const dyn_tableau *method = k ? v->compare[k - 1].method : v->run.method;
-        double step = k ? v->compare[k - 1].step : v->run.step;
+        double step = k ? v->compare[k - 1].step : 0.0; /* 0: the run's */
         cli_series *s = &v->series[v->n_series];
         int r = cli_series_record(&v->run, method, step, CLI_MAX_ROWS, s);
         if (s->data)

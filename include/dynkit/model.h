@@ -2,7 +2,8 @@
  *
  * A model describes a system for people and tools: names, units and defaults of its states
  * and parameters, the right-hand side, extra outputs computed at each sample (energy,
- * constraint forces, ...), and its default run (time span, step, method). The CLI and the
+ * constraint forces, ...), and its default run (time span, step, method, where an adaptive
+ * method writes its samples). The CLI and the
  * report use built-in models only through this interface, so a user's own model in C gets
  * the same treatment (see examples/).
  *
@@ -22,6 +23,13 @@ extern "C" {
 #endif
 
 #define DYN_PI 3.14159265358979323846
+
+/* Where a default run of an adaptive method writes its samples (dyn_model.samples). */
+typedef enum dyn_sample_policy {
+    DYN_SAMPLES_GRID = 0, /* the grid t0 + k*step (the seed's [0:Ts:endtime]) */
+    DYN_SAMPLES_STEPS = 1 /* every accepted step: the steps follow the solution, e.g. across
+                           * the decades of time of a stiff chemical transient */
+} dyn_sample_policy;
 
 /* A named quantity: a state or an extra output. */
 typedef struct dyn_var {
@@ -89,6 +97,10 @@ typedef struct dyn_model {
     /* Named events of the model (e.g. the pendulum's "turn"), asked for with --event. */
     int n_events;
     const dyn_event *events;
+    /* Samples of a default run with an adaptive method (no --step, no --times): the grid of
+     * step, or every accepted step (DYN_SAMPLES_GRID = 0 when not set). `step` stays the
+     * step of fixed-step methods. */
+    dyn_sample_policy samples;
 } dyn_model;
 
 /* Built-in models: count, by index (NULL out of range), by name (NULL if unknown). */

@@ -19,6 +19,8 @@ static void main_help(void)
          "  report         every answer of the homework, computed now (--json, --html FILE)\n"
          "  animate MODEL  a run as an HTML page that plays the motion (--compare METHOD)\n"
          "  plot MODEL     a run as an SVG line plot (--y NAME,... [--x NAME])\n"
+         "  verify         every method on problems with known solutions: accuracy and work\n"
+         "                 per method and tolerance (--quick, --json, --problem, --method)\n"
          "\n"
          "'dynkit COMMAND --help' tells more about each command.\n"
          "Example: dynkit run vanderpol --method rk4 --step 0.01 --tspan 0:15 --final");
@@ -38,6 +40,7 @@ int main(int argc, char **argv)
         {"report", cli_cmd_report},
         {"animate", cli_cmd_animate},
         {"plot", cli_cmd_plot},
+        {"verify", cli_cmd_verify},
     };
     if (argc < 2) {
         main_help();
@@ -56,6 +59,6 @@ int main(int argc, char **argv)
             return commands[i].run(argc - 2, argv + 2);
     return cli_usage_error(NULL,
                            "unknown command '%s' (accepted: run, models, methods, info, "
-                           "inverse, report, animate, plot)",
+                           "inverse, report, animate, plot, verify)",
                            argv[1]);
 }

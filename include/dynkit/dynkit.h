@@ -11,5 +11,6 @@
 #include "dynkit/problems.h"
 #include "dynkit/io.h"
 #include "dynkit/report.h"
+#include "dynkit/verify.h"
 
 #endif

@@ -1,0 +1,133 @@
+/* Running the built dynkit binary (DYNKIT_CLI) from a test: stdout and stderr captured into
+ * a temporary directory made by cli_setup. Shared by the CLI tests of the solvers and of
+ * verify (test_cli.c has its own older copy). Needs _POSIX_C_SOURCE >= 200809L. */
+#ifndef DYNKIT_TEST_CLI_RUN_H
+#define DYNKIT_TEST_CLI_RUN_H
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+static char cli_tmpdir[256];
+
+typedef struct cli_result {
+    int status; /* exit status, or -1 if it did not exit normally */
+    char *out;  /* stdout (NUL-terminated) */
+    size_t out_len;
+    char *err;  /* stderr */
+} cli_result;
+
+static inline char *cli_read_file(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    size_t cap = 4096, used = 0;
+    char *buf = malloc(cap);
+    if (!buf)
+        abort();
+    if (f) {
+        size_t got;
+        while ((got = fread(buf + used, 1, cap - used - 1, f)) > 0) {
+            used += got;
+            if (cap - used < 2) {
+                cap *= 2;
+                buf = realloc(buf, cap);
+                if (!buf)
+                    abort();
+            }
+        }
+        fclose(f);
+    }
+    buf[used] = '\0';
+    if (len)
+        *len = used;
+    return buf;
+}
+
+static inline void cli_free(cli_result *r)
+{
+    free(r->out);
+    free(r->err);
+    r->out = r->err = NULL;
+}
+
+/* A path in the temporary directory. */
+static inline const char *cli_path(const char *name)
+{
+    static char path[512];
+    snprintf(path, sizeof path, "%s/%s", cli_tmpdir, name);
+    return path;
+}
+
+/* Run `dynkit ARGS` (ARGS as for the shell), capturing stdout and stderr. */
+static inline cli_result cli(const char *fmt, ...)
+{
+    char args[2048], cmd[4096];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(args, sizeof args, fmt, ap);
+    va_end(ap);
+    snprintf(cmd, sizeof cmd, "'%s' %s >'%s/out' 2>'%s/err' </dev/null", DYNKIT_CLI, args,
+             cli_tmpdir, cli_tmpdir);
+    cli_result r;
+    int w = system(cmd);
+    r.status = (w != -1 && WIFEXITED(w)) ? WEXITSTATUS(w) : -1;
+    char path[512];
+    snprintf(path, sizeof path, "%s/out", cli_tmpdir);
+    r.out = cli_read_file(path, &r.out_len);
+    snprintf(path, sizeof path, "%s/err", cli_tmpdir);
+    r.err = cli_read_file(path, NULL);
+    return r;
+}
+
+static inline int cli_setup(void **state)
+{
+    (void)state;
+    const char *base = getenv("TMPDIR");
+    snprintf(cli_tmpdir, sizeof cli_tmpdir, "%s/dynkit_test_XXXXXX", base && *base ? base : "/tmp");
+    return mkdtemp(cli_tmpdir) ? 0 : -1;
+}
+
+/* Remove the temporary directory and the files named (NULL-terminated) plus out and err. */
+static inline int cli_teardown_files(const char *const *files)
+{
+    unlink(cli_path("out"));
+    unlink(cli_path("err"));
+    for (int i = 0; files && files[i]; i++)
+        unlink(cli_path(files[i]));
+    return rmdir(cli_tmpdir);
+}
+
+/* 1 if `dynkit methods` lists cvode (dynkit built with SUNDIALS). */
+static inline int cli_has_cvode(void)
+{
+    cli_result r = cli("methods");
+    int has = r.status == 0 && (strncmp(r.out, "cvode ", 6) == 0 || strstr(r.out, "\ncvode "));
+    cli_free(&r);
+    return has;
+}
+
+/* Rows of a CSV text (lines after the header). */
+static inline long csv_rows(const char *text)
+{
+    long lines = 0;
+    for (const char *p = text; *p; p++)
+        lines += *p == '\n';
+    return lines > 0 ? lines - 1 : 0;
+}
+
+/* The first field (t) of each row into t (at most max); returns the rows. */
+static inline long csv_times(const char *text, double *t, long max)
+{
+    const char *p = strchr(text, '\n');
+    long k = 0;
+    while (p && p[1] && k < max) {
+        t[k++] = strtod(p + 1, NULL);
+        p = strchr(p + 1, '\n');
+    }
+    return k;
+}
+
+#endif

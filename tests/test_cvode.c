@@ -5,7 +5,9 @@
  *   with rodas4;
  * - samples at requested times keep Robertson's y1 + y2 + y3 = 1;
  * - counters are filled; a failing right-hand side, too many steps and bad output times
- *   are reported with their statuses; f is never evaluated past the last output time.
+ *   are reported with their statuses; f is never evaluated past the last output time;
+ * - every step as a sample (dyn_cvode_solve_steps) with its step limit; per-state relative
+ *   tolerances.
  * Without SUNDIALS (DYNKIT_HAVE_CVODE undefined) every test is skipped. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -135,6 +137,78 @@ static void test_van_der_pol(void **state)
     }
 }
 
+typedef struct step_log {
+    long count;
+    double t_first, t_last;
+    int increasing;
+    double worst_mass;
+} step_log;
+
+static int step_out(long k, double t, const double *y, void *ctx)
+{
+    step_log *l = ctx;
+    assert_int_equal(k, l->count);
+    if (k == 0)
+        l->t_first = t;
+    else if (!(t > l->t_last))
+        l->increasing = 0;
+    l->t_last = t;
+    l->count++;
+    l->worst_mass = fmax(l->worst_mass, fabs(y[0] + y[1] + y[2] - 1.0));
+    return 0;
+}
+
+/* Every step as a sample (dyn_cvode_solve_steps), its step limit, and per-state relative
+ * tolerances (equal ones give the scalar run exactly, a tighter one more steps). */
+static void test_every_step_and_rtolv(void **state)
+{
+    (void)state;
+    const dyn_model *m = dyn_model_find("robertson");
+    const dyn_reference *r = dyn_reference_find("robertson-1e11");
+    dyn_robertson_par par;
+    char err[128];
+    assert_int_equal(dyn_model_default_params(m, &par, err, sizeof err), 0);
+    dyn_system sys = {m->rhs, 3, &par};
+    const double atol[3] = {1e-14, 1e-20, 1e-14};
+    dyn_cvode_opts o = {.rtol = 1e-8, .atolv = atol, .jacobian = m->jacobian};
+    step_log log = {0, 0, 0, 1, 0};
+    double y[3];
+    dyn_result res;
+    assert_int_equal(dyn_cvode_solve_steps(&sys, 0.0, 1e11, m->y0, &o, step_out, &log, y, &res),
+                     DYN_OK);
+    assert_int_equal(log.count, res.stats.accepted + 1);
+    assert_int_equal(res.stats.samples, log.count);
+    assert_true(log.t_first == 0.0 && log.t_last == 1e11 && log.increasing && res.t == 1e11);
+    assert_true(res.stats.steps == res.stats.accepted + res.stats.rejected);
+    CHECK(rel_err(y, r->y, 3) < 1e-4, "relative error %.3g", rel_err(y, r->y, 3));
+    assert_true(log.worst_mass < 1e-12);
+    /* the step limit covers the whole run */
+    o.max_steps = 10;
+    log = (step_log){0, 0, 0, 1, 0};
+    assert_int_equal(dyn_cvode_solve_steps(&sys, 0.0, 1e11, m->y0, &o, step_out, &log, y, &res),
+                     DYN_ERR_MAX_STEPS);
+    assert_int_equal(log.count, 11);
+    assert_true(res.t < 1e11 && res.t == log.t_last);
+    o.max_steps = 0;
+    /* per-state relative tolerances */
+    const double tout = 40.0, rtol_same[3] = {1e-8, 1e-8, 1e-8}, rtol_y2[3] = {1e-8, 1e-11, 1e-8};
+    double ys[3], yv[3];
+    dyn_result rs, rv;
+    assert_int_equal(dyn_cvode_solve(&sys, 0.0, m->y0, &tout, 1, &o, NULL, NULL, ys, &rs), DYN_OK);
+    o.rtolv = rtol_same;
+    assert_int_equal(dyn_cvode_solve(&sys, 0.0, m->y0, &tout, 1, &o, NULL, NULL, yv, &rv), DYN_OK);
+    for (int i = 0; i < 3; i++)
+        assert_true(ys[i] == yv[i]);
+    assert_int_equal(rs.stats.accepted, rv.stats.accepted);
+    o.rtolv = rtol_y2;
+    assert_int_equal(dyn_cvode_solve(&sys, 0.0, m->y0, &tout, 1, &o, NULL, NULL, yv, &rv), DYN_OK);
+    CHECK(rv.stats.accepted > rs.stats.accepted, "%ld steps, scalar %ld", rv.stats.accepted,
+          rs.stats.accepted);
+    /* bad spans */
+    assert_int_equal(dyn_cvode_solve_steps(&sys, 1.0, 1.0, m->y0, &o, NULL, NULL, y, &res),
+                     DYN_ERR_ARG);
+}
+
 /* f refuses times past t_max, and fails on request at t_fail. */
 typedef struct guard {
     double t_max, t_fail;
@@ -194,6 +268,7 @@ int main(void)
         cmocka_unit_test(test_robertson),
         cmocka_unit_test(test_van_der_pol),
         cmocka_unit_test(test_failures_and_limits),
+        cmocka_unit_test(test_every_step_and_rtolv),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

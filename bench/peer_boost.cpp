@@ -37,16 +37,56 @@ namespace {
 
 constexpr double kFirstStep = 1e-3; // adaptive runs: Boost needs an initial step
 
+// The right-hand side as a functor the compiler inlines (how Boost.Odeint is used).
 template <int N, class Par, void (*Eval)(const double *, double *, const Par *)>
 struct System {
     static constexpr int n = N;
     const Par *par;
     long *calls; // counted calls (adaptive), or nullptr
+    static System make(const bench_sys *s, long *c)
+    {
+        return System{static_cast<const Par *>(s->par), c};
+    }
     template <class S> void operator()(const S &x, S &dxdt, double) const
     {
         if (calls)
             ++*calls;
         Eval(x.data(), dxdt.data(), par);
+    }
+};
+
+// Diagnostic: the same right-hand side behind a function pointer chosen at run time, as a
+// compiled library has to call it: how much of Boost's speed is the inlined functor.
+using EvalPtr = void (*)(const double *, double *, const void *);
+void vdp_any(const double *y, double *d, const void *p)
+{
+    bench_vdp_eval(y, d, static_cast<const bench_vdp_par *>(p));
+}
+void plane_any(const double *y, double *d, const void *p)
+{
+    bench_plane_eval(y, d, static_cast<const bench_plane_par *>(p));
+}
+void arenstorf_any(const double *y, double *d, const void *p)
+{
+    bench_arenstorf_eval(y, d, static_cast<const bench_arenstorf_par *>(p));
+}
+template <int N> struct PtrSystem {
+    static constexpr int n = N;
+    EvalPtr eval;
+    const void *par;
+    long *calls;
+    static PtrSystem make(const bench_sys *s, long *c)
+    {
+        const EvalPtr e = s->id == BENCH_PLANE       ? plane_any
+                          : s->id == BENCH_ARENSTORF ? arenstorf_any
+                                                     : vdp_any;
+        return PtrSystem{e, s->par, c};
+    }
+    template <class S> void operator()(const S &x, S &dxdt, double) const
+    {
+        if (calls)
+            ++*calls;
+        eval(x.data(), dxdt.data(), par);
     }
 };
 
@@ -80,11 +120,6 @@ template <class State> State make_state(int n)
         return State{};
 }
 
-template <class Sys> Sys make_sys(const bench_sys *s, long *calls)
-{
-    return Sys{static_cast<decltype(Sys::par)>(s->par), calls};
-}
-
 template <class Sys, class State> auto heun_stepper()
 {
     using Stepper = odeint::explicit_generic_rk<2, 2, State, double, State, double>;
@@ -102,7 +137,7 @@ template <class Sys, class State> struct Fixed final : Base {
     {
         State x = make_state<State>(sys->n);
         std::memcpy(x.data(), sys->y0, sizeof(double) * static_cast<size_t>(sys->n));
-        const Sys f = make_sys<Sys>(sys, nullptr);
+        const Sys f = Sys::make(sys, nullptr);
         if (method == BENCH_RK4) {
             odeint::runge_kutta4<State> st;
             odeint::integrate_n_steps(st, f, x, sys->t0, h, static_cast<size_t>(steps));
@@ -130,7 +165,7 @@ template <class Sys, class State> struct Adaptive final : Base {
     Adaptive(const bench_sys *s, Pair p) : Base(s), pair(p) {}
     template <class Stepper> long integrate(Stepper stepper, double tol, State &x)
     {
-        const Sys f = make_sys<Sys>(sys, &calls);
+        const Sys f = Sys::make(sys, &calls);
         auto controlled = odeint::make_controlled(tol, tol, stepper);
         return static_cast<long>(
             odeint::integrate_adaptive(controlled, f, x, sys->t0, sys->t1, kFirstStep));
@@ -249,6 +284,16 @@ int boost_solvers(const bench_sys *sys, bench_task task, bench_method m, bench_s
         if (add(out, &count, max, b, e.label, 0, e.order, 0.0))
             break;
     }
+    // diagnostic: dopri5 with the right-hand side through a pointer
+    Base *b = nullptr;
+    if (sys->id == BENCH_VDP)
+        b = new_adaptive<PtrSystem<2>>(sys, Pair::Dopri5);
+    else if (sys->id == BENCH_ARENSTORF)
+        b = new_adaptive<PtrSystem<4>>(sys, Pair::Dopri5);
+    else if (sys->id == BENCH_PLANE)
+        b = new_adaptive<PtrSystem<12>>(sys, Pair::Dopri5);
+    add(out, &count, max, b, "diagnostic: Boost runge_kutta_dopri5, rhs by pointer", BENCH_DIAG,
+        5, 0.0);
     return count;
 }
 

@@ -178,6 +178,57 @@ static dyn_rhs_fn dk_rhs(const bench_sys *s)
         }                                                                                          \
         memcpy(yout, y, sizeof y);                                                                 \
     }
+/* Diagnostic: the same loops with the last combination as a sum of products,
+ * y + (h b_1) k_1 + (h b_2) k_2 + ..., the form Boost.Odeint computes: the products of the
+ * earlier stages are ready before the last one, so the chain after the last right-hand side
+ * is one multiplication and one addition shorter than y + h (b_1 k_1 + ...). */
+#define HAND_RK4_SOP(NAME, N, PAR_T, EVAL)                                                         \
+    static __attribute__((noinline)) void NAME(const void *vpar, const double *y0, double h,       \
+                                               long steps, double *yout)                           \
+    {                                                                                              \
+        const PAR_T *par = vpar;                                                                   \
+        double y[N], Y[N], k1[N], k2[N], k3[N], k4[N];                                             \
+        memcpy(y, y0, sizeof y);                                                                   \
+        const double h2 = 0.5 * h, h6 = h / 6.0, h3 = h / 3.0;                                     \
+        for (long step = 0; step < steps; step++) {                                                \
+            EVAL(y, k1, par);                                                                      \
+            for (int q = 0; q < N; q++)                                                            \
+                Y[q] = y[q] + h2 * k1[q];                                                          \
+            EVAL(Y, k2, par);                                                                      \
+            for (int q = 0; q < N; q++)                                                            \
+                Y[q] = y[q] + h2 * k2[q];                                                          \
+            EVAL(Y, k3, par);                                                                      \
+            for (int q = 0; q < N; q++)                                                            \
+                Y[q] = y[q] + h * k3[q];                                                           \
+            EVAL(Y, k4, par);                                                                      \
+            for (int q = 0; q < N; q++)                                                            \
+                y[q] = y[q] + h6 * k1[q] + h3 * k2[q] + h3 * k3[q] + h6 * k4[q];                   \
+        }                                                                                          \
+        memcpy(yout, y, sizeof y);                                                                 \
+    }
+#define HAND_HEUN_SOP(NAME, N, PAR_T, EVAL)                                                        \
+    static __attribute__((noinline)) void NAME(const void *vpar, const double *y0, double h,       \
+                                               long steps, double *yout)                           \
+    {                                                                                              \
+        const PAR_T *par = vpar;                                                                   \
+        double y[N], Y[N], k1[N], k2[N];                                                           \
+        memcpy(y, y0, sizeof y);                                                                   \
+        const double h2 = 0.5 * h;                                                                 \
+        for (long step = 0; step < steps; step++) {                                                \
+            EVAL(y, k1, par);                                                                      \
+            for (int q = 0; q < N; q++)                                                            \
+                Y[q] = y[q] + h * k1[q];                                                           \
+            EVAL(Y, k2, par);                                                                      \
+            for (int q = 0; q < N; q++)                                                            \
+                y[q] = y[q] + h2 * k1[q] + h2 * k2[q];                                             \
+        }                                                                                          \
+        memcpy(yout, y, sizeof y);                                                                 \
+    }
+HAND_HEUN_SOP(sop_heun_vdp, 2, bench_vdp_par, bench_vdp_eval)
+HAND_RK4_SOP(sop_rk4_vdp, 2, bench_vdp_par, bench_vdp_eval)
+HAND_HEUN_SOP(sop_heun_plane, 12, bench_plane_par, bench_plane_eval)
+HAND_RK4_SOP(sop_rk4_plane, 12, bench_plane_par, bench_plane_eval)
+
 HAND_EULER(hand_euler_vdp, 2, bench_vdp_par, bench_vdp_eval)
 HAND_HEUN(hand_heun_vdp, 2, bench_vdp_par, bench_vdp_eval)
 HAND_RK4(hand_rk4_vdp, 2, bench_vdp_par, bench_vdp_eval)
@@ -187,34 +238,94 @@ HAND_RK4(hand_rk4_plane, 12, bench_plane_par, bench_plane_eval)
 
 typedef void (*hand_fn)(const void *par, const double *y0, double h, long steps, double *y);
 
+/* Diagnostic: the same textbook loops with what a compiled library cannot avoid, the
+ * right-hand side called through a pointer and n known only at run time: the floor of any
+ * compiled driver (see bench_fixed.c). PIN keeps the loops scalar, as the library's
+ * small-system loops are (a vector load of two values just stored one at a time by the
+ * right-hand side stalls on store forwarding). */
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+#define PIN(v) __asm__("" : "+x"(v))
+#else
+#define PIN(v) ((void)0)
+#endif
+#define PTR_PUT(dst, q, expr)                                                                      \
+    do {                                                                                           \
+        double v_ = (expr);                                                                        \
+        PIN(v_);                                                                                   \
+        dst[q] = v_;                                                                               \
+    } while (0)
+static __attribute__((noinline)) void ptr_loop(bench_method meth, dyn_rhs_fn f, void *par, int n,
+                                               const double *y0, double h, long steps,
+                                               double *yout)
+{
+    double y[MAX_N], Y[MAX_N], k1[MAX_N], k2[MAX_N], k3[MAX_N], k4[MAX_N];
+    memcpy(y, y0, (size_t)n * sizeof *y);
+    const double h2 = 0.5 * h, h6 = h / 6.0;
+    for (long step = 0; step < steps; step++) {
+        const double t = (double)step * h;
+        f(t, y, k1, par);
+        if (meth == BENCH_EULER) {
+            for (int q = 0; q < n; q++)
+                PTR_PUT(y, q, y[q] + h * k1[q]);
+        } else if (meth == BENCH_HEUN) {
+            for (int q = 0; q < n; q++)
+                PTR_PUT(Y, q, y[q] + h * k1[q]);
+            f(t + h, Y, k2, par);
+            for (int q = 0; q < n; q++)
+                PTR_PUT(y, q, y[q] + h2 * (k1[q] + k2[q]));
+        } else {
+            for (int q = 0; q < n; q++)
+                PTR_PUT(Y, q, y[q] + h2 * k1[q]);
+            f(t + h2, Y, k2, par);
+            for (int q = 0; q < n; q++)
+                PTR_PUT(Y, q, y[q] + h2 * k2[q]);
+            f(t + h2, Y, k3, par);
+            for (int q = 0; q < n; q++)
+                PTR_PUT(Y, q, y[q] + h * k3[q]);
+            f(t + h, Y, k4, par);
+            for (int q = 0; q < n; q++)
+                PTR_PUT(y, q, y[q] + h6 * (k1[q] + 2.0 * k2[q] + 2.0 * k3[q] + k4[q]));
+        }
+    }
+    memcpy(yout, y, (size_t)n * sizeof *y);
+}
+
 /* dyn_fixed_solve_inline with the right-hand side visible: one solver per system and table */
 typedef int (*inline_fn)(const dyn_tableau *m, void *par, double t0, double t1, double h,
                          const double *y0, double *y, double *work, dyn_result *res);
-#define INLINE_SOLVER(NAME, RHS, N, TABLE)                                                         \
+static const dyn_fixed_opts NO_CHECK = {.no_finite_check = 1};
+#define INLINE_SOLVER(NAME, RHS, N, TABLE, OPTS)                                                   \
     static __attribute__((noinline)) int NAME(const dyn_tableau *m, void *par, double t0,          \
                                               double t1, double h, const double *y0, double *y,    \
                                               double *work, dyn_result *res)                       \
     {                                                                                              \
         const dyn_system sys = {RHS, N, par};                                                      \
         (void)m;                                                                                   \
-        return dyn_fixed_solve_inline(TABLE, &sys, t0, t1, h, y0, y, work, NULL, res);             \
+        return dyn_fixed_solve_inline(TABLE, &sys, t0, t1, h, y0, y, work, OPTS, res);             \
     }
-INLINE_SOLVER(inline_vdp, dk_vdp, 2, m)
-INLINE_SOLVER(inline_plane, dk_plane, 12, m)
-INLINE_SOLVER(inline_euler_vdp, dk_vdp, 2, &EULER_CONST)
-INLINE_SOLVER(inline_heun_vdp, dk_vdp, 2, &HEUN_CONST)
-INLINE_SOLVER(inline_rk4_vdp, dk_vdp, 2, &RK4_CONST)
-INLINE_SOLVER(inline_euler_plane, dk_plane, 12, &EULER_CONST)
-INLINE_SOLVER(inline_heun_plane, dk_plane, 12, &HEUN_CONST)
-INLINE_SOLVER(inline_rk4_plane, dk_plane, 12, &RK4_CONST)
+INLINE_SOLVER(inline_vdp, dk_vdp, 2, m, NULL)
+INLINE_SOLVER(inline_plane, dk_plane, 12, m, NULL)
+INLINE_SOLVER(inline_euler_vdp, dk_vdp, 2, &EULER_CONST, NULL)
+INLINE_SOLVER(inline_heun_vdp, dk_vdp, 2, &HEUN_CONST, NULL)
+INLINE_SOLVER(inline_rk4_vdp, dk_vdp, 2, &RK4_CONST, NULL)
+INLINE_SOLVER(inline_euler_plane, dk_plane, 12, &EULER_CONST, NULL)
+INLINE_SOLVER(inline_heun_plane, dk_plane, 12, &HEUN_CONST, NULL)
+INLINE_SOLVER(inline_rk4_plane, dk_plane, 12, &RK4_CONST, NULL)
+INLINE_SOLVER(nocheck_euler_vdp, dk_vdp, 2, &EULER_CONST, &NO_CHECK)
+INLINE_SOLVER(nocheck_heun_vdp, dk_vdp, 2, &HEUN_CONST, &NO_CHECK)
+INLINE_SOLVER(nocheck_rk4_vdp, dk_vdp, 2, &RK4_CONST, &NO_CHECK)
+INLINE_SOLVER(nocheck_euler_plane, dk_plane, 12, &EULER_CONST, &NO_CHECK)
+INLINE_SOLVER(nocheck_heun_plane, dk_plane, 12, &HEUN_CONST, &NO_CHECK)
+INLINE_SOLVER(nocheck_rk4_plane, dk_plane, 12, &RK4_CONST, &NO_CHECK)
 
 /* ------------------------------------------------------------------------------------------
  * The local solvers (hand-written loop and dynkit) behind the bench_solver interface
  * ---------------------------------------------------------------------------------------- */
-enum { DK_HAND, DK_FIXED, DK_INLINE, DK_INLINE_CONST, DK_SOLVE };
+enum { DK_HAND, DK_PTR, DK_FIXED, DK_INLINE, DK_INLINE_CONST, DK_INLINE_NOCHECK, DK_SOLVE };
 
 typedef struct dk_ctx {
     int kind;
+    bench_method method;
     const bench_sys *sys;
     const dyn_tableau *m;
     hand_fn hand;
@@ -245,6 +356,11 @@ static int dk_fixed_run(void *vctx, double h, long steps, double *y, bench_count
     res.stats.rhs_calls = steps * x->m->stages;
     switch (x->kind) {
     case DK_HAND: x->hand(s->par, s->y0, h, steps, y); break;
+    case DK_PTR: {
+        dyn_rhs_fn volatile fv = x->dsys.f; /* read through a volatile: never inlined */
+        ptr_loop(x->method, fv, x->dsys.par, s->n, s->y0, h, steps, y);
+        break;
+    }
     case DK_FIXED:
         rc = dyn_fixed_solve(x->m, &x->dsys, s->t0, t1, h, s->y0, y, x->work, NULL, &res);
         break;
@@ -327,6 +443,11 @@ static int local_fixed(const bench_sys *sys, bench_method m, bench_solver *out, 
     static const inline_fn consts[2][BENCH_NMETHOD] = {
         {inline_euler_vdp, inline_heun_vdp, inline_rk4_vdp},
         {inline_euler_plane, inline_heun_plane, inline_rk4_plane}};
+    static const inline_fn nochecks[2][BENCH_NMETHOD] = {
+        {nocheck_euler_vdp, nocheck_heun_vdp, nocheck_rk4_vdp},
+        {nocheck_euler_plane, nocheck_heun_plane, nocheck_rk4_plane}};
+    static const hand_fn sops[2][BENCH_NMETHOD] = {{NULL, sop_heun_vdp, sop_rk4_vdp},
+                                                   {NULL, sop_heun_plane, sop_rk4_plane}};
     const int p = sys->id == BENCH_PLANE;
     const dyn_tableau *lib = dyn_method_find(tables[m].name);
     const int s = tables[m].s;
@@ -341,11 +462,15 @@ static int local_fixed(const bench_sys *sys, bench_method m, bench_solver *out, 
         const char *label;
     } rows[] = {{DK_FIXED, "dynkit dyn_fixed_solve"},
                 {DK_INLINE, "dynkit dyn_fixed_solve_inline, library table"},
-                {DK_INLINE_CONST, "dynkit dyn_fixed_solve_inline, constant table"}};
+                {DK_INLINE_CONST, "dynkit dyn_fixed_solve_inline, constant table"},
+                {DK_INLINE_NOCHECK, "dynkit dyn_fixed_solve_inline, constant table, "
+                                    "no_finite_check"}};
     for (size_t i = 0; i < sizeof rows / sizeof rows[0]; i++) {
-        x = dk_new(rows[i].kind, sys, rows[i].kind == DK_INLINE_CONST ? const_table(m) : lib);
+        x = dk_new(rows[i].kind, sys, rows[i].kind >= DK_INLINE_CONST ? const_table(m) : lib);
         if (x) {
-            x->inl = rows[i].kind == DK_INLINE ? (p ? inline_plane : inline_vdp) : consts[p][m];
+            x->inl = rows[i].kind == DK_INLINE         ? (p ? inline_plane : inline_vdp)
+                     : rows[i].kind == DK_INLINE_CONST ? consts[p][m]
+                                                       : nochecks[p][m];
             x->work = malloc(dyn_fixed_work_size(x->m, sys->n) * sizeof(double));
             if (!x->work) {
                 dk_destroy(x);
@@ -354,6 +479,20 @@ static int local_fixed(const bench_sys *sys, bench_method m, bench_solver *out, 
         }
         add_dk(out, &count, max, x, "dynkit", rows[i].label, BENCH_SAME, 0, s, dk_fixed_run);
     }
+    if (sops[p][m]) {
+        x = dk_new(DK_HAND, sys, const_table(m));
+        if (x)
+            x->hand = sops[p][m];
+        add_dk(out, &count, max, x, "diagnostic",
+               "diagnostic: hand-written loop, y + sum (h b_i) k_i (Boost's arithmetic)",
+               BENCH_SAME | BENCH_DIAG, 0, s, dk_fixed_run);
+    }
+    x = dk_new(DK_PTR, sys, const_table(m));
+    if (x)
+        x->method = m;
+    add_dk(out, &count, max, x, "diagnostic",
+           "diagnostic: hand-written loop, rhs by pointer (floor of a compiled driver)",
+           BENCH_SAME | BENCH_DIAG, 0, s, dk_fixed_run);
     return count;
 }
 
@@ -497,56 +636,66 @@ static double rel_diff(const double *a, const double *b, int n)
     return scale > 0 ? d / scale : d;
 }
 
-/* Runs every solver once (results, determinism), then `reps` interleaved timed samples of
- * about target_ns each. arg: h (fixed, scaled by the solver's step_factor) or tol. */
-static void measure(bench_solver *s, int count, const bench_sys *sys, double arg, long steps,
-                    int reps, double target_ns, const double *ref, meas *m)
+/* One timed thing: a solver with its argument (h or tol, as the solver runs it) and steps. */
+typedef struct item {
+    bench_solver *s;
+    double arg;
+    long steps;
+    meas *m;
+} item;
+
+/* Runs every item once (results, counts, error against ref) and again (same bits?), then
+ * `reps` rounds of timed samples of about target_ns each, every round over all items in an
+ * order that rotates from round to round, so that a noisy moment of the machine spreads
+ * over all of them instead of falling on one. */
+static void measure(item *it, int count, int n, int reps, double target_ns, const double *ref)
 {
-    long batch[MAX_SOLVERS];
-    double *samples = malloc((size_t)(count * (reps > 0 ? reps : 1)) * sizeof *samples);
+    long *batch = malloc((size_t)(count > 0 ? count : 1) * sizeof *batch);
+    double *samples = malloc((size_t)(count > 0 ? count : 1) * (size_t)(reps > 0 ? reps : 1) *
+                             sizeof *samples);
+    if (!batch || !samples) {
+        free(batch);
+        free(samples);
+        for (int i = 0; i < count; i++)
+            memset(it[i].m, 0, sizeof *it[i].m);
+        return;
+    }
     for (int i = 0; i < count; i++) {
-        const double a = s[i].step_factor > 0 && steps ? arg * s[i].step_factor : arg;
-        const long st = s[i].step_factor > 0 && steps ? (long)(steps / s[i].step_factor) : steps;
+        meas *m = it[i].m;
         double y2[MAX_N];
-        memset(&m[i], 0, sizeof m[i]);
+        memset(m, 0, sizeof *m);
         const double t0 = now_ns();
-        m[i].ok = s[i].run(s[i].ctx, a, st, m[i].y, &m[i].counts) == 0;
+        m->ok = it[i].s->run(it[i].s->ctx, it[i].arg, it[i].steps, m->y, &m->counts) == 0;
         const double one = now_ns() - t0;
-        m[i].ok &= s[i].run(s[i].ctx, a, st, y2, NULL) == 0;
-        m[i].deterministic = memcmp(y2, m[i].y, (size_t)sys->n * sizeof(double)) == 0;
-        m[i].err = ref ? max_abs_diff(m[i].y, ref, sys->n) : NAN;
+        m->ok &= it[i].s->run(it[i].s->ctx, it[i].arg, it[i].steps, y2, NULL) == 0;
+        m->deterministic = memcmp(y2, m->y, (size_t)n * sizeof(double)) == 0;
+        m->err = ref ? max_abs_diff(m->y, ref, n) : NAN;
         batch[i] = (long)ceil(target_ns / fmax(one, 1.0));
         if (batch[i] < 1)
             batch[i] = 1;
-        m[i].med = m[i].min = one;
-    }
-    if (!samples || reps <= 0) {
-        free(samples);
-        return;
+        m->med = m->min = one;
     }
     for (int r = 0; r < reps; r++)
         for (int k = 0; k < count; k++) {
-            const int i = (r + k) % count;
-            const double a = s[i].step_factor > 0 && steps ? arg * s[i].step_factor : arg;
-            const long st =
-                s[i].step_factor > 0 && steps ? (long)(steps / s[i].step_factor) : steps;
+            const int i = (k + r * (count / reps + 1)) % count;
             double y[MAX_N];
-            if (!m[i].ok) {
+            if (!it[i].m->ok) {
                 samples[i * reps + r] = NAN;
                 continue;
             }
             const double t0 = now_ns();
             for (long b = 0; b < batch[i]; b++) {
-                s[i].run(s[i].ctx, a, st, y, NULL);
+                it[i].s->run(it[i].s->ctx, it[i].arg, it[i].steps, y, NULL);
                 CLOBBER();
             }
             samples[i * reps + r] = (now_ns() - t0) / (double)batch[i];
         }
-    for (int i = 0; i < count; i++)
-        if (m[i].ok) {
-            m[i].med = median(samples + i * reps, reps);
-            m[i].min = samples[i * reps];
+    for (int i = 0; i < count && reps > 0; i++)
+        if (it[i].m->ok) {
+            it[i].m->med = median(samples + i * reps, reps);
+            it[i].m->min = samples[i * reps];
         }
+    free(batch);
     free(samples);
 }
 
@@ -619,8 +768,11 @@ static void fixed_section(const options *o, const bench_sys *sys, double h, long
         bench_solver s[MAX_SOLVERS];
         meas m[MAX_SOLVERS];
         const int count = collect(o, sys, BENCH_TASK_FIXED, (bench_method)mi, s);
-        measure(s, count, sys, h, steps, o->quick ? 0 : o->reps_fixed, o->quick ? 0 : 5e6, ref,
-                m);
+        item it[MAX_SOLVERS];
+        for (int i = 0; i < count; i++)
+            it[i] = (item){&s[i], h * s[i].step_factor, (long)((double)steps / s[i].step_factor),
+                           &m[i]};
+        measure(it, count, sys->n, o->quick ? 0 : o->reps_fixed, o->quick ? 0 : 5e6, ref);
         printf("\n### Fixed step, %s: %s (%d states), %ld steps of %g\n\n", method_names[mi],
                sys->name, sys->n, steps, h);
         printf("| solver | ns/step | us/solve | x hand | calls/step | error at t1 | check |\n");
@@ -649,7 +801,8 @@ static void fixed_section(const options *o, const bench_sys *sys, double h, long
             if (i > 0 && (s[i].flags & (BENCH_SAME | BENCH_ACCURACY)))
                 check(rel <= SAME_RTOL, "%s, %s: %s differs from the hand-written loop by %.1e",
                       sys->name, method_names[mi], s[i].label, rel);
-            if (!s[i].is_dynkit && i > 0 && !(s[i].flags & BENCH_WRONG) && m[i].med < best_peer) {
+            if (!s[i].is_dynkit && i > 0 && !(s[i].flags & (BENCH_WRONG | BENCH_DIAG)) &&
+                m[i].med < best_peer) {
                 best_peer = m[i].med;
                 best_peer_label = s[i].label;
             }
@@ -658,7 +811,8 @@ static void fixed_section(const options *o, const bench_sys *sys, double h, long
         print_notes(s, count);
         /* targets: each dynkit row against the hand-written loop and the fastest peer */
         for (int i = 1; i < count && !o->quick; i++) {
-            if (!s[i].is_dynkit || strstr(s[i].label, "library table"))
+            if (!s[i].is_dynkit || strstr(s[i].label, "library table") ||
+                strstr(s[i].label, "no_finite_check"))
                 continue;
             char task[64];
             snprintf(task, sizeof task, "fixed %s, %s", method_names[mi], sys->name);
@@ -732,6 +886,8 @@ static void write_svg(const options *o, const char *file, const char *title, con
     wp_plot p = {title, "error at the end (max norm)", ylabel, 0, {{0}}};
     static double xs[MAX_SOLVERS][MAX_TOLS], ys[MAX_SOLVERS][MAX_TOLS];
     for (int i = 0; i < count && p.n_lines < WP_SVG_MAX_LINES; i++) {
+        if (s[i].flags & BENCH_DIAG)
+            continue;
         int k = 0;
         for (int t = 0; t < c[i].n; t++)
             if (c[i].ok[t]) {
@@ -780,29 +936,31 @@ static void adaptive_section(const options *o, const bench_sys *sys, bench_task 
         tols[nt++] = 1e-4;
         tols[nt++] = 1e-8;
     } else {
-        const int hi = task == BENCH_TASK_STIFF ? 10 : 12;
-        for (int k = 3; k <= hi; k++)
+        for (int k = 3; k <= 12; k++)
             tols[nt++] = pow(10.0, -k);
     }
     memset(c, 0, sizeof c);
-    for (int t = 0; t < nt; t++) {
-        meas m[MAX_SOLVERS];
-        measure(s, count, sys, tols[t], 0, o->quick ? 0 : o->reps_adaptive, o->quick ? 0 : 3e6,
-                ref, m);
+    static meas m[MAX_TOLS * MAX_SOLVERS];
+    static item it[MAX_TOLS * MAX_SOLVERS];
+    for (int t = 0; t < nt; t++)
+        for (int i = 0; i < count; i++)
+            it[t * count + i] = (item){&s[i], tols[t], 0, &m[t * count + i]};
+    measure(it, nt * count, sys->n, o->quick ? 0 : o->reps_adaptive, o->quick ? 0 : 2e6, ref);
+    for (int t = 0; t < nt; t++)
         for (int i = 0; i < count; i++) {
+            const meas *mi = &m[t * count + i];
             curve *ci = &c[i];
             ci->tol[ci->n] = tols[t];
-            ci->err[ci->n] = m[i].err;
-            ci->calls[ci->n] = (double)m[i].counts.rhs;
-            ci->jac[ci->n] = (double)m[i].counts.jac;
-            ci->us[ci->n] = m[i].med / 1e3;
-            ci->ok[ci->n] = m[i].ok && isfinite(m[i].err);
+            ci->err[ci->n] = mi->err;
+            ci->calls[ci->n] = (double)mi->counts.rhs;
+            ci->jac[ci->n] = (double)mi->counts.jac;
+            ci->us[ci->n] = mi->med / 1e3;
+            ci->ok[ci->n] = mi->ok && isfinite(mi->err);
             ci->n++;
-            check(m[i].ok, "%s: %s failed at tol %.0e", sys->name, s[i].label, tols[t]);
-            check(m[i].deterministic, "%s: %s gives different results when run twice",
+            check(mi->ok, "%s: %s failed at tol %.0e", sys->name, s[i].label, tols[t]);
+            check(mi->deterministic, "%s: %s gives different results when run twice",
                   sys->name, s[i].label);
         }
-    }
     for (int i = 0; i < count; i++)
         check(c[i].n < 2 || c[i].err[c[i].n - 1] < c[i].err[0],
               "%s: %s: the error does not fall with the tolerance (%.1e at %.0e, %.1e at %.0e)",
@@ -846,7 +1004,7 @@ static void adaptive_section(const options *o, const bench_sys *sys, bench_task 
         for (int i = 0; i < count; i++) {
             const int has = isfinite(cost_at(&c[i], c[i].us, e));
             dk |= has && s[i].is_dynkit;
-            peer |= has && !s[i].is_dynkit;
+            peer |= has && !s[i].is_dynkit && !(s[i].flags & BENCH_DIAG);
         }
         if (dk && (peer || o->peers_none))
             levels[nl++] = e;
@@ -886,7 +1044,7 @@ static void adaptive_section(const options *o, const bench_sys *sys, bench_task 
             double worst = 0.0;
             char worst_at[96] = "";
             for (int j = 0; j < count; j++) {
-                if (s[j].is_dynkit || s[j].order != s[i].order)
+                if (s[j].is_dynkit || s[j].order != s[i].order || (s[j].flags & BENCH_DIAG))
                     continue;
                 for (int l = 0; l < nl; l++) {
                     const double a = cost_at(&c[i], c[i].calls, levels[l]);
@@ -922,7 +1080,7 @@ static void adaptive_section(const options *o, const bench_sys *sys, bench_task 
                     continue;
                 if (s[i].is_dynkit)
                     best_dk = fmin(best_dk, v);
-                else if (v < best_peer) {
+                else if (!(s[i].flags & BENCH_DIAG) && v < best_peer) {
                     best_peer = v;
                     peer_label = s[i].label;
                 }

@@ -52,15 +52,17 @@ enum {
                          * hand-written loop's to a relative 1e-12 */
     BENCH_WRONG = 2,    /* known to compute something else (a peer's bug): shown with its
                          * error, excluded from every comparison */
-    BENCH_ACCURACY = 4  /* a different method run at another step so that its error matches
+    BENCH_ACCURACY = 4, /* a different method run at another step so that its error matches
                          * the hand-written loop's: compared by time per solve */
+    BENCH_DIAG = 8      /* a diagnostic variant (e.g. a peer with the right-hand side called
+                         * through a pointer): shown, never a target's comparison */
 };
 
 typedef struct bench_solver {
     char label[80];
     const char *peer;      /* "hand", "dynkit", "Boost", "GSL", "ARKODE", "CVODE" */
     int is_dynkit;
-    int flags;             /* BENCH_SAME, BENCH_WRONG, BENCH_ACCURACY (fixed step) */
+    int flags;             /* BENCH_SAME, BENCH_WRONG, BENCH_ACCURACY, BENCH_DIAG */
     int order;             /* adaptive: order of the propagated solution */
     double step_factor;    /* fixed: steps of step_factor * h (steps / step_factor of them) */
     double calls_per_step; /* fixed: right-hand-side calls per step */

@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# bench/run.sh — every benchmark in one command: builds a Release tree (build-bench, or
+# $DYNKIT_BENCH_BUILD) with the peers CMake finds (GSL, Boost.Odeint, SUNDIALS; installed by
+# scripts/install-deps.sh), runs bench_suite (fixed steps, adaptive work-precision, stiff,
+# `dynkit report`, then the table of targets) and, when hyperfine is installed, times
+# `dynkit report` with it too. Arguments go to bench_suite, e.g.
+#   bench/run.sh                      # everything (about a minute)
+#   bench/run.sh --only fixed --reps 31
+#   bench/run.sh --svg docs/img       # also write the work-precision diagrams
+#   bench/run.sh --quick              # checks only, the times mean nothing
+# Run it on a quiet machine; compare ratios within one run (see docs/performance.md).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build="${DYNKIT_BENCH_BUILD:-build-bench}"
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DDYNKIT_BUILD_BENCH=ON \
+  -DDYNKIT_BUILD_TESTS=OFF >/dev/null
+cmake --build "$build" -j"$(nproc)" --target bench_suite bench_fixed dynkit_cli >/dev/null
+"$build/bench/bench_suite" "$@"
+
+quick=0 report=1
+for ((i = 1; i <= $#; i++)); do
+  case "${!i}" in
+    --quick) quick=1 ;;
+    --only) j=$((i + 1)); [[ "${!j:-}" == *report* ]] || report=0 ;;
+  esac
+done
+if [ "$quick" -eq 0 ] && [ "$report" -eq 1 ]; then
+  echo
+  if command -v hyperfine >/dev/null 2>&1; then
+    echo "### \`dynkit report\` by hyperfine"
+    echo
+    echo '```'
+    hyperfine -N --warmup 3 --runs 30 --style basic "$build/dynkit report" 2>&1
+    echo '```'
+  else
+    echo "(hyperfine is not installed: apt-get install hyperfine for a second timing of dynkit report)"
+  fi
+fi

@@ -3,10 +3,14 @@
 # The core library needs only a C11 compiler and libm; the rest is for the CLI's tests:
 # cmocka, and for the checks of the HTML pages in a real browser Chromium, node and npm
 # (Debian's packages, each only when missing) and playwright-core from npm (npm ci in
-# tests/browser, only when node_modules does not match package-lock.json). Safe to rerun.
+# tests/browser, only when node_modules does not match package-lock.json). The benchmarks'
+# peers (bench/: GSL, Boost.Odeint, SUNDIALS ARKODE and CVODE) come from Debian's packages too,
+# so that CI builds and runs the peer benchmarks; without them everything else still builds.
+# Safe to rerun.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 packages=(build-essential cmake pkg-config libcmocka-dev clang chromium)
+packages+=(libgsl-dev libboost-dev libsundials-dev) # bench/ peers
 # node and npm may come from elsewhere (e.g. a newer nodejs that bundles npm): keep those
 command -v node >/dev/null 2>&1 || packages+=(nodejs)
 command -v npm >/dev/null 2>&1 || packages+=(npm)

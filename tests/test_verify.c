@@ -537,7 +537,8 @@ static void test_cli_json(void **state)
             }
         }
     }
-    assert_true(compared >= 4 * 6);
+    assert_true(compared >= 18); /* 4 core adaptive methods x 3 problems, rodas4 on the
+                                  * stiff ones, the explicit pairs on hires */
     jfree(&doc);
     cli_free(&r);
 }

@@ -158,14 +158,21 @@ static int line(FILE *out, const wp_line *l, const char *color, const logaxis *a
     return bad;
 }
 
-static int legend(FILE *out, const wp_plot *p)
+/* The legend sits outside the frame, on the right: many solvers' curves leave no free
+ * corner inside it. */
+static double legend_width(const wp_plot *p)
 {
-    int bad = 0;
     size_t longest = 0;
     for (int i = 0; i < p->n_lines; i++)
         longest = strlen(p->lines[i].label) > longest ? strlen(p->lines[i].label) : longest;
-    const double w = 40.0 + 6.6 * (double)longest, h = 8.0 + 16.0 * p->n_lines;
-    const double x = W - RIGHT - w - 8, y = TOP + 8;
+    return 44.0 + 6.2 * (double)longest;
+}
+
+static int legend(FILE *out, const wp_plot *p)
+{
+    int bad = 0;
+    const double w = legend_width(p), h = 8.0 + 16.0 * p->n_lines;
+    const double x = W - RIGHT + 12, y = TOP; /* to the right of the frame */
     bad |= fprintf(out,
                    "<g class=\"legend\" font-size=\"11\">\n<rect x=\"%.2f\" y=\"%.2f\" "
                    "width=\"%.2f\" height=\"%.2f\" fill=\"#fff\" fill-opacity=\"0.85\" "
@@ -199,13 +206,14 @@ int wp_svg_write(FILE *out, const wp_plot *p)
                 ymax = fmax(ymax, p->lines[i].y[k]);
             }
     const logaxis ax = make_axis(xmin, xmax), ay = make_axis(ymin, ymax);
+    const double width = W + 12 + legend_width(p);
     int bad = fprintf(out,
                       "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
                       "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" "
                       "height=\"%.0f\" viewBox=\"0 0 %.0f %.0f\" "
                       "font-family=\"sans-serif\">\n"
                       "<rect width=\"100%%\" height=\"100%%\" fill=\"#fff\"/>\n",
-                      W, H, W, H) < 0;
+                      width, H, width, H) < 0;
     bad |= axes(out, p, &ax, &ay);
     bad |= fputs("<g class=\"lines\">\n", out) < 0;
     for (int i = 0; i < p->n_lines; i++)

@@ -102,13 +102,14 @@ static int print_row(const dyn_verify_row *r, void *ctx)
         snprintf(order, sizeof order, "-");
     else
         snprintf(order, sizeof order, "%.2f", r->order);
+    const char *gap = r->note[0] ? "  " : "";
     if (r->outcome == DYN_VERIFY_SKIPPED)
-        printf("%-16s %-8s %-11s %9s %6s %5s %9s %7s %7s %6s %8s  %s\n", r->problem->name,
-               r->method, tol, err, digits, order, "-", "-", "-", "-", "-", r->note);
+        printf("%-16s %-8s %-11s %9s %6s %5s %9s %7s %7s %6s %8s%s%s\n", r->problem->name,
+               r->method, tol, err, digits, order, "-", "-", "-", "-", "-", gap, r->note);
     else
-        printf("%-16s %-8s %-11s %9s %6s %5s %9ld %7ld %7ld %6ld %8.2f  %s\n", r->problem->name,
+        printf("%-16s %-8s %-11s %9s %6s %5s %9ld %7ld %7ld %6ld %8.2f%s%s\n", r->problem->name,
                r->method, tol, err, digits, order, r->stats.rhs_calls, r->stats.jac_calls,
-               r->stats.accepted, r->stats.rejected, 1e3 * r->seconds, r->note);
+               r->stats.accepted, r->stats.rejected, 1e3 * r->seconds, gap, r->note);
     fflush(stdout);
     return 0;
 }

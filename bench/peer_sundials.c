@@ -295,15 +295,22 @@ static int fixed_solvers(const bench_sys *sys, bench_method m, bench_solver *out
             return count;
         }
         const int wrong = erk && fake_fsal(x->table);
-        char label[80], note[240] = "";
+        char label[80], note[320] = "";
         snprintf(label, sizeof label, "ARKODE %s, %s table%s", erk ? "ERKStep" : "ARKStep",
                  tab->name, wrong ? " (wrong: see note)" : "");
         if (wrong)
             snprintf(note, sizeof note,
                      "SUNDIALS 6.4.1 ERKStep treats the %s table (last node c = 1, last row "
-                     "not b) as first-same-as-last: %d calls per step and a wrong result "
+                     "not b) as first-same-as-last, reusing f(t + h, Y_s) as the next step's "
+                     "first stage: %d instead of %d calls per step, and a wrong result "
                      "(fixed in 6.7.0); never a reference",
-                     tab->name, tab->s - 1);
+                     tab->name, tab->s - 1, tab->s);
+        if (!erk && tab->c[tab->s - 1] != 1.0)
+            snprintf(note, sizeof note,
+                     "ARKStep evaluates f(t + h, y_{n+1}) after each step for its interpolant; "
+                     "with the %s table it is not reused as the next step's first stage: %d "
+                     "calls per step",
+                     tab->name, tab->s + 1);
         if (add(out, &count, max, x, "ARKODE", label, wrong ? BENCH_WRONG : BENCH_SAME, tab->order,
                 wrong ? tab->s - 1 : tab->s, note, sun_fixed_run))
             break;

@@ -455,7 +455,7 @@ static int local_fixed(const bench_sys *sys, bench_method m, bench_solver *out, 
     dk_ctx *x = dk_new(DK_HAND, sys, const_table(m));
     if (x)
         x->hand = hands[p][m];
-    add_dk(out, &count, max, x, "hand", "hand-written loop, rhs inlined (the limit)", BENCH_SAME, 0,
+    add_dk(out, &count, max, x, "hand", "hand-written loop, rhs inlined (reference)", BENCH_SAME, 0,
            s, dk_fixed_run);
     const struct {
         int kind;

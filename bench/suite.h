@@ -66,7 +66,7 @@ typedef struct bench_solver {
     int order;             /* adaptive: order of the propagated solution */
     double step_factor;    /* fixed: steps of step_factor * h (steps / step_factor of them) */
     double calls_per_step; /* fixed: right-hand-side calls per step */
-    char note[240];        /* caveat printed under the table, or "" */
+    char note[320];        /* caveat printed under the table, or "" */
     void *ctx;
     /* Fixed: `steps` steps of h from sys->y0. Adaptive and stiff: sys->t0 -> sys->t1 with
      * rtol = atol = arg (steps unused). y (n) receives the final state; counts may be NULL.

@@ -672,7 +672,6 @@ int cli_run_parse_with(const char *command, int argc, char **argv, int other_ada
         return CLI_FAILED;
     }
     dyn_model_default_params(m, run->par, err, sizeof err);
-    memcpy(run->y0, m->y0, (size_t)m->n_states * sizeof *run->y0);
     run->t0 = m->t0;
     run->t1 = m->t1;
     run->step = m->step;
@@ -682,13 +681,20 @@ int cli_run_parse_with(const char *command, int argc, char **argv, int other_ada
     unsigned given = 0;
     for (int i = 1; i < argc && rc == CLI_OK; i++)
         rc = parse_option(command, argc, argv, &i, run, as, &n_as, &method_name, &given);
+    /* parameters first: the default initial state may depend on them; then --init */
     for (int k = 0; k < n_as && rc == CLI_OK; k++)
-        rc = apply_assignment(command, run, &as[k]);
+        if (as[k].is_param)
+            rc = apply_assignment(command, run, &as[k]);
+    if (rc == CLI_OK && m->prepare && m->prepare(run->par, err, sizeof err))
+        rc = cli_usage_error(command, "%s", err);
+    if (rc == CLI_OK)
+        dyn_model_initial_state(m, run->par, run->y0);
+    for (int k = 0; k < n_as && rc == CLI_OK; k++)
+        if (!as[k].is_param)
+            rc = apply_assignment(command, run, &as[k]);
     free(as);
     if (rc != CLI_OK)
         return rc;
-    if (m->prepare && m->prepare(run->par, err, sizeof err))
-        return cli_usage_error(command, "%s", err);
     if ((given & GIVEN_INTERP) && !run->forces_path)
         return cli_usage_error(command, "--interp needs --forces FILE (a table to read)");
     if (run->forces_path && (rc = load_input(command, run, given)) != CLI_OK)

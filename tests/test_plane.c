@@ -611,6 +611,31 @@ static void test_cli(void **state)
     free(s);
 }
 
+/* The default initial state follows the parameters: the spring hangs stretched by the
+ * weight (sZ = l0 + m g/k) below A with P straight under the centre of mass (sX = -px), for
+ * any k, m and px; both formulations start from the same physical state. */
+static void test_initial_state_follows_parameters(void **state)
+{
+    (void)state;
+    dyn_plane_par p;
+    char err[256];
+    double y12[12], y13[13], back[12];
+    assert_int_equal(dyn_model_default_params(&dyn_model_plane, &p, err, sizeof err), 0);
+    dyn_model_initial_state(&dyn_model_plane, &p, y12);
+    for (int i = 0; i < 12; i++)
+        assert_true(y12[i] == dyn_model_plane.y0[i]); /* defaults: the seed's state exactly */
+    p.k = 40.0;
+    p.m = 2.0;
+    p.px = 0.25;
+    dyn_model_initial_state(&dyn_model_plane, &p, y12);
+    assert_true(y12[0] == -0.25);
+    assert_true(fabs(y12[2] - (1.0 + 2.0 * 9.81 / 40.0)) < 1e-15);
+    dyn_model_initial_state(&dyn_model_plane_quat, &p, y13);
+    assert_int_equal(dyn_plane_quat_to_state(y13, back), 0);
+    for (int i = 0; i < 12; i++)
+        assert_true(fabs(back[i] - y12[i]) < 1e-15);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -625,6 +650,7 @@ int main(void)
         cmocka_unit_test(test_warning_near_singularity),
         cmocka_unit_test(test_outputs),
         cmocka_unit_test(test_cli),
+        cmocka_unit_test(test_initial_state_follows_parameters),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -101,6 +101,10 @@ typedef struct dyn_model {
      * step, or every accepted step (DYN_SAMPLES_GRID = 0 when not set). `step` stays the
      * step of fixed-step methods. */
     dyn_sample_policy samples;
+    /* Optional default initial state computed from the (prepared) parameters, for states
+     * that depend on them (the plane hangs at l0 + m g/k below the ceiling); writes
+     * n_states values. NULL: the fixed y0 above. */
+    void (*initial_state)(const void *par, double *y0);
 } dyn_model;
 
 /* Built-in models: count, by index (NULL out of range), by name (NULL if unknown). */
@@ -113,6 +117,9 @@ char *dyn_model_names(char *buf, size_t size);
 /* Fill a parameter struct (par_size bytes, caller-owned, zeroed first) with the defaults,
  * then run prepare. Returns 0 or non-zero with a message in err. */
 int dyn_model_default_params(const dyn_model *m, void *par, char *err, size_t errlen);
+/* The default initial state for the parameters par (n_states values into y0): the model's
+ * initial_state when it has one, else its fixed y0. */
+void dyn_model_initial_state(const dyn_model *m, const void *par, double *y0);
 /* Index of a state / parameter / output by name, or -1. */
 int dyn_model_state_index(const dyn_model *m, const char *name);
 int dyn_model_param_index(const dyn_model *m, const char *name);

@@ -146,11 +146,12 @@ const dyn_model dyn_model_plane = {
         "  dphi = omegax + dpsi sin(theta)                      (Greenwood (3.16))\n"
         "The Euler-angle rates are singular at theta = +-90 deg: the model warns within\n"
         "5 deg (output theta_margin); plane-quat is the same plane without the singularity.\n"
-        "The default initial state is simulate_plane.m's for the default parameters\n"
-        "(sX = -px, sZ = l0 + m g/k); it does not follow --set, use --init.",
+        "The default initial state is simulate_plane.m's: sX = -px, sY = 0.2,\n"
+        "sZ = l0 + m g/k (it follows --set), level attitude, dsX = 2, omegaz = pi/40.",
     .n_states = 12,
     .states = states,
     .y0 = y0,
+    .initial_state = dyn_plane_seed_state,
     .n_params = DYN_PLANE_N_PARAMS,
     .params = dyn_plane_params,
     .par_size = sizeof(dyn_plane_par),

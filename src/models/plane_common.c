@@ -126,3 +126,15 @@ double dyn_plane_energy_at(const dyn_plane_par *p, const double rs_N[3], const d
            dyn_rigid_rotational_energy(inertia, omega_B) + 0.5 * p->k * stretch * stretch -
            p->m * p->g * rs_N[2];
 }
+
+void dyn_plane_seed_state(const void *par, double *y12)
+{
+    const dyn_plane_par *p = par;
+    for (int i = 0; i < 12; i++)
+        y12[i] = 0.0;
+    y12[0] = -p->px;
+    y12[1] = DYN_PLANE_SY0;
+    y12[2] = p->l0 + p->m * p->g / p->k;
+    y12[6] = DYN_PLANE_DSX0;
+    y12[11] = DYN_PLANE_OMEGAZ0;
+}

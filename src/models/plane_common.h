@@ -17,6 +17,10 @@
 #define DYN_PLANE_DSX0 2.0
 #define DYN_PLANE_OMEGAZ0 (DYN_PI / 4.0 / 10.0)
 
+/* simulate_plane.m's initial state for the parameters p, in the 12-state layout:
+ * sX = -px, sY = 0.2, sZ = l0 + m g/k, level attitude, dsX = 2, omegaz = pi/40. */
+void dyn_plane_seed_state(const void *par, double *y12);
+
 /* Parameter table shared by both models (dyn_plane_par members). */
 #define DYN_PLANE_N_PARAMS 16
 extern const dyn_param dyn_plane_params[DYN_PLANE_N_PARAMS];

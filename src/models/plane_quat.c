@@ -87,6 +87,14 @@ static const dyn_var outputs[] = {
     {"quat_norm_error", "1", "|q| - 1, the integrator's drift of the quaternion norm"},
 };
 
+/* simulate_plane.m's state for the parameters, with the level attitude as a quaternion */
+static void plane_quat_seed_state(const void *par, double *y13)
+{
+    double y12[12];
+    dyn_plane_seed_state(par, y12);
+    dyn_plane_state_to_quat(y12, y13);
+}
+
 const dyn_model dyn_model_plane_quat = {
     .name = "plane-quat",
     .title = "model plane on a spring, quaternion attitude (homework problem 3, no gimbal lock)",
@@ -105,6 +113,7 @@ const dyn_model dyn_model_plane_quat = {
     .n_states = 13,
     .states = states,
     .y0 = y0,
+    .initial_state = plane_quat_seed_state,
     .n_params = DYN_PLANE_N_PARAMS,
     .params = dyn_plane_params,
     .par_size = sizeof(dyn_plane_par),

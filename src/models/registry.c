@@ -58,6 +58,14 @@ int dyn_model_default_params(const dyn_model *m, void *par, char *err, size_t er
     return m->prepare ? m->prepare(par, err, errlen) : 0;
 }
 
+void dyn_model_initial_state(const dyn_model *m, const void *par, double *y0)
+{
+    if (m->initial_state)
+        m->initial_state(par, y0);
+    else
+        memcpy(y0, m->y0, (size_t)m->n_states * sizeof *y0);
+}
+
 static int var_index(const dyn_var *vars, int count, const char *name)
 {
     for (int i = 0; name && i < count; i++)

@@ -63,7 +63,7 @@ int dyn_hw_plane_compute(dyn_hw_plane *r, char *err, size_t errlen)
     memset(r, 0, sizeof *r);
     if (dyn_model_default_params(model, &p, err, errlen))
         return 1;
-    memcpy(y0, model->y0, sizeof y0);
+    dyn_model_initial_state(model, &p, y0);
     r->step_s = model->step;
     r->end_time_s = model->t1;
     int rc = euler_and_rk4(&p, y0, r->step_s, r->end_time_s, r->final_euler, r->final_rk4,

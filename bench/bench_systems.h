@@ -105,13 +105,14 @@ static inline void bench_plane_eval(const double *BENCH_RESTRICT x, double *BENC
     dx[11] = (Mz - (p->Iyy - p->Ixx) * wx * wy) / p->Izz;
 }
 
-
 /* The plane's parameters and initial state used by the benchmarks. */
 static inline void bench_plane_defaults(bench_plane_par *p, double *y0)
 {
     const bench_plane_par par = {1.0, 0.005, 0.005, 0.01, 9.81, 1.0, 20.0, {0.1, 0.0, -0.1}};
-    const double x0[12] = {-0.1, 0.2, 1.0 + 9.81 / 20.0, 0.0, 0.0, 0.0,
-                           2.0,  0.0, 0.0,               0.0, 0.0, 3.14159265358979323846 / 40.0};
+    const double x0[12] = {-0.1, 0.2, 1.0 + 9.81 / 20.0,
+                           0.0,  0.0, 0.0,
+                           2.0,  0.0, 0.0,
+                           0.0,  0.0, 3.14159265358979323846 / 40.0};
     *p = par;
     for (int i = 0; i < 12; i++)
         y0[i] = x0[i];

@@ -33,13 +33,13 @@
 
 namespace odeint = boost::numeric::odeint;
 
-namespace {
+namespace
+{
 
 constexpr double kFirstStep = 1e-3; // adaptive runs: Boost needs an initial step
 
 // The right-hand side as a functor the compiler inlines (how Boost.Odeint is used).
-template <int N, class Par, void (*Eval)(const double *, double *, const Par *)>
-struct System {
+template <int N, class Par, void (*Eval)(const double *, double *, const Par *)> struct System {
     static constexpr int n = N;
     const Par *par;
     long *calls; // counted calls (adaptive), or nullptr
@@ -91,10 +91,7 @@ template <int N> struct PtrSystem {
 };
 
 void vdp_eval(const double *y, double *d, const bench_vdp_par *p) { bench_vdp_eval(y, d, p); }
-void plane_eval(const double *y, double *d, const bench_plane_par *p)
-{
-    bench_plane_eval(y, d, p);
-}
+void plane_eval(const double *y, double *d, const bench_plane_par *p) { bench_plane_eval(y, d, p); }
 void arenstorf_eval(const double *y, double *d, const bench_arenstorf_par *p)
 {
     bench_arenstorf_eval(y, d, p);
@@ -238,8 +235,7 @@ int add(bench_solver *out, int *count, int max, Base *b, const char *label, int 
     return 0;
 }
 
-int boost_solvers(const bench_sys *sys, bench_task task, bench_method m, bench_solver *out,
-                  int max)
+int boost_solvers(const bench_sys *sys, bench_task task, bench_method m, bench_solver *out, int max)
 {
     int count = 0;
     if (task == BENCH_TASK_FIXED) {
@@ -292,8 +288,8 @@ int boost_solvers(const bench_sys *sys, bench_task task, bench_method m, bench_s
         b = new_adaptive<PtrSystem<4>>(sys, Pair::Dopri5);
     else if (sys->id == BENCH_PLANE)
         b = new_adaptive<PtrSystem<12>>(sys, Pair::Dopri5);
-    add(out, &count, max, b, "diagnostic: Boost runge_kutta_dopri5, rhs by pointer", BENCH_DIAG,
-        5, 0.0);
+    add(out, &count, max, b, "diagnostic: Boost runge_kutta_dopri5, rhs by pointer", BENCH_DIAG, 5,
+        0.0);
     return count;
 }
 

@@ -36,13 +36,13 @@ typedef struct gsl_ctx {
 /* Right-hand sides: plain ones for the fixed-step timing, counting ones (params = ctx) for
  * the adaptive runs. */
 #define GSL_RHS(NAME, EVAL, PAR_T)                                                                 \
-    static int NAME(double t, const double y[], double dydt[], void *params)                      \
+    static int NAME(double t, const double y[], double dydt[], void *params)                       \
     {                                                                                              \
         (void)t;                                                                                   \
         EVAL(y, dydt, (const PAR_T *)params);                                                      \
         return GSL_SUCCESS;                                                                        \
     }                                                                                              \
-    static int NAME##_counted(double t, const double y[], double dydt[], void *params)            \
+    static int NAME##_counted(double t, const double y[], double dydt[], void *params)             \
     {                                                                                              \
         gsl_ctx *x = params;                                                                       \
         (void)t;                                                                                   \

@@ -49,7 +49,7 @@ typedef struct sun_ctx {
 
 /* The right-hand side: user_data is the context (counted) */
 #define SUN_RHS(NAME, EVAL, PAR_T)                                                                 \
-    static int NAME(realtype t, N_Vector y, N_Vector ydot, void *user_data)                       \
+    static int NAME(realtype t, N_Vector y, N_Vector ydot, void *user_data)                        \
     {                                                                                              \
         sun_ctx *x = user_data;                                                                    \
         (void)t;                                                                                   \

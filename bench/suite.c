@@ -97,7 +97,7 @@ CONST_TABLEAU(RK4_CONST, rk4, 4, 4)
  * Right-hand sides for dynkit: dyn_rhs_fn around the shared inline bodies
  * ---------------------------------------------------------------------------------------- */
 #define DK_RHS(NAME, EVAL)                                                                         \
-    static int NAME(double t, const double *y, double *dydt, void *par)                           \
+    static int NAME(double t, const double *y, double *dydt, void *par)                            \
     {                                                                                              \
         (void)t;                                                                                   \
         EVAL(y, dydt, par);                                                                        \
@@ -255,8 +255,7 @@ typedef void (*hand_fn)(const void *par, const double *y0, double h, long steps,
         dst[q] = v_;                                                                               \
     } while (0)
 static __attribute__((noinline)) void ptr_loop(bench_method meth, dyn_rhs_fn f, void *par, int n,
-                                               const double *y0, double h, long steps,
-                                               double *yout)
+                                               const double *y0, double h, long steps, double *yout)
 {
     double y[MAX_N], Y[MAX_N], k1[MAX_N], k2[MAX_N], k3[MAX_N], k4[MAX_N];
     memcpy(y, y0, (size_t)n * sizeof *y);
@@ -651,8 +650,8 @@ typedef struct item {
 static void measure(item *it, int count, int n, int reps, double target_ns, const double *ref)
 {
     long *batch = malloc((size_t)(count > 0 ? count : 1) * sizeof *batch);
-    double *samples = malloc((size_t)(count > 0 ? count : 1) * (size_t)(reps > 0 ? reps : 1) *
-                             sizeof *samples);
+    double *samples =
+        malloc((size_t)(count > 0 ? count : 1) * (size_t)(reps > 0 ? reps : 1) * sizeof *samples);
     if (!batch || !samples) {
         free(batch);
         free(samples);
@@ -791,8 +790,8 @@ static void fixed_section(const options *o, const bench_sys *sys, double h, long
                 snprintf(chk, sizeof chk, "= hand to %.0e", fmax(rel, 1e-17));
             /* calls per step as counted where the solver counts them (ARKODE's include its
              * f(t0)), else as the method defines them */
-            const double cps = m[i].counts.rhs > 0 ? (double)m[i].counts.rhs / own_steps
-                                                   : s[i].calls_per_step;
+            const double cps =
+                m[i].counts.rhs > 0 ? (double)m[i].counts.rhs / own_steps : s[i].calls_per_step;
             printf("| %s | %.1f | %.2f | %.2f | %.3g | %.2e | %s |\n", s[i].label,
                    m[i].med / own_steps, m[i].med / 1e3, m[i].med / m[0].med, cps, m[i].err, chk);
             check(m[i].ok, "%s, %s: %s failed", sys->name, method_names[mi], s[i].label);
@@ -958,8 +957,8 @@ static void adaptive_section(const options *o, const bench_sys *sys, bench_task 
             ci->ok[ci->n] = mi->ok && isfinite(mi->err);
             ci->n++;
             check(mi->ok, "%s: %s failed at tol %.0e", sys->name, s[i].label, tols[t]);
-            check(mi->deterministic, "%s: %s gives different results when run twice",
-                  sys->name, s[i].label);
+            check(mi->deterministic, "%s: %s gives different results when run twice", sys->name,
+                  s[i].label);
         }
     for (int i = 0; i < count; i++)
         check(c[i].n < 2 || c[i].err[c[i].n - 1] < c[i].err[0],
@@ -1275,8 +1274,7 @@ int main(int argc, char **argv)
             o.sections = (strstr(v, "fixed") ? 1 : 0) | (strstr(v, "adaptive") ? 2 : 0) |
                          (strstr(v, "stiff") ? 4 : 0) | (strstr(v, "report") ? 8 : 0);
             if (!o.sections) {
-                fprintf(stderr, "bench_suite: --only %s: give fixed, adaptive, stiff, report\n",
-                        v);
+                fprintf(stderr, "bench_suite: --only %s: give fixed, adaptive, stiff, report\n", v);
                 return 2;
             }
             i++;
@@ -1336,10 +1334,10 @@ int main(int argc, char **argv)
     bench_plane_defaults(&plane, plane_y0);
     const bench_sys sys_vdp = {BENCH_VDP, "van der Pol", 2, &vdp, vdp_y0, 0.0, 15.0};
     const bench_sys sys_plane = {BENCH_PLANE, "plane", 12, &plane, plane_y0, 0.0, 5.0};
-    const bench_sys sys_aren = {BENCH_ARENSTORF, "Arenstorf", 4, &aren, aren_y0, 0.0,
+    const bench_sys sys_aren = {BENCH_ARENSTORF,     "Arenstorf", 4, &aren, aren_y0, 0.0,
                                 DYN_ARENSTORF_PERIOD};
-    const bench_sys sys_stiff = {BENCH_VDP_STIFF, "van der Pol mu = 1000", 2, &vdp_stiff, vdp_y0,
-                                 0.0, 3000.0};
+    const bench_sys sys_stiff = {
+        BENCH_VDP_STIFF, "van der Pol mu = 1000", 2, &vdp_stiff, vdp_y0, 0.0, 3000.0};
 
     /* the references */
     const dyn_reference *r_vdp = dyn_reference_find("vanderpol-mu1-15");
@@ -1358,7 +1356,8 @@ int main(int argc, char **argv)
         const dyn_tableau *m8 = dyn_method_find("dop853"), *m5 = dyn_method_find("dp45");
         double *w = malloc(dyn_solve_work_size(m8, 12, &so) * sizeof *w);
         double *w5 = malloc(dyn_solve_work_size(m5, 12, &so) * sizeof *w5);
-        if (!w || !w5 || dyn_solve(m8, &ds, 0.0, 5.0, plane_y0, plane_ref, w, &so, &res) != DYN_OK ||
+        if (!w || !w5 ||
+            dyn_solve(m8, &ds, 0.0, 5.0, plane_y0, plane_ref, w, &so, &res) != DYN_OK ||
             dyn_solve(m5, &ds, 0.0, 5.0, plane_y0, plane_ref2, w5, &so, &res) != DYN_OK) {
             fprintf(stderr, "bench_suite: the plane's reference solve failed\n");
             return 1;

@@ -60,7 +60,7 @@ enum {
 
 typedef struct bench_solver {
     char label[80];
-    const char *peer;      /* "hand", "dynkit", "Boost", "GSL", "ARKODE", "CVODE" */
+    const char *peer; /* "hand", "dynkit", "Boost", "GSL", "ARKODE", "CVODE" */
     int is_dynkit;
     int flags;             /* BENCH_SAME, BENCH_WRONG, BENCH_ACCURACY, BENCH_DIAG */
     int order;             /* adaptive: order of the propagated solution */

@@ -217,8 +217,8 @@ int wp_svg_write(FILE *out, const wp_plot *p)
     bad |= axes(out, p, &ax, &ay);
     bad |= fputs("<g class=\"lines\">\n", out) < 0;
     for (int i = 0; i < p->n_lines; i++)
-        bad |= line(out, &p->lines[i], palette[i % (int)(sizeof palette / sizeof *palette)], &ax,
-                    &ay);
+        bad |=
+            line(out, &p->lines[i], palette[i % (int)(sizeof palette / sizeof *palette)], &ax, &ay);
     bad |= fputs("</g>\n", out) < 0;
     bad |= legend(out, p);
     bad |= fputs("</svg>\n", out) < 0;

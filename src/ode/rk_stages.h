@@ -10,9 +10,10 @@
  *
  * Speed. Before a solve the table is turned into a plan (dyn_rk_plan): for each row of a
  * and for b, its non-zero coefficients and pointers to the k_j they multiply. A stage is
- * then one pass over the states with the row's few terms (1 to 4 terms have their own
- * loops), instead of a scan of all j < i testing every coefficient for every state. The
- * plan is derived from the table's data, so every method still runs through this one loop.
+ * then one pass over the states with the row's few terms (1 to 5 terms have their own
+ * loops, longer rows unroll their first six), instead of a scan of all j < i testing every
+ * coefficient for every state. The plan is derived from the table's data, so every method
+ * still runs through this one loop.
  * Tables with more than DYN_RK_PLAN_MAX_STAGES stages use dyn_rk_stages_scan: the same
  * arithmetic with the coefficients scanned on the fly, by the combination code of the
  * public dyn_fixed_solve_inline (dynkit/ode_inline.h).
@@ -166,14 +167,30 @@ DYN_RK_INLINE double dyn_rk_combine_kind(int n, double h, const double *restrict
         DYN_RK_LOOP(E4);
         break;
     }
-    default:
+    case 5: {
+        const double *restrict k0 = kp[0], *restrict k1 = kp[1], *restrict k2 = kp[2];
+        const double *restrict k3 = kp[3], *restrict k4 = kp[4];
+        const double c0 = coef[0], c1 = coef[1], c2 = coef[2], c3 = coef[3], c4 = coef[4];
+#define E5(q) (base[q] + h * (c0 * k0[q] + c1 * k1[q] + c2 * k2[q] + c3 * k3[q] + c4 * k4[q]))
+        DYN_RK_LOOP(E5);
+        break;
+    }
+    default: {
+        /* 6 or more terms: the first six unrolled (pointers and coefficients in registers),
+         * the others added after them in order: the same left-to-right sum */
+        const double *restrict k0 = kp[0], *restrict k1 = kp[1], *restrict k2 = kp[2];
+        const double *restrict k3 = kp[3], *restrict k4 = kp[4], *restrict k5 = kp[5];
+        const double c0 = coef[0], c1 = coef[1], c2 = coef[2], c3 = coef[3], c4 = coef[4];
+        const double c5 = coef[5];
         for (int q = 0; q < n; q++) {
-            double acc = coef[0] * kp[0][q];
-            for (int t = 1; t < nt; t++)
+            double acc = c0 * k0[q] + c1 * k1[q] + c2 * k2[q] + c3 * k3[q] + c4 * k4[q] +
+                         c5 * k5[q];
+            for (int t = 6; t < nt; t++)
                 acc += coef[t] * kp[t][q];
             DYN_RK_PUT(q, base[q] + h * acc);
         }
         break;
+    }
     }
 #undef E0
 #undef E1U
@@ -181,6 +198,7 @@ DYN_RK_INLINE double dyn_rk_combine_kind(int n, double h, const double *restrict
 #undef E2
 #undef E3
 #undef E4
+#undef E5
 #undef DYN_RK_LOOP
 #undef DYN_RK_PUT
     return z;

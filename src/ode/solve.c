@@ -347,6 +347,14 @@ int dyn_solve(const dyn_tableau *m, const dyn_system *sys, double t0, double t1,
     const long stiff_every = opts->stiff_check > 0 ? opts->stiff_check : 1000;
     const long progress_every = opts->progress_steps > 0 ? opts->progress_steps : 4096;
     long progress_countdown = progress_every;
+    /* invariants of the step loop, read once (the compiler cannot hoist reads through opts:
+     * the loop stores through res and calls out) */
+    const long max_steps = opts->max_steps;
+    const int stiff_test = !fixed && m->stiff_bound > 0.0 && ops->stiffness;
+    long stiff_countdown = stiff_every; /* accepted % stiff_every == 0, without a division */
+    const int dense_always = ne > 0 || opts->step || rec;
+    const dyn_output_fn output = opts->output;
+    const dyn_progress_fn progress = opts->progress;
     int stiff_count = 0, nonstiff_count = 0;
     int rejected_before = 0, retry = 0;
     long step = 0; /* fixed: index of the step */
@@ -373,11 +381,11 @@ int dyn_solve(const dyn_tableau *m, const dyn_system *sys, double t0, double t1,
                 tnext = t + h;
             }
         }
-        if (opts->max_steps > 0 && res->stats.steps >= opts->max_steps) {
+        if (max_steps > 0 && res->stats.steps >= max_steps) {
             fail(res, DYN_ERR_MAX_STEPS,
                  "reached the limit of %ld steps at t = %.17g (h = %g): raise the limit, "
                  "loosen the tolerances, or use a method for stiff problems",
-                 opts->max_steps, t, h);
+                 max_steps, t, h);
             goto finish;
         }
         double err = 0.0;
@@ -424,8 +432,10 @@ int dyn_solve(const dyn_tableau *m, const dyn_system *sys, double t0, double t1,
         /* accepted */
         res->stats.accepted++;
         retry = 0;
-        if (!fixed && m->stiff_bound > 0.0 && ops->stiffness &&
-            (res->stats.accepted % stiff_every == 0 || stiff_count > 0)) {
+        const int stiff_due = --stiff_countdown == 0;
+        if (stiff_due)
+            stiff_countdown = stiff_every;
+        if (stiff_test && (stiff_due || stiff_count > 0)) {
             const double hl = ops->stiffness(&st, t, hn, ycur, ynew);
             if (hl > m->stiff_bound) {
                 nonstiff_count = 0;
@@ -443,7 +453,7 @@ int dyn_solve(const dyn_tableau *m, const dyn_system *sys, double t0, double t1,
             }
         }
         const int want_dense =
-            ne > 0 || opts->step || rec ||
+            dense_always ||
             (out.mode != 0 && out.next < out.count && out_time(&out, out.next) < tnext);
         if (want_dense) {
             rc = ops->dense(&st, t, hn, ycur, ynew, coef);
@@ -512,23 +522,23 @@ int dyn_solve(const dyn_tableau *m, const dyn_system *sys, double t0, double t1,
             res->h_last = hn;
             break;
         }
-        if (emit_until(&out, opts, tnext, 1, tnext, ynew, &d, yout, res))
+        if (out.mode != 0 && emit_until(&out, opts, tnext, 1, tnext, ynew, &d, yout, res))
             goto finish;
         ops->accept(&st, t, hn, ynew);
         memcpy(ycur, ynew, N * sizeof *ycur);
         t = tnext;
         res->h_last = hn;
         step++;
-        if (out.mode == 0 && opts->output) {
+        if (out.mode == 0 && output) {
             res->stats.samples++;
-            if (opts->output(out.k++, t, ycur, opts->output_ctx)) {
+            if (output(out.k++, t, ycur, opts->output_ctx)) {
                 fail(res, DYN_STOPPED, "output stopped the run at t = %g", t);
                 goto finish;
             }
         }
-        if (opts->progress && --progress_countdown == 0) {
+        if (progress && --progress_countdown == 0) {
             progress_countdown = progress_every;
-            if (opts->progress(t, (t - t0) / (t_end - t0), opts->progress_ctx)) {
+            if (progress(t, (t - t0) / (t_end - t0), opts->progress_ctx)) {
                 fail(res, DYN_CANCELLED, "cancelled at t = %g", t);
                 goto finish;
             }

@@ -22,6 +22,14 @@ double dyn_err_norm(const dyn_tol *tol, int n, const double *y, const double *yn
     return sqrt(sum / n);
 }
 
+/* err_old^beta. Computed when err_old is stored, so that the pow is off the next step's
+ * dependency chain (same value, same steps); pow(x, 0) is exactly 1, so beta == 0 (the
+ * I controller) needs none. */
+static double old_pow(const dyn_controller *c)
+{
+    return c->beta == 0.0 ? 1.0 : pow(c->err_old, c->beta);
+}
+
 void dyn_controller_init(dyn_controller *c, int q, double safety, double beta, double fac_min,
                          double fac_max)
 {
@@ -31,16 +39,18 @@ void dyn_controller_init(dyn_controller *c, int q, double safety, double beta, d
     c->fac_max = fac_max > 0.0 ? fac_max : 10.0;
     c->expo = 1.0 / (double)((q > 0 ? q : 1) + 1) - 0.75 * c->beta;
     c->err_old = 1e-4;
+    c->err_old_pow = old_pow(c);
 }
 
 double dyn_controller_accept(dyn_controller *c, double h, double err, int rejected_before)
 {
-    double fac = pow(err, c->expo) / pow(c->err_old, c->beta) / c->safety;
+    double fac = pow(err, c->expo) / c->err_old_pow / c->safety;
     if (!(fac >= 1.0 / c->fac_max)) /* also err == 0 */
         fac = 1.0 / c->fac_max;
     if (fac > 1.0 / c->fac_min)
         fac = 1.0 / c->fac_min;
     c->err_old = fmax(err, 1e-4);
+    c->err_old_pow = old_pow(c);
     double hnew = h / fac;
     if (rejected_before && hnew > h)
         hnew = h;

@@ -15,6 +15,7 @@ typedef struct dyn_controller {
     double fac_max;  /* largest h_new / h (10) */
     double expo;     /* 1/(q + 1) - 0.75 beta, q = the error order */
     double err_old;  /* error of the last accepted step (1e-4 at the start) */
+    double err_old_pow; /* err_old^beta, computed when err_old is stored (1 when beta == 0) */
 } dyn_controller;
 
 /* Set up the controller for error order q (the estimate behaves like h^(q+1)); zeros in

@@ -70,10 +70,15 @@ static int erk_start(dyn_stepper *st, double t0, const double *y0)
     e->fnew_valid = 0;
     e->ne = e->ne3 = 0;
     for (int i = 0; i < m->stages && i < DYN_RK_PLAN_MAX_STAGES; i++) {
-        if (m->e && m->e[i] != 0.0)
-            e->ei[e->ne++] = i;
-        if (m->e3 && m->e3[i] != 0.0)
-            e->e3i[e->ne3++] = i;
+        const double *ki = e->k + (size_t)i * (size_t)n;
+        if (m->e && m->e[i] != 0.0) {
+            e->ec[e->ne] = m->e[i];
+            e->ekp[e->ne++] = ki;
+        }
+        if (m->e3 && m->e3[i] != 0.0) {
+            e->e3c[e->ne3] = m->e3[i];
+            e->e3kp[e->ne3++] = ki;
+        }
     }
     e->rhs.f = st->f;
     e->rhs.par = st->par;
@@ -105,29 +110,48 @@ static int erk_deriv(dyn_stepper *st, double t, const double *y, const double **
     return 0;
 }
 
-/* The error norm of the step from the stage derivatives. */
-static double erk_error(dyn_stepper *st, double h, const double *y, const double *ynew)
+/* Sum of (err_i / scale_i)^2 over the states, err_i = sum_q c[q] kp[q][i] summed in order
+ * from 0.0, and likewise *s3out for the terms c3, kp3 when n3 > 0. Inlined with a constant
+ * scalar: 1 (no per-state tolerances) takes dyn_tol_scale's per-state tests out of the
+ * loop; the same numbers either way. */
+DYN_RK_INLINE double err_sums(const dyn_tol *tol, int scalar, int n, const double *y,
+                              const double *ynew, int ne, const double *c,
+                              const double *const *kp, int n3, const double *c3,
+                              const double *const *kp3, double *s3out)
 {
-    const dyn_erk_state *e = &st->u.erk;
-    const dyn_tableau *m = st->m;
-    const int n = st->n;
-    const double *k = e->k;
     double s5 = 0.0, s3 = 0.0;
     for (int i = 0; i < n; i++) {
         double err = 0.0;
-        for (int q = 0; q < e->ne; q++)
-            err += m->e[e->ei[q]] * k[(size_t)e->ei[q] * (size_t)n + (size_t)i];
-        const double sk = dyn_tol_scale(&st->tol, i, y[i], ynew[i]);
+        for (int q = 0; q < ne; q++)
+            err += c[q] * kp[q][i];
+        const double sk = scalar ? tol->atol + tol->rtol * fmax(fabs(y[i]), fabs(ynew[i]))
+                                 : dyn_tol_scale(tol, i, y[i], ynew[i]);
         const double r = err / sk;
         s5 += r * r;
-        if (e->ne3) {
+        if (n3) {
             double err3 = 0.0;
-            for (int q = 0; q < e->ne3; q++)
-                err3 += m->e3[e->e3i[q]] * k[(size_t)e->e3i[q] * (size_t)n + (size_t)i];
+            for (int q = 0; q < n3; q++)
+                err3 += c3[q] * kp3[q][i];
             const double r3 = err3 / sk;
             s3 += r3 * r3;
         }
     }
+    *s3out = s3;
+    return s5;
+}
+
+/* The error norm of the step from the stage derivatives. */
+static double erk_error(dyn_stepper *st, double h, const double *y, const double *ynew)
+{
+    const dyn_erk_state *e = &st->u.erk;
+    const int n = st->n;
+    double s3 = 0.0, s5;
+    if (!st->tol.rtolv && !st->tol.atolv)
+        s5 = err_sums(&st->tol, 1, n, y, ynew, e->ne, e->ec, e->ekp, e->ne3, e->e3c, e->e3kp,
+                      &s3);
+    else
+        s5 = err_sums(&st->tol, 0, n, y, ynew, e->ne, e->ec, e->ekp, e->ne3, e->e3c, e->e3kp,
+                      &s3);
     if (!e->ne3)
         return fabs(h) * sqrt(s5 / n);
     /* DOP853: |h| |E5|^2 / sqrt(n (|E5|^2 + 0.01 |E3|^2)) */

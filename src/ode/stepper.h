@@ -82,7 +82,10 @@ typedef struct dyn_erk_state {
     int k0_valid;      /* k[0] holds f at the current point */
     int fnew_valid;    /* f(t + h, ynew) of the last accepted step is at hand */
     int ne, ne3;       /* non-zero error weights */
-    int ei[DYN_RK_PLAN_MAX_STAGES], e3i[DYN_RK_PLAN_MAX_STAGES];
+    /* the error sums' terms, set up once per solve: weight ec[q] multiplies the stage
+     * derivative at ekp[q] (e3: DOP853's 3rd-order estimate) */
+    double ec[DYN_RK_PLAN_MAX_STAGES], e3c[DYN_RK_PLAN_MAX_STAGES];
+    const double *ekp[DYN_RK_PLAN_MAX_STAGES], *e3kp[DYN_RK_PLAN_MAX_STAGES];
     /* the right-hand side as the stage loop calls it: stage 0 is skipped when k[0] holds
      * f(t, y) already (FSAL, or f(t + h, ynew) computed for the dense output) */
     struct dyn_erk_rhs {

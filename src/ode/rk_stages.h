@@ -243,14 +243,16 @@ static inline void dyn_rk_trace(dyn_trace_fn trace, void *trace_ctx, const dyn_t
 
 /* Take one step from (t, y) of size h into ynew with the plan p of m, whose k is the k
  * here (stages x n); stage times are clamped to tend (dyn_rk_stage_time). y, ynew, k and
- * Y are distinct. Returns 0, or the non-zero value of f with the failing stage index in
- * *fail_stage. On success *finite is 0 if every ynew[q] is finite, NaN otherwise. */
-DYN_RK_INLINE int dyn_rk_stages(const dyn_tableau *m, const dyn_rk_plan *p, dyn_rhs_fn f,
-                                void *par, int n, double t, double h, double tend,
-                                const double *restrict y, double *restrict ynew,
-                                double *restrict k, double *restrict Y, int *fail_stage,
-                                double *finite, dyn_trace_fn trace, void *trace_ctx,
-                                long step_index)
+ * Y are distinct. Stages i < first are not evaluated: k_i is in k already (the adaptive
+ * driver's k_0 = f(t, y) after FSAL; f is called directly, without a skipping wrapper).
+ * Returns 0, or the non-zero value of f with the failing stage index in *fail_stage. On
+ * success *finite is 0 if every ynew[q] is finite, NaN otherwise. */
+DYN_RK_INLINE int dyn_rk_stages_from(const dyn_tableau *m, const dyn_rk_plan *p, dyn_rhs_fn f,
+                                     void *par, int n, double t, double h, double tend,
+                                     const double *restrict y, double *restrict ynew,
+                                     double *restrict k, double *restrict Y, int *fail_stage,
+                                     double *finite, dyn_trace_fn trace, void *trace_ctx,
+                                     long step_index, int first)
 {
     const int s = p->stages;
     const double *c = m->c;
@@ -262,10 +264,12 @@ DYN_RK_INLINE int dyn_rk_stages(const dyn_tableau *m, const dyn_rk_plan *p, dyn_
         }
         double *ki = k + (size_t)i * (size_t)n;
         const double ti = dyn_rk_stage_time(t, c[i], h, tend);
-        int rc = f(ti, Yi, ki, par);
-        if (rc) {
-            *fail_stage = i;
-            return rc;
+        if (i >= first) {
+            int rc = f(ti, Yi, ki, par);
+            if (rc) {
+                *fail_stage = i;
+                return rc;
+            }
         }
         if (trace)
             dyn_rk_trace(trace, trace_ctx, m, step_index, n, t, h, ti, i, y, Yi, ki);
@@ -277,15 +281,27 @@ DYN_RK_INLINE int dyn_rk_stages(const dyn_tableau *m, const dyn_rk_plan *p, dyn_
     return 0;
 }
 
+DYN_RK_INLINE int dyn_rk_stages(const dyn_tableau *m, const dyn_rk_plan *p, dyn_rhs_fn f,
+                                void *par, int n, double t, double h, double tend,
+                                const double *restrict y, double *restrict ynew,
+                                double *restrict k, double *restrict Y, int *fail_stage,
+                                double *finite, dyn_trace_fn trace, void *trace_ctx,
+                                long step_index)
+{
+    return dyn_rk_stages_from(m, p, f, par, n, t, h, tend, y, ynew, k, Y, fail_stage, finite,
+                              trace, trace_ctx, step_index, 0);
+}
+
 /* The same step for any stage count without a plan: the combinations of the public
  * dyn_fixed_solve_inline (dynkit/ode_inline.h), whose row summaries are worked out here
  * for every row of every step. Same arithmetic as dyn_rk_stages, term for term, and the
  * same contract; used for tables of more than DYN_RK_PLAN_MAX_STAGES stages. */
-static inline int dyn_rk_stages_scan(const dyn_tableau *m, dyn_rhs_fn f, void *par, int n,
-                                     double t, double h, double tend, const double *restrict y,
-                                     double *restrict ynew, double *restrict k,
-                                     double *restrict Y, int *fail_stage, double *finite,
-                                     dyn_trace_fn trace, void *trace_ctx, long step_index)
+static inline int dyn_rk_stages_scan_from(const dyn_tableau *m, dyn_rhs_fn f, void *par, int n,
+                                          double t, double h, double tend,
+                                          const double *restrict y, double *restrict ynew,
+                                          double *restrict k, double *restrict Y,
+                                          int *fail_stage, double *finite, dyn_trace_fn trace,
+                                          void *trace_ctx, long step_index, int first)
 {
     const int s = m->stages;
     for (int i = 0; i < s; i++) {
@@ -295,10 +311,12 @@ static inline int dyn_rk_stages_scan(const dyn_tableau *m, dyn_rhs_fn f, void *p
             Yi = Y;
         double *ki = k + (size_t)i * (size_t)n;
         const double ti = dyn_rk_stage_time(t, m->c[i], h, tend);
-        int rc = f(ti, Yi, ki, par);
-        if (rc) {
-            *fail_stage = i;
-            return rc;
+        if (i >= first) {
+            int rc = f(ti, Yi, ki, par);
+            if (rc) {
+                *fail_stage = i;
+                return rc;
+            }
         }
         if (trace)
             dyn_rk_trace(trace, trace_ctx, m, step_index, n, t, h, ti, i, y, Yi, ki);
@@ -313,6 +331,16 @@ static inline int dyn_rk_stages_scan(const dyn_tableau *m, dyn_rhs_fn f, void *p
         dyn_rk_trace(trace, trace_ctx, m, step_index, n, t, h,
                      dyn_rk_stage_time(t, 1.0, h, tend), s, y, ynew, NULL);
     return 0;
+}
+
+static inline int dyn_rk_stages_scan(const dyn_tableau *m, dyn_rhs_fn f, void *par, int n,
+                                     double t, double h, double tend, const double *restrict y,
+                                     double *restrict ynew, double *restrict k,
+                                     double *restrict Y, int *fail_stage, double *finite,
+                                     dyn_trace_fn trace, void *trace_ctx, long step_index)
+{
+    return dyn_rk_stages_scan_from(m, f, par, n, t, h, tend, y, ynew, k, Y, fail_stage, finite,
+                                   trace, trace_ctx, step_index, 0);
 }
 
 #endif

@@ -18,17 +18,6 @@
 #include "ode/rosenbrock.h"
 #include "ode/stepper.h"
 
-static int erk_rhs(double t, const double *y, double *dydt, void *par)
-{
-    struct dyn_erk_rhs *r = par;
-    if (r->skip) {
-        r->skip = 0; /* k[0] already holds f(t, y) */
-        return 0;
-    }
-    r->calls++;
-    return r->f(t, y, dydt, r->par);
-}
-
 /* Stage slots: the table's stages, f(t + h, ynew) at slot s for tables without FSAL, and
  * the extra stages of the dense output. */
 static int kslots(const dyn_tableau *m)
@@ -80,10 +69,6 @@ static int erk_start(dyn_stepper *st, double t0, const double *y0)
             e->e3kp[e->ne3++] = ki;
         }
     }
-    e->rhs.f = st->f;
-    e->rhs.par = st->par;
-    e->rhs.skip = 0;
-    e->rhs.calls = 0;
     return 0;
 }
 
@@ -170,16 +155,19 @@ static int erk_attempt(dyn_stepper *st, double t, double h, const double *y, dou
     int fail_stage = 0, rc;
     double finite = 0.0;
     const dyn_trace_fn trace = st->attempts < st->trace_steps ? st->trace : NULL;
-    e->rhs.skip = e->k0_valid && m->c[0] == 0.0;
-    e->rhs.calls = 0;
+    /* stage 0 is not evaluated when k[0] holds f(t, y) already (FSAL, or f(t + h, ynew)
+     * computed for the dense output) */
+    const int first = e->k0_valid && m->c[0] == 0.0;
     if (e->planned)
-        rc = dyn_rk_stages(m, &e->plan, erk_rhs, &e->rhs, n, t, h, st->tend, y, ynew, e->k, e->Y,
-                           &fail_stage, &finite, trace, st->trace_ctx, st->attempts);
+        rc = dyn_rk_stages_from(m, &e->plan, st->f, st->par, n, t, h, st->tend, y, ynew, e->k,
+                                e->Y, &fail_stage, &finite, trace, st->trace_ctx, st->attempts,
+                                first);
     else
-        rc = dyn_rk_stages_scan(m, erk_rhs, &e->rhs, n, t, h, st->tend, y, ynew, e->k, e->Y,
-                                &fail_stage, &finite, trace, st->trace_ctx, st->attempts);
+        rc = dyn_rk_stages_scan_from(m, st->f, st->par, n, t, h, st->tend, y, ynew, e->k, e->Y,
+                                     &fail_stage, &finite, trace, st->trace_ctx, st->attempts,
+                                     first);
     st->attempts++;
-    st->rhs_calls += e->rhs.calls;
+    st->rhs_calls += (rc ? fail_stage + 1 : m->stages) - first; /* the calls made */
     e->fnew_valid = 0;
     if (rc) {
         st->fail_t = dyn_rk_stage_time(t, m->c[fail_stage], h, st->tend);

@@ -86,14 +86,6 @@ typedef struct dyn_erk_state {
      * derivative at ekp[q] (e3: DOP853's 3rd-order estimate) */
     double ec[DYN_RK_PLAN_MAX_STAGES], e3c[DYN_RK_PLAN_MAX_STAGES];
     const double *ekp[DYN_RK_PLAN_MAX_STAGES], *e3kp[DYN_RK_PLAN_MAX_STAGES];
-    /* the right-hand side as the stage loop calls it: stage 0 is skipped when k[0] holds
-     * f(t, y) already (FSAL, or f(t + h, ynew) computed for the dense output) */
-    struct dyn_erk_rhs {
-        dyn_rhs_fn f;
-        void *par;
-        int skip;
-        long calls;
-    } rhs;
 } dyn_erk_state;
 
 struct dyn_stepper {

@@ -21,7 +21,8 @@ if [ -f "$libdir/dynkit-cvode.pc" ]; then
   cc -std=c11 "$here/cvode_user.c" -o "$work/pc_cvode" \
     $(PKG_CONFIG_PATH="$libdir" pkg-config --cflags --libs dynkit-cvode) -lm
   LD_LIBRARY_PATH="$prefix/lib:$prefix/lib64:${LD_LIBRARY_PATH:-}" "$work/pc_cvode"
-  "$prefix/bin/dynkit" methods | grep -q '^cvode ' || { echo "dynkit methods lacks cvode"; exit 1; }
+  methods=$("$prefix/bin/dynkit" methods)
+  grep -q '^cvode ' <<<"$methods" || { echo "dynkit methods lacks cvode"; exit 1; }
   echo "install check: dynkit::cvode and dynkit-cvode.pc work"
 fi
 echo "install check: find_package and pkg-config both work"

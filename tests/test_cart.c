@@ -28,6 +28,7 @@
 #include <string.h>
 
 #include "dynkit/dynkit.h"
+#include "test_cli_run.h"
 
 /* Fail with both values when |a - b| > tol. */
 #define assert_close(a, b, tol)                                                              \
@@ -691,8 +692,6 @@ static void test_forward_run_converges_for_a_fixed_table(void **state)
 
 /* ---- the CSV table reader ---- */
 
-static char tmpdir[256];
-
 static void write_text(const char *path, const char *text)
 {
     FILE *f = fopen(path, "wb");
@@ -705,7 +704,7 @@ static int read_text_table(const char *text, unsigned flags, dyn_table *t, char 
                            size_t errlen)
 {
     char path[512];
-    snprintf(path, sizeof path, "%s/table.csv", tmpdir);
+    snprintf(path, sizeof path, "%s/table.csv", cli_tmpdir);
     write_text(path, text);
     return dyn_table_read_file(path, flags, t, err, errlen);
 }
@@ -766,63 +765,12 @@ static void test_table_read(void **state)
     assert_int_equal(read_text_table("a,b\n1,2\n0,3\n", 0, &t, err, sizeof err), DYN_OK);
     dyn_table_free(&t);
     char path[512];
-    snprintf(path, sizeof path, "%s/does-not-exist.csv", tmpdir);
+    snprintf(path, sizeof path, "%s/does-not-exist.csv", cli_tmpdir);
     assert_int_equal(dyn_table_read_file(path, 0, &t, err, sizeof err), DYN_ERR_IO);
     assert_non_null(strstr(err, "cannot open"));
 }
 
 /* ---- the command line ---- */
-
-typedef struct cli_result {
-    int status;
-    char *out, *err;
-} cli_result;
-
-static char *slurp(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    size_t cap = 1 << 16, used = 0, got;
-    char *buf = malloc(cap);
-    assert_non_null(buf);
-    if (f) {
-        while ((got = fread(buf + used, 1, cap - used - 1, f)) > 0) {
-            used += got;
-            if (cap - used < 2) {
-                cap *= 2;
-                buf = realloc(buf, cap);
-                assert_non_null(buf);
-            }
-        }
-        fclose(f);
-    }
-    buf[used] = '\0';
-    return buf;
-}
-
-static cli_result cli(const char *fmt, ...)
-{
-    char args[2048], cmd[4096], path[512];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(args, sizeof args, fmt, ap);
-    va_end(ap);
-    snprintf(cmd, sizeof cmd, "cd '%s' && '%s' %s >out 2>err </dev/null", tmpdir, DYNKIT_CLI,
-             args);
-    cli_result r;
-    int w = system(cmd);
-    r.status = (w != -1 && WIFEXITED(w)) ? WEXITSTATUS(w) : -1;
-    snprintf(path, sizeof path, "%s/out", tmpdir);
-    r.out = slurp(path);
-    snprintf(path, sizeof path, "%s/err", tmpdir);
-    r.err = slurp(path);
-    return r;
-}
-
-static void cli_free(cli_result *r)
-{
-    free(r->out);
-    free(r->err);
-}
 
 /* Samples of a library run, (t, states) per row. */
 static struct {
@@ -847,7 +795,7 @@ static int collect_sample(long k, double t, const double *y, void *ctx)
 static void test_cli_inverse_then_run(void **state)
 {
     (void)state;
-    cli_result r = cli("inverse cart --output forces.csv");
+    cli_result r = cli_in_tmpdir("inverse cart --output forces.csv");
     CHECK(r.status == 0, "inverse: exit %d: %s", r.status, r.err);
     assert_string_equal(r.out, "");
     /* the table equals the library's, bit for bit */
@@ -856,7 +804,7 @@ static void test_cli_inverse_then_run(void **state)
     static double tab[500 * 3];
     assert_int_equal(dyn_cart_force_table(&p, V0, F, N_HW, TS, tab, NULL, 0), 0);
     char path[512], msg[512];
-    snprintf(path, sizeof path, "%s/forces.csv", tmpdir);
+    snprintf(path, sizeof path, "%s/forces.csv", cli_tmpdir);
     dyn_table t;
     assert_int_equal(dyn_table_read_file(path, DYN_TABLE_TIME_FIRST, &t, msg, sizeof msg),
                      DYN_OK);
@@ -880,10 +828,10 @@ static void test_cli_inverse_then_run(void **state)
     assert_non_null(strstr(r.err, "Fx = 90.08"));
     cli_free(&r);
     /* forward run: step and span from the table */
-    r = cli("run cart --forces forces.csv --method heun %s --quiet", inits);
+    r = cli_in_tmpdir("run cart --forces forces.csv --method heun %s --quiet", inits);
     CHECK(r.status == 0, "run: exit %d: %s", r.status, r.err);
     assert_non_null(strstr(r.err, "rear wheels would slip"));
-    snprintf(path, sizeof path, "%s/out", tmpdir);
+    snprintf(path, sizeof path, "%s/out", cli_tmpdir);
     assert_int_equal(dyn_table_read_file(path, DYN_TABLE_TIME_FIRST, &t, msg, sizeof msg),
                      DYN_OK);
     cli_free(&r);
@@ -908,8 +856,8 @@ static void test_cli_inverse_then_run(void **state)
     print_message("4c through the CLI: sX(te) = %.17g m, error %.17g m\n", y[0], y[0] + V0 * te);
     dyn_table_free(&t);
     /* --final with --interp linear runs too, and --step/--tspan override the table's */
-    r = cli("run cart --forces forces.csv --interp linear --final --step 0.005 --tspan 0:1 %s",
-            inits);
+    r = cli_in_tmpdir(
+        "run cart --forces forces.csv --interp linear --final --step 0.005 --tspan 0:1 %s", inits);
     static const char head[] = "t,sX,sY,theta,dsX,dsY,omega\n1,";
     CHECK(r.status == 0 && strncmp(r.out, head, strlen(head)) == 0,
           "linear: %d '%s' %s", r.status, r.out, r.err);
@@ -920,48 +868,48 @@ static void test_cli_bad_input(void **state)
 {
     (void)state;
     char path[512];
-    snprintf(path, sizeof path, "%s/bad.csv", tmpdir);
+    snprintf(path, sizeof path, "%s/bad.csv", cli_tmpdir);
     write_text(path, "t,Fx,Fy\n0,1,2\n0.01,oops,3\n");
-    cli_result r = cli("run cart --forces bad.csv");
+    cli_result r = cli_in_tmpdir("run cart --forces bad.csv");
     CHECK(r.status == 2, "malformed CSV: exit %d", r.status);
     assert_non_null(strstr(r.err, "bad.csv:3"));
     assert_non_null(strstr(r.err, "'oops' is not a number"));
     assert_string_equal(r.out, "");
     cli_free(&r);
-    r = cli("run cart --forces missing.csv");
+    r = cli_in_tmpdir("run cart --forces missing.csv");
     CHECK(r.status == 2 && strstr(r.err, "cannot open missing.csv"), "missing: %d %s", r.status,
           r.err);
     cli_free(&r);
     write_text(path, "t,Fx\n0,1\n0.01,2\n");
-    r = cli("run cart --forces bad.csv");
+    r = cli_in_tmpdir("run cart --forces bad.csv");
     CHECK(r.status == 2 && strstr(r.err, "no column 'Fy'") && strstr(r.err, "t,Fx,Fy"),
           "missing column: %d %s", r.status, r.err);
     cli_free(&r);
     write_text(path, "t,Fx,Fy\n0,1,2\n0.01,2,3\n0.01,2,3\n");
-    r = cli("run cart --forces bad.csv");
+    r = cli_in_tmpdir("run cart --forces bad.csv");
     CHECK(r.status == 2 && strstr(r.err, "bad.csv:4") && strstr(r.err, "does not increase"),
           "time: %d %s", r.status, r.err);
     cli_free(&r);
     write_text(path, "t,Fx,Fy\n0,1,2\n0.01,2,3\n");
-    r = cli("run pendulum --forces bad.csv");
+    r = cli_in_tmpdir("run pendulum --forces bad.csv");
     CHECK(r.status == 2 && strstr(r.err, "takes no input") && strstr(r.err, "cart"),
           "pendulum: %d %s", r.status, r.err);
     cli_free(&r);
-    r = cli("run cart --forces bad.csv --interp cubic");
+    r = cli_in_tmpdir("run cart --forces bad.csv --interp cubic");
     CHECK(r.status == 2 && strstr(r.err, "'cubic'") && strstr(r.err, "hold, linear"),
           "interp: %d %s", r.status, r.err);
     cli_free(&r);
-    r = cli("run cart --interp linear");
+    r = cli_in_tmpdir("run cart --interp linear");
     CHECK(r.status == 2 && strstr(r.err, "--forces"), "interp alone: %d %s", r.status, r.err);
     cli_free(&r);
-    r = cli("inverse plane");
+    r = cli_in_tmpdir("inverse plane");
     CHECK(r.status == 2 && strstr(r.err, "accepted: cart"), "inverse plane: %d %s", r.status,
           r.err);
     cli_free(&r);
-    r = cli("inverse cart --set N=0");
+    r = cli_in_tmpdir("inverse cart --set N=0");
     CHECK(r.status == 2 && strstr(r.err, "N=0"), "N=0: %d %s", r.status, r.err);
     cli_free(&r);
-    r = cli("inverse cart --set speed=3");
+    r = cli_in_tmpdir("inverse cart --set speed=3");
     CHECK(r.status == 2 && strstr(r.err, "'speed'") && strstr(r.err, "v0"), "speed: %d %s",
           r.status, r.err);
     cli_free(&r);
@@ -970,7 +918,7 @@ static void test_cli_bad_input(void **state)
 static void test_cli_info_and_help(void **state)
 {
     (void)state;
-    cli_result r = cli("info cart");
+    cli_result r = cli_in_tmpdir("info cart");
     CHECK(r.status == 0, "info: %d", r.status);
     static const char *const words[] = {"sX", "omega", "length_cart", "width_cart", "mu",
                                         "lambda", "slip_margin", "constraint_residual", "heun",
@@ -978,11 +926,11 @@ static void test_cli_info_and_help(void **state)
     for (size_t i = 0; i < sizeof words / sizeof words[0]; i++)
         CHECK(strstr(r.out, words[i]) != NULL, "info cart lacks '%s'", words[i]);
     cli_free(&r);
-    r = cli("inverse --help");
+    r = cli_in_tmpdir("inverse --help");
     CHECK(r.status == 0 && strstr(r.out, "Example") && strstr(r.out, "--forces"),
           "inverse --help: %d", r.status);
     cli_free(&r);
-    r = cli("run --help");
+    r = cli_in_tmpdir("run --help");
     CHECK(r.status == 0 && strstr(r.out, "--forces FILE") && strstr(r.out, "--interp"),
           "run --help: %d", r.status);
     cli_free(&r);
@@ -991,21 +939,14 @@ static void test_cli_info_and_help(void **state)
 static int setup(void **state)
 {
     (void)state;
-    const char *base = getenv("TMPDIR");
-    snprintf(tmpdir, sizeof tmpdir, "%s/dynkit_cart_XXXXXX", base && *base ? base : "/tmp");
-    return mkdtemp(tmpdir) ? 0 : -1;
+    return cli_make_tmpdir("cart");
 }
 
 static int teardown(void **state)
 {
     (void)state;
-    static const char *const files[] = {"out", "err", "forces.csv", "bad.csv", "table.csv"};
-    char path[512];
-    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
-        snprintf(path, sizeof path, "%s/%s", tmpdir, files[i]);
-        unlink(path);
-    }
-    return rmdir(tmpdir);
+    static const char *const files[] = {"forces.csv", "bad.csv", "table.csv", NULL};
+    return cli_teardown_files(files);
 }
 
 int main(void)

@@ -21,89 +21,22 @@
 #include <cmocka.h>
 
 #include "dynkit/models.h"
+#include "test_cli_run.h"
 #include "test_util.h"
 
 /* ---- running the binary ---- */
 
-static char tmpdir[256];
-
-typedef struct cli_result {
-    int status;  /* exit status, or -1 if it did not exit normally */
-    char *out;   /* stdout (NUL-terminated) */
-    size_t out_len;
-    char *err;   /* stderr */
-} cli_result;
-
-static char *read_file(const char *path, size_t *len)
-{
-    FILE *f = fopen(path, "rb");
-    size_t cap = 4096, used = 0;
-    char *buf = malloc(cap);
-    assert_non_null(buf);
-    if (f) {
-        size_t got;
-        while ((got = fread(buf + used, 1, cap - used - 1, f)) > 0) {
-            used += got;
-            if (cap - used < 2) {
-                cap *= 2;
-                buf = realloc(buf, cap);
-                assert_non_null(buf);
-            }
-        }
-        fclose(f);
-    }
-    buf[used] = '\0';
-    if (len)
-        *len = used;
-    return buf;
-}
-
-static void cli_free(cli_result *r)
-{
-    free(r->out);
-    free(r->err);
-    r->out = r->err = NULL;
-}
-
-/* Run `dynkit ARGS` (ARGS as for the shell), capturing stdout and stderr. */
-static cli_result cli(const char *fmt, ...)
-{
-    char args[1024], cmd[2048];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(args, sizeof args, fmt, ap);
-    va_end(ap);
-    snprintf(cmd, sizeof cmd, "'%s' %s >'%s/out' 2>'%s/err' </dev/null", DYNKIT_CLI, args, tmpdir,
-             tmpdir);
-    cli_result r;
-    int w = system(cmd);
-    r.status = (w != -1 && WIFEXITED(w)) ? WEXITSTATUS(w) : -1;
-    char path[512];
-    snprintf(path, sizeof path, "%s/out", tmpdir);
-    r.out = read_file(path, &r.out_len);
-    snprintf(path, sizeof path, "%s/err", tmpdir);
-    r.err = read_file(path, NULL);
-    return r;
-}
-
 static int setup(void **state)
 {
     (void)state;
-    const char *base = getenv("TMPDIR");
-    snprintf(tmpdir, sizeof tmpdir, "%s/dynkit_cli_XXXXXX", base && *base ? base : "/tmp");
-    return mkdtemp(tmpdir) ? 0 : -1;
+    return cli_make_tmpdir("cli");
 }
 
 static int teardown(void **state)
 {
     (void)state;
-    static const char *const files[] = {"out", "err", "file.csv"};
-    char path[512];
-    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
-        snprintf(path, sizeof path, "%s/%s", tmpdir, files[i]);
-        unlink(path);
-    }
-    return rmdir(tmpdir);
+    static const char *const files[] = {"file.csv", NULL};
+    return cli_teardown_files(files);
 }
 
 /* ---- CSV ---- */
@@ -372,7 +305,7 @@ static void test_output_file_same_bytes(void **state)
 {
     (void)state;
     char path[512];
-    snprintf(path, sizeof path, "%s/file.csv", tmpdir);
+    snprintf(path, sizeof path, "%s/file.csv", cli_tmpdir);
     cli_result to_stdout = cli("run vanderpol --method heun --step 0.01 --tspan 0:2");
     cli_result to_file = cli("run vanderpol --method heun --step 0.01 --tspan 0:2 --output '%s'",
                              path);
@@ -380,7 +313,7 @@ static void test_output_file_same_bytes(void **state)
     assert_int_equal(to_file.status, 0);
     assert_int_equal(to_file.out_len, 0);
     size_t len;
-    char *bytes = read_file(path, &len);
+    char *bytes = cli_read_file(path, &len);
     assert_true(len > 0);
     assert_int_equal(len, to_stdout.out_len);
     assert_memory_equal(bytes, to_stdout.out, len);

@@ -1,6 +1,7 @@
 /* Running the built dynkit binary (DYNKIT_CLI) from a test: stdout and stderr captured into
- * a temporary directory made by cli_setup. Shared by the CLI tests of the solvers and of
- * verify (test_cli.c has its own older copy). Needs _POSIX_C_SOURCE >= 200809L. */
+ * a temporary directory made by cli_setup (or cli_make_tmpdir), or stdout read through a
+ * pipe (cli_capture). Shared by every test that runs the command line; it uses nothing of
+ * the library. Needs _POSIX_C_SOURCE >= 200809L. */
 #ifndef DYNKIT_TEST_CLI_RUN_H
 #define DYNKIT_TEST_CLI_RUN_H
 
@@ -61,16 +62,18 @@ static inline const char *cli_path(const char *name)
     return path;
 }
 
-/* Run `dynkit ARGS` (ARGS as for the shell), capturing stdout and stderr. */
-static inline cli_result cli(const char *fmt, ...)
+/* Run `dynkit ARGS` (ARGS already formatted), capturing stdout and stderr. With in_tmpdir
+ * the command runs from inside the temporary directory, so relative file names in ARGS are
+ * there. */
+static inline cli_result cli_run_args(int in_tmpdir, const char *args)
 {
-    char args[2048], cmd[4096];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(args, sizeof args, fmt, ap);
-    va_end(ap);
-    snprintf(cmd, sizeof cmd, "'%s' %s >'%s/out' 2>'%s/err' </dev/null", DYNKIT_CLI, args,
-             cli_tmpdir, cli_tmpdir);
+    char cmd[4096];
+    if (in_tmpdir)
+        snprintf(cmd, sizeof cmd, "cd '%s' && '%s' %s >out 2>err </dev/null", cli_tmpdir,
+                 DYNKIT_CLI, args);
+    else
+        snprintf(cmd, sizeof cmd, "'%s' %s >'%s/out' 2>'%s/err' </dev/null", DYNKIT_CLI, args,
+                 cli_tmpdir, cli_tmpdir);
     cli_result r;
     int w = system(cmd);
     r.status = (w != -1 && WIFEXITED(w)) ? WEXITSTATUS(w) : -1;
@@ -82,12 +85,41 @@ static inline cli_result cli(const char *fmt, ...)
     return r;
 }
 
+/* Run `dynkit ARGS` (ARGS as for the shell), capturing stdout and stderr. */
+static inline cli_result cli(const char *fmt, ...)
+{
+    char args[2048];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(args, sizeof args, fmt, ap);
+    va_end(ap);
+    return cli_run_args(0, args);
+}
+
+/* As cli, run from inside the temporary directory. */
+static inline cli_result cli_in_tmpdir(const char *fmt, ...)
+{
+    char args[2048];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(args, sizeof args, fmt, ap);
+    va_end(ap);
+    return cli_run_args(1, args);
+}
+
+/* Make the temporary directory $TMPDIR/dynkit_<tag>_XXXXXX ($TMPDIR defaults to /tmp). */
+static inline int cli_make_tmpdir(const char *tag)
+{
+    const char *base = getenv("TMPDIR");
+    snprintf(cli_tmpdir, sizeof cli_tmpdir, "%s/dynkit_%s_XXXXXX", base && *base ? base : "/tmp",
+             tag);
+    return mkdtemp(cli_tmpdir) ? 0 : -1;
+}
+
 static inline int cli_setup(void **state)
 {
     (void)state;
-    const char *base = getenv("TMPDIR");
-    snprintf(cli_tmpdir, sizeof cli_tmpdir, "%s/dynkit_test_XXXXXX", base && *base ? base : "/tmp");
-    return mkdtemp(cli_tmpdir) ? 0 : -1;
+    return cli_make_tmpdir("test");
 }
 
 /* Remove the temporary directory and the files named (NULL-terminated) plus out and err. */
@@ -98,6 +130,31 @@ static inline int cli_teardown_files(const char *const *files)
     for (int i = 0; files && files[i]; i++)
         unlink(cli_path(files[i]));
     return rmdir(cli_tmpdir);
+}
+
+/* Run cmd through the shell and return its stdout (malloc'd); *status gets the exit status
+ * (-1 if it did not exit normally). */
+static inline char *cli_capture(const char *cmd, int *status)
+{
+    FILE *f = popen(cmd, "r");
+    size_t cap = 1 << 14, len = 0;
+    char *buf = malloc(cap);
+    if (!f || !buf)
+        abort();
+    size_t got;
+    while ((got = fread(buf + len, 1, cap - len - 1, f)) > 0) {
+        len += got;
+        if (cap - len < 2) {
+            cap *= 2;
+            buf = realloc(buf, cap);
+            if (!buf)
+                abort();
+        }
+    }
+    buf[len] = '\0';
+    int st = pclose(f);
+    *status = (st != -1 && WIFEXITED(st)) ? WEXITSTATUS(st) : -1;
+    return buf;
 }
 
 /* 1 if `dynkit methods` lists cvode (dynkit built with SUNDIALS). */

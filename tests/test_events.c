@@ -23,6 +23,7 @@
 #include <cmocka.h>
 
 #include "dynkit/dynkit.h"
+#include "test_cli_run.h"
 #include "test_util.h"
 
 /* Complete elliptic integral of the first kind, K(k) = pi / (2 AGM(1, sqrt(1 - k^2))). */
@@ -423,77 +424,17 @@ static void test_cart_slip(void **state)
 
 /* ---- the command line ---- */
 
-static char tmpdir[256];
-
-typedef struct cli_result {
-    int status;
-    char *out, *err;
-} cli_result;
-
-static char *slurp(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    size_t cap = 1 << 16, used = 0;
-    char *buf = malloc(cap);
-    assert_non_null(buf);
-    if (f) {
-        size_t got;
-        while ((got = fread(buf + used, 1, cap - used - 1, f)) > 0) {
-            used += got;
-            if (cap - used < 2) {
-                cap *= 2;
-                buf = realloc(buf, cap);
-                assert_non_null(buf);
-            }
-        }
-        fclose(f);
-    }
-    buf[used] = '\0';
-    return buf;
-}
-
-static cli_result cli(const char *fmt, ...)
-{
-    char args[1024], cmd[2048], path[512];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(args, sizeof args, fmt, ap);
-    va_end(ap);
-    snprintf(cmd, sizeof cmd, "cd '%s' && '%s' %s >out 2>err </dev/null", tmpdir, DYNKIT_CLI, args);
-    cli_result r;
-    int w = system(cmd);
-    r.status = (w != -1 && WIFEXITED(w)) ? WEXITSTATUS(w) : -1;
-    snprintf(path, sizeof path, "%s/out", tmpdir);
-    r.out = slurp(path);
-    snprintf(path, sizeof path, "%s/err", tmpdir);
-    r.err = slurp(path);
-    return r;
-}
-
-static void cli_free(cli_result *r)
-{
-    free(r->out);
-    free(r->err);
-}
-
 static int setup(void **state)
 {
     (void)state;
-    const char *base = getenv("TMPDIR");
-    snprintf(tmpdir, sizeof tmpdir, "%s/dynkit_events_XXXXXX", base && *base ? base : "/tmp");
-    return mkdtemp(tmpdir) ? 0 : -1;
+    return cli_make_tmpdir("events");
 }
 
 static int teardown(void **state)
 {
     (void)state;
-    static const char *const files[] = {"out", "err", "events.csv", "times.txt"};
-    char path[512];
-    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
-        snprintf(path, sizeof path, "%s/%s", tmpdir, files[i]);
-        unlink(path);
-    }
-    return rmdir(tmpdir);
+    static const char *const files[] = {"events.csv", "times.txt", NULL};
+    return cli_teardown_files(files);
 }
 
 static int count_lines(const char *s)
@@ -510,8 +451,9 @@ static void test_cli_events_and_stats(void **state)
     dyn_pendulum_par par;
     double y0[2], T4;
     pendulum_setup(HOMEWORK_AMPLITUDE, &par, y0, &T4); /* the model's default start */
-    cli_result r = cli("run pendulum --method dp45 --rtol 1e-12 --atol 1e-12 --tspan 0:10 "
-                       "--event turn --event bottom:stop --events-output events.csv --stats --final");
+    cli_result r = cli_in_tmpdir(
+        "run pendulum --method dp45 --rtol 1e-12 --atol 1e-12 --tspan 0:10 "
+        "--event turn --event bottom:stop --events-output events.csv --stats --final");
     CHECK(r.status == 0, "exit %d: %s", r.status, r.err);
     /* --stats: one line of counts */
     long steps, acc, rej, rhs;
@@ -523,8 +465,8 @@ static void test_cli_events_and_stats(void **state)
     assert_true(steps == acc + rej && rhs == 6 * steps + 2);
     /* the run ended at the bottom: the final row is the event */
     char path[512];
-    snprintf(path, sizeof path, "%s/events.csv", tmpdir);
-    char *ev = slurp(path);
+    snprintf(path, sizeof path, "%s/events.csv", cli_tmpdir);
+    char *ev = cli_read_file(path, NULL);
     assert_true(strncmp(ev, "event,t,phi,dphi\n", 17) == 0);
     assert_int_equal(count_lines(ev), 3);
     double t_turn, p1, d1, t_bottom, p2, d2;
@@ -541,7 +483,7 @@ static void test_cli_events_and_stats(void **state)
     cli_free(&r);
 
     /* without --events-output the events go to stderr */
-    r = cli("run pendulum --method rk4 --step 0.01 --tspan 0:5 --event turn");
+    r = cli_in_tmpdir("run pendulum --method rk4 --step 0.01 --tspan 0:5 --event turn");
     assert_int_equal(r.status, 0);
     assert_non_null(strstr(r.err, "event turn"));
     assert_int_equal(count_lines(r.out), 1 + 501); /* the samples are unchanged */
@@ -551,7 +493,8 @@ static void test_cli_events_and_stats(void **state)
 static void test_cli_times(void **state)
 {
     (void)state;
-    cli_result r = cli("run pendulum --method dop853 --rtol 1e-12 --atol 1e-12 --times 0,0.25,1,2.5");
+    cli_result r = cli_in_tmpdir(
+        "run pendulum --method dop853 --rtol 1e-12 --atol 1e-12 --times 0,0.25,1,2.5");
     CHECK(r.status == 0, "exit %d: %s", r.status, r.err);
     double t[4], phi, dphi;
     const char *p = strchr(r.out, '\n') + 1;
@@ -563,18 +506,18 @@ static void test_cli_times(void **state)
     cli_free(&r);
     /* @FILE: one time per line */
     char path[512];
-    snprintf(path, sizeof path, "%s/times.txt", tmpdir);
+    snprintf(path, sizeof path, "%s/times.txt", cli_tmpdir);
     FILE *f = fopen(path, "w");
     fputs("# times\n0.5\n\n1.5\n", f);
     fclose(f);
-    r = cli("run vanderpol --method dp45 --times @times.txt");
+    r = cli_in_tmpdir("run vanderpol --method dp45 --times @times.txt");
     CHECK(r.status == 0, "exit %d: %s", r.status, r.err);
     assert_int_equal(count_lines(r.out), 3);
     assert_non_null(strstr(r.out, "\n0.5,"));
     assert_non_null(strstr(r.out, "\n1.5,"));
     cli_free(&r);
     /* default output of an adaptive run: the model's step grid, like [0:Ts:endtime] */
-    r = cli("run vanderpol --method ode45 --rtol 1e-6");
+    r = cli_in_tmpdir("run vanderpol --method ode45 --rtol 1e-6");
     assert_int_equal(r.status, 0);
     assert_int_equal(count_lines(r.out), 1 + 1501);
     cli_free(&r);
@@ -582,7 +525,7 @@ static void test_cli_times(void **state)
 
 static void check_usage(const char *args, const char *const *words)
 {
-    cli_result r = cli("%s", args);
+    cli_result r = cli_in_tmpdir("%s", args);
     CHECK(r.status == 2, "'%s': exit %d (stderr %s)", args, r.status, r.err);
     CHECK(r.out[0] == '\0', "'%s': stdout not empty", args);
     for (const char *const *w = words; *w; w++)
@@ -613,7 +556,7 @@ static void test_cli_usage_errors(void **state)
 static void test_cli_methods_columns(void **state)
 {
     (void)state;
-    cli_result r = cli("methods");
+    cli_result r = cli_in_tmpdir("methods");
     assert_int_equal(r.status, 0);
     assert_non_null(strstr(r.out, "STIFF"));
     const char *dp = strstr(r.out, "\ndp45 ");

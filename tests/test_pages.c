@@ -19,67 +19,11 @@
 
 #include <cmocka.h>
 
+#include "test_cli_run.h"
 #include "test_util.h"
 
-static char tmpdir[256];
-
-typedef struct run_result {
-    int status;
-    char *out, *err;
-} run_result;
-
-static char *slurp(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    size_t cap = 1 << 16, used = 0, got;
-    char *buf = malloc(cap);
-    assert_non_null(buf);
-    while (f && (got = fread(buf + used, 1, cap - used - 1, f)) > 0) {
-        used += got;
-        if (cap - used < 2) {
-            cap *= 2;
-            buf = realloc(buf, cap);
-            assert_non_null(buf);
-        }
-    }
-    if (f)
-        fclose(f);
-    buf[used] = '\0';
-    return buf;
-}
-
-/* Run `dynkit ARGS` with %s replaced by the temporary directory where given. */
-static run_result dynkit(const char *fmt, ...)
-{
-    char args[2048], cmd[4096], path[512];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(args, sizeof args, fmt, ap);
-    va_end(ap);
-    snprintf(cmd, sizeof cmd, "'%s' %s >'%s/out' 2>'%s/err' </dev/null", DYNKIT_CLI, args, tmpdir,
-             tmpdir);
-    run_result r;
-    int w = system(cmd);
-    r.status = (w != -1 && WIFEXITED(w)) ? WEXITSTATUS(w) : -1;
-    snprintf(path, sizeof path, "%s/out", tmpdir);
-    r.out = slurp(path);
-    snprintf(path, sizeof path, "%s/err", tmpdir);
-    r.err = slurp(path);
-    return r;
-}
-
-static void done(run_result *r)
-{
-    free(r->out);
-    free(r->err);
-}
-
-static char *file_in_tmp(const char *name)
-{
-    char path[512];
-    snprintf(path, sizeof path, "%s/%s", tmpdir, name);
-    return slurp(path);
-}
+/* A file of the temporary directory (malloc'd). */
+static char *file_in_tmp(const char *name) { return cli_read_file(cli_path(name), NULL); }
 
 static int count(const char *text, const char *what)
 {
@@ -129,22 +73,15 @@ static const char *element_text(const char *svg, const char *cls, char *buf, siz
 static int setup(void **state)
 {
     (void)state;
-    const char *base = getenv("TMPDIR");
-    snprintf(tmpdir, sizeof tmpdir, "%s/dynkit_pages_XXXXXX", base && *base ? base : "/tmp");
-    return mkdtemp(tmpdir) ? 0 : -1;
+    return cli_make_tmpdir("pages");
 }
 
 static int teardown(void **state)
 {
     (void)state;
-    static const char *const files[] = {"out",         "err",        "a.svg",     "b.svg", "c.svg",
-                                        "report.html", "plane.html", "cart.html", "x.html"};
-    char path[512];
-    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
-        snprintf(path, sizeof path, "%s/%s", tmpdir, files[i]);
-        unlink(path);
-    }
-    return rmdir(tmpdir);
+    static const char *const files[] = {"a.svg",      "b.svg",     "c.svg",  "report.html",
+                                        "plane.html", "cart.html", "x.html", NULL};
+    return cli_teardown_files(files);
 }
 
 /* ---- plot ---- */
@@ -152,11 +89,11 @@ static int teardown(void **state)
 static void test_plot_svg_has_axes_labels_units_and_every_sample(void **state)
 {
     (void)state;
-    run_result r = dynkit("plot pendulum --method rk4 --step 0.01 --tspan 0:2 --y phi "
-                          "--output '%s/a.svg'",
-                          tmpdir);
+    cli_result r = cli("plot pendulum --method rk4 --step 0.01 --tspan 0:2 --y phi "
+                       "--output '%s/a.svg'",
+                       cli_tmpdir);
     CHECK(r.status == 0, "plot exit %d: %s", r.status, r.err);
-    done(&r);
+    cli_free(&r);
     char *svg = file_in_tmp("a.svg"), text[256];
     CHECK(strncmp(svg, "<?xml", 5) == 0 && strstr(svg, "<svg xmlns=\"http://www.w3.org/2000/svg\""),
           "not an SVG document: %.80s", svg);
@@ -181,11 +118,11 @@ static void test_plot_svg_has_axes_labels_units_and_every_sample(void **state)
 static void test_plot_several_names_units_and_compare(void **state)
 {
     (void)state;
-    run_result r = dynkit("plot pendulum --method rk4 --step 0.01 --tspan 0:1 --y phi,dphi "
-                          "--compare euler:0.02 --output '%s/b.svg'",
-                          tmpdir);
+    cli_result r = cli("plot pendulum --method rk4 --step 0.01 --tspan 0:1 --y phi,dphi "
+                       "--compare euler:0.02 --output '%s/b.svg'",
+                       cli_tmpdir);
     CHECK(r.status == 0, "plot exit %d: %s", r.status, r.err);
-    done(&r);
+    cli_free(&r);
     char *svg = file_in_tmp("b.svg"), text[256];
     CHECK(strcmp(element_text(svg, "ylabel", text, sizeof text), "phi [rad], dphi [rad/s]") == 0,
           "y label '%s'", text);
@@ -197,23 +134,23 @@ static void test_plot_several_names_units_and_compare(void **state)
           "legend does not name the runs");
     free(svg);
     /* another abscissa, and an extra output as a name */
-    r = dynkit("plot vanderpol --x y1 --y y2 --output '%s/c.svg'", tmpdir);
+    r = cli("plot vanderpol --x y1 --y y2 --output '%s/c.svg'", cli_tmpdir);
     CHECK(r.status == 0, "phase plot exit %d: %s", r.status, r.err);
-    done(&r);
+    cli_free(&r);
     svg = file_in_tmp("c.svg");
     CHECK(strstr(element_text(svg, "xlabel", text, sizeof text), "y1 [") == text, "x label '%s'",
           text);
     free(svg);
-    r = dynkit("plot pendulum --y energy,height");
+    r = cli("plot pendulum --y energy,height");
     CHECK(r.status == 0 && strstr(r.out, "energy [J], height [m]"), "outputs as names: %d %s",
           r.status, r.err);
-    done(&r);
+    cli_free(&r);
 }
 
 static void test_plot_long_run_is_thinned(void **state)
 {
     (void)state;
-    run_result r = dynkit("plot vanderpol --step 0.001 --tspan 0:100 --y y1");
+    cli_result r = cli("plot vanderpol --step 0.001 --tspan 0:100 --y y1");
     CHECK(r.status == 0, "plot exit %d: %s", r.status, r.err);
     long n = polyline_points(r.out, 0);
     CHECK(n <= 2000 && n >= 1900, "%ld points of 100001 samples (want at most 2000)", n);
@@ -225,31 +162,31 @@ static void test_plot_long_run_is_thinned(void **state)
         last--;
     double x1 = strtod(last, NULL);
     CHECK(x0 > 84.0 && x0 < 120.0 && x1 > 700.0 && x1 < 776.0, "ends at %g and %g px", x0, x1);
-    done(&r);
+    cli_free(&r);
 }
 
 static void test_plot_bad_names_exit_2(void **state)
 {
     (void)state;
-    run_result r = dynkit("plot vanderpol --y y1,nope --output '%s/a.svg'", tmpdir);
+    cli_result r = cli("plot vanderpol --y y1,nope --output '%s/a.svg'", cli_tmpdir);
     CHECK(r.status == 2, "bad --y exit %d", r.status);
     CHECK(strstr(r.err, "'nope'") && strstr(r.err, "accepted: t, y1, y2"),
           "message does not list the names: %s", r.err);
     CHECK(r.out[0] == '\0', "stdout not empty");
-    done(&r);
-    r = dynkit("plot pendulum --x nope --y phi");
+    cli_free(&r);
+    r = cli("plot pendulum --x nope --y phi");
     CHECK(r.status == 2 && strstr(r.err, "t, phi, dphi, energy, height"), "bad --x: %d %s",
           r.status, r.err);
-    done(&r);
-    r = dynkit("plot pendulum");
+    cli_free(&r);
+    r = cli("plot pendulum");
     CHECK(r.status == 2 && strstr(r.err, "missing --y"), "missing --y: %d %s", r.status, r.err);
-    done(&r);
-    r = dynkit("plot pendulum --y");
+    cli_free(&r);
+    r = cli("plot pendulum --y");
     CHECK(r.status == 2, "--y without a value: %d", r.status);
-    done(&r);
-    r = dynkit("plot nomodel --y x");
+    cli_free(&r);
+    r = cli("plot nomodel --y x");
     CHECK(r.status == 2 && strstr(r.err, "unknown model"), "unknown model: %d", r.status);
-    done(&r);
+    cli_free(&r);
 }
 
 /* ---- --compare ---- */
@@ -268,30 +205,30 @@ static void test_compare_is_validated(void **state)
         {"rk4:", "the step ''"},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
-        run_result r =
-            dynkit("animate vanderpol --compare '%s' --output '%s/x.html'", bad[i].value, tmpdir);
+        cli_result r =
+            cli("animate vanderpol --compare '%s' --output '%s/x.html'", bad[i].value, cli_tmpdir);
         CHECK(r.status == 2, "--compare %s: exit %d", bad[i].value, r.status);
         CHECK(strstr(r.err, bad[i].says) != NULL, "--compare %s: message '%s'", bad[i].value,
               r.err);
         if (i == 0)
             CHECK(strstr(r.err, "rk4") && strstr(r.err, "euler"),
                   "unknown method: message does not list the methods: %s", r.err);
-        done(&r);
+        cli_free(&r);
     }
-    run_result r = dynkit("animate vanderpol --compare");
+    cli_result r = cli("animate vanderpol --compare");
     CHECK(r.status == 2 && strstr(r.err, "--compare needs a value"), "missing value: %d %s",
           r.status, r.err);
-    done(&r);
-    r = dynkit("animate vanderpol --final");
+    cli_free(&r);
+    r = cli("animate vanderpol --final");
     CHECK(r.status == 2, "--final accepted by animate");
-    done(&r);
-    r = dynkit("plot vanderpol --y y1 --compare euler --compare rk4:0.001 --compare heun:pi/100");
+    cli_free(&r);
+    r = cli("plot vanderpol --y y1 --compare euler --compare rk4:0.001 --compare heun:pi/100");
     CHECK(r.status == 0 && count(r.out, "<polyline") == 4, "good --compare: %d %s", r.status,
           r.err);
     CHECK(strstr(r.out, "heun, h = 0.0314159 s") != NULL, "step pi/100 not read");
-    done(&r);
+    cli_free(&r);
     /* adaptive methods: samples on the output grid of STEP (default the run's step) */
-    r = dynkit("plot vanderpol --y y1 --compare dp45 --compare rodas4:0.05");
+    r = cli("plot vanderpol --y y1 --compare dp45 --compare rodas4:0.05");
     CHECK(r.status == 0 && count(r.out, "<polyline") == 3, "adaptive --compare: %d %s", r.status,
           r.err);
     CHECK(polyline_points(r.out, 1) == 1501 && polyline_points(r.out, 2) == 301,
@@ -299,7 +236,7 @@ static void test_compare_is_validated(void **state)
           polyline_points(r.out, 2));
     CHECK(strstr(r.out, "dp45, rtol = 0.001, atol = 1e-06") != NULL,
           "the adaptive run's label does not give its tolerances");
-    done(&r);
+    cli_free(&r);
 }
 
 /* ---- pages ---- */
@@ -323,39 +260,39 @@ static void check_self_contained(const char *html, const char *what)
 static void test_report_html_is_self_contained(void **state)
 {
     (void)state;
-    run_result r = dynkit("report --html '%s/report.html'", tmpdir);
+    cli_result r = cli("report --html '%s/report.html'", cli_tmpdir);
     CHECK(r.status == 0, "report --html exit %d: %s", r.status, r.err);
     CHECK(r.out[0] == '\0', "report --html also printed to stdout");
-    done(&r);
+    cli_free(&r);
     char *html = file_in_tmp("report.html");
     check_self_contained(html, "report");
     CHECK(strlen(html) < 1000000, "report page of %zu bytes", strlen(html));
     /* the answers as `report --json` gives them, and the runs behind them */
-    r = dynkit("report --json");
+    r = cli("report --json");
     CHECK(r.status == 0, "report --json");
     const char *key = strstr(r.out, "\"plane.distance_m\": ");
     CHECK(key != NULL, "no plane.distance_m");
     char want[128];
     snprintf(want, sizeof want, "%.*s", (int)strcspn(key, ",\n"), key);
     CHECK(strstr(html, want) != NULL, "page lacks '%s'", want);
-    done(&r);
+    cli_free(&r);
     static const char *const series[] = {
         "\"pendulum.nonlinear\":", "\"vanderpol.steps\":", "\"plane.euler\":",
         "\"plane.compare\":",      "\"cart.forward\":",    "\"cart.prescribed\":"};
     for (size_t i = 0; i < sizeof series / sizeof series[0]; i++)
         CHECK(strstr(html, series[i]) != NULL, "page lacks the series %s", series[i]);
     free(html);
-    r = dynkit("report --html");
+    r = cli("report --html");
     CHECK(r.status == 2, "--html without a file: %d", r.status);
-    done(&r);
+    cli_free(&r);
 }
 
 static void test_animate_pages(void **state)
 {
     (void)state;
-    run_result r = dynkit("animate plane --compare euler --output '%s/plane.html'", tmpdir);
+    cli_result r = cli("animate plane --compare euler --output '%s/plane.html'", cli_tmpdir);
     CHECK(r.status == 0, "animate plane exit %d: %s", r.status, r.err);
-    done(&r);
+    cli_free(&r);
     char *html = file_in_tmp("plane.html");
     check_self_contained(html, "plane");
     CHECK(strstr(html, "\"label\":\"rk4, h = 0.01 s\"") &&
@@ -365,20 +302,20 @@ static void test_animate_pages(void **state)
               strstr(html, "\"height_fin\":0.5"),
           "the plane's geometry is not in the page");
     free(html);
-    r = dynkit("animate cart --set length_cart=3 --output '%s/cart.html'", tmpdir);
+    r = cli("animate cart --set length_cart=3 --output '%s/cart.html'", cli_tmpdir);
     CHECK(r.status == 0, "animate cart exit %d: %s", r.status, r.err);
-    done(&r);
+    cli_free(&r);
     html = file_in_tmp("cart.html");
     check_self_contained(html, "cart");
     CHECK(strstr(html, "\"length_cart\":3") != NULL, "--set is not in the page");
     free(html);
-    r = dynkit("animate vanderpol");
+    r = cli("animate vanderpol");
     CHECK(r.status == 0 && strncmp(r.out, "<!DOCTYPE html>", 15) == 0,
           "without --output the page goes to stdout");
-    done(&r);
-    r = dynkit("animate vanderpol --step 0.001 --tspan 0:100 --output '%s/x.html'", tmpdir);
+    cli_free(&r);
+    r = cli("animate vanderpol --step 0.001 --tspan 0:100 --output '%s/x.html'", cli_tmpdir);
     CHECK(r.status == 0, "long run");
-    done(&r);
+    cli_free(&r);
     html = file_in_tmp("x.html");
     CHECK(strlen(html) < 200000, "a long run is not thinned: %zu bytes", strlen(html));
     CHECK(strstr(html, "\"samples\":100001") != NULL, "the page does not say how many samples");

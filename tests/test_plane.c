@@ -28,6 +28,7 @@
 #include "dynkit/dynkit.h"
 #include "dynkit/mech.h"
 #include "dynkit/plane.h"
+#include "test_cli_run.h"
 
 /* Fail with both values when |a - b| > tol. */
 #define assert_close(a, b, tol)                                                              \
@@ -562,22 +563,13 @@ static void test_outputs(void **state)
 
 /* ---- the command line ---- */
 
+/* The stdout of cmd, which must exit with status 0. */
 static char *capture(const char *cmd)
 {
-    FILE *f = popen(cmd, "r");
-    assert_non_null(f);
-    size_t cap = 1 << 16, len = 0;
-    char *buf = malloc(cap);
-    assert_non_null(buf);
-    size_t got;
-    while ((got = fread(buf + len, 1, cap - 1 - len, f)) > 0) {
-        len += got;
-        if (len + 1 >= cap)
-            break;
-    }
-    buf[len] = '\0';
-    assert_int_equal(pclose(f), 0);
-    return buf;
+    int status;
+    char *out = cli_capture(cmd, &status);
+    assert_int_equal(status, 0);
+    return out;
 }
 
 static void test_cli(void **state)

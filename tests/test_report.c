@@ -40,6 +40,8 @@
 #include <string.h>
 #include <sys/wait.h>
 
+#include "test_cli_run.h" /* running the binary only: nothing of the library */
+
 #define PI 3.14159265358979323846
 
 /* ======================================================================================
@@ -247,32 +249,6 @@ static const double *json_array(const json_doc *doc, const char *key, int len)
     return json_get(doc, key, J_ARRAY, len)->arr;
 }
 
-/* ---- running the CLI ---- */
-
-/* Runs cmd through the shell; returns its stdout (malloc'd) and sets *status to the exit
- * status (-1 if it did not exit normally). */
-static char *run_capture(const char *cmd, int *status)
-{
-    FILE *f = popen(cmd, "r");
-    assert_non_null(f);
-    size_t cap = 1 << 14, len = 0;
-    char *buf = malloc(cap);
-    assert_non_null(buf);
-    size_t got;
-    while ((got = fread(buf + len, 1, cap - len - 1, f)) > 0) {
-        len += got;
-        if (cap - len < 2) {
-            cap *= 2;
-            buf = realloc(buf, cap);
-            assert_non_null(buf);
-        }
-    }
-    buf[len] = '\0';
-    int st = pclose(f);
-    *status = (st != -1 && WIFEXITED(st)) ? WEXITSTATUS(st) : -1;
-    return buf;
-}
-
 /* ---- comparisons: print every one (report, independent, difference), fail at the end ---- */
 
 typedef struct tally {
@@ -428,7 +404,7 @@ static void final_state(integrator method, odefun f, double t0, double tend, dou
 static int setup_report(void **state)
 {
     int status;
-    char *text = run_capture("'" DYNKIT_CLI "' report --json 2>/dev/null", &status);
+    char *text = cli_capture("'" DYNKIT_CLI "' report --json 2>/dev/null", &status);
     json_doc *doc = calloc(1, sizeof *doc);
     if (!doc || status != 0 || json_parse(text, doc) != 0) {
         fprintf(stderr, "dynkit report --json: exit status %d, %s\n%s\n", status,
@@ -966,7 +942,7 @@ static void test_text_report(void **state)
 {
     (void)state;
     int status;
-    char *text = run_capture("'" DYNKIT_CLI "' report 2>/dev/null", &status);
+    char *text = cli_capture("'" DYNKIT_CLI "' report 2>/dev/null", &status);
     assert_int_equal(status, 0);
     static const char *const labels[] = {"1a", "1b", "1c", "1d", "1e", "1f",
                                          "2",  "3",  "4a", "4b", "4c", "4d"};
@@ -984,11 +960,11 @@ static void test_bogus_option(void **state)
 {
     (void)state;
     int status;
-    char *out = run_capture("'" DYNKIT_CLI "' report --bogus 2>/dev/null", &status);
+    char *out = cli_capture("'" DYNKIT_CLI "' report --bogus 2>/dev/null", &status);
     assert_int_equal(status, 2);
     assert_string_equal(out, ""); /* nothing on stdout: the message goes to stderr */
     free(out);
-    out = run_capture("'" DYNKIT_CLI "' report --bogus 2>&1 >/dev/null", &status);
+    out = cli_capture("'" DYNKIT_CLI "' report --bogus 2>&1 >/dev/null", &status);
     assert_int_equal(status, 2);
     assert_non_null(strstr(out, "--bogus"));
     free(out);

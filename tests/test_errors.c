@@ -36,6 +36,17 @@ static int decay_rhs(double t, const double *y, double *dydt, void *par)
 
 /* ---- bad arguments ---- */
 
+/* dyn_fixed_solve from 0 to t1 with every sample recorded in logbuf (set up by the caller). */
+static int solve_logged(const dyn_tableau *m, const dyn_system *sys, double t1, double h,
+                        const double *y0, double *y, dyn_result *res)
+{
+    double work[TEST_WORK];
+    dyn_fixed_opts opts = {0};
+    opts.output = sample_log_output;
+    opts.output_ctx = &logbuf;
+    return dyn_fixed_solve(m, sys, 0.0, t1, h, y0, y, work, &opts, res);
+}
+
 static void check_arg_refused(int rc, const dyn_result *res, long calls, const char *what)
 {
     CHECK(rc == DYN_ERR_ARG && res->status == DYN_ERR_ARG, "%s: status %d, expected %d", what, rc,
@@ -136,12 +147,9 @@ static void test_rhs_failure_stops_with_last_good_state(void **state)
         long calls = 0;
         double work[TEST_WORK], y[2];
         dyn_system sys = {failing_rhs, 2, &calls};
-        dyn_fixed_opts opts = {0};
-        opts.output = sample_log_output;
-        opts.output_ctx = &logbuf;
         sample_log_init(&logbuf, 2);
         dyn_result res;
-        int rc = dyn_fixed_solve(m, &sys, 0.0, 1.0, h, y0, y, work, &opts, &res);
+        int rc = solve_logged(m, &sys, 1.0, h, y0, y, &res);
         CHECK(rc == DYN_ERR_RHS && res.status == DYN_ERR_RHS, "%s: status %d", m->name, rc);
         assert_int_equal(res.rhs_status, 7);
         CHECK(res.fail_t == dyn_grid_time(&g, fail_step) + m->c[fail_stage] * h,
@@ -210,14 +218,11 @@ static void test_blow_up_stops_nonfinite(void **state)
 {
     (void)state;
     const double h = 0.01, y0[1] = {1.0};
-    double work[TEST_WORK], y[1];
+    double y[1];
     dyn_system sys = {square_rhs, 1, NULL};
-    dyn_fixed_opts opts = {0};
-    opts.output = sample_log_output;
-    opts.output_ctx = &logbuf;
     sample_log_init(&logbuf, 1);
     dyn_result res;
-    int rc = dyn_fixed_solve(dyn_method_find("euler"), &sys, 0.0, 2.0, h, y0, y, work, &opts, &res);
+    int rc = solve_logged(dyn_method_find("euler"), &sys, 2.0, h, y0, y, &res);
     CHECK(rc == DYN_ERR_NONFINITE, "status %d (%s), y = %g", rc, res.message, y[0]);
     assert_int_equal(res.fail_index, 0);
     /* Euler lags the exact blow-up at t = 1 (its growth y + h y^2 is slower than 1/(1-t)). */
@@ -325,15 +330,11 @@ static void test_nonfinite_initial_state_refused(void **state)
     const double bad[][2] = {{1.0, NAN}, {INFINITY, 0.0}, {0.0, -INFINITY}};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         long calls = 0;
-        double work[TEST_WORK], y[2];
+        double y[2];
         dyn_system sys = {decay_rhs, 2, &calls};
-        dyn_fixed_opts opts = {0};
-        opts.output = sample_log_output;
-        opts.output_ctx = &logbuf;
         sample_log_init(&logbuf, 2);
         dyn_result res;
-        int rc = dyn_fixed_solve(dyn_method_find("rk4"), &sys, 0.0, 1.0, 0.1, bad[i], y, work,
-                                 &opts, &res);
+        int rc = solve_logged(dyn_method_find("rk4"), &sys, 1.0, 0.1, bad[i], y, &res);
         CHECK(rc == DYN_ERR_NONFINITE, "initial (%g, %g): status %d", bad[i][0], bad[i][1], rc);
         assert_int_equal(res.fail_index, isfinite(bad[i][0]) ? 1 : 0);
         assert_true(res.fail_t == 0.0);
@@ -351,16 +352,12 @@ static void test_output_callback_stops(void **state)
     const double h = 0.1, y0[2] = {1.0, 1.0};
     for (long stop_at = 0; stop_at <= 3; stop_at += 3) {
         long calls = 0;
-        double work[TEST_WORK], y[2];
+        double y[2];
         dyn_system sys = {decay_rhs, 2, &calls};
-        dyn_fixed_opts opts = {0};
-        opts.output = sample_log_output;
-        opts.output_ctx = &logbuf;
         sample_log_init(&logbuf, 2);
         logbuf.stop_at = stop_at;
         dyn_result res;
-        int rc = dyn_fixed_solve(dyn_method_find("rk4"), &sys, 0.0, 1.0, h, y0, y, work, &opts,
-                                 &res);
+        int rc = solve_logged(dyn_method_find("rk4"), &sys, 1.0, h, y0, y, &res);
         assert_int_equal(rc, DYN_STOPPED);
         assert_true(strlen(res.message) > 0);
         assert_int_equal(logbuf.count, stop_at + 1);

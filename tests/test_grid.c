@@ -25,6 +25,18 @@ static dyn_grid plan_ok(double t0, double t1, double h, dyn_end_policy end)
     return g;
 }
 
+/* The shape of a plan: samples, whole steps, a partial last step, ending at t1. */
+static void check_plan(const dyn_grid *g, long samples, long whole_steps, int partial,
+                       int ends_at_t1)
+{
+    CHECK(g->samples == samples && g->whole_steps == whole_steps && g->partial == partial &&
+              g->ends_at_t1 == ends_at_t1,
+          "grid %g:%g h=%g: samples %ld, whole steps %ld, partial %d, ends at t1 %d; expected "
+          "%ld, %ld, %d, %d",
+          g->t0, g->t1, g->h, g->samples, g->whole_steps, g->partial, g->ends_at_t1, samples,
+          whole_steps, partial, ends_at_t1);
+}
+
 /* Every sample time is t0 + k*h computed, except a last sample that is t1 by contract. */
 static void check_sample_times(const dyn_grid *g)
 {
@@ -46,10 +58,7 @@ static void test_homework_span_has_1501_samples(void **state)
 {
     (void)state;
     dyn_grid g = plan_ok(0.0, 15.0, 0.01, DYN_END_EXACT);
-    assert_int_equal(g.samples, 1501);
-    assert_int_equal(g.whole_steps, 1500);
-    assert_int_equal(g.partial, 0);
-    assert_int_equal(g.ends_at_t1, 1);
+    check_plan(&g, 1501, 1500, 0, 1);
     assert_true(dyn_grid_time(&g, 1500) == 15.0);
     check_sample_times(&g);
     /* The same with the grid policy: a whole span does not lose its last sample. */
@@ -90,20 +99,14 @@ static void test_partial_last_step(void **state)
 {
     (void)state;
     dyn_grid e = plan_ok(0.0, 1.0, 0.3, DYN_END_EXACT);
-    assert_int_equal(e.samples, 5);
-    assert_int_equal(e.whole_steps, 3);
-    assert_int_equal(e.partial, 1);
-    assert_int_equal(e.ends_at_t1, 1);
+    check_plan(&e, 5, 3, 1, 1);
     const double expect[5] = {0.0, 0.3, 2.0 * 0.3, 3.0 * 0.3, 1.0};
     for (long k = 0; k < 5; k++)
         assert_true(same_bits(dyn_grid_time(&e, k), expect[k]));
     check_sample_times(&e);
 
     dyn_grid g = plan_ok(0.0, 1.0, 0.3, DYN_END_GRID);
-    assert_int_equal(g.samples, 4);
-    assert_int_equal(g.whole_steps, 3);
-    assert_int_equal(g.partial, 0);
-    assert_int_equal(g.ends_at_t1, 0);
+    check_plan(&g, 4, 3, 0, 0);
     for (long k = 0; k < 4; k++)
         assert_true(same_bits(dyn_grid_time(&g, k), expect[k]));
     check_sample_times(&g);

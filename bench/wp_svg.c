@@ -1,9 +1,11 @@
 /* wp_svg.c — work-precision diagrams as SVG (wp_svg.h): error on a logarithmic x axis,
  * cost (time or right-hand-side calls) on a logarithmic y axis, one polyline with circle
  * markers per solver. Sizes, fonts, frame, grid and palette are those of cli/svg_plot.c so
- * that the pictures in docs/ look like the command line's plots.
+ * that the pictures in docs/ look like the command line's plots; the axes are drawn by the
+ * same code (cli/svg_axes.c).
  */
 #include "wp_svg.h"
+#include "svg_axes.h"
 
 #include <math.h>
 #include <string.h>
@@ -48,22 +50,6 @@ static double px_y(const logaxis *a, double v)
     return H - BOTTOM - (log10(v) - a->lo) / (a->hi - a->lo) * (H - TOP - BOTTOM);
 }
 
-static int text(FILE *out, const char *s)
-{
-    int bad = 0;
-    for (; s && *s; s++) {
-        if (*s == '<')
-            bad |= fputs("&lt;", out) < 0;
-        else if (*s == '>')
-            bad |= fputs("&gt;", out) < 0;
-        else if (*s == '&')
-            bad |= fputs("&amp;", out) < 0;
-        else
-            bad |= fputc(*s, out) == EOF;
-    }
-    return bad;
-}
-
 /* 10^k as text: 1, 10, 100, 1000, otherwise 1e-5 */
 static void decade_label(int k, char *buf, size_t size)
 {
@@ -78,52 +64,21 @@ static int axes(FILE *out, const wp_plot *p, const logaxis *ax, const logaxis *a
     int bad = 0;
     char label[32];
     const double x0 = LEFT, x1 = W - RIGHT, y0 = H - BOTTOM, y1 = TOP;
-    bad |= fputs("<g class=\"grid\" stroke=\"#e4e4e4\" stroke-width=\"1\">\n", out) < 0;
+    bad |= svg_grid_begin(out);
     for (int k = (int)ax->lo; k <= (int)ax->hi; k++)
-        bad |= fprintf(out, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/>\n",
-                       px_x(ax, pow(10.0, k)), y0, px_x(ax, pow(10.0, k)), y1) < 0;
+        bad |= svg_line(out, px_x(ax, pow(10.0, k)), y0, px_x(ax, pow(10.0, k)), y1);
     for (int k = (int)ay->lo; k <= (int)ay->hi; k++)
-        bad |= fprintf(out, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/>\n", x0,
-                       px_y(ay, pow(10.0, k)), x1, px_y(ay, pow(10.0, k))) < 0;
-    bad |= fputs("</g>\n", out) < 0;
-    bad |= fprintf(out,
-                   "<rect class=\"frame\" x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" "
-                   "fill=\"none\" stroke=\"#333\" stroke-width=\"1\"/>\n",
-                   x0, y1, x1 - x0, y0 - y1) < 0;
-    bad |= fputs("<g class=\"ticks\" font-size=\"12\" fill=\"#333\" stroke=\"#333\">\n", out) < 0;
+        bad |= svg_line(out, x0, px_y(ay, pow(10.0, k)), x1, px_y(ay, pow(10.0, k)));
+    bad |= svg_frame_and_ticks_begin(out, x0, x1, y0, y1);
     for (int k = (int)ax->lo; k <= (int)ax->hi; k++) {
-        const double x = px_x(ax, pow(10.0, k));
         decade_label(k, label, sizeof label);
-        bad |= fprintf(out,
-                       "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/><text x=\"%.2f\" "
-                       "y=\"%.2f\" text-anchor=\"middle\" stroke=\"none\">%s</text>\n",
-                       x, y0, x, y0 + 5, x, y0 + 19, label) < 0;
+        bad |= svg_xtick(out, px_x(ax, pow(10.0, k)), y0, label);
     }
     for (int k = (int)ay->lo; k <= (int)ay->hi; k++) {
-        const double y = px_y(ay, pow(10.0, k));
         decade_label(k, label, sizeof label);
-        bad |= fprintf(out,
-                       "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/><text x=\"%.2f\" "
-                       "y=\"%.2f\" text-anchor=\"end\" stroke=\"none\">%s</text>\n",
-                       x0 - 5, y, x0, y, x0 - 8, y + 4, label) < 0;
+        bad |= svg_ytick(out, x0, px_y(ay, pow(10.0, k)), label);
     }
-    bad |= fputs("</g>\n", out) < 0;
-    bad |= fprintf(out,
-                   "<text class=\"xlabel\" x=\"%.2f\" y=\"%.2f\" font-size=\"14\" "
-                   "text-anchor=\"middle\">",
-                   (x0 + x1) / 2, H - 18) < 0;
-    bad |= text(out, p->xlabel);
-    bad |= fprintf(out,
-                   "</text>\n<text class=\"ylabel\" x=\"0\" y=\"0\" font-size=\"14\" "
-                   "text-anchor=\"middle\" transform=\"translate(20 %.2f) rotate(-90)\">",
-                   (y0 + y1) / 2) < 0;
-    bad |= text(out, p->ylabel);
-    bad |= fprintf(out,
-                   "</text>\n<text class=\"title\" x=\"%.2f\" y=\"26\" font-size=\"16\" "
-                   "text-anchor=\"middle\">",
-                   W / 2) < 0;
-    bad |= text(out, p->title);
-    bad |= fputs("</text>\n", out) < 0;
+    bad |= svg_titles(out, x0, x1, y0, y1, W, H, p->xlabel, p->ylabel, p->title);
     return bad;
 }
 
@@ -187,7 +142,7 @@ static int legend(FILE *out, const wp_plot *p)
                        "stroke-width=\"%s\"%s/><text x=\"%.2f\" y=\"%.2f\">",
                        x + 8, ly - 4, x + 30, ly - 4, color, l->emphasis ? "2.2" : "1.4",
                        l->emphasis ? "" : " stroke-dasharray=\"6 3\"", x + 36, ly) < 0;
-        bad |= text(out, l->label);
+        bad |= svg_text_escaped(out, l->label);
         bad |= fputs("</text>\n", out) < 0;
     }
     bad |= fputs("</g>\n", out) < 0;

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "pages.h"
+#include "svg_axes.h"
 
 #define W 800.0
 #define H 500.0
@@ -65,22 +66,6 @@ static void tick_range(const axis *a, long *first, long *last)
     *last = (long)floor(a->hi / a->step + 1e-9);
 }
 
-static int text_escaped(FILE *out, const char *s)
-{
-    int bad = 0;
-    for (; s && *s; s++) {
-        if (*s == '<')
-            bad |= fputs("&lt;", out) < 0;
-        else if (*s == '>')
-            bad |= fputs("&gt;", out) < 0;
-        else if (*s == '&')
-            bad |= fputs("&amp;", out) < 0;
-        else
-            bad |= fputc(*s, out) == EOF;
-    }
-    return bad;
-}
-
 /* Tick k * step as text, with no rounding noise (0.30000000000000004) and no "-0". */
 static void tick_label(double v, double step, char *buf, size_t size)
 {
@@ -119,54 +104,23 @@ static int axes(FILE *out, const cli_svg_plot *p, const axis *ax, const axis *ay
     long kx0, kx1, ky0, ky1;
     tick_range(ax, &kx0, &kx1);
     tick_range(ay, &ky0, &ky1);
-    bad |= fputs("<g class=\"grid\" stroke=\"#e4e4e4\" stroke-width=\"1\">\n", out) < 0;
+    bad |= svg_grid_begin(out);
     for (long k = kx0; k <= kx1; k++)
-        bad |= fprintf(out, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/>\n",
-                       to_px_x(ax, k * ax->step), y0, to_px_x(ax, k * ax->step), y1) < 0;
+        bad |= svg_line(out, to_px_x(ax, k * ax->step), y0, to_px_x(ax, k * ax->step), y1);
     for (long k = ky0; k <= ky1; k++)
-        bad |= fprintf(out, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/>\n", x0,
-                       to_px_y(ay, k * ay->step), x1, to_px_y(ay, k * ay->step)) < 0;
-    bad |= fputs("</g>\n", out) < 0;
-    bad |= fprintf(out,
-                   "<rect class=\"frame\" x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" "
-                   "fill=\"none\" stroke=\"#333\" stroke-width=\"1\"/>\n",
-                   x0, y1, x1 - x0, y0 - y1) < 0;
-    bad |= fputs("<g class=\"ticks\" font-size=\"12\" fill=\"#333\" stroke=\"#333\">\n", out) < 0;
+        bad |= svg_line(out, x0, to_px_y(ay, k * ay->step), x1, to_px_y(ay, k * ay->step));
+    bad |= svg_frame_and_ticks_begin(out, x0, x1, y0, y1);
     for (long k = kx0; k <= kx1; k++) {
         const double v = (double)k * ax->step;
         tick_label(v, ax->step, label, sizeof label);
-        bad |=
-            fprintf(out,
-                    "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/><text x=\"%.2f\" "
-                    "y=\"%.2f\" text-anchor=\"middle\" stroke=\"none\">%s</text>\n",
-                    to_px_x(ax, v), y0, to_px_x(ax, v), y0 + 5, to_px_x(ax, v), y0 + 19, label) < 0;
+        bad |= svg_xtick(out, to_px_x(ax, v), y0, label);
     }
     for (long k = ky0; k <= ky1; k++) {
         const double v = (double)k * ay->step;
         tick_label(v, ay->step, label, sizeof label);
-        bad |= fprintf(out,
-                       "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/><text x=\"%.2f\" "
-                       "y=\"%.2f\" text-anchor=\"end\" stroke=\"none\">%s</text>\n",
-                       x0 - 5, to_px_y(ay, v), x0, to_px_y(ay, v), x0 - 8, to_px_y(ay, v) + 4,
-                       label) < 0;
+        bad |= svg_ytick(out, x0, to_px_y(ay, v), label);
     }
-    bad |= fputs("</g>\n", out) < 0;
-    bad |= fprintf(out,
-                   "<text class=\"xlabel\" x=\"%.2f\" y=\"%.2f\" font-size=\"14\" "
-                   "text-anchor=\"middle\">",
-                   (x0 + x1) / 2, H - 18) < 0;
-    bad |= text_escaped(out, p->xlabel);
-    bad |= fprintf(out,
-                   "</text>\n<text class=\"ylabel\" x=\"0\" y=\"0\" font-size=\"14\" "
-                   "text-anchor=\"middle\" transform=\"translate(20 %.2f) rotate(-90)\">",
-                   (y0 + y1) / 2) < 0;
-    bad |= text_escaped(out, p->ylabel);
-    bad |= fprintf(out,
-                   "</text>\n<text class=\"title\" x=\"%.2f\" y=\"26\" font-size=\"16\" "
-                   "text-anchor=\"middle\">",
-                   W / 2) < 0;
-    bad |= text_escaped(out, p->title);
-    bad |= fputs("</text>\n", out) < 0;
+    bad |= svg_titles(out, x0, x1, y0, y1, W, H, p->xlabel, p->ylabel, p->title);
     return bad;
 }
 
@@ -215,7 +169,7 @@ static int legend(FILE *out, const cli_svg_plot *p)
                        "stroke-width=\"2\"/><text x=\"%.2f\" y=\"%.2f\">",
                        x + 8, ly - 4, x + 30, ly - 4,
                        palette[i % (int)(sizeof palette / sizeof *palette)], x + 36, ly) < 0;
-        bad |= text_escaped(out, p->lines[i].label);
+        bad |= svg_text_escaped(out, p->lines[i].label);
         bad |= fputs("</text>\n", out) < 0;
     }
     bad |= fputs("</g>\n", out) < 0;

@@ -1,0 +1,79 @@
+/* Grid, frame, ticks and titles of an SVG plot (svg_axes.h). */
+#include "svg_axes.h"
+
+int svg_text_escaped(FILE *out, const char *s)
+{
+    int bad = 0;
+    for (; s && *s; s++) {
+        if (*s == '<')
+            bad |= fputs("&lt;", out) < 0;
+        else if (*s == '>')
+            bad |= fputs("&gt;", out) < 0;
+        else if (*s == '&')
+            bad |= fputs("&amp;", out) < 0;
+        else
+            bad |= fputc(*s, out) == EOF;
+    }
+    return bad;
+}
+
+int svg_grid_begin(FILE *out)
+{
+    return fputs("<g class=\"grid\" stroke=\"#e4e4e4\" stroke-width=\"1\">\n", out) < 0;
+}
+
+int svg_line(FILE *out, double xa, double ya, double xb, double yb)
+{
+    return fprintf(out, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/>\n", xa, ya, xb,
+                   yb) < 0;
+}
+
+int svg_frame_and_ticks_begin(FILE *out, double x0, double x1, double y0, double y1)
+{
+    int bad = fputs("</g>\n", out) < 0;
+    bad |= fprintf(out,
+                   "<rect class=\"frame\" x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" "
+                   "fill=\"none\" stroke=\"#333\" stroke-width=\"1\"/>\n",
+                   x0, y1, x1 - x0, y0 - y1) < 0;
+    bad |= fputs("<g class=\"ticks\" font-size=\"12\" fill=\"#333\" stroke=\"#333\">\n", out) < 0;
+    return bad;
+}
+
+int svg_xtick(FILE *out, double x, double y0, const char *label)
+{
+    return fprintf(out,
+                   "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/><text x=\"%.2f\" "
+                   "y=\"%.2f\" text-anchor=\"middle\" stroke=\"none\">%s</text>\n",
+                   x, y0, x, y0 + 5, x, y0 + 19, label) < 0;
+}
+
+int svg_ytick(FILE *out, double x0, double y, const char *label)
+{
+    return fprintf(out,
+                   "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/><text x=\"%.2f\" "
+                   "y=\"%.2f\" text-anchor=\"end\" stroke=\"none\">%s</text>\n",
+                   x0 - 5, y, x0, y, x0 - 8, y + 4, label) < 0;
+}
+
+int svg_titles(FILE *out, double x0, double x1, double y0, double y1, double w, double h,
+               const char *xlabel, const char *ylabel, const char *title)
+{
+    int bad = fputs("</g>\n", out) < 0;
+    bad |= fprintf(out,
+                   "<text class=\"xlabel\" x=\"%.2f\" y=\"%.2f\" font-size=\"14\" "
+                   "text-anchor=\"middle\">",
+                   (x0 + x1) / 2, h - 18) < 0;
+    bad |= svg_text_escaped(out, xlabel);
+    bad |= fprintf(out,
+                   "</text>\n<text class=\"ylabel\" x=\"0\" y=\"0\" font-size=\"14\" "
+                   "text-anchor=\"middle\" transform=\"translate(20 %.2f) rotate(-90)\">",
+                   (y0 + y1) / 2) < 0;
+    bad |= svg_text_escaped(out, ylabel);
+    bad |= fprintf(out,
+                   "</text>\n<text class=\"title\" x=\"%.2f\" y=\"26\" font-size=\"16\" "
+                   "text-anchor=\"middle\">",
+                   w / 2) < 0;
+    bad |= svg_text_escaped(out, title);
+    bad |= fputs("</text>\n", out) < 0;
+    return bad;
+}

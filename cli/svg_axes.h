@@ -1,0 +1,31 @@
+/* The parts of an SVG plot's axes that the command line's plots (svg_plot.c) and the
+ * benchmark's work-precision diagrams (bench/wp_svg.c) draw alike: grid lines, the frame,
+ * ticks with their numbers, axis labels and title, and escaped text. Positions are in
+ * pixels; the plot area is x0..x1 (left to right) by y1..y0 (top to bottom). Each function
+ * returns non-zero when a write failed. Only stdio: no part of the library. */
+#ifndef DYNKIT_SVG_AXES_H
+#define DYNKIT_SVG_AXES_H
+
+#include <stdio.h>
+
+/* s with <, > and & escaped (nothing for NULL). */
+int svg_text_escaped(FILE *out, const char *s);
+
+/* Opens the group of grid lines. */
+int svg_grid_begin(FILE *out);
+
+/* One line from (xa, ya) to (xb, yb). */
+int svg_line(FILE *out, double xa, double ya, double xb, double yb);
+
+/* Closes the grid, draws the frame around the plot area and opens the group of ticks. */
+int svg_frame_and_ticks_begin(FILE *out, double x0, double x1, double y0, double y1);
+
+/* A tick below the x axis (at y0) at x, and one left of the y axis (at x0) at y. */
+int svg_xtick(FILE *out, double x, double y0, const char *label);
+int svg_ytick(FILE *out, double x0, double y, const char *label);
+
+/* Closes the ticks and writes the axis labels and the title of a w by h picture. */
+int svg_titles(FILE *out, double x0, double x1, double y0, double y1, double w, double h,
+               const char *xlabel, const char *ylabel, const char *title);
+
+#endif

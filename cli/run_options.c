@@ -1,10 +1,13 @@
 /* The run options shared by run-like commands: model, method, span, step, parameters,
- * initial state and output choices (the command-line contract of the design). */
+ * initial state and output choices (the command-line contract of the design): the help
+ * text, the option loop and the checks across options. Option values are parsed in
+ * run_values.c, --forces tables read in run_input.c. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
+#include "run_parse.h"
 
 void cli_run_options_help(FILE *out)
 {
@@ -63,290 +66,6 @@ void cli_run_options_help(FILE *out)
           out);
 }
 
-/* Split "NAME=VALUE"; returns 0 and the parts, or -1. */
-static int split_assignment(const char *text, char *name, size_t size, double *value)
-{
-    const char *eq = strchr(text, '=');
-    if (!eq || eq == text || (size_t)(eq - text) >= size)
-        return -1;
-    memcpy(name, text, (size_t)(eq - text));
-    name[eq - text] = '\0';
-    return cli_parse_number(eq + 1, value);
-}
-
-static void list_vars(char *buf, size_t size, const dyn_var *vars, int n)
-{
-    size_t used = 0;
-    buf[0] = '\0';
-    for (int i = 0; i < n && used < size; i++)
-        used += (size_t)snprintf(buf + used, size - used, "%s%s", i ? ", " : "", vars[i].name);
-}
-
-static void list_params(char *buf, size_t size, const dyn_model *m)
-{
-    size_t used = 0;
-    buf[0] = '\0';
-    for (int i = 0; i < m->n_params && used < size; i++)
-        used += (size_t)snprintf(buf + used, size - used, "%s%s", i ? ", " : "",
-                                 m->params[i].name);
-}
-
-static int parse_tspan(const char *command, const char *text, double *t0, double *t1)
-{
-    char first[64];
-    const char *colon = strchr(text, ':');
-    if (!colon || (size_t)(colon - text) >= sizeof first)
-        return cli_usage_error(command, "--tspan '%s' is not accepted: give T0:T1 in s, e.g. 0:15",
-                               text);
-    memcpy(first, text, (size_t)(colon - text));
-    first[colon - text] = '\0';
-    if (cli_parse_number(first, t0) || cli_parse_number(colon + 1, t1))
-        return cli_usage_error(command,
-                               "--tspan '%s' is not accepted: T0 and T1 must be finite numbers "
-                               "(T0:T1 in s, e.g. 0:15)",
-                               text);
-    if (!(*t1 > *t0))
-        return cli_usage_error(command, "--tspan '%s' is not accepted: T1 must be greater than T0",
-                               text);
-    return CLI_OK;
-}
-
-/* --set/--init are applied after all options are read, so record them first. */
-typedef struct assignment {
-    const char *text;
-    int is_param;
-} assignment;
-
-static int apply_assignment(const char *command, cli_run *run, const assignment *as)
-{
-    char name[64], list[512];
-    double value;
-    const dyn_model *m = run->model;
-    const char *opt = as->is_param ? "--set" : "--init";
-    if (split_assignment(as->text, name, sizeof name, &value))
-        return cli_usage_error(command,
-                               "%s '%s' is not accepted: give NAME=VALUE with a finite number",
-                               opt, as->text);
-    if (as->is_param) {
-        int i = dyn_model_param_index(m, name);
-        if (i < 0) {
-            list_params(list, sizeof list, m);
-            return cli_usage_error(command, "--set: model %s has no parameter '%s' (accepted: %s)",
-                                   m->name, name, list);
-        }
-        dyn_model_set_param(m, run->par, i, value);
-    } else {
-        int i = dyn_model_state_index(m, name);
-        if (i < 0) {
-            list_vars(list, sizeof list, m->states, m->n_states);
-            return cli_usage_error(command, "--init: model %s has no state '%s' (accepted: %s)",
-                                   m->name, name, list);
-        }
-        run->y0[i] = value;
-    }
-    return CLI_OK;
-}
-
-/* Which options were given (the defaults of step and span depend on --forces). */
-enum {
-    GIVEN_STEP = 1,
-    GIVEN_TSPAN = 2,
-    GIVEN_INTERP = 4,
-    GIVEN_RTOL = 8,
-    GIVEN_ATOL = 16,
-    GIVEN_MAX_STEP = 32,
-    GIVEN_INITIAL_STEP = 64,
-    GIVEN_MAX_STEPS = 128
-};
-
-/* A tolerance: one number >= 0 (*scalar), or one per state, comma-separated (*vec, owned). */
-static int parse_tolerance(const char *command, const char *opt, const char *text, int n,
-                           double *scalar, double **vec)
-{
-    free(*vec);
-    *vec = NULL;
-    if (!strchr(text, ',')) {
-        if (cli_parse_number(text, scalar) || !(*scalar > 0))
-            return cli_usage_error(command,
-                                   "%s '%s' is not accepted: give a number > 0 (e.g. 1e-6), or "
-                                   "one per state separated by commas",
-                                   opt, text);
-        return CLI_OK;
-    }
-    double *v = calloc((size_t)n, sizeof *v);
-    if (!v)
-        return cli_usage_error(command, "out of memory");
-    const char *p = text;
-    int count = 0;
-    while (*p) {
-        char item[64];
-        const char *comma = strchr(p, ',');
-        size_t len = comma ? (size_t)(comma - p) : strlen(p);
-        if (len >= sizeof item || count >= n)
-            break;
-        memcpy(item, p, len);
-        item[len] = '\0';
-        if (cli_parse_number(item, &v[count]) || !(v[count] >= 0)) {
-            free(v);
-            return cli_usage_error(command,
-                                   "%s '%s' is not accepted: '%s' is not a number >= 0", opt,
-                                   text, item);
-        }
-        count++;
-        if (!comma) {
-            p += len;
-            break;
-        }
-        p = comma + 1;
-    }
-    if (count != n || *p) {
-        free(v);
-        return cli_usage_error(command,
-                               "%s '%s' is not accepted: give one value, or %d values (one per "
-                               "state) separated by commas",
-                               opt, text, n);
-    }
-    *vec = v;
-    return CLI_OK;
-}
-
-/* Append a time to a growing list. */
-static int push_time(double **times, long *count, long *cap, double t)
-{
-    if (*count == *cap) {
-        long ncap = *cap ? 2 * *cap : 64;
-        double *nt = realloc(*times, (size_t)ncap * sizeof *nt);
-        if (!nt)
-            return -1;
-        *times = nt;
-        *cap = ncap;
-    }
-    (*times)[(*count)++] = t;
-    return 0;
-}
-
-/* --times: "t1,t2,..." or "@FILE" (one time per line; blank lines and lines starting with
- * '#' are skipped). The times must not decrease. */
-static int parse_times(const char *command, const char *text, cli_run *run)
-{
-    long cap = 0;
-    free(run->times);
-    run->times = NULL;
-    run->n_times = 0;
-    if (text[0] == '@') {
-        FILE *f = fopen(text + 1, "r");
-        if (!f)
-            return cli_usage_error(command, "--times: cannot read '%s'", text + 1);
-        char line[256];
-        long lineno = 0;
-        while (fgets(line, sizeof line, f)) {
-            lineno++;
-            char *p = line, *e = line + strlen(line);
-            while (*p == ' ' || *p == '\t')
-                p++;
-            while (e > p && (e[-1] == '\n' || e[-1] == '\r' || e[-1] == ' ' || e[-1] == '\t'))
-                *--e = '\0';
-            if (!*p || *p == '#')
-                continue;
-            double t;
-            if (cli_parse_number(p, &t)) {
-                fclose(f);
-                return cli_usage_error(command,
-                                       "--times: line %ld of %s ('%s') is not a time in s",
-                                       lineno, text + 1, p);
-            }
-            if (push_time(&run->times, &run->n_times, &cap, t)) {
-                fclose(f);
-                return cli_usage_error(command, "out of memory");
-            }
-        }
-        fclose(f);
-    } else {
-        const char *p = text;
-        while (1) {
-            char item[64];
-            const char *comma = strchr(p, ',');
-            size_t len = comma ? (size_t)(comma - p) : strlen(p);
-            double t;
-            if (len >= sizeof item)
-                return cli_usage_error(command, "--times: '%.20s...' is too long", p);
-            memcpy(item, p, len);
-            item[len] = '\0';
-            if (cli_parse_number(item, &t))
-                return cli_usage_error(command,
-                                       "--times '%s' is not accepted: '%s' is not a time in s "
-                                       "(give times separated by commas, or @FILE)",
-                                       text, item);
-            if (push_time(&run->times, &run->n_times, &cap, t))
-                return cli_usage_error(command, "out of memory");
-            if (!comma)
-                break;
-            p = comma + 1;
-        }
-    }
-    if (run->n_times == 0)
-        return cli_usage_error(command, "--times %s: no times given", text);
-    for (long k = 1; k < run->n_times; k++)
-        if (run->times[k] < run->times[k - 1])
-            return cli_usage_error(command,
-                                   "--times: the times must not decrease (%.17g follows %.17g)",
-                                   run->times[k], run->times[k - 1]);
-    return CLI_OK;
-}
-
-/* --event NAME[:stop]: the model's event as a copy, terminal when :stop. */
-static int add_event(const char *command, const char *text, cli_run *run)
-{
-    const dyn_model *m = run->model;
-    char name[64], list[512];
-    const char *colon = strchr(text, ':');
-    size_t len = colon ? (size_t)(colon - text) : strlen(text);
-    int stop = 0;
-    if (colon) {
-        if (strcmp(colon + 1, "stop") != 0)
-            return cli_usage_error(command,
-                                   "--event '%s' is not accepted: give NAME or NAME:stop", text);
-        stop = 1;
-    }
-    size_t used = 0;
-    list[0] = '\0';
-    for (int i = 0; i < m->n_events && used < sizeof list; i++)
-        used += (size_t)snprintf(list + used, sizeof list - used, "%s%s", i ? ", " : "",
-                                 m->events[i].name);
-    if (len >= sizeof name || m->n_events <= 0)
-        return cli_usage_error(command, "--event: model %s has no event '%.*s' (%s%s)", m->name,
-                               (int)(len < 60 ? len : 60), text,
-                               m->n_events > 0 ? "accepted: " : "it has no events",
-                               m->n_events > 0 ? list : "");
-    memcpy(name, text, len);
-    name[len] = '\0';
-    int found = -1;
-    for (int i = 0; i < m->n_events; i++)
-        if (strcmp(m->events[i].name, name) == 0)
-            found = i;
-    if (found < 0)
-        return cli_usage_error(command, "--event: model %s has no event '%s' (accepted: %s)",
-                               m->name, name, list);
-    dyn_event *ev = realloc(run->events, (size_t)(run->n_events + 1) * sizeof *ev);
-    if (!ev)
-        return cli_usage_error(command, "out of memory");
-    run->events = ev;
-    ev[run->n_events] = m->events[found];
-    ev[run->n_events].terminal = stop;
-    run->n_events++;
-    return CLI_OK;
-}
-
-/* A step-like option: a finite number > 0. */
-static int parse_positive(const char *command, const char *opt, const char *text, double *out)
-{
-    if (cli_parse_number(text, out) || !(*out > 0))
-        return cli_usage_error(command,
-                               "%s '%s' is not accepted: give a time in s, a finite number > 0",
-                               opt, text);
-    return CLI_OK;
-}
-
 static int parse_option(const char *command, int argc, char **argv, int *i, cli_run *run,
                         assignment *as, int *n_as, const char **method_name, unsigned *given)
 {
@@ -370,7 +89,7 @@ static int parse_option(const char *command, int argc, char **argv, int *i, cli_
                                    v);
         *given |= GIVEN_STEP;
     } else if (OPT("tspan")) {
-        if (r < 0 || parse_tspan(command, v, &run->t0, &run->t1))
+        if (r < 0 || cli_parse_tspan(command, v, &run->t0, &run->t1))
             return CLI_USAGE;
         *given |= GIVEN_TSPAN;
     } else if (OPT("end")) {
@@ -424,24 +143,24 @@ static int parse_option(const char *command, int argc, char **argv, int *i, cli_
                                    "trace, a whole number >= 0",
                                    v);
     } else if (OPT("rtol")) {
-        if (r < 0 || parse_tolerance(command, "--rtol", v, run->model->n_states, &run->rtol,
+        if (r < 0 || cli_parse_tolerance(command, "--rtol", v, run->model->n_states, &run->rtol,
                                      &run->rtolv))
             return CLI_USAGE;
         *given |= GIVEN_RTOL;
     } else if (OPT("atol")) {
-        if (r < 0 || parse_tolerance(command, "--atol", v, run->model->n_states, &run->atol,
+        if (r < 0 || cli_parse_tolerance(command, "--atol", v, run->model->n_states, &run->atol,
                                      &run->atolv))
             return CLI_USAGE;
         *given |= GIVEN_ATOL;
     } else if (OPT("times")) {
-        if (r < 0 || parse_times(command, v, run))
+        if (r < 0 || cli_parse_times(command, v, run))
             return CLI_USAGE;
     } else if (OPT("max-step")) {
-        if (r < 0 || parse_positive(command, "--max-step", v, &run->max_step))
+        if (r < 0 || cli_parse_positive(command, "--max-step", v, &run->max_step))
             return CLI_USAGE;
         *given |= GIVEN_MAX_STEP;
     } else if (OPT("initial-step")) {
-        if (r < 0 || parse_positive(command, "--initial-step", v, &run->initial_step))
+        if (r < 0 || cli_parse_positive(command, "--initial-step", v, &run->initial_step))
             return CLI_USAGE;
         *given |= GIVEN_INITIAL_STEP;
     } else if (OPT("max-steps")) {
@@ -453,7 +172,7 @@ static int parse_option(const char *command, int argc, char **argv, int *i, cli_
                                    v);
         *given |= GIVEN_MAX_STEPS;
     } else if (OPT("event")) {
-        if (r < 0 || add_event(command, v, run))
+        if (r < 0 || cli_add_event(command, v, run))
             return CLI_USAGE;
     } else if (OPT("events-output")) {
         if (r < 0)
@@ -471,96 +190,6 @@ static int parse_option(const char *command, int argc, char **argv, int *i, cli_
         return cli_usage_error(command, "unknown option '%s'", arg);
     }
 #undef OPT
-    return CLI_OK;
-}
-
-/* --forces: read the table, check its columns against the model's inputs, attach it to
- * the parameters, and take the step and span from it unless they were given. */
-static int load_input(const char *command, cli_run *run, unsigned given)
-{
-    const dyn_model *m = run->model;
-    char err[512], list[512];
-    const char *path = run->forces_path;
-    if (m->n_inputs <= 0 || !m->set_input) {
-        size_t used = 0;
-        list[0] = '\0';
-        for (int i = 0; i < dyn_model_count(); i++)
-            if (dyn_model_at(i)->n_inputs > 0 && used < sizeof list)
-                used += (size_t)snprintf(list + used, sizeof list - used, "%s%s",
-                                         used ? ", " : "", dyn_model_at(i)->name);
-        return cli_usage_error(command,
-                               "--forces: model %s takes no input table (models with inputs: "
-                               "%s)",
-                               m->name, list[0] ? list : "none");
-    }
-    dyn_table table;
-    if (dyn_table_read_file(path, DYN_TABLE_TIME_FIRST, &table, err, sizeof err))
-        return cli_usage_error(command, "--forces: %s", err);
-    const int cols = 1 + m->n_inputs;
-    int index[16];
-    size_t used = 0;
-    list[0] = '\0';
-    for (int j = 0; j < cols && used < sizeof list; j++)
-        used += (size_t)snprintf(list + used, sizeof list - used, "%s%s", j ? "," : "",
-                                 j ? m->inputs[j - 1].name : "t");
-    int rc = CLI_OK;
-    if (cols > (int)(sizeof index / sizeof index[0]))
-        rc = cli_usage_error(command, "--forces: model %s has too many inputs", m->name);
-    for (int j = 0; j < cols && rc == CLI_OK; j++) {
-        const char *name = j ? m->inputs[j - 1].name : "t";
-        index[j] = dyn_table_column(&table, name);
-        if (index[j] < 0)
-            rc = cli_usage_error(command,
-                                 "--forces: %s has no column '%s' (model %s needs the columns "
-                                 "%s; others are ignored)",
-                                 path, name, m->name, list);
-    }
-    if (rc == CLI_OK && index[0] != 0)
-        rc = cli_usage_error(command, "--forces: in %s the first column must be t (needs %s)",
-                             path, list);
-    if (rc == CLI_OK && !(run->input = malloc((size_t)table.rows * (size_t)cols * sizeof(double)))) {
-        fprintf(stderr, "dynkit: error: out of memory\n");
-        rc = CLI_FAILED;
-    }
-    if (rc != CLI_OK) {
-        dyn_table_free(&table);
-        return rc;
-    }
-    for (long k = 0; k < table.rows; k++)
-        for (int j = 0; j < cols; j++)
-            run->input[k * cols + j] = table.data[k * table.cols + index[j]];
-    run->input_rows = table.rows;
-    dyn_table_free(&table);
-    if (m->set_input(run->par, run->input, run->input_rows, run->interp, err, sizeof err))
-        return cli_usage_error(command, "--forces %s: %s", path, err);
-    const double *in = run->input;
-    const long rows = run->input_rows;
-    const double first = in[0], last = in[(rows - 1) * cols];
-    if (!(given & GIVEN_TSPAN)) {
-        if (rows < 2)
-            return cli_usage_error(command,
-                                   "--forces %s has a single row, so it spans no time: give "
-                                   "--tspan T0:T1",
-                                   path);
-        run->t0 = first;
-        run->t1 = last;
-    }
-    if (!(given & GIVEN_STEP)) {
-        /* the sample time is the first spacing (exactly Ts for t_k = k Ts); the table must
-         * be uniform for it to be the step */
-        const double dt = rows > 1 ? in[cols] - in[0] : 0.0;
-        for (long k = 2; k < rows && dt > 0.0; k++)
-            if (!(fabs(in[k * cols] - (first + (double)k * dt)) <= 1e-9 * dt))
-                return cli_usage_error(command,
-                                       "--forces %s: the sample times are not uniform (row "
-                                       "%ld: t = %.17g), so there is no sample time to use as "
-                                       "the step: give --step H",
-                                       path, k + 1, in[k * cols]);
-        if (!(dt > 0.0))
-            return cli_usage_error(command,
-                                   "--forces %s has a single row: give --step H", path);
-        run->step = dt;
-    }
     return CLI_OK;
 }
 
@@ -684,20 +313,20 @@ int cli_run_parse_with(const char *command, int argc, char **argv, int other_ada
     /* parameters first: the default initial state may depend on them; then --init */
     for (int k = 0; k < n_as && rc == CLI_OK; k++)
         if (as[k].is_param)
-            rc = apply_assignment(command, run, &as[k]);
+            rc = cli_apply_assignment(command, run, &as[k]);
     if (rc == CLI_OK && m->prepare && m->prepare(run->par, err, sizeof err))
         rc = cli_usage_error(command, "%s", err);
     if (rc == CLI_OK)
         dyn_model_initial_state(m, run->par, run->y0);
     for (int k = 0; k < n_as && rc == CLI_OK; k++)
         if (!as[k].is_param)
-            rc = apply_assignment(command, run, &as[k]);
+            rc = cli_apply_assignment(command, run, &as[k]);
     free(as);
     if (rc != CLI_OK)
         return rc;
     if ((given & GIVEN_INTERP) && !run->forces_path)
         return cli_usage_error(command, "--interp needs --forces FILE (a table to read)");
-    if (run->forces_path && (rc = load_input(command, run, given)) != CLI_OK)
+    if (run->forces_path && (rc = cli_load_input(command, run, given)) != CLI_OK)
         return rc;
     run->method = cli_method_find(method_name);
     if (!run->method)

@@ -1,0 +1,273 @@
+/* Values of the run options: the time span, --set/--init assignments, tolerances, output
+ * times, events and positive numbers; each bad value gets a usage error naming it. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "run_parse.h"
+
+/* Split "NAME=VALUE"; returns 0 and the parts, or -1. */
+static int split_assignment(const char *text, char *name, size_t size, double *value)
+{
+    const char *eq = strchr(text, '=');
+    if (!eq || eq == text || (size_t)(eq - text) >= size)
+        return -1;
+    memcpy(name, text, (size_t)(eq - text));
+    name[eq - text] = '\0';
+    return cli_parse_number(eq + 1, value);
+}
+
+static void list_vars(char *buf, size_t size, const dyn_var *vars, int n)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+    for (int i = 0; i < n && used < size; i++)
+        used += (size_t)snprintf(buf + used, size - used, "%s%s", i ? ", " : "", vars[i].name);
+}
+
+static void list_params(char *buf, size_t size, const dyn_model *m)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+    for (int i = 0; i < m->n_params && used < size; i++)
+        used += (size_t)snprintf(buf + used, size - used, "%s%s", i ? ", " : "",
+                                 m->params[i].name);
+}
+
+int cli_parse_tspan(const char *command, const char *text, double *t0, double *t1)
+{
+    char first[64];
+    const char *colon = strchr(text, ':');
+    if (!colon || (size_t)(colon - text) >= sizeof first)
+        return cli_usage_error(command, "--tspan '%s' is not accepted: give T0:T1 in s, e.g. 0:15",
+                               text);
+    memcpy(first, text, (size_t)(colon - text));
+    first[colon - text] = '\0';
+    if (cli_parse_number(first, t0) || cli_parse_number(colon + 1, t1))
+        return cli_usage_error(command,
+                               "--tspan '%s' is not accepted: T0 and T1 must be finite numbers "
+                               "(T0:T1 in s, e.g. 0:15)",
+                               text);
+    if (!(*t1 > *t0))
+        return cli_usage_error(command, "--tspan '%s' is not accepted: T1 must be greater than T0",
+                               text);
+    return CLI_OK;
+}
+
+int cli_apply_assignment(const char *command, cli_run *run, const assignment *as)
+{
+    char name[64], list[512];
+    double value;
+    const dyn_model *m = run->model;
+    const char *opt = as->is_param ? "--set" : "--init";
+    if (split_assignment(as->text, name, sizeof name, &value))
+        return cli_usage_error(command,
+                               "%s '%s' is not accepted: give NAME=VALUE with a finite number",
+                               opt, as->text);
+    if (as->is_param) {
+        int i = dyn_model_param_index(m, name);
+        if (i < 0) {
+            list_params(list, sizeof list, m);
+            return cli_usage_error(command, "--set: model %s has no parameter '%s' (accepted: %s)",
+                                   m->name, name, list);
+        }
+        dyn_model_set_param(m, run->par, i, value);
+    } else {
+        int i = dyn_model_state_index(m, name);
+        if (i < 0) {
+            list_vars(list, sizeof list, m->states, m->n_states);
+            return cli_usage_error(command, "--init: model %s has no state '%s' (accepted: %s)",
+                                   m->name, name, list);
+        }
+        run->y0[i] = value;
+    }
+    return CLI_OK;
+}
+
+/* A tolerance: one number >= 0 (*scalar), or one per state, comma-separated (*vec, owned). */
+int cli_parse_tolerance(const char *command, const char *opt, const char *text, int n,
+                           double *scalar, double **vec)
+{
+    free(*vec);
+    *vec = NULL;
+    if (!strchr(text, ',')) {
+        if (cli_parse_number(text, scalar) || !(*scalar > 0))
+            return cli_usage_error(command,
+                                   "%s '%s' is not accepted: give a number > 0 (e.g. 1e-6), or "
+                                   "one per state separated by commas",
+                                   opt, text);
+        return CLI_OK;
+    }
+    double *v = calloc((size_t)n, sizeof *v);
+    if (!v)
+        return cli_usage_error(command, "out of memory");
+    const char *p = text;
+    int count = 0;
+    while (*p) {
+        char item[64];
+        const char *comma = strchr(p, ',');
+        size_t len = comma ? (size_t)(comma - p) : strlen(p);
+        if (len >= sizeof item || count >= n)
+            break;
+        memcpy(item, p, len);
+        item[len] = '\0';
+        if (cli_parse_number(item, &v[count]) || !(v[count] >= 0)) {
+            free(v);
+            return cli_usage_error(command,
+                                   "%s '%s' is not accepted: '%s' is not a number >= 0", opt,
+                                   text, item);
+        }
+        count++;
+        if (!comma) {
+            p += len;
+            break;
+        }
+        p = comma + 1;
+    }
+    if (count != n || *p) {
+        free(v);
+        return cli_usage_error(command,
+                               "%s '%s' is not accepted: give one value, or %d values (one per "
+                               "state) separated by commas",
+                               opt, text, n);
+    }
+    *vec = v;
+    return CLI_OK;
+}
+
+/* Append a time to a growing list. */
+static int push_time(double **times, long *count, long *cap, double t)
+{
+    if (*count == *cap) {
+        long ncap = *cap ? 2 * *cap : 64;
+        double *nt = realloc(*times, (size_t)ncap * sizeof *nt);
+        if (!nt)
+            return -1;
+        *times = nt;
+        *cap = ncap;
+    }
+    (*times)[(*count)++] = t;
+    return 0;
+}
+
+/* --times: "t1,t2,..." or "@FILE" (one time per line; blank lines and lines starting with
+ * '#' are skipped). The times must not decrease. */
+int cli_parse_times(const char *command, const char *text, cli_run *run)
+{
+    long cap = 0;
+    free(run->times);
+    run->times = NULL;
+    run->n_times = 0;
+    if (text[0] == '@') {
+        FILE *f = fopen(text + 1, "r");
+        if (!f)
+            return cli_usage_error(command, "--times: cannot read '%s'", text + 1);
+        char line[256];
+        long lineno = 0;
+        while (fgets(line, sizeof line, f)) {
+            lineno++;
+            char *p = line, *e = line + strlen(line);
+            while (*p == ' ' || *p == '\t')
+                p++;
+            while (e > p && (e[-1] == '\n' || e[-1] == '\r' || e[-1] == ' ' || e[-1] == '\t'))
+                *--e = '\0';
+            if (!*p || *p == '#')
+                continue;
+            double t;
+            if (cli_parse_number(p, &t)) {
+                fclose(f);
+                return cli_usage_error(command,
+                                       "--times: line %ld of %s ('%s') is not a time in s",
+                                       lineno, text + 1, p);
+            }
+            if (push_time(&run->times, &run->n_times, &cap, t)) {
+                fclose(f);
+                return cli_usage_error(command, "out of memory");
+            }
+        }
+        fclose(f);
+    } else {
+        const char *p = text;
+        while (1) {
+            char item[64];
+            const char *comma = strchr(p, ',');
+            size_t len = comma ? (size_t)(comma - p) : strlen(p);
+            double t;
+            if (len >= sizeof item)
+                return cli_usage_error(command, "--times: '%.20s...' is too long", p);
+            memcpy(item, p, len);
+            item[len] = '\0';
+            if (cli_parse_number(item, &t))
+                return cli_usage_error(command,
+                                       "--times '%s' is not accepted: '%s' is not a time in s "
+                                       "(give times separated by commas, or @FILE)",
+                                       text, item);
+            if (push_time(&run->times, &run->n_times, &cap, t))
+                return cli_usage_error(command, "out of memory");
+            if (!comma)
+                break;
+            p = comma + 1;
+        }
+    }
+    if (run->n_times == 0)
+        return cli_usage_error(command, "--times %s: no times given", text);
+    for (long k = 1; k < run->n_times; k++)
+        if (run->times[k] < run->times[k - 1])
+            return cli_usage_error(command,
+                                   "--times: the times must not decrease (%.17g follows %.17g)",
+                                   run->times[k], run->times[k - 1]);
+    return CLI_OK;
+}
+
+/* --event NAME[:stop]: the model's event as a copy, terminal when :stop. */
+int cli_add_event(const char *command, const char *text, cli_run *run)
+{
+    const dyn_model *m = run->model;
+    char name[64], list[512];
+    const char *colon = strchr(text, ':');
+    size_t len = colon ? (size_t)(colon - text) : strlen(text);
+    int stop = 0;
+    if (colon) {
+        if (strcmp(colon + 1, "stop") != 0)
+            return cli_usage_error(command,
+                                   "--event '%s' is not accepted: give NAME or NAME:stop", text);
+        stop = 1;
+    }
+    size_t used = 0;
+    list[0] = '\0';
+    for (int i = 0; i < m->n_events && used < sizeof list; i++)
+        used += (size_t)snprintf(list + used, sizeof list - used, "%s%s", i ? ", " : "",
+                                 m->events[i].name);
+    if (len >= sizeof name || m->n_events <= 0)
+        return cli_usage_error(command, "--event: model %s has no event '%.*s' (%s%s)", m->name,
+                               (int)(len < 60 ? len : 60), text,
+                               m->n_events > 0 ? "accepted: " : "it has no events",
+                               m->n_events > 0 ? list : "");
+    memcpy(name, text, len);
+    name[len] = '\0';
+    int found = -1;
+    for (int i = 0; i < m->n_events; i++)
+        if (strcmp(m->events[i].name, name) == 0)
+            found = i;
+    if (found < 0)
+        return cli_usage_error(command, "--event: model %s has no event '%s' (accepted: %s)",
+                               m->name, name, list);
+    dyn_event *ev = realloc(run->events, (size_t)(run->n_events + 1) * sizeof *ev);
+    if (!ev)
+        return cli_usage_error(command, "out of memory");
+    run->events = ev;
+    ev[run->n_events] = m->events[found];
+    ev[run->n_events].terminal = stop;
+    run->n_events++;
+    return CLI_OK;
+}
+
+/* A step-like option: a finite number > 0. */
+int cli_parse_positive(const char *command, const char *opt, const char *text, double *out)
+{
+    if (cli_parse_number(text, out) || !(*out > 0))
+        return cli_usage_error(command,
+                               "%s '%s' is not accepted: give a time in s, a finite number > 0",
+                               opt, text);
+    return CLI_OK;
+}

@@ -32,6 +32,7 @@
 #include <dynkit/ode_inline.h>
 
 #include "bench_systems.h"
+#include "hand_loops.h"
 
 #define MAX_N 12
 #define CHECK_RTOL 1e-12
@@ -55,34 +56,7 @@ static int plane_rhs(double t, const double *y, double *dydt, void *par)
     return 0;
 }
 
-/* ---- hand-written RK4, right-hand side inlined, n a compile-time constant ----
- * Textbook form: k1..k4, then y += h/6 (k1 + 2 k2 + 2 k3 + k4). Both systems are
- * autonomous, so the stage times are not formed. */
-#define HAND_RK4(NAME, N, PAR_T, EVAL)                                                             \
-    static __attribute__((noinline)) void NAME(const void *vpar, const double *y0, double h,       \
-                                               long steps, double *yout)                           \
-    {                                                                                              \
-        const PAR_T *par = vpar;                                                                   \
-        double y[N], Y[N], k1[N], k2[N], k3[N], k4[N];                                             \
-        memcpy(y, y0, sizeof y);                                                                   \
-        const double h2 = 0.5 * h, h6 = h / 6.0;                                                   \
-        for (long step = 0; step < steps; step++) {                                                \
-            EVAL(y, k1, par);                                                                      \
-            for (int q = 0; q < N; q++)                                                            \
-                Y[q] = y[q] + h2 * k1[q];                                                          \
-            EVAL(Y, k2, par);                                                                      \
-            for (int q = 0; q < N; q++)                                                            \
-                Y[q] = y[q] + h2 * k2[q];                                                          \
-            EVAL(Y, k3, par);                                                                      \
-            for (int q = 0; q < N; q++)                                                            \
-                Y[q] = y[q] + h * k3[q];                                                           \
-            EVAL(Y, k4, par);                                                                      \
-            for (int q = 0; q < N; q++)                                                            \
-                y[q] += h6 * (k1[q] + 2.0 * k2[q] + 2.0 * k3[q] + k4[q]);                          \
-        }                                                                                          \
-        memcpy(yout, y, sizeof y);                                                                 \
-    }
-
+/* ---- hand-written RK4 (hand_loops.h): right-hand side inlined, n a constant ---- */
 HAND_RK4(hand_rk4_vdp, 2, bench_vdp_par, bench_vdp_eval)
 HAND_RK4(hand_rk4_plane, 12, bench_plane_par, bench_plane_eval)
 

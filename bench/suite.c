@@ -52,6 +52,7 @@
 #include <dynkit/solve.h>
 
 #include "suite.h"
+#include "hand_loops.h"
 #include "wp_svg.h"
 
 #define MAX_N 12
@@ -122,30 +123,6 @@ static dyn_rhs_fn dk_rhs(const bench_sys *s)
 /* ------------------------------------------------------------------------------------------
  * Hand-written loops: the textbook formulas, right-hand side inlined, n a constant
  * ---------------------------------------------------------------------------------------- */
-#define HAND_RK4(NAME, N, PAR_T, EVAL)                                                             \
-    static __attribute__((noinline)) void NAME(const void *vpar, const double *y0, double h,       \
-                                               long steps, double *yout)                           \
-    {                                                                                              \
-        const PAR_T *par = vpar;                                                                   \
-        double y[N], Y[N], k1[N], k2[N], k3[N], k4[N];                                             \
-        memcpy(y, y0, sizeof y);                                                                   \
-        const double h2 = 0.5 * h, h6 = h / 6.0;                                                   \
-        for (long step = 0; step < steps; step++) {                                                \
-            EVAL(y, k1, par);                                                                      \
-            for (int q = 0; q < N; q++)                                                            \
-                Y[q] = y[q] + h2 * k1[q];                                                          \
-            EVAL(Y, k2, par);                                                                      \
-            for (int q = 0; q < N; q++)                                                            \
-                Y[q] = y[q] + h2 * k2[q];                                                          \
-            EVAL(Y, k3, par);                                                                      \
-            for (int q = 0; q < N; q++)                                                            \
-                Y[q] = y[q] + h * k3[q];                                                           \
-            EVAL(Y, k4, par);                                                                      \
-            for (int q = 0; q < N; q++)                                                            \
-                y[q] += h6 * (k1[q] + 2.0 * k2[q] + 2.0 * k3[q] + k4[q]);                          \
-        }                                                                                          \
-        memcpy(yout, y, sizeof y);                                                                 \
-    }
 #define HAND_HEUN(NAME, N, PAR_T, EVAL)                                                            \
     static __attribute__((noinline)) void NAME(const void *vpar, const double *y0, double h,       \
                                                long steps, double *yout)                           \

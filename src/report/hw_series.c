@@ -202,12 +202,14 @@ static int plane_series(const dyn_hw_plane *hw, dyn_hw_series *s, char *err, siz
 {
     const dyn_model *m = &dyn_model_plane;
     dyn_plane_par p;
+    double y0[12];
     if (dyn_model_default_params(m, &p, err, errlen))
         return 1;
+    dyn_model_initial_state(m, &p, y0); /* the same start as dyn_hw_plane_compute */
     const dyn_hw_table *e = record_run(s, "plane.euler", "Euler", m, &p, "euler", hw->end_time_s,
-                                       hw->step_s, m->y0, 1, 0, err, errlen);
+                                       hw->step_s, y0, 1, 0, err, errlen);
     const dyn_hw_table *r = e ? record_run(s, "plane.rk4", "RK4", m, &p, "rk4", hw->end_time_s,
-                                           hw->step_s, m->y0, 1, 0, err, errlen)
+                                           hw->step_s, y0, 1, 0, err, errlen)
                               : NULL;
     dyn_hw_table *tab =
         r ? new_table(s, "plane.compare", "Euler against RK4", NULL, hw->step_s, err, errlen)

@@ -189,7 +189,7 @@ static void test_two_roots_in_one_step(void **state)
     (void)state;
     roots_par par = {{3.2, 3.201, exp(-0.1 * 7.5)}};
     dyn_system sys = {roots_rhs, 1, &par};
-    const dyn_event ev[] = {{"pair", "", two_roots, 0, 0}, {"once", "", y_dip, 0, 0}};
+    const dyn_event ev[] = {{"pair", "", two_roots, 0, 0, NULL}, {"once", "", y_dip, 0, 0, NULL}};
     const double y0 = 1.0;
     const char *const methods[] = {"bs23", "dp45", "dop853"};
     for (int k = 0; k < 3; k++) {
@@ -242,7 +242,7 @@ static void test_close_crossings_near_a_turning_point(void **state)
     double y0[2], T4, y[2];
     pendulum_setup(1.0, &par, y0, &T4);
     dyn_system sys = {dyn_model_pendulum.rhs, 2, &par};
-    const dyn_event ev[] = {{"level", "", phi_minus_level, 0, 0}};
+    const dyn_event ev[] = {{"level", "", phi_minus_level, 0, 0, NULL}};
     for (int e = 2; e <= 6; e += 2) {
         const double depth = pow(10.0, -e);
         pendulum_level = 1.0 - depth;

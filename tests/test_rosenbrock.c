@@ -841,7 +841,7 @@ static void events_with(const char *method, double mu, double t1, double rtol, e
     assert_non_null(m);
     dyn_vanderpol_par par = {mu};
     dyn_system sys = {dyn_vanderpol_rhs, 2, &par};
-    dyn_event ev = {"zero", "y1 = 0", g_y1, 0, 0};
+    dyn_event ev = {"zero", "y1 = 0", g_y1, 0, 0, NULL};
     dyn_solve_opts o = {0};
     o.rtol = rtol;
     o.atol = rtol;

@@ -105,7 +105,29 @@ typedef struct dyn_model {
      * that depend on them (the plane hangs at l0 + m g/k below the ceiling); writes
      * n_states values. NULL: the fixed y0 above. */
     void (*initial_state)(const void *par, double *y0);
+    /* Default tolerances of adaptive methods for this model (0: the library's defaults,
+     * DYN_DEFAULT_RTOL and DYN_DEFAULT_ATOL): a model whose states are small (chemical
+     * concentrations) carries the absolute tolerance it needs. --rtol/--atol override. */
+    double rtol, atol;
+    /* The phase plane pictures show by default (XPPAUT's @ xp=, yp=): names of states or
+     * outputs, or NULL. */
+    const char *phase_x, *phase_y;
+    /* Where the model was defined: a file path for models loaded from files, NULL for
+     * built-in ones. */
+    const char *source;
 } dyn_model;
+
+/* Version of the layout of dyn_model, dyn_var, dyn_param and dyn_event. A model compiled
+ * into a shared object records the version it was built with (the symbol
+ * dynkit_model_abi, added when dynkit compiles a model), and dynkit refuses a model built
+ * for another version instead of misreading it. Raised whenever a layout changes. */
+#define DYN_MODEL_ABI 1
+
+/* The entry point of a model in a C file or a shared object: `dynkit run mymodel.c`
+ * compiles the file and calls it. Define it in your file:
+ *     const dyn_model *dynkit_model(void) { return &my_model; }   */
+#define DYN_MODEL_ENTRY "dynkit_model"
+typedef const struct dyn_model *(*dyn_model_entry_fn)(void);
 
 /* Built-in models: count, by index (NULL out of range), by name (NULL if unknown). */
 int dyn_model_count(void);

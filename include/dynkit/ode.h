@@ -37,6 +37,12 @@ typedef struct dyn_event {
     double (*g)(double t, const double *y, void *par);
     int direction;           /* +1 rising only, -1 falling only, 0 both */
     int terminal;            /* 1: stop the solve at the first occurrence (default for it) */
+    /* Optional state reset (XPPAUT's `global` with assignments, a bouncing ball's impact):
+     * NULL for none. At each occurrence of a non-terminal event the solver calls reset with
+     * the state at the event, which it may change in place, and restarts the integration
+     * from (t, y) as from a new initial value. Return 0, or non-zero to stop the solve
+     * (DYN_ERR_RHS with that value). */
+    int (*reset)(double t, double *y, void *par);
 } dyn_event;
 
 /* A system of n first-order ODEs; par is handed to f unchanged (the caller owns it). */

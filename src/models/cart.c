@@ -292,7 +292,7 @@ static double cart_slip(double t, const double *y, void *par)
 }
 
 static const dyn_event events[] = {
-    {"slip", "the rear wheels start to slip: |lambda| reaches mu (2/3) m g", cart_slip, 1, 0},
+    {"slip", "the rear wheels start to slip: |lambda| reaches mu (2/3) m g", cart_slip, 1, 0, NULL},
 };
 
 const dyn_model dyn_model_cart = {

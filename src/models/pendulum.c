@@ -84,8 +84,8 @@ static double pendulum_bottom(double t, const double *y, void *par)
 }
 
 static const dyn_event events[] = {
-    {"turn", "the rod stops and turns back: dphi = 0", pendulum_turn, 0, 0},
-    {"bottom", "the rod passes the downward vertical: phi = 0 (mod 2 pi)", pendulum_bottom, 0, 0},
+    {"turn", "the rod stops and turns back: dphi = 0", pendulum_turn, 0, 0, NULL},
+    {"bottom", "the rod passes the downward vertical: phi = 0 (mod 2 pi)", pendulum_bottom, 0, 0, NULL},
 };
 
 const dyn_model dyn_model_pendulum = {

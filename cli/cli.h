@@ -30,6 +30,10 @@ int cli_flag(const char *arg, const char *name);
 /* 1 if arg is -h or --help. */
 int cli_is_help(const char *arg);
 
+/* The model MODEL names (model_open.c): a built-in name, or a model file. Returns CLI_OK
+ * with *model, or a usage error (message printed, with the nearest known name). */
+int cli_model_open(const char *command, const char *spec, const dyn_model **model);
+
 /* Everything needed to make one run of a model: parsed from the run options. */
 typedef struct cli_run {
     const dyn_model *model;

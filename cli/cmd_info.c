@@ -20,10 +20,10 @@ int cli_cmd_info(int argc, char **argv)
                                dyn_model_names(names, sizeof names));
     if (argc > 1)
         return cli_usage_error("info", "unexpected argument '%s'", argv[1]);
-    const dyn_model *m = dyn_model_find(argv[0]);
-    if (!m)
-        return cli_usage_error("info", "unknown model '%s' (accepted: %s)", argv[0],
-                               dyn_model_names(names, sizeof names));
+    const dyn_model *m;
+    int open_rc = cli_model_open("info", argv[0], &m);
+    if (open_rc != CLI_OK)
+        return open_rc;
     printf("%s: %s\n\n%s\n\n", m->name, m->title, m->description);
     printf("States (--init NAME=VALUE):\n");
     for (int i = 0; i < m->n_states; i++)

@@ -287,10 +287,9 @@ int cli_run_parse_with(const char *command, int argc, char **argv, int other_ada
     if (argc < 1 || argv[0][0] == '-')
         return cli_usage_error(command, "missing MODEL (accepted: %s)",
                                dyn_model_names(names, sizeof names));
-    run->model = dyn_model_find(argv[0]);
-    if (!run->model)
-        return cli_usage_error(command, "unknown model '%s' (accepted: %s)", argv[0],
-                               dyn_model_names(names, sizeof names));
+    int open_rc = cli_model_open(command, argv[0], &run->model);
+    if (open_rc != CLI_OK)
+        return open_rc;
     const dyn_model *m = run->model;
     run->par = calloc(1, m->par_size);
     run->y0 = calloc((size_t)m->n_states, sizeof *run->y0);

@@ -115,6 +115,12 @@ typedef struct dyn_model {
     /* Where the model was defined: a file path for models loaded from files, NULL for
      * built-in ones. */
     const char *source;
+    /* Output and safety of a default run (XPPAUT's @ trans, nout, bound): samples before
+     * t_trans are not written (0: from t0), every K-th sample is written (0 or 1: all),
+     * and a run stops when a state's magnitude exceeds bound (0: no bound). */
+    double t_trans;
+    long every;
+    double bound;
 } dyn_model;
 
 /* Version of the layout of dyn_model, dyn_var, dyn_param and dyn_event. A model compiled

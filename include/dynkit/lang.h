@@ -1,0 +1,53 @@
+/* dynkit/lang.h — the model-file front end: XPPAUT's .ode format (and dynkit's extensions in
+ * comments) translated into C source that defines a dyn_model.
+ *
+ * The translation is the whole contract between a model file and the rest of dynkit: the C
+ * text it produces defines `const dyn_model *dynkit_model(void)` (the entry point of
+ * model.h), exactly like a C model a user writes by hand, and is compiled and loaded by the
+ * jit layer (dynkit/jit.h). Nothing downstream knows where a model came from.
+ *
+ * XPPAUT (Ermentrout, "Simulating, Analyzing, and Animating Dynamical Systems", SIAM 2002,
+ * and the manual shipped with it) is the reference for what a file means. Part of the
+ * optional layer `dynkit_lang` (C11 + libm, no other dependency); never prints or exits.
+ */
+#ifndef DYNKIT_LANG_H
+#define DYNKIT_LANG_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Where and why a translation failed: FILE:LINE:COL and a message, plus the source line
+ * for a caret display. line/col are 1-based; 0 when not tied to a place. */
+typedef struct dyn_lang_diag {
+    char path[512];
+    int line, col;
+    char message[512];   /* e.g. "unknown name 'omgea' (did you mean 'omega'?)" */
+    char excerpt[256];   /* the offending source line, without its newline ("" if none) */
+} dyn_lang_diag;
+
+/* The diagnostic as "FILE:LINE:COL: error: message\n  excerpt\n  ^\n" into buf;
+ * returns buf. */
+char *dyn_lang_diag_format(const dyn_lang_diag *d, char *buf, size_t size);
+
+/* Notes of a successful translation (options accepted and ignored, ...), one line each,
+ * for --verbose; may be NULL. */
+typedef void (*dyn_lang_note_fn)(const char *path, int line, const char *message, void *ctx);
+
+/* Translate the .ode text (len bytes, need not be NUL-terminated; path is used in messages
+ * and in #line directives of the C text) into C source. On success returns 0 and
+ * *c_source (NUL-terminated, malloc'd: the caller frees it). On failure returns non-zero
+ * with *diag filled and *c_source NULL: 2 for an error in the file, 1 when out of memory. */
+int dyn_ode_to_c(const char *path, const char *text, size_t len, char **c_source,
+                 dyn_lang_diag *diag, dyn_lang_note_fn note, void *note_ctx);
+
+/* The name among names[0..n) nearest to word (Damerau–Levenshtein distance, case folded),
+ * or NULL when none is close enough to be a likely typo (distance > max(1, len/3)). */
+const char *dyn_lang_nearest(const char *word, const char *const *names, int n);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* DYNKIT_LANG_H */

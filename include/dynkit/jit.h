@@ -19,7 +19,7 @@ extern "C" {
 typedef enum dyn_jit_backend {
     DYN_JIT_AUTO = 0, /* the default chosen from measurements (docs/model-files.md) */
     DYN_JIT_CC = 1,   /* the system C compiler ($DYNKIT_CC, else $CC, else cc) into a cache */
-    DYN_JIT_TCC = 2   /* libtcc, in process, nothing written to disk */
+    DYN_JIT_TCC = 2   /* libtcc, in process, nothing written to disk but the headers */
 } dyn_jit_backend;
 
 typedef struct dyn_jit_opts {
@@ -27,8 +27,13 @@ typedef struct dyn_jit_opts {
     const char *cache_dir;  /* NULL: $DYNKIT_CACHE_DIR, else $XDG_CACHE_HOME/dynkit, else
                              * ~/.cache/dynkit */
     const char *cc;         /* NULL: $DYNKIT_CC, else $CC, else "cc" */
-    const char *cflags;     /* NULL: "-O2" (plus what a shared object needs) */
+    const char *cflags;     /* NULL: $DYNKIT_CFLAGS, else "-O2" (plus what a shared object
+                             * needs, and -ffp-contract=off before them) */
 } dyn_jit_opts;
+/* DYN_JIT_AUTO reads $DYNKIT_JIT (auto, cc or tcc) first. The cache holds
+ * include-<version>-<hash>/ (dynkit's public headers, embedded in the library, written once)
+ * and NAME-<hash>.so, one per (source, source name, dynkit version, DYN_MODEL_ABI, headers,
+ * compiler command and flags); it is never pruned: removing it is always safe. */
 
 /* A loaded model: model points into the compiled code, valid until dyn_jit_unload. */
 typedef struct dyn_jit_model {
@@ -55,6 +60,18 @@ int dyn_jit_load_c_file(const char *path, const dyn_jit_opts *opts, dyn_jit_mode
 int dyn_jit_load_shared(const char *path, dyn_jit_model *out, char *err, size_t errlen);
 /* Release a loaded model (its dyn_model is invalid afterwards). */
 void dyn_jit_unload(dyn_jit_model *m);
+
+/* The cache directory opts selects (see dyn_jit_opts) into buf, not created; 0, or non-zero
+ * when there is none (no HOME) or it does not fit. */
+int dyn_jit_cache_dir(const dyn_jit_opts *opts, char *buf, size_t size);
+/* 1 when the backend is built in (DYN_JIT_TCC needs libtcc at build time), else 0. */
+int dyn_jit_backend_available(dyn_jit_backend backend);
+/* "auto", "cc", "tcc" */
+const char *dyn_jit_backend_name(int backend);
+/* The checks a loaded model passes (entry point returned non-NULL, n_states > 0, rhs, names,
+ * arrays present for their counts, parameters inside par_size, a finite default run): 0, or
+ * non-zero with a message naming `where`. */
+int dyn_jit_check_model(const dyn_model *m, const char *where, char *err, size_t errlen);
 
 #ifdef __cplusplus
 }

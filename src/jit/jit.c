@@ -1,0 +1,288 @@
+/* The jit layer's public functions (dynkit/jit.h): choice of the backend, loading a C file,
+ * loading a shared object with the check of its model ABI, and the check of the dyn_model a
+ * compiled model returns. */
+#define _POSIX_C_SOURCE 200809L
+#include <dlfcn.h>
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "jit_internal.h"
+
+const char *dyn_jit_backend_name(int backend)
+{
+    switch (backend) {
+    case DYN_JIT_AUTO: return "auto";
+    case DYN_JIT_CC: return "cc";
+    case DYN_JIT_TCC: return "tcc";
+    default: return "unknown";
+    }
+}
+
+int dyn_jit_backend_available(dyn_jit_backend backend)
+{
+#ifdef DYNKIT_HAVE_TCC
+    if (backend == DYN_JIT_TCC)
+        return 1;
+#endif
+    return backend == DYN_JIT_CC || backend == DYN_JIT_AUTO;
+}
+
+/* DYN_JIT_AUTO: $DYNKIT_JIT when set, else the system compiler (see docs/model-files.md,
+ * "Compiling models": its code runs faster, and its cache makes every later run cheaper than
+ * a libtcc compilation). */
+static int choose_backend(const dyn_jit_opts *opts, dyn_jit_backend *b, char *err,
+                          size_t errlen)
+{
+    *b = opts ? opts->backend : DYN_JIT_AUTO;
+    if (*b == DYN_JIT_AUTO) {
+        const char *env = getenv("DYNKIT_JIT");
+        if (env && env[0] && strcmp(env, "auto") != 0) {
+            if (strcmp(env, "cc") == 0)
+                *b = DYN_JIT_CC;
+            else if (strcmp(env, "tcc") == 0)
+                *b = DYN_JIT_TCC;
+            else
+                return jit_fail(err, errlen,
+                                "DYNKIT_JIT=%s is not a compiler backend (accepted: auto, cc, tcc)",
+                                env);
+        } else {
+            *b = DYN_JIT_CC;
+        }
+    }
+    if (*b != DYN_JIT_CC && *b != DYN_JIT_TCC)
+        return jit_fail(err, errlen, "unknown compiler backend %d", (int)*b);
+    if (!dyn_jit_backend_available(*b))
+        return jit_fail(err, errlen,
+                        "this dynkit was built without libtcc: install libtcc-dev and tcc "
+                        "(apt-get install libtcc-dev tcc) and rebuild, or use the system C "
+                        "compiler (cc)");
+    return 0;
+}
+
+int dyn_jit_load_source(const char *source, size_t len, const char *source_name,
+                        const dyn_jit_opts *opts, dyn_jit_model *out, char *err, size_t errlen)
+{
+    if (err && errlen)
+        err[0] = '\0';
+    memset(out, 0, sizeof *out);
+    if (!source)
+        return jit_fail(err, errlen, "no source to compile");
+    if (memchr(source, '\0', len))
+        return jit_fail(err, errlen, "%s: not a C source (contains a NUL byte)",
+                        source_name ? source_name : "model");
+    dyn_jit_backend b;
+    if (choose_backend(opts, &b, err, errlen) != 0)
+        return 1;
+    if (b == DYN_JIT_TCC)
+        return jit_tcc_load(source, len, source_name, opts, out, err, errlen);
+    return jit_cc_load(source, len, source_name, opts, out, err, errlen);
+}
+
+int dyn_jit_load_c_file(const char *path, const dyn_jit_opts *opts, dyn_jit_model *out,
+                        char *err, size_t errlen)
+{
+    memset(out, 0, sizeof *out);
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return jit_fail(err, errlen, "cannot open %s: %s", path, strerror(errno));
+    size_t cap = 1 << 16, len = 0;
+    char *text = malloc(cap);
+    for (;;) {
+        if (!text) {
+            fclose(f);
+            return jit_fail(err, errlen, "%s: out of memory", path);
+        }
+        len += fread(text + len, 1, cap - len, f);
+        if (len < cap)
+            break;
+        char *bigger = realloc(text, cap *= 2);
+        if (!bigger)
+            free(text);
+        text = bigger;
+    }
+    int bad = ferror(f);
+    fclose(f);
+    if (bad) {
+        free(text);
+        return jit_fail(err, errlen, "cannot read %s", path);
+    }
+    int rc = dyn_jit_load_source(text, len, path, opts, out, err, errlen);
+    free(text);
+    return rc;
+}
+
+/* ---- the model a compiled unit returns ---- */
+
+static int check_vars(const dyn_var *v, int n, const char *what, const char *where, char *err,
+                      size_t errlen)
+{
+    if (n < 0)
+        return jit_fail(err, errlen, "%s: dynkit_model() returned a model with n_%s = %d",
+                        where, what, n);
+    if (n > 0 && !v)
+        return jit_fail(err, errlen,
+                        "%s: dynkit_model() returned a model with n_%s = %d but no %s array",
+                        where, what, n, what);
+    for (int i = 0; i < n; i++)
+        if (!v[i].name || !v[i].name[0])
+            return jit_fail(err, errlen, "%s: %s %d of the model has no name", where, what, i);
+    return 0;
+}
+
+int jit_check_model(const dyn_model *m, const char *where, char *err, size_t errlen)
+{
+    if (!m)
+        return jit_fail(err, errlen, "%s: dynkit_model() returned NULL instead of a model",
+                        where);
+    if (!m->name || !m->name[0])
+        return jit_fail(err, errlen, "%s: the model has no name (dyn_model.name)", where);
+    if (m->n_states <= 0)
+        return jit_fail(err, errlen,
+                        "%s: the model '%s' has n_states = %d (it needs at least one state)",
+                        where, m->name, m->n_states);
+    if (!m->rhs)
+        return jit_fail(err, errlen, "%s: the model '%s' has no right-hand side (dyn_model.rhs)",
+                        where, m->name);
+    if (!m->y0 && !m->initial_state)
+        return jit_fail(err, errlen,
+                        "%s: the model '%s' has no initial state (dyn_model.y0 or initial_state)",
+                        where, m->name);
+    if (check_vars(m->states, m->n_states, "states", where, err, errlen) ||
+        check_vars(m->outputs, m->n_outputs, "outputs", where, err, errlen) ||
+        check_vars(m->inputs, m->n_inputs, "inputs", where, err, errlen))
+        return 1;
+    if (m->n_outputs > 0 && !m->compute_outputs)
+        return jit_fail(err, errlen, "%s: the model '%s' has %d outputs but no compute_outputs",
+                        where, m->name, m->n_outputs);
+    if (m->n_inputs > 0 && !m->set_input)
+        return jit_fail(err, errlen, "%s: the model '%s' has %d inputs but no set_input", where,
+                        m->name, m->n_inputs);
+    if (m->n_params < 0 || (m->n_params > 0 && !m->params))
+        return jit_fail(err, errlen, "%s: the model '%s' has n_params = %d but no params array",
+                        where, m->name, m->n_params);
+    for (int i = 0; i < m->n_params; i++) {
+        const dyn_param *p = &m->params[i];
+        if (!p->name || !p->name[0])
+            return jit_fail(err, errlen, "%s: parameter %d of the model '%s' has no name", where,
+                            i, m->name);
+        if (m->par_size < sizeof(double) || p->offset > m->par_size - sizeof(double) ||
+            p->offset % _Alignof(double) != 0)
+            return jit_fail(err, errlen,
+                            "%s: parameter '%s' of the model '%s' lies outside its parameter "
+                            "struct (offset %zu, par_size %zu): set par_size = sizeof(the "
+                            "struct) and offset = offsetof(the struct, member)",
+                            where, p->name, m->name, p->offset, m->par_size);
+    }
+    if (m->n_events < 0 || (m->n_events > 0 && !m->events))
+        return jit_fail(err, errlen, "%s: the model '%s' has n_events = %d but no events array",
+                        where, m->name, m->n_events);
+    for (int i = 0; i < m->n_events; i++)
+        if (!m->events[i].name || !m->events[i].name[0] || !m->events[i].g)
+            return jit_fail(err, errlen,
+                            "%s: event %d of the model '%s' has no name or no function g",
+                            where, i, m->name);
+    if (!isfinite(m->t0) || !isfinite(m->t1) || !isfinite(m->step) || m->step < 0)
+        return jit_fail(err, errlen,
+                        "%s: the model '%s' has a bad default run (t0 = %g, t1 = %g, step = %g)",
+                        where, m->name, m->t0, m->t1, m->step);
+    return 0;
+}
+
+int dyn_jit_check_model(const dyn_model *m, const char *where, char *err, size_t errlen)
+{
+    return jit_check_model(m, where ? where : "model", err, errlen);
+}
+
+/* ---- shared objects ---- */
+
+static const char *base_name(const char *path)
+{
+    const char *s = strrchr(path, '/');
+    return s ? s + 1 : path;
+}
+
+int jit_load_so(const char *path, const char *where, dyn_jit_model *out, char *err,
+                size_t errlen)
+{
+    memset(out, 0, sizeof *out);
+    /* dlopen searches the library path for a name without '/': a file is meant */
+    char full[1024];
+    int n = strchr(path, '/') ? snprintf(full, sizeof full, "%s", path)
+                              : snprintf(full, sizeof full, "./%s", path);
+    if (n < 0 || (size_t)n >= sizeof full)
+        return jit_fail(err, errlen, "path too long: %s", path);
+    dlerror();
+    void *h = dlopen(full, RTLD_NOW | RTLD_LOCAL);
+    if (!h) {
+        const char *e = dlerror();
+        if (e && strstr(e, "undefined symbol"))
+            return jit_fail(err, errlen,
+                            "cannot load the model %s: %s (a function the model calls is "
+                            "neither in it, nor in libm, nor exported by this program: a "
+                            "program that loads models links dynkit with ENABLE_EXPORTS / "
+                            "-rdynamic, or links libdynkit.so)",
+                            where, e);
+        return jit_fail(err, errlen, "cannot load the model %s: %s", where,
+                        e ? e : "unknown error");
+    }
+    const unsigned *abi = (const unsigned *)dlsym(h, "dynkit_model_abi");
+    if (!abi) {
+        dlclose(h);
+        return jit_fail(err, errlen,
+                        "%s does not record a model ABI (the symbol dynkit_model_abi, which "
+                        "dynkit adds when it compiles a model): this dynkit reads ABI %d: "
+                        "recompile it with dynkit",
+                        where, DYN_MODEL_ABI);
+    }
+    if (*abi != (unsigned)DYN_MODEL_ABI) {
+        unsigned got = *abi;
+        dlclose(h);
+        return jit_fail(err, errlen,
+                        "%s was built for model ABI %u, this dynkit reads ABI %d: recompile it",
+                        where, got, DYN_MODEL_ABI);
+    }
+    /* object pointer to function pointer: through memcpy, as POSIX dlsym intends */
+    void *sym = dlsym(h, DYN_MODEL_ENTRY);
+    dyn_model_entry_fn entry;
+    if (!sym) {
+        dlclose(h);
+        return jit_fail(err, errlen,
+                        "%s does not define the entry point %s() (model.h: "
+                        "const dyn_model *dynkit_model(void))",
+                        where, DYN_MODEL_ENTRY);
+    }
+    memcpy(&entry, &sym, sizeof entry);
+    const dyn_model *m = entry();
+    if (jit_check_model(m, where, err, errlen) != 0) {
+        dlclose(h);
+        return 1;
+    }
+    out->model = m;
+    out->handle = h;
+    out->backend = DYN_JIT_CC;
+    snprintf(out->so_path, sizeof out->so_path, "%s", path);
+    return 0;
+}
+
+int dyn_jit_load_shared(const char *path, dyn_jit_model *out, char *err, size_t errlen)
+{
+    return jit_load_so(path, base_name(path), out, err, errlen);
+}
+
+void dyn_jit_unload(dyn_jit_model *m)
+{
+    if (!m || !m->handle) {
+        if (m)
+            m->model = NULL;
+        return;
+    }
+    if (m->backend == DYN_JIT_TCC)
+        jit_tcc_unload(m->handle);
+    else
+        dlclose(m->handle);
+    m->handle = NULL;
+    m->model = NULL;
+}

@@ -1,0 +1,204 @@
+/* The jit layer's cache directory: where it is ($DYNKIT_CACHE_DIR, $XDG_CACHE_HOME/dynkit,
+ * ~/.cache/dynkit), the embedded public headers written into it once per version and header
+ * set, unique temporary names for concurrent compilations, and small helpers (messages,
+ * the text given to the compilers, a monotonic clock). */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <fcntl.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "jit_internal.h"
+
+int jit_fail(char *err, size_t errlen, const char *fmt, ...)
+{
+    if (err && errlen > 0) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(err, errlen, fmt, ap);
+        va_end(ap);
+    }
+    return 1;
+}
+
+double jit_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* mkdir -p: each missing component created (0777 minus the umask) */
+static int make_dirs(const char *path, char *err, size_t errlen)
+{
+    char buf[1024];
+    size_t n = strlen(path);
+    if (n == 0 || n >= sizeof buf)
+        return jit_fail(err, errlen, "cache directory path '%s' is empty or too long", path);
+    memcpy(buf, path, n + 1);
+    for (size_t i = 1; i <= n; i++) {
+        if (buf[i] != '/' && buf[i] != '\0')
+            continue;
+        char c = buf[i];
+        buf[i] = '\0';
+        if (mkdir(buf, 0777) != 0 && errno != EEXIST)
+            return jit_fail(err, errlen, "cannot create the cache directory %s: %s", buf,
+                            strerror(errno));
+        buf[i] = c;
+    }
+    struct stat st;
+    if (stat(path, &st) != 0 || !S_ISDIR(st.st_mode))
+        return jit_fail(err, errlen, "the cache directory %s is not a directory", path);
+    return 0;
+}
+
+int dyn_jit_cache_dir(const dyn_jit_opts *opts, char *buf, size_t size)
+{
+    const char *env;
+    int n;
+    if (opts && opts->cache_dir && opts->cache_dir[0])
+        n = snprintf(buf, size, "%s", opts->cache_dir);
+    else if ((env = getenv("DYNKIT_CACHE_DIR")) && env[0])
+        n = snprintf(buf, size, "%s", env);
+    else if ((env = getenv("XDG_CACHE_HOME")) && env[0] == '/')
+        n = snprintf(buf, size, "%s/dynkit", env);
+    else if ((env = getenv("HOME")) && env[0])
+        n = snprintf(buf, size, "%s/.cache/dynkit", env);
+    else
+        return 1;
+    return (n < 0 || (size_t)n >= size) ? 1 : 0;
+}
+
+int jit_cache_dir(const dyn_jit_opts *opts, char *dir, size_t size, char *err, size_t errlen)
+{
+    if (dyn_jit_cache_dir(opts, dir, size) != 0)
+        return jit_fail(err, errlen,
+                        "no cache directory for compiled models: set DYNKIT_CACHE_DIR (or HOME)");
+    return make_dirs(dir, err, errlen);
+}
+
+void jit_unique_path(const char *dir, const char *prefix, const char *suffix, char *out,
+                     size_t size)
+{
+    static _Atomic unsigned long counter;
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    unsigned long n = ++counter;
+    snprintf(out, size, "%s/%s%ld-%lu-%lx%lx%s", dir, prefix, (long)getpid(), n,
+             (unsigned long)ts.tv_sec, (unsigned long)ts.tv_nsec, suffix);
+}
+
+static int write_file(const char *path, const void *data, size_t len)
+{
+    int fd = open(path, O_WRONLY | O_CREAT | O_EXCL, 0644);
+    if (fd < 0)
+        return -1;
+    const char *p = data;
+    while (len > 0) {
+        ssize_t w = write(fd, p, len);
+        if (w < 0) {
+            if (errno == EINTR)
+                continue;
+            close(fd);
+            return -1;
+        }
+        p += w;
+        len -= (size_t)w;
+    }
+    return close(fd);
+}
+
+static void remove_tree(const char *tmp)
+{
+    char path[1200];
+    for (int i = 0; i < dyn_jit_header_count; i++) {
+        snprintf(path, sizeof path, "%s/dynkit/%s", tmp, dyn_jit_headers[i].name);
+        unlink(path);
+    }
+    snprintf(path, sizeof path, "%s/dynkit", tmp);
+    rmdir(path);
+    rmdir(tmp);
+}
+
+int jit_include_dir(const char *cache, char *dir, size_t size, char *err, size_t errlen)
+{
+    int n = snprintf(dir, size, "%s/include-%s-%.16s", cache, DYNKIT_VERSION,
+                     dyn_jit_headers_hash);
+    if (n < 0 || (size_t)n >= size)
+        return jit_fail(err, errlen, "cache directory path too long: %s", cache);
+    struct stat st;
+    if (stat(dir, &st) == 0 && S_ISDIR(st.st_mode))
+        return 0; /* complete: it appears only by the rename below */
+
+    char tmp[1024], path[1200];
+    jit_unique_path(cache, "tmp-include-", "", tmp, sizeof tmp);
+    snprintf(path, sizeof path, "%s/dynkit", tmp);
+    if (mkdir(tmp, 0755) != 0 || mkdir(path, 0755) != 0) {
+        int e = errno;
+        remove_tree(tmp);
+        return jit_fail(err, errlen, "cannot write into the cache directory %s: %s", cache,
+                        strerror(e));
+    }
+    for (int i = 0; i < dyn_jit_header_count; i++) {
+        snprintf(path, sizeof path, "%s/dynkit/%s", tmp, dyn_jit_headers[i].name);
+        if (write_file(path, dyn_jit_headers[i].data, dyn_jit_headers[i].size) != 0) {
+            int e = errno;
+            remove_tree(tmp);
+            return jit_fail(err, errlen, "cannot write %s: %s", path, strerror(e));
+        }
+    }
+    if (rename(tmp, dir) != 0) {
+        int e = errno;
+        remove_tree(tmp);
+        /* another process put the same directory in place first: use it */
+        if (stat(dir, &st) == 0 && S_ISDIR(st.st_mode))
+            return 0;
+        return jit_fail(err, errlen, "cannot create %s: %s", dir, strerror(e));
+    }
+    return 0;
+}
+
+char *jit_source_with_line(const char *source, size_t len, const char *source_name,
+                           size_t *out_len)
+{
+    const char *name = source_name && source_name[0] ? source_name : "model.c";
+    size_t nlen = strlen(name);
+    char stamp[160];
+    int slen = snprintf(stamp, sizeof stamp,
+                        "#line 1 \"<dynkit: model ABI stamp>\"\n"
+                        "extern const unsigned dynkit_model_abi;\n"
+                        "const unsigned dynkit_model_abi = %uu;\n",
+                        (unsigned)DYN_MODEL_ABI);
+    char *buf = malloc(16 + 2 * nlen + len + 2 + (size_t)slen);
+    if (!buf)
+        return NULL;
+    size_t k = 0;
+    memcpy(buf, "#line 1 \"", 9);
+    k = 9;
+    for (size_t i = 0; i < nlen; i++) {
+        char c = name[i];
+        if (c == '\n' || c == '\r')
+            c = ' ';
+        if (c == '"' || c == '\\')
+            buf[k++] = '\\';
+        buf[k++] = c;
+    }
+    buf[k++] = '"';
+    buf[k++] = '\n';
+    memcpy(buf + k, source, len);
+    k += len;
+    if (len == 0 || source[len - 1] != '\n')
+        buf[k++] = '\n';
+    memcpy(buf + k, stamp, (size_t)slen);
+    k += (size_t)slen;
+    buf[k] = '\0';
+    if (out_len)
+        *out_len = k;
+    return buf;
+}

@@ -1,0 +1,353 @@
+/* The system C compiler backend of the jit layer: the model's source compiled into a shared
+ * object in the cache directory, named by the SHA-256 of (source, source name, dynkit's
+ * version, the model ABI, the embedded headers, the compiler command and flags). A cached
+ * run only dlopens. Concurrent runs compile to unique temporary names and rename(2) the
+ * result into place, so a reader never sees a half-written file. The compiler runs through
+ * posix_spawnp with an argument vector (no shell), its diagnostics captured for the caller. */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <fcntl.h>
+#include <spawn.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "jit_internal.h"
+
+extern char **environ;
+
+#define MAX_ARGS 64
+#define DEFAULT_CFLAGS "-O2"
+/* Always passed before the flags (which may override it): no contraction of a*b + c into
+ * fused multiply-adds, so that a model computes the same numbers as the library (compiled as
+ * ISO C, where GCC does not contract) whatever the target and the compiler's default. */
+#define FIXED_CFLAGS "-ffp-contract=off"
+#define MAX_OUTPUT (256 * 1024) /* compiler output kept */
+
+/* An argument vector whose strings live in the struct itself. */
+typedef struct words {
+    char arena[8192];
+    size_t used;
+    char *argv[MAX_ARGS + 1];
+    int n;
+} words;
+
+static int add_word(words *w, const char *s, size_t len)
+{
+    if (w->n >= MAX_ARGS || w->used + len + 1 > sizeof w->arena)
+        return 1;
+    char *p = w->arena + w->used;
+    memcpy(p, s, len);
+    p[len] = '\0';
+    w->used += len + 1;
+    w->argv[w->n++] = p;
+    w->argv[w->n] = NULL;
+    return 0;
+}
+
+/* Split s at blanks; a command that names an existing file as a whole (a path with blanks)
+ * stays one word. */
+static int add_split(words *w, const char *s, int whole_if_file)
+{
+    if (whole_if_file && strpbrk(s, " \t") && access(s, X_OK) == 0)
+        return add_word(w, s, strlen(s));
+    while (*s) {
+        while (*s == ' ' || *s == '\t' || *s == '\n')
+            s++;
+        size_t len = strcspn(s, " \t\n");
+        if (len > 0 && add_word(w, s, len) != 0)
+            return 1;
+        s += len;
+    }
+    return 0;
+}
+
+static const char *pick(const char *given, const char *env1, const char *env2,
+                        const char *fallback)
+{
+    const char *v;
+    if (given && given[0])
+        return given;
+    if (env1 && (v = getenv(env1)) && v[0])
+        return v;
+    if (env2 && (v = getenv(env2)) && v[0])
+        return v;
+    return fallback;
+}
+
+/* The compiler's output: the first MAX_OUTPUT bytes. */
+typedef struct capture {
+    char *buf;
+    size_t len, cap;
+} capture;
+
+static void capture_add(capture *c, const char *p, size_t n)
+{
+    if (c->len + n > MAX_OUTPUT)
+        n = MAX_OUTPUT - c->len;
+    if (n == 0)
+        return;
+    if (c->len + n + 1 > c->cap) {
+        size_t cap = c->cap ? c->cap : 4096;
+        while (cap < c->len + n + 1)
+            cap *= 2;
+        char *b = realloc(c->buf, cap);
+        if (!b)
+            return;
+        c->buf = b;
+        c->cap = cap;
+    }
+    memcpy(c->buf + c->len, p, n);
+    c->len += n;
+    c->buf[c->len] = '\0';
+}
+
+/* Run argv with stdin from /dev/null and stdout+stderr into out. Returns the exit status
+ * (0..255), 256 + signal when killed, or -errno when it could not start. */
+static int run(char *const argv[], capture *out)
+{
+    int fds[2];
+    if (pipe(fds) != 0)
+        return -errno;
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_adddup2(&fa, fds[1], 1);
+    posix_spawn_file_actions_adddup2(&fa, fds[1], 2);
+    posix_spawn_file_actions_addclose(&fa, fds[0]);
+    posix_spawn_file_actions_addclose(&fa, fds[1]);
+    pid_t pid;
+    int rc = posix_spawnp(&pid, argv[0], &fa, NULL, argv, environ);
+    posix_spawn_file_actions_destroy(&fa);
+    close(fds[1]);
+    if (rc != 0) {
+        close(fds[0]);
+        return -rc;
+    }
+    char chunk[4096];
+    for (;;) {
+        ssize_t r = read(fds[0], chunk, sizeof chunk);
+        if (r > 0)
+            capture_add(out, chunk, (size_t)r);
+        else if (r == 0 || errno != EINTR)
+            break;
+    }
+    close(fds[0]);
+    int status;
+    while (waitpid(pid, &status, 0) < 0)
+        if (errno != EINTR)
+            return -errno;
+    if (WIFEXITED(status))
+        return WEXITSTATUS(status);
+    return 256 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+}
+
+/* "head: text" into err, cut at a line end when the room is short, with a note of how many
+ * lines were left out (the first diagnostics are the ones that matter). */
+static void report_output(char *err, size_t errlen, const char *head, const char *text)
+{
+    if (!err || errlen == 0)
+        return;
+    int n = snprintf(err, errlen, "%s", head);
+    size_t used = n < 0 ? 0 : (size_t)n;
+    if (used >= errlen - 1 || !text)
+        return;
+    size_t len = strlen(text);
+    while (len > 0 && (text[len - 1] == '\n' || text[len - 1] == ' '))
+        len--;
+    size_t room = errlen - 1 - used;
+    if (len <= room) {
+        memcpy(err + used, text, len);
+        err[used + len] = '\0';
+        return;
+    }
+    const char note_fmt[] = "\n[... %d more lines]";
+    size_t keep = room > 40 ? room - 40 : 0;
+    while (keep > 0 && text[keep] != '\n')
+        keep--;
+    int more = 0;
+    for (size_t i = keep; i < len; i++)
+        more += text[i] == '\n';
+    memcpy(err + used, text, keep);
+    snprintf(err + used + keep, errlen - used - keep, note_fmt, more + 1);
+}
+
+static int write_all(const char *path, const char *data, size_t len)
+{
+    int fd = open(path, O_WRONLY | O_CREAT | O_EXCL, 0644);
+    if (fd < 0)
+        return -1;
+    while (len > 0) {
+        ssize_t w = write(fd, data, len);
+        if (w < 0) {
+            if (errno == EINTR)
+                continue;
+            close(fd);
+            return -1;
+        }
+        data += w;
+        len -= (size_t)w;
+    }
+    return close(fd);
+}
+
+/* A readable stem for the cached file: the source's base name without its extension. */
+static void stem_of(const char *name, char *stem, size_t size)
+{
+    const char *b = name ? strrchr(name, '/') : NULL;
+    b = b ? b + 1 : (name ? name : "model");
+    size_t k = 0;
+    for (; *b && *b != '.' && k + 1 < size && k < 40; b++)
+        stem[k++] = ((*b >= 'a' && *b <= 'z') || (*b >= 'A' && *b <= 'Z') ||
+                     (*b >= '0' && *b <= '9') || *b == '_' || *b == '-')
+                        ? *b
+                        : '_';
+    if (k == 0)
+        stem[k++] = 'm';
+    stem[k] = '\0';
+}
+
+int jit_cc_load(const char *source, size_t len, const char *source_name,
+                const dyn_jit_opts *opts, dyn_jit_model *out, char *err, size_t errlen)
+{
+    const char *where = source_name && source_name[0] ? source_name : "model.c";
+    char cache[1024], inc[1100];
+    if (jit_cache_dir(opts, cache, sizeof cache, err, errlen) != 0)
+        return 1;
+    const char *cc = pick(opts ? opts->cc : NULL, "DYNKIT_CC", "CC", "cc");
+    const char *cflags = pick(opts ? opts->cflags : NULL, "DYNKIT_CFLAGS", NULL, DEFAULT_CFLAGS);
+
+    words *argv = malloc(sizeof *argv); /* 9 KB: not on the stack */
+    if (!argv)
+        return jit_fail(err, errlen, "out of memory");
+    argv->used = 0;
+    argv->n = 0;
+    argv->argv[0] = NULL;
+    if (add_split(argv, cc, 1) != 0 || argv->n == 0 || add_split(argv, FIXED_CFLAGS, 0) != 0 ||
+        add_split(argv, cflags, 0) != 0 || add_split(argv, "-fPIC -shared", 0) != 0) {
+        free(argv);
+        return jit_fail(err, errlen, "the compiler command is empty or too long: %s %s", cc,
+                        cflags);
+    }
+    int n_command = argv->n;
+
+    /* the key: everything that changes the compiled code */
+    char key[65], ver[64];
+    jit_sha256 h;
+    jit_sha256_init(&h);
+    snprintf(ver, sizeof ver, "dynkit-jit-cc %s abi %d ", DYNKIT_VERSION, DYN_MODEL_ABI);
+    jit_sha256_update(&h, ver, strlen(ver) + 1);
+    jit_sha256_update(&h, dyn_jit_headers_hash, strlen(dyn_jit_headers_hash) + 1);
+    for (int i = 0; i < n_command; i++)
+        jit_sha256_update(&h, argv->argv[i], strlen(argv->argv[i]) + 1);
+    jit_sha256_update(&h, where, strlen(where) + 1);
+    jit_sha256_update(&h, source, len);
+    jit_sha256_hex(&h, key);
+
+    char stem[48], so[1200];
+    stem_of(where, stem, sizeof stem);
+    int k = snprintf(so, sizeof so, "%s/%s-%.32s.so", cache, stem, key);
+    if (k < 0 || (size_t)k >= sizeof so || (size_t)k >= sizeof out->so_path) {
+        free(argv);
+        return jit_fail(err, errlen, "cache directory path too long: %s", cache);
+    }
+
+    struct stat st;
+    if (stat(so, &st) == 0) {
+        free(argv);
+        if (!S_ISREG(st.st_mode) || st.st_uid != geteuid())
+            return jit_fail(err, errlen,
+                            "refusing to load %s: not a regular file owned by this user "
+                            "(the cache directory %s is shared?)",
+                            so, cache);
+        if (jit_load_so(so, where, out, err, errlen) != 0)
+            return 1;
+        out->cached = 1;
+        return 0;
+    }
+
+    if (jit_include_dir(cache, inc, sizeof inc, err, errlen) != 0) {
+        free(argv);
+        return 1;
+    }
+    char tmp_c[1200], tmp_so[1200];
+    jit_unique_path(cache, "tmp-", ".c", tmp_c, sizeof tmp_c);
+    jit_unique_path(cache, "tmp-", ".so", tmp_so, sizeof tmp_so);
+    size_t text_len;
+    char *text = jit_source_with_line(source, len, where, &text_len);
+    if (!text) {
+        free(argv);
+        return jit_fail(err, errlen, "out of memory");
+    }
+    if (write_all(tmp_c, text, text_len) != 0) {
+        int e = errno;
+        free(text);
+        free(argv);
+        unlink(tmp_c);
+        return jit_fail(err, errlen, "cannot write into the cache directory %s: %s", cache,
+                        strerror(e));
+    }
+    free(text);
+    if (add_word(argv, "-I", 2) || add_word(argv, inc, strlen(inc)) ||
+        add_word(argv, "-o", 2) || add_word(argv, tmp_so, strlen(tmp_so)) ||
+        add_word(argv, tmp_c, strlen(tmp_c)) ||
+        add_word(argv, "-lm", 3)) {
+        unlink(tmp_c);
+        free(argv);
+        return jit_fail(err, errlen, "the compiler command is too long");
+    }
+
+    capture output = {0};
+    double t_start = jit_now();
+    int status = run(argv->argv, &output);
+    double seconds = jit_now() - t_start;
+    unlink(tmp_c);
+    int rc = 0;
+    if (status < 0) {
+        if (-status == ENOENT)
+            rc = jit_fail(err, errlen,
+                          "cannot compile %s: the C compiler '%s' was not found: install one "
+                          "(apt-get install gcc), or set DYNKIT_CC to a C compiler%s",
+                          where, argv->argv[0],
+                          dyn_jit_backend_available(DYN_JIT_TCC)
+                              ? ", or use the built-in libtcc (DYNKIT_JIT=tcc)"
+                              : "");
+        else
+            rc = jit_fail(err, errlen, "cannot run the C compiler '%s': %s", argv->argv[0],
+                          strerror(-status));
+    } else if (status != 0) {
+        char head[600];
+        if (status > 255)
+            snprintf(head, sizeof head, "compiling %s: the compiler '%s' was killed (signal %d)\n",
+                     where, argv->argv[0], status - 256);
+        else if (output.len == 0)
+            snprintf(head, sizeof head,
+                     "compiling %s: the compiler '%s' failed (exit status %d) without a message",
+                     where, argv->argv[0], status);
+        else
+            head[0] = '\0';
+        report_output(err, errlen, head, output.buf);
+        rc = 1;
+    }
+    free(output.buf);
+    free(argv);
+    if (rc != 0) {
+        unlink(tmp_so);
+        return rc;
+    }
+    if (rename(tmp_so, so) != 0) {
+        int e = errno;
+        unlink(tmp_so);
+        return jit_fail(err, errlen, "cannot put the compiled model in place (%s): %s", so,
+                        strerror(e));
+    }
+    if (jit_load_so(so, where, out, err, errlen) != 0)
+        return 1;
+    out->cached = 0;
+    out->compile_seconds = seconds;
+    return 0;
+}

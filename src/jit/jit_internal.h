@@ -1,0 +1,81 @@
+/* Internal interface of the jit layer (src/jit): the embedded headers, SHA-256, the cache
+ * directory, messages, and the two backends behind dyn_jit_load_source. */
+#ifndef DYNKIT_JIT_INTERNAL_H
+#define DYNKIT_JIT_INTERNAL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "dynkit/jit.h"
+
+#ifndef DYNKIT_VERSION
+#define DYNKIT_VERSION "unknown"
+#endif
+
+/* the public headers (include/dynkit/, every .h) as embedded at build time
+ * (generated/jit_headers.c) */
+typedef struct dyn_jit_header {
+    const char *name; /* e.g. "model.h" */
+    const unsigned char *data;
+    size_t size;
+} dyn_jit_header;
+extern const dyn_jit_header dyn_jit_headers[];
+extern const int dyn_jit_header_count;
+extern const char dyn_jit_headers_hash[]; /* SHA-256 of names and contents, hex */
+
+/* SHA-256 (FIPS 180-4), incremental */
+typedef struct jit_sha256 {
+    uint32_t h[8];
+    uint64_t bytes;
+    unsigned char buf[64];
+    size_t used;
+} jit_sha256;
+void jit_sha256_init(jit_sha256 *s);
+void jit_sha256_update(jit_sha256 *s, const void *data, size_t len);
+/* the digest as 64 lowercase hex digits and a NUL into hex[65] */
+void jit_sha256_hex(jit_sha256 *s, char hex[65]);
+
+/* printf into err (always NUL-terminated when errlen > 0); returns 1 */
+int jit_fail(char *err, size_t errlen, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+/* The cache directory of opts (see jit.h), created with its parents; 0 or non-zero with a
+ * message. */
+int jit_cache_dir(const dyn_jit_opts *opts, char *dir, size_t size, char *err, size_t errlen);
+/* <cache>/include-<version>-<hash>: the embedded headers under dynkit/, written once
+ * (atomically: a whole directory renamed into place). */
+int jit_include_dir(const char *cache, char *dir, size_t size, char *err, size_t errlen);
+/* A name unique among concurrent processes and threads: "<prefix><pid>-<n>-<clock><suffix>"
+ * inside dir. */
+void jit_unique_path(const char *dir, const char *prefix, const char *suffix, char *out,
+                     size_t size);
+/* The text given to the compilers: `#line 1 "name"` (name escaped) so that diagnostics
+ * name the user's file and lines, the source, then the model ABI stamp
+ * `const unsigned dynkit_model_abi = DYN_MODEL_ABI;` after a #line of its own (one
+ * translation unit: a second one would cost the system compiler a second run of cc1 and as).
+ * malloc'd, NUL-terminated; NULL when out of memory. */
+char *jit_source_with_line(const char *source, size_t len, const char *source_name,
+                           size_t *out_len);
+/* Seconds of a monotonic clock. */
+double jit_now(void);
+
+/* Check a model returned by dynkit_model(): 0, or non-zero with a message naming `where`. */
+int jit_check_model(const dyn_model *m, const char *where, char *err, size_t errlen);
+
+/* dlopen a shared object, check its ABI stamp and its model; `where` names it in messages
+ * (the user's source for a compiled one). */
+int jit_load_so(const char *path, const char *where, dyn_jit_model *out, char *err,
+                size_t errlen);
+
+/* Backends: compile and load; fill out (model, handle, backend, cached, compile_seconds,
+ * so_path). */
+int jit_cc_load(const char *source, size_t len, const char *source_name,
+                const dyn_jit_opts *opts, dyn_jit_model *out, char *err, size_t errlen);
+int jit_tcc_load(const char *source, size_t len, const char *source_name,
+                 const dyn_jit_opts *opts, dyn_jit_model *out, char *err, size_t errlen);
+void jit_tcc_unload(void *handle);
+
+#endif /* DYNKIT_JIT_INTERNAL_H */

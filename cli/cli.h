@@ -43,6 +43,7 @@ typedef struct cli_run {
     double t0, t1, step;
     dyn_end_policy end;
     const char *output_path; /* NULL = stdout */
+    int header;           /* --header: cli_header (table_formats.h), CSV only */
     int final_only;
     int with_outputs;
     int quiet;

@@ -1,0 +1,469 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* Data files of a run's table: the format chosen by the output's extension, and the streamed
+ * writers: CSV (RFC 4180; numbers with %.17g, which round-trip every double) and JSON
+ * (RFC 8259; the settings, names and units, then one array per row). NPY streams too when the
+ * stream can seek (NPY format 1.0: the header, which holds the row count, is written first
+ * with room for any count and rewritten at the end); the other formats keep the rows and are
+ * written at the end by table_numpy.c and table_mat.c. See docs/data-files.md. */
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "cli.h"
+#include "dynkit/io.h"
+#include "table_formats.h"
+
+#ifndef DYNKIT_VERSION
+#define DYNKIT_VERSION "0.1.0"
+#endif
+
+struct cli_table {
+    FILE *out;
+    cli_format format;
+    cli_table_info info;
+    long rows;
+    int failed;      /* a write failed */
+    int no_memory;   /* keeping the rows failed */
+    /* kept rows (buffered formats), row-major */
+    double *data;
+    long capacity;
+    /* NPY streamed: where the header starts and its size */
+    int npy_stream;
+    long npy_start, npy_header;
+    const char **owned; /* names and units made by cli_table_open_run */
+};
+
+static const struct {
+    const char *ext;
+    cli_format format;
+} extensions[] = {{".csv", CLI_FORMAT_CSV},
+                  {".json", CLI_FORMAT_JSON},
+                  {".mat", CLI_FORMAT_MAT},
+                  {".npy", CLI_FORMAT_NPY},
+                  {".npz", CLI_FORMAT_NPZ}};
+
+int cli_format_have_mat(void)
+{
+#ifdef DYNKIT_HAVE_MATIO
+    return 1;
+#else
+    return 0;
+#endif
+}
+
+const char *cli_format_name(cli_format format)
+{
+    for (size_t i = 0; i < sizeof extensions / sizeof extensions[0]; i++)
+        if (extensions[i].format == format)
+            return extensions[i].ext + 1;
+    return "?";
+}
+
+int cli_format_of_path(const char *path, cli_format *format, char *err, size_t errlen)
+{
+    *format = CLI_FORMAT_CSV;
+    if (strcmp(path, "-") == 0)
+        return 0;
+    const char *slash = strrchr(path, '/');
+    const char *base = slash ? slash + 1 : path;
+    const char *dot = strrchr(base, '.');
+    if (!dot || dot == base) {
+        snprintf(err, errlen,
+                 "'%s' has no file extension to choose the format by (accepted: %s; '-' is "
+                 "standard output, CSV)",
+                 path, CLI_FORMAT_EXTENSIONS);
+        return -1;
+    }
+    for (size_t i = 0; i < sizeof extensions / sizeof extensions[0]; i++)
+        if (strcasecmp(dot, extensions[i].ext) == 0) {
+            *format = extensions[i].format;
+            if (*format == CLI_FORMAT_MAT && !cli_format_have_mat()) {
+                snprintf(err, errlen,
+                         "'%s': dynkit was built without matio, so it cannot write MATLAB "
+                         ".mat files (install libmatio-dev and rebuild; or write .npz, .csv or "
+                         ".json, which MATLAB reads too)",
+                         path);
+                return -1;
+            }
+            return 0;
+        }
+    snprintf(err, errlen, "'%s': unknown file extension '%s' (accepted: %s; '-' is standard "
+                          "output, CSV)",
+             path, dot, CLI_FORMAT_EXTENSIONS);
+    return -1;
+}
+
+/* ---- CSV ---- */
+
+/* One header field, quoted (RFC 4180) when it holds a comma, a quote or a line break. */
+static int csv_field(FILE *out, const char *name, const char *unit)
+{
+    char text[256];
+    if (unit && *unit)
+        snprintf(text, sizeof text, "%s [%s]", name, unit);
+    else
+        snprintf(text, sizeof text, "%s", name);
+    if (!strpbrk(text, ",\"\r\n"))
+        return fputs(text, out) < 0;
+    int bad = fputc('"', out) == EOF;
+    for (const char *p = text; *p; p++) {
+        if (*p == '"')
+            bad |= fputc('"', out) == EOF;
+        bad |= fputc(*p, out) == EOF;
+    }
+    return bad | (fputc('"', out) == EOF);
+}
+
+static int csv_header(cli_table *tab)
+{
+    const cli_table_info *in = &tab->info;
+    if (in->header == CLI_HEADER_NONE)
+        return 0;
+    int bad = 0;
+    for (int j = 0; j < in->cols; j++) {
+        if (j)
+            bad |= fputc(',', tab->out) == EOF;
+        bad |= csv_field(tab->out, in->names[j],
+                         in->header == CLI_HEADER_UNITS ? in->units[j] : NULL);
+    }
+    return bad | (fputc('\n', tab->out) == EOF);
+}
+
+/* ---- JSON ---- */
+
+/* A JSON string (RFC 8259 sec. 7): quotes, backslashes and control characters escaped. */
+static int json_string(FILE *out, const char *s)
+{
+    int bad = fputc('"', out) == EOF;
+    for (const unsigned char *p = (const unsigned char *)(s ? s : ""); *p; p++) {
+        if (*p == '"' || *p == '\\')
+            bad |= fprintf(out, "\\%c", *p) < 0;
+        else if (*p < 0x20)
+            bad |= fprintf(out, "\\u%04x", *p) < 0;
+        else
+            bad |= fputc(*p, out) == EOF;
+    }
+    return bad | (fputc('"', out) == EOF);
+}
+
+/* A number with %.17g (round-trips), or null when not finite (JSON has no NaN or Inf). */
+static int json_number(FILE *out, double v)
+{
+    return (isfinite(v) ? fprintf(out, "%.17g", v) : fputs("null", out)) < 0;
+}
+
+static int json_strings(FILE *out, const char *key, const char *const *s, int n)
+{
+    int bad = fprintf(out, "  \"%s\": [", key) < 0;
+    for (int i = 0; i < n; i++) {
+        if (i)
+            bad |= fputs(", ", out) < 0;
+        bad |= json_string(out, s[i]);
+    }
+    return bad | (fputs("],\n", out) < 0);
+}
+
+static int json_header(cli_table *tab)
+{
+    const cli_table_info *in = &tab->info;
+    FILE *out = tab->out;
+    int bad = fputs("{\n  \"dynkit\": ", out) < 0;
+    bad |= json_string(out, DYNKIT_VERSION);
+    bad |= fputs(",\n  \"model\": ", out) < 0;
+    bad |= json_string(out, in->model);
+    bad |= fputs(",\n  \"method\": ", out) < 0;
+    bad |= in->method ? json_string(out, in->method) : fputs("null", out) < 0;
+    bad |= fputs(",\n  \"step\": ", out) < 0;
+    bad |= json_number(out, in->step);
+    bad |= fputs(",\n  \"rtol\": ", out) < 0;
+    bad |= json_number(out, in->rtol);
+    bad |= fputs(",\n  \"atol\": ", out) < 0;
+    bad |= json_number(out, in->atol);
+    bad |= fputs(",\n  \"tspan\": [", out) < 0;
+    bad |= json_number(out, in->t0);
+    bad |= fputs(", ", out) < 0;
+    bad |= json_number(out, in->t1);
+    bad |= fprintf(out, "],\n  \"states\": %d,\n", in->n_y) < 0;
+    bad |= json_strings(out, "columns", in->names, in->cols);
+    bad |= json_strings(out, "units", in->units, in->cols);
+    bad |= fputs("  \"rows\": [", out) < 0;
+    return bad;
+}
+
+static int json_row(cli_table *tab, double t, const double *y, int n, const double *extra, int m)
+{
+    FILE *out = tab->out;
+    int bad = fputs(tab->rows ? ",\n    [" : "\n    [", out) < 0;
+    bad |= json_number(out, t);
+    for (int i = 0; i < n + m; i++) {
+        bad |= fputc(',', out) == EOF;
+        bad |= json_number(out, i < n ? y[i] : extra[i - n]);
+    }
+    return bad | (fputc(']', out) == EOF);
+}
+
+static int json_end(cli_table *tab)
+{
+    return fputs(tab->rows ? "\n  ]\n}\n" : "]\n}\n", tab->out) < 0;
+}
+
+/* ---- NPY streamed ---- */
+
+static long npy_max_header(int cols)
+{
+    char buf[256];
+    return cli_npy_header(buf, sizeof buf, LONG_MAX, cols, 0);
+}
+
+static int npy_row(cli_table *tab, double t, const double *y, int n, const double *extra, int m)
+{
+    unsigned char bytes[8];
+    int bad = 0;
+    for (int j = 0; j < 1 + n + m; j++) {
+        double v = j == 0 ? t : j <= n ? y[j - 1] : extra[j - 1 - n];
+        uint64_t u;
+        memcpy(&u, &v, sizeof u);
+        for (int b = 0; b < 8; b++)
+            bytes[b] = (unsigned char)(u >> (8 * b)); /* little-endian '<f8' */
+        bad |= fwrite(bytes, 1, 8, tab->out) != 8;
+    }
+    return bad;
+}
+
+static int npy_stream_end(cli_table *tab)
+{
+    char buf[256];
+    if (cli_npy_header(buf, sizeof buf, tab->rows, tab->info.cols, tab->npy_header) !=
+        tab->npy_header)
+        return 1;
+    if (fflush(tab->out) != 0 || fseek(tab->out, tab->npy_start, SEEK_SET) != 0)
+        return 1;
+    int bad = fwrite(buf, 1, (size_t)tab->npy_header, tab->out) != (size_t)tab->npy_header;
+    return bad | (fseek(tab->out, 0, SEEK_END) != 0);
+}
+
+/* ---- kept rows ---- */
+
+static int keep_row(cli_table *tab, double t, const double *y, int n, const double *extra, int m)
+{
+    const int cols = tab->info.cols;
+    if (tab->rows == tab->capacity) {
+        long cap = tab->capacity ? 2 * tab->capacity : 1024;
+        if ((double)cap * cols * sizeof(double) > (double)SIZE_MAX / 2)
+            return -1;
+        double *d = realloc(tab->data, (size_t)cap * (size_t)cols * sizeof *d);
+        if (!d)
+            return -1;
+        tab->data = d;
+        tab->capacity = cap;
+    }
+    double *row = tab->data + tab->rows * cols;
+    row[0] = t;
+    memcpy(row + 1, y, (size_t)n * sizeof *y);
+    if (m > 0)
+        memcpy(row + 1 + n, extra, (size_t)m * sizeof *extra);
+    return 0;
+}
+
+/* ---- the table ---- */
+
+cli_table *cli_table_open(FILE *out, cli_format format, const cli_table_info *info, char *err,
+                          size_t errlen)
+{
+    cli_table *tab = calloc(1, sizeof *tab);
+    if (!tab) {
+        snprintf(err, errlen, "out of memory");
+        return NULL;
+    }
+    tab->out = out;
+    tab->format = format;
+    tab->info = *info;
+    if (!tab->info.y_name)
+        tab->info.y_name = "y";
+    int bad = 0;
+    switch (format) {
+    case CLI_FORMAT_CSV:
+        bad = csv_header(tab);
+        break;
+    case CLI_FORMAT_JSON:
+        bad = json_header(tab);
+        break;
+    case CLI_FORMAT_NPY: {
+        /* stream when the stream can go back to the header */
+        long start = ftell(out);
+        if (start >= 0 && fseek(out, start, SEEK_SET) == 0) {
+            char buf[256];
+            tab->npy_stream = 1;
+            tab->npy_start = start;
+            tab->npy_header = npy_max_header(info->cols);
+            bad = tab->npy_header < 0 ||
+                  cli_npy_header(buf, sizeof buf, 0, info->cols, tab->npy_header) !=
+                      tab->npy_header ||
+                  fwrite(buf, 1, (size_t)tab->npy_header, out) != (size_t)tab->npy_header;
+        }
+        break;
+    }
+    case CLI_FORMAT_MAT:
+    case CLI_FORMAT_NPZ:
+        break;
+    }
+    if (bad) {
+        snprintf(err, errlen, "writing the %s header failed: %s", cli_format_name(format),
+                 strerror(errno));
+        free(tab);
+        return NULL;
+    }
+    return tab;
+}
+
+int cli_table_row(cli_table *tab, double t, const double *y, int n, const double *extra, int m)
+{
+    int bad = 0;
+    if (tab->failed || tab->no_memory)
+        return -1;
+    switch (tab->format) {
+    case CLI_FORMAT_CSV:
+        bad = dyn_csv_write_row(tab->out, t, y, n, extra, m) != DYN_OK;
+        break;
+    case CLI_FORMAT_JSON:
+        bad = json_row(tab, t, y, n, extra, m);
+        break;
+    case CLI_FORMAT_NPY:
+        if (tab->npy_stream)
+            bad = npy_row(tab, t, y, n, extra, m);
+        else if (keep_row(tab, t, y, n, extra, m))
+            tab->no_memory = 1;
+        break;
+    case CLI_FORMAT_MAT:
+    case CLI_FORMAT_NPZ:
+        if (keep_row(tab, t, y, n, extra, m))
+            tab->no_memory = 1;
+        break;
+    }
+    if (tab->no_memory)
+        return -1;
+    if (bad) {
+        tab->failed = 1;
+        return -1;
+    }
+    tab->rows++;
+    return 0;
+}
+
+long cli_table_rows(const cli_table *tab) { return tab->rows; }
+
+int cli_table_finish(cli_table *tab, char *err, size_t errlen)
+{
+    if (tab->no_memory) {
+        snprintf(err, errlen,
+                 "out of memory keeping %ld rows of %d columns for the %s file (CSV and NPY "
+                 "files are streamed; --every K keeps fewer rows)",
+                 tab->rows, tab->info.cols, cli_format_name(tab->format));
+        return -1;
+    }
+    int bad = tab->failed;
+    if (!bad) {
+        switch (tab->format) {
+        case CLI_FORMAT_CSV:
+            break;
+        case CLI_FORMAT_JSON:
+            bad = json_end(tab);
+            break;
+        case CLI_FORMAT_NPY:
+            if (tab->npy_stream)
+                bad = npy_stream_end(tab);
+            else
+                return cli_npy_write(tab->out, tab->data, tab->rows, tab->info.cols, err,
+                                     errlen);
+            break;
+        case CLI_FORMAT_NPZ:
+            return cli_npz_write(tab->out, &tab->info, tab->data, tab->rows, err, errlen);
+        case CLI_FORMAT_MAT:
+            return cli_mat_write(tab->out, &tab->info, tab->data, tab->rows, err, errlen);
+        }
+    }
+    bad |= fflush(tab->out) != 0;
+    if (bad) {
+        snprintf(err, errlen, "writing the %s file failed: %s", cli_format_name(tab->format),
+                 errno ? strerror(errno) : "write error");
+        return -1;
+    }
+    return 0;
+}
+
+void cli_table_free(cli_table *tab)
+{
+    if (!tab)
+        return;
+    free(tab->owned);
+    free(tab->data);
+    free(tab);
+}
+
+cli_table *cli_table_open_run(FILE *out, cli_format format, const cli_run *run, cli_header header,
+                              char *err, size_t errlen)
+{
+    const dyn_model *m = run->model;
+    const int n_extra = run->with_outputs ? m->n_outputs : 0;
+    const int cols = 1 + m->n_states + n_extra;
+    const char **s = malloc(2 * (size_t)cols * sizeof *s);
+    if (!s) {
+        snprintf(err, errlen, "out of memory");
+        return NULL;
+    }
+    for (int j = 0; j < cols; j++) {
+        const dyn_var *v = j == 0 ? NULL : j <= m->n_states ? &m->states[j - 1]
+                                                            : &m->outputs[j - 1 - m->n_states];
+        s[j] = v ? v->name : "t";
+        s[cols + j] = v ? (v->unit ? v->unit : "") : "s";
+    }
+    const int adaptive = dyn_method_is_adaptive(run->method);
+    /* the samples' step: the fixed step, or the output grid of an adaptive run */
+    const int on_grid = !adaptive || (!run->times && !cli_run_at_steps(run));
+    cli_table_info info = {
+        .model = m->name,
+        .method = run->method->name,
+        .step = on_grid ? run->step : NAN,
+        .rtol = adaptive && !run->rtolv ? (run->rtol > 0   ? run->rtol
+                                          : m->rtol > 0    ? m->rtol
+                                                           : DYN_DEFAULT_RTOL)
+                                        : NAN,
+        .atol = adaptive && !run->atolv ? (run->atol > 0   ? run->atol
+                                          : m->atol > 0    ? m->atol
+                                                           : DYN_DEFAULT_ATOL)
+                                        : NAN,
+        .t0 = run->t0,
+        .t1 = run->t1,
+        .cols = cols,
+        .n_y = m->n_states,
+        .names = s,
+        .units = s + cols,
+        .header = header,
+    };
+    cli_table *tab = cli_table_open(out, format, &info, err, errlen);
+    if (!tab) {
+        free(s);
+        return NULL;
+    }
+    tab->owned = s;
+    return tab;
+}
+
+int cli_run_format(const struct cli_run *run, cli_format *format)
+{
+    char err[512];
+    if (cli_format_of_path(run->output_path ? run->output_path : "-", format, err, sizeof err))
+        return cli_usage_error("run", "--output %s", err);
+    if (run->header != CLI_HEADER_NAMES && *format != CLI_FORMAT_CSV)
+        return cli_usage_error("run", "--header applies to CSV output; a .%s file %s",
+                               cli_format_name(*format),
+                               *format == CLI_FORMAT_NPY
+                                   ? "holds the numbers only (its columns are those of the "
+                                     "CSV header)"
+                                   : "carries the names and units anyway");
+    return CLI_OK;
+}

@@ -82,10 +82,23 @@ int cli_parse_count(const char *text, long min, long *out)
     return 0;
 }
 
+/* The short forms: -o for --output, -m for --method (each takes the next argument). */
+static int short_form(const char *arg, const char *name)
+{
+    return (strcmp(arg, "-o") == 0 && strcmp(name, "output") == 0) ||
+           (strcmp(arg, "-m") == 0 && strcmp(name, "method") == 0);
+}
+
 int cli_option(int argc, char **argv, int *i, const char *name, const char **value)
 {
     const char *arg = argv[*i];
     size_t len = strlen(name);
+    if (short_form(arg, name)) {
+        if (*i + 1 >= argc)
+            return -1;
+        *value = argv[++*i];
+        return 1;
+    }
     if (strncmp(arg, "--", 2) != 0 || strncmp(arg + 2, name, len) != 0)
         return 0;
     if (arg[2 + len] == '=') {

@@ -1,10 +1,46 @@
 /* The methods the tool offers: the library's registry (dyn_method_find) and, when dynkit is
  * built with SUNDIALS, "cvode", the CVODE backend (dynkit/cvode.h), which is a library of
  * its own and not in the core registry. Its descriptor only names it for the tool (listing,
- * labels, adaptive/stiff tests); cli_run_solve sends runs with it to dyn_cvode_solve. */
+ * labels, adaptive/stiff tests); cli_run_solve sends runs with it to dyn_cvode_solve.
+ * Names are matched without regard to case, and MATLAB's solver names are understood: ode45
+ * and ode23 are the library's aliases of dp45 and bs23, ode15s and ode23s select the stiff
+ * method rodas4; ode113 and the other MATLAB solvers without a counterpart are refused with
+ * a pointer to the method to use instead. */
+#include <ctype.h>
 #include <string.h>
 
 #include "cli.h"
+#include "dynkit/lang.h"
+
+/* MATLAB's solvers: the method each selects, or NULL with the advice for the message. */
+static const struct {
+    const char *matlab, *method, *advice;
+} matlab_solvers[] = {
+    {"ode15s", "rodas4", NULL},
+    {"ode23s", "rodas4", NULL},
+    {"ode113", NULL,
+     "MATLAB's ode113 (variable-order Adams-Bashforth-Moulton) is not available; for smooth "
+     "non-stiff problems at tight tolerances use dop853 (order 8, adaptive)"},
+    {"ode23t", NULL,
+     "MATLAB's ode23t (trapezoidal rule) is not available; for stiff problems use rodas4 (or "
+     "ode15s/ode23s, which select it)"},
+    {"ode23tb", NULL,
+     "MATLAB's ode23tb (TR-BDF2) is not available; for stiff problems use rodas4 (or "
+     "ode15s/ode23s, which select it)"},
+    {"ode15i", NULL,
+     "MATLAB's ode15i solves implicit equations f(t, y, y') = 0, which dynkit does not take; "
+     "write the model as y' = f(t, y) and use rodas4"},
+};
+
+/* name in lower case into buf (names longer than the buffer are cut, and then unknown). */
+static const char *lower(const char *name, char *buf, size_t size)
+{
+    size_t i = 0;
+    for (; name && name[i] && i + 1 < size; i++)
+        buf[i] = (char)tolower((unsigned char)name[i]);
+    buf[i] = '\0';
+    return buf;
+}
 
 #ifdef DYNKIT_HAVE_CVODE
 /* A descriptor, never a table for the library's drivers: kind stiff, so that
@@ -32,8 +68,15 @@ int cli_method_is_cvode(const dyn_tableau *m) { return m && m == cli_cvode_metho
 
 const dyn_tableau *cli_method_find(const char *name)
 {
+    char buf[64];
+    if (!name || strlen(name) >= sizeof buf)
+        return NULL;
+    name = lower(name, buf, sizeof buf);
+    for (size_t i = 0; i < sizeof matlab_solvers / sizeof matlab_solvers[0]; i++)
+        if (strcmp(name, matlab_solvers[i].matlab) == 0)
+            return matlab_solvers[i].method ? dyn_method_find(matlab_solvers[i].method) : NULL;
     const dyn_tableau *m = dyn_method_find(name);
-    if (!m && name && strcmp(name, "cvode") == 0)
+    if (!m && strcmp(name, "cvode") == 0)
         m = cli_cvode_method();
     return m;
 }
@@ -49,8 +92,27 @@ char *cli_method_names(char *buf, size_t size)
 
 int cli_method_error(const char *command, const char *what, const char *name)
 {
-    char names[640];
-    if (name && strcmp(name, "cvode") == 0 && !cli_cvode_method())
+    char names[640], buf[64];
+    const char *low = lower(name, buf, sizeof buf);
+    for (size_t i = 0; i < sizeof matlab_solvers / sizeof matlab_solvers[0]; i++)
+        if (strcmp(low, matlab_solvers[i].matlab) == 0 && matlab_solvers[i].advice)
+            return cli_usage_error(command, "%s %s: %s", what, name, matlab_solvers[i].advice);
+    /* the nearest name or alias, as a likely typo */
+    const char *known[80];
+    int n = 0;
+    for (int i = 0; i < dyn_method_count() && n + 2 < 80; i++) {
+        const dyn_tableau *m = dyn_method_at(i);
+        known[n++] = m->name;
+        if (m->alias)
+            known[n++] = m->alias;
+    }
+    if (cli_cvode_method())
+        known[n++] = "cvode";
+    const char *near = name ? dyn_lang_nearest(name, known, n) : NULL;
+    if (near)
+        return cli_usage_error(command, "%s: unknown method '%s' (did you mean '%s'? accepted: %s)",
+                               what, name, near, cli_method_names(names, sizeof names));
+    if (strcmp(low, "cvode") == 0 && !cli_cvode_method())
         return cli_usage_error(command,
                                "%s cvode: dynkit was built without SUNDIALS, so the CVODE "
                                "backend is not available (install libsundials-dev and "

@@ -1,4 +1,5 @@
-/* Command-line parsing helpers: numbers (with multiples of pi), counts, options. */
+/* Command-line parsing helpers: numbers (with multiples of pi, or angles in degrees), counts,
+ * options (-o and -m are --output and --method). */
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -52,8 +53,12 @@ int cli_parse_number(const char *text, double *out)
             return -1;
         p = end;
     }
-    if (take_pi(&p))
+    if (strncmp(p, "deg", 3) == 0) { /* an angle in degrees: 45deg */
+        value *= DYN_PI / 180.0;
+        p += 3;
+    } else if (take_pi(&p)) {
         value *= DYN_PI;
+    }
     if (*p == '/') {
         char *end;
         double div = strtod(p + 1, &end);

@@ -16,7 +16,8 @@ int cli_usage_error(const char *command, const char *fmt, ...)
 #endif
     ;
 
-/* Parse a finite number: decimal, optionally times pi ("pi/2", "-0.5pi", "2*pi/3").
+/* Parse a finite number: decimal, optionally times pi ("pi/2", "-0.5pi", "2*pi/3") or an
+ * angle in degrees ("45deg", converted to rad).
  * Returns 0 and *out, or -1 when text is not such a number. */
 int cli_parse_number(const char *text, double *out);
 /* Parse a count >= min (decimal or 1e6 style); 0 on success, -1 otherwise. */

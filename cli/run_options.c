@@ -7,12 +7,15 @@
 #include <string.h>
 
 #include "cli.h"
+#include "dynkit/lang.h"
 #include "run_parse.h"
+#include "table_formats.h"
 
 void cli_run_options_help(FILE *out)
 {
     fputs("Run options:\n"
-          "  --method NAME        integration method (default: the model's; see 'dynkit methods')\n"
+          "  -m, --method NAME    integration method (default: the model's; see 'dynkit methods';\n"
+          "                       MATLAB's names too: ode45, ode23, ode15s, ode23s)\n"
           "  --step H             step size in s (default: the model's)\n"
           "  --tspan T0:T1        time span in s (default: the model's)\n"
           "  --end exact|grid     span not a whole number of steps: 'exact' (default) adds a\n"
@@ -20,7 +23,8 @@ void cli_run_options_help(FILE *out)
           "                       T0 + k*H <= T1 like MATLAB's T0:H:T1\n"
           "  --set NAME=VALUE     set a parameter (repeatable; see 'dynkit info MODEL')\n"
           "  --init NAME=VALUE    set an initial state (repeatable)\n"
-          "                       numbers may be multiples of pi: pi/2, -0.5pi, 2*pi/3\n"
+          "                       numbers may be multiples of pi: pi/2, -0.5pi, 2*pi/3, or\n"
+          "                       angles in degrees: 45deg (in rad)\n"
           "  --forces FILE        models with inputs (cart): read the inputs from a CSV table\n"
           "                       with columns t and the input names (cart: t,Fx,Fy), time\n"
           "                       increasing; without --step/--tspan the run uses the table's\n"
@@ -55,7 +59,10 @@ void cli_run_options_help(FILE *out)
           "                       MODEL' lists them); with :stop the run ends at it\n"
           "  --events-output FILE write the events as CSV: event,t,<states> (default: stderr)\n"
           "Output options:\n"
-          "  --output FILE        write the CSV to FILE instead of standard output\n"
+          "  -o, --output FILE    write to FILE instead of standard output ('-'), in the format\n"
+          "                       of its extension: .csv, .json, .npy, .npz, .mat (see\n"
+          "                       docs/data-files.md)\n"
+          "  --header names|units|none  the CSV header: names (default), 'name [unit]', none\n"
           "  --final              write the header and the last sample only\n"
           "  --every K            keep every K-th sample (the last one is always kept)\n"
           "  --outputs            add the model's extra outputs (energy, ...) as columns\n"
@@ -64,6 +71,24 @@ void cli_run_options_help(FILE *out)
           "                       (+ jac=N for stiff methods)\n"
           "  --quiet              no progress display on stderr\n",
           out);
+}
+
+/* An unknown option, with the nearest run option when it looks like a typo. */
+static int unknown_option(const char *command, const char *arg)
+{
+    static const char *const options[] = {
+        "--method", "--step",  "--tspan",  "--end",          "--set",          "--init",
+        "--forces", "--interp", "--output", "--header",      "--every",        "--trace",
+        "--rtol",   "--atol",  "--times",  "--max-step",     "--initial-step", "--max-steps",
+        "--event",  "--events-output",     "--stats",        "--final",        "--outputs",
+        "--quiet",  "--compare"};
+    char word[64];
+    snprintf(word, sizeof word, "%s%.*s", strncmp(arg, "--", 2) == 0 ? "" : "--",
+             (int)strcspn(arg, "="), arg);
+    const char *near = dyn_lang_nearest(word, options, (int)(sizeof options / sizeof *options));
+    if (near && !(strcmp(command, "run") == 0 && strcmp(near, "--compare") == 0))
+        return cli_usage_error(command, "unknown option '%s' (did you mean '%s'?)", arg, near);
+    return cli_usage_error(command, "unknown option '%s'", arg);
 }
 
 static int parse_option(const char *command, int argc, char **argv, int *i, cli_run *run,
@@ -128,6 +153,19 @@ static int parse_option(const char *command, int argc, char **argv, int *i, cli_
         if (r < 0)
             return CLI_USAGE;
         run->output_path = v;
+    } else if (OPT("header")) {
+        if (r < 0)
+            return CLI_USAGE;
+        if (strcmp(v, "names") == 0)
+            run->header = CLI_HEADER_NAMES;
+        else if (strcmp(v, "units") == 0)
+            run->header = CLI_HEADER_UNITS;
+        else if (strcmp(v, "none") == 0)
+            run->header = CLI_HEADER_NONE;
+        else
+            return cli_usage_error(command,
+                                   "--header '%s' is not accepted (accepted: names, units, none)",
+                                   v);
     } else if (OPT("every")) {
         if (r < 0)
             return CLI_USAGE;
@@ -187,7 +225,7 @@ static int parse_option(const char *command, int argc, char **argv, int *i, cli_
     } else if (cli_flag(arg, "quiet")) {
         run->quiet = 1;
     } else {
-        return cli_usage_error(command, "unknown option '%s'", arg);
+        return unknown_option(command, arg);
     }
 #undef OPT
     return CLI_OK;

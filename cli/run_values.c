@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "dynkit/lang.h"
 #include "run_parse.h"
 
 /* Split "NAME=VALUE"; returns 0 and the parts, or -1. */
@@ -54,9 +55,41 @@ int cli_parse_tspan(const char *command, const char *text, double *t0, double *t
     return CLI_OK;
 }
 
+/* The unknown NAME of --set (parameters) or --init (states): the nearest name of the same
+ * kind as a likely typo, or a name of the other kind given to the wrong option. */
+static int unknown_name(const char *command, const cli_run *run, int is_param, const char *name)
+{
+    const dyn_model *m = run->model;
+    const char *names[128];
+    char list[512];
+    int n = 0;
+    if (is_param) {
+        for (int i = 0; i < m->n_params && n < 128; i++)
+            names[n++] = m->params[i].name;
+        list_params(list, sizeof list, m);
+    } else {
+        for (int i = 0; i < m->n_states && n < 128; i++)
+            names[n++] = m->states[i].name;
+        list_vars(list, sizeof list, m->states, m->n_states);
+    }
+    const char *opt = is_param ? "--set" : "--init";
+    const char *what = is_param ? "parameter" : "state";
+    if (is_param ? dyn_model_state_index(m, name) >= 0 : dyn_model_param_index(m, name) >= 0)
+        return cli_usage_error(command, "%s: %s is a %s of model %s: give it with %s (%ss: %s)",
+                               opt, name, is_param ? "state" : "parameter", m->name,
+                               is_param ? "--init" : "--set", what, list);
+    const char *near = dyn_lang_nearest(name, names, n);
+    if (near)
+        return cli_usage_error(command,
+                               "%s: model %s has no %s '%s' (did you mean '%s'? accepted: %s)",
+                               opt, m->name, what, name, near, list);
+    return cli_usage_error(command, "%s: model %s has no %s '%s' (accepted: %s)", opt, m->name,
+                           what, name, list);
+}
+
 int cli_apply_assignment(const char *command, cli_run *run, const assignment *as)
 {
-    char name[64], list[512];
+    char name[64];
     double value;
     const dyn_model *m = run->model;
     const char *opt = as->is_param ? "--set" : "--init";
@@ -66,19 +99,13 @@ int cli_apply_assignment(const char *command, cli_run *run, const assignment *as
                                opt, as->text);
     if (as->is_param) {
         int i = dyn_model_param_index(m, name);
-        if (i < 0) {
-            list_params(list, sizeof list, m);
-            return cli_usage_error(command, "--set: model %s has no parameter '%s' (accepted: %s)",
-                                   m->name, name, list);
-        }
+        if (i < 0)
+            return unknown_name(command, run, 1, name);
         dyn_model_set_param(m, run->par, i, value);
     } else {
         int i = dyn_model_state_index(m, name);
-        if (i < 0) {
-            list_vars(list, sizeof list, m->states, m->n_states);
-            return cli_usage_error(command, "--init: model %s has no state '%s' (accepted: %s)",
-                                   m->name, name, list);
-        }
+        if (i < 0)
+            return unknown_name(command, run, 0, name);
         run->y0[i] = value;
     }
     return CLI_OK;

@@ -2,6 +2,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "dynkit/lang.h"
 #include "pages.h"
 
 static void main_help(void)
@@ -21,8 +22,14 @@ static void main_help(void)
          "  plot MODEL     a run as an SVG line plot (--y NAME,... [--x NAME])\n"
          "  verify         every method on problems with known solutions: accuracy and work\n"
          "                 per method and tolerance (--quick, --json, --problem, --method)\n"
+         "  help [COMMAND] this text, or the help of COMMAND (as 'dynkit COMMAND --help')\n"
          "\n"
-         "'dynkit COMMAND --help' tells more about each command.\n"
+         "'dynkit help COMMAND' tells more about each command; 'man dynkit' tells all.\n"
+         "\n"
+         "Exit status: 0 success; 1 a run failed (e.g. a state became NaN or Inf) or an output\n"
+         "could not be written; 2 a bad command line (the message names the bad input and what\n"
+         "is accepted); 128+N ended by signal N (130 Ctrl-C, 143 SIGTERM).\n"
+         "\n"
          "Example: dynkit run vanderpol --method rk4 --step 0.01 --tspan 0:15 --final");
 }
 
@@ -46,6 +53,14 @@ int main(int argc, char **argv)
         main_help();
         return CLI_USAGE;
     }
+    /* dynkit help [COMMAND]: the same as dynkit [COMMAND] --help */
+    static char help_flag[] = "--help";
+    if (strcmp(argv[1], "help") == 0) {
+        argv[1] = argc > 2 ? argv[2] : help_flag;
+        argv[2] = argc > 2 ? help_flag : NULL;
+        argc = argc > 2 ? 3 : 2;
+        argv[argc] = NULL;
+    }
     if (cli_is_help(argv[1])) {
         main_help();
         return CLI_OK;
@@ -57,8 +72,15 @@ int main(int argc, char **argv)
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
         if (strcmp(argv[1], commands[i].name) == 0)
             return commands[i].run(argc - 2, argv + 2);
+    const char *names[sizeof commands / sizeof commands[0] + 1];
+    int n = 0;
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+        names[n++] = commands[i].name;
+    names[n++] = "help";
+    const char *near = dyn_lang_nearest(argv[1], names, n);
     return cli_usage_error(NULL,
-                           "unknown command '%s' (accepted: run, models, methods, info, "
-                           "inverse, report, animate, plot, verify)",
-                           argv[1]);
+                           "unknown command '%s' (%s%s%saccepted: run, models, methods, info, "
+                           "inverse, report, animate, plot, verify, help)",
+                           argv[1], near ? "did you mean '" : "", near ? near : "",
+                           near ? "'? " : "");
 }

@@ -63,7 +63,9 @@ typedef enum dyn_status {
     DYN_CANCELLED = 6,     /* the progress callback cancelled the solve */
     DYN_ERR_STEP_SIZE = 7, /* adaptive: the step size fell below 16 eps |t| (see fail_t) */
     DYN_ERR_MAX_STEPS = 8, /* adaptive: the limit on the number of steps was reached */
-    DYN_ERR_CAPACITY = 9   /* a dense-output recorder was full and could not grow */
+    DYN_ERR_CAPACITY = 9,  /* a dense-output recorder was full and could not grow */
+    DYN_ERR_ZENO = 10      /* events' resets accumulate: more than DYN_ZENO_RESETS of them
+                            * without time advancing (solve.h) */
 } dyn_status;
 
 /* Short English name of a status ("ok", "bad argument", ...); never NULL. */
@@ -171,7 +173,9 @@ typedef struct dyn_grid {
 } dyn_grid;
 
 /* Plan the grid for [t0, t1] with step h > 0 (t1 > t0). Returns DYN_OK or DYN_ERR_ARG with
- * a message in err (may be NULL). Sample k is t0 + k*h; with a partial step the last is t1. */
+ * a message in err (may be NULL). Sample k is t0 + k*h; with a partial step the last is t1.
+ * A span shorter than one step is one shorter step to t1 (DYN_END_EXACT) or an error
+ * (DYN_END_GRID): a grid always reaches t1 or is refused. */
 int dyn_grid_plan(double t0, double t1, double h, dyn_end_policy end, dyn_grid *grid,
                   char *err, size_t errlen);
 /* Time of sample k (0 <= k < samples): t0 + k*h, computed, never accumulated; the last

@@ -22,6 +22,24 @@
  * Comput. Math. Appl. 39 (2000)). A terminal event ends the solve with the state at the
  * event.
  *
+ * Resets (dyn_event.reset, XPPAUT's `global`): at a non-terminal event with a reset, on_event
+ * sees the state at the event, the reset changes it, and the integration restarts from the
+ * event's time and the new state as from a new initial value: f evaluated anew (no FSAL
+ * stage carried over), the step-size controller's history cleared, the next step the
+ * smaller of the controller's and the starting-step estimate at the new state (fixed-step
+ * tables: a partial step from the event to the next grid point t0 + k*h, then whole steps
+ * again). Crossings found later in the step belong to the old trajectory and are dropped;
+ * events at the same time are all reported (with the state before the resets) and their
+ * resets applied in time-then-index order. Samples after the event (grid, out_times) come
+ * from the new trajectory; with a sample at every step, the state after the reset is
+ * written at the event's time. The event that fired is not found again leaving its own
+ * zero in the other direction within DYN_RESET_ULPS ulps of the restart (rounding left
+ * the state a few ulps on the far side), and more than DYN_ZENO_RESETS resets, each within
+ * DYN_RESET_ULPS ulps of the one before, stop the solve with DYN_ERR_ZENO (a bouncing ball
+ * at the time its bounces accumulate). The step callback and the recorder get the whole
+ * step that holds a reset (the next one starts at the event; dyn_dense_record_eval takes
+ * the later step where two overlap).
+ *
  * Memory: the caller owns everything (workspace of dyn_solve_work_size doubles, outputs,
  * recorder); the step loop never allocates and nothing prints. Integration runs forward
  * (t1 > t0).
@@ -36,6 +54,12 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/* Resets (see above): a solve stops with DYN_ERR_ZENO at the DYN_ZENO_RESETS-th reset in a
+ * row that comes less than DYN_ZENO_WINDOW max(|t|, t1 - t0) after the one before (2^-32,
+ * about 2.3e-10: time no longer advances at the resolution of the solution). */
+#define DYN_ZENO_RESETS 8
+#define DYN_ZENO_WINDOW 0x1p-32
 
 /* Defaults of the tolerances (MATLAB's ode45 and SciPy's solve_ivp). */
 #define DYN_DEFAULT_RTOL 1e-3

@@ -145,7 +145,7 @@ static double vertex(double x0, double g0, double x1, double g1, double x2, doub
 
 int dyn_events_step(const dyn_event *ev, int ne, void *par, const dyn_dense *d, double t1,
                     const double *y1, int samples, double *memo, double *work, double *hits,
-                    long *g_calls)
+                    long *g_calls, int restart)
 {
     const int M = samples, np0 = M + 1;
     const double ta = d->t0, h = t1 - ta;
@@ -178,6 +178,25 @@ int dyn_events_step(const dyn_event *ev, int ne, void *par, const dyn_dense *d, 
             pg[np++] = Gi[j];
             if (j == M)
                 break;
+            if (j == 0 && restart && Gi[0] == 0.0 && memo[ne + i] == 0.0 && Gi[1] != 0.0 &&
+                !isnan(Gi[1])) {
+                /* a restart on the event's zero: an excursion to the other side before the
+                 * first sample (a short bounce) is looked for at the vertex of the parabola
+                 * through the zero and the next two samples */
+                const int s1 = sign_of(Gi[1]);
+                const double x1 = M > 1 ? ta + h / (double)M : t1;
+                const double x2 = M > 2 ? ta + h * (2.0 / (double)M) : t1;
+                double pv = 0.0;
+                const double xs = vertex(ta, 0.0, x1, Gi[1], x2, Gi[2], s1, &pv);
+                if (xs > ta && xs < x1 && sign_of(pv) == -s1) {
+                    const double gs = probe_g(&p, xs);
+                    if (sign_of(gs) == -s1) {
+                        pt[np] = xs;
+                        pg[np++] = gs;
+                    }
+                }
+                continue;
+            }
             const int sj = sign_of(Gi[j]);
             if (sj == 0 || sign_of(Gi[j + 1]) != sj)
                 continue;

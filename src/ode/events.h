@@ -29,9 +29,12 @@ void dyn_events_start(const dyn_event *ev, int ne, void *par, double t0, const d
  * neighbouring samples for hidden pairs of roots; locate each by Brent's method on the
  * interpolant. Hits (sorted by time, then index) go to hits; memo is updated to the step's
  * end. Returns the number of hits. work has dyn_events_work doubles. Events whose direction
- * does not match are followed (their sign) but not reported. */
+ * does not match are followed (their sign) but not reported. restart = 1 in the first step
+ * after a reset: an event that starts on its zero (memo 0, no sign) is also checked for an
+ * excursion to the other side before the first sample (the vertex of the parabola through
+ * the zero and the next two samples). */
 int dyn_events_step(const dyn_event *ev, int ne, void *par, const dyn_dense *d, double t1,
                     const double *y1, int samples, double *memo, double *work, double *hits,
-                    long *g_calls);
+                    long *g_calls, int restart);
 
 #endif /* DYN_ODE_EVENTS_H */

@@ -358,6 +358,11 @@ int dyn_solve(const dyn_tableau *m, const dyn_system *sys, double t0, double t1,
     int stiff_count = 0, nonstiff_count = 0;
     int rejected_before = 0, retry = 0;
     long step = 0; /* fixed: index of the step */
+    /* resets: the first event that reset at this step's time, resets in a row close in time
+     * (Zeno), whether the step starts at a restart */
+    int reset_idx = -1, zeno = 0, restarted = 0;
+    long n_resets = 0;
+    double t_last_reset = t0;
     dyn_dense d = {0.0, 0.0, n, q, coef};
 
     while (t < t_end) {
@@ -371,6 +376,8 @@ int dyn_solve(const dyn_tableau *m, const dyn_system *sys, double t0, double t1,
             tnext = (steps.ends_at_t1 && step + 1 == steps.samples - 1)
                         ? t1
                         : t0 + (double)(step + 1) * opts->h;
+            if (t != tn)
+                hn = tnext - t; /* after a reset inside the step: on to the grid point */
         } else {
             if (t + 1.01 * h >= t_end) {
                 hn = t_end - t;
@@ -482,20 +489,22 @@ int dyn_solve(const dyn_tableau *m, const dyn_system *sys, double t0, double t1,
         }
         /* events and output samples of this step, in time order */
         int nh = ne > 0 ? dyn_events_step(opts->events, ne, sys->par, &d, tnext, ynew, M, memo,
-                                          ev_work, hits, NULL)
+                                          ev_work, hits, NULL, restarted)
                         : 0;
-        int stop = 0;
-        double t_stop = tnext;
+        int stop = 0, reset = 0;
+        double t_stop = tnext, t_reset = tnext;
         for (int k = 0; k < nh && !stop; k++) {
             const double te = DYN_HIT_T(hits, k);
-            if (emit_until(&out, opts, te, 1, tnext, ynew, &d, yout, res))
+            const int idx = DYN_HIT_INDEX(hits, k), dir = DYN_HIT_DIR(hits, k);
+            if (reset && te != t_reset)
+                break; /* after a reset: the rest of the step is the old trajectory's */
+            if (!reset && emit_until(&out, opts, te, 1, tnext, ynew, &d, yout, res))
                 goto finish;
-            const double *ye = state_at(te, tnext, ynew, &d, ytmp);
+            /* events at the time of a reset see the state before the resets */
+            const double *ye = reset ? ycur : state_at(te, tnext, ynew, &d, ytmp);
             res->events++;
-            const int idx = DYN_HIT_INDEX(hits, k);
             int terminal = opts->events[idx].terminal;
-            if (opts->on_event &&
-                opts->on_event(idx, te, ye, DYN_HIT_DIR(hits, k), opts->event_ctx))
+            if (opts->on_event && opts->on_event(idx, te, ye, dir, opts->event_ctx))
                 terminal = 1;
             if (terminal) {
                 stop = 1;
@@ -504,8 +513,98 @@ int dyn_solve(const dyn_tableau *m, const dyn_system *sys, double t0, double t1,
                 res->event_index = idx;
                 if (ye != ycur)
                     memcpy(ycur, ye, N * sizeof *ycur);
+            } else if (opts->events[idx].reset) {
+                if (!reset) {
+                    /* ycur: the state at the event (kept if a reset fails); ytmp: reset */
+                    if (ye != ycur)
+                        memcpy(ycur, ye, N * sizeof *ycur);
+                    memcpy(ytmp, ycur, N * sizeof *ytmp);
+                    reset = 1;
+                    t_reset = te;
+                    reset_idx = idx;
+                }
+                rc = opts->events[idx].reset(te, ytmp, sys->par);
+                if (rc) {
+                    t = te;
+                    res->rhs_status = rc;
+                    res->fail_t = te;
+                    fail(res, DYN_ERR_RHS,
+                         "the reset of event %d (%s) failed at t = %.17g (status %d)", idx,
+                         opts->events[idx].name ? opts->events[idx].name : "unnamed", te, rc);
+                    goto finish;
+                }
             }
         }
+        if (reset && !stop) {
+            /* restart from (t_reset, ytmp) as from a new initial value */
+            bad = first_nonfinite(ytmp, n);
+            t = t_reset;
+            if (bad >= 0) {
+                res->fail_t = t;
+                res->fail_index = bad;
+                fail(res, DYN_ERR_NONFINITE,
+                     "the reset of event %d made state %d not finite at t = %.17g", reset_idx,
+                     bad, t);
+                goto finish;
+            }
+            /* Zeno: resets that follow each other without time advancing */
+            const double window = DYN_ZENO_WINDOW * fmax(fabs(t), t1 - t0);
+            zeno = n_resets > 0 && t - t_last_reset <= window ? zeno + 1 : 0;
+            if (zeno >= DYN_ZENO_RESETS) {
+                fail(res, DYN_ERR_ZENO,
+                     "Zeno behaviour: %d resets in a row, each less than %.3g s after the one "
+                     "before, up to t = %.17g (event %d (%s) last): the resets accumulate here",
+                     zeno, window, t, reset_idx,
+                     opts->events[reset_idx].name ? opts->events[reset_idx].name : "unnamed");
+                goto finish;
+            }
+            n_resets++;
+            t_last_reset = t;
+            /* g at the new state; an event that fired here and whose value the resets left
+             * unchanged sits on its own zero (a ball's velocity reversed at y = 0, a
+             * counter raised at a crossing): like a zero at the start, it is no event, and
+             * the side the solution leaves to decides its sign */
+            dyn_events_start(opts->events, ne, sys->par, t, ytmp, memo);
+            for (int k = 0; k < nh && DYN_HIT_T(hits, k) <= t; k++) {
+                const int i = DYN_HIT_INDEX(hits, k);
+                if (DYN_HIT_T(hits, k) == t && opts->events[i].g(t, ycur, sys->par) == memo[i])
+                    memo[i] = memo[ne + i] = 0.0;
+            }
+            restarted = 1;
+            memcpy(ycur, ytmp, N * sizeof *ycur);
+            res->h_last = hn;
+            if (out.mode == 0 && output) {
+                /* with a sample at every step, the state after the reset at the event */
+                res->stats.samples++;
+                if (output(out.k++, t, ycur, opts->output_ctx)) {
+                    fail(res, DYN_STOPPED, "output stopped the run at t = %g", t);
+                    goto finish;
+                }
+            }
+            rc = ops->start(&st, t, ycur);
+            if (rc)
+                goto rhs_failed;
+            retry = 0;
+            if (fixed) {
+                if (t == tnext)
+                    step++; /* the reset is at a grid point: whole steps go on from it */
+            } else {
+                dyn_controller_init(&ctl, m->error_order, opts->safety, opts->beta,
+                                    opts->fac_min, opts->fac_max);
+                rejected_before = 0;
+                /* the step the controller had, or the starting step at the new state when
+                 * that is smaller (the reset may make the solution change faster) */
+                double h0 = opts->initial_step;
+                if (!(h0 > 0.0)) {
+                    rc = dyn_initial_step(&st, t, ycur, m->error_order, hmax, yout, ynew, &h0);
+                    if (rc)
+                        goto rhs_failed;
+                }
+                h = fmin(fmin(h, h0), hmax);
+            }
+            continue;
+        }
+        restarted = 0;
         if (stop) {
             /* the event is the last sample (unless it was one already) */
             const int already = out.mode != 0 && out.next > 0 &&

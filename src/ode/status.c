@@ -14,6 +14,7 @@ const char *dyn_status_name(int status)
     case DYN_ERR_STEP_SIZE: return "step size underflow";
     case DYN_ERR_MAX_STEPS: return "too many steps";
     case DYN_ERR_CAPACITY: return "recorder full";
+    case DYN_ERR_ZENO: return "resets accumulate (Zeno)";
     default: return "unknown status";
     }
 }

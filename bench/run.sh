@@ -2,8 +2,9 @@
 # bench/run.sh — every benchmark in one command: builds a Release tree (build-bench, or
 # $DYNKIT_BENCH_BUILD) with the peers CMake finds (GSL, Boost.Odeint, SUNDIALS; installed by
 # scripts/install-deps.sh), runs bench_suite (fixed steps, adaptive work-precision, stiff,
-# `dynkit report`, then the table of targets) and, when hyperfine is installed, times
-# `dynkit report` with it too. Arguments go to bench_suite, e.g.
+# `dynkit report`, then the table of targets), bench_jit (models compiled at run time; not
+# with --only) and, when hyperfine is installed, times `dynkit report` with it too. Arguments
+# go to bench_suite, e.g.
 #   bench/run.sh                      # everything (about a minute)
 #   bench/run.sh --only fixed --reps 31
 #   bench/run.sh --svg docs/img       # also write the work-precision diagrams
@@ -15,15 +16,21 @@ build="${DYNKIT_BENCH_BUILD:-build-bench}"
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DDYNKIT_BUILD_BENCH=ON \
   -DDYNKIT_BUILD_TESTS=OFF >/dev/null
 cmake --build "$build" -j"$(nproc)" --target bench_suite bench_fixed dynkit_cli >/dev/null
+cmake --build "$build" -j"$(nproc)" --target bench_jit >/dev/null 2>&1 || true # needs src/jit
 "$build/bench/bench_suite" "$@"
 
-quick=0 report=1
+quick=0 report=1 only=0
 for ((i = 1; i <= $#; i++)); do
   case "${!i}" in
     --quick) quick=1 ;;
-    --only) j=$((i + 1)); [[ "${!j:-}" == *report* ]] || report=0 ;;
+    --only) only=1; j=$((i + 1)); [[ "${!j:-}" == *report* ]] || report=0 ;;
   esac
 done
+# compiled models (bench_jit): with every run that is not limited by --only
+if [ "$only" -eq 0 ] && [ -x "$build/bench/bench_jit" ]; then
+  echo
+  if [ "$quick" -eq 1 ]; then "$build/bench/bench_jit" --quick; else "$build/bench/bench_jit"; fi
+fi
 if [ "$quick" -eq 0 ] && [ "$report" -eq 1 ]; then
   echo
   if command -v hyperfine >/dev/null 2>&1; then

@@ -1,5 +1,8 @@
 /* dynkit animate MODEL: a run (and --compare runs) as a self-contained HTML page that plays
- * the motion (plane, cart, pendulum, van der Pol) and the time series of every state. */
+ * the motion (plane, cart, pendulum, van der Pol) and the time series of every state.
+ * Without --output the page goes to MODEL.html in the current directory (MODEL-2.html, ...
+ * when that exists: a file is never replaced unasked), and the tool says where. */
+#include <ctype.h>
 #include <errno.h>
 #include <string.h>
 
@@ -10,14 +13,18 @@ static void animate_help(void)
     puts("Usage: dynkit animate MODEL [run options] [--compare METHOD[:STEP]]...\n"
          "                      [--output FILE.html]\n"
          "\n"
-         "Run MODEL and write one self-contained HTML page (no network, everything inline;\n"
-         "standard output without --output) that plays the run in real time: the plane in 3D\n"
+         "Run MODEL and write one self-contained HTML page (no network, everything inline) that\n"
+         "plays the run in real time: the plane in 3D\n"
          "(drag to rotate, wheel to zoom), the cart from above with the track of its wheels,\n"
          "the pendulum, the phase plane of van der Pol, and for every model the time series\n"
          "of its states and outputs with a moving cursor.\n"
          "\n"
          "  --compare M[:H]      overlay a run with method M (and step H; default the run's\n"
          "                       step), repeatable: --compare euler --compare rk4:0.001\n"
+         "  -o, --output FILE    the page's file; without it MODEL.html in the current\n"
+         "                       directory (MODEL-2.html, ... when that exists; never replaced\n"
+         "                       unasked), and the file written is named on stderr;\n"
+         "                       '-' writes the page to standard output\n"
          "A long run is thinned to at most 2000 samples (first and last kept).\n"
          "Controls: play/pause, speed 0.1x-10x, time slider; keys: space play/pause,\n"
          "left/right one sample, shift+left/right 1 s, up/down speed, home/end.\n"
@@ -49,6 +56,27 @@ static int page_data(cli_json *j, void *ctx)
     return j->bad;
 }
 
+/* Open MODEL.html (or MODEL-2.html, ... up to MODEL-99.html) in the current directory,
+ * never replacing a file (C11's exclusive "wx" mode); the name into path. */
+static FILE *open_default(const char *model, char *path, size_t size)
+{
+    char base[64];
+    size_t n = 0;
+    for (const char *p = model; *p && n + 1 < sizeof base; p++)
+        base[n++] = isalnum((unsigned char)*p) || *p == '-' || *p == '_' ? *p : '_';
+    base[n] = '\0';
+    for (int k = 1; k < 100; k++) {
+        if (k == 1)
+            snprintf(path, size, "%s.html", n ? base : "animation");
+        else
+            snprintf(path, size, "%s-%d.html", n ? base : "animation", k);
+        FILE *f = fopen(path, "wx");
+        if (f || errno != EEXIST)
+            return f;
+    }
+    return NULL;
+}
+
 int cli_cmd_animate(int argc, char **argv)
 {
     for (int i = 0; i < argc; i++)
@@ -62,9 +90,17 @@ int cli_cmd_animate(int argc, char **argv)
     if (rc == CLI_OK && (run_rc == CLI_USAGE || v.n_series == 0))
         rc = run_rc;
     FILE *out = stdout;
-    if (rc == CLI_OK && v.run.output_path && !(out = fopen(v.run.output_path, "w"))) {
-        rc = cli_usage_error("animate", "cannot open --output '%s' for writing: %s",
-                             v.run.output_path, strerror(errno));
+    char default_path[128] = "";
+    const char *path = v.run.output_path;
+    if (rc == CLI_OK && !path && !(out = open_default(v.run.model->name, default_path,
+                                                     sizeof default_path))) {
+        rc = cli_usage_error("animate", "cannot write %s in the current directory: %s (give "
+                                        "--output FILE.html)",
+                             default_path, strerror(errno));
+        out = stdout;
+    } else if (rc == CLI_OK && path && strcmp(path, "-") != 0 && !(out = fopen(path, "w"))) {
+        rc = cli_usage_error("animate", "cannot open --output '%s' for writing: %s", path,
+                             strerror(errno));
         out = stdout;
     }
     if (rc == CLI_OK) {
@@ -74,8 +110,15 @@ int cli_cmd_animate(int argc, char **argv)
         if (rc == CLI_OK && run_rc != CLI_OK)
             rc = run_rc;
     }
-    if (out != stdout)
-        fclose(out);
+    if (out != stdout && fclose(out) != 0 && rc == CLI_OK) {
+        fprintf(stderr, "dynkit: error: writing %s failed: %s\n",
+                path ? path : default_path, strerror(errno));
+        rc = CLI_FAILED;
+    }
+    if (default_path[0] && (rc == CLI_OK || rc == CLI_FAILED))
+        fprintf(stderr, "dynkit: wrote %s (open it in a browser; --output FILE names the file, "
+                        "--output - writes to standard output)\n",
+                default_path);
     cli_view_free(&v);
     return rc;
 }

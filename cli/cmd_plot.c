@@ -101,7 +101,8 @@ int cli_cmd_plot(int argc, char **argv)
     if (rc == CLI_OK && (run_rc == CLI_USAGE || v.n_series == 0))
         rc = run_rc;
     FILE *out = stdout;
-    if (rc == CLI_OK && v.run.output_path && !(out = fopen(v.run.output_path, "w"))) {
+    if (rc == CLI_OK && v.run.output_path && strcmp(v.run.output_path, "-") != 0 &&
+        !(out = fopen(v.run.output_path, "w"))) {
         rc = cli_usage_error("plot", "cannot open --output '%s' for writing: %s", v.run.output_path,
                              strerror(errno));
         out = stdout;

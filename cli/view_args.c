@@ -79,6 +79,9 @@ int cli_view_parse(const char *command, int argc, char **argv, const char *const
     if (rc == CLI_OK && v->run.final_only)
         rc = cli_usage_error(command, "--final is not accepted here: a picture shows every "
                                       "sample (--every K thins them)");
+    if (rc == CLI_OK && v->run.header != 0)
+        rc = cli_usage_error(command, "--header is not accepted here: it sets the header of "
+                                      "CSV files (dynkit run)");
     if (rc == CLI_OK && v->run.trace_steps > 0)
         rc = cli_usage_error(command, "--trace is not accepted here (see 'dynkit run --trace')");
     for (int k = 0; k < v->n_compare && rc == CLI_OK; k++)

@@ -80,7 +80,8 @@ static int teardown(void **state)
 {
     (void)state;
     static const char *const files[] = {"a.svg",      "b.svg",     "c.svg",  "report.html",
-                                        "plane.html", "cart.html", "x.html", NULL};
+                                        "plane.html", "cart.html", "x.html", "vanderpol.html",
+                                        "vanderpol-2.html", NULL};
     return cli_teardown_files(files);
 }
 
@@ -309,10 +310,22 @@ static void test_animate_pages(void **state)
     check_self_contained(html, "cart");
     CHECK(strstr(html, "\"length_cart\":3") != NULL, "--set is not in the page");
     free(html);
-    r = cli("animate vanderpol");
+    r = cli("animate vanderpol -o -");
     CHECK(r.status == 0 && strncmp(r.out, "<!DOCTYPE html>", 15) == 0,
-          "without --output the page goes to stdout");
+          "--output - writes the page to stdout");
     cli_free(&r);
+    /* without --output: MODEL.html in the current directory, then MODEL-2.html, named */
+    for (int k = 1; k <= 2; k++) {
+        r = cli_in_tmpdir("animate vanderpol");
+        const char *name = k == 1 ? "vanderpol.html" : "vanderpol-2.html";
+        CHECK(r.status == 0 && r.out_len == 0 && strstr(r.err, name),
+              "animate without --output, run %d: exit %d, %zu bytes on stdout, stderr: %s", k,
+              r.status, r.out_len, r.err);
+        cli_free(&r);
+        html = file_in_tmp(name);
+        CHECK(strncmp(html, "<!DOCTYPE html>", 15) == 0, "%s is not the page", name);
+        free(html);
+    }
     r = cli("animate vanderpol --step 0.001 --tspan 0:100 --output '%s/x.html'", cli_tmpdir);
     CHECK(r.status == 0, "long run");
     cli_free(&r);

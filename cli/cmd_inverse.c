@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "table_formats.h"
 
 static void inverse_help(void)
 {
@@ -28,7 +29,9 @@ static void inverse_help(void)
          "  --set Ts=H           sample time in s (default 0.01)\n"
          "  --set NAME=VALUE     a cart parameter: m, length_cart, width_cart, ... (see\n"
          "                       'dynkit info cart'); give the same --set to the forward run\n"
-         "  --output FILE        write the table to FILE instead of standard output\n"
+         "  -o, --output FILE    write the table to FILE instead of standard output ('-'), in\n"
+         "                       the format of its extension: .csv, .json, .npy, .npz, .mat\n"
+         "                       ('dynkit run --forces' reads CSV)\n"
          "  --quiet              print nothing on standard error\n"
          "\n"
          "Example (problem 4): write the table, then drive the cart with it (modified Euler at\n"
@@ -126,6 +129,10 @@ int cli_cmd_inverse(int argc, char **argv)
                                f);
     if (dyn_cart_prepare(&par, err, sizeof err))
         return cli_usage_error("inverse", "%s", err);
+    cli_format format;
+    char ferr[512] = "";
+    if (cli_format_of_path(output_path ? output_path : "-", &format, ferr, sizeof ferr))
+        return cli_usage_error("inverse", "--output %s", ferr);
     const long N = (long)N_value;
     double *table = malloc((size_t)N * 3 * sizeof *table);
     if (!table) {
@@ -139,21 +146,40 @@ int cli_cmd_inverse(int argc, char **argv)
     double y0[6];
     dyn_cart_prescribed(&par, v0, f, 0.0, y0, NULL);
     FILE *out = stdout;
-    if (output_path && !(out = fopen(output_path, "w"))) {
+    if (output_path && strcmp(output_path, "-") == 0)
+        output_path = NULL;
+    if (output_path && !(out = fopen(output_path, "wb"))) {
         int rc = cli_usage_error("inverse", "cannot open --output '%s' for writing: %s",
                                  output_path, strerror(errno));
         free(table);
         return rc;
     }
-    int bad = dyn_csv_write_header(out, m->inputs, m->n_inputs, NULL, 0) != DYN_OK;
+    const char *names[3] = {"t", m->inputs[0].name, m->inputs[1].name};
+    const char *units[3] = {"s", m->inputs[0].unit, m->inputs[1].unit};
+    const cli_table_info info = {.model = m->name,
+                                 .step = Ts,
+                                 .rtol = NAN,
+                                 .atol = NAN,
+                                 .t0 = 0.0,
+                                 .t1 = (double)(N - 1) * Ts,
+                                 .cols = 3,
+                                 .n_y = 2,
+                                 .y_name = "forces",
+                                 .names = names,
+                                 .units = units};
+    cli_table *tab = cli_table_open(out, format, &info, ferr, sizeof ferr);
+    int bad = !tab;
     for (long k = 0; k < N && !bad; k++)
-        bad = dyn_csv_write_row(out, table[3 * k], table + 3 * k + 1, 2, NULL, 0) != DYN_OK;
+        bad = cli_table_row(tab, table[3 * k], table + 3 * k + 1, 2, NULL, 0) != 0;
+    bad |= tab && cli_table_finish(tab, ferr, sizeof ferr) != 0;
+    cli_table_free(tab);
     bad |= fflush(out) != 0;
     if (out != stdout)
         bad |= fclose(out) != 0;
     int rc = CLI_OK;
     if (bad) {
-        fprintf(stderr, "dynkit: error: writing the force table failed: %s\n", strerror(errno));
+        fprintf(stderr, "dynkit: error: writing the force table failed: %s\n",
+                ferr[0] ? ferr : strerror(errno));
         rc = CLI_FAILED;
     } else if (!quiet) {
         const double *last = table + 3 * (N - 1);

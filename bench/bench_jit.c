@@ -7,6 +7,8 @@
  *    translator writes them) compiled by the system compiler with the default flags (-O2),
  *    with -O3 -march=native, and by libtcc. ns per step, the ratio to the built-in model
  *    (target: at most 1.3), and whether the final states are the same bits.
+ *    The same for a heavier right-hand side, arithmetic in a loop (Lorenz-96, 40 states),
+ *    against the same code compiled into this program: where libtcc's code generation shows.
  * 2. First run of a new model: a 4-state model (an elastic pendulum, libm calls) whose source
  *    changes every repetition, so each one compiles: compile + load + 1000 RK4 steps, per
  *    backend (target: under 0.3 s in all); once also into an empty cache (the headers
@@ -132,6 +134,48 @@ static const char four_source_fmt[] =
     "    .t1 = 10.0, .step = 0.01, .method = \"rk4\"};\n"
     "const dyn_model *dynkit_model(void) { return &model; }\n";
 
+/* a heavier right-hand side, arithmetic in a loop (XPPAUT's x[1..n] arrays look alike):
+ * Lorenz-96 with 40 states, x_i' = (x_{i+1} - x_{i-2}) x_{i-1} - x_i + F; the same text is
+ * compiled into this program (L96_BODY) as the reference */
+#define L96_N 40
+#define L96_BODY                                                                             \
+    for (int i = 0; i < L96_N; i++)                                                          \
+        dydt[i] = (y[(i + 1) % L96_N] - y[(i + L96_N - 2) % L96_N]) * y[(i + L96_N - 1) % L96_N] \
+                  - y[i] + 8.0;
+#define STR_(x) #x
+#define STR(x) STR_(x)
+static const char l96_source[] =
+    "#include <dynkit/model.h>\n"
+    "#define L96_N 40\n"
+    "static int rhs(double t, const double *y, double *dydt, void *p)\n"
+    "{\n"
+    "    (void)t, (void)p;\n"
+    "    " STR(L96_BODY) "\n"
+    "    return 0;\n"
+    "}\n"
+    "static double init[L96_N];\n"
+    "static dyn_var states[L96_N];\n"
+    "static char names[L96_N][8];\n"
+    "static dyn_model model = {.name = \"lorenz96\", .n_states = L96_N, .states = states,\n"
+    "    .y0 = init, .rhs = rhs, .t1 = 10.0, .step = 0.01, .method = \"rk4\"};\n"
+    "const dyn_model *dynkit_model(void)\n"
+    "{\n"
+    "    for (int i = 0; i < L96_N; i++) {\n"
+    "        init[i] = 8.0 + (i == 0 ? 0.01 : 0.0);\n"
+    "        names[i][0] = 'x'; names[i][1] = (char)('0' + i / 10);\n"
+    "        names[i][2] = (char)('0' + i % 10); names[i][3] = 0;\n"
+    "        states[i] = (dyn_var){names[i], \"1\", \"\"};\n"
+    "    }\n"
+    "    return &model;\n"
+    "}\n";
+
+static int l96_rhs(double t, const double *y, double *dydt, void *p)
+{
+    (void)t, (void)p;
+    L96_BODY
+    return 0;
+}
+
 /* the compiled variants */
 enum { V_BUILTIN, V_CC, V_NATIVE, V_TCC, N_VARIANTS };
 static const char *variant_name[N_VARIANTS] = {"built in (dyn_model_vanderpol)",
@@ -140,12 +184,12 @@ static const char *variant_name[N_VARIANTS] = {"built in (dyn_model_vanderpol)",
 
 static int rk4_final(const dyn_model *m, long steps, double h, double *y)
 {
-    static double work[64];
+    static double work[8 * L96_N];
     double par[16] = {0};
     char err[256];
     if (dyn_model_default_params(m, par, err, sizeof err) != 0)
         return 1;
-    double y0[8];
+    double y0[L96_N];
     dyn_model_initial_state(m, par, y0);
     dyn_system sys = {m->rhs, m->n_states, par};
     dyn_result res;
@@ -287,6 +331,46 @@ int main(int argc, char **argv)
         if (models[v])
             dyn_jit_unload(&vm[v]);
 
+    /* ---- 1b. the heavier right-hand side: Lorenz-96 ---- */
+    double l96_init[L96_N];
+    for (int i = 0; i < L96_N; i++)
+        l96_init[i] = 8.0 + (i == 0 ? 0.01 : 0.0);
+    const dyn_model l96_here = {.name = "lorenz96", .n_states = L96_N, .y0 = l96_init,
+                                .rhs = l96_rhs};
+    const dyn_model *lm[N_VARIANTS] = {&l96_here};
+    for (int v = V_CC; v < N_VARIANTS; v++) {
+        if (v == V_TCC && !have_tcc)
+            continue;
+        if (load(l96_source, &opts[v], &vm[v]) != 0) {
+            nftw(cache, remove_entry, 16, FTW_DEPTH | FTW_PHYS);
+            return 1;
+        }
+        lm[v] = vm[v].model;
+    }
+    long l96_steps = steps / 20;
+    double l96_ns[N_VARIANTS][MAX_REPS], l96_y[N_VARIANTS][L96_N];
+    for (int r = 0; r < reps; r++)
+        for (int j = 0; j < N_VARIANTS; j++) {
+            int v = (j + r) % N_VARIANTS;
+            if (!lm[v])
+                continue;
+            t = now();
+            failed |= rk4_final(lm[v], l96_steps, 0.001, l96_y[v]);
+            l96_ns[v][r] = 1e9 * (now() - t) / (double)l96_steps;
+        }
+    int l96_same[N_VARIANTS];
+    for (int v = 0; v < N_VARIANTS; v++) {
+        l96_same[v] = lm[v] && memcmp(l96_y[v], l96_y[V_BUILTIN], sizeof l96_y[v]) == 0;
+        if (lm[v] && !l96_same[v] && v != V_NATIVE) {
+            fprintf(stderr, "bench_jit: %s: Lorenz-96 differs from the program's own\n",
+                    variant_name[v]);
+            failed = 1;
+        }
+    }
+    for (int v = V_CC; v < N_VARIANTS; v++)
+        if (lm[v])
+            dyn_jit_unload(&vm[v]);
+
     /* ---- 2. first runs of new 4-state models; 3. cached runs (of the last one cc compiled,
      * unloaded before, so that dlopen maps it anew) ---- */
     char src_cc[8192] = "";
@@ -358,6 +442,18 @@ int main(int argc, char **argv)
         double m = median(ns[v], reps);
         printf("| %s | %.2f (%.2f) | %.3f | %s |\n", variant_name[v], m, minimum(ns[v], reps),
                m / median(ns[V_BUILTIN], reps), v == V_BUILTIN ? "" : same[v] ? "yes" : "no");
+    }
+    printf("\n| Lorenz-96 (40 states), RK4, %ld steps | ns/step | ratio to compiled in | same "
+           "bits |\n|---|---:|---:|---|\n",
+           l96_steps);
+    for (int v = 0; v < N_VARIANTS; v++) {
+        if (!lm[v])
+            continue;
+        double m = median(l96_ns[v], reps);
+        printf("| %s | %.1f (%.1f) | %.3f | %s |\n",
+               v == V_BUILTIN ? "compiled into this program" : variant_name[v], m,
+               minimum(l96_ns[v], reps), m / median(l96_ns[V_BUILTIN], reps),
+               v == V_BUILTIN ? "" : l96_same[v] ? "yes" : "no");
     }
     printf("\n| new 4-state model: compile + load + 1000 RK4 steps | ms in all | of which "
            "compiling |\n|---|---:|---:|\n");

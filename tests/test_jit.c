@@ -3,7 +3,8 @@
  * against cos/sin, van der Pol bit for bit against the built-in model), the cache (a second
  * load runs no compiler; concurrent first loads in several processes), compiler errors that
  * name the user's file and line, the model ABI check and the checks of the returned model, a
- * missing compiler, and a model calling the library's mech.h functions from this program.
+ * missing compiler (libtcc instead when none was named), and a model calling the library's
+ * mech.h functions from this program.
  * Each test has a cache directory of its own under /tmp (with a blank in its name).
  */
 #define _XOPEN_SOURCE 700 /* nftw */
@@ -543,6 +544,23 @@ static void test_missing_compiler(void **state)
     assert_non_null(strstr(err, "the C compiler '/nonexistent/dynkit-cc' was not found"));
     assert_non_null(strstr(err, "apt-get install gcc"));
     assert_non_null(strstr(err, "DYNKIT_CC"));
+    /* the automatic choice falls back to libtcc when there is no system compiler at all */
+    if (dyn_jit_backend_available(DYN_JIT_TCC)) {
+        const char *path = getenv("PATH"), *cc_env = getenv("CC");
+        char *saved_path = path ? strdup(path) : NULL, *saved_cc = cc_env ? strdup(cc_env) : NULL;
+        setenv("PATH", "/nonexistent", 1);
+        unsetenv("CC");
+        dyn_jit_opts automatic = {.cache_dir = f->cache};
+        load_ok(vdp_source, "vdp.c", &automatic, &jm);
+        assert_int_equal(jm.backend, DYN_JIT_TCC);
+        dyn_jit_unload(&jm);
+        if (saved_path)
+            setenv("PATH", saved_path, 1);
+        if (saved_cc)
+            setenv("CC", saved_cc, 1);
+        free(saved_path);
+        free(saved_cc);
+    }
     /* and a bad DYNKIT_JIT is named */
     setenv("DYNKIT_JIT", "gcc", 1);
     dyn_jit_opts automatic = {.cache_dir = f->cache};

@@ -309,7 +309,7 @@ int jit_cc_load(const char *source, size_t len, const char *source_name,
     int rc = 0;
     if (status < 0) {
         if (-status == ENOENT)
-            rc = jit_fail(err, errlen,
+            rc = 1 + jit_fail(err, errlen,
                           "cannot compile %s: the C compiler '%s' was not found: install one "
                           "(apt-get install gcc), or set DYNKIT_CC to a C compiler%s",
                           where, argv->argv[0],

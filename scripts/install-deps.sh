@@ -11,6 +11,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 packages=(build-essential cmake pkg-config libcmocka-dev clang chromium)
 packages+=(libgsl-dev libboost-dev libsundials-dev) # bench/ peers
+packages+=(libtcc-dev tcc) # src/jit: models compiled in process by libtcc (optional)
 # node and npm may come from elsewhere (e.g. a newer nodejs that bundles npm): keep those
 command -v node >/dev/null 2>&1 || packages+=(nodejs)
 command -v npm >/dev/null 2>&1 || packages+=(npm)

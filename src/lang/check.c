@@ -1,0 +1,472 @@
+/* Names and order of an .ode model: the symbol table (names folded to one case, as XPPAUT
+ * folds them: `A` and `a` are one name), the resolution of every name in every formula
+ * with the nearest known name suggested for an unknown one, what each kind of formula may
+ * use (derived parameters and initial values: parameters only; user functions: their
+ * arguments, states, parameters and t), the dependency order of fixed temporaries and of
+ * derived parameters (a circular definition is refused naming the cycle), recursion of
+ * user functions refused, and the `#:` documentation lines attached to their names. */
+#include <ctype.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "lang/lang_internal.h"
+
+void lang_fold(char *dst, const char *src, size_t size)
+{
+    size_t i = 0;
+    for (; src[i] && i + 1 < size; i++)
+        dst[i] = (char)tolower((unsigned char)src[i]);
+    dst[i] = '\0';
+}
+
+static uint32_t hash_folded(const char *s)
+{
+    uint32_t h = 2166136261u;
+    for (; *s; s++)
+        h = (h ^ (uint32_t)tolower((unsigned char)*s)) * 16777619u;
+    return h;
+}
+
+static int same_name(const char *a, const char *b)
+{
+    for (; *a && *b; a++, b++)
+        if (tolower((unsigned char)*a) != tolower((unsigned char)*b))
+            return 0;
+    return *a == *b;
+}
+
+lang_sym *lang_lookup(lang_ctx *c, const char *name)
+{
+    lang_model *m = &c->m;
+    if (!m->symcap)
+        return NULL;
+    uint32_t i = hash_folded(name) & (uint32_t)(m->symcap - 1);
+    while (m->syms[i].key) {
+        if (same_name(m->syms[i].key, name))
+            return &m->syms[i];
+        i = (i + 1) & (uint32_t)(m->symcap - 1);
+    }
+    return NULL;
+}
+
+const char *lang_sym_kind_name(sym_kind k)
+{
+    switch (k) {
+    case SYM_STATE: return "a state";
+    case SYM_PARAM: return "a parameter";
+    case SYM_NUMBER: return "a number";
+    case SYM_DERIVED: return "a derived parameter";
+    case SYM_FIX: return "a fixed quantity";
+    case SYM_AUX: return "an aux output";
+    case SYM_FUNC: return "a function";
+    default: return "a name";
+    }
+}
+
+void lang_declare(lang_ctx *c, const char *name, lpos pos, sym_kind kind, int index)
+{
+    lang_model *m = &c->m;
+    lang_sym *old = lang_lookup(c, name);
+    if (old)
+        lang_fail(c, pos, "'%s' is already declared as %s on line %d (XPPAUT's names ignore "
+                  "case)", name, lang_sym_kind_name(old->kind), old->pos.line);
+    if (m->nsyms >= LANG_MAX_SYMBOLS)
+        lang_fail(c, pos, "too many names (more than %d)", LANG_MAX_SYMBOLS);
+    if (2 * (m->nsyms + 1) > m->symcap) {
+        const int cap = m->symcap ? 2 * m->symcap : 64;
+        lang_sym *t = lang_alloc(c, (size_t)cap * sizeof *t);
+        for (int k = 0; k < m->symcap; k++)
+            if (m->syms[k].key) {
+                uint32_t i = hash_folded(m->syms[k].key) & (uint32_t)(cap - 1);
+                while (t[i].key)
+                    i = (i + 1) & (uint32_t)(cap - 1);
+                t[i] = m->syms[k];
+            }
+        m->syms = t;
+        m->symcap = cap;
+    }
+    uint32_t i = hash_folded(name) & (uint32_t)(m->symcap - 1);
+    while (m->syms[i].key)
+        i = (i + 1) & (uint32_t)(m->symcap - 1);
+    m->syms[i] = (lang_sym){name, kind, index, pos};
+    m->nsyms++;
+}
+
+/* ---- resolution ---- */
+
+enum { CTX_RHS, CTX_FUNC, CTX_PARAMS };
+
+typedef struct rctx {
+    int kind;
+    const lang_func *func;
+    const char *what; /* "a derived parameter", "an initial value", ... */
+} rctx;
+
+static const char *nearest_symbol(lang_ctx *c, const char *word, const rctx *r, int funcs)
+{
+    lang_model *m = &c->m;
+    int n = 0;
+    const int cap = m->nsyms + F_COUNT + LANG_MAX_ARGS + 2;
+    const char **names = lang_alloc(c, (size_t)cap * sizeof *names);
+    for (int k = 0; k < m->symcap; k++) {
+        const lang_sym *s = &m->syms[k];
+        if (!s->key || (funcs != (s->kind == SYM_FUNC)))
+            continue;
+        names[n++] = s->key;
+    }
+    if (funcs) {
+        for (int f = 0; f < F_COUNT; f++)
+            names[n++] = lang_fun_name(f);
+    } else {
+        names[n++] = "t";
+        names[n++] = "pi";
+        if (r && r->func)
+            for (int k = 0; k < r->func->nargs; k++)
+                names[n++] = r->func->argnames[k];
+    }
+    return dyn_lang_nearest(word, names, n);
+}
+
+static _Noreturn void unknown(lang_ctx *c, const node *e, const rctx *r, int funcs)
+{
+    const char *near = nearest_symbol(c, e->name, r, funcs);
+    if (near)
+        lang_fail(c, e->pos, "unknown %s '%s' (did you mean '%s'?)", funcs ? "function" : "name",
+                  e->name, near);
+    lang_fail(c, e->pos, "unknown %s '%s'", funcs ? "function" : "name", e->name);
+}
+
+static void resolve(lang_ctx *c, node *e, const rctx *r)
+{
+    if (++c->depth > 4 * LANG_MAX_DEPTH)
+        lang_fail(c, e->pos, "expression nested too deeply");
+    for (int i = 0; i < e->nargs; i++)
+        resolve(c, e->args[i], r);
+    c->depth--;
+    lang_model *m = &c->m;
+    if (e->kind == N_TIME && r->kind == CTX_PARAMS)
+        lang_fail(c, e->pos, "%s cannot depend on the time t", r->what);
+    if (e->kind == N_NAME) {
+        if (r->func)
+            for (int k = 0; k < r->func->nargs; k++)
+                if (same_name(e->name, r->func->argnames[k])) {
+                    e->kind = N_ARG;
+                    e->index = k;
+                    return;
+                }
+        const lang_sym *s = lang_lookup(c, e->name);
+        if (!s)
+            unknown(c, e, r, 0);
+        switch (s->kind) {
+        case SYM_STATE:
+            if (r->kind == CTX_PARAMS)
+                lang_fail(c, e->pos, "%s cannot depend on the state '%s'", r->what, e->name);
+            e->kind = N_STATE;
+            e->index = s->index;
+            return;
+        case SYM_PARAM:
+            e->kind = N_PARAM;
+            e->index = s->index;
+            return;
+        case SYM_DERIVED:
+            e->kind = N_PARAM;
+            e->index = m->params.n + s->index;
+            return;
+        case SYM_NUMBER:
+            e->kind = N_NUM;
+            e->num = LVEC_AT(m->numbers, lang_param, s->index).value;
+            return;
+        case SYM_FIX:
+            if (r->kind == CTX_PARAMS)
+                lang_fail(c, e->pos, "%s cannot depend on the fixed quantity '%s'", r->what,
+                          e->name);
+            if (r->kind == CTX_FUNC)
+                lang_fail(c, e->pos, "function '%s' uses the fixed quantity '%s': pass it as "
+                          "an argument", r->func->name, e->name);
+            e->kind = N_FIX;
+            e->index = s->index;
+            return;
+        case SYM_AUX:
+            lang_fail(c, e->pos, "'%s' is an aux output, which XPPAUT does not know inside "
+                      "formulas: define it as a fixed quantity '%s_=...' and write 'aux "
+                      "%s=%s_'", e->name, e->name, e->name, e->name);
+        case SYM_FUNC:
+            lang_fail(c, e->pos, "'%s' is a function: call it as %s(...)", e->name, e->name);
+        default:
+            unknown(c, e, r, 0);
+        }
+    }
+    if (e->kind == N_FUN) {
+        int arity;
+        const int f = lang_fun_lookup(e->name, &arity);
+        if (f >= 0) {
+            if (arity != e->nargs)
+                lang_fail(c, e->pos, "'%s' takes %d argument%s, not %d", e->name, arity,
+                          arity == 1 ? "" : "s", e->nargs);
+            e->op = f;
+            return;
+        }
+        const lang_sym *s = lang_lookup(c, e->name);
+        if (s && s->kind == SYM_FUNC) {
+            const lang_func *fn = &LVEC_AT(m->funcs, lang_func, s->index);
+            if (fn->nargs != e->nargs)
+                lang_fail(c, e->pos, "function '%s' takes %d argument%s, not %d", fn->name,
+                          fn->nargs, fn->nargs == 1 ? "" : "s", e->nargs);
+            e->kind = N_UFUN;
+            e->index = s->index;
+            return;
+        }
+        if (s)
+            lang_fail(c, e->pos, "'%s' is %s, not a function", e->name,
+                      lang_sym_kind_name(s->kind));
+        unknown(c, e, r, 1);
+    }
+}
+
+/* ---- orders ---- */
+
+/* Calls of user functions in e: visit each callee (DFS for recursion). */
+static void func_visit(lang_ctx *c, int fi, int *stack, int depth);
+
+static void func_calls(lang_ctx *c, const node *e, int *stack, int depth)
+{
+    for (int i = 0; i < e->nargs; i++)
+        func_calls(c, e->args[i], stack, depth);
+    if (e->kind == N_UFUN) {
+        lang_func *caller = &LVEC_AT(c->m.funcs, lang_func, stack[depth - 1]);
+        func_visit(c, e->index, stack, depth);
+        const lang_func *f = &LVEC_AT(c->m.funcs, lang_func, e->index);
+        caller->uses_state |= f->uses_state;
+        caller->uses_time |= f->uses_time;
+    }
+    if (e->kind == N_STATE || e->kind == N_TIME) {
+        lang_func *caller = &LVEC_AT(c->m.funcs, lang_func, stack[depth - 1]);
+        if (e->kind == N_STATE)
+            caller->uses_state = 1;
+        else
+            caller->uses_time = 1;
+    }
+}
+
+static void func_visit(lang_ctx *c, int fi, int *stack, int depth)
+{
+    lang_func *f = &LVEC_AT(c->m.funcs, lang_func, fi);
+    if (f->mark == 2)
+        return;
+    if (f->mark == 1) {
+        const lang_func *caller = &LVEC_AT(c->m.funcs, lang_func, stack[depth - 1]);
+        lang_fail(c, f->pos, "function '%s' calls itself%s%s: recursion is not supported",
+                  f->name, caller == f ? "" : " through '", caller == f ? "" : caller->name);
+    }
+    f->mark = 1;
+    stack[depth] = fi;
+    func_calls(c, f->body, stack, depth + 1);
+    f->mark = 2;
+}
+
+/* Dependency order of formulas (fixed temporaries, or derived parameters) by DFS; a cycle is
+ * refused with its path. dep_kind: N_FIX or N_PARAM (derived: index - offset). */
+typedef struct order_ctx {
+    lang_formula *f;
+    int n;
+    int dep_kind, offset;
+    int *out, nout;
+    int *path, npath;
+    const char *what;
+} order_ctx;
+
+static void order_visit(lang_ctx *c, order_ctx *o, int k);
+
+static void order_deps(lang_ctx *c, order_ctx *o, const node *e)
+{
+    for (int i = 0; i < e->nargs; i++)
+        order_deps(c, o, e->args[i]);
+    if ((int)e->kind == o->dep_kind && e->index >= o->offset)
+        order_visit(c, o, e->index - o->offset);
+}
+
+static void order_visit(lang_ctx *c, order_ctx *o, int k)
+{
+    lang_formula *f = &o->f[k];
+    if (f->mark == 2)
+        return;
+    if (f->mark == 1) {
+        /* the cycle: from k's first appearance on the path */
+        char buf[400];
+        size_t used = 0;
+        int from = o->npath - 1;
+        while (from > 0 && o->path[from] != k)
+            from--;
+        for (int i = from; i < o->npath && used + 80 < sizeof buf; i++)
+            used += (size_t)snprintf(buf + used, sizeof buf - used, "%s -> ",
+                                     o->f[o->path[i]].name);
+        snprintf(buf + used, sizeof buf - used, "%s", f->name);
+        lang_fail(c, f->pos, "circular definition of %s: %s", o->what, buf);
+    }
+    f->mark = 1;
+    o->path[o->npath++] = k;
+    order_deps(c, o, f->expr);
+    o->npath--;
+    f->mark = 2;
+    o->out[o->nout++] = k;
+}
+
+static int *order(lang_ctx *c, lvec *v, int dep_kind, int offset, const char *what)
+{
+    order_ctx o = {v->data, v->n, dep_kind, offset, NULL, 0, NULL, 0, what};
+    o.out = lang_alloc(c, (size_t)(v->n + 1) * sizeof(int));
+    o.path = lang_alloc(c, (size_t)(v->n + 1) * sizeof(int));
+    for (int k = 0; k < v->n; k++)
+        o.f[k].mark = 0;
+    for (int k = 0; k < v->n; k++)
+        order_visit(c, &o, k);
+    return o.out;
+}
+
+/* Calls in a parameters-only formula must not reach states or t. */
+static void check_param_calls(lang_ctx *c, const node *e, const char *what)
+{
+    for (int i = 0; i < e->nargs; i++)
+        check_param_calls(c, e->args[i], what);
+    if (e->kind == N_UFUN) {
+        const lang_func *f = &LVEC_AT(c->m.funcs, lang_func, e->index);
+        if (f->uses_state || f->uses_time)
+            lang_fail(c, e->pos, "%s cannot call '%s', which depends on %s", what, f->name,
+                      f->uses_state ? "the states" : "the time t");
+    }
+}
+
+static const char *display_name(lang_ctx *c, const char *name, lpos pos, const char *option)
+{
+    if (same_name(name, "t"))
+        return NULL;
+    const lang_sym *s = lang_lookup(c, name);
+    if (s && s->kind == SYM_STATE)
+        return LVEC_AT(c->m.states, lang_state, s->index).name;
+    if (s && s->kind == SYM_AUX)
+        return LVEC_AT(c->m.auxs, lang_formula, s->index).name;
+    const char *near = nearest_symbol(c, name, NULL, 0);
+    lang_fail(c, pos, "option '%s': '%s' is not a state or an aux output%s%s%s", option, name,
+              near ? " (did you mean '" : "", near ? near : "", near ? "'?)" : "");
+}
+
+void lang_check(lang_ctx *c)
+{
+    lang_model *m = &c->m;
+    /* user functions first: their bodies, then recursion and what they use */
+    for (int i = 0; i < m->funcs.n; i++) {
+        lang_func *f = &LVEC_AT(m->funcs, lang_func, i);
+        rctx r = {CTX_FUNC, f, "a function"};
+        resolve(c, f->body, &r);
+    }
+    int *stack = lang_alloc(c, (size_t)(m->funcs.n + 1) * sizeof(int));
+    for (int i = 0; i < m->funcs.n; i++) {
+        lang_func *f = &LVEC_AT(m->funcs, lang_func, i);
+        if (f->mark == 2)
+            continue;
+        f->mark = 1;
+        stack[0] = i;
+        func_calls(c, f->body, stack, 1);
+        f->mark = 2;
+    }
+    /* a second pass: uses_* of callees visited after their callers */
+    for (int pass = 0; pass < m->funcs.n; pass++) {
+        int changed = 0;
+        for (int i = 0; i < m->funcs.n; i++) {
+            lang_func *f = &LVEC_AT(m->funcs, lang_func, i);
+            int us = f->uses_state, ut = f->uses_time;
+            lang_func_uses(c, f->body, &us, &ut);
+            changed |= us != f->uses_state || ut != f->uses_time;
+            f->uses_state = us;
+            f->uses_time = ut;
+        }
+        if (!changed)
+            break;
+    }
+    rctx rhs = {CTX_RHS, NULL, "a formula"};
+    for (int i = 0; i < m->derived.n; i++) {
+        lang_formula *f = &LVEC_AT(m->derived, lang_formula, i);
+        rctx r = {CTX_PARAMS, NULL, "a derived parameter"};
+        resolve(c, f->expr, &r);
+        check_param_calls(c, f->expr, "a derived parameter");
+    }
+    for (int i = 0; i < m->fixes.n; i++)
+        resolve(c, LVEC_AT(m->fixes, lang_formula, i).expr, &rhs);
+    for (int i = 0; i < m->states.n; i++)
+        resolve(c, LVEC_AT(m->states, lang_state, i).rhs, &rhs);
+    for (int i = 0; i < m->auxs.n; i++)
+        resolve(c, LVEC_AT(m->auxs, lang_formula, i).expr, &rhs);
+    for (int i = 0; i < m->events.n; i++) {
+        lang_event *ev = &LVEC_AT(m->events, lang_event, i);
+        resolve(c, ev->cond, &rhs);
+        for (int k = 0; k < ev->nassign; k++) {
+            lang_assign *a = &ev->assign[k];
+            const lang_sym *s = lang_lookup(c, a->name);
+            if (!s) {
+                node e = {0};
+                e.name = a->name;
+                e.pos = a->pos;
+                unknown(c, &e, &rhs, 0);
+            }
+            if (s->kind != SYM_STATE)
+                lang_fail(c, a->pos, "a global assigns states; '%s' is %s", a->name,
+                          lang_sym_kind_name(s->kind));
+            a->state = s->index;
+            resolve(c, a->value, &rhs);
+        }
+        for (int k = 0; k < i; k++)
+            if (same_name(LVEC_AT(m->events, lang_event, k).name, ev->name))
+                lang_fail(c, ev->pos, "event '%s' is declared twice", ev->name);
+    }
+    for (int i = 0; i < m->inits.n; i++) {
+        lang_init *in = &LVEC_AT(m->inits, lang_init, i);
+        const lang_sym *s = lang_lookup(c, in->name);
+        if (!s || s->kind != SYM_STATE) {
+            if (s)
+                lang_fail(c, in->pos, "an initial value is for a state; '%s' is %s", in->name,
+                          lang_sym_kind_name(s->kind));
+            node e = {0};
+            e.name = in->name;
+            e.pos = in->pos;
+            unknown(c, &e, &rhs, 0);
+        }
+        rctx r = {CTX_PARAMS, NULL, "an initial value"};
+        resolve(c, in->value, &r);
+        check_param_calls(c, in->value, "an initial value");
+        lang_state *st = &LVEC_AT(m->states, lang_state, s->index);
+        st->init = in->value;
+        st->init_pos = in->pos;
+    }
+    m->fix_order = order(c, &m->fixes, N_FIX, 0, "fixed quantities");
+    m->derived_order = order(c, &m->derived, N_PARAM, m->params.n, "derived parameters");
+    /* documentation lines */
+    for (int i = 0; i < m->docs.n; i++) {
+        const lang_docline *d = &LVEC_AT(m->docs, lang_docline, i);
+        const lang_sym *s = lang_lookup(c, d->name);
+        if (!s) {
+            const char *near = nearest_symbol(c, d->name, NULL, 0);
+            lang_fail(c, d->pos, "'#: %s': not a declared name, nor title, description or "
+                      "event%s%s%s", d->name, near ? " (did you mean '" : "",
+                      near ? near : "", near ? "'?)" : "");
+        }
+        lang_doc *to = NULL;
+        if (s->kind == SYM_STATE)
+            to = &LVEC_AT(m->states, lang_state, s->index).doc;
+        else if (s->kind == SYM_PARAM)
+            to = &LVEC_AT(m->params, lang_param, s->index).doc;
+        else if (s->kind == SYM_AUX)
+            to = &LVEC_AT(m->auxs, lang_formula, s->index).doc;
+        else
+            lang_fail(c, d->pos, "'%s' is %s; units and descriptions are for states, "
+                      "parameters and aux outputs", d->name, lang_sym_kind_name(s->kind));
+        if (d->doc.unit)
+            to->unit = d->doc.unit;
+        if (d->doc.description)
+            to->description = d->doc.description;
+    }
+    if (m->xp)
+        m->xp = display_name(c, m->xp, m->xp_pos, "xp");
+    if (m->yp)
+        m->yp = display_name(c, m->yp, m->yp_pos, "yp");
+}

@@ -1,0 +1,171 @@
+/* Diagnostics and memory of the .ode translator: the arena every pass allocates from, the
+ * error exit (FILE:LINE:COL, the source line and a caret, like a C compiler's message) and
+ * the notes of a successful translation (dynkit/lang.h). */
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lang/lang_internal.h"
+
+struct lang_block {
+    lang_block *next;
+    max_align_t align[]; /* the allocation follows */
+};
+
+void *lang_alloc(lang_ctx *c, size_t n)
+{
+    if (n > ((size_t)1 << 40))
+        lang_oom(c);
+    lang_block *b = calloc(1, sizeof *b + (n ? n : 1));
+    if (!b)
+        lang_oom(c);
+    b->next = c->blocks;
+    c->blocks = b;
+    return b->align;
+}
+
+char *lang_strndup(lang_ctx *c, const char *s, size_t n)
+{
+    char *d = lang_alloc(c, n + 1);
+    memcpy(d, s, n);
+    d[n] = '\0';
+    return d;
+}
+
+char *lang_strdup(lang_ctx *c, const char *s) { return lang_strndup(c, s, strlen(s)); }
+
+char *lang_printf(lang_ctx *c, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    const int n = vsnprintf(NULL, 0, fmt, ap);
+    va_end(ap);
+    if (n < 0)
+        lang_oom(c);
+    char *s = lang_alloc(c, (size_t)n + 1);
+    va_start(ap, fmt);
+    vsnprintf(s, (size_t)n + 1, fmt, ap);
+    va_end(ap);
+    return s;
+}
+
+void lang_free_all(lang_ctx *c)
+{
+    while (c->blocks) {
+        lang_block *b = c->blocks;
+        c->blocks = b->next;
+        free(b);
+    }
+}
+
+void *lvec_push(lang_ctx *c, lvec *v, size_t elem)
+{
+    if (v->n == v->cap) {
+        const int cap = v->cap ? 2 * v->cap : 8;
+        void *data = lang_alloc(c, (size_t)cap * elem);
+        if (v->n)
+            memcpy(data, v->data, (size_t)v->n * elem);
+        v->data = data; /* the old block stays in the arena until the end */
+        v->cap = cap;
+    }
+    char *slot = (char *)v->data + (size_t)v->n * elem;
+    v->n++;
+    memset(slot, 0, elem);
+    return slot;
+}
+
+static void copy_trunc(char *dst, size_t size, const char *src, size_t n)
+{
+    if (n >= size)
+        n = size - 1;
+    memcpy(dst, src, n);
+    dst[n] = '\0';
+}
+
+_Noreturn void lang_oom(lang_ctx *c)
+{
+    c->status = 1;
+    dyn_lang_diag *d = c->diag;
+    if (d) {
+        d->line = d->col = 0;
+        snprintf(d->message, sizeof d->message, "out of memory while translating the model");
+        d->excerpt[0] = '\0';
+    }
+    longjmp(c->fail, 1);
+}
+
+_Noreturn void lang_fail(lang_ctx *c, lpos p, const char *fmt, ...)
+{
+    c->status = 2;
+    dyn_lang_diag *d = c->diag;
+    if (d) {
+        d->line = p.line;
+        d->col = p.col;
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(d->message, sizeof d->message, fmt, ap);
+        va_end(ap);
+        d->excerpt[0] = '\0';
+        if (p.line >= 1 && p.line <= c->nlines) {
+            const size_t a = c->line_start[p.line - 1];
+            size_t b = a;
+            while (b < c->len && c->text[b] != '\n' && c->text[b] != '\r')
+                b++;
+            copy_trunc(d->excerpt, sizeof d->excerpt, c->text + a, b - a);
+            /* control characters would move the caret: show them as blanks */
+            for (char *s = d->excerpt; *s; s++)
+                if ((unsigned char)*s < 32)
+                    *s = ' ';
+        }
+    }
+    longjmp(c->fail, 1);
+}
+
+void lang_note(lang_ctx *c, lpos p, const char *fmt, ...)
+{
+    if (!c->note)
+        return;
+    char msg[600];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    c->note(c->path, p.line, msg, c->note_ctx);
+}
+
+char *dyn_lang_diag_format(const dyn_lang_diag *d, char *buf, size_t size)
+{
+    if (!buf || size == 0)
+        return buf;
+    buf[0] = '\0';
+    if (!d)
+        return buf;
+    size_t used = 0;
+    int n;
+    if (d->line > 0)
+        n = snprintf(buf, size, "%s:%d:%d: error: %s\n", d->path, d->line, d->col, d->message);
+    else
+        n = snprintf(buf, size, "%s: error: %s\n", d->path, d->message);
+    if (n < 0 || (size_t)n >= size)
+        return buf;
+    used = (size_t)n;
+    if (d->line > 0 && d->excerpt[0]) {
+        n = snprintf(buf + used, size - used, "  %s\n", d->excerpt);
+        if (n < 0 || (size_t)n >= size - used)
+            return buf;
+        used += (size_t)n;
+        const int col = d->col > 0 ? d->col : 1;
+        const size_t elen = strlen(d->excerpt);
+        if (used + (size_t)col + 4 < size) {
+            buf[used++] = ' ';
+            buf[used++] = ' ';
+            for (int i = 1; i < col; i++)
+                buf[used++] = (size_t)(i - 1) < elen && d->excerpt[i - 1] == '\t' ? '\t' : ' ';
+            buf[used++] = '^';
+            buf[used++] = '\n';
+            buf[used] = '\0';
+        }
+    }
+    return buf;
+}

@@ -1,0 +1,813 @@
+/* The C text of an .ode model: a translation unit that defines
+ * `const dyn_model *dynkit_model(void)` (dynkit/model.h), compiled by the jit layer.
+ *
+ * Conventions (docs/model-files.md): states are y[i] in the order of their equations;
+ * the parameter struct is an array of doubles p[], the parameters in the order of the file
+ * then the derived parameters (computed by prepare); fixed temporaries are const locals
+ * v_NAME computed in dependency order where needed; user functions are static functions
+ * u_NAME(a_ARG..., t, y, p), their partial derivatives udK_NAME; XPPAUT's functions are
+ * static inline helpers dk_*; every user name carries a prefix, so none can clash with C or
+ * libm. A `#line N "file"` precedes the code of each source line, so a compiler's message
+ * points at the model's own line. Nothing mutable at file scope: the model is re-entrant.
+ */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lang/lang_internal.h"
+
+/* ---- output buffer ---- */
+
+static void put(lang_ctx *c, const char *s, size_t n)
+{
+    if (c->out_len + n + 1 > c->out_cap) {
+        size_t cap = c->out_cap ? c->out_cap : 4096;
+        while (c->out_len + n + 1 > cap) {
+            if (cap > ((size_t)1 << 34))
+                lang_oom(c);
+            cap *= 2;
+        }
+        char *o = realloc(c->out, cap);
+        if (!o)
+            lang_oom(c);
+        c->out = o;
+        c->out_cap = cap;
+    }
+    memcpy(c->out + c->out_len, s, n);
+    c->out_len += n;
+    c->out[c->out_len] = '\0';
+}
+
+static void puts_(lang_ctx *c, const char *s) { put(c, s, strlen(s)); }
+
+static void outf(lang_ctx *c, const char *fmt, ...)
+{
+    char buf[512];
+    va_list ap;
+    va_start(ap, fmt);
+    const int n = vsnprintf(buf, sizeof buf, fmt, ap);
+    va_end(ap);
+    if (n < 0)
+        lang_oom(c);
+    if ((size_t)n < sizeof buf) {
+        put(c, buf, (size_t)n);
+        return;
+    }
+    char *big = lang_alloc(c, (size_t)n + 1);
+    va_start(ap, fmt);
+    vsnprintf(big, (size_t)n + 1, fmt, ap);
+    va_end(ap);
+    put(c, big, (size_t)n);
+}
+
+/* A C string literal of s (NULL: ""). */
+static void str_lit(lang_ctx *c, const char *s)
+{
+    puts_(c, "\"");
+    for (const unsigned char *q = (const unsigned char *)(s ? s : ""); *q; q++) {
+        char b[8];
+        if (*q == '"' || *q == '\\' || *q == '?') {
+            b[0] = '\\';
+            b[1] = (char)*q;
+            put(c, b, 2);
+        } else if (*q == '\n') {
+            puts_(c, "\\n");
+        } else if (*q < 32 || *q >= 127) {
+            snprintf(b, sizeof b, "\\%03o", *q);
+            puts_(c, b);
+        } else {
+            put(c, (const char *)q, 1);
+        }
+    }
+    puts_(c, "\"");
+}
+
+static void line_dir(lang_ctx *c, lpos p)
+{
+    if (p.line <= 0)
+        return;
+    outf(c, "#line %d ", p.line);
+    str_lit(c, c->path);
+    puts_(c, "\n");
+}
+
+static void num_lit(lang_ctx *c, double v)
+{
+    if (isnan(v)) {
+        puts_(c, "NAN");
+        return;
+    }
+    if (isinf(v)) {
+        puts_(c, v > 0 ? "HUGE_VAL" : "(-HUGE_VAL)");
+        return;
+    }
+    char b[40];
+    snprintf(b, sizeof b, "%.17g", v);
+    if (!strpbrk(b, ".en"))
+        strcat(b, ".0");
+    if (v < 0 || (v == 0 && signbit(v)))
+        outf(c, "(%s)", b);
+    else
+        puts_(c, b);
+}
+
+/* ---- expressions ---- */
+
+typedef struct ectx {
+    const lang_func *func; /* the function whose body this is, or NULL */
+    int has_state;         /* y and t are in scope */
+} ectx;
+
+static const char *c_fun(int f)
+{
+    switch (f) {
+    case F_LN: return "log";
+    case F_ABS: return "fabs";
+    case F_HEAV: return "dk_heav";
+    case F_SIGN: return "dk_sign";
+    case F_MOD: return "dk_mod";
+    case F_FLR: return "floor";
+    case F_MAX: return "dk_max";
+    case F_MIN: return "dk_min";
+    default: return lang_fun_name(f);
+    }
+}
+
+static void expr(lang_ctx *c, const node *e, const ectx *x);
+
+static void call_args(lang_ctx *c, const node *e, const ectx *x)
+{
+    for (int i = 0; i < e->nargs; i++) {
+        expr(c, e->args[i], x);
+        puts_(c, ", ");
+    }
+    puts_(c, x->has_state ? "t, y, p)" : "0.0, (const double *)0, p)");
+}
+
+static void expr(lang_ctx *c, const node *e, const ectx *x)
+{
+    if (++c->depth > 16 * LANG_MAX_DEPTH)
+        lang_fail(c, e->pos, "expression too deep to write as C");
+    lang_model *m = &c->m;
+    switch (e->kind) {
+    case N_NUM: num_lit(c, e->num); break;
+    case N_TIME: puts_(c, "t"); break;
+    case N_STATE: outf(c, "y[%d]", e->index); break;
+    case N_PARAM: outf(c, "p[%d]", e->index); break;
+    case N_FIX: outf(c, "v_%s", LVEC_AT(m->fixes, lang_formula, e->index).name); break;
+    case N_DFIX:
+        outf(c, "dv%d_%s", e->op, LVEC_AT(m->fixes, lang_formula, e->index).name);
+        break;
+    case N_ARG: outf(c, "a_%s", x->func ? x->func->argnames[e->index] : "?"); break;
+    case N_NEG:
+        puts_(c, "(-");
+        expr(c, e->args[0], x);
+        puts_(c, ")");
+        break;
+    case N_NOT:
+        puts_(c, "dk_not(");
+        expr(c, e->args[0], x);
+        puts_(c, ")");
+        break;
+    case N_IF:
+        puts_(c, "((");
+        expr(c, e->args[0], x);
+        puts_(c, ") != 0.0 ? (");
+        expr(c, e->args[1], x);
+        puts_(c, ") : (");
+        expr(c, e->args[2], x);
+        puts_(c, "))");
+        break;
+    case N_BIN: {
+        const node *a = e->args[0], *b = e->args[1];
+        switch (e->op) {
+        case OP_ADD:
+        case OP_SUB:
+        case OP_MUL:
+        case OP_DIV:
+            puts_(c, "(");
+            expr(c, a, x);
+            puts_(c, e->op == OP_ADD ? " + " : e->op == OP_SUB ? " - " : e->op == OP_MUL ? " * "
+                                                                                        : " / ");
+            expr(c, b, x);
+            puts_(c, ")");
+            break;
+        case OP_POW:
+            if (b->kind == N_NUM && b->num == 2.0) {
+                puts_(c, "dk_sq(");
+                expr(c, a, x);
+                puts_(c, ")");
+            } else {
+                puts_(c, "dk_pow(");
+                expr(c, a, x);
+                puts_(c, ", ");
+                expr(c, b, x);
+                puts_(c, ")");
+            }
+            break;
+        case OP_AND:
+        case OP_OR:
+            puts_(c, "((");
+            expr(c, a, x);
+            puts_(c, e->op == OP_AND ? ") != 0.0 && (" : ") != 0.0 || (");
+            expr(c, b, x);
+            puts_(c, ") != 0.0 ? 1.0 : 0.0)");
+            break;
+        default:
+            puts_(c, "((");
+            expr(c, a, x);
+            outf(c, ") %s (", lang_op_text(e->op));
+            expr(c, b, x);
+            puts_(c, ") ? 1.0 : 0.0)");
+            break;
+        }
+        break;
+    }
+    case N_FUN:
+        outf(c, "%s(", c_fun(e->op));
+        for (int i = 0; i < e->nargs; i++) {
+            if (i)
+                puts_(c, ", ");
+            expr(c, e->args[i], x);
+        }
+        puts_(c, ")");
+        break;
+    case N_UFUN:
+        outf(c, "u_%s(", LVEC_AT(m->funcs, lang_func, e->index).name);
+        call_args(c, e, x);
+        break;
+    case N_UFUN_D:
+        outf(c, "ud%d_%s(", e->op, LVEC_AT(m->funcs, lang_func, e->index).name);
+        call_args(c, e, x);
+        break;
+    default: puts_(c, "NAN"); break;
+    }
+    c->depth--;
+}
+
+/* ---- fixed temporaries needed by a set of expressions ---- */
+
+static void need(lang_ctx *c, const node *e, unsigned char *needed)
+{
+    for (int i = 0; i < e->nargs; i++)
+        need(c, e->args[i], needed);
+    if (e->kind == N_FIX && !needed[e->index]) {
+        needed[e->index] = 1;
+        need(c, LVEC_AT(c->m.fixes, lang_formula, e->index).expr, needed);
+    }
+}
+
+static void emit_fixes(lang_ctx *c, const unsigned char *needed)
+{
+    const ectx x = {NULL, 1};
+    for (int i = 0; i < c->m.fixes.n; i++) {
+        const int k = c->m.fix_order[i];
+        if (!needed[k])
+            continue;
+        const lang_formula *f = &LVEC_AT(c->m.fixes, lang_formula, k);
+        line_dir(c, f->pos);
+        outf(c, "    const double v_%s = ", f->name);
+        expr(c, f->expr, &x);
+        puts_(c, ";\n");
+    }
+}
+
+static unsigned char *needed_by(lang_ctx *c, node *const *roots, int n)
+{
+    unsigned char *needed = lang_alloc(c, (size_t)c->m.fixes.n + 1);
+    for (int i = 0; i < n; i++)
+        if (roots[i])
+            need(c, roots[i], needed);
+    return needed;
+}
+
+/* ---- pieces of the model ---- */
+
+static void helpers(lang_ctx *c)
+{
+    puts_(c,
+          "static inline double dk_heav(double x) { return x < 0.0 ? 0.0 : 1.0; }\n"
+          "static inline double dk_sign(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : "
+          "0.0); }\n"
+          "static inline double dk_mod(double x, double y)\n"
+          "{\n    double z = fmod(x, y);\n    if (z < 0.0)\n        z += y;\n    return z;\n}\n"
+          "static inline double dk_max(double x, double y) { return x > y ? x : y; }\n"
+          "static inline double dk_min(double x, double y) { return x < y ? x : y; }\n"
+          "static inline double dk_not(double x) { return x == 0.0 ? 1.0 : 0.0; }\n"
+          "static inline double dk_sq(double x) { return x * x; }\n"
+          "static inline double dk_pow(double x, double y) { return y == 2.0 ? x * x : pow(x, "
+          "y); }\n\n");
+}
+
+static void func_proto(lang_ctx *c, const lang_func *f, int partial)
+{
+    if (partial < 0)
+        outf(c, "static double u_%s(", f->name);
+    else
+        outf(c, "static double ud%d_%s(", partial, f->name);
+    for (int k = 0; k < f->nargs; k++)
+        outf(c, "double a_%s, ", f->argnames[k]);
+    puts_(c, "double t, const double *y, const double *p)");
+}
+
+/* ---- the whole unit ---- */
+
+typedef struct jac_plan {
+    unsigned char *used;  /* partials of user functions used (funcs * LANG_MAX_ARGS) */
+    node **partial;       /* their bodies */
+    char *text;           /* the Jacobian's C text */
+    size_t text_len;
+} jac_plan;
+
+static void plan_partials(lang_ctx *c, jac_plan *j)
+{
+    lang_model *m = &c->m;
+    const int nf = m->funcs.n;
+    j->partial = lang_alloc(c, ((size_t)nf + 1) * LANG_MAX_ARGS * sizeof *j->partial);
+    for (int changed = 1; changed;) {
+        changed = 0;
+        for (int f = 0; f < nf; f++)
+            for (int k = 0; k < LANG_MAX_ARGS; k++) {
+                const int id = f * LANG_MAX_ARGS + k;
+                if (!j->used[id] || j->partial[id])
+                    continue;
+                lang_func *fn = &LVEC_AT(m->funcs, lang_func, f);
+                lang_dvar v = {N_ARG, k, NULL, j->used, 0};
+                j->partial[id] = lang_deriv(c, fn->body, &v);
+                changed = 1;
+            }
+    }
+}
+
+static void emit_functions(lang_ctx *c, const jac_plan *j)
+{
+    lang_model *m = &c->m;
+    if (m->funcs.n == 0)
+        return;
+    puts_(c, "/* user functions and their partial derivatives */\n");
+    for (int f = 0; f < m->funcs.n; f++) {
+        const lang_func *fn = &LVEC_AT(m->funcs, lang_func, f);
+        func_proto(c, fn, -1);
+        puts_(c, ";\n");
+        for (int k = 0; k < fn->nargs; k++)
+            if (j->partial && j->partial[f * LANG_MAX_ARGS + k]) {
+                func_proto(c, fn, k);
+                puts_(c, ";\n");
+            }
+    }
+    for (int f = 0; f < m->funcs.n; f++) {
+        const lang_func *fn = &LVEC_AT(m->funcs, lang_func, f);
+        const ectx x = {fn, 1};
+        for (int k = -1; k < fn->nargs; k++) {
+            const node *body = k < 0 ? fn->body
+                               : j->partial ? j->partial[f * LANG_MAX_ARGS + k]
+                                            : NULL;
+            if (!body)
+                continue;
+            puts_(c, "\n");
+            line_dir(c, fn->pos);
+            func_proto(c, fn, k);
+            puts_(c, "\n{\n    (void)t;\n    (void)y;\n    (void)p;\n");
+            for (int a = 0; a < fn->nargs; a++)
+                outf(c, "    (void)a_%s;\n", fn->argnames[a]);
+            puts_(c, "    return ");
+            expr(c, body, &x);
+            puts_(c, ";\n}\n");
+        }
+    }
+    puts_(c, "\n");
+}
+
+static void emit_rhs(lang_ctx *c)
+{
+    lang_model *m = &c->m;
+    node **roots = lang_alloc(c, (size_t)m->states.n * sizeof *roots);
+    for (int i = 0; i < m->states.n; i++)
+        roots[i] = LVEC_AT(m->states, lang_state, i).rhs;
+    unsigned char *needed = needed_by(c, roots, m->states.n);
+    puts_(c, "static int dk_rhs(double t, const double *y, double *dydt, void *par)\n{\n"
+             "    const double *p = (const double *)par;\n    (void)t;\n    (void)y;\n"
+             "    (void)p;\n");
+    emit_fixes(c, needed);
+    const ectx x = {NULL, 1};
+    for (int i = 0; i < m->states.n; i++) {
+        const lang_state *s = &LVEC_AT(m->states, lang_state, i);
+        line_dir(c, s->pos);
+        outf(c, "    dydt[%d] = ", i);
+        expr(c, s->rhs, &x);
+        puts_(c, ";\n");
+    }
+    puts_(c, "    return 0;\n}\n\n");
+}
+
+static void emit_outputs(lang_ctx *c)
+{
+    lang_model *m = &c->m;
+    if (m->auxs.n == 0)
+        return;
+    node **roots = lang_alloc(c, (size_t)m->auxs.n * sizeof *roots);
+    for (int i = 0; i < m->auxs.n; i++)
+        roots[i] = LVEC_AT(m->auxs, lang_formula, i).expr;
+    unsigned char *needed = needed_by(c, roots, m->auxs.n);
+    puts_(c, "static int dk_outputs(double t, const double *y, const void *par, double *out)\n"
+             "{\n    const double *p = (const double *)par;\n    (void)t;\n    (void)y;\n"
+             "    (void)p;\n");
+    emit_fixes(c, needed);
+    const ectx x = {NULL, 1};
+    for (int i = 0; i < m->auxs.n; i++) {
+        const lang_formula *f = &LVEC_AT(m->auxs, lang_formula, i);
+        line_dir(c, f->pos);
+        outf(c, "    out[%d] = ", i);
+        expr(c, f->expr, &x);
+        puts_(c, ";\n");
+    }
+    puts_(c, "    return 0;\n}\n\n");
+}
+
+static void emit_prepare(lang_ctx *c)
+{
+    lang_model *m = &c->m;
+    const int np = m->params.n;
+    puts_(c, "static int dk_prepare(void *par, char *err, size_t errlen)\n{\n"
+             "    double *p = (double *)par;\n    (void)p;\n");
+    if (np > 0) {
+        puts_(c, "    static const char *const names[] = {");
+        for (int i = 0; i < np; i++) {
+            if (i)
+                puts_(c, ", ");
+            str_lit(c, LVEC_AT(m->params, lang_param, i).name);
+        }
+        outf(c, "};\n    for (int i = 0; i < %d; i++)\n        if (!isfinite(p[i])) {\n"
+                "            snprintf(err, errlen, \"parameter '%%s' is not finite (%%g)\", "
+                "names[i], p[i]);\n            return 1;\n        }\n",
+             np);
+    }
+    const ectx x = {NULL, 0};
+    for (int i = 0; i < m->derived.n; i++) {
+        const int k = m->derived_order[i];
+        const lang_formula *f = &LVEC_AT(m->derived, lang_formula, k);
+        line_dir(c, f->pos);
+        outf(c, "    p[%d] = ", np + k);
+        expr(c, f->expr, &x);
+        puts_(c, ";\n");
+        outf(c, "    if (!isfinite(p[%d])) {\n        snprintf(err, errlen, \"derived parameter "
+                "'%%s' is not finite (%%g)\", ",
+             np + k);
+        str_lit(c, f->name);
+        outf(c, ", p[%d]);\n        return 1;\n    }\n", np + k);
+    }
+    puts_(c, "    (void)err;\n    (void)errlen;\n    return 0;\n}\n\n");
+}
+
+static int init_needs_params(const node *e)
+{
+    if (!e)
+        return 0;
+    if (e->kind == N_PARAM || e->kind == N_UFUN)
+        return 1;
+    for (int i = 0; i < e->nargs; i++)
+        if (init_needs_params(e->args[i]))
+            return 1;
+    return 0;
+}
+
+static int emit_initial(lang_ctx *c, const double *y0)
+{
+    lang_model *m = &c->m;
+    int any = 0;
+    for (int i = 0; i < m->states.n; i++)
+        any |= init_needs_params(LVEC_AT(m->states, lang_state, i).init);
+    if (!any)
+        return 0;
+    puts_(c, "static void dk_initial_state(const void *par, double *y0)\n{\n"
+             "    const double *p = (const double *)par;\n    (void)p;\n");
+    const ectx x = {NULL, 0};
+    for (int i = 0; i < m->states.n; i++) {
+        const lang_state *s = &LVEC_AT(m->states, lang_state, i);
+        if (init_needs_params(s->init)) {
+            line_dir(c, s->init_pos);
+            outf(c, "    y0[%d] = ", i);
+            expr(c, s->init, &x);
+        } else {
+            outf(c, "    y0[%d] = ", i);
+            num_lit(c, y0[i]);
+        }
+        puts_(c, ";\n");
+    }
+    puts_(c, "}\n\n");
+    return 1;
+}
+
+/* Jacobian: the fixed temporaries, then one block per column j with the derivatives of the
+ * fixed temporaries with respect to y[j] (locals dvJ_NAME) and the non-zero entries. */
+static void emit_jacobian(lang_ctx *c, jac_plan *j)
+{
+    lang_model *m = &c->m;
+    const int n = m->states.n;
+    node **roots = lang_alloc(c, (size_t)n * sizeof *roots);
+    for (int i = 0; i < n; i++)
+        roots[i] = LVEC_AT(m->states, lang_state, i).rhs;
+    unsigned char *needed = needed_by(c, roots, n);
+    node **fixd = lang_alloc(c, ((size_t)m->fixes.n + 1) * sizeof *fixd);
+    /* compute everything first (the partials of user functions must be known before the
+     * functions are written), then write */
+    typedef struct col {
+        node **fixd;  /* derivative of each needed fix (NULL: zero) */
+        node **entry; /* d f_i / d y_j (NULL: zero) */
+    } col;
+    col *cols = lang_alloc(c, (size_t)n * sizeof *cols);
+    for (int jj = 0; jj < n; jj++) {
+        memset(fixd, 0, ((size_t)m->fixes.n + 1) * sizeof *fixd);
+        cols[jj].fixd = lang_alloc(c, ((size_t)m->fixes.n + 1) * sizeof(node *));
+        cols[jj].entry = lang_alloc(c, (size_t)n * sizeof(node *));
+        lang_dvar v = {N_STATE, jj, fixd, j->used, 0};
+        for (int q = 0; q < m->fixes.n; q++) {
+            const int k = m->fix_order[q];
+            if (!needed[k])
+                continue;
+            node *dk = lang_deriv(c, LVEC_AT(m->fixes, lang_formula, k).expr, &v);
+            if (lang_is_num(dk, 0.0))
+                continue;
+            cols[jj].fixd[k] = dk;
+            if (dk->kind == N_NUM) {
+                fixd[k] = dk;
+            } else {
+                node *ref = lang_node(c, N_DFIX, (lpos){0, 0});
+                ref->index = k;
+                ref->op = jj;
+                fixd[k] = ref;
+            }
+        }
+        for (int i = 0; i < n; i++) {
+            node *e = lang_deriv(c, roots[i], &v);
+            cols[jj].entry[i] = lang_is_num(e, 0.0) ? NULL : e;
+        }
+    }
+    plan_partials(c, j);
+    /* the functions' text comes before the Jacobian's: write it into a buffer of its own */
+    char *saved = c->out;
+    size_t saved_len = c->out_len, saved_cap = c->out_cap;
+    c->out_saved = saved;
+    c->out = NULL;
+    c->out_len = c->out_cap = 0;
+    puts_(c, "static int dk_jacobian(double t, const double *y, double *J, void *par)\n{\n"
+             "    const double *p = (const double *)par;\n    (void)t;\n    (void)y;\n"
+             "    (void)p;\n");
+    emit_fixes(c, needed);
+    outf(c, "    for (int k = 0; k < %d; k++)\n        J[k] = 0.0;\n", n * n);
+    const ectx x = {NULL, 1};
+    for (int jj = 0; jj < n; jj++) {
+        int any = 0;
+        for (int i = 0; i < n; i++)
+            any |= cols[jj].entry[i] != NULL;
+        if (!any)
+            continue;
+        outf(c, "    { /* d/d %s */\n", LVEC_AT(m->states, lang_state, jj).name);
+        for (int q = 0; q < m->fixes.n; q++) {
+            const int k = m->fix_order[q];
+            const node *dk = cols[jj].fixd[k];
+            if (!dk || dk->kind == N_NUM)
+                continue;
+            const lang_formula *f = &LVEC_AT(m->fixes, lang_formula, k);
+            line_dir(c, f->pos);
+            outf(c, "        const double dv%d_%s = ", jj, f->name);
+            expr(c, dk, &x);
+            puts_(c, ";\n");
+            outf(c, "        (void)dv%d_%s;\n", jj, f->name);
+        }
+        for (int i = 0; i < n; i++) {
+            if (!cols[jj].entry[i])
+                continue;
+            line_dir(c, LVEC_AT(m->states, lang_state, i).pos);
+            outf(c, "        J[%d] = ", i * n + jj);
+            expr(c, cols[jj].entry[i], &x);
+            puts_(c, ";\n");
+        }
+        puts_(c, "    }\n");
+    }
+    puts_(c, "    return 0;\n}\n\n");
+    char *jac = c->out;
+    const size_t jac_len = c->out_len;
+    c->out = saved;
+    c->out_saved = NULL;
+    c->out_len = saved_len;
+    c->out_cap = saved_cap;
+    /* keep the Jacobian's text in the arena until it is appended */
+    j->text = lang_strndup(c, jac ? jac : "", jac ? jac_len : 0);
+    j->text_len = jac ? jac_len : 0;
+    free(jac);
+}
+
+static void emit_events(lang_ctx *c)
+{
+    lang_model *m = &c->m;
+    const ectx x = {NULL, 1};
+    for (int i = 0; i < m->events.n; i++) {
+        const lang_event *ev = &LVEC_AT(m->events, lang_event, i);
+        node *root = ev->cond;
+        unsigned char *needed = needed_by(c, &root, 1);
+        outf(c, "static double dk_event%d(double t, const double *y, void *par)\n{\n"
+                "    const double *p = (const double *)par;\n    (void)t;\n    (void)y;\n"
+                "    (void)p;\n",
+             i);
+        emit_fixes(c, needed);
+        line_dir(c, ev->pos);
+        puts_(c, "    return ");
+        expr(c, ev->cond, &x);
+        puts_(c, ";\n}\n\n");
+        if (!ev->nassign)
+            continue;
+        /* XPPAUT applies a global's assignments in sequence: each sees the ones before */
+        outf(c, "static int dk_reset%d(double t, double *y, void *par)\n{\n"
+                "    const double *p = (const double *)par;\n    (void)t;\n    (void)p;\n",
+             i);
+        for (int k = 0; k < ev->nassign; k++) {
+            const lang_assign *a = &ev->assign[k];
+            root = a->value;
+            needed = needed_by(c, &root, 1);
+            puts_(c, "    {\n");
+            emit_fixes(c, needed);
+            line_dir(c, a->pos);
+            outf(c, "        y[%d] = ", a->state);
+            expr(c, a->value, &x);
+            puts_(c, ";\n    }\n");
+        }
+        puts_(c, "    return 0;\n}\n\n");
+    }
+}
+
+static void vars(lang_ctx *c, const char *decl, lvec *v, int states)
+{
+    outf(c, "static const dyn_var %s[] = {\n", decl);
+    for (int i = 0; i < v->n; i++) {
+        const char *name;
+        const lang_doc *d;
+        if (states) {
+            const lang_state *s = &LVEC_AT(*v, lang_state, i);
+            name = s->name;
+            d = &s->doc;
+        } else {
+            const lang_formula *f = &LVEC_AT(*v, lang_formula, i);
+            name = f->name;
+            d = &f->doc;
+        }
+        puts_(c, "    {");
+        str_lit(c, name);
+        puts_(c, ", ");
+        str_lit(c, d->unit);
+        puts_(c, ", ");
+        str_lit(c, d->description);
+        puts_(c, "},\n");
+    }
+    puts_(c, "};\n");
+}
+
+char *lang_emit_c(lang_ctx *c)
+{
+    lang_model *m = &c->m;
+    const int n = m->states.n, np = m->params.n, nd = m->derived.n;
+    /* default values: parameters, then derived ones; initial states */
+    double *pv = lang_alloc(c, ((size_t)np + nd + 1) * sizeof *pv);
+    for (int i = 0; i < np; i++)
+        pv[i] = LVEC_AT(m->params, lang_param, i).value;
+    for (int i = 0; i < nd; i++) {
+        const int k = m->derived_order[i];
+        pv[np + k] = lang_eval(c, LVEC_AT(m->derived, lang_formula, k).expr, NULL, pv);
+    }
+    double *y0 = lang_alloc(c, (size_t)n * sizeof *y0);
+    for (int i = 0; i < n; i++) {
+        const node *in = LVEC_AT(m->states, lang_state, i).init;
+        y0[i] = in ? lang_eval(c, in, NULL, pv) : 0.0;
+    }
+    jac_plan jp = {0};
+    jp.used = lang_alloc(c, ((size_t)m->funcs.n + 1) * LANG_MAX_ARGS);
+    const int with_jac = n <= LANG_MAX_JAC_STATES;
+    if (with_jac)
+        emit_jacobian(c, &jp); /* computed first: it decides the partials to write */
+    else
+        lang_note(c, (lpos){0, 0}, "%d states: no analytic Jacobian (at most %d); the stiff "
+                  "methods use finite differences", n, LANG_MAX_JAC_STATES);
+
+    puts_(c, "/* ");
+    puts_(c, m->name);
+    puts_(c, ": C text generated by dynkit from the model file ");
+    for (const char *s = c->path; *s; s++)
+        if (*s == '*' && s[1] == '/')
+            puts_(c, "*\\/"), s++;
+        else if ((unsigned char)*s >= 32)
+            put(c, s, 1);
+    puts_(c, "\n * (see \"The .ode format\" in docs/model-files.md). Edit the model file, not "
+             "this text. */\n"
+             "#include <math.h>\n#include <stddef.h>\n#include <stdio.h>\n\n"
+             "#include <dynkit/model.h>\n\n");
+    helpers(c);
+    emit_functions(c, &jp);
+    emit_rhs(c);
+    emit_outputs(c);
+    emit_prepare(c);
+    const int has_init = emit_initial(c, y0);
+    if (jp.text)
+        put(c, jp.text, jp.text_len);
+    emit_events(c);
+
+    /* data */
+    puts_(c, "#line 1 \"<dynkit: the model's tables>\"\n");
+    vars(c, "dk_states", &m->states, 1);
+    puts_(c, "static const double dk_y0[] = {");
+    for (int i = 0; i < n; i++) {
+        if (i)
+            puts_(c, ", ");
+        num_lit(c, y0[i]);
+    }
+    puts_(c, "};\n");
+    if (np) {
+        puts_(c, "static const dyn_param dk_params[] = {\n");
+        for (int i = 0; i < np; i++) {
+            const lang_param *p = &LVEC_AT(m->params, lang_param, i);
+            puts_(c, "    {");
+            str_lit(c, p->name);
+            puts_(c, ", ");
+            str_lit(c, p->doc.unit);
+            puts_(c, ", ");
+            str_lit(c, p->doc.description);
+            outf(c, ", %d * sizeof(double), ", i);
+            num_lit(c, p->value);
+            puts_(c, "},\n");
+        }
+        puts_(c, "};\n");
+    }
+    if (m->auxs.n)
+        vars(c, "dk_outputs_vars", &m->auxs, 0);
+    if (m->events.n) {
+        puts_(c, "static const dyn_event dk_events[] = {\n");
+        for (int i = 0; i < m->events.n; i++) {
+            const lang_event *ev = &LVEC_AT(m->events, lang_event, i);
+            puts_(c, "    {");
+            str_lit(c, ev->name);
+            puts_(c, ", ");
+            const char *desc = ev->description;
+            if (!desc && ev->is_global)
+                desc = lang_printf(c, "XPPAUT global on line %d: resets the state", ev->pos.line);
+            str_lit(c, desc);
+            outf(c, ", dk_event%d, %d, %d, ", i, ev->direction, ev->terminal);
+            if (ev->nassign)
+                outf(c, "dk_reset%d},\n", i);
+            else
+                puts_(c, "NULL},\n");
+        }
+        puts_(c, "};\n");
+    }
+    const double rtol = m->rtol > 0 ? m->rtol : 1e-6;
+    const double atol = m->atol > 0 ? m->atol : 1e-9;
+    puts_(c, "\nstatic const dyn_model dk_model = {\n    .name = ");
+    str_lit(c, m->name);
+    puts_(c, ",\n    .title = ");
+    str_lit(c, m->title);
+    puts_(c, ",\n    .description = ");
+    str_lit(c, m->description);
+    outf(c, ",\n    .n_states = %d,\n    .states = dk_states,\n    .y0 = dk_y0,\n"
+            "    .n_params = %d,\n    .params = %s,\n    .par_size = %d * sizeof(double),\n"
+            "    .n_outputs = %d,\n    .outputs = %s,\n    .rhs = dk_rhs,\n"
+            "    .compute_outputs = %s,\n    .prepare = dk_prepare,\n    .warn = NULL,\n",
+         n, np, np ? "dk_params" : "NULL", np + nd > 0 ? np + nd : 1, m->auxs.n,
+         m->auxs.n ? "dk_outputs_vars" : "NULL", m->auxs.n ? "dk_outputs" : "NULL");
+    puts_(c, "    .t0 = ");
+    num_lit(c, m->t0);
+    puts_(c, ",\n    .t1 = ");
+    num_lit(c, m->t0 + m->total);
+    puts_(c, ",\n    .step = ");
+    num_lit(c, m->dt);
+    puts_(c, ",\n    .method = ");
+    str_lit(c, m->method ? m->method : "dp45");
+    outf(c, ",\n    .n_inputs = 0,\n    .inputs = NULL,\n    .set_input = NULL,\n"
+            "    .jacobian = %s,\n    .n_events = %d,\n    .events = %s,\n"
+            "    .samples = DYN_SAMPLES_GRID,\n    .initial_state = %s,\n",
+         with_jac ? "dk_jacobian" : "NULL", m->events.n, m->events.n ? "dk_events" : "NULL",
+         has_init ? "dk_initial_state" : "NULL");
+    puts_(c, "    .rtol = ");
+    num_lit(c, rtol);
+    puts_(c, ",\n    .atol = ");
+    num_lit(c, atol);
+    puts_(c, ",\n    .phase_x = ");
+    if (m->xp)
+        str_lit(c, m->xp);
+    else
+        puts_(c, "NULL");
+    puts_(c, ",\n    .phase_y = ");
+    if (m->yp)
+        str_lit(c, m->yp);
+    else
+        puts_(c, "NULL");
+    puts_(c, ",\n    .source = ");
+    str_lit(c, c->path);
+    puts_(c, ",\n    .t_trans = ");
+    num_lit(c, m->trans);
+    outf(c, ",\n    .every = %ld,\n    .bound = ", m->nout);
+    num_lit(c, m->bound);
+    puts_(c, ",\n};\n\nconst dyn_model *dynkit_model(void) { return &dk_model; }\n\n");
+    char *r = c->out;
+    c->out = NULL;
+    return r;
+}

@@ -1,0 +1,286 @@
+/* Internal interface of the .ode translator (src/lang): the translation context (an arena,
+ * the error exit, notes), the expression tree, the model as read from the file, and the
+ * passes: source lines (source.c), expressions (expr_parse.c), statements (ode_parse.c),
+ * names and order (check.c), derivatives (deriv.c), C text (emit_c.c).
+ *
+ * Every allocation comes from the context's arena and is released at once at the end of
+ * dyn_ode_to_c; an error or an exhausted memory leaves through lang_fail / lang_oom
+ * (longjmp back to dyn_ode_to_c), so the passes never check for failure themselves.
+ */
+#ifndef DYNKIT_LANG_INTERNAL_H
+#define DYNKIT_LANG_INTERNAL_H
+
+#include <setjmp.h>
+#include <stddef.h>
+
+#include "dynkit/lang.h"
+
+/* ---- limits (each refused with a message naming it) ---- */
+#define LANG_MAX_TEXT (16u << 20)     /* bytes of a model file */
+#define LANG_MAX_LINE 100000          /* characters of one logical line */
+#define LANG_MAX_EXPANDED 200000      /* lines after the expansion of arrays */
+#define LANG_MAX_RANGE 100000         /* elements of one array range [j1..j2] */
+#define LANG_MAX_DEPTH 200            /* nesting of an expression */
+#define LANG_MAX_SYMBOLS 200000       /* declared names */
+#define LANG_MAX_ARGS 20              /* arguments of a user function (XPPAUT: 20) */
+#define LANG_MAX_JAC_STATES 400       /* analytic Jacobian up to this many states */
+#define LANG_MAX_INLINE 64            /* nesting of inlined calls in derivatives */
+
+typedef struct lpos {
+    int line, col; /* 1-based; 0 when not tied to a place */
+} lpos;
+
+/* ---- growable arrays in the arena ---- */
+typedef struct lvec {
+    void *data;
+    int n, cap;
+} lvec;
+
+/* ---- expression tree ---- */
+typedef enum node_kind {
+    N_NUM,   /* num */
+    N_NAME,  /* unresolved name (after parsing) */
+    N_TIME,  /* t */
+    N_STATE, /* y[index] */
+    N_PARAM, /* p[index] (parameters, then derived parameters) */
+    N_FIX,   /* fixed temporary index */
+    N_ARG,   /* argument index of the enclosing user function */
+    N_NEG,   /* -a */
+    N_NOT,   /* not a */
+    N_BIN,   /* a op b */
+    N_FUN,   /* built-in function op of args */
+    N_UFUN,  /* user function index of args */
+    N_IF,    /* if(a)then(b)else(c) */
+    N_DFIX,  /* derivative of fixed temporary index with respect to state op (a local) */
+    N_UFUN_D /* partial derivative op (argument) of user function index, of args */
+} node_kind;
+
+typedef enum bin_op {
+    OP_ADD, OP_SUB, OP_OR,                   /* XPPAUT priority 4 */
+    OP_MUL, OP_DIV, OP_AND,                  /* priority 6 (also unary minus and not) */
+    OP_POW, OP_GT, OP_LT, OP_GE, OP_LE, OP_EQ, OP_NE /* priority 7 */
+} bin_op;
+
+typedef enum fun_id {
+    F_SIN, F_COS, F_TAN, F_ASIN, F_ACOS, F_ATAN, F_ATAN2, F_SINH, F_COSH, F_TANH, F_EXP,
+    F_LN, F_LOG10, F_SQRT, F_ABS, F_HEAV, F_SIGN, F_MOD, F_FLR, F_CEIL, F_MAX, F_MIN, F_ERF,
+    F_ERFC, F_COUNT
+} fun_id;
+
+typedef struct node {
+    node_kind kind;
+    int op;           /* bin_op, fun_id, or the state of N_DFIX / argument of N_UFUN_D */
+    double num;
+    int index;
+    int nargs;
+    struct node **args;
+    const char *name; /* as written (N_NAME, N_FUN, N_UFUN) */
+    lpos pos;
+    int paren;        /* written inside parentheses */
+} node;
+
+/* ---- the model as read from the file ---- */
+typedef struct lang_doc {
+    const char *unit;        /* NULL: not given */
+    const char *description; /* NULL: not given */
+} lang_doc;
+
+typedef struct lang_state {
+    const char *name;
+    lpos pos;
+    node *rhs;
+    node *init;  /* NULL: 0 */
+    lpos init_pos;
+    lang_doc doc;
+} lang_state;
+
+typedef struct lang_param {
+    const char *name;
+    lpos pos;
+    double value;
+    lang_doc doc;
+} lang_param;
+
+typedef struct lang_formula { /* derived parameter, fixed temporary, aux output */
+    const char *name;
+    lpos pos;
+    node *expr;
+    lang_doc doc;
+    int mark;                 /* scratch of the ordering passes */
+} lang_formula;
+
+typedef struct lang_func {
+    const char *name;
+    lpos pos;
+    int nargs;
+    const char **argnames;
+    node *body;
+    int mark;
+    int uses_state, uses_time; /* directly or through other functions */
+} lang_func;
+
+typedef struct lang_assign {
+    const char *name;
+    lpos pos;
+    int state;
+    node *value;
+} lang_assign;
+
+typedef struct lang_event {
+    const char *name;
+    const char *description;
+    lpos pos;
+    int direction; /* +1 rising, -1 falling, 0 both */
+    int terminal;
+    node *cond;
+    int nassign;   /* > 0: a global with a reset */
+    lang_assign *assign;
+    int is_global;
+} lang_event;
+
+/* A pending `init name=...` or `name(0)=...`, resolved once every state is known. */
+typedef struct lang_init {
+    const char *name;
+    lpos pos;
+    node *value;
+} lang_init;
+
+/* A pending `#: NAME [UNIT] text` line. */
+typedef struct lang_docline {
+    const char *name;
+    lpos pos;
+    lang_doc doc;
+} lang_docline;
+
+typedef enum sym_kind {
+    SYM_NONE, SYM_STATE, SYM_PARAM, SYM_NUMBER, SYM_DERIVED, SYM_FIX, SYM_AUX, SYM_FUNC,
+    SYM_RESERVED
+} sym_kind;
+
+typedef struct lang_sym {
+    const char *key; /* case folded */
+    sym_kind kind;
+    int index;
+    lpos pos;
+} lang_sym;
+
+typedef struct lang_model {
+    lvec states;   /* lang_state */
+    lvec params;   /* lang_param */
+    lvec numbers;  /* lang_param (constants) */
+    lvec derived;  /* lang_formula */
+    lvec fixes;    /* lang_formula */
+    lvec auxs;     /* lang_formula */
+    lvec funcs;    /* lang_func */
+    lvec events;   /* lang_event */
+    lvec inits;    /* lang_init */
+    lvec docs;     /* lang_docline */
+    /* symbol table: open addressing on the case-folded name */
+    lang_sym *syms;
+    int nsyms, symcap;
+    /* orders computed by check.c */
+    int *fix_order;     /* fixes in dependency order */
+    int *derived_order; /* derived parameters in dependency order */
+    /* text */
+    const char *name, *title, *description;
+    /* options */
+    double t0, total, dt, rtol, atol, bound, trans;
+    long nout;
+    const char *method;
+    int has_meth;
+    const char *xp, *yp;
+    lpos xp_pos, yp_pos;
+} lang_model;
+
+/* ---- one logical line: text and where each character came from ---- */
+typedef struct lang_line {
+    char *text;
+    int len;
+    lpos *pos; /* len + 1 entries (the last one: end of line) */
+} lang_line;
+
+/* ---- the context ---- */
+typedef struct lang_block lang_block;
+
+typedef struct lang_ctx {
+    jmp_buf fail;
+    int status;           /* 2 error in the file, 1 out of memory */
+    lang_block *blocks;
+    const char *path;
+    const char *text;
+    size_t len;
+    size_t *line_start;   /* offsets of physical lines */
+    int nlines;
+    dyn_lang_diag *diag;
+    dyn_lang_note_fn note;
+    void *note_ctx;
+    lang_model m;
+    int depth;            /* recursion guard of the parser and the derivative */
+    char *out;            /* the C text being written (malloc'd; freed on failure) */
+    char *out_saved;      /* the main text while the Jacobian's is written apart */
+    size_t out_len, out_cap;
+} lang_ctx;
+
+/* arena, errors, notes (diag.c) */
+void *lang_alloc(lang_ctx *c, size_t n);
+char *lang_strndup(lang_ctx *c, const char *s, size_t n);
+char *lang_strdup(lang_ctx *c, const char *s);
+char *lang_printf(lang_ctx *c, const char *fmt, ...);
+void lang_free_all(lang_ctx *c);
+_Noreturn void lang_oom(lang_ctx *c);
+_Noreturn void lang_fail(lang_ctx *c, lpos p, const char *fmt, ...);
+void lang_note(lang_ctx *c, lpos p, const char *fmt, ...);
+void *lvec_push(lang_ctx *c, lvec *v, size_t elem);
+#define LVEC_AT(v, type, i) (((type *)(v).data)[i])
+
+/* names (check.c) */
+void lang_fold(char *dst, const char *src, size_t size);
+lang_sym *lang_lookup(lang_ctx *c, const char *name);
+void lang_declare(lang_ctx *c, const char *name, lpos pos, sym_kind kind, int index);
+const char *lang_sym_kind_name(sym_kind k);
+int lang_is_reserved(const char *name);
+void lang_check(lang_ctx *c);
+
+/* source lines (source.c): the text as logical lines with continuation joined and arrays
+ * expanded; calls fn for each line in order (stops when fn returns non-zero). */
+typedef int (*lang_line_fn)(lang_ctx *c, const lang_line *line, void *ctx);
+void lang_lines(lang_ctx *c, lang_line_fn fn, void *ctx);
+
+/* expressions (expr_parse.c) */
+typedef struct lang_lexer {
+    lang_ctx *c;
+    const lang_line *line;
+    int i, end; /* current offset, end offset (exclusive) in line->text */
+} lang_lexer;
+node *lang_parse_expr(lang_lexer *lx);  /* one expression; stops before , ; } { or the end */
+int lang_skip_blanks(lang_lexer *lx);   /* returns the next character or 0 at the end */
+lpos lang_here(const lang_lexer *lx);
+node *lang_node(lang_ctx *c, node_kind kind, lpos pos);
+int lang_fun_lookup(const char *name, int *arity);
+const char *lang_fun_name(int f);
+const char *lang_op_text(int op);
+int lang_op_priority(int op);
+int lang_is_ident_start(int ch);
+int lang_is_ident_char(int ch);
+
+/* statements (ode_parse.c) */
+void lang_parse_model(lang_ctx *c);
+
+/* derivatives and simplification (deriv.c) */
+typedef struct lang_dvar {
+    int kind;               /* N_STATE or N_ARG */
+    int index;
+    node **fixd;            /* N_STATE: derivatives of the fixed temporaries (NULL: zero) */
+    unsigned char *used;    /* funcs * LANG_MAX_ARGS flags: partial derivatives used */
+    int inline_depth;
+} lang_dvar;
+node *lang_num(lang_ctx *c, double v);
+node *lang_deriv(lang_ctx *c, const node *e, const lang_dvar *v);
+int lang_is_num(const node *e, double v);
+void lang_func_uses(lang_ctx *c, const node *e, int *state, int *time);
+double lang_eval(lang_ctx *c, const node *e, const double *args, const double *pvals);
+
+/* C text (emit_c.c) */
+char *lang_emit_c(lang_ctx *c);
+
+#endif /* DYNKIT_LANG_INTERNAL_H */

@@ -1,0 +1,798 @@
+/* Statements of an .ode file (XPPAUT's manual, "Structure of ODE files" and "Options"):
+ * x'=, dx/dt=, x(0)=, par/param/p, number, init/i, aux, name=expr (fixed), !name=expr
+ * (derived), f(a,b)=expr, global sign cond {x=..;y=..}, @ options, done; and dynkit's
+ * extensions in `#:` comment lines (title, description, units and descriptions of names,
+ * named events). XPPAUT's features this translator does not implement are refused with the
+ * place and the feature's name. Keywords are case-insensitive, blanks around `=` allowed. */
+#include <ctype.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lang/lang_internal.h"
+
+typedef struct pstate {
+    int seen_statement;
+    lvec desc;                  /* leading comment lines (char *) */
+    const char *global_name;    /* from `#: event NAME` right before a global */
+    const char *global_desc;
+    int global_name_line;       /* the line of that `#:` (0: none) */
+} pstate;
+
+static int ieqn(const char *a, size_t n, const char *word)
+{
+    if (strlen(word) != n)
+        return 0;
+    for (size_t i = 0; i < n; i++)
+        if (tolower((unsigned char)a[i]) != tolower((unsigned char)word[i]))
+            return 0;
+    return 1;
+}
+
+/* Read a name at the cursor (after blanks); fails with what when there is none. */
+static const char *read_name(lang_lexer *lx, lpos *pos, const char *what)
+{
+    const int ch = lang_skip_blanks(lx);
+    *pos = lang_here(lx);
+    if (!lang_is_ident_start(ch)) {
+        if (ch)
+            lang_fail(lx->c, *pos, "%s, found '%c'", what, ch);
+        lang_fail(lx->c, *pos, "%s, found the end of the line", what);
+    }
+    const int a = lx->i;
+    while (lx->i < lx->end && lang_is_ident_char((unsigned char)lx->line->text[lx->i]))
+        lx->i++;
+    return lang_strndup(lx->c, lx->line->text + a, (size_t)(lx->i - a));
+}
+
+static void expect_char(lang_lexer *lx, int ch, const char *what)
+{
+    const int got = lang_skip_blanks(lx);
+    if (got != ch) {
+        if (got)
+            lang_fail(lx->c, lang_here(lx), "%s, found '%c'", what, got);
+        lang_fail(lx->c, lang_here(lx), "%s, found the end of the line", what);
+    }
+    lx->i++;
+}
+
+static void expect_end(lang_lexer *lx, const char *after)
+{
+    const int ch = lang_skip_blanks(lx);
+    if (!ch)
+        return;
+    if (lang_is_ident_start(ch) || isdigit(ch) || ch == '(')
+        lang_fail(lx->c, lang_here(lx), "missing operator before '%c' (after %s)", ch, after);
+    lang_fail(lx->c, lang_here(lx), "unexpected '%c' after %s", ch, after);
+}
+
+static node *expr_to_end(lang_lexer *lx, const char *after)
+{
+    node *e = lang_parse_expr(lx);
+    expect_end(lx, after);
+    return e;
+}
+
+static void check_new_name(lang_ctx *c, const char *name, lpos pos)
+{
+    if (lang_is_reserved(name))
+        lang_fail(c, pos, "'%s' is a reserved word of XPPAUT and cannot be declared", name);
+}
+
+/* Resolve the built-in calls of a constant expression in place; names are refused. */
+static void resolve_const(lang_ctx *c, node *e, const char *what)
+{
+    for (int i = 0; i < e->nargs; i++)
+        resolve_const(c, e->args[i], what);
+    if (e->kind == N_NAME)
+        lang_fail(c, e->pos, "%s must be a number, not a formula of '%s' (a derived parameter "
+                  "'!name=formula' computes a value from parameters)", what, e->name);
+    if (e->kind == N_TIME)
+        lang_fail(c, e->pos, "%s must be a number, not a formula of t", what);
+    if (e->kind == N_FUN) {
+        int arity;
+        const int f = lang_fun_lookup(e->name, &arity);
+        if (f < 0)
+            lang_fail(c, e->pos, "%s must be a number; '%s' is not a built-in function", what,
+                      e->name);
+        if (arity != e->nargs)
+            lang_fail(c, e->pos, "'%s' takes %d argument%s, not %d", e->name, arity,
+                      arity == 1 ? "" : "s", e->nargs);
+        e->op = f;
+    }
+}
+
+static double const_value(lang_ctx *c, node *e, const char *what)
+{
+    resolve_const(c, e, what);
+    return lang_eval(c, e, NULL, NULL);
+}
+
+/* ---- declarations ---- */
+
+static int add_state(lang_ctx *c, const char *name, lpos pos, node *rhs)
+{
+    check_new_name(c, name, pos);
+    const int idx = c->m.states.n;
+    lang_declare(c, name, pos, SYM_STATE, idx);
+    lang_state *s = lvec_push(c, &c->m.states, sizeof *s);
+    s->name = name;
+    s->pos = pos;
+    s->rhs = rhs;
+    return idx;
+}
+
+static void add_formula(lang_ctx *c, lvec *v, sym_kind kind, const char *name, lpos pos,
+                        node *e)
+{
+    check_new_name(c, name, pos);
+    lang_declare(c, name, pos, kind, v->n);
+    lang_formula *f = lvec_push(c, v, sizeof *f);
+    f->name = name;
+    f->pos = pos;
+    f->expr = e;
+}
+
+static void add_init(lang_ctx *c, const char *name, lpos pos, node *value)
+{
+    lang_init *in = lvec_push(c, &c->m.inits, sizeof *in);
+    in->name = name;
+    in->pos = pos;
+    in->value = value;
+}
+
+/* par / number / init: name=value lists, separated by commas or blanks. */
+static void name_value_list(lang_ctx *c, lang_lexer *lx, int kind, const char *keyword)
+{
+    int count = 0;
+    for (;;) {
+        lpos pos;
+        const char *name = read_name(lx, &pos, count ? "expected a name" : "expected a name "
+                                     "after the keyword");
+        expect_char(lx, '=', "expected '=' after the name");
+        node *e = lang_parse_expr(lx);
+        if (kind == SYM_PARAM || kind == SYM_NUMBER) {
+            const double v = const_value(c, e, kind == SYM_PARAM ? "a parameter's value"
+                                                                 : "a number's value");
+            check_new_name(c, name, pos);
+            lvec *vec = kind == SYM_PARAM ? &c->m.params : &c->m.numbers;
+            lang_declare(c, name, pos, kind, vec->n);
+            lang_param *p = lvec_push(c, vec, sizeof *p);
+            p->name = name;
+            p->pos = pos;
+            p->value = v;
+        } else {
+            add_init(c, name, pos, e);
+        }
+        count++;
+        const int ch = lang_skip_blanks(lx);
+        if (ch == ',') {
+            lx->i++;
+            continue;
+        }
+        if (!ch)
+            return;
+        if (lang_is_ident_start(ch))
+            continue;
+        lang_fail(c, lang_here(lx), "unexpected '%c' in the %s list (name=value, ...)", ch,
+                  keyword);
+    }
+}
+
+static void parse_global(lang_ctx *c, lang_lexer *lx, pstate *ps, lpos kpos)
+{
+    int ch = lang_skip_blanks(lx);
+    const lpos spos = lang_here(lx);
+    int sign = 1;
+    if (ch == '-' || ch == '+') {
+        sign = ch == '-' ? -1 : 1;
+        lx->i++;
+        ch = lang_skip_blanks(lx);
+    }
+    if (!isdigit(ch))
+        lang_fail(c, spos, "expected the direction of the global after 'global': 1 (rising), "
+                  "-1 (falling) or 0 (both)");
+    int d = 0;
+    while (lx->i < lx->end && isdigit((unsigned char)lx->line->text[lx->i])) {
+        d = d * 10 + (lx->line->text[lx->i] - '0');
+        if (d > 1000)
+            break;
+        lx->i++;
+    }
+    if (d > 1)
+        lang_fail(c, spos, "the direction of a global is 1 (rising), -1 (falling) or 0 (both)");
+    node *cond = lang_parse_expr(lx);
+    expect_char(lx, '{', "expected '{' with the assignments after the global's condition");
+    lvec assign = {0};
+    for (;;) {
+        ch = lang_skip_blanks(lx);
+        if (ch == '}') {
+            lx->i++;
+            break;
+        }
+        lpos pos;
+        const char *name = read_name(lx, &pos, "expected 'name=value' or '}' in the global");
+        expect_char(lx, '=', "expected '=' after the name in the global");
+        lang_assign *a = lvec_push(c, &assign, sizeof *a);
+        a->name = name;
+        a->pos = pos;
+        a->value = lang_parse_expr(lx);
+        ch = lang_skip_blanks(lx);
+        if (ch == ';' || ch == ',') {
+            lx->i++;
+            continue;
+        }
+        if (ch == '}')
+            continue;
+        if (!ch)
+            lang_fail(c, lang_here(lx), "missing '}' at the end of the global");
+        lang_fail(c, lang_here(lx), "expected ';' or '}' in the global, found '%c'", ch);
+    }
+    expect_end(lx, "the global's '}'");
+    if (assign.n == 0)
+        lang_fail(c, kpos, "a global needs at least one assignment in { }");
+    lang_event *ev = lvec_push(c, &c->m.events, sizeof *ev);
+    int nglobal = 0;
+    for (int i = 0; i < c->m.events.n; i++)
+        nglobal += LVEC_AT(c->m.events, lang_event, i).is_global;
+    if (ps->global_name && ps->global_name_line) {
+        ev->name = ps->global_name;
+        ev->description = ps->global_desc;
+    } else {
+        ev->name = lang_printf(c, "global%d", nglobal + 1);
+        ev->description = NULL;
+    }
+    ps->global_name = NULL;
+    ps->global_name_line = 0;
+    ev->pos = kpos;
+    ev->direction = sign * d;
+    ev->cond = cond;
+    ev->nassign = assign.n;
+    ev->assign = assign.data;
+    ev->is_global = 1;
+}
+
+/* ---- @ options ---- */
+
+static double option_number(lang_ctx *c, const char *name, const char *v, lpos pos)
+{
+    char *end;
+    const double x = strtod(v, &end);
+    if (end == v || *end)
+        lang_fail(c, pos, "option '%s' needs a number, not '%s'", name, v);
+    return x;
+}
+
+/* XPPAUT's methods and dynkit's, to dynkit's: a table anyone can read. */
+static const struct {
+    const char *name, *method, *why;
+} methods[] = {
+    /* XPPAUT's names (manual, "Options": METH=) */
+    {"euler", "euler", NULL},
+    {"modeuler", "heun", NULL},
+    {"rungekutta", "rk4", NULL},
+    {"adams", "rk4", "XPPAUT's 4th-order Adams-Bashforth runs as rk4, the same order and step"},
+    {"gear", "rodas4", NULL},
+    {"volterra", "rodas4", "XPPAUT's implicit volterra method runs as the stiff rodas4"},
+    {"backeul", "rodas4", "backward Euler runs as the stiff rodas4"},
+    {"qualrk", "dp45", NULL},
+    {"stiff", "rodas4", NULL},
+    {"cvode", "rodas4", NULL},
+    {"5dp", "dp45", NULL},
+    {"83dp", "dop853", NULL},
+    {"2rb", "rodas4", NULL},
+    {"ymp", "rk4", "XPPAUT's symplectic ymp runs as rk4 with the same step"},
+    /* other spellings */
+    {"runge", "rk4", NULL},
+    {"rk", "rk4", NULL},
+    {"rk4", "rk4", NULL},
+    {"heun", "heun", NULL},
+    {"midpoint", "midpoint", NULL},
+    {"bs23", "bs23", NULL},
+    {"ode23", "bs23", NULL},
+    {"dp45", "dp45", NULL},
+    {"dopri5", "dp45", NULL},
+    {"ode45", "dp45", NULL},
+    {"dop853", "dop853", NULL},
+    {"rodas4", "rodas4", NULL},
+    {"rosen", "rodas4", NULL},
+    {"rosenbrock", "rodas4", NULL},
+};
+
+static void set_method(lang_ctx *c, const char *v, lpos pos)
+{
+    const size_t n = strlen(v);
+    int is_discrete = n > 0;
+    for (size_t k = 0; k < n && is_discrete; k++)
+        if (k >= 8 || tolower((unsigned char)v[k]) != "discrete"[k])
+            is_discrete = 0;
+    if (is_discrete)
+        lang_fail(c, pos, "difference equations (meth=discrete) are not supported");
+    if (n == 0)
+        lang_fail(c, pos, "option 'meth' needs a method name");
+    int found = -1;
+    for (size_t i = 0; i < sizeof methods / sizeof methods[0] && found < 0; i++)
+        if (ieqn(v, n, methods[i].name))
+            found = (int)i;
+    /* XPPAUT takes the first method its value begins: r = rungekutta, 8 = 83dp */
+    for (size_t i = 0; i < 14 && found < 0; i++)
+        if (n < strlen(methods[i].name)) {
+            int ok = 1;
+            for (size_t k = 0; k < n; k++)
+                if (tolower((unsigned char)v[k]) != methods[i].name[k])
+                    ok = 0;
+            if (ok)
+                found = (int)i;
+        }
+    if (found < 0) {
+        const char *names[sizeof methods / sizeof methods[0]];
+        for (size_t i = 0; i < sizeof methods / sizeof methods[0]; i++)
+            names[i] = methods[i].name;
+        const char *near = dyn_lang_nearest(v, names, (int)(sizeof names / sizeof names[0]));
+        lang_fail(c, pos, "unknown method '%s'%s%s%s", v, near ? " (did you mean '" : "",
+                  near ? near : "", near ? "'?)" : "");
+    }
+    c->m.method = methods[found].method;
+    c->m.has_meth = 1;
+    if (methods[found].why)
+        lang_note(c, pos, "meth=%s: %s", v, methods[found].why);
+    else
+        lang_note(c, pos, "meth=%s runs as dynkit's %s", v, methods[found].method);
+}
+
+static void parse_options(lang_ctx *c, lang_lexer *lx)
+{
+    for (;;) {
+        int ch = lang_skip_blanks(lx);
+        if (!ch)
+            return;
+        if (ch == ',') {
+            lx->i++;
+            continue;
+        }
+        lpos pos;
+        const char *name = read_name(lx, &pos, "expected an option name=value");
+        expect_char(lx, '=', "expected '=' after the option's name");
+        lang_skip_blanks(lx);
+        const lpos vpos = lang_here(lx);
+        const int a = lx->i;
+        while (lx->i < lx->end && lx->line->text[lx->i] != ',' &&
+               lx->line->text[lx->i] != ' ' && lx->line->text[lx->i] != '\t')
+            lx->i++;
+        const char *v = lang_strndup(c, lx->line->text + a, (size_t)(lx->i - a));
+        const size_t n = strlen(name);
+        lang_model *m = &c->m;
+        if (ieqn(name, n, "total")) {
+            m->total = option_number(c, name, v, vpos);
+            if (!(m->total > 0) || !isfinite(m->total))
+                lang_fail(c, vpos, "total must be a finite number > 0");
+        } else if (ieqn(name, n, "t0")) {
+            m->t0 = option_number(c, name, v, vpos);
+            if (!isfinite(m->t0))
+                lang_fail(c, vpos, "t0 must be finite");
+        } else if (ieqn(name, n, "dt")) {
+            m->dt = option_number(c, name, v, vpos);
+            if (m->dt < 0)
+                lang_fail(c, vpos, "dt < 0 (integration backwards in time) is not supported");
+            if (!(m->dt > 0) || !isfinite(m->dt))
+                lang_fail(c, vpos, "dt must be a finite number > 0");
+        } else if (ieqn(name, n, "meth") || ieqn(name, n, "method")) {
+            set_method(c, v, vpos);
+        } else if (ieqn(name, n, "tol") || ieqn(name, n, "toler")) {
+            m->rtol = option_number(c, name, v, vpos);
+            if (!(m->rtol > 0) || !isfinite(m->rtol))
+                lang_fail(c, vpos, "tol must be a finite number > 0");
+        } else if (ieqn(name, n, "atol") || ieqn(name, n, "atoler")) {
+            m->atol = option_number(c, name, v, vpos);
+            if (!(m->atol > 0) || !isfinite(m->atol))
+                lang_fail(c, vpos, "atol must be a finite number > 0");
+        } else if (ieqn(name, n, "bound") || ieqn(name, n, "bounds")) {
+            m->bound = option_number(c, name, v, vpos);
+            if (!(m->bound > 0))
+                lang_fail(c, vpos, "bound must be a number > 0");
+        } else if (ieqn(name, n, "trans") || ieqn(name, n, "transient")) {
+            m->trans = option_number(c, name, v, vpos);
+            if (!isfinite(m->trans))
+                lang_fail(c, vpos, "trans must be finite");
+        } else if (ieqn(name, n, "nout") || ieqn(name, n, "njmp")) {
+            const double k = option_number(c, name, v, vpos);
+            if (!(k >= 1 && k <= 1e9) || k != floor(k))
+                lang_fail(c, vpos, "%s must be a whole number >= 1", name);
+            m->nout = (long)k;
+        } else if (ieqn(name, n, "xp") || ieqn(name, n, "xplot")) {
+            m->xp = v;
+            m->xp_pos = vpos;
+        } else if (ieqn(name, n, "yp") || ieqn(name, n, "yplot")) {
+            m->yp = v;
+            m->yp_pos = vpos;
+        } else if (ieqn(name, n, "maxstor")) {
+            lang_note(c, pos, "option 'maxstor' is accepted and ignored (dynkit streams its "
+                      "samples; nothing to store)");
+        } else {
+            lang_note(c, pos, "option '%s' is accepted and ignored", name);
+        }
+    }
+}
+
+/* ---- #: extension lines ---- */
+
+static char *trimmed(lang_ctx *c, const char *s, size_t n)
+{
+    while (n && (*s == ' ' || *s == '\t'))
+        s++, n--;
+    while (n && (s[n - 1] == ' ' || s[n - 1] == '\t'))
+        n--;
+    return lang_strndup(c, s, n);
+}
+
+/* The rest of the line from the cursor, without a leading "--". */
+static char *rest_text(lang_lexer *lx)
+{
+    lang_skip_blanks(lx);
+    if (lx->i + 1 < lx->end && lx->line->text[lx->i] == '-' && lx->line->text[lx->i + 1] == '-')
+        lx->i += 2;
+    char *s = trimmed(lx->c, lx->line->text + lx->i, (size_t)(lx->end - lx->i));
+    lx->i = lx->end;
+    return s;
+}
+
+static void append_desc(lang_ctx *c, const char *s)
+{
+    if (!c->m.description || !*c->m.description)
+        c->m.description = s;
+    else
+        c->m.description = lang_printf(c, "%s\n%s", c->m.description, s);
+}
+
+static void extension(lang_ctx *c, lang_lexer *lx, pstate *ps)
+{
+    lpos pos;
+    const int ch = lang_skip_blanks(lx);
+    if (!ch)
+        return; /* an empty "#:" line */
+    const char *word = read_name(lx, &pos, "expected 'title', 'description', 'event' or a "
+                                 "declared name after '#:'");
+    const size_t n = strlen(word);
+    if (ieqn(word, n, "title")) {
+        c->m.title = rest_text(lx);
+        return;
+    }
+    if (ieqn(word, n, "description")) {
+        append_desc(c, rest_text(lx));
+        return;
+    }
+    if (ieqn(word, n, "event") && lang_skip_blanks(lx) != '[') {
+        const char *name = read_name(lx, &pos, "expected the event's name after '#: event'");
+        const lpos npos = pos;
+        if (lang_skip_blanks(lx) != '=') {
+            /* names the global on the next line */
+            const char *desc = rest_text(lx);
+            ps->global_name = name;
+            ps->global_desc = *desc ? desc : NULL;
+            ps->global_name_line = npos.line;
+            return;
+        }
+        lx->i++;
+        node *cond = lang_parse_expr(lx);
+        expect_char(lx, ',', "expected ', rising', ', falling' or ', both' after the event's "
+                    "expression");
+        lpos dpos;
+        const char *dir = read_name(lx, &dpos, "expected rising, falling or both");
+        int direction;
+        if (ieqn(dir, strlen(dir), "rising"))
+            direction = 1;
+        else if (ieqn(dir, strlen(dir), "falling"))
+            direction = -1;
+        else if (ieqn(dir, strlen(dir), "both"))
+            direction = 0;
+        else
+            lang_fail(c, dpos, "expected rising, falling or both, found '%s'", dir);
+        int terminal = 0;
+        if (lang_skip_blanks(lx) == ',') {
+            lx->i++;
+            lpos tpos;
+            const char *w = read_name(lx, &tpos, "expected 'stop' after ','");
+            if (!ieqn(w, strlen(w), "stop"))
+                lang_fail(c, tpos, "expected 'stop' after ',', found '%s'", w);
+            terminal = 1;
+        }
+        const int rc = lang_skip_blanks(lx);
+        if (rc && !(rc == '-' && lx->i + 1 < lx->end && lx->line->text[lx->i + 1] == '-'))
+            lang_fail(c, lang_here(lx), "expected '-- description' or the end of the line");
+        const char *desc = rest_text(lx);
+        for (int i = 0; i < c->m.events.n; i++)
+            if (ieqn(LVEC_AT(c->m.events, lang_event, i).name, strlen(name), name))
+                lang_fail(c, npos, "event '%s' is declared twice", name);
+        lang_event *ev = lvec_push(c, &c->m.events, sizeof *ev);
+        ev->name = name;
+        ev->description = *desc ? desc : NULL;
+        ev->pos = npos;
+        ev->direction = direction;
+        ev->terminal = terminal;
+        ev->cond = cond;
+        return;
+    }
+    /* NAME [UNIT] description */
+    lang_docline *d = lvec_push(c, &c->m.docs, sizeof *d);
+    d->name = word;
+    d->pos = pos;
+    if (lang_skip_blanks(lx) == '[') {
+        const int a = ++lx->i;
+        while (lx->i < lx->end && lx->line->text[lx->i] != ']')
+            lx->i++;
+        if (lx->i >= lx->end)
+            lang_fail(c, lang_here(lx), "missing ']' after the unit");
+        d->doc.unit = trimmed(c, lx->line->text + a, (size_t)(lx->i - a));
+        lx->i++;
+    }
+    const char *desc = rest_text(lx);
+    d->doc.description = *desc ? desc : NULL;
+}
+
+/* ---- statements ---- */
+
+static const char *const keywords[] = {
+    "par", "param", "parameter", "parameters", "p", "number", "num", "n", "init", "initial",
+    "i", "aux", "a", "global", "g", "done", "d", "markov", "m", "wiener", "w", "table", "tab",
+    "bdry", "bndry", "b", "boundary", "volt", "volterra", "v", "set", "special", "sp", "solv",
+    "solve", "only", "export", "options", "opt"};
+
+static int keyword_is(const char *w, size_t n, const char *const *list, int count)
+{
+    for (int i = 0; i < count; i++)
+        if (ieqn(w, n, list[i]))
+            return 1;
+    return 0;
+}
+#define KW(w, n, ...)                                                                        \
+    keyword_is(w, n, (const char *const[]){__VA_ARGS__},                                     \
+               (int)(sizeof((const char *const[]){__VA_ARGS__}) / sizeof(const char *)))
+
+static int keyword_statement(lang_ctx *c, lang_lexer *lx, pstate *ps, const char *w, lpos wpos)
+{
+    const size_t n = strlen(w);
+    if (KW(w, n, "done", "d"))
+        return 1;
+    if (KW(w, n, "par", "param", "parameter", "parameters", "p"))
+        name_value_list(c, lx, SYM_PARAM, "par");
+    else if (KW(w, n, "number", "num", "n"))
+        name_value_list(c, lx, SYM_NUMBER, "number");
+    else if (KW(w, n, "init", "initial", "i"))
+        name_value_list(c, lx, 0, "init");
+    else if (KW(w, n, "aux", "a")) {
+        lpos pos;
+        const char *name = read_name(lx, &pos, "expected the output's name after 'aux'");
+        expect_char(lx, '=', "expected '=' after the output's name");
+        add_formula(c, &c->m.auxs, SYM_AUX, name, pos, expr_to_end(lx, "the aux formula"));
+    } else if (KW(w, n, "global", "g"))
+        parse_global(c, lx, ps, wpos);
+    else if (KW(w, n, "markov", "m"))
+        lang_fail(c, wpos, "Markov chains ('markov') are not supported");
+    else if (KW(w, n, "wiener", "w"))
+        lang_fail(c, wpos, "random processes ('wiener') are not supported");
+    else if (KW(w, n, "table", "tab"))
+        lang_fail(c, wpos, "lookup tables ('table') are not supported");
+    else if (KW(w, n, "bdry", "bndry", "b", "boundary"))
+        lang_fail(c, wpos, "boundary-value problems ('bdry') are not supported");
+    else if (KW(w, n, "volt", "volterra", "v"))
+        lang_fail(c, wpos, "Volterra integral equations ('volt') are not supported");
+    else if (KW(w, n, "special", "sp"))
+        lang_fail(c, wpos, "network sums ('special') are not supported");
+    else if (KW(w, n, "solv", "solve"))
+        lang_fail(c, wpos, "differential-algebraic equations ('solv') are not supported");
+    else if (KW(w, n, "export"))
+        lang_fail(c, wpos, "dynamically loaded right-hand sides ('export') are not supported");
+    else if (KW(w, n, "options", "opt"))
+        lang_fail(c, wpos, "option files ('options FILE') are not supported; put the options "
+                  "in '@' lines");
+    else if (KW(w, n, "set")) {
+        lang_note(c, wpos, "'set' (a named set of values chosen from XPPAUT's menus) is "
+                  "accepted and ignored: the default run does not use it");
+        lx->i = lx->end;
+    } else if (KW(w, n, "only")) {
+        lang_note(c, wpos, "'only' (XPPAUT's batch output columns) is accepted and ignored");
+        lx->i = lx->end;
+    } else
+        return -1;
+    return 0;
+}
+
+static void statement(lang_ctx *c, lang_lexer *lx, pstate *ps, int *done)
+{
+    lang_model *m = &c->m;
+    const int ch = lang_skip_blanks(lx);
+    const lpos start = lang_here(lx);
+    if (ch == '@') {
+        lx->i++;
+        parse_options(c, lx);
+        return;
+    }
+    if (ch == '!') {
+        lx->i++;
+        lpos pos;
+        const char *name = read_name(lx, &pos, "expected a derived parameter's name after '!'");
+        expect_char(lx, '=', "expected '=' after the derived parameter's name");
+        add_formula(c, &m->derived, SYM_DERIVED, name, pos,
+                    expr_to_end(lx, "the derived parameter's formula"));
+        return;
+    }
+    if (isdigit(ch)) {
+        int k = lx->i;
+        while (k < lx->end && isdigit((unsigned char)lx->line->text[k]))
+            k++;
+        while (k < lx->end && (lx->line->text[k] == ' ' || lx->line->text[k] == '\t'))
+            k++;
+        if (k < lx->end && lx->line->text[k] == '=')
+            lang_fail(c, start, "algebraic equations ('0=...', differential-algebraic "
+                      "systems) are not supported");
+        lang_fail(c, start, "a statement starts with a name, '@', '!' or '#'");
+    }
+    if (!lang_is_ident_start(ch))
+        lang_fail(c, start, "unexpected '%c' at the start of a statement", ch);
+    lpos wpos;
+    const char *w = read_name(lx, &wpos, "expected a name");
+    const int nc = lang_skip_blanks(lx);
+    if (nc != '=' && nc != '\'' && nc != '(' && nc != '/') {
+        const int r = keyword_statement(c, lx, ps, w, wpos);
+        if (r == 1) {
+            *done = 1;
+            return;
+        }
+        if (r == 0) {
+            expect_end(lx, "the statement");
+            return;
+        }
+        const char *near = dyn_lang_nearest(w, keywords, (int)(sizeof keywords /
+                                                                sizeof keywords[0]));
+        if (near)
+            lang_fail(c, wpos, "unknown statement '%s' (did you mean '%s'?)", w, near);
+        if (!nc)
+            lang_fail(c, lang_here(lx), "expected ' or = after '%s'", w);
+        lang_fail(c, lang_here(lx), "unknown statement '%s': expected ' or = after a name", w);
+    }
+    if (nc == '\'') {
+        lx->i++;
+        expect_char(lx, '=', "expected '=' after the prime of a differential equation");
+        add_state(c, w, wpos, expr_to_end(lx, "the right-hand side"));
+        return;
+    }
+    if (nc == '/') {
+        /* dx/dt=... */
+        lx->i++;
+        lpos tpos;
+        const char *dt = read_name(lx, &tpos, "expected 'dt' in dx/dt");
+        if ((w[0] != 'd' && w[0] != 'D') || !w[1] || !ieqn(dt, strlen(dt), "dt"))
+            lang_fail(c, wpos, "expected a differential equation dx/dt=... or x'=...");
+        expect_char(lx, '=', "expected '=' after dx/dt");
+        lpos npos = wpos;
+        npos.col++;
+        add_state(c, w + 1, npos, expr_to_end(lx, "the right-hand side"));
+        return;
+    }
+    if (nc == '(') {
+        lx->i++;
+        /* x(0)=, x(t)=, x(t+1)=, or f(a,b)= */
+        const int a1 = lang_skip_blanks(lx);
+        if (a1 == '0') {
+            lx->i++;
+            expect_char(lx, ')', "expected ')' in x(0)");
+            expect_char(lx, '=', "expected '=' after x(0)");
+            add_init(c, w, wpos, expr_to_end(lx, "the initial value"));
+            return;
+        }
+        lpos apos;
+        lvec args = {0};
+        for (;;) {
+            const char *arg = read_name(lx, &apos, "expected the function's argument names");
+            if (ieqn(arg, strlen(arg), "t")) {
+                if (lang_skip_blanks(lx) == ')')
+                    lang_fail(c, wpos, "Volterra integral equations ('%s(t)=') are not "
+                              "supported", w);
+                lang_fail(c, wpos, "difference equations ('%s(t+1)=') are not supported", w);
+            }
+            if (lang_is_reserved(arg))
+                lang_fail(c, apos, "'%s' is a reserved word and cannot be an argument", arg);
+            for (int k = 0; k < args.n; k++)
+                if (ieqn(arg, strlen(arg), LVEC_AT(args, const char *, k)))
+                    lang_fail(c, apos, "argument '%s' appears twice", arg);
+            *(const char **)lvec_push(c, &args, sizeof(char *)) = arg;
+            if (args.n > LANG_MAX_ARGS)
+                lang_fail(c, apos, "too many arguments (at most %d)", LANG_MAX_ARGS);
+            const int sep = lang_skip_blanks(lx);
+            lx->i++;
+            if (sep == ')')
+                break;
+            if (sep != ',')
+                lang_fail(c, lang_here(lx), "expected ',' or ')' in the argument list");
+        }
+        expect_char(lx, '=', "expected '=' after the function's arguments");
+        node *body = expr_to_end(lx, "the function's formula");
+        check_new_name(c, w, wpos);
+        lang_declare(c, w, wpos, SYM_FUNC, m->funcs.n);
+        lang_func *f = lvec_push(c, &m->funcs, sizeof *f);
+        f->name = w;
+        f->pos = wpos;
+        f->nargs = args.n;
+        f->argnames = args.data;
+        f->body = body;
+        return;
+    }
+    /* name=formula: a fixed temporary */
+    lx->i++;
+    if (lx->i < lx->end && lx->line->text[lx->i] == '=')
+        lang_fail(c, lang_here(lx), "'==' is a comparison; a definition is name=formula");
+    add_formula(c, &m->fixes, SYM_FIX, w, wpos, expr_to_end(lx, "the formula"));
+}
+
+static int on_line(lang_ctx *c, const lang_line *l, void *ctx)
+{
+    pstate *ps = ctx;
+    lang_lexer lx = {c, l, 0, l->len};
+    const int ch = lang_skip_blanks(&lx);
+    if (!ch)
+        return 0;
+    if (ch == '#') {
+        if (lx.i + 1 < lx.end && l->text[lx.i + 1] == ':') {
+            lx.i += 2;
+            extension(c, &lx, ps);
+            return 0;
+        }
+        if (!ps->seen_statement) {
+            const char *s = trimmed(c, l->text + lx.i + 1, (size_t)(lx.end - lx.i - 1));
+            *(const char **)lvec_push(c, &ps->desc, sizeof(char *)) = s;
+        }
+        return 0;
+    }
+    if (ch == '"')
+        return 0; /* XPPAUT's comments shown in its own window */
+    /* a comment after a statement (XPPAUT refuses it; nothing else can be meant) */
+    for (int k = lx.i; k < lx.end; k++)
+        if (l->text[k] == '#') {
+            lx.end = k;
+            break;
+        }
+    ps->seen_statement = 1;
+    int done = 0;
+    const int named = ps->global_name_line;
+    statement(c, &lx, ps, &done);
+    if (named && ps->global_name_line)
+        lang_fail(c, (lpos){ps->global_name_line, 1},
+                  "'#: event %s' without '=' names the global on the next line, but the next "
+                  "line is not a global", ps->global_name);
+    return done;
+}
+
+void lang_parse_model(lang_ctx *c)
+{
+    lang_model *m = &c->m;
+    m->t0 = 0.0;
+    m->total = 20.0;
+    m->dt = 0.05;
+    m->nout = 1;
+    pstate ps = {0};
+    lang_lines(c, on_line, &ps);
+    if (ps.global_name_line)
+        lang_fail(c, (lpos){ps.global_name_line, 1},
+                  "'#: event %s' without '=' names the global on the next line, but there is "
+                  "none", ps.global_name);
+    /* the leading comment lines describe the model */
+    const char *lead = NULL;
+    for (int i = 0; i < ps.desc.n; i++) {
+        const char *s = LVEC_AT(ps.desc, const char *, i);
+        lead = lead ? lang_printf(c, "%s\n%s", lead, s) : s;
+    }
+    if (lead) {
+        /* drop empty lines at the start and the end */
+        while (*lead == '\n')
+            lead++;
+        size_t n = strlen(lead);
+        while (n && lead[n - 1] == '\n')
+            n--;
+        lead = lang_strndup(c, lead, n);
+        m->description = m->description && *m->description
+                             ? lang_printf(c, "%s\n%s", lead, m->description)
+                             : lead;
+    }
+    if (m->states.n == 0)
+        lang_fail(c, (lpos){0, 0}, "no differential equation (x'=... or dx/dt=...) in the file");
+}

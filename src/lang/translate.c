@@ -1,0 +1,95 @@
+/* dyn_ode_to_c (dynkit/lang.h): an .ode file to the C text of a dyn_model, in four passes —
+ * statements (ode_parse.c, on the lines of source.c), names and order (check.c), then the
+ * C text with its Jacobian (emit_c.c, deriv.c). The reference for what a file means is
+ * XPPAUT (its manual and xppaut itself); docs/model-files.md, "The .ode format", lists
+ * what is supported, dynkit's extensions and what is refused. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "lang/lang_internal.h"
+
+static const char *base_name(lang_ctx *c, const char *path)
+{
+    const char *b = strrchr(path, '/');
+    b = b ? b + 1 : path;
+    size_t n = strlen(b);
+    if (n > 4 && (strcmp(b + n - 4, ".ode") == 0 || strcmp(b + n - 4, ".ODE") == 0))
+        n -= 4;
+    return n ? lang_strndup(c, b, n) : "model";
+}
+
+static void translate(lang_ctx *c)
+{
+    if (c->len > LANG_MAX_TEXT)
+        lang_fail(c, (lpos){0, 0}, "file too large (%zu bytes; at most %u)", c->len,
+                  LANG_MAX_TEXT);
+    int lines = 1;
+    for (size_t i = 0; i < c->len; i++)
+        lines += c->text[i] == '\n';
+    c->line_start = lang_alloc(c, (size_t)lines * sizeof *c->line_start);
+    c->nlines = 0;
+    c->line_start[c->nlines++] = 0;
+    for (size_t i = 0; i < c->len; i++)
+        if (c->text[i] == '\n' && c->nlines < lines)
+            c->line_start[c->nlines++] = i + 1;
+    if (c->len > 0 && c->text[c->len - 1] == '\n')
+        c->nlines--; /* no empty last line */
+    c->m.name = base_name(c, c->path);
+    lang_parse_model(c);
+    lang_check(c);
+    lang_model *m = &c->m;
+    if (!m->title || !*m->title) {
+        if (m->description && *m->description) {
+            const char *nl = strchr(m->description, '\n');
+            m->title = nl ? lang_strndup(c, m->description, (size_t)(nl - m->description))
+                          : m->description;
+        } else {
+            m->title = m->name;
+        }
+    }
+    if (!m->description)
+        m->description = "";
+}
+
+int dyn_ode_to_c(const char *path, const char *text, size_t len, char **c_source,
+                 dyn_lang_diag *diag, dyn_lang_note_fn note, void *note_ctx)
+{
+    dyn_lang_diag scratch;
+    if (!diag)
+        diag = &scratch;
+    memset(diag, 0, sizeof *diag);
+    if (!path)
+        path = "<model>";
+    strncpy(diag->path, path, sizeof diag->path - 1);
+    if (c_source)
+        *c_source = NULL;
+    if (!c_source || (!text && len)) {
+        strcpy(diag->message, "no text or no place for the C text (a NULL argument)");
+        return 2;
+    }
+    lang_ctx *c = calloc(1, sizeof *c);
+    if (!c) {
+        strcpy(diag->message, "out of memory while translating the model");
+        return 1;
+    }
+    c->path = path;
+    c->text = text ? text : "";
+    c->len = len;
+    c->diag = diag;
+    c->note = note;
+    c->note_ctx = note_ctx;
+    if (setjmp(c->fail)) {
+        const int status = c->status ? c->status : 2;
+        free(c->out);
+        free(c->out_saved);
+        lang_free_all(c);
+        free(c);
+        return status;
+    }
+    translate(c);
+    char *out = lang_emit_c(c);
+    lang_free_all(c);
+    free(c);
+    *c_source = out;
+    return 0;
+}

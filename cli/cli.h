@@ -106,7 +106,9 @@ void cli_run_options_help(FILE *out);
 /* Run the parsed run: dyn_fixed_solve for a fixed-step method without events (the
  * homework's loop, exactly), dyn_cvode_solve for cvode (output times from the grid or
  * --times, or every step: cli_run_at_steps), dyn_solve otherwise (adaptive methods:
- * samples on the --step grid, at --times by dense output, or at every step; events). Samples go to output (k, t, y), events to
+ * samples on the --step grid, at --times by dense output, or at every step; events). The
+ * model's events that reset the state always take part (dyn_solve; the samples of a
+ * fixed-step run stay on its grid); on_event sees only run->events. Samples go to output (k, t, y), events to
  * on_event (may be NULL), stages of the first run->trace_steps steps to the trace printer.
  * every > 1 lets the fixed-step driver hand over only every K-th sample and the last (the
  * general driver hands over all). y (n_states) receives the final state (the last good one
@@ -115,6 +117,8 @@ void cli_run_options_help(FILE *out);
 int cli_run_solve(const cli_run *run, long every, dyn_output_fn output, void *output_ctx,
                   dyn_event_fn on_event, void *event_ctx, dyn_progress_fn progress,
                   void *progress_ctx, double *y, dyn_result *res);
+/* Number of the model's events that reset the state (0: none). */
+int cli_run_resets(const cli_run *run);
 /* The counts of a solve as one line: "steps=N accepted=N rejected=N rhs=N" (+ " jac=N"
  * for stiff methods, cvode included), without a newline, into buf; returns buf. */
 char *cli_stats_line(const cli_run *run, const dyn_result *res, char *buf, size_t size);

@@ -186,7 +186,8 @@ int cli_cmd_run(int argc, char **argv)
     }
     const dyn_model *m = run.model;
     const int n = m->n_states;
-    const int general = dyn_method_is_adaptive(run.method) || run.n_events > 0;
+    const int general =
+        dyn_method_is_adaptive(run.method) || run.n_events > 0 || cli_run_resets(&run) > 0;
     dyn_grid grid = {0};
     char why[256], line[160];
     const int at_steps = cli_run_at_steps(&run);

@@ -1,7 +1,9 @@
 /* One run of a model with the method of the run options: the fixed-step driver for
  * fixed-step methods (the homework's loop), the general driver dyn_solve for adaptive
- * methods and for runs with events, the CVODE backend for cvode (when built). The
- * workspace is allocated here, outside the library's step loop. */
+ * methods and for runs with events, the CVODE backend for cvode (when built). A model's
+ * events that reset the state are part of its dynamics: every run includes them, asked
+ * for with --event or not. The workspace is allocated here, outside the library's step
+ * loop. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -27,6 +29,14 @@ static int solve_cvode(const cli_run *run, const dyn_system *sys, dyn_output_fn 
     o.max_step = run->max_step;
     memset(res, 0, sizeof *res);
     res->t = run->t0;
+    if (cli_run_resets(run) > 0) {
+        res->status = DYN_ERR_ARG;
+        snprintf(res->message, sizeof res->message,
+                 "model %s has events that reset the state, and the cvode backend runs "
+                 "without events: use --method rodas4 (stiff) or dp45",
+                 run->model->name);
+        return DYN_ERR_ARG;
+    }
     if (run->n_events > 0 || run->trace_steps > 0) {
         res->status = DYN_ERR_ARG;
         snprintf(res->message, sizeof res->message,
@@ -65,6 +75,53 @@ static int solve_cvode(const cli_run *run, const dyn_system *sys, dyn_output_fn 
 }
 #endif
 
+int cli_run_resets(const cli_run *run)
+{
+    int count = 0;
+    for (int i = 0; i < run->model->n_events; i++)
+        count += run->model->events[i].reset != NULL;
+    return count;
+}
+
+/* The events of a run: those asked for (--event), then the model's resets not among them,
+ * which are not reported (their index is past run->n_events). */
+typedef struct run_events {
+    const cli_run *run;
+    dyn_event_fn on_event;
+    void *ctx;
+} run_events;
+
+static int forward_event(int index, double t, const double *y, int direction, void *ctx)
+{
+    const run_events *re = ctx;
+    if (index >= re->run->n_events || !re->on_event)
+        return 0;
+    return re->on_event(index, t, y, direction, re->ctx);
+}
+
+static dyn_event *all_events(const cli_run *run, int *count)
+{
+    const dyn_model *m = run->model;
+    *count = run->n_events;
+    dyn_event *ev = malloc((size_t)(run->n_events + m->n_events + 1) * sizeof *ev);
+    if (!ev)
+        return NULL;
+    if (run->n_events > 0)
+        memcpy(ev, run->events, (size_t)run->n_events * sizeof *ev);
+    for (int i = 0; i < m->n_events; i++) {
+        if (!m->events[i].reset)
+            continue;
+        int asked = 0;
+        for (int j = 0; j < run->n_events; j++)
+            asked |= strcmp(run->events[j].name, m->events[i].name) == 0;
+        if (!asked) {
+            ev[*count] = m->events[i];
+            ev[(*count)++].terminal = 0;
+        }
+    }
+    return ev;
+}
+
 int cli_run_solve(const cli_run *run, long every, dyn_output_fn output, void *output_ctx,
                   dyn_event_fn on_event, void *event_ctx, dyn_progress_fn progress,
                   void *progress_ctx, double *y, dyn_result *res)
@@ -83,7 +140,7 @@ int cli_run_solve(const cli_run *run, long every, dyn_output_fn output, void *ou
         return DYN_ERR_ARG;
 #endif
     }
-    if (!adaptive && run->n_events == 0) {
+    if (!adaptive && run->n_events == 0 && cli_run_resets(run) == 0) {
         size_t size = dyn_fixed_work_size(run->method, n);
         double *work = malloc(size * sizeof *work);
         if (!work)
@@ -121,13 +178,20 @@ int cli_run_solve(const cli_run *run, long every, dyn_output_fn output, void *ou
         } /* else neither: a sample at every accepted step */
     } else {
         opts.h = run->step; /* samples at every step, as the fixed-step driver gives them */
+        if (cli_run_resets(run) > 0)
+            opts.out_step = run->step; /* the same grid, without a row at each reset */
     }
     opts.output = output;
     opts.output_ctx = output_ctx;
-    opts.events = run->events;
-    opts.n_events = run->n_events;
-    opts.on_event = on_event;
-    opts.event_ctx = event_ctx;
+    int n_events = 0;
+    dyn_event *events = all_events(run, &n_events);
+    if (!events)
+        return -1;
+    run_events re = {run, on_event, event_ctx};
+    opts.events = events;
+    opts.n_events = n_events;
+    opts.on_event = n_events > run->n_events ? forward_event : on_event;
+    opts.event_ctx = n_events > run->n_events ? (void *)&re : event_ctx;
     opts.jacobian = m->jacobian;
     opts.trace = run->trace_steps > 0 ? cli_print_trace : NULL;
     opts.trace_ctx = (void *)run;
@@ -141,12 +205,14 @@ int cli_run_solve(const cli_run *run, long every, dyn_output_fn output, void *ou
     if (!work || (isize && !iwork)) {
         free(work);
         free(iwork);
+        free(events);
         return -1;
     }
     opts.iwork = iwork;
     int rc = dyn_solve(run->method, &sys, run->t0, run->t1, run->y0, y, work, &opts, res);
     free(work);
     free(iwork);
+    free(events);
     return rc;
 }
 

@@ -11,6 +11,9 @@
  * when dyn_cvode_solve starts and freed before it returns (none inside CVODE's step loop
  * beyond what CVODE itself does). Nothing prints: CVODE's error messages are caught and
  * copied into dyn_result.message.
+ *
+ * No events here, and so no resets of the state (dyn_event.reset): a model with events that
+ * reset it runs with dyn_solve (the tool refuses it with --method cvode).
  */
 #ifndef DYNKIT_CVODE_H
 #define DYNKIT_CVODE_H

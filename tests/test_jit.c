@@ -22,7 +22,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/time.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "dynkit/jit.h"
@@ -292,7 +294,8 @@ static void test_model_calls_library(void **state)
 }
 
 /* the second load comes from the cache and runs no compiler: DYNKIT_CC is a script (in a
- * directory with a blank in its name) that counts its runs */
+ * directory with a blank in its name) that counts its runs; a compilation removes stale
+ * temporary files */
 static void test_second_load_is_cached(void **state)
 {
     fixture *f = *state;
@@ -304,6 +307,15 @@ static void test_second_load_is_cached(void **state)
     assert_int_equal(chmod(script, 0755), 0);
     setenv("DYNKIT_CC", script, 1);
     dyn_jit_opts opts = {.backend = DYN_JIT_AUTO, .cache_dir = f->cache};
+    /* what an interrupted compilation left: removed by the next compilation after an hour */
+    char old_tmp[512], new_tmp[512];
+    assert_int_equal(mkdir(f->cache, 0755), 0);
+    snprintf(old_tmp, sizeof old_tmp, "%s/tmp-1-1-1.so", f->cache);
+    snprintf(new_tmp, sizeof new_tmp, "%s/tmp-2-2-2.so", f->cache);
+    write_text(old_tmp, "x");
+    write_text(new_tmp, "x");
+    struct timeval two_hours_ago[2] = {{time(NULL) - 7200, 0}, {time(NULL) - 7200, 0}};
+    assert_int_equal(utimes(old_tmp, two_hours_ago), 0);
 
     dyn_jit_model a, b, c;
     load_ok(vdp_source, "vdp.c", &opts, &a);
@@ -313,6 +325,9 @@ static void test_second_load_is_cached(void **state)
     load_ok(vdp_source, "vdp.c", &opts, &b);
     assert_int_equal(b.cached, 1);
     assert_true(b.compile_seconds == 0);
+    assert_int_not_equal(access(old_tmp, F_OK), 0);
+    assert_int_equal(access(new_tmp, F_OK), 0);
+    unlink(new_tmp);
     assert_string_equal(a.so_path, b.so_path);
     struct stat st;
     assert_int_equal(stat(count, &st), 0);

@@ -3,6 +3,7 @@
  * set, unique temporary names for concurrent compilations, and small helpers (messages,
  * the text given to the compilers, a monotonic clock). */
 #define _POSIX_C_SOURCE 200809L
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <stdarg.h>
@@ -116,7 +117,7 @@ static int write_file(const char *path, const void *data, size_t len)
 
 static void remove_tree(const char *tmp)
 {
-    char path[1200];
+    char path[1600];
     for (int i = 0; i < dyn_jit_header_count; i++) {
         snprintf(path, sizeof path, "%s/dynkit/%s", tmp, dyn_jit_headers[i].name);
         unlink(path);
@@ -124,6 +125,29 @@ static void remove_tree(const char *tmp)
     snprintf(path, sizeof path, "%s/dynkit", tmp);
     rmdir(path);
     rmdir(tmp);
+}
+
+void jit_sweep_stale(const char *cache)
+{
+    DIR *d = opendir(cache);
+    if (!d)
+        return;
+    time_t now = time(NULL);
+    struct dirent *e;
+    char path[1400];
+    while ((e = readdir(d)) != NULL) {
+        if (strncmp(e->d_name, "tmp-", 4) != 0)
+            continue;
+        snprintf(path, sizeof path, "%s/%s", cache, e->d_name);
+        struct stat st;
+        if (lstat(path, &st) != 0 || st.st_uid != geteuid() || now - st.st_mtime < 3600)
+            continue;
+        if (S_ISDIR(st.st_mode))
+            remove_tree(path);
+        else
+            unlink(path);
+    }
+    closedir(d);
 }
 
 int jit_include_dir(const char *cache, char *dir, size_t size, char *err, size_t errlen)

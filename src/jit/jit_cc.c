@@ -270,6 +270,7 @@ int jit_cc_load(const char *source, size_t len, const char *source_name,
         return 0;
     }
 
+    jit_sweep_stale(cache); /* rare: on a compilation only */
     if (jit_include_dir(cache, inc, sizeof inc, err, errlen) != 0) {
         free(argv);
         return 1;

@@ -48,6 +48,9 @@ int jit_cache_dir(const dyn_jit_opts *opts, char *dir, size_t size, char *err, s
 /* <cache>/include-<version>-<hash>: the embedded headers under dynkit/, written once
  * (atomically: a whole directory renamed into place). */
 int jit_include_dir(const char *cache, char *dir, size_t size, char *err, size_t errlen);
+/* Remove what interrupted compilations left in the cache (tmp-* entries older than an
+ * hour, owned by this user). */
+void jit_sweep_stale(const char *cache);
 /* A name unique among concurrent processes and threads: "<prefix><pid>-<n>-<clock><suffix>"
  * inside dir. */
 void jit_unique_path(const char *dir, const char *prefix, const char *suffix, char *out,

@@ -34,6 +34,11 @@ int cli_is_help(const char *arg);
 /* The model MODEL names (model_open.c): a built-in name, or a model file. Returns CLI_OK
  * with *model, or a usage error (message printed, with the nearest known name). */
 int cli_model_open(const char *command, const char *spec, const dyn_model **model);
+/* 1 if MODEL names a model file (.ode, .c, .so) rather than a built-in model. */
+int cli_model_is_file(const char *spec);
+/* --verbose (any command): notes on stderr, e.g. a model file's ignored options. */
+void cli_set_verbose(int on);
+int cli_verbose(void);
 
 /* Everything needed to make one run of a model: parsed from the run options. */
 typedef struct cli_run {

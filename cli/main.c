@@ -24,6 +24,10 @@ static void main_help(void)
          "                 per method and tolerance (--quick, --json, --problem, --method)\n"
          "  help [COMMAND] this text, or the help of COMMAND (as 'dynkit COMMAND --help')\n"
          "\n"
+         "MODEL is a built-in model's name ('dynkit models'), an XPPAUT .ode file or a C file\n"
+         "defining dynkit_model() (see docs/model-files.md); both are compiled to native code.\n"
+         "--verbose (any command) prints notes on stderr.\n"
+         "\n"
          "'dynkit help COMMAND' tells more about each command; 'man dynkit' tells all.\n"
          "\n"
          "Exit status: 0 success; 1 a run failed (e.g. a state became NaN or Inf) or an output\n"
@@ -49,6 +53,16 @@ int main(int argc, char **argv)
         {"plot", cli_cmd_plot},
         {"verify", cli_cmd_verify},
     };
+    /* --verbose is accepted anywhere, by every command */
+    int kept = 1;
+    for (int i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--verbose") == 0)
+            cli_set_verbose(1);
+        else
+            argv[kept++] = argv[i];
+    }
+    argc = kept;
+    argv[argc] = NULL;
     if (argc < 2) {
         main_help();
         return CLI_USAGE;

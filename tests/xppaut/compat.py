@@ -1,0 +1,211 @@
+#!/usr/bin/env python3
+"""Compatibility of dynkit's .ode reader with XPPAUT itself.
+
+For every .ode file given (by default the examples Debian's xppaut package ships and
+dynkit's own examples/models), run the file's default run with `xppaut FILE -silent`
+(which writes output.dat: t, the states in declaration order, then the aux values) and
+with `dynkit run FILE --outputs` using the same method and step (XPPAUT's default method,
+the classical Runge-Kutta method, unless the file sets @ meth), and compare the two
+tables at the common sample times. XPPAUT writes 8 significant digits, so two runs of the
+same method agree to about 1e-7 relative while the solution is not chaotic; a chaotic
+run agrees up to a time and then separates: that time is reported.
+
+Prints a summary (accepted, refused with the feature named, agreeing) and writes a JSON
+report with --json FILE. Exit status 0 unless --require lists files that must agree.
+"""
+import argparse
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+
+DEBIAN_EXAMPLES = "/usr/share/doc/xppaut/examples/ode"
+
+
+def file_method(text):
+    for line in text.splitlines():
+        s = line.strip().lower()
+        if s.startswith("@"):
+            m = re.search(r"\bmeth(od)?\s*=\s*([a-z0-9]+)", s)
+            if m:
+                return m.group(2)
+    return None
+
+
+# XPPAUT's methods that choose their own steps (or are otherwise not dynkit's): such files
+# are compared with the classical Runge-Kutta method at the file's dt in both programs, so
+# that the comparison checks what the file means, not two different error controls.
+FIXED_STEP = ("rungekutta", "runge", "r", "euler", "e", "modeuler", "m")
+
+
+def rk4_everywhere(text):
+    return re.sub(r"(?i)\b(meth(od)?\s*=\s*)[a-z0-9]+", r"\1rungekutta", text)
+
+
+def run_xppaut(path, workdir, timeout, text=None):
+    """output.dat of xppaut -silent as an array, or (None, reason)."""
+    base = os.path.basename(path)
+    # companion files (tables, .so) are looked up next to the .ode file
+    src_dir = os.path.dirname(os.path.abspath(path))
+    for name in os.listdir(src_dir):
+        if name.endswith((".tab", ".dat")) and not os.path.exists(os.path.join(workdir, name)):
+            shutil.copy(os.path.join(src_dir, name), workdir)
+    if text is None:
+        shutil.copy(path, os.path.join(workdir, base))
+    else:
+        with open(os.path.join(workdir, base), "w") as f:
+            f.write(text)
+    out = os.path.join(workdir, "output.dat")
+    if os.path.exists(out):
+        os.remove(out)
+    try:
+        subprocess.run(["xppaut", base, "-silent"], cwd=workdir, timeout=timeout,
+                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    except subprocess.TimeoutExpired:
+        return None, "xppaut timed out"
+    if not os.path.exists(out) or os.path.getsize(out) == 0:
+        return None, "xppaut wrote no output"
+    try:
+        data = np.loadtxt(out, ndmin=2)
+    except ValueError as e:
+        return None, "xppaut output unreadable: %s" % e
+    return data, None
+
+
+def run_dynkit(dynkit, path, method, timeout, env):
+    cmd = [dynkit, "run", path, "--outputs", "--quiet"]
+    if method:
+        cmd += ["--method", method]
+    try:
+        p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env)
+    except subprocess.TimeoutExpired:
+        return None, "dynkit timed out", 124
+    if p.returncode != 0 and not p.stdout.strip():
+        return None, p.stderr.strip(), p.returncode
+    rows = [r for r in p.stdout.splitlines()[1:] if r.strip()]
+    if not rows:
+        return None, p.stderr.strip() or "no samples", p.returncode
+    data = np.array([[float(v) for v in r.split(",")] for r in rows])
+    return data, (p.stderr.strip() if p.returncode else None), p.returncode
+
+
+def refused_feature(message):
+    """The feature a refusal names, from dynkit's message FILE:LINE:COL: error: ..."""
+    first = message.splitlines()[0] if message else ""
+    m = re.search(r"error: (.*)", first)
+    text = m.group(1) if m else first
+    text = re.sub(r"'[^']*'", "'...'", text)
+    return text.strip()
+
+
+def compare(xpp, dyn, adaptive=False):
+    """(agreement, first time of disagreement or None, max relative difference)."""
+    if xpp.shape[1] != dyn.shape[1]:
+        return "columns differ (xppaut %d, dynkit %d)" % (xpp.shape[1], dyn.shape[1]), None, None
+    # common times (XPPAUT prints t in single precision)
+    tx, td = xpp[:, 0], dyn[:, 0]
+    idx = np.searchsorted(td, tx - 1e-6 * (1 + abs(tx)))
+    ok = (idx < len(td))
+    idx = np.minimum(idx, len(td) - 1)
+    ok &= np.abs(td[idx] - tx) <= 1e-5 * (1 + np.abs(tx))
+    if ok.sum() < 2:
+        return "no common sample times", None, None
+    x = xpp[ok][:, 1:]
+    d = dyn[idx[ok]][:, 1:]
+    t = tx[ok]
+    scale = np.maximum(np.max(np.abs(x), axis=0), 1e-12)
+    rtol = 2e-3 if adaptive else 2e-6
+    err = np.abs(d - x) / (rtol * (np.abs(x) + 1e-3 * scale))
+    bad = np.any(err > 1.0, axis=1)
+    rel = float(np.max(np.abs(d - x) / (np.abs(x) + 1e-3 * scale)))
+    if not bad.any():
+        return "agree", None, rel
+    first = float(t[np.argmax(bad)])
+    return "separate", first, rel
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("dynkit", help="the dynkit binary")
+    ap.add_argument("files", nargs="*", help=".ode files (default: Debian's xppaut examples)")
+    ap.add_argument("--json", help="write the per-file results here")
+    ap.add_argument("--timeout", type=float, default=60)
+    ap.add_argument("--require", nargs="*", default=[],
+                    help="base names of files that must be accepted and agree")
+    args = ap.parse_args()
+    files = args.files or sorted(os.path.join(DEBIAN_EXAMPLES, f)
+                                 for f in os.listdir(DEBIAN_EXAMPLES) if f.endswith(".ode"))
+    env = dict(os.environ)
+    results = []
+    with tempfile.TemporaryDirectory() as work:
+        env.setdefault("DYNKIT_CACHE_DIR", os.path.join(work, "cache"))
+        for path in files:
+            base = os.path.basename(path)
+            with open(path, errors="replace") as f:
+                text = f.read()
+            meth = file_method(text)
+            own_steps = meth is not None and meth not in FIXED_STEP
+            method = "rk4" if meth is None or own_steps else None
+            r = {"file": base}
+            dyn, msg, rc = run_dynkit(args.dynkit, path, method, args.timeout, env)
+            if dyn is None and rc == 2:
+                r["status"] = "refused"
+                r["reason"] = refused_feature(msg)
+            elif dyn is None:
+                r["status"] = "failed"
+                r["reason"] = (msg or "").splitlines()[0] if msg else "no output"
+            else:
+                r["status"] = "accepted"
+                if msg:
+                    r["note"] = msg.splitlines()[0]
+                xdir = os.path.join(work, "x-" + base)
+                os.makedirs(xdir, exist_ok=True)
+                if own_steps:
+                    r["method"] = "rk4 in both (the file asks for meth=%s)" % meth
+                xpp, why = run_xppaut(path, xdir, args.timeout,
+                                      rk4_everywhere(text) if own_steps else None)
+                if xpp is None:
+                    r["compare"] = why
+                else:
+                    verdict, t_sep, rel = compare(xpp, dyn, False)
+                    r["compare"] = verdict
+                    r["t_separate"] = t_sep
+                    r["max_rel_diff"] = rel
+                    r["t_end"] = float(xpp[-1, 0])
+            results.append(r)
+            print("%-22s %-9s %s" % (base, r["status"],
+                                     r.get("reason") or r.get("compare", "")
+                                     + ("" if r.get("t_separate") is None
+                                        else " at t=%g of %g" % (r["t_separate"], r["t_end"]))),
+                  flush=True)
+    n = len(results)
+    acc = [r for r in results if r["status"] == "accepted"]
+    agree = [r for r in acc if r.get("compare") == "agree"]
+    sep = [r for r in acc if r.get("compare") == "separate"]
+    refused = [r for r in results if r["status"] == "refused"]
+    print("\n%d files: %d accepted (%d agree over the whole run, %d agree and then separate), "
+          "%d refused, %d failed" % (n, len(acc), len(agree), len(sep), len(refused),
+                                    n - len(acc) - len(refused)))
+    reasons = {}
+    for r in refused:
+        reasons[r["reason"]] = reasons.get(r["reason"], 0) + 1
+    for reason, count in sorted(reasons.items(), key=lambda kv: -kv[1]):
+        print("  refused %3d: %s" % (count, reason))
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump(results, f, indent=1)
+    missing = [b for b in args.require
+               if not any(r["file"] == b and r.get("compare") == "agree" for r in results)]
+    if missing:
+        print("required to agree but did not: " + ", ".join(missing))
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -4,6 +4,7 @@
 
 #include "dynkit/ode.h"
 #include "dynkit/solve.h"
+#include "dynkit/ivp.h"
 #include "dynkit/model.h"
 #include "dynkit/models.h"
 #include "dynkit/cart.h"

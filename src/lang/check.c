@@ -145,6 +145,14 @@ static void resolve(lang_ctx *c, node *e, const rctx *r)
         resolve(c, e->args[i], r);
     c->depth--;
     lang_model *m = &c->m;
+    if (e->kind == N_TIME && r->func)
+        for (int k = 0; k < r->func->nargs; k++)
+            if (same_name("t", r->func->argnames[k])) {
+                /* f(t)=...: XPPAUT's t is then the argument */
+                e->kind = N_ARG;
+                e->index = k;
+                return;
+            }
     if (e->kind == N_TIME && r->kind == CTX_PARAMS)
         lang_fail(c, e->pos, "%s cannot depend on the time t", r->what);
     if (e->kind == N_NAME) {
@@ -182,8 +190,7 @@ static void resolve(lang_ctx *c, node *e, const rctx *r)
                 lang_fail(c, e->pos, "%s cannot depend on the fixed quantity '%s'", r->what,
                           e->name);
             if (r->kind == CTX_FUNC)
-                lang_fail(c, e->pos, "function '%s' uses the fixed quantity '%s': pass it as "
-                          "an argument", r->func->name, e->name);
+                ((lang_func *)r->func)->uses_fix = 1;
             e->kind = N_FIX;
             e->index = s->index;
             return;
@@ -324,6 +331,30 @@ static int *order(lang_ctx *c, lvec *v, int dep_kind, int offset, const char *wh
     return o.out;
 }
 
+static void fix_calls(lang_ctx *c, const node *e, int *uf)
+{
+    for (int i = 0; i < e->nargs; i++)
+        fix_calls(c, e->args[i], uf);
+    if (e->kind == N_UFUN && LVEC_AT(c->m.funcs, lang_func, e->index).uses_fix)
+        *uf = 1;
+}
+
+/* Calls of functions that read fixed temporaries, replaced by their bodies (a C function
+ * cannot see the caller's locals). */
+static node *inline_fix_calls(lang_ctx *c, node *e, int depth)
+{
+    if (depth > LANG_MAX_INLINE)
+        lang_fail(c, e->pos, "calls nested too deeply to inline");
+    for (int i = 0; i < e->nargs; i++)
+        e->args[i] = inline_fix_calls(c, e->args[i], depth);
+    if (e->kind == N_UFUN) {
+        const lang_func *f = &LVEC_AT(c->m.funcs, lang_func, e->index);
+        if (f->uses_fix)
+            return inline_fix_calls(c, lang_subst(c, f->body, e->args), depth + 1);
+    }
+    return e;
+}
+
 /* Calls in a parameters-only formula must not reach states or t. */
 static void check_param_calls(lang_ctx *c, const node *e, const char *what)
 {
@@ -331,9 +362,11 @@ static void check_param_calls(lang_ctx *c, const node *e, const char *what)
         check_param_calls(c, e->args[i], what);
     if (e->kind == N_UFUN) {
         const lang_func *f = &LVEC_AT(c->m.funcs, lang_func, e->index);
-        if (f->uses_state || f->uses_time)
+        if (f->uses_state || f->uses_time || f->uses_fix)
             lang_fail(c, e->pos, "%s cannot call '%s', which depends on %s", what, f->name,
-                      f->uses_state ? "the states" : "the time t");
+                      f->uses_state ? "the states"
+                      : f->uses_time ? "the time t"
+                                     : "fixed quantities");
     }
 }
 
@@ -375,11 +408,13 @@ void lang_check(lang_ctx *c)
         int changed = 0;
         for (int i = 0; i < m->funcs.n; i++) {
             lang_func *f = &LVEC_AT(m->funcs, lang_func, i);
-            int us = f->uses_state, ut = f->uses_time;
+            int us = f->uses_state, ut = f->uses_time, uf = f->uses_fix;
             lang_func_uses(c, f->body, &us, &ut);
-            changed |= us != f->uses_state || ut != f->uses_time;
+            fix_calls(c, f->body, &uf);
+            changed |= us != f->uses_state || ut != f->uses_time || uf != f->uses_fix;
             f->uses_state = us;
             f->uses_time = ut;
+            f->uses_fix = uf;
         }
         if (!changed)
             break;
@@ -437,6 +472,24 @@ void lang_check(lang_ctx *c)
         lang_state *st = &LVEC_AT(m->states, lang_state, s->index);
         st->init = in->value;
         st->init_pos = in->pos;
+    }
+    for (int i = 0; i < m->fixes.n; i++) {
+        lang_formula *f = &LVEC_AT(m->fixes, lang_formula, i);
+        f->expr = inline_fix_calls(c, f->expr, 0);
+    }
+    for (int i = 0; i < m->states.n; i++) {
+        lang_state *st = &LVEC_AT(m->states, lang_state, i);
+        st->rhs = inline_fix_calls(c, st->rhs, 0);
+    }
+    for (int i = 0; i < m->auxs.n; i++) {
+        lang_formula *f = &LVEC_AT(m->auxs, lang_formula, i);
+        f->expr = inline_fix_calls(c, f->expr, 0);
+    }
+    for (int i = 0; i < m->events.n; i++) {
+        lang_event *ev = &LVEC_AT(m->events, lang_event, i);
+        ev->cond = inline_fix_calls(c, ev->cond, 0);
+        for (int k = 0; k < ev->nassign; k++)
+            ev->assign[k].value = inline_fix_calls(c, ev->assign[k].value, 0);
     }
     m->fix_order = order(c, &m->fixes, N_FIX, 0, "fixed quantities");
     m->derived_order = order(c, &m->derived, N_PARAM, m->params.n, "derived parameters");

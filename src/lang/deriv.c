@@ -234,7 +234,7 @@ static node *cond(lang_ctx *c, node *test, node *a, node *b)
 /* ---- derivatives ---- */
 
 /* body with its arguments replaced by args (for inlining a call) */
-static node *subst(lang_ctx *c, node *body, node **args)
+node *lang_subst(lang_ctx *c, node *body, node **args)
 {
     if (body->kind == N_ARG)
         return args[body->index];
@@ -244,7 +244,7 @@ static node *subst(lang_ctx *c, node *body, node **args)
     *e = *body;
     e->args = lang_alloc(c, (size_t)body->nargs * sizeof *e->args);
     for (int i = 0; i < body->nargs; i++)
-        e->args[i] = subst(c, body->args[i], args);
+        e->args[i] = lang_subst(c, body->args[i], args);
     return e;
 }
 
@@ -334,7 +334,7 @@ static node *d_ufun(lang_ctx *c, node *e, lang_dvar *v)
         /* the body reads the states itself: differentiate it inline */
         if (++v->inline_depth > LANG_MAX_INLINE)
             lang_fail(c, e->pos, "calls of '%s' nested too deeply to differentiate", f->name);
-        node *r = d(c, subst(c, f->body, e->args), v);
+        node *r = d(c, lang_subst(c, f->body, e->args), v);
         v->inline_depth--;
         return r;
     }

@@ -349,6 +349,8 @@ static void emit_functions(lang_ctx *c, const jac_plan *j)
     puts_(c, "/* user functions and their partial derivatives */\n");
     for (int f = 0; f < m->funcs.n; f++) {
         const lang_func *fn = &LVEC_AT(m->funcs, lang_func, f);
+        if (fn->uses_fix)
+            continue; /* inlined where called */
         func_proto(c, fn, -1);
         puts_(c, ";\n");
         for (int k = 0; k < fn->nargs; k++)
@@ -359,6 +361,8 @@ static void emit_functions(lang_ctx *c, const jac_plan *j)
     }
     for (int f = 0; f < m->funcs.n; f++) {
         const lang_func *fn = &LVEC_AT(m->funcs, lang_func, f);
+        if (fn->uses_fix)
+            continue;
         const ectx x = {fn, 1};
         for (int k = -1; k < fn->nargs; k++) {
             const node *body = k < 0 ? fn->body
@@ -806,7 +810,7 @@ char *lang_emit_c(lang_ctx *c)
     num_lit(c, m->trans);
     outf(c, ",\n    .every = %ld,\n    .bound = ", m->nout);
     num_lit(c, m->bound);
-    puts_(c, ",\n};\n\nconst dyn_model *dynkit_model(void) { return &dk_model; }\n\n");
+    puts_(c, ",\n};\n\nconst dyn_model *dynkit_model(void) { return &dk_model; }\n");
     char *r = c->out;
     c->out = NULL;
     return r;

@@ -99,7 +99,7 @@ int lang_is_reserved(const char *name)
 {
     const size_t n = strlen(name);
     int arity;
-    static const char *const words[] = {"t", "pi", "if", "then", "else", "not", "arg1"};
+    static const char *const words[] = {"t", "pi", "if", "then", "else", "not"};
     for (size_t i = 0; i < sizeof words / sizeof words[0]; i++)
         if (ieq(name, n, words[i]))
             return 1;

@@ -117,6 +117,7 @@ typedef struct lang_func {
     node *body;
     int mark;
     int uses_state, uses_time; /* directly or through other functions */
+    int uses_fix;              /* reads fixed temporaries: inlined where it is called */
 } lang_func;
 
 typedef struct lang_assign {
@@ -276,6 +277,7 @@ typedef struct lang_dvar {
 } lang_dvar;
 node *lang_num(lang_ctx *c, double v);
 node *lang_deriv(lang_ctx *c, const node *e, const lang_dvar *v);
+node *lang_subst(lang_ctx *c, node *body, node **args);
 int lang_is_num(const node *e, double v);
 void lang_func_uses(lang_ctx *c, const node *e, int *state, int *time);
 double lang_eval(lang_ctx *c, const node *e, const double *args, const double *pvals);

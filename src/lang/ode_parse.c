@@ -149,8 +149,18 @@ static void name_value_list(lang_ctx *c, lang_lexer *lx, int kind, const char *k
         lpos pos;
         const char *name = read_name(lx, &pos, count ? "expected a name" : "expected a name "
                                      "after the keyword");
-        expect_char(lx, '=', "expected '=' after the name");
-        node *e = lang_parse_expr(lx);
+        node *e;
+        if (lang_skip_blanks(lx) == '=') {
+            lx->i++;
+            e = lang_parse_expr(lx);
+        } else {
+            /* XPPAUT reads a name without a value as 0 */
+            const int nx = lang_skip_blanks(lx);
+            if (nx && nx != ',' && !lang_is_ident_start(nx))
+                lang_fail(c, lang_here(lx), "expected '=' after the name, found '%c'", nx);
+            lang_note(c, pos, "'%s' has no value in the %s list: 0", name, keyword);
+            e = lang_num(c, 0.0);
+        }
         if (kind == SYM_PARAM || kind == SYM_NUMBER) {
             const double v = const_value(c, e, kind == SYM_PARAM ? "a parameter's value"
                                                                  : "a number's value");
@@ -201,7 +211,15 @@ static void parse_global(lang_ctx *c, lang_lexer *lx, pstate *ps, lpos kpos)
     }
     if (d > 1)
         lang_fail(c, spos, "the direction of a global is 1 (rising), -1 (falling) or 0 (both)");
-    node *cond = lang_parse_expr(lx);
+    node *cond;
+    if (lang_skip_blanks(lx) == '{') {
+        /* global 1 {x-1} {x=0}: the condition in braces */
+        lx->i++;
+        cond = lang_parse_expr(lx);
+        expect_char(lx, '}', "expected '}' after the global's condition");
+    } else {
+        cond = lang_parse_expr(lx);
+    }
     expect_char(lx, '{', "expected '{' with the assignments after the global's condition");
     lvec assign = {0};
     for (;;) {
@@ -532,7 +550,7 @@ static void extension(lang_ctx *c, lang_lexer *lx, pstate *ps)
 /* ---- statements ---- */
 
 static const char *const keywords[] = {
-    "par", "param", "parameter", "parameters", "p", "number", "num", "n", "init", "initial",
+    "par", "param", "params", "pars", "parameter", "parameters", "p", "number", "num", "n", "init", "initial",
     "i", "aux", "a", "global", "g", "done", "d", "markov", "m", "wiener", "w", "table", "tab",
     "bdry", "bndry", "b", "boundary", "volt", "volterra", "v", "set", "special", "sp", "solv",
     "solve", "only", "export", "options", "opt"};
@@ -553,7 +571,7 @@ static int keyword_statement(lang_ctx *c, lang_lexer *lx, pstate *ps, const char
     const size_t n = strlen(w);
     if (KW(w, n, "done", "d"))
         return 1;
-    if (KW(w, n, "par", "param", "parameter", "parameters", "p"))
+    if (KW(w, n, "par", "param", "params", "pars", "parameter", "parameters", "p"))
         name_value_list(c, lx, SYM_PARAM, "par");
     else if (KW(w, n, "number", "num", "n"))
         name_value_list(c, lx, SYM_NUMBER, "number");
@@ -562,6 +580,16 @@ static int keyword_statement(lang_ctx *c, lang_lexer *lx, pstate *ps, const char
     else if (KW(w, n, "aux", "a")) {
         lpos pos;
         const char *name = read_name(lx, &pos, "expected the output's name after 'aux'");
+        /* XPPAUT's aux names are labels: P.E. is one */
+        if (lx->i < lx->end && lx->line->text[lx->i] == '.') {
+            int k = lx->i;
+            while (k < lx->end && (lang_is_ident_char((unsigned char)lx->line->text[k]) ||
+                                   lx->line->text[k] == '.'))
+                k++;
+            name = lang_strndup(c, lx->line->text + (lx->i - (int)strlen(name)),
+                                strlen(name) + (size_t)(k - lx->i));
+            lx->i = k;
+        }
         expect_char(lx, '=', "expected '=' after the output's name");
         add_formula(c, &c->m.auxs, SYM_AUX, name, pos, expr_to_end(lx, "the aux formula"));
     } else if (KW(w, n, "global", "g"))
@@ -684,13 +712,10 @@ static void statement(lang_ctx *c, lang_lexer *lx, pstate *ps, int *done)
         lvec args = {0};
         for (;;) {
             const char *arg = read_name(lx, &apos, "expected the function's argument names");
-            if (ieqn(arg, strlen(arg), "t")) {
-                if (lang_skip_blanks(lx) == ')')
-                    lang_fail(c, wpos, "Volterra integral equations ('%s(t)=') are not "
-                              "supported", w);
+            const int is_t = ieqn(arg, strlen(arg), "t");
+            if (is_t && lang_skip_blanks(lx) != ')' && lang_skip_blanks(lx) != ',')
                 lang_fail(c, wpos, "difference equations ('%s(t+1)=') are not supported", w);
-            }
-            if (lang_is_reserved(arg))
+            if (lang_is_reserved(arg) && !is_t)
                 lang_fail(c, apos, "'%s' is a reserved word and cannot be an argument", arg);
             for (int k = 0; k < args.n; k++)
                 if (ieqn(arg, strlen(arg), LVEC_AT(args, const char *, k)))

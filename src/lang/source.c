@@ -206,7 +206,8 @@ static int find_range(lang_ctx *c, const lang_line *l, int *open, int *close, lo
 
 /* One copy of line l for the index j: the range (if any, at open..close) becomes j, and
  * every other [expr] its value. */
-static lang_line expand_one(lang_ctx *c, const lang_line *l, long j, int open, int close)
+static lang_line expand_one(lang_ctx *c, const lang_line *l, long j, int open, int close,
+                            int with_j)
 {
     lbuf b = {0};
     char num[32];
@@ -228,6 +229,11 @@ static lang_line expand_one(lang_ctx *c, const lang_line *l, long j, int open, i
                 if (l->text[q] == '.' && l->text[q + 1] == '.')
                     lang_fail(c, l->pos[i], "a second array range in one line (one [j1..j2] "
                               "per line, or a %%[j1..j2] block)");
+            if (!with_j)
+                for (int q = i + 1; q < k; q++)
+                    if (l->text[q] == 'j' || l->text[q] == 'J')
+                        lang_fail(c, l->pos[q], "[j] outside an array line (x[1..n]'=... or "
+                                  "a %%[1..n] block)");
             v = ix_value(c, l, i + 1, k, j);
         }
         const int suffix = i > 0 && lang_is_ident_char((unsigned char)l->text[i - 1]);
@@ -276,10 +282,29 @@ static void emit(lang_ctx *c, lines_state *s, const lang_line *l)
         s->stop = 1;
 }
 
+/* Volterra's int{...} and int[m]{...} are refused before [m] could be read as an index. */
+static void refuse_volterra(lang_ctx *c, const lang_line *l)
+{
+    for (int i = 0; i + 3 < l->len; i++) {
+        if ((i > 0 && lang_is_ident_char((unsigned char)l->text[i - 1])) ||
+            (l->text[i] != 'i' && l->text[i] != 'I') ||
+            (l->text[i + 1] != 'n' && l->text[i + 1] != 'N') ||
+            (l->text[i + 2] != 't' && l->text[i + 2] != 'T'))
+            continue;
+        int k = i + 3;
+        while (k < l->len && (l->text[k] == ' ' || l->text[k] == '\t'))
+            k++;
+        if (k < l->len && (l->text[k] == '{' || l->text[k] == '['))
+            lang_fail(c, l->pos[i], "Volterra integrals ('int{...}') are not supported");
+    }
+}
+
 static void logical_line(lang_ctx *c, lines_state *s, const lang_line *l)
 {
     int at;
     const int ch = first_char(l, &at);
+    if (ch != '#' && ch != '"')
+        refuse_volterra(c, l);
     if (s->in_block) {
         if (ch == '%') {
             /* the end of the block: each line once per j */
@@ -292,7 +317,7 @@ static void logical_line(lang_ctx *c, lines_state *s, const lang_line *l)
                         emit(c, s, bl);
                         continue;
                     }
-                    lang_line e = expand_one(c, bl, j, -1, -1);
+                    lang_line e = expand_one(c, bl, j, -1, -1, 1);
                     emit(c, s, &e);
                 }
             s->block.n = 0;
@@ -319,11 +344,17 @@ static void logical_line(lang_ctx *c, lines_state *s, const lang_line *l)
     int open, close;
     long j1, j2;
     if (!find_range(c, l, &open, &close, &j1, &j2)) {
+        if (memchr(l->text, '[', (size_t)l->len)) {
+            /* b100'=-flux[100]: constant indices */
+            lang_line e = expand_one(c, l, 0, -1, -1, 0);
+            emit(c, s, &e);
+            return;
+        }
         emit(c, s, l);
         return;
     }
     for (long j = j1; j <= j2 && !s->stop; j++) {
-        lang_line e = expand_one(c, l, j, open, close);
+        lang_line e = expand_one(c, l, j, open, close, 1);
         emit(c, s, &e);
     }
 }

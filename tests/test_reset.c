@@ -11,7 +11,10 @@
  *   event); a reset that leaves its event's value unchanged (a counter) fires once;
  * - e = 0.5 over a span past the accumulation time stops with DYN_ERR_ZENO near it;
  * - a reset returning non-zero stops with DYN_ERR_RHS, the state at the event kept;
- * - terminal events still end the solve, also with resets in the same run. */
+ * - terminal events still end the solve, also with resets in the same run;
+ * - the command line: a model file's reset takes part in every run without --event, rows
+ *   stay on the --step grid for rk4, --event reports the bounces, cvode refuses the model. */
+#define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -21,6 +24,7 @@
 #include <cmocka.h>
 
 #include "dynkit/dynkit.h"
+#include "test_cli_run.h"
 #include "test_util.h"
 
 typedef struct ball {
@@ -449,6 +453,91 @@ static void test_counter_reset_fires_once_per_crossing(void **state)
     }
 }
 
+/* ---- the command line, with the ball as an XPPAUT file ---- */
+
+static const char ball_ode[] = "# a bouncing ball\n"
+                               "par g=9.81, e=0.8\n"
+                               "init y=10, v=0\n"
+                               "y'=v\n"
+                               "v'=-g\n"
+                               "#: event bounce = y, falling -- the floor\n"
+                               "global -1 y {v=-e*v}\n"
+                               "@ total=10, dt=0.01\n"
+                               "done\n";
+
+static void test_cli_resets(void **state)
+{
+    (void)state;
+    assert_int_equal(cli_make_tmpdir("reset"), 0);
+    FILE *f = fopen(cli_path("ball.ode"), "w");
+    assert_non_null(f);
+    fputs(ball_ode, f);
+    fclose(f);
+    const double e = 0.8;
+    int expect = 0;
+    while (bounce_time(expect, e) < 10.0)
+        expect++;
+
+    /* rk4 without --event: the bounces happen, the rows are the grid 0, 0.01, ..., 10 */
+    cli_result r = cli("run '%s' --method rk4 --step 0.01 --tspan 0:10", cli_path("ball.ode"));
+    if (r.status != 0)
+        fail_msg("dynkit run ball.ode: %s", r.err);
+    assert_int_equal(csv_rows(r.out), 1001);
+    const char *line = strchr(r.out, '\n') + 1;
+    for (long k = 0; k <= 1000; k++) {
+        double t, y[2], ye[2];
+        assert_int_equal(sscanf(line, "%lf,%lf,%lf", &t, &y[0], &y[1]), 3);
+        assert_true(same_bits(t, k == 1000 ? 10.0 : (double)k * 0.01));
+        ball_exact(t, e, ye);
+        if (fabs(y[0] - ye[0]) > 1e-9 || fabs(y[1] - ye[1]) > 1e-9)
+            fail_msg("row at t = %.17g: (%.17g, %.17g), exact (%.17g, %.17g)", t, y[0], y[1],
+                     ye[0], ye[1]);
+        line = strchr(line, '\n') + 1;
+    }
+    cli_free(&r);
+
+    /* --every keeps the grid's every K-th row */
+    r = cli("run '%s' --method rk4 --step 0.01 --tspan 0:10 --every 100", cli_path("ball.ode"));
+    assert_int_equal(r.status, 0);
+    double t[16];
+    assert_int_equal(csv_times(r.out, t, 16), 11);
+    for (int k = 0; k <= 10; k++)
+        assert_true(t[k] == (double)k);
+    cli_free(&r);
+
+    /* dp45 with --event: the bounces reported, at the closed form's times */
+    char model[512];
+    snprintf(model, sizeof model, "%s", cli_path("ball.ode")); /* cli_path: one buffer */
+    r = cli("run '%s' --method dp45 --rtol 1e-12 --atol 1e-12 --tspan 0:10 --final --event "
+            "bounce --events-output '%s'",
+            model, cli_path("ev.csv"));
+    if (r.status != 0)
+        fail_msg("dynkit run ball.ode --event bounce: %s", r.err);
+    cli_free(&r);
+    size_t len;
+    char *ev = cli_read_file(cli_path("ev.csv"), &len);
+    assert_true(strncmp(ev, "event,t,y,v\n", 12) == 0);
+    assert_int_equal(csv_rows(ev), expect);
+    line = ev + 12;
+    for (int k = 0; k < expect; k++) {
+        double te, y, v;
+        assert_int_equal(sscanf(line, "bounce,%lf,%lf,%lf", &te, &y, &v), 3);
+        assert_true(fabs(te - bounce_time(k, e)) < 1e-10);
+        assert_true(v < 0.0); /* the state before the reset */
+        line = strchr(line, '\n') + 1;
+    }
+    free(ev);
+
+    /* cvode runs without events: refused with the reason */
+    r = cli("run '%s' --method cvode", cli_path("ball.ode"));
+    assert_int_equal(r.status, 2);
+    if (cli_has_cvode())
+        assert_non_null(strstr(r.err, "events that reset the state"));
+    cli_free(&r);
+    const char *files[] = {"ball.ode", "ev.csv", NULL};
+    cli_teardown_files(files);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -460,6 +549,7 @@ int main(void)
         cmocka_unit_test(test_reset_failure),
         cmocka_unit_test(test_terminal_events_with_resets),
         cmocka_unit_test(test_counter_reset_fires_once_per_crossing),
+        cmocka_unit_test(test_cli_resets),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

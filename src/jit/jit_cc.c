@@ -165,15 +165,18 @@ static void report_output(char *err, size_t errlen, const char *head, const char
         err[used + len] = '\0';
         return;
     }
-    const char note_fmt[] = "\n[... %d more lines]";
-    size_t keep = room > 40 ? room - 40 : 0;
+    const size_t cut = room > 40 ? room - 40 : 0;
+    size_t keep = cut;
     while (keep > 0 && text[keep] != '\n')
         keep--;
-    int more = 0;
+    int more = keep > 0 ? 0 : 1; /* a first line longer than the room: cut inside it */
+    if (keep == 0)
+        keep = cut;
     for (size_t i = keep; i < len; i++)
         more += text[i] == '\n';
     memcpy(err + used, text, keep);
-    snprintf(err + used + keep, errlen - used - keep, note_fmt, more + 1);
+    snprintf(err + used + keep, errlen - used - keep, "\n[... %d more line%s]", more,
+             more == 1 ? "" : "s");
 }
 
 static int write_all(const char *path, const char *data, size_t len)

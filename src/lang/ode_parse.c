@@ -301,9 +301,9 @@ static const struct {
     {"2rb", "rodas4", NULL},
     {"ymp", "rk4", "XPPAUT's symplectic ymp runs as rk4 with the same step"},
     /* other spellings */
+    {"rk4", "rk4", NULL},
     {"runge", "rk4", NULL},
     {"rk", "rk4", NULL},
-    {"rk4", "rk4", NULL},
     {"heun", "heun", NULL},
     {"midpoint", "midpoint", NULL},
     {"bs23", "bs23", NULL},

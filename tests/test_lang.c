@@ -1,0 +1,359 @@
+/* test_lang.c — the .ode translator's front end (dynkit/lang.h, src/lang): every feature
+ * XPPAUT has and dynkit does not is refused with its line, column and name; errors point
+ * at the file's own line and column (also inside continued and expanded array lines) with
+ * the line and a caret; unknown names suggest the nearest known one; circular definitions
+ * name the cycle; the notes of ignored options; the limits; no input crashes it; and real
+ * files from XPPAUT's examples translate. (The compiled models: test_lang_model.c.) */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dynkit/lang.h"
+#include "test_util.h"
+
+typedef struct notes {
+    int count;
+    char text[4096];
+} notes;
+
+static void collect_note(const char *path, int line, const char *message, void *ctx)
+{
+    notes *n = ctx;
+    (void)path;
+    n->count++;
+    const size_t used = strlen(n->text);
+    snprintf(n->text + used, sizeof n->text - used, "%d: %s\n", line, message);
+}
+
+static int translate(const char *text, char **out, dyn_lang_diag *d, notes *n)
+{
+    if (n)
+        memset(n, 0, sizeof *n);
+    return dyn_ode_to_c("m.ode", text, strlen(text), out, d, n ? collect_note : NULL, n);
+}
+
+/* The translation of text fails at line:col with a message containing what. */
+static void expect_error(const char *text, int line, int col, const char *what)
+{
+    char *out = (char *)1;
+    dyn_lang_diag d;
+    const int rc = translate(text, &out, &d, NULL);
+    CHECK(rc == 2, "expected an error for:\n%s\n(rc %d)", text, rc);
+    CHECK(out == NULL, "the C text is NULL on failure");
+    CHECK(d.line == line && d.col == col, "%s\nerror at %d:%d, expected %d:%d: %s", text,
+          d.line, d.col, line, col, d.message);
+    CHECK(strstr(d.message, what) != NULL, "%s\nmessage '%s' lacks '%s'", text, d.message,
+          what);
+}
+
+static char *expect_ok(const char *text, notes *n)
+{
+    char *out = NULL;
+    dyn_lang_diag d;
+    const int rc = translate(text, &out, &d, n);
+    char buf[2048];
+    CHECK(rc == 0, "%s\n%s", text, dyn_lang_diag_format(&d, buf, sizeof buf));
+    assert_non_null(out);
+    return out;
+}
+
+static void test_refused_features_name_line_and_feature(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *text;
+        int line, col;
+        const char *what;
+    } cases[] = {
+        {"x'=1\nmarkov z 2\n{0} {a}\n{b} {0}\n", 2, 1, "Markov chains ('markov')"},
+        {"x'=1\nwiener w\n", 2, 1, "random processes ('wiener')"},
+        {"x'=-delay(x,1)\n", 1, 5, "delay-differential equations ('delay')"},
+        {"x'=1\ntable h % 101 0 6.3 sin(t)\n", 2, 1, "lookup tables ('table')"},
+        {"x'=-x+int{exp(-t)#x}\n", 1, 7, "Volterra integrals ('int{...}')"},
+        {"x'=-x+int[.5]{exp(-t)#x}\n", 1, 7, "Volterra integrals ('int{...}')"},
+        {"x'=1\nvolt u=exp(-t)\n", 2, 1, "Volterra integral equations ('volt')"},
+        {"x'=1\nbdry x-1\n", 2, 1, "boundary-value problems ('bdry')"},
+        {"x'=-y\n0=y+exp(y)-x\n", 2, 1, "algebraic equations ('0=...'"},
+        {"z(t+1)=z*(4-z)\n", 1, 1, "difference equations ('z(t+1)=')"},
+        {"x'=1\nspecial k=conv(even,101,21,w,u0)\n", 2, 1, "network sums ('special')"},
+        {"x'=1\nsolv y=-.5\n", 2, 1, "differential-algebraic equations ('solv')"},
+        {"x'=1\nexport {x} {y}\n", 2, 1, "'export'"},
+        {"x'=1\n@ meth=discrete\n", 2, 8, "difference equations (meth=discrete)"},
+        {"x'=ran(1)\n", 1, 4, "random numbers ('ran')"},
+        {"x'=normal(0,1)\n", 1, 4, "random numbers ('normal')"},
+        {"x'=sum(1,10)of(i')\n", 1, 4, "sums ('sum(...)of(...)')"},
+        {"x'=shift(x,1)\n", 1, 4, "indirect addressing ('shift')"},
+        {"x'=besselj(0,x)\n", 1, 4, "Bessel functions ('besselj')"},
+        {"x'=1\noptions my.opt\n", 2, 1, "option files"},
+        {"x'=1\n@ dt=-0.1\n", 2, 6, "backwards in time"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
+        expect_error(cases[i].text, cases[i].line, cases[i].col, cases[i].what);
+}
+
+static void test_unknown_names_suggest_the_nearest(void **state)
+{
+    (void)state;
+    expect_error("par omega=1\nx'=-omgea*x\n", 2, 5, "unknown name 'omgea' (did you mean "
+                 "'omega'?)");
+    expect_error("x'=-sinn(x)\n", 1, 5, "unknown function 'sinn' (did you mean 'sin'?)");
+    expect_error("x'=zzzzzz\n", 1, 4, "unknown name 'zzzzzz'");
+    expect_error("par a=1\nx'=1\ninit xx=2\n", 3, 6, "unknown name 'xx' (did you mean 'x'?)");
+    expect_error("x'=1\n@ xp=xx\n", 2, 6, "'xx' is not a state or an aux output (did you mean "
+                 "'x'?)");
+    expect_error("x'=1\n#: xq [m] position\n", 2, 4, "not a declared name");
+    expect_error("x'=1\nparm a=2\n", 2, 1, "unknown statement 'parm' (did you mean 'par'?)");
+    expect_error("x'=1\n@ meth=rk5\n", 2, 8, "unknown method 'rk5' (did you mean 'rk4'?)");
+}
+
+static void test_kinds_of_names_are_checked(void **state)
+{
+    (void)state;
+    /* XPPAUT folds the case of names: A and a are one */
+    expect_error("par a=1\npar A=2\nx'=a\n", 2, 5, "'A' is already declared as a parameter "
+                 "on line 1");
+    expect_error("x'=1\nx'=2\n", 2, 1, "already declared as a state");
+    expect_error("x'=1\naux e=x\ny'=e\n", 3, 4, "'e' is an aux output");
+    expect_error("f(a)=a\nx'=f\n", 2, 4, "'f' is a function");
+    expect_error("x'=sin(x,1)\n", 1, 4, "'sin' takes 1 argument, not 2");
+    expect_error("f(a,b)=a+b\nx'=f(x)\n", 2, 4, "function 'f' takes 2 arguments, not 1");
+    expect_error("par a=1\n!b=a*x\nx'=b\n", 2, 6, "cannot depend on the state 'x'");
+    expect_error("par a=t\nx'=1\n", 1, 7, "must be a number");
+    expect_error("par a=1, b=a\nx'=1\n", 1, 12, "must be a number, not a formula of 'a'");
+    expect_error("x'=1\ninit x=t\n", 2, 8, "cannot depend on the time t");
+    expect_error("x'=1\nglobal 1 x-1 {a=0}\n", 2, 15, "unknown name 'a'");
+    expect_error("par a=1\nx'=1\nglobal 1 x-1 {a=0}\n", 3, 15, "a global assigns states");
+    expect_error("sin=1\nx'=sin\n", 1, 1, "reserved word");
+    expect_error("f(a)=f(a)+1\nx'=f(x)\n", 1, 1, "calls itself");
+    expect_error("x'=1\nx(0)=y\n", 2, 6, "unknown name 'y'");
+}
+
+static void test_circular_definitions_name_the_cycle(void **state)
+{
+    (void)state;
+    expect_error("x'=a\na=b+1\nb=c*2\nc=a-x\n", 2, 1, "circular definition of fixed "
+                 "quantities: a -> b -> c -> a");
+    expect_error("x'=a\na=a+1\n", 2, 1, "a -> a");
+    expect_error("par k=1\n!u=v*k\n!v=u+1\nx'=u\n", 2, 2, "circular definition of derived "
+                 "parameters: u -> v -> u");
+}
+
+static void test_syntax_errors_point_at_the_place(void **state)
+{
+    (void)state;
+    expect_error("x'=(1+x\n", 1, 8, "expected ')'");
+    expect_error("x'=1+*x\n", 1, 6, "expected a number, a name or '('");
+    expect_error("x'=2v\n", 1, 5, "missing operator after the number '2'");
+    expect_error("x'=a b\npar a=1,b=1\n", 1, 6, "missing operator");
+    expect_error("x'=1e\n", 1, 5, "exponent needs digits");
+    expect_error("x'=if(x>1)then(1)\n", 1, 18, "expected 'else'");
+    expect_error("x'=1\nglobal 2 x {x=0}\n", 2, 8, "1 (rising), -1 (falling) or 0 (both)");
+    expect_error("x'=1\nglobal 1 x-1 {x=0\n", 2, 18, "missing '}'");
+    expect_error("x'=1\n@ total=abc\n", 2, 9, "needs a number");
+    expect_error("x'=1\n$\n", 2, 1, "unexpected '$'");
+    expect_error("par a=1\n", 0, 0, "no differential equation");
+    expect_error("x'=1\n#: event hit = x-1, upward\n", 2, 21, "expected rising, falling or "
+                 "both");
+    expect_error("x'=1\n#: event hit\nx2'=1\n", 2, 1, "next line is not a global");
+    /* a continued line: the second physical line's own column */
+    expect_error("x'=1+\\\n   2*$\n", 2, 6, "expected a number");
+    /* an expanded array line: the column in the file, whatever j is */
+    expect_error("x[1..3]'=-x[j]+qq\n", 1, 16, "unknown name 'qq'");
+    expect_error("x[1..3]'=-x[j-1]\n", 1, 11, "unknown name 'x0'");
+    expect_error("x[0..2]'=x[j-1]\n", 1, 11, "negative");
+    expect_error("x[1..2]'=x[k]\n", 1, 12, "unexpected 'k' in an index");
+    expect_error("x'=y[j]\n", 1, 6, "[j] outside an array line");
+    expect_error("%[1..2]\nx[j]'=1\n", 1, 1, "without its closing '%'");
+}
+
+static void test_diag_format_shows_the_line_and_a_caret(void **state)
+{
+    (void)state;
+    char *out;
+    dyn_lang_diag d;
+    assert_int_equal(translate("par a=1\nx'=-a*bb\n", &out, &d, NULL), 2);
+    char buf[1024];
+    dyn_lang_diag_format(&d, buf, sizeof buf);
+    assert_string_equal(buf, "m.ode:2:7: error: unknown name 'bb'\n"
+                             "  x'=-a*bb\n"
+                             "        ^\n");
+    /* too small a buffer: truncated, terminated */
+    char small[12];
+    dyn_lang_diag_format(&d, small, sizeof small);
+    assert_true(strlen(small) < sizeof small);
+}
+
+static void test_notes_tell_what_is_ignored(void **state)
+{
+    (void)state;
+    notes n;
+    char *out = expect_ok("x'=-x\n@ xlo=0, xhi=20, ylo=-2 maxstor=100000\n"
+                          "@ ntst=50, meth=qualrk\nset hopf {a=1}\n",
+                          &n);
+    free(out);
+    CHECK(strstr(n.text, "2: option 'xlo' is accepted and ignored"), "%s", n.text);
+    CHECK(strstr(n.text, "2: option 'ylo' is accepted and ignored"), "%s", n.text);
+    CHECK(strstr(n.text, "2: option 'maxstor' is accepted and ignored"), "%s", n.text);
+    CHECK(strstr(n.text, "3: option 'ntst' is accepted and ignored"), "%s", n.text);
+    CHECK(strstr(n.text, "3: meth=qualrk runs as dynkit's dp45"), "%s", n.text);
+    CHECK(strstr(n.text, "4: 'set'"), "%s", n.text);
+    /* XPPAUT reads x>1+2 as (x>1)+2: said, not changed */
+    out = expect_ok("x'=x>1+2\n", &n);
+    free(out);
+    CHECK(strstr(n.text, "a>b+c is read as (a>b)+c"), "%s", n.text);
+    out = expect_ok("x'=(x>1)+2\n", &n);
+    free(out);
+    assert_int_equal(n.count, 0);
+}
+
+static void test_generated_c_conventions(void **state)
+{
+    (void)state;
+    char *out = expect_ok("# decay\npar k=2\nw=k*x\nx'=-w\naux e=x^2\nf(a)=a+1\n"
+                          "x(0)=f(k)\n",
+                          NULL);
+    CHECK(strstr(out, "#line 4 \"m.ode\"\n    dydt[0] = (-v_w);"), "%s", out);
+    CHECK(strstr(out, "#line 3 \"m.ode\"\n    const double v_w = (p[0] * y[0]);"), "%s", out);
+    CHECK(strstr(out, "static double u_f(double a_a, double t, const double *y, const double "
+                      "*p)"),
+          "%s", out);
+    CHECK(strstr(out, "const dyn_model *dynkit_model(void)"), "%s", out);
+    CHECK(strstr(out, ".initial_state = dk_initial_state"), "%s", out);
+    CHECK(strstr(out, ".jacobian = dk_jacobian"), "%s", out);
+    CHECK(strstr(out, ".source = \"m.ode\""), "%s", out);
+    CHECK(strstr(out, ".name = \"m\""), "%s", out);
+    /* the path is escaped in strings and #line */
+    free(out);
+    char *o2 = NULL;
+    dyn_lang_diag d;
+    assert_int_equal(dyn_ode_to_c("a\"b\\c.ode", "x'=1\n", 5, &o2, &d, NULL, NULL), 0);
+    CHECK(strstr(o2, "#line 1 \"a\\\"b\\\\c.ode\""), "%s", o2);
+    free(o2);
+}
+
+static void test_limits_are_refused_with_a_message(void **state)
+{
+    (void)state;
+    /* nesting */
+    char *deep = malloc(20000);
+    strcpy(deep, "x'=");
+    for (int i = 0; i < 5000; i++)
+        strcat(deep, "(");
+    strcat(deep, "x");
+    for (int i = 0; i < 5000; i++)
+        strcat(deep, ")");
+    char *out;
+    dyn_lang_diag d;
+    assert_int_equal(translate(deep, &out, &d, NULL), 2);
+    CHECK(strstr(d.message, "nested too deeply"), "%s", d.message);
+    strcpy(deep, "x'=");
+    for (int i = 0; i < 5000; i++)
+        strcat(deep, "-");
+    strcat(deep, "x\n");
+    assert_int_equal(translate(deep, &out, &d, NULL), 2);
+    CHECK(strstr(d.message, "nested too deeply"), "%s", d.message);
+    free(deep);
+    expect_error("x[1..1000000]'=1\n", 1, 2, "too long");
+    expect_error("x[5..1]'=1\n", 1, 2, "empty array range");
+    /* NULL arguments */
+    assert_int_equal(dyn_ode_to_c("m.ode", NULL, 5, &out, &d, NULL, NULL), 2);
+    assert_int_equal(dyn_ode_to_c("m.ode", "x'=1", 4, NULL, &d, NULL, NULL), 2);
+    assert_int_equal(dyn_ode_to_c(NULL, "x'=1", 4, &out, NULL, NULL, NULL), 0);
+    free(out);
+}
+
+/* Every prefix of a file and a few byte flips translate or fail cleanly (the fuzzer does
+ * more: fuzz/fuzz_ode.c). */
+static void test_truncated_and_damaged_files_never_crash(void **state)
+{
+    (void)state;
+    static const char text[] =
+        "# bouncing\n#: title Ball\n#: y [m] height\npar g=9.81, e=.8\n!h=g/2\n"
+        "f(a,b)=a*b+if(a>b)then(a)else(-b)\nw=f(y,v)\ny'=v\nv'=-g+0*w\n"
+        "x[1..3]'=-x[j]+[j]\n%[1..2]\nz[j]'=z[j]\n%\n"
+        "global -1 y {v=-e*v;y=0}\n#: event top = v, falling, stop -- apex\n"
+        "init y=1,v=0\naux en=v^2/2+g*y\n@ dt=.01, total=3, meth=rk4, xp=y, yp=v\ndone\n";
+    const size_t n = strlen(text);
+    char *buf = malloc(n + 1);
+    for (size_t len = 0; len <= n; len++) {
+        char *out = NULL;
+        dyn_lang_diag d;
+        memcpy(buf, text, len);
+        const int rc = dyn_ode_to_c("m.ode", buf, len, &out, &d, NULL, NULL);
+        assert_true(rc == 0 || rc == 2);
+        assert_true((rc == 0) == (out != NULL));
+        free(out);
+    }
+    for (size_t at = 0; at < n; at += 3) {
+        static const char flips[] = "([{}])=#'\\\n%!@,;.-0";
+        for (const char *f = flips; *f; f++) {
+            memcpy(buf, text, n);
+            buf[at] = *f;
+            char *out = NULL;
+            dyn_lang_diag d;
+            const int rc = dyn_ode_to_c("m.ode", buf, n, &out, &d, NULL, NULL);
+            assert_true(rc == 0 || rc == 2);
+            free(out);
+        }
+    }
+    free(buf);
+}
+
+/* Real files of XPPAUT's examples (Debian's xppaut package) translate. */
+static void test_xppaut_examples_translate(void **state)
+{
+    (void)state;
+    static const char *const files[] = {"lorenz.ode", "fhn.ode",   "delta.ode", "tyson.ode",
+                                        "hhred.ode",  "torus.ode", "pend.ode",  "doubpend.ode",
+                                        "rossler.ode", "angela.ode"};
+    int found = 0;
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+        char path[512];
+        snprintf(path, sizeof path, "/usr/share/doc/xppaut/examples/ode/%s", files[i]);
+        FILE *f = fopen(path, "rb");
+        if (!f)
+            continue;
+        found++;
+        static char text[1 << 16];
+        const size_t len = fread(text, 1, sizeof text, f);
+        fclose(f);
+        char *out = NULL;
+        dyn_lang_diag d;
+        const int rc = dyn_ode_to_c(path, text, len, &out, &d, NULL, NULL);
+        char buf[2048];
+        /* angela.ode convolves with a Volterra integral: refused, naming it */
+        if (strcmp(files[i], "angela.ode") == 0) {
+            assert_int_equal(rc, 2);
+            CHECK(strstr(d.message, "Volterra integrals"), "%s", d.message);
+            continue;
+        }
+        CHECK(rc == 0, "%s", dyn_lang_diag_format(&d, buf, sizeof buf));
+        free(out);
+    }
+    if (!found)
+        skip();
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_refused_features_name_line_and_feature),
+        cmocka_unit_test(test_unknown_names_suggest_the_nearest),
+        cmocka_unit_test(test_kinds_of_names_are_checked),
+        cmocka_unit_test(test_circular_definitions_name_the_cycle),
+        cmocka_unit_test(test_syntax_errors_point_at_the_place),
+        cmocka_unit_test(test_diag_format_shows_the_line_and_a_caret),
+        cmocka_unit_test(test_notes_tell_what_is_ignored),
+        cmocka_unit_test(test_generated_c_conventions),
+        cmocka_unit_test(test_limits_are_refused_with_a_message),
+        cmocka_unit_test(test_truncated_and_damaged_files_never_crash),
+        cmocka_unit_test(test_xppaut_examples_translate),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -5,10 +5,12 @@
 #include <string.h>
 
 #include "cli.h"
+#include "table_formats.h"
 
 /* Where samples go: CSV rows, or (with --final) only the latest sample kept in memory. */
 typedef struct csv_sink {
     FILE *out;
+    cli_table *table;    /* the rows, in the format of --output */
     const cli_run *run;
     double *extra;       /* (n_outputs) */
     long rows;
@@ -56,7 +58,7 @@ static int write_sample(csv_sink *sink, double t, const double *y)
         for (int i = 0; i < n_extra; i++)
             sink->extra[i] = 0.0 / 0.0;
     }
-    if (dyn_csv_write_row(sink->out, t, y, m->n_states, sink->extra, n_extra)) {
+    if (cli_table_row(sink->table, t, y, m->n_states, sink->extra, n_extra)) {
         sink->io_failed = 1;
         return 1;
     }
@@ -115,7 +117,8 @@ static void run_help(void)
 {
     puts("Usage: dynkit run MODEL [options]\n"
          "\n"
-         "Integrate MODEL and write the samples as CSV: a header t,<state names> and one row\n"
+         "Integrate MODEL and write the samples as CSV (or JSON, NumPy .npy/.npz or MATLAB .mat,\n"
+         "by the extension of --output: docs/data-files.md): a header t,<state names> and one row\n"
          "per sample t0 + k*step, numbers printed with %.17g. Fixed-step methods (euler, heun,\n"
          "rk4, ...) take steps of --step; adaptive methods (bs23 = ode23, dp45 = ode45,\n"
          "dop853; for stiff problems rodas4, and cvode when built with SUNDIALS) choose their\n"
@@ -130,7 +133,7 @@ static void run_help(void)
          "  dynkit run pendulum --method dp45 --rtol 1e-10 --tspan 0:20 --event turn \\\n"
          "      --event bottom:stop --events-output events.csv\n"
          "  dynkit run pendulum --method euler --step 0.2 --tspan 0:0.2 --trace 1\n"
-         "  dynkit run pendulum --set l=1 --init dphi=pi/4 --tspan 0:10 --outputs\n"
+         "  dynkit run pendulum --set l=1 --init dphi=pi/4 --tspan 0:10 --outputs\n"         "  dynkit run pendulum --init phi=45deg -m ode45 --outputs -o swing.mat\n"
          "  dynkit inverse cart --output forces.csv   (prints the --init options for:)\n"
          "  dynkit run cart --forces forces.csv --method heun --init dsX=-20 ...\n");
     cli_run_options_help(stdout);
@@ -198,6 +201,14 @@ int cli_cmd_run(int argc, char **argv)
         cli_run_free(&run);
         return rc;
     }
+    /* the format of --output (its extension), before any file is opened */
+    cli_format format;
+    cli_table *table = NULL;
+    char ferr[512] = "";
+    if (cli_run_format(&run, &format) != CLI_OK) {
+        cli_run_free(&run);
+        return CLI_USAGE;
+    }
     FILE *out = stdout, *evout = NULL;
     if (run.output_path && !(out = fopen(run.output_path, "w"))) {
         rc = cli_usage_error("run", "cannot open --output '%s' for writing: %s", run.output_path,
@@ -222,9 +233,9 @@ int cli_cmd_run(int argc, char **argv)
     csv_sink sink = {.out = out, .run = &run, .extra = buffers + n, .pending_y = buffers + n +
                                                                                  m->n_outputs};
     event_sink es = {.out = evout, .run = &run};
-    int n_extra = run.with_outputs ? m->n_outputs : 0;
-    if (dyn_csv_write_header(out, m->states, n, m->outputs, n_extra)) {
-        fprintf(stderr, "dynkit: error: cannot write the output\n");
+    if (!(sink.table = table = cli_table_open_run(out, format, &run, run.header, ferr,
+                                                  sizeof ferr))) {
+        fprintf(stderr, "dynkit: error: --output: %s\n", ferr);
         rc = CLI_FAILED;
         goto done;
     }
@@ -272,6 +283,11 @@ int cli_cmd_run(int argc, char **argv)
     } else if (sink.pending) {
         write_sample(&sink, sink.pending_t, sink.pending_y); /* the last one is always kept */
     }
+    /* the formats kept in memory (npz, mat) are written now, json's document closed */
+    if (cli_table_finish(table, ferr, sizeof ferr)) {
+        fprintf(stderr, "dynkit: error: --output: %s\n", ferr);
+        sink.io_failed = 1;
+    }
     if (fflush(out) != 0 || sink.io_failed) {
         fprintf(stderr, "dynkit: error: writing the output failed: %s\n", strerror(errno));
         rc = CLI_FAILED;
@@ -300,6 +316,7 @@ done:
     if (evout)
         fclose(evout);
     free(buffers);
+    cli_table_free(table);
     cli_run_free(&run);
     return rc;
 }

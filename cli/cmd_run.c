@@ -117,8 +117,8 @@ static void run_help(void)
 {
     puts("Usage: dynkit run MODEL [options]\n"
          "\n"
-         "Integrate MODEL and write the samples as CSV (or JSON, NumPy .npy/.npz or MATLAB .mat,\n"
-         "by the extension of --output: docs/data-files.md): a header t,<state names> and one row\n"
+         "Integrate MODEL and write the samples as CSV (or .json, .npy, .npz, .mat by the\n"
+         "extension of --output): a header t,<state names> and one row\n"
          "per sample t0 + k*step, numbers printed with %.17g. Fixed-step methods (euler, heun,\n"
          "rk4, ...) take steps of --step; adaptive methods (bs23 = ode23, dp45 = ode45,\n"
          "dop853; for stiff problems rodas4, and cvode when built with SUNDIALS) choose their\n"
@@ -133,7 +133,8 @@ static void run_help(void)
          "  dynkit run pendulum --method dp45 --rtol 1e-10 --tspan 0:20 --event turn \\\n"
          "      --event bottom:stop --events-output events.csv\n"
          "  dynkit run pendulum --method euler --step 0.2 --tspan 0:0.2 --trace 1\n"
-         "  dynkit run pendulum --set l=1 --init dphi=pi/4 --tspan 0:10 --outputs\n"         "  dynkit run pendulum --init phi=45deg -m ode45 --outputs -o swing.mat\n"
+         "  dynkit run pendulum --set l=1 --init dphi=pi/4 --tspan 0:10 --outputs\n"
+         "  dynkit run pendulum --init phi=45deg -m ode45 --outputs -o swing.mat\n"
          "  dynkit inverse cart --output forces.csv   (prints the --init options for:)\n"
          "  dynkit run cart --forces forces.csv --method heun --init dsX=-20 ...\n");
     cli_run_options_help(stdout);

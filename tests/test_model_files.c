@@ -1,0 +1,329 @@
+/* Model files through the command line: the shipped examples/models (.ode and .c) run like
+ * built-in models and give known answers — the homework's pendulum and van der Pol as
+ * files reproduce the built-in models, energy is conserved where it should be, a forced
+ * Duffing oscillator without its nonlinearity is a harmonic oscillator, the bouncing
+ * ball's impacts follow the closed form, the C spring-mass model swings with period
+ * 2 pi sqrt(m/k) — and errors in a file are reported at its line and column. */
+#define _POSIX_C_SOURCE 200809L
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+#include <math.h>
+
+#include "test_cli_run.h"
+#include "test_util.h"
+
+#define MODELS DYNKIT_SOURCE_DIR "/examples/models/"
+
+static char cache_dir[512];
+
+static int setup_all(void **state)
+{
+    (void)state;
+    if (cli_make_tmpdir("modelfiles"))
+        return -1;
+    /* a fresh cache for this test run, inherited by every dynkit started below */
+    snprintf(cache_dir, sizeof cache_dir, "%s/cache", cli_tmpdir);
+    return setenv("DYNKIT_CACHE_DIR", cache_dir, 1);
+}
+
+static int teardown_all(void **state)
+{
+    (void)state;
+    char cmd[1024];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", cli_tmpdir);
+    return system(cmd) == 0 ? 0 : -1;
+}
+
+/* The numbers of a CSV text (header skipped) into v (at most max); returns the count and
+ * the columns per row in *cols. */
+static long csv_numbers(const char *text, double *v, long max, int *cols)
+{
+    const char *p = strchr(text, '\n');
+    long k = 0;
+    *cols = 1;
+    for (const char *h = text; h < p; h++)
+        *cols += *h == ',';
+    while (p && *p && k < max) {
+        char *end;
+        p++;
+        double x = strtod(p, &end);
+        if (end == p)
+            break;
+        v[k++] = x;
+        p = end;
+    }
+    return k;
+}
+
+/* Both runs give the same table to rel (relative to each column's largest value). */
+static void check_same_table(const char *file_args, const char *builtin_args, double rel)
+{
+    enum { MAX = 1 << 16 };
+    static double a[MAX], b[MAX];
+    cli_result ra = cli("run %s", file_args), rb = cli("run %s", builtin_args);
+    CHECK(ra.status == 0 && rb.status == 0, "run %s: %d %s; run %s: %d %s", file_args,
+          ra.status, ra.err, builtin_args, rb.status, rb.err);
+    int ca, cb;
+    const long na = csv_numbers(ra.out, a, MAX, &ca), nb = csv_numbers(rb.out, b, MAX, &cb);
+    CHECK(na == nb && ca == cb && na >= 2 * ca, "tables differ in size: %ld/%d vs %ld/%d", na,
+          ca, nb, cb);
+    for (int j = 0; j < ca; j++) {
+        double scale = 0.0, worst = 0.0;
+        for (long k = j; k < na; k += ca) {
+            scale = fmax(scale, fabs(b[k]));
+            worst = fmax(worst, fabs(a[k] - b[k]));
+        }
+        CHECK(worst <= rel * fmax(scale, 1e-300), "column %d differs by %g (scale %g)", j,
+              worst, scale);
+    }
+    cli_free(&ra);
+    cli_free(&rb);
+}
+
+/* The homework's pendulum as an .ode file reproduces the built-in model: the same method
+ * and step give the same samples and outputs (energy, height) to 1e-12. */
+static void test_pendulum_file_is_the_builtin(void **state)
+{
+    (void)state;
+    check_same_table(MODELS "pendulum.ode --method rk4 --step 0.01 --tspan 0:10 --outputs",
+                     "pendulum --method rk4 --step 0.01 --tspan 0:10 --outputs", 1e-12);
+    /* problem 1e: one Euler step of 0.2 s */
+    check_same_table(MODELS "pendulum.ode --method euler --step 0.2 --tspan 0:0.2",
+                     "pendulum --method euler --step 0.2 --tspan 0:0.2", 0.0);
+    check_same_table(MODELS "pendulum.ode --method dop853 --rtol 1e-10 --atol 1e-12 --tspan 0:5",
+                     "pendulum --method dop853 --rtol 1e-10 --atol 1e-12 --tspan 0:5 --step 0.01",
+                     1e-12);
+}
+
+/* van der Pol as a file: its default run (@ meth=rungekutta, dt=0.01, total=15) is the
+ * homework's RK4 run, and its final state is the built-in model's bit for bit. */
+static void test_vanderpol_file_default_run(void **state)
+{
+    (void)state;
+    cli_result f = cli("run " MODELS "vanderpol.ode --final");
+    cli_result b = cli("run vanderpol --method rk4 --step 0.01 --tspan 0:15 --final");
+    CHECK(f.status == 0 && b.status == 0, "%s %s", f.err, b.err);
+    CHECK(strcmp(f.out, b.out) == 0, "file:\n%s\nbuilt-in:\n%s", f.out, b.out);
+    CHECK(strstr(f.out, "15,0.83043745836328575,-1.3133658561687809") != NULL, "%s", f.out);
+    cli_free(&f);
+    cli_free(&b);
+    check_same_table(MODELS "vanderpol.ode --set mu=3 --method dp45 --rtol 1e-8 --tspan 0:10",
+                     "vanderpol --set mu=3 --method dp45 --rtol 1e-8 --tspan 0:10", 1e-12);
+}
+
+/* The largest |energy(t) - energy(0)| of a run with --outputs, energy in column col. */
+static double energy_drift(const char *args, int col, double *e0)
+{
+    enum { MAX = 1 << 17 };
+    static double v[MAX];
+    cli_result r = cli("run %s --outputs", args);
+    CHECK(r.status == 0, "run %s: %s", args, r.err);
+    int cols;
+    const long n = csv_numbers(r.out, v, MAX, &cols);
+    CHECK(n >= 2 * cols && n % cols == 0, "%ld numbers in %d columns", n, cols);
+    *e0 = v[col];
+    double worst = 0.0;
+    for (long k = col; k < n; k += cols)
+        worst = fmax(worst, fabs(v[k] - *e0));
+    cli_free(&r);
+    return worst;
+}
+
+/* Frictionless mechanical models conserve their energy: the double and the elastic
+ * pendulum (chaotic, so only an invariant can be checked over a long run). */
+static void test_conservative_files_keep_energy(void **state)
+{
+    (void)state;
+    double e0;
+    double d = energy_drift(MODELS "double_pendulum.ode --method dop853 --rtol 1e-11 "
+                                   "--atol 1e-11 --tspan 0:20",
+                            7, &e0);
+    CHECK(d < 1e-7 * fabs(e0) + 1e-9, "double pendulum energy drift %g of %g", d, e0);
+    d = energy_drift(MODELS "elastic_pendulum.ode --method dop853 --rtol 1e-11 --atol 1e-11",
+                     7, &e0);
+    CHECK(d < 1e-7 * fabs(e0) + 1e-9, "elastic pendulum energy drift %g of %g", d, e0);
+    /* the file's own default run (adaptive) keeps it to the default tolerance's level */
+    d = energy_drift(MODELS "double_pendulum.ode --tspan 0:5", 7, &e0);
+    CHECK(d < 1e-3 * fabs(e0), "double pendulum default run: energy drift %g of %g", d, e0);
+}
+
+/* Duffing without damping, forcing and cubic term is x'' = -alpha x: x = cos(t) for
+ * alpha = 1, x(0) = 1, v(0) = 0 (known solution, parameters set by name). */
+static void test_duffing_reduces_to_harmonic(void **state)
+{
+    (void)state;
+    cli_result r = cli("run " MODELS "duffing.ode --set delta=0 --set gamma=0 --set beta=0 "
+                       "--set alpha=1 --method dop853 --rtol 1e-12 --atol 1e-12 --tspan 0:10 "
+                       "--final");
+    CHECK(r.status == 0, "%s", r.err);
+    double t, x, v;
+    const char *row = strchr(r.out, '\n');
+    CHECK(row && sscanf(row + 1, "%lf,%lf,%lf", &t, &x, &v) == 3, "%s", r.out);
+    CHECK(fabs(x - cos(10.0)) < 1e-9 && fabs(v + sin(10.0)) < 1e-9, "x=%.17g v=%.17g", x, v);
+    cli_free(&r);
+}
+
+/* Lorenz: two independent methods agree at t = 5 (before chaos separates them). */
+static void test_lorenz_methods_agree(void **state)
+{
+    (void)state;
+    cli_result a = cli("run " MODELS "lorenz.ode --method dop853 --rtol 1e-12 --atol 1e-12 "
+                       "--tspan 0:5 --final");
+    cli_result b = cli("run " MODELS "lorenz.ode --method rk4 --step 1e-4 --tspan 0:5 --final");
+    CHECK(a.status == 0 && b.status == 0, "%s %s", a.err, b.err);
+    double ya[4], yb[4];
+    CHECK(sscanf(strchr(a.out, '\n') + 1, "%lf,%lf,%lf,%lf", &ya[0], &ya[1], &ya[2], &ya[3]) == 4,
+          "%s", a.out);
+    CHECK(sscanf(strchr(b.out, '\n') + 1, "%lf,%lf,%lf,%lf", &yb[0], &yb[1], &yb[2], &yb[3]) == 4,
+          "%s", b.out);
+    CHECK(ya[0] == 5.0 && yb[0] == 5.0, "t %g %g", ya[0], yb[0]);
+    CHECK(max_abs_diff(ya + 1, yb + 1, 3) < 1e-6, "dop853 vs rk4: %g",
+          max_abs_diff(ya + 1, yb + 1, 3));
+    cli_free(&a);
+    cli_free(&b);
+}
+
+/* The bouncing ball's global event resets the velocity: impact k comes at
+ * t_k = t_1 (1 + 2 (e + ... + e^(k-1))), t_1 = sqrt(2 h0 / g), each located to 1e-12. */
+static void test_bouncing_ball_impacts(void **state)
+{
+    (void)state;
+    const char *events = cli_path("bounces.csv");
+    cli_result r = cli("run " MODELS "bouncing_ball.ode --method dop853 --rtol 1e-12 "
+                       "--atol 1e-12 --event bounce --events-output '%s' --final",
+                       events);
+    CHECK(r.status == 0, "%s", r.err);
+    char *text = cli_read_file(events, NULL);
+    const double g = 9.81, e = 0.8, t1 = sqrt(2.0 * 1.0 / g);
+    double expected = t1, speed = sqrt(2.0 * g * 1.0);
+    int k = 0;
+    for (const char *p = strchr(text, '\n'); p && p[1]; p = strchr(p + 1, '\n')) {
+        double t, y, v;
+        CHECK(sscanf(p + 1, "bounce,%lf,%lf,%lf", &t, &y, &v) == 3, "row: %.40s", p + 1);
+        CHECK(fabs(t - expected) < 1e-12, "impact %d at %.17g, expected %.17g", k + 1, t,
+              expected);
+        CHECK(fabs(y) < 1e-12 && fabs(v + speed) < 1e-9, "impact %d: y=%g v=%g (expected %g)",
+              k + 1, y, v, -speed);
+        k++;
+        speed *= e;
+        expected += 2.0 * speed / g;
+    }
+    CHECK(k == 6, "%d impacts in 3 s, expected 6", k);
+    free(text);
+    cli_free(&r);
+    unlink(events);
+}
+
+/* A C model: the spring-mass example with k = 4 (m = 1) has the period pi: after one
+ * period it is back at x0 = 0.1 with v = 0. */
+static void test_c_model_with_set(void **state)
+{
+    (void)state;
+    cli_result r = cli("run " MODELS "spring_mass.c --set k=4 --method dop853 --rtol 1e-12 "
+                       "--atol 1e-12 --tspan 0:pi --final");
+    CHECK(r.status == 0, "%s", r.err);
+    double t, x, v;
+    CHECK(sscanf(strchr(r.out, '\n') + 1, "%lf,%lf,%lf", &t, &x, &v) == 3, "%s", r.out);
+    CHECK(fabs(x - 0.1) < 1e-10 && fabs(v) < 1e-10, "x=%.17g v=%.17g", x, v);
+    cli_free(&r);
+}
+
+/* info FILE shows the file's title, units and descriptions. */
+static void test_info_of_a_file(void **state)
+{
+    (void)state;
+    cli_result r = cli("info " MODELS "double_pendulum.ode");
+    CHECK(r.status == 0, "%s", r.err);
+    CHECK(strstr(r.out, "double pendulum (two point masses on rigid rods)") != NULL, "%s", r.out);
+    CHECK(strstr(r.out, "upper rod length") != NULL, "%s", r.out);
+    CHECK(strstr(r.out, "m/s^2") != NULL && strstr(r.out, "rad/s") != NULL, "%s", r.out);
+    CHECK(strstr(r.out, "energy") != NULL, "%s", r.out);
+    cli_free(&r);
+}
+
+static void write_file(const char *name, const char *text)
+{
+    FILE *f = fopen(cli_path(name), "w");
+    assert_non_null(f);
+    fputs(text, f);
+    fclose(f);
+}
+
+/* Errors: FILE:LINE:COL, the line and a caret, exit 2; a typo gets the nearest name; an
+ * unsupported feature is named with its line; a C file's compiler error names the file
+ * and line; a missing file is named. */
+static void test_errors_in_model_files(void **state)
+{
+    (void)state;
+    write_file("typo.ode", "par omega=2\nx'=y\ny'=-omgea^2*x\ndone\n");
+    cli_result r = cli_in_tmpdir("run typo.ode");
+    CHECK(r.status == 2, "status %d", r.status);
+    CHECK(strstr(r.err, "typo.ode:3:5:") != NULL, "%s", r.err);
+    CHECK(strstr(r.err, "omega") != NULL && strstr(r.err, "y'=-omgea^2*x\n") != NULL, "%s", r.err);
+    CHECK(strstr(r.err, "\n      ^") != NULL, "caret under column 5:\n%s", r.err);
+    cli_free(&r);
+
+    write_file("markov.ode", "x'=-x\nmarkov z 2\n{0} {1}\n{1} {0}\ndone\n");
+    r = cli_in_tmpdir("run markov.ode");
+    CHECK(r.status == 2 && strstr(r.err, "markov.ode:2:") && strstr(r.err, "Markov"), "%d %s",
+          r.status, r.err);
+    cli_free(&r);
+
+    write_file("broken.c", "#include <dynkit/model.h>\n\nconst dyn_model *dynkit_model(void)\n"
+                           "{\n    return &undeclared_model;\n}\n");
+    r = cli_in_tmpdir("run broken.c");
+    CHECK(r.status == 2 && strstr(r.err, "broken.c:5:") && strstr(r.err, "undeclared_model"),
+          "%d %s", r.status, r.err);
+    cli_free(&r);
+
+    r = cli_in_tmpdir("run missing.ode");
+    CHECK(r.status == 2 && strstr(r.err, "missing.ode") && strstr(r.err, "No such file"), "%d %s",
+          r.status, r.err);
+    cli_free(&r);
+
+    r = cli("run pendlum");
+    CHECK(r.status == 2 && strstr(r.err, "did you mean 'pendulum'"), "%d %s", r.status, r.err);
+    cli_free(&r);
+    unlink(cli_path("typo.ode"));
+    unlink(cli_path("markov.ode"));
+    unlink(cli_path("broken.c"));
+}
+
+/* XPPAUT's options that do not concern a run are accepted; --verbose says so. */
+static void test_ignored_options_noted(void **state)
+{
+    (void)state;
+    write_file("opts.ode", "x'=-x\ninit x=1\n@ xlo=-2, xhi=2, total=1\ndone\n");
+    cli_result r = cli_in_tmpdir("run opts.ode --final --verbose");
+    CHECK(r.status == 0, "%s", r.err);
+    CHECK(strstr(r.err, "opts.ode:3: option 'xlo' is accepted and ignored") != NULL, "%s", r.err);
+    double t, x;
+    CHECK(sscanf(strchr(r.out, '\n') + 1, "%lf,%lf", &t, &x) == 2 && t == 1.0, "%s", r.out);
+    CHECK(fabs(x - exp(-1.0)) < 1e-5, "x(1) = %.17g", x);
+    cli_free(&r);
+    r = cli_in_tmpdir("run opts.ode --final");
+    CHECK(r.status == 0 && strstr(r.err, "xlo") == NULL, "notes only with --verbose: %s", r.err);
+    cli_free(&r);
+    unlink(cli_path("opts.ode"));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_pendulum_file_is_the_builtin),
+        cmocka_unit_test(test_vanderpol_file_default_run),
+        cmocka_unit_test(test_conservative_files_keep_energy),
+        cmocka_unit_test(test_duffing_reduces_to_harmonic),
+        cmocka_unit_test(test_lorenz_methods_agree),
+        cmocka_unit_test(test_bouncing_ball_impacts),
+        cmocka_unit_test(test_c_model_with_set),
+        cmocka_unit_test(test_info_of_a_file),
+        cmocka_unit_test(test_errors_in_model_files),
+        cmocka_unit_test(test_ignored_options_noted),
+    };
+    return cmocka_run_group_tests(tests, setup_all, teardown_all);
+}

@@ -341,7 +341,7 @@ int cli_run_parse_with(const char *command, int argc, char **argv, int other_ada
     run->t0 = m->t0;
     run->t1 = m->t1;
     run->step = m->step;
-    run->every = 1;
+    run->every = m->every > 1 ? m->every : 1; /* a model file's @ nout */
     const char *method_name = m->method;
     int n_as = 0, rc = CLI_OK;
     unsigned given = 0;

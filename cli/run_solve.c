@@ -2,8 +2,9 @@
  * fixed-step methods (the homework's loop), the general driver dyn_solve for adaptive
  * methods and for runs with events, the CVODE backend for cvode (when built). A model's
  * events that reset the state are part of its dynamics: every run includes them, asked
- * for with --event or not. The workspace is allocated here, outside the library's step
- * loop. */
+ * for with --event or not. A model's output rules (t_trans, bound) are applied to the
+ * samples. The workspace is allocated here, outside the library's step loop. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -122,9 +123,60 @@ static dyn_event *all_events(const cli_run *run, int *count)
     return ev;
 }
 
+/* A model's output rules (XPPAUT's @ trans and bound, dyn_model.t_trans and bound): no
+ * samples before t_trans, and a run stops when a state's magnitude exceeds the bound. */
+typedef struct model_output {
+    const dyn_model *model;
+    dyn_output_fn inner;
+    void *ctx;
+    double exceeded_t, exceeded_value; /* where the bound was exceeded */
+    int exceeded;                      /* index of that state + 1, or 0 */
+} model_output;
+
+static int model_output_sample(long k, double t, const double *y, void *ctx)
+{
+    model_output *mo = ctx;
+    const dyn_model *m = mo->model;
+    for (int i = 0; m->bound > 0 && i < m->n_states; i++)
+        if (fabs(y[i]) > m->bound) {
+            mo->exceeded = i + 1;
+            mo->exceeded_t = t;
+            mo->exceeded_value = y[i];
+            return 1;
+        }
+    if (t < m->t_trans)
+        return 0;
+    return mo->inner ? mo->inner(k, t, y, mo->ctx) : 0;
+}
+
+static int solve_run(const cli_run *run, long every, dyn_output_fn output, void *output_ctx,
+                     dyn_event_fn on_event, void *event_ctx, dyn_progress_fn progress,
+                     void *progress_ctx, double *y, dyn_result *res);
+
 int cli_run_solve(const cli_run *run, long every, dyn_output_fn output, void *output_ctx,
                   dyn_event_fn on_event, void *event_ctx, dyn_progress_fn progress,
                   void *progress_ctx, double *y, dyn_result *res)
+{
+    const dyn_model *m = run->model;
+    if (!(m->bound > 0) && !(m->t_trans > run->t0))
+        return solve_run(run, every, output, output_ctx, on_event, event_ctx, progress,
+                         progress_ctx, y, res);
+    model_output mo = {m, output, output_ctx, 0.0, 0.0, 0};
+    const int rc = solve_run(run, every, model_output_sample, &mo, on_event, event_ctx,
+                             progress, progress_ctx, y, res);
+    if (mo.exceeded && res->status == DYN_STOPPED) {
+        snprintf(res->message, sizeof res->message,
+                 "state %s = %g exceeds the model's bound %g at t = %.17g (the file's @ bound)",
+                 m->states[mo.exceeded - 1].name, mo.exceeded_value, m->bound, mo.exceeded_t);
+        res->fail_t = mo.exceeded_t;
+        res->fail_index = mo.exceeded - 1;
+    }
+    return rc;
+}
+
+static int solve_run(const cli_run *run, long every, dyn_output_fn output, void *output_ctx,
+                     dyn_event_fn on_event, void *event_ctx, dyn_progress_fn progress,
+                     void *progress_ctx, double *y, dyn_result *res)
 {
     const dyn_model *m = run->model;
     const int n = m->n_states;

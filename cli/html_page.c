@@ -140,6 +140,15 @@ void cli_json_model(cli_json *j, const dyn_model *m, const void *par)
         cli_json_string(j, m->params[i].unit);
     }
     cli_json_end_object(j);
+    /* the phase plane the model asks for (a model file's @ xp=, yp=): t, states, outputs */
+    if (m->phase_x && m->phase_y && cli_series_column(m, m->phase_x) >= 0 &&
+        cli_series_column(m, m->phase_y) >= 0) {
+        cli_json_key(j, "phase");
+        cli_json_begin_array(j);
+        cli_json_string(j, m->phase_x);
+        cli_json_string(j, m->phase_y);
+        cli_json_end_array(j);
+    }
     cli_json_end_object(j);
 }
 

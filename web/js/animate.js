@@ -18,6 +18,7 @@
     if (model.name === 'cart' && has(['sX', 'sY', 'theta'])) return 'cart';
     if (model.name === 'pendulum' && has(['phi']) && params.l) return 'pendulum';
     if (model.name === 'vanderpol' && has(['y1', 'y2'])) return 'phase';
+    if (model.phase) return 'phase';
     return null;
   }
 
@@ -36,7 +37,13 @@
     if (kind === 'plane') DK.PlaneView(view, runs, params, player);
     else if (kind === 'cart') DK.CartView(view, runs, params, player);
     else if (kind === 'pendulum') DK.PendulumView(view, runs, params.l, player);
-    else if (kind === 'phase') DK.PhaseView(view, runs, 'y1', 'y2', player);
+    else if (kind === 'phase') {
+      /* the model's own phase plane (a model file's @ xp=, yp=), or van der Pol's; equal
+       * scales when both axes have the same unit (a path in space) */
+      const [xn, yn] = model.phase || ['y1', 'y2'];
+      const same = DK.unit(runs[0].raw, xn) === DK.unit(runs[0].raw, yn) && xn !== 't' && yn !== 't';
+      DK.PhaseView(view, runs, xn, yn, player, same ? { equal: true } : undefined);
+    }
     else view.remove();
     document.body.classList.toggle('no-picture', !kind);
     document.getElementById('hint').textContent = 'keys: space play/pause · ←/→ one sample · shift+←/→ one second · ↑/↓ speed · home/end · click a plot to jump there';

@@ -1,7 +1,8 @@
 /* test_jit.c — tests of the jit layer (dynkit/jit.h): C models compiled by the system
  * compiler and by libtcc, loaded and integrated to known answers (the example spring-mass
- * against cos/sin, van der Pol bit for bit against the built-in model), the cache (a second
- * load runs no compiler; concurrent first loads in several processes), compiler errors that
+ * against cos/sin, van der Pol bit for bit against the built-in model, the translated .ode
+ * files of examples/models the same from both backends), the cache (a second load runs no
+ * compiler; concurrent first loads in several processes), compiler errors that
  * name the user's file and line, the model ABI check and the checks of the returned model, a
  * missing compiler (libtcc instead when none was named), and a model calling the library's
  * mech.h functions from this program.
@@ -16,6 +17,7 @@
 
 #include <cmocka.h>
 
+#include <dirent.h>
 #include <ftw.h>
 #include <math.h>
 #include <stdio.h>
@@ -28,6 +30,7 @@
 #include <unistd.h>
 
 #include "dynkit/jit.h"
+#include "dynkit/lang.h"
 #include "dynkit/mech.h"
 #include "dynkit/models.h"
 #include "test_util.h"
@@ -269,6 +272,56 @@ static void test_tcc_and_cc_agree(void **state)
     dyn_jit_unload(&b);
     dyn_jit_unload(&a2);
     dyn_jit_unload(&b2);
+}
+
+/* the translator's output (every .ode file in examples/models): both backends compile it
+ * and give the same numbers bit for bit */
+static void test_translated_examples_agree(void **state)
+{
+    fixture *f = *state;
+    if (!dyn_jit_backend_available(DYN_JIT_TCC))
+        skip();
+    DIR *d = opendir(DYNKIT_SOURCE_DIR "/examples/models");
+    assert_non_null(d);
+    struct dirent *e;
+    int count = 0;
+    while ((e = readdir(d)) != NULL) {
+        size_t n = strlen(e->d_name);
+        if (n < 5 || strcmp(e->d_name + n - 4, ".ode") != 0)
+            continue;
+        char path[1024], err[ERRLEN];
+        snprintf(path, sizeof path, "%s/examples/models/%s", DYNKIT_SOURCE_DIR, e->d_name);
+        FILE *fp = fopen(path, "rb");
+        assert_non_null(fp);
+        static char text[1 << 16];
+        size_t len = fread(text, 1, sizeof text, fp);
+        fclose(fp);
+        char *c_source = NULL;
+        dyn_lang_diag diag;
+        if (dyn_ode_to_c(path, text, len, &c_source, &diag, NULL, NULL) != 0) {
+            print_error("%s: %s\n", path, dyn_lang_diag_format(&diag, err, sizeof err));
+            fail();
+        }
+        dyn_jit_model a, b;
+        load_ok(c_source, path, &f->cc, &a);
+        load_ok(c_source, path, &f->tcc, &b);
+        free(c_source);
+        const dyn_model *m = a.model;
+        double ya[TEST_MAX_N], yb[TEST_MAX_N];
+        double h = m->step > 0 ? m->step : 0.01, t1 = fmin(m->t1 - m->t0, 1000 * h);
+        rk4_run(a.model, NULL, 0, t1, h, ya);
+        rk4_run(b.model, NULL, 0, t1, h, yb);
+        for (int i = 0; i < m->n_states; i++)
+            if (!same_bits(ya[i], yb[i])) {
+                print_error("%s: state %d: cc %.17g, tcc %.17g\n", path, i, ya[i], yb[i]);
+                fail();
+            }
+        dyn_jit_unload(&a);
+        dyn_jit_unload(&b);
+        count++;
+    }
+    closedir(d);
+    assert_true(count > 0);
 }
 
 /* a model calling mech.h functions, loaded into this program (linked with the library and
@@ -632,6 +685,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_spring_mass_example, setup, teardown),
         cmocka_unit_test_setup_teardown(test_vanderpol_bit_for_bit, setup, teardown),
         cmocka_unit_test_setup_teardown(test_tcc_and_cc_agree, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_translated_examples_agree, setup, teardown),
         cmocka_unit_test_setup_teardown(test_model_calls_library, setup, teardown),
         cmocka_unit_test_setup_teardown(test_second_load_is_cached, setup, teardown),
         cmocka_unit_test_setup_teardown(test_concurrent_first_loads, setup, teardown),

@@ -69,6 +69,8 @@ const pages = [
   { name: 'cart', args: ['animate', 'cart'] },
   { name: 'long-run', args: ['animate', 'vanderpol', '--step', '0.001', '--tspan', '0:200'] },
   { name: 'robertson', args: ['animate', 'robertson'], generic: true },
+  // a model file: its @ xp=, yp= phase plane (the lower mass's path) beside the time series
+  { name: 'double-pendulum-file', args: ['animate', path.join(here, '..', '..', 'examples', 'models', 'double_pendulum.ode')] },
 ];
 for (const p of pages) {
   p.file = path.join(artifacts, `${p.name}.html`);

@@ -119,7 +119,8 @@ static const char four_source_fmt[] =
     "             - p->m * p->g * y[0] * cos(y[1]) + 0.5 * p->k * pow(y[0] - p->l0, 2);\n"
     "    return 0;\n"
     "}\n"
-    "static const dyn_var states[] = {{\"r\", \"m\", \"length\"}, {\"theta\", \"rad\", \"angle\"},\n"
+    "static const dyn_var states[] = {{\"r\", \"m\", \"length\"}, {\"theta\", \"rad\", "
+    "\"angle\"},\n"
     "    {\"dr\", \"m/s\", \"\"}, {\"dtheta\", \"rad/s\", \"\"}};\n"
     "static const dyn_var outs[] = {{\"energy\", \"J\", \"total energy\"}};\n"
     "static const double init[] = {1.2, 0.5, 0.0, 0.0};\n"
@@ -138,10 +139,10 @@ static const char four_source_fmt[] =
  * Lorenz-96 with 40 states, x_i' = (x_{i+1} - x_{i-2}) x_{i-1} - x_i + F; the same text is
  * compiled into this program (L96_BODY) as the reference */
 #define L96_N 40
-#define L96_BODY                                                                             \
-    for (int i = 0; i < L96_N; i++)                                                          \
-        dydt[i] = (y[(i + 1) % L96_N] - y[(i + L96_N - 2) % L96_N]) * y[(i + L96_N - 1) % L96_N] \
-                  - y[i] + 8.0;
+#define L96_BODY                                                                                   \
+    for (int i = 0; i < L96_N; i++)                                                                \
+        dydt[i] = (y[(i + 1) % L96_N] - y[(i + L96_N - 2) % L96_N]) * y[(i + L96_N - 1) % L96_N] - \
+                  y[i] + 8.0;
 #define STR_(x) #x
 #define STR(x) STR_(x)
 static const char l96_source[] =
@@ -150,24 +151,26 @@ static const char l96_source[] =
     "static int rhs(double t, const double *y, double *dydt, void *p)\n"
     "{\n"
     "    (void)t, (void)p;\n"
-    "    " STR(L96_BODY) "\n"
-    "    return 0;\n"
-    "}\n"
-    "static double init[L96_N];\n"
-    "static dyn_var states[L96_N];\n"
-    "static char names[L96_N][8];\n"
-    "static dyn_model model = {.name = \"lorenz96\", .n_states = L96_N, .states = states,\n"
-    "    .y0 = init, .rhs = rhs, .t1 = 10.0, .step = 0.01, .method = \"rk4\"};\n"
-    "const dyn_model *dynkit_model(void)\n"
-    "{\n"
-    "    for (int i = 0; i < L96_N; i++) {\n"
-    "        init[i] = 8.0 + (i == 0 ? 0.01 : 0.0);\n"
-    "        names[i][0] = 'x'; names[i][1] = (char)('0' + i / 10);\n"
-    "        names[i][2] = (char)('0' + i % 10); names[i][3] = 0;\n"
-    "        states[i] = (dyn_var){names[i], \"1\", \"\"};\n"
-    "    }\n"
-    "    return &model;\n"
-    "}\n";
+    "    " STR(
+        L96_BODY) "\n"
+                  "    return 0;\n"
+                  "}\n"
+                  "static double init[L96_N];\n"
+                  "static dyn_var states[L96_N];\n"
+                  "static char names[L96_N][8];\n"
+                  "static dyn_model model = {.name = \"lorenz96\", .n_states = L96_N, .states = "
+                  "states,\n"
+                  "    .y0 = init, .rhs = rhs, .t1 = 10.0, .step = 0.01, .method = \"rk4\"};\n"
+                  "const dyn_model *dynkit_model(void)\n"
+                  "{\n"
+                  "    for (int i = 0; i < L96_N; i++) {\n"
+                  "        init[i] = 8.0 + (i == 0 ? 0.01 : 0.0);\n"
+                  "        names[i][0] = 'x'; names[i][1] = (char)('0' + i / 10);\n"
+                  "        names[i][2] = (char)('0' + i % 10); names[i][3] = 0;\n"
+                  "        states[i] = (dyn_var){names[i], \"1\", \"\"};\n"
+                  "    }\n"
+                  "    return &model;\n"
+                  "}\n";
 
 static int l96_rhs(double t, const double *y, double *dydt, void *p)
 {
@@ -178,9 +181,8 @@ static int l96_rhs(double t, const double *y, double *dydt, void *p)
 
 /* the compiled variants */
 enum { V_BUILTIN, V_CC, V_NATIVE, V_TCC, N_VARIANTS };
-static const char *variant_name[N_VARIANTS] = {"built in (dyn_model_vanderpol)",
-                                               "cc -O2 (default flags)", "cc -O3 -march=native",
-                                               "libtcc"};
+static const char *variant_name[N_VARIANTS] = {
+    "built in (dyn_model_vanderpol)", "cc -O2 (default flags)", "cc -O3 -march=native", "libtcc"};
 
 static int rk4_final(const dyn_model *m, long steps, double h, double *y)
 {
@@ -193,8 +195,8 @@ static int rk4_final(const dyn_model *m, long steps, double h, double *y)
     dyn_model_initial_state(m, par, y0);
     dyn_system sys = {m->rhs, m->n_states, par};
     dyn_result res;
-    return dyn_fixed_solve(dyn_method_find("rk4"), &sys, 0.0, (double)steps * h, h, y0, y,
-                           work, NULL, &res) != DYN_OK;
+    return dyn_fixed_solve(dyn_method_find("rk4"), &sys, 0.0, (double)steps * h, h, y0, y, work,
+                           NULL, &res) != DYN_OK;
 }
 
 static int load(const char *src, const dyn_jit_opts *o, dyn_jit_model *jm)
@@ -320,8 +322,9 @@ int main(int argc, char **argv)
         same[v] = models[v] && memcmp(yv[v], yv[V_BUILTIN], sizeof yv[v]) == 0;
         /* the default flags and libtcc must give the built-in model's numbers exactly */
         if (models[v] && !same[v] && v != V_NATIVE) {
-            fprintf(stderr, "bench_jit: %s: final state (%.17g, %.17g) differs from the "
-                            "built-in (%.17g, %.17g)\n",
+            fprintf(stderr,
+                    "bench_jit: %s: final state (%.17g, %.17g) differs from the "
+                    "built-in (%.17g, %.17g)\n",
                     variant_name[v], yv[v][0], yv[v][1], yv[V_BUILTIN][0], yv[V_BUILTIN][1]);
             failed = 1;
         }
@@ -335,8 +338,8 @@ int main(int argc, char **argv)
     double l96_init[L96_N];
     for (int i = 0; i < L96_N; i++)
         l96_init[i] = 8.0 + (i == 0 ? 0.01 : 0.0);
-    const dyn_model l96_here = {.name = "lorenz96", .n_states = L96_N, .y0 = l96_init,
-                                .rhs = l96_rhs};
+    const dyn_model l96_here = {
+        .name = "lorenz96", .n_states = L96_N, .y0 = l96_init, .rhs = l96_rhs};
     const dyn_model *lm[N_VARIANTS] = {&l96_here};
     for (int v = V_CC; v < N_VARIANTS; v++) {
         if (v == V_TCC && !have_tcc)
@@ -425,15 +428,14 @@ int main(int argc, char **argv)
     /* ---- report ---- */
     char cpu[256], ccv[256];
     const char *cc = getenv("DYNKIT_CC") && getenv("DYNKIT_CC")[0] ? getenv("DYNKIT_CC")
-                     : getenv("CC") && getenv("CC")[0]               ? getenv("CC")
-                                                                     : "cc";
+                     : getenv("CC") && getenv("CC")[0]             ? getenv("CC")
+                                                                   : "cc";
     char cmd[300];
     snprintf(cmd, sizeof cmd, "%s --version 2>/dev/null", cc);
     cpu_name(cpu, sizeof cpu);
     first_line_of(cmd, ccv, sizeof ccv);
     printf("## bench_jit%s\n\n", quick ? " --quick (checks only: the times mean nothing)" : "");
-    printf("%s; system compiler `%s`: %s; %d repetitions, medians (min)\n\n", cpu, cc, ccv,
-           reps);
+    printf("%s; system compiler `%s`: %s; %d repetitions, medians (min)\n\n", cpu, cc, ccv, reps);
     printf("| van der Pol, RK4, %ld steps | ns/step | ratio to built in | same bits |\n", steps);
     printf("|---|---:|---:|---|\n");
     for (int v = 0; v < N_VARIANTS; v++) {
@@ -441,7 +443,10 @@ int main(int argc, char **argv)
             continue;
         double m = median(ns[v], reps);
         printf("| %s | %.2f (%.2f) | %.3f | %s |\n", variant_name[v], m, minimum(ns[v], reps),
-               m / median(ns[V_BUILTIN], reps), v == V_BUILTIN ? "" : same[v] ? "yes" : "no");
+               m / median(ns[V_BUILTIN], reps),
+               v == V_BUILTIN ? ""
+               : same[v]      ? "yes"
+                              : "no");
     }
     printf("\n| Lorenz-96 (40 states), RK4, %ld steps | ns/step | ratio to compiled in | same "
            "bits |\n|---|---:|---:|---|\n",
@@ -453,18 +458,18 @@ int main(int argc, char **argv)
         printf("| %s | %.1f (%.1f) | %.3f | %s |\n",
                v == V_BUILTIN ? "compiled into this program" : variant_name[v], m,
                minimum(l96_ns[v], reps), m / median(l96_ns[V_BUILTIN], reps),
-               v == V_BUILTIN ? "" : l96_same[v] ? "yes" : "no");
+               v == V_BUILTIN ? ""
+               : l96_same[v]  ? "yes"
+                              : "no");
     }
     printf("\n| new 4-state model: compile + load + 1000 RK4 steps | ms in all | of which "
            "compiling |\n|---|---:|---:|\n");
-    printf("| cc -O2, into an empty cache (headers written first) | %.1f | |\n",
-           empty_cache_ms);
+    printf("| cc -O2, into an empty cache (headers written first) | %.1f | |\n", empty_cache_ms);
     for (int f = 0; f < N_FIRST; f++) {
         if (first_variant[f] == V_TCC && !have_tcc)
             continue;
         printf("| %s | %.1f (%.1f) | %.1f |\n", variant_name[first_variant[f]],
-               median(first_ms[f], reps), minimum(first_ms[f], reps),
-               median(compile_ms[f], reps));
+               median(first_ms[f], reps), minimum(first_ms[f], reps), median(compile_ms[f], reps));
     }
     printf("\n| cached run: load from the cache (hash, stat, dlopen, checks) + 1000 RK4 steps "
            "| ms |\n"
@@ -475,11 +480,17 @@ int main(int argc, char **argv)
     double first = median(first_ms[F_CC], reps), cached = median(cached_ms, reps);
     printf("\n| target (issue 9), default backend cc | measured | |\n|---|---:|---|\n");
     printf("| right-hand side within 1.3x of built in | %.3f | %s |\n", ratio,
-           quick ? "(quick)" : ratio <= 1.3 ? "met" : "missed");
+           quick          ? "(quick)"
+           : ratio <= 1.3 ? "met"
+                          : "missed");
     printf("| first run of a new 4-state model under 300 ms | %.0f ms | %s |\n", first,
-           quick ? "(quick)" : first < 300 ? "met" : "missed");
+           quick         ? "(quick)"
+           : first < 300 ? "met"
+                         : "missed");
     printf("| cached run adding under 20 ms | %.2f ms | %s |\n", cached,
-           quick ? "(quick)" : cached < 20 ? "met" : "missed");
+           quick         ? "(quick)"
+           : cached < 20 ? "met"
+                         : "missed");
     if (failed)
         fprintf(stderr, "bench_jit: FAILED\n");
     return failed ? 1 : 0;

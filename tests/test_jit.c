@@ -86,8 +86,8 @@ static void write_text(const char *path, const char *text)
 
 /* Integrate m with its default parameters (then set[i] = value) by RK4 from 0 to t1 with
  * step h; final state into y. */
-static void rk4_run(const dyn_model *m, const char *set_name, double set_value, double t1,
-                    double h, double *y)
+static void rk4_run(const dyn_model *m, const char *set_name, double set_value, double t1, double h,
+                    double *y)
 {
     double par[64] = {0}, work[TEST_WORK], y0[TEST_MAX_N];
     char err[256];
@@ -104,9 +104,8 @@ static void rk4_run(const dyn_model *m, const char *set_name, double set_value, 
     dyn_model_initial_state(m, par, y0);
     dyn_system sys = {m->rhs, m->n_states, par};
     dyn_result res;
-    assert_int_equal(dyn_fixed_solve(dyn_method_find("rk4"), &sys, 0.0, t1, h, y0, y, work,
-                                     NULL, &res),
-                     DYN_OK);
+    assert_int_equal(
+        dyn_fixed_solve(dyn_method_find("rk4"), &sys, 0.0, t1, h, y0, y, work, NULL, &res), DYN_OK);
 }
 
 static void load_ok(const char *source, const char *name, const dyn_jit_opts *opts,
@@ -255,8 +254,8 @@ static void test_tcc_and_cc_agree(void **state)
     assert_string_equal(a.so_path, "");
     load_ok(mech_source, "frame.c", &f->tcc, &b);
     dyn_jit_model a2, b2;
-    assert_int_equal(dyn_jit_load_c_file(DYNKIT_SOURCE_DIR "/examples/models/spring_mass.c",
-                                         &f->cc, &a2, err, sizeof err),
+    assert_int_equal(dyn_jit_load_c_file(DYNKIT_SOURCE_DIR "/examples/models/spring_mass.c", &f->cc,
+                                         &a2, err, sizeof err),
                      0);
     load_ok(mech_source, "frame.c", &f->cc, &b2);
     double ya[2], ya2[2], yb[3], yb2[3];
@@ -329,8 +328,8 @@ static void test_translated_examples_agree(void **state)
 static void test_model_calls_library(void **state)
 {
     fixture *f = *state;
-    const dyn_model here = {.name = "frame", .n_states = 3, .y0 = (const double[]){1.0, 0.5, -0.25},
-                            .rhs = mech_rhs};
+    const dyn_model here = {
+        .name = "frame", .n_states = 3, .y0 = (const double[]){1.0, 0.5, -0.25}, .rhs = mech_rhs};
     double ref[3], y[3];
     rk4_run(&here, NULL, 0, 2.0, 0.01, ref);
     const dyn_jit_opts *opts[2] = {&f->cc, &f->tcc};
@@ -415,8 +414,8 @@ static void test_concurrent_first_loads(void **state)
             if (read(gate[0], &c, 1) != 0) /* wait until the parent closes the gate */
                 _exit(3);
             dyn_jit_model jm;
-            if (dyn_jit_load_source(mech_source, strlen(mech_source), "frame.c", &f->cc, &jm,
-                                    err, sizeof err) != 0) {
+            if (dyn_jit_load_source(mech_source, strlen(mech_source), "frame.c", &f->cc, &jm, err,
+                                    sizeof err) != 0) {
                 fprintf(stderr, "child %d: %s\n", i, err);
                 _exit(1);
             }
@@ -487,8 +486,8 @@ static void test_syntax_error_names_the_file(void **state)
     const char generated[] = "#include <dynkit/model.h>\n"
                              "#line 12 \"lorenz.ode\"\n"
                              "static double f(double x) { return x +* ; }\n";
-    assert_int_not_equal(dyn_jit_load_source(generated, strlen(generated), "lorenz.ode",
-                                             &f->cc, &jm, err, sizeof err),
+    assert_int_not_equal(dyn_jit_load_source(generated, strlen(generated), "lorenz.ode", &f->cc,
+                                             &jm, err, sizeof err),
                          0);
     assert_non_null(strstr(err, "lorenz.ode:12:"));
 }
@@ -587,8 +586,8 @@ static void test_bad_models_refused(void **state)
             if (!dyn_jit_backend_available(opts[b]->backend))
                 continue;
             dyn_jit_model jm;
-            int rc = dyn_jit_load_source(text, strlen(text), "null.c", opts[b], &jm, err,
-                                         sizeof err);
+            int rc =
+                dyn_jit_load_source(text, strlen(text), "null.c", opts[b], &jm, err, sizeof err);
             if (rc == 0 || !strstr(err, cases[i].message))
                 print_error("case %zu (%s): no '%s' in '%s'\n", i,
                             dyn_jit_backend_name(opts[b]->backend), cases[i].message, err);
@@ -607,9 +606,9 @@ static void test_missing_compiler(void **state)
     dyn_jit_model jm;
     dyn_jit_opts opts = f->cc;
     opts.cc = "/nonexistent/dynkit-cc";
-    assert_int_not_equal(dyn_jit_load_source(vdp_source, strlen(vdp_source), "vdp.c", &opts,
-                                             &jm, err, sizeof err),
-                         0);
+    assert_int_not_equal(
+        dyn_jit_load_source(vdp_source, strlen(vdp_source), "vdp.c", &opts, &jm, err, sizeof err),
+        0);
     assert_non_null(strstr(err, "the C compiler '/nonexistent/dynkit-cc' was not found"));
     assert_non_null(strstr(err, "apt-get install gcc"));
     assert_non_null(strstr(err, "DYNKIT_CC"));
@@ -633,14 +632,13 @@ static void test_missing_compiler(void **state)
     /* and a bad DYNKIT_JIT is named */
     setenv("DYNKIT_JIT", "gcc", 1);
     dyn_jit_opts automatic = {.cache_dir = f->cache};
-    assert_int_not_equal(dyn_jit_load_source(vdp_source, strlen(vdp_source), "vdp.c",
-                                             &automatic, &jm, err, sizeof err),
+    assert_int_not_equal(dyn_jit_load_source(vdp_source, strlen(vdp_source), "vdp.c", &automatic,
+                                             &jm, err, sizeof err),
                          0);
     assert_non_null(strstr(err, "DYNKIT_JIT=gcc"));
     unsetenv("DYNKIT_JIT");
     /* a missing file */
-    assert_int_not_equal(dyn_jit_load_c_file("/nonexistent/model.c", &f->cc, &jm, err,
-                                             sizeof err),
+    assert_int_not_equal(dyn_jit_load_c_file("/nonexistent/model.c", &f->cc, &jm, err, sizeof err),
                          0);
     assert_non_null(strstr(err, "cannot open /nonexistent/model.c"));
 }

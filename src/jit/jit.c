@@ -31,11 +31,11 @@ int dyn_jit_backend_available(dyn_jit_backend backend)
 }
 
 /* DYN_JIT_AUTO: $DYNKIT_JIT when set, else the system compiler, and libtcc when there is no
- * system compiler and none was named (*fallback = 1). See docs/model-files.md, "Compiling models": the system
- * compiler's code runs up to 3 times faster than libtcc's, its first compilation of a model
- * (about 0.13 s) is within the target, and every later run only loads the cached object. */
-static int choose_backend(const dyn_jit_opts *opts, dyn_jit_backend *b, int *fallback,
-                          char *err, size_t errlen)
+ * system compiler and none was named (*fallback = 1). See docs/model-files.md, "Compiling models":
+ * the system compiler's code runs up to 3 times faster than libtcc's, its first compilation of a
+ * model (about 0.13 s) is within the target, and every later run only loads the cached object. */
+static int choose_backend(const dyn_jit_opts *opts, dyn_jit_backend *b, int *fallback, char *err,
+                          size_t errlen)
 {
     *b = opts ? opts->backend : DYN_JIT_AUTO;
     *fallback = 0;
@@ -91,8 +91,8 @@ int dyn_jit_load_source(const char *source, size_t len, const char *source_name,
     return rc != 0;
 }
 
-int dyn_jit_load_c_file(const char *path, const dyn_jit_opts *opts, dyn_jit_model *out,
-                        char *err, size_t errlen)
+int dyn_jit_load_c_file(const char *path, const dyn_jit_opts *opts, dyn_jit_model *out, char *err,
+                        size_t errlen)
 {
     memset(out, 0, sizeof *out);
     FILE *f = fopen(path, "rb");
@@ -130,12 +130,12 @@ static int check_vars(const dyn_var *v, int n, const char *what, const char *whe
                       size_t errlen)
 {
     if (n < 0)
-        return jit_fail(err, errlen, "%s: dynkit_model() returned a model with n_%s = %d",
-                        where, what, n);
+        return jit_fail(err, errlen, "%s: dynkit_model() returned a model with n_%s = %d", where,
+                        what, n);
     if (n > 0 && !v)
         return jit_fail(err, errlen,
-                        "%s: dynkit_model() returned a model with n_%s = %d but no %s array",
-                        where, what, n, what);
+                        "%s: dynkit_model() returned a model with n_%s = %d but no %s array", where,
+                        what, n, what);
     for (int i = 0; i < n; i++)
         if (!v[i].name || !v[i].name[0])
             return jit_fail(err, errlen, "%s: %s %d of the model has no name", where, what, i);
@@ -145,14 +145,13 @@ static int check_vars(const dyn_var *v, int n, const char *what, const char *whe
 int jit_check_model(const dyn_model *m, const char *where, char *err, size_t errlen)
 {
     if (!m)
-        return jit_fail(err, errlen, "%s: dynkit_model() returned NULL instead of a model",
-                        where);
+        return jit_fail(err, errlen, "%s: dynkit_model() returned NULL instead of a model", where);
     if (!m->name || !m->name[0])
         return jit_fail(err, errlen, "%s: the model has no name (dyn_model.name)", where);
     if (m->n_states <= 0)
         return jit_fail(err, errlen,
-                        "%s: the model '%s' has n_states = %d (it needs at least one state)",
-                        where, m->name, m->n_states);
+                        "%s: the model '%s' has n_states = %d (it needs at least one state)", where,
+                        m->name, m->n_states);
     if (!m->rhs)
         return jit_fail(err, errlen, "%s: the model '%s' has no right-hand side (dyn_model.rhs)",
                         where, m->name);
@@ -176,8 +175,8 @@ int jit_check_model(const dyn_model *m, const char *where, char *err, size_t err
     for (int i = 0; i < m->n_params; i++) {
         const dyn_param *p = &m->params[i];
         if (!p->name || !p->name[0])
-            return jit_fail(err, errlen, "%s: parameter %d of the model '%s' has no name", where,
-                            i, m->name);
+            return jit_fail(err, errlen, "%s: parameter %d of the model '%s' has no name", where, i,
+                            m->name);
         if (m->par_size < sizeof(double) || p->offset > m->par_size - sizeof(double) ||
             p->offset % _Alignof(double) != 0)
             return jit_fail(err, errlen,
@@ -192,8 +191,8 @@ int jit_check_model(const dyn_model *m, const char *where, char *err, size_t err
     for (int i = 0; i < m->n_events; i++)
         if (!m->events[i].name || !m->events[i].name[0] || !m->events[i].g)
             return jit_fail(err, errlen,
-                            "%s: event %d of the model '%s' has no name or no function g",
-                            where, i, m->name);
+                            "%s: event %d of the model '%s' has no name or no function g", where, i,
+                            m->name);
     if (!isfinite(m->t0) || !isfinite(m->t1) || !isfinite(m->step) || m->step < 0)
         return jit_fail(err, errlen,
                         "%s: the model '%s' has a bad default run (t0 = %g, t1 = %g, step = %g)",
@@ -214,8 +213,7 @@ static const char *base_name(const char *path)
     return s ? s + 1 : path;
 }
 
-int jit_load_so(const char *path, const char *where, dyn_jit_model *out, char *err,
-                size_t errlen)
+int jit_load_so(const char *path, const char *where, dyn_jit_model *out, char *err, size_t errlen)
 {
     memset(out, 0, sizeof *out);
     /* dlopen searches the library path for a name without '/': a file is meant */

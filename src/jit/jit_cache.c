@@ -152,8 +152,7 @@ void jit_sweep_stale(const char *cache)
 
 int jit_include_dir(const char *cache, char *dir, size_t size, char *err, size_t errlen)
 {
-    int n = snprintf(dir, size, "%s/include-%s-%.16s", cache, DYNKIT_VERSION,
-                     dyn_jit_headers_hash);
+    int n = snprintf(dir, size, "%s/include-%s-%.16s", cache, DYNKIT_VERSION, dyn_jit_headers_hash);
     if (n < 0 || (size_t)n >= size)
         return jit_fail(err, errlen, "cache directory path too long: %s", cache);
     struct stat st;
@@ -188,8 +187,7 @@ int jit_include_dir(const char *cache, char *dir, size_t size, char *err, size_t
     return 0;
 }
 
-char *jit_source_with_line(const char *source, size_t len, const char *source_name,
-                           size_t *out_len)
+char *jit_source_with_line(const char *source, size_t len, const char *source_name, size_t *out_len)
 {
     const char *name = source_name && source_name[0] ? source_name : "model.c";
     size_t nlen = strlen(name);

@@ -66,8 +66,7 @@ static int add_split(words *w, const char *s, int whole_if_file)
     return 0;
 }
 
-static const char *pick(const char *given, const char *env1, const char *env2,
-                        const char *fallback)
+static const char *pick(const char *given, const char *env1, const char *env2, const char *fallback)
 {
     const char *v;
     if (given && given[0])
@@ -214,8 +213,8 @@ static void stem_of(const char *name, char *stem, size_t size)
     stem[k] = '\0';
 }
 
-int jit_cc_load(const char *source, size_t len, const char *source_name,
-                const dyn_jit_opts *opts, dyn_jit_model *out, char *err, size_t errlen)
+int jit_cc_load(const char *source, size_t len, const char *source_name, const dyn_jit_opts *opts,
+                dyn_jit_model *out, char *err, size_t errlen)
 {
     const char *where = source_name && source_name[0] ? source_name : "model.c";
     char cache[1024], inc[1100];
@@ -296,9 +295,8 @@ int jit_cc_load(const char *source, size_t len, const char *source_name,
                         strerror(e));
     }
     free(text);
-    if (add_word(argv, "-I", 2) || add_word(argv, inc, strlen(inc)) ||
-        add_word(argv, "-o", 2) || add_word(argv, tmp_so, strlen(tmp_so)) ||
-        add_word(argv, tmp_c, strlen(tmp_c)) ||
+    if (add_word(argv, "-I", 2) || add_word(argv, inc, strlen(inc)) || add_word(argv, "-o", 2) ||
+        add_word(argv, tmp_so, strlen(tmp_so)) || add_word(argv, tmp_c, strlen(tmp_c)) ||
         add_word(argv, "-lm", 3)) {
         unlink(tmp_c);
         free(argv);
@@ -314,12 +312,12 @@ int jit_cc_load(const char *source, size_t len, const char *source_name,
     if (status < 0) {
         if (-status == ENOENT)
             rc = 1 + jit_fail(err, errlen,
-                          "cannot compile %s: the C compiler '%s' was not found: install one "
-                          "(apt-get install gcc), or set DYNKIT_CC to a C compiler%s",
-                          where, argv->argv[0],
-                          dyn_jit_backend_available(DYN_JIT_TCC)
-                              ? ", or use the built-in libtcc (DYNKIT_JIT=tcc)"
-                              : "");
+                              "cannot compile %s: the C compiler '%s' was not found: install one "
+                              "(apt-get install gcc), or set DYNKIT_CC to a C compiler%s",
+                              where, argv->argv[0],
+                              dyn_jit_backend_available(DYN_JIT_TCC)
+                                  ? ", or use the built-in libtcc (DYNKIT_JIT=tcc)"
+                                  : "");
         else
             rc = jit_fail(err, errlen, "cannot run the C compiler '%s': %s", argv->argv[0],
                           strerror(-status));

@@ -70,16 +70,15 @@ int jit_check_model(const dyn_model *m, const char *where, char *err, size_t err
 
 /* dlopen a shared object, check its ABI stamp and its model; `where` names it in messages
  * (the user's source for a compiled one). */
-int jit_load_so(const char *path, const char *where, dyn_jit_model *out, char *err,
-                size_t errlen);
+int jit_load_so(const char *path, const char *where, dyn_jit_model *out, char *err, size_t errlen);
 
 /* Backends: compile and load; fill out (model, handle, backend, cached, compile_seconds,
  * so_path). 0, or non-zero with a message: jit_cc_load returns 2 when the compiler was not
  * found. */
-int jit_cc_load(const char *source, size_t len, const char *source_name,
-                const dyn_jit_opts *opts, dyn_jit_model *out, char *err, size_t errlen);
-int jit_tcc_load(const char *source, size_t len, const char *source_name,
-                 const dyn_jit_opts *opts, dyn_jit_model *out, char *err, size_t errlen);
+int jit_cc_load(const char *source, size_t len, const char *source_name, const dyn_jit_opts *opts,
+                dyn_jit_model *out, char *err, size_t errlen);
+int jit_tcc_load(const char *source, size_t len, const char *source_name, const dyn_jit_opts *opts,
+                 dyn_jit_model *out, char *err, size_t errlen);
 void jit_tcc_unload(void *handle);
 
 #endif /* DYNKIT_JIT_INTERNAL_H */

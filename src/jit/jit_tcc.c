@@ -55,8 +55,8 @@ static int fail_with(char *err, size_t errlen, const char *what, const char *whe
     return jit_fail(err, errlen, "%s %s failed (libtcc gave no message)", what, where);
 }
 
-int jit_tcc_load(const char *source, size_t len, const char *source_name,
-                 const dyn_jit_opts *opts, dyn_jit_model *out, char *err, size_t errlen)
+int jit_tcc_load(const char *source, size_t len, const char *source_name, const dyn_jit_opts *opts,
+                 dyn_jit_model *out, char *err, size_t errlen)
 {
     const char *where = source_name && source_name[0] ? source_name : "model.c";
     char cache[1024], inc[1100];
@@ -147,8 +147,8 @@ void jit_tcc_unload(void *handle)
 
 #else /* no libtcc */
 
-int jit_tcc_load(const char *source, size_t len, const char *source_name,
-                 const dyn_jit_opts *opts, dyn_jit_model *out, char *err, size_t errlen)
+int jit_tcc_load(const char *source, size_t len, const char *source_name, const dyn_jit_opts *opts,
+                 dyn_jit_model *out, char *err, size_t errlen)
 {
     (void)source, (void)len, (void)source_name, (void)opts, (void)out;
     return jit_fail(err, errlen, "this dynkit was built without libtcc");

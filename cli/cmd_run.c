@@ -211,7 +211,8 @@ int cli_cmd_run(int argc, char **argv)
         return CLI_USAGE;
     }
     FILE *out = stdout, *evout = NULL;
-    if (run.output_path && !(out = fopen(run.output_path, "w"))) {
+    if (run.output_path && strcmp(run.output_path, "-") != 0 &&
+        !(out = fopen(run.output_path, "w"))) {
         rc = cli_usage_error("run", "cannot open --output '%s' for writing: %s", run.output_path,
                              strerror(errno));
         cli_run_free(&run);

@@ -1,11 +1,13 @@
 /* dynkit run MODEL: integrate a model and stream CSV (header "t,<states>[,<outputs>]");
  * with --event, the events as CSV "event,t,<states>" (--events-output) or on stderr. */
 #include <errno.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
 #include "table_formats.h"
+#include "out_file.h"
 
 /* Where samples go: CSV rows, or (with --final) only the latest sample kept in memory. */
 typedef struct csv_sink {
@@ -14,7 +16,9 @@ typedef struct csv_sink {
     const cli_run *run;
     double *extra;       /* (n_outputs) */
     long rows;
+    double last_t;            /* time of the last row written */
     int io_failed;
+    int io_errno;             /* errno of the failed write */
     const char *warned[8];    /* each distinct warning is printed once */
     int n_warned;
     long every;               /* keep samples k % every == 0 and the last one */
@@ -60,10 +64,12 @@ static int write_sample(csv_sink *sink, double t, const double *y)
     }
     if (cli_table_row(sink->table, t, y, m->n_states, sink->extra, n_extra)) {
         sink->io_failed = 1;
+        sink->io_errno = errno;
         return 1;
     }
     sink->rows++;
-    return 0;
+    sink->last_t = t;
+    return cli_stop_signal != 0; /* SIGINT/SIGTERM: stop after a complete row */
 }
 
 static int on_sample(long k, double t, const double *y, void *ctx)
@@ -113,6 +119,16 @@ static int on_event(int index, double t, const double *y, int direction, void *c
     return 0;
 }
 
+/* Progress on a terminal, and the stop asked by SIGINT/SIGTERM (checked between steps,
+ * also when no sample is written for a long time: --final, --every). */
+static int on_progress(double t, double fraction, void *ctx)
+{
+    cli_progress *p = ctx;
+    if (p->enabled)
+        cli_progress_update(t, fraction, p);
+    return cli_stop_signal != 0;
+}
+
 static void run_help(void)
 {
     puts("Usage: dynkit run MODEL [options]\n"
@@ -138,8 +154,14 @@ static void run_help(void)
          "  dynkit inverse cart --output forces.csv   (prints the --init options for:)\n"
          "  dynkit run cart --forces forces.csv --method heun --init dsX=-20 ...\n");
     cli_run_options_help(stdout);
-    puts("\nExit status: 0 success, 1 failed run (e.g. a state became NaN or Inf; the samples\n"
-         "up to there are still written), 2 bad command line.");
+    puts("\nOutput files are written under a temporary name beside FILE and renamed when the\n"
+         "run ends: a bad option or a run that fails before its first sample leaves an\n"
+         "existing FILE as it was; a failed run that produced samples keeps them in FILE.\n"
+         "SIGINT (Ctrl-C) or SIGTERM ends a run after its current row: the output holds\n"
+         "every complete row up to there, and the exit status is 130 or 143.\n"
+         "\nExit status: 0 success, 1 failed run (e.g. a state became NaN or Inf; the samples\n"
+         "up to there are still written) or an output that cannot be written, 2 bad command\n"
+         "line.");
 }
 
 static void report_failure(const cli_run *run, const dyn_result *res, const double *y_good,
@@ -210,30 +232,49 @@ int cli_cmd_run(int argc, char **argv)
         cli_run_free(&run);
         return CLI_USAGE;
     }
-    FILE *out = stdout, *evout = NULL;
-    if (run.output_path && strcmp(run.output_path, "-") != 0 &&
-        !(out = fopen(run.output_path, "w"))) {
-        rc = cli_usage_error("run", "cannot open --output '%s' for writing: %s", run.output_path,
-                             strerror(errno));
+    if (!run.times && !at_steps && grid.samples == 1 && run.t1 > run.t0) {
+        rc = cli_usage_error("run",
+                             "--step %g is longer than --tspan %g:%g: with --end grid the run "
+                             "would have no sample after T0 (--end exact takes one shorter "
+                             "step to T1)",
+                             run.step, run.t0, run.t1);
         cli_run_free(&run);
         return rc;
     }
-    if (run.events_path && !(evout = fopen(run.events_path, "w"))) {
-        rc = cli_usage_error("run", "cannot open --events-output '%s' for writing: %s",
-                             run.events_path, strerror(errno));
-        if (out != stdout)
-            fclose(out);
+    if (run.events_path && (cli_same_file(run.output_path, run.events_path) ||
+                            (!run.output_path && strcmp(run.events_path, "-") == 0))) {
+        rc = cli_usage_error("run",
+                             "--output and --events-output name the same file '%s': give "
+                             "two files",
+                             run.events_path);
         cli_run_free(&run);
         return rc;
     }
+    cli_out outf = {0}, evf = {0};
+    if (cli_out_open(&outf, "--output", run.output_path) != CLI_OK) {
+        cli_run_free(&run);
+        return CLI_FAILED;
+    }
+    if (run.events_path && cli_out_open(&evf, "--events-output", run.events_path) != CLI_OK) {
+        cli_out_close(&outf, 0);
+        cli_run_free(&run);
+        return CLI_FAILED;
+    }
+    FILE *out = outf.f, *evout = evf.f;
+    int keep = 0; /* keep the output files (else the real names keep what they had) */
+    dyn_result res;
+    memset(&res, 0, sizeof res);
     double *buffers = calloc((size_t)(2 * n + m->n_outputs + 1), sizeof *buffers);
     if (!buffers) {
         fprintf(stderr, "dynkit: error: out of memory\n");
         rc = CLI_FAILED;
         goto done;
     }
-    csv_sink sink = {.out = out, .run = &run, .extra = buffers + n, .pending_y = buffers + n +
-                                                                                 m->n_outputs};
+    csv_sink sink = {.out = out,
+                     .run = &run,
+                     .extra = buffers + n,
+                     .pending_y = buffers + n + m->n_outputs,
+                     .last_t = -HUGE_VAL};
     event_sink es = {.out = evout, .run = &run};
     if (!(sink.table = table = cli_table_open_run(out, format, &run, run.header, ferr,
                                                   sizeof ferr))) {
@@ -258,14 +299,14 @@ int cli_cmd_run(int argc, char **argv)
     /* thinning: every K-th sample and the last; the last is known beforehand only for a
      * fixed-step run without events (the general driver may end early at an event) */
     sink.last_k = general ? -1 : grid.samples - 1;
-    const long keep = run.final_only ? 0x7fffffffffffffffL : run.every;
+    const long thin = run.final_only ? 0x7fffffffffffffffL : run.every;
     /* the fixed-step driver thins the samples itself unless the model checks every state for
      * warnings */
-    sink.every = general || m->warn ? keep : 1;
-    dyn_result res;
-    int solved = cli_run_solve(&run, general || m->warn ? 1 : keep, on_sample, &sink, on_event, &es,
-                               progress.enabled ? cli_progress_update : NULL, &progress, buffers,
-                               &res);
+    sink.every = general || m->warn ? thin : 1;
+    cli_signals_graceful(1);
+    int solved = cli_run_solve(&run, general || m->warn ? 1 : thin, on_sample, &sink, on_event,
+                               &es, on_progress, &progress, buffers, &res);
+    cli_signals_graceful(0);
     cli_progress_finish(&progress);
     if (solved < 0) {
         fprintf(stderr, "dynkit: error: out of memory\n");
@@ -284,19 +325,47 @@ int cli_cmd_run(int argc, char **argv)
             write_sample(&sink, res.t, buffers); /* the driver leaves the state there */
     } else if (sink.pending) {
         write_sample(&sink, sink.pending_t, sink.pending_y); /* the last one is always kept */
+    } else if (!general && res.status != DYN_OK && sink.seen && res.t > sink.last_t) {
+        /* a failed or stopped fixed-step run thinned by --every: its last good sample */
+        write_sample(&sink, res.t, buffers);
     }
     /* the formats kept in memory (npz, mat) are written now, json's document closed */
-    if (cli_table_finish(table, ferr, sizeof ferr)) {
-        fprintf(stderr, "dynkit: error: --output: %s\n", ferr);
+    const int pipe_gone = !outf.path && sink.io_failed && sink.io_errno == EPIPE;
+    if (!pipe_gone && cli_table_finish(table, ferr, sizeof ferr)) {
+        if (outf.path || errno != EPIPE)
+            fprintf(stderr, "dynkit: error: --output: %s\n", ferr);
         sink.io_failed = 1;
+        sink.io_errno = errno;
     }
-    if (fflush(out) != 0 || sink.io_failed) {
-        fprintf(stderr, "dynkit: error: writing the output failed: %s\n", strerror(errno));
+    /* a failed run keeps its file when it produced samples */
+    keep = res.status == DYN_OK || sink.seen;
+    if (pipe_gone || (!outf.path && sink.io_failed && sink.io_errno == EPIPE)) {
+        /* the reader of a pipe is gone (| head): end quietly */
+        clearerr(stdout);
+        rc = CLI_FAILED;
+        goto done;
+    }
+    errno = 0;
+    if (fflush(out) != 0 || sink.io_failed || ferror(out)) {
+        /* a cut file never replaces the real name; a closed pipe ends quietly */
+        if (outf.path)
+            fprintf(stderr, "dynkit: error: writing --output '%s' failed: %s%s\n", outf.path,
+                    errno ? strerror(errno) : "a write failed",
+                    outf.tmp ? "; the file was left as it was" : "");
+        else if (errno != EPIPE)
+            fprintf(stderr, "dynkit: error: writing the output failed: %s\n",
+                    errno ? strerror(errno) : "a write failed");
+        if (!outf.path)
+            clearerr(stdout); /* reported here, not again at exit */
+        keep = 0;
         rc = CLI_FAILED;
     }
-    if (evout && (fflush(evout) != 0 || es.io_failed)) {
-        fprintf(stderr, "dynkit: error: writing --events-output %s failed: %s\n",
-                run.events_path, strerror(errno));
+    errno = 0;
+    if (evout && (fflush(evout) != 0 || es.io_failed || ferror(evout))) {
+        fprintf(stderr, "dynkit: error: writing --events-output '%s' failed: %s%s\n",
+                run.events_path, errno ? strerror(errno) : "a write failed",
+                evf.tmp ? "; the file was left as it was" : "");
+        keep = 0;
         rc = CLI_FAILED;
     }
     if (res.stiff)
@@ -308,15 +377,20 @@ int cli_cmd_run(int argc, char **argv)
                 run.events[res.event_index].name, res.t);
     if (run.stats)
         fprintf(stderr, "%s\n", cli_stats_line(&run, &res, line, sizeof line));
-    if (res.status != DYN_OK) {
+    if (cli_stop_signal) {
+        fprintf(stderr,
+                "dynkit: %s: the run stopped at t = %.17g; the samples up to it were written\n",
+                cli_signal_name(), res.t);
+        rc = cli_signal_status();
+    } else if (res.status != DYN_OK) {
         report_failure(&run, &res, buffers, &sink);
         rc = CLI_FAILED;
     }
 done:
-    if (out != stdout)
-        fclose(out);
-    if (evout)
-        fclose(evout);
+    if (cli_out_close(&outf, keep) != CLI_OK && rc == CLI_OK)
+        rc = CLI_FAILED;
+    if (cli_out_close(&evf, keep) != CLI_OK && rc == CLI_OK)
+        rc = CLI_FAILED;
     free(buffers);
     cli_table_free(table);
     cli_run_free(&run);

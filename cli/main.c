@@ -3,6 +3,7 @@
 
 #include "cli.h"
 #include "dynkit/lang.h"
+#include "out_file.h"
 #include "pages.h"
 
 static void main_help(void)
@@ -77,15 +78,16 @@ int main(int argc, char **argv)
     }
     if (cli_is_help(argv[1])) {
         main_help();
-        return CLI_OK;
+        return cli_stdout_check(CLI_OK);
     }
     if (strcmp(argv[1], "--version") == 0) {
         puts("dynkit 0.1.0");
-        return CLI_OK;
+        return cli_stdout_check(CLI_OK);
     }
+    cli_signals_install();
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
         if (strcmp(argv[1], commands[i].name) == 0)
-            return commands[i].run(argc - 2, argv + 2);
+            return cli_stdout_check(commands[i].run(argc - 2, argv + 2));
     const char *names[sizeof commands / sizeof commands[0] + 1];
     int n = 0;
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)

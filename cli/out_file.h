@@ -1,0 +1,45 @@
+/* Output files of the tool that a failed or interrupted run never destroys, the check of
+ * standard output at exit, and SIGINT/SIGTERM (out_file.c). */
+#ifndef DYNKIT_CLI_OUT_FILE_H
+#define DYNKIT_CLI_OUT_FILE_H
+
+#include <signal.h>
+
+#include "cli.h"
+
+/* An output being written: f is a temporary file beside the real name (regular files),
+ * the file itself (devices, pipes), or stdout (no path, or "-"). */
+typedef struct cli_out {
+    FILE *f;
+    const char *what;  /* the option, e.g. "--output" */
+    const char *path;  /* the name given, NULL for stdout */
+    char *target;      /* the file renamed over (symbolic links followed), owned */
+    char *tmp;         /* the temporary name, owned, or NULL when written in place */
+} cli_out;
+
+/* Open path for writing (NULL or "-": stdout). A directory, a missing directory or a place
+ * that cannot be written is an error naming the option and the file, printed; returns
+ * CLI_OK or CLI_FAILED. The file under the real name is untouched until cli_out_close. */
+int cli_out_open(cli_out *o, const char *what, const char *path);
+/* Close o. keep: the temporary file replaces the real name (an error naming the file when
+ * a write failed); else it is removed and the real name keeps what it had. Returns CLI_OK
+ * or CLI_FAILED (message printed; stdout failures are reported by cli_stdout_check). */
+int cli_out_close(cli_out *o, int keep);
+/* 1 if the two paths name the same file (existing or not; "-" is never a file). */
+int cli_same_file(const char *a, const char *b);
+/* At exit: flush stdout; a failed write turns rc into CLI_FAILED with a message (a closed
+ * pipe, EPIPE, ends quietly). Returns the exit status. */
+int cli_stdout_check(int rc);
+
+/* SIGINT and SIGTERM: by default the temporary output file is removed and the signal ends
+ * the program as usual; in graceful mode (a run writing rows) the signal is only recorded:
+ * the run finishes its row, stops, keeps its file and exits with cli_signal_status(). */
+extern volatile sig_atomic_t cli_stop_signal;
+void cli_signals_install(void);
+void cli_signals_graceful(int on);
+void cli_signals_track(const char *tmp_path);
+/* 128 + the signal received (130 SIGINT, 143 SIGTERM), or 0. */
+int cli_signal_status(void);
+const char *cli_signal_name(void);
+
+#endif

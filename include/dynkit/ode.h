@@ -174,8 +174,8 @@ typedef struct dyn_grid {
 
 /* Plan the grid for [t0, t1] with step h > 0 (t1 > t0). Returns DYN_OK or DYN_ERR_ARG with
  * a message in err (may be NULL). Sample k is t0 + k*h; with a partial step the last is t1.
- * A span shorter than one step is one shorter step to t1 (DYN_END_EXACT) or an error
- * (DYN_END_GRID): a grid always reaches t1 or is refused. */
+ * A span shorter than one step, however much shorter, is one shorter step to t1
+ * (DYN_END_EXACT) or no step (DYN_END_GRID, as MATLAB's 0:2:1 is 0). */
 int dyn_grid_plan(double t0, double t1, double h, dyn_end_policy end, dyn_grid *grid,
                   char *err, size_t errlen);
 /* Time of sample k (0 <= k < samples): t0 + k*h, computed, never accumulated; the last

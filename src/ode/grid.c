@@ -6,6 +6,8 @@
  * tout = (tspan(1):Ts:tspan(end))', and the last one is reported as t1 itself (as MATLAB's
  * colon operator does) rather than t0 + N*h, which can differ from t1 in the last
  * bit. Otherwise DYN_END_EXACT adds one shorter step that lands on t1, and DYN_END_GRID stops at the last whole step (MATLAB's colon operator).
+ * A span shorter than one step (however much shorter: h = 1e300 over [0, 1]) is one step
+ * to t1 with DYN_END_EXACT (and no step with DYN_END_GRID, as MATLAB's 0:2:1 is 0).
  */
 #include <math.h>
 #include <stdio.h>
@@ -51,8 +53,10 @@ int dyn_grid_plan(double t0, double t1, double h, dyn_end_policy end, dyn_grid *
     grid->t1 = t1;
     grid->h = h;
     /* rounding in (t1 - t0)/h is a few ulps of the ratio; never call a span whole that is
-     * more than 1e-3 steps away from it */
-    if (fabs(ratio - nearest) <= fmin(1e-10 * fmax(1.0, nearest), 1e-3)) {
+     * more than 1e-3 steps away from it, and never call a span shorter than a step (however
+     * much shorter) zero whole steps: it is one shorter step to t1 (exact) */
+    if (fabs(ratio - nearest) <= fmin(1e-10 * fmax(1.0, nearest), 1e-3) &&
+        (nearest >= 1.0 || t1 == t0)) {
         grid->whole_steps = (long)nearest;
         grid->partial = 0;
         grid->ends_at_t1 = 1;

@@ -1,0 +1,347 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* Data files of `dynkit run --output FILE` and `dynkit inverse --output FILE` (docs/
+ * data-files.md): each format is loaded by the reader people use for it and compared with
+ * the CSV of the same run, bit for bit (float64):
+ * - .json with Python's json, .npy and .npz with numpy.load, .mat with scipy.io.loadmat
+ *   (tests/formats/load_table.py, run by /usr/bin/python3) and with Octave's load
+ *   (tests/formats/load_table.m, run by octave-cli); each loader prints the values exactly
+ *   (float.hex, num2hex) with the names, units and settings the file carries;
+ * - a test is skipped, with the reason, only when its loader is not installed
+ *   (scripts/install-deps.sh installs python3-numpy, python3-scipy and octave);
+ * - CSV's --header units and none; an unknown extension refused (exit 2) naming the accepted
+ *   ones, and no file made; --header refused for the binary formats; --output - is stdout;
+ *   a failed run keeps its samples in every format. */
+#define _POSIX_C_SOURCE 200809L
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <sys/stat.h>
+
+#include <cmocka.h>
+
+#include "test_cli_run.h"
+#include "test_util.h"
+
+#define PYTHON "/usr/bin/python3"
+
+/* The runs compared: an adaptive run with outputs (16 columns), a fixed-step one (the
+ * streamed .npy), a stiff one sampled at every step (tiny and huge numbers), and a run that
+ * fails (its samples up to the failure). */
+static const char *const runs[] = {
+    "run plane --method dp45 --tspan 0:0.5 --outputs",
+    "run pendulum --method rk4 --step 0.01 --tspan 0:2 --outputs",
+    "run robertson --tspan 0:1e5",
+    "run vanderpol --set mu=1e6 --method euler --step 0.1 --tspan 0:15",
+};
+
+/* A table of doubles parsed from CSV (strtod: correctly rounded, so %.17g reads back). */
+typedef struct table {
+    long rows;
+    int cols;
+    double v[40000];
+    char header[1024]; /* the names, separated by spaces */
+} table;
+
+static table csv;
+
+static void parse_csv(const char *text, table *t)
+{
+    memset(t, 0, sizeof *t);
+    const char *nl = strchr(text, '\n');
+    assert_non_null(nl);
+    size_t hl = (size_t)(nl - text) < sizeof t->header ? (size_t)(nl - text) : 0;
+    memcpy(t->header, text, hl);
+    for (size_t i = 0; i < hl; i++)
+        if (t->header[i] == ',')
+            t->header[i] = ' ';
+    t->cols = 1;
+    for (size_t i = 0; i < hl; i++)
+        t->cols += text[i] == ',';
+    const char *p = nl + 1;
+    long n = 0;
+    while (*p) {
+        for (int j = 0; j < t->cols; j++) {
+            char *end;
+            CHECK(n < (long)(sizeof t->v / sizeof t->v[0]), "CSV too long for the test");
+            t->v[n++] = strtod(p, &end);
+            CHECK(end != p, "CSV: not a number at '%.20s'", p);
+            p = end + (*end == ',' || *end == '\n');
+        }
+        t->rows++;
+    }
+}
+
+/* One value printed by a loader: float.hex() ("0x1.8p+1", "-0x0.0p+0", "nan", "inf") or
+ * the IEEE bits as 16 hex digits (Octave's num2hex). */
+static double loaded_value(const char *tok, size_t len)
+{
+    char buf[64];
+    CHECK(len < sizeof buf, "token too long");
+    memcpy(buf, tok, len);
+    buf[len] = '\0';
+    if (strchr(buf, 'x') || strchr(buf, 'n') || strchr(buf, 'i'))
+        return strtod(buf, NULL);
+    uint64_t bits = strtoull(buf, NULL, 16);
+    double v;
+    memcpy(&v, &bits, sizeof v);
+    return v;
+}
+
+/* The loader's output against the CSV: shape, names (when printed) and every value. */
+static void compare(const char *what, const char *out, const table *t)
+{
+    long rows = -1, cols = -1, row = 0;
+    const char *line = out;
+    while (line && *line) {
+        const char *next = strchr(line, '\n');
+        size_t len = next ? (size_t)(next - line) : strlen(line);
+        if (strncmp(line, "shape ", 6) == 0) {
+            sscanf(line + 6, "%ld %ld", &rows, &cols);
+            CHECK(rows == t->rows && cols == t->cols, "%s: shape %ld x %ld, the CSV has %ld x %d",
+                  what, rows, cols, t->rows, t->cols);
+        } else if (strncmp(line, "names ", 6) == 0) {
+            CHECK(len - 6 == strlen(t->header) && strncmp(line + 6, t->header, len - 6) == 0,
+                  "%s: names '%.*s', the CSV header '%s'", what, (int)(len - 6), line + 6,
+                  t->header);
+        } else if (strncmp(line, "row ", 4) == 0) {
+            const char *p = line + 4;
+            for (int j = 0; j < t->cols; j++) {
+                size_t tl = strcspn(p, " \n");
+                CHECK(tl > 0, "%s: row %ld has fewer than %d values", what, row, t->cols);
+                double v = loaded_value(p, tl), want = t->v[row * t->cols + j];
+                CHECK(same_bits(v, want), "%s: row %ld column %d: %.17g, the CSV has %.17g",
+                      what, row, j, v, want);
+                p += tl + (p[tl] == ' ');
+            }
+            row++;
+        }
+        line = next ? next + 1 : NULL;
+    }
+    CHECK(rows >= 0 && row == t->rows, "%s: %ld rows printed, the CSV has %ld; output:\n%.400s",
+          what, row, t->rows, out);
+}
+
+static int have(const char *cmd)
+{
+    char full[512];
+    snprintf(full, sizeof full, "%s >/dev/null 2>&1 </dev/null", cmd);
+    return system(full) == 0;
+}
+
+/* The CSV of run k into csv (written with -o FILE.csv). */
+static void run_csv(int k)
+{
+    cli_result r = cli_in_tmpdir("%s -o x.csv", runs[k]);
+    CHECK(r.status == 0 || (k == 3 && r.status == 1), "%s: exit %d: %s", runs[k], r.status,
+          r.err);
+    cli_free(&r);
+    char *text = cli_read_file(cli_path("x.csv"), NULL);
+    parse_csv(text, &csv);
+    free(text);
+    CHECK(csv.rows > 1, "%s: %ld rows", runs[k], csv.rows);
+}
+
+/* Every run in format ext, loaded by loader (a command taking the format and the file). */
+static void check_format(const char *ext, const char *loader)
+{
+    for (int k = 0; k < (int)(sizeof runs / sizeof runs[0]); k++) {
+        run_csv(k);
+        cli_result r = cli_in_tmpdir("%s -o x.%s", runs[k], ext);
+        CHECK(r.status == 0 || (k == 3 && r.status == 1), "%s -o x.%s: exit %d: %s", runs[k],
+              ext, r.status, r.err);
+        cli_free(&r);
+        char cmd[1024], what[256];
+        snprintf(cmd, sizeof cmd, "cd '%s' && %s x.%s 2>/dev/null", cli_tmpdir, loader, ext);
+        int status;
+        char *out = cli_capture(cmd, &status);
+        snprintf(what, sizeof what, "%s -o x.%s, loaded by %s", runs[k], ext, loader);
+        CHECK(status == 0, "%s: exit %d:\n%.600s", what, status, out);
+        compare(what, out, &csv);
+        if (k == 0 && strcmp(ext, "npy") != 0)
+            CHECK(strstr(out, "method=dp45") && strstr(out, "step=0.01"),
+                  "%s: the method and step are not in the file:\n%.300s", what, out);
+        if (k == 0 && strcmp(ext, "npy") != 0)
+            CHECK(strstr(out, "states=12"), "%s: the file does not say which columns are states",
+                  what);
+        free(out);
+    }
+}
+
+static void python_loader(char *buf, size_t size, const char *module, const char *ext)
+{
+    char probe[128];
+    snprintf(probe, sizeof probe, PYTHON " -c 'import %s'", module);
+    if (!have(probe)) {
+        print_message("SKIP: %s with %s needs " PYTHON " with %s (scripts/install-deps.sh "
+                      "installs it)\n",
+                      ext, module, module);
+        skip();
+    }
+    snprintf(buf, size, PYTHON " '%s/tests/formats/load_table.py' %s", DYNKIT_SOURCE_DIR, ext);
+}
+
+static void test_json_python(void **state)
+{
+    (void)state;
+    char loader[512];
+    python_loader(loader, sizeof loader, "numpy", "json");
+    check_format("json", loader);
+}
+
+static void test_npy_numpy(void **state)
+{
+    (void)state;
+    char loader[512];
+    python_loader(loader, sizeof loader, "numpy", "npy");
+    check_format("npy", loader);
+}
+
+static void test_npz_numpy(void **state)
+{
+    (void)state;
+    char loader[512];
+    python_loader(loader, sizeof loader, "numpy", "npz");
+    check_format("npz", loader);
+}
+
+/* 1 if this dynkit writes .mat (built with matio). */
+static int dynkit_writes_mat(void)
+{
+    cli_result r = cli_in_tmpdir("run pendulum -o probe.mat");
+    int ok = r.status == 0;
+    if (!ok)
+        CHECK(r.status == 2 && strstr(r.err, "libmatio-dev"),
+              "without matio, .mat must be refused saying how to get it: %s", r.err);
+    cli_free(&r);
+    unlink(cli_path("probe.mat"));
+    return ok;
+}
+
+static void test_mat_scipy(void **state)
+{
+    (void)state;
+    if (!dynkit_writes_mat()) {
+        print_message("SKIP: dynkit was built without matio (libmatio-dev)\n");
+        skip();
+    }
+    char loader[512];
+    python_loader(loader, sizeof loader, "scipy.io", "mat");
+    check_format("mat", loader);
+}
+
+static void test_mat_octave(void **state)
+{
+    (void)state;
+    if (!dynkit_writes_mat()) {
+        print_message("SKIP: dynkit was built without matio (libmatio-dev)\n");
+        skip();
+    }
+    if (!have("octave-cli --version")) {
+        print_message("SKIP: .mat with Octave needs octave-cli (Debian's octave; "
+                      "scripts/install-deps.sh installs it)\n");
+        skip();
+    }
+    char loader[512];
+    snprintf(loader, sizeof loader,
+             "octave-cli --norc --quiet --no-window-system '%s/tests/formats/load_table.m'",
+             DYNKIT_SOURCE_DIR);
+    check_format("mat", loader);
+}
+
+/* inverse cart's force table as .npz: t, forces, names t Fx Fy. */
+static void test_inverse_npz(void **state)
+{
+    (void)state;
+    char loader[512];
+    python_loader(loader, sizeof loader, "numpy", "npz");
+    cli_result r = cli_in_tmpdir("inverse cart --quiet -o x.csv");
+    CHECK(r.status == 0, "inverse -o x.csv: %s", r.err);
+    cli_free(&r);
+    char *text = cli_read_file(cli_path("x.csv"), NULL);
+    parse_csv(text, &csv);
+    free(text);
+    r = cli_in_tmpdir("inverse cart --quiet -o x.npz");
+    CHECK(r.status == 0, "inverse -o x.npz: %s", r.err);
+    cli_free(&r);
+    char cmd[1024];
+    snprintf(cmd, sizeof cmd, "cd '%s' && %s x.npz 2>&1", cli_tmpdir, loader);
+    int status;
+    char *out = cli_capture(cmd, &status);
+    CHECK(status == 0, "loading the force table: %s", out);
+    compare("inverse cart -o x.npz", out, &csv);
+    free(out);
+}
+
+static void test_csv_header(void **state)
+{
+    (void)state;
+    cli_result r = cli("run pendulum --tspan 0:0.2 --outputs --header units");
+    CHECK(r.status == 0 && strncmp(r.out, "t [s],phi [rad],dphi [rad/s],energy [J],height [m]\n",
+                                   51) == 0,
+          "--header units: %.80s", r.out);
+    cli_free(&r);
+    r = cli("run pendulum --tspan 0:0.2 --header none");
+    CHECK(r.status == 0 && strncmp(r.out, "0,0,", 4) == 0, "--header none: %.80s", r.out);
+    cli_free(&r);
+    r = cli("run pendulum --tspan 0:0.2 --header names -o -");
+    CHECK(r.status == 0 && strncmp(r.out, "t,phi,dphi\n0,", 13) == 0,
+          "--header names, -o -: %.80s", r.out);
+    cli_free(&r);
+    r = cli("run pendulum --header unit");
+    CHECK(r.status == 2 && strstr(r.err, "names, units, none"), "--header unit: %s", r.err);
+    cli_free(&r);
+    r = cli_in_tmpdir("run pendulum --header units -o h.npz");
+    CHECK(r.status == 2 && strstr(r.err, "--header applies to CSV"), "--header with npz: %s",
+          r.err);
+    cli_free(&r);
+    struct stat st;
+    CHECK(stat(cli_path("h.npz"), &st) != 0, "a refused run made h.npz");
+}
+
+static void test_unknown_extension(void **state)
+{
+    (void)state;
+    static const char *const bad[] = {"x.txt", "x", "x.csv.bak", "dir.d/x"};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        cli_result r = cli_in_tmpdir("run pendulum -o %s", bad[i]);
+        CHECK(r.status == 2 && strstr(r.err, ".csv, .json, .mat, .npy, .npz"),
+              "-o %s: exit %d: %s", bad[i], r.status, r.err);
+        cli_free(&r);
+        struct stat st;
+        CHECK(stat(cli_path(bad[i]), &st) != 0, "a refused run made %s", bad[i]);
+    }
+    cli_result r = cli_in_tmpdir("inverse cart -o forces.dat");
+    CHECK(r.status == 2 && strstr(r.err, ".npz"), "inverse -o forces.dat: %s", r.err);
+    cli_free(&r);
+    /* the extension is matched without regard to case */
+    r = cli_in_tmpdir("run pendulum --tspan 0:0.2 -o UPPER.JSON");
+    CHECK(r.status == 0, "-o UPPER.JSON: %s", r.err);
+    cli_free(&r);
+    char *text = cli_read_file(cli_path("UPPER.JSON"), NULL);
+    CHECK(text[0] == '{', "UPPER.JSON is not JSON: %.40s", text);
+    free(text);
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    static const char *const files[] = {"x.csv", "x.json", "x.npy", "x.npz", "x.mat",
+                                        "UPPER.JSON", NULL};
+    return cli_teardown_files(files);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_csv_header),
+        cmocka_unit_test(test_unknown_extension),
+        cmocka_unit_test(test_json_python),
+        cmocka_unit_test(test_npy_numpy),
+        cmocka_unit_test(test_npz_numpy),
+        cmocka_unit_test(test_mat_scipy),
+        cmocka_unit_test(test_mat_octave),
+        cmocka_unit_test(test_inverse_npz),
+    };
+    return cmocka_run_group_tests(tests, cli_setup, teardown);
+}

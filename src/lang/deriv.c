@@ -240,6 +240,9 @@ node *lang_subst(lang_ctx *c, node *body, node **args)
         return args[body->index];
     if (body->nargs == 0)
         return body;
+    if (++c->copies > LANG_MAX_COPIES)
+        lang_fail(c, body->pos, "calls of functions nest too deeply to expand (more than %d "
+                  "copies of their formulas)", LANG_MAX_COPIES);
     node *e = lang_node(c, body->kind, body->pos);
     *e = *body;
     e->args = lang_alloc(c, (size_t)body->nargs * sizeof *e->args);

@@ -10,19 +10,58 @@
 
 struct lang_block {
     lang_block *next;
-    max_align_t align[]; /* the allocation follows */
+    size_t used, size; /* bytes of the data below */
+    max_align_t data[];
 };
 
+enum { LANG_CHUNK = 1 << 16, LANG_BIG = 1 << 12 };
+
+static lang_block *new_block(lang_ctx *c, size_t size)
+{
+    if (c->bytes + size > LANG_MAX_MEMORY)
+        lang_fail(c, (lpos){0, 0}, "the model is too large to translate (more than %u MB of "
+                  "memory)", (unsigned)(LANG_MAX_MEMORY >> 20));
+    lang_block *b = malloc(sizeof *b + size);
+    if (!b)
+        lang_oom(c);
+    b->used = 0;
+    b->size = size;
+    c->bytes += size;
+    return b;
+}
+
+/* Zeroed memory from the arena: small pieces from 64 KB chunks, large ones alone. */
 void *lang_alloc(lang_ctx *c, size_t n)
 {
     if (n > ((size_t)1 << 40))
         lang_oom(c);
-    lang_block *b = calloc(1, sizeof *b + (n ? n : 1));
-    if (!b)
-        lang_oom(c);
-    b->next = c->blocks;
-    c->blocks = b;
-    return b->align;
+    n = (n + sizeof(max_align_t) - 1) / sizeof(max_align_t) * sizeof(max_align_t);
+    if (n == 0)
+        n = sizeof(max_align_t);
+    lang_block *b;
+    if (n > LANG_BIG) {
+        b = new_block(c, n);
+        if (c->blocks) { /* keep the current chunk first */
+            b->next = c->blocks->next;
+            c->blocks->next = b;
+        } else {
+            b->next = NULL;
+            c->blocks = b;
+        }
+        b->used = n;
+    } else {
+        b = c->blocks;
+        if (!b || b->size - b->used < n) {
+            b = new_block(c, LANG_CHUNK);
+            b->next = c->blocks;
+            c->blocks = b;
+        }
+    }
+    void *p = (char *)b->data + (n > LANG_BIG ? 0 : b->used);
+    if (n <= LANG_BIG)
+        b->used += n;
+    memset(p, 0, n);
+    return p;
 }
 
 char *lang_strndup(lang_ctx *c, const char *s, size_t n)
@@ -92,7 +131,7 @@ _Noreturn void lang_oom(lang_ctx *c)
         snprintf(d->message, sizeof d->message, "out of memory while translating the model");
         d->excerpt[0] = '\0';
     }
-    longjmp(c->fail, 1);
+    longjmp(*c->fail, 1);
 }
 
 _Noreturn void lang_fail(lang_ctx *c, lpos p, const char *fmt, ...)
@@ -119,7 +158,7 @@ _Noreturn void lang_fail(lang_ctx *c, lpos p, const char *fmt, ...)
                     *s = ' ';
         }
     }
-    longjmp(c->fail, 1);
+    longjmp(*c->fail, 1);
 }
 
 void lang_note(lang_ctx *c, lpos p, const char *fmt, ...)

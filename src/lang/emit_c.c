@@ -24,11 +24,11 @@ static void put(lang_ctx *c, const char *s, size_t n)
 {
     if (c->out_len + n + 1 > c->out_cap) {
         size_t cap = c->out_cap ? c->out_cap : 4096;
-        while (c->out_len + n + 1 > cap) {
-            if (cap > ((size_t)1 << 34))
-                lang_oom(c);
+        if (c->out_len + n + 1 > LANG_MAX_OUTPUT)
+            lang_fail(c, (lpos){0, 0}, "the model's C text would be too large (more than %u "
+                      "MB)", (unsigned)(LANG_MAX_OUTPUT >> 20));
+        while (c->out_len + n + 1 > cap)
             cap *= 2;
-        }
         char *o = realloc(c->out, cap);
         if (!o)
             lang_oom(c);
@@ -554,6 +554,8 @@ static void emit_jacobian(lang_ctx *c, jac_plan *j)
     char *saved = c->out;
     size_t saved_len = c->out_len, saved_cap = c->out_cap;
     c->out_saved = saved;
+    c->out_saved_len = saved_len;
+    c->out_saved_cap = saved_cap;
     c->out = NULL;
     c->out_len = c->out_cap = 0;
     puts_(c, "static int dk_jacobian(double t, const double *y, double *J, void *par)\n{\n"
@@ -668,6 +670,43 @@ static void vars(lang_ctx *c, const char *decl, lvec *v, int states)
     puts_(c, "};\n");
 }
 
+/* The Jacobian, computed first (it decides the partials of user functions to write). One
+ * too large to write is left out with a note (the stiff methods then use differences); the
+ * model stays. Returns 1 when it was written. */
+static int try_jacobian(lang_ctx *c, jac_plan *jp)
+{
+    jmp_buf jac_fail;
+    jmp_buf *outer = c->fail;
+    c->copies = 0;
+    c->fail = &jac_fail;
+    if (setjmp(jac_fail) == 0) {
+        emit_jacobian(c, jp);
+        c->fail = outer;
+        return 1;
+    }
+    c->fail = outer;
+    if (c->status != 2)
+        longjmp(*outer, 1);
+    c->status = 0;
+    if (c->out_saved) { /* failed while writing: back to the main text */
+        free(c->out);
+        c->out = c->out_saved;
+        c->out_len = c->out_saved_len;
+        c->out_cap = c->out_saved_cap;
+        c->out_saved = NULL;
+    }
+    lpos at = {c->diag->line, c->diag->col};
+    lang_note(c, at, "no analytic Jacobian: %s; the stiff methods use finite differences",
+              c->diag->message);
+    c->diag->message[0] = '\0';
+    c->diag->line = c->diag->col = 0;
+    c->diag->excerpt[0] = '\0';
+    memset(jp->used, 0, ((size_t)c->m.funcs.n + 1) * LANG_MAX_ARGS);
+    jp->partial = NULL;
+    jp->text = NULL;
+    return 0;
+}
+
 char *lang_emit_c(lang_ctx *c)
 {
     lang_model *m = &c->m;
@@ -687,12 +726,13 @@ char *lang_emit_c(lang_ctx *c)
     }
     jac_plan jp = {0};
     jp.used = lang_alloc(c, ((size_t)m->funcs.n + 1) * LANG_MAX_ARGS);
-    const int with_jac = n <= LANG_MAX_JAC_STATES;
-    if (with_jac)
-        emit_jacobian(c, &jp); /* computed first: it decides the partials to write */
-    else
+    int with_jac = n <= LANG_MAX_JAC_STATES;
+    if (with_jac) {
+        with_jac = try_jacobian(c, &jp);
+    } else {
         lang_note(c, (lpos){0, 0}, "%d states: no analytic Jacobian (at most %d); the stiff "
                   "methods use finite differences", n, LANG_MAX_JAC_STATES);
+    }
 
     puts_(c, "/* ");
     puts_(c, m->name);

@@ -25,6 +25,9 @@
 #define LANG_MAX_ARGS 20              /* arguments of a user function (XPPAUT: 20) */
 #define LANG_MAX_JAC_STATES 400       /* analytic Jacobian up to this many states */
 #define LANG_MAX_INLINE 64            /* nesting of inlined calls in derivatives */
+#define LANG_MAX_MEMORY ((size_t)1 << 29) /* bytes of the translator's own memory */
+#define LANG_MAX_COPIES 500000        /* nodes copied by inlining function bodies */
+#define LANG_MAX_OUTPUT ((size_t)1 << 28) /* bytes of C text */
 
 typedef struct lpos {
     int line, col; /* 1-based; 0 when not tied to a place */
@@ -204,7 +207,7 @@ typedef struct lang_line {
 typedef struct lang_block lang_block;
 
 typedef struct lang_ctx {
-    jmp_buf fail;
+    jmp_buf *fail;        /* where lang_fail and lang_oom go */
     int status;           /* 2 error in the file, 1 out of memory */
     lang_block *blocks;
     const char *path;
@@ -217,8 +220,11 @@ typedef struct lang_ctx {
     void *note_ctx;
     lang_model m;
     int depth;            /* recursion guard of the parser and the derivative */
+    size_t bytes;         /* memory taken by the arena */
+    long copies;          /* nodes copied by lang_subst */
     char *out;            /* the C text being written (malloc'd; freed on failure) */
     char *out_saved;      /* the main text while the Jacobian's is written apart */
+    size_t out_saved_len, out_saved_cap;
     size_t out_len, out_cap;
 } lang_ctx;
 

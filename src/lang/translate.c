@@ -78,7 +78,9 @@ int dyn_ode_to_c(const char *path, const char *text, size_t len, char **c_source
     c->diag = diag;
     c->note = note;
     c->note_ctx = note_ctx;
-    if (setjmp(c->fail)) {
+    jmp_buf fail;
+    c->fail = &fail;
+    if (setjmp(fail)) {
         const int status = c->status ? c->status : 2;
         free(c->out);
         free(c->out_saved);

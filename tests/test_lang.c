@@ -259,6 +259,26 @@ static void test_limits_are_refused_with_a_message(void **state)
     assert_int_equal(translate(deep, &out, &d, NULL), 2);
     CHECK(strstr(d.message, "nested too deeply"), "%s", d.message);
     free(deep);
+    /* functions that read a fixed quantity are inlined: 2^40 copies are refused */
+    char *bomb = malloc(4096);
+    strcpy(bomb, "phi=2*x\nf1(a)=phi*a\n");
+    for (int i = 2; i < 40; i++)
+        sprintf(bomb + strlen(bomb), "f%d(a)=f%d(a)+f%d(a)\n", i, i - 1, i - 1);
+    strcat(bomb, "x'=f39(x)\n");
+    assert_int_equal(translate(bomb, &out, &d, NULL), 2);
+    CHECK(strstr(d.message, "too deeply to expand"), "%s", d.message);
+    /* reading states, they are C functions, but differentiated inline: the Jacobian is left
+     * out, the model stays */
+    strcpy(bomb, "f1(a)=sin(a)*x\n");
+    for (int i = 2; i < 40; i++)
+        sprintf(bomb + strlen(bomb), "f%d(a)=f%d(a)*f%d(a)\n", i, i - 1, i - 1);
+    strcat(bomb, "x'=f39(x)\n");
+    notes n;
+    assert_int_equal(translate(bomb, &out, &d, &n), 0);
+    CHECK(strstr(out, ".jacobian = NULL"), "the Jacobian is left out");
+    CHECK(strstr(n.text, "no analytic Jacobian"), "%s", n.text);
+    free(out);
+    free(bomb);
     expect_error("x[1..1000000]'=1\n", 1, 2, "too long");
     expect_error("x[5..1]'=1\n", 1, 2, "empty array range");
     /* NULL arguments */

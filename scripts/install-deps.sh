@@ -17,6 +17,7 @@ packages+=(libtcc-dev tcc) # src/jit: models compiled in process by libtcc (opti
 packages+=(libmatio-dev python3-numpy python3-scipy octave)
 packages+=(man-db) # tests/test_manpage.c renders docs/dynkit.1
 packages+=(xppaut) # tests/xppaut: .ode files run by XPPAUT itself and compared
+packages+=(libclang-rt-dev) # fuzz/: libFuzzer and the sanitizers' runtime for clang (CI)
 # node and npm may come from elsewhere (e.g. a newer nodejs that bundles npm): keep those
 command -v node >/dev/null 2>&1 || packages+=(nodejs)
 command -v npm >/dev/null 2>&1 || packages+=(npm)

@@ -1,0 +1,172 @@
+/* dynkit/sweep.h — many runs of one model: parameter sweeps and Monte Carlo ensembles.
+ *
+ * A sweep runs a model once per row of a run table (values of chosen parameters and initial
+ * states, by index into the model's params and states), with one method and one set of
+ * options, and reduces each run to a few numbers (its final state, the maximum of an output,
+ * the time of an event, ...) written into a caller-owned (runs x columns) array, with a
+ * status per run. It is the library of the command `dynkit sweep` (docs/sweeps.md) and
+ * usable from a program of one's own (library dynkit_sweep, -ldynkit_sweep with OpenMP).
+ *
+ * Determinism: run i depends on row i of the table alone. Each run writes only its own row
+ * and status, nothing is accumulated across runs, and a run's arithmetic is the same on any
+ * thread, so the results are the same bits for any number of threads and any order of the
+ * runs. Random tables (dyn_sweep_sample) depend on (seed, run index) alone: a counter-based
+ * generator, Philox4x32-10 (Salmon, Moraes, Dror, Shaw, "Parallel random numbers: as easy as
+ * 1, 2, 3", SC'11).
+ *
+ * Threads: OpenMP (dynkit_sweep is compiled with -fopenmp; the core library stays C11 +
+ * libm). Each thread gets its workspace once (parameters, states, the solver's workspace,
+ * the reductions' accumulators), allocated before the runs start; nothing is allocated per
+ * run. A run that fails (a state NaN or Inf, the step size underflowing, the step limit, the
+ * model's prepare refusing the parameters, ...) is a row of NaN with its status, and the
+ * sweep goes on.
+ */
+#ifndef DYNKIT_SWEEP_H
+#define DYNKIT_SWEEP_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "dynkit/model.h"
+#include "dynkit/solve.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- the run table ---- */
+
+/* What a column of the run table sets: a parameter or an initial state of the model. */
+typedef enum dyn_sweep_kind { DYN_SWEEP_PARAM = 0, DYN_SWEEP_STATE = 1 } dyn_sweep_kind;
+typedef struct dyn_sweep_var {
+    dyn_sweep_kind kind;
+    int index; /* into model->params or model->states */
+} dyn_sweep_var;
+
+/* The column a name sets: a parameter first, then a state. 0, or -1 with a message naming
+ * the model's parameters and states in err. */
+int dyn_sweep_var_find(const dyn_model *m, const char *name, dyn_sweep_var *var, char *err,
+                       size_t errlen);
+/* The name of a column (the parameter's or the state's name). */
+const char *dyn_sweep_var_name(const dyn_model *m, const dyn_sweep_var *var);
+
+/* ---- reductions: what each run is reduced to ---- */
+
+typedef enum dyn_reduce_op {
+    DYN_REDUCE_FINAL = 0,  /* value at the end of the run (t1, or a terminal event) */
+    DYN_REDUCE_MAX = 1,    /* largest value over the samples */
+    DYN_REDUCE_MIN = 2,    /* smallest value over the samples */
+    DYN_REDUCE_MEAN = 3,   /* time average over the samples (trapezoidal rule, below) */
+    DYN_REDUCE_ARGMAX = 4, /* time of the (first) largest sample */
+    DYN_REDUCE_ARGMIN = 5, /* time of the (first) smallest sample */
+    DYN_REDUCE_EVENT = 6,  /* time of the first occurrence of an event, NaN if none */
+    DYN_REDUCE_COUNT = 7   /* number of occurrences of an event */
+} dyn_reduce_op;
+
+typedef enum dyn_reduce_source {
+    DYN_SOURCE_STATE = 0,  /* index into model->states */
+    DYN_SOURCE_OUTPUT = 1, /* index into model->outputs */
+    DYN_SOURCE_EVENT = 2   /* index into model->events (event and count only) */
+} dyn_reduce_source;
+
+/* One result column. The samples of max, min, mean, argmax and argmin are those of the run:
+ * every step of a fixed-step method (t0 + k*h, and t1 after a shorter last step), the grid
+ * t0 + k*step of an adaptive method by dense output (dyn_sweep.step > 0) or every accepted
+ * step (step = 0); the first sample is the initial state, the last the final one; samples
+ * before the model's t_trans are left out. mean is the time average of the piecewise-linear
+ * function through the samples: sum over intervals of (t_{k+1} - t_k)(x_k + x_{k+1})/2,
+ * divided by t_last - t_first (for an even grid: the samples' average with the two ends
+ * weighted 1/2); with a single sample, that sample. */
+typedef struct dyn_reduce {
+    dyn_reduce_op op;
+    dyn_reduce_source source;
+    int index;
+} dyn_reduce;
+
+/* Parse a comma-separated list of reductions: final (one column per state: final:NAME for
+ * each), final:NAME, max:NAME, min:NAME, mean:NAME, argmax:NAME, argmin:NAME (NAME a state
+ * or an output), event:NAME, count:NAME (NAME one of the model's events). Up to max columns
+ * into out; *count receives how many. Returns 0, or -1 with a message in err (an unknown
+ * reduction or name, naming what is accepted; more than max columns). */
+int dyn_reduce_parse(const dyn_model *m, const char *list, dyn_reduce *out, int max,
+                     int *count, char *err, size_t errlen);
+/* The column's name, "OP:NAME" (e.g. "max:height", "event:turn"), into buf; returns buf. */
+char *dyn_reduce_name(const dyn_model *m, const dyn_reduce *r, char *buf, size_t size);
+
+/* ---- the sweep ---- */
+
+/* Status of a run that did not finish: the sweep was cancelled before or during it. The
+ * statuses of finished runs are dyn_status values (DYN_OK, DYN_ERR_NONFINITE, ...; the
+ * model's prepare refusing the run's parameters is DYN_ERR_ARG, a state exceeding the
+ * model's bound DYN_STOPPED). */
+#define DYN_SWEEP_NOT_RUN (-1)
+
+/* Called after each finished run, one call at a time (never concurrently), from whichever
+ * thread finished it: the run's index, its status, runs finished so far and runs to do
+ * (those not skipped). Return non-zero to cancel the sweep. */
+typedef int (*dyn_sweep_progress_fn)(long run, int status, long done, long total, void *ctx);
+/* Polled from every thread, concurrently, before each run and every progress_steps steps
+ * within a run: return non-zero to cancel (e.g. read a flag a signal handler sets). */
+typedef int (*dyn_sweep_cancel_fn)(void *ctx);
+
+/* A sweep: zero-initialise, then set what you need. */
+typedef struct dyn_sweep {
+    const dyn_model *model;
+    /* The base of every run: parameters (model->par_size bytes, prepared) or NULL for the
+     * model's defaults; initial state (n_states) or NULL for each run's
+     * dyn_model_initial_state (which may depend on the run's parameters). A run copies them,
+     * sets its table row's values, runs the model's prepare, then sets its states. */
+    const void *par;
+    const double *y0;
+    /* The run table: n_runs rows of n_vars values, row-major (run i: values[i*n_vars ..]). */
+    int n_vars;
+    const dyn_sweep_var *vars;
+    long n_runs;
+    const double *values;
+    /* The runs' method, span and options (as dyn_fixed_solve and dyn_solve take them). */
+    const dyn_tableau *method;
+    double t0, t1;
+    double step;              /* fixed-step: the step (required); adaptive: the sample grid
+                               * of the reductions, 0: every accepted step */
+    dyn_end_policy end;
+    double rtol, atol;        /* 0: the defaults (solve.h) */
+    const double *rtolv, *atolv; /* (n_states) or NULL */
+    double initial_step, max_step; /* 0: automatic */
+    long max_steps;           /* 0: no limit */
+    /* The reductions: one result column each. */
+    int n_reduce;
+    const dyn_reduce *reduce;
+    /* Events of the model (indices into model->events) that end a run at their first
+     * occurrence (like --event NAME:stop); may be NULL. The model's events that reset the
+     * state always take part. */
+    int n_stop;
+    const int *stop;
+    /* Runs to leave alone (their rows and statuses untouched, e.g. finished before a
+     * resume): (n_runs) flags, or NULL. */
+    const unsigned char *skip;
+    /* Threads: 0 for OpenMP's default (all cores, or OMP_NUM_THREADS), 1 for none. */
+    int threads;
+    dyn_sweep_progress_fn progress; /* may be NULL */
+    void *progress_ctx;
+    dyn_sweep_cancel_fn cancel;     /* may be NULL */
+    void *cancel_ctx;
+    long progress_steps;      /* steps between polls of cancel within a run; 0: 65536 */
+} dyn_sweep;
+
+/* Run the sweep: results is (n_runs x n_reduce) doubles, row-major, status (n_runs) ints;
+ * both caller-owned. A finished run's row holds its reductions (NaN for an event that did not
+ * occur), a failed run's row NaN, a run not run (cancelled) NaN with DYN_SWEEP_NOT_RUN.
+ * Returns DYN_OK when every run finished (some may have failed: see status), DYN_CANCELLED
+ * when cancelled, DYN_ERR_ARG (a bad sweep: message in err) or DYN_ERR_CAPACITY (out of
+ * memory for the workspaces; nothing was run). Thread-safe: sweeps may run concurrently. */
+int dyn_sweep_run(const dyn_sweep *s, double *results, int *status, char *err,
+                  size_t errlen);
+
+/* The number of threads dyn_sweep_run uses for threads (0: the default), and 1 when
+ * dynkit_sweep was built without OpenMP. */
+int dyn_sweep_threads(int threads);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* DYNKIT_SWEEP_H */

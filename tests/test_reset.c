@@ -8,7 +8,8 @@
  *   solution: to rounding), output on a grid (samples stay on t0 + k*h, from the new
  *   trajectory after each bounce) or at every step (the state after the reset at the event);
  * - an event in both directions gives the same bounces (the ball leaving the floor is no
- *   event); a reset that leaves its event's value unchanged (a counter) fires once;
+ *   event); a reset that leaves its event's value unchanged (a counter) fires once; a
+ *   crossing later in the step of a reset, on the old trajectory, is dropped;
  * - e = 0.5 over a span past the accumulation time stops with DYN_ERR_ZENO near it;
  * - a reset returning non-zero stops with DYN_ERR_RHS, the state at the event kept;
  * - terminal events still end the solve, also with resets in the same run;
@@ -392,6 +393,40 @@ static void test_terminal_events_with_resets(void **state)
     assert_true(y[1] < 0.0);
 }
 
+/* Crossings later in the step of a reset belong to the old trajectory: with rk4 steps of
+ * 1 s the ball's step [1, 2] passes the floor at 1.43 s and, on the old trajectory, 1 m below
+ * it at 1.49 s; that second event is dropped, the bounce is kept. */
+static double below_floor(double t, const double *y, void *par)
+{
+    (void)t;
+    (void)par;
+    return y[0] + 1.0;
+}
+
+static void test_old_trajectory_events_dropped(void **state)
+{
+    (void)state;
+    dyn_event ev[2] = {floor_event, {.name = "below", .g = below_floor, .direction = -1}};
+    static const struct {
+        const char *method;
+        double h;
+    } runs[] = {{"rk4", 1.0}, {"dp45", 0.0}};
+    for (int r = 0; r < 2; r++) {
+        ball b = {G, 0.8, 0, 0};
+        ev_log log = {.stop_at = -1};
+        run_opts ro = {.h = runs[r].h, .tol = 1e-10, .t1 = 3.0, .events = ev, .n_events = 2};
+        double y[2];
+        dyn_result res;
+        assert_int_equal(run_ball(runs[r].method, &b, &ro, &log, y, &res), DYN_OK);
+        assert_int_equal(log.count, 1); /* the bounce at 1.43 s only */
+        assert_int_equal(log.index[0], 0);
+        assert_true(fabs(log.t[0] - bounce_time(0, 0.8)) < 1e-9);
+        double ye[2];
+        ball_exact(3.0, 0.8, ye);
+        assert_true(fabs(y[0] - ye[0]) < 1e-8 && fabs(y[1] - ye[1]) < 1e-8);
+    }
+}
+
 /* A reset that does not touch its event's value (a counter raised at each crossing): the
  * restart is on the event's zero, so it fires once per crossing, not again and again. */
 typedef struct counter {
@@ -548,6 +583,7 @@ int main(void)
         cmocka_unit_test(test_zeno_stops),
         cmocka_unit_test(test_reset_failure),
         cmocka_unit_test(test_terminal_events_with_resets),
+        cmocka_unit_test(test_old_trajectory_events_dropped),
         cmocka_unit_test(test_counter_reset_fires_once_per_crossing),
         cmocka_unit_test(test_cli_resets),
     };

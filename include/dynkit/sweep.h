@@ -162,6 +162,52 @@ typedef struct dyn_sweep {
 int dyn_sweep_run(const dyn_sweep *s, double *results, int *status, char *err,
                   size_t errlen);
 
+/* ---- run tables: grids and random samples (sample.c) ---- */
+
+/* Value k (0 <= k < n) of n evenly spaced values from a to b: a + k ((b - a)/(n - 1)) (the
+ * step first, as numpy's linspace), computed from k (never accumulated), with the ends
+ * exactly a (k = 0) and b (k = n - 1); a for n = 1. */
+double dyn_linspace_at(double a, double b, long n, long k);
+/* The full grid of n_axes axes (axis j: counts[j] values at axes[j]) as a run table of
+ * prod(counts) rows and n_axes columns, row-major into values; the last axis varies
+ * fastest (row r = sum_j k_j prod_{l > j} counts[l]), like nested loops with the last
+ * axis innermost. Returns the number of rows, or -1 when it would exceed max_rows. */
+long dyn_sweep_grid(int n_axes, const double *const *axes, const long *counts, double *values,
+                    long max_rows);
+
+/* Philox4x32 (Salmon et al., SC'11; Random123's philox4x32_R): rounds rounds (10 is the
+ * standard) of the counter ctr under key, into out. A counter-based generator: out depends
+ * on (ctr, key) alone, so any number can be computed directly, in any order, on any
+ * thread or machine. Checked against Random123's known-answer vectors (tests/kat_vectors
+ * of Random123). */
+void dyn_philox4x32(const uint32_t ctr[4], const uint32_t key[2], int rounds,
+                    uint32_t out[4]);
+
+/* Distributions of random run tables. */
+typedef enum dyn_dist_kind {
+    DYN_DIST_UNIFORM = 0,   /* uniform on (a, b) */
+    DYN_DIST_NORMAL = 1,    /* normal with mean a and standard deviation b */
+    DYN_DIST_LOGNORMAL = 2  /* exp of a normal with mean a and standard deviation b (the
+                             * parameters of the logarithm, as numpy's lognormal) */
+} dyn_dist_kind;
+typedef struct dyn_dist {
+    dyn_dist_kind kind;
+    double a, b;
+} dyn_dist;
+
+/* The random value of run `run` and column `column` for seed: one Philox4x32-10 block with
+ * counter (run low 32 bits, run high 32 bits, column, 0) and key (seed low, seed high). Its
+ * words give two uniform numbers in (0, 1) with 53 random bits each,
+ * u = (((w0 << 32 | w1) >> 11) + 1/2) 2^-53 and likewise from w2, w3; uniform(a, b) is
+ * a + (b - a) u1; normal values come from the Box–Muller transform
+ * z = sqrt(-2 ln u1) cos(2 pi u2) (one value per block). The value depends on
+ * (seed, run, column) alone. */
+double dyn_dist_value(const dyn_dist *d, uint64_t seed, uint64_t run, uint32_t column);
+/* Rows first_run .. first_run + n_runs - 1 of a random run table with n_cols columns
+ * (column j drawn from dists[j]) into values (n_runs x n_cols, row-major). */
+void dyn_sweep_sample(const dyn_dist *dists, int n_cols, uint64_t seed, long first_run,
+                      long n_runs, double *values);
+
 /* The number of threads dyn_sweep_run uses for threads (0: the default), and 1 when
  * dynkit_sweep was built without OpenMP. */
 int dyn_sweep_threads(int threads);

@@ -1,12 +1,20 @@
 #!/usr/bin/env bash
-# Checks an installed dynkit (prefix as $1): the CLI runs, a CMake project finds the
-# package with find_package(dynkit), and pkg-config compiles and links the example.
+# Checks an installed dynkit (prefix as $1): the CLI runs, its manual page and bash completion
+# are there, a CMake project finds the package with find_package(dynkit), and pkg-config
+# compiles and links the example.
 set -euo pipefail
 prefix="$1"
 here="$(cd "$(dirname "$0")" && pwd)"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 "$prefix/bin/dynkit" methods >/dev/null
+# the manual page and the bash completion
+[ -f "$prefix/share/man/man1/dynkit.1" ] || { echo "share/man/man1/dynkit.1 not installed"; exit 1; }
+completion="$prefix/share/bash-completion/completions/dynkit"
+[ -f "$completion" ] || { echo "the bash completion was not installed"; exit 1; }
+completed=$(PATH="$prefix/bin:$PATH" bash --norc --noprofile -c \
+  "source '$completion'; COMP_WORDS=(dynkit ru); COMP_CWORD=1; _dynkit; echo \${COMPREPLY[*]}")
+[ "$completed" = run ] || { echo "the installed completion of 'dynkit ru': '$completed'"; exit 1; }
 cmake -S "$here" -B "$work/cmake" -DCMAKE_PREFIX_PATH="$prefix" >/dev/null
 cmake --build "$work/cmake" >/dev/null
 LD_LIBRARY_PATH="$prefix/lib:$prefix/lib64:${LD_LIBRARY_PATH:-}" "$work/cmake/user_example"

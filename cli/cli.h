@@ -149,5 +149,6 @@ int cli_cmd_info(int argc, char **argv);
 int cli_cmd_inverse(int argc, char **argv);
 int cli_cmd_report(int argc, char **argv);
 int cli_cmd_verify(int argc, char **argv);
+int cli_cmd_sweep(int argc, char **argv);
 
 #endif

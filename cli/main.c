@@ -23,6 +23,8 @@ static void main_help(void)
          "  plot MODEL     a run as an SVG line plot (--y NAME,... [--x NAME])\n"
          "  verify         every method on problems with known solutions: accuracy and work\n"
          "                 per method and tolerance (--quick, --json, --problem, --method)\n"
+         "  sweep MODEL    many runs, one row each: --vary NAME=A:B:N, --sample, --from FILE;\n"
+         "                 --reduce final,max:NAME,event:NAME,... on every core\n"
          "  help [COMMAND] this text, or the help of COMMAND (as 'dynkit COMMAND --help')\n"
          "\n"
          "MODEL is a built-in model's name ('dynkit models'), an XPPAUT .ode file or a C file\n"
@@ -53,6 +55,7 @@ int main(int argc, char **argv)
         {"animate", cli_cmd_animate},
         {"plot", cli_cmd_plot},
         {"verify", cli_cmd_verify},
+        {"sweep", cli_cmd_sweep},
     };
     /* --verbose is accepted anywhere, by every command */
     int kept = 1;
@@ -96,7 +99,7 @@ int main(int argc, char **argv)
     const char *near = dyn_lang_nearest(argv[1], names, n);
     return cli_usage_error(NULL,
                            "unknown command '%s' (%s%s%saccepted: run, models, methods, info, "
-                           "inverse, report, animate, plot, verify, help)",
+                           "inverse, report, animate, plot, verify, sweep, help)",
                            argv[1], near ? "did you mean '" : "", near ? near : "",
                            near ? "'? " : "");
 }

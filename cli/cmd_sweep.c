@@ -1,0 +1,817 @@
+/* dynkit sweep MODEL [run options] --vary/--sample/--from ... --reduce LIST: many runs of one
+ * model, one row per run (docs/sweeps.md). The run table comes from --vary (evenly spaced or
+ * listed values; several make the full grid, the last fastest), --sample (Philox4x32-10
+ * random values of (seed, run) alone) or --from (a CSV table); the runs go to dyn_sweep_run
+ * (dynkit/sweep.h) on OpenMP threads; the table is written in run order, CSV with %.17g.
+ * Ctrl-C writes the finished runs, and --resume FILE runs only the others. */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <math.h>
+#include <signal.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "cli.h"
+#include "dynkit/sweep.h"
+
+#define SWEEP_MAX_VARS 32
+#define SWEEP_MAX_REDUCE 64
+#define SWEEP_MAX_ROWS 100000000L
+
+static void sweep_help(void)
+{
+    puts("Usage: dynkit sweep MODEL [run options] (--vary ... | --sample ... | --from FILE)\n"
+         "                    [--reduce LIST] [--threads N] [--output FILE] [--resume FILE]\n"
+         "\n"
+         "Runs MODEL many times with one method and one set of run options, each run with its\n"
+         "own parameter or initial-state values, and writes one row per run, in run order:\n"
+         "run,<varied names>,<reduced names>. Runs are numbered from 0. Numbers are printed\n"
+         "with %.17g (they read back exactly); a failed run (a state NaN or Inf, the step size\n"
+         "underflowing, --max-steps reached, parameters the model refuses) is a row of nan\n"
+         "with its reason in a last column 'status' (present when a run failed: ok, nonfinite,\n"
+         "step-size, max-steps, rhs, parameters, bound, zeno). The results are the same bytes\n"
+         "for any number of threads.\n"
+         "\n"
+         "The runs (one of):\n"
+         "  --vary NAME=A:B:N    N values from A to B, A + k (B-A)/(N-1), the ends exactly A\n"
+         "                       and B; NAME a parameter or a state (its initial value)\n"
+         "  --vary NAME=V1,V2,.. the values listed; several --vary make the full grid, the\n"
+         "                       last --vary varying fastest (as the innermost loop)\n"
+         "  --sample NAME=DIST   random values: uniform(A,B), normal(MEAN,SD), lognormal(M,S)\n"
+         "                       (exp of normal(M,S)); repeatable, one column each\n"
+         "  --runs N             the number of random runs (with --sample)\n"
+         "  --seed S             the seed, a whole number 0..2^64-1 (default 1); run i's\n"
+         "                       values depend on (S, i, column) alone: Philox4x32-10, normal\n"
+         "                       values by the Box-Muller transform\n"
+         "  --from FILE.csv      one run per row of a CSV table whose columns are named like\n"
+         "                       parameters and states\n"
+         "Numbers may be multiples of pi (pi/4) or degrees (45deg), as in --set.\n"
+         "\n"
+         "What each run gives (--reduce, comma-separated; default: final):\n"
+         "  final                every state at the end of the run (columns final:NAME)\n"
+         "  final:NAME           a state or an output (dynkit info MODEL) at the end\n"
+         "  max:NAME, min:NAME   largest, smallest value over the samples\n"
+         "  argmax:NAME, argmin:NAME   the time of the (first) largest, smallest sample\n"
+         "  mean:NAME            time average over the samples: the trapezoidal rule divided by\n"
+         "                       the span\n"
+         "  event:NAME           the time of the first occurrence of the model's event NAME\n"
+         "                       (nan when it does not occur)\n"
+         "  count:NAME           the number of occurrences of event NAME\n"
+         "The samples are every step of a fixed-step method, and the --step grid of an\n"
+         "adaptive one (the model's step by default). --event NAME:stop ends each run at the\n"
+         "event's first occurrence (the end of the run for final, max, ...).\n"
+         "\n"
+         "Sweep options:\n"
+         "  --threads N          threads (default: all cores, or OMP_NUM_THREADS)\n"
+         "  -o, --output FILE    write the table to FILE (CSV; default: standard output)\n"
+         "  --resume FILE        keep the finished runs of FILE (a table an interrupted sweep\n"
+         "                       with the same options wrote), run the others, and write the\n"
+         "                       whole table to --output (default: FILE itself)\n"
+         "  --quiet              no progress bar (shown on a terminal only: runs, rate, ETA)\n"
+         "Ctrl-C stops the sweep: the finished runs are written and the command to resume is\n"
+         "printed (exit status 130). Failed runs do not change the exit status (0).\n"
+         "\n"
+         "Run options (as dynkit run; not --final, --every, --outputs, --times, --trace,\n"
+         "--stats, --header, --events-output):");
+    cli_run_options_help(stdout);
+    puts("\n"
+         "Examples:\n"
+         "  dynkit sweep pendulum --method dop853 --rtol 1e-12 --atol 1e-12 --tspan 0:5 "
+         "--vary dphi=0.1:1.9:50 --reduce event:turn --event turn:stop\n"
+         "  dynkit sweep vanderpol --method rk4 --step 0.01 --tspan 0:20 --vary mu=0.5,1,2,4 "
+         "--reduce max:y1,argmax:y1,mean:y2\n"
+         "  dynkit sweep pendulum --method rk4 --step 0.01 --tspan 0:10 --vary l=1:10:4 "
+         "--vary dphi=0.5:1.5:3 --reduce max:height,count:bottom\n"
+         "  dynkit sweep vanderpol --method dp45 --tspan 0:10 --sample 'mu=uniform(0.5,2)' "
+         "--sample 'y1=normal(2,0.1)' --runs 1000 --seed 7 --reduce final --output mc.csv\n"
+         "  dynkit sweep vanderpol --method dp45 --tspan 0:10 --sample 'mu=uniform(0.5,2)' "
+         "--sample 'y1=normal(2,0.1)' --runs 1000 --seed 7 --reduce final --resume mc.csv\n"
+         "  dynkit sweep pendulum --method rk4 --step 0.01 --tspan 0:10 --from runs.csv "
+         "--reduce final,max:energy --threads 2");
+}
+
+/* ---- the run table ---- */
+
+typedef struct sweep_spec {
+    int n_vars;
+    dyn_sweep_var vars[SWEEP_MAX_VARS];
+    /* --vary: the axes */
+    double *axis[SWEEP_MAX_VARS];
+    long count[SWEEP_MAX_VARS];
+    /* --sample */
+    dyn_dist dist[SWEEP_MAX_VARS];
+    int n_vary, n_sample;
+    const char *from;
+    long runs;
+    uint64_t seed;
+    long n_runs;
+    double *values; /* (n_runs x n_vars) */
+} sweep_spec;
+
+static void spec_free(sweep_spec *sp)
+{
+    for (int j = 0; j < SWEEP_MAX_VARS; j++)
+        free(sp->axis[j]);
+    free(sp->values);
+}
+
+static int add_var(const dyn_model *m, sweep_spec *sp, const char *name, size_t len,
+                   const char *opt)
+{
+    char buf[128], err[1024];
+    if (len == 0 || len >= sizeof buf)
+        return cli_usage_error("sweep", "%s: give NAME=..., NAME a parameter or a state", opt);
+    memcpy(buf, name, len);
+    buf[len] = '\0';
+    if (sp->n_vars >= SWEEP_MAX_VARS)
+        return cli_usage_error("sweep", "at most %d varied names", SWEEP_MAX_VARS);
+    dyn_sweep_var v;
+    if (dyn_sweep_var_find(m, buf, &v, err, sizeof err))
+        return cli_usage_error("sweep", "%s %s: %s", opt, buf, err);
+    for (int j = 0; j < sp->n_vars; j++)
+        if (sp->vars[j].kind == v.kind && sp->vars[j].index == v.index)
+            return cli_usage_error("sweep", "%s %s: %s is varied twice", opt, buf, buf);
+    sp->vars[sp->n_vars++] = v;
+    return CLI_OK;
+}
+
+/* --vary NAME=A:B:N or NAME=V1,V2,... */
+static int parse_vary(const dyn_model *m, sweep_spec *sp, const char *text)
+{
+    const char *eq = strchr(text, '=');
+    if (!eq)
+        return cli_usage_error("sweep", "--vary '%s': give NAME=A:B:N or NAME=V1,V2,...", text);
+    if (add_var(m, sp, text, (size_t)(eq - text), "--vary") != CLI_OK)
+        return CLI_USAGE;
+    const int j = sp->n_vars - 1;
+    const char *v = eq + 1;
+    char buf[256];
+    if (strchr(v, ':')) {
+        double a, b;
+        long n;
+        const char *c1 = strchr(v, ':'), *c2 = c1 ? strchr(c1 + 1, ':') : NULL;
+        int ok = c2 && (size_t)(c1 - v) < sizeof buf && (size_t)(c2 - c1 - 1) < sizeof buf;
+        if (ok) {
+            memcpy(buf, v, (size_t)(c1 - v));
+            buf[c1 - v] = '\0';
+            ok = cli_parse_number(buf, &a) == 0;
+            memcpy(buf, c1 + 1, (size_t)(c2 - c1 - 1));
+            buf[c2 - c1 - 1] = '\0';
+            ok = ok && cli_parse_number(buf, &b) == 0 && cli_parse_count(c2 + 1, 1, &n) == 0;
+        }
+        if (!ok)
+            return cli_usage_error("sweep",
+                                   "--vary '%s': A:B:N needs two numbers and a count >= 1 "
+                                   "(e.g. dphi=0.1:1.9:50)",
+                                   text);
+        if (n > SWEEP_MAX_ROWS)
+            return cli_usage_error("sweep", "--vary '%s': at most %ld values", text,
+                                   SWEEP_MAX_ROWS);
+        sp->axis[j] = malloc((size_t)n * sizeof(double));
+        if (!sp->axis[j])
+            return CLI_FAILED;
+        for (long k = 0; k < n; k++)
+            sp->axis[j][k] = dyn_linspace_at(a, b, n, k);
+        sp->count[j] = n;
+    } else {
+        long n = 1;
+        for (const char *p = v; *p; p++)
+            n += *p == ',';
+        sp->axis[j] = malloc((size_t)n * sizeof(double));
+        if (!sp->axis[j])
+            return CLI_FAILED;
+        const char *p = v;
+        for (long k = 0; k < n; k++) {
+            size_t len = strcspn(p, ",");
+            if (len >= sizeof buf)
+                len = sizeof buf - 1;
+            memcpy(buf, p, len);
+            buf[len] = '\0';
+            if (cli_parse_number(buf, &sp->axis[j][k]))
+                return cli_usage_error("sweep",
+                                       "--vary '%s': '%s' is not a number (give NAME=A:B:N or "
+                                       "NAME=V1,V2,...)",
+                                       text, buf);
+            p += strcspn(p, ",");
+            if (*p)
+                p++;
+        }
+        sp->count[j] = n;
+    }
+    sp->n_vary++;
+    return CLI_OK;
+}
+
+/* --sample NAME=uniform(A,B)|normal(M,S)|lognormal(M,S) */
+static int parse_sample(const dyn_model *m, sweep_spec *sp, const char *text)
+{
+    const char *eq = strchr(text, '=');
+    if (!eq)
+        return cli_usage_error("sweep",
+                               "--sample '%s': give NAME=uniform(A,B), normal(MEAN,SD) or "
+                               "lognormal(M,S)",
+                               text);
+    if (add_var(m, sp, text, (size_t)(eq - text), "--sample") != CLI_OK)
+        return CLI_USAGE;
+    static const struct {
+        const char *name;
+        dyn_dist_kind kind;
+    } kinds[] = {{"uniform", DYN_DIST_UNIFORM},
+                 {"normal", DYN_DIST_NORMAL},
+                 {"lognormal", DYN_DIST_LOGNORMAL}};
+    const char *v = eq + 1;
+    const char *open = strchr(v, '('), *comma = open ? strchr(open, ',') : NULL;
+    const char *close = comma ? strchr(comma, ')') : NULL;
+    int kind = -1;
+    for (size_t k = 0; open && k < sizeof kinds / sizeof kinds[0]; k++)
+        if (strlen(kinds[k].name) == (size_t)(open - v) &&
+            strncmp(v, kinds[k].name, (size_t)(open - v)) == 0)
+            kind = (int)kinds[k].kind;
+    char a_text[128], b_text[128];
+    double a = 0, b = 0;
+    int ok = kind >= 0 && close && close[1] == '\0' && (size_t)(comma - open) < sizeof a_text &&
+             (size_t)(close - comma) < sizeof b_text;
+    if (ok) {
+        snprintf(a_text, sizeof a_text, "%.*s", (int)(comma - open - 1), open + 1);
+        snprintf(b_text, sizeof b_text, "%.*s", (int)(close - comma - 1), comma + 1);
+        ok = cli_parse_number(a_text, &a) == 0 && cli_parse_number(b_text, &b) == 0;
+    }
+    if (!ok)
+        return cli_usage_error("sweep",
+                               "--sample '%s': give NAME=uniform(A,B), normal(MEAN,SD) or "
+                               "lognormal(M,S) with numbers A, B, ...",
+                               text);
+    if (kind == DYN_DIST_UNIFORM && !(b > a))
+        return cli_usage_error("sweep", "--sample '%s': uniform(A,B) needs A < B", text);
+    if (kind != DYN_DIST_UNIFORM && !(b >= 0))
+        return cli_usage_error("sweep", "--sample '%s': the standard deviation must be >= 0",
+                               text);
+    sp->dist[sp->n_sample++] = (dyn_dist){(dyn_dist_kind)kind, a, b};
+    return CLI_OK;
+}
+
+/* --from FILE.csv: every column a parameter or a state. */
+static int read_from(const dyn_model *m, sweep_spec *sp)
+{
+    dyn_table t;
+    char err[512];
+    if (dyn_table_read_file(sp->from, 0, &t, err, sizeof err) != DYN_OK) {
+        fprintf(stderr, "dynkit: error: --from: %s\n", err);
+        return CLI_USAGE;
+    }
+    int rc = CLI_OK;
+    for (int c = 0; c < t.cols && rc == CLI_OK; c++)
+        rc = add_var(m, sp, t.names[c], strlen(t.names[c]), "--from column");
+    if (rc == CLI_OK) {
+        sp->n_runs = t.rows;
+        sp->values = t.data;
+        t.data = NULL;
+    }
+    dyn_table_free(&t);
+    return rc;
+}
+
+static int build_table(sweep_spec *sp)
+{
+    if (sp->n_vary > 0) {
+        const double *axes[SWEEP_MAX_VARS];
+        for (int j = 0; j < sp->n_vars; j++)
+            axes[j] = sp->axis[j];
+        long rows = dyn_sweep_grid(sp->n_vars, axes, sp->count, NULL, SWEEP_MAX_ROWS);
+        if (rows < 0)
+            return cli_usage_error("sweep", "the grid of --vary has more than %ld runs",
+                                   SWEEP_MAX_ROWS);
+        sp->values = malloc((size_t)rows * (size_t)sp->n_vars * sizeof(double));
+        if (!sp->values)
+            return CLI_FAILED;
+        sp->n_runs = dyn_sweep_grid(sp->n_vars, axes, sp->count, sp->values, SWEEP_MAX_ROWS);
+    } else if (sp->n_sample > 0) {
+        sp->n_runs = sp->runs;
+        sp->values = malloc((size_t)sp->runs * (size_t)sp->n_vars * sizeof(double));
+        if (!sp->values)
+            return CLI_FAILED;
+        dyn_sweep_sample(sp->dist, sp->n_vars, sp->seed, 0, sp->runs, sp->values);
+    }
+    return CLI_OK;
+}
+
+/* ---- statuses as words ---- */
+
+static const struct {
+    int status;
+    const char *word;
+} status_words[] = {{DYN_OK, "ok"},
+                    {DYN_ERR_NONFINITE, "nonfinite"},
+                    {DYN_ERR_STEP_SIZE, "step-size"},
+                    {DYN_ERR_MAX_STEPS, "max-steps"},
+                    {DYN_ERR_RHS, "rhs"},
+                    {DYN_ERR_ARG, "parameters"},
+                    {DYN_STOPPED, "bound"},
+                    {DYN_ERR_ZENO, "zeno"},
+                    {DYN_ERR_CAPACITY, "capacity"},
+                    {DYN_ERR_IO, "io"}};
+
+static const char *status_word(int st)
+{
+    for (size_t k = 0; k < sizeof status_words / sizeof status_words[0]; k++)
+        if (status_words[k].status == st)
+            return status_words[k].word;
+    return "failed";
+}
+
+static int status_of_word(const char *w, int *st)
+{
+    for (size_t k = 0; k < sizeof status_words / sizeof status_words[0]; k++)
+        if (strcmp(status_words[k].word, w) == 0) {
+            *st = status_words[k].status;
+            return 0;
+        }
+    return -1;
+}
+
+/* ---- the table ---- */
+
+typedef struct sweep_out {
+    const dyn_model *m;
+    const sweep_spec *sp;
+    const dyn_reduce *red;
+    int n_red;
+    double *results; /* (n_runs x n_red) */
+    int *status;     /* (n_runs) */
+} sweep_out;
+
+static int put_number(FILE *f, double x)
+{
+    if (isnan(x))
+        return fputs(",nan", f) < 0 ? -1 : 0;
+    if (isinf(x))
+        return fputs(x > 0 ? ",inf" : ",-inf", f) < 0 ? -1 : 0;
+    return fprintf(f, ",%.17g", x) < 0 ? -1 : 0;
+}
+
+static void header_line(const sweep_out *o, int with_status, char *buf, size_t size)
+{
+    size_t used = (size_t)snprintf(buf, size, "run");
+    char name[160];
+    for (int j = 0; j < o->sp->n_vars && used < size; j++)
+        used += (size_t)snprintf(buf + used, size - used, ",%s",
+                                 dyn_sweep_var_name(o->m, &o->sp->vars[j]));
+    for (int r = 0; r < o->n_red && used < size; r++)
+        used += (size_t)snprintf(buf + used, size - used, ",%s",
+                                 dyn_reduce_name(o->m, &o->red[r], name, sizeof name));
+    if (with_status && used < size)
+        snprintf(buf + used, size - used, ",status");
+}
+
+/* The finished runs in run order; returns 0 or -1 (a write failed). */
+static int write_table(FILE *f, const sweep_out *o)
+{
+    int with_status = 0;
+    for (long i = 0; i < o->sp->n_runs; i++)
+        with_status |= o->status[i] != DYN_OK && o->status[i] != DYN_SWEEP_NOT_RUN;
+    char head[8192];
+    header_line(o, with_status, head, sizeof head);
+    int bad = fprintf(f, "%s\n", head) < 0;
+    const int nv = o->sp->n_vars;
+    for (long i = 0; i < o->sp->n_runs && !bad; i++) {
+        if (o->status[i] == DYN_SWEEP_NOT_RUN)
+            continue;
+        bad |= fprintf(f, "%ld", i) < 0;
+        for (int j = 0; j < nv; j++)
+            bad |= put_number(f, o->sp->values[(size_t)i * (size_t)nv + (size_t)j]);
+        for (int r = 0; r < o->n_red; r++)
+            bad |= put_number(f, o->results[(size_t)i * (size_t)o->n_red + (size_t)r]);
+        if (with_status)
+            bad |= fprintf(f, ",%s", status_word(o->status[i])) < 0;
+        bad |= fputc('\n', f) == EOF;
+    }
+    bad |= fflush(f) != 0 || ferror(f);
+    return bad ? -1 : 0;
+}
+
+/* --resume FILE: the finished runs of a table written by the same sweep. Marks them in
+ * skip and fills their rows and statuses; returns CLI_OK or an error (printed). */
+static int read_resume(const char *path, sweep_out *o, unsigned char *skip, long *kept)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) {
+        fprintf(stderr, "dynkit: error: --resume: cannot open %s: %s\n", path, strerror(errno));
+        return CLI_USAGE;
+    }
+    size_t cap = 1 << 16;
+    char *line = malloc(cap);
+    char head[8192], head_status[8192];
+    header_line(o, 0, head, sizeof head);
+    header_line(o, 1, head_status, sizeof head_status);
+    int rc = CLI_OK, with_status = 0;
+    long lineno = 0;
+    *kept = 0;
+    const int nv = o->sp->n_vars;
+    while (line && rc == CLI_OK && fgets(line, (int)cap, f)) {
+        lineno++;
+        size_t len = strlen(line);
+        while (len > 0 && (line[len - 1] == '\n' || line[len - 1] == '\r'))
+            line[--len] = '\0';
+        if (lineno == 1) {
+            with_status = strcmp(line, head_status) == 0;
+            if (!with_status && strcmp(line, head) != 0) {
+                fprintf(stderr,
+                        "dynkit: error: --resume: %s is not a table of this sweep: its header "
+                        "is\n  %s\nand this sweep writes\n  %s\n(give the same model, runs and "
+                        "--reduce as the sweep that wrote it)\n",
+                        path, line, head);
+                rc = CLI_USAGE;
+            }
+            continue;
+        }
+        if (len == 0)
+            continue;
+        char *p = line, *end;
+        errno = 0;
+        long run = strtol(p, &end, 10);
+        int ok = end != p && *end == ',' && run >= 0 && run < o->sp->n_runs && !skip[run];
+        p = end;
+        for (int j = 0; j < nv && ok; j++) {
+            double x = strtod(p + 1, &end);
+            ok = *p == ',' && end != p + 1 &&
+                 x == o->sp->values[(size_t)run * (size_t)nv + (size_t)j];
+            p = end;
+        }
+        double *row = ok ? o->results + (size_t)run * (size_t)o->n_red : NULL;
+        for (int r = 0; r < o->n_red && ok; r++) {
+            row[r] = strtod(p + 1, &end);
+            ok = *p == ',' && end != p + 1;
+            p = end;
+        }
+        int st = DYN_OK;
+        if (ok && with_status)
+            ok = *p == ',' && status_of_word(p + 1, &st) == 0;
+        else if (ok)
+            ok = *p == '\0';
+        if (!ok) {
+            fprintf(stderr,
+                    "dynkit: error: --resume: %s:%ld: not a row of this sweep (a run number "
+                    "0..%ld not seen before, the same values of the varied names, then %d "
+                    "numbers%s)\n",
+                    path, lineno, o->sp->n_runs - 1, o->n_red, with_status ? " and a status" : "");
+            rc = CLI_USAGE;
+            break;
+        }
+        o->status[run] = st;
+        skip[run] = 1;
+        (*kept)++;
+    }
+    if (!line)
+        rc = CLI_FAILED;
+    if (rc == CLI_OK && lineno == 0) {
+        fprintf(stderr, "dynkit: error: --resume: %s is empty\n", path);
+        rc = CLI_USAGE;
+    }
+    free(line);
+    fclose(f);
+    return rc;
+}
+
+/* ---- progress and Ctrl-C ---- */
+
+static volatile sig_atomic_t sweep_signal;
+
+static void on_signal(int sig)
+{
+    sweep_signal = sig;
+    signal(sig, SIG_DFL); /* a second one ends the program */
+}
+
+static int sweep_cancelled(void *ctx)
+{
+    (void)ctx;
+    return sweep_signal != 0;
+}
+
+static double now_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+typedef struct sweep_progress {
+    int enabled, shown;
+    double start, last;
+    long kept;
+} sweep_progress;
+
+static int sweep_progress_update(long run, int status, long done, long total, void *ctx)
+{
+    sweep_progress *p = ctx;
+    (void)run;
+    (void)status;
+    if (!p->enabled)
+        return 0;
+    const double t = now_seconds(), elapsed = t - p->start;
+    if ((elapsed < 0.5 || t - p->last < 0.1) && done < total)
+        return 0;
+    if (!p->shown && done == total)
+        return 0;
+    p->last = t;
+    const double rate = elapsed > 0 ? (double)done / elapsed : 0.0;
+    const double eta = rate > 0 ? (double)(total - done) / rate : 0.0;
+    char bar[31];
+    const int fill = total > 0 ? (int)(30.0 * (double)done / (double)total) : 30;
+    for (int k = 0; k < 30; k++)
+        bar[k] = k < fill ? '#' : '.';
+    bar[30] = '\0';
+    fprintf(stderr, "\r  [%s] %5.1f%%  %ld/%ld runs  %.0f runs/s  ETA %.0f s ", bar,
+            total > 0 ? 100.0 * (double)done / (double)total : 100.0, done + p->kept,
+            total + p->kept, rate, eta);
+    p->shown = 1;
+    return 0;
+}
+
+/* ---- the command ---- */
+
+/* Run options that do not apply to a sweep. */
+static int refused_option(const char *arg)
+{
+    static const char *const refused[] = {"--final", "--every",  "--outputs",      "--times",
+                                          "--trace", "--stats", "--header", "--events-output"};
+    for (size_t k = 0; k < sizeof refused / sizeof refused[0]; k++) {
+        size_t len = strlen(refused[k]);
+        if (strncmp(arg, refused[k], len) == 0 && (arg[len] == '\0' || arg[len] == '='))
+            return cli_usage_error("sweep",
+                                   "%s does not apply to a sweep: each run is reduced to one "
+                                   "row by --reduce (e.g. --reduce final,max:NAME)",
+                                   refused[k]);
+    }
+    return CLI_OK;
+}
+
+int cli_cmd_sweep(int argc, char **argv)
+{
+    for (int i = 0; i < argc; i++)
+        if (cli_is_help(argv[i])) {
+            sweep_help();
+            return CLI_OK;
+        }
+    if (argc < 1 || argv[0][0] == '-') {
+        char names[512];
+        return cli_usage_error("sweep", "missing MODEL (accepted: %s, or a model file)",
+                               dyn_model_names(names, sizeof names));
+    }
+    /* the sweep's own options; the rest are run options */
+    char **pass = calloc((size_t)argc + 1, sizeof *pass);
+    const char **vary = calloc((size_t)argc + 1, sizeof *vary);
+    const char **sample = calloc((size_t)argc + 1, sizeof *sample);
+    if (!pass || !vary || !sample) {
+        free(pass);
+        free(vary);
+        free(sample);
+        return CLI_FAILED;
+    }
+    int n_pass = 0, n_vary_opt = 0, n_sample_opt = 0, rc = CLI_OK, init_given = 0;
+    const char *reduce = "final", *threads_text = NULL, *output = NULL, *resume = NULL;
+    const char *runs_text = NULL, *seed_text = NULL, *from = NULL;
+    pass[n_pass++] = argv[0];
+    for (int i = 1; i < argc && rc == CLI_OK; i++) {
+        const char *v = NULL;
+        int r;
+#define SOPT(name, dest)                                                               \
+    if ((r = cli_option(argc, argv, &i, name, &v)) != 0) {                             \
+        if (r < 0)                                                                     \
+            rc = cli_usage_error("sweep", "option --%s needs a value", name);          \
+        else                                                                           \
+            dest;                                                                      \
+        continue;                                                                      \
+    }
+        SOPT("vary", vary[n_vary_opt++] = v)
+        SOPT("sample", sample[n_sample_opt++] = v)
+        SOPT("runs", runs_text = v)
+        SOPT("seed", seed_text = v)
+        SOPT("from", from = v)
+        SOPT("reduce", reduce = v)
+        SOPT("threads", threads_text = v)
+        SOPT("output", output = v)
+        SOPT("resume", resume = v)
+#undef SOPT
+        rc = refused_option(argv[i]);
+        init_given |= strncmp(argv[i], "--init", 6) == 0;
+        pass[n_pass++] = argv[i];
+    }
+    cli_run run;
+    memset(&run, 0, sizeof run);
+    sweep_spec sp;
+    memset(&sp, 0, sizeof sp);
+    sp.seed = 1;
+    if (rc == CLI_OK)
+        rc = cli_run_parse("sweep", n_pass, pass, &run);
+    const dyn_model *m = run.model;
+    const int sources = (n_vary_opt > 0) + (n_sample_opt > 0) + (from != NULL);
+    if (rc == CLI_OK && sources != 1)
+        rc = cli_usage_error("sweep", sources == 0
+                                          ? "give the runs: --vary NAME=A:B:N, --sample "
+                                            "NAME=uniform(A,B) --runs N, or --from FILE.csv"
+                                          : "give the runs one way: --vary, --sample or --from "
+                                            "(not together)");
+    if (rc == CLI_OK && cli_method_is_cvode(run.method))
+        rc = cli_usage_error("sweep", "sweeps run the library's methods; cvode is not one of "
+                                      "them (use rodas4 for stiff models)");
+    for (int k = 0; k < n_vary_opt && rc == CLI_OK; k++)
+        rc = parse_vary(m, &sp, vary[k]);
+    for (int k = 0; k < n_sample_opt && rc == CLI_OK; k++)
+        rc = parse_sample(m, &sp, sample[k]);
+    if (rc == CLI_OK && n_sample_opt > 0 && !runs_text)
+        rc = cli_usage_error("sweep", "--sample needs --runs N (how many random runs)");
+    if (rc == CLI_OK && (runs_text || seed_text) && n_sample_opt == 0)
+        rc = cli_usage_error("sweep", "--runs and --seed go with --sample");
+    if (rc == CLI_OK && runs_text &&
+        (cli_parse_count(runs_text, 1, &sp.runs) || sp.runs > SWEEP_MAX_ROWS))
+        rc = cli_usage_error("sweep", "--runs '%s': give a whole number from 1 to %ld",
+                             runs_text, SWEEP_MAX_ROWS);
+    if (rc == CLI_OK && seed_text) {
+        char *end;
+        errno = 0;
+        unsigned long long s = strtoull(seed_text, &end, 10);
+        if (end == seed_text || *end || errno || seed_text[0] == '-')
+            rc = cli_usage_error("sweep", "--seed '%s': give a whole number 0..2^64-1",
+                                 seed_text);
+        sp.seed = (uint64_t)s;
+    }
+    long threads = 0;
+    if (rc == CLI_OK && threads_text &&
+        (cli_parse_count(threads_text, 1, &threads) || threads > 4096))
+        rc = cli_usage_error("sweep", "--threads '%s': give a whole number from 1 to 4096",
+                             threads_text);
+    if (rc == CLI_OK && from) {
+        sp.from = from;
+        rc = read_from(m, &sp);
+    }
+    if (rc == CLI_OK)
+        rc = build_table(&sp);
+    dyn_reduce red[SWEEP_MAX_REDUCE];
+    int n_red = 0;
+    char err[1024];
+    if (rc == CLI_OK && dyn_reduce_parse(m, reduce, red, SWEEP_MAX_REDUCE, &n_red, err, sizeof err))
+        rc = cli_usage_error("sweep", "--reduce: %s", err);
+    for (int r = 0; r < n_red && rc == CLI_OK; r++)
+        if (red[r].source == DYN_SOURCE_OUTPUT && !m->compute_outputs)
+            rc = cli_usage_error("sweep", "--reduce: %s has no outputs", m->name);
+    const char *out_path = output ? output : resume;
+    if (rc == CLI_OK && out_path && strcmp(out_path, "-") != 0) {
+        const char *dot = strrchr(out_path, '.');
+        if (!dot || strcmp(dot, ".csv") != 0)
+            rc = cli_usage_error("sweep", "--output '%s': a sweep's table is written as CSV "
+                                          "(give a name ending in .csv, or '-')",
+                                 out_path);
+    }
+    free(pass);
+    free(vary);
+    free(sample);
+    if (rc != CLI_OK) {
+        spec_free(&sp);
+        cli_run_free(&run);
+        return rc;
+    }
+
+    /* the sweep */
+    int stop[64], n_stop = 0;
+    for (int k = 0; k < run.n_events && n_stop < 64; k++)
+        if (run.events[k].terminal)
+            for (int e = 0; e < m->n_events; e++)
+                if (strcmp(m->events[e].name, run.events[k].name) == 0)
+                    stop[n_stop++] = e;
+    const long n_runs = sp.n_runs;
+    sweep_out o = {m, &sp, red, n_red, NULL, NULL};
+    o.results = malloc(((size_t)n_runs * (size_t)n_red + 1) * sizeof *o.results);
+    o.status = malloc(((size_t)n_runs + 1) * sizeof *o.status);
+    unsigned char *skip = calloc((size_t)n_runs + 1, 1);
+    if (!o.results || !o.status || !skip) {
+        fprintf(stderr, "dynkit: error: out of memory for %ld runs\n", n_runs);
+        rc = CLI_FAILED;
+    }
+    for (long i = 0; i < n_runs && rc == CLI_OK; i++)
+        o.status[i] = DYN_SWEEP_NOT_RUN;
+    long kept = 0;
+    if (rc == CLI_OK && resume)
+        rc = read_resume(resume, &o, skip, &kept);
+    dyn_sweep s = {0};
+    s.model = m;
+    s.par = run.par;
+    s.y0 = m->initial_state && !init_given ? NULL : run.y0;
+    s.n_vars = sp.n_vars;
+    s.vars = sp.vars;
+    s.n_runs = n_runs;
+    s.values = sp.values;
+    s.method = run.method;
+    s.t0 = run.t0;
+    s.t1 = run.t1;
+    s.step = dyn_method_is_adaptive(run.method) && cli_run_at_steps(&run) ? 0.0 : run.step;
+    s.end = run.end;
+    s.rtol = run.rtol;
+    s.atol = run.atol;
+    s.rtolv = run.rtolv;
+    s.atolv = run.atolv;
+    s.initial_step = run.initial_step;
+    s.max_step = run.max_step;
+    s.max_steps = run.max_steps;
+    s.n_reduce = n_red;
+    s.reduce = red;
+    s.n_stop = n_stop;
+    s.stop = stop;
+    s.skip = skip;
+    s.threads = (int)threads;
+    sweep_progress prog = {0};
+    prog.enabled = !run.quiet && isatty(fileno(stderr));
+    prog.start = prog.last = now_seconds();
+    prog.kept = kept;
+    s.progress = sweep_progress_update;
+    s.progress_ctx = &prog;
+    s.cancel = sweep_cancelled;
+    struct sigaction sa, old_int, old_term;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sweep_signal = 0;
+    int src = DYN_OK;
+    if (rc == CLI_OK) {
+        sigaction(SIGINT, &sa, &old_int);
+        sigaction(SIGTERM, &sa, &old_term);
+        src = dyn_sweep_run(&s, o.results, o.status, err, sizeof err);
+        sigaction(SIGINT, &old_int, NULL);
+        sigaction(SIGTERM, &old_term, NULL);
+        if (prog.shown)
+            fputs("\r\033[K", stderr);
+        if (src != DYN_OK && src != DYN_CANCELLED) {
+            fprintf(stderr, "dynkit: error: %s\n", err);
+            rc = src == DYN_ERR_ARG ? CLI_USAGE : CLI_FAILED;
+        }
+    }
+
+    /* the table */
+    if (rc == CLI_OK) {
+        FILE *f = stdout;
+        char tmp[4096] = "";
+        if (out_path && strcmp(out_path, "-") != 0) {
+            snprintf(tmp, sizeof tmp, "%s.tmp-%ld", out_path, (long)getpid());
+            f = fopen(tmp, "w");
+            if (!f) {
+                fprintf(stderr, "dynkit: error: --output: cannot write %s: %s\n", out_path,
+                        strerror(errno));
+                rc = CLI_FAILED;
+            }
+        }
+        if (f) {
+            int bad = write_table(f, &o);
+            if (f != stdout) {
+                bad |= fclose(f) != 0;
+                if (!bad && rename(tmp, out_path) != 0)
+                    bad = 1;
+                if (bad) {
+                    remove(tmp);
+                    fprintf(stderr, "dynkit: error: --output: cannot write %s\n", out_path);
+                }
+            }
+            if (bad)
+                rc = CLI_FAILED;
+        }
+    }
+    if (rc == CLI_OK) {
+        long done = 0, failed = 0;
+        for (long i = 0; i < n_runs; i++) {
+            done += o.status[i] != DYN_SWEEP_NOT_RUN;
+            failed += o.status[i] != DYN_SWEEP_NOT_RUN && o.status[i] != DYN_OK;
+        }
+        if (failed > 0)
+            fprintf(stderr, "dynkit: %ld of %ld runs failed (see the status column)\n", failed,
+                    done);
+        for (int r = 0; r < n_red; r++) {
+            if (red[r].op != DYN_REDUCE_EVENT)
+                continue;
+            int seen = 0;
+            for (long i = 0; i < n_runs && !seen; i++)
+                seen = o.status[i] == DYN_OK && !isnan(o.results[(size_t)i * (size_t)n_red + (size_t)r]);
+            if (!seen && done > failed)
+                fprintf(stderr,
+                        "dynkit: note: event %s occurred in no run within %g:%g s (a longer "
+                        "--tspan?)\n",
+                        m->events[red[r].index].name, run.t0, run.t1);
+        }
+        if (src == DYN_CANCELLED) {
+            fprintf(stderr,
+                    "dynkit: interrupted: %ld of %ld runs done, written to %s.\n"
+                    "dynkit: to run the others, give the same command with --resume %s\n",
+                    done, n_runs, out_path ? out_path : "standard output",
+                    out_path && strcmp(out_path, "-") != 0 ? out_path
+                                                            : "FILE (the table saved to FILE)");
+            rc = 128 + (int)sweep_signal;
+        }
+    }
+    free(o.results);
+    free(o.status);
+    free(skip);
+    spec_free(&sp);
+    cli_run_free(&run);
+    return rc;
+}

@@ -1,0 +1,313 @@
+/* dynkit sweep through the command line (cli/cmd_sweep.c):
+ * - `dynkit sweep pendulum --vary dphi=0.1:1.9:50 --reduce event:turn` (dop853 at rtol =
+ *   atol = 1e-12 over 0:5) gives the period curve: each first turn at K(k)/w with
+ *   k = dphi0/(2w), K by the arithmetic-geometric mean, to 1e-10 s; the varied values end
+ *   exactly at 0.1 and 1.9;
+ * - the same bytes for --threads 1 and 2 (a Monte Carlo table of 2000 runs);
+ * - --from FILE.csv gives the rows of the same values given by --vary;
+ * - a failing run (van der Pol with mu = 1000 under RK4 at h = 0.5) is a row of nan with the
+ *   status nonfinite, and the others are ok;
+ * - --resume: a table cut after some rows (as Ctrl-C leaves it) is completed to the bytes of
+ *   the uninterrupted sweep; a real SIGINT writes the finished runs, exits 130, says how to
+ *   resume; a table of another sweep is refused;
+ * - every example of `dynkit sweep --help` runs (exit 0) and every option is in the help;
+ * - usage errors name the bad input. */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <setjmp.h>
+#include <signal.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "dynkit/dynkit.h"
+#include "test_cli_run.h"
+
+static double ellip_k(double k)
+{
+    double a = 1.0, b = sqrt(1.0 - k * k);
+    for (int i = 0; i < 60 && fabs(a - b) > 1e-17 * a; i++) {
+        const double an = 0.5 * (a + b);
+        b = sqrt(a * b);
+        a = an;
+    }
+    return DYN_PI / (a + b);
+}
+
+static void test_period_curve(void **state)
+{
+    (void)state;
+    cli_result r = cli("sweep pendulum --method dop853 --rtol 1e-12 --atol 1e-12 --tspan 0:5 "
+                       "--vary dphi=0.1:1.9:50 --reduce event:turn");
+    assert_int_equal(r.status, 0);
+    assert_true(strncmp(r.out, "run,dphi,event:turn\n", 20) == 0);
+    assert_int_equal(csv_rows(r.out), 50);
+    const char *p = strchr(r.out, '\n') + 1;
+    double worst = 0.0;
+    for (int i = 0; i < 50; i++) {
+        char *end;
+        assert_int_equal(strtol(p, &end, 10), i);
+        const double dphi = strtod(end + 1, &end);
+        const double turn = strtod(end + 1, &end);
+        assert_true(*end == '\n');
+        if (i == 0)
+            assert_true(dphi == 0.1);
+        if (i == 49)
+            assert_true(dphi == 1.9);
+        /* g = l: w = 1; phi_max from the energy: sin(phi_max/2) = dphi0 / (2 w) */
+        worst = fmax(worst, fabs(turn - ellip_k(dphi / 2.0)));
+        p = end + 1;
+    }
+    assert_true(worst < 1e-10);
+    cli_free(&r);
+}
+
+static void test_threads_same_bytes(void **state)
+{
+    (void)state;
+    const char *args = "sweep vanderpol --method dp45 --rtol 1e-6 --tspan 0:5 "
+                       "--sample 'mu=uniform(0.5,3)' --sample 'y1=normal(2,0.2)' --runs 2000 "
+                       "--seed 42 --reduce final,max:y2,mean:y1,argmin:y2";
+    cli_result a = cli("%s --threads 1", args);
+    cli_result b = cli("%s --threads 2", args);
+    assert_int_equal(a.status, 0);
+    assert_int_equal(b.status, 0);
+    assert_int_equal(csv_rows(a.out), 2000);
+    assert_int_equal(a.out_len, b.out_len);
+    assert_memory_equal(a.out, b.out, a.out_len);
+    cli_free(&a);
+    cli_free(&b);
+}
+
+static void test_from(void **state)
+{
+    (void)state;
+    FILE *f = fopen(cli_path("runs.csv"), "w");
+    assert_non_null(f);
+    fputs("l,dphi\n2,0.5\n2,1\n5,0.5\n5,1\n", f);
+    fclose(f);
+    cli_result a = cli_in_tmpdir("sweep pendulum --method rk4 --step 0.01 --tspan 0:3 "
+                                 "--from runs.csv --reduce final,max:energy");
+    cli_result b = cli("sweep pendulum --method rk4 --step 0.01 --tspan 0:3 --vary l=2,5 "
+                       "--vary dphi=0.5,1 --reduce final,max:energy");
+    assert_int_equal(a.status, 0);
+    assert_int_equal(b.status, 0);
+    assert_string_equal(a.out, b.out);
+    assert_true(strncmp(a.out, "run,l,dphi,final:phi,final:dphi,max:energy\n", 43) == 0);
+    cli_free(&a);
+    cli_free(&b);
+    /* a column that is neither a parameter nor a state */
+    f = fopen(cli_path("bad.csv"), "w");
+    assert_non_null(f);
+    fputs("l,speed\n2,0.5\n", f);
+    fclose(f);
+    cli_result e = cli_in_tmpdir("sweep pendulum --from bad.csv");
+    assert_int_equal(e.status, 2);
+    assert_non_null(strstr(e.err, "'speed' is neither a parameter nor a state of pendulum"));
+    cli_free(&e);
+    unlink(cli_path("bad.csv"));
+}
+
+static void test_failed_run(void **state)
+{
+    (void)state;
+    cli_result r = cli("sweep vanderpol --method rk4 --step 0.5 --tspan 0:20 "
+                       "--vary mu=1,1000,0.5 --reduce final,max:y1");
+    assert_int_equal(r.status, 0);
+    assert_non_null(strstr(r.out, "run,mu,final:y1,final:y2,max:y1,status\n"));
+    assert_non_null(strstr(r.out, "\n1,1000,nan,nan,nan,nonfinite\n"));
+    assert_non_null(strstr(r.out, "\n0,1,"));
+    assert_non_null(strstr(r.out, "nonfinite\n2,0.5,"));
+    assert_non_null(strstr(r.err, "1 of 3 runs failed"));
+    cli_free(&r);
+}
+
+static void test_resume(void **state)
+{
+    (void)state;
+    const char *args = "sweep vanderpol --method rk4 --step 0.01 --tspan 0:10 "
+                       "--vary mu=0.5:3:40 --vary y1=1,2 --reduce final,max:y2";
+    cli_result full = cli_in_tmpdir("%s --output full.csv", args);
+    assert_int_equal(full.status, 0);
+    size_t len;
+    char *whole = cli_read_file(cli_path("full.csv"), &len);
+    assert_int_equal(csv_rows(whole), 80);
+    /* as an interrupted sweep leaves it: the header and some finished rows, not in order */
+    FILE *f = fopen(cli_path("part.csv"), "w");
+    assert_non_null(f);
+    const char *p = whole;
+    for (int line = 0; *p; line++) {
+        const char *nl = strchr(p, '\n');
+        if (line == 0 || line % 3 == 1)
+            fwrite(p, 1, (size_t)(nl - p + 1), f);
+        p = nl + 1;
+    }
+    fclose(f);
+    cli_result res = cli_in_tmpdir("%s --resume part.csv", args);
+    assert_int_equal(res.status, 0);
+    size_t len2;
+    char *resumed = cli_read_file(cli_path("part.csv"), &len2);
+    assert_int_equal(len, len2);
+    assert_memory_equal(whole, resumed, len);
+    /* another sweep's table is refused */
+    cli_result other = cli_in_tmpdir("sweep vanderpol --vary mu=1,2 --resume full.csv");
+    assert_int_equal(other.status, 2);
+    assert_non_null(strstr(other.err, "is not a table of this sweep"));
+    cli_free(&full);
+    cli_free(&res);
+    cli_free(&other);
+    free(whole);
+    free(resumed);
+    unlink(cli_path("full.csv"));
+    unlink(cli_path("part.csv"));
+}
+
+/* A real Ctrl-C: the finished runs are written, exit 130, the way to resume is printed;
+ * the resumed table equals the uninterrupted one. */
+static void test_interrupt(void **state)
+{
+    (void)state;
+    const char *args = "sweep vanderpol --method rk4 --step 0.001 --tspan 0:20 "
+                       "--vary mu=0.5:3:300 --reduce final --threads 2";
+    char cmd[2048];
+    snprintf(cmd, sizeof cmd, "cd '%s' && exec '%s' %s --output int.csv 2>int.err", cli_tmpdir,
+             DYNKIT_CLI, args);
+    pid_t pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        execl("/bin/sh", "sh", "-c", cmd, (char *)NULL);
+        _exit(127);
+    }
+    struct timespec ts = {0, 400000000L};
+    nanosleep(&ts, NULL);
+    kill(pid, SIGINT);
+    int w;
+    waitpid(pid, &w, 0);
+    assert_true(WIFEXITED(w));
+    char *err = cli_read_file(cli_path("int.err"), NULL);
+    if (WEXITSTATUS(w) == 130) {
+        assert_non_null(strstr(err, "interrupted:"));
+        assert_non_null(strstr(err, "--resume int.csv"));
+    } else {
+        assert_int_equal(WEXITSTATUS(w), 0); /* finished before the signal came */
+    }
+    free(err);
+    cli_result res = cli_in_tmpdir("%s --resume int.csv", args);
+    assert_int_equal(res.status, 0);
+    cli_result full = cli_in_tmpdir("%s --threads 1", args);
+    assert_int_equal(full.status, 0);
+    char *resumed = cli_read_file(cli_path("int.csv"), NULL);
+    assert_string_equal(resumed, full.out);
+    free(resumed);
+    cli_free(&res);
+    cli_free(&full);
+    unlink(cli_path("int.csv"));
+    unlink(cli_path("int.err"));
+}
+
+/* Every example of the help runs; every option is described. */
+static void test_help_examples(void **state)
+{
+    (void)state;
+    cli_result h = cli("sweep --help");
+    assert_int_equal(h.status, 0);
+    static const char *const options[] = {"--vary", "--sample", "--runs", "--seed", "--from",
+                                          "--reduce", "--threads", "--output", "--resume",
+                                          "--quiet"};
+    for (size_t k = 0; k < sizeof options / sizeof options[0]; k++)
+        assert_non_null(strstr(h.out, options[k]));
+    FILE *f = fopen(cli_path("runs.csv"), "w");
+    assert_non_null(f);
+    fputs("l,dphi\n2,0.5\n5,1\n", f);
+    fclose(f);
+    int examples = 0;
+    for (const char *p = strstr(h.out, "\n  dynkit sweep "); p;
+         p = strstr(p + 1, "\n  dynkit sweep ")) {
+        const char *start = p + strlen("\n  dynkit ");
+        const char *nl = strchr(start, '\n');
+        char args[1024];
+        snprintf(args, sizeof args, "%.*s", (int)(nl - start), start);
+        cli_result r = cli_in_tmpdir("%s", args);
+        if (r.status != 0)
+            fprintf(stderr, "example failed: dynkit %s\n%s", args, r.err);
+        assert_int_equal(r.status, 0);
+        assert_true(csv_rows(r.out) > 0 || strstr(args, "--output") || strstr(args, "--resume"));
+        cli_free(&r);
+        examples++;
+    }
+    assert_true(examples >= 5);
+    char *mc = cli_read_file(cli_path("mc.csv"), NULL);
+    assert_int_equal(csv_rows(mc), 1000);
+    free(mc);
+    cli_free(&h);
+    unlink(cli_path("mc.csv"));
+}
+
+static void test_errors(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *args, *message;
+    } cases[] = {
+        {"sweep pendulum --vary mass=1:2:3", "'mass' is neither a parameter nor a state"},
+        {"sweep pendulum --vary l=1:2", "A:B:N needs two numbers and a count"},
+        {"sweep pendulum --vary l=1,x", "'x' is not a number"},
+        {"sweep pendulum --sample 'l=uniform(1,2)'", "--sample needs --runs N"},
+        {"sweep pendulum --sample 'l=gauss(1,2)' --runs 3", "uniform(A,B), normal(MEAN,SD)"},
+        {"sweep pendulum --sample 'l=uniform(2,1)' --runs 3", "needs A < B"},
+        {"sweep pendulum --vary l=1,2 --sample 'm=uniform(1,2)' --runs 3", "one way"},
+        {"sweep pendulum", "give the runs"},
+        {"sweep pendulum --vary l=1,2 --final", "--final does not apply to a sweep"},
+        {"sweep pendulum --vary l=1,2 --reduce max:speed", "neither a state nor an output"},
+        {"sweep pendulum --vary l=1,2 --reduce event:top", "events: turn, bottom"},
+        {"sweep pendulum --vary l=1,2 --threads 0", "--threads '0'"},
+        {"sweep pendulum --vary l=1,2 --runs 5", "--runs and --seed go with --sample"},
+        {"sweep pendulum --vary l=1,l=2", "'l=2' is not a number"},
+        {"sweep pendulum --vary l=1,2 --vary l=3", "varied twice"},
+        {"sweep pendulum --vary l=1,2 --output t.json", "written as CSV"},
+        {"sweep pendulum --vary l=1,2 --resume missing.csv", "cannot open missing.csv"},
+        {"sweep", "missing MODEL"},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        cli_result r = cli_in_tmpdir("%s", cases[k].args);
+        if (r.status != 2 || !strstr(r.err, cases[k].message))
+            fprintf(stderr, "dynkit %s: status %d\n%s", cases[k].args, r.status, r.err);
+        assert_int_equal(r.status, 2);
+        assert_non_null(strstr(r.err, cases[k].message));
+        cli_free(&r);
+    }
+    /* parameters the model refuses: a row with the status 'parameters' */
+    cli_result r = cli("sweep pendulum --method rk4 --step 0.1 --tspan 0:1 --vary l=-1,1");
+    assert_int_equal(r.status, 0);
+    assert_non_null(strstr(r.out, "\n0,-1,nan,nan,parameters\n"));
+    cli_free(&r);
+    /* an event that never occurs: a note */
+    r = cli("sweep pendulum --tspan 0:1 --vary dphi=0.5,1 --reduce event:turn");
+    assert_int_equal(r.status, 0);
+    assert_non_null(strstr(r.err, "event turn occurred in no run within 0:1 s"));
+    cli_free(&r);
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    static const char *const files[] = {"runs.csv", NULL};
+    return cli_teardown_files(files);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_period_curve), cmocka_unit_test(test_threads_same_bytes),
+        cmocka_unit_test(test_from),         cmocka_unit_test(test_failed_run),
+        cmocka_unit_test(test_resume),       cmocka_unit_test(test_interrupt),
+        cmocka_unit_test(test_help_examples), cmocka_unit_test(test_errors),
+    };
+    return cmocka_run_group_tests(tests, cli_setup, teardown);
+}

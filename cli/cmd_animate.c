@@ -4,6 +4,7 @@
  * when that exists: a file is never replaced unasked), and the tool says where. */
 #include <ctype.h>
 #include <errno.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "pages.h"
@@ -25,6 +26,10 @@ static void animate_help(void)
          "                       directory (MODEL-2.html, ... when that exists; never replaced\n"
          "                       unasked), and the file written is named on stderr;\n"
          "                       '-' writes the page to standard output\n"
+         "  --ani FILE.ani       play XPPAUT's animation FILE.ani above the plots; a model\n"
+         "                       file NAME.ode (or NAME.c) plays NAME.ani beside it without\n"
+         "                       this option, when there is one\n"
+         "  --no-ani             leave out the model file's NAME.ani\n"
          "A long run is thinned to at most 2000 samples (first and last kept).\n"
          "Controls: play/pause, speed 0.1x-10x, time slider; keys: space play/pause,\n"
          "left/right one sample, shift+left/right 1 s, up/down speed, home/end.\n"
@@ -32,13 +37,20 @@ static void animate_help(void)
          "Examples:\n"
          "  dynkit animate plane --compare euler --output plane.html\n"
          "  dynkit animate cart --output cart.html\n"
-         "  dynkit animate vanderpol --compare euler:0.05 --compare heun --output vdp.html\n");
+         "  dynkit animate vanderpol --compare euler:0.05 --compare heun --output vdp.html\n"
+         "  dynkit animate examples/models/double_pendulum.ode --output dp.html   # + .ani\n");
     cli_run_options_help(stdout);
 }
 
+typedef struct animate_page {
+    const cli_view *v;
+    const cli_ani *ani;
+} animate_page;
+
 static int page_data(cli_json *j, void *ctx)
 {
-    const cli_view *v = ctx;
+    const animate_page *pg = ctx;
+    const cli_view *v = pg->v;
     cli_json_begin_object(j);
     cli_json_key(j, "kind");
     cli_json_string(j, "animate");
@@ -52,8 +64,13 @@ static int page_data(cli_json *j, void *ctx)
     for (int k = 0; k < v->n_series; k++)
         cli_json_series(j, v->run.model, &v->series[k]);
     cli_json_end_array(j);
+    int bad = 0;
+    if (pg->ani && pg->ani->ani) {
+        cli_json_key(j, "ani");
+        bad = cli_json_ani(j, pg->ani, v);
+    }
     cli_json_end_object(j);
-    return j->bad;
+    return bad || j->bad;
 }
 
 /* Open MODEL.html (or MODEL-2.html, ... up to MODEL-99.html) in the current directory,
@@ -84,8 +101,31 @@ int cli_cmd_animate(int argc, char **argv)
             animate_help();
             return CLI_OK;
         }
+    /* --no-ani is a flag: taken out before the run options are read */
+    char **args = calloc((size_t)argc + 1, sizeof *args);
+    if (!args) {
+        fprintf(stderr, "dynkit: error: out of memory\n");
+        return CLI_FAILED;
+    }
+    int n_args = 0, no_ani = 0;
+    for (int i = 0; i < argc; i++) {
+        if (i > 0 && cli_flag(argv[i], "no-ani"))
+            no_ani = 1;
+        else
+            args[n_args++] = argv[i];
+    }
+    static const char *const extra[] = {"ani", NULL};
+    const char *extra_values[1] = {NULL};
     cli_view v;
-    int rc = cli_view_parse("animate", argc, argv, NULL, NULL, &v);
+    cli_ani ani;
+    memset(&ani, 0, sizeof ani);
+    int rc = cli_view_parse("animate", n_args, args, extra, extra_values, &v);
+    if (rc == CLI_OK && no_ani && extra_values[0])
+        rc = cli_usage_error("animate", "--ani and --no-ani contradict each other");
+    /* the animation is read before the runs: an error in it writes nothing */
+    if (rc == CLI_OK && !no_ani)
+        rc = cli_ani_open("animate", args[0], extra_values[0], v.run.model, &ani);
+    free(args);
     int run_rc = rc == CLI_OK ? cli_view_record(&v) : rc;
     if (rc == CLI_OK && (run_rc == CLI_USAGE || v.n_series == 0))
         rc = run_rc;
@@ -106,7 +146,8 @@ int cli_cmd_animate(int argc, char **argv)
     if (rc == CLI_OK) {
         char title[160];
         snprintf(title, sizeof title, "dynkit animate %s", v.run.model->name);
-        rc = cli_html_page_write(out, title, "animate.html", page_data, &v);
+        animate_page pg = {&v, &ani};
+        rc = cli_html_page_write(out, title, "animate.html", page_data, &pg);
         if (rc == CLI_OK && run_rc != CLI_OK)
             rc = run_rc;
     }
@@ -119,6 +160,7 @@ int cli_cmd_animate(int argc, char **argv)
         fprintf(stderr, "dynkit: wrote %s (open it in a browser; --output FILE names the file, "
                         "--output - writes to standard output)\n",
                 default_path);
+    cli_ani_free(&ani);
     cli_view_free(&v);
     return rc;
 }

@@ -6,6 +6,7 @@
 #include <stdio.h>
 
 #include "cli.h"
+#include "dynkit/ani.h"
 
 /* ---- JSON writer (json_write.c) ---- */
 
@@ -146,6 +147,24 @@ typedef struct cli_svg_plot {
  * a legend, one polyline per line (a line with non-finite points is split there). Returns
  * CLI_OK or CLI_FAILED (write error). */
 int cli_svg_write(FILE *out, const cli_svg_plot *p);
+
+/* ---- an XPPAUT animation file on the animate page (ani_page.c) ---- */
+
+typedef struct cli_ani {
+    dyn_ani *ani;    /* NULL: none */
+    char path[1024];
+    int from_ode;    /* the names come from the model's .ode file */
+} cli_ani;
+
+/* The animation of the model MODEL_SPEC (m loaded from it): ani_path, or else NAME.ani
+ * beside a model file NAME.ode or NAME.c when there is one. CLI_OK (out->ani NULL when
+ * there is none), or CLI_USAGE with the diagnostic (FILE:LINE:COL) printed. */
+int cli_ani_open(const char *command, const char *model_spec, const char *ani_path,
+                 const dyn_model *m, cli_ani *out);
+void cli_ani_free(cli_ani *a);
+/* The animation evaluated at every sample of every run of v, as the page's JSON; 0 or
+ * non-zero (out of memory, write error). */
+int cli_json_ani(cli_json *j, const cli_ani *a, const cli_view *v);
 
 /* Subcommands. */
 int cli_cmd_animate(int argc, char **argv);

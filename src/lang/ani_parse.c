@@ -255,6 +255,13 @@ static node *formula(dyn_ani *a, const lang_line *l, const field *f, const char 
     lang_ctx *c = a->c;
     if (f->a == f->b)
         lang_fail(c, at(l, f->raw_a), "missing %s", what);
+    /* a ';' inside parentheses ends the field: say so rather than "the end of the line" */
+    int depth = 0;
+    for (int i = f->a; i < f->b; i++)
+        depth += l->text[i] == '(' ? 1 : l->text[i] == ')' ? -1 : 0;
+    if (depth > 0 && f->raw_b < l->len)
+        lang_fail(c, at(l, f->raw_b), "missing ')' before the ';' that ends the field of the "
+                  "%s (';' separates the fields of a command)", what);
     lang_lexer lx = {c, l, f->a, f->b};
     node *e = lang_parse_expr(&lx);
     const int ch = lang_skip_blanks(&lx);
@@ -577,10 +584,12 @@ static int on_line(lang_ctx *c, const lang_line *l, void *ctx)
     int colour_field = -1, thick_field = -1;
     if (kind == DYN_ANI_TEXT || kind == DYN_ANI_VTEXT) {
         const field *s = &f[2];
-        /* the string as written (leading blanks kept, as XPPAUT's strtok keeps them) */
+        /* the string as written between the ';' (XPPAUT's strtok keeps its blanks: a vtext
+         * "t = " shows "t = 1.5"); the blanks that end a line are dropped */
         int sa = s->raw_a, sb = s->raw_b;
-        while (sb > sa && is_blank(l->text[sb - 1]))
-            sb--;
+        if (kind == DYN_ANI_TEXT)
+            while (sb > sa && is_blank(l->text[sb - 1]))
+                sb--;
         if (sb - sa > DYN_ANI_MAX_TEXT)
             lang_fail(c, at(l, sa), "text too long (more than %d characters)",
                       DYN_ANI_MAX_TEXT);

@@ -33,6 +33,13 @@
     const t1 = Math.max(...runs.map(r => r.t[r.t.length - 1]));
     const player = new DK.Player(document.getElementById('player'), { t0, t1, times: runs[0].t, label: model.name });
     const view = document.getElementById('view');
+    /* an XPPAUT animation of the model file (NAME.ani), above the other pictures */
+    const hasAni = !!(data.ani && data.ani.prims.length);
+    if (hasAni) {
+      const box = DK.el('div', { id: 'ani', class: 'view ani-view' });
+      view.parentNode.insertBefore(box, view);
+      DK.AniView(box, runs, data.ani, player);
+    }
     const kind = pictureOf(model, params);
     if (kind === 'plane') DK.PlaneView(view, runs, params, player);
     else if (kind === 'cart') DK.CartView(view, runs, params, player);
@@ -45,14 +52,14 @@
       DK.PhaseView(view, runs, xn, yn, player, same ? { equal: true } : undefined);
     }
     else view.remove();
-    document.body.classList.toggle('no-picture', !kind);
+    document.body.classList.toggle('no-picture', !kind && !hasAni);
     document.getElementById('hint').textContent = 'keys: space play/pause · ←/→ one sample · shift+←/→ one second · ↑/↓ speed · home/end · click a plot to jump there';
     const plots = document.getElementById('plots');
     const names = model.states.map(s => s.name).concat(model.outputs.map(s => s.name));
     for (const name of names) {
       const cell = DK.el('div', { class: 'plot-cell' });
       plots.appendChild(cell);
-      DK.timePlot(cell, runs, name, player, { height: kind ? 240 : 330 });
+      DK.timePlot(cell, runs, name, player, { height: kind || hasAni ? 240 : 330 });
     }
     player.activate();
     return player;

@@ -245,6 +245,7 @@ typedef struct dyn_result {
     double stiff_t;        /* time where stiffness was detected first */
     char stiff_message[192];
     double h_last;         /* size of the last accepted step */
+    int rtol_raised;       /* 1: rtol was below DYN_MIN_RTOL and was raised to it */
 } dyn_result;
 
 /* Doubles of workspace the fixed-step driver needs for method m and n states. */

@@ -64,6 +64,9 @@ extern "C" {
 /* Defaults of the tolerances (MATLAB's ode45 and SciPy's solve_ivp). */
 #define DYN_DEFAULT_RTOL 1e-3
 #define DYN_DEFAULT_ATOL 1e-6
+/* The smallest relative tolerance (MATLAB's 100 eps): a smaller non-zero rtol asks for less
+ * than rounding and is raised to it (dyn_result.rtol_raised says so). */
+#define DYN_MIN_RTOL (100.0 * 2.220446049250313e-16)
 
 /* The dense output of one step, a polynomial of degree `degree` in theta = (t - t0)/h in
  * Hairer's nested form (HNW I sec. II.6; DOPRI5's CONTD5, DOP853's CONTD8):
@@ -132,7 +135,9 @@ typedef int (*dyn_event_fn)(int index, double t, const double *y, int direction,
 typedef struct dyn_solve_opts {
     /* accuracy (adaptive methods): scalar tolerances, or per-state ones when rtolv/atolv
      * are not NULL. rtol 0 and atol 0 mean the defaults DYN_DEFAULT_RTOL, DYN_DEFAULT_ATOL
-     * (give rtolv/atolv with zeros for a purely absolute or relative control). */
+     * (give rtolv/atolv with zeros for a purely absolute or relative control). A scalar
+     * rtol below DYN_MIN_RTOL is raised to it; per-state ones below it (but > 0) are
+     * refused. */
     double rtol, atol;
     const double *rtolv;   /* (n) or NULL */
     const double *atolv;   /* (n) or NULL */

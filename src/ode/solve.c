@@ -127,6 +127,10 @@ static int check_tolerances(const dyn_solve_opts *o, int n, dyn_tol *tol, dyn_re
     if (!(tol->rtol >= 0.0) || !isfinite(tol->rtol))
         return fail(res, DYN_ERR_ARG, "rtol %g is not accepted: it must be a finite number >= 0",
                     tol->rtol);
+    if (tol->rtol < DYN_MIN_RTOL) { /* below rounding: MATLAB's floor */
+        tol->rtol = DYN_MIN_RTOL;
+        res->rtol_raised = 1;
+    }
     if (!(tol->atol >= 0.0) || !isfinite(tol->atol))
         return fail(res, DYN_ERR_ARG, "atol %g is not accepted: it must be a finite number >= 0",
                     tol->atol);
@@ -138,6 +142,11 @@ static int check_tolerances(const dyn_solve_opts *o, int n, dyn_tol *tol, dyn_re
                         "tolerance of state %d (rtol %g, atol %g) is not accepted: both must be "
                         "finite numbers >= 0",
                         i, r, a);
+        if (r > 0.0 && r < DYN_MIN_RTOL)
+            return fail(res, DYN_ERR_ARG,
+                        "rtol %g of state %d is below rounding: give 0 or at least %g (100 "
+                        "eps)",
+                        r, i, DYN_MIN_RTOL);
         if (r == 0.0 && a == 0.0)
             return fail(res, DYN_ERR_ARG,
                         "state %d has rtol = atol = 0: give at least one of them > 0", i);
@@ -415,7 +424,9 @@ int dyn_solve(const dyn_tableau *m, const dyn_system *sys, double t0, double t1,
             retry = 1;
             rejected_before = 1;
             h = dyn_controller_reject(&ctl, hn, err);
-            const double hmin = 16.0 * DBL_EPSILON * fmax(fabs(t), DBL_MIN);
+            /* near t = 0, a step below eps^2 of the span is no step either */
+            const double hmin =
+                16.0 * DBL_EPSILON * fmax(fabs(t), fmax(DBL_EPSILON * (t_end - t0), DBL_MIN));
             if (!(h >= hmin) || t + h == t) {
                 bad = first_nonfinite(ynew, n);
                 if (bad >= 0) {

@@ -182,6 +182,9 @@ static void report_failure(const cli_run *run, const dyn_result *res, const doub
                 "(method %s, step %g)\n",
                 m->states[res->fail_index].name, m->name, res->fail_t, run->method->name,
                 run->step);
+    else if (res->status == DYN_ERR_MAX_STEPS)
+        fprintf(stderr, "dynkit: run failed: %s (--max-steps N sets the limit, default 1e7)\n",
+                res->message);
     else
         fprintf(stderr, "dynkit: run failed: %s\n", res->message);
     fprintf(stderr, "dynkit: last good state at t = %.17g:", res->t);

@@ -33,9 +33,12 @@ void cli_run_options_help(FILE *out)
           "                       nearest sample, 'linear' interpolates; end values are held\n"
           "Adaptive methods (bs23 = ode23, dp45 = ode45, dop853; stiff: rodas4, and cvode\n"
           "when dynkit is built with SUNDIALS; see 'dynkit methods'):\n"
-          "  --rtol R             relative tolerance (default 1e-3, as MATLAB's ode45)\n"
-          "  --atol A             absolute tolerance (default 1e-6); both accept one value per\n"
-          "                       state, comma-separated, e.g. --atol 1e-8,1e-6\n"
+          "  --rtol R             relative tolerance (default: the model's, 'dynkit info MODEL',\n"
+          "                       else 1e-3 as MATLAB's ode45; below 100 eps it is raised to\n"
+          "                       100 eps with a warning)\n"
+          "  --atol A             absolute tolerance (default: the model's, else 1e-6); both\n"
+          "                       accept one value per state, comma-separated, e.g.\n"
+          "                       --atol 1e-8,1e-6\n"
           "                       each step keeps the error estimate below atol + rtol |y|\n"
           "  --step H             with an adaptive method: write samples at T0 + k*H,\n"
           "                       interpolated, never forcing a step\n"
@@ -49,7 +52,7 @@ void cli_run_options_help(FILE *out)
           "                       the run ends at the last time\n"
           "  --max-step H         largest step size (default: the span)\n"
           "  --initial-step H     first step size (default: chosen from the problem)\n"
-          "  --max-steps N        stop after N steps (default: no limit; cvode: CVODE's limit\n"
+          "  --max-steps N        stop after N steps (default: 1e7 steps; cvode: CVODE's limit\n"
           "                       between two samples, default 100000; when cvode samples\n"
           "                       every step, a limit on the whole run)\n"
           "  with animate and plot these options are accepted when the main run or a\n"
@@ -303,6 +306,34 @@ static int check_method_options(const char *command, cli_run *run, unsigned give
     return CLI_OK;
 }
 
+/* The model's tolerances when --rtol/--atol are not given (every method, cvode too); a
+ * relative tolerance below rounding raised to DYN_MIN_RTOL with a warning; the default
+ * limit on the steps of adaptive runs. */
+static void tolerance_defaults(cli_run *run, unsigned given)
+{
+    const dyn_model *m = run->model;
+    if (!(given & GIVEN_RTOL) && m->rtol > 0.0)
+        run->rtol = m->rtol;
+    if (!(given & GIVEN_ATOL) && m->atol > 0.0)
+        run->atol = m->atol;
+    int raised = run->rtol > 0.0 && run->rtol < DYN_MIN_RTOL;
+    if (raised)
+        run->rtol = DYN_MIN_RTOL;
+    for (int i = 0; run->rtolv && i < m->n_states; i++)
+        if (run->rtolv[i] > 0.0 && run->rtolv[i] < DYN_MIN_RTOL) {
+            run->rtolv[i] = DYN_MIN_RTOL;
+            raised = 1;
+        }
+    if (raised && dyn_method_is_adaptive(run->method))
+        fprintf(stderr,
+                "dynkit: warning: --rtol below rounding asks for more than doubles can give; "
+                "raised to %.3g (100 eps, as MATLAB)\n",
+                DYN_MIN_RTOL);
+    if (!(given & GIVEN_MAX_STEPS) && dyn_method_is_adaptive(run->method) &&
+        !cli_method_is_cvode(run->method))
+        run->max_steps = CLI_DEFAULT_MAX_STEPS;
+}
+
 int cli_run_parse(const char *command, int argc, char **argv, cli_run *run)
 {
     return cli_run_parse_with(command, argc, argv, 0, run);
@@ -371,7 +402,10 @@ int cli_run_parse_with(const char *command, int argc, char **argv, int other_ada
     if (!run->method)
         return cli_method_error(command, "--method", method_name);
     run->step_given = (given & GIVEN_STEP) || run->forces_path;
-    return check_method_options(command, run, given, other_adaptive);
+    rc = check_method_options(command, run, given, other_adaptive);
+    if (rc == CLI_OK)
+        tolerance_defaults(run, given);
+    return rc;
 }
 
 void cli_run_free(cli_run *run)

@@ -18,6 +18,10 @@ enum {
     GIVEN_MAX_STEPS = 128
 };
 
+/* The limit on the steps of an adaptive run without --max-steps: a run that needs more is
+ * one whose tolerances or span ask too much (DYN_ERR_MAX_STEPS, the message says so). */
+#define CLI_DEFAULT_MAX_STEPS 10000000L
+
 /* --set/--init are applied after all options are read, so record them first. */
 typedef struct assignment {
     const char *text;

@@ -130,7 +130,9 @@ static void test_model_registered(void **state)
     assert_int_equal(m->n_inputs, 2);
     assert_string_equal(m->inputs[0].name, "Fx");
     assert_string_equal(m->inputs[1].name, "Fy");
-    assert_string_equal(m->method, "heun");
+    /* adaptive by default (safe for any span); the homework's heun is asked for by name */
+    assert_string_equal(m->method, "dp45");
+    assert_true(m->rtol == 1e-8 && m->atol == 1e-10);
     assert_true(m->step == 0.04 && m->t0 == 0.0 && m->t1 == 10.0);
     dyn_cart_par p;
     default_par(&p);
@@ -921,7 +923,7 @@ static void test_cli_info_and_help(void **state)
     cli_result r = cli_in_tmpdir("info cart");
     CHECK(r.status == 0, "info: %d", r.status);
     static const char *const words[] = {"sX", "omega", "length_cart", "width_cart", "mu",
-                                        "lambda", "slip_margin", "constraint_residual", "heun",
+                                        "lambda", "slip_margin", "constraint_residual", "dp45",
                                         "l/2"};
     for (size_t i = 0; i < sizeof words / sizeof words[0]; i++)
         CHECK(strstr(r.out, words[i]) != NULL, "info cart lacks '%s'", words[i]);

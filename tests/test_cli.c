@@ -210,9 +210,10 @@ static void test_pendulum_euler_step(void **state)
     assert_int_equal(r.status, 0);
     assert_string_equal(r.out, expected);
     cli_free(&r);
-    r = cli("run pendulum");
+    /* the model's default run is adaptive over 0:10 s, not this single Euler step */
+    r = cli("run pendulum --final");
     assert_int_equal(r.status, 0);
-    assert_string_equal(r.out, expected);
+    assert_true(strncmp(r.out, "t,phi,dphi\n10,", 14) == 0);
     cli_free(&r);
 }
 

@@ -207,7 +207,10 @@ static void test_registry_and_defaults(void **state)
         assert_true(mq->y0[i] == y13[i]); /* the same physical state */
 
     assert_true(m->t0 == 0 && m->t1 == 5 && m->step == 0.01);
-    assert_string_equal(m->method, "rk4");
+    /* adaptive by default (the seed's ode45 run); rk4 and euler are asked for by name */
+    assert_string_equal(m->method, "dp45");
+    assert_string_equal(mq->method, "dp45");
+    assert_true(m->rtol == 1e-8 && m->atol == 1e-10);
     assert_true(mq->t1 == 5 && mq->step == 0.01);
 
     /* outputs by name */

@@ -24,6 +24,7 @@
 #include <cmocka.h>
 
 #include "dynkit/models.h"
+#include "dynkit/solve.h"
 #include "test_cli_run.h"
 #include "test_util.h"
 
@@ -313,6 +314,146 @@ static void test_failed_thinned_run_keeps_last_good_sample(void **state)
     cli_free(&r);
 }
 
+/* ---- tolerances, step limits ---- */
+
+static int singular_at_zero(double t, const double *y, double *dydt, void *par)
+{
+    (void)y;
+    (void)par;
+    dydt[0] = t > 0.0 ? 1.0 / t : 0.0; /* y = log t: no step size passes near t = 0 */
+    return 0;
+}
+
+static void test_tolerances_below_rounding_are_raised(void **state)
+{
+    (void)state;
+    const dyn_tableau *methods[] = {dyn_method_find("dp45"), dyn_method_find("rodas4")};
+    dyn_pendulum_par par = {.m = 1.0, .l = 1.0, .g = 9.81};
+    dyn_system sys = {dyn_pendulum_rhs, 2, &par};
+    const double y0[2] = {0.0, DYN_PI / 2.0};
+    for (int i = 0; i < 2; i++) {
+        dyn_solve_opts o = {0};
+        o.rtol = i == 0 ? 1e-30 : 1e-300;
+        o.atol = o.rtol;
+        o.max_steps = 1000000; /* a run that never ends stops here instead */
+        double y[2];
+        double *work = malloc(dyn_solve_work_size(methods[i], 2, &o) * sizeof *work);
+        int *iwork = malloc((dyn_solve_iwork_size(methods[i], 2) + 1) * sizeof *iwork);
+        o.iwork = iwork;
+        dyn_result res;
+        int rc = dyn_solve(methods[i], &sys, 0.0, 10.0, y0, y, work, &o, &res);
+        CHECK(rc == DYN_OK && res.rtol_raised && res.t == 10.0 && res.stats.steps < 100000,
+              "%s at rtol %g: status %d (%s), raised %d, %ld steps", methods[i]->name, o.rtol,
+              rc, res.message, res.rtol_raised, res.stats.steps);
+        free(work);
+        free(iwork);
+    }
+    /* per-state tolerances below rounding are refused with a message */
+    const double rtolv[2] = {1e-20, 1e-6};
+    dyn_solve_opts o = {0};
+    o.rtolv = rtolv;
+    double y[2], work[256];
+    dyn_result res;
+    assert_int_equal(dyn_solve(methods[0], &sys, 0.0, 1.0, y0, y, work, &o, &res), DYN_ERR_ARG);
+    assert_non_null(strstr(res.message, "below rounding"));
+
+    /* the command line says that it raised them, and the run ends */
+    cli_result r = cli("run pendulum --method dp45 --rtol 1e-30 --atol 1e-30 --tspan 0:10 --final");
+    CHECK(r.status == 0 && strstr(r.err, "raised to 2.22e-14") &&
+              strncmp(r.out, "t,phi,dphi\n10,", 14) == 0,
+          "rtol 1e-30: %d %s", r.status, r.err);
+    cli_free(&r);
+}
+
+static void test_step_size_underflow_near_zero(void **state)
+{
+    (void)state;
+    const dyn_tableau *dp45 = dyn_method_find("dp45");
+    dyn_system sys = {singular_at_zero, 1, NULL};
+    const double y0[1] = {0.0};
+    double y[1], work[256];
+    dyn_result res;
+    dyn_solve_opts o = {0};
+    int rc = dyn_solve(dp45, &sys, 0.0, 1.0, y0, y, work, &o, &res);
+    /* h falls by about 1.4 a rejection from 1e-6: the limit 16 eps^3 of the span (1e-30) is
+     * reached after some 180 rejections (before: at h ~ 1e-323, after some 2300) */
+    CHECK(rc == DYN_ERR_STEP_SIZE && res.stats.rejected < 400, "status %d, %ld rejected: %s",
+          rc, res.stats.rejected, res.message);
+}
+
+static void test_adaptive_runs_have_a_step_limit(void **state)
+{
+    (void)state;
+    cli_result r = cli("run pendulum --method bs23 --rtol 1e-3 --atol 1e-3 --tspan 0:1e8 --final");
+    CHECK(r.status == 1 && strstr(r.err, "limit of 10000000 steps") && strstr(r.err, "--max-steps"),
+          "default limit: %d %s", r.status, r.err);
+    cli_free(&r);
+    r = cli("run pendulum --method dp45 --tspan 0:100 --max-steps 50 --final");
+    CHECK(r.status == 1 && strstr(r.err, "limit of 50 steps"), "--max-steps 50: %d %s",
+          r.status, r.err);
+    cli_free(&r);
+}
+
+/* ---- safe defaults ---- */
+
+static void test_default_runs_are_accurate_for_any_span(void **state)
+{
+    (void)state;
+    /* the README's line: energy 0.6 J stays 0.6 J (one Euler step of 0.2 s made it 144 J) */
+    cli_result r =
+        cli("run pendulum --set l=1 --init dphi=pi/4 --tspan 0:10 --outputs --every 10");
+    assert_int_equal(r.status, 0);
+    const char *p = strchr(r.out, '\n');
+    long rows = 0;
+    double e0 = NAN, worst = 0.0;
+    while (p && p[1]) {
+        double t, phi, dphi, e, h;
+        if (sscanf(p + 1, "%lf,%lf,%lf,%lf,%lf", &t, &phi, &dphi, &e, &h) != 5)
+            break;
+        if (rows++ == 0)
+            e0 = e;
+        worst = fmax(worst, fabs(e - e0));
+        p = strchr(p + 1, '\n');
+    }
+    CHECK(rows == 101 && worst < 1e-6 * e0, "%ld rows, energy drift %g of %g", rows, worst, e0);
+    cli_free(&r);
+    /* every model's default run: adaptive, reaches its T1, and the picture of the pendulum
+     * has a whole swing (not 2 samples) */
+    for (int i = 0; i < dyn_model_count(); i++) {
+        const dyn_model *m = dyn_model_at(i);
+        const dyn_tableau *mt = dyn_method_find(m->method);
+        CHECK(mt && dyn_method_is_adaptive(mt) && m->rtol > 0 && m->rtol <= 1e-6 && m->atol > 0,
+              "%s: default method %s, rtol %g, atol %g", m->name, m->method, m->rtol, m->atol);
+    }
+    r = cli("plot pendulum --y phi");
+    CHECK(r.status == 0 && strstr(r.out, "dp45"), "plot pendulum: %d %s", r.status, r.err);
+    cli_free(&r);
+}
+
+static void test_robertson_stays_in_its_domain(void **state)
+{
+    (void)state;
+    cli_result r = cli("methods");
+    const int cvode = strstr(r.out, "cvode") != NULL;
+    cli_free(&r);
+    const char *methods[] = {"rodas4", "cvode"};
+    for (int i = 0; i < 1 + cvode; i++) {
+        r = cli("run robertson --method %s --tspan 0:1e11 --final", methods[i]);
+        double t, y1, y2, y3;
+        const char *row = strchr(r.out, '\n');
+        CHECK(r.status == 0 && row && sscanf(row + 1, "%lf,%lf,%lf,%lf", &t, &y1, &y2, &y3) == 4 &&
+                  t == 1e11 && y1 >= 0 && y2 >= 0 && y3 >= 0 && !strstr(r.err, "negative"),
+              "%s: %d %s %s", methods[i], r.status, r.out, r.err);
+        cli_free(&r);
+    }
+    /* tolerances that let it leave the domain give a warning */
+    r = cli("run robertson --method %s --tspan 0:1e11 --rtol 1e-3 --atol 1e-6 --final",
+            cvode ? "cvode" : "bs23 --max-steps 100000");
+    CHECK(!cvode || strstr(r.err, "concentration is negative"), "loose cvode: %s %s", r.out,
+          r.err);
+    cli_free(&r);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -324,6 +465,11 @@ int main(void)
         cmocka_unit_test(test_signals_leave_complete_rows),
         cmocka_unit_test(test_step_larger_than_span_reaches_t1),
         cmocka_unit_test(test_failed_thinned_run_keeps_last_good_sample),
+        cmocka_unit_test(test_tolerances_below_rounding_are_raised),
+        cmocka_unit_test(test_step_size_underflow_near_zero),
+        cmocka_unit_test(test_adaptive_runs_have_a_step_limit),
+        cmocka_unit_test(test_default_runs_are_accurate_for_any_span),
+        cmocka_unit_test(test_robertson_stays_in_its_domain),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

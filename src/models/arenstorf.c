@@ -130,6 +130,8 @@ const dyn_model dyn_model_arenstorf = {
     .t0 = 0.0,
     .t1 = DYN_ARENSTORF_PERIOD,
     .step = DYN_ARENSTORF_PERIOD / 100000.0, /* RK4 closes the orbit to 5e-4 */
-    .method = "rk4",
+    .method = "dop853", /* closes the orbit to 1e-7 (RK4 at this step: --method rk4) */
+    .rtol = 1e-10,
+    .atol = 1e-10,
     .jacobian = dyn_arenstorf_jac,
 };

@@ -107,9 +107,13 @@ const dyn_model dyn_model_pendulum = {
     .compute_outputs = pendulum_outputs,
     .prepare = pendulum_prepare,
     .t0 = 0.0,
-    .t1 = 0.2,
-    .step = 0.2,
-    .method = "euler",
+    .t1 = 10.0,   /* a little over one swing (period 7.9 s from the default state) */
+    .step = 0.01, /* the sample grid, and the step of fixed-step methods */
+    /* an adaptive method whatever the span (the homework's one Euler step of 0.2 s, problem
+     * 1e, is `--method euler --step 0.2 --tspan 0:0.2`) */
+    .method = "dp45",
     .n_events = 2,
     .events = events,
+    .rtol = 1e-8,
+    .atol = 1e-10,
 };

@@ -125,6 +125,8 @@ const dyn_model dyn_model_plane_quat = {
     .warn = NULL,
     .t0 = 0.0,
     .t1 = 5.0,
-    .step = 0.01,
-    .method = "rk4",
+    .step = 0.01, /* the seed's Ts: the sample grid, and fixed-step methods' step */
+    .method = "dp45", /* the seed's ode45 run; its RK4 and Euler: --method rk4, euler */
+    .rtol = 1e-8,
+    .atol = 1e-10,
 };

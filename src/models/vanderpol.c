@@ -57,7 +57,9 @@ const dyn_model dyn_model_vanderpol = {
     .prepare = NULL,
     .t0 = 0.0,
     .t1 = 15.0,
-    .step = 0.01,
-    .method = "rk4",
+    .step = 0.01, /* the homework's step: the sample grid, and fixed-step methods' step */
+    .method = "dp45", /* adaptive whatever the span and mu; the homework's RK4: --method rk4 */
+    .rtol = 1e-8,
+    .atol = 1e-10,
     .jacobian = dyn_vanderpol_jac,
 };

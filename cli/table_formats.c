@@ -84,8 +84,8 @@ int cli_format_of_path(const char *path, cli_format *format, char *err, size_t e
             if (*format == CLI_FORMAT_MAT && !cli_format_have_mat()) {
                 snprintf(err, errlen,
                          "'%s': dynkit was built without matio, so it cannot write MATLAB "
-                         ".mat files (install libmatio-dev and rebuild; or write .npz, .csv or "
-                         ".json, which MATLAB reads too)",
+                         ".mat files (install libmatio-dev and rebuild; or write .csv or .json, "
+                         "which MATLAB reads with readmatrix and jsondecode)",
                          path);
                 return -1;
             }

@@ -101,7 +101,8 @@ static int copy_file(const char *path, FILE *out)
         bad = fwrite(buf, 1, got, out) != got;
     bad |= ferror(in);
     fclose(in);
-    return bad | (fflush(out) != 0) ? -1 : 0;
+    bad |= fflush(out) != 0;
+    return bad ? -1 : 0;
 }
 
 int cli_mat_write(FILE *out, const cli_table_info *info, const double *data, long rows,

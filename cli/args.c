@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "dynkit/lang.h"
 
 int cli_usage_error(const char *command, const char *fmt, ...)
 {
@@ -124,3 +125,14 @@ int cli_flag(const char *arg, const char *name)
 }
 
 int cli_is_help(const char *arg) { return strcmp(arg, "-h") == 0 || strcmp(arg, "--help") == 0; }
+
+int cli_unknown_option(const char *command, const char *arg, const char *const *options, int n)
+{
+    char word[64];
+    snprintf(word, sizeof word, "%s%.*s", strncmp(arg, "--", 2) == 0 ? "" : "--",
+             (int)strcspn(arg, "="), arg);
+    const char *near = dyn_lang_nearest(word, options, n);
+    if (near)
+        return cli_usage_error(command, "unknown option '%s' (did you mean '%s'?)", arg, near);
+    return cli_usage_error(command, "unknown option '%s'", arg);
+}

@@ -28,6 +28,9 @@ int cli_parse_count(const char *text, long min, long *out);
 int cli_option(int argc, char **argv, int *i, const char *name, const char **value);
 /* Flag matching: 1 if argv[i] is exactly "--name". */
 int cli_flag(const char *arg, const char *name);
+/* The usage error for an unknown option arg of command, naming the nearest of options[0..n)
+ * ("--name") when arg looks like a misspelling of it. Returns CLI_USAGE. */
+int cli_unknown_option(const char *command, const char *arg, const char *const *options, int n);
 /* 1 if arg is -h or --help. */
 int cli_is_help(const char *arg);
 

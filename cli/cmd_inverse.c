@@ -113,7 +113,8 @@ int cli_cmd_inverse(int argc, char **argv)
         } else if (cli_flag(argv[i], "quiet")) {
             quiet = 1;
         } else {
-            return cli_usage_error("inverse", "unknown option '%s'", argv[i]);
+            static const char *const options[] = {"--set", "--output", "--quiet"};
+            return cli_unknown_option("inverse", argv[i], options, 3);
         }
     }
     if (!(N_value >= 1.0 && N_value <= 1e8 && N_value == floor(N_value)))

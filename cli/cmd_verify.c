@@ -260,9 +260,11 @@ int cli_cmd_verify(int argc, char **argv)
         } else if ((r = cli_option(argc, argv, &i, "method", &v)) != 0) {
             if (r < 0)
                 return cli_usage_error("verify", "option --method needs a value (a name)");
-            o.method = v;
+            const dyn_tableau *named = cli_method_find(v); /* any case, MATLAB's names */
+            o.method = named ? named->name : v;
         } else {
-            return cli_usage_error("verify", "unknown option '%s'", argv[i]);
+            static const char *const options[] = {"--quick", "--json", "--problem", "--method"};
+            return cli_unknown_option("verify", argv[i], options, 4);
         }
     }
 #ifdef DYNKIT_HAVE_CVODE

@@ -212,6 +212,53 @@ static void test_notes_tell_what_is_ignored(void **state)
     assert_int_equal(n.count, 0);
 }
 
+/* meth: XPPAUT's names, and their beginnings as XPPAUT takes them (measured with xppaut:
+ * meth=r runs rungekutta, meth=8 83dp, meth=m modeuler), to dynkit's methods. */
+static void test_meth_maps_to_dynkit_methods(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *meth, *method;
+    } cases[] = {
+        {"euler", "euler"},   {"e", "euler"},       {"modeuler", "heun"},  {"m", "heun"},
+        {"rungekutta", "rk4"}, {"r", "rk4"},        {"runge", "rk4"},      {"RK4", "rk4"},
+        {"adams", "rk4"},     {"gear", "rodas4"},   {"stiff", "rodas4"},   {"cvode", "rodas4"},
+        {"backeul", "rodas4"}, {"2rb", "rodas4"},   {"volterra", "rodas4"}, {"qualrk", "dp45"},
+        {"q", "dp45"},        {"5dp", "dp45"},      {"dopri5", "dp45"},    {"83dp", "dop853"},
+        {"8", "dop853"},      {"ymp", "rk4"},       {"heun", "heun"},      {"midpoint", "midpoint"},
+        {"bs23", "bs23"},     {"rosen", "rodas4"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char text[128], want[64];
+        snprintf(text, sizeof text, "x'=-x\n@ meth=%s\n", cases[i].meth);
+        snprintf(want, sizeof want, ".method = \"%s\",", cases[i].method);
+        char *out = expect_ok(text, NULL);
+        CHECK(strstr(out, want), "meth=%s: expected %s", cases[i].meth, want);
+        free(out);
+    }
+    /* no meth: dp45 with rtol 1e-6 and atol 1e-9, or the file's tolerances */
+    char *out = expect_ok("x'=-x\n", NULL);
+    CHECK(strstr(out, ".method = \"dp45\",") && strstr(out, ".rtol = 9.9999999999999995e-07,") &&
+              strstr(out, ".atol = 1.0000000000000001e-09,"),
+          "%s", out);
+    free(out);
+    out = expect_ok("x'=-x\n@ tol=1e-4, atol=1e-5\n", NULL);
+    CHECK(strstr(out, ".rtol = 0.0001,") && strstr(out, ".atol = 1.0000000000000001e-05,"),
+          "%s", out);
+    free(out);
+    expect_error("x'=-x\n@ meth=d\n", 2, 8, "difference equations");
+}
+
+/* Files from other systems: a byte order mark, CRLF line ends, tabs. */
+static void test_bom_crlf_and_tabs(void **state)
+{
+    (void)state;
+    char *out = expect_ok("\xef\xbb\xbfpar a=1\r\nx'=\t-a*x \\\r\n\t+ 1\r\n", NULL);
+    CHECK(strstr(out, "dydt[0] = (((-p[0]) * y[0]) + 1.0);"), "%s", out);
+    free(out);
+    expect_error("\xef\xbb\xbfx'=qq\r\n", 1, 7, "unknown name 'qq'");
+}
+
 static void test_generated_c_conventions(void **state)
 {
     (void)state;
@@ -370,6 +417,8 @@ int main(void)
         cmocka_unit_test(test_syntax_errors_point_at_the_place),
         cmocka_unit_test(test_diag_format_shows_the_line_and_a_caret),
         cmocka_unit_test(test_notes_tell_what_is_ignored),
+        cmocka_unit_test(test_meth_maps_to_dynkit_methods),
+        cmocka_unit_test(test_bom_crlf_and_tabs),
         cmocka_unit_test(test_generated_c_conventions),
         cmocka_unit_test(test_limits_are_refused_with_a_message),
         cmocka_unit_test(test_truncated_and_damaged_files_never_crash),

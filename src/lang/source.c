@@ -389,6 +389,8 @@ void lang_lines(lang_ctx *c, lang_line_fn fn, void *ctx)
                 lang_fail(c, p, "NUL character in the file");
             if (ch == '\r')
                 ch = ' ';
+            if (ln == 0 && k < 3 && c->len >= 3 && memcmp(c->text, "\xef\xbb\xbf", 3) == 0)
+                ch = ' '; /* a UTF-8 byte order mark */
             lbuf_put(c, &b, ch, p);
         }
         continued = cont;

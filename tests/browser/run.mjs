@@ -70,8 +70,16 @@ const pages = [
   { name: 'long-run', args: ['animate', 'vanderpol', '--step', '0.001', '--tspan', '0:200'] },
   { name: 'robertson', args: ['animate', 'robertson'], generic: true },
   // a model file: its @ xp=, yp= phase plane (the lower mass's path) beside the time series
-  { name: 'double-pendulum-file', args: ['animate', path.join(here, '..', '..', 'examples', 'models', 'double_pendulum.ode')] },
+  // ... and its XPPAUT animation double_pendulum.ani (read beside the .ode), above them
+  { name: 'double-pendulum-file', args: ['animate', path.join(here, '..', '..', 'examples', 'models', 'double_pendulum.ode')], ani: { ratio: 1, comet: true } },
+  { name: 'double-pendulum-no-ani', args: ['animate', path.join(here, '..', '..', 'examples', 'models', 'double_pendulum.ode'), '--no-ani'], ani: false },
+  { name: 'pendulum-file-ani', args: ['animate', path.join(here, '..', '..', 'examples', 'models', 'pendulum.ode'), '--compare', 'euler:0.05'], ani: { ratio: 1 } },
 ];
+// XPPAUT's own pend2.ani (text, settext, the symbol font, a colour formula), when Debian's
+// xppaut examples are installed
+const xppExamples = '/usr/share/doc/xppaut/examples/ode';
+if (fs.existsSync(path.join(xppExamples, 'pend2.ani')))
+  pages.push({ name: 'xppaut-pend2', args: ['animate', path.join(xppExamples, 'pend.ode'), '--ani', path.join(xppExamples, 'pend2.ani')], ani: { ratio: 1 } });
 for (const p of pages) {
   p.file = path.join(artifacts, `${p.name}.html`);
   const args = p.args.slice();
@@ -144,6 +152,36 @@ async function checkPage(spec) {
   check(prints0.length > 0, `${prints0.length} canvases`);
   const blank = prints0.filter(p => p.ink < 0.002 * p.pixels);
   check(blank.length === 0, `every canvas draws something (${blank.length} blank)`);
+
+  if (spec.ani !== undefined) {
+    // the XPPAUT animation: one canvas above the other pictures, with the window's aspect,
+    // changing with the time (and a comet's tail growing from nothing at the start)
+    const n = await page.locator('canvas.ani-canvas').count();
+    check(n === (spec.ani ? 1 : 0), spec.ani ? 'the .ani animation is shown' : '--no-ani: no animation');
+    if (spec.ani) {
+      const first = await page.evaluate(() => document.querySelector('canvas') === document.querySelector('canvas.ani-canvas'));
+      check(first, 'the animation comes first, above the other pictures');
+      const dims = await page.evaluate(() => { const c = document.querySelector('canvas.ani-canvas'); return [c.clientWidth, c.clientHeight]; });
+      check(Math.abs(dims[0] / dims[1] - spec.ani.ratio) < 0.02, `equal scales: the canvas has the window's aspect (${dims[0]} x ${dims[1]})`);
+      const aniPrint = () => page.evaluate(() => {
+        const c = document.querySelector('canvas.ani-canvas'), d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+        let ink = 0, hash = 0;
+        for (let i = 0; i < d.length; i += 4) { if (d[i] + d[i + 1] + d[i + 2] < 720) ink++; hash = (hash * 31 + d[i] * 3 + d[i + 1] * 5 + d[i + 2] * 7) | 0; }
+        return { ink, hash };
+      });
+      const seek = f => page.evaluate(f => { const p = DK.players[0]; p.seek(p.t0 + f * (p.t1 - p.t0)); }, f);
+      await seek(0);
+      const a0 = await aniPrint();
+      await seek(0.3);
+      const a1 = await aniPrint();
+      await seek(0.31);
+      const a2 = await aniPrint();
+      check(a0.hash !== a1.hash && a1.hash !== a2.hash, 'the animation changes as the time runs');
+      if (spec.ani.comet) check(a1.ink > a0.ink * 1.2, `the comet's tail grows (ink ${a0.ink} at the start, ${a1.ink} later)`);
+      await page.locator('canvas.ani-canvas').screenshot({ path: path.join(artifacts, `${spec.name}-ani.png`) });
+      await seek(0);
+    }
+  }
 
   if (spec.generic) {
     check(await page.evaluate(() => document.body.classList.contains('no-picture')), 'a model without a picture gets the time series only');

@@ -33,14 +33,22 @@
     const t1 = Math.max(...runs.map(r => r.t[r.t.length - 1]));
     const player = new DK.Player(document.getElementById('player'), { t0, t1, times: runs[0].t, label: model.name });
     const view = document.getElementById('view');
-    /* an XPPAUT animation of the model file (NAME.ani), above the other pictures */
+    const kind = pictureOf(model, params);
+    /* an XPPAUT animation of the model file (NAME.ani): first, beside the model's other
+     * picture on a wide screen, above it on a narrow one */
     const hasAni = !!(data.ani && data.ani.prims.length);
     if (hasAni) {
       const box = DK.el('div', { id: 'ani', class: 'view ani-view' });
-      view.parentNode.insertBefore(box, view);
+      if (kind) {
+        const both = DK.el('div', { class: 'pictures' });
+        view.parentNode.insertBefore(both, view);
+        both.appendChild(box);
+        both.appendChild(view);
+      } else {
+        view.parentNode.insertBefore(box, view);
+      }
       DK.AniView(box, runs, data.ani, player);
     }
-    const kind = pictureOf(model, params);
     if (kind === 'plane') DK.PlaneView(view, runs, params, player);
     else if (kind === 'cart') DK.CartView(view, runs, params, player);
     else if (kind === 'pendulum') DK.PendulumView(view, runs, params.l, player);

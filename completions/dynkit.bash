@@ -8,7 +8,7 @@
 # Installed by `cmake --install` into share/bash-completion/completions/dynkit; or
 # `source completions/dynkit.bash`.
 
-_dynkit_commands="run models methods info inverse report animate plot verify help"
+_dynkit_commands="run models methods info inverse report animate plot verify sweep help"
 
 # The options of a command, from its --help (cached per command for the shell's life).
 declare -gA _dynkit_options_cache 2>/dev/null || true
@@ -83,7 +83,7 @@ _dynkit() {
         COMPREPLY=($(compgen -f -- "$cur"))
         return 0
         ;;
-    --forces)
+    --forces | --from | --resume)
         compopt -o filenames 2>/dev/null
         COMPREPLY=($(compgen -d -- "$cur") $(compgen -f -X '!*.[cC][sS][vV]' -- "$cur"))
         return 0
@@ -113,7 +113,8 @@ _dynkit() {
         return 0
         ;;
     --step | --tspan | --rtol | --atol | --times | --max-step | --initial-step | --max-steps | \
-        --every | --trace | --event | --x | --y | --title)
+        --every | --trace | --event | --x | --y | --title | --vary | --sample | --runs | \
+        --seed | --reduce | --threads)
         return 0
         ;;
     esac
@@ -123,7 +124,7 @@ _dynkit() {
             COMPREPLY=($(compgen -W "$_dynkit_commands" -- "$cur"))
         return 0
         ;;
-    run | info | animate | plot)
+    run | info | animate | plot | sweep)
         if ((COMP_CWORD == i + 1)); then
             compopt -o filenames 2>/dev/null
             COMPREPLY=($(compgen -W "$(_dynkit_models "$prog")" -- "$cur"))

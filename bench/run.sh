@@ -15,7 +15,7 @@ cd "$(dirname "$0")/.."
 build="${DYNKIT_BENCH_BUILD:-build-bench}"
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DDYNKIT_BUILD_BENCH=ON \
   -DDYNKIT_BUILD_TESTS=OFF >/dev/null
-cmake --build "$build" -j"$(nproc)" --target bench_suite bench_fixed dynkit_cli >/dev/null
+cmake --build "$build" -j"$(nproc)" --target bench_suite bench_fixed bench_sweep dynkit_cli >/dev/null
 cmake --build "$build" -j"$(nproc)" --target bench_jit >/dev/null 2>&1 || true # needs src/jit
 "$build/bench/bench_suite" "$@"
 
@@ -30,6 +30,11 @@ done
 if [ "$only" -eq 0 ] && [ -x "$build/bench/bench_jit" ]; then
   echo
   if [ "$quick" -eq 1 ]; then "$build/bench/bench_jit" --quick; else "$build/bench/bench_jit"; fi
+fi
+# sweeps (bench_sweep): with every run that is not limited by --only
+if [ "$only" -eq 0 ]; then
+  echo
+  if [ "$quick" -eq 1 ]; then "$build/bench/bench_sweep" --quick; else "$build/bench/bench_sweep"; fi
 fi
 if [ "$quick" -eq 0 ] && [ "$report" -eq 1 ]; then
   echo

@@ -17,7 +17,12 @@
 
 node *lang_num(lang_ctx *c, double v)
 {
+    node **shared = v == 0.0 && !signbit(v) ? &c->zero : v == 1.0 ? &c->one : NULL;
+    if (shared && *shared)
+        return *shared;
     node *e = lang_node(c, N_NUM, (lpos){0, 0});
+    if (shared)
+        *shared = e;
     e->num = v;
     return e;
 }

@@ -222,6 +222,7 @@ typedef struct lang_ctx {
     int depth;            /* recursion guard of the parser and the derivative */
     size_t bytes;         /* memory taken by the arena */
     long copies;          /* nodes copied by lang_subst */
+    struct node *zero, *one; /* shared constants of the derivatives (never changed) */
     char *out;            /* the C text being written (malloc'd; freed on failure) */
     char *out_saved;      /* the main text while the Jacobian's is written apart */
     size_t out_saved_len, out_saved_cap;

@@ -203,6 +203,15 @@ static void test_notes_tell_what_is_ignored(void **state)
     CHECK(strstr(n.text, "3: option 'ntst' is accepted and ignored"), "%s", n.text);
     CHECK(strstr(n.text, "3: meth=qualrk runs as dynkit's dp45"), "%s", n.text);
     CHECK(strstr(n.text, "4: 'set'"), "%s", n.text);
+    /* formulas as values: computed, and the difference from XPPAUT 6.11's atof said */
+    out = expect_ok("par a=2*pi, b=-0.5\nx'=a\ny'=b\ny(0)=a\n", &n);
+    CHECK(strstr(out, "{\"a\", \"\", \"\", 0 * sizeof(double), 6.2831853071795862}"), "%s", out);
+    free(out);
+    CHECK(strstr(n.text, "1: the value of 'a' is a formula, '2*pi': dynkit computes it; XPPAUT "
+                         "6.11 reads only the number it starts with (2)"),
+          "%s", n.text);
+    CHECK(strstr(n.text, "4: the value of 'y' is a formula, 'a'"), "%s", n.text);
+    CHECK(!strstr(n.text, "'b'"), "a signed number is a number: %s", n.text);
     /* XPPAUT reads x>1+2 as (x>1)+2: said, not changed */
     out = expect_ok("x'=x>1+2\n", &n);
     free(out);

@@ -108,6 +108,30 @@ static double const_value(lang_ctx *c, node *e, const char *what)
     return lang_eval(c, e, NULL, NULL);
 }
 
+/* XPPAUT 6.11 reads a value of par, number, init and x(0)= with atof: of '2*pi' only the 2,
+ * of 'a' 0 (measured). Its manual gives x(0)= an expression, and a formula means what it
+ * says: dynkit computes it, and notes the difference. */
+static void note_formula_value(lang_ctx *c, lang_lexer *lx, int from, const node *e,
+                               const char *name)
+{
+    const node *v = e->kind == N_NEG ? e->args[0] : e;
+    if (v->kind == N_NUM && !v->name && !v->paren)
+        return;
+    char text[64];
+    int n = lx->i - from;
+    while (n > 0 && (lx->line->text[from + n - 1] == ' ' || lx->line->text[from + n - 1] == '\t'))
+        n--;
+    if (n >= (int)sizeof text)
+        n = (int)sizeof text - 1;
+    int k = 0;
+    for (int i = 0; i < n; i++)
+        if (lx->line->text[from + i] != ' ' && lx->line->text[from + i] != '\t')
+            text[k++] = lx->line->text[from + i];
+    text[k] = '\0';
+    lang_note(c, e->pos, "the value of '%s' is a formula, '%s': dynkit computes it; XPPAUT 6.11 "
+              "reads only the number it starts with (%g)", name, text, strtod(text, NULL));
+}
+
 /* ---- declarations ---- */
 
 static int add_state(lang_ctx *c, const char *name, lpos pos, node *rhs)
@@ -152,7 +176,9 @@ static void name_value_list(lang_ctx *c, lang_lexer *lx, int kind, const char *k
         node *e;
         if (lang_skip_blanks(lx) == '=') {
             lx->i++;
+            const int from = (lang_skip_blanks(lx), lx->i);
             e = lang_parse_expr(lx);
+            note_formula_value(c, lx, from, e, name);
         } else {
             /* XPPAUT reads a name without a value as 0 */
             const int nx = lang_skip_blanks(lx);
@@ -705,7 +731,10 @@ static void statement(lang_ctx *c, lang_lexer *lx, pstate *ps, int *done)
             lx->i++;
             expect_char(lx, ')', "expected ')' in x(0)");
             expect_char(lx, '=', "expected '=' after x(0)");
-            add_init(c, w, wpos, expr_to_end(lx, "the initial value"));
+            const int from = (lang_skip_blanks(lx), lx->i);
+            node *e = expr_to_end(lx, "the initial value");
+            note_formula_value(c, lx, from, e, w);
+            add_init(c, w, wpos, e);
             return;
         }
         lpos apos;

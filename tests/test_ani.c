@@ -17,6 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 
 #include "dynkit/ani.h"
 #include "dynkit/dynkit.h"
@@ -708,6 +709,99 @@ static void test_shipped_examples(void **state)
     }
 }
 
+/* ---- the command line: dynkit animate MODEL.ode with MODEL.ani beside it ---- */
+
+static void write_text(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "wb");
+    assert_non_null(f);
+    fputs(text, f);
+    fclose(f);
+}
+
+/* Run the tool in the directory ani-cli; its exit status, standard error into err. */
+static int animate(const char *args, char *err, size_t size)
+{
+    char cmd[2048];
+    snprintf(cmd, sizeof cmd, "cd ani-cli && DYNKIT_CACHE_DIR=../ani-jit-cache '%s' animate %s "
+             "2> err.txt", DYNKIT_CLI, args);
+    const int st = system(cmd);
+    size_t n = 0;
+    char *e = read_file("ani-cli/err.txt", &n);
+    snprintf(err, size, "%s", e ? e : "");
+    free(e);
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+static void test_command_line(void **state)
+{
+    (void)state;
+    mkdir("ani-cli", 0777);
+    write_text("ani-cli/m.ode", MODEL);
+    remove("ani-cli/out.html");
+    char err[4096];
+    /* an error in m.ani: exit status 2, the place and a caret, nothing written */
+    write_text("ani-cli/m.ani", "fcircle x;v;.1;$RED\nline x;vv;1;1\n");
+    int rc = animate("m.ode --output out.html", err, sizeof err);
+    CHECK(rc == 2 && strstr(err, "m.ani:2:8: error: unknown name 'vv' (did you mean 'v'?)") &&
+              strstr(err, "       ^"),
+          "status %d: %s", rc, err);
+    struct stat st;
+    assert_int_not_equal(stat("ani-cli/out.html", &st), 0);
+    /* --no-ani leaves it out */
+    rc = animate("m.ode --no-ani --output out.html", err, sizeof err);
+    CHECK(rc == 0, "status %d: %s", rc, err);
+    size_t n = 0;
+    char *page = read_file("ani-cli/out.html", &n);
+    assert_non_null(page);
+    assert_null(strstr(page, "\"ani\":"));
+    free(page);
+    /* a good one, read beside the model file; --ani names another */
+    write_text("ani-cli/m.ani", "PERMANENT\nline 0;0;x;1;$BLUE;2\nTRANSIENT\n"
+                                "fcircle x;v;k/10;e\nvtext 0;0;x=;x\ncomet x;v;-2;5\n");
+    rc = animate("m.ode --tspan 0:1 --step 0.5 --method rk4 --output out.html", err, sizeof err);
+    CHECK(rc == 0, "status %d: %s", rc, err);
+    page = read_file("ani-cli/out.html", &n);
+    assert_non_null(page);
+    /* per run and primitive: one number for a constant, samples (t = 0, 0.5, 1) else; a
+     * permanent primitive has the first frame's place */
+    CHECK(strstr(page, "\"ani\":{\"file\":\"m.ani\",\"window\":[0,0,1,1]") &&
+              strstr(page, "{\"kind\":\"line\",\"line\":2,\"permanent\":true,"
+                           "\"color\":\"BLUE\",\"thickness\":2}") &&
+              strstr(page, "{\"kind\":\"fcircle\",\"line\":4,\"color\":null,"
+                           "\"thickness\":0}") &&
+              strstr(page, "{\"kind\":\"comet\",\"line\":6,\"color\":\"BLACK\","
+                           "\"type\":-2,\"length\":5}") &&
+              strstr(page, "\"runs\":[[{\"v\":[0,0,1,1]},{\"v\":[[1,"), /* x(0) = 1 */
+          "%.3000s", strstr(page, "\"ani\":") ? strstr(page, "\"ani\":") : page);
+    CHECK(strstr(page, ",0.2,") && strstr(page, "\"s\":[\"x=1\",\"x="), "%.2000s",
+          strstr(page, "\"ani\":"));
+    free(page);
+    write_text("ani-cli/other.ani", "circle .5;.5;.25\n");
+    rc = animate("m.ode --ani other.ani --output out.html", err, sizeof err);
+    CHECK(rc == 0, "status %d: %s", rc, err);
+    page = read_file("ani-cli/out.html", &n);
+    assert_non_null(strstr(page, "\"file\":\"other.ani\""));
+    free(page);
+    /* a missing --ani file, and --ani with --no-ani */
+    rc = animate("m.ode --ani none.ani --output out.html", err, sizeof err);
+    CHECK(rc == 2 && strstr(err, "none.ani"), "status %d: %s", rc, err);
+    rc = animate("m.ode --ani other.ani --no-ani --output out.html", err, sizeof err);
+    CHECK(rc == 2 && strstr(err, "contradict"), "status %d: %s", rc, err);
+    /* a built-in model with --ani: its states, outputs and parameters by name */
+    write_text("ani-cli/p.ani", "line .5;.5;.5+.4*sin(phi);.5-.4*cos(phi)\nvtext 0;0;E=;energy*l\n");
+    rc = animate("pendulum --ani p.ani --output out.html", err, sizeof err);
+    CHECK(rc == 0, "status %d: %s", rc, err);
+    page = read_file("ani-cli/out.html", &n);
+    assert_non_null(strstr(page, "\"file\":\"p.ani\""));
+    free(page);
+    /* --help says it */
+    rc = animate("--help > help.txt", err, sizeof err);
+    char *help = read_file("ani-cli/help.txt", &n);
+    assert_true(rc == 0 && help && strstr(help, "--ani FILE.ani") && strstr(help, "--no-ani"));
+    free(help);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -723,6 +817,7 @@ int main(void)
         cmocka_unit_test(test_limits_and_damaged_input),
         cmocka_unit_test(test_debian_examples),
         cmocka_unit_test(test_shipped_examples),
+        cmocka_unit_test(test_command_line),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -62,7 +62,7 @@ void cli_run_options_help(FILE *out)
           "                       MODEL' lists them); with :stop the run ends at it. Events\n"
           "                       that reset the state (XPPAUT's global) take part in every\n"
           "                       run; --event NAME reports them too\n"
-          "  --events-output FILE write the events as CSV: event,t,<states> (default: stderr)\n"
+          "  --events-output FILE write the events to FILE.csv: event,t,<states> (default: stderr)\n"
           "Output options:\n"
           "  -o, --output FILE    write to FILE instead of standard output ('-'), in the format\n"
           "                       of its extension: .csv, .json, .npy, .npz, .mat (see\n"
@@ -287,6 +287,15 @@ static int check_method_options(const char *command, cli_run *run, unsigned give
     if (run->events_path && run->n_events == 0)
         return cli_usage_error(command, "--events-output needs --event NAME (which events to "
                                         "write)");
+    cli_format events_format;
+    char ferr[512];
+    if (run->events_path &&
+        (cli_format_of_path(run->events_path, &events_format, ferr, sizeof ferr) ||
+         events_format != CLI_FORMAT_CSV))
+        return cli_usage_error(command,
+                               "--events-output '%s': the events are written as CSV "
+                               "(event,t,<states>): give FILE.csv, or '-' for standard output",
+                               run->events_path);
     if (run->times) {
         const double first = run->times[0], last = run->times[run->n_times - 1];
         if (!(given & GIVEN_TSPAN)) {

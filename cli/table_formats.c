@@ -5,6 +5,7 @@
  * stream can seek (NPY format 1.0: the header, which holds the row count, is written first
  * with room for any count and rewritten at the end); the other formats keep the rows and are
  * written at the end by table_numpy.c and table_mat.c. See docs/data-files.md. */
+#define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
@@ -12,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
 
 #include "cli.h"
 #include "dynkit/io.h"
@@ -63,6 +65,14 @@ const char *cli_format_name(cli_format format)
     return "?";
 }
 
+/* 1 if path is a device or a pipe (/dev/stdout, /dev/null, a FIFO): no file whose name could
+ * say the wrong format. */
+static int is_stream(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode);
+}
+
 int cli_format_of_path(const char *path, cli_format *format, char *err, size_t errlen)
 {
     *format = CLI_FORMAT_CSV;
@@ -71,6 +81,11 @@ int cli_format_of_path(const char *path, cli_format *format, char *err, size_t e
     const char *slash = strrchr(path, '/');
     const char *base = slash ? slash + 1 : path;
     const char *dot = strrchr(base, '.');
+    int known = 0;
+    for (size_t i = 0; dot && i < sizeof extensions / sizeof extensions[0]; i++)
+        known |= strcasecmp(dot, extensions[i].ext) == 0;
+    if (!known && is_stream(path))
+        return 0; /* a device or pipe without a format's extension: CSV, as standard output */
     if (!dot || dot == base) {
         snprintf(err, errlen,
                  "'%s' has no file extension to choose the format by (accepted: %s; '-' is "

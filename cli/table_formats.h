@@ -25,7 +25,7 @@ typedef enum cli_header { CLI_HEADER_NAMES, CLI_HEADER_UNITS, CLI_HEADER_NONE } 
 #define CLI_FORMAT_EXTENSIONS ".csv, .json, .mat, .npy, .npz"
 
 /* The format of an output file by the extension of path (case-insensitive); "-" (standard
- * output) is CSV. Returns 0, or -1 with a message in err: an unknown or missing extension
+ * output) and a device or pipe without such an extension (/dev/stdout, /dev/null) are CSV. Returns 0, or -1 with a message in err: an unknown or missing extension
  * (naming the accepted ones), or .mat when dynkit was built without matio (saying how to get
  * it). */
 int cli_format_of_path(const char *path, cli_format *format, char *err, size_t errlen);

@@ -311,7 +311,11 @@ static void test_unknown_extension(void **state)
         struct stat st;
         CHECK(stat(cli_path(bad[i]), &st) != 0, "a refused run made %s", bad[i]);
     }
-    cli_result r = cli_in_tmpdir("inverse cart -o forces.dat");
+    /* the events are CSV: another extension is refused too */
+    cli_result r = cli_in_tmpdir("run pendulum -m dp45 --event turn --events-output ev.json");
+    CHECK(r.status == 2 && strstr(r.err, "give FILE.csv"), "--events-output ev.json: %s", r.err);
+    cli_free(&r);
+    r = cli_in_tmpdir("inverse cart -o forces.dat");
     CHECK(r.status == 2 && strstr(r.err, ".npz"), "inverse -o forces.dat: %s", r.err);
     cli_free(&r);
     /* the extension is matched without regard to case */

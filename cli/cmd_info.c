@@ -1,16 +1,148 @@
-/* dynkit info MODEL: equations, states, parameters, outputs, units and defaults. */
+/* dynkit info MODEL: equations, states, parameters, outputs, events, units and defaults.
+ * Numbers are printed in their shortest form that reads back exactly (9.81, 321.8122), and
+ * each table's columns are as wide as their longest entry. */
+#include <stdlib.h>
+#include <string.h>
+
 #include "cli.h"
 
 static void info_help(void)
 {
     puts("Usage: dynkit info MODEL\n\n"
          "Describe MODEL: its equations, states (with default initial values), parameters\n"
-         "(with default values), extra outputs, units and default run.");
+         "(with default values), extra outputs, events (for run --event NAME[:stop]), units,\n"
+         "and the default run with its tolerances. Numbers are shown in their shortest form\n"
+         "that reads back to the same double.");
+}
+
+/* The shortest %.{1..17}g of v that reads back to v (10, not 1e+01), into buf; returns
+ * buf. */
+static char *shortest(double v, char *buf, size_t size)
+{
+    char s[40];
+    buf[0] = '\0';
+    for (int p = 1; p <= 17; p++) {
+        snprintf(s, sizeof s, "%.*g", p, v);
+        if (strtod(s, NULL) == v && (buf[0] == '\0' || strlen(s) < strlen(buf)))
+            snprintf(buf, size, "%s", s);
+    }
+    return buf;
+}
+
+/* Width of the widest of n strings (at least min). */
+static int widest(int n, const char *(*get)(const void *, int), const void *ctx, int min)
+{
+    int w = min;
+    for (int i = 0; i < n; i++) {
+        const char *s = get(ctx, i);
+        int len = s ? (int)strlen(s) : 0;
+        if (len > w)
+            w = len;
+    }
+    return w;
+}
+
+static const char *state_name(const void *m, int i) { return ((const dyn_model *)m)->states[i].name; }
+static const char *state_unit(const void *m, int i) { return ((const dyn_model *)m)->states[i].unit; }
+static const char *param_name(const void *m, int i) { return ((const dyn_model *)m)->params[i].name; }
+static const char *param_unit(const void *m, int i) { return ((const dyn_model *)m)->params[i].unit; }
+static const char *output_name(const void *m, int i) { return ((const dyn_model *)m)->outputs[i].name; }
+static const char *output_unit(const void *m, int i) { return ((const dyn_model *)m)->outputs[i].unit; }
+static const char *event_name(const void *m, int i) { return ((const dyn_model *)m)->events[i].name; }
+
+/* One table of named values: NAME UNIT default VALUE DESCRIPTION, aligned. */
+static void print_values(const char *title, const dyn_model *m, int n,
+                         const char *(*name)(const void *, int),
+                         const char *(*unit)(const void *, int), const double *values,
+                         const char *const *descriptions)
+{
+    char num[32];
+    int wv = 1;
+    for (int i = 0; i < n; i++) {
+        int len = (int)strlen(shortest(values[i], num, sizeof num));
+        if (len > wv)
+            wv = len;
+    }
+    const int wn = widest(n, name, m, 4), wu = widest(n, unit, m, 4);
+    printf("\n%s\n", title);
+    for (int i = 0; i < n; i++)
+        printf("  %-*s  %-*s  default %-*s  %s\n", wn, name(m, i), wu, unit(m, i), wv,
+               shortest(values[i], num, sizeof num), descriptions[i]);
+}
+
+static void print_states(const dyn_model *m, const double *y0)
+{
+    const char **desc = malloc((size_t)m->n_states * sizeof *desc);
+    if (!desc)
+        return;
+    for (int i = 0; i < m->n_states; i++)
+        desc[i] = m->states[i].description;
+    print_values("States (--init NAME=VALUE):", m, m->n_states, state_name, state_unit, y0, desc);
+    free(desc);
+}
+
+static void print_params(const dyn_model *m)
+{
+    double *v = malloc((size_t)(m->n_params > 0 ? m->n_params : 1) * sizeof *v);
+    const char **desc = malloc((size_t)(m->n_params > 0 ? m->n_params : 1) * sizeof *desc);
+    if (v && desc) {
+        for (int i = 0; i < m->n_params; i++) {
+            v[i] = m->params[i].value;
+            desc[i] = m->params[i].description;
+        }
+        print_values("Parameters (--set NAME=VALUE):", m, m->n_params, param_name, param_unit, v,
+                     desc);
+    }
+    free(v);
+    free(desc);
+}
+
+static void print_outputs(const dyn_model *m)
+{
+    if (m->n_outputs <= 0)
+        return;
+    const int wn = widest(m->n_outputs, output_name, m, 4);
+    const int wu = widest(m->n_outputs, output_unit, m, 4);
+    printf("\nExtra outputs (run --outputs):\n");
+    for (int i = 0; i < m->n_outputs; i++)
+        printf("  %-*s  %-*s  %s\n", wn, m->outputs[i].name, wu, m->outputs[i].unit,
+               m->outputs[i].description);
+}
+
+static void print_events(const dyn_model *m)
+{
+    if (m->n_events <= 0 || !m->events)
+        return;
+    const int wn = widest(m->n_events, event_name, m, 4);
+    printf("\nEvents (run --event NAME[:stop]):\n");
+    printf("  %-*s  %-9s  %-8s  %s\n", wn, "NAME", "DIRECTION", "TERMINAL", "DESCRIPTION");
+    for (int i = 0; i < m->n_events; i++) {
+        const dyn_event *e = &m->events[i];
+        const char *dir = e->direction > 0 ? "rising" : e->direction < 0 ? "falling" : "both";
+        printf("  %-*s  %-9s  %-8s  %s%s\n", wn, e->name, dir, e->terminal ? "yes" : "no",
+               e->description ? e->description : "", e->reset ? " (resets the state)" : "");
+    }
+}
+
+static void print_default_run(const dyn_model *m)
+{
+    char a[32], b[32], c[32];
+    printf("\nDefault run: --method %s --step %s --tspan %s:%s (times in s)\n", m->method,
+           shortest(m->step, a, sizeof a), shortest(m->t0, b, sizeof b),
+           shortest(m->t1, c, sizeof c));
+    printf("Tolerances of adaptive methods: --rtol %s --atol %s%s\n",
+           shortest(m->rtol > 0 ? m->rtol : DYN_DEFAULT_RTOL, a, sizeof a),
+           shortest(m->atol > 0 ? m->atol : DYN_DEFAULT_ATOL, b, sizeof b),
+           m->rtol > 0 || m->atol > 0 ? " (the model's)" : " (the library's defaults)");
+    if (m->samples == DYN_SAMPLES_STEPS)
+        printf("Adaptive methods without --step or --times write a sample at every accepted "
+               "step;\n"
+               "--step H is the step of fixed-step methods.\n");
 }
 
 int cli_cmd_info(int argc, char **argv)
 {
-    char names[512];
+    char names[512], err[256];
     if (argc >= 1 && cli_is_help(argv[0])) {
         info_help();
         return CLI_OK;
@@ -24,26 +156,26 @@ int cli_cmd_info(int argc, char **argv)
     int open_rc = cli_model_open("info", argv[0], &m);
     if (open_rc != CLI_OK)
         return open_rc;
-    printf("%s: %s\n\n%s\n\n", m->name, m->title, m->description);
-    printf("States (--init NAME=VALUE):\n");
-    for (int i = 0; i < m->n_states; i++)
-        printf("  %-8s %-8s default %-22.17g %s\n", m->states[i].name, m->states[i].unit,
-               m->y0[i], m->states[i].description);
-    printf("\nParameters (--set NAME=VALUE):\n");
-    for (int i = 0; i < m->n_params; i++)
-        printf("  %-12s %-8s default %-22.17g %s\n", m->params[i].name, m->params[i].unit,
-               m->params[i].value, m->params[i].description);
-    if (m->n_outputs > 0) {
-        printf("\nExtra outputs (run --outputs):\n");
-        for (int i = 0; i < m->n_outputs; i++)
-            printf("  %-16s %-8s %s\n", m->outputs[i].name, m->outputs[i].unit,
-                   m->outputs[i].description);
+    /* the default initial state of the default parameters (it may depend on them) */
+    void *par = calloc(1, m->par_size > 0 ? m->par_size : 1);
+    double *y0 = calloc((size_t)m->n_states, sizeof *y0);
+    if (!par || !y0) {
+        free(par);
+        free(y0);
+        fprintf(stderr, "dynkit: error: out of memory\n");
+        return CLI_FAILED;
     }
-    printf("\nDefault run: --method %s --step %g --tspan %g:%g (times in s)\n", m->method,
-           m->step, m->t0, m->t1);
-    if (m->samples == DYN_SAMPLES_STEPS)
-        printf("Adaptive methods without --step or --times write a sample at every accepted "
-               "step;\n"
-               "--step H is the step of fixed-step methods.\n");
+    if (dyn_model_default_params(m, par, err, sizeof err) == 0)
+        dyn_model_initial_state(m, par, y0);
+    else
+        memcpy(y0, m->y0, (size_t)m->n_states * sizeof *y0);
+    printf("%s: %s\n\n%s\n", m->name, m->title, m->description);
+    print_states(m, y0);
+    print_params(m);
+    print_outputs(m);
+    print_events(m);
+    print_default_run(m);
+    free(par);
+    free(y0);
     return CLI_OK;
 }

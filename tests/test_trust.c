@@ -134,7 +134,7 @@ static void test_bad_output_paths_name_the_file(void **state)
     } bad[] = {
         {"run pendulum --output nodir/x.csv", "nodir/x.csv"},
         {"run pendulum --output dir.csv", "is a directory"},
-        {"run pendulum --method dp45 --event turn --events-output /dev/full", "/dev/full"},
+        {"run pendulum --method dp45 --event turn --events-output nodir/e.csv", "nodir/e.csv"},
     };
     mkdir(cli_path("dir.csv"), 0755);
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
@@ -454,6 +454,79 @@ static void test_robertson_stays_in_its_domain(void **state)
     cli_free(&r);
 }
 
+/* ---- info ---- */
+
+/* The value after "default " on the line of info's output that starts with "  NAME ". */
+static const char *info_default(const char *out, const char *name, char *buf, size_t size)
+{
+    char key[64];
+    snprintf(key, sizeof key, "\n  %s ", name);
+    const char *table = strstr(out, "\nStates (");
+    const char *line = table ? strstr(table, key) : NULL;
+    const char *d = line ? strstr(line, " default ") : NULL;
+    if (!d)
+        return NULL;
+    d += 9;
+    size_t n = strcspn(d, " \n");
+    snprintf(buf, size, "%.*s", (int)(n < size ? n : size - 1), d);
+    return buf;
+}
+
+static void test_info_numbers_events_columns(void **state)
+{
+    (void)state;
+    for (int i = 0; i < dyn_model_count(); i++) {
+        const dyn_model *m = dyn_model_at(i);
+        cli_result r = cli("info %s", m->name);
+        assert_int_equal(r.status, 0);
+        /* every parameter's default reads back exactly, and no shorter %g does */
+        for (int k = 0; k < m->n_params; k++) {
+            char got[64], shorter[64];
+            const double v = m->params[k].value;
+            CHECK(info_default(r.out, m->params[k].name, got, sizeof got) &&
+                      strtod(got, NULL) == v,
+                  "info %s: %s printed '%s', value %.17g", m->name, m->params[k].name,
+                  info_default(r.out, m->params[k].name, got, sizeof got), v);
+            for (int p = 1; p <= 17; p++) {
+                snprintf(shorter, sizeof shorter, "%.*g", p, v);
+                CHECK(!(strtod(shorter, NULL) == v && strlen(shorter) < strlen(got)),
+                      "info %s: %s printed '%s', '%s' is shorter", m->name,
+                      m->params[k].name, got, shorter);
+            }
+        }
+        /* events: name, direction, terminal, description */
+        for (int k = 0; k < m->n_events; k++) {
+            char key[64];
+            snprintf(key, sizeof key, "\n  %s ", m->events[k].name);
+            const char *line = strstr(r.out, key);
+            CHECK(line && strstr(line, m->events[k].description), "info %s lacks event %s",
+                  m->name, m->events[k].name);
+        }
+        CHECK(strstr(r.out, "--rtol ") && strstr(r.out, "--atol "), "info %s: tolerances",
+              m->name);
+        cli_free(&r);
+    }
+    cli_result r = cli("info hires");
+    CHECK(strstr(r.out, "--tspan 0:321.8122 ") != NULL, "%s", r.out);
+    cli_free(&r);
+    r = cli("info pendulum");
+    char buf[64];
+    CHECK(strcmp(info_default(r.out, "g", buf, sizeof buf), "9.81") == 0 &&
+              strstr(r.out, "turn    both       no ") != NULL,
+          "%s", r.out);
+    cli_free(&r);
+    /* columns aligned: the unit of every output starts where constraint_residual's does */
+    r = cli("info cart");
+    const char *outputs = strstr(r.out, "\nExtra outputs");
+    assert_non_null(outputs);
+    const char *a = strstr(outputs, "\n  Fx "), *b = strstr(outputs, "\n  constraint_residual ");
+    assert_true(a && b);
+    const size_t ua = 3 + strcspn(a + 3, " ") + strspn(a + 3 + strcspn(a + 3, " "), " ");
+    const size_t ub = 3 + strcspn(b + 3, " ") + strspn(b + 3 + strcspn(b + 3, " "), " ");
+    CHECK(ua == ub && strncmp(a + ua, "N ", 2) == 0, "columns of info cart: %s", outputs);
+    cli_free(&r);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -470,6 +543,7 @@ int main(void)
         cmocka_unit_test(test_adaptive_runs_have_a_step_limit),
         cmocka_unit_test(test_default_runs_are_accurate_for_any_span),
         cmocka_unit_test(test_robertson_stays_in_its_domain),
+        cmocka_unit_test(test_info_numbers_events_columns),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -16,6 +16,11 @@
 
 #include "cli.h"
 #include "dynkit/sweep.h"
+#ifdef DYNKIT_HAVE_MPI
+#include <mpi.h>
+
+#include "dynkit/sweep_mpi.h"
+#endif
 
 #define SWEEP_MAX_VARS 32
 #define SWEEP_MAX_REDUCE 64
@@ -73,6 +78,9 @@ static void sweep_help(void)
          "  --quiet              no progress bar (shown on a terminal only: runs, rate, ETA)\n"
          "Ctrl-C stops the sweep: the finished runs are written and the command to resume is\n"
          "printed (exit status 130). Failed runs do not change the exit status (0).\n"
+         "Across processes: 'mpirun -n K dynkit sweep ...' splits the runs over K ranks (each\n"
+         "on its own threads, --threads per rank) and rank 0 writes the one table, the same\n"
+         "bytes as one process (when dynkit is built with MPI: libopenmpi-dev).\n"
          "\n"
          "Run options (as dynkit run; not --final, --every, --outputs, --times, --trace,\n"
          "--stats, --header, --events-output):");
@@ -549,8 +557,9 @@ static int refused_option(const char *arg)
     return CLI_OK;
 }
 
-int cli_cmd_sweep(int argc, char **argv)
+static int sweep_command(int argc, char **argv, int rank, int ranks)
 {
+    (void)ranks;
     for (int i = 0; i < argc; i++)
         if (cli_is_help(argv[i])) {
             sweep_help();
@@ -669,6 +678,14 @@ int cli_cmd_sweep(int argc, char **argv)
     free(pass);
     free(vary);
     free(sample);
+#ifdef DYNKIT_HAVE_MPI
+    if (ranks > 0) { /* every rank parsed the same options: go on only if all could */
+        int bad = rc != CLI_OK, any = 0;
+        MPI_Allreduce(&bad, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+        if (any && rc == CLI_OK)
+            rc = CLI_FAILED;
+    }
+#endif
     if (rc != CLI_OK) {
         spec_free(&sp);
         cli_run_free(&run);
@@ -696,6 +713,14 @@ int cli_cmd_sweep(int argc, char **argv)
     long kept = 0;
     if (rc == CLI_OK && resume)
         rc = read_resume(resume, &o, skip, &kept);
+#ifdef DYNKIT_HAVE_MPI
+    if (ranks > 0) {
+        int bad = rc != CLI_OK, any = 0;
+        MPI_Allreduce(&bad, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+        if (any && rc == CLI_OK)
+            rc = CLI_FAILED;
+    }
+#endif
     dyn_sweep s = {0};
     s.model = m;
     s.par = run.par;
@@ -738,7 +763,12 @@ int cli_cmd_sweep(int argc, char **argv)
     if (rc == CLI_OK) {
         sigaction(SIGINT, &sa, &old_int);
         sigaction(SIGTERM, &sa, &old_term);
-        src = dyn_sweep_run(&s, o.results, o.status, err, sizeof err);
+#ifdef DYNKIT_HAVE_MPI
+        if (ranks > 0)
+            src = dyn_sweep_mpi_run(&s, o.results, o.status, err, sizeof err);
+        else
+#endif
+            src = dyn_sweep_run(&s, o.results, o.status, err, sizeof err);
         sigaction(SIGINT, &old_int, NULL);
         sigaction(SIGTERM, &old_term, NULL);
         if (prog.shown)
@@ -749,7 +779,15 @@ int cli_cmd_sweep(int argc, char **argv)
         }
     }
 
-    /* the table */
+    /* the table: rank 0 writes it */
+    if (rc == CLI_OK && rank != 0) {
+        free(o.results);
+        free(o.status);
+        free(skip);
+        spec_free(&sp);
+        cli_run_free(&run);
+        return src == DYN_CANCELLED ? 128 + (int)sweep_signal : CLI_OK;
+    }
     if (rc == CLI_OK) {
         FILE *f = stdout;
         char tmp[4096] = "";
@@ -814,4 +852,50 @@ int cli_cmd_sweep(int argc, char **argv)
     spec_free(&sp);
     cli_run_free(&run);
     return rc;
+}
+
+/* The ranks of the MPI job this process belongs to (mpirun's environment), or 0 when it
+ * was not started by mpirun. */
+static int mpi_job_size(void)
+{
+    const char *vars[] = {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"};
+    for (size_t k = 0; k < sizeof vars / sizeof vars[0]; k++) {
+        const char *v = getenv(vars[k]);
+        if (v && atoi(v) > 0)
+            return atoi(v);
+    }
+    return 0;
+}
+
+int cli_cmd_sweep(int argc, char **argv)
+{
+    const int job = mpi_job_size();
+#ifdef DYNKIT_HAVE_MPI
+    if (job > 0) {
+        int provided = 0, rank = 0, size = 1;
+        if (MPI_Init_thread(NULL, NULL, MPI_THREAD_FUNNELED, &provided) != MPI_SUCCESS) {
+            fprintf(stderr, "dynkit: error: MPI_Init_thread failed\n");
+            return CLI_FAILED;
+        }
+        MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+        MPI_Comm_size(MPI_COMM_WORLD, &size);
+        /* rank 0 speaks for the job: the others' messages would repeat its own */
+        if (rank != 0) {
+            FILE *o = freopen("/dev/null", "w", stdout), *e = freopen("/dev/null", "w", stderr);
+            (void)o;
+            (void)e;
+        }
+        const int rc = sweep_command(argc, argv, rank, size);
+        MPI_Finalize();
+        return rc;
+    }
+#else
+    if (job > 1)
+        return cli_usage_error("sweep",
+                               "started by mpirun with %d processes, but dynkit was built "
+                               "without MPI: each would run the whole sweep (install "
+                               "libopenmpi-dev and rebuild, or run one process)",
+                               job);
+#endif
+    return sweep_command(argc, argv, 0, 0);
 }

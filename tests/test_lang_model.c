@@ -412,6 +412,47 @@ static void test_jacobian_matches_finite_differences(void **state)
     check_jacobian("x[1..4]'=x[j-1]-2*x[j]+x[j+1]+x[j]^2\nx0=0\nx5=1\n");
 }
 
+/* The C text is clean C11: no warning with -Wall -Wextra -Wshadow -pedantic (unused
+ * helpers, functions and temporaries are not written), for the seed files of the fuzzer and
+ * the example models. */
+static void test_generated_c_compiles_without_warnings(void **state)
+{
+    (void)state;
+    static const char *const files[] = {
+        "fuzz/corpus/ode/arrays.ode",        "fuzz/corpus/ode/ball.ode",
+        "fuzz/corpus/ode/functions.ode",     "fuzz/corpus/ode/vanderpol.ode",
+        "examples/models/double_pendulum.ode", "examples/models/elastic_pendulum.ode",
+        "examples/models/bouncing_ball.ode", "examples/models/lorenz.ode",
+    };
+    if (system("cc --version > /dev/null 2>&1") != 0)
+        skip();
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+        char path[1024], cmd[2048];
+        snprintf(path, sizeof path, "%s/%s", DYNKIT_SOURCE_DIR, files[i]);
+        FILE *f = fopen(path, "rb");
+        CHECK(f != NULL, "cannot open %s", path);
+        static char text[1 << 16];
+        const size_t len = fread(text, 1, sizeof text, f);
+        fclose(f);
+        char *c_src = NULL;
+        dyn_lang_diag d;
+        char buf[2048];
+        CHECK(dyn_ode_to_c(path, text, len, &c_src, &d, NULL, NULL) == 0, "%s",
+              dyn_lang_diag_format(&d, buf, sizeof buf));
+        FILE *o = fopen("lang-warnings.c", "wb");
+        assert_non_null(o);
+        fputs(c_src, o);
+        fclose(o);
+        free(c_src);
+        snprintf(cmd, sizeof cmd,
+                 "cc -std=c11 -Wall -Wextra -Wshadow -pedantic -Werror -fsyntax-only -I'%s/include' "
+                 "lang-warnings.c",
+                 DYNKIT_SOURCE_DIR);
+        CHECK(system(cmd) == 0, "%s: the C text does not compile cleanly", files[i]);
+    }
+    remove("lang-warnings.c");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -424,6 +465,7 @@ int main(void)
         cmocka_unit_test(test_extensions_and_options_fill_the_model),
         cmocka_unit_test(test_names_cannot_clash_with_c),
         cmocka_unit_test(test_jacobian_matches_finite_differences),
+        cmocka_unit_test(test_generated_c_compiles_without_warnings),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -135,6 +135,21 @@ static const char *c_fun(int f)
     }
 }
 
+enum {
+    H_HEAV = 1, H_SIGN = 2, H_MOD = 4, H_MAX = 8, H_MIN = 16, H_NOT = 32, H_SQ = 64, H_POW = 128
+};
+
+/* fused: per function, slot 0 the function, slot 1 + k its partial derivative in k */
+static void mark_func(lang_ctx *c, int f, int slot)
+{
+    c->fused[(size_t)f * (LANG_MAX_ARGS + 1) + (size_t)slot] = 1;
+}
+
+static int func_marked(const lang_ctx *c, int f, int slot)
+{
+    return c->fused[(size_t)f * (LANG_MAX_ARGS + 1) + (size_t)slot];
+}
+
 static void expr(lang_ctx *c, const node *e, const ectx *x);
 
 static void call_args(lang_ctx *c, const node *e, const ectx *x)
@@ -167,6 +182,7 @@ static void expr(lang_ctx *c, const node *e, const ectx *x)
         puts_(c, ")");
         break;
     case N_NOT:
+        c->helpers |= H_NOT;
         puts_(c, "dk_not(");
         expr(c, e->args[0], x);
         puts_(c, ")");
@@ -196,10 +212,12 @@ static void expr(lang_ctx *c, const node *e, const ectx *x)
             break;
         case OP_POW:
             if (b->kind == N_NUM && b->num == 2.0) {
+                c->helpers |= H_SQ;
                 puts_(c, "dk_sq(");
                 expr(c, a, x);
                 puts_(c, ")");
             } else {
+                c->helpers |= H_POW;
                 puts_(c, "dk_pow(");
                 expr(c, a, x);
                 puts_(c, ", ");
@@ -226,6 +244,12 @@ static void expr(lang_ctx *c, const node *e, const ectx *x)
         break;
     }
     case N_FUN:
+        c->helpers |= e->op == F_HEAV  ? H_HEAV
+                      : e->op == F_SIGN ? H_SIGN
+                      : e->op == F_MOD  ? H_MOD
+                      : e->op == F_MAX  ? H_MAX
+                      : e->op == F_MIN  ? H_MIN
+                                        : 0;
         outf(c, "%s(", c_fun(e->op));
         for (int i = 0; i < e->nargs; i++) {
             if (i)
@@ -235,10 +259,12 @@ static void expr(lang_ctx *c, const node *e, const ectx *x)
         puts_(c, ")");
         break;
     case N_UFUN:
+        mark_func(c, e->index, 0);
         outf(c, "u_%s(", LVEC_AT(m->funcs, lang_func, e->index).name);
         call_args(c, e, x);
         break;
     case N_UFUN_D:
+        mark_func(c, e->index, 1 + e->op);
         outf(c, "ud%d_%s(", e->op, LVEC_AT(m->funcs, lang_func, e->index).name);
         call_args(c, e, x);
         break;
@@ -287,18 +313,29 @@ static unsigned char *needed_by(lang_ctx *c, node *const *roots, int n)
 
 static void helpers(lang_ctx *c)
 {
-    puts_(c,
-          "static inline double dk_heav(double x) { return x < 0.0 ? 0.0 : 1.0; }\n"
-          "static inline double dk_sign(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : "
-          "0.0); }\n"
-          "static inline double dk_mod(double x, double y)\n"
-          "{\n    double z = fmod(x, y);\n    if (z < 0.0)\n        z += y;\n    return z;\n}\n"
-          "static inline double dk_max(double x, double y) { return x > y ? x : y; }\n"
-          "static inline double dk_min(double x, double y) { return x < y ? x : y; }\n"
-          "static inline double dk_not(double x) { return x == 0.0 ? 1.0 : 0.0; }\n"
-          "static inline double dk_sq(double x) { return x * x; }\n"
-          "static inline double dk_pow(double x, double y) { return y == 2.0 ? x * x : pow(x, "
-          "y); }\n\n");
+    const unsigned h = c->helpers;
+    if (h & H_HEAV)
+        puts_(c, "static inline double dk_heav(double x) { return x < 0.0 ? 0.0 : 1.0; }\n");
+    if (h & H_SIGN)
+        puts_(c, "static inline double dk_sign(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? "
+                 "-1.0 : 0.0); }\n");
+    if (h & H_MOD)
+        puts_(c, "static inline double dk_mod(double x, double y)\n"
+                 "{\n    double z = fmod(x, y);\n    if (z < 0.0)\n        z += y;\n"
+                 "    return z;\n}\n");
+    if (h & H_MAX)
+        puts_(c, "static inline double dk_max(double x, double y) { return x > y ? x : y; }\n");
+    if (h & H_MIN)
+        puts_(c, "static inline double dk_min(double x, double y) { return x < y ? x : y; }\n");
+    if (h & H_NOT)
+        puts_(c, "static inline double dk_not(double x) { return x == 0.0 ? 1.0 : 0.0; }\n");
+    if (h & H_SQ)
+        puts_(c, "static inline double dk_sq(double x) { return x * x; }\n");
+    if (h & H_POW)
+        puts_(c, "static inline double dk_pow(double x, double y) { return y == 2.0 ? x * x : "
+                 "pow(x, y); }\n");
+    if (h)
+        puts_(c, "\n");
 }
 
 static void func_proto(lang_ctx *c, const lang_func *f, int partial)
@@ -341,47 +378,69 @@ static void plan_partials(lang_ctx *c, jac_plan *j)
     }
 }
 
-static void emit_functions(lang_ctx *c, const jac_plan *j)
+/* The definitions of the user functions and partial derivatives the text calls (a
+ * definition may call more: until none is new). */
+static void emit_function_defs(lang_ctx *c, const jac_plan *j, unsigned char *done)
 {
     lang_model *m = &c->m;
-    if (m->funcs.n == 0)
-        return;
-    puts_(c, "/* user functions and their partial derivatives */\n");
+    for (int changed = 1; changed;) {
+        changed = 0;
+        for (int f = 0; f < m->funcs.n; f++) {
+            const lang_func *fn = &LVEC_AT(m->funcs, lang_func, f);
+            const ectx x = {fn, 1};
+            for (int k = -1; k < fn->nargs; k++) {
+                const size_t id = (size_t)f * (LANG_MAX_ARGS + 1) + (size_t)(k + 1);
+                if (!func_marked(c, f, k + 1) || done[id])
+                    continue;
+                const node *body = k < 0 ? fn->body
+                                   : j->partial ? j->partial[f * LANG_MAX_ARGS + k]
+                                                : NULL;
+                done[id] = 1;
+                changed = 1;
+                if (!body)
+                    continue;
+                puts_(c, "\n");
+                line_dir(c, fn->pos);
+                func_proto(c, fn, k);
+                puts_(c, "\n{\n    (void)t;\n    (void)y;\n    (void)p;\n");
+                for (int a = 0; a < fn->nargs; a++)
+                    outf(c, "    (void)a_%s;\n", fn->argnames[a]);
+                puts_(c, "    return ");
+                expr(c, body, &x);
+                puts_(c, ";\n}\n");
+            }
+        }
+    }
+}
+
+static void emit_function_protos(lang_ctx *c)
+{
+    lang_model *m = &c->m;
+    int any = 0;
     for (int f = 0; f < m->funcs.n; f++) {
         const lang_func *fn = &LVEC_AT(m->funcs, lang_func, f);
-        if (fn->uses_fix)
-            continue; /* inlined where called */
-        func_proto(c, fn, -1);
-        puts_(c, ";\n");
-        for (int k = 0; k < fn->nargs; k++)
-            if (j->partial && j->partial[f * LANG_MAX_ARGS + k]) {
+        for (int k = -1; k < fn->nargs; k++)
+            if (func_marked(c, f, k + 1)) {
+                if (!any)
+                    puts_(c, "/* user functions and their partial derivatives */\n");
+                any = 1;
                 func_proto(c, fn, k);
                 puts_(c, ";\n");
             }
     }
-    for (int f = 0; f < m->funcs.n; f++) {
-        const lang_func *fn = &LVEC_AT(m->funcs, lang_func, f);
-        if (fn->uses_fix)
-            continue;
-        const ectx x = {fn, 1};
-        for (int k = -1; k < fn->nargs; k++) {
-            const node *body = k < 0 ? fn->body
-                               : j->partial ? j->partial[f * LANG_MAX_ARGS + k]
-                                            : NULL;
-            if (!body)
-                continue;
-            puts_(c, "\n");
-            line_dir(c, fn->pos);
-            func_proto(c, fn, k);
-            puts_(c, "\n{\n    (void)t;\n    (void)y;\n    (void)p;\n");
-            for (int a = 0; a < fn->nargs; a++)
-                outf(c, "    (void)a_%s;\n", fn->argnames[a]);
-            puts_(c, "    return ");
-            expr(c, body, &x);
-            puts_(c, ";\n}\n");
-        }
-    }
-    puts_(c, "\n");
+    if (any)
+        puts_(c, "\n");
+}
+
+/* The text written so far, moved into the arena; the output starts empty. */
+static char *take_text(lang_ctx *c, size_t *len)
+{
+    char *s = lang_strndup(c, c->out ? c->out : "", c->out ? c->out_len : 0);
+    *len = c->out ? c->out_len : 0;
+    free(c->out);
+    c->out = NULL;
+    c->out_len = c->out_cap = 0;
+    return s;
 }
 
 static void emit_rhs(lang_ctx *c)
@@ -558,10 +617,20 @@ static void emit_jacobian(lang_ctx *c, jac_plan *j)
     c->out_saved_cap = saved_cap;
     c->out = NULL;
     c->out_len = c->out_cap = 0;
+    /* the fixed temporaries the derivatives use (not all those of the right-hand side) */
+    unsigned char *jneed = lang_alloc(c, (size_t)m->fixes.n + 1);
+    for (int jj = 0; jj < n; jj++) {
+        for (int i = 0; i < n; i++)
+            if (cols[jj].entry[i])
+                need(c, cols[jj].entry[i], jneed);
+        for (int k = 0; k < m->fixes.n; k++)
+            if (cols[jj].fixd[k])
+                need(c, cols[jj].fixd[k], jneed);
+    }
     puts_(c, "static int dk_jacobian(double t, const double *y, double *J, void *par)\n{\n"
              "    const double *p = (const double *)par;\n    (void)t;\n    (void)y;\n"
              "    (void)p;\n");
-    emit_fixes(c, needed);
+    emit_fixes(c, jneed);
     outf(c, "    for (int k = 0; k < %d; k++)\n        J[k] = 0.0;\n", n * n);
     const ectx x = {NULL, 1};
     for (int jj = 0; jj < n; jj++) {
@@ -726,6 +795,7 @@ char *lang_emit_c(lang_ctx *c)
     }
     jac_plan jp = {0};
     jp.used = lang_alloc(c, ((size_t)m->funcs.n + 1) * LANG_MAX_ARGS);
+    c->fused = lang_alloc(c, ((size_t)m->funcs.n + 1) * (LANG_MAX_ARGS + 1));
     int with_jac = n <= LANG_MAX_JAC_STATES;
     if (with_jac) {
         with_jac = try_jacobian(c, &jp);
@@ -734,20 +804,6 @@ char *lang_emit_c(lang_ctx *c)
                   "methods use finite differences", n, LANG_MAX_JAC_STATES);
     }
 
-    puts_(c, "/* ");
-    puts_(c, m->name);
-    puts_(c, ": C text generated by dynkit from the model file ");
-    for (const char *s = c->path; *s; s++)
-        if (*s == '*' && s[1] == '/')
-            puts_(c, "*\\/"), s++;
-        else if ((unsigned char)*s >= 32)
-            put(c, s, 1);
-    puts_(c, "\n * (see \"The .ode format\" in docs/model-files.md). Edit the model file, not "
-             "this text. */\n"
-             "#include <math.h>\n#include <stddef.h>\n#include <stdio.h>\n\n"
-             "#include <dynkit/model.h>\n\n");
-    helpers(c);
-    emit_functions(c, &jp);
     emit_rhs(c);
     emit_outputs(c);
     emit_prepare(c);
@@ -851,6 +907,30 @@ char *lang_emit_c(lang_ctx *c)
     outf(c, ",\n    .every = %ld,\n    .bound = ", m->nout);
     num_lit(c, m->bound);
     puts_(c, ",\n};\n\nconst dyn_model *dynkit_model(void) { return &dk_model; }\n");
+    /* the functions the text calls, then what comes before it all */
+    size_t main_len, defs_len;
+    const char *main_text = take_text(c, &main_len);
+    unsigned char *done = lang_alloc(c, ((size_t)m->funcs.n + 1) * (LANG_MAX_ARGS + 1));
+    emit_function_defs(c, &jp, done);
+    const char *defs = take_text(c, &defs_len);
+    puts_(c, "/* ");
+    puts_(c, m->name);
+    puts_(c, ": C text generated by dynkit from the model file ");
+    for (const char *s = c->path; *s; s++)
+        if (*s == '*' && s[1] == '/')
+            puts_(c, "*\\/"), s++;
+        else if ((unsigned char)*s >= 32)
+            put(c, s, 1);
+    puts_(c, "\n * (see \"The .ode format\" in docs/model-files.md). Edit the model file, not "
+             "this text. */\n"
+             "#include <math.h>\n#include <stddef.h>\n#include <stdio.h>\n\n"
+             "#include <dynkit/model.h>\n\n");
+    helpers(c);
+    emit_function_protos(c);
+    put(c, defs, defs_len);
+    if (defs_len)
+        puts_(c, "\n");
+    put(c, main_text, main_len);
     char *r = c->out;
     c->out = NULL;
     return r;

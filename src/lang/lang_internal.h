@@ -223,6 +223,8 @@ typedef struct lang_ctx {
     size_t bytes;         /* memory taken by the arena */
     long copies;          /* nodes copied by lang_subst */
     struct node *zero, *one; /* shared constants of the derivatives (never changed) */
+    unsigned helpers;     /* emit_c.c: the dk_ helpers the C text uses */
+    unsigned char *fused; /* emit_c.c: user functions (and partials) the C text calls */
     char *out;            /* the C text being written (malloc'd; freed on failure) */
     char *out_saved;      /* the main text while the Jacobian's is written apart */
     size_t out_saved_len, out_saved_cap;

@@ -110,6 +110,9 @@ int cli_method_error(const char *command, const char *what, const char *name);
 void cli_run_free(cli_run *run);
 /* Help text of the run options (shared by run-like commands). */
 void cli_run_options_help(FILE *out);
+/* The same for the commands that draw (animate, plot): the run options without the data
+ * file's (--output, --header, --final, --outputs, --trace, --stats, --events-output). */
+void cli_view_options_help(FILE *out);
 
 /* Run the parsed run: dyn_fixed_solve for a fixed-step method without events (the
  * homework's loop, exactly), dyn_cvode_solve for cvode (output times from the grid or
@@ -153,5 +156,7 @@ int cli_cmd_inverse(int argc, char **argv);
 int cli_cmd_report(int argc, char **argv);
 int cli_cmd_verify(int argc, char **argv);
 int cli_cmd_sweep(int argc, char **argv);
+/* dynkit plot TABLE.csv: a sweep's table as lines or a heat map (sweep_plot.c). */
+int cli_plot_sweep_table(int argc, char **argv);
 
 #endif

@@ -39,7 +39,7 @@ static void animate_help(void)
          "  dynkit animate cart --output cart.html\n"
          "  dynkit animate vanderpol --compare euler:0.05 --compare heun --output vdp.html\n"
          "  dynkit animate examples/models/double_pendulum.ode --output dp.html   # + .ani\n");
-    cli_run_options_help(stdout);
+    cli_view_options_help(stdout);
 }
 
 typedef struct animate_page {

@@ -22,13 +22,21 @@ static void plot_help(void)
         "  --compare M[:H]      overlay a run with method M (and step H; default the run's\n"
         "                       step), repeatable, e.g. --compare euler --compare rk4:0.001\n"
         "  --title TEXT         the title (default: the model and the runs)\n"
+        "  -o, --output FILE    the SVG file (default: standard output)\n"
         "A long run is thinned to at most 2000 samples per line (first and last kept).\n"
         "\n"
         "Examples:\n"
         "  dynkit plot vanderpol --y y1,y2 --output vdp.svg\n"
         "  dynkit plot vanderpol --x y1 --y y2 --compare euler --compare heun --output phase.svg\n"
-        "  dynkit plot pendulum --tspan 0:10 --step 0.01 --method rk4 --y energy --output e.svg\n");
-    cli_run_options_help(stdout);
+        "  dynkit plot pendulum --tspan 0:10 --step 0.01 --method rk4 --y energy --output e.svg\n"
+        "\n"
+        "A sweep's table (dynkit sweep ... --output TABLE.csv) in place of MODEL:\n"
+        "  dynkit plot TABLE.csv [--y NAME[,NAME...]] [--x NAME] [--title TEXT] [--output FILE.svg]\n"
+        "with one varied name, lines of the reduced columns (--y, default all) against it; with\n"
+        "two, a heat map of one reduced column (--y, default the first) over their grid with a\n"
+        "colour bar (failed runs and nan in grey), or with --x NAME lines against it, one per\n"
+        "value of the other.\n");
+    cli_view_options_help(stdout);
 }
 
 /* Split the comma-separated names of --y/--x into columns of the model's runs. */
@@ -83,6 +91,10 @@ int cli_cmd_plot(int argc, char **argv)
             plot_help();
             return CLI_OK;
         }
+    /* a sweep's table (dynkit sweep --output FILE.csv) rather than a model */
+    const char *dot = argc > 0 ? strrchr(argv[0], '.') : NULL;
+    if (dot && strcmp(dot, ".csv") == 0)
+        return cli_plot_sweep_table(argc, argv);
     static const char *const extra[] = {"y", "x", "title", NULL};
     const char *values[3];
     cli_view v;

@@ -11,7 +11,8 @@
 #include "run_parse.h"
 #include "table_formats.h"
 
-void cli_run_options_help(FILE *out)
+/* The run options every run-like command takes (up to --event). */
+static void run_options_common(FILE *out)
 {
     fputs("Run options:\n"
           "  -m, --method NAME    integration method (default: the model's; see 'dynkit methods';\n"
@@ -61,8 +62,14 @@ void cli_run_options_help(FILE *out)
           "  --event NAME[:stop]  locate the model's event NAME (repeatable; 'dynkit info\n"
           "                       MODEL' lists them); with :stop the run ends at it. Events\n"
           "                       that reset the state (XPPAUT's global) take part in every\n"
-          "                       run; --event NAME reports them too\n"
-          "  --events-output FILE write the events to FILE.csv: event,t,<states> (default: stderr)\n"
+          "                       run; --event NAME reports them too\n",
+          out);
+}
+
+void cli_run_options_help(FILE *out)
+{
+    run_options_common(out);
+    fputs("  --events-output FILE write the events to FILE.csv: event,t,<states> (default: stderr)\n"
           "Output options:\n"
           "  -o, --output FILE    write to FILE instead of standard output ('-'), in the format\n"
           "                       of its extension: .csv, .json, .npy, .npz, .mat (see\n"
@@ -75,6 +82,15 @@ void cli_run_options_help(FILE *out)
           "  --stats              print the counts on stderr: steps=N accepted=N rejected=N rhs=N\n"
           "                       (+ jac=N for stiff methods)\n"
           "  --quiet              no progress display on stderr\n",
+          out);
+}
+
+void cli_view_options_help(FILE *out)
+{
+    run_options_common(out);
+    fputs("Output options:\n"
+          "  --every K            keep every K-th sample (the first and the last are kept)\n"
+          "  --quiet              no warnings and no progress display on stderr\n",
           out);
 }
 

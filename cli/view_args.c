@@ -84,6 +84,15 @@ int cli_view_parse(const char *command, int argc, char **argv, const char *const
                                       "CSV files (dynkit run)");
     if (rc == CLI_OK && v->run.trace_steps > 0)
         rc = cli_usage_error(command, "--trace is not accepted here (see 'dynkit run --trace')");
+    if (rc == CLI_OK && v->run.stats)
+        rc = cli_usage_error(command, "--stats is not accepted here: it prints the counts of "
+                                      "one run (see 'dynkit run --stats')");
+    if (rc == CLI_OK && v->run.events_path)
+        rc = cli_usage_error(command, "--events-output is not accepted here: it writes the "
+                                      "events of one run (see 'dynkit run --events-output')");
+    if (rc == CLI_OK && v->run.with_outputs)
+        rc = cli_usage_error(command, "--outputs is not needed here: the picture has the "
+                                      "model's extra outputs already");
     for (int k = 0; k < v->n_compare && rc == CLI_OK; k++)
         if (cli_method_is_cvode(v->compare[k].method) && v->run.n_events > 0)
             rc = cli_usage_error(command, "--compare cvode: the CVODE backend runs without "

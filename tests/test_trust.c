@@ -527,6 +527,47 @@ static void test_info_numbers_events_columns(void **state)
     cli_free(&r);
 }
 
+/* ---- animate and plot take what their help lists ---- */
+
+static void test_view_commands_take_what_they_list(void **state)
+{
+    (void)state;
+    static const char *const commands[] = {"animate", "plot"};
+    static const char *const not_theirs[] = {"--final", "--trace", "--stats", "--events-output",
+                                             "--header", "--outputs", "write the CSV",
+                                             "instead of standard output"};
+    for (int c = 0; c < 2; c++) {
+        cli_result r = cli("%s --help", commands[c]);
+        assert_int_equal(r.status, 0);
+        for (size_t k = 0; k < sizeof not_theirs / sizeof not_theirs[0]; k++)
+            CHECK(strstr(r.out, not_theirs[k]) == NULL, "%s --help lists '%s'", commands[c],
+                  not_theirs[k]);
+        CHECK(strstr(r.out, "--output") && strstr(r.out, "--every") && strstr(r.out, "--event"),
+              "%s --help lacks its options", commands[c]);
+        cli_free(&r);
+        /* what it does not list is refused, with a message */
+        static const char *const refused[] = {"--final", "--trace 1", "--stats",
+                                              "--event turn --events-output e.csv", "--outputs"};
+        for (size_t k = 0; k < sizeof refused / sizeof refused[0]; k++) {
+            r = cli("%s pendulum %s %s --output '%s'", commands[c], c ? "--y phi" : "",
+                    refused[k], cli_path(c ? "view.svg" : "view.html"));
+            CHECK(r.status == 2 && strstr(r.err, "not"), "%s %s: %d %s", commands[c],
+                  refused[k], r.status, r.err);
+            cli_free(&r);
+        }
+    }
+    /* what it lists works: --every thins, --event NAME:stop ends the run at the event */
+    cli_result r = cli("plot pendulum --y phi --every 10");
+    cli_result full = cli("plot pendulum --y phi");
+    CHECK(r.status == 0 && strlen(r.out) < strlen(full.out), "--every 10: %d %s", r.status,
+          r.err);
+    cli_free(&r);
+    cli_free(&full);
+    r = cli("plot pendulum --y phi --event turn:stop");
+    CHECK(r.status == 0, "--event: %d %s", r.status, r.err);
+    cli_free(&r);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -544,6 +585,7 @@ int main(void)
         cmocka_unit_test(test_default_runs_are_accurate_for_any_span),
         cmocka_unit_test(test_robertson_stays_in_its_domain),
         cmocka_unit_test(test_info_numbers_events_columns),
+        cmocka_unit_test(test_view_commands_take_what_they_list),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

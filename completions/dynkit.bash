@@ -88,6 +88,11 @@ _dynkit() {
         COMPREPLY=($(compgen -d -- "$cur") $(compgen -f -X '!*.[cC][sS][vV]' -- "$cur"))
         return 0
         ;;
+    --ani)
+        compopt -o filenames 2>/dev/null
+        COMPREPLY=($(compgen -d -- "$cur") $(compgen -f -X '!*.ani' -- "$cur"))
+        return 0
+        ;;
     --end)
         COMPREPLY=($(compgen -W "exact grid" -- "$cur"))
         return 0

@@ -175,6 +175,15 @@ static void resolve(dyn_ani *a, node *e, int depth)
         default: unknown(c, e, 0);
         }
     }
+    switch (e->kind) {
+    case N_NUM: case N_TIME: case N_NEG: case N_NOT: case N_BIN: case N_IF: case N_FUN:
+    case N_NAME: break;
+    default:
+        /* what the evaluator does not know (the translator's own forms, which it expands
+         * in a model's formulas): refused rather than computed wrongly */
+        lang_fail(c, e->pos, "not supported in an animation's formula: it takes numbers, "
+                  "names, t, operators and functions");
+    }
     if (e->kind == N_FUN) {
         int arity;
         const int f = lang_fun_lookup(e->name, &arity);

@@ -300,6 +300,64 @@ static void test_errors(void **state)
     cli_free(&r);
 }
 
+/* dynkit plot TABLE.csv: lines against one varied name; a heat map over two with a colour
+ * bar, a cell per run, failed runs grey; errors name the accepted columns. */
+static void test_plot_table(void **state)
+{
+    (void)state;
+    cli_result r = cli_in_tmpdir("sweep pendulum --method rk4 --step 0.01 --tspan 0:5 "
+                                 "--vary dphi=0.5:1.5:5 --reduce max:height,event:turn "
+                                 "--output p.csv");
+    assert_int_equal(r.status, 0);
+    cli_free(&r);
+    r = cli_in_tmpdir("plot p.csv --output p.svg");
+    assert_int_equal(r.status, 0);
+    char *svg = cli_read_file(cli_path("p.svg"), NULL);
+    assert_non_null(strstr(svg, "<svg"));
+    assert_non_null(strstr(svg, "<polyline"));
+    assert_non_null(strstr(svg, "event:turn"));
+    assert_non_null(strstr(svg, "max:height"));
+    free(svg);
+    cli_free(&r);
+    r = cli_in_tmpdir("sweep vanderpol --method rk4 --step 0.5 --tspan 0:20 --vary mu=0.5,1,1000 "
+                      "--vary y1=1,2 --reduce max:y1,final:y2 --output g.csv");
+    assert_int_equal(r.status, 0);
+    cli_free(&r);
+    r = cli_in_tmpdir("plot g.csv --y max:y1");
+    assert_int_equal(r.status, 0);
+    assert_non_null(strstr(r.out, "class=\"colorbar\""));
+    assert_non_null(strstr(r.out, "fill=\"#bbbbbb\"><title>mu=1000 y1=1: max:y1=nan"));
+    long cells = 0;
+    for (const char *p = strstr(r.out, "<title>mu="); p; p = strstr(p + 1, "<title>mu="))
+        cells++;
+    assert_int_equal(cells, 6);
+    cli_free(&r);
+    r = cli_in_tmpdir("plot g.csv --x y1 --y final:y2");
+    assert_int_equal(r.status, 0);
+    assert_non_null(strstr(r.out, "mu = 0.5"));
+    cli_free(&r);
+    static const struct {
+        const char *args, *message;
+    } errors[] = {
+        {"plot g.csv --y max:y1,final:y2", "shows one reduced column: give --y NAME"},
+        {"plot g.csv --y speed", "not a reduced column of g.csv (accepted: max:y1, final:y2)"},
+        {"plot g.csv --x max:y1 --y final:y2", "not a varied name of g.csv (accepted: mu, y1)"},
+        {"plot missing.csv", "cannot open missing.csv"},
+        {"plot g.csv --y max:y1 --compare euler", "a sweep's table takes --y"},
+    };
+    for (size_t k = 0; k < sizeof errors / sizeof errors[0]; k++) {
+        r = cli_in_tmpdir("%s", errors[k].args);
+        if (r.status != 2 || !strstr(r.err, errors[k].message))
+            fprintf(stderr, "dynkit %s: status %d\n%s", errors[k].args, r.status, r.err);
+        assert_int_equal(r.status, 2);
+        assert_non_null(strstr(r.err, errors[k].message));
+        cli_free(&r);
+    }
+    unlink(cli_path("p.csv"));
+    unlink(cli_path("p.svg"));
+    unlink(cli_path("g.csv"));
+}
+
 static int teardown(void **state)
 {
     (void)state;
@@ -314,6 +372,7 @@ int main(void)
         cmocka_unit_test(test_from),         cmocka_unit_test(test_failed_run),
         cmocka_unit_test(test_resume),       cmocka_unit_test(test_interrupt),
         cmocka_unit_test(test_help_examples), cmocka_unit_test(test_errors),
+        cmocka_unit_test(test_plot_table),
     };
     return cmocka_run_group_tests(tests, cli_setup, teardown);
 }

@@ -1,0 +1,489 @@
+/* dynkit plot TABLE.csv: a picture of a sweep's table (dynkit sweep, docs/sweeps.md) as a
+ * standalone SVG 1.1 file. One varied name: a line of each reduced column against it
+ * (svg_plot.c). Two varied names: a heat map of one reduced column over their grid, a cell
+ * per run (edges halfway between neighbouring values, so uneven grids are drawn true), the
+ * colours of matplotlib's viridis map (van der Walt and Smith, 2015: even in lightness, read
+ * in grey and by colour-blind readers) with a colour bar, failed runs and nan in grey. */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "pages.h"
+#include "svg_axes.h"
+
+#define MAX_COLS 256
+
+typedef struct sweep_table {
+    int cols;
+    char *names[MAX_COLS];
+    long rows;
+    double *data;   /* (rows x cols); text fields (status) are NaN */
+    int status_col; /* -1 if none */
+} sweep_table;
+
+static void table_free(sweep_table *t)
+{
+    for (int c = 0; c < t->cols; c++)
+        free(t->names[c]);
+    free(t->data);
+}
+
+static int table_read(const char *path, sweep_table *t, char *err, size_t errlen)
+{
+    memset(t, 0, sizeof *t);
+    t->status_col = -1;
+    FILE *f = fopen(path, "r");
+    if (!f) {
+        snprintf(err, errlen, "cannot open %s: %s", path, strerror(errno));
+        return -1;
+    }
+    size_t cap = 1 << 16;
+    char *line = malloc(cap);
+    long capacity = 0, lineno = 0;
+    int rc = line ? 0 : -1;
+    while (rc == 0 && fgets(line, (int)cap, f)) {
+        lineno++;
+        line[strcspn(line, "\r\n")] = '\0';
+        if (!line[0])
+            continue;
+        if (t->cols == 0) {
+            for (char *p = line; p && t->cols < MAX_COLS;) {
+                char *comma = strchr(p, ',');
+                if (comma)
+                    *comma = '\0';
+                t->names[t->cols] = strdup(p);
+                if (strcmp(p, "status") == 0)
+                    t->status_col = t->cols;
+                t->cols++;
+                p = comma ? comma + 1 : NULL;
+            }
+            if (t->cols < 2 || strcmp(t->names[0], "run") != 0) {
+                snprintf(err, errlen,
+                         "%s is not a sweep's table (its header should start with run, as "
+                         "dynkit sweep writes it)",
+                         path);
+                rc = -1;
+            }
+            continue;
+        }
+        if (t->rows == capacity) {
+            capacity = capacity ? 2 * capacity : 256;
+            double *d = realloc(t->data, (size_t)capacity * (size_t)t->cols * sizeof *d);
+            if (!d) {
+                rc = -1;
+                break;
+            }
+            t->data = d;
+        }
+        double *row = t->data + (size_t)t->rows * (size_t)t->cols;
+        char *p = line;
+        for (int c = 0; c < t->cols; c++) {
+            char *end;
+            row[c] = strtod(p, &end);
+            if (end == p || (*end && *end != ','))
+                row[c] = NAN;
+            p += strcspn(p, ",");
+            if (c < t->cols - 1 && *p != ',') {
+                snprintf(err, errlen, "%s:%ld: %d fields, the header has %d", path, lineno, c + 1,
+                         t->cols);
+                rc = -1;
+                break;
+            }
+            if (*p)
+                p++;
+        }
+        t->rows++;
+    }
+    free(line);
+    fclose(f);
+    if (rc == 0 && t->rows == 0) {
+        snprintf(err, errlen, "%s has no rows", path);
+        rc = -1;
+    }
+    return rc;
+}
+
+/* Varied columns: named without ':' (the reductions are OP:NAME), not run or status. */
+static int is_varied(const sweep_table *t, int c)
+{
+    return c > 0 && c != t->status_col && !strchr(t->names[c], ':');
+}
+
+static int find_col(const sweep_table *t, const char *name)
+{
+    for (int c = 0; c < t->cols; c++)
+        if (strcmp(t->names[c], name) == 0)
+            return c;
+    return -1;
+}
+
+static void col_names(const sweep_table *t, int varied, char *buf, size_t size)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+    for (int c = 1; c < t->cols && used < size; c++)
+        if (c != t->status_col && is_varied(t, c) == varied)
+            used += (size_t)snprintf(buf + used, size - used, "%s%s", used ? ", " : "",
+                                     t->names[c]);
+}
+
+/* ---- the heat map ---- */
+
+#define HW 800.0
+#define HH 520.0
+#define HLEFT 84.0
+#define HRIGHT 130.0
+#define HTOP 44.0
+#define HBOTTOM 62.0
+
+/* viridis at 0, 1/8, ..., 1 (matplotlib's _cm_listed.py, every 32nd entry and the last) */
+static const unsigned char viridis[9][3] = {{68, 1, 84},    {71, 44, 122},  {59, 81, 139},
+                                            {44, 113, 142}, {33, 144, 141}, {39, 173, 129},
+                                            {92, 200, 99},  {170, 220, 50}, {253, 231, 37}};
+
+static void colour(double f, char *buf, size_t size)
+{
+    if (!isfinite(f)) {
+        snprintf(buf, size, "#bbbbbb");
+        return;
+    }
+    f = fmin(fmax(f, 0.0), 1.0) * 8.0;
+    int k = (int)f;
+    if (k > 7)
+        k = 7;
+    const double u = f - k;
+    int rgb[3];
+    for (int i = 0; i < 3; i++)
+        rgb[i] = (int)lround((1.0 - u) * viridis[k][i] + u * viridis[k + 1][i]);
+    snprintf(buf, size, "#%02x%02x%02x", rgb[0], rgb[1], rgb[2]);
+}
+
+static double nice(double range, int target)
+{
+    double raw = range / target, p = pow(10.0, floor(log10(raw))), f = raw / p;
+    return (f < 1.5 ? 1.0 : f < 3.5 ? 2.0 : f < 7.5 ? 5.0 : 10.0) * p;
+}
+
+static void tick_text(double v, double step, char *buf, size_t size)
+{
+    if (fabs(v) < 1e-9 * step)
+        v = 0.0;
+    int digits = (int)ceil(-log10(step) - 1e-9);
+    double mag = fmax(fabs(v), step);
+    if (mag >= 1e5 || mag < 1e-3)
+        snprintf(buf, size, "%.3g", v);
+    else
+        snprintf(buf, size, "%.*f", digits > 0 ? digits : 0, v);
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The distinct finite values of column c, sorted, into v (rows entries); returns how many. */
+static long distinct(const sweep_table *t, int c, double *v)
+{
+    long n = 0;
+    for (long r = 0; r < t->rows; r++)
+        if (isfinite(t->data[r * t->cols + c]))
+            v[n++] = t->data[r * t->cols + c];
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    long m = 0;
+    for (long k = 0; k < n; k++)
+        if (m == 0 || v[k] != v[m - 1])
+            v[m++] = v[k];
+    return m;
+}
+
+/* Edges of the cells around the sorted values: halfway between neighbours, the ends half a
+ * spacing out (one value: +-1/2, or +-5% of it). */
+static void edges(const double *v, long n, double *e)
+{
+    for (long k = 1; k < n; k++)
+        e[k] = 0.5 * (v[k - 1] + v[k]);
+    const double d0 = n > 1 ? v[1] - v[0] : (v[0] != 0 ? 0.1 * fabs(v[0]) : 1.0);
+    const double d1 = n > 1 ? v[n - 1] - v[n - 2] : d0;
+    e[0] = v[0] - 0.5 * d0;
+    e[n] = v[n - 1] + 0.5 * d1;
+}
+
+static long index_of(const double *v, long n, double x)
+{
+    long lo = 0, hi = n - 1;
+    while (lo <= hi) {
+        long mid = (lo + hi) / 2;
+        if (v[mid] == x)
+            return mid;
+        if (v[mid] < x)
+            lo = mid + 1;
+        else
+            hi = mid - 1;
+    }
+    return -1;
+}
+
+static int heat_map(FILE *out, const sweep_table *t, int xc, int yc, int zc, const char *title)
+{
+    double *xv = malloc((size_t)t->rows * sizeof *xv), *yv = malloc((size_t)t->rows * sizeof *yv);
+    double *xe = malloc(((size_t)t->rows + 1) * sizeof *xe);
+    double *ye = malloc(((size_t)t->rows + 1) * sizeof *ye);
+    if (!xv || !yv || !xe || !ye) {
+        free(xv);
+        free(yv);
+        free(xe);
+        free(ye);
+        return CLI_FAILED;
+    }
+    const long nx = distinct(t, xc, xv), ny = distinct(t, yc, yv);
+    int bad = nx == 0 || ny == 0;
+    if (!bad) {
+        edges(xv, nx, xe);
+        edges(yv, ny, ye);
+    }
+    double zlo = INFINITY, zhi = -INFINITY;
+    for (long r = 0; r < t->rows; r++) {
+        const double z = t->data[r * t->cols + zc];
+        if (isfinite(z)) {
+            zlo = fmin(zlo, z);
+            zhi = fmax(zhi, z);
+        }
+    }
+    if (!(zlo <= zhi))
+        zlo = 0, zhi = 1;
+    if (zhi == zlo)
+        zhi = zlo + (zlo != 0 ? fabs(zlo) * 1e-3 : 1.0);
+    const double x0 = HLEFT, x1 = HW - HRIGHT, y0 = HH - HBOTTOM, y1 = HTOP;
+    const double xlo = bad ? 0 : xe[0], xhi = bad ? 1 : xe[nx], ylo = bad ? 0 : ye[0],
+                 yhi = bad ? 1 : ye[ny];
+#define PX(v) (x0 + ((v) - xlo) / (xhi - xlo) * (x1 - x0))
+#define PY(v) (y0 - ((v) - ylo) / (yhi - ylo) * (y0 - y1))
+    bad |= fprintf(out,
+                   "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/"
+                   "2000/svg\" width=\"%.0f\" height=\"%.0f\" viewBox=\"0 0 %.0f %.0f\" "
+                   "font-family=\"sans-serif\">\n<rect width=\"100%%\" height=\"100%%\" "
+                   "fill=\"white\"/>\n<g class=\"cells\" shape-rendering=\"crispEdges\">\n",
+                   HW, HH, HW, HH) < 0;
+    char col[16];
+    for (long r = 0; r < t->rows && !bad; r++) {
+        const double *row = t->data + r * t->cols;
+        const long ix = index_of(xv, nx, row[xc]), iy = index_of(yv, ny, row[yc]);
+        if (ix < 0 || iy < 0)
+            continue;
+        colour((row[zc] - zlo) / (zhi - zlo), col, sizeof col);
+        const double a = PX(xe[ix]), b = PX(xe[ix + 1]), c = PY(ye[iy + 1]), d = PY(ye[iy]);
+        bad |= fprintf(out,
+                       "<rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" "
+                       "fill=\"%s\"><title>%s=%.17g %s=%.17g: %s=%.17g</title></rect>\n",
+                       a, c, b - a, d - c, col, t->names[xc], row[xc], t->names[yc], row[yc],
+                       t->names[zc], row[zc]) < 0;
+    }
+    bad |= fputs("</g>\n", out) < 0;
+    /* axes: ticks at nice values inside the edges */
+    char label[64];
+    bad |= svg_grid_begin(out);
+    bad |= svg_frame_and_ticks_begin(out, x0, x1, y0, y1);
+    const double sx = nice(xhi - xlo, 8), sy = nice(yhi - ylo, 6);
+    for (long k = (long)ceil(xlo / sx - 1e-9); k <= (long)floor(xhi / sx + 1e-9); k++) {
+        tick_text(k * sx, sx, label, sizeof label);
+        bad |= svg_xtick(out, PX(k * sx), y0, label);
+    }
+    for (long k = (long)ceil(ylo / sy - 1e-9); k <= (long)floor(yhi / sy + 1e-9); k++) {
+        tick_text(k * sy, sy, label, sizeof label);
+        bad |= svg_ytick(out, x0, PY(k * sy), label);
+    }
+    bad |= svg_titles(out, x0, x1, y0, y1, HW, HH, t->names[xc], t->names[yc], title);
+    /* the colour bar: 64 bands from zlo (bottom) to zhi (top), ticks on its right */
+    const double bx0 = x1 + 24, bx1 = x1 + 44;
+    bad |= fputs("<g class=\"colorbar\" shape-rendering=\"crispEdges\">\n", out) < 0;
+    for (int k = 0; k < 64; k++) {
+        colour((k + 0.5) / 64.0, col, sizeof col);
+        const double top = y0 - (k + 1) * (y0 - y1) / 64.0;
+        bad |= fprintf(out,
+                       "<rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" "
+                       "fill=\"%s\"/>\n",
+                       bx0, top, bx1 - bx0, (y0 - y1) / 64.0 + 0.5, col) < 0;
+    }
+    bad |= fprintf(out,
+                   "<rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" fill=\"none\" "
+                   "stroke=\"#333\"/>\n</g>\n<g class=\"colorbar-ticks\" font-size=\"12\" "
+                   "fill=\"#333\" stroke=\"#333\">\n",
+                   bx0, y1, bx1 - bx0, y0 - y1) < 0;
+    const double sz = nice(zhi - zlo, 6);
+    for (long k = (long)ceil(zlo / sz - 1e-9); k <= (long)floor(zhi / sz + 1e-9); k++) {
+        const double y = y0 - (k * sz - zlo) / (zhi - zlo) * (y0 - y1);
+        tick_text(k * sz, sz, label, sizeof label);
+        bad |= fprintf(out,
+                       "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/><text x=\"%.2f\" "
+                       "y=\"%.2f\" stroke=\"none\">%s</text>\n",
+                       bx1, y, bx1 + 5, y, bx1 + 8, y + 4, label) < 0;
+    }
+    bad |= fprintf(out,
+                   "</g>\n<text class=\"zlabel\" x=\"0\" y=\"0\" font-size=\"14\" "
+                   "text-anchor=\"middle\" transform=\"translate(%.2f %.2f) rotate(-90)\">",
+                   HW - 12, (y0 + y1) / 2) < 0;
+    bad |= svg_text_escaped(out, t->names[zc]);
+    bad |= fputs("</text>\n</svg>\n", out) < 0;
+#undef PX
+#undef PY
+    free(xv);
+    free(yv);
+    free(xe);
+    free(ye);
+    return bad ? CLI_FAILED : CLI_OK;
+}
+
+/* Lines of the columns ycols against column xc; when the table has another varied name,
+ * one line per value of it (of the first column of ycols; at most CLI_SVG_MAX_LINES). */
+static int lines(FILE *out, const sweep_table *t, int xc, const int *ycols, int n_y,
+                 const char *title)
+{
+    cli_svg_plot p;
+    memset(&p, 0, sizeof p);
+    p.title = title;
+    p.xlabel = t->names[xc];
+    p.ylabel = n_y == 1 ? t->names[ycols[0]] : "";
+    int other = -1;
+    for (int c = 1; c < t->cols; c++)
+        if (c != xc && is_varied(t, c) && other < 0)
+            other = c;
+    if (other < 0) {
+        for (int k = 0; k < n_y; k++)
+            p.lines[p.n_lines++] =
+                (cli_svg_line){t->names[ycols[k]], t->data + xc, t->data + ycols[k], t->rows,
+                               t->cols};
+        return cli_svg_write(out, &p);
+    }
+    double *vals = malloc((size_t)t->rows * sizeof *vals);
+    double *xy = malloc((size_t)t->rows * 2 * sizeof *xy);
+    static char labels[CLI_SVG_MAX_LINES][160];
+    if (!vals || !xy) {
+        free(vals);
+        free(xy);
+        return CLI_FAILED;
+    }
+    const long nv = distinct(t, other, vals);
+    long used = 0;
+    p.ylabel = t->names[ycols[0]];
+    for (long v = 0; v < nv && p.n_lines < CLI_SVG_MAX_LINES; v++) {
+        double *line_xy = xy + 2 * used;
+        long n = 0;
+        for (long r = 0; r < t->rows; r++)
+            if (t->data[r * t->cols + other] == vals[v]) {
+                line_xy[2 * n] = t->data[r * t->cols + xc];
+                line_xy[2 * n + 1] = t->data[r * t->cols + ycols[0]];
+                n++;
+            }
+        used += n;
+        const int k = p.n_lines++;
+        snprintf(labels[k], sizeof labels[0], "%s = %.6g", t->names[other], vals[v]);
+        p.lines[k] = (cli_svg_line){labels[k], line_xy, line_xy + 1, n, 2};
+    }
+    const int rc = cli_svg_write(out, &p);
+    free(vals);
+    free(xy);
+    return rc;
+}
+
+int cli_plot_sweep_table(int argc, char **argv)
+{
+    const char *x = NULL, *y = NULL, *title = NULL, *output = NULL;
+    for (int i = 1; i < argc; i++) {
+        const char *v = NULL;
+        int r;
+        if ((r = cli_option(argc, argv, &i, "x", &v)) != 0)
+            x = v;
+        else if ((r = cli_option(argc, argv, &i, "y", &v)) != 0)
+            y = v;
+        else if ((r = cli_option(argc, argv, &i, "title", &v)) != 0)
+            title = v;
+        else if ((r = cli_option(argc, argv, &i, "output", &v)) != 0)
+            output = v;
+        else
+            return cli_usage_error("plot",
+                                   "'%s': a sweep's table takes --y NAME[,NAME...], --x NAME, "
+                                   "--title TEXT and --output FILE.svg",
+                                   argv[i]);
+        if (r < 0)
+            return cli_usage_error("plot", "%s needs a value", argv[i]);
+    }
+    sweep_table t;
+    char err[512], names[2048];
+    if (table_read(argv[0], &t, err, sizeof err)) {
+        table_free(&t);
+        return cli_usage_error("plot", "%s", err);
+    }
+    int rc = CLI_OK, varied[2], n_varied = 0, ycols[CLI_SVG_MAX_LINES], n_y = 0;
+    for (int c = 1; c < t.cols; c++)
+        if (is_varied(&t, c) && n_varied < 2)
+            varied[n_varied++] = c;
+    if (x) {
+        int c = find_col(&t, x);
+        if (c < 0 || !is_varied(&t, c)) {
+            col_names(&t, 1, names, sizeof names);
+            rc = cli_usage_error("plot", "--x %s: not a varied name of %s (accepted: %s)", x,
+                                 argv[0], names);
+        }
+        varied[0] = c;
+        if (n_varied == 0)
+            n_varied = 1;
+    }
+    if (rc == CLI_OK && n_varied == 0)
+        rc = cli_usage_error("plot", "%s has no varied name to plot against", argv[0]);
+    if (rc == CLI_OK && y) {
+        char buf[1024];
+        snprintf(buf, sizeof buf, "%s", y);
+        for (char *p = buf; p && rc == CLI_OK;) {
+            char *comma = strchr(p, ',');
+            if (comma)
+                *comma = '\0';
+            int c = find_col(&t, p);
+            if (c < 1 || is_varied(&t, c) || c == t.status_col || n_y >= CLI_SVG_MAX_LINES) {
+                col_names(&t, 0, names, sizeof names);
+                rc = cli_usage_error("plot", "--y %s: not a reduced column of %s (accepted: %s)",
+                                     p, argv[0], names);
+            }
+            ycols[n_y++] = c;
+            p = comma ? comma + 1 : NULL;
+        }
+    } else if (rc == CLI_OK) {
+        for (int c = 1; c < t.cols && n_y < (n_varied == 2 && !x ? 1 : CLI_SVG_MAX_LINES); c++)
+            if (!is_varied(&t, c) && c != t.status_col)
+                ycols[n_y++] = c;
+        if (n_y == 0)
+            rc = cli_usage_error("plot", "%s has no reduced column to plot", argv[0]);
+    }
+    const int heat = rc == CLI_OK && n_varied == 2 && !x;
+    if (heat && n_y != 1)
+        rc = cli_usage_error("plot", "a heat map over %s and %s shows one reduced column: give "
+                                     "--y NAME (or --x NAME for lines against one of them)",
+                             t.names[varied[0]], t.names[varied[1]]);
+    FILE *out = stdout;
+    if (rc == CLI_OK && output && strcmp(output, "-") != 0 && !(out = fopen(output, "w"))) {
+        rc = cli_usage_error("plot", "cannot open --output '%s' for writing: %s", output,
+                             strerror(errno));
+        out = stdout;
+    }
+    char auto_title[512];
+    if (rc == CLI_OK) {
+        const char *base = strrchr(argv[0], '/');
+        base = base ? base + 1 : argv[0];
+        if (heat)
+            snprintf(auto_title, sizeof auto_title, "%s: %s over %s and %s", base,
+                     t.names[ycols[0]], t.names[varied[0]], t.names[varied[1]]);
+        else
+            snprintf(auto_title, sizeof auto_title, "%s: against %s", base, t.names[varied[0]]);
+        if (heat) {
+            rc = heat_map(out, &t, varied[0], varied[1], ycols[0], title ? title : auto_title);
+        } else {
+            rc = lines(out, &t, varied[0], ycols, n_y, title ? title : auto_title);
+        }
+    }
+    if (out != stdout && fclose(out) != 0 && rc == CLI_OK)
+        rc = CLI_FAILED;
+    table_free(&t);
+    return rc;
+}

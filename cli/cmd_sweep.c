@@ -16,6 +16,7 @@
 
 #include "cli.h"
 #include "dynkit/sweep.h"
+#include "table_formats.h"
 #ifdef DYNKIT_HAVE_MPI
 #include <mpi.h>
 
@@ -71,7 +72,10 @@ static void sweep_help(void)
          "\n"
          "Sweep options:\n"
          "  --threads N          threads (default: all cores, or OMP_NUM_THREADS)\n"
-         "  -o, --output FILE    write the table to FILE (CSV; default: standard output)\n"
+         "  -o, --output FILE    write the table to FILE in the format of its extension: .csv,\n"
+         "                       .json or .npy (default: standard output, CSV); in .json and\n"
+         "                       .npy the status is the library's number (0 ok, 3 nonfinite,\n"
+         "                       7 step-size, 8 max-steps; docs/sweeps.md)\n"
          "  --resume FILE        keep the finished runs of FILE (a table an interrupted sweep\n"
          "                       with the same options wrote), run the others, and write the\n"
          "                       whole table to --output (default: FILE itself)\n"
@@ -400,6 +404,92 @@ static int write_table(FILE *f, const sweep_out *o)
     return bad ? -1 : 0;
 }
 
+/* The table as JSON or NPY (table_formats.h): columns run, the varied names, the
+ * reductions, and when a run failed a numeric status (the library's dyn_status: 0 ok). */
+static int write_data_file(FILE *f, cli_format format, const sweep_out *o, const cli_run *run)
+{
+    const dyn_model *m = o->m;
+    const int nv = o->sp->n_vars, nr = o->n_red;
+    int with_status = 0;
+    for (long i = 0; i < o->sp->n_runs; i++)
+        with_status |= o->status[i] != DYN_OK && o->status[i] != DYN_SWEEP_NOT_RUN;
+    const int cols = 1 + nv + nr + with_status;
+    const char **names = calloc((size_t)cols, sizeof *names);
+    const char **units = calloc((size_t)cols, sizeof *units);
+    char(*red_names)[160] = calloc((size_t)nr + 1, sizeof *red_names);
+    double *row = calloc((size_t)cols, sizeof *row);
+    if (!names || !units || !red_names || !row) {
+        free(names);
+        free(units);
+        free(red_names);
+        free(row);
+        return -1;
+    }
+    names[0] = "run";
+    units[0] = "1";
+    for (int j = 0; j < nv; j++) {
+        const dyn_sweep_var *v = &o->sp->vars[j];
+        names[1 + j] = dyn_sweep_var_name(m, v);
+        units[1 + j] = v->kind == DYN_SWEEP_PARAM ? m->params[v->index].unit
+                                                  : m->states[v->index].unit;
+    }
+    for (int r = 0; r < nr; r++) {
+        const dyn_reduce *rd = &o->red[r];
+        names[1 + nv + r] = dyn_reduce_name(m, rd, red_names[r], sizeof red_names[r]);
+        if (rd->op == DYN_REDUCE_EVENT || rd->op == DYN_REDUCE_ARGMAX ||
+            rd->op == DYN_REDUCE_ARGMIN)
+            units[1 + nv + r] = "s";
+        else if (rd->op == DYN_REDUCE_COUNT)
+            units[1 + nv + r] = "1";
+        else
+            units[1 + nv + r] = rd->source == DYN_SOURCE_STATE ? m->states[rd->index].unit
+                                                               : m->outputs[rd->index].unit;
+    }
+    if (with_status) {
+        names[cols - 1] = "status";
+        units[cols - 1] = "1";
+    }
+    const int adaptive = dyn_method_is_adaptive(run->method);
+    cli_table_info info = {.model = m->name,
+                           .method = run->method->name,
+                           .step = run->step,
+                           .rtol = adaptive ? (run->rtol > 0 ? run->rtol : DYN_DEFAULT_RTOL) : NAN,
+                           .atol = adaptive ? (run->atol > 0 ? run->atol : DYN_DEFAULT_ATOL) : NAN,
+                           .t0 = run->t0,
+                           .t1 = run->t1,
+                           .cols = cols,
+                           .n_y = cols - 1,
+                           .y_name = "values",
+                           .names = names,
+                           .units = units,
+                           .header = CLI_HEADER_NAMES};
+    char err[512] = "a write failed";
+    cli_table *tab = cli_table_open(f, format, &info, err, sizeof err);
+    int bad = tab == NULL;
+    for (long i = 0; i < o->sp->n_runs && !bad; i++) {
+        if (o->status[i] == DYN_SWEEP_NOT_RUN)
+            continue;
+        for (int j = 0; j < nv; j++)
+            row[j] = o->sp->values[(size_t)i * (size_t)nv + (size_t)j];
+        for (int r = 0; r < nr; r++)
+            row[nv + r] = o->results[(size_t)i * (size_t)nr + (size_t)r];
+        if (with_status)
+            row[nv + nr] = o->status[i];
+        bad |= cli_table_row(tab, (double)i, row, cols - 1, NULL, 0) != 0;
+    }
+    if (tab) {
+        bad |= cli_table_finish(tab, err, sizeof err) != 0;
+        cli_table_free(tab);
+    }
+    if (bad)
+        fprintf(stderr, "dynkit: error: --output: %s\n", err);
+    free(names);
+    free(units);
+    free(red_names);
+    free(row);
+    return bad ? -1 : 0;
+}
+
 /* --resume FILE: the finished runs of a table written by the same sweep. Marks them in
  * skip and fills their rows and statuses; returns CLI_OK or an error (printed). */
 static int read_resume(const char *path, sweep_out *o, unsigned char *skip, long *kept)
@@ -668,13 +758,21 @@ static int sweep_command(int argc, char **argv, int rank, int ranks)
         if (red[r].source == DYN_SOURCE_OUTPUT && !m->compute_outputs)
             rc = cli_usage_error("sweep", "--reduce: %s has no outputs", m->name);
     const char *out_path = output ? output : resume;
-    if (rc == CLI_OK && out_path && strcmp(out_path, "-") != 0) {
-        const char *dot = strrchr(out_path, '.');
-        if (!dot || strcmp(dot, ".csv") != 0)
-            rc = cli_usage_error("sweep", "--output '%s': a sweep's table is written as CSV "
-                                          "(give a name ending in .csv, or '-')",
+    cli_format format = CLI_FORMAT_CSV;
+    if (rc == CLI_OK && out_path) {
+        char ferr[512];
+        if (cli_format_of_path(out_path, &format, ferr, sizeof ferr))
+            rc = cli_usage_error("sweep", "--output: %s", ferr);
+        else if (format == CLI_FORMAT_NPZ || format == CLI_FORMAT_MAT)
+            rc = cli_usage_error("sweep",
+                                 "--output '%s': a sweep's table is written as .csv, .json or "
+                                 ".npy (.npz and .mat files hold a run's t and y)",
                                  out_path);
     }
+    if (rc == CLI_OK && resume && !output && format != CLI_FORMAT_CSV)
+        rc = cli_usage_error("sweep", "--resume '%s': give the CSV table of the interrupted "
+                                      "sweep",
+                             resume);
     free(pass);
     free(vary);
     free(sample);
@@ -801,7 +899,8 @@ static int sweep_command(int argc, char **argv, int rank, int ranks)
             }
         }
         if (f) {
-            int bad = write_table(f, &o);
+            int bad = format == CLI_FORMAT_CSV ? write_table(f, &o)
+                                               : write_data_file(f, format, &o, &run);
             if (f != stdout) {
                 bad |= fclose(f) != 0;
                 if (!bad && rename(tmp, out_path) != 0)

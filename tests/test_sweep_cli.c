@@ -126,6 +126,28 @@ static void test_failed_run(void **state)
     assert_non_null(strstr(r.out, "nonfinite\n2,0.5,"));
     assert_non_null(strstr(r.err, "1 of 3 runs failed"));
     cli_free(&r);
+    /* the data files of run: JSON (nan as null, the status as a number), NPY */
+    r = cli_in_tmpdir("sweep vanderpol --method rk4 --step 0.5 --tspan 0:20 "
+                      "--vary mu=1,1000,0.5 --reduce final,argmax:y1 --output t.json");
+    assert_int_equal(r.status, 0);
+    char *json = cli_read_file(cli_path("t.json"), NULL);
+    assert_non_null(strstr(json, "\"columns\": [\"run\", \"mu\", \"final:y1\", \"final:y2\", "
+                                 "\"argmax:y1\", \"status\"]"));
+    assert_non_null(strstr(json, "\"units\": [\"1\", \"1\", \"1\", \"1/s\", \"s\", \"1\"]"));
+    assert_non_null(strstr(json, "[1,1000,null,null,null,3]"));
+    free(json);
+    cli_free(&r);
+    r = cli_in_tmpdir("sweep vanderpol --method rk4 --step 0.1 --tspan 0:2 --vary mu=1,2 "
+                      "--output t.npy");
+    assert_int_equal(r.status, 0);
+    size_t len;
+    char *npy = cli_read_file(cli_path("t.npy"), &len);
+    assert_true(len > 10 && memcmp(npy, "\x93NUMPY", 6) == 0);
+    assert_non_null(strstr(npy + 10, "'shape': (2, 4)"));
+    free(npy);
+    cli_free(&r);
+    unlink(cli_path("t.json"));
+    unlink(cli_path("t.npy"));
 }
 
 static void test_resume(void **state)
@@ -276,7 +298,8 @@ static void test_errors(void **state)
         {"sweep pendulum --vary l=1,2 --runs 5", "--runs and --seed go with --sample"},
         {"sweep pendulum --vary l=1,l=2", "'l=2' is not a number"},
         {"sweep pendulum --vary l=1,2 --vary l=3", "varied twice"},
-        {"sweep pendulum --vary l=1,2 --output t.json", "written as CSV"},
+        {"sweep pendulum --vary l=1,2 --output t.mat", "written as .csv, .json or .npy"},
+        {"sweep pendulum --vary l=1,2 --output t.txt", "unknown file extension '.txt'"},
         {"sweep pendulum --vary l=1,2 --resume missing.csv", "cannot open missing.csv"},
         {"sweep", "missing MODEL"},
     };

@@ -11,6 +11,8 @@
  *   the uninterrupted sweep; a real SIGINT writes the finished runs, exits 130, says how to
  *   resume; a table of another sweep is refused;
  * - every example of `dynkit sweep --help` runs (exit 0) and every option is in the help;
+ * - a model file (.ode) gives the built-in model's bytes on 1 and 2 threads;
+ * - dynkit plot TABLE.csv: lines and a heat map; .json and .npy output;
  * - usage errors name the bad input. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -381,11 +383,48 @@ static void test_plot_table(void **state)
     unlink(cli_path("g.csv"));
 }
 
+/* A model file is a model like any other: the .ode van der Pol gives the built-in model's
+ * bytes, on 1 and 2 threads (its generated code is re-entrant). */
+static void test_model_file(void **state)
+{
+    (void)state;
+    const char *args = "--method rk4 --step 0.01 --tspan 0:5 --vary mu=0.5:3:24 "
+                       "--reduce final,max:y1,mean:y2";
+    cli_result a = cli("sweep " DYNKIT_SOURCE_DIR "/examples/models/vanderpol.ode %s --threads 1",
+                       args);
+    cli_result b = cli("sweep " DYNKIT_SOURCE_DIR "/examples/models/vanderpol.ode %s --threads 2",
+                       args);
+    cli_result c = cli("sweep vanderpol %s", args);
+    if (a.status != 0)
+        fprintf(stderr, "%s", a.err);
+    assert_int_equal(a.status, 0);
+    assert_int_equal(b.status, 0);
+    assert_int_equal(c.status, 0);
+    assert_int_equal(csv_rows(a.out), 24);
+    assert_string_equal(a.out, b.out);
+    assert_string_equal(a.out, c.out);
+    cli_free(&a);
+    cli_free(&b);
+    cli_free(&c);
+}
+
+static int setup(void **state)
+{
+    (void)state;
+    if (cli_make_tmpdir("sweep"))
+        return -1;
+    /* a cache of compiled model files for this test run, inherited by every dynkit below */
+    static char cache[600];
+    snprintf(cache, sizeof cache, "%s/cache", cli_tmpdir);
+    return setenv("DYNKIT_CACHE_DIR", cache, 1);
+}
+
 static int teardown(void **state)
 {
     (void)state;
-    static const char *const files[] = {"runs.csv", NULL};
-    return cli_teardown_files(files);
+    char cmd[1024];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", cli_tmpdir);
+    return system(cmd) == 0 ? 0 : -1;
 }
 
 int main(void)
@@ -395,7 +434,7 @@ int main(void)
         cmocka_unit_test(test_from),         cmocka_unit_test(test_failed_run),
         cmocka_unit_test(test_resume),       cmocka_unit_test(test_interrupt),
         cmocka_unit_test(test_help_examples), cmocka_unit_test(test_errors),
-        cmocka_unit_test(test_plot_table),
+        cmocka_unit_test(test_plot_table),    cmocka_unit_test(test_model_file),
     };
-    return cmocka_run_group_tests(tests, cli_setup, teardown);
+    return cmocka_run_group_tests(tests, setup, teardown);
 }

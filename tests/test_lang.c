@@ -87,8 +87,7 @@ static void test_refused_features_name_line_and_feature(void **state)
         {"x'=1\n@ meth=discrete\n", 2, 8, "difference equations (meth=discrete)"},
         {"x'=ran(1)\n", 1, 4, "random numbers ('ran')"},
         {"x'=normal(0,1)\n", 1, 4, "random numbers ('normal')"},
-        {"x'=sum(1,10)of(i')\n", 1, 4, "sums ('sum(...)of(...)')"},
-        {"x'=shift(x,1)\n", 1, 4, "indirect addressing ('shift')"},
+        {"x'=ishift(x,1)\n", 1, 4, "indirect addressing ('ishift')"},
         {"x'=besselj(0,x)\n", 1, 4, "Bessel functions ('besselj')"},
         {"x'=1\noptions my.opt\n", 2, 1, "option files"},
         {"x'=1\n@ dt=-0.1\n", 2, 6, "backwards in time"},
@@ -132,6 +131,19 @@ static void test_kinds_of_names_are_checked(void **state)
     expect_error("sin=1\nx'=sin\n", 1, 1, "reserved word");
     expect_error("f(a)=f(a)+1\nx'=f(x)\n", 1, 1, "calls itself");
     expect_error("x'=1\nx(0)=y\n", 2, 6, "unknown name 'y'");
+}
+
+static void test_sums_and_shifts_are_checked(void **state)
+{
+    (void)state;
+    expect_error("x'=sum(1,a)of(i')\npar a=2\n", 1, 10, "the last bound of sum must be a whole "
+                 "number");
+    expect_error("x'=sum(1,2)of(sum(1,2)of(i'))\n", 1, 15, "a sum inside a sum");
+    expect_error("x'=i'\n", 1, 4, "i' is the index of a sum");
+    expect_error("x'=shift(x,1)\n", 1, 4, "shift(x,1) is outside the 1 names of its kind");
+    expect_error("x'=shift(x,x)\n", 1, 12, "the offset of shift must be a whole number");
+    expect_error("x'=sum(1,10)(i')\n", 1, 13, "expected 'of'");
+    expect_error("x'=sum(1,1000000)of(i')\n", 1, 4, "too long");
 }
 
 static void test_circular_definitions_name_the_cycle(void **state)
@@ -386,7 +398,7 @@ static void test_xppaut_examples_translate(void **state)
 {
     (void)state;
     static const char *const files[] = {"lorenz.ode", "fhn.ode",   "delta.ode", "tyson.ode",
-                                        "hhred.ode",  "torus.ode", "pend.ode",  "doubpend.ode",
+                                        "hhred.ode",  "torus.ode", "pend.ode",  "doubpend.ode", "chemotax.ode", "waterwheel.ode", "wcring.ode",
                                         "rossler.ode", "angela.ode"};
     int found = 0;
     for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
@@ -422,6 +434,7 @@ int main(void)
         cmocka_unit_test(test_refused_features_name_line_and_feature),
         cmocka_unit_test(test_unknown_names_suggest_the_nearest),
         cmocka_unit_test(test_kinds_of_names_are_checked),
+        cmocka_unit_test(test_sums_and_shifts_are_checked),
         cmocka_unit_test(test_circular_definitions_name_the_cycle),
         cmocka_unit_test(test_syntax_errors_point_at_the_place),
         cmocka_unit_test(test_diag_format_shows_the_line_and_a_caret),

@@ -250,6 +250,30 @@ static void test_arrays_expand_like_xppaut(void **state)
     unload(&L);
 }
 
+/* sum(j1,j2)of(...i'...) and shift(name,k), unrolled: XPPAUT's manual gives sum(1,10)of(i')
+ * = 55 and shift(u0,2) = u2. */
+static void test_sums_and_shifts(void **state)
+{
+    (void)state;
+    loaded L;
+    load("par w0=0.5, w1=0.25, w2=0.125\nu[0..2]'=-u[j]+shift(w0,[j])\nu[3..4]'=-u[j]\n"
+         "aux s55=sum(1,10)of(i')\naux su=sum(0,4)of(shift(u0,i'))\n"
+         "aux sw=sum(0,2)of(shift(w0,i')*i')\naux ux2=shift(u0,2)\naux e=sum(3,2)of(i')\n"
+         "c[0..2]=u[j]*[j]\naux sc=sum(0,2)of(shift(c0,i'))\n",
+         &L);
+    const double y[5] = {1, 2, 3, 4, 5};
+    assert_true(output(&L, "s55", 0, y) == 55);
+    assert_true(output(&L, "su", 0, y) == 15);
+    assert_true(output(&L, "sw", 0, y) == 0.25 + 0.25);
+    assert_true(output(&L, "ux2", 0, y) == 3);
+    assert_true(output(&L, "e", 0, y) == 0); /* an empty sum */
+    assert_true(output(&L, "sc", 0, y) == 0 * 1 + 1 * 2 + 2 * 3);
+    double dy[5];
+    L.m->rhs(0, y, dy, L.par);
+    assert_true(dy[0] == -1 + 0.5 && dy[1] == -2 + 0.25 && dy[2] == -3 + 0.125);
+    unload(&L);
+}
+
 /* XPPAUT applies a global's assignments in sequence (xppaut 6.11: x=0;y=x+10;z=y gives
  * y = z = 10); the solver restarts from the reset state. */
 static void test_globals_reset_in_sequence(void **state)
@@ -410,6 +434,7 @@ static void test_jacobian_matches_finite_differences(void **state)
                    "z'=atan2(x,z+2)+(x+2)^y+2^z+(z+2)^2.5+asin(x/3)+acos(z/4)+cosh(y)+sinh(z)\n");
     check_jacobian("h(x)=x*k1\nk1=y*2\nx'=h(x)+y\ny'=cos(x)*tan(y/3)+erf(x)+erfc(y)\n");
     check_jacobian("x[1..4]'=x[j-1]-2*x[j]+x[j+1]+x[j]^2\nx0=0\nx5=1\n");
+    check_jacobian("x[0..3]'=sum(0,3)of(cos(i'-[j])*shift(x0,i'))*x[j]\n");
 }
 
 /* The C text is clean C11: no warning with -Wall -Wextra -Wshadow -pedantic (unused
@@ -461,6 +486,7 @@ int main(void)
         cmocka_unit_test(test_exact_solution_and_default_run),
         cmocka_unit_test(test_temporaries_derived_and_functions),
         cmocka_unit_test(test_arrays_expand_like_xppaut),
+        cmocka_unit_test(test_sums_and_shifts),
         cmocka_unit_test(test_globals_reset_in_sequence),
         cmocka_unit_test(test_extensions_and_options_fill_the_model),
         cmocka_unit_test(test_names_cannot_clash_with_c),

@@ -169,7 +169,16 @@ static void resolve(dyn_ani *a, node *e, int depth)
             e->num = LVEC_AT(m->numbers, lang_param, s->index).value;
             return;
         case SYM_FIX: e->kind = N_FIX; e->index = s->index; return;
-        case SYM_AUX: e->kind = N_ARG; e->index = s->index; return;
+        case SYM_AUX:
+            /* XPPAUT's animator knows states and fixed quantities, not aux outputs (its
+             * manual: "both regular and fixed, but not auxiliary") */
+            if (a->from_ode)
+                lang_note(c, e->pos, "col %d: '%s' is an aux output: dynkit shows it, "
+                          "XPPAUT's animator does not know it (name a fixed quantity for "
+                          "both)", e->pos.col, e->name);
+            e->kind = N_ARG;
+            e->index = s->index;
+            return;
         case SYM_FUNC:
             lang_fail(c, e->pos, "'%s' is a function: call it as %s(...)", e->name, e->name);
         default: unknown(c, e, 0);

@@ -231,6 +231,132 @@ static void resolve(lang_ctx *c, node *e, const rctx *r)
     }
 }
 
+/* ---- sums and shifts, unrolled before names are resolved ---- */
+
+/* The value of a constant integer formula (numbers, + - * /, signs), or fail. */
+static long const_int(lang_ctx *c, const node *e, const char *what)
+{
+    double v;
+    switch (e->kind) {
+    case N_NUM: v = e->num; break;
+    case N_NEG: v = -(double)const_int(c, e->args[0], what); break;
+    case N_BIN: {
+        const double a = (double)const_int(c, e->args[0], what);
+        const double b = (double)const_int(c, e->args[1], what);
+        if (e->op == OP_ADD)
+            v = a + b;
+        else if (e->op == OP_SUB)
+            v = a - b;
+        else if (e->op == OP_MUL)
+            v = a * b;
+        else if (e->op == OP_DIV && b != 0)
+            v = a / b;
+        else
+            lang_fail(c, e->pos, "%s must be a whole number: numbers, + - * / and i'", what);
+        break;
+    }
+    default:
+        lang_fail(c, e->pos, "%s must be a whole number: numbers, + - * / and i'", what);
+    }
+    if (!(v > -1e7 && v < 1e7))
+        lang_fail(c, e->pos, "%s is too large", what);
+    return (long)v; /* XPPAUT takes the integer part */
+}
+
+/* A copy of e with i' = k. */
+static node *with_index(lang_ctx *c, node *e, long k)
+{
+    if (e->kind == N_SUMIDX) {
+        node *n = lang_node(c, N_NUM, e->pos);
+        n->num = (double)k;
+        return n;
+    }
+    if (e->nargs == 0)
+        return e;
+    if (++c->copies > LANG_MAX_COPIES)
+        lang_fail(c, e->pos, "sums too large to unroll (more than %d copies of their terms)",
+                  LANG_MAX_COPIES);
+    node *n = lang_node(c, e->kind, e->pos);
+    *n = *e;
+    n->args = lang_alloc(c, (size_t)e->nargs * sizeof *n->args);
+    for (int i = 0; i < e->nargs; i++)
+        n->args[i] = with_index(c, e->args[i], k);
+    return n;
+}
+
+/* sum(j1,j2)of(f(i')) unrolled to f(j1)+...+f(j2); shift(name,k) is the name declared k
+ * places after name among the names of its kind (XPPAUT's shift addresses the variable k
+ * places on, and arrays are declared in a row). */
+static node *unroll(lang_ctx *c, node *e, int in_sum)
+{
+    if (++c->depth > 4 * LANG_MAX_DEPTH)
+        lang_fail(c, e->pos, "expression nested too deeply");
+    if (e->kind == N_SUMIDX && !in_sum)
+        lang_fail(c, e->pos, "i' is the index of a sum: sum(j1,j2)of(...i'...)");
+    if (e->kind == N_SUM) {
+        if (in_sum)
+            lang_fail(c, e->pos, "a sum inside a sum (XPPAUT has one index, i')");
+        const long a = const_int(c, e->args[0], "the first bound of sum"),
+                   b = const_int(c, e->args[1], "the last bound of sum");
+        if (b - a >= LANG_MAX_RANGE)
+            lang_fail(c, e->pos, "sum(%ld,%ld) too long (at most %d terms)", a, b,
+                      LANG_MAX_RANGE);
+        node *total = NULL;
+        for (long k = a; k <= b; k++) {
+            node *term = unroll(c, with_index(c, e->args[2], k), 1);
+            if (!total) {
+                total = term;
+                continue;
+            }
+            node *s = lang_node(c, N_BIN, e->pos);
+            s->op = OP_ADD;
+            s->nargs = 2;
+            s->args = lang_alloc(c, 2 * sizeof *s->args);
+            s->args[0] = total;
+            s->args[1] = term;
+            total = s;
+        }
+        c->depth--;
+        if (!total) { /* an empty sum */
+            node *z = lang_node(c, N_NUM, e->pos);
+            z->num = 0.0;
+            return z;
+        }
+        total->paren = 1;
+        return total;
+    }
+    for (int i = 0; i < e->nargs; i++)
+        e->args[i] = unroll(c, e->args[i], in_sum);
+    c->depth--;
+    if (e->kind == N_FUN && same_name(e->name, "shift")) {
+        if (e->nargs != 2 || e->args[0]->kind != N_NAME)
+            lang_fail(c, e->pos, "shift(name, k) takes a declared name and a whole number");
+        const long k = const_int(c, e->args[1], "the offset of shift");
+        const lang_sym *s = lang_lookup(c, e->args[0]->name);
+        if (!s)
+            unknown(c, e->args[0], &(rctx){CTX_RHS, NULL, "a formula"}, 0);
+        lvec *v = s->kind == SYM_STATE     ? &c->m.states
+                  : s->kind == SYM_PARAM   ? &c->m.params
+                  : s->kind == SYM_FIX     ? &c->m.fixes
+                  : s->kind == SYM_DERIVED ? &c->m.derived
+                                           : NULL;
+        if (!v)
+            lang_fail(c, e->pos, "shift of %s '%s': only states, parameters and fixed "
+                      "quantities", lang_sym_kind_name(s->kind), e->args[0]->name);
+        const long at = s->index + k;
+        if (at < 0 || at >= v->n)
+            lang_fail(c, e->pos, "shift(%s,%ld) is outside the %d names of its kind", e->args[0]->name,
+                      k, v->n);
+        const char *target = s->kind == SYM_STATE ? LVEC_AT(*v, lang_state, at).name
+                             : s->kind == SYM_PARAM ? LVEC_AT(*v, lang_param, at).name
+                                                    : LVEC_AT(*v, lang_formula, at).name;
+        node *n = lang_node(c, N_NAME, e->pos);
+        n->name = target;
+        return n;
+    }
+    return e;
+}
+
 /* ---- orders ---- */
 
 /* Calls of user functions in e: visit each callee (DFS for recursion). */
@@ -387,6 +513,36 @@ static const char *display_name(lang_ctx *c, const char *name, lpos pos, const c
 void lang_check(lang_ctx *c)
 {
     lang_model *m = &c->m;
+    for (int i = 0; i < m->funcs.n; i++) {
+        lang_func *f = &LVEC_AT(m->funcs, lang_func, i);
+        f->body = unroll(c, f->body, 0);
+    }
+    for (int i = 0; i < m->derived.n; i++) {
+        lang_formula *f = &LVEC_AT(m->derived, lang_formula, i);
+        f->expr = unroll(c, f->expr, 0);
+    }
+    for (int i = 0; i < m->fixes.n; i++) {
+        lang_formula *f = &LVEC_AT(m->fixes, lang_formula, i);
+        f->expr = unroll(c, f->expr, 0);
+    }
+    for (int i = 0; i < m->states.n; i++) {
+        lang_state *st = &LVEC_AT(m->states, lang_state, i);
+        st->rhs = unroll(c, st->rhs, 0);
+    }
+    for (int i = 0; i < m->auxs.n; i++) {
+        lang_formula *f = &LVEC_AT(m->auxs, lang_formula, i);
+        f->expr = unroll(c, f->expr, 0);
+    }
+    for (int i = 0; i < m->events.n; i++) {
+        lang_event *ev = &LVEC_AT(m->events, lang_event, i);
+        ev->cond = unroll(c, ev->cond, 0);
+        for (int k = 0; k < ev->nassign; k++)
+            ev->assign[k].value = unroll(c, ev->assign[k].value, 0);
+    }
+    for (int i = 0; i < m->inits.n; i++) {
+        lang_init *in = &LVEC_AT(m->inits, lang_init, i);
+        in->value = unroll(c, in->value, 0);
+    }
     /* user functions first: their bodies, then recursion and what they use */
     for (int i = 0; i < m->funcs.n; i++) {
         lang_func *f = &LVEC_AT(m->funcs, lang_func, i);

@@ -78,9 +78,6 @@ static const struct {
     {"bessely", "Bessel functions ('bessely')"},
     {"besseli", "Bessel functions ('besseli')"},
     {"lgamma", "the log-gamma function ('lgamma')"},
-    {"sum", "sums ('sum(...)of(...)')"},
-    {"of", "sums ('sum(...)of(...)')"},
-    {"shift", "indirect addressing ('shift')"},
     {"ishift", "indirect addressing ('ishift')"},
     {"hom_bcs", "boundary-value problems ('hom_bcs')"},
     {"int", "Volterra integrals ('int{...}')"},
@@ -99,7 +96,8 @@ int lang_is_reserved(const char *name)
 {
     const size_t n = strlen(name);
     int arity;
-    static const char *const words[] = {"t", "pi", "if", "then", "else", "not"};
+    static const char *const words[] = {"t", "pi", "if", "then", "else", "not", "sum", "of",
+                                        "shift"};
     for (size_t i = 0; i < sizeof words / sizeof words[0]; i++)
         if (ieq(name, n, words[i]))
             return 1;
@@ -338,7 +336,27 @@ static node *parse_primary(lang_lexer *lx)
         e->args[2] = parse_paren(lx, "expected '(' after 'else'");
         return e;
     }
-    if (ieq(s, n, "then") || ieq(s, n, "else") || ieq(s, n, "not"))
+    if (ieq(s, n, "sum") && peek(lx).kind == T_LP) {
+        /* sum(j1,j2)of(formula of i') */
+        take(lx);
+        node *e = lang_node(lx->c, N_SUM, p);
+        e->nargs = 3;
+        e->args = lang_alloc(lx->c, 3 * sizeof *e->args);
+        e->args[0] = parse_binary(lx, 0);
+        expect(lx, T_COMMA, "expected ',' between the bounds of sum(j1,j2)");
+        e->args[1] = parse_binary(lx, 0);
+        expect(lx, T_RP, "expected ')' after the bounds of sum(j1,j2)");
+        tok w = take(lx);
+        if (!tok_is_word(lx, &w, "of"))
+            unexpected(lx, &w, "expected 'of' in sum(j1,j2)of(...)");
+        e->args[2] = parse_paren(lx, "expected '(' after 'of'");
+        return e;
+    }
+    if (ieq(s, n, "i") && lx->i < lx->end && lx->line->text[lx->i] == '\'') {
+        lx->i++;
+        return lang_node(lx->c, N_SUMIDX, p);
+    }
+    if (ieq(s, n, "then") || ieq(s, n, "else") || ieq(s, n, "not") || ieq(s, n, "of"))
         unexpected(lx, &t, "expected a number, a name or '('");
     if (ieq(s, n, "t")) {
         if (peek(lx).kind == T_LP)

@@ -55,7 +55,9 @@ typedef enum node_kind {
     N_UFUN,  /* user function index of args */
     N_IF,    /* if(a)then(b)else(c) */
     N_DFIX,  /* derivative of fixed temporary index with respect to state op (a local) */
-    N_UFUN_D /* partial derivative op (argument) of user function index, of args */
+    N_UFUN_D, /* partial derivative op (argument) of user function index, of args */
+    N_SUM,    /* sum(a,b)of(c): unrolled by check.c before names are resolved */
+    N_SUMIDX  /* i', the index of a sum */
 } node_kind;
 
 typedef enum bin_op {

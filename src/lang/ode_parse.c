@@ -82,6 +82,8 @@ static void check_new_name(lang_ctx *c, const char *name, lpos pos)
 /* Resolve the built-in calls of a constant expression in place; names are refused. */
 static void resolve_const(lang_ctx *c, node *e, const char *what)
 {
+    if (e->kind == N_SUM || e->kind == N_SUMIDX)
+        lang_fail(c, e->pos, "%s must be a number, not a sum", what);
     for (int i = 0; i < e->nargs; i++)
         resolve_const(c, e->args[i], what);
     if (e->kind == N_NAME)

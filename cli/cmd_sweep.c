@@ -16,6 +16,7 @@
 
 #include "cli.h"
 #include "dynkit/sweep.h"
+#include "out_file.h"
 #include "table_formats.h"
 #ifdef DYNKIT_HAVE_MPI
 #include <mpi.h>
@@ -887,30 +888,18 @@ static int sweep_command(int argc, char **argv, int rank, int ranks)
         return src == DYN_CANCELLED ? 128 + (int)sweep_signal : CLI_OK;
     }
     if (rc == CLI_OK) {
-        FILE *f = stdout;
-        char tmp[4096] = "";
-        if (out_path && strcmp(out_path, "-") != 0) {
-            snprintf(tmp, sizeof tmp, "%s.tmp-%ld", out_path, (long)getpid());
-            f = fopen(tmp, "w");
-            if (!f) {
-                fprintf(stderr, "dynkit: error: --output: cannot write %s: %s\n", out_path,
+        /* a file is written beside its name and renamed when complete (out_file.h) */
+        cli_out outf;
+        if (cli_out_open(&outf, "--output", out_path) != CLI_OK) {
+            rc = CLI_FAILED;
+        } else {
+            const int bad = format == CLI_FORMAT_CSV
+                                ? write_table(outf.f, &o)
+                                : write_data_file(outf.f, format, &o, &run);
+            if (bad && out_path && strcmp(out_path, "-") != 0)
+                fprintf(stderr, "dynkit: error: writing --output '%s' failed: %s\n", out_path,
                         strerror(errno));
-                rc = CLI_FAILED;
-            }
-        }
-        if (f) {
-            int bad = format == CLI_FORMAT_CSV ? write_table(f, &o)
-                                               : write_data_file(f, format, &o, &run);
-            if (f != stdout) {
-                bad |= fclose(f) != 0;
-                if (!bad && rename(tmp, out_path) != 0)
-                    bad = 1;
-                if (bad) {
-                    remove(tmp);
-                    fprintf(stderr, "dynkit: error: --output: cannot write %s\n", out_path);
-                }
-            }
-            if (bad)
+            if (cli_out_close(&outf, !bad) != CLI_OK || bad)
                 rc = CLI_FAILED;
         }
     }

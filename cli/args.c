@@ -33,6 +33,20 @@ static int take_pi(const char **p)
     return 0;
 }
 
+/* One decimal number at p (strtod's syntax): 0 and *v, *end past it; -1 when there is none,
+ * when it is not finite (inf, nan), or when it is out of the range of doubles (1e400, and
+ * 1e-400, which would round to 0). Subnormal numbers (1e-310) are accepted. */
+static int read_double(const char *p, char **end, double *v)
+{
+    errno = 0;
+    *v = strtod(p, end);
+    if (*end == p || !isfinite(*v))
+        return -1;
+    if (errno == ERANGE && (*v == 0.0 || fabs(*v) >= 1.0))
+        return -1;
+    return 0;
+}
+
 int cli_parse_number(const char *text, double *out)
 {
     if (!text || !*text)
@@ -48,9 +62,7 @@ int cli_parse_number(const char *text, double *out)
         value = sign;
     } else {
         char *end;
-        errno = 0;
-        value = strtod(p, &end);
-        if (end == p || errno == ERANGE)
+        if (read_double(p, &end, &value))
             return -1;
         p = end;
     }
@@ -61,11 +73,16 @@ int cli_parse_number(const char *text, double *out)
         value *= DYN_PI;
     }
     if (*p == '/') {
+        /* the divisor follows the same rule as the number: 1/inf and 1/1e400 are refused
+         * like inf and 1e400 */
         char *end;
-        double div = strtod(p + 1, &end);
-        if (end == p + 1 || div == 0.0)
+        double div;
+        if (read_double(p + 1, &end, &div) || div == 0.0)
             return -1;
-        value /= div;
+        const double q = value / div;
+        if (q == 0.0 && value != 0.0)
+            return -1; /* the quotient rounds to 0: out of the range of doubles */
+        value = q;
         p = end;
     }
     if (*p != '\0' || !isfinite(value))

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "out_file.h"
 #include "table_formats.h"
 
 static void inverse_help(void)
@@ -146,15 +147,15 @@ int cli_cmd_inverse(int argc, char **argv)
     }
     double y0[6];
     dyn_cart_prescribed(&par, v0, f, 0.0, y0, NULL);
-    FILE *out = stdout;
     if (output_path && strcmp(output_path, "-") == 0)
         output_path = NULL;
-    if (output_path && !(out = fopen(output_path, "wb"))) {
-        int rc = cli_usage_error("inverse", "cannot open --output '%s' for writing: %s",
-                                 output_path, strerror(errno));
+    /* written beside the file and renamed when complete: a failure keeps the old file */
+    cli_out outf;
+    if (cli_out_open(&outf, "--output", output_path) != CLI_OK) {
         free(table);
-        return rc;
+        return CLI_FAILED;
     }
+    FILE *out = outf.f;
     const char *names[3] = {"t", m->inputs[0].name, m->inputs[1].name};
     const char *units[3] = {"s", m->inputs[0].unit, m->inputs[1].unit};
     const cli_table_info info = {.model = m->name,
@@ -174,9 +175,11 @@ int cli_cmd_inverse(int argc, char **argv)
         bad = cli_table_row(tab, table[3 * k], table + 3 * k + 1, 2, NULL, 0) != 0;
     bad |= tab && cli_table_finish(tab, ferr, sizeof ferr) != 0;
     cli_table_free(tab);
-    bad |= fflush(out) != 0;
+    bad |= fflush(out) != 0 || ferror(out);
     if (out != stdout)
-        bad |= fclose(out) != 0;
+        bad |= cli_out_close(&outf, !bad) != CLI_OK;
+    else
+        clearerr(stdout); /* reported below, not again at exit */
     int rc = CLI_OK;
     if (bad) {
         fprintf(stderr, "dynkit: error: writing the force table failed: %s\n",

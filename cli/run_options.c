@@ -359,6 +359,31 @@ static void tolerance_defaults(cli_run *run, unsigned given)
         run->max_steps = CLI_DEFAULT_MAX_STEPS;
 }
 
+/* The initial state, named when it cannot start a run: a state that is not finite (a
+ * default that follows the parameters, such as the plane's l0 + m g/k with k = 0), and a
+ * zero attitude quaternion (states qw, qx, qy, qz). */
+static int check_initial_state(const char *command, cli_run *run)
+{
+    const dyn_model *m = run->model;
+    for (int i = 0; i < m->n_states; i++)
+        if (!isfinite(run->y0[i]))
+            return cli_usage_error(command,
+                                   "the initial state %s = %g is not finite%s: give --init "
+                                   "%s=VALUE or other parameters",
+                                   m->states[i].name, run->y0[i],
+                                   m->initial_state ? " (its default follows the parameters)"
+                                                    : "",
+                                   m->states[i].name);
+    const int qw = dyn_model_state_index(m, "qw"), qx = dyn_model_state_index(m, "qx"),
+              qy = dyn_model_state_index(m, "qy"), qz = dyn_model_state_index(m, "qz");
+    if (qw >= 0 && qx >= 0 && qy >= 0 && qz >= 0 && run->y0[qw] == 0.0 && run->y0[qx] == 0.0 &&
+        run->y0[qy] == 0.0 && run->y0[qz] == 0.0)
+        return cli_usage_error(command,
+                               "the attitude quaternion (qw, qx, qy, qz) is zero: it has no "
+                               "orientation; give a non-zero one, e.g. --init qw=1");
+    return CLI_OK;
+}
+
 int cli_run_parse(const char *command, int argc, char **argv, cli_run *run)
 {
     return cli_run_parse_with(command, argc, argv, 0, run);
@@ -417,6 +442,8 @@ int cli_run_parse_with(const char *command, int argc, char **argv, int other_ada
         if (!as[k].is_param)
             rc = cli_apply_assignment(command, run, &as[k]);
     free(as);
+    if (rc == CLI_OK)
+        rc = check_initial_state(command, run);
     if (rc != CLI_OK)
         return rc;
     if ((given & GIVEN_INTERP) && !run->forces_path)

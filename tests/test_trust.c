@@ -158,7 +158,7 @@ static void test_stdout_failures_are_reported(void **state)
                  cli_path("err"));
         int w = system(cmd);
         char *err = cli_read_file(cli_path("err"), NULL);
-        CHECK(WIFEXITED(w) && WEXITSTATUS(w) == 1 && strstr(err, "write"),
+        CHECK(WIFEXITED(w) && WEXITSTATUS(w) == 1 && strstr(err, "writ"),
               "%s > /dev/full: status %d, stderr %s", commands[i], WEXITSTATUS(w), err);
         free(err);
     }
@@ -248,8 +248,16 @@ static void test_signals_leave_complete_rows(void **state)
                                             "1e-7", "--tspan",  "0:1000",   NULL};
             unlink(cli_path("sig.csv"));
             pid_t pid = start(to_file ? "stdout.txt" : "sig.csv", to_file ? args_file : args_out);
-            struct timespec ts = {0, 400000000};
-            nanosleep(&ts, NULL);
+            /* signal once rows are being written (the handler is in place by then) */
+            struct timespec ts = {0, 20000000};
+            struct stat st;
+            for (int wait = 0; wait < 1000; wait++) {
+                if (stat(cli_path("sig.csv"), &st) == 0 && st.st_size > 4096)
+                    break;
+                if (to_file && stat(cli_path("."), &st) == 0 && leftovers() > 0 && wait > 25)
+                    break; /* --output: the temporary file exists, rows are on their way */
+                nanosleep(&ts, NULL);
+            }
             kill(pid, sigs[s]);
             int w;
             assert_int_equal(waitpid(pid, &w, 0), pid);
@@ -568,6 +576,50 @@ static void test_view_commands_take_what_they_list(void **state)
     cli_free(&r);
 }
 
+/* ---- numbers, parameters and initial states ---- */
+
+static void test_numbers_states_and_results_checked(void **state)
+{
+    (void)state;
+    /* one rule for numbers and expressions: what cannot be a double is refused */
+    static const char *const refused[] = {"inf", "1/inf", "1e400", "1/1e400", "1e-400",
+                                          "1e-300/1e300", "nan", "1/0", "pi/inf"};
+    for (size_t i = 0; i < sizeof refused / sizeof refused[0]; i++) {
+        cli_result r = cli("run pendulum --init phi=%s --final", refused[i]);
+        CHECK(r.status == 2, "--init phi=%s: exit %d", refused[i], r.status);
+        cli_free(&r);
+    }
+    /* subnormal numbers are finite numbers > 0: accepted */
+    cli_result r = cli("run pendulum --init phi=1e-310 --method rk4 --step 0.1 --tspan 0:0.1");
+    CHECK(r.status == 0 && strstr(r.out, "\n0,9.9999999999999694e-311,"), "subnormal: %d %s %s", r.status,
+          r.out, r.err);
+    cli_free(&r);
+    /* plane --set k=0: the default sZ = l0 + m g/k is infinite, named */
+    r = cli("run plane --set k=0 --final");
+    CHECK(r.status == 2 && strstr(r.err, "sZ"), "k=0: %d %s", r.status, r.err);
+    cli_free(&r);
+    r = cli("run plane --set k=0 --init sZ=1 --method rk4 --tspan 0:0.1 --final");
+    CHECK(r.status == 0, "k=0 with sZ given: %d %s", r.status, r.err);
+    cli_free(&r);
+    /* a zero quaternion, named */
+    r = cli("run plane-quat --init qw=0 --final");
+    CHECK(r.status == 2 && strstr(r.err, "quaternion"), "zero quaternion: %d %s", r.status,
+          r.err);
+    cli_free(&r);
+    /* inverse cart: a table that is not finite is refused, no NaN/Inf written */
+    r = cli("inverse cart --set v0=1e308");
+    CHECK(r.status == 2 && strstr(r.err, "not finite") && !strstr(r.out, "inf") &&
+              !strstr(r.out, "nan"),
+          "v0=1e308: %d %s", r.status, r.err);
+    cli_free(&r);
+    /* its --output survives a failure too */
+    write_text("f.csv", "x\n");
+    r = cli_in_tmpdir("inverse cart --set v0=1e308 --output f.csv");
+    CHECK(r.status != 0 && file_is("f.csv", "x\n"), "inverse --output after failure: %d",
+          r.status);
+    cli_free(&r);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -586,6 +638,7 @@ int main(void)
         cmocka_unit_test(test_robertson_stays_in_its_domain),
         cmocka_unit_test(test_info_numbers_events_columns),
         cmocka_unit_test(test_view_commands_take_what_they_list),
+        cmocka_unit_test(test_numbers_states_and_results_checked),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

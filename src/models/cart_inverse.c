@@ -131,6 +131,15 @@ int dyn_cart_force_table(const dyn_cart_par *p, double v0, double f, long N, dou
         table[3 * k] = t;
         dyn_cart_inverse_forces(p, state[2], acc[0], acc[1], acc[2], &table[3 * k + 1],
                                 &table[3 * k + 2]);
+        if (!isfinite(table[3 * k + 1]) || !isfinite(table[3 * k + 2]) ||
+            !isfinite(state[4])) {
+            if (err && errlen)
+                snprintf(err, errlen,
+                         "cart force table: the forces are not finite at t = %.17g s (Fx = %g "
+                         "N, Fy = %g N): v0 = %g m/s and f = %g Hz are too large for doubles",
+                         t, table[3 * k + 1], table[3 * k + 2], v0, f);
+            return DYN_ERR_ARG;
+        }
     }
     return 0;
 }

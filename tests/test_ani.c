@@ -448,6 +448,12 @@ static void test_window_speed_grab_and_notes(void **state)
     assert_int_equal(notes, 2); /* speed, grab */
     assert_non_null(strstr(last_note, "grab"));
     dyn_ani_free(a);
+    /* an aux output is named with a note: XPPAUT's animator does not know them */
+    notes = 0;
+    a = parse_ok("line e;0;1;1\nline w;0;1;1\n");
+    assert_int_equal(notes, 1);
+    assert_non_null(strstr(last_note, "'e' is an aux output"));
+    dyn_ani_free(a);
     /* a window with xlo >= xhi is ignored, as XPPAUT does, with a note */
     notes = 0;
     a = parse_ok("dimension 1;0;0;1\nspeed 5000\nline 0;0;1;1\n");

@@ -31,7 +31,7 @@
     for (const r of data.runs) if (r.message) messages.appendChild(DK.el('p', { class: 'warning', text: r.message }));
     const t0 = data.span[0];
     const t1 = Math.max(...runs.map(r => r.t[r.t.length - 1]));
-    const player = new DK.Player(document.getElementById('player'), { t0, t1, times: runs[0].t, label: model.name });
+    const player = new DK.Player(document.getElementById('player'), { t0, t1, times: runs[0].t, label: model.name, watch: document.querySelector('.stage') });
     const view = document.getElementById('view');
     const kind = pictureOf(model, params);
     /* an XPPAUT animation of the model file (NAME.ani): first, beside the model's other

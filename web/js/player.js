@@ -1,15 +1,37 @@
 /* dynkit page: the player that drives the time of an animation and its plots — play/pause,
  * speed from 0.1x to 10x (real time by default), a time slider, the current time, and the
  * keyboard: space play/pause, left/right one sample, shift+left/right one second, up/down
- * speed, home/end. With several players on a page the keys go to the one used last. */
+ * speed, home/end. With several players on a page the keys go to the one used last.
+ * A player starts playing once its pictures are on the screen, unless the reader asks for
+ * reduced motion (prefers-reduced-motion); it plays once, loop off. The URL fragment keeps
+ * the view: #t=2.5&speed=0.5 (on the report #p2&t=2.5&speed=0.5, the player of problem 2)
+ * is read when the page opens and follows the player used last (history.replaceState). */
 'use strict';
 (function (DK) {
   const SPEED_MIN = 0.1, SPEED_MAX = 10;
   DK.players = [];
   let active = null;
 
+  /* The fragment as {key, t, speed} (key: a bare word such as p2). */
+  DK.readFragment = function (hash) {
+    const out = {};
+    let text = String(hash === undefined ? location.hash : hash).replace(/^#/, '');
+    try { text = decodeURIComponent(text); } catch (e) { /* keep it as it is */ }
+    for (const part of text.split('&')) {
+      const i = part.indexOf('=');
+      if (i < 0) { if (part) out.key = part; continue; }
+      const v = parseFloat(part.slice(i + 1));
+      if (isFinite(v)) out[part.slice(0, i)] = v;
+    }
+    return out;
+  };
+  DK.reducedMotion = () => !!(window.matchMedia && window.matchMedia('(prefers-reduced-motion: reduce)').matches);
+  const short = v => String(Number(v.toPrecision(6)));
+
   class Player {
-    /* opts: t0, t1, times (sample times for stepping), label */
+    /* opts: t0, t1, times (sample times for stepping), label, key (its name in the URL
+     * fragment), watch (the element whose showing starts it; default the player),
+     * autoplay (default true) */
     constructor(container, opts) {
       this.t0 = opts.t0;
       this.t1 = opts.t1 > opts.t0 ? opts.t1 : opts.t0 + 1;
@@ -19,9 +41,56 @@
       this.playing = false;
       this.listeners = [];
       this.last = null;
+      this.key = opts.key || null;
+      this.touched = false;
       this.build(container, opts.label);
       DK.players.push(this);
+      const f = DK.readFragment();
+      if (this.fragmentIsMine(f)) {
+        this.applyFragment(f);
+        active = this;
+      }
       this.update();
+      if (opts.autoplay !== false) this.autoplay(opts.watch || this.root);
+    }
+
+    /* A fragment without a key is the first player's. */
+    fragmentIsMine(f) {
+      if (f.t === undefined && f.speed === undefined) return false;
+      return f.key ? f.key === this.key : DK.players[0] === this;
+    }
+
+    applyFragment(f) {
+      if (f.speed !== undefined && f.speed > 0) {
+        this.speed = DK.clamp(f.speed, SPEED_MIN, SPEED_MAX);
+        this.speedSlider.value = Math.log10(this.speed);
+      }
+      if (f.t !== undefined) this.t = DK.clamp(f.t, this.t0, this.t1);
+    }
+
+    /* Play once the pictures show (not with reduced motion, nor after the reader took over). */
+    autoplay(watch) {
+      if (DK.reducedMotion()) return;
+      const start = () => { if (!this.touched && !this.started) { this.started = true; this.play(); } };
+      if (!window.IntersectionObserver) { start(); return; }
+      const io = new IntersectionObserver(es => {
+        if (es.some(e => e.isIntersecting)) { io.disconnect(); start(); }
+      });
+      io.observe(watch);
+    }
+
+    /* The fragment of this player's view (written a little later, at most a few times a
+     * second, for the player used last). */
+    saveFragment() {
+      if (active !== this || this.fragTimer) return;
+      this.fragTimer = setTimeout(() => {
+        this.fragTimer = null;
+        if (active !== this) return;
+        const h = '#' + (this.key ? this.key + '&' : '') + 't=' + short(this.t) + '&speed=' + short(this.speed);
+        if (location.hash !== h) {
+          try { history.replaceState(history.state, '', h); } catch (e) { /* a page that may not change its URL */ }
+        }
+      }, this.playing ? 300 : 80);
     }
 
     build(container, label) {
@@ -45,7 +114,11 @@
       container.appendChild(this.root);
     }
 
-    activate() { active = this; for (const p of DK.players) p.root.classList.toggle('active', p === this); }
+    activate() {
+      active = this;
+      for (const p of DK.players) p.root.classList.toggle('active', p === this);
+      this.saveFragment();
+    }
 
     onTime(fn) { this.listeners.push(fn); fn(this.t); }
 
@@ -61,12 +134,14 @@
       this.root.dataset.speed = this.speed;
       this.root.dataset.playing = this.playing ? '1' : '0';
       for (const fn of this.listeners) fn(this.t);
+      this.saveFragment();
     }
 
-    seek(t) { this.t = DK.clamp(t, this.t0, this.t1); this.update(); }
+    seek(t) { this.touched = true; this.t = DK.clamp(t, this.t0, this.t1); this.update(); }
 
     /* One sample forwards (+1) or backwards (-1). */
     step(dir) {
+      this.touched = true;
       this.pause();
       const ts = this.times;
       if (!ts.length) { this.seek(this.t + dir * (this.t1 - this.t0) / 100); return; }
@@ -78,6 +153,7 @@
     }
 
     setSpeed(s, fromSlider) {
+      this.touched = true;
       this.speed = DK.clamp(s, SPEED_MIN, SPEED_MAX);
       if (!fromSlider) this.speedSlider.value = Math.log10(this.speed);
       this.update();
@@ -94,7 +170,7 @@
 
     pause() { if (this.playing) { this.playing = false; this.update(); } }
 
-    toggle() { if (this.playing) this.pause(); else this.play(); }
+    toggle() { this.touched = true; if (this.playing) this.pause(); else this.play(); }
 
     frame(now) {
       if (!this.playing) return;
@@ -112,6 +188,16 @@
     }
   }
   DK.Player = Player;
+
+  /* A fragment typed into the address bar moves its player. */
+  window.addEventListener('hashchange', () => {
+    const f = DK.readFragment();
+    const p = DK.players.find(q => q.fragmentIsMine(f));
+    if (!p) return;
+    p.applyFragment(f);
+    p.activate();
+    p.update();
+  });
 
   /* The keys go to the player used last, else to the first one on the page. */
   document.addEventListener('keydown', e => {

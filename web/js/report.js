@@ -66,7 +66,9 @@
     const slot = DK.el('div', { class: 'player-slot' });
     f.parentNode.insertBefore(slot, f.nextSibling);
     const t1 = Math.max(...runs.map(r => r.t[r.t.length - 1]));
-    return new DK.Player(slot, { t0: runs[0].t[0], t1, times: runs[0].t, label });
+    /* the fragment names it by its problem (#p2&t=1.5); it starts when its animation shows */
+    const section = f.closest('section');
+    return new DK.Player(slot, { t0: runs[0].t[0], t1, times: runs[0].t, label, key: section && section.id, watch: f });
   }
 
   /* ---- problem 1 ---- */
@@ -161,7 +163,7 @@
     const p = player('cart-anim', runs, 'cart');
     DK.CartView(figure('cart-anim', 'Seen from above (the homework\'s cartanimation): the triangle body with the wheels at its corners and the tracks of the wheels (the front wheel\'s dashed). Choose "whole path" to see both paths at once.'), runs, data.models.cart.params, p);
     const path = new DK.Plot(figure('cart-path', 'Prescribed against simulated path of the centre of mass: the simulated cart leaves the path within a second.'), {
-      title: 'path of the centre of mass', xlabel: 'sX [m]', ylabel: 'sY [m]', cursor: 'points', legend: 'tr', legendValues: false,
+      title: 'path of the centre of mass', xlabel: 'sX [m]', ylabel: 'sY [m]', equal: true, cursor: 'points', legend: 'tr', legendValues: false, aspect: 0.7,
       series: runs.map(r => ({ label: r.label, color: r.color, x: r.cols.sX, y: r.cols.sY, t: r.t, trail: true }))
     });
     p.onTime(t => path.setTime(t));
@@ -194,5 +196,8 @@
     for (const build of [pendulum, vanderpol, plane, cart]) {
       try { build(data); } catch (e) { console.error(e); }
     }
+    /* #p3&t=1.5: the browser knows no element "p3&t=1.5"; go to problem 3 */
+    const f = DK.readFragment(), target = f.key && document.getElementById(f.key);
+    if (target && (f.t !== undefined || f.speed !== undefined)) target.scrollIntoView();
   };
 })(window.DK);

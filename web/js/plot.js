@@ -1,5 +1,7 @@
 /* dynkit page: line plots on a canvas — axes with ticks and numbers (linear or logarithmic),
- * axis labels with units, a title, a legend with the values at the current time, a cursor
+ * axis labels with units (one unit per axis), a title, a legend with the values at the
+ * current time that never covers the data (in a corner of the frame where nothing is drawn,
+ * else above the frame), a cursor
  * that follows the player (a vertical line on time axes, dots on the curves otherwise),
  * curves drawn up to the current time ("trails"), equal axis scales for pictures of space,
  * a moving viewport, and click-to-seek on time axes. The static part is cached. */
@@ -12,8 +14,10 @@
     /* o: title, xlabel, ylabel, logx, logy, equal, height, aspect, series [{label, x, y, t,
      * color, width, dash, markers, trail, faint, noLegend}], hlines/vlines [{v, label,
      * color, dash}], cursor ('line' | 'points' | 'none'), xrange, yrange, viewport(t),
-     * overlay(ctx, plot, t), onSeek(t), legend ('tr' | 'tl' | 'br' | 'bl' | 'none'),
-     * legendValues, unitY (shown with values) */
+     * overlay(ctx, plot, t), onSeek(t), legend ('tr' | 'tl' | 'br' | 'bl' | 'none': the
+     * corner tried first), legendValues, unitY (shown with values), keepClear [[x, y]...]
+     * (points of an overlay the legend must not cover). A series may give its unit; a plot
+     * of series in different units is an error (one y axis per unit: separate plots). */
     constructor(container, o) {
       this.o = Object.assign({ cursor: 'line', legend: 'tr', legendValues: true }, o);
       for (const s of this.o.series) { if (!s.t) s.t = s.x; }
@@ -21,6 +25,15 @@
       this.canvas = DK.el('canvas', { class: 'plot-canvas' });
       this.wrap = DK.el('div', { class: 'dk-plot' }, [this.canvas]);
       container.appendChild(this.wrap);
+      this.canvas.dkPlot = this; /* for the browser tests: see debug() */
+      const unitOf = label => { const m = /\[([^\]]*)\]\s*$/.exec(label || ''); return m ? m[1] : ''; };
+      this.xunit = unitOf(this.o.xlabel);
+      this.yunit = unitOf(this.o.ylabel);
+      const units = this.units = [...new Set(this.o.series.map(s => s.unit).filter(u => u !== undefined))];
+      if (units.length > 1 || (units.length === 1 && this.yunit && units[0] !== this.yunit))
+        console.error('plot "' + (this.o.title || '') + '": one y axis per unit, not ' + units.concat(this.yunit || []).join(' and '));
+      this.canvas.dataset.xunit = this.xunit;
+      this.canvas.dataset.yunit = this.yunit;
       this.cache = document.createElement('canvas');
       this.cacheKey = null;
       this.dataRange();
@@ -78,17 +91,19 @@
     /* Size the canvas to its box; true when the size changed. */
     layout() {
       const w = Math.max(200, Math.floor(this.wrap.clientWidth || 480));
-      const h = Math.floor(this.o.height || DK.clamp(w * (this.o.aspect || 0.58), 180, 560));
-      if (w === this.w && h === this.h) return false;
-      this.w = w; this.h = h;
+      const aspect = this.o.aspect || 0.58;
+      const h = Math.floor(this.o.height || DK.clamp(w * (w < 480 ? Math.max(aspect, 0.8) : aspect), 180, 560)); /* taller on a phone */
+      if (w === this.w && h === this.h0) return false;
+      this.w = w; this.h = this.h0 = h;
+      this.m0 = { l: 64, r: 14, t: this.o.title ? 28 : 12, b: 44 };
+      this.placeLegend(this.baseX, this.baseY);
       this.dpr = window.devicePixelRatio || 1;
       for (const c of [this.canvas, this.cache]) {
         c.width = Math.round(w * this.dpr);
-        c.height = Math.round(h * this.dpr);
+        c.height = Math.round(this.h * this.dpr);
       }
       this.canvas.style.width = w + 'px';
-      this.canvas.style.height = h + 'px';
-      this.m = { l: 64, r: 14, t: this.o.title ? 28 : 12, b: 44 };
+      this.canvas.style.height = this.h + 'px';
       this.cacheKey = null;
       return true;
     }
@@ -304,43 +319,165 @@
       this.drawLegend(ctx, t);
     }
 
-    drawLegend(ctx, t) {
+    /* The legend's items and texts at time t (or as wide as any value: sample). */
+    legendTexts(t, sample) {
       const o = this.o;
       const items = o.series.filter(s => s.label && !s.noLegend);
-      if (o.legend === 'none' || !items.length) return;
-      ctx.font = FONT;
+      const unit = o.unitY ? ' ' + o.unitY : '';
       const texts = items.map(s => {
         let text = s.label;
-        if (o.legendValues && t !== null) {
+        if (o.legendValues && sample) text += ' = −8.888e−88' + unit;
+        else if (o.legendValues && t !== null) {
           const v = this.valueAt(s, t);
-          if (v && v.y !== null) text += ' = ' + DK.fmt(v.y, 4) + (o.unitY ? ' ' + o.unitY : '');
+          if (v && v.y !== null) text += ' = ' + DK.fmt(v.y, 4) + unit;
         }
         return text;
       });
-      const width = Math.max(...texts.map(x => ctx.measureText(x).width)) + 40;
-      const height = 8 + 17 * items.length;
-      const right = o.legend.includes('r'), bottom = o.legend.includes('b');
-      const x = right ? this.w - this.m.r - width - 6 : this.m.l + 6;
-      const y = bottom ? this.h - this.m.b - height - 6 : this.m.t + 6;
+      return { items, texts };
+    }
+
+    /* Where the legend goes, and the frame's margins (at a layout, for the whole data): the
+     * first corner of the frame (o.legend first, then counter-clockwise from the top right)
+     * where the box covers nothing drawn, else above the frame in rows, the canvas made
+     * taller by as much (always so when the view moves, that it does not jump). Its box is
+     * wide enough for any value, so that it does not change as the time runs. */
+    placeLegend(xr, yr) {
+      const o = this.o;
+      this.m = Object.assign({}, this.m0);
+      this.legendBox = null;
+      this.noValues = false;
+      this.setRanges(xr.slice(), yr.slice());
+      const { items, texts } = this.legendTexts(null, true);
+      if (o.legend === 'none' || !items.length) return;
+      const ctx = this.cache.getContext('2d');
+      ctx.font = FONT;
+      const widths = texts.map(x => ctx.measureText(x).width);
+      const width = Math.max(...widths) + 44, height = 8 + 17 * items.length;
+      if (!o.viewport) {
+        const corners = [o.legend, 'tr', 'tl', 'bl', 'br'].filter((c, i, a) => /^[tb][lr]$/.test(c) && a.indexOf(c) === i);
+        for (const c of corners) {
+          const right = c[1] === 'r', bottom = c[0] === 'b';
+          const box = {
+            x: right ? this.w - this.m.r - width - 6 : this.m.l + 6,
+            y: bottom ? this.h - this.m.b - height - 6 : this.m.t + 6, w: width, h: height
+          };
+          if (box.x < this.m.l || box.y < this.m.t || box.h > this.h - this.m.t - this.m.b - 12) break;
+          if (!this.covers(box, 6)) { this.legendBox = Object.assign(box, { corner: c, rows: items.map((_, i) => [36, 12 + 17 * i]) }); return; }
+        }
+      }
+      /* above the frame: items in rows across the canvas (without values if one is too wide) */
+      const avail = this.w - 16;
+      let ws = widths;
+      if (Math.max(...ws) + 44 > avail) { this.noValues = true; ws = items.map(s => ctx.measureText(s.label).width); }
+      const top = this.o.title ? 26 : 6;
+      const rows = [];
+      let x = 0, row = 0;
+      ws.forEach(tw => {
+        const iw = Math.min(tw + 44, avail);
+        if (x > 0 && x + iw > avail) { x = 0; row++; }
+        rows.push([x + 36, 10 + 17 * row]);
+        x += iw;
+      });
+      const h = 4 + 17 * (row + 1);
+      this.legendBox = { x: 8, y: top, w: avail, h, corner: 'above', rows };
+      this.m.t = top + h + 6;
+      this.h += this.m.t - this.m0.t;
+      this.setRanges(xr.slice(), yr.slice());
+    }
+
+    /* True when a box (CSS pixels, widened by pad) covers something drawn: a curve, a marker,
+     * a reference line or its label, or a point to keep clear. */
+    covers(b, pad) {
+      const x0 = b.x - pad, x1 = b.x + b.w + pad, y0 = b.y - pad, y1 = b.y + b.h + pad;
+      const o = this.o, logx = o.logx, logy = o.logy;
+      const ok = (x, y) => x !== null && y !== null && isFinite(x) && isFinite(y) && (!logx || x > 0) && (!logy || y > 0);
+      const inside = (x, y, r) => x >= x0 - r && x <= x1 + r && y >= y0 - r && y <= y1 + r;
+      for (const s of o.series) {
+        const r = s.markers ? (s.markers === true ? 3.2 : s.markers) : 0;
+        let ax = null, ay = null;
+        for (let k = 0; k < s.x.length; k++) {
+          if (!ok(s.x[k], s.y[k])) { ax = null; continue; }
+          const bx = this.px(s.x[k]), by = this.py(s.y[k]);
+          if (inside(bx, by, r)) return true;
+          if (ax !== null && segmentHits(ax, ay, bx, by, x0, y0, x1, y1)) return true;
+          ax = bx; ay = by;
+        }
+      }
+      const ctx = this.cache.getContext('2d');
+      ctx.font = FONT;
+      for (const l of o.hlines || []) {
+        if (!ok(this.xr[0], l.v)) continue;
+        const y = this.py(l.v);
+        if (y >= y0 && y <= y1) return true;
+        if (l.label && segmentHits(this.m.l + 6, y - 10, this.m.l + 6 + ctx.measureText(l.label).width, y - 10, x0, y0 - 6, x1, y1 + 6)) return true;
+      }
+      for (const l of o.vlines || []) {
+        if (!ok(l.v, this.yr[0])) continue;
+        const x = this.px(l.v);
+        if (x >= x0 && x <= x1) return true;
+        if (l.label && segmentHits(x + 4, this.m.t + 10, x + 4 + ctx.measureText(l.label).width, this.m.t + 10, x0, y0 - 6, x1, y1 + 6)) return true;
+      }
+      for (const p of o.keepClear || []) if (ok(p[0], p[1]) && inside(this.px(p[0]), this.py(p[1]), 12)) return true;
+      return false;
+    }
+
+    drawLegend(ctx, t) {
+      const b = this.legendBox;
+      if (!b) return;
+      ctx.font = FONT;
+      const { items, texts } = this.legendTexts(this.noValues ? null : t, false);
+      if (this.noValues) items.forEach((s, i) => { texts[i] = s.label; });
       ctx.fillStyle = 'rgba(255,255,255,0.88)';
       ctx.strokeStyle = '#c8c8c8';
       ctx.lineWidth = 1;
-      ctx.fillRect(x, y, width, height);
-      ctx.strokeRect(x + 0.5, y + 0.5, width - 1, height - 1);
+      if (b.corner !== 'above') {
+        ctx.fillRect(b.x, b.y, b.w, b.h);
+        ctx.strokeRect(b.x + 0.5, b.y + 0.5, b.w - 1, b.h - 1);
+      }
       ctx.textAlign = 'left';
       ctx.textBaseline = 'middle';
       items.forEach((s, i) => {
-        const ly = y + 12 + 17 * i;
+        const lx = b.x + b.rows[i][0], ly = b.y + b.rows[i][1];
         ctx.strokeStyle = s.color;
         ctx.lineWidth = 2.2;
         ctx.setLineDash(s.dash || []);
-        ctx.beginPath(); ctx.moveTo(x + 8, ly); ctx.lineTo(x + 30, ly); ctx.stroke();
+        ctx.beginPath(); ctx.moveTo(lx - 28, ly); ctx.lineTo(lx - 6, ly); ctx.stroke();
         ctx.setLineDash([]);
         ctx.fillStyle = '#222';
-        ctx.fillText(texts[i], x + 36, ly);
+        ctx.fillText(texts[i], lx, ly);
       });
       ctx.textBaseline = 'alphabetic';
     }
+
+    /* For the browser tests: the legend's box, the frame and every drawn point of every
+     * series in CSS pixels of the canvas (null at gaps), the axes' units and scales. */
+    debug() {
+      const pts = this.o.series.map(s => s.x.map((x, k) => {
+        const y = s.y[k];
+        if (x === null || y === null || !isFinite(x) || !isFinite(y) || (this.o.logx && x <= 0) || (this.o.logy && y <= 0)) return null;
+        return [this.px(x), this.py(y)];
+      }));
+      return {
+        legend: this.legendBox ? { x: this.legendBox.x, y: this.legendBox.y, w: this.legendBox.w, h: this.legendBox.h, corner: this.legendBox.corner } : null,
+        frame: { l: this.m.l, t: this.m.t, r: this.w - this.m.r, b: this.h - this.m.b },
+        markers: this.o.series.map(s => (s.markers ? (s.markers === true ? 3.2 : s.markers) : 0)),
+        points: pts, units: this.units, xunit: this.xunit, yunit: this.yunit, logx: !!this.o.logx, logy: !!this.o.logy,
+        equal: !!this.o.equal, sx: this.scale, sy: (this.py(this.yr[0]) - this.py(this.yr[1])) / (this.yr[1] - this.yr[0])
+      };
+    }
+  }
+
+  /* Does the segment a-b meet the rectangle [x0, x1] x [y0, y1]? (Liang-Barsky) */
+  function segmentHits(ax, ay, bx, by, x0, y0, x1, y1) {
+    if (Math.max(ax, bx) < x0 || Math.min(ax, bx) > x1 || Math.max(ay, by) < y0 || Math.min(ay, by) > y1) return false;
+    const dx = bx - ax, dy = by - ay, p = [-dx, dx, -dy, dy], q = [ax - x0, x1 - ax, ay - y0, y1 - ay];
+    let u0 = 0, u1 = 1;
+    for (let i = 0; i < 4; i++) {
+      if (p[i] === 0) { if (q[i] < 0) return false; continue; }
+      const r = q[i] / p[i];
+      if (p[i] < 0) { if (r > u1) return false; if (r > u0) u0 = r; } else { if (r < u0) return false; if (r < u1) u1 = r; }
+    }
+    return true;
   }
   DK.Plot = Plot;
 })(window.DK);

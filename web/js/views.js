@@ -36,7 +36,7 @@
 
   DK.timePlot = function (container, runs, name, player, o) {
     const unit = o && o.unit !== undefined ? o.unit : DK.unit(runs[0].raw || runs[0], name);
-    const series = runs.filter(r => r.cols[name]).map(r => ({ label: r.label, x: r.t, y: r.cols[name], color: r.color, dash: r.dash }));
+    const series = runs.filter(r => r.cols[name]).map(r => ({ label: r.label, x: r.t, y: r.cols[name], color: r.color, dash: r.dash, unit: o && o.unit !== undefined ? o.unit : DK.unit(r.raw || r, name) }));
     const plot = new DK.Plot(container, Object.assign({
       title: (o && o.title) || name, xlabel: 't [s]', ylabel: name + ' [' + unit + ']', unitY: unit === '1' ? '' : unit,
       series, onSeek: t => player.seek(t), legend: series.length > 1 ? 'tr' : 'none'
@@ -55,7 +55,7 @@
     const R = 1.18 * l;
     const plot = new DK.Plot(container, Object.assign({
       title: 'pendulum', xlabel: 'x [m]', ylabel: 'y [m]', equal: true, xrange: [-R, R], yrange: [-R, R * 0.9],
-      series, cursor: 'none', legend: 'tr', legendValues: false, aspect: 0.8,
+      series, cursor: 'none', legend: 'tr', legendValues: false, aspect: 0.8, keepClear: [[0, 0]],
       overlay: (ctx, p, t) => {
         const ox = p.px(0), oy = p.py(0);
         ctx.strokeStyle = '#555'; ctx.lineWidth = 1;
@@ -141,6 +141,8 @@
     o = o || {};
     const canvas = DK.el('canvas', { class: 'scene-canvas' });
     const wrap = DK.el('div', { class: 'dk-scene' }, [canvas]);
+    /* the legend above the picture, where it covers nothing */
+    container.appendChild(DK.el('div', { class: 'dk-legend' }, runs.map(r => DK.el('span', {}, [DK.el('i', { style: 'background:' + r.color }), r.label]))));
     container.appendChild(wrap);
     container.appendChild(DK.el('p', { class: 'hint', text: 'drag: rotate · wheel: zoom · shift+drag: move · double-click: reset view' }));
     const shape = planeShape(par);
@@ -174,7 +176,7 @@
     let w = 0, h = 0, dpr = 1;
     function size() {
       const nw = Math.max(240, Math.floor(wrap.clientWidth || 600));
-      const nh = Math.floor(o.height || DK.clamp(nw * 0.62, 280, 640));
+      const nh = Math.floor(o.height || DK.clamp(nw * (nw < 600 ? 0.9 : 0.62), 280, 640)); /* taller on a phone */
       if (nw === w && nh === h) return;
       w = nw; h = nh; dpr = window.devicePixelRatio || 1;
       canvas.width = Math.round(w * dpr); canvas.height = Math.round(h * dpr);
@@ -221,15 +223,35 @@
         scene.point(D(st.s), { color: r.color, radius: 3, ring: '#fff' });
       });
       scene.flush(ctx);
-      /* legend */
       ctx.font = '12px system-ui, sans-serif';
       ctx.textBaseline = 'middle';
-      runs.forEach((r, i) => {
-        ctx.fillStyle = r.color; ctx.fillRect(10, 12 + 18 * i, 22, 4);
-        ctx.fillStyle = '#222'; ctx.fillText(r.label, 38, 14 + 18 * i);
-      });
+      ctx.textAlign = 'left';
       ctx.fillStyle = '#555';
       ctx.fillText('t = ' + t.toFixed(3) + ' s', 10, h - 14);
+      scaleBar(ctx, planeAt(runs[0], t).s);
+    }
+    /* A scale bar at the bottom right: a round length (1, 2 or 5 times a power of ten metres,
+     * about 100 px long) as long as it looks at the depth of the first run's centre of mass,
+     * across the line of sight; it follows the zoom. */
+    function scaleBar(ctx, s) {
+      const q = scene.project(D(s));
+      if (!(q[2] > 0.05) || !s.every(isFinite)) return;
+      const ppm = scene.focal / q[2], L = DK.niceStep(100 / ppm, 1), len = L * ppm;
+      const x1 = w - 16, x0 = x1 - len, y = h - 14;
+      ctx.strokeStyle = '#222'; ctx.lineWidth = 2; ctx.lineCap = 'butt';
+      ctx.beginPath();
+      ctx.moveTo(x0, y - 5); ctx.lineTo(x0, y); ctx.lineTo(x1, y); ctx.lineTo(x1, y - 5);
+      ctx.moveTo((x0 + x1) / 2, y); ctx.lineTo((x0 + x1) / 2, y - 3);
+      ctx.stroke();
+      ctx.fillStyle = '#222'; ctx.textAlign = 'center'; ctx.textBaseline = 'alphabetic';
+      const label = DK.fmt(L, 3) + ' m';
+      ctx.fillText(label, (x0 + x1) / 2, y - 8);
+      ctx.fillStyle = '#666'; ctx.textAlign = 'right';
+      ctx.fillText('at the plane', x0 - 8, y + 1);
+      ctx.textAlign = 'left';
+      canvas.dataset.scaleLabel = label;
+      canvas.dataset.scaleM = L;
+      canvas.dataset.scalePx = len;
     }
     size();
     fit();

@@ -4,7 +4,12 @@
 // For each page: no console errors, no request but the file itself, every canvas draws
 // something, the picture changes as time runs, and the controls work as a person uses them
 // (play/pause button, time slider, speed slider, space and arrow keys; real time at 1x).
-// Screenshots go to the artifacts directory.
+// Each page is checked at 1280x900 and at a phone's 390x844 against the pages' conventions:
+// it plays when opened (and stays paused with prefers-reduced-motion), loop off; nothing
+// wider than the screen; no legend box over a drawn point or line; one unit per y axis;
+// equal scales for x-y pictures in metres; a scale bar in the 3D view; the URL fragment
+// (#t=..&speed=..) opens the page there and follows the player.
+// Screenshots go to the artifacts directory (at 390 px wide with the suffix -390).
 //
 // Usage: node run.mjs DYNKIT_BINARY [ARTIFACTS_DIR]
 // Exit status: 0 all passed, 1 a check failed, 77 skipped (no Chromium or no node_modules;
@@ -80,6 +85,11 @@ const pages = [
 const xppExamples = '/usr/share/doc/xppaut/examples/ode';
 if (fs.existsSync(path.join(xppExamples, 'pend2.ani')))
   pages.push({ name: 'xppaut-pend2', args: ['animate', path.join(xppExamples, 'pend.ode'), '--ani', path.join(xppExamples, 'pend2.ani')], ani: { ratio: 1 } });
+// DYNKIT_BROWSER_ONLY=NAME,NAME: only these pages (while working on them)
+if (process.env.DYNKIT_BROWSER_ONLY) {
+  const only = process.env.DYNKIT_BROWSER_ONLY.split(',');
+  pages.splice(0, pages.length, ...pages.filter(p => only.includes(p.name)));
+}
 for (const p of pages) {
   p.file = path.join(artifacts, `${p.name}.html`);
   const args = p.args.slice();
@@ -87,7 +97,7 @@ for (const p of pages) {
   run(args);
 }
 // a model without a picture: the van der Pol page with the model renamed
-{
+if (pages.some(p => p.name === 'vanderpol')) {
   const text = fs.readFileSync(path.join(artifacts, 'vanderpol.html'), 'utf8');
   const file = path.join(artifacts, 'generic.html');
   fs.writeFileSync(file, text.replace('"name":"vanderpol"', '"name":"my-oscillator"'));
@@ -99,7 +109,7 @@ const userDataDir = fs.mkdtempSync(path.join(os.tmpdir(), 'dynkit-chromium-'));
 const context = await chromium.launchPersistentContext(userDataDir, {
   executablePath: chromiumPath,
   headless: true,
-  viewport: { width: 1400, height: 900 },
+  viewport: { width: 1280, height: 900 },
   args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
     '--disable-background-networking', '--disable-component-update', '--disable-sync'],
 });
@@ -124,9 +134,117 @@ const playerState = (page, i = 0) => page.evaluate(i => {
   return { t: parseFloat(p.dataset.time), speed: parseFloat(p.dataset.speed), playing: p.dataset.playing === '1' };
 }, i);
 
-async function checkPage(spec) {
-  current = spec.name;
+// The two screens every page is checked on: a desktop's and a phone's (full: every control).
+const viewports = [
+  { width: 1280, height: 900, suffix: '', full: true },
+  { width: 390, height: 844, suffix: '-390', full: false },
+];
+
+// In the page: every plot's legend box against every drawn point and line of its series
+// (from plot.js's debug hook), its units and scales; the 3D view's legend and scale bar.
+function pictureFacts() {
+  const hits = (ax, ay, bx, by, b) => {
+    if (Math.max(ax, bx) < b.x || Math.min(ax, bx) > b.x + b.w || Math.max(ay, by) < b.y || Math.min(ay, by) > b.y + b.h) return false;
+    // sample the segment finely enough (half a pixel)
+    const n = Math.max(1, Math.ceil(2 * Math.hypot(bx - ax, by - ay)));
+    for (let k = 0; k <= n; k++) {
+      const x = ax + (bx - ax) * k / n, y = ay + (by - ay) * k / n;
+      if (x >= b.x && x <= b.x + b.w && y >= b.y && y <= b.y + b.h) return true;
+    }
+    return false;
+  };
+  const plots = [...document.querySelectorAll('canvas.plot-canvas')].map(c => {
+    const d = c.dkPlot.debug(), title = c.dkPlot.o.title || '?';
+    let covered = 0, inCanvas = true;
+    const b = d.legend;
+    if (b) {
+      inCanvas = b.x >= 0 && b.y >= 0 && b.x + b.w <= c.clientWidth + 0.5 && b.y + b.h <= c.clientHeight + 0.5;
+      d.points.forEach((pts, i) => {
+        const r = d.markers[i];
+        for (let k = 0; k < pts.length; k++) {
+          const p = pts[k], q = k > 0 ? pts[k - 1] : null;
+          if (!p) continue;
+          if (p[0] >= b.x - r && p[0] <= b.x + b.w + r && p[1] >= b.y - r && p[1] <= b.y + b.h + r) covered++;
+          else if (q && hits(q[0], q[1], p[0], p[1], b)) covered++;
+        }
+      });
+    }
+    return { title, legend: b ? b.corner : 'none', covered, inCanvas, units: d.units, xunit: d.xunit, yunit: d.yunit, log: d.logx || d.logy, equal: d.equal, sx: d.sx, sy: d.sy };
+  });
+  const scene = document.querySelector('.dk-scene canvas.scene-canvas');
+  let scale = null, legendOnScene = false;
+  if (scene) {
+    scale = { label: scene.dataset.scaleLabel || '', m: parseFloat(scene.dataset.scaleM), px: parseFloat(scene.dataset.scalePx) };
+    const r = scene.getBoundingClientRect();
+    for (const l of document.querySelectorAll('.dk-legend')) {
+      const q = l.getBoundingClientRect();
+      if (q.right > r.left && q.left < r.right && q.bottom > r.top && q.top < r.bottom) legendOnScene = true;
+    }
+  }
+  return { plots, scale, legendOnScene };
+}
+const overflow = page => page.evaluate(() => ({ sw: document.documentElement.scrollWidth, iw: innerWidth }));
+
+// The conventions of the pages (see the top of the file); s: the player's span [t0, t1].
+async function checkConventions(page, spec, vp, url, span) {
+  const f = await page.evaluate(pictureFacts);
+  const covering = f.plots.filter(p => p.covered > 0 || !p.inCanvas);
+  check(covering.length === 0, `no legend covers data (${f.plots.length} plots; legends ${f.plots.map(p => p.legend).join(',')})${covering.map(p => ` | "${p.title}" ${p.legend}: ${p.covered} points`).join('')}`);
+  const mixed = f.plots.filter(p => p.units.length > 1 || (p.units.length === 1 && p.units[0] !== p.yunit));
+  check(mixed.length === 0, `one unit per y axis${mixed.map(p => ` | "${p.title}": ${p.units.join(', ')} on [${p.yunit}]`).join('')}`);
+  const paths = f.plots.filter(p => p.xunit === 'm' && p.yunit === 'm' && !p.log);
+  const unequal = paths.filter(p => !p.equal || Math.abs(p.sx - p.sy) > 1e-6 * p.sx);
+  check(unequal.length === 0, `equal scales on the ${paths.length} x-y pictures in metres${unequal.map(p => ` | "${p.title}": ${p.sx} px/m across, ${p.sy} up`).join('')}`);
+  if (spec.scene) {
+    check(f.scale && /^[0-9.e-]+ m$/.test(f.scale.label) && f.scale.px >= 40 && f.scale.px <= 200, `the 3D view has a scale bar (${f.scale && f.scale.label}, ${f.scale && f.scale.px.toFixed(0)} px)`);
+    check(!f.legendOnScene, 'the 3D view\'s legend is beside the picture, not on it');
+  }
+  const o = await overflow(page);
+  check(o.sw <= o.iw, `no sideways scrolling (${o.sw} px wide in ${o.iw})`);
+
+  // the fragment: open the page at a time and speed, with reduced motion (paused there)
+  const i = spec.players ? 2 : 0; // on the report: problem 3's player
+  const key = spec.players ? 'p3&' : '';
+  const tA = Number((span[0] + 0.37 * (span[1] - span[0])).toPrecision(5));
+  const calm = await context.newPage();
+  await calm.setViewportSize({ width: vp.width, height: vp.height });
+  await calm.emulateMedia({ reducedMotion: 'reduce' });
+  await calm.goto(`${url}#${key}t=${tA}&speed=0.5`);
+  await calm.waitForSelector('body[data-ready="1"]', { timeout: 10000 }).catch(() => {});
+  await sleep(400);
+  const c = await playerState(calm, i);
+  const span2 = await calm.evaluate(i => { const p = DK.players[i]; return [p.t0, p.t1]; }, i);
+  const tA2 = Math.min(Math.max(tA, span2[0]), span2[1]);
+  check(!c.playing && Math.abs(c.t - tA2) < 1e-9 * Math.max(1, Math.abs(tA2)) && c.speed === 0.5, `#${key}t=${tA}&speed=0.5 with reduced motion: paused there at 0.5x (t = ${c.t}, speed ${c.speed}, ${c.playing ? 'playing' : 'paused'})`);
+  check(!(await calm.evaluate(i => document.querySelectorAll('.player input.loop')[i].checked, i)), 'loop is off');
+  // the fragment follows the player: a second on, by the keys
+  const pl = calm.locator('.player').nth(i);
+  await pl.scrollIntoViewIfNeeded();
+  await pl.focus();
+  await calm.keyboard.press('Shift+ArrowRight');
+  await sleep(300);
+  const moved = await playerState(calm, i);
+  const hash = await calm.evaluate(() => location.hash);
+  const want = '#' + key + 't=' + Number(moved.t.toPrecision(6)) + '&speed=0.5';
+  check(hash === want, `the fragment follows the player (${hash}, want ${want})`);
+  const shared = await calm.evaluate(() => location.href);
+  await calm.close();
+  // opening the shared address (motion allowed) starts there and plays
+  const again = await context.newPage();
+  await again.setViewportSize({ width: vp.width, height: vp.height });
+  await again.goto(shared);
+  await again.waitForSelector('body[data-ready="1"]', { timeout: 10000 }).catch(() => {});
+  const a = await playerState(again, i);
+  const tB = Number(moved.t.toPrecision(6));
+  check(a.t >= tB - 1e-9 * Math.max(1, tB) && a.t <= tB + 1.5 && a.speed === 0.5, `the shared address opens at t = ${tB}, 0.5x (t = ${a.t}, speed ${a.speed})`);
+  await again.close();
+}
+
+async function checkPage(spec, vp) {
+  current = `${spec.name} @${vp.width}`;
+  const shot = name => path.join(artifacts, `${spec.name}${vp.suffix}-${name}.png`);
   const page = await context.newPage();
+  await page.setViewportSize({ width: vp.width, height: vp.height });
   const errors = [], requests = [];
   const url = pathToFileURL(spec.file).href;
   page.on('console', m => { if (m.type() === 'error') errors.push(m.text()); });
@@ -146,6 +264,16 @@ async function checkPage(spec) {
   check(openMs < 3000, `opens in well under a few seconds (${openMs} ms)`);
   const html = fs.readFileSync(spec.file, 'utf8');
   check(!/https?:\/\//.test(html), 'no http(s):// reference in the file');
+
+  // it plays when opened (once its picture shows), without a click
+  await page.locator('canvas').first().scrollIntoViewIfNeeded();
+  const auto0 = await playerState(page);
+  await sleep(700);
+  const auto1 = await playerState(page);
+  check(auto1.playing && auto1.t > auto0.t && auto1.speed === 1, `plays when opened, at 1x (t ${auto0.t.toFixed(3)} -> ${auto1.t.toFixed(3)})`);
+  // paused from the page: a click can take longer than a short run has left (the button is
+  // checked below)
+  await page.evaluate(() => DK.players.forEach(p => p.pause()));
 
   // every canvas draws something
   const prints0 = await page.evaluate(canvasPrints);
@@ -178,7 +306,7 @@ async function checkPage(spec) {
       const a2 = await aniPrint();
       check(a0.hash !== a1.hash && a1.hash !== a2.hash, 'the animation changes as the time runs');
       if (spec.ani.comet) check(a1.ink > a0.ink * 1.2, `the comet's tail grows (ink ${a0.ink} at the start, ${a1.ink} later)`);
-      await page.locator('canvas.ani-canvas').screenshot({ path: path.join(artifacts, `${spec.name}-ani.png`) });
+      await page.locator('canvas.ani-canvas').screenshot({ path: shot('ani') });
       await seek(0);
     }
   }
@@ -191,10 +319,11 @@ async function checkPage(spec) {
   const player = page.locator('.player').first();
   const play = player.locator('button.play');
   const slider = player.locator('input.time');
-  await page.screenshot({ path: path.join(artifacts, `${spec.name}-start.png`) });
+  await page.screenshot({ path: shot('start') });
+  if (!vp.full) await page.screenshot({ path: shot('page'), fullPage: !spec.players });
 
   let s = await playerState(page);
-  check(s.speed === 1 && !s.playing, `starts paused at 1x (speed ${s.speed})`);
+  await slider.scrollIntoViewIfNeeded();
   // the slider moves the time
   const box = await slider.boundingBox();
   await page.mouse.click(box.x + box.width * 0.6, box.y + box.height / 2);
@@ -211,16 +340,16 @@ async function checkPage(spec) {
   const tStart = s.t;
   await play.click();
   const wall0 = Date.now();
-  await sleep(1200);
+  await sleep(vp.full ? 1200 : 400);
   s = await playerState(page);
   const wall = (Date.now() - wall0) / 1000;
   check(s.playing || s.t >= span[1], 'the play button starts playing');
   const rate = (s.t - tStart) / wall;
   const expectRate = Math.min(1, (span[1] - tStart) / wall);
-  check(Math.abs(rate - expectRate) < 0.35 * Math.max(expectRate, 0.05) + 0.05, `plays in real time at 1x (${rate.toFixed(2)} s per s)`);
+  if (vp.full) check(Math.abs(rate - expectRate) < 0.35 * Math.max(expectRate, 0.05) + 0.05, `plays in real time at 1x (${rate.toFixed(2)} s per s)`);
   const prints2 = await page.evaluate(canvasPrints);
   check(prints2.some((p, i) => p.hash !== prints1[i].hash), 'the picture moves while playing');
-  await page.screenshot({ path: path.join(artifacts, `${spec.name}-playing.png`), fullPage: false });
+  await page.screenshot({ path: shot('playing'), fullPage: false });
   if (s.playing) {
     await play.click();
     s = await playerState(page);
@@ -228,7 +357,9 @@ async function checkPage(spec) {
   } else {
     check(s.t >= span[1] - 1e-9, `the run ended and stopped there (t = ${s.t})`);
   }
-  // keys: space, arrows (slowly, so that a short run does not end meanwhile)
+  // keys: space, arrows (slowly, so that a short run does not end meanwhile); on the
+  // desktop's screen only: they do not depend on its size
+  if (vp.full) {
   await player.focus();
   await page.keyboard.press('Home');
   for (let k = 0; k < 4; k++) await page.keyboard.press('ArrowDown');
@@ -278,6 +409,7 @@ async function checkPage(spec) {
   await page.keyboard.press('Home'); /* pauses (a click could restart a run that just ended) */
   const fastRate = (b.t - a) / ((Date.now() - w0) / 1000);
   check(fastRate > 3 || b.t >= span[1] - 1e-9, `at 10x the time runs faster (${fastRate.toFixed(2)} s per s)`);
+  }
 
   if (spec.scene) {
     // the 3D view turns with the mouse and zooms with the wheel
@@ -290,11 +422,14 @@ async function checkPage(spec) {
     await page.mouse.up();
     const turned = (await page.evaluate(canvasPrints))[0].hash;
     check(turned !== before, 'dragging turns the 3D view');
+    const bar0 = await page.evaluate(() => parseFloat(document.querySelector('.dk-scene canvas').dataset.scalePx) / parseFloat(document.querySelector('.dk-scene canvas').dataset.scaleM));
     await page.mouse.wheel(0, -400);
     await sleep(100);
     const zoomed = (await page.evaluate(canvasPrints))[0].hash;
     check(zoomed !== turned, 'the wheel zooms the 3D view');
-    await page.screenshot({ path: path.join(artifacts, `${spec.name}-turned.png`) });
+    const bar1 = await page.evaluate(() => parseFloat(document.querySelector('.dk-scene canvas').dataset.scalePx) / parseFloat(document.querySelector('.dk-scene canvas').dataset.scaleM));
+    check(bar1 > bar0 * 1.1, `the scale bar follows the zoom (${bar0.toFixed(1)} -> ${bar1.toFixed(1)} px per m)`);
+    await page.screenshot({ path: shot('turned') });
   }
   if (spec.players) {
     const n = await page.locator('.player').count();
@@ -308,9 +443,11 @@ async function checkPage(spec) {
       const st = await playerState(page, i);
       const after = await page.evaluate(canvasPrints);
       check(st.t > 0 && after.some((q, k) => q.hash !== before[k].hash), `player ${i + 1} moves its pictures (t = ${st.t.toFixed(2)})`);
+      // (it may be playing already: it starts when its animation shows)
+      const was = (await playerState(page, i)).playing;
       await page.keyboard.press('Space');
       await sleep(300);
-      check((await playerState(page, i)).playing, `space plays player ${i + 1}, the one used last`);
+      check((await playerState(page, i)).playing !== was, `space plays or pauses player ${i + 1}, the one used last`);
       await page.keyboard.press('Space');
     }
     // the numbers of the answers are those of `dynkit report --json`
@@ -323,20 +460,24 @@ async function checkPage(spec) {
     const missing = await page.evaluate(() => [...document.querySelectorAll('[data-key]')].filter(e => !e.textContent || e.textContent === '?').length);
     check(missing === 0, `every answer is filled in (${missing} empty)`);
     for (const id of ['p1', 'p2', 'p3', 'p4']) {
-      await page.locator('#' + id).screenshot({ path: path.join(artifacts, `report-${id}.png`) });
+      await page.locator('#' + id).screenshot({ path: path.join(artifacts, `report${vp.suffix}-${id}.png`) });
     }
   }
+  await page.keyboard.press('Home');
+  await checkConventions(page, spec, vp, url, span);
   check(errors.length === 0, `no console errors${errors.length ? ': ' + errors.join(' | ') : ''}`);
   check(requests.length === 0, `no network requests${requests.length ? ': ' + requests.join(', ') : ''}`);
   await page.close();
 }
 
 try {
-  for (const spec of pages) {
-    try {
-      await checkPage(spec);
-    } catch (e) {
-      check(false, `exception: ${e.stack || e}`);
+  for (const vp of viewports) {
+    for (const spec of pages) {
+      try {
+        await checkPage(spec, vp);
+      } catch (e) {
+        check(false, `exception: ${e.stack || e}`);
+      }
     }
   }
 } finally {

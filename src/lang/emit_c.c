@@ -62,11 +62,19 @@ static void outf(lang_ctx *c, const char *fmt, ...)
     put(c, big, (size_t)n);
 }
 
-/* A C string literal of s (NULL: ""). */
+/* A C string literal of s (NULL: ""); runs of plain characters are written at once. */
 static void str_lit(lang_ctx *c, const char *s)
 {
     puts_(c, "\"");
-    for (const unsigned char *q = (const unsigned char *)(s ? s : ""); *q; q++) {
+    const unsigned char *q = (const unsigned char *)(s ? s : "");
+    while (*q) {
+        const unsigned char *run = q;
+        while (*q && *q >= 32 && *q < 127 && *q != '"' && *q != '\\' && *q != '?')
+            q++;
+        if (q > run)
+            put(c, (const char *)run, (size_t)(q - run));
+        if (!*q)
+            break;
         char b[8];
         if (*q == '"' || *q == '\\' || *q == '?') {
             b[0] = '\\';
@@ -74,12 +82,11 @@ static void str_lit(lang_ctx *c, const char *s)
             put(c, b, 2);
         } else if (*q == '\n') {
             puts_(c, "\\n");
-        } else if (*q < 32 || *q >= 127) {
+        } else {
             snprintf(b, sizeof b, "\\%03o", *q);
             puts_(c, b);
-        } else {
-            put(c, (const char *)q, 1);
         }
+        q++;
     }
     puts_(c, "\"");
 }
@@ -88,9 +95,21 @@ static void line_dir(lang_ctx *c, lpos p)
 {
     if (p.line <= 0)
         return;
-    outf(c, "#line %d ", p.line);
-    str_lit(c, c->path);
-    puts_(c, "\n");
+    if (!c->path_lit) { /* the path as a C string, once */
+        char *saved = c->out;
+        const size_t len = c->out_len, cap = c->out_cap;
+        c->out = NULL;
+        c->out_len = c->out_cap = 0;
+        c->out_saved2 = saved;
+        str_lit(c, c->path);
+        c->path_lit = lang_strdup(c, c->out);
+        free(c->out);
+        c->out = saved;
+        c->out_len = len;
+        c->out_cap = cap;
+        c->out_saved2 = NULL;
+    }
+    outf(c, "#line %d %s\n", p.line, c->path_lit);
 }
 
 static void num_lit(lang_ctx *c, double v)

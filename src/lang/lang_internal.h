@@ -230,6 +230,8 @@ typedef struct lang_ctx {
     char *out;            /* the C text being written (malloc'd; freed on failure) */
     char *out_saved;      /* the main text while the Jacobian's is written apart */
     size_t out_saved_len, out_saved_cap;
+    char *out_saved2;     /* the text while the path's literal is written apart */
+    const char *path_lit; /* the path as a C string literal */
     size_t out_len, out_cap;
 } lang_ctx;
 

@@ -47,6 +47,7 @@ static lang_line lbuf_line(lang_ctx *c, lbuf *b, lpos end)
     if (b->len > LANG_MAX_LINE)
         lang_fail(c, b->pos[0], "line too long (more than %d characters)", LANG_MAX_LINE);
     b->pos[b->len] = end; /* lbuf_put keeps room for one more */
+    b->text[b->len] = '\0';
     l.text = b->text;
     l.len = b->len;
     l.pos = b->pos;
@@ -206,10 +207,11 @@ static int find_range(lang_ctx *c, const lang_line *l, int *open, int *close, lo
 
 /* One copy of line l for the index j: the range (if any, at open..close) becomes j, and
  * every other [expr] its value. */
-static lang_line expand_one(lang_ctx *c, const lang_line *l, long j, int open, int close,
-                            int with_j)
+static lang_line expand_one(lang_ctx *c, lbuf *scratch, const lang_line *l, long j, int open,
+                            int close, int with_j)
 {
-    lbuf b = {0};
+    lbuf b = *scratch; /* reused: a line is consumed before the next one is made */
+    b.len = 0;
     char num[32];
     for (int i = 0; i < l->len; i++) {
         const char ch = l->text[i];
@@ -244,7 +246,9 @@ static lang_line expand_one(lang_ctx *c, const lang_line *l, long j, int open, i
             lbuf_put(c, &b, num[q], l->pos[i]);
         i = k;
     }
-    return lbuf_line(c, &b, l->pos[l->len]);
+    lang_line r = lbuf_line(c, &b, l->pos[l->len]);
+    *scratch = b;
+    return r;
 }
 
 /* ---- driver ---- */
@@ -259,6 +263,7 @@ typedef struct lines_state {
     long b1, b2;
     lpos block_pos;
     lvec block; /* lang_line */
+    lbuf scratch; /* the expanded line */
 } lines_state;
 
 static int first_char(const lang_line *l, int *at)
@@ -317,13 +322,17 @@ static void logical_line(lang_ctx *c, lines_state *s, const lang_line *l)
                         emit(c, s, bl);
                         continue;
                     }
-                    lang_line e = expand_one(c, bl, j, -1, -1, 1);
+                    lang_line e = expand_one(c, &s->scratch, bl, j, -1, -1, 1);
                     emit(c, s, &e);
                 }
             s->block.n = 0;
             return;
         }
-        *(lang_line *)lvec_push(c, &s->block, sizeof(lang_line)) = *l;
+        lang_line *keep = lvec_push(c, &s->block, sizeof(lang_line));
+        keep->len = l->len;
+        keep->text = lang_strndup(c, l->text, (size_t)l->len);
+        keep->pos = lang_alloc(c, ((size_t)l->len + 1) * sizeof *keep->pos);
+        memcpy(keep->pos, l->pos, ((size_t)l->len + 1) * sizeof *keep->pos);
         return;
     }
     if (ch == '#' || ch == '"' || ch == 0) {
@@ -346,7 +355,7 @@ static void logical_line(lang_ctx *c, lines_state *s, const lang_line *l)
     if (!find_range(c, l, &open, &close, &j1, &j2)) {
         if (memchr(l->text, '[', (size_t)l->len)) {
             /* b100'=-flux[100]: constant indices */
-            lang_line e = expand_one(c, l, 0, -1, -1, 0);
+            lang_line e = expand_one(c, &s->scratch, l, 0, -1, -1, 0);
             emit(c, s, &e);
             return;
         }
@@ -354,7 +363,7 @@ static void logical_line(lang_ctx *c, lines_state *s, const lang_line *l)
         return;
     }
     for (long j = j1; j <= j2 && !s->stop; j++) {
-        lang_line e = expand_one(c, l, j, open, close, 1);
+        lang_line e = expand_one(c, &s->scratch, l, j, open, close, 1);
         emit(c, s, &e);
     }
 }
@@ -381,7 +390,7 @@ void lang_lines(lang_ctx *c, lang_line_fn fn, void *ctx)
         else
             last = e;
         if (!continued)
-            b = (lbuf){0};
+            b.len = 0; /* the buffer is reused: lines are consumed one by one */
         for (size_t k = a; k < last; k++) {
             char ch = c->text[k];
             const lpos p = {ln + 1, (int)(k - a) + 1};

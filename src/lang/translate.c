@@ -84,6 +84,7 @@ int dyn_ode_to_c(const char *path, const char *text, size_t len, char **c_source
         const int status = c->status ? c->status : 2;
         free(c->out);
         free(c->out_saved);
+        free(c->out_saved2);
         lang_free_all(c);
         free(c);
         return status;

@@ -87,8 +87,9 @@ static void sweep_help(void)
          "on its own threads, --threads per rank) and rank 0 writes the one table, the same\n"
          "bytes as one process (when dynkit is built with MPI: libopenmpi-dev).\n"
          "\n"
-         "Run options (as dynkit run; not --final, --every, --outputs, --times, --trace,\n"
-         "--stats, --header, --events-output):");
+         "The run options are those of dynkit run but --final, --every, --outputs, --times,\n"
+         "--trace, --stats, --header and --events-output (each run is reduced to one row); in\n"
+         "a sweep --output is the table's file.\n");
     cli_run_options_help(stdout);
     puts("\n"
          "Examples:\n"

@@ -26,7 +26,12 @@ int cli_load_input(const char *command, cli_run *run, unsigned given)
                                m->name, list[0] ? list : "none");
     }
     dyn_table table;
-    if (dyn_table_read_file(path, DYN_TABLE_TIME_FIRST, &table, err, sizeof err))
+    const int read_rc = dyn_table_read_file(path, DYN_TABLE_TIME_FIRST, &table, err, sizeof err);
+    if (read_rc == DYN_ERR_CAPACITY) { /* out of memory: no usage error */
+        fprintf(stderr, "dynkit: error: --forces: %s\n", err);
+        return CLI_FAILED;
+    }
+    if (read_rc)
         return cli_usage_error(command, "--forces: %s", err);
     const int cols = 1 + m->n_inputs;
     int index[16];

@@ -1,5 +1,6 @@
 /* Values of the run options: the time span, --set/--init assignments, tolerances, output
  * times, events and positive numbers; each bad value gets a usage error naming it. */
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -177,6 +178,93 @@ static int push_time(double **times, long *count, long *cap, double t)
     return 0;
 }
 
+/* s with bytes outside printable ASCII escaped as \xNN (a file's bytes never reach the
+ * terminal raw), cut to fit buf; returns buf. */
+static const char *cli_escaped(const char *s, char *buf, size_t size)
+{
+    size_t used = 0;
+    for (; *s && used + 5 < size; s++) {
+        const unsigned char c = (unsigned char)*s;
+        if (c >= 0x20 && c < 0x7f)
+            buf[used++] = (char)c;
+        else
+            used += (size_t)snprintf(buf + used, size - used, "\\x%02X", c);
+    }
+    if (*s && used + 4 <= size) {
+        memcpy(buf + used, "...", 3);
+        used += 3;
+    }
+    buf[used] = '\0';
+    return buf;
+}
+
+/* The longest line of a --times file (a time is a number: far less). */
+#define TIMES_MAX_LINE 65536
+
+/* One line of f (without its LF) into *line (grown as needed). Returns 1 for a line, 0 at
+ * the end, -1 with *why for what is no text file of times: a NUL byte, UTF-16, CR-only line
+ * ends, a line longer than TIMES_MAX_LINE, a read error (a directory), out of memory. */
+static int read_time_line(FILE *f, char **line, const char **why)
+{
+    size_t len = 0;
+    int c;
+    char *buf = *line; /* TIMES_MAX_LINE + 1 bytes once allocated */
+    for (;;) {
+        c = fgetc(f);
+        if (c == EOF || c == '\n')
+            break;
+        if (c == '\0') {
+            const int bom = buf && len >= 2 &&
+                            (((unsigned char)buf[0] == 0xFF && (unsigned char)buf[1] == 0xFE) ||
+                             ((unsigned char)buf[0] == 0xFE && (unsigned char)buf[1] == 0xFF));
+            *why = bom ? "the file is UTF-16 encoded: save it as UTF-8 or ASCII text"
+                       : "a NUL byte: this is no text file (UTF-16 text has them: save it as "
+                         "UTF-8)";
+            return -1;
+        }
+        if (len >= TIMES_MAX_LINE) {
+            *why = "the line is longer than 65536 bytes";
+            return -1;
+        }
+        if (!buf) {
+            buf = malloc(TIMES_MAX_LINE + 1);
+            if (!buf) {
+                *why = "out of memory";
+                return -1;
+            }
+            *line = buf;
+        }
+        buf[len++] = (char)c;
+    }
+    if (c == EOF && ferror(f)) {
+        *why = strerror(errno);
+        return -1;
+    }
+    if (c == EOF && len == 0)
+        return 0;
+    if (!buf) {
+        buf = malloc(TIMES_MAX_LINE + 1);
+        if (!buf) {
+            *why = "out of memory";
+            return -1;
+        }
+        *line = buf;
+    }
+    buf[len] = '\0';
+    if (len >= 2 && (((unsigned char)buf[0] == 0xFF && (unsigned char)buf[1] == 0xFE) ||
+                     ((unsigned char)buf[0] == 0xFE && (unsigned char)buf[1] == 0xFF))) {
+        *why = "the file is UTF-16 encoded: save it as UTF-8 or ASCII text";
+        return -1;
+    }
+    char *cr = memchr(buf, '\r', len);
+    if (cr && cr != buf + len - 1) {
+        *why = "a carriage return inside the line: lines end with CR only (old Mac style); "
+               "save the file with LF or CRLF line ends";
+        return -1;
+    }
+    return 1;
+}
+
 /* --times: "t1,t2,..." or "@FILE" (one time per line; blank lines and lines starting with
  * '#' are skipped). The times must not decrease. */
 int cli_parse_times(const char *command, const char *text, cli_run *run)
@@ -188,31 +276,45 @@ int cli_parse_times(const char *command, const char *text, cli_run *run)
     if (text[0] == '@') {
         FILE *f = fopen(text + 1, "r");
         if (!f)
-            return cli_usage_error(command, "--times: cannot read '%s'", text + 1);
-        char line[256];
+            return cli_usage_error(command, "--times: cannot read '%s': %s", text + 1,
+                                   strerror(errno));
+        char *line = NULL, shown[96];
         long lineno = 0;
-        while (fgets(line, sizeof line, f)) {
+        int rc = CLI_OK, got;
+        const char *why = NULL;
+        while (rc == CLI_OK && (got = read_time_line(f, &line, &why)) == 1) {
             lineno++;
             char *p = line, *e = line + strlen(line);
+            if (lineno == 1 && strncmp(p, "\xEF\xBB\xBF", 3) == 0)
+                p += 3; /* UTF-8 byte order mark */
             while (*p == ' ' || *p == '\t')
                 p++;
-            while (e > p && (e[-1] == '\n' || e[-1] == '\r' || e[-1] == ' ' || e[-1] == '\t'))
+            while (e > p && (e[-1] == '\r' || e[-1] == ' ' || e[-1] == '\t'))
                 *--e = '\0';
             if (!*p || *p == '#')
                 continue;
             double t;
-            if (cli_parse_number(p, &t)) {
-                fclose(f);
-                return cli_usage_error(command,
-                                       "--times: line %ld of %s ('%s') is not a time in s",
-                                       lineno, text + 1, p);
-            }
-            if (push_time(&run->times, &run->n_times, &cap, t)) {
-                fclose(f);
-                return cli_usage_error(command, "out of memory");
+            if (cli_parse_number(p, &t))
+                rc = cli_usage_error(command, "--times: line %ld of %s ('%s') is not a time in s",
+                                     lineno, text + 1, cli_escaped(p, shown, sizeof shown));
+            else if (push_time(&run->times, &run->n_times, &cap, t)) {
+                fprintf(stderr, "dynkit: error: --times %s: out of memory\n", text + 1);
+                rc = CLI_FAILED;
             }
         }
+        if (rc == CLI_OK && got < 0) {
+            if (why && strcmp(why, "out of memory") == 0) {
+                fprintf(stderr, "dynkit: error: --times %s: out of memory\n", text + 1);
+                rc = CLI_FAILED;
+            } else {
+                rc = cli_usage_error(command, "--times: %s, line %ld: %s", text + 1, lineno + 1,
+                                     why ? why : strerror(errno));
+            }
+        }
+        free(line);
         fclose(f);
+        if (rc != CLI_OK)
+            return rc;
     } else {
         const char *p = text;
         while (1) {

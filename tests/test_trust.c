@@ -23,6 +23,7 @@
 
 #include <cmocka.h>
 
+#include "dynkit/io.h"
 #include "dynkit/models.h"
 #include "dynkit/solve.h"
 #include "test_cli_run.h"
@@ -620,6 +621,111 @@ static void test_numbers_states_and_results_checked(void **state)
     cli_free(&r);
 }
 
+/* ---- tables and --times files ---- */
+
+static void test_table_files_of_every_kind(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *name, *bytes;
+        size_t len;
+        const char *expect; /* NULL: accepted */
+    } files[] = {
+        {"bom.csv", "\xEF\xBB\xBFt,Fx,Fy\n0,1,2\n0.04,1,2\n", 0, NULL},
+        {"cr.csv", "t,Fx,Fy\r0,1,2\r0.04,1,2\r", 0, "CR only"},
+        {"u16.csv", "\xFF\xFEt\0,\0F\0x\0", 9, "UTF-16"},
+        {"nul.csv", "t,Fx,Fy\n0,1\0,2\n", 17, "NUL byte"},
+        {"esc.csv", "t,Fx,Fy\n0,\x1B[31mred,2\n", 0, "'\\x1B[31mred' is not a number"},
+        {"dup.csv", "t,Fx,Fy,Fx\n0,1,2,3\n", 0, "'Fx' appears twice"},
+    };
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+        FILE *f = fopen(cli_path(files[i].name), "wb");
+        assert_non_null(f);
+        fwrite(files[i].bytes, 1, files[i].len ? files[i].len : strlen(files[i].bytes), f);
+        fclose(f);
+        cli_result r = cli_in_tmpdir("run cart --forces %s --final", files[i].name);
+        if (files[i].expect)
+            CHECK(r.status == 2 && strstr(r.err, files[i].expect) && !strchr(r.err, 0x1B),
+                  "%s: %d %s", files[i].name, r.status, r.err);
+        else
+            CHECK(r.status == 0, "%s: %d %s", files[i].name, r.status, r.err);
+        cli_free(&r);
+    }
+    mkdir(cli_path("dir.csv"), 0755);
+    cli_result r = cli_in_tmpdir("run cart --forces dir.csv");
+    CHECK(r.status == 2 && strstr(r.err, "Is a directory"), "directory: %d %s", r.status,
+          r.err);
+    cli_free(&r);
+    r = cli("run cart --forces /dev/zero");
+    CHECK(r.status == 2 && strstr(r.err, "NUL byte"), "/dev/zero: %d %s", r.status, r.err);
+    cli_free(&r);
+    /* 150000 columns: the duplicate check is n log n (a quadratic one took 38 s) */
+    FILE *f = fopen(cli_path("wide.csv"), "w");
+    assert_non_null(f);
+    fputs("t", f);
+    for (int k = 0; k < 150000; k++)
+        fprintf(f, ",c%d", k);
+    fputs(",c7\n", f);
+    fclose(f);
+    struct timespec a, b;
+    clock_gettime(CLOCK_MONOTONIC, &a);
+    dyn_table t;
+    char err[256];
+    int rc = dyn_table_read_file(cli_path("wide.csv"), 0, &t, err, sizeof err);
+    clock_gettime(CLOCK_MONOTONIC, &b);
+    const double secs = (double)(b.tv_sec - a.tv_sec) + 1e-9 * (double)(b.tv_nsec - a.tv_nsec);
+    CHECK(rc == DYN_ERR_ARG && strstr(err, "'c7' appears twice") && secs < 2.0,
+          "150001 columns: rc %d in %.2f s: %s", rc, secs, err);
+}
+
+static void test_times_files_of_every_kind(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *name, *bytes;
+        size_t len;
+        const char *expect;
+    } files[] = {
+        {"t_bom.txt", "\xEF\xBB\xBF" "0\n0.5\n", 0, NULL},
+        {"t_cr.txt", "0\r0.5\r", 0, "CR only"},
+        {"t_u16.txt", "\xFF\xFE" "0\0\n\0", 6, "UTF-16"},
+        {"t_nul.txt", "0\n0.\0" "5\n", 7, "NUL byte"},
+        {"t_esc.txt", "0\n\x1B[2J\n", 0, "\\x1B[2J"},
+    };
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+        FILE *f = fopen(cli_path(files[i].name), "wb");
+        assert_non_null(f);
+        fwrite(files[i].bytes, 1, files[i].len ? files[i].len : strlen(files[i].bytes), f);
+        fclose(f);
+        cli_result r = cli_in_tmpdir("run pendulum --method dp45 --times @%s", files[i].name);
+        if (files[i].expect)
+            CHECK(r.status == 2 && strstr(r.err, files[i].expect) && !strchr(r.err, 0x1B),
+                  "%s: %d %s", files[i].name, r.status, r.err);
+        else
+            CHECK(r.status == 0, "%s: %d %s", files[i].name, r.status, r.err);
+        cli_free(&r);
+    }
+    /* a line of 300 digits is one time, not two */
+    FILE *f = fopen(cli_path("t_long.txt"), "w");
+    assert_non_null(f);
+    fputs("0.", f);
+    for (int k = 0; k < 300; k++)
+        fputc('0', f);
+    fputs("1\n0.5\n", f);
+    fclose(f);
+    cli_result r = cli_in_tmpdir("run pendulum --method dp45 --times @t_long.txt");
+    CHECK(r.status == 0 && valid_csv_rows(r.out, 3) == 2, "long line: %d %s %s", r.status,
+          r.out, r.err);
+    cli_free(&r);
+    r = cli("run pendulum --method dp45 --times @/dev/zero");
+    CHECK(r.status == 2 && strstr(r.err, "NUL byte"), "/dev/zero: %d %s", r.status, r.err);
+    cli_free(&r);
+    mkdir(cli_path("tdir"), 0755);
+    r = cli_in_tmpdir("run pendulum --method dp45 --times @tdir");
+    CHECK(r.status == 2 && strstr(r.err, "Is a directory"), "directory: %d %s", r.status, r.err);
+    cli_free(&r);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -639,6 +745,8 @@ int main(void)
         cmocka_unit_test(test_info_numbers_events_columns),
         cmocka_unit_test(test_view_commands_take_what_they_list),
         cmocka_unit_test(test_numbers_states_and_results_checked),
+        cmocka_unit_test(test_table_files_of_every_kind),
+        cmocka_unit_test(test_times_files_of_every_kind),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

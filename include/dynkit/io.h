@@ -37,13 +37,20 @@ enum {
     DYN_TABLE_TIME_FIRST = 1 /* column 0 is time: it must increase strictly */
 };
 
+/* Limits of dyn_table_read: bytes of one line, numbers of one table. */
+#define DYN_TABLE_MAX_LINE (16 * 1024 * 1024)
+#define DYN_TABLE_MAX_CELLS 100000000L
+
 /* Read CSV from in: a header line of comma-separated names, then rows of as many finite
  * numbers (strtod syntax; blanks around fields, blank lines, lines starting with '#' and
  * CRLF endings are accepted). source names the input in messages (e.g. the file name).
  * On success returns DYN_OK and fills table (zeroed first). On failure returns DYN_ERR_ARG
  * (bad content: empty input, no data rows, empty or duplicate column name, a field that is
- * not a finite number, a wrong number of fields, time not increasing) or DYN_ERR_IO (read
- * error, out of memory), with "SOURCE:LINE: what is wrong" in err, and table left empty. */
+ * not a finite number, a wrong number of fields, time not increasing, a NUL byte, a UTF-16
+ * file, CR-only line ends, a line longer than DYN_TABLE_MAX_LINE, more than
+ * DYN_TABLE_MAX_CELLS numbers), DYN_ERR_IO (read error, e.g. a directory) or
+ * DYN_ERR_CAPACITY (out of memory), with "SOURCE:LINE: what is wrong" in err (bytes of the
+ * input escaped as \xNN), and table left empty. A UTF-8 byte order mark is skipped. */
 int dyn_table_read(FILE *in, const char *source, unsigned flags, dyn_table *table, char *err,
                    size_t errlen);
 /* dyn_table_read on the file at path (opened and closed here); a file that cannot be opened

@@ -2,7 +2,11 @@
  * numbers, into a caller-freed dyn_table; errors name the source, the line and the field.
  * The format is the plain subset of RFC 4180 that dynkit writes (no quoted fields, except
  * that a header name may be enclosed in double quotes); numbers follow C's strtod.
- * Lines are read with fgetc into a growing buffer, so any line length works in plain C11.
+ * Lines are read with fgetc into a growing buffer, so any line length works in plain C11,
+ * up to DYN_TABLE_MAX_LINE bytes; a table holds at most DYN_TABLE_MAX_CELLS numbers. A UTF-8
+ * byte order mark (Excel's "CSV UTF-8") is skipped; UTF-16 files, CR-only line ends and NUL
+ * bytes are refused with their own messages; bytes of the input are escaped (\xNN) when a
+ * message quotes them; duplicate column names are found by sorting (n log n).
  */
 #include <ctype.h>
 #include <errno.h>
@@ -19,10 +23,15 @@ typedef struct line_reader {
     char *buf;
     size_t cap;
     long number; /* 1-based number of the line in buf */
+    int why;     /* after -1: LINE_* */
+    int read_errno;
 } line_reader;
 
+enum { LINE_IO = 1, LINE_MEMORY, LINE_NUL, LINE_LONG, LINE_UTF16, LINE_CR };
+
 /* Read the next line into r->buf without its end of line (LF or CRLF). Returns 1 for a
- * line, 0 at the end of the input, -1 for a read error or no memory. */
+ * line, 0 at the end of the input, -1 for a read error, no memory or bytes that are no
+ * text (r->why says which). */
 static int next_line(line_reader *r)
 {
     size_t len = 0;
@@ -31,29 +40,86 @@ static int next_line(line_reader *r)
         c = fgetc(r->in);
         if (c == EOF || c == '\n')
             break;
+        if (c == '\0') {
+            r->why = r->number == 0 && len >= 2 &&
+                             (((unsigned char)r->buf[0] == 0xFF && (unsigned char)r->buf[1] == 0xFE) ||
+                              ((unsigned char)r->buf[0] == 0xFE && (unsigned char)r->buf[1] == 0xFF))
+                         ? LINE_UTF16
+                         : LINE_NUL;
+            r->number++;
+            return -1;
+        }
+        if (len >= DYN_TABLE_MAX_LINE) {
+            r->why = LINE_LONG;
+            r->number++;
+            return -1;
+        }
         if (len + 2 > r->cap) {
             size_t cap = r->cap ? 2 * r->cap : 256;
             char *grown = realloc(r->buf, cap);
-            if (!grown)
+            if (!grown) {
+                r->why = LINE_MEMORY;
                 return -1;
+            }
             r->buf = grown;
             r->cap = cap;
         }
         r->buf[len++] = (char)c;
     }
-    if (c == EOF && (ferror(r->in) || len == 0))
-        return ferror(r->in) ? -1 : 0;
+    if (c == EOF && ferror(r->in)) {
+        r->why = LINE_IO;
+        r->read_errno = errno;
+        return -1;
+    }
+    if (c == EOF && len == 0)
+        return 0;
     if (!r->buf) { /* an empty line before any allocation */
         r->buf = malloc(256);
-        if (!r->buf)
+        if (!r->buf) {
+            r->why = LINE_MEMORY;
             return -1;
+        }
         r->cap = 256;
     }
     if (len > 0 && r->buf[len - 1] == '\r')
         len--;
     r->buf[len] = '\0';
     r->number++;
+    if (r->number == 1 && len >= 2 &&
+        (((unsigned char)r->buf[0] == 0xFF && (unsigned char)r->buf[1] == 0xFE) ||
+         ((unsigned char)r->buf[0] == 0xFE && (unsigned char)r->buf[1] == 0xFF))) {
+        r->why = LINE_UTF16;
+        return -1;
+    }
+    if (r->number == 1 && len >= 3 && memcmp(r->buf, "\xEF\xBB\xBF", 3) == 0)
+        memmove(r->buf, r->buf + 3, len - 2); /* UTF-8 byte order mark */
+    if (memchr(r->buf, '\r', len)) {
+        r->why = LINE_CR;
+        return -1;
+    }
     return 1;
+}
+
+/* Why next_line failed, as "SOURCE:LINE: ..." into err; returns the status. */
+static int line_error(const line_reader *r, const char *src, char *err, size_t errlen);
+
+/* s with bytes outside printable ASCII escaped as \xNN, cut to fit buf; returns buf. */
+static const char *escaped(const char *s, char *buf, size_t size)
+{
+    size_t used = 0;
+    for (; *s && used + 5 < size; s++) {
+        const unsigned char c = (unsigned char)*s;
+        if (c >= 0x20 && c < 0x7f)
+            buf[used++] = (char)c;
+        else
+            used += (size_t)snprintf(buf + used, size - used, "\\x%02X", c);
+    }
+    if (*s && used + 4 <= size) {
+        memcpy(buf + used, "...", 3);
+        used += 3;
+    }
+    buf[used] = '\0';
+    return buf;
 }
 
 /* Trim blanks at both ends in place; returns the start. */
@@ -76,6 +142,11 @@ static int skip_line(const char *s)
 }
 
 static void set_err(char *err, size_t errlen, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+static void set_err(char *err, size_t errlen, const char *fmt, ...)
 {
     va_list ap;
     if (!err || !errlen)
@@ -83,6 +154,42 @@ static void set_err(char *err, size_t errlen, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(err, errlen, fmt, ap);
     va_end(ap);
+}
+
+static int line_error(const line_reader *r, const char *src, char *err, size_t errlen)
+{
+    switch (r->why) {
+    case LINE_NUL:
+        set_err(err, errlen, "%s:%ld: a NUL byte: this is no text file (CSV; UTF-16 text has them: save it as "
+                "UTF-8)", src, r->number);
+        return DYN_ERR_ARG;
+    case LINE_LONG:
+        set_err(err, errlen, "%s:%ld: the line is longer than %d bytes", src, r->number,
+                DYN_TABLE_MAX_LINE);
+        return DYN_ERR_ARG;
+    case LINE_UTF16:
+        set_err(err, errlen,
+                "%s: the file is UTF-16 encoded: save it as UTF-8 or ASCII text (CSV)", src);
+        return DYN_ERR_ARG;
+    case LINE_CR:
+        set_err(err, errlen,
+                "%s:%ld: a carriage return inside the line: lines end with CR only (old Mac "
+                "style); save the file with LF or CRLF line ends",
+                src, r->number);
+        return DYN_ERR_ARG;
+    case LINE_MEMORY:
+        set_err(err, errlen, "%s:%ld: out of memory", src, r->number + 1);
+        return DYN_ERR_CAPACITY;
+    default:
+        set_err(err, errlen, "%s: cannot read: %s", src,
+                r->read_errno ? strerror(r->read_errno) : "a read error");
+        return DYN_ERR_IO;
+    }
+}
+
+static int compare_names(const void *a, const void *b)
+{
+    return strcmp(*(char *const *)a, *(char *const *)b);
 }
 
 /* Count the comma-separated fields of s. */
@@ -122,7 +229,7 @@ static int read_header(dyn_table *table, char *line, const char *src, long linen
     table->names = calloc((size_t)cols, sizeof *table->names);
     if (!table->names) {
         set_err(err, errlen, "%s: out of memory", src);
-        return DYN_ERR_IO;
+        return DYN_ERR_CAPACITY;
     }
     table->cols = cols;
     char *field = line;
@@ -141,22 +248,31 @@ static int read_header(dyn_table *table, char *line, const char *src, long linen
                     i + 1);
             return DYN_ERR_ARG;
         }
-        int seen = 0;
-        for (int j = 0; j < i && !seen; j++)
-            seen = strcmp(table->names[j], name) == 0;
-        if (seen) {
-            set_err(err, errlen, "%s:%ld: column name '%s' appears twice in the header", src,
-                    lineno, name);
-            return DYN_ERR_ARG;
-        }
         table->names[i] = malloc(strlen(name) + 1);
         if (!table->names[i]) {
             set_err(err, errlen, "%s: out of memory", src);
-            return DYN_ERR_IO;
+            return DYN_ERR_CAPACITY;
         }
         strcpy(table->names[i], name);
         field = comma ? comma + 1 : field + strlen(field);
     }
+    /* a name twice: sorted, equal names are neighbours */
+    char **sorted = malloc((size_t)cols * sizeof *sorted);
+    if (!sorted) {
+        set_err(err, errlen, "%s: out of memory", src);
+        return DYN_ERR_CAPACITY;
+    }
+    memcpy(sorted, table->names, (size_t)cols * sizeof *sorted);
+    qsort(sorted, (size_t)cols, sizeof *sorted, compare_names);
+    for (int i = 1; i < cols; i++)
+        if (strcmp(sorted[i - 1], sorted[i]) == 0) {
+            char name[128];
+            set_err(err, errlen, "%s:%ld: column name '%s' appears twice in the header", src,
+                    lineno, escaped(sorted[i], name, sizeof name));
+            free(sorted);
+            return DYN_ERR_ARG;
+        }
+    free(sorted);
     return DYN_OK;
 }
 
@@ -182,14 +298,17 @@ static int read_row(const dyn_table *table, char *line, double *row, const char 
             return DYN_ERR_ARG;
         }
         double v = strtod(text, &end);
+        char shown[96], name[96];
         if (end == text || *end != '\0') {
             set_err(err, errlen, "%s:%ld: field %d (%s) '%s' is not a number", src, lineno,
-                    i + 1, table->names[i], text);
+                    i + 1, escaped(table->names[i], name, sizeof name),
+                    escaped(text, shown, sizeof shown));
             return DYN_ERR_ARG;
         }
         if (!isfinite(v)) {
             set_err(err, errlen, "%s:%ld: field %d (%s) '%s' is not a finite number", src,
-                    lineno, i + 1, table->names[i], text);
+                    lineno, i + 1, escaped(table->names[i], name, sizeof name),
+                    escaped(text, shown, sizeof shown));
             return DYN_ERR_ARG;
         }
         row[i] = v;
@@ -202,7 +321,7 @@ int dyn_table_read(FILE *in, const char *source, unsigned flags, dyn_table *tabl
                    size_t errlen)
 {
     const char *src = source ? source : "input";
-    line_reader r = {in, NULL, 0, 0};
+    line_reader r = {in, NULL, 0, 0, 0, 0};
     size_t cap_rows = 0;
     int got, rc = DYN_OK;
     memset(table, 0, sizeof *table);
@@ -212,11 +331,11 @@ int dyn_table_read(FILE *in, const char *source, unsigned flags, dyn_table *tabl
     }
     if (got <= 0) {
         if (got < 0)
-            set_err(err, errlen, "%s: read error or out of memory", src);
+            rc = line_error(&r, src, err, errlen);
         else
             set_err(err, errlen, "%s: empty: no header line (expected e.g. t,Fx,Fy)", src);
         free(r.buf);
-        return got < 0 ? DYN_ERR_IO : DYN_ERR_ARG;
+        return got < 0 ? rc : DYN_ERR_ARG;
     }
     long header_line = r.number;
     rc = read_header(table, r.buf, src, header_line, err, errlen);
@@ -227,10 +346,18 @@ int dyn_table_read(FILE *in, const char *source, unsigned flags, dyn_table *tabl
             continue;
         if ((size_t)table->rows == cap_rows) {
             size_t cap = cap_rows ? 2 * cap_rows : 64;
+            if ((double)cap * table->cols > (double)DYN_TABLE_MAX_CELLS)
+                cap = (size_t)(DYN_TABLE_MAX_CELLS / table->cols);
+            if (cap <= cap_rows) {
+                set_err(err, errlen, "%s:%ld: more than %g numbers: the table is too large",
+                        src, r.number, (double)DYN_TABLE_MAX_CELLS);
+                rc = DYN_ERR_ARG;
+                break;
+            }
             double *grown = realloc(table->data, cap * (size_t)table->cols * sizeof *grown);
             if (!grown) {
                 set_err(err, errlen, "%s: out of memory", src);
-                rc = DYN_ERR_IO;
+                rc = DYN_ERR_CAPACITY;
                 break;
             }
             table->data = grown;
@@ -252,10 +379,8 @@ int dyn_table_read(FILE *in, const char *source, unsigned flags, dyn_table *tabl
         prev_line = r.number;
         table->rows++;
     }
-    if (rc == DYN_OK && got < 0) {
-        set_err(err, errlen, "%s:%ld: read error or out of memory", src, r.number + 1);
-        rc = DYN_ERR_IO;
-    }
+    if (rc == DYN_OK && got < 0)
+        rc = line_error(&r, src, err, errlen);
     if (rc == DYN_OK && table->rows == 0) {
         set_err(err, errlen, "%s:%ld: no data rows after the header", src, header_line);
         rc = DYN_ERR_ARG;

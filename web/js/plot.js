@@ -369,16 +369,11 @@
       const avail = this.w - 16;
       let ws = widths;
       if (Math.max(...ws) + 44 > avail) { this.noValues = true; ws = items.map(s => ctx.measureText(s.label).width); }
+      /* in columns of the widest item, so that plots of the same runs line up */
       const top = this.o.title ? 26 : 6;
-      const rows = [];
-      let x = 0, row = 0;
-      ws.forEach(tw => {
-        const iw = Math.min(tw + 44, avail);
-        if (x > 0 && x + iw > avail) { x = 0; row++; }
-        rows.push([x + 36, 10 + 17 * row]);
-        x += iw;
-      });
-      const h = 4 + 17 * (row + 1);
+      const iw = Math.min(Math.max(...ws) + 44, avail), cols = Math.max(1, Math.floor(avail / iw));
+      const rows = ws.map((_, i) => [(i % cols) * iw + 36, 10 + 17 * Math.floor(i / cols)]);
+      const h = 4 + 17 * Math.ceil(ws.length / cols);
       this.legendBox = { x: 8, y: top, w: avail, h, corner: 'above', rows };
       this.m.t = top + h + 6;
       this.h += this.m.t - this.m0.t;

@@ -65,9 +65,9 @@ int cli_out_open(cli_out *o, const char *what, const char *path)
     dir_of(target, dir, sizeof dir);
     struct stat dst;
     if (stat(dir, &dst) != 0 || !S_ISDIR(dst.st_mode)) {
-        fprintf(stderr, "dynkit: error: cannot write %s '%s': the directory '%s' %s\n", what,
-                path, dir, errno == ENOENT || stat(dir, &dst) != 0 ? "does not exist"
-                                                                 : "is not a directory");
+        fprintf(stderr, "dynkit: error: cannot write %s '%s': the directory '%s' %s\n", what, path,
+                dir,
+                errno == ENOENT || stat(dir, &dst) != 0 ? "does not exist" : "is not a directory");
         return CLI_FAILED;
     }
     size_t len = strlen(target) + 16;
@@ -84,8 +84,7 @@ int cli_out_open(cli_out *o, const char *what, const char *path)
     snprintf(o->tmp, len, "%s.tmpXXXXXX", target);
     int fd = mkstemp(o->tmp);
     if (fd < 0) {
-        fprintf(stderr, "dynkit: error: cannot write %s '%s': %s\n", what, path,
-                strerror(errno));
+        fprintf(stderr, "dynkit: error: cannot write %s '%s': %s\n", what, path, strerror(errno));
         free(o->tmp);
         free(o->target);
         o->tmp = o->target = NULL;
@@ -102,8 +101,7 @@ int cli_out_open(cli_out *o, const char *what, const char *path)
     }
     (void)fchmod(fd, mode);
     if (!(o->f = fdopen(fd, "w"))) {
-        fprintf(stderr, "dynkit: error: cannot write %s '%s': %s\n", what, path,
-                strerror(errno));
+        fprintf(stderr, "dynkit: error: cannot write %s '%s': %s\n", what, path, strerror(errno));
         close(fd);
         unlink(o->tmp);
         free(o->tmp);
@@ -225,6 +223,7 @@ int cli_signal_status(void) { return cli_stop_signal ? 128 + cli_stop_signal : 0
 
 const char *cli_signal_name(void)
 {
-    return cli_stop_signal == SIGINT ? "SIGINT" : cli_stop_signal == SIGTERM ? "SIGTERM"
-                                                                              : "a signal";
+    return cli_stop_signal == SIGINT    ? "SIGINT"
+           : cli_stop_signal == SIGTERM ? "SIGTERM"
+                                        : "a signal";
 }

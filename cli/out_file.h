@@ -11,10 +11,10 @@
  * the file itself (devices, pipes), or stdout (no path, or "-"). */
 typedef struct cli_out {
     FILE *f;
-    const char *what;  /* the option, e.g. "--output" */
-    const char *path;  /* the name given, NULL for stdout */
-    char *target;      /* the file renamed over (symbolic links followed), owned */
-    char *tmp;         /* the temporary name, owned, or NULL when written in place */
+    const char *what; /* the option, e.g. "--output" */
+    const char *path; /* the name given, NULL for stdout */
+    char *target;     /* the file renamed over (symbolic links followed), owned */
+    char *tmp;        /* the temporary name, owned, or NULL when written in place */
 } cli_out;
 
 /* Open path for writing (NULL or "-": stdout). A directory, a missing directory or a place

@@ -94,8 +94,8 @@ static void test_late_errors_keep_the_output_file(void **state)
         write_text("p1.csv", "x\n");
         cli_result r = cli_in_tmpdir("%s", late[i]);
         CHECK(r.status != 0 && file_is("p1.csv", "x\n") && leftovers() == 0,
-              "%s: exit %d, p1.csv changed or a file left beside it; stderr: %s", late[i],
-              r.status, r.err);
+              "%s: exit %d, p1.csv changed or a file left beside it; stderr: %s", late[i], r.status,
+              r.err);
         cli_free(&r);
     }
     /* the same file twice is refused with a message */
@@ -140,8 +140,8 @@ static void test_bad_output_paths_name_the_file(void **state)
     mkdir(cli_path("dir.csv"), 0755);
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         cli_result r = cli_in_tmpdir("%s", bad[i].args);
-        CHECK(r.status == 1 && strstr(r.err, bad[i].expect), "%s: exit %d, stderr %s",
-              bad[i].args, r.status, r.err);
+        CHECK(r.status == 1 && strstr(r.err, bad[i].expect), "%s: exit %d, stderr %s", bad[i].args,
+              r.status, r.err);
         cli_free(&r);
     }
 }
@@ -150,8 +150,9 @@ static void test_stdout_failures_are_reported(void **state)
 {
     (void)state;
     static const char *const commands[] = {
-        "models", "methods", "info pendulum", "--help", "--version", "run --help",
-        "run pendulum", "verify --quick --problem oscillator", "inverse cart",
+        "models",       "methods",    "info pendulum", "--help",
+        "--version",    "run --help", "run pendulum",  "verify --quick --problem oscillator",
+        "inverse cart",
     };
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++) {
         char cmd[1024];
@@ -180,8 +181,8 @@ static void test_closed_pipe_ends_quietly(void **state)
         char *err = cli_read_file(cli_path("err"), NULL);
         CHECK(w != -1 && err[0] == '\0', "%s| head -1: stderr '%s'", how[i], err);
         free(err);
-        snprintf(cmd, sizeof cmd, "%s'%s' methods 2>'%s' | head -1 >/dev/null", how[i],
-                 DYNKIT_CLI, cli_path("err"));
+        snprintf(cmd, sizeof cmd, "%s'%s' methods 2>'%s' | head -1 >/dev/null", how[i], DYNKIT_CLI,
+                 cli_path("err"));
         w = system(cmd);
         err = cli_read_file(cli_path("err"), NULL);
         CHECK(w != -1 && err[0] == '\0', "%smethods | head -1: stderr '%s'", how[i], err);
@@ -198,8 +199,7 @@ static pid_t start(const char *out, const char *const *args)
     if (pid == 0) {
         signal(SIGINT, SIG_DFL);
         signal(SIGTERM, SIG_DFL);
-        if (chdir(cli_tmpdir) != 0 || !freopen(out, "w", stdout) ||
-            !freopen("err", "w", stderr))
+        if (chdir(cli_tmpdir) != 0 || !freopen(out, "w", stdout) || !freopen("err", "w", stderr))
             _exit(99);
         char *argv[32];
         int n = 0;
@@ -242,9 +242,9 @@ static void test_signals_leave_complete_rows(void **state)
     static const int sigs[] = {SIGINT, SIGTERM};
     for (int s = 0; s < 2; s++) {
         for (int to_file = 0; to_file < 2; to_file++) {
-            const char *const args_file[] = {"run",    "pendulum", "--method", "rk4", "--step",
-                                             "1e-7",   "--tspan",  "0:1000",   "--output",
-                                             "sig.csv", NULL};
+            const char *const args_file[] = {"run",      "pendulum", "--method", "rk4",
+                                             "--step",   "1e-7",     "--tspan",  "0:1000",
+                                             "--output", "sig.csv",  NULL};
             const char *const args_out[] = {"run",  "pendulum", "--method", "rk4", "--step",
                                             "1e-7", "--tspan",  "0:1000",   NULL};
             unlink(cli_path("sig.csv"));
@@ -268,8 +268,7 @@ static void test_signals_leave_complete_rows(void **state)
             CHECK(WIFEXITED(w) && WEXITSTATUS(w) == 128 + sigs[s] && rows > 1 &&
                       strncmp(text, "t,phi,dphi\n0,0,", 15) == 0,
                   "signal %d, %s: status %d, %ld valid rows, stderr %s", sigs[s],
-                  to_file ? "--output" : "stdout", WIFEXITED(w) ? WEXITSTATUS(w) : -1, rows,
-                  err);
+                  to_file ? "--output" : "stdout", WIFEXITED(w) ? WEXITSTATUS(w) : -1, rows, err);
             free(text);
             free(err);
         }
@@ -289,14 +288,12 @@ static void test_step_larger_than_span_reaches_t1(void **state)
     const double y0[2] = {2.0, 0.0};
     double y[2], work[TEST_WORK];
     dyn_result res;
-    assert_int_equal(dyn_fixed_solve(rk4, &sys, 0.0, 1.0, 1e300, y0, y, work, NULL, &res),
-                     DYN_OK);
+    assert_int_equal(dyn_fixed_solve(rk4, &sys, 0.0, 1.0, 1e300, y0, y, work, NULL, &res), DYN_OK);
     CHECK(res.t == 1.0 && res.stats.steps == 1 && y[0] != y0[0], "h = 1e300: t %g, %ld steps",
           res.t, res.stats.steps);
     dyn_grid g;
     assert_int_equal(dyn_grid_plan(0.0, 1e-13, 0.01, DYN_END_EXACT, &g, NULL, 0), DYN_OK);
-    CHECK(g.samples == 2 && dyn_grid_time(&g, 1) == 1e-13, "span 1e-13: %ld samples",
-          g.samples);
+    CHECK(g.samples == 2 && dyn_grid_time(&g, 1) == 1e-13, "span 1e-13: %ld samples", g.samples);
 
     cli_result r = cli("run pendulum --step 1e300 --tspan 0:1 --method rk4 --final");
     CHECK(r.status == 0 && strncmp(r.out, "t,phi,dphi\n1,", 13) == 0, "step 1e300: %d %s %s",
@@ -318,8 +315,8 @@ static void test_failed_thinned_run_keeps_last_good_sample(void **state)
     cli_result r =
         cli("run vanderpol --set mu=1e6 --method euler --step 0.1 --tspan 0:15 --every 1000");
     /* the run fails at t = 0.8; its last good sample, t = 0.7, is the last row */
-    CHECK(r.status == 1 && strstr(r.out, "\n0.70000000000000007,"), "exit %d, out %s",
-          r.status, r.out);
+    CHECK(r.status == 1 && strstr(r.out, "\n0.70000000000000007,"), "exit %d, out %s", r.status,
+          r.out);
     cli_free(&r);
 }
 
@@ -352,8 +349,8 @@ static void test_tolerances_below_rounding_are_raised(void **state)
         dyn_result res;
         int rc = dyn_solve(methods[i], &sys, 0.0, 10.0, y0, y, work, &o, &res);
         CHECK(rc == DYN_OK && res.rtol_raised && res.t == 10.0 && res.stats.steps < 100000,
-              "%s at rtol %g: status %d (%s), raised %d, %ld steps", methods[i]->name, o.rtol,
-              rc, res.message, res.rtol_raised, res.stats.steps);
+              "%s at rtol %g: status %d (%s), raised %d, %ld steps", methods[i]->name, o.rtol, rc,
+              res.message, res.rtol_raised, res.stats.steps);
         free(work);
         free(iwork);
     }
@@ -386,8 +383,8 @@ static void test_step_size_underflow_near_zero(void **state)
     int rc = dyn_solve(dp45, &sys, 0.0, 1.0, y0, y, work, &o, &res);
     /* h falls by about 1.4 a rejection from 1e-6: the limit 16 eps^3 of the span (1e-30) is
      * reached after some 180 rejections (before: at h ~ 1e-323, after some 2300) */
-    CHECK(rc == DYN_ERR_STEP_SIZE && res.stats.rejected < 400, "status %d, %ld rejected: %s",
-          rc, res.stats.rejected, res.message);
+    CHECK(rc == DYN_ERR_STEP_SIZE && res.stats.rejected < 400, "status %d, %ld rejected: %s", rc,
+          res.stats.rejected, res.message);
 }
 
 static void test_adaptive_runs_have_a_step_limit(void **state)
@@ -398,8 +395,8 @@ static void test_adaptive_runs_have_a_step_limit(void **state)
           "default limit: %d %s", r.status, r.err);
     cli_free(&r);
     r = cli("run pendulum --method dp45 --tspan 0:100 --max-steps 50 --final");
-    CHECK(r.status == 1 && strstr(r.err, "limit of 50 steps"), "--max-steps 50: %d %s",
-          r.status, r.err);
+    CHECK(r.status == 1 && strstr(r.err, "limit of 50 steps"), "--max-steps 50: %d %s", r.status,
+          r.err);
     cli_free(&r);
 }
 
@@ -409,8 +406,7 @@ static void test_default_runs_are_accurate_for_any_span(void **state)
 {
     (void)state;
     /* the README's line: energy 0.6 J stays 0.6 J (one Euler step of 0.2 s made it 144 J) */
-    cli_result r =
-        cli("run pendulum --set l=1 --init dphi=pi/4 --tspan 0:10 --outputs --every 10");
+    cli_result r = cli("run pendulum --set l=1 --init dphi=pi/4 --tspan 0:10 --outputs --every 10");
     assert_int_equal(r.status, 0);
     const char *p = strchr(r.out, '\n');
     long rows = 0;
@@ -458,8 +454,7 @@ static void test_robertson_stays_in_its_domain(void **state)
     /* tolerances that let it leave the domain give a warning */
     r = cli("run robertson --method %s --tspan 0:1e11 --rtol 1e-3 --atol 1e-6 --final",
             cvode ? "cvode" : "bs23 --max-steps 100000");
-    CHECK(!cvode || strstr(r.err, "concentration is negative"), "loose cvode: %s %s", r.out,
-          r.err);
+    CHECK(!cvode || strstr(r.err, "concentration is negative"), "loose cvode: %s %s", r.out, r.err);
     cli_free(&r);
 }
 
@@ -492,15 +487,14 @@ static void test_info_numbers_events_columns(void **state)
         for (int k = 0; k < m->n_params; k++) {
             char got[64], shorter[64];
             const double v = m->params[k].value;
-            CHECK(info_default(r.out, m->params[k].name, got, sizeof got) &&
-                      strtod(got, NULL) == v,
+            CHECK(info_default(r.out, m->params[k].name, got, sizeof got) && strtod(got, NULL) == v,
                   "info %s: %s printed '%s', value %.17g", m->name, m->params[k].name,
                   info_default(r.out, m->params[k].name, got, sizeof got), v);
             for (int p = 1; p <= 17; p++) {
                 snprintf(shorter, sizeof shorter, "%.*g", p, v);
                 CHECK(!(strtod(shorter, NULL) == v && strlen(shorter) < strlen(got)),
-                      "info %s: %s printed '%s', '%s' is shorter", m->name,
-                      m->params[k].name, got, shorter);
+                      "info %s: %s printed '%s', '%s' is shorter", m->name, m->params[k].name, got,
+                      shorter);
             }
         }
         /* events: name, direction, terminal, description */
@@ -508,11 +502,10 @@ static void test_info_numbers_events_columns(void **state)
             char key[64];
             snprintf(key, sizeof key, "\n  %s ", m->events[k].name);
             const char *line = strstr(r.out, key);
-            CHECK(line && strstr(line, m->events[k].description), "info %s lacks event %s",
-                  m->name, m->events[k].name);
+            CHECK(line && strstr(line, m->events[k].description), "info %s lacks event %s", m->name,
+                  m->events[k].name);
         }
-        CHECK(strstr(r.out, "--rtol ") && strstr(r.out, "--atol "), "info %s: tolerances",
-              m->name);
+        CHECK(strstr(r.out, "--rtol ") && strstr(r.out, "--atol "), "info %s: tolerances", m->name);
         cli_free(&r);
     }
     cli_result r = cli("info hires");
@@ -542,9 +535,9 @@ static void test_view_commands_take_what_they_list(void **state)
 {
     (void)state;
     static const char *const commands[] = {"animate", "plot"};
-    static const char *const not_theirs[] = {"--final", "--trace", "--stats", "--events-output",
-                                             "--header", "--outputs", "write the CSV",
-                                             "instead of standard output"};
+    static const char *const not_theirs[] = {
+        "--final",  "--trace",   "--stats",       "--events-output",
+        "--header", "--outputs", "write the CSV", "instead of standard output"};
     for (int c = 0; c < 2; c++) {
         cli_result r = cli("%s --help", commands[c]);
         assert_int_equal(r.status, 0);
@@ -558,18 +551,17 @@ static void test_view_commands_take_what_they_list(void **state)
         static const char *const refused[] = {"--final", "--trace 1", "--stats",
                                               "--event turn --events-output e.csv", "--outputs"};
         for (size_t k = 0; k < sizeof refused / sizeof refused[0]; k++) {
-            r = cli("%s pendulum %s %s --output '%s'", commands[c], c ? "--y phi" : "",
-                    refused[k], cli_path(c ? "view.svg" : "view.html"));
-            CHECK(r.status == 2 && strstr(r.err, "not"), "%s %s: %d %s", commands[c],
-                  refused[k], r.status, r.err);
+            r = cli("%s pendulum %s %s --output '%s'", commands[c], c ? "--y phi" : "", refused[k],
+                    cli_path(c ? "view.svg" : "view.html"));
+            CHECK(r.status == 2 && strstr(r.err, "not"), "%s %s: %d %s", commands[c], refused[k],
+                  r.status, r.err);
             cli_free(&r);
         }
     }
     /* what it lists works: --every thins, --event NAME:stop ends the run at the event */
     cli_result r = cli("plot pendulum --y phi --every 10");
     cli_result full = cli("plot pendulum --y phi");
-    CHECK(r.status == 0 && strlen(r.out) < strlen(full.out), "--every 10: %d %s", r.status,
-          r.err);
+    CHECK(r.status == 0 && strlen(r.out) < strlen(full.out), "--every 10: %d %s", r.status, r.err);
     cli_free(&r);
     cli_free(&full);
     r = cli("plot pendulum --y phi --event turn:stop");
@@ -583,8 +575,8 @@ static void test_numbers_states_and_results_checked(void **state)
 {
     (void)state;
     /* one rule for numbers and expressions: what cannot be a double is refused */
-    static const char *const refused[] = {"inf", "1/inf", "1e400", "1/1e400", "1e-400",
-                                          "1e-300/1e300", "nan", "1/0", "pi/inf"};
+    static const char *const refused[] = {"inf",          "1/inf", "1e400", "1/1e400", "1e-400",
+                                          "1e-300/1e300", "nan",   "1/0",   "pi/inf"};
     for (size_t i = 0; i < sizeof refused / sizeof refused[0]; i++) {
         cli_result r = cli("run pendulum --init phi=%s --final", refused[i]);
         CHECK(r.status == 2, "--init phi=%s: exit %d", refused[i], r.status);
@@ -592,8 +584,8 @@ static void test_numbers_states_and_results_checked(void **state)
     }
     /* subnormal numbers are finite numbers > 0: accepted */
     cli_result r = cli("run pendulum --init phi=1e-310 --method rk4 --step 0.1 --tspan 0:0.1");
-    CHECK(r.status == 0 && strstr(r.out, "\n0,9.9999999999999694e-311,"), "subnormal: %d %s %s", r.status,
-          r.out, r.err);
+    CHECK(r.status == 0 && strstr(r.out, "\n0,9.9999999999999694e-311,"), "subnormal: %d %s %s",
+          r.status, r.out, r.err);
     cli_free(&r);
     /* plane --set k=0: the default sZ = l0 + m g/k is infinite, named */
     r = cli("run plane --set k=0 --final");
@@ -604,8 +596,7 @@ static void test_numbers_states_and_results_checked(void **state)
     cli_free(&r);
     /* a zero quaternion, named */
     r = cli("run plane-quat --init qw=0 --final");
-    CHECK(r.status == 2 && strstr(r.err, "quaternion"), "zero quaternion: %d %s", r.status,
-          r.err);
+    CHECK(r.status == 2 && strstr(r.err, "quaternion"), "zero quaternion: %d %s", r.status, r.err);
     cli_free(&r);
     /* inverse cart: a table that is not finite is refused, no NaN/Inf written */
     r = cli("inverse cart --set v0=1e308");
@@ -616,8 +607,7 @@ static void test_numbers_states_and_results_checked(void **state)
     /* its --output survives a failure too */
     write_text("f.csv", "x\n");
     r = cli_in_tmpdir("inverse cart --set v0=1e308 --output f.csv");
-    CHECK(r.status != 0 && file_is("f.csv", "x\n"), "inverse --output after failure: %d",
-          r.status);
+    CHECK(r.status != 0 && file_is("f.csv", "x\n"), "inverse --output after failure: %d", r.status);
     cli_free(&r);
 }
 
@@ -653,8 +643,7 @@ static void test_table_files_of_every_kind(void **state)
     }
     mkdir(cli_path("dir.csv"), 0755);
     cli_result r = cli_in_tmpdir("run cart --forces dir.csv");
-    CHECK(r.status == 2 && strstr(r.err, "Is a directory"), "directory: %d %s", r.status,
-          r.err);
+    CHECK(r.status == 2 && strstr(r.err, "Is a directory"), "directory: %d %s", r.status, r.err);
     cli_free(&r);
     r = cli("run cart --forces /dev/zero");
     CHECK(r.status == 2 && strstr(r.err, "NUL byte"), "/dev/zero: %d %s", r.status, r.err);
@@ -686,10 +675,19 @@ static void test_times_files_of_every_kind(void **state)
         size_t len;
         const char *expect;
     } files[] = {
-        {"t_bom.txt", "\xEF\xBB\xBF" "0\n0.5\n", 0, NULL},
+        {"t_bom.txt",
+         "\xEF\xBB\xBF"
+         "0\n0.5\n",
+         0, NULL},
         {"t_cr.txt", "0\r0.5\r", 0, "CR only"},
-        {"t_u16.txt", "\xFF\xFE" "0\0\n\0", 6, "UTF-16"},
-        {"t_nul.txt", "0\n0.\0" "5\n", 7, "NUL byte"},
+        {"t_u16.txt",
+         "\xFF\xFE"
+         "0\0\n\0",
+         6, "UTF-16"},
+        {"t_nul.txt",
+         "0\n0.\0"
+         "5\n",
+         7, "NUL byte"},
         {"t_esc.txt", "0\n\x1B[2J\n", 0, "\\x1B[2J"},
     };
     for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
@@ -714,8 +712,8 @@ static void test_times_files_of_every_kind(void **state)
     fputs("1\n0.5\n", f);
     fclose(f);
     cli_result r = cli_in_tmpdir("run pendulum --method dp45 --times @t_long.txt");
-    CHECK(r.status == 0 && valid_csv_rows(r.out, 3) == 2, "long line: %d %s %s", r.status,
-          r.out, r.err);
+    CHECK(r.status == 0 && valid_csv_rows(r.out, 3) == 2, "long line: %d %s %s", r.status, r.out,
+          r.err);
     cli_free(&r);
     r = cli("run pendulum --method dp45 --times @/dev/zero");
     CHECK(r.status == 2 && strstr(r.err, "NUL byte"), "/dev/zero: %d %s", r.status, r.err);

@@ -42,13 +42,39 @@ static int widest(int n, const char *(*get)(const void *, int), const void *ctx,
     return w;
 }
 
-static const char *state_name(const void *m, int i) { return ((const dyn_model *)m)->states[i].name; }
-static const char *state_unit(const void *m, int i) { return ((const dyn_model *)m)->states[i].unit; }
-static const char *param_name(const void *m, int i) { return ((const dyn_model *)m)->params[i].name; }
-static const char *param_unit(const void *m, int i) { return ((const dyn_model *)m)->params[i].unit; }
-static const char *output_name(const void *m, int i) { return ((const dyn_model *)m)->outputs[i].name; }
-static const char *output_unit(const void *m, int i) { return ((const dyn_model *)m)->outputs[i].unit; }
-static const char *event_name(const void *m, int i) { return ((const dyn_model *)m)->events[i].name; }
+/* A unit as shown: "-" when the model gives none (a model file without a #: unit). */
+static const char *shown_unit(const char *unit) { return unit && *unit ? unit : "-"; }
+/* A description as shown: "" when there is none. */
+static const char *shown_text(const char *text) { return text ? text : ""; }
+
+static const char *state_name(const void *m, int i)
+{
+    return ((const dyn_model *)m)->states[i].name;
+}
+static const char *state_unit(const void *m, int i)
+{
+    return shown_unit(((const dyn_model *)m)->states[i].unit);
+}
+static const char *param_name(const void *m, int i)
+{
+    return ((const dyn_model *)m)->params[i].name;
+}
+static const char *param_unit(const void *m, int i)
+{
+    return shown_unit(((const dyn_model *)m)->params[i].unit);
+}
+static const char *output_name(const void *m, int i)
+{
+    return ((const dyn_model *)m)->outputs[i].name;
+}
+static const char *output_unit(const void *m, int i)
+{
+    return shown_unit(((const dyn_model *)m)->outputs[i].unit);
+}
+static const char *event_name(const void *m, int i)
+{
+    return ((const dyn_model *)m)->events[i].name;
+}
 
 /* One table of named values: NAME UNIT default VALUE DESCRIPTION, aligned. */
 static void print_values(const char *title, const dyn_model *m, int n,
@@ -65,9 +91,11 @@ static void print_values(const char *title, const dyn_model *m, int n,
     }
     const int wn = widest(n, name, m, 4), wu = widest(n, unit, m, 4);
     printf("\n%s\n", title);
-    for (int i = 0; i < n; i++)
-        printf("  %-*s  %-*s  default %-*s  %s\n", wn, name(m, i), wu, unit(m, i), wv,
-               shortest(values[i], num, sizeof num), descriptions[i]);
+    for (int i = 0; i < n; i++) {
+        const char *desc = shown_text(descriptions[i]);
+        printf("  %-*s  %-*s  default %-*s%s%s\n", wn, name(m, i), wu, unit(m, i), *desc ? wv : 0,
+               shortest(values[i], num, sizeof num), *desc ? "  " : "", desc);
+    }
 }
 
 static void print_states(const dyn_model *m, const double *y0)
@@ -104,9 +132,11 @@ static void print_outputs(const dyn_model *m)
     const int wn = widest(m->n_outputs, output_name, m, 4);
     const int wu = widest(m->n_outputs, output_unit, m, 4);
     printf("\nExtra outputs (run --outputs):\n");
-    for (int i = 0; i < m->n_outputs; i++)
-        printf("  %-*s  %-*s  %s\n", wn, m->outputs[i].name, wu, m->outputs[i].unit,
-               m->outputs[i].description);
+    for (int i = 0; i < m->n_outputs; i++) {
+        const char *desc = shown_text(m->outputs[i].description);
+        printf("  %-*s  %-*s%s%s\n", wn, m->outputs[i].name, *desc ? wu : 0, output_unit(m, i),
+               *desc ? "  " : "", desc);
+    }
 }
 
 static void print_events(const dyn_model *m)
@@ -169,7 +199,9 @@ int cli_cmd_info(int argc, char **argv)
         dyn_model_initial_state(m, par, y0);
     else
         memcpy(y0, m->y0, (size_t)m->n_states * sizeof *y0);
-    printf("%s: %s\n\n%s\n", m->name, m->title, m->description);
+    printf("%s: %s\n", m->name, shown_text(m->title));
+    if (m->description && *m->description)
+        printf("\n%s\n", m->description);
     print_states(m, y0);
     print_params(m);
     print_outputs(m);

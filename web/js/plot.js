@@ -198,7 +198,10 @@
       if (o.title) {
         ctx.font = FONT_BOLD;
         ctx.textAlign = 'left';
-        ctx.fillText(o.title, m.l, 18);
+        /* over the frame, or further left when it is long (a phone), cut to the canvas */
+        let title = o.title;
+        while (title.length > 4 && ctx.measureText(title).width > w - 16) title = title.slice(0, -2) + '…';
+        ctx.fillText(title, Math.max(8, Math.min(m.l, w - 8 - ctx.measureText(title).width)), 18);
       }
       ctx.save();
       this.clipArea(ctx);

@@ -22,6 +22,12 @@ libdir=$(ls -d "$prefix"/lib*/pkgconfig | head -n1)
 PKG_CONFIG_PATH="$libdir" cc -std=c11 "$here/../../examples/vanderpol.c" -o "$work/pc_example" \
   $(PKG_CONFIG_PATH="$libdir" pkg-config --cflags --libs --static dynkit)
 LD_LIBRARY_PATH="$prefix/lib:$prefix/lib64:${LD_LIBRARY_PATH:-}" "$work/pc_example"
+# the README's command: linked to the shared library, which the program finds without
+# LD_LIBRARY_PATH (the .pc file's flags give it an RPATH)
+cc -std=c11 "$here/../../examples/vanderpol.c" -o "$work/pc_shared" \
+  $(PKG_CONFIG_PATH="$libdir" pkg-config --cflags --libs dynkit)
+env -u LD_LIBRARY_PATH "$work/pc_shared" >/dev/null ||
+  { echo "a program built with pkg-config's flags does not find libdynkit.so"; exit 1; }
 # the optional CVODE backend, when it was built and installed
 if [ -f "$libdir/dynkit-cvode.pc" ]; then
   [ -x "$work/cmake/user_cvode" ] || { echo "dynkit::cvode not found by find_package"; exit 1; }

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* bench_fixed: the cost of the library's fixed-step driver against a hand-written loop.
  *
  * Times classical RK4 at a fixed step through the library (dyn_fixed_solve with the "rk4"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* bench_jit: what compiling a model costs and how fast the compiled model runs (the jit
  * layer, dynkit/jit.h), for the choice of its default backend (docs/model-files.md,
  * "Compiling models").

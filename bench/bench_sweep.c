@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* bench_sweep: the throughput of sweeps (dynkit/sweep.h, src/sweep) — issue 10's target:
  * 10,000 runs of 1,000 RK4 steps of van der Pol (mu from 0.5 to 2, h = 0.01 over 0:10) on 2
  * threads against one run of 10,000,000 RK4 steps on 1 thread (dyn_fixed_solve, the same

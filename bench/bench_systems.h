@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Right-hand sides timed by the benchmarks, written once as static inline functions so the
  * same arithmetic is called through a dyn_rhs_fn pointer by the library and inlined into
  * the hand-written loops.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The hand-written reference loop of the benchmarks: textbook RK4 with the right-hand side
  * inlined and n a compile-time constant, k1..k4 then y += h/6 (k1 + 2 k2 + 2 k3 + k4).
  * The systems timed are autonomous, so the stage times are not formed.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 // peer_boost.cpp — Boost.Odeint (header-only) as a peer in the benchmark suite (suite.h).
 //
 // Measures, on the same right-hand sides as every other solver (bench_systems.h, inlined

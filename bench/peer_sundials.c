@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* peer_sundials.c — SUNDIALS (ARKODE and CVODE, serial vectors) as a peer in the benchmark
  * suite (suite.h).
  *

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # bench/run.sh — every benchmark in one command: builds a Release tree (build-bench, or
 # $DYNKIT_BENCH_BUILD) with the peers CMake finds (GSL, Boost.Odeint, SUNDIALS; installed by
 # scripts/install-deps.sh), runs bench_suite (fixed steps, adaptive work-precision, stiff,

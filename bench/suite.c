@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* bench_suite: dynkit against the machine's limit and against its peers, in one run.
  *
  * Measures, with every solver integrating the same right-hand sides (bench_systems.h):

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* suite.h — what the benchmark suite (suite.c) shares with its peer modules (peer_gsl.c,
  * peer_sundials.c, peer_boost.cpp): the systems every solver integrates and the interface of
  * one solver under test.

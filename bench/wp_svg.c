@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* wp_svg.c — work-precision diagrams as SVG (wp_svg.h): error on a logarithmic x axis,
  * cost (time or right-hand-side calls) on a logarithmic y axis, one polyline with circle
  * markers per solver. Sizes, fonts, frame, grid and palette are those of cli/svg_plot.c so

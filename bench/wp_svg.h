@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* wp_svg.h — work-precision diagrams as standalone SVG: log-log axes with ticks at the powers
  * of ten, one line with markers per solver, in the look of the command line's plots
  * (cli/svg_plot.c: same size, fonts, frame, grid and line colours).

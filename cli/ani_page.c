@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The XPPAUT animation (.ani) of a model file on the page of `dynkit animate`: finding
  * NAME.ani beside NAME.ode (or NAME.c), reading it with the model's names (dynkit/ani.h),
  * evaluating every primitive at every sample the page shows, and writing the numbers into

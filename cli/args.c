@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Command-line parsing helpers: numbers (with multiples of pi, or angles in degrees), counts,
  * options (-o and -m are --output and --method). */
 #include <errno.h>

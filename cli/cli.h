@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Shared declarations of the dynkit command-line tool (the only part that prints/exits). */
 #ifndef DYNKIT_CLI_H
 #define DYNKIT_CLI_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit animate MODEL: a run (and --compare runs) as a self-contained HTML page that plays
  * the motion (plane, cart, pendulum, van der Pol) and the time series of every state.
  * Without --output the page goes to MODEL.html in the current directory (MODEL-2.html, ...

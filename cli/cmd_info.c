@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit info MODEL: equations, states, parameters, outputs, events, units and defaults.
  * Numbers are printed in their shortest form that reads back exactly (9.81, 321.8122), and
  * each table's columns are as wide as their longest entry. */

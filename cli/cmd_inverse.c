@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit inverse cart: the inverse dynamics of homework problem 4a/4b. Writes the force
  * table t,Fx,Fy of the prescribed backward motion sX = -v0 t, theta = (pi/8) sin(2 pi f t)
  * (dyn_cart_force_table) and prints on stderr the initial state that goes with it, as

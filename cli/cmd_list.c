@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit models, dynkit methods: what is available, one line each. */
 #include "cli.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit plot MODEL: a run (and --compare runs) as a standalone SVG line plot of chosen
  * states or outputs against t or another state. */
 #include <errno.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit report: every answer of the homework, as text, JSON, or a self-contained HTML page
  * with the plots and animations behind the answers. */
 #include <errno.h>

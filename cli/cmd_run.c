@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit run MODEL: integrate a model and stream CSV (header "t,<states>[,<outputs>]");
  * with --event, the events as CSV "event,t,<states>" (--events-output) or on stderr. */
 #include <errno.h>

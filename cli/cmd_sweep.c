@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit sweep MODEL [run options] --vary/--sample/--from ... --reduce LIST: many runs of one
  * model, one row per run (docs/sweeps.md). The run table comes from --vary (evenly spaced or
  * listed values; several make the full grid, the last fastest), --sample (Philox4x32-10

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit verify: every method on problems with known solutions (dynkit/verify.h), as a
  * table of the accuracy reached and the work spent, or as JSON. With SUNDIALS, the CVODE
  * backend is one of the methods. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The self-contained HTML page: the template web/page.html with its markers
  * <!--dynkit:NAME--> replaced by the title, the style sheet, the body template, the data
  * (JSON) and the scripts, all inline, so the page makes no network request. Also the JSON

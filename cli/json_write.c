@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* A small streaming JSON writer (RFC 8259) for the data of the HTML pages: it places the
  * commas, writes numbers compactly (%.*g, null when not finite) and escapes strings so the
  * text can sit inside an HTML <script> element. */

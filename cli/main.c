@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit: command-line entry point; dispatches to the subcommands (cmd_*.c). */
 #include <string.h>
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The methods the tool offers: the library's registry (dyn_method_find) and, when dynkit is
  * built with SUNDIALS, "cvode", the CVODE backend (dynkit/cvode.h), which is a library of
  * its own and not in the core registry. Its descriptor only names it for the tool (listing,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* MODEL arguments of the commands: a built-in model's name ("did you mean" for typos), or a
  * model file: an XPPAUT .ode file (translated to C by dynkit_lang) or a C file that defines
  * dynkit_model() (model.h), both compiled to native code and loaded by dynkit_jit, or a

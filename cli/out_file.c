@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Output files that a failed run never destroys: a regular file (or a new one) is written
  * under a temporary name in the same directory and renamed over the real name only when the
  * command keeps it; devices, pipes and standard output are written directly. Also: the

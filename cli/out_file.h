@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Output files of the tool that a failed or interrupted run never destroys, the check of
  * standard output at exit, and SIGINT/SIGTERM (out_file.c). */
 #ifndef DYNKIT_CLI_OUT_FILE_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Shared declarations of the commands that draw (animate, plot, report --html): a JSON
  * writer, recorded runs, the self-contained HTML page and standalone SVG plots. */
 #ifndef DYNKIT_CLI_PAGES_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Progress display for long runs: after one second, a line on stderr updated in place,
  * only when stderr is a terminal (never in pipes, files or CI logs). */
 #define _POSIX_C_SOURCE 200809L

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* --forces FILE: a time table of a model's inputs (e.g. the cart's body forces), read,
  * checked against the model's input columns and attached to the run's parameters. */
 #include <math.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The run options shared by run-like commands: model, method, span, step, parameters,
  * initial state and output choices (the command-line contract of the design): the help
  * text, the option loop and the checks across options. Option values are parsed in

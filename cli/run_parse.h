@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Private to the tool: the pieces of run-option parsing shared by run_options.c (the
  * option loop), run_values.c (option values: span, tolerances, times, events, --set/--init)
  * and run_input.c (--forces tables). */

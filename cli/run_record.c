@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Recorded runs for pictures: one run of a model kept in memory (t, states, extra outputs),
  * with any method (cli_run_solve: adaptive methods give samples on the --step grid, at
  * --times or at every accepted step; cvode when built), thinned to a number of samples a screen can show (every k-th sample, always the

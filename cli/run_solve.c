@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* One run of a model with the method of the run options: the fixed-step driver for
  * fixed-step methods (the homework's loop), the general driver dyn_solve for adaptive
  * methods and for runs with events, the CVODE backend for cvode (when built). A model's

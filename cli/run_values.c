@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Values of the run options: the time span, --set/--init assignments, tolerances, output
  * times, events and positive numbers; each bad value gets a usage error naming it. */
 #include <errno.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Grid, frame, ticks and titles of an SVG plot (svg_axes.h). */
 #include "svg_axes.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The parts of an SVG plot's axes that the command line's plots (svg_plot.c) and the
  * benchmark's work-precision diagrams (bench/wp_svg.c) draw alike: grid lines, the frame,
  * ticks with their numbers, axis labels and title, and escaped text. Positions are in

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Standalone SVG line plots (SVG 1.1): a frame with ticks at 1, 2 or 5 times a power of ten
  * and their numbers, grid lines, the axis labels with units, a title, a legend, and one
  * polyline per line (split where a point is not finite). */

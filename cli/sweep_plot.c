@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit plot TABLE.csv: a picture of a sweep's table (dynkit sweep, docs/sweeps.md) as a
  * standalone SVG 1.1 file. One varied name: a line of each reduced column against it
  * (svg_plot.c). Two varied names: a heat map of one reduced column over their grid, a cell

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Teaching trace: each stage of the first steps of a Runge–Kutta method, written so a
  * student can redo the step by hand (stage state, stage derivative, combination).
  * Heun's stages are named as in the homework: predictor ytilde_{n+1}, then the corrector. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The run options of the commands that draw (animate, plot): the shared run options of
  * cli_run_parse, the runs to overlay (--compare METHOD[:STEP], repeatable) and the
  * command's own options; then recording every run for the picture. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The page's files of web/ (HTML, CSS, JavaScript), embedded into the tool at build time by
  * cmake/embed_web.cmake: cli_web_assets[] in the order the build lists them. */
 #ifndef DYNKIT_CLI_WEB_ASSETS_H

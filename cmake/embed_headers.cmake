@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Turn dynkit's public headers (include/dynkit/*.h) into a C source of byte arrays for the
 # jit layer, which writes them into its cache so that models compile against the headers of
 # the running dynkit wherever it is installed or run from. Run as a script:

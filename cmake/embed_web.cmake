@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Turn the page's files (web/) into a C source of byte arrays for the dynkit tool, so the
 # tool writes self-contained pages without reading files at run time. Run as a script:
 #   cmake -DBASE=<dir of the files> -DFILES=<names separated by ','> -DOUTPUT=<file.c>

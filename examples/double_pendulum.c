@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Example: a model of your own as a dyn_model: a planar double pendulum (two point masses
  * on massless rods, angles from the downward vertical), with named states and parameters in
  * SI units, extra outputs (the energy and the lower bob's position), the bob positions and

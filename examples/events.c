@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Example: dyn_solve with an event that resets the state: a ball dropped from 10 m bounces
  * on the floor, each impact reversing its velocity and scaling it by the restitution e
  * (XPPAUT's `global -1 y {v=-e*v}`). The bounce times are compared with the closed form

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Example: the Lorenz system solved with one call that returns the whole solution, like
  * SciPy's solve_ivp or MATLAB's ode45 (dynkit/ivp.h): samples at chosen times, the counters,
  * the dense output evaluated between them. */

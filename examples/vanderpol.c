@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Example: the homework's van der Pol run with RK4 through the C API. */
 #include <stdio.h>
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* libFuzzer harness of the .ani reader (dynkit/ani.h): any bytes, read as the animation of
  * a fixed model with one name of each kind, either give primitives whose values evaluate
  * (every value a number or NaN, none written outside the frame) or fail with a diagnostic

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* libFuzzer harness of the .ode translator (dynkit/lang.h): any bytes either translate into
  * C text or fail with a diagnostic that formats; nothing may crash, leak or read out of
  * bounds (built with -fsanitize=fuzzer,address,undefined; see fuzz/CMakeLists.txt).

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Install what building and testing dynkit needs on Debian/Ubuntu (as root, or through sudo).
 # The core library needs only a C11 compiler and libm; the rest is for the CLI's tests:
 # cmocka, and for the checks of the HTML pages in a real browser Chromium, node and npm

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The adaptive pairs and their driver (dyn_solve), against numerical facts:
  * - the tables: bs23, dp45, DOP853 satisfy the order conditions of their orders (DOP853:
  *   all 200 rooted trees up to order 8) and fail the next ones; the embedded weights have

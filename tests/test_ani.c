@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* test_ani.c — XPPAUT's animation files (dynkit/ani.h, src/lang/ani_*.c), after XPPAUT's
  * manual ("Animation") and its reader aniparse.c: every command and its fields, colours by
  * name and by formula, array lines and blocks, permanent/transient, dimension, settext,

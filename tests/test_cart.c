@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* test_cart.c — the three-wheeled cart of homework problem 4 (dynkit/cart.h), its force
  * tables and the CSV table reader (dynkit/io.h), and the CLI commands around them.
  *

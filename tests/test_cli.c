@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The dynkit command line against its contract (the built binary, DYNKIT_CLI).
  *
  * - `run` writes CSV "t,<states>" with %.17g numbers that equal the library's results bit

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Running the built dynkit binary (DYNKIT_CLI) from a test: stdout and stderr captured into
  * a temporary directory made by cli_setup (or cli_make_tmpdir), or stdout read through a
  * pipe (cli_capture). Shared by every test that runs the command line; it uses nothing of

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* test_cli_solvers.c — the command line with the stiff solvers and long spans:
  * - --method cvode (when dynkit is built with SUNDIALS; skipped otherwise, where it must be
  *   a usage error that says so): Robertson to 1e11 against the Test Set's reference, samples

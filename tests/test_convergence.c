@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Convergence and exactness of the fixed-step methods.
  *
  * - Every method reaches its classical order on problems with exact solutions: exponential

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* test_cvode.c — the optional SUNDIALS CVODE backend (dynkit/cvode.h), against RODAS
  * (rodas4 through dyn_solve) and the references of dynkit/problems.h:
  * - Robertson to 1e11 and van der Pol mu = 1000 to 3000: CVODE's BDF with the analytic and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Dense output of dyn_solve, against numerical facts:
  * - the order of each interpolant: over one step of size h from an exact state, the error
  *   at mid-step behaves like h^(q+1) (bs23: q = 3, dp45: 4, DOP853: 7; cubic Hermite on a

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* How solves fail and stop, and the smaller entry points.
  *
  * - Bad arguments are refused with DYN_ERR_ARG and a message, before f is ever called.

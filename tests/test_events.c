@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Events of dyn_solve and of the command line, against physical and numerical facts:
  * - the pendulum's first turning point (dphi = 0) from phi = 0 comes at a quarter period
  *   T/4 = K(k)/w, k = sin(phi_max/2), w = sqrt(g/l) (K by the arithmetic-geometric mean),

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The C API examples (examples/solve_ivp.c, events.c, double_pendulum.c), built beside the
  * tool, run and their output checked against independent numbers:
  * - solve_ivp: the Lorenz rows at t = 0, 0.25, ..., 2 and the dense-output value at 1.1

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The sample grid of fixed-step runs (dyn_grid_plan, dyn_grid_time) and how the driver
  * follows it: sample k is at t0 + k*h computed (never accumulated) and a whole span has
  * exactly round((t1 - t0)/h) + 1 samples ending on t1 itself, even when h is not exact in

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The solve_ivp-like calls (dyn_ivp_solve, dyn_ivp_solve_model, dyn_ivp_eval,
  * dyn_ivp_free) against exact solutions:
  * - exponential decay at every accepted step (the default sampling), defaults with NULL

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* test_jacobian.c — the forward-difference Jacobian and df/dt (src/ode/jacobian.h) against
  * analytic derivatives: the error is about sqrt(eps) relative to the scale of the entries,
  * every column costs one call of f, a state at zero of a stiff system gets a usable

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* test_jit.c — tests of the jit layer (dynkit/jit.h): C models compiled by the system
  * compiler and by libtcc, loaded and integrated to known answers (the example spring-mass
  * against cos/sin, van der Pol bit for bit against the built-in model, the translated .ode

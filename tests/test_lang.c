@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* test_lang.c — the .ode translator's front end (dynkit/lang.h, src/lang): every feature
  * XPPAUT has and dynkit does not is refused with its line, column and name; errors point
  * at the file's own line and column (also inside continued and expanded array lines) with

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* test_lang_model.c — .ode files translated (src/lang), compiled and loaded (src/jit), then
  * run: each operator and function gives XPPAUT's value (measured with xppaut 6.11 where
  * XPPAUT's meaning differs from C's: priorities, heav(0), sign(0), mod of negatives),

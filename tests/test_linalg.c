@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* test_linalg.c — the dense LU of the stiff methods (src/ode/linalg.h): random
  * well-conditioned systems are solved with a backward error at rounding level, pivoting
  * handles zero and tiny leading entries, singular and non-finite matrices are reported

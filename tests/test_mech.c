@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* test_mech.c — tests of the mechanics layer (dynkit/mech.h): vector and matrix algebra,
  * the Greenwood N->B rotation convention checked against hand-derived matrices, Euler-angle,
  * matrix and quaternion round trips (including gimbal lock), kinematics cross-checked by

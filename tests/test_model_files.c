@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Model files through the command line: the shipped examples/models (.ode and .c) run like
  * built-in models and give known answers — the homework's pendulum and van der Pol as
  * files reproduce the built-in models, energy is conserved where it should be, a forced

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The commands that draw, through the built binary (DYNKIT_CLI):
  * - `plot` writes a standalone SVG with a frame, ticks with numbers, axis labels with the
  *   model's units, a legend, and one polyline per line with one point per sample (thinned

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* test_plane.c — tests of the plane models of homework problem 3 (dynkit/plane.h): the
  * right-hand side at hand-computed states (hanging equilibrium, a state with a known
  * moment and gyroscopic terms, the failure cases), the two formulations (Euler angles and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* test_problems.c — the verification problems (dynkit/problems.h) and their references:
  * - every model's analytic Jacobian (the new ones and van der Pol's) agrees with central
  *   differences of its right-hand side at several states;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* test_report.c — a golden check of `dynkit report --json` (and the text report) against
  * an independent implementation of the homework's MATLAB code: Integrate_Euler /
  * Integrate_ModifiedEuler / Integrate_RungeKutta4 loops, vanderpoldemo,

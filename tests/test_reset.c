@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Events that reset the state (dyn_event.reset, XPPAUT's `global`), against a closed form:
  * a ball dropped from h0 under gravity, y'' = -g, bouncing at y = 0 (falling) with the
  * velocity reversed and scaled by the restitution e. It lands at t_1 = sqrt(2 h0 / g) with

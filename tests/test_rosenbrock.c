@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* test_rosenbrock.c — the Rosenbrock step (src/ode/rosenbrock.h) and RODAS's coefficients:
  * - the coefficients satisfy the order conditions of Hairer & Wanner II, Table IV.7.1 to
  *   order 4 (the embedded solution to order 3 and not 4), and the stage times and df/dt

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The time series behind the report (dyn_homework_series) are the runs of the answers:
  * each answer of dyn_homework_compute is a sample of a table, bit for bit (the last angle of
  * the pendulum's reference run, the final states of van der Pol and of the plane, the

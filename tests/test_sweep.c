@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The sweep library (dynkit/sweep.h, src/sweep): reductions against exact values (a ramp
  * y = t: final, max, min, mean by the trapezoidal rule, argmax, argmin, an event's time and
  * count), the pendulum's quarter period over amplitudes against K(k)/w (K by the

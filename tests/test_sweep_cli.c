@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit sweep through the command line (cli/cmd_sweep.c):
  * - `dynkit sweep pendulum --vary dphi=0.1:1.9:50 --reduce event:turn` (dop853 at rtol =
  *   atol = 1e-12 over 0:5) gives the period curve: each first turn at K(k)/w with

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Run tables of sweeps (src/sweep/sample.c): Philox4x32 against Random123's known-answer
  * vectors (tests/kat_vectors of github.com/DEShawResearch/random123: 7 and 10 rounds, the
  * counters and keys of zeros, ones and the digits of pi), evenly spaced values with exact

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Butcher tables of the registered methods: each satisfies the order conditions of its
  * stated order to rounding and fails those of the next order (the order is exact, not
  * higher); a is strictly lower triangular with c_i = sum_j a_ij; names, aliases and the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Defects that lost or faked data, each stated as the fact that now holds:
  *
  * - an output file survives, byte for byte, any error found before the run produced a

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Small helpers shared by the tests: bitwise comparison of doubles, a workspace big enough
  * for every registered method, and an output callback that records the samples it sees. */
 #ifndef DYNKIT_TEST_UTIL_H

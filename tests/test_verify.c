@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* test_verify.c — dyn_verify_run (dynkit/verify.h) and `dynkit verify`:
  * - the quick table has every problem and every method (cvode when built), each run did what
  *   it should, errors of finished runs are finite and match an independent solve, and the

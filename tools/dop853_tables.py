@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Print the DOP853 data of src/ode/tableaus.c (C arrays) from the published coefficients,
 and check in exact rational arithmetic that the dense output's corrections vanish at both
 ends of the step (so the nested form is exact at theta = 0 and 1).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* taylor_reference.c — quadruple-precision (__float128) Taylor-series solutions of the
  * HIRES, Robertson and Arenstorf problems (dynkit/problems.h): to check the Test Set's
  * published HIRES reference, to compute Robertson at t = 40 (where an explicit method is

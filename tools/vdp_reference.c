@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* vdp_reference.c — reference values of the van der Pol oscillator
  *   y1' = y2,  y2' = mu (1 - y1^2) y2 - y1,   y(0) = (2, 0),
  * in quadruple precision (__float128, 113-bit significand, eps = 1.9e-34), by two

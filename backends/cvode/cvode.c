@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* cvode.c — the SUNDIALS CVODE backend (dynkit/cvode.h): a dyn_system solved by CVODE's
  * variable-order BDF (or Adams) method with Newton iteration and the dense direct linear
  * solver, the model's Jacobian when it has one (Hindmarsh et al., ACM TOMS 31 (2005);

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* A sweep split over MPI ranks (dynkit/sweep_mpi.h): each rank runs the runs i = rank mod
  * size with dyn_sweep_run, then rank 0 gathers the rows (MPI_Gatherv of each rank's rows
  * and statuses, in the rank's run order) and puts them in place. Rows are copied, never

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: BSD-3-Clause
 # CTest's check of sweeps over MPI ranks: `mpirun -n 2 dynkit sweep ...` writes the same bytes
 # as one process, for a Monte Carlo table, a grid with failed runs (status column) and a
 # table written with --output; a bad option ends every rank with status 2 (no rank waits).

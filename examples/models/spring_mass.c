@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* A mass on a linear spring with viscous damping, as a C model for dynkit:
  *
  *     m x'' = -k x - c x'        states x [m], v = x' [m/s]

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit/ani.h — XPPAUT's animation files (.ani): the reader and the evaluation of their
  * primitives for the frames of a recorded run.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit/cart.h — the three-wheeled cart of homework problem 4: a rigid block in the
  * horizontal plane with a non-holonomic rear axle, forward and inverse dynamics.
  *

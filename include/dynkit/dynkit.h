@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit/dynkit.h — everything of the dynkit library in one include. */
 #ifndef DYNKIT_DYNKIT_H
 #define DYNKIT_DYNKIT_H

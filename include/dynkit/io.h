@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit/io.h — writing results: CSV with numbers that round-trip (%.17g); reading numeric
  * CSV tables (e.g. force inputs).
  *

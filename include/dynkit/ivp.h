@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit/ivp.h — one call that solves an initial value problem and returns the whole
  * solution in arrays the library allocates: times, states, events, counters, and
  * optionally the dense output to evaluate anywhere. It follows SciPy's

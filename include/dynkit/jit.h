@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit/jit.h — C source to a loaded dyn_model: the system C compiler into a cached shared
  * object (content-addressed, safe when several runs start at once) or libtcc in process,
  * and loading with a check of the model ABI (DYN_MODEL_ABI, model.h).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit/lang.h — the model-file front end: XPPAUT's .ode format (and dynkit's extensions in
  * comments) translated into C source that defines a dyn_model.
  *

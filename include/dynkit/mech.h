@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit/mech.h — mechanics: 3-vectors, 3x3 matrices, rotations, Euler angles, quaternions,
  * principal angle, Newton–Euler for a rigid body.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit/model.h — models: named states, parameters and outputs around a right-hand side.
  *
  * A model describes a system for people and tools: names, units and defaults of its states

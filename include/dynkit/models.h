@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit/models.h — the built-in models of the homework, usable directly from C.
  *
  * Each model is a dyn_model (see model.h) plus its parameter struct, so a program can

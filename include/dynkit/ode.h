@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit/ode.h — the ODE core: systems, Butcher tables, the fixed-step driver.
  * (The adaptive driver, dense output and events: dynkit/solve.h.)
  *

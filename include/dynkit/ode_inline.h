@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit/ode_inline.h — dyn_fixed_solve compiled into the caller, for speed.
  *
  * dyn_fixed_solve (ode.h) calls the right-hand side through a pointer: every stage stores

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit/plane.h — the model plane on a spring (homework problem 3), in two formulations.
  *
  * A rigid plane (mass m, principal inertia Ixx, Iyy, Izz about its centre of mass S) hangs

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit/problems.h — verification problems with published or computed references.
  *
  * Three built-in models besides the homework's (registered like them, so every tool works on

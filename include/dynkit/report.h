@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit/report.h — the homework's answers (TU Delft Advanced Dynamics, homework 8),
  * computed at run time, and writers for them as text and JSON.
  *

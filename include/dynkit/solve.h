@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit/solve.h — the general driver: adaptive step-size control, dense output, events.
  *
  * dyn_solve integrates a system with any registered method. Adaptive pairs (bs23 = ode23,

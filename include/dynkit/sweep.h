@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit/sweep.h — many runs of one model: parameter sweeps and Monte Carlo ensembles.
  *
  * A sweep runs a model once per row of a run table (values of chosen parameters and initial

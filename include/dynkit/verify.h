@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit/verify.h — every method on problems with known solutions: the accuracy reached
  * and the work spent, per method and tolerance (or step).
  *

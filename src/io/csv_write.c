@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* CSV output: header "t,<names>" and rows printed with %.17g, enough digits for every
  * double to round-trip through text (IEEE 754-2008, sec. 5.12.2). */
 #include "dynkit/io.h"

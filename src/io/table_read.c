@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Reading numeric CSV tables (io.h): a header line of column names, then rows of finite
  * numbers, into a caller-freed dyn_table; errors name the source, the line and the field.
  * The format is the plain subset of RFC 4180 that dynkit writes (no quoted fields, except

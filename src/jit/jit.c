@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The jit layer's public functions (dynkit/jit.h): choice of the backend, loading a C file,
  * loading a shared object with the check of its model ABI, and the check of the dyn_model a
  * compiled model returns. */

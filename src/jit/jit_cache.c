@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The jit layer's cache directory: where it is ($DYNKIT_CACHE_DIR, $XDG_CACHE_HOME/dynkit,
  * ~/.cache/dynkit), the embedded public headers written into it once per version and header
  * set, unique temporary names for concurrent compilations, and small helpers (messages,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The system C compiler backend of the jit layer: the model's source compiled into a shared
  * object in the cache directory, named by the SHA-256 of (source, source name, dynkit's
  * version, the model ABI, the embedded headers, the compiler command and flags). A cached

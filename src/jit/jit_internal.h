@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Internal interface of the jit layer (src/jit): the embedded headers, SHA-256, the cache
  * directory, messages, and the two backends behind dyn_jit_load_source. */
 #ifndef DYNKIT_JIT_INTERNAL_H

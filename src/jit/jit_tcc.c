@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The libtcc backend of the jit layer: the model's source compiled in process into memory
  * (nothing written to disk but the embedded headers, once, into the cache's include
  * directory), relocated, and its entry point called. libtcc is not re-entrant: one

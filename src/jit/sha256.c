@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* SHA-256 (FIPS 180-4) for the jit layer's cache keys: the compiled model's file name is the
  * digest of its source, dynkit's version, the model ABI and the compiler command. */
 #include <string.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The formulas of an animation (dynkit/ani.h) evaluated for one frame by walking their trees,
  * with the meaning the .ode translator's C text gives them (emit_c.c), so that a formula in
  * an .ani file and the same formula compiled from the .ode file give the same numbers:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Internal interface of the .ani reader (dynkit/ani.h): a parsed animation keeps the
  * translator's context (lang_internal.h) alive — its arena holds the formulas, and, when the
  * model is an .ode file, the model as the translator reads it (states, parameters, fixed

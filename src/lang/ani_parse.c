@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The reader of XPPAUT's animation files (dynkit/ani.h), after XPPAUT's manual
  * ("Animation": the commands, their fields separated by ';', colours) and, where the manual
  * is silent, XPPAUT's own reader (aniparse.c): commands are known by their first letters

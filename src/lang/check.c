@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Names and order of an .ode model: the symbol table (names folded to one case, as XPPAUT
  * folds them: `A` and `a` are one name), the resolution of every name in every formula
  * with the nearest known name suggested for an unknown one, what each kind of formula may

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Symbolic derivatives of .ode expressions for the analytic Jacobian, with the
  * simplifications that keep the emitted code lean (0*x, 1*x, x+0, x-0, x/1, x^1, constant
  * folding), and the evaluation of constant expressions (parameter values, default initial

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Diagnostics and memory of the .ode translator: the arena every pass allocates from, the
  * error exit (FILE:LINE:COL, the source line and a caret, like a C compiler's message) and
  * the notes of a successful translation (dynkit/lang.h). */

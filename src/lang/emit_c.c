@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The C text of an .ode model: a translation unit that defines
  * `const dyn_model *dynkit_model(void)` (dynkit/model.h), compiled by the jit layer.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Expressions of an .ode file: tokens and the parse into a tree, with XPPAUT's operator
  * priorities as its parser has them (parserslow.c's symbol table) and as xppaut computes:
  *   4: + - |      6: * / &  and the prefix - and not      7: ^ ** > < >= <= == !=

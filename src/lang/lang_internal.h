@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Internal interface of the .ode translator (src/lang): the translation context (an arena,
  * the error exit, notes), the expression tree, the model as read from the file, and the
  * passes: source lines (source.c), expressions (expr_parse.c), statements (ode_parse.c),

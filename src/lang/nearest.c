@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The nearest known name to a mistyped one, for "did you mean" messages (dynkit/lang.h):
  * the optimal string alignment distance (Damerau–Levenshtein with adjacent transpositions),
  * case folded. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Statements of an .ode file (XPPAUT's manual, "Structure of ODE files" and "Options"):
  * x'=, dx/dt=, x(0)=, par/param/p, number, init/i, aux, name=expr (fixed), !name=expr
  * (derived), f(a,b)=expr, global sign cond {x=..;y=..}, @ options, done; and dynkit's

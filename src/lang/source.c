@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Source lines of an .ode file: physical lines, continuation with a final `\`, and the
  * expansion of XPPAUT's array shorthand (manual, "Structure of ODE files"):
  *   x[1..4]'=-x[j]+[j]        one line per j, `[j1..j2]` becomes j, `[expr in j]` its value

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dyn_ode_to_c (dynkit/lang.h): an .ode file to the C text of a dyn_model, in four passes —
  * statements (ode_parse.c, on the lines of source.c), names and order (check.c), then the
  * C text with its Jacobian (emit_c.c, deriv.c). The reference for what a file means is

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* elementary_rotations.c — the three elementary rotation matrices of the homework's plane
  * model in Greenwood's convention ("Advanced Dynamics", ch. 3): each maps coordinates
  * in the old frame to coordinates in the frame turned by the angle about one axis

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* euler_angles.c — type I Euler angles (psi about Z, theta about Y', phi about x; Greenwood,
  * "Advanced Dynamics", ch. 3) to and from rotation matrices and quaternions.
  *

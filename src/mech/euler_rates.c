@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* euler_rates.c — kinematics of type I Euler angles: their rates from body rates
  * (Greenwood, "Advanced Dynamics", eq. (3.16), exactly as written in the homework's plane
  * model), the inverse map omega_B = R_phi R_theta (0, 0, dpsi) + R_phi (0, dtheta, 0) +

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* mat3.c — 3x3 matrix algebra on row-major double[9]: products (A B, A B^T, A v, A^T v),
  * transpose, identity, determinant and the orthonormality error max |R R^T - I| used to
  * check rotation matrices. Plain component formulas; results are formed in locals first so

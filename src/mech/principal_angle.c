@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* principal_angle.c — principal (Euler) angle and axis of the rotation between two
  * orientations: the rotation R1 R2^T that maps B2 coordinates to B1 coordinates (by Euler's
  * theorem a single rotation about a fixed axis). Never acos((tr - 1)/2), which loses half

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* quat.c — quaternion algebra on double[4] = (w, x, y, z), scalar first: Hamilton product,
  * conjugate, normalisation, rotating vectors, axis-angle form and the kinematic equation
  * dq/dt = 1/2 q (x) (0, omega_B) for body rates (Markley & Crassidis, "Fundamentals of

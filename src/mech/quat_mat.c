@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* quat_mat.c — conversions between quaternions and N->B rotation matrices.
  * R(q) = ((w^2 - |v|^2) I + 2 v v^T - 2 w [v x]) / |q|^2, the transpose of the usual active
  * matrix, because q carries the N axes onto the B axes while R maps N coordinates to B

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* rigid_body.c — Newton–Euler equations of a rigid body whose inertia tensor about the
  * centre of mass is diagonal in the body frame B (principal axes): m a = F, and Euler's
  * equations Ixx dwx = Mx + (Iyy - Izz) wy wz (and cyclic), as in Greenwood, "Advanced

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* vec3.c — 3-vector algebra on double[3]: sums, scaling, dot and cross products, norms,
  * distances. Plain component formulas in a right-handed Cartesian basis; outputs are
  * computed into locals first so they may alias the inputs.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Arenstorf orbit: the restricted three-body problem (a light body moving in the plane of
  * Earth and Moon, in the frame rotating with them), with the initial state of a periodic
  * orbit found by R. F. Arenstorf (1963). Equations, data and the period from Hairer,

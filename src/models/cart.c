@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Three-wheeled cart of homework problem 4 (the seed's cart_equationsofmotion.m, with the
  * OCR reading l/2 in the third row of A): forward dynamics of a rigid block in the plane
  * whose rear axle cannot move sideways, driven by body-frame forces at the front wheel C,

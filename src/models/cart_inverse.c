@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Inverse dynamics of the three-wheeled cart (homework problem 4a, 4b): the body-frame
  * forces at the front wheel that produce given accelerations (the seed's hint
  * inversedynamics_cart), and the prescribed backward motion with its force table.

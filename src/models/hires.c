@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* HIRES: "High Irradiance RESponse" of photomorphogenesis (Schäfer 1975), 8 species,
  * linear kinetics plus one bilinear reaction, as in Hairer & Wanner, "Solving ODEs II",
  * sec. IV.10, and the Test Set for IVP Solvers (Mazzia & Magherini, Univ. Bari), problem

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Nonlinear pendulum of homework problem 1: a point mass m on a massless rigid rod of
  * length l, angle phi from the downward vertical, gravity g.
  * Equation of motion (Lagrange or Newton about the pivot): m l^2 ddphi = -m g l sin(phi).

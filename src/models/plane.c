@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* plane.c — the model plane on a spring of homework problem 3 with type I Euler angles:
  * the homework's plane_equationsofmotion.m completed. The Newton–Euler accelerations are in
  * plane_common.c; the orientation is R = R_phi R_theta R_psi (N->B, dyn_euler_to_mat) and

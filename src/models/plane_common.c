@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* plane_common.c — what the two plane models (homework problem 3) share: the Newton–Euler
  * equations of the plane for a given orientation matrix, its energy, and its parameters.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Private to the library: the parts shared by the two plane models (plane.c, plane_quat.c):
  * the Newton–Euler accelerations for a given orientation matrix, the energy, the parameter
  * table and its checks, and the default initial state of simulate_plane.m.

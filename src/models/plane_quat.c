@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* plane_quat.c — the model plane on a spring of homework problem 3 with a quaternion for the
  * orientation instead of Euler angles, so it has no singularity at theta = +-90 deg.
  * Same Newton–Euler equations and parameters as plane.c (plane_common.c); the orientation

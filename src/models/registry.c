@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The registry of built-in models and the generic accessors of dyn_model (model.h). */
 #include <math.h>
 #include <stdio.h>

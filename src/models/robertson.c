@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Robertson's chemical kinetics: three species A, B, C with the reactions
  *   A -> B (k1 = 0.04),  B + B -> C + B (k2 = 3e7),  B + C -> A + C (k3 = 1e4),
  *   y1' = -k1 y1 + k3 y2 y3

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Van der Pol oscillator of homework problem 2 (the homework's vanderpoldemo):
  *   y1' = y2,  y2' = mu (1 - y1^2) y2 - y1,
  * with mu = 1, y0 = (2, 0), tspan [0, 15], step 0.01 s.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Dense output: evaluation of a step's interpolation polynomial in Hairer's nested form
  * (a Horner-like scheme with the factors theta and 1 - theta, as DOPRI5's CONTD5 and
  * DOP853's CONTD8) and its derivative, and the caller-owned recorder that keeps the dense

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Event location on the dense output of a step.
  *
  * Detection: g is sampled at samples + 1 equally spaced points of the step (the ends are

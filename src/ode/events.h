@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* events.h — finding and locating events on one step's dense output (private to the
  * library; used by solve.c). See events.c for the method.
  */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Fixed-step driver: the homework's Integrate_X loop, streaming samples to a callback.
  *
  * Follows [tout,yout] = Integrate_ModifiedEuler(odefun, tspan, Ts, y0, par) of the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The sample grid of fixed-step runs: t_k = t0 + k*h, computed, never accumulated.
  *
  * A span is a whole number of steps when (t1 - t0)/h is within 1e-10 (relative; at most

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dyn_integrate: the homework's [tout, yout] = Integrate_X(odefun, tspan, Ts, y0, par)
  * into caller-owned arrays, on top of the streaming fixed-step driver. */
 #include <string.h>

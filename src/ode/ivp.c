@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dyn_ivp_solve and dyn_ivp_solve_model: the whole solution of an initial value problem in
  * arrays the library allocates, in the manner of SciPy's solve_ivp (its OdeResult) and
  * MATLAB's ode45, on top of dyn_solve. The arrays grow by doubling from dyn_solve's output

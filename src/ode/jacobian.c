@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* jacobian.c — forward-difference Jacobian df/dy and time derivative df/dt.
  * Increments sqrt(eps) * max(|y_j|, typ_j) as in SUNDIALS CVODE's cvLsDenseDQJac and
  * Hairer & Wanner's RODAS/RADAU5 (HNW II, sec. IV.8), made exactly representable

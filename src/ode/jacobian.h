@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* jacobian.h — finite-difference Jacobian df/dy and time derivative df/dt of a system, for
  * the stiff methods when the model gives no analytic Jacobian.
  *

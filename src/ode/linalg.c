@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* linalg.c — dense LU factorisation with partial pivoting and the triangular solves
  * (Golub & Van Loan, "Matrix Computations", 4th ed., Algorithm 3.4.1; the row-interchange
  * convention of LAPACK dgetrf/dgetrs). Row-major, in place, no allocation. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* linalg.h — dense LU factorisation with partial pivoting and its solve, for the small
  * linear systems (n up to a few dozen) of the stiff methods.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Order conditions of Runge–Kutta tables through the rooted trees up to order 8.
  *
  * Reference: J. C. Butcher, "Numerical Methods for Ordinary Differential Equations", 3rd

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The one stage loop of every explicit Runge–Kutta method (private to the library).
  *
  * For stage i: Y_i = y_n + h * sum_{j<i} a_ij k_j, k_i = f(t_n + c_i h, Y_i);

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* One explicit Runge–Kutta step through the shared stage loop (rk_stages.h), and the
  * workspace size of the fixed-step driver. */
 #include <math.h>

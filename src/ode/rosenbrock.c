@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* rosenbrock.c — one step of a linearly implicit Rosenbrock method in the transformed form
  * of Hairer & Wanner, "Solving ODEs II", sec. IV.7, eq. (7.4') (their code RODAS), with an
  * analytic or forward-difference Jacobian and a forward-difference df/dt; the dense output

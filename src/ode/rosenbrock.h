@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* rosenbrock.h — linearly implicit Rosenbrock methods for stiff systems: one step attempt
  * (new state, error estimate, dense output), the linearisation it needs, and a simple
  * adaptive loop for tests and reference computations.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* rosenbrock_tables.c — coefficients of the Rosenbrock methods, as data.
  *
  * RODAS (order 4(3), stiffly accurate, L-stable, dense output of order 3):

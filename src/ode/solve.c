@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The general driver dyn_solve: adaptive step-size control for embedded pairs (and fixed
  * steps for plain tables), output at requested times by dense output, recording of the
  * dense output, events, stiffness detection.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Names of solve statuses, for messages. */
 #include "dynkit/ode.h"
 

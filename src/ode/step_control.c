@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Step-size selection of the general driver: Hairer's error norm, the initial step of
  * HNW I sec. II.4 (the algorithm of HINIT in DOPRI5/DOP853) and the PI controller of DOPRI5
  * (Gustafsson 1991; HNW I sec. II.4, HNW II sec. IV.2):

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* step_control.h — step-size selection of the general driver (private): the initial step
  * (HNW I sec. II.4, "Starting step size") and the PI controller of DOPRI5 (Gustafsson,
  * ACM TOMS 17 (1991); HNW I sec. II.4 and IV.2, eq. (2.43c) of vol. II).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The explicit Runge–Kutta stepper of the general driver: fixed-step tables and embedded
  * pairs through the one stage loop (rk_stages.h), with
  * - the local error estimate h sum e_i k_i in Hairer's norm, or DOP853's combination of its

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* step_rosenbrock.c — the Rosenbrock stepper of the general driver (stepper.h): RODAS
  * (rosenbrock.h; Hairer & Wanner, "Solving ODEs II", sec. IV.7) under dyn_solve's step-size
  * control, dense output and events.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* stepper.h — one-step methods as the general driver (solve.c) sees them (private).
  *
  * The driver owns time, step-size control, output, dense-output recording and events; a

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Butcher tables of the explicit Runge–Kutta methods, as data in one place.
  *
  * Coefficients: Hairer, Nørsett & Wanner, "Solving Ordinary Differential Equations I",

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* references.c — reference solutions of the verification problems, with their sources
  * (dynkit/problems.h). Values are written with more digits than a double holds; the
  * compiler rounds them correctly.

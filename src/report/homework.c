@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dyn_homework_compute: all four problems of the homework, timed. */
 #include <string.h>
 #include <time.h>

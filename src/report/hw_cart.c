@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Homework problem 4 (three-wheeled cart): the prescribed backward motion sX = -v0 t,
  * theta = pi/8 sin(2 pi f t); 4a the initial lateral velocity from the constraint; 4b the
  * force table of the inverse dynamics at N samples of Ts; 4c the forward run with modified

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Helpers shared by the homework analyses: fixed-step runs into a final state. */
 #include <math.h>
 #include <stdio.h>

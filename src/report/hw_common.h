@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Helpers shared by the homework analyses (private to the library). */
 #ifndef DYNKIT_SRC_REPORT_HW_COMMON_H
 #define DYNKIT_SRC_REPORT_HW_COMMON_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Homework problem 1 (pendulum): 1a maximum height from energy, 1c small-angle solution,
  * 1e one Euler step against the nonlinear solution, 1f the two measures, each measured.
  * The nonlinear reference is RK4 at a step small enough that halving it changes nothing

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Homework problem 3 (model plane on a spring): Euler and RK4 at the homework's step over
  * its end time, the distance between the final centres of mass and the principal angle
  * between the final orientations (the rotation R_euler R_rk4^T, dynkit/mech.h).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The time series behind the homework answers (report.h, dyn_homework_series): the runs of
  * dyn_homework_compute recorded sample by sample, with the same models, methods, steps and
  * initial states, so that every answer is one sample of a table; longer spans for the

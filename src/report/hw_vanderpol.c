@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Homework problem 2 (van der Pol, mu = 1, y0 = (2, 0), 15 s at step 0.01): the final
  * state of each fixed-step method, and each one's distance to a converged RK4 reference. */
 #include <math.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The homework report as one flat JSON object: the dotted keys of the design
  * ("pendulum.max_height_m", ...), SI units, numbers as numbers (%.17g, null if not finite),
  * vectors as arrays, judgements as booleans or short strings. */

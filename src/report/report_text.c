@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The homework report as text: every question of problems 1 to 4 in order, each answer with
  * its unit and how it was computed, and the judgements with the numbers behind them. */
 #include <math.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The names of a sweep: run-table columns (parameters, then states) and reductions
  * ("final", "max:NAME", "event:NAME", ...), parsed and printed (dynkit/sweep.h). */
 #include <stdio.h>

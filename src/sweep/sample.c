@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Run tables of a sweep (dynkit/sweep.h): evenly spaced values with exact ends, full grids
  * (the last axis fastest), and random samples from Philox4x32-10, the counter-based
  * generator of Salmon, Moraes, Dror and Shaw, "Parallel random numbers: as easy as 1, 2, 3"

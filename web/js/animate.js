@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit page: 'dynkit animate' — the picture of the model (if it has one), a player, and a
  * time series plot of every state and extra output with all runs overlaid. */
 'use strict';

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit page: start — read the data the tool wrote into the page and build the report or
  * the animation; a failure is shown on the page as well as in the console. */
 'use strict';

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit page: the player that drives the time of an animation and its plots — play/pause,
  * speed from 0.1x to 10x (real time by default), a time slider, the current time, and the
  * keyboard: space play/pause, left/right one sample, shift+left/right one second, up/down

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit page: line plots on a canvas — axes with ticks and numbers (linear or logarithmic),
  * axis labels with units (one unit per axis), a title, a legend with the values at the
  * current time that never covers the data (in a corner of the frame where nothing is drawn,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit page: 'dynkit report --html' — fills every number of the answers from the report's
  * JSON (the numbers of 'dynkit report --json') and builds the figures of each problem from
  * the recorded runs (report.h, dyn_homework_series), one player per problem. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit page: a small 3D renderer on a 2D canvas — an orbiting perspective camera (drag to
  * rotate, wheel to zoom, double-click to reset), lines, filled polygons, points and labels
  * in world coordinates with z up, drawn back to front (painter's algorithm). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit page: shared helpers — the namespace DK, DOM building, number formatting, nice
  * axis ticks, sample lookup and linear interpolation in time, the line colours. */
 'use strict';

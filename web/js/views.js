@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit page: the pictures of the models, each following a player's time —
  * the pendulum (rod and mass), the phase plane (van der Pol), the plane on its spring in 3D
  * (body, wings and fin from the homework's animation data; the spring from the ceiling

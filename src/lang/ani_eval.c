@@ -23,16 +23,6 @@ typedef struct ectx {
     int depth;
 } ectx;
 
-static double heav(double x) { return x < 0.0 ? 0.0 : 1.0; }
-static double sgn(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }
-static double pmod(double x, double y)
-{
-    double z = fmod(x, y);
-    if (z < 0.0)
-        z += y;
-    return z;
-}
-
 /* args: the arguments of the function whose body e belongs to, or NULL in an animation's
  * own formula (then N_ARG k is the k-th output). */
 static double ev(ectx *x, const node *e, const double *args)
@@ -67,53 +57,12 @@ static double ev(ectx *x, const node *e, const double *args)
             break;
         }
         b = ev(x, e->args[1], args);
-        switch (e->op) {
-        case OP_ADD: r = a + b; break;
-        case OP_SUB: r = a - b; break;
-        case OP_MUL: r = a * b; break;
-        case OP_DIV: r = a / b; break;
-        case OP_POW: r = b == 2.0 ? a * a : pow(a, b); break;
-        case OP_GT: r = a > b ? 1.0 : 0.0; break;
-        case OP_LT: r = a < b ? 1.0 : 0.0; break;
-        case OP_GE: r = a >= b ? 1.0 : 0.0; break;
-        case OP_LE: r = a <= b ? 1.0 : 0.0; break;
-        case OP_EQ: r = a == b ? 1.0 : 0.0; break;
-        case OP_NE: r = a != b ? 1.0 : 0.0; break;
-        case OP_AND: r = b != 0.0 ? 1.0 : 0.0; break;
-        case OP_OR: r = b != 0.0 ? 1.0 : 0.0; break;
-        default: break;
-        }
+        r = lang_apply_bin(e->op, a, b);
         break;
     case N_FUN:
         a = ev(x, e->args[0], args);
         b = e->nargs > 1 ? ev(x, e->args[1], args) : 0.0;
-        switch (e->op) {
-        case F_SIN: r = sin(a); break;
-        case F_COS: r = cos(a); break;
-        case F_TAN: r = tan(a); break;
-        case F_ASIN: r = asin(a); break;
-        case F_ACOS: r = acos(a); break;
-        case F_ATAN: r = atan(a); break;
-        case F_ATAN2: r = atan2(a, b); break;
-        case F_SINH: r = sinh(a); break;
-        case F_COSH: r = cosh(a); break;
-        case F_TANH: r = tanh(a); break;
-        case F_EXP: r = exp(a); break;
-        case F_LN: r = log(a); break;
-        case F_LOG10: r = log10(a); break;
-        case F_SQRT: r = sqrt(a); break;
-        case F_ABS: r = fabs(a); break;
-        case F_HEAV: r = heav(a); break;
-        case F_SIGN: r = sgn(a); break;
-        case F_MOD: r = pmod(a, b); break;
-        case F_FLR: r = floor(a); break;
-        case F_CEIL: r = ceil(a); break;
-        case F_MAX: r = a > b ? a : b; break;
-        case F_MIN: r = a < b ? a : b; break;
-        case F_ERF: r = erf(a); break;
-        case F_ERFC: r = erfc(a); break;
-        default: break;
-        }
+        r = lang_apply_fun(e->op, a, b);
         break;
     case N_UFUN: {
         const lang_func *fn = &LVEC_AT(x->a->c->m.funcs, lang_func, e->index);

@@ -49,16 +49,6 @@ static node *mk(lang_ctx *c, node_kind k, int op, int nargs, node *a, node *b, n
 
 /* ---- evaluation ---- */
 
-static double heav(double x) { return x < 0.0 ? 0.0 : 1.0; }
-static double sgn(double x) { return x > 0.0 ? 1.0 : x < 0.0 ? -1.0 : 0.0; }
-static double pmod(double x, double y)
-{
-    double z = fmod(x, y);
-    if (z < 0)
-        z += y;
-    return z;
-}
-
 double lang_eval(lang_ctx *c, const node *e, const double *args, const double *pvals)
 {
     double a = 0, b = 0;
@@ -78,54 +68,13 @@ double lang_eval(lang_ctx *c, const node *e, const double *args, const double *p
     case N_BIN:
         a = lang_eval(c, e->args[0], args, pvals);
         b = lang_eval(c, e->args[1], args, pvals);
-        switch (e->op) {
-        case OP_ADD: r = a + b; break;
-        case OP_SUB: r = a - b; break;
-        case OP_MUL: r = a * b; break;
-        case OP_DIV: r = a / b; break;
-        case OP_POW: r = b == 2.0 ? a * a : pow(a, b); break;
-        case OP_GT: r = a > b; break;
-        case OP_LT: r = a < b; break;
-        case OP_GE: r = a >= b; break;
-        case OP_LE: r = a <= b; break;
-        case OP_EQ: r = a == b; break;
-        case OP_NE: r = a != b; break;
-        case OP_AND: r = a != 0.0 && b != 0.0; break;
-        case OP_OR: r = a != 0.0 || b != 0.0; break;
-        default: break;
-        }
+        r = lang_apply_bin(e->op, a, b);
         break;
     case N_FUN:
         a = lang_eval(c, e->args[0], args, pvals);
         if (e->nargs > 1)
             b = lang_eval(c, e->args[1], args, pvals);
-        switch (e->op) {
-        case F_SIN: r = sin(a); break;
-        case F_COS: r = cos(a); break;
-        case F_TAN: r = tan(a); break;
-        case F_ASIN: r = asin(a); break;
-        case F_ACOS: r = acos(a); break;
-        case F_ATAN: r = atan(a); break;
-        case F_ATAN2: r = atan2(a, b); break;
-        case F_SINH: r = sinh(a); break;
-        case F_COSH: r = cosh(a); break;
-        case F_TANH: r = tanh(a); break;
-        case F_EXP: r = exp(a); break;
-        case F_LN: r = log(a); break;
-        case F_LOG10: r = log10(a); break;
-        case F_SQRT: r = sqrt(a); break;
-        case F_ABS: r = fabs(a); break;
-        case F_HEAV: r = heav(a); break;
-        case F_SIGN: r = sgn(a); break;
-        case F_MOD: r = pmod(a, b); break;
-        case F_FLR: r = floor(a); break;
-        case F_CEIL: r = ceil(a); break;
-        case F_MAX: r = a > b ? a : b; break;
-        case F_MIN: r = a < b ? a : b; break;
-        case F_ERF: r = erf(a); break;
-        case F_ERFC: r = erfc(a); break;
-        default: break;
-        }
+        r = lang_apply_fun(e->op, a, b);
         break;
     case N_UFUN: {
         const lang_func *f = &LVEC_AT(c->m.funcs, lang_func, e->index);

@@ -295,6 +295,10 @@ node *lang_subst(lang_ctx *c, node *body, node **args);
 int lang_is_num(const node *e, double v);
 void lang_func_uses(lang_ctx *c, const node *e, int *state, int *time);
 double lang_eval(lang_ctx *c, const node *e, const double *args, const double *pvals);
+/* XPPAUT's binary operator op (bin_op) and built-in function op (fun_id; b is the second
+ * argument or 0) applied to numbers, as the C text gives them (eval_ops.c). */
+double lang_apply_bin(int op, double a, double b);
+double lang_apply_fun(int op, double a, double b);
 
 /* C text (emit_c.c) */
 char *lang_emit_c(lang_ctx *c);

@@ -10,33 +10,33 @@
 
 static void plot_help(void)
 {
-    puts(
-        "Usage: dynkit plot MODEL [run options] --y NAME[,NAME...] [--x NAME]\n"
-        "                   [--compare METHOD[:STEP]]... [--title TEXT] [--output FILE.svg]\n"
-        "\n"
-        "Run MODEL and write a line plot as a standalone SVG file (standard output without\n"
-        "--output): axes with ticks, labels with units, a legend.\n"
-        "\n"
-        "  --y NAMES            what to plot: states or extra outputs of the model, comma-\n"
-        "                       separated (see 'dynkit info MODEL')\n"
-        "  --x NAME             the abscissa: t (default), a state or an output\n"
-        "  --compare M[:H]      overlay a run with method M (and step H; default the run's\n"
-        "                       step), repeatable, e.g. --compare euler --compare rk4:0.001\n"
-        "  --title TEXT         the title (default: the model and the runs)\n"
-        "  -o, --output FILE    the SVG file (default: standard output)\n"
-        "A long run is thinned to at most 2000 samples per line (first and last kept).\n"
-        "\n"
-        "Examples:\n"
-        "  dynkit plot vanderpol --y y1,y2 --output vdp.svg\n"
-        "  dynkit plot vanderpol --x y1 --y y2 --compare euler --compare heun --output phase.svg\n"
-        "  dynkit plot pendulum --tspan 0:10 --step 0.01 --method rk4 --y energy --output e.svg\n"
-        "\n"
-        "A sweep's table (dynkit sweep ... --output TABLE.csv) in place of MODEL:\n"
-        "  dynkit plot TABLE.csv [--y NAME[,NAME...]] [--x NAME] [--title TEXT] [--output FILE.svg]\n"
-        "with one varied name, lines of the reduced columns (--y, default all) against it; with\n"
-        "two, a heat map of one reduced column (--y, default the first) over their grid with a\n"
-        "colour bar (failed runs and nan in grey), or with --x NAME lines against it, one per\n"
-        "value of the other.\n");
+    puts("Usage: dynkit plot MODEL [run options] --y NAME[,NAME...] [--x NAME]\n"
+         "                   [--compare METHOD[:STEP]]... [--title TEXT] [--output FILE.svg]\n"
+         "\n"
+         "Run MODEL and write a line plot as a standalone SVG file (standard output without\n"
+         "--output): axes with ticks, labels with units, a legend.\n"
+         "\n"
+         "  --y NAMES            what to plot: states or extra outputs of the model, comma-\n"
+         "                       separated (see 'dynkit info MODEL')\n"
+         "  --x NAME             the abscissa: t (default), a state or an output\n"
+         "  --compare M[:H]      overlay a run with method M (and step H; default the run's\n"
+         "                       step), repeatable, e.g. --compare euler --compare rk4:0.001\n"
+         "  --title TEXT         the title (default: the model and the runs)\n"
+         "  -o, --output FILE    the SVG file (default: standard output)\n"
+         "A long run is thinned to at most 2000 samples per line (first and last kept).\n"
+         "\n"
+         "Examples:\n"
+         "  dynkit plot vanderpol --y y1,y2 --output vdp.svg\n"
+         "  dynkit plot vanderpol --x y1 --y y2 --compare euler --compare heun --output phase.svg\n"
+         "  dynkit plot pendulum --tspan 0:10 --step 0.01 --method rk4 --y energy --output e.svg\n"
+         "\n"
+         "A sweep's table (dynkit sweep ... --output TABLE.csv) in place of MODEL:\n"
+         "  dynkit plot TABLE.csv [--y NAME[,NAME...]] [--x NAME] [--title TEXT] [--output "
+         "FILE.svg]\n"
+         "with one varied name, lines of the reduced columns (--y, default all) against it; with\n"
+         "two, a heat map of one reduced column (--y, default the first) over their grid with a\n"
+         "colour bar (failed runs and nan in grey), or with --x NAME lines against it, one per\n"
+         "value of the other.\n");
     cli_view_options_help(stdout);
 }
 
@@ -121,34 +121,54 @@ int cli_cmd_plot(int argc, char **argv)
         out = stdout;
     }
     if (rc == CLI_OK) {
-        cli_svg_plot p;
-        char title[256], xlabel[256], ylabel[512];
-        memset(&p, 0, sizeof p);
+        /* one panel per unit of the --y columns (energy in J and height in m are not
+         * squashed onto one axis), in the order the units first appear */
+        static cli_svg_plot panels[MAX_Y];
+        static char ylabels[MAX_Y][512];
+        static char labels[CLI_SVG_MAX_LINES][160];
+        const cli_svg_plot *order[MAX_Y];
+        char title[256], xlabel[256];
+        int n_panels = 0, n_labels = 0;
         snprintf(title, sizeof title, "%s: %s", m->name, v.series[0].label);
         for (int k = 1; k < v.n_series; k++)
             snprintf(title + strlen(title), sizeof title - strlen(title), " | %s",
                      v.series[k].label);
         axis_label(m, &xcol, 1, xlabel, sizeof xlabel);
-        axis_label(m, ycols, n_y, ylabel, sizeof ylabel);
-        p.title = values[2] ? values[2] : title;
-        p.xlabel = xlabel;
-        p.ylabel = ylabel;
-        static char labels[CLI_SVG_MAX_LINES][160];
-        for (int k = 0; k < v.n_series; k++)
-            for (int i = 0; i < n_y && p.n_lines < CLI_SVG_MAX_LINES; i++) {
-                const cli_series *s = &v.series[k];
-                char *label = labels[p.n_lines];
-                if (v.n_series == 1)
-                    snprintf(label, sizeof labels[0], "%s", cli_series_column_name(m, ycols[i]));
-                else if (n_y == 1)
-                    snprintf(label, sizeof labels[0], "%s", s->label);
-                else
-                    snprintf(label, sizeof labels[0], "%s (%s)",
-                             cli_series_column_name(m, ycols[i]), s->label);
-                p.lines[p.n_lines++] =
-                    (cli_svg_line){label, s->data + xcol, s->data + ycols[i], s->rows, s->cols};
-            }
-        rc = cli_svg_write(out, &p);
+        int done[MAX_Y] = {0};
+        for (int first = 0; first < n_y; first++) {
+            if (done[first])
+                continue;
+            const char *unit = cli_series_column_unit(m, ycols[first]);
+            int cols[MAX_Y], n_cols = 0;
+            for (int i = first; i < n_y; i++)
+                if (!done[i] && strcmp(cli_series_column_unit(m, ycols[i]), unit) == 0) {
+                    cols[n_cols++] = ycols[i];
+                    done[i] = 1;
+                }
+            cli_svg_plot *p = &panels[n_panels];
+            memset(p, 0, sizeof *p);
+            axis_label(m, cols, n_cols, ylabels[n_panels], sizeof ylabels[0]);
+            p->title = n_panels > 0 ? "" : values[2] ? values[2] : title;
+            p->xlabel = xlabel;
+            p->ylabel = ylabels[n_panels];
+            for (int k = 0; k < v.n_series; k++)
+                for (int i = 0; i < n_cols && n_labels < CLI_SVG_MAX_LINES; i++) {
+                    const cli_series *s = &v.series[k];
+                    char *label = labels[n_labels++];
+                    if (v.n_series == 1)
+                        snprintf(label, sizeof labels[0], "%s", cli_series_column_name(m, cols[i]));
+                    else if (n_y == 1)
+                        snprintf(label, sizeof labels[0], "%s", s->label);
+                    else
+                        snprintf(label, sizeof labels[0], "%s (%s)",
+                                 cli_series_column_name(m, cols[i]), s->label);
+                    p->lines[p->n_lines++] =
+                        (cli_svg_line){label, s->data + xcol, s->data + cols[i], s->rows, s->cols};
+                }
+            order[n_panels] = p;
+            n_panels++;
+        }
+        rc = cli_svg_write_panels(out, order, n_panels);
         if (rc == CLI_OK && run_rc != CLI_OK)
             rc = run_rc;
     }

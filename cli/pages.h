@@ -148,6 +148,9 @@ typedef struct cli_svg_plot {
  * a legend, one polyline per line (a line with non-finite points is split there). Returns
  * CLI_OK or CLI_FAILED (write error). */
 int cli_svg_write(FILE *out, const cli_svg_plot *p);
+/* n plots stacked top to bottom in one document (e.g. one per unit of the y axis), the
+ * lines' colours continuing from panel to panel. */
+int cli_svg_write_panels(FILE *out, const cli_svg_plot *const *plots, int n);
 
 /* ---- an XPPAUT animation file on the animate page (ani_page.c) ---- */
 

@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* Standalone SVG line plots (SVG 1.1): a frame with ticks at 1, 2 or 5 times a power of ten
- * and their numbers, grid lines, the axis labels with units, a title, a legend, and one
- * polyline per line (split where a point is not finite). */
+ * and their numbers, grid lines, the axis labels with units, a title, a legend in the corner
+ * with the fewest points, and one polyline per line (split where a point is not finite);
+ * several such panels stacked in one document (one per unit of the y axis). */
 #include <math.h>
 #include <string.h>
 
@@ -150,14 +151,43 @@ static int line(FILE *out, const cli_svg_line *l, const char *color, const axis 
     return bad;
 }
 
-static int legend(FILE *out, const cli_svg_plot *p)
+/* Points of the lines inside the box [x0, x1] x [y0, y1] (pixels). */
+static long points_inside(const cli_svg_plot *p, const axis *ax, const axis *ay, double x0,
+                          double x1, double y0, double y1)
+{
+    long count = 0;
+    for (int i = 0; i < p->n_lines; i++) {
+        const cli_svg_line *l = &p->lines[i];
+        for (long k = 0; k < l->n; k++) {
+            const double px = to_px_x(ax, l->x[k * l->stride]);
+            const double py = to_px_y(ay, l->y[k * l->stride]);
+            count += px >= x0 && px <= x1 && py >= y0 && py <= y1;
+        }
+    }
+    return count;
+}
+
+/* The legend in the corner of the frame where the fewest points are drawn (top right when
+ * several are empty), so that it covers as little data as it can. */
+static int legend(FILE *out, const cli_svg_plot *p, const axis *ax, const axis *ay, int first_color)
 {
     int bad = 0;
     size_t longest = 0;
     for (int i = 0; i < p->n_lines; i++)
         longest = strlen(p->lines[i].label) > longest ? strlen(p->lines[i].label) : longest;
     const double w = 40.0 + 7.0 * (double)longest, h = 8.0 + 18.0 * p->n_lines;
-    const double x = W - RIGHT - w - 8, y = TOP + 8;
+    const double xs[4] = {W - RIGHT - w - 8, LEFT + 8, W - RIGHT - w - 8, LEFT + 8};
+    const double ys[4] = {TOP + 8, TOP + 8, H - BOTTOM - h - 8, H - BOTTOM - h - 8};
+    int best = 0;
+    long fewest = -1;
+    for (int c = 0; c < 4; c++) {
+        const long n = points_inside(p, ax, ay, xs[c] - 4, xs[c] + w + 4, ys[c] - 4, ys[c] + h + 4);
+        if (fewest < 0 || n < fewest) {
+            fewest = n;
+            best = c;
+        }
+    }
+    const double x = xs[best], y = ys[best];
     bad |= fprintf(out,
                    "<g class=\"legend\" font-size=\"12\">\n<rect x=\"%.2f\" y=\"%.2f\" "
                    "width=\"%.2f\" height=\"%.2f\" fill=\"#fff\" fill-opacity=\"0.85\" "
@@ -169,7 +199,8 @@ static int legend(FILE *out, const cli_svg_plot *p)
                        "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke=\"%s\" "
                        "stroke-width=\"2\"/><text x=\"%.2f\" y=\"%.2f\">",
                        x + 8, ly - 4, x + 30, ly - 4,
-                       palette[i % (int)(sizeof palette / sizeof *palette)], x + 36, ly) < 0;
+                       palette[(first_color + i) % (int)(sizeof palette / sizeof *palette)], x + 36,
+                       ly) < 0;
         bad |= svg_text_escaped(out, p->lines[i].label);
         bad |= fputs("</text>\n", out) < 0;
     }
@@ -177,27 +208,44 @@ static int legend(FILE *out, const cli_svg_plot *p)
     return bad;
 }
 
-int cli_svg_write(FILE *out, const cli_svg_plot *p)
+/* One plot: its axes, lines and legend; colours continue from first_color. */
+static int panel(FILE *out, const cli_svg_plot *p, int first_color)
 {
     double lo, hi;
     data_range(p, 1, &lo, &hi);
     const axis ax = make_axis(lo, hi, 8);
     data_range(p, 0, &lo, &hi);
     const axis ay = make_axis(lo, hi, 6);
+    const int n_colors = (int)(sizeof palette / sizeof *palette);
+    int bad = axes(out, p, &ax, &ay);
+    bad |= fputs("<g class=\"lines\">\n", out) < 0;
+    for (int i = 0; i < p->n_lines; i++)
+        bad |= line(out, &p->lines[i], palette[(first_color + i) % n_colors], &ax, &ay);
+    bad |= fputs("</g>\n", out) < 0;
+    bad |= legend(out, p, &ax, &ay, first_color);
+    return bad;
+}
+
+int cli_svg_write(FILE *out, const cli_svg_plot *p) { return cli_svg_write_panels(out, &p, 1); }
+
+int cli_svg_write_panels(FILE *out, const cli_svg_plot *const *plots, int n)
+{
     int bad = fprintf(out,
                       "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
                       "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" "
                       "height=\"%.0f\" viewBox=\"0 0 %.0f %.0f\" "
                       "font-family=\"sans-serif\">\n"
                       "<rect width=\"100%%\" height=\"100%%\" fill=\"#fff\"/>\n",
-                      W, H, W, H) < 0;
-    bad |= axes(out, p, &ax, &ay);
-    bad |= fputs("<g class=\"lines\">\n", out) < 0;
-    for (int i = 0; i < p->n_lines; i++)
-        bad |=
-            line(out, &p->lines[i], palette[i % (int)(sizeof palette / sizeof *palette)], &ax, &ay);
-    bad |= fputs("</g>\n", out) < 0;
-    bad |= legend(out, p);
+                      W, H * n, W, H * n) < 0;
+    int color = 0;
+    for (int k = 0; k < n; k++) {
+        if (n > 1)
+            bad |= fprintf(out, "<g class=\"panel\" transform=\"translate(0,%.0f)\">\n", H * k) < 0;
+        bad |= panel(out, plots[k], color);
+        color += plots[k]->n_lines;
+        if (n > 1)
+            bad |= fputs("</g>\n", out) < 0;
+    }
     bad |= fputs("</svg>\n", out) < 0;
     if (bad || fflush(out)) {
         fprintf(stderr, "dynkit: error: writing the SVG failed\n");

@@ -126,12 +126,16 @@ static void test_plot_several_names_units_and_compare(void **state)
     CHECK(r.status == 0, "plot exit %d: %s", r.status, r.err);
     cli_free(&r);
     char *svg = file_in_tmp("b.svg"), text[256];
-    CHECK(strcmp(element_text(svg, "ylabel", text, sizeof text), "phi [rad], dphi [rad/s]") == 0,
+    /* rad and rad/s: one panel each, phi's first (its lines: the run, then the compared one) */
+    CHECK(strcmp(element_text(svg, "ylabel", text, sizeof text), "phi [rad]") == 0,
           "y label '%s'", text);
+    CHECK(count(svg, "class=\"panel\"") == 2 && count(svg, "class=\"ylabel\"") == 2,
+          "%d panels, one per unit", count(svg, "class=\"panel\""));
+    CHECK(strstr(svg, ">dphi [rad/s]</text>") != NULL, "no panel for dphi [rad/s]");
     CHECK(count(svg, "<polyline") == 4, "%d polylines for 2 names x 2 runs",
           count(svg, "<polyline"));
-    CHECK(polyline_points(svg, 0) == 101 && polyline_points(svg, 1) == 101, "main run points");
-    CHECK(polyline_points(svg, 2) == 51 && polyline_points(svg, 3) == 51, "euler:0.02 points");
+    CHECK(polyline_points(svg, 0) == 101 && polyline_points(svg, 2) == 101, "main run points");
+    CHECK(polyline_points(svg, 1) == 51 && polyline_points(svg, 3) == 51, "euler:0.02 points");
     CHECK(strstr(svg, "phi (rk4, h = 0.01 s)") && strstr(svg, "dphi (euler, h = 0.02 s)"),
           "legend does not name the runs");
     free(svg);
@@ -143,9 +147,17 @@ static void test_plot_several_names_units_and_compare(void **state)
     CHECK(strstr(element_text(svg, "xlabel", text, sizeof text), "y1 [") == text, "x label '%s'",
           text);
     free(svg);
+    /* energy [J] and height [m] on an axis each, never squashed onto one */
     r = cli("plot pendulum --y energy,height");
-    CHECK(r.status == 0 && strstr(r.out, "energy [J], height [m]"), "outputs as names: %d %s",
-          r.status, r.err);
+    CHECK(r.status == 0 && strstr(r.out, ">energy [J]</text>") && strstr(r.out, ">height [m]</text>") &&
+              count(r.out, "class=\"panel\"") == 2,
+          "outputs as names, a panel per unit: %d %s", r.status, r.err);
+    /* the same unit shares one axis */
+    cli_free(&r);
+    r = cli("plot plane --y sX,sZ --method rk4 --step 0.01 --tspan 0:0.5");
+    CHECK(r.status == 0 && count(r.out, "class=\"panel\"") == 0 &&
+              strstr(r.out, ">sX, sZ [m]</text>"),
+          "sX and sZ, both in m, on one axis: %d %s", r.status, r.err);
     cli_free(&r);
 }
 

@@ -163,7 +163,7 @@ static void test_duffing_reduces_to_harmonic(void **state)
                        "--set alpha=1 --method dop853 --rtol 1e-12 --atol 1e-12 --tspan 0:10 "
                        "--final");
     CHECK(r.status == 0, "%s", r.err);
-    double t, x, v;
+    double t = NAN, x = NAN, v = NAN;
     const char *row = strchr(r.out, '\n');
     CHECK(row && sscanf(row + 1, "%lf,%lf,%lf", &t, &x, &v) == 3, "%s", r.out);
     CHECK(fabs(x - cos(10.0)) < 1e-9 && fabs(v + sin(10.0)) < 1e-9, "x=%.17g v=%.17g", x, v);
@@ -178,7 +178,7 @@ static void test_lorenz_methods_agree(void **state)
                        "--tspan 0:5 --final");
     cli_result b = cli("run " MODELS "lorenz.ode --method rk4 --step 1e-4 --tspan 0:5 --final");
     CHECK(a.status == 0 && b.status == 0, "%s %s", a.err, b.err);
-    double ya[4], yb[4];
+    double ya[4] = {NAN, NAN, NAN, NAN}, yb[4] = {NAN, NAN, NAN, NAN};
     CHECK(sscanf(strchr(a.out, '\n') + 1, "%lf,%lf,%lf,%lf", &ya[0], &ya[1], &ya[2], &ya[3]) == 4,
           "%s", a.out);
     CHECK(sscanf(strchr(b.out, '\n') + 1, "%lf,%lf,%lf,%lf", &yb[0], &yb[1], &yb[2], &yb[3]) == 4,
@@ -205,7 +205,7 @@ static void test_bouncing_ball_impacts(void **state)
     double expected = t1, speed = sqrt(2.0 * g * 1.0);
     int k = 0;
     for (const char *p = strchr(text, '\n'); p && p[1]; p = strchr(p + 1, '\n')) {
-        double t, y, v;
+        double t = NAN, y = NAN, v = NAN;
         CHECK(sscanf(p + 1, "bounce,%lf,%lf,%lf", &t, &y, &v) == 3, "row: %.40s", p + 1);
         CHECK(fabs(t - expected) < 1e-12, "impact %d at %.17g, expected %.17g", k + 1, t,
               expected);
@@ -229,7 +229,7 @@ static void test_c_model_with_set(void **state)
     cli_result r = cli("run " MODELS "spring_mass.c --set k=4 --method dop853 --rtol 1e-12 "
                        "--atol 1e-12 --tspan 0:pi --final");
     CHECK(r.status == 0, "%s", r.err);
-    double t, x, v;
+    double t = NAN, x = NAN, v = NAN;
     CHECK(sscanf(strchr(r.out, '\n') + 1, "%lf,%lf,%lf", &t, &x, &v) == 3, "%s", r.out);
     CHECK(fabs(x - 0.1) < 1e-10 && fabs(v) < 1e-10, "x=%.17g v=%.17g", x, v);
     cli_free(&r);
@@ -304,7 +304,7 @@ static void test_ignored_options_noted(void **state)
     cli_result r = cli_in_tmpdir("run opts.ode --final --verbose");
     CHECK(r.status == 0, "%s", r.err);
     CHECK(strstr(r.err, "opts.ode:3: option 'xlo' is accepted and ignored") != NULL, "%s", r.err);
-    double t, x;
+    double t = NAN, x = NAN;
     CHECK(sscanf(strchr(r.out, '\n') + 1, "%lf,%lf", &t, &x) == 2 && t == 1.0, "%s", r.out);
     CHECK(fabs(x - exp(-1.0)) < 1e-5, "x(1) = %.17g", x);
     cli_free(&r);

@@ -625,7 +625,7 @@ static void test_table_files_of_every_kind(void **state)
         {"bom.csv", "\xEF\xBB\xBFt,Fx,Fy\n0,1,2\n0.04,1,2\n", 0, NULL},
         {"cr.csv", "t,Fx,Fy\r0,1,2\r0.04,1,2\r", 0, "CR only"},
         {"u16.csv", "\xFF\xFEt\0,\0F\0x\0", 9, "UTF-16"},
-        {"nul.csv", "t,Fx,Fy\n0,1\0,2\n", 17, "NUL byte"},
+        {"nul.csv", "t,Fx,Fy\n0,1\0,2\n", 15, "NUL byte"},
         {"esc.csv", "t,Fx,Fy\n0,\x1B[31mred,2\n", 0, "'\\x1B[31mred' is not a number"},
         {"dup.csv", "t,Fx,Fy,Fx\n0,1,2,3\n", 0, "'Fx' appears twice"},
     };

@@ -109,11 +109,11 @@ static int keep_loaded(const dyn_jit_model *jm, const char *path, const dyn_mode
         atexit(unload_all);
     loaded[n_loaded++] = *jm;
     *model = jm->model;
-    if (verbose)
-        fprintf(stderr, "dynkit: note: %s: %s (%s%s)\n", path,
-                jm->cached ? "loaded from the cache" : "compiled",
-                jm->backend == DYN_JIT_TCC ? "libtcc" : jm->so_path,
-                jm->cached ? "" : "");
+    if (verbose && jm->cached)
+        fprintf(stderr, "dynkit: note: %s: loaded from the cache (%s)\n", path, jm->so_path);
+    else if (verbose)
+        fprintf(stderr, "dynkit: note: %s: compiled in %.3f s (%s)\n", path, jm->compile_seconds,
+                jm->backend == DYN_JIT_TCC ? "libtcc, in memory" : jm->so_path);
     return CLI_OK;
 }
 
@@ -133,9 +133,10 @@ static int open_model_file(const char *spec, const dyn_model **model)
     int rc;
     if (ends_with(spec, ".c")) {
         struct stat st;
-        if (stat(spec, &st) != 0 || S_ISDIR(st.st_mode)) {
+        const int found = stat(spec, &st) == 0;
+        if (!found || S_ISDIR(st.st_mode)) {
             fprintf(stderr, "dynkit: error: cannot open model file '%s': %s\n", spec,
-                    S_ISDIR(st.st_mode) ? "is a directory" : strerror(errno));
+                    found ? "is a directory" : strerror(errno));
             return CLI_USAGE;
         }
         rc = dyn_jit_load_c_file(spec, NULL, &jm, err, sizeof err);

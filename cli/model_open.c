@@ -59,8 +59,7 @@ static char *read_model_file(const char *path, size_t *len)
 {
     struct stat st;
     if (stat(path, &st) != 0) {
-        fprintf(stderr, "dynkit: error: cannot open model file '%s': %s\n", path,
-                strerror(errno));
+        fprintf(stderr, "dynkit: error: cannot open model file '%s': %s\n", path, strerror(errno));
         return NULL;
     }
     if (S_ISDIR(st.st_mode)) {
@@ -69,8 +68,7 @@ static char *read_model_file(const char *path, size_t *len)
     }
     FILE *f = fopen(path, "rb");
     if (!f) {
-        fprintf(stderr, "dynkit: error: cannot open model file '%s': %s\n", path,
-                strerror(errno));
+        fprintf(stderr, "dynkit: error: cannot open model file '%s': %s\n", path, strerror(errno));
         return NULL;
     }
     char *buf = malloc(MODEL_FILE_MAX_BYTES + 1);
@@ -79,8 +77,9 @@ static char *read_model_file(const char *path, size_t *len)
     fclose(f);
     if (bad || n > MODEL_FILE_MAX_BYTES) {
         fprintf(stderr, "dynkit: error: cannot read model file '%s': %s\n", path,
-                !buf ? "out of memory"
-                     : n > MODEL_FILE_MAX_BYTES ? "larger than 16 MiB" : "read error");
+                !buf                       ? "out of memory"
+                : n > MODEL_FILE_MAX_BYTES ? "larger than 16 MiB"
+                                           : "read error");
         free(buf);
         return NULL;
     }

@@ -194,31 +194,8 @@ static void resolve(dyn_ani *a, node *e, int depth)
         lang_fail(c, e->pos, "not supported in an animation's formula: it takes numbers, "
                   "names, t, operators and functions");
     }
-    if (e->kind == N_FUN) {
-        int arity;
-        const int f = lang_fun_lookup(e->name, &arity);
-        if (f >= 0) {
-            if (arity != e->nargs)
-                lang_fail(c, e->pos, "'%s' takes %d argument%s, not %d", e->name, arity,
-                          arity == 1 ? "" : "s", e->nargs);
-            e->op = f;
-            return;
-        }
-        const lang_sym *s = lang_lookup(c, e->name);
-        if (s && s->kind == SYM_FUNC) {
-            const lang_func *fn = &LVEC_AT(m->funcs, lang_func, s->index);
-            if (fn->nargs != e->nargs)
-                lang_fail(c, e->pos, "function '%s' takes %d argument%s, not %d", fn->name,
-                          fn->nargs, fn->nargs == 1 ? "" : "s", e->nargs);
-            e->kind = N_UFUN;
-            e->index = s->index;
-            return;
-        }
-        if (s)
-            lang_fail(c, e->pos, "'%s' is %s, not a function", e->name,
-                      lang_sym_kind_name(s->kind));
+    if (e->kind == N_FUN && !lang_resolve_call(c, e))
         unknown(c, e, 1);
-    }
 }
 
 /* A C model's names (those that can be written in a formula; the others cannot be

@@ -205,31 +205,8 @@ static void resolve(lang_ctx *c, node *e, const rctx *r)
             unknown(c, e, r, 0);
         }
     }
-    if (e->kind == N_FUN) {
-        int arity;
-        const int f = lang_fun_lookup(e->name, &arity);
-        if (f >= 0) {
-            if (arity != e->nargs)
-                lang_fail(c, e->pos, "'%s' takes %d argument%s, not %d", e->name, arity,
-                          arity == 1 ? "" : "s", e->nargs);
-            e->op = f;
-            return;
-        }
-        const lang_sym *s = lang_lookup(c, e->name);
-        if (s && s->kind == SYM_FUNC) {
-            const lang_func *fn = &LVEC_AT(m->funcs, lang_func, s->index);
-            if (fn->nargs != e->nargs)
-                lang_fail(c, e->pos, "function '%s' takes %d argument%s, not %d", fn->name,
-                          fn->nargs, fn->nargs == 1 ? "" : "s", e->nargs);
-            e->kind = N_UFUN;
-            e->index = s->index;
-            return;
-        }
-        if (s)
-            lang_fail(c, e->pos, "'%s' is %s, not a function", e->name,
-                      lang_sym_kind_name(s->kind));
+    if (e->kind == N_FUN && !lang_resolve_call(c, e))
         unknown(c, e, r, 1);
-    }
 }
 
 /* ---- sums and shifts, unrolled before names are resolved ---- */
@@ -679,4 +656,30 @@ void lang_check(lang_ctx *c)
         m->xp = display_name(c, m->xp, m->xp_pos, "xp");
     if (m->yp)
         m->yp = display_name(c, m->yp, m->yp_pos, "yp");
+}
+
+int lang_resolve_call(lang_ctx *c, node *e)
+{
+    int arity;
+    const int f = lang_fun_lookup(e->name, &arity);
+    if (f >= 0) {
+        if (arity != e->nargs)
+            lang_fail(c, e->pos, "'%s' takes %d argument%s, not %d", e->name, arity,
+                      arity == 1 ? "" : "s", e->nargs);
+        e->op = f;
+        return 1;
+    }
+    const lang_sym *s = lang_lookup(c, e->name);
+    if (s && s->kind == SYM_FUNC) {
+        const lang_func *fn = &LVEC_AT(c->m.funcs, lang_func, s->index);
+        if (fn->nargs != e->nargs)
+            lang_fail(c, e->pos, "function '%s' takes %d argument%s, not %d", fn->name,
+                      fn->nargs, fn->nargs == 1 ? "" : "s", e->nargs);
+        e->kind = N_UFUN;
+        e->index = s->index;
+        return 1;
+    }
+    if (s)
+        lang_fail(c, e->pos, "'%s' is %s, not a function", e->name, lang_sym_kind_name(s->kind));
+    return 0;
 }

@@ -272,6 +272,10 @@ int lang_skip_blanks(lang_lexer *lx);   /* returns the next character or 0 at th
 lpos lang_here(const lang_lexer *lx);
 node *lang_node(lang_ctx *c, node_kind kind, lpos pos);
 int lang_fun_lookup(const char *name, int *arity);
+/* Resolve the call e (N_FUN) to a built-in function (sets e->op) or a user function (makes
+ * it N_UFUN), checking the number of arguments; a name that is another kind of symbol
+ * fails. Returns 0 when the name is not known at all (the caller reports it). */
+int lang_resolve_call(lang_ctx *c, node *e);
 const char *lang_fun_name(int f);
 const char *lang_op_text(int op);
 int lang_op_priority(int op);

@@ -179,26 +179,6 @@ static int push_time(double **times, long *count, long *cap, double t)
     return 0;
 }
 
-/* s with bytes outside printable ASCII escaped as \xNN (a file's bytes never reach the
- * terminal raw), cut to fit buf; returns buf. */
-static const char *cli_escaped(const char *s, char *buf, size_t size)
-{
-    size_t used = 0;
-    for (; *s && used + 5 < size; s++) {
-        const unsigned char c = (unsigned char)*s;
-        if (c >= 0x20 && c < 0x7f)
-            buf[used++] = (char)c;
-        else
-            used += (size_t)snprintf(buf + used, size - used, "\\x%02X", c);
-    }
-    if (*s && used + 4 <= size) {
-        memcpy(buf + used, "...", 3);
-        used += 3;
-    }
-    buf[used] = '\0';
-    return buf;
-}
-
 /* The longest line of a --times file (a time is a number: far less). */
 #define TIMES_MAX_LINE 65536
 
@@ -297,7 +277,7 @@ int cli_parse_times(const char *command, const char *text, cli_run *run)
             double t;
             if (cli_parse_number(p, &t))
                 rc = cli_usage_error(command, "--times: line %ld of %s ('%s') is not a time in s",
-                                     lineno, text + 1, cli_escaped(p, shown, sizeof shown));
+                                     lineno, text + 1, dyn_text_escaped(p, shown, sizeof shown));
             else if (push_time(&run->times, &run->n_times, &cap, t)) {
                 fprintf(stderr, "dynkit: error: --times %s: out of memory\n", text + 1);
                 rc = CLI_FAILED;

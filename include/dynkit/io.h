@@ -62,6 +62,9 @@ int dyn_table_read_file(const char *path, unsigned flags, dyn_table *table, char
 int dyn_table_column(const dyn_table *table, const char *name);
 /* Release what dyn_table_read allocated and zero the struct; safe on a zeroed table. */
 void dyn_table_free(dyn_table *table);
+/* s with the bytes outside printable ASCII written as \xNN (so that a file's bytes never
+ * reach a terminal raw), cut with "..." to fit size bytes of buf; returns buf. */
+const char *dyn_text_escaped(const char *s, char *buf, size_t size);
 
 #ifdef __cplusplus
 }

@@ -104,8 +104,7 @@ static int next_line(line_reader *r)
 /* Why next_line failed, as "SOURCE:LINE: ..." into err; returns the status. */
 static int line_error(const line_reader *r, const char *src, char *err, size_t errlen);
 
-/* s with bytes outside printable ASCII escaped as \xNN, cut to fit buf; returns buf. */
-static const char *escaped(const char *s, char *buf, size_t size)
+const char *dyn_text_escaped(const char *s, char *buf, size_t size)
 {
     size_t used = 0;
     for (; *s && used + 5 < size; s++) {
@@ -269,7 +268,7 @@ static int read_header(dyn_table *table, char *line, const char *src, long linen
         if (strcmp(sorted[i - 1], sorted[i]) == 0) {
             char name[128];
             set_err(err, errlen, "%s:%ld: column name '%s' appears twice in the header", src,
-                    lineno, escaped(sorted[i], name, sizeof name));
+                    lineno, dyn_text_escaped(sorted[i], name, sizeof name));
             free(sorted);
             return DYN_ERR_ARG;
         }
@@ -302,14 +301,14 @@ static int read_row(const dyn_table *table, char *line, double *row, const char 
         char shown[96], name[96];
         if (end == text || *end != '\0') {
             set_err(err, errlen, "%s:%ld: field %d (%s) '%s' is not a number", src, lineno,
-                    i + 1, escaped(table->names[i], name, sizeof name),
-                    escaped(text, shown, sizeof shown));
+                    i + 1, dyn_text_escaped(table->names[i], name, sizeof name),
+                    dyn_text_escaped(text, shown, sizeof shown));
             return DYN_ERR_ARG;
         }
         if (!isfinite(v)) {
             set_err(err, errlen, "%s:%ld: field %d (%s) '%s' is not a finite number", src,
-                    lineno, i + 1, escaped(table->names[i], name, sizeof name),
-                    escaped(text, shown, sizeof shown));
+                    lineno, i + 1, dyn_text_escaped(table->names[i], name, sizeof name),
+                    dyn_text_escaped(text, shown, sizeof shown));
             return DYN_ERR_ARG;
         }
         row[i] = v;

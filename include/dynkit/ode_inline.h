@@ -16,13 +16,18 @@
  * results bit for bit, counters, failure reports), because it runs the same arithmetic:
  * Y_i = y + h * (sum of the non-zero a_ij k_j, left to right), a single power-of-two
  * coefficient folded into h ((h*a)*k == h*(a*k) exactly), stage times clamped to t1.
- * It takes the inline path for explicit tables of 1 to 4 stages and options without
- * output, trace or progress callbacks (end policy and no_finite_check are honoured), and
- * calls dyn_fixed_solve for everything else (other tables, callbacks, bad arguments, a
- * non-finite initial state), so it never behaves differently.
+ * It takes the inline path for options without output, trace or progress callbacks (end
+ * policy and no_finite_check are honoured) and explicit tables of 1 to 4 stages that are
+ * either compile-time constants or, known only at run time (dyn_method_find), of the
+ * shape of Euler, Heun, the midpoint rule or the classical RK4 (the same non-zero pattern
+ * and power-of-two coefficients; with gcc and clang); it calls dyn_fixed_solve for
+ * everything else (other tables, callbacks, bad arguments, a non-finite initial state), so
+ * it never behaves differently. The loops it relies on are unrolled by pragmas, so that it
+ * is as fast at -O2 as at -O3 (docs/performance.md).
  * Cost: code size. Each call site gets its own copy of the solver with the right-hand
- * side inlined up to 4 times per stage count (only one stage count if the table is a
- * constant). Use it for the hot solve of a program, dyn_fixed_solve elsewhere.
+ * side inlined up to 8 times per table shape (once per stage, twice for systems of at most
+ * 4 states; only one shape if the table is a constant). Use it for the hot solve of a
+ * program, dyn_fixed_solve elsewhere.
  */
 #ifndef DYNKIT_ODE_INLINE_H
 #define DYNKIT_ODE_INLINE_H
@@ -47,6 +52,18 @@ extern "C" {
 #define DYN_RESTRICT __restrict
 #else
 #define DYN_RESTRICT restrict
+#endif
+
+/* DYN_INL_UNROLL: unroll the loop that follows completely when its trip count is a small
+ * constant (the stage count, or n of a small system), at -O2 as well as at -O3: gcc -O2
+ * does not unroll or peel loops by itself, and the constant folding of a table's
+ * coefficients and the keeping of a small state in registers both rely on it. */
+#if defined(__clang__)
+#define DYN_INL_UNROLL _Pragma("clang loop unroll_count(4)")
+#elif defined(__GNUC__)
+#define DYN_INL_UNROLL _Pragma("GCC unroll 4")
+#else
+#define DYN_INL_UNROLL
 #endif
 
 /* DYN_INL_SCALAR(v): an empty asm that keeps v in a register of its own, so that the
@@ -81,6 +98,7 @@ typedef struct dyn_inl_row {
 DYN_INL dyn_inl_row dyn_inl_row_of(const double *row, int len)
 {
     dyn_inl_row r = {0, 0, 0};
+    DYN_INL_UNROLL
     for (int j = len - 1; j >= 0; j--)
         if (row[j] != 0.0) {
             r.nt++;
@@ -88,6 +106,15 @@ DYN_INL dyn_inl_row dyn_inl_row_of(const double *row, int len)
         }
     r.fold = r.nt == 1 && dyn_inl_is_pow2(row[r.j0]);
     return r;
+}
+
+/* 1 if the row summaries a[0..count) and b[0..count) are equal. */
+DYN_INL int dyn_inl_rows_equal(const dyn_inl_row *a, const dyn_inl_row *b, int count)
+{
+    for (int i = 0; i < count; i++)
+        if (a[i].nt != b[i].nt || a[i].j0 != b[i].j0 || a[i].fold != b[i].fold)
+            return 0;
+    return 1;
 }
 
 /* out = y + h * (sum_{j<len, row[j] != 0} row[j] k_j, left to right) over n states: the
@@ -102,6 +129,7 @@ DYN_INL int dyn_inl_combine(int n, double h, const double *DYN_RESTRICT y,
     const double *k0 = k + (size_t)r.j0 * sn;
     if (r.fold) {
         const double hc = h * row[r.j0];
+        DYN_INL_UNROLL
         for (int q = 0; q < n; q++) {
             double v = y[q] + hc * k0[q];
             DYN_INL_SCALAR(v);
@@ -109,8 +137,24 @@ DYN_INL int dyn_inl_combine(int n, double h, const double *DYN_RESTRICT y,
         }
         return 1;
     }
+    if (r.nt == len - r.j0) {
+        /* every coefficient from j0 on is non-zero: no tests (the same terms, in order) */
+        DYN_INL_UNROLL
+        for (int q = 0; q < n; q++) {
+            double acc = row[r.j0] * k0[q];
+            DYN_INL_UNROLL
+            for (int j = r.j0 + 1; j < len; j++)
+                acc += row[j] * k[(size_t)j * sn + (size_t)q];
+            double v = y[q] + h * acc;
+            DYN_INL_SCALAR(v);
+            out[q] = v;
+        }
+        return r.nt;
+    }
+    DYN_INL_UNROLL
     for (int q = 0; q < n; q++) {
         double acc = row[r.j0] * k0[q];
+        DYN_INL_UNROLL
         for (int j = 0; j < len; j++)
             if (j > r.j0 && row[j] != 0.0)
                 acc += row[j] * k[(size_t)j * sn + (size_t)q];
@@ -161,6 +205,7 @@ DYN_INL int dyn_inl_step(const int S, const dyn_tableau *m, const dyn_inl_row *r
         memcpy(ynew, y, (size_t)n * sizeof *y);
     if (check) {
         double z = 0.0; /* sum of x - x: 0, or NaN if some x is NaN or Inf */
+        DYN_INL_UNROLL
         for (int q = 0; q < n; q++)
             z += ynew[q] - ynew[q];
         *nonfinite = z != 0.0;
@@ -168,16 +213,15 @@ DYN_INL int dyn_inl_step(const int S, const dyn_tableau *m, const dyn_inl_row *r
     return 0;
 }
 
-/* The solve for a table of S stages (1 <= S <= 4). */
-DYN_INL int dyn_inl_solve(const int S, const dyn_tableau *m, dyn_rhs_fn f, void *par, const int n,
-                          const dyn_grid *g, double *y, double *work, int check, dyn_result *res)
+/* The solve for a table of S stages (1 <= S <= 4) whose rows (S + 1 of them, b last) are
+ * summarised in rows: a constant for the common tables (see dyn_fixed_solve_inline), so
+ * that the stage loops are fixed at compile time even when the coefficients are not. */
+DYN_INL int dyn_inl_solve(const int S, const dyn_tableau *m, const dyn_inl_row *rows, dyn_rhs_fn f,
+                          void *par, const int n, const dyn_grid *g, double *y, double *work,
+                          int check, dyn_result *res)
 {
     double *k = work, *Y = work + (size_t)S * (size_t)n, *ya = Y + n, *yb = ya + n;
     const double t0 = g->t0, t1 = g->t1, h = g->h;
-    dyn_inl_row rows[5];
-    for (int i = 0; i < S; i++)
-        rows[i] = dyn_inl_row_of(m->a + (size_t)i * (size_t)S, i);
-    rows[S] = dyn_inl_row_of(m->b, S);
     const long steps = g->samples - 1;
     double *cur = ya;
     long step = 0;
@@ -278,16 +322,48 @@ DYN_INL int dyn_fixed_solve_inline(const dyn_tableau *m, const dyn_system *sys, 
     if (y != y0)
         memmove(y, y0, (size_t)n * sizeof *y);
     const int check = !(opts && opts->no_finite_check);
-    switch (m->stages) {
-    case 1: return dyn_inl_solve(1, m, f, par, n, &g, y, work, check, res);
-    case 2: return dyn_inl_solve(2, m, f, par, n, &g, y, work, check, res);
-    case 3: return dyn_inl_solve(3, m, f, par, n, &g, y, work, check, res);
-    default: return dyn_inl_solve(4, m, f, par, n, &g, y, work, check, res);
+    const int S = m->stages;
+    dyn_inl_row rows[5];
+    DYN_INL_UNROLL
+    for (int i = 0; i < S; i++)
+        rows[i] = dyn_inl_row_of(m->a + (size_t)i * (size_t)S, i);
+    rows[S] = dyn_inl_row_of(m->b, S);
+    /* The common tables' row summaries {nt, j0, fold} (Euler; Heun; the midpoint rule; the
+     * classical RK4), recognised here once per solve: with these constants the stage loops
+     * are fixed at compile time even for a table known only at run time (dyn_method_find).
+     * Any table of the same shape takes the same loop; the coefficients are still read. */
+    static const dyn_inl_row euler[2] = {{0, 0, 0}, {1, 0, 1}};
+    static const dyn_inl_row heun[3] = {{0, 0, 0}, {1, 0, 1}, {2, 0, 0}};
+    static const dyn_inl_row midpoint[3] = {{0, 0, 0}, {1, 0, 1}, {1, 1, 1}};
+    static const dyn_inl_row rk4[5] = {{0, 0, 0}, {1, 0, 1}, {1, 1, 1}, {1, 2, 1}, {4, 0, 0}};
+#define DYN_INL_SAME(known, count) (S + 1 == (count) && dyn_inl_rows_equal(rows, known, count))
+    if (DYN_INL_SAME(euler, 2))
+        return dyn_inl_solve(1, m, euler, f, par, n, &g, y, work, check, res);
+    if (DYN_INL_SAME(heun, 3))
+        return dyn_inl_solve(2, m, heun, f, par, n, &g, y, work, check, res);
+    if (DYN_INL_SAME(midpoint, 3))
+        return dyn_inl_solve(2, m, midpoint, f, par, n, &g, y, work, check, res);
+    if (DYN_INL_SAME(rk4, 5))
+        return dyn_inl_solve(4, m, rk4, f, par, n, &g, y, work, check, res);
+#undef DYN_INL_SAME
+#if defined(__GNUC__)
+    /* A table of another shape known only at run time: the library's solve (the same
+     * results). Compiling the generic loops for every stage count here as well would make
+     * the caller so large that compilers stop inlining the right-hand side into it. */
+    if (!__builtin_constant_p(S))
+        return dyn_fixed_solve(m, sys, t0, t1, h, y0, y, work, opts, res);
+#endif
+    switch (S) {
+    case 1: return dyn_inl_solve(1, m, rows, f, par, n, &g, y, work, check, res);
+    case 2: return dyn_inl_solve(2, m, rows, f, par, n, &g, y, work, check, res);
+    case 3: return dyn_inl_solve(3, m, rows, f, par, n, &g, y, work, check, res);
+    default: return dyn_inl_solve(4, m, rows, f, par, n, &g, y, work, check, res);
     }
 }
 
 #undef DYN_INL
 #undef DYN_INL_SCALAR
+#undef DYN_INL_UNROLL
 #undef DYN_RESTRICT
 
 #ifdef __cplusplus

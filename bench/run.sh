@@ -3,7 +3,8 @@
 # bench/run.sh — every benchmark in one command: builds a Release tree (build-bench, or
 # $DYNKIT_BENCH_BUILD) with the peers CMake finds (GSL, Boost.Odeint, SUNDIALS; installed by
 # scripts/install-deps.sh), runs bench_suite (fixed steps, adaptive work-precision, stiff,
-# `dynkit report`, then the table of targets), bench_jit (models compiled at run time; not
+# `dynkit report`, then the table of targets), its fixed-step section again from a tree
+# built at -O2 (build-bench-O2), bench_jit (models compiled at run time; not
 # with --only) and, when hyperfine is installed, times `dynkit report` with it too. Arguments
 # go to bench_suite, e.g.
 #   bench/run.sh                      # everything (about a minute)
@@ -19,6 +20,27 @@ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DDYNKIT_BUILD_BENCH=ON \
 cmake --build "$build" -j"$(nproc)" --target bench_suite bench_fixed bench_sweep dynkit_cli >/dev/null
 cmake --build "$build" -j"$(nproc)" --target bench_jit >/dev/null 2>&1 || true # needs src/jit
 "$build/bench/bench_suite" "$@"
+
+# the fixed-step section again from a tree built at -O2 (the default of most builds and
+# distributions): the header-only driver must hold its ratio there too
+fixed=1
+for ((i = 1; i <= $#; i++)); do
+  if [ "${!i}" = --only ]; then j=$((i + 1)); [[ "${!j:-}" == *fixed* ]] || fixed=0; fi
+done
+if [ "$fixed" -eq 1 ]; then
+  cmake -S . -B "$build-O2" -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_FLAGS_RELEASE="-O2 -DNDEBUG" \
+    -DCMAKE_CXX_FLAGS_RELEASE="-O2 -DNDEBUG" -DDYNKIT_BUILD_BENCH=ON -DDYNKIT_BUILD_TESTS=OFF >/dev/null
+  cmake --build "$build-O2" -j"$(nproc)" --target bench_suite >/dev/null
+  echo
+  echo "## The fixed-step section at -O2"
+  args=()
+  skip=0
+  for a in "$@"; do # the same options, but only the fixed-step section
+    if [ "$skip" -eq 1 ]; then skip=0; continue; fi
+    case "$a" in --only|--svg|--csv) skip=1 ;; *) args+=("$a") ;; esac
+  done
+  "$build-O2/bench/bench_suite" "${args[@]}" --only fixed
+fi
 
 quick=0 report=1 only=0
 for ((i = 1; i <= $#; i++)); do

@@ -13,6 +13,10 @@
  *   layer, so the benchmark measures the ODE core only.
  * - Arenstorf orbit (HNW I sec. II.0): 4 states, the same arithmetic as the library's
  *   dyn_arenstorf_rhs (src/models/arenstorf.c), for the adaptive work-precision runs.
+ * - Kepler's two-body problem (HNW I sec. II.10, problem "KEPL" with e = 0.9), 4 states,
+ *   y0 = (1 - e, 0, 0, sqrt((1 + e)/(1 - e))): an orbit of period 2 pi, so that after one
+ *   period the exact solution is y0 again; the step must shrink by ~ 60 at the pericentre.
+ *   For the step-size controllers of the adaptive pairs (dynkit's only).
  * - van der Pol's Jacobian, for the stiff runs (mu = 1000).
  * The header is also compiled as C++ (the Boost.Odeint benchmark), hence BENCH_RESTRICT.
  */
@@ -25,6 +29,7 @@
 #define BENCH_RESTRICT __restrict
 #else
 #define BENCH_RESTRICT restrict
+
 #endif
 
 /* ---- van der Pol ---- */
@@ -137,4 +142,16 @@ static inline void bench_arenstorf_eval(const double *BENCH_RESTRICT y, double *
     dydt[3] = y[1] - 2.0 * y[2] - mup * y[1] / D1 - mu * y[1] / D2;
 }
 
+/* ---- Kepler's problem, unit mass parameter ---- */
+static inline void bench_kepler_eval(const double *BENCH_RESTRICT y, double *BENCH_RESTRICT dydt,
+                                     const void *p)
+{
+    (void)p;
+    const double r2 = y[0] * y[0] + y[1] * y[1], r3 = r2 * sqrt(r2);
+    dydt[0] = y[2];
+    dydt[1] = y[3];
+    dydt[2] = -y[0] / r3;
+    dydt[3] = -y[1] / r3;
+}
+#define BENCH_KEPLER_E 0.9
 #endif

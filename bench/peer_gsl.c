@@ -141,6 +141,7 @@ static gsl_ctx *gsl_new(const bench_sys *sys, const gsl_odeiv2_step_type *type, 
         break;
     case BENCH_PLANE: x->gs.function = counted ? gsl_plane_counted : gsl_plane; break;
     case BENCH_ARENSTORF: x->gs.function = counted ? gsl_arenstorf_counted : gsl_arenstorf; break;
+    case BENCH_KEPLER: free(x); return NULL; /* dynkit's controllers only: no peer runs it */
     }
     x->h0 = sys->id == BENCH_VDP_STIFF ? 1e-6 : 1e-3;
     return x;

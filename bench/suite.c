@@ -108,6 +108,7 @@ CONST_TABLEAU(RK4_CONST, rk4, 4, 4)
 DK_RHS(dk_vdp, bench_vdp_eval)
 DK_RHS(dk_plane, bench_plane_eval)
 DK_RHS(dk_arenstorf, bench_arenstorf_eval)
+DK_RHS(dk_kepler, bench_kepler_eval)
 
 static int dk_vdp_jac(double t, const double *y, double *J, void *par)
 {
@@ -118,7 +119,10 @@ static int dk_vdp_jac(double t, const double *y, double *J, void *par)
 
 static dyn_rhs_fn dk_rhs(const bench_sys *s)
 {
-    return s->id == BENCH_PLANE ? dk_plane : s->id == BENCH_ARENSTORF ? dk_arenstorf : dk_vdp;
+    return s->id == BENCH_PLANE       ? dk_plane
+           : s->id == BENCH_ARENSTORF ? dk_arenstorf
+           : s->id == BENCH_KEPLER    ? dk_kepler
+                                      : dk_vdp;
 }
 
 /* ------------------------------------------------------------------------------------------
@@ -513,6 +517,25 @@ static int local_solve(const bench_sys *sys, bench_task task, bench_solver *out,
             add_dk(out, &count, max, x, "dynkit", label, 0, m->order, 0.0, dk_solve_run);
         }
     }
+    /* diagnostic: dop853 with the default controller of Hairer's dop853.f (pure I: beta = 0,
+     * safety 0.9, 0.333 <= h_new/h <= 6) instead of dynkit's (DOPRI5's PI controller), to
+     * keep the choice measured (docs/solvers.md) */
+    const dyn_tableau *m8 = dyn_method_find("dop853");
+    dk_ctx *x = task == BENCH_TASK_ADAPTIVE && m8 ? dk_new(DK_SOLVE, sys, m8) : NULL;
+    if (x) {
+        x->opts.beta = -1.0; /* negative: none */
+        x->opts.fac_min = 0.333;
+        x->opts.fac_max = 6.0;
+        const size_t nw = dyn_solve_work_size(m8, sys->n, &x->opts);
+        x->work = malloc((nw ? nw : 1) * sizeof(double));
+        if (!x->work) {
+            dk_destroy(x);
+            x = NULL;
+        }
+        add_dk(out, &count, max, x, "diagnostic",
+               "diagnostic: dynkit dop853, dop853.f's I controller (beta 0, 0.333 .. 6)",
+               BENCH_DIAG, m8->order, 0.0, dk_solve_run);
+    }
     return count;
 }
 
@@ -560,7 +583,7 @@ static int collect(const options *o, const bench_sys *sys, bench_task task, benc
 {
     int count = task == BENCH_TASK_FIXED ? local_fixed(sys, m, out, MAX_SOLVERS)
                                          : local_solve(sys, task, out, MAX_SOLVERS);
-    for (int i = 0; all_peers[i]; i++)
+    for (int i = 0; all_peers[i] && sys->id != BENCH_KEPLER; i++)
         if (peer_enabled(o, all_peers[i]->name))
             count += all_peers[i]->solvers(sys, task, m, out + count, MAX_SOLVERS - count);
     return count;
@@ -1011,7 +1034,7 @@ static void adaptive_section(const options *o, const bench_sys *sys, bench_task 
             dk |= has && s[i].is_dynkit;
             peer |= has && !s[i].is_dynkit && !(s[i].flags & BENCH_DIAG);
         }
-        if (dk && (peer || o->peers_none))
+        if (dk && (peer || o->peers_none || sys->id == BENCH_KEPLER))
             levels[nl++] = e;
     }
     for (int what = 0; what < 2 && nl > 0; what++) {
@@ -1342,6 +1365,10 @@ int main(int argc, char **argv)
     const bench_sys sys_plane = {BENCH_PLANE, "plane", 12, &plane, plane_y0, 0.0, 5.0};
     const bench_sys sys_aren = {BENCH_ARENSTORF,     "Arenstorf", 4, &aren, aren_y0, 0.0,
                                 DYN_ARENSTORF_PERIOD};
+    double kep_start[4] = {1.0 - BENCH_KEPLER_E, 0.0, 0.0,
+                           sqrt((1.0 + BENCH_KEPLER_E) / (1.0 - BENCH_KEPLER_E))};
+    const bench_sys sys_kep = {
+        BENCH_KEPLER, "Kepler e = 0.9", 4, NULL, kep_start, 0.0, 2.0 * 3.14159265358979323846};
     const bench_sys sys_stiff = {
         BENCH_VDP_STIFF, "van der Pol mu = 1000", 2, &vdp_stiff, vdp_y0, 0.0, 3000.0};
 
@@ -1394,6 +1421,8 @@ int main(int argc, char **argv)
                          "vanderpol-mu1-15 (dynkit/problems.h)", "wp-vanderpol");
         adaptive_section(&o, &sys_aren, BENCH_TASK_ADAPTIVE, r_aren->y,
                          "arenstorf-period (dynkit/problems.h)", "wp-arenstorf");
+        adaptive_section(&o, &sys_kep, BENCH_TASK_ADAPTIVE, kep_start,
+                         "the initial state (exact after one period, 2 pi)", "wp-kepler");
     }
     if (o.sections & 4) {
         printf("\n## 3. Stiff\n");

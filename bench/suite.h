@@ -21,7 +21,8 @@ typedef enum bench_sys_id {
     BENCH_VDP,       /* van der Pol, mu = 1, 2 states (bench_vdp_par) */
     BENCH_PLANE,     /* model plane on a spring, 12 states (bench_plane_par) */
     BENCH_ARENSTORF, /* Arenstorf orbit, 4 states (bench_arenstorf_par) */
-    BENCH_VDP_STIFF  /* van der Pol, mu = 1000 (bench_vdp_par), with its Jacobian */
+    BENCH_VDP_STIFF, /* van der Pol, mu = 1000 (bench_vdp_par), with its Jacobian */
+    BENCH_KEPLER     /* Kepler's problem, e = 0.9, 4 states: dynkit's controllers only */
 } bench_sys_id;
 
 typedef struct bench_sys {

@@ -1,20 +1,25 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit report: every answer of the homework, as text, JSON, or a self-contained HTML page
- * with the plots and animations behind the answers. */
+ * with the plots and animations behind the answers, and the three studies of many runs
+ * (dynkit/report_studies.h: the sweep library on every core). */
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
 #include "dynkit/report.h"
+#include "dynkit/report_studies.h"
 #include "pages.h"
 
 static void report_help(void)
 {
-    puts("Usage: dynkit report [--json] [--html FILE]\n\n"
+    puts("Usage: dynkit report [--json] [--html FILE] [--threads N] [--no-studies]\n\n"
          "Answer every question of the homework (TU Delft Advanced Dynamics, homework 8,\n"
          "problems 1 to 4), computed now: each value with its unit, how it was computed, and\n"
-         "the judgements with the numbers behind them.\n\n"
+         "the judgements with the numbers behind them; and three studies of many runs\n"
+         "(the pendulum's period against its amplitude, the plane's Euler-vs-RK4 answer\n"
+         "from 1,000 perturbed starts, where the cart's rear wheels slip over v0 and f),\n"
+         "computed by the sweep library on every core (docs/sweeps.md).\n\n"
          "  --json        one flat JSON object with dotted keys (pendulum.max_height_m, ...)\n"
          "  --html FILE   write the report as one self-contained HTML page (no network):\n"
          "                the answers beside the plots and animations that explain them\n"
@@ -89,6 +94,14 @@ static void table_json(cli_json *j, const dyn_hw_table *t)
     cli_json_end_object(j);
 }
 
+static void number_array(cli_json *j, const double *v, long n)
+{
+    cli_json_begin_array(j);
+    for (long i = 0; i < n; i++)
+        cli_json_number(j, v[i]);
+    cli_json_end_array(j);
+}
+
 static int page_data(cli_json *j, void *ctx)
 {
     const report_page *r = ctx;
@@ -106,6 +119,20 @@ static int page_data(cli_json *j, void *ctx)
         table_json(j, &r->series->table[i]);
     }
     cli_json_end_object(j);
+    const dyn_hw_studies *st = &r->hw->studies;
+    if (st->computed) {
+        const dyn_study_plane *pl = &st->plane;
+        const dyn_study_cart *c = &st->cart;
+        cli_json_key(j, "studies");
+        cli_json_begin_object(j);
+        cli_json_key(j, "plane_distance_m");
+        number_array(j, pl->distance_m, pl->n_runs);
+        cli_json_key(j, "plane_angle_rad");
+        number_array(j, pl->angle_rad, pl->n_runs);
+        cli_json_key(j, "cart_ratio");
+        number_array(j, c->ratio, (long)c->n_v0 * c->n_f);
+        cli_json_end_object(j);
+    }
     cli_json_key(j, "models");
     cli_json_begin_object(j);
     for (int i = 0; i < dyn_model_count(); i++) {
@@ -163,8 +190,8 @@ static int write_html(const dyn_homework *hw, const char *path)
 
 int cli_cmd_report(int argc, char **argv)
 {
-    int json = 0;
-    const char *html = NULL;
+    int json = 0, studies = 1;
+    const char *html = NULL, *threads_text = NULL;
     for (int i = 0; i < argc; i++) {
         const char *value = NULL;
         int r;
@@ -173,18 +200,31 @@ int cli_cmd_report(int argc, char **argv)
             return CLI_OK;
         } else if (cli_flag(argv[i], "json")) {
             json = 1;
+        } else if (cli_flag(argv[i], "no-studies")) {
+            studies = 0;
         } else if ((r = cli_option(argc, argv, &i, "html", &value)) != 0) {
             if (r < 0)
                 return cli_usage_error("report", "option --html needs a value (a file name)");
             html = value;
+        } else if ((r = cli_option(argc, argv, &i, "threads", &value)) != 0) {
+            if (r < 0)
+                return cli_usage_error("report", "option --threads needs a value (a whole "
+                                                 "number from 1 to 4096)");
+            threads_text = value;
         } else {
-            return cli_usage_error("report", "unknown option '%s' (accepted: --json, --html FILE)",
+            return cli_usage_error("report", "unknown option '%s' (accepted: --json, --html FILE, "
+                                             "--threads N, --no-studies)",
                                    argv[i]);
         }
     }
+    long threads = 0;
+    if (threads_text && (cli_parse_count(threads_text, 1, &threads) || threads > 4096))
+        return cli_usage_error("report", "--threads '%s': give a whole number from 1 to 4096",
+                               threads_text);
     static dyn_homework hw;
     char err[256] = "";
-    if (dyn_homework_compute(&hw, err, sizeof err)) {
+    if (dyn_homework_compute(&hw, err, sizeof err) ||
+        (studies && dyn_homework_studies(&hw, (int)threads, err, sizeof err))) {
         fprintf(stderr, "dynkit: report failed: %s\n", err);
         return CLI_FAILED;
     }

@@ -971,6 +971,32 @@ static void test_bogus_option(void **state)
     free(out);
 }
 
+/* The studies of many runs: --no-studies leaves them out (the help's example), --threads
+ * changes no number (only the line with the studies' time), a bad --threads is refused. */
+static void test_studies_options(void **state)
+{
+    (void)state;
+    int status;
+    char *alone = cli_capture("'" DYNKIT_CLI "' report --threads 1 --no-studies 2>/dev/null", &status);
+    assert_int_equal(status, 0);
+    assert_non_null(strstr(alone, " 4d "));
+    assert_null(strstr(alone, "Many runs"));
+    char *one = cli_capture("'" DYNKIT_CLI "' report --threads 1 | grep -v -e '^(computed in' "
+                            "-e '^(the studies of many runs'", &status);
+    char *two = cli_capture("'" DYNKIT_CLI "' report --threads 2 | grep -v -e '^(computed in' "
+                            "-e '^(the studies of many runs'", &status);
+    assert_non_null(strstr(one, "Many runs: the period against the amplitude"));
+    assert_non_null(strstr(one, "Many runs: max |lambda|"));
+    assert_string_equal(one, two);
+    free(alone);
+    free(one);
+    free(two);
+    char *out = cli_capture("'" DYNKIT_CLI "' report --threads 0 2>&1 >/dev/null", &status);
+    assert_int_equal(status, 2);
+    assert_non_null(strstr(out, "--threads '0'"));
+    free(out);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -978,6 +1004,7 @@ int main(void)
         cmocka_unit_test(test_vanderpol),      cmocka_unit_test(test_plane_rk4),
         cmocka_unit_test(test_plane_euler),    cmocka_unit_test(test_cart),
         cmocka_unit_test(test_text_report),    cmocka_unit_test(test_bogus_option),
+        cmocka_unit_test(test_studies_options),
     };
     return cmocka_run_group_tests(tests, setup_report, teardown_report);
 }

@@ -105,6 +105,11 @@ void dyn_cart_inverse_forces(const dyn_cart_par *p, double theta, double ddsX, d
 /* Amplitude of the prescribed heading of problem 4a [rad]: theta = (pi/8) sin(2 pi f t). */
 #define DYN_CART_THETA_AMPLITUDE (DYN_PI / 8.0)
 
+/* The velocities of the prescribed motion of problem 4a at time t, without the quadrature of
+ * sY: rates (3) = (dsX, dsY, omega) and, if accel is not NULL, accel (3) = (ddsX, ddsY,
+ * domega); the same numbers as dyn_cart_prescribed's. 0, or DYN_ERR_ARG as there. */
+int dyn_cart_prescribed_rates(const dyn_cart_par *p, double v0, double f, double t,
+                              double rates[3], double accel[3]);
 /* The prescribed motion of problem 4a at time t: sX = -v0 t, theta = (pi/8) sin(2 pi f t),
  * dsY from the constraint and sY = integral of dsY from 0 (sY(0) = 0): the part
  * (l/2) omega / cos(theta) integrates in closed form to (l/2) atanh(sin(theta)), the rest

@@ -45,18 +45,12 @@ typedef struct dyn_hw_vanderpol {
     double error[4];            /* |final - reference| (2-norm): euler, heun, midpoint, rk4 */
 } dyn_hw_vanderpol;
 
-#define DYN_HW_PERTURBATIONS 8
-
 /* Problem 3: the plane, Euler vs RK4 at the same step. */
 typedef struct dyn_hw_plane {
     double step_s, end_time_s;
     double final_euler[12], final_rk4[12];
     double distance_m;          /* |s_euler - s_rk4| at end_time */
     double principal_angle_rad; /* rotation between the two final orientations */
-    /* fragility of the Euler answer: runs with one initial state changed by ~1e-14 */
-    int n_perturbed;
-    double perturbation;        /* relative size of the change */
-    double distance_min, distance_max, angle_min, angle_max;
     double euler_min_theta_margin_rad; /* closest approach of theta to +-pi/2 (Euler run) */
     double rk4_min_theta_margin_rad;
     /* converged reference: RK4 at ref_step, checked against 2 ref_step */
@@ -101,19 +95,79 @@ typedef struct dyn_hw_cart {
     double sensitivity_sX_m;         /* |change of sX(te)| caused by dtheta0 */
 } dyn_hw_cart;
 
+/* ---- three studies of many runs, computed by the sweep library (dynkit/report_studies.h,
+ * library dynkit_sweep); dyn_homework_compute leaves them out (studies.computed = 0) ---- */
+
+/* Problem 1: the period against the amplitude, against the exact 4 K(k) / w, k = sin(a/2). */
+#define DYN_STUDY_PERIOD_RUNS 60
+typedef struct dyn_study_period {
+    int n;                      /* runs */
+    double w;                   /* sqrt(g/l) [1/s] */
+    double rtol;                /* of the runs (dop853, atol = rtol) */
+    double amplitude_rad[DYN_STUDY_PERIOD_RUNS]; /* phi(0), released at rest */
+    double period_s[DYN_STUDY_PERIOD_RUNS];      /* 4 x the time of the first bottom */
+    double exact_s[DYN_STUDY_PERIOD_RUNS];       /* 4 K(k) / w, K by the AGM */
+    int n_failed;
+    double max_difference_s;    /* max |period - exact| */
+    double amplitude_at_max_rad;
+} dyn_study_period;
+
+/* Problem 3: Euler vs RK4 from many starts, each non-zero initial state changed by a
+ * relative normal amount (Philox4x32-10, seed). Percentiles: 5, 25, 50, 75, 95. */
+#define DYN_STUDY_PLANE_RUNS 1000
+#define DYN_STUDY_PERCENTILES 5
+typedef struct dyn_study_plane {
+    long n_runs;
+    unsigned long seed;
+    double perturbation;        /* standard deviation of the relative change */
+    int n_changed;              /* initial states changed (the non-zero ones) */
+    long n_failed;              /* runs of either method that failed (left out) */
+    double distance_m[DYN_STUDY_PLANE_RUNS];  /* NaN for a failed run */
+    double angle_rad[DYN_STUDY_PLANE_RUNS];
+    double distance_mean, distance_min, distance_max, distance_pct[DYN_STUDY_PERCENTILES];
+    double angle_mean, angle_min, angle_max, angle_pct[DYN_STUDY_PERCENTILES];
+} dyn_study_plane;
+
+/* Problem 4: max |lambda| / friction limit along the prescribed motion (4d's "along the
+ * exact prescribed motion", N samples at Ts) over a grid of v0 and f. */
+#define DYN_STUDY_CART_V0 31
+#define DYN_STUDY_CART_F 31
+typedef struct dyn_study_cart {
+    int n_v0, n_f;
+    double v0[DYN_STUDY_CART_V0], f[DYN_STUDY_CART_F]; /* [m/s], [Hz] */
+    double ratio[DYN_STUDY_CART_V0 * DYN_STUDY_CART_F];  /* [i * n_f + j]: v0[i], f[j] */
+    double boundary_f[DYN_STUDY_CART_V0]; /* smallest f of ratio 1 (linear between grid
+                                           * points), NaN if none on the grid */
+    long n_failed;
+    double homework_ratio;      /* the cell of the homework's v0, f */
+    double homework_slip_fraction; /* of the time its wheels would slip (time average) */
+} dyn_study_cart;
+
+typedef struct dyn_hw_studies {
+    int computed;
+    int threads;
+    long runs;                  /* all runs of the three studies */
+    double wall_seconds;
+    dyn_study_period period;
+    dyn_study_plane plane;
+    dyn_study_cart cart;
+} dyn_hw_studies;
+
 typedef struct dyn_homework {
     dyn_hw_pendulum pendulum;
     dyn_hw_vanderpol vanderpol;
     dyn_hw_plane plane;
     dyn_hw_cart cart;
     double compute_seconds;     /* CPU time of dyn_homework_compute */
+    dyn_hw_studies studies;     /* filled by dyn_homework_studies (report_studies.h) */
 } dyn_homework;
 
 /* Compute every answer. Returns 0, or non-zero with a message in err. */
 int dyn_homework_compute(dyn_homework *hw, char *err, size_t errlen);
 
 /* Write the report as text (answers, how they were computed, judgements) or as one flat
- * JSON object with the dotted keys of the design. Return 0 or non-zero on a write error. */
+ * JSON object with the dotted keys of the design; the studies too when computed. Return 0
+ * or non-zero on a write error. */
 int dyn_homework_write_text(const dyn_homework *hw, FILE *out);
 int dyn_homework_write_json(const dyn_homework *hw, FILE *out);
 

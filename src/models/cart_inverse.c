@@ -78,8 +78,8 @@ static double tan_theta_integral(double f, double t)
     return sum;
 }
 
-int dyn_cart_prescribed(const dyn_cart_par *p, double v0, double f, double t, double state[6],
-                        double accel[3])
+int dyn_cart_prescribed_rates(const dyn_cart_par *p, double v0, double f, double t,
+                              double rates[3], double accel[3])
 {
     if (!isfinite(t) || !isfinite(v0) || !isfinite(f) || f < 0.0)
         return DYN_ERR_ARG;
@@ -92,17 +92,30 @@ int dyn_cart_prescribed(const dyn_cart_par *p, double v0, double f, double t, do
     const double s = sin(theta), c = cos(theta);
     const double dsX = -v0, ddsX = 0.0;
     const double dsY = (half_l * omega + dsX * s) / c;
-    state[0] = -v0 * t + 0.0; /* + 0.0: +0 rather than -0 at t = 0 */
-    state[1] = half_l * atanh(s) - v0 * tan_theta_integral(f, t);
-    state[2] = theta;
-    state[3] = dsX;
-    state[4] = dsY;
-    state[5] = omega;
+    rates[0] = dsX;
+    rates[1] = dsY;
+    rates[2] = omega;
     if (accel) {
         accel[0] = ddsX;
         accel[1] = (half_l * domega + ddsX * s + omega * (dsX * c + dsY * s)) / c;
         accel[2] = domega;
     }
+    return 0;
+}
+
+int dyn_cart_prescribed(const dyn_cart_par *p, double v0, double f, double t, double state[6],
+                        double accel[3])
+{
+    double rates[3];
+    if (dyn_cart_prescribed_rates(p, v0, f, t, rates, accel))
+        return DYN_ERR_ARG;
+    const double theta = DYN_CART_THETA_AMPLITUDE * sin(2.0 * DYN_PI * f * t);
+    state[0] = -v0 * t + 0.0; /* + 0.0: +0 rather than -0 at t = 0 */
+    state[1] = 0.5 * p->length_cart * atanh(sin(theta)) - v0 * tan_theta_integral(f, t);
+    state[2] = theta;
+    state[3] = rates[0];
+    state[4] = rates[1];
+    state[5] = rates[2];
     return 0;
 }
 

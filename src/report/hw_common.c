@@ -1,8 +1,10 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* Helpers shared by the homework analyses: fixed-step runs into a final state. */
+/* Helpers shared by the homework analyses: fixed-step runs into a final state, the comparison
+ * of two states of the plane. */
 #include <math.h>
 #include <stdio.h>
 
+#include "dynkit/mech.h"
 #include "report/hw_common.h"
 
 int hw_run(const char *method, dyn_rhs_fn f, void *par, int n, double t0, double t1, double h,
@@ -38,4 +40,13 @@ double hw_distance(const double *a, const double *b, int n)
     for (int i = 0; i < n; i++)
         s += (a[i] - b[i]) * (a[i] - b[i]);
     return sqrt(s);
+}
+
+void hw_plane_compare(const double *a, const double *b, double *distance, double *angle)
+{
+    double Ra[9], Rb[9], axis[3];
+    dyn_euler_to_mat(a + 3, Ra);
+    dyn_euler_to_mat(b + 3, Rb);
+    *distance = dyn_vec3_distance(a, b);
+    *angle = dyn_principal_angle(Ra, Rb, axis);
 }

@@ -23,6 +23,10 @@ int hw_run(const char *method, dyn_rhs_fn f, void *par, int n, double t0, double
 /* Euclidean distance between two n-vectors. */
 double hw_distance(const double *a, const double *b, int n);
 
+/* Distance between the centres of mass and principal angle between the orientations of two
+ * states of the plane (12: s, Euler angles, ds, omega). */
+void hw_plane_compare(const double *a, const double *b, double *distance, double *angle);
+
 /* The four problems; each returns 0 or non-zero with a message in err. */
 int dyn_hw_pendulum_compute(dyn_hw_pendulum *r, char *err, size_t errlen);
 int dyn_hw_vanderpol_compute(dyn_hw_vanderpol *r, char *err, size_t errlen);

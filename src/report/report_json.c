@@ -94,11 +94,6 @@ static void plane(json_out *j, const dyn_hw_plane *p)
     num(j, "plane.principal_angle_rad", p->principal_angle_rad);
     vec(j, "plane.final_euler", p->final_euler, 12);
     vec(j, "plane.final_rk4", p->final_rk4, 12);
-    double dist[2] = {p->distance_min, p->distance_max};
-    double ang[2] = {p->angle_min, p->angle_max};
-    vec(j, "plane.distance_spread_m", dist, 2);
-    vec(j, "plane.principal_angle_spread_rad", ang, 2);
-    num(j, "plane.perturbation_relative", p->perturbation);
     vec(j, "plane.final_reference", p->reference, 12);
     num(j, "plane.reference_step_s", p->ref_step);
     num(j, "plane.rk4_distance_to_reference_m", p->rk4_distance_to_reference_m);
@@ -141,6 +136,49 @@ static void cart(json_out *j, const dyn_hw_cart *c)
     num(j, "cart.sensitivity_sX_m", c->sensitivity_sX_m);
 }
 
+/* The studies of many runs (report_studies.h): their answers and small curves; the page
+ * carries the runs themselves. */
+static void studies(json_out *j, const dyn_hw_studies *s)
+{
+    const dyn_study_period *pe = &s->period;
+    const dyn_study_plane *pl = &s->plane;
+    const dyn_study_cart *c = &s->cart;
+    static const double percent[DYN_STUDY_PERCENTILES] = {5, 25, 50, 75, 95};
+    double dist[2] = {pl->distance_min, pl->distance_max};
+    double ang[2] = {pl->angle_min, pl->angle_max};
+    vec(j, "plane.distance_spread_m", dist, 2);
+    vec(j, "plane.principal_angle_spread_rad", ang, 2);
+    num(j, "plane.perturbation_relative", pl->perturbation);
+    num(j, "studies.threads", s->threads);
+    num(j, "studies.runs", (double)s->runs);
+    num(j, "studies.wall_seconds", s->wall_seconds);
+    num(j, "studies.period.runs", pe->n);
+    num(j, "studies.period.failed", pe->n_failed);
+    num(j, "studies.period.rtol", pe->rtol);
+    vec(j, "studies.period.amplitude_rad", pe->amplitude_rad, pe->n);
+    vec(j, "studies.period.period_s", pe->period_s, pe->n);
+    vec(j, "studies.period.exact_s", pe->exact_s, pe->n);
+    num(j, "studies.period.small_angle_period_s", 2.0 * 3.14159265358979323846 / pe->w);
+    num(j, "studies.period.max_difference_s", pe->max_difference_s);
+    num(j, "studies.period.amplitude_at_max_rad", pe->amplitude_at_max_rad);
+    num(j, "studies.plane.runs", (double)pl->n_runs);
+    num(j, "studies.plane.seed", (double)pl->seed);
+    num(j, "studies.plane.changed_states", pl->n_changed);
+    num(j, "studies.plane.failed", (double)pl->n_failed);
+    vec(j, "studies.plane.percentiles", percent, DYN_STUDY_PERCENTILES);
+    num(j, "studies.plane.distance_mean_m", pl->distance_mean);
+    vec(j, "studies.plane.distance_percentiles_m", pl->distance_pct, DYN_STUDY_PERCENTILES);
+    num(j, "studies.plane.angle_mean_rad", pl->angle_mean);
+    vec(j, "studies.plane.angle_percentiles_rad", pl->angle_pct, DYN_STUDY_PERCENTILES);
+    num(j, "studies.cart.runs", (double)c->n_v0 * c->n_f);
+    num(j, "studies.cart.failed", (double)c->n_failed);
+    vec(j, "studies.cart.v0_mps", c->v0, c->n_v0);
+    vec(j, "studies.cart.f_Hz", c->f, c->n_f);
+    vec(j, "studies.cart.boundary_f_Hz", c->boundary_f, c->n_v0);
+    num(j, "studies.cart.homework_ratio", c->homework_ratio);
+    num(j, "studies.cart.homework_slip_fraction", c->homework_slip_fraction);
+}
+
 int dyn_homework_write_json(const dyn_homework *hw, FILE *out)
 {
     json_out j = {out, 0, 0};
@@ -149,6 +187,8 @@ int dyn_homework_write_json(const dyn_homework *hw, FILE *out)
     vanderpol(&j, &hw->vanderpol);
     plane(&j, &hw->plane);
     cart(&j, &hw->cart);
+    if (hw->studies.computed)
+        studies(&j, &hw->studies);
     num(&j, "compute_seconds", hw->compute_seconds);
     j.bad |= fputs("\n}\n", out) < 0;
     return j.bad;

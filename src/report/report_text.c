@@ -3,6 +3,7 @@
  * its unit and how it was computed, and the judgements with the numbers behind them. */
 #include <math.h>
 
+#include "dynkit/mech.h"
 #include "dynkit/report.h"
 
 #define RAD2DEG (180.0 / 3.14159265358979323846)
@@ -54,8 +55,28 @@ static void pendulum(FILE *out, const dyn_hw_pendulum *p)
             p->te, p->phi_nonlinear_rad, p->te, acos(1.0 - p->max_height_m / p->l));
     fprintf(out, " 1f  two measures: (1) smaller steps: 10 Euler steps of %g s give an error of "
                  "%+.3e rad;\n     (2) a higher-order method: one RK4 step of %g s gives "
-                 "%+.3e rad. Both together converge fastest.\n\n",
+                 "%+.3e rad. Both together converge fastest.\n",
             p->te / 10, p->euler_10_steps_error, p->te, p->rk4_one_step_error);
+}
+
+/* Study: the period against the amplitude (report_studies.h). */
+static void period_study(FILE *out, const dyn_study_period *s)
+{
+    fprintf(out, "     Many runs: the period against the amplitude, %d runs of dyn_sweep (released "
+                 "at rest from phi(0) = a,\n     dop853 with rtol = atol = %g, each stopped at "
+                 "its first bottom, T = 4 t_bottom) against 4 K(k)/w, k = sin(a/2):\n",
+            s->n, s->rtol);
+    fprintf(out, "     %10s  %20s  %20s  %10s\n", "a [rad]", "T [s]", "4 K(k)/w [s]",
+            "T w/(2 pi)");
+    const int every = s->n > 6 ? (s->n - 1) / 5 : 1;
+    for (int i = 0; i < s->n; i++)
+        if (i % every == 0 || i == s->n - 1)
+            fprintf(out, "     %10.4f  %20.15f  %20.15f  %10.6f\n", s->amplitude_rad[i],
+                    s->period_s[i], s->exact_s[i], s->period_s[i] * s->w / (2.0 * DYN_PI));
+    fprintf(out, "     largest |T - 4 K(k)/w| = %.2e s (at a = %.4f rad)%s; the small-angle "
+                 "period 2 pi/w holds only for small a.\n",
+            s->max_difference_s, s->amplitude_at_max_rad,
+            s->n_failed ? " over the runs that finished" : "");
 }
 
 static void vanderpol(FILE *out, const dyn_hw_vanderpol *v)
@@ -72,7 +93,7 @@ static void vanderpol(FILE *out, const dyn_hw_vanderpol *v)
             v->ref_error_estimate);
 }
 
-static void plane(FILE *out, const dyn_hw_plane *p)
+static void plane(FILE *out, const dyn_hw_plane *p, const dyn_hw_studies *st)
 {
     fprintf(out, "Problem 3 - model plane on a spring (Newton-Euler, type I Euler angles), "
                  "step %g s, %g s\n", p->step_s, p->end_time_s);
@@ -86,13 +107,25 @@ static void plane(FILE *out, const dyn_hw_plane *p)
     fprintf(out, "     - the Euler run comes within %.3f deg of theta = +-90 deg (the Euler-angle "
                  "singularity); RK4 stays %.1f deg away\n",
             p->euler_min_theta_margin_rad * RAD2DEG, p->rk4_min_theta_margin_rad * RAD2DEG);
-    fprintf(out, "     - changing one initial state by %.0e (relative), %d ways, moves the "
-                 "distance within [%.4f, %.4f] m\n       and the angle within [%.4f, %.4f] rad: "
-                 "at this step the Euler answer is %s with respect to rounding\n",
-            p->perturbation, p->n_perturbed, p->distance_min, p->distance_max, p->angle_min,
-            p->angle_max,
-            (p->distance_max - p->distance_min) > 1e-6 * (1 + p->distance_m) ? "chaotic"
-                                                                              : "stable");
+    if (st && st->computed) {
+        const dyn_study_plane *d = &st->plane;
+        fprintf(out, "     - %ld starts, each of the %d non-zero initial states changed by a relative "
+                     "normal amount (standard deviation %.0e;\n       Philox4x32-10, seed %lu), "
+                     "Euler and RK4 each through dyn_sweep%s:\n",
+                d->n_runs, d->n_changed, d->perturbation, d->seed,
+                d->n_failed ? " (runs that failed left out)" : "");
+        fprintf(out, "       distance mean %.4f m, percentiles 5/25/50/75/95 %% = %.4f/%.4f/%.4f/%.4f/%.4f m, "
+                     "range [%.4f, %.4f] m\n",
+                d->distance_mean, d->distance_pct[0], d->distance_pct[1], d->distance_pct[2],
+                d->distance_pct[3], d->distance_pct[4], d->distance_min, d->distance_max);
+        fprintf(out, "       angle mean %.4f rad, percentiles 5/25/50/75/95 %% = %.4f/%.4f/%.4f/%.4f/%.4f rad, "
+                     "range [%.4f, %.4f] rad:\n       at this step the Euler answer is %s with "
+                     "respect to rounding\n",
+                d->angle_mean, d->angle_pct[0], d->angle_pct[1], d->angle_pct[2], d->angle_pct[3],
+                d->angle_pct[4], d->angle_min, d->angle_max,
+                (d->distance_max - d->distance_min) > 1e-6 * (1 + p->distance_m) ? "chaotic"
+                                                                                  : "stable");
+    }
     fprintf(out, "     - converged reference: RK4 at h = %g s (halving the step moves s by "
                  "%.1e m); RK4 at %g s is %.1e m\n       and %.1e rad from it, Euler at %g s is "
                  "%.3f m and %.3f rad from it: the distance above is Euler's error\n",
@@ -140,9 +173,31 @@ static void cart(FILE *out, const dyn_hw_cart *c)
             c->t_max_constraint_force, c->max_constraint_force_prescribed_N);
     fprintf(out, "     friction limit of the two rear wheels, mu (2/3) m g = %g * 2/3 * %g * %g = "
                  "%.6f N\n", c->mu, c->m, c->g, c->friction_limit_N);
-    fprintf(out, "     no-slip assumption valid: %s (max |lambda| is %.2f times the limit)\n\n",
+    fprintf(out, "     no-slip assumption valid: %s (max |lambda| is %.2f times the limit)\n",
             c->rear_wheels_slip ? "NO, the rear wheels would slip" : "yes",
             c->max_constraint_force_N / c->friction_limit_N);
+}
+
+/* Study: where the rear wheels start to slip (report_studies.h). */
+static void cart_study(FILE *out, const dyn_study_cart *s)
+{
+    fprintf(out, "     Many runs: max |lambda| / (mu (2/3) m g) along the prescribed motion over v0 = "
+                 "%g..%g m/s and f = %g..%g Hz,\n     %d x %d runs of dyn_sweep (RK4 of the path "
+                 "at Ts, N samples)%s:\n",
+            s->v0[0], s->v0[s->n_v0 - 1], s->f[0], s->f[s->n_f - 1], s->n_v0, s->n_f,
+            s->n_failed ? ", runs that failed left out" : "");
+    fprintf(out, "     at the homework's v0 = 20 m/s, f = 2 Hz the ratio is %.4f (4d along the exact "
+                 "motion), the wheels would slip\n     %.0f %% of the time; "
+                 "the rear wheels slip (ratio >= 1) from f =\n",
+            s->homework_ratio, 100.0 * s->homework_slip_fraction);
+    const int every = s->n_v0 > 7 ? (s->n_v0 - 1) / 6 : 1;
+    for (int i = 0; i < s->n_v0; i += every) {
+        if (isnan(s->boundary_f[i]))
+            fprintf(out, "       %8s Hz at v0 = %g m/s (no slip up to %g Hz)\n", "-", s->v0[i],
+                    s->f[s->n_f - 1]);
+        else
+            fprintf(out, "       %8.4f Hz at v0 = %g m/s\n", s->boundary_f[i], s->v0[i]);
+    }
 }
 
 int dyn_homework_write_text(const dyn_homework *hw, FILE *out)
@@ -150,9 +205,19 @@ int dyn_homework_write_text(const dyn_homework *hw, FILE *out)
     fprintf(out, "dynkit report - TU Delft Advanced Dynamics, homework 8, every number computed "
                  "now\n\n");
     pendulum(out, &hw->pendulum);
+    if (hw->studies.computed)
+        period_study(out, &hw->studies.period);
+    fputc('\n', out);
     vanderpol(out, &hw->vanderpol);
-    plane(out, &hw->plane);
+    plane(out, &hw->plane, &hw->studies);
     cart(out, &hw->cart);
+    if (hw->studies.computed)
+        cart_study(out, &hw->studies.cart);
+    fputc('\n', out);
     fprintf(out, "(computed in %.3f s of CPU time)\n", hw->compute_seconds);
+    if (hw->studies.computed)
+        fprintf(out, "(the studies of many runs: %ld runs on %d thread%s in %.3f s)\n",
+                hw->studies.runs, hw->studies.threads, hw->studies.threads == 1 ? "" : "s",
+                hw->studies.wall_seconds);
     return ferror(out) ? 1 : 0;
 }

@@ -212,8 +212,9 @@ int cli_cmd_report(int argc, char **argv)
                                                  "number from 1 to 4096)");
             threads_text = value;
         } else {
-            return cli_usage_error("report", "unknown option '%s' (accepted: --json, --html FILE, "
-                                             "--threads N, --no-studies)",
+            return cli_usage_error("report",
+                                   "unknown option '%s' (accepted: --json, --html FILE, "
+                                   "--threads N, --no-studies)",
                                    argv[i]);
         }
     }

@@ -9,7 +9,9 @@
 // it plays when opened (and stays paused with prefers-reduced-motion), loop off; nothing
 // wider than the screen; no legend box over a drawn point or line; one unit per y axis;
 // equal scales for x-y pictures in metres; a scale bar in the 3D view; the URL fragment
-// (#t=..&speed=..) opens the page there and follows the player.
+// (#t=..&speed=..) opens the page there and follows the player. On the report also: the
+// figures of the three studies of many runs are drawn and fit the width (the period curve,
+// the two histograms, the slip map with its cells, colour bar and boundary).
 // Screenshots go to the artifacts directory (at 390 px wide with the suffix -390).
 //
 // Usage: node run.mjs DYNKIT_BINARY [ARTIFACTS_DIR]
@@ -456,12 +458,27 @@ async function checkPage(spec, vp) {
     // the numbers of the answers are those of `dynkit report --json`
     const json = JSON.parse(execFileSync(dynkit, ['report', '--json']).toString());
     const shown = await page.evaluate(() => JSON.parse(document.getElementById('dynkit-data').textContent).report);
-    const keys = ['pendulum.max_height_m', 'vanderpol.rk4', 'plane.distance_m', 'plane.principal_angle_rad', 'cart.max_constraint_force_N'];
+    const keys = ['pendulum.max_height_m', 'vanderpol.rk4', 'plane.distance_m', 'plane.principal_angle_rad', 'cart.max_constraint_force_N',
+      'studies.period.max_difference_s', 'studies.plane.distance_percentiles_m', 'studies.cart.boundary_f_Hz'];
     check(keys.every(k => JSON.stringify(shown[k]) === JSON.stringify(json[k])), 'the page carries the numbers of report --json');
     const text = await page.evaluate(() => document.querySelector('#p3 .answer').textContent);
     check(text.includes(json['plane.distance_m'].toFixed(6)), `the plane's distance is shown (${text})`);
     const missing = await page.evaluate(() => [...document.querySelectorAll('[data-key]')].filter(e => !e.textContent || e.textContent === '?').length);
     check(missing === 0, `every answer is filled in (${missing} empty)`);
+    // the three studies of many runs: their figures exist, draw and fit the width (a phone's too)
+    const studies = await page.evaluate(() => ['pendulum-period', 'plane-hist-distance', 'plane-hist-angle', 'cart-slip-map'].map(name => {
+      const f = document.querySelector(`[data-fig="${name}"]`), c = f && f.querySelector('canvas.plot-canvas');
+      const r = f && f.getBoundingClientRect(), p = c && c.dkPlot.debug();
+      return { name, ok: !!c, right: r ? r.right : Infinity, left: r ? r.left : -1, width: c ? c.clientWidth : 0,
+        points: p ? p.points.map(s => s.filter(q => q).length) : [], cells: c ? Number(c.dataset.heatCells || 0) : 0,
+        bar: !!(f && f.querySelector('canvas.dk-colorbar')) };
+    }));
+    for (const f of studies)
+      check(f.ok && f.left >= 0 && f.right <= vp.width && f.width >= 200, `study figure ${f.name} is drawn and fits (${f.left.toFixed(0)}..${f.right.toFixed(0)} px of ${vp.width})`);
+    const period = studies[0], map = studies[3];
+    check(period.points[0] === json['studies.period.runs'] && period.points[1] === json['studies.period.runs'], `the period curve: exact and swept, ${period.points.join(' and ')} points`);
+    check(map.cells === json['studies.cart.runs'] && map.bar, `the slip map: ${map.cells} cells and a colour bar`);
+    check(map.points[0] >= 2, `the slip boundary (ratio = 1) is drawn (${map.points[0]} points)`);
     for (const id of ['p1', 'p2', 'p3', 'p4']) {
       await page.locator('#' + id).screenshot({ path: path.join(artifacts, `report${vp.suffix}-${id}.png`) });
     }

@@ -13,9 +13,10 @@
 
   class Plot {
     /* o: title, xlabel, ylabel, logx, logy, equal, height, aspect, series [{label, x, y, t,
-     * color, width, dash, markers, trail, faint, noLegend}], hlines/vlines [{v, label,
+     * color, width (0: markers only), dash, markers, trail, faint, noLegend}], hlines/vlines [{v, label,
      * color, dash}], cursor ('line' | 'points' | 'none'), xrange, yrange, viewport(t),
-     * overlay(ctx, plot, t), onSeek(t), legend ('tr' | 'tl' | 'br' | 'bl' | 'none': the
+     * overlay(ctx, plot, t), underlay(ctx, plot) (drawn once under the series, e.g. the
+     * cells of a heat map), onSeek(t), legend ('tr' | 'tl' | 'br' | 'bl' | 'none': the
      * corner tried first), legendValues, unitY (shown with values), keepClear [[x, y]...]
      * (points of an overlay the legend must not cover). A series may give its unit; a plot
      * of series in different units is an error (one y axis per unit: separate plots). */
@@ -206,6 +207,7 @@
       }
       ctx.save();
       this.clipArea(ctx);
+      if (o.underlay) o.underlay(ctx, this);
       for (const l of o.hlines || []) this.refLine(ctx, l, true);
       for (const l of o.vlines || []) this.refLine(ctx, l, false);
       for (const s of o.series) {
@@ -252,7 +254,7 @@
         pen = true;
       }
       if (end && pen) ctx.lineTo(this.px(end[0]), this.py(end[1]));
-      ctx.stroke();
+      if (s.width !== 0) ctx.stroke(); /* width 0: markers only */
       ctx.setLineDash([]);
       if (s.markers) {
         for (let k = 0; k <= last && k < X.length; k++) {

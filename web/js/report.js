@@ -1,7 +1,9 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit page: 'dynkit report --html' — fills every number of the answers from the report's
  * JSON (the numbers of 'dynkit report --json') and builds the figures of each problem from
- * the recorded runs (report.h, dyn_homework_series), one player per problem. */
+ * the recorded runs (report.h, dyn_homework_series), one player per problem, and the
+ * figures of the three studies of many runs (report_studies.h): a curve, two histograms and
+ * a heat map. */
 'use strict';
 (function (DK) {
   const C = { blue: '#1f77b4', red: '#d62728', green: '#2ca02c', orange: '#ff7f0e', purple: '#9467bd', grey: '#7f7f7f' };
@@ -10,7 +12,7 @@
   function format(v, fmt) {
     if (typeof v === 'boolean' || typeof v === 'string') return String(v);
     if (v === null || v === undefined || !isFinite(v)) return '—';
-    const m = /^(se|f|e|g|deg)(\d+)$/.exec(fmt || '');
+    const m = /^(se|f|e|g|deg|pct)(\d+)$/.exec(fmt || '');
     if (!m) return String(Number(v.toPrecision(6)));
     const n = parseInt(m[2], 10);
     switch (m[1]) {
@@ -18,6 +20,7 @@
       case 'e': return v.toExponential(n).replace('e+', 'e');
       case 'se': return (v >= 0 ? '+' : '') + v.toExponential(n).replace('e+', 'e');
       case 'g': return DK.fmt(v, n);
+      case 'pct': return (100 * v).toFixed(n) + ' %';
       default: return (v * DEG).toFixed(n);
     }
   }
@@ -107,6 +110,15 @@
     const amplitude = Math.acos(1 - R['pendulum.max_height_m'] / par.l);
     text('p1-amplitude', amplitude.toFixed(2));
     text('p1-ratio', Math.round(Math.abs(R['pendulum.error_euler_rad'] / R['pendulum.error_small_angle_rad'])).toString());
+    if (data.studies) {
+      const a = R['studies.period.amplitude_rad'].map(v => v * DEG);
+      new DK.Plot(figure('pendulum-period', 'Many runs: the period against the amplitude, one run of the sweep per amplitude (dots, dop853, stopped at the first bottom: a quarter period) on the exact 4K(k)/ω, k = sin(a/2) (line); the dashed line is the small-angle period 2π/ω.'), {
+        title: 'period against amplitude', xlabel: 'amplitude a [deg]', ylabel: 'period T [s]', unitY: 's', cursor: 'none', legend: 'tl', legendValues: false,
+        series: [{ label: 'exact 4K(k)/ω', color: C.blue, x: a, y: R['studies.period.exact_s'] },
+          { label: 'sweep: 4 × first bottom', color: C.red, x: a, y: R['studies.period.period_s'], markers: 3, width: 0 }],
+        hlines: [{ v: R['studies.period.small_angle_period_s'], label: '2π/ω', color: '#888', dash: [4, 3] }]
+      });
+    }
     text('p1-over', R['pendulum.goes_over_top'] ? '— more than 2 l: the mass goes over the top.' : '< 2 l: the mass turns back' + (R['pendulum.max_height_m'] > par.l ? ', above the pivot (the rigid rod holds it).' : '.'));
   }
 
@@ -152,6 +164,33 @@
     DK.timePlot(figure('plane-distance', 'Distance between the two centres of mass; its final value is the answer.'), [cmp], 'distance', p, { title: 'distance |s_Euler − s_RK4|', ylabel: 'distance [m]', unit: 'm', legend: 'tl' });
     DK.timePlot(figure('plane-angle', 'Principal angle of the rotation between the two orientations; its final value is the answer.'), [cmp], 'principal_angle', p, { title: 'principal angle between the orientations', ylabel: 'angle [rad]', unit: 'rad', legend: 'tl' });
     DK.timePlot(figure('plane-theta', 'How close θ comes to ±90°, where the Euler angles are singular (log scale).'), runs, 'theta_margin_deg', p, { title: 'distance of θ to ±90°', ylabel: '90° − |θ| [deg]', unit: 'deg', logy: true, legend: 'br', hlines: [{ v: 5, label: 'warning: 5°', color: '#999' }] });
+    if (data.studies) {
+      const pct = R['studies.plane.percentiles'], n = R['studies.plane.runs'];
+      const hist = (name, values, unit, mean, pcts, answer, caption, title, xlabel) => {
+        const v = values.filter(x => x !== null && isFinite(x));
+        const lo = Math.min(...v), hi = Math.max(...v), bins = 40, w = (hi - lo) / bins || 1;
+        const count = new Array(bins).fill(0);
+        for (const x of v) count[Math.min(bins - 1, Math.floor((x - lo) / w))]++;
+        const X = [], Y = [];
+        count.forEach((c, k) => { X.push(lo + k * w, lo + (k + 1) * w); Y.push(c, c); });
+        X.unshift(lo); Y.unshift(0); X.push(hi); Y.push(0);
+        const top = Math.max(...count) * 1.3, up = v => ({ x: [v, v], y: [0, top] });
+        new DK.Plot(figure(name, caption), {
+          title, xlabel, ylabel: 'runs [1]', cursor: 'none', legend: 'tr', legendValues: false, yrange: [0, top],
+          series: [{ label: n + ' starts, bins of ' + DK.fmt(w, 2) + ' ' + unit, color: C.purple, x: X, y: Y },
+            Object.assign({ label: 'mean ' + DK.fmt(mean, 4) + ' ' + unit, color: C.red, width: 2 }, up(mean)),
+            Object.assign({ label: 'the answer ' + DK.fmt(answer, 4) + ' ' + unit, color: C.blue, width: 2 }, up(answer)),
+            Object.assign({ label: pct[0] + '–' + pct[4] + ' % of the runs', color: '#777', dash: [4, 3] }, { x: [pcts[0], pcts[0], NaN, pcts[4], pcts[4]], y: [0, top, NaN, top, 0] })]
+        });
+      };
+      const S2 = data.studies;
+      hist('plane-hist-distance', S2.plane_distance_m, 'm', R['studies.plane.distance_mean_m'], R['studies.plane.distance_percentiles_m'], R['plane.distance_m'],
+        'Many runs: the distance between the final centres of mass (Euler against RK4) from ' + n + ' starts, each non-zero initial state changed by a relative 1e−14 (normal, Philox4x32-10): the mean, the 5, 50 and 95 % percentiles and the answer above.',
+        'distance |s_Euler − s_RK4| from ' + n + ' starts', 'distance [m]');
+      hist('plane-hist-angle', S2.plane_angle_rad, 'rad', R['studies.plane.angle_mean_rad'], R['studies.plane.angle_percentiles_rad'], R['plane.principal_angle_rad'],
+        'Many runs: the principal angle between the final orientations over the same starts.',
+        'principal angle from ' + n + ' starts', 'angle [rad]');
+    }
     DK.timePlot(figure('plane-energy', 'Energy: conserved by the exact motion; Euler\'s grows once it passes the singularity.'), runs, 'energy', p, { title: 'energy', unit: 'J', legend: 'tl' });
   }
 
@@ -187,11 +226,26 @@
         { label: 'RK4, held', color: C.orange, x: Ts, y: R['cart.study_error_rk4_hold_m'], markers: 3.5 },
         { label: 'RK4, linear', color: C.purple, x: Ts, y: R['cart.study_error_rk4_linear_m'], markers: 3.5 }]
     });
+    if (data.studies) {
+      const v0 = R['studies.cart.v0_mps'], f = R['studies.cart.f_Hz'], b = R['studies.cart.boundary_f_Hz'];
+      const bx = [], by = [];
+      v0.forEach((v, i) => { if (b[i] !== null && isFinite(b[i])) { bx.push(v); by.push(b[i]); } });
+      const ratio = data.studies.cart_ratio;
+      const top = Math.max(...ratio.filter(v => v !== null && isFinite(v)));
+      DK.heatMap(figure('cart-slip-map', 'Many runs: max |λ| / μ(2/3)mg along the prescribed motion for every pair of speed v₀ and steering frequency f (' + ratio.length + ' runs of the sweep); the white line is the slip boundary, ratio = 1 (red on the colour bar): above it the rear wheels would slip. The red dot is the homework\'s v₀ = 20 m/s, f = 2 Hz.'), {
+        title: 'max |λ| / friction limit over v₀ and f', xlabel: 'speed v₀ [m/s]', ylabel: 'steering frequency f [Hz]', zlabel: 'max |λ| / μ(2/3)mg (log scale)',
+        x: v0, y: f, z: ratio, log: true, zrange: [0.01, top], marks: [{ v: 1, color: '#d62728' }],
+        lines: [{ label: 'ratio = 1', color: '#ffffff', width: 2.5, x: bx, y: by },
+          { label: 'homework', color: '#d62728', x: [20], y: [2], markers: 5, width: 0 }]
+      });
+    }
     text('p4-growth', Math.exp(R['cart.instability_rate_per_s'] * R['cart.te_s']).toExponential(1).replace('e+', 'e'));
     text('p4-ratio', (R['cart.max_constraint_force_N'] / lim).toFixed(2));
   }
 
   DK.buildReport = function (data) {
+    /* without the studies of many runs (report --no-studies) their paragraphs and figures go */
+    if (!data.studies) for (const e of document.querySelectorAll('.study')) e.remove();
     fillNumbers(data);
     document.getElementById('report-text').textContent = data.text;
     for (const build of [pendulum, vanderpol, plane, cart]) {

@@ -14,7 +14,8 @@
  *    curve), since equal tolerances are not equal accuracy.
  * 3. stiff van der Pol (mu = 1000, [0, 3000]): dynkit's stiff methods against CVODE and
  *    GSL's msbdf, at equal error.
- * 4. `dynkit report` end to end (the whole homework), as a separate process.
+ * 4. `dynkit report` end to end (the whole homework), as a separate process: with its
+ *    studies of many runs, without them (--no-studies) and on one thread.
  * Then one table of the targets, met or missed. Peers (GSL, Boost.Odeint, SUNDIALS) are
  * compiled in when CMake found them (peer_*.c); timed runs are interleaved, rotating the
  * order, and repeated (medians), every solver created once outside the timing.
@@ -1176,18 +1177,20 @@ static void adaptive_section(const options *o, const bench_sys *sys, bench_task 
  * ---------------------------------------------------------------------------------------- */
 extern char **environ;
 
-static void report_section(const options *o)
-{
 #ifdef BENCH_DYNKIT_CLI
-    const char *cli = BENCH_DYNKIT_CLI;
-    const int runs = o->quick ? 1 : o->report_runs;
+/* Median and minimum wall time [ms] of runs of `dynkit report EXTRA...` (stdout to
+ * /dev/null); 0, or -1 when a run failed. */
+static int time_report(const char *cli, char *const *extra, int runs, double *med, double *min)
+{
     double *t = malloc((size_t)runs * sizeof *t);
     int ok = t != NULL;
     for (int r = 0; r < runs && ok; r++) {
+        char *argv[8] = {(char *)cli, (char *)"report"};
+        for (int k = 0; extra[k] && k < 5; k++)
+            argv[2 + k] = extra[k];
         posix_spawn_file_actions_t fa;
         posix_spawn_file_actions_init(&fa);
         posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-        char *argv[] = {(char *)cli, (char *)"report", NULL};
         pid_t pid;
         int status = 0;
         const double t0 = now_ns();
@@ -1196,17 +1199,49 @@ static void report_section(const options *o)
         t[r] = now_ns() - t0;
         posix_spawn_file_actions_destroy(&fa);
     }
-    check(ok, "`%s report` failed", cli);
     if (ok) {
-        const double med = median(t, runs) / 1e6, min = t[0] / 1e6;
-        printf("\n### `dynkit report` end to end\n\n%d runs of `%s report > /dev/null`: median "
-               "%.1f ms, minimum %.1f ms (wall clock, process start to exit).\n",
-               runs, cli, med, min);
-        if (!o->quick)
-            add_target(med < 1000.0, "dynkit report (the whole homework)", "wall clock, median",
-                       "well under 1 s", "%.0f ms", med);
+        *med = median(t, runs) / 1e6;
+        *min = t[0] / 1e6; /* median() sorts */
     }
     free(t);
+    return ok ? 0 : -1;
+}
+#endif
+
+/* The whole report, and without its studies of many runs (--no-studies) and on one thread
+ * (--threads 1): what the studies cost. */
+static void report_section(const options *o)
+{
+#ifdef BENCH_DYNKIT_CLI
+    const char *cli = BENCH_DYNKIT_CLI;
+    const int runs = o->quick ? 1 : o->report_runs;
+    static char *const none[] = {NULL};
+    static char *const alone[] = {(char *)"--no-studies", NULL};
+    static char *const one[] = {(char *)"--threads", (char *)"1", NULL};
+    static const struct {
+        char *const *extra;
+        const char *what;
+    } cases[] = {{none, "report"},
+                 {alone, "report --no-studies (the homework alone)"},
+                 {one, "report --threads 1 (the studies on one thread)"}};
+    double med[3], min[3];
+    int ok = 1;
+    for (int c = 0; c < 3 && ok; c++)
+        ok = time_report(cli, cases[c].extra, runs, &med[c], &min[c]) == 0;
+    check(ok, "`%s report` failed", cli);
+    if (ok) {
+        printf("\n### `dynkit report` end to end\n\n%d runs of each, stdout to /dev/null, wall "
+               "clock from process start to exit:\n\n| command | median [ms] | minimum [ms] |\n"
+               "|---|---:|---:|\n",
+               runs);
+        for (int c = 0; c < 3; c++)
+            printf("| `dynkit %s` | %.1f | %.1f |\n", cases[c].what, med[c], min[c]);
+        printf("\nThe studies of many runs cost %.0f ms of the median (%.0f ms on one thread).\n",
+               med[0] - med[1], med[2] - med[1]);
+        if (!o->quick)
+            add_target(med[0] < 1000.0, "dynkit report (the homework and its studies)",
+                       "wall clock, median, all cores", "under 1 s", "%.0f ms", med[0]);
+    }
 #else
     (void)o;
     printf("\n(dynkit report: the path of the command-line tool is not known to this build)\n");

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* dynkit/io.h — writing results: CSV with numbers that round-trip (%.17g); reading numeric
- * CSV tables (e.g. force inputs).
+/* dynkit/io.h — writing results: numbers as the shortest decimal that reads back to the same
+ * double (dyn_format_double), buffered text output, CSV rows; reading numeric CSV tables
+ * (e.g. force inputs).
  *
  * The library writes only to streams the caller opened and hands in; it reports failures
  * by status (DYN_ERR_IO) and never closes the stream.
@@ -16,11 +17,55 @@
 extern "C" {
 #endif
 
+/* ---- numbers as text (shortest_double.c) ---- */
+
+/* Bytes of a buffer that holds every string of dyn_format_double and its NUL (the longest,
+ * e.g. "-2.2250738585072014e-308", has 24 characters). */
+#define DYN_DOUBLE_CHARS 32
+
+/* Write x into buf (DYN_DOUBLE_CHARS bytes) as the shortest decimal string that strtod reads
+ * back to the same double, the last digit correctly rounded (Ryu, Adams 2018), NUL-terminated;
+ * returns its length. Layout: with X the decimal exponent of the first digit, plain decimal
+ * when -4 <= X < 16 ("0.0001", "0.01", "-2.5", "20", "9007199254740992": an integer has no
+ * point), else "d.ddde-X" or "d.dddeX" (no '+', no leading zeros: "1e-5", "1.5e16",
+ * "5e-324", "1.7976931348623157e308"); "0", "-0", "inf", "-inf", "nan" (any NaN). Finite
+ * values are valid JSON numbers; strtod, NumPy and pandas read every string back. */
+int dyn_format_double(double x, char *buf);
+
+/* ---- buffered text output (text_writer.c) ---- */
+
+#define DYN_TEXT_WRITER_BUFFER 65536
+
+/* Text gathered in buf and handed to out with one fwrite per full buffer. A failed write
+ * is kept (failed): later writes do nothing and return DYN_ERR_IO. */
+typedef struct dyn_text_writer {
+    FILE *out;
+    size_t len;
+    int failed;
+    char buf[DYN_TEXT_WRITER_BUFFER];
+} dyn_text_writer;
+
+/* Start writing to out (nothing is written yet). */
+void dyn_text_writer_init(dyn_text_writer *w, FILE *out);
+/* Append n bytes of s; DYN_OK or DYN_ERR_IO. */
+int dyn_text_write(dyn_text_writer *w, const char *s, size_t n);
+/* Append x as dyn_format_double writes it; DYN_OK or DYN_ERR_IO. */
+int dyn_text_write_double(dyn_text_writer *w, double x);
+/* Hand what is buffered to out with fwrite (the stream's own buffer is not flushed: call
+ * fflush for that). Call before anything else writes to out. DYN_OK or DYN_ERR_IO. */
+int dyn_text_writer_flush(dyn_text_writer *w);
+
+/* ---- CSV (csv_write.c) ---- */
+
 /* Header line "t,<names of vars>,<names of extra>" (extra may be NULL with m = 0).
  * Returns DYN_OK or DYN_ERR_IO. */
 int dyn_csv_write_header(FILE *out, const dyn_var *vars, int n, const dyn_var *extra, int m);
-/* One row "t,y...,extra..." with %.17g. Returns DYN_OK or DYN_ERR_IO. */
+/* One row "t,y...,extra..." with dyn_format_double's numbers, written with one fwrite.
+ * Returns DYN_OK or DYN_ERR_IO. */
 int dyn_csv_write_row(FILE *out, double t, const double *y, int n, const double *extra, int m);
+/* The same row appended to w (rows of many runs share one fwrite per buffer). */
+int dyn_csv_write_row_to(dyn_text_writer *w, double t, const double *y, int n,
+                         const double *extra, int m);
 
 /* ---- reading numeric CSV tables (table_read.c) ---- */
 

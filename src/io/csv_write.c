@@ -1,6 +1,8 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* CSV output: header "t,<names>" and rows printed with %.17g, enough digits for every
- * double to round-trip through text (IEEE 754-2008, sec. 5.12.2). */
+/* CSV output: header "t,<names>" and rows; dyn_csv_write_row_to writes the shortest decimal
+ * that reads back to the same double (dyn_format_double), dyn_csv_write_row %.17g. */
+#include <string.h>
+
 #include "dynkit/io.h"
 #include "dynkit/ode.h"
 
@@ -13,6 +15,24 @@ int dyn_csv_write_header(FILE *out, const dyn_var *vars, int n, const dyn_var *e
         bad |= fprintf(out, ",%s", extra[i].name) < 0;
     bad |= fputc('\n', out) == EOF;
     return bad ? DYN_ERR_IO : DYN_OK;
+}
+
+int dyn_csv_write_row_to(dyn_text_writer *w, double t, const double *y, int n,
+                         const double *extra, int m)
+{
+    /* room for a number and its comma is checked here once, so each is written in place */
+    for (int j = 0; j < 1 + n + m; j++) {
+        if (sizeof w->buf - w->len < DYN_DOUBLE_CHARS + 1 && dyn_text_writer_flush(w) != DYN_OK)
+            return DYN_ERR_IO;
+        const double v = j == 0 ? t : j <= n ? y[j - 1] : extra[j - 1 - n];
+        if (j)
+            w->buf[w->len++] = ',';
+        w->len += (size_t)dyn_format_double(v, w->buf + w->len);
+    }
+    if (w->len == sizeof w->buf && dyn_text_writer_flush(w) != DYN_OK)
+        return DYN_ERR_IO;
+    w->buf[w->len++] = '\n';
+    return w->failed ? DYN_ERR_IO : DYN_OK;
 }
 
 int dyn_csv_write_row(FILE *out, double t, const double *y, int n, const double *extra, int m)

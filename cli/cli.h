@@ -6,6 +6,16 @@
 #include <stdio.h>
 
 #include "dynkit/dynkit.h"
+#include "dynkit/io.h"
+
+/* v as the shortest decimal that reads back to it (dyn_format_double), in a buffer that lives
+ * until the end of the enclosing block: fprintf(f, "t = %s", CLI_NUM(t)). */
+#define CLI_NUM(v) cli_num((v), (char[DYN_DOUBLE_CHARS]){0})
+static inline const char *cli_num(double v, char *buf)
+{
+    dyn_format_double(v, buf);
+    return buf;
+}
 
 /* Exit statuses of the contract. */
 enum { CLI_OK = 0, CLI_FAILED = 1, CLI_USAGE = 2 };

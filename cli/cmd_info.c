@@ -2,10 +2,13 @@
 /* dynkit info MODEL: equations, states, parameters, outputs, events, units and defaults.
  * Numbers are printed in their shortest form that reads back exactly (9.81, 321.8122), and
  * each table's columns are as wide as their longest entry. */
+#include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
+#include "dynkit/io.h"
 
 static void info_help(void)
 {
@@ -16,17 +19,41 @@ static void info_help(void)
          "that reads back to the same double.");
 }
 
-/* The shortest %.{1..17}g of v that reads back to v (10, not 1e+01), into buf; returns
- * buf. */
+/* The shortest decimal of v that reads back to v (dyn_format_double's digits), in the plain
+ * or the scientific layout, whichever has fewer characters (9.81, 10, 0.01, 3e7, 1e-10),
+ * into buf; returns buf. */
 static char *shortest(double v, char *buf, size_t size)
 {
-    char s[40];
-    buf[0] = '\0';
-    for (int p = 1; p <= 17; p++) {
-        snprintf(s, sizeof s, "%.*g", p, v);
-        if (strtod(s, NULL) == v && (buf[0] == '\0' || strlen(s) < strlen(buf)))
-            snprintf(buf, size, "%s", s);
+    char s[DYN_DOUBLE_CHARS], sci[DYN_DOUBLE_CHARS + 8], digits[DYN_DOUBLE_CHARS];
+    dyn_format_double(v, s);
+    if (!isfinite(v) || v == 0.0 || strchr(s, 'e')) {
+        snprintf(buf, size, "%s", s);
+        return buf;
     }
+    /* the plain form's significant digits and the decimal exponent of the first */
+    const char *p = s + (s[0] == '-');
+    const char *point = strchr(p, '.');
+    int n = 0, x10 = (int)(point ? point - p : (ptrdiff_t)strlen(p)) - 1, leading = 1;
+    for (const char *c = p; *c; c++) {
+        if (*c == '.')
+            continue;
+        if (leading && *c == '0') {
+            x10--; /* 0.00ddd: the first digit is further right */
+            continue;
+        }
+        leading = 0;
+        digits[n++] = *c;
+    }
+    while (n > 1 && digits[n - 1] == '0')
+        n--;
+    snprintf(sci, sizeof sci, "%s%c%s%.*se%d", s[0] == '-' ? "-" : "", digits[0],
+             n > 1 ? "." : "", n - 1, digits + 1, x10);
+    const char *best = strlen(sci) < strlen(s) ? sci : s;
+    size_t len = strlen(best);
+    if (len >= size)
+        len = size - 1;
+    memcpy(buf, best, len);
+    buf[len] = '\0';
     return buf;
 }
 

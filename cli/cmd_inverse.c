@@ -20,7 +20,7 @@ static void inverse_help(void)
          "Inverse dynamics of the cart (homework problem 4a, 4b): the body-frame forces Fx, Fy\n"
          "at the front wheel that make the cart follow sX = -v0 t, theta = (pi/8) sin(2 pi f t)\n"
          "(sY follows from the no-slip constraint of the rear axle, with sY(0) = 0), at the N\n"
-         "sample times t_k = k Ts. Writes the table as CSV (header t,Fx,Fy, numbers with %.17g)\n"
+         "sample times t_k = k Ts. Writes the table as CSV (header t,Fx,Fy, shortest round-trip numbers)\n"
          "and prints on standard error the initial state of the motion as --init options, the\n"
          "final forces, and the command of the forward run (problem 4c).\n"
          "\n"
@@ -52,7 +52,7 @@ static void print_changed_params(FILE *out, const dyn_model *m, const void *par)
     for (int i = 0; i < m->n_params; i++) {
         double v = dyn_model_get_param(m, par, i);
         if (v != m->params[i].value)
-            fprintf(out, " --set %s=%.17g", m->params[i].name, v);
+            fprintf(out, " --set %s=%s", m->params[i].name, CLI_NUM(v));
     }
 }
 
@@ -191,19 +191,20 @@ int cli_cmd_inverse(int argc, char **argv)
         fprintf(stderr,
                 "dynkit: cart inverse dynamics: sX = -v0 t, theta = (pi/8) sin(2 pi f t), "
                 "v0 = %g m/s, f = %g Hz;\n"
-                "dynkit: %ld samples at Ts = %g s, te = (N-1) Ts = %.17g s\n",
-                v0, f, N, Ts, last[0]);
-        fprintf(stderr, "dynkit: initial state (dsY from the constraint, %.17g m/s):\n ", y0[4]);
+                "dynkit: %ld samples at Ts = %g s, te = (N-1) Ts = %s s\n",
+                v0, f, N, Ts, CLI_NUM(last[0]));
+        fprintf(stderr, "dynkit: initial state (dsY from the constraint, %s m/s):\n ",
+                CLI_NUM(y0[4]));
         for (int i = 0; i < 6; i++)
-            fprintf(stderr, " --init %s=%.17g", m->states[i].name, y0[i]);
-        fprintf(stderr, "\ndynkit: final forces at te = %.17g s: Fx = %.17g N, Fy = %.17g N\n",
-                last[0], last[1], last[2]);
+            fprintf(stderr, " --init %s=%s", m->states[i].name, CLI_NUM(y0[i]));
+        fprintf(stderr, "\ndynkit: final forces at te = %s s: Fx = %s N, Fy = %s N\n",
+                CLI_NUM(last[0]), CLI_NUM(last[1]), CLI_NUM(last[2]));
         fprintf(stderr, "dynkit: forward run (problem 4c): dynkit run cart --forces %s "
                         "--method heun",
                 output_path ? output_path : "FILE");
         print_changed_params(stderr, m, &par);
         for (int i = 0; i < 6; i++)
-            fprintf(stderr, " --init %s=%.17g", m->states[i].name, y0[i]);
+            fprintf(stderr, " --init %s=%s", m->states[i].name, CLI_NUM(y0[i]));
         fputc('\n', stderr);
     }
     free(table);

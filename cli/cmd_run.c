@@ -103,18 +103,14 @@ static int on_event(int index, double t, const double *y, int direction, void *c
     const dyn_model *m = run->model;
     const char *name = run->events[index].name;
     if (es->out) {
-        if (fprintf(es->out, "%s,%.17g", name, t) < 0)
-            es->io_failed = 1;
-        for (int i = 0; i < m->n_states; i++)
-            if (fprintf(es->out, ",%.17g", y[i]) < 0)
-                es->io_failed = 1;
-        if (fputc('\n', es->out) == EOF)
+        if (fprintf(es->out, "%s,", name) < 0 ||
+            dyn_csv_write_row(es->out, t, y, m->n_states, NULL, 0) != DYN_OK)
             es->io_failed = 1;
     } else {
-        fprintf(stderr, "dynkit: event %s (%s) at t = %.17g:", name,
-                direction > 0 ? "rising" : "falling", t);
+        fprintf(stderr, "dynkit: event %s (%s) at t = %s:", name,
+                direction > 0 ? "rising" : "falling", CLI_NUM(t));
         for (int i = 0; i < m->n_states; i++)
-            fprintf(stderr, " %s = %.17g", m->states[i].name, y[i]);
+            fprintf(stderr, " %s = %s", m->states[i].name, CLI_NUM(y[i]));
         fputc('\n', stderr);
     }
     return 0;
@@ -136,7 +132,8 @@ static void run_help(void)
          "\n"
          "Integrate MODEL and write the samples as CSV (or .json, .npy, .npz, .mat by the\n"
          "extension of --output): a header t,<state names> and one row\n"
-         "per sample t0 + k*step, numbers printed with %.17g. Fixed-step methods (euler, heun,\n"
+         "per sample t0 + k*step, each number the shortest decimal that reads back to the same\n"
+         "double. Fixed-step methods (euler, heun,\n"
          "rk4, ...) take steps of --step; adaptive methods (bs23 = ode23, dp45 = ode45,\n"
          "dop853; for stiff problems rodas4, and cvode when built with SUNDIALS) choose their\n"
          "steps to meet --rtol/--atol (defaults: the model's, else 1e-3 and 1e-6 like MATLAB)\n"
@@ -174,25 +171,25 @@ static void report_failure(const cli_run *run, const dyn_result *res, const doub
     if (res->status == DYN_ERR_NONFINITE && res->fail_index >= 0 &&
         dyn_method_is_adaptive(run->method))
         fprintf(stderr,
-                "dynkit: run failed: state %s of model %s became NaN or Inf at t = %.17g "
+                "dynkit: run failed: state %s of model %s became NaN or Inf at t = %s "
                 "(method %s, rtol %g, atol %g; every smaller step failed too)\n",
-                m->states[res->fail_index].name, m->name, res->fail_t, run->method->name,
+                m->states[res->fail_index].name, m->name, CLI_NUM(res->fail_t), run->method->name,
                 run->rtol > 0 ? run->rtol : DYN_DEFAULT_RTOL,
                 run->atol > 0 ? run->atol : DYN_DEFAULT_ATOL);
     else if (res->status == DYN_ERR_NONFINITE && res->fail_index >= 0)
         fprintf(stderr,
-                "dynkit: run failed: state %s of model %s became NaN or Inf at t = %.17g "
+                "dynkit: run failed: state %s of model %s became NaN or Inf at t = %s "
                 "(method %s, step %g)\n",
-                m->states[res->fail_index].name, m->name, res->fail_t, run->method->name,
+                m->states[res->fail_index].name, m->name, CLI_NUM(res->fail_t), run->method->name,
                 run->step);
     else if (res->status == DYN_ERR_MAX_STEPS)
         fprintf(stderr, "dynkit: run failed: %s (--max-steps N sets the limit, default 1e7)\n",
                 res->message);
     else
         fprintf(stderr, "dynkit: run failed: %s\n", res->message);
-    fprintf(stderr, "dynkit: last good state at t = %.17g:", res->t);
+    fprintf(stderr, "dynkit: last good state at t = %s:", CLI_NUM(res->t));
     for (int i = 0; i < m->n_states; i++)
-        fprintf(stderr, " %s = %.17g", m->states[i].name, y_good[i]);
+        fprintf(stderr, " %s = %s", m->states[i].name, CLI_NUM(y_good[i]));
     fprintf(stderr, "\ndynkit: %s\n",
             sink->io_failed ? "the output could not be written"
             : run->final_only ? "it was written as the final row"
@@ -379,14 +376,14 @@ int cli_cmd_run(int argc, char **argv)
                 "dynkit: warning: %s; a method for stiff problems would need far fewer steps\n",
                 res.stiff_message);
     if (res.stopped_by_event && !run.quiet)
-        fprintf(stderr, "dynkit: the run stopped at event %s, t = %.17g\n",
-                run.events[res.event_index].name, res.t);
+        fprintf(stderr, "dynkit: the run stopped at event %s, t = %s\n",
+                run.events[res.event_index].name, CLI_NUM(res.t));
     if (run.stats)
         fprintf(stderr, "%s\n", cli_stats_line(&run, &res, line, sizeof line));
     if (cli_stop_signal) {
         fprintf(stderr,
-                "dynkit: %s: the run stopped at t = %.17g; the samples up to it were written\n",
-                cli_signal_name(), res.t);
+                "dynkit: %s: the run stopped at t = %s; the samples up to it were written\n",
+                cli_signal_name(), CLI_NUM(res.t));
         rc = cli_signal_status();
     } else if (res.status != DYN_OK) {
         report_failure(&run, &res, buffers, &sink);

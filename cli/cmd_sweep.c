@@ -3,7 +3,8 @@
  * model, one row per run (docs/sweeps.md). The run table comes from --vary (evenly spaced or
  * listed values; several make the full grid, the last fastest), --sample (Philox4x32-10
  * random values of (seed, run) alone) or --from (a CSV table); the runs go to dyn_sweep_run
- * (dynkit/sweep.h) on OpenMP threads; the table is written in run order, CSV with %.17g.
+ * (dynkit/sweep.h) on OpenMP threads; the table is written in run order, CSV with the shortest
+ * decimals that read back (dyn_format_double).
  * Ctrl-C writes the finished runs, and --resume FILE runs only the others. */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
@@ -16,6 +17,7 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "dynkit/io.h"
 #include "dynkit/sweep.h"
 #include "out_file.h"
 #include "table_formats.h"
@@ -36,8 +38,8 @@ static void sweep_help(void)
          "\n"
          "Runs MODEL many times with one method and one set of run options, each run with its\n"
          "own parameter or initial-state values, and writes one row per run, in run order:\n"
-         "run,<varied names>,<reduced names>. Runs are numbered from 0. Numbers are printed\n"
-         "with %.17g (they read back exactly); a failed run (a state NaN or Inf, the step size\n"
+         "run,<varied names>,<reduced names>. Runs are numbered from 0. Numbers are the\n"
+         "shortest decimals that read back to the same double; a failed run (a state NaN or Inf, the step size\n"
          "underflowing, --max-steps reached, parameters the model refuses) is a row of nan\n"
          "with its reason in a last column 'status' (present when a run failed: ok, nonfinite,\n"
          "step-size, max-steps, rhs, parameters, bound, zeno). The results are the same bytes\n"
@@ -364,7 +366,9 @@ static int put_number(FILE *f, double x)
         return fputs(",nan", f) < 0 ? -1 : 0;
     if (isinf(x))
         return fputs(x > 0 ? ",inf" : ",-inf", f) < 0 ? -1 : 0;
-    return fprintf(f, ",%.17g", x) < 0 ? -1 : 0;
+    char num[DYN_DOUBLE_CHARS + 1] = ",";
+    const int len = 1 + dyn_format_double(x, num + 1);
+    return fwrite(num, 1, (size_t)len, f) != (size_t)len ? -1 : 0;
 }
 
 static void header_line(const sweep_out *o, int with_status, char *buf, size_t size)

@@ -91,9 +91,9 @@ int cli_load_input(const char *command, cli_run *run, unsigned given)
             if (!(fabs(in[k * cols] - (first + (double)k * dt)) <= 1e-9 * dt))
                 return cli_usage_error(command,
                                        "--forces %s: the sample times are not uniform (row "
-                                       "%ld: t = %.17g), so there is no sample time to use as "
+                                       "%ld: t = %s), so there is no sample time to use as "
                                        "the step: give --step H",
-                                       path, k + 1, in[k * cols]);
+                                       path, k + 1, CLI_NUM(in[k * cols]));
         if (!(dt > 0.0))
             return cli_usage_error(command,
                                    "--forces %s has a single row: give --step H", path);

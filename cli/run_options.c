@@ -318,16 +318,17 @@ static int check_method_options(const char *command, cli_run *run, unsigned give
         if (!(given & GIVEN_TSPAN)) {
             if (!(last > run->t0))
                 return cli_usage_error(command,
-                                       "--times: the last time %.17g must be after the start "
-                                       "time %.17g (or give --tspan)",
-                                       last, run->t0);
+                                       "--times: the last time %s must be after the start "
+                                       "time %s (or give --tspan)",
+                                       CLI_NUM(last), CLI_NUM(run->t0));
             run->t1 = last;
         }
         if (first < run->t0 || last > run->t1)
             return cli_usage_error(command,
-                                   "--times: the times must lie in the span %.17g:%.17g (got "
-                                   "%.17g .. %.17g)",
-                                   run->t0, run->t1, first, last);
+                                   "--times: the times must lie in the span %s:%s (got "
+                                   "%s .. %s)",
+                                   CLI_NUM(run->t0), CLI_NUM(run->t1), CLI_NUM(first),
+                                   CLI_NUM(last));
     }
     return CLI_OK;
 }

@@ -195,12 +195,12 @@ int cli_series_record(const cli_run *run, const dyn_tableau *method, double step
     s->status = res.status;
     if (s->status == DYN_ERR_NONFINITE && res.fail_index >= 0)
         snprintf(s->message, sizeof s->message,
-                 "%s: state %s became NaN or Inf at t = %.17g; the samples up to t = %.17g "
+                 "%s: state %s became NaN or Inf at t = %s; the samples up to t = %s "
                  "are shown",
-                 s->label, m->states[res.fail_index].name, res.fail_t, res.t);
+                 s->label, m->states[res.fail_index].name, CLI_NUM(res.fail_t), CLI_NUM(res.t));
     else if (s->status != DYN_OK)
-        snprintf(s->message, sizeof s->message, "%s: %s; the samples up to t = %.17g are shown",
-                 s->label, res.message, res.t);
+        snprintf(s->message, sizeof s->message, "%s: %s; the samples up to t = %s are shown",
+                 s->label, res.message, CLI_NUM(res.t));
     /* the last sample is always kept (a grown series keeps a slot for it) */
     if (r.have_latest && (s->rows == 0 || s->data[(s->rows - 1) * s->cols] < r.latest_t))
         store(&r, r.latest_t, r.latest);

@@ -167,8 +167,9 @@ int cli_run_solve(const cli_run *run, long every, dyn_output_fn output, void *ou
                              progress, progress_ctx, y, res);
     if (mo.exceeded && res->status == DYN_STOPPED) {
         snprintf(res->message, sizeof res->message,
-                 "state %s = %g exceeds the model's bound %g at t = %.17g (the file's @ bound)",
-                 m->states[mo.exceeded - 1].name, mo.exceeded_value, m->bound, mo.exceeded_t);
+                 "state %s = %g exceeds the model's bound %g at t = %s (the file's @ bound)",
+                 m->states[mo.exceeded - 1].name, mo.exceeded_value, m->bound,
+                 CLI_NUM(mo.exceeded_t));
         res->fail_t = mo.exceeded_t;
         res->fail_index = mo.exceeded - 1;
     }

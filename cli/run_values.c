@@ -324,8 +324,8 @@ int cli_parse_times(const char *command, const char *text, cli_run *run)
     for (long k = 1; k < run->n_times; k++)
         if (run->times[k] < run->times[k - 1])
             return cli_usage_error(command,
-                                   "--times: the times must not decrease (%.17g follows %.17g)",
-                                   run->times[k], run->times[k - 1]);
+                                   "--times: the times must not decrease (%s follows %s)",
+                                   CLI_NUM(run->times[k]), CLI_NUM(run->times[k - 1]));
     return CLI_OK;
 }
 

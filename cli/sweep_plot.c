@@ -278,9 +278,9 @@ static int heat_map(FILE *out, const sweep_table *t, int xc, int yc, int zc, con
         const double a = PX(xe[ix]), b = PX(xe[ix + 1]), c = PY(ye[iy + 1]), d = PY(ye[iy]);
         bad |= fprintf(out,
                        "<rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" "
-                       "fill=\"%s\"><title>%s=%.17g %s=%.17g: %s=%.17g</title></rect>\n",
-                       a, c, b - a, d - c, col, t->names[xc], row[xc], t->names[yc], row[yc],
-                       t->names[zc], row[zc]) < 0;
+                       "fill=\"%s\"><title>%s=%s %s=%s: %s=%s</title></rect>\n",
+                       a, c, b - a, d - c, col, t->names[xc], CLI_NUM(row[xc]), t->names[yc],
+                       CLI_NUM(row[yc]), t->names[zc], CLI_NUM(row[zc])) < 0;
     }
     bad |= fputs("</g>\n", out) < 0;
     /* axes: ticks at nice values inside the edges */

@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* Data files of a run's table: the format chosen by the output's extension, and the streamed
- * writers: CSV (RFC 4180; numbers with %.17g, which round-trip every double) and JSON
- * (RFC 8259; the settings, names and units, then one array per row). NPY streams too when the
+ * writers: CSV (RFC 4180) and JSON (RFC 8259; the settings, names and units, then one array
+ * per row), their numbers the shortest decimal that reads back to the same double
+ * (dyn_format_double), their rows gathered in a dyn_text_writer (one fwrite per 64 KiB). NPY streams too when the
  * stream can seek (NPY format 1.0: the header, which holds the row count, is written first
  * with room for any count and rewritten at the end); the other formats keep the rows and are
  * written at the end by table_numpy.c and table_mat.c. See docs/data-files.md. */
@@ -37,6 +38,8 @@ struct cli_table {
     int npy_stream;
     long npy_start, npy_header;
     const char **owned; /* names and units made by cli_table_open_run */
+    /* CSV and JSON rows: gathered here, one fwrite per 64 KiB */
+    dyn_text_writer *text;
 };
 
 static const struct {
@@ -165,10 +168,21 @@ static int json_string(FILE *out, const char *s)
     return bad | (fputc('"', out) == EOF);
 }
 
-/* A number with %.17g (round-trips), or null when not finite (JSON has no NaN or Inf). */
+/* A number as the shortest string that reads back to it, or null when not finite (JSON has
+ * no NaN or Inf). */
 static int json_number(FILE *out, double v)
 {
-    return (isfinite(v) ? fprintf(out, "%.17g", v) : fputs("null", out)) < 0;
+    char num[DYN_DOUBLE_CHARS];
+    if (!isfinite(v))
+        return fputs("null", out) < 0;
+    dyn_format_double(v, num);
+    return fputs(num, out) < 0;
+}
+
+/* The same into a row's writer. */
+static int json_number_to(dyn_text_writer *w, double v)
+{
+    return (isfinite(v) ? dyn_text_write_double(w, v) : dyn_text_write(w, "null", 4)) != DYN_OK;
 }
 
 static int json_strings(FILE *out, const char *key, const char *const *s, int n)
@@ -211,14 +225,14 @@ static int json_header(cli_table *tab)
 
 static int json_row(cli_table *tab, double t, const double *y, int n, const double *extra, int m)
 {
-    FILE *out = tab->out;
-    int bad = fputs(tab->rows ? ",\n    [" : "\n    [", out) < 0;
-    bad |= json_number(out, t);
+    dyn_text_writer *w = tab->text;
+    int bad = tab->rows ? dyn_text_write(w, ",\n    [", 7) : dyn_text_write(w, "\n    [", 6);
+    bad |= json_number_to(w, t);
     for (int i = 0; i < n + m; i++) {
-        bad |= fputc(',', out) == EOF;
-        bad |= json_number(out, i < n ? y[i] : extra[i - n]);
+        bad |= dyn_text_write(w, ",", 1);
+        bad |= json_number_to(w, i < n ? y[i] : extra[i - n]);
     }
-    return bad | (fputc(']', out) == EOF);
+    return bad | dyn_text_write(w, "]", 1);
 }
 
 static int json_end(cli_table *tab)
@@ -299,6 +313,14 @@ cli_table *cli_table_open(FILE *out, cli_format format, const cli_table_info *in
     tab->info = *info;
     if (!tab->info.y_name)
         tab->info.y_name = "y";
+    if (format == CLI_FORMAT_CSV || format == CLI_FORMAT_JSON) {
+        if (!(tab->text = malloc(sizeof *tab->text))) {
+            snprintf(err, errlen, "out of memory");
+            free(tab);
+            return NULL;
+        }
+        dyn_text_writer_init(tab->text, out);
+    }
     int bad = 0;
     switch (format) {
     case CLI_FORMAT_CSV:
@@ -329,6 +351,7 @@ cli_table *cli_table_open(FILE *out, cli_format format, const cli_table_info *in
     if (bad) {
         snprintf(err, errlen, "writing the %s header failed: %s", cli_format_name(format),
                  strerror(errno));
+        free(tab->text);
         free(tab);
         return NULL;
     }
@@ -342,7 +365,7 @@ int cli_table_row(cli_table *tab, double t, const double *y, int n, const double
         return -1;
     switch (tab->format) {
     case CLI_FORMAT_CSV:
-        bad = dyn_csv_write_row(tab->out, t, y, n, extra, m) != DYN_OK;
+        bad = dyn_csv_write_row_to(tab->text, t, y, n, extra, m) != DYN_OK;
         break;
     case CLI_FORMAT_JSON:
         bad = json_row(tab, t, y, n, extra, m);
@@ -381,6 +404,8 @@ int cli_table_finish(cli_table *tab, char *err, size_t errlen)
         return -1;
     }
     int bad = tab->failed;
+    if (tab->text)
+        bad |= dyn_text_writer_flush(tab->text) != DYN_OK;
     if (!bad) {
         switch (tab->format) {
         case CLI_FORMAT_CSV:
@@ -416,6 +441,7 @@ void cli_table_free(cli_table *tab)
         return;
     free(tab->owned);
     free(tab->data);
+    free(tab->text);
     free(tab);
 }
 

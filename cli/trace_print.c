@@ -10,7 +10,7 @@ static void print_vector(const char *label, const double *v, int n)
 {
     fprintf(stderr, "%s[", label);
     for (int i = 0; i < n; i++)
-        fprintf(stderr, "%s%.17g", i ? ", " : "", v[i]);
+        fprintf(stderr, "%s%s", i ? ", " : "", CLI_NUM(v[i]));
     fputs("]\n", stderr);
 }
 
@@ -22,7 +22,7 @@ static void print_combination(const double *coef, int count)
     for (int j = 0; j < count; j++) {
         if (coef[j] == 0.0)
             continue;
-        fprintf(stderr, "%s%.17g*k%d", first ? "" : " + ", coef[j], j + 1);
+        fprintf(stderr, "%s%s*k%d", first ? "" : " + ", CLI_NUM(coef[j]), j + 1);
         first = 0;
     }
     fputs(")", stderr);
@@ -36,8 +36,8 @@ void cli_print_trace(const dyn_trace_stage *st, void *ctx)
     const int heun = strcmp(m->name, "heun") == 0;
     char label[160];
     if (i == 0) {
-        fprintf(stderr, "trace %s, step %ld: t_n = %.17g, h = %.17g\n  states (", m->name,
-                st->step + 1, st->t_n, st->h);
+        fprintf(stderr, "trace %s, step %ld: t_n = %s, h = %s\n  states (", m->name,
+                st->step + 1, CLI_NUM(st->t_n), CLI_NUM(st->h));
         for (int q = 0; q < st->n; q++)
             fprintf(stderr, "%s%s", q ? ", " : "", run->model->states[q].name);
         fputs(")\n", stderr);
@@ -51,13 +51,13 @@ void cli_print_trace(const dyn_trace_stage *st, void *ctx)
             print_combination(m->a + (size_t)i * (size_t)s, i);
             print_vector("\n      = ", st->Y, st->n);
         }
-        snprintf(label, sizeof label, "  k%d = f(t_n + %.17g*h = %.17g, %s) = ", i + 1, m->c[i],
-                 st->t_stage, i == 0 ? "y_n" : stage_name);
+        snprintf(label, sizeof label, "  k%d = f(t_n + %s*h = %s, %s) = ", i + 1, CLI_NUM(m->c[i]),
+                 CLI_NUM(st->t_stage), i == 0 ? "y_n" : stage_name);
         print_vector(label, st->k, st->n);
     } else {
         fprintf(stderr, "  %s = y_n + ", heun ? "corrector y_{n+1}" : "y_{n+1}");
         print_combination(m->b, s);
         print_vector("\n      = ", st->Y, st->n);
-        fprintf(stderr, "  (t_{n+1} = %.17g)\n", st->t_stage);
+        fprintf(stderr, "  (t_{n+1} = %s)\n", CLI_NUM(st->t_stage));
     }
 }

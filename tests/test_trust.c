@@ -316,7 +316,7 @@ static void test_failed_thinned_run_keeps_last_good_sample(void **state)
     cli_result r =
         cli("run vanderpol --set mu=1e6 --method euler --step 0.1 --tspan 0:15 --every 1000");
     /* the run fails at t = 0.8; its last good sample, t = 0.7, is the last row */
-    CHECK(r.status == 1 && strstr(r.out, "\n0.70000000000000007,"), "exit %d, out %s", r.status,
+    CHECK(r.status == 1 && strstr(r.out, "\n0.7000000000000001,"), "exit %d, out %s", r.status,
           r.out);
     cli_free(&r);
 }
@@ -585,7 +585,7 @@ static void test_numbers_states_and_results_checked(void **state)
     }
     /* subnormal numbers are finite numbers > 0: accepted */
     cli_result r = cli("run pendulum --init phi=1e-310 --method rk4 --step 0.1 --tspan 0:0.1");
-    CHECK(r.status == 0 && strstr(r.out, "\n0,9.9999999999999694e-311,"), "subnormal: %d %s %s",
+    CHECK(r.status == 0 && strstr(r.out, "\n0,1e-310,"), "subnormal: %d %s %s",
           r.status, r.out, r.err);
     cli_free(&r);
     /* plane --set k=0: the default sZ = l0 + m g/k is infinite, named */

@@ -1,8 +1,11 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* The homework report as one flat JSON object: the dotted keys of the design
- * ("pendulum.max_height_m", ...), SI units, numbers as numbers (%.17g, null if not finite),
- * vectors as arrays, judgements as booleans or short strings. */
+ * ("pendulum.max_height_m", ...), SI units, numbers as numbers (the shortest decimal that
+ * reads back to the same double, dyn_format_double; null if not finite), vectors as arrays,
+ * judgements as booleans or short strings. */
 #include <math.h>
+
+#include "dynkit/io.h"
 
 #include "dynkit/report.h"
 
@@ -19,9 +22,11 @@ static void key(json_out *j, const char *name)
 
 static void number(json_out *j, double v)
 {
-    if (isfinite(v))
-        j->bad |= fprintf(j->out, "%.17g", v) < 0;
-    else
+    char s[DYN_DOUBLE_CHARS];
+    if (isfinite(v)) {
+        dyn_format_double(v, s);
+        j->bad |= fputs(s, j->out) < 0;
+    } else
         j->bad |= fputs("null", j->out) < 0;
 }
 

@@ -50,6 +50,12 @@ int cli_is_help(const char *arg);
 int cli_model_open(const char *command, const char *spec, const dyn_model **model);
 /* 1 if MODEL names a model file (.ode, .c, .so) rather than a built-in model. */
 int cli_model_is_file(const char *spec);
+/* 1 when parameter `name` of m is its size (the Brusselator's N), which --set and sweeps
+ * must not change: the size is chosen with the model (brusselator:N). */
+int cli_param_is_size(const dyn_model *m, const char *name);
+/* The band solver of stiff runs (band_solver.c): LAPACK's when built with it, else NULL
+ * (the library's own). */
+const dyn_band_solver *cli_band_solver(void);
 /* --verbose (any command): notes on stderr, e.g. a model file's ignored options. */
 void cli_set_verbose(int on);
 int cli_verbose(void);

@@ -148,6 +148,11 @@ static int add_var(const dyn_model *m, sweep_spec *sp, const char *name, size_t 
     dyn_sweep_var v;
     if (dyn_sweep_var_find(m, buf, &v, err, sizeof err))
         return cli_usage_error("sweep", "%s %s: %s", opt, buf, err);
+    if (cli_param_is_size(m, buf))
+        return cli_usage_error("sweep",
+                               "%s %s: %s is the size of the model and cannot be swept; run "
+                               "one sweep per size (%s:N)",
+                               opt, buf, buf, m->name);
     for (int j = 0; j < sp->n_vars; j++)
         if (sp->vars[j].kind == v.kind && sp->vars[j].index == v.index)
             return cli_usage_error("sweep", "%s %s: %s is varied twice", opt, buf, buf);

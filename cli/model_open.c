@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* MODEL arguments of the commands: a built-in model's name ("did you mean" for typos), or a
+/* MODEL arguments of the commands: a built-in model's name ("did you mean" for typos), the
+ * Brusselator of a chosen size (brusselator:N, built by the library), or a
  * model file: an XPPAUT .ode file (translated to C by dynkit_lang) or a C file that defines
  * dynkit_model() (model.h), both compiled to native code and loaded by dynkit_jit, or a
  * shared object already compiled. A loaded model stays loaded until the tool exits. */
@@ -10,6 +11,7 @@
 #include <sys/stat.h>
 
 #include "cli.h"
+#include "dynkit/brusselator.h"
 #include "dynkit/jit.h"
 #include "dynkit/lang.h"
 
@@ -26,6 +28,16 @@ static void unload_all(void)
 {
     while (n_loaded > 0)
         dyn_jit_unload(&loaded[--n_loaded]);
+}
+
+/* Models built for a size the user chose (brusselator:N), freed at exit. */
+static dyn_model *sized[MAX_LOADED];
+static int n_sized;
+
+static void free_sized(void)
+{
+    while (n_sized > 0)
+        dyn_brusselator_free(sized[--n_sized]);
 }
 
 static int ends_with(const char *s, const char *suffix)
@@ -45,12 +57,12 @@ static int unknown_model(const char *command, const char *spec)
     dyn_model_names(list, sizeof list);
     if (near)
         return cli_usage_error(command,
-                               "unknown model '%s' (did you mean '%s'? accepted: %s, or a "
-                               "model file NAME.ode or NAME.c)",
+                               "unknown model '%s' (did you mean '%s'? accepted: %s, "
+                               "brusselator:N, or a model file NAME.ode or NAME.c)",
                                spec, near, list);
     return cli_usage_error(command,
-                           "unknown model '%s' (accepted: %s, or a model file NAME.ode or "
-                           "NAME.c)",
+                           "unknown model '%s' (accepted: %s, brusselator:N, or a model file "
+                           "NAME.ode or NAME.c)",
                            spec, list);
 }
 
@@ -166,11 +178,62 @@ int cli_model_is_file(const char *spec)
     return ends_with(spec, ".ode") || ends_with(spec, ".c") || ends_with(spec, ".so");
 }
 
+/* The Brusselator of size N (dynkit/brusselator.h): "brusselator" (the default N) or
+ * "brusselator:N". Returns 1 when spec names it (then *rc is the status), else 0. */
+static int open_brusselator(const char *command, const char *spec, const dyn_model **model,
+                            int *rc)
+{
+    static const char name[] = "brusselator";
+    const size_t len = sizeof name - 1;
+    if (strncmp(spec, name, len) != 0 || (spec[len] != '\0' && spec[len] != ':'))
+        return 0;
+    long N = DYN_BRUSSELATOR_DEFAULT_N;
+    if (spec[len] == ':') {
+        const char *digits = spec + len + 1;
+        char *end = NULL;
+        errno = 0;
+        N = strtol(digits, &end, 10);
+        if (end == digits || *end != '\0' || errno || N < 1 || N > DYN_BRUSSELATOR_MAX_N) {
+            *rc = cli_usage_error(command,
+                                  "model '%s': N must be a whole number from 1 to %d, as in "
+                                  "brusselator:200 (2N states; brusselator alone: N = %d)",
+                                  spec, DYN_BRUSSELATOR_MAX_N, DYN_BRUSSELATOR_DEFAULT_N);
+            return 1;
+        }
+    }
+    if (n_sized >= MAX_LOADED) {
+        fprintf(stderr, "dynkit: too many models at once (at most %d)\n", MAX_LOADED);
+        *rc = CLI_USAGE;
+        return 1;
+    }
+    char err[256];
+    dyn_model *m = dyn_brusselator_new((int)N, err, sizeof err);
+    if (!m) {
+        fprintf(stderr, "dynkit: model %s: %s\n", spec, err);
+        *rc = CLI_FAILED;
+        return 1;
+    }
+    if (n_sized == 0)
+        atexit(free_sized);
+    sized[n_sized++] = m;
+    *model = m;
+    *rc = CLI_OK;
+    return 1;
+}
+
+int cli_param_is_size(const dyn_model *m, const char *name)
+{
+    return m->rhs == dyn_brusselator_rhs && strcmp(name, "N") == 0;
+}
+
 int cli_model_open(const char *command, const char *spec, const dyn_model **model)
 {
     *model = NULL;
     if (cli_model_is_file(spec))
         return open_model_file(spec, model);
+    int rc;
+    if (open_brusselator(command, spec, model, &rc))
+        return rc;
     *model = dyn_model_find(spec);
     return *model ? CLI_OK : unknown_model(command, spec);
 }

@@ -26,6 +26,10 @@ static int solve_cvode(const cli_run *run, const dyn_system *sys, dyn_output_fn 
     o.rtolv = run->rtolv;
     o.atolv = run->atolv;
     o.jacobian = run->model->jacobian;
+    o.jac_banded = run->model->jac_banded;
+    o.jac_lower = run->model->jac_lower;
+    o.jac_upper = run->model->jac_upper;
+    o.jacobian_band = run->model->jacobian_band;
     o.max_steps = run->max_steps;
     o.initial_step = run->initial_step;
     o.max_step = run->max_step;
@@ -247,6 +251,11 @@ static int solve_run(const cli_run *run, long every, dyn_output_fn output, void 
     opts.on_event = n_events > run->n_events ? forward_event : on_event;
     opts.event_ctx = n_events > run->n_events ? (void *)&re : event_ctx;
     opts.jacobian = m->jacobian;
+    opts.jac_banded = m->jac_banded;
+    opts.jac_lower = m->jac_lower;
+    opts.jac_upper = m->jac_upper;
+    opts.jacobian_band = m->jacobian_band;
+    opts.band_solver = cli_band_solver();
     opts.trace = run->trace_steps > 0 ? cli_print_trace : NULL;
     opts.trace_ctx = (void *)run;
     opts.trace_steps = run->trace_steps;

@@ -103,6 +103,11 @@ int cli_apply_assignment(const char *command, cli_run *run, const assignment *as
         int i = dyn_model_param_index(m, name);
         if (i < 0)
             return unknown_name(command, run, 1, name);
+        if (cli_param_is_size(m, name) && value != dyn_model_get_param(m, run->par, i))
+            return cli_usage_error(command,
+                                   "--set %s is not accepted: %s is the size of the model; "
+                                   "choose it with the model, e.g. %s:%g",
+                                   as->text, name, m->name, value);
         dyn_model_set_param(m, run->par, i, value);
     } else {
         int i = dyn_model_state_index(m, name);

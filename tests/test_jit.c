@@ -518,12 +518,17 @@ static void test_abi_mismatch_refused(void **state)
     dyn_jit_model jm;
 
     char text[4096];
-    snprintf(text, sizeof text, "%s\nconst unsigned dynkit_model_abi = 0;\n", vdp_source);
+    /* the ABI before the last change of the layout (2 added the band of the Jacobian) */
+    snprintf(text, sizeof text, "%s\nconst unsigned dynkit_model_abi = %d;\n", vdp_source,
+             DYN_MODEL_ABI - 1);
     write_text(src, text);
     assert_int_equal(run_cc(argv), 0);
     assert_int_not_equal(dyn_jit_load_shared(so, &jm, err, sizeof err), 0);
-    assert_string_equal(err, "model.so was built for model ABI 0, this dynkit reads ABI 1: "
-                             "recompile it");
+    char expect[160];
+    snprintf(expect, sizeof expect,
+             "model.so was built for model ABI %d, this dynkit reads ABI %d: recompile it",
+             DYN_MODEL_ABI - 1, DYN_MODEL_ABI);
+    assert_string_equal(err, expect);
     assert_null(jm.model);
 
     write_text(src, vdp_source); /* no stamp */
@@ -532,7 +537,9 @@ static void test_abi_mismatch_refused(void **state)
     assert_int_not_equal(dyn_jit_load_shared(so, &jm, err, sizeof err), 0);
     assert_non_null(strstr(err, "model.so does not record a model ABI"));
 
-    write_text(src, "const unsigned dynkit_model_abi = 1;\nint x(void) { return 1; }\n");
+    snprintf(text, sizeof text, "const unsigned dynkit_model_abi = %d;\nint x(void) { return 1; }\n",
+             DYN_MODEL_ABI);
+    write_text(src, text);
     unlink(so);
     assert_int_equal(run_cc(argv), 0);
     assert_int_not_equal(dyn_jit_load_shared(so, &jm, err, sizeof err), 0);
@@ -557,6 +564,10 @@ static void test_bad_models_refused(void **state)
         {"static const dyn_model m = {.name = \"z\", .n_states = 1, .y0 = y0_};\n"
          "const dyn_model *dynkit_model(void) { return &m; }",
          "has no right-hand side"},
+        {"static const dyn_model m = {.name = \"z\", .n_states = 1, .rhs = rhs, .y0 = y0_,\n"
+         "  .states = st, .jac_banded = 1, .jac_lower = 1};\n"
+         "const dyn_model *dynkit_model(void) { return &m; }",
+         "declares a band of its Jacobian with jac_lower = 1"},
         {"static const dyn_model m = {.name = \"z\", .n_states = 1, .rhs = rhs, .y0 = y0_,\n"
          "  .states = (const dyn_var[]){{NULL, \"m\", \"\"}}};\n"
          "const dyn_model *dynkit_model(void) { return &m; }",

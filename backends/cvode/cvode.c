@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* cvode.c — the SUNDIALS CVODE backend (dynkit/cvode.h): a dyn_system solved by CVODE's
  * variable-order BDF (or Adams) method with Newton iteration and the dense direct linear
- * solver, the model's Jacobian when it has one (Hindmarsh et al., ACM TOMS 31 (2005);
+ * solver (the band matrix and solver when the Jacobian is banded), the model's Jacobian when
+ * it has one (Hindmarsh et al., ACM TOMS 31 (2005);
  * CVODE user guide v6). Works with SUNDIALS 6 and 7 (the context and error-handler calls
  * differ and are selected by SUNDIALS_VERSION_MAJOR).
  */
@@ -13,7 +14,9 @@
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_config.h>
+#include <sunlinsol/sunlinsol_band.h>
 #include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_band.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "dynkit/cvode.h"
@@ -28,7 +31,8 @@
 typedef struct cv_user {
     const dyn_system *sys;
     dyn_jac_fn jac;
-    double *jbuf;      /* (n x n) row-major Jacobian from the user's function */
+    double *jbuf;      /* (n x n) row-major Jacobian from the user's function, or its band */
+    int lower, upper;  /* the band, when jbuf holds one */
     const double *rtolv, *atolv; /* per-state tolerances (cv_ewt), or NULL */
     double atol;       /* scalar absolute tolerance when atolv is NULL */
     int rhs_status;    /* non-zero value f or jac returned */
@@ -67,6 +71,32 @@ static int cv_jac(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void *use
         sunrealtype *col = SUNDenseMatrix_Column(J, j); /* column-major */
         for (int i = 0; i < n; i++)
             col[i] = u->jbuf[(size_t)i * (size_t)n + (size_t)j];
+    }
+    return 0;
+}
+
+/* The band of the Jacobian (DYN_BAND_AT storage) into CVODE's band matrix, whose column j
+ * points at the diagonal: element (i, j) is col[i - j]. */
+static int cv_jac_band(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void *user_data,
+                       N_Vector tmp1, N_Vector tmp2, N_Vector tmp3)
+{
+    cv_user *u = user_data;
+    (void)fy;
+    (void)tmp1;
+    (void)tmp2;
+    (void)tmp3;
+    const int n = u->sys->n, kl = u->lower, ku = u->upper;
+    int rc = u->jac(t, N_VGetArrayPointer(y), u->jbuf, u->sys->par);
+    if (rc) {
+        u->rhs_status = rc;
+        u->fail_t = t;
+        return -1;
+    }
+    for (int j = 0; j < n; j++) {
+        sunrealtype *col = SUNBandMatrix_Column(J, j);
+        const int i0 = j - ku > 0 ? j - ku : 0, i1 = j + kl < n - 1 ? j + kl : n - 1;
+        for (int i = i0; i <= i1; i++)
+            col[i - j] = DYN_BAND_AT(u->jbuf, kl, ku, i, j);
     }
     return 0;
 }
@@ -153,14 +183,23 @@ static int cv_open(cv_solver *cs, const dyn_system *sys, double t0, const double
     const size_t N = (size_t)n;
     memset(cs, 0, sizeof *cs);
     cs->u.sys = sys;
-    cs->u.jac = opts->jacobian;
+    const int banded = opts->jac_banded != 0;
+    if (banded && (opts->jac_lower < 0 || opts->jac_upper < 0 || opts->jac_lower >= n ||
+                   opts->jac_upper >= n))
+        return fail(res, DYN_ERR_ARG, "the band of the Jacobian must have 0 <= lower, upper < n",
+                    NULL);
+    const dyn_jac_fn jac = banded ? opts->jacobian_band : opts->jacobian;
+    cs->u.jac = jac;
+    cs->u.lower = banded ? opts->jac_lower : 0;
+    cs->u.upper = banded ? opts->jac_upper : 0;
     cs->u.rtolv = opts->rtolv;
     cs->u.atolv = opts->atolv;
     cs->u.atol = atol;
     cs->ycur = malloc(N * sizeof *cs->ycur);
-    if (opts->jacobian)
-        cs->u.jbuf = malloc(N * N * sizeof *cs->u.jbuf);
-    if (!cs->ycur || (opts->jacobian && !cs->u.jbuf))
+    if (jac)
+        cs->u.jbuf = malloc((banded ? N * (size_t)(cs->u.lower + cs->u.upper + 1) : N * N) *
+                            sizeof *cs->u.jbuf);
+    if (!cs->ycur || (jac && !cs->u.jbuf))
         return fail(res, DYN_ERR_ARG, "out of memory", NULL);
     memcpy(cs->ycur, y0, N * sizeof *cs->ycur);
 
@@ -200,12 +239,18 @@ static int cv_open(cv_solver *cs, const dyn_system *sys, double t0, const double
         }
     }
     if (flag == CV_SUCCESS) {
-        cs->A = SUNDenseMatrix((sunindextype)n, (sunindextype)n, cs->sctx);
-        cs->LS = cs->A ? SUNLinSol_Dense(cs->yv, cs->A, cs->sctx) : NULL;
+        if (banded) {
+            cs->A = SUNBandMatrix((sunindextype)n, (sunindextype)cs->u.upper,
+                                  (sunindextype)cs->u.lower, cs->sctx);
+            cs->LS = cs->A ? SUNLinSol_Band(cs->yv, cs->A, cs->sctx) : NULL;
+        } else {
+            cs->A = SUNDenseMatrix((sunindextype)n, (sunindextype)n, cs->sctx);
+            cs->LS = cs->A ? SUNLinSol_Dense(cs->yv, cs->A, cs->sctx) : NULL;
+        }
         flag = cs->LS ? CVodeSetLinearSolver(mem, cs->LS, cs->A) : -1;
     }
-    if (flag == CV_SUCCESS && opts->jacobian)
-        flag = CVodeSetJacFn(mem, cv_jac);
+    if (flag == CV_SUCCESS && jac)
+        flag = CVodeSetJacFn(mem, banded ? cv_jac_band : cv_jac);
     if (flag == CV_SUCCESS)
         flag = CVodeSetMaxNumSteps(mem, opts->max_steps > 0 ? opts->max_steps : 100000L);
     if (flag == CV_SUCCESS && opts->max_order > 0)

@@ -43,6 +43,10 @@ typedef struct dyn_ivp_opts {
     int n_events;
     dyn_jac_fn jacobian;     /* stiff methods: analytic df/dy, NULL: finite differences */
     int dense_output;        /* 1: keep every step's dense output for dyn_ivp_eval */
+    /* stiff methods: a banded Jacobian (see dyn_solve_opts; the model's band when solving
+     * a model and jac_banded is 0) */
+    int jac_banded, jac_lower, jac_upper;
+    dyn_jac_fn jacobian_band;
 } dyn_ivp_opts;
 
 /* The solution. On failure everything up to the failure is kept (status says why). */

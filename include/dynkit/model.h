@@ -122,13 +122,20 @@ typedef struct dyn_model {
     double t_trans;
     long every;
     double bound;
+    /* Optional band of the Jacobian (jac_banded = 1): d f_i / d y_j = 0 unless
+     * i - jac_lower <= j <= i + jac_upper; stiff methods then work with band matrices
+     * (dyn_solve_opts.jac_banded). jacobian_band (may be NULL: banded differences) writes
+     * the band in DYN_BAND_AT storage (ode.h). */
+    int jac_banded;
+    int jac_lower, jac_upper;
+    dyn_jac_fn jacobian_band;
 } dyn_model;
 
 /* Version of the layout of dyn_model, dyn_var, dyn_param and dyn_event. A model compiled
  * into a shared object records the version it was built with (the symbol
  * dynkit_model_abi, added when dynkit compiles a model), and dynkit refuses a model built
  * for another version instead of misreading it. Raised whenever a layout changes. */
-#define DYN_MODEL_ABI 1
+#define DYN_MODEL_ABI 2
 
 /* The entry point of a model in a C file or a shared object: `dynkit run mymodel.c`
  * compiles the file and calls it. Define it in your file:

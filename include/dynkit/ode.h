@@ -28,6 +28,28 @@ typedef int (*dyn_rhs_fn)(double t, const double *y, double *dydt, void *par);
  * return 0, or non-zero to stop. Used by the stiff methods. */
 typedef int (*dyn_jac_fn)(double t, const double *y, double *J, void *par);
 
+/* A banded Jacobian: d f_i / d y_j = 0 unless i - lower <= j <= i + upper (a 1-D grid with
+ * interleaved unknowns, a chain of bodies). A banded Jacobian function (dyn_jac_fn in the
+ * jacobian_band fields) writes only the band, in LAPACK's band storage (column-major, as
+ * for dgbmv): J[j*(lower + upper + 1) + upper + i - j] = d f_i / d y_j, written with
+ * DYN_BAND_AT below; entries outside the matrix (i < 0 or i >= n) are ignored. */
+#define DYN_BAND_AT(J, lower, upper, i, j)                                                   \
+    ((J)[(size_t)(j) * (size_t)((lower) + (upper) + 1) + (size_t)((upper) + (i) - (j))])
+
+/* A linear solver for banded matrices in LAPACK's factor storage (dgbtrf): A(i, j) at
+ * ab[j*ldab + lower + upper + i - j], ldab = 2 lower + upper + 1 (the first `lower` rows of
+ * each column take the fill-in). factor: LU with partial pivoting in place, pivots into piv
+ * (n, meaning private to the solver); 0, or > 0 when a pivot is exactly zero. solve:
+ * b (n) := A^-1 b from the factors. The library's own is dyn_band_solver_builtin (ode/
+ * linalg.c); the optional backend dynkit_lapack gives LAPACK's dgbtrf/dgbtrs. */
+typedef struct dyn_band_solver {
+    const char *name;
+    int (*factor)(int n, int lower, int upper, double *ab, int ldab, int *piv);
+    void (*solve)(int n, int lower, int upper, const double *ab, int ldab, const int *piv,
+                  double *b);
+} dyn_band_solver;
+extern const dyn_band_solver dyn_band_solver_builtin;
+
 /* An event: a sign change of g(t, y; par), located on the solution (dyn_solve).
  * An event happens where g changes sign: from < 0 to > 0 (rising) or > 0 to < 0 (falling),
  * passing through or jumping over zero. A zero at the start time and a touch of zero

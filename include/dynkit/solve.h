@@ -174,6 +174,15 @@ typedef struct dyn_solve_opts {
     /* stiff methods (ignored by explicit ones) */
     dyn_jac_fn jacobian;   /* analytic df/dy or NULL (finite differences) */
     int *iwork;            /* dyn_solve_iwork_size ints, or NULL when that is 0 */
+    /* A banded Jacobian (jac_banded = 1; lower/upper bandwidths, 0 <= jac_lower,
+     * jac_upper < n): J comes from jacobian_band (DYN_BAND_AT storage) or, when that is
+     * NULL, from banded differences (jac_lower + jac_upper + 1 calls of f, columns in
+     * groups); `jacobian` is then unused, and the iteration matrix is factored by
+     * band_solver (NULL: dyn_band_solver_builtin). Work and cost grow like n, not n^2. */
+    int jac_banded;
+    int jac_lower, jac_upper;
+    dyn_jac_fn jacobian_band;
+    const dyn_band_solver *band_solver;
     /* diagnostics */
     dyn_trace_fn trace;    /* stages of the first trace_steps attempted steps */
     void *trace_ctx;

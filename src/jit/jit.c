@@ -194,6 +194,12 @@ int jit_check_model(const dyn_model *m, const char *where, char *err, size_t err
             return jit_fail(err, errlen,
                             "%s: event %d of the model '%s' has no name or no function g", where, i,
                             m->name);
+    if (m->jac_banded && (m->jac_lower < 0 || m->jac_upper < 0 || m->jac_lower >= m->n_states ||
+                          m->jac_upper >= m->n_states))
+        return jit_fail(err, errlen,
+                        "%s: the model '%s' declares a band of its Jacobian with jac_lower = %d, "
+                        "jac_upper = %d (accepted: 0 to n_states - 1 = %d)",
+                        where, m->name, m->jac_lower, m->jac_upper, m->n_states - 1);
     if (!isfinite(m->t0) || !isfinite(m->t1) || !isfinite(m->step) || m->step < 0)
         return jit_fail(err, errlen,
                         "%s: the model '%s' has a bad default run (t0 = %g, t1 = %g, step = %g)",

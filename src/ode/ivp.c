@@ -145,6 +145,10 @@ static void run(dyn_ivp_solution *sol, const dyn_tableau *m, dyn_rhs_fn f, void 
     so.events = o->events;
     so.n_events = o->events ? o->n_events : 0;
     so.jacobian = o->jacobian;
+    so.jac_banded = o->jac_banded;
+    so.jac_lower = o->jac_lower;
+    so.jac_upper = o->jac_upper;
+    so.jacobian_band = o->jacobian_band;
     ivp_ctx c = {sol, 0, 0, 0};
     so.output = on_output;
     so.output_ctx = &c;
@@ -310,6 +314,12 @@ dyn_ivp_solution *dyn_ivp_solve_model(const dyn_model *model, const void *par,
             mo.atol = model->atol;
         if (!mo.jacobian)
             mo.jacobian = model->jacobian;
+        if (!mo.jac_banded && model->jac_banded) {
+            mo.jac_banded = 1;
+            mo.jac_lower = model->jac_lower;
+            mo.jac_upper = model->jac_upper;
+            mo.jacobian_band = model->jacobian_band;
+        }
         /* events: those asked for, or the model's; then its resets not among them */
         int ne = 0;
         const dyn_event *given = o->events && o->n_events > 0 ? o->events : model->events;

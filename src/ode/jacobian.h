@@ -36,6 +36,14 @@
 int dyn_fd_jacobian(const dyn_system *sys, double t, const double *y, const double *f0,
                     const double *typ, double *J, double *work, long *rhs_calls);
 
+/* The same for a Jacobian with `lower` and `upper` bandwidths, into J in DYN_BAND_AT
+ * storage (n (lower + upper + 1) doubles; the entries outside the matrix are left alone),
+ * with the columns in groups: lower + upper + 1 calls of f instead of n
+ * (jacobian_band.c). work as above. */
+int dyn_fd_jacobian_band(const dyn_system *sys, double t, const double *y, const double *f0,
+                         const double *typ, int lower, int upper, double *J, double *work,
+                         long *rhs_calls);
+
 /* df/dt (n) at (t, y) by a one-sided difference with increment sqrt(eps) * max(|t|, |tscale|);
  * |tscale| is a time scale of the problem (the step size is a good one), and its sign the
  * side: tscale < 0 differences backward (f is then never evaluated after t, e.g. at the end

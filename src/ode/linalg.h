@@ -12,6 +12,8 @@
 #ifndef DYN_ODE_LINALG_H
 #define DYN_ODE_LINALG_H
 
+#include "dynkit/ode.h"
+
 /* Factor A (n x n, row-major) in place as P A = L U: on return the strict lower triangle
  * holds L (unit diagonal not stored) and the upper triangle U; piv (n) records the row
  * interchanges. Returns 0, or k + 1 > 0 when the pivot of column k is exactly zero or not
@@ -26,5 +28,12 @@ void dyn_lu_solve(int n, const double *LU, const int *piv, double *b);
 
 /* y = A x for A (n x n, row-major); y must not alias x. */
 void dyn_mat_vec(int n, const double *A, const double *x, double *y);
+
+/* Band LU with partial pivoting in LAPACK's factor storage (band_lu.c; the layout and the
+ * contract of dyn_band_solver in dynkit/ode.h, the algorithm of LAPACK's dgbtf2/dgbtrs).
+ * The first `lower` rows of each column of ab must be zero on entry (fill-in). */
+int dyn_band_lu_factor(int n, int lower, int upper, double *ab, int ldab, int *piv);
+void dyn_band_lu_solve(int n, int lower, int upper, const double *ab, int ldab, const int *piv,
+                       double *b);
 
 #endif /* DYN_ODE_LINALG_H */

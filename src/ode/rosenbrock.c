@@ -2,7 +2,7 @@
 /* rosenbrock.c — one step of a linearly implicit Rosenbrock method in the transformed form
  * of Hairer & Wanner, "Solving ODEs II", sec. IV.7, eq. (7.4') (their code RODAS), with an
  * analytic or forward-difference Jacobian and a forward-difference df/dt; the dense output
- * of RODAS (CONTRO); and a simple adaptive loop with RODAS's step-size control (sec. IV.8,
+ * of RODAS (CONTRO), with dense or band matrices (band_lu.c, jacobian_band.c); and a simple adaptive loop with RODAS's step-size control (sec. IV.8,
  * with Gustafsson's predictive controller) for tests and reference computations.
  */
 #include <float.h>
@@ -14,25 +14,54 @@
 #include "ode/linalg.h"
 #include "ode/rosenbrock.h"
 
-size_t dyn_ros_work_size(const dyn_ros_method *m, int n)
+/* Doubles of J and of W. */
+static size_t jac_size(int n, int banded, int lower, int upper)
 {
-    if (!m || n <= 0)
+    const size_t N = (size_t)n;
+    return banded ? N * (size_t)(lower + upper + 1) : N * N;
+}
+
+static size_t lu_size(int n, int banded, int lower, int upper)
+{
+    const size_t N = (size_t)n;
+    return banded ? N * (size_t)(2 * lower + upper + 1) : N * N;
+}
+
+size_t dyn_ros_work_size_band(const dyn_ros_method *m, int n, int banded, int lower, int upper)
+{
+    if (!m || n <= 0 || (banded && (lower < 0 || upper < 0 || lower >= n || upper >= n)))
         return 0;
     const size_t N = (size_t)n;
-    return 2 * N * N + ((size_t)m->stages + 6) * N;
+    return jac_size(n, banded, lower, upper) + lu_size(n, banded, lower, upper) +
+           ((size_t)m->stages + 6) * N;
+}
+
+size_t dyn_ros_work_size(const dyn_ros_method *m, int n)
+{
+    return dyn_ros_work_size_band(m, n, 0, 0, 0);
 }
 
 void dyn_ros_ws_init(dyn_ros_ws *ws, const dyn_ros_method *m, int n, double *work, int *piv)
+{
+    dyn_ros_ws_init_band(ws, m, n, 0, 0, 0, work, piv);
+}
+
+void dyn_ros_ws_init_band(dyn_ros_ws *ws, const dyn_ros_method *m, int n, int banded,
+                          int lower, int upper, double *work, int *piv)
 {
     const size_t N = (size_t)n;
     memset(ws, 0, sizeof *ws);
     ws->n = n;
     ws->s = m->stages;
+    ws->banded = banded;
+    ws->lower = banded ? lower : 0;
+    ws->upper = banded ? upper : 0;
+    ws->ldab = banded ? 2 * lower + upper + 1 : 0;
     ws->f0 = work;
     ws->J = ws->f0 + N;
-    ws->ft = ws->J + N * N;
+    ws->ft = ws->J + jac_size(n, banded, lower, upper);
     ws->W = ws->ft + N;
-    ws->u = ws->W + N * N;
+    ws->u = ws->W + lu_size(n, banded, lower, upper);
     ws->Y = ws->u + (size_t)m->stages * N;
     ws->fy = ws->Y + N;
     ws->scratch = ws->fy + N;
@@ -54,7 +83,16 @@ int dyn_ros_linearize(const dyn_ros_problem *p, double t, double h, const double
         return DYN_ROS_RHS_FAIL;
     }
     st->jac_evals++;
-    if (p->jac) {
+    if (ws->banded && p->jac_band) {
+        rc = p->jac_band(t, y, ws->J, sys->par);
+        if (rc) {
+            ws->rhs_status = rc;
+            return DYN_ROS_JAC_FAIL;
+        }
+    } else if (ws->banded) {
+        rc = dyn_fd_jacobian_band(sys, t, y, ws->f0, p->typ, ws->lower, ws->upper, ws->J,
+                                  ws->scratch, &calls);
+    } else if (p->jac) {
         rc = p->jac(t, y, ws->J, sys->par);
         if (rc) {
             ws->rhs_status = rc;
@@ -75,6 +113,36 @@ int dyn_ros_linearize(const dyn_ros_problem *p, double t, double h, const double
         ws->rhs_status = rc;
         return DYN_ROS_RHS_FAIL;
     }
+    return DYN_ROS_OK;
+}
+
+/* The solver of band matrices. */
+static const dyn_band_solver *band_solver(const dyn_ros_problem *p)
+{
+    return p->band_solver ? p->band_solver : &dyn_band_solver_builtin;
+}
+
+/* W = I/(h gamma) - J in band storage, factorised. */
+static int factor_band(const dyn_ros_method *m, const dyn_ros_problem *p, double h,
+                       dyn_ros_ws *ws, dyn_ros_stats *st)
+{
+    const int n = ws->n, kl = ws->lower, ku = ws->upper, ldab = ws->ldab;
+    const double fac = 1.0 / (h * m->gamma);
+    memset(ws->W, 0, (size_t)n * (size_t)ldab * sizeof *ws->W);
+    for (int j = 0; j < n; j++) {
+        const int i0 = j - ku > 0 ? j - ku : 0;
+        const int i1 = j + kl < n - 1 ? j + kl : n - 1;
+        double *wj = ws->W + (size_t)j * (size_t)ldab + (size_t)(kl + ku); /* wj[i - j] */
+        for (int i = i0; i <= i1; i++)
+            wj[i - j] = -DYN_BAND_AT(ws->J, kl, ku, i, j);
+        wj[0] += fac;
+    }
+    st->lu_decomps++;
+    if (band_solver(p)->factor(n, kl, ku, ws->W, ldab, ws->piv)) {
+        ws->h_lu = 0.0;
+        return DYN_ROS_SINGULAR;
+    }
+    ws->h_lu = h;
     return DYN_ROS_OK;
 }
 
@@ -105,7 +173,7 @@ int dyn_ros_step(const dyn_ros_method *m, const dyn_ros_problem *p, double t, do
     const int n = sys->n, s = m->stages;
     const size_t N = (size_t)n;
     if (ws->h_lu != h) {
-        int rc = factor(m, h, ws, st);
+        int rc = ws->banded ? factor_band(m, p, h, ws, st) : factor(m, h, ws, st);
         if (rc)
             return rc;
     }
@@ -152,7 +220,10 @@ int dyn_ros_step(const dyn_ros_method *m, const dyn_ros_problem *p, double t, do
             for (int k = 0; k < n; k++)
                 ui[k] += g * ws->ft[k];
         }
-        dyn_lu_solve(n, ws->W, ws->piv, ui);
+        if (ws->banded)
+            band_solver(p)->solve(n, ws->lower, ws->upper, ws->W, ws->ldab, ws->piv, ui);
+        else
+            dyn_lu_solve(n, ws->W, ws->piv, ui);
         st->lin_solves++;
     }
     st->steps++;

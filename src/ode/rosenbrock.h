@@ -73,6 +73,12 @@ typedef struct dyn_ros_problem {
                               * one call of f per step) */
     const double *typ;       /* (n) typical magnitudes of the states for the difference
                               * increments, or NULL (see ode/jacobian.h) */
+    /* banded Jacobian (banded = 1, with the bandwidths of the workspace): J from jac_band
+     * (DYN_BAND_AT storage) or banded differences; W factored by band_solver (NULL: the
+     * built-in). jac is then unused. */
+    int banded;
+    dyn_jac_fn jac_band;
+    const dyn_band_solver *band_solver;
 } dyn_ros_problem;
 
 /* Counters, added to by the functions below (zero-initialise). */
@@ -96,10 +102,13 @@ typedef enum dyn_ros_status {
 /* The workspace: views into one caller-owned block of doubles and one of ints. */
 typedef struct dyn_ros_ws {
     int n, s;
+    int banded, lower, upper; /* band matrices: J in DYN_BAND_AT storage (n (lower + upper
+                              * + 1)), W in LAPACK's factor storage (n ldab) */
+    int ldab;                /* 2 lower + upper + 1 when banded */
     double *f0;              /* (n) f(t, y0) */
-    double *J;               /* (n x n) df/dy at (t, y0) */
+    double *J;               /* (n x n) df/dy at (t, y0), or its band */
     double *ft;              /* (n) df/dt at (t, y0); zero when autonomous */
-    double *W;               /* (n x n) LU factors of I/(h gamma) - J */
+    double *W;               /* (n x n) LU factors of I/(h gamma) - J, or (n ldab) band */
     int *piv;                /* (n) pivots of W */
     double *u;               /* (s x n) stage increments u_i */
     double *Y;               /* (n) stage state */
@@ -114,6 +123,12 @@ size_t dyn_ros_work_size(const dyn_ros_method *m, int n);
 
 /* Lay the workspace out over work (dyn_ros_work_size doubles) and piv (n ints). */
 void dyn_ros_ws_init(dyn_ros_ws *ws, const dyn_ros_method *m, int n, double *work, int *piv);
+
+/* The same for band matrices (banded = 1, bandwidths lower and upper, 0 <= both < n):
+ * (3 lower + 2 upper + 2) n + (s + 6) n doubles; banded = 0 is the dense layout above. */
+size_t dyn_ros_work_size_band(const dyn_ros_method *m, int n, int banded, int lower, int upper);
+void dyn_ros_ws_init_band(dyn_ros_ws *ws, const dyn_ros_method *m, int n, int banded,
+                          int lower, int upper, double *work, int *piv);
 
 /* Evaluate f0 = f(t, y), J = df/dy (analytic or forward differences) and df/dt (forward
  * difference with time scale |h|; zero when autonomous) into ws. Invalidates the

@@ -76,7 +76,11 @@ size_t dyn_solve_work_size(const dyn_tableau *m, int n, const dyn_solve_opts *op
     const size_t N = (size_t)n;
     const int q = ops->dense_degree(m);
     const int ne = opts && opts->events ? opts->n_events : 0;
-    size_t size = ops->work_size(m, n);
+    const dyn_jac_shape shape = {opts && opts->jac_banded, opts ? opts->jac_lower : 0,
+                                 opts ? opts->jac_upper : 0};
+    size_t size = ops->work_size(m, n, &shape);
+    if (size == 0)
+        return 0;
     size += 4 * N;                  /* y, ynew, yout, ytmp */
     size += ((size_t)q + 1) * N;    /* dense coefficients */
     if (ne > 0) {
@@ -258,6 +262,12 @@ int dyn_solve(const dyn_tableau *m, const dyn_system *sys, double t0, double t1,
     for (int i = 0; i < ne; i++)
         if (!opts->events[i].g)
             return fail(res, DYN_ERR_ARG, "event %d has no function g", i);
+    if (opts->jac_banded && (opts->jac_lower < 0 || opts->jac_upper < 0 ||
+                             opts->jac_lower >= n || opts->jac_upper >= n))
+        return fail(res, DYN_ERR_ARG,
+                    "the band of the Jacobian (lower %d, upper %d) must have 0 <= lower, upper < "
+                    "n = %d",
+                    opts->jac_lower, opts->jac_upper, n);
     if (dyn_solve_iwork_size(m, n) > 0 && !opts->iwork)
         return fail(res, DYN_ERR_ARG, "method %s needs integer workspace (opts.iwork)", m->name);
     out_plan out;
@@ -285,6 +295,11 @@ int dyn_solve(const dyn_tableau *m, const dyn_system *sys, double t0, double t1,
     st.par = sys->par;
     st.n = n;
     st.jac = opts->jacobian;
+    st.shape.banded = opts->jac_banded != 0;
+    st.shape.lower = opts->jac_lower;
+    st.shape.upper = opts->jac_upper;
+    st.jac_band = opts->jacobian_band;
+    st.band_solver = opts->band_solver;
     st.tend = t1;
     st.tol = tol;
     st.work = w;
@@ -292,7 +307,7 @@ int dyn_solve(const dyn_tableau *m, const dyn_system *sys, double t0, double t1,
     st.trace = opts->trace;
     st.trace_ctx = opts->trace_ctx;
     st.trace_steps = opts->trace ? opts->trace_steps : 0;
-    w += ops->work_size(m, n);
+    w += ops->work_size(m, n, &st.shape);
     double *ycur = w, *ynew = w + N, *yout = w + 2 * N, *ytmp = w + 3 * N;
     w += 4 * N;
     double *coef = w;

@@ -27,8 +27,9 @@ static int kslots(const dyn_tableau *m)
     return m->dense_stages > k ? m->dense_stages : k;
 }
 
-static size_t erk_work_size(const dyn_tableau *m, int n)
+static size_t erk_work_size(const dyn_tableau *m, int n, const dyn_jac_shape *shape)
 {
+    (void)shape;
     return ((size_t)kslots(m) + 2) * (size_t)n;
 }
 

@@ -3,7 +3,8 @@
  * (rosenbrock.h; Hairer & Wanner, "Solving ODEs II", sec. IV.7) under dyn_solve's step-size
  * control, dense output and events.
  * - A new point (retry = 0) is linearised once: f, J (the model's analytic Jacobian, else
- *   forward differences) and df/dt (forward difference, backward near the end of the span
+ *   forward differences; with a declared band, band matrices throughout: the analytic band,
+ *   else differences in lower + upper + 1 groups of columns, and a band LU) and df/dt (forward difference, backward near the end of the span
  *   so f is never evaluated past t1). A rejected step retries from the same point with the
  *   same J and df/dt and only refactorises I/(h gamma) - J (as RODAS does).
  * - Error norm: Hairer's, of the estimate y1 - y1_embedded (the last stage u6 for RODAS).
@@ -31,9 +32,12 @@ static const dyn_ros_method *method_of(const dyn_tableau *m)
     return (const dyn_ros_method *)m->impl;
 }
 
-static size_t ros_work_size(const dyn_tableau *m, int n)
+static size_t ros_work_size(const dyn_tableau *m, int n, const dyn_jac_shape *shape)
 {
-    return dyn_ros_work_size(method_of(m), n) + 2 * (size_t)n + 1;
+    const dyn_jac_shape dense = {0, 0, 0};
+    const dyn_jac_shape *sh = shape ? shape : &dense;
+    const size_t ros = dyn_ros_work_size_band(method_of(m), n, sh->banded, sh->lower, sh->upper);
+    return ros ? ros + 2 * (size_t)n + 1 : 0;
 }
 
 static size_t ros_iwork_size(const dyn_tableau *m, int n)
@@ -59,8 +63,11 @@ static void view(dyn_stepper *st, ros_view *v)
 {
     const int n = st->n;
     v->rm = method_of(st->m);
-    dyn_ros_ws_init(&v->ws, v->rm, n, st->work, st->iwork);
-    double *rest = st->work + dyn_ros_work_size(v->rm, n);
+    const dyn_jac_shape *sh = &st->shape;
+    dyn_ros_ws_init_band(&v->ws, v->rm, n, sh->banded, sh->lower, sh->upper, st->work,
+                         st->iwork);
+    double *rest =
+        st->work + dyn_ros_work_size_band(v->rm, n, sh->banded, sh->lower, sh->upper);
     v->err = rest;
     v->typ = rest + n;
     v->h_lu = rest + 2 * (size_t)n;
@@ -101,7 +108,8 @@ static int ros_attempt(dyn_stepper *st, double t, double h, const double *y, dou
     ros_view v;
     view(st, &v);
     const int n = st->n;
-    dyn_ros_problem p = {{st->f, n, st->par}, st->jac, 0, v.typ};
+    dyn_ros_problem p = {{st->f, n, st->par}, st->jac, 0, v.typ, st->shape.banded,
+                         st->jac_band, st->band_solver};
     dyn_ros_stats rs = {0};
     int rc = DYN_ROS_OK;
     v.ws.h_lu = retry ? *v.h_lu : 0.0;

@@ -57,8 +57,14 @@ double dyn_err_norm(const dyn_tol *tol, int n, const double *y, const double *yn
 
 typedef struct dyn_stepper dyn_stepper;
 
+/* The shape of the Jacobian of stiff kinds: dense, or banded with the given bandwidths
+ * (dyn_solve_opts.jac_banded). */
+typedef struct dyn_jac_shape {
+    int banded, lower, upper;
+} dyn_jac_shape;
+
 typedef struct dyn_stepper_ops {
-    size_t (*work_size)(const dyn_tableau *m, int n);  /* doubles */
+    size_t (*work_size)(const dyn_tableau *m, int n, const dyn_jac_shape *shape); /* doubles */
     size_t (*iwork_size)(const dyn_tableau *m, int n); /* ints */
     int (*dense_degree)(const dyn_tableau *m);
     int (*start)(dyn_stepper *st, double t0, const double *y0);
@@ -96,6 +102,9 @@ struct dyn_stepper {
     void *par;
     int n;
     dyn_jac_fn jac;     /* stiff kinds: analytic Jacobian or NULL */
+    dyn_jac_shape shape;           /* stiff kinds: dense or banded */
+    dyn_jac_fn jac_band;           /* banded: analytic band or NULL */
+    const dyn_band_solver *band_solver; /* banded: NULL for the built-in */
     double tend;        /* stage times are clamped to it (dyn_rk_stage_time) */
     dyn_tol tol;
     double *work;       /* ops->work_size doubles */

@@ -389,6 +389,10 @@ static int plan_make(plan *p, const dyn_sweep *s)
         o->n_events = p->n_events;
         o->on_event = p->n_events > 0 ? on_event : NULL;
         o->jacobian = m->jacobian;
+        o->jac_banded = m->jac_banded;
+        o->jac_lower = m->jac_lower;
+        o->jac_upper = m->jac_upper;
+        o->jacobian_band = m->jacobian_band;
         o->progress = run_progress;
         o->progress_steps = every;
         p->work_size = dyn_solve_work_size(s->method, m->n_states, o);

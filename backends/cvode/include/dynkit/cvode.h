@@ -41,6 +41,12 @@ typedef struct dyn_cvode_opts {
     int adams;              /* 1: Adams-Moulton (non-stiff) instead of BDF */
     const double *rtolv;    /* (n) relative tolerances, or NULL for rtol: then CVODE's error
                              * weights are 1 / (rtolv_i |y_i| + atol_i) (CVodeWFtolerances) */
+    /* A banded Jacobian (jac_banded = 1, bandwidths jac_lower, jac_upper): CVODE's band
+     * matrix and band solver (SUNBandMatrix, SUNLinSol_Band) instead of the dense ones, the
+     * band from jacobian_band (DYN_BAND_AT storage, ode.h) or CVODE's banded difference
+     * quotients (cvLsBandDQJac); `jacobian` is then unused. */
+    int jac_banded, jac_lower, jac_upper;
+    dyn_jac_fn jacobian_band;
 } dyn_cvode_opts;
 
 /* Integrate sys from (t0, y0) and report the state at each output time tout[0..n_out)

@@ -4,8 +4,9 @@
 # $DYNKIT_BENCH_BUILD) with the peers CMake finds (GSL, Boost.Odeint, SUNDIALS; installed by
 # scripts/install-deps.sh), runs bench_suite (fixed steps, adaptive work-precision, stiff,
 # `dynkit report`, then the table of targets), its fixed-step section again from a tree
-# built at -O2 (build-bench-O2), bench_jit (models compiled at run time; not
-# with --only) and, when hyperfine is installed, times `dynkit report` with it too. Arguments
+# built at -O2 (build-bench-O2), bench_jit (models compiled at run time; not with --only),
+# bench_sweep and bench_band (large stiff systems; neither with --only) and, when hyperfine
+# is installed, times `dynkit report` with it too. Arguments
 # go to bench_suite, e.g.
 #   bench/run.sh                      # everything (about a minute)
 #   bench/run.sh --only fixed --reps 31
@@ -17,7 +18,8 @@ cd "$(dirname "$0")/.."
 build="${DYNKIT_BENCH_BUILD:-build-bench}"
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DDYNKIT_BUILD_BENCH=ON \
   -DDYNKIT_BUILD_TESTS=OFF >/dev/null
-cmake --build "$build" -j"$(nproc)" --target bench_suite bench_fixed bench_sweep dynkit_cli >/dev/null
+cmake --build "$build" -j"$(nproc)" --target bench_suite bench_fixed bench_sweep bench_band dynkit_cli \
+  >/dev/null
 cmake --build "$build" -j"$(nproc)" --target bench_jit >/dev/null 2>&1 || true # needs src/jit
 "$build/bench/bench_suite" "$@"
 
@@ -58,6 +60,16 @@ fi
 if [ "$only" -eq 0 ]; then
   echo
   if [ "$quick" -eq 1 ]; then "$build/bench/bench_sweep" --quick; else "$build/bench/bench_sweep"; fi
+fi
+# large stiff systems (bench_band): with every run that is not limited by --only; the
+# diagram of the growth with N goes where --svg DIR sends the others
+if [ "$only" -eq 0 ]; then
+  echo
+  svg=()
+  for ((i = 1; i <= $#; i++)); do
+    if [ "${!i}" = "--svg" ]; then j=$((i + 1)); svg=(--svg "${!j}"); fi
+  done
+  if [ "$quick" -eq 1 ]; then "$build/bench/bench_band" --quick; else "$build/bench/bench_band" "${svg[@]}"; fi
 fi
 if [ "$quick" -eq 0 ] && [ "$report" -eq 1 ]; then
   echo

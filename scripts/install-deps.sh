@@ -13,6 +13,7 @@ cd "$(dirname "$0")/.."
 packages=(build-essential cmake pkg-config libcmocka-dev clang chromium)
 packages+=(libgsl-dev libboost-dev libsundials-dev) # bench/ peers
 packages+=(libtcc-dev tcc) # src/jit: models compiled in process by libtcc (optional)
+packages+=(liblapack-dev) # backends/lapack: LAPACK's band LU for the stiff methods (optional)
 packages+=(libopenmpi-dev openmpi-bin) # backends/mpi: sweeps over MPI ranks (optional)
 # .mat output with matio (optional); the data-file tests load every format with NumPy, SciPy
 # and Octave (tests/test_formats.c; octave installs in about 30 s)

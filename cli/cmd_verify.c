@@ -156,7 +156,7 @@ static void write_json(FILE *out, const dyn_verify_opts *o, const dyn_verify_row
         const dyn_verify_problem *p = dyn_verify_problem_at(i);
         if (o->problem && strcmp(o->problem, p->name) != 0)
             continue;
-        double ref[16];
+        double ref[64]; /* the largest problem: the Brusselator, 40 states */
         cli_json_begin_object(&j);
         cli_json_key(&j, "name");
         cli_json_string(&j, p->name);
@@ -175,7 +175,7 @@ static void write_json(FILE *out, const dyn_verify_opts *o, const dyn_verify_row
         cli_json_key(&j, "atol_scale");
         cli_json_number(&j, p->atol_scale);
         cli_json_key(&j, "y_reference");
-        if (p->n <= 16 && dyn_verify_reference(p, ref, NULL, 0) == 0)
+        if (p->n <= (int)(sizeof ref / sizeof ref[0]) && dyn_verify_reference(p, ref, NULL, 0) == 0)
             cli_json_numbers(&j, ref, p->n, 1);
         else
             cli_json_null(&j);

@@ -18,12 +18,13 @@
 #include <cmocka.h>
 #include <float.h>
 
+#include "dynkit/brusselator.h"
 #include "dynkit/models.h"
 #include "dynkit/problems.h"
 #include "ode/rosenbrock.h"
 #include "test_util.h"
 
-#define NMAX 8
+#define NMAX 40
 
 /* A parameter struct big enough for every model here. */
 typedef union any_par {
@@ -31,12 +32,26 @@ typedef union any_par {
     dyn_arenstorf_par aren;
     dyn_robertson_par rober;
     dyn_hires_par hires;
+    dyn_brusselator_par bruss;
     double pad[16];
 } any_par;
 
+/* A built-in model, or one of a chosen size (brusselator:N, built once per name). */
 static const dyn_model *model(const char *name)
 {
+    static struct {
+        char name[32];
+        dyn_model *m;
+    } sized[4];
     const dyn_model *m = dyn_model_find(name);
+    for (int i = 0; !m && i < 4; i++) {
+        if (!sized[i].m) {
+            snprintf(sized[i].name, sizeof sized[i].name, "%s", name);
+            sized[i].m = dyn_brusselator_for_name(name);
+        }
+        if (strcmp(sized[i].name, name) == 0)
+            m = sized[i].m;
+    }
     assert_non_null(m);
     return m;
 }

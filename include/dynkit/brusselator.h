@@ -40,6 +40,10 @@ typedef struct dyn_brusselator_par {
  * dyn_brusselator_free. */
 dyn_model *dyn_brusselator_new(int N, char *err, size_t errlen);
 void dyn_brusselator_free(dyn_model *m);
+/* The model a name "brusselator:N" (or "brusselator", the default N) stands for, allocated
+ * as by dyn_brusselator_new; NULL when name is not such a name or N is out of range. The
+ * references and the verification problems name their model this way. */
+dyn_model *dyn_brusselator_for_name(const char *name);
 
 /* The right-hand side, the band of its Jacobian (DYN_BAND_AT storage, lower = upper = 2)
  * and the full Jacobian (2N x 2N, row-major). */

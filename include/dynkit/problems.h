@@ -68,7 +68,7 @@ typedef struct dyn_ref_setting {
 /* The state of a model at t1, from t0 and y0, with where it comes from and how good it is. */
 typedef struct dyn_reference {
     const char *name;            /* e.g. "robertson-1e11" */
-    const char *model;           /* built-in model name (dyn_model_find) */
+    const char *model;           /* built-in model name (dyn_model_find), or brusselator:N */
     int n_set;
     const dyn_ref_setting *set;  /* (n_set) parameters that differ from the defaults */
     const double *y0;            /* initial state, or NULL for the model's default */

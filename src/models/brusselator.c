@@ -183,6 +183,23 @@ dyn_model *dyn_brusselator_new(int N, char *err, size_t errlen)
     return m;
 }
 
+dyn_model *dyn_brusselator_for_name(const char *name)
+{
+    static const char prefix[] = "brusselator";
+    const size_t len = sizeof prefix - 1;
+    if (!name || strncmp(name, prefix, len) != 0)
+        return NULL;
+    if (name[len] == '\0')
+        return dyn_brusselator_new(DYN_BRUSSELATOR_DEFAULT_N, NULL, 0);
+    if (name[len] != ':' || name[len + 1] < '0' || name[len + 1] > '9')
+        return NULL;
+    char *end = NULL;
+    const long N = strtol(name + len + 1, &end, 10);
+    if (*end != '\0' || N < 1 || N > DYN_BRUSSELATOR_MAX_N)
+        return NULL;
+    return dyn_brusselator_new((int)N, NULL, 0);
+}
+
 void dyn_brusselator_free(dyn_model *m)
 {
     free(m); /* the model is the first member of its block */

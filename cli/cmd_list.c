@@ -1,11 +1,13 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit models, dynkit methods: what is available, one line each. */
 #include "cli.h"
+#include "dynkit/brusselator.h"
 
 int cli_cmd_models(int argc, char **argv)
 {
     if (argc >= 1 && cli_is_help(argv[0])) {
-        puts("Usage: dynkit models\n\nList the built-in models. 'dynkit info MODEL' tells more.");
+        puts("Usage: dynkit models\n\nList the built-in models. 'dynkit info MODEL' tells more.\n"
+             "The Brusselator's size is chosen with its name: brusselator:N has 2N states.");
         return CLI_OK;
     }
     if (argc >= 1)
@@ -15,6 +17,10 @@ int cli_cmd_models(int argc, char **argv)
         const dyn_model *m = dyn_model_at(i);
         printf("%-12s %-7d %s\n", m->name, m->n_states, m->title);
     }
+    /* a model whose size the user chooses (dynkit/brusselator.h) */
+    printf("%-12s %-7s %s (stiff; HNW II sec. IV.10): brusselator:N, N = %d by default\n",
+           "brusselator", "2N", "1-D Brusselator with diffusion, banded Jacobian",
+           DYN_BRUSSELATOR_DEFAULT_N);
     return CLI_OK;
 }
 

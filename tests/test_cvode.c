@@ -8,7 +8,9 @@
  * - counters are filled; a failing right-hand side, too many steps and bad output times
  *   are reported with their statuses; f is never evaluated past the last output time;
  * - every step as a sample (dyn_cvode_solve_steps) with its step limit; per-state relative
- *   tolerances.
+ *   tolerances;
+ * - the band solver on the Brusselator (N = 20) against SciPy's reference, with the
+ *   analytic band and with CVODE's banded difference quotients.
  * Without SUNDIALS (DYNKIT_HAVE_CVODE undefined) every test is skipped. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -17,6 +19,7 @@
 
 #include <cmocka.h>
 
+#include "dynkit/brusselator.h"
 #include "dynkit/models.h"
 #include "dynkit/problems.h"
 #include "dynkit/solve.h"
@@ -263,9 +266,57 @@ static void test_failures_and_limits(void **state)
     assert_true(strlen(dyn_cvode_version()) >= 5);
 }
 
+/* The band solver: the Brusselator with N = 20 (band 2 + 2) against SciPy's reference,
+ * with the analytic band and with CVODE's banded difference quotients, and the same run with
+ * the dense solver giving the same answer to the tolerance. */
+static void test_band_brusselator(void **state)
+{
+    (void)state;
+    const dyn_reference *r = dyn_reference_find("brusselator-20-10");
+    assert_non_null(r);
+    char err[128];
+    dyn_model *m = dyn_brusselator_new(20, err, sizeof err);
+    assert_non_null(m);
+    dyn_brusselator_par par;
+    double y0[40], yb[40], yq[40], yd[40];
+    assert_int_equal(dyn_model_default_params(m, &par, err, sizeof err), 0);
+    dyn_model_initial_state(m, &par, y0);
+    const dyn_system sys = {dyn_brusselator_rhs, 40, &par};
+    const double tout[1] = {10.0};
+    dyn_result res;
+    dyn_cvode_opts o = {.rtol = 1e-10, .atol = 1e-10, .jac_banded = 1, .jac_lower = 2,
+                        .jac_upper = 2, .jacobian_band = dyn_brusselator_jac_band};
+    assert_int_equal(dyn_cvode_solve(&sys, 0.0, y0, tout, 1, &o, NULL, NULL, yb, &res), DYN_OK);
+    assert_true(res.stats.jac_calls > 0);
+    o.jacobian_band = NULL; /* CVODE's banded difference quotients: 5 calls per Jacobian */
+    assert_int_equal(dyn_cvode_solve(&sys, 0.0, y0, tout, 1, &o, NULL, NULL, yq, &res), DYN_OK);
+    const long band_dq_calls = res.stats.rhs_calls, band_dq_jacs = res.stats.jac_calls;
+    o = (dyn_cvode_opts){.rtol = 1e-10, .atol = 1e-10}; /* dense quotients: 40 per Jacobian */
+    assert_int_equal(dyn_cvode_solve(&sys, 0.0, y0, tout, 1, &o, NULL, NULL, yd, &res), DYN_OK);
+    test_note("difference Jacobians: band %ld calls of f for %ld, dense %ld for %ld\n",
+              band_dq_calls, band_dq_jacs, res.stats.rhs_calls, res.stats.jac_calls);
+    assert_true(band_dq_calls < res.stats.rhs_calls);
+    o = (dyn_cvode_opts){.rtol = 1e-10, .atol = 1e-10, .jacobian = dyn_brusselator_jac};
+    assert_int_equal(dyn_cvode_solve(&sys, 0.0, y0, tout, 1, &o, NULL, NULL, yd, &res), DYN_OK);
+    const double eb = max_abs_diff(yb, r->y, 40), eq = max_abs_diff(yq, r->y, 40),
+                 ed = max_abs_diff(yd, r->y, 40);
+    /* (band and dense LU with partial pivoting do the same arithmetic on the band, so the
+     * two runs with the analytic Jacobian may agree to the bit) */
+    test_note("Brusselator N = 20 at 1e-10 against SciPy: band %.2e, band differences %.2e, "
+              "dense %.2e\n", eb, eq, ed);
+    assert_true(eb < 1e-7 && eq < 1e-7 && ed < 1e-7);
+    /* a band out of range is refused */
+    o = (dyn_cvode_opts){.jac_banded = 1, .jac_lower = 40, .jac_upper = 2};
+    assert_int_equal(dyn_cvode_solve(&sys, 0.0, y0, tout, 1, &o, NULL, NULL, yb, &res),
+                     DYN_ERR_ARG);
+    assert_non_null(strstr(res.message, "band of the Jacobian"));
+    dyn_brusselator_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_band_brusselator),
         cmocka_unit_test(test_robertson),
         cmocka_unit_test(test_van_der_pol),
         cmocka_unit_test(test_failures_and_limits),

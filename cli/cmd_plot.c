@@ -32,11 +32,12 @@ static void plot_help(void)
          "\n"
          "A sweep's table (dynkit sweep ... --output TABLE.csv) in place of MODEL:\n"
          "  dynkit plot TABLE.csv [--y NAME[,NAME...]] [--x NAME] [--title TEXT] [--output "
-         "FILE.svg]\n"
+         "FILE.svg] [--html FILE]\n"
          "with one varied name, lines of the reduced columns (--y, default all) against it; with\n"
          "two, a heat map of one reduced column (--y, default the first) over their grid with a\n"
          "colour bar (failed runs and nan in grey), or with --x NAME lines against it, one per\n"
-         "value of the other.\n");
+         "value of the other. --html FILE (or --output FILE.html) writes the same picture into\n"
+         "a self-contained page.\n");
     cli_view_options_help(stdout);
 }
 

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit plot TABLE.csv: a picture of a sweep's table (dynkit sweep, docs/sweeps.md) as a
- * standalone SVG 1.1 file. One varied name: a line of each reduced column against it
+ * standalone SVG 1.1 file, or (--html FILE, --output FILE.html) as a self-contained page
+ * drawn by web/js/sweep.js with the same choice of picture. One varied name: a line of each reduced column against it
  * (svg_plot.c). Two varied names: a heat map of one reduced column over their grid, a cell
  * per run (edges halfway between neighbouring values, so uneven grids are drawn true), the
  * colours of matplotlib's viridis map (van der Walt and Smith, 2015: even in lightness, read
@@ -389,9 +390,63 @@ static int lines(FILE *out, const sweep_table *t, int xc, const int *ycols, int 
     return rc;
 }
 
+/* What the page draws: the table's columns and which of them make the picture. */
+typedef struct sweep_page {
+    const sweep_table *t;
+    const char *title;
+    int heat, x, other, n_y;
+    const int *ycols;
+} sweep_page;
+
+static int page_data(cli_json *j, void *ctx)
+{
+    const sweep_page *p = ctx;
+    const sweep_table *t = p->t;
+    cli_json_begin_object(j);
+    cli_json_key(j, "kind");
+    cli_json_string(j, "sweep");
+    cli_json_key(j, "title");
+    cli_json_string(j, p->title);
+    cli_json_key(j, "picture");
+    cli_json_string(j, p->heat ? "heat" : "lines");
+    cli_json_key(j, "x");
+    cli_json_string(j, t->names[p->x]);
+    cli_json_key(j, "other"); /* the second varied name: the heat map's y, a line per value */
+    if (p->other >= 0)
+        cli_json_string(j, t->names[p->other]);
+    else
+        cli_json_null(j);
+    cli_json_key(j, "y");
+    cli_json_begin_array(j);
+    for (int k = 0; k < p->n_y; k++)
+        cli_json_string(j, t->names[p->ycols[k]]);
+    cli_json_end_array(j);
+    cli_json_key(j, "rows");
+    cli_json_number(j, (double)t->rows);
+    cli_json_key(j, "columns"); /* the numbers of the columns drawn, in row order; nan: null */
+    cli_json_begin_object(j);
+    const int digits = j->digits;
+    j->digits = 17;
+    for (int c = 1; c < t->cols; c++)
+        if (c == p->x || c == p->other || (c != t->status_col && !is_varied(t, c))) {
+            cli_json_key(j, t->names[c]);
+            cli_json_numbers(j, t->data + c, t->rows, t->cols);
+        }
+    j->digits = digits;
+    cli_json_end_object(j);
+    cli_json_end_object(j);
+    return j->bad;
+}
+
+static int ends_with_html(const char *s)
+{
+    const size_t n = strlen(s);
+    return n >= 5 && strcmp(s + n - 5, ".html") == 0;
+}
+
 int cli_plot_sweep_table(int argc, char **argv)
 {
-    const char *x = NULL, *y = NULL, *title = NULL, *output = NULL;
+    const char *x = NULL, *y = NULL, *title = NULL, *output = NULL, *html = NULL;
     for (int i = 1; i < argc; i++) {
         const char *v = NULL;
         int r;
@@ -403,10 +458,12 @@ int cli_plot_sweep_table(int argc, char **argv)
             title = v;
         else if ((r = cli_option(argc, argv, &i, "output", &v)) != 0)
             output = v;
+        else if ((r = cli_option(argc, argv, &i, "html", &v)) != 0)
+            html = v;
         else
             return cli_usage_error("plot",
                                    "'%s': a sweep's table takes --y NAME[,NAME...], --x NAME, "
-                                   "--title TEXT and --output FILE.svg",
+                                   "--title TEXT, --output FILE.svg|FILE.html and --html FILE",
                                    argv[i]);
         if (r < 0)
             return cli_usage_error("plot", "%s needs a value", argv[i]);
@@ -462,10 +519,15 @@ int cli_plot_sweep_table(int argc, char **argv)
         rc = cli_usage_error("plot", "a heat map over %s and %s shows one reduced column: give "
                                      "--y NAME (or --x NAME for lines against one of them)",
                              t.names[varied[0]], t.names[varied[1]]);
+    if (rc == CLI_OK && html && output)
+        rc = cli_usage_error("plot", "give --html FILE or --output FILE, not both");
+    if (rc == CLI_OK && output && ends_with_html(output))
+        html = output, output = NULL;
+    const char *path = html ? html : output;
     FILE *out = stdout;
-    if (rc == CLI_OK && output && strcmp(output, "-") != 0 && !(out = fopen(output, "w"))) {
-        rc = cli_usage_error("plot", "cannot open --output '%s' for writing: %s", output,
-                             strerror(errno));
+    if (rc == CLI_OK && path && strcmp(path, "-") != 0 && !(out = fopen(path, "w"))) {
+        rc = cli_usage_error("plot", "cannot open %s '%s' for writing: %s",
+                             html ? "the page" : "--output", path, strerror(errno));
         out = stdout;
     }
     char auto_title[512];
@@ -477,7 +539,14 @@ int cli_plot_sweep_table(int argc, char **argv)
                      t.names[ycols[0]], t.names[varied[0]], t.names[varied[1]]);
         else
             snprintf(auto_title, sizeof auto_title, "%s: against %s", base, t.names[varied[0]]);
-        if (heat) {
+        if (html) {
+            int other = -1;
+            for (int c = 1; c < t.cols && other < 0; c++)
+                if (c != varied[0] && is_varied(&t, c))
+                    other = c;
+            sweep_page page = {&t, title ? title : auto_title, heat, varied[0], other, n_y, ycols};
+            rc = cli_html_page_write(out, page.title, "sweep.html", page_data, &page);
+        } else if (heat) {
             rc = heat_map(out, &t, varied[0], varied[1], ycols[0], title ? title : auto_title);
         } else {
             rc = lines(out, &t, varied[0], ycols, n_y, title ? title : auto_title);

@@ -362,6 +362,30 @@ static void test_plot_table(void **state)
     assert_int_equal(r.status, 0);
     assert_non_null(strstr(r.out, "mu = 0.5"));
     cli_free(&r);
+    /* the same pictures in a page: --html FILE, or --output FILE.html; every number of the
+     * columns drawn, round-trip, nan as null, nothing fetched from outside */
+    r = cli_in_tmpdir("plot g.csv --y max:y1 --html g.html");
+    assert_int_equal(r.status, 0);
+    cli_free(&r);
+    char *page = cli_read_file(cli_path("g.html"), NULL);
+    assert_non_null(page);
+    assert_null(strstr(page, "http://"));
+    assert_null(strstr(page, "https://"));
+    assert_non_null(strstr(page, "\"kind\":\"sweep\""));
+    assert_non_null(strstr(page, "\"picture\":\"heat\""));
+    assert_non_null(strstr(page, "\"other\":\"y1\""));
+    assert_non_null(strstr(page, "\"mu\":[0.5,0.5,1,1,1000,1000]"));
+    assert_non_null(strstr(page, "\"max:y1\":["));
+    assert_non_null(strstr(page, "null")); /* the failed runs */
+    free(page);
+    r = cli_in_tmpdir("plot p.csv --y event:turn --output p.html");
+    assert_int_equal(r.status, 0);
+    cli_free(&r);
+    page = cli_read_file(cli_path("p.html"), NULL);
+    assert_non_null(strstr(page, "\"picture\":\"lines\""));
+    assert_non_null(strstr(page, "\"y\":[\"event:turn\"]"));
+    assert_non_null(strstr(page, "\"other\":null"));
+    free(page);
     static const struct {
         const char *args, *message;
     } errors[] = {
@@ -370,6 +394,8 @@ static void test_plot_table(void **state)
         {"plot g.csv --x max:y1 --y final:y2", "not a varied name of g.csv (accepted: mu, y1)"},
         {"plot missing.csv", "cannot open missing.csv"},
         {"plot g.csv --y max:y1 --compare euler", "a sweep's table takes --y"},
+        {"plot g.csv --y max:y1 --html a.html --output b.svg", "give --html FILE or --output FILE"},
+        {"plot g.csv --y max:y1 --html", "--html needs a value"},
     };
     for (size_t k = 0; k < sizeof errors / sizeof errors[0]; k++) {
         r = cli_in_tmpdir("%s", errors[k].args);
@@ -382,6 +408,8 @@ static void test_plot_table(void **state)
     unlink(cli_path("p.csv"));
     unlink(cli_path("p.svg"));
     unlink(cli_path("g.csv"));
+    unlink(cli_path("g.html"));
+    unlink(cli_path("p.html"));
 }
 
 /* A model file is a model like any other: the .ode van der Pol gives the built-in model's

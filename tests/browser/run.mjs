@@ -11,7 +11,8 @@
 // equal scales for x-y pictures in metres; a scale bar in the 3D view; the URL fragment
 // (#t=..&speed=..) opens the page there and follows the player. On the report also: the
 // figures of the three studies of many runs are drawn and fit the width (the period curve,
-// the two histograms, the slip map with its cells, colour bar and boundary).
+// the two histograms, the slip map with its cells, colour bar and boundary). And a sweep's
+// table as a page (`dynkit plot TABLE.csv --html`): a heat map and lines.
 // Screenshots go to the artifacts directory (at 390 px wide with the suffix -390).
 //
 // Usage: node run.mjs DYNKIT_BINARY [ARTIFACTS_DIR]
@@ -105,6 +106,20 @@ if (pages.some(p => p.name === 'vanderpol')) {
   const file = path.join(artifacts, 'generic.html');
   fs.writeFileSync(file, text.replace('"name":"vanderpol"', '"name":"my-oscillator"'));
   pages.push({ name: 'generic', file, generic: true });
+}
+
+// a sweep's table as a page (dynkit plot TABLE.csv --html): a heat map and lines
+const sweepPages = [];
+if (!process.env.DYNKIT_BROWSER_ONLY || process.env.DYNKIT_BROWSER_ONLY.split(',').includes('sweep')) {
+  const grid = path.join(artifacts, 'sweep-grid.csv');
+  run(['sweep', 'pendulum', '--method', 'rk4', '--step', '0.01', '--tspan', '0:10', '--vary', 'l=1:10:10',
+    '--vary', 'dphi=0.5:2.5:12', '--reduce', 'max:height,count:bottom', '--output', grid]);
+  sweepPages.push({ name: 'sweep-heat', runs: 120, heat: true, args: ['plot', grid, '--y', 'max:height', '--html'] },
+    { name: 'sweep-lines', runs: 120, lines: 10, args: ['plot', grid, '--x', 'dphi', '--y', 'count:bottom', '--html'] });
+  for (const p of sweepPages) {
+    p.file = path.join(artifacts, `${p.name}.html`);
+    run(p.args.concat(p.file));
+  }
 }
 
 // ---- the browser ----
@@ -490,8 +505,45 @@ async function checkPage(spec, vp) {
   await page.close();
 }
 
+// A sweep's page: it builds without errors or requests, its canvases draw, it fits the
+// screen, and the heat map has a cell per run (the lines a line per value of the other name).
+async function checkSweepPage(spec, vp) {
+  current = `${spec.name} @${vp.width}`;
+  const page = await context.newPage();
+  await page.setViewportSize({ width: vp.width, height: vp.height });
+  const errors = [], requests = [], url = pathToFileURL(spec.file).href;
+  page.on('console', m => { if (m.type() === 'error') errors.push(m.text()); });
+  page.on('pageerror', e => errors.push(String(e)));
+  await page.route('**/*', route => { if (route.request().url() === url) return route.continue(); requests.push(route.request().url()); return route.abort(); });
+  await page.goto(url, { waitUntil: 'load' });
+  await page.waitForSelector('body[data-ready="1"]', { timeout: 10000 }).catch(() => {});
+  check(await page.evaluate(() => document.body.dataset.ready === '1'), 'the page builds');
+  const prints = await page.evaluate(canvasPrints);
+  check(prints.length >= 1 && prints.every(p => p.ink > 0.002 * p.pixels), `every canvas draws something (${prints.length})`);
+  const f = await page.evaluate(() => {
+    const c = document.querySelector('canvas.plot-canvas'), r = c.getBoundingClientRect(), d = c.dkPlot.debug();
+    return { left: r.left, right: r.right, cells: Number(c.dataset.heatCells || 0), bar: !!document.querySelector('canvas.dk-colorbar'), lines: d.points.length };
+  });
+  check(f.left >= 0 && f.right <= vp.width, `the picture fits (${f.left.toFixed(0)}..${f.right.toFixed(0)} px of ${vp.width})`);
+  if (spec.heat) check(f.cells === spec.runs && f.bar, `a heat map of ${f.cells} cells with a colour bar`);
+  if (spec.lines) check(f.lines === spec.lines, `${f.lines} lines, one per value of the other name`);
+  const o = await overflow(page);
+  check(o.sw <= o.iw, `no sideways scrolling (${o.sw} px wide in ${o.iw})`);
+  await page.screenshot({ path: path.join(artifacts, `${spec.name}${vp.suffix}.png`) });
+  check(errors.length === 0, `no console errors${errors.length ? ': ' + errors.join(' | ') : ''}`);
+  check(requests.length === 0, `no network requests${requests.length ? ': ' + requests.join(', ') : ''}`);
+  await page.close();
+}
+
 try {
   for (const vp of viewports) {
+    for (const spec of sweepPages) {
+      try {
+        await checkSweepPage(spec, vp);
+      } catch (e) {
+        check(false, `exception: ${e.stack || e}`);
+      }
+    }
     for (const spec of pages) {
       try {
         await checkPage(spec, vp);

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
 # Checks an installed dynkit (prefix as $1): the CLI runs, its manual page and bash completion
-# are there, a CMake project finds the package with find_package(dynkit), and pkg-config
+# are there, a CMake project finds the package with find_package(dynkit) and builds on
+# dynkit::dynkit and dynkit::sweep, and pkg-config
 # compiles and links the example.
 set -euo pipefail
 prefix="$1"
@@ -19,6 +20,9 @@ completed=$(PATH="$prefix/bin:$PATH" bash --norc --noprofile -c \
 cmake -S "$here" -B "$work/cmake" -DCMAKE_PREFIX_PATH="$prefix" >/dev/null
 cmake --build "$work/cmake" >/dev/null
 LD_LIBRARY_PATH="$prefix/lib:$prefix/lib64:${LD_LIBRARY_PATH:-}" "$work/cmake/user_example"
+# dynkit::sweep: docs/sweeps.md's example, the pendulum's first turn of run 49 on 2 threads
+turn=$(OMP_NUM_THREADS=2 "$work/cmake/user_sweep")
+[ "$turn" = "2.59001123087418" ] || { echo "dynkit::sweep's example printed '$turn'"; exit 1; }
 libdir=$(ls -d "$prefix"/lib*/pkgconfig | head -n1)
 PKG_CONFIG_PATH="$libdir" cc -std=c11 "$here/../../examples/vanderpol.c" -o "$work/pc_example" \
   $(PKG_CONFIG_PATH="$libdir" pkg-config --cflags --libs --static dynkit)
@@ -40,4 +44,4 @@ if [ -f "$libdir/dynkit-cvode.pc" ]; then
   grep -q '^cvode ' <<<"$methods" || { echo "dynkit methods lacks cvode"; exit 1; }
   echo "install check: dynkit::cvode and dynkit-cvode.pc work"
 fi
-echo "install check: find_package and pkg-config both work"
+echo "install check: find_package (dynkit::dynkit, dynkit::sweep) and pkg-config work"

@@ -1,0 +1,39 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* A program of one's own on dynkit::sweep (find_package(dynkit)): docs/sweeps.md's example,
+ * the pendulum's first turning point over 50 initial speeds; prints that of run 49 (the same
+ * on any number of threads). */
+#include <stdio.h>
+
+#include <dynkit/dynkit.h>
+#include <dynkit/sweep.h>
+
+int main(void)
+{
+    const dyn_model *m = dyn_model_find("pendulum");
+    dyn_sweep_var dphi;
+    dyn_reduce red[4];
+    int nr;
+    char err[256];
+    if (dyn_sweep_var_find(m, "dphi", &dphi, err, sizeof err) ||
+        dyn_reduce_parse(m, "event:turn,max:height", red, 4, &nr, err, sizeof err)) {
+        fprintf(stderr, "%s\n", err);
+        return 1;
+    }
+    double values[50], results[50 * 2];
+    int status[50];
+    for (int i = 0; i < 50; i++)
+        values[i] = dyn_linspace_at(0.1, 1.9, 50, i);
+    dyn_sweep s = {0};
+    s.model = m;
+    s.n_vars = 1, s.vars = &dphi, s.n_runs = 50, s.values = values;
+    s.method = dyn_method_find("dop853");
+    s.rtol = s.atol = 1e-12;
+    s.t0 = 0, s.t1 = 5, s.step = 0.01;
+    s.n_reduce = nr, s.reduce = red;
+    if (dyn_sweep_run(&s, results, status, err, sizeof err) != DYN_OK || status[49] != DYN_OK) {
+        fprintf(stderr, "sweep failed: %s\n", err);
+        return 1;
+    }
+    printf("%.15g\n", results[49 * 2 + 0]);
+    return 0;
+}

@@ -16,7 +16,8 @@
  *   N >= 50 (1: linear), for both; rodas4 with dense matrices for N <= 100 shows what the
  *   band saves.
  * Both use their analytic Jacobian; rodas4 factors the band with LAPACK's dgbtrf when the
- * backend dynkit_lapack is linked (else its own band LU), as the tool does.
+ * backend dynkit_lapack is linked (else its own band LU), as the tool does, and then runs
+ * once more with the library's own band LU (the last column) to show what LAPACK buys.
  * Usage: bench_band [--quick] [--reps K] [--svg DIR] [--verbose: every point on stderr]
  */
 #define _POSIX_C_SOURCE 200809L
@@ -75,7 +76,8 @@ typedef struct problem {
 } problem;
 
 /* rodas4 from y0 to t = 10 into y; band (1) or dense (0). Returns the steps, or -1. */
-static long run_rodas(const problem *p, int band, double tol, double *y)
+static long run_rodas(const problem *p, int band, const dyn_band_solver *solver, double tol,
+                      double *y)
 {
     const dyn_tableau *meth = dyn_method_find("rodas4");
     dyn_solve_opts o = {0};
@@ -85,7 +87,7 @@ static long run_rodas(const problem *p, int band, double tol, double *y)
     o.jac_banded = band;
     o.jac_lower = o.jac_upper = 2;
     o.jacobian_band = dyn_brusselator_jac_band;
-    o.band_solver = band_solver();
+    o.band_solver = solver;
     double *work = malloc(dyn_solve_work_size(meth, p->n, &o) * sizeof *work);
     int *iwork = malloc(dyn_solve_iwork_size(meth, p->n) * sizeof *iwork);
     o.iwork = iwork;
@@ -171,7 +173,7 @@ static double time_at(const curve *c, double e)
     return k == 1 && e == ee[0] ? tt[0] : NAN;
 }
 
-typedef enum { ROD_BAND, ROD_DENSE, CVODE_BAND } solver_id;
+typedef enum { ROD_BAND, ROD_BAND_BUILTIN, ROD_DENSE, CVODE_BAND } solver_id;
 
 static int measure(const problem *p, solver_id s, const double *ref, int reps, curve *c)
 {
@@ -189,7 +191,9 @@ static int measure(const problem *p, solver_id s, const double *ref, int reps, c
                 steps = run_cvode(p, tols[t], y);
 #endif
             } else {
-                steps = run_rodas(p, s == ROD_BAND, tols[t], y);
+                steps = run_rodas(p, s != ROD_DENSE,
+                                  s == ROD_BAND_BUILTIN ? &dyn_band_solver_builtin : band_solver(),
+                                  tols[t], y);
             }
             best = fmin(best, now() - t0);
             if (steps < 0) {
@@ -204,6 +208,64 @@ static int measure(const problem *p, solver_id s, const double *ref, int reps, c
     }
     free(y);
     return 0;
+}
+
+/* The band LU alone, the library's against the backend's: one factorisation and six solves
+ * (a rodas4 step) of I/(h gamma) - J for the Brusselator's J at y0, n = 2N; the minimum over
+ * `rounds` rounds that alternate the two, each round timing `batch` repetitions. Returns the
+ * ratio own/backend (NAN without a backend) and the backend's microseconds per step. */
+static double lu_alone(int N, int rounds, double *us_backend)
+{
+    *us_backend = NAN;
+    if (band_solver() == &dyn_band_solver_builtin)
+        return NAN;
+    char err[128];
+    dyn_model *m = dyn_brusselator_new(N, err, sizeof err);
+    dyn_brusselator_par par;
+    const int n = 2 * N, kl = 2, ku = 2, ldab = 2 * kl + ku + 1, batch = 20;
+    double *y0 = malloc((size_t)n * sizeof *y0), *J = malloc((size_t)n * 5 * sizeof *J);
+    double *W0 = calloc((size_t)n * ldab, sizeof *W0), *W = malloc((size_t)n * ldab * sizeof *W);
+    double *b = malloc((size_t)n * sizeof *b);
+    int *piv = malloc((size_t)n * sizeof *piv);
+    if (!m || !y0 || !J || !W0 || !W || !b || !piv ||
+        dyn_model_default_params(m, &par, err, sizeof err)) {
+        fprintf(stderr, "bench_band: out of memory for the LU alone\n");
+        exit(1);
+    }
+    dyn_model_initial_state(m, &par, y0);
+    dyn_brusselator_jac_band(0.0, y0, J, &par);
+    for (int j = 0; j < n; j++)
+        for (int i = j - ku; i <= j + kl; i++)
+            if (i >= 0 && i < n)
+                W0[(size_t)j * ldab + (size_t)(kl + ku + i - j)] =
+                    (i == j ? 1.0 / (0.01 * 0.25) : 0.0) - DYN_BAND_AT(J, kl, ku, i, j);
+    const dyn_band_solver *sv[2] = {&dyn_band_solver_builtin, band_solver()};
+    double best[2] = {INFINITY, INFINITY};
+    for (int r = 0; r < rounds; r++)
+        for (int k = 0; k < 2; k++) {
+            const dyn_band_solver *v = sv[(r + k) % 2];
+            const double t0 = now();
+            for (int q = 0; q < batch; q++) {
+                memcpy(W, W0, (size_t)n * ldab * sizeof *W);
+                v->factor(n, kl, ku, W, ldab, piv);
+                for (int st = 0; st < 6; st++) {
+                    for (int i = 0; i < n; i++)
+                        b[i] = 1.0 + 1e-3 * i;
+                    v->solve(n, kl, ku, W, ldab, piv, b);
+                }
+            }
+            const double dt = (now() - t0) / batch;
+            best[(r + k) % 2] = fmin(best[(r + k) % 2], dt);
+        }
+    *us_backend = 1e6 * best[1];
+    free(y0);
+    free(J);
+    free(W0);
+    free(W);
+    free(b);
+    free(piv);
+    dyn_brusselator_free(m);
+    return best[0] / best[1];
 }
 
 static double slope(const double *x, const double *y, int n)
@@ -273,9 +335,10 @@ int main(int argc, char **argv)
     printf("(CVODE backend not built: rodas4 only)\n\n");
 #endif
     printf("| N | states | ref. check | rodas4 s @1e-6 | CVODE s @1e-6 | ratio @1e-6 | "
-           "ratio 1e-4..1e-8 | rodas4 dense s @1e-6 |\n");
-    printf("|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-    double t_rod[MAX_SIZES], t_cv[MAX_SIZES], t_dense[MAX_SIZES], xs[MAX_SIZES];
+           "ratio 1e-4..1e-8 | rodas4 dense s @1e-6 | rodas4 band, own LU s @1e-6 |\n");
+    printf("|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    double t_rod[MAX_SIZES], t_cv[MAX_SIZES], t_dense[MAX_SIZES], t_own[MAX_SIZES];
+    double xs[MAX_SIZES];
     double worst_ratio = 0.0;
     int failed = 0;
     for (int s = 0; s < n_sizes; s++) {
@@ -291,15 +354,17 @@ int main(int argc, char **argv)
         p.y0 = malloc((size_t)p.n * sizeof *p.y0);
         double *ref = malloc((size_t)p.n * sizeof *ref), *chk = malloc((size_t)p.n * sizeof *chk);
         dyn_model_initial_state(p.m, &p.par, p.y0);
-        if (run_rodas(&p, 1, 1e-12, ref) < 0)
+        if (run_rodas(&p, 1, band_solver(), 1e-12, ref) < 0)
             return 1;
         double ref_check = NAN;
 #ifdef DYNKIT_HAVE_CVODE
         if (run_cvode(&p, 1e-12, chk) >= 0)
             ref_check = max_err(chk, ref, p.n);
 #endif
-        curve rb, cv = {0}, dn = {0};
+        curve rb, cv = {0}, dn = {0}, ob = {0};
         failed |= measure(&p, ROD_BAND, ref, reps, &rb);
+        if (band_solver() != &dyn_band_solver_builtin && !quick)
+            failed |= measure(&p, ROD_BAND_BUILTIN, ref, reps, &ob);
 #ifdef DYNKIT_HAVE_CVODE
         failed |= measure(&p, CVODE_BAND, ref, reps, &cv);
 #endif
@@ -309,6 +374,7 @@ int main(int argc, char **argv)
         t_rod[s] = time_at(&rb, GROWTH_LEVEL);
         t_cv[s] = cv.k ? time_at(&cv, GROWTH_LEVEL) : NAN;
         t_dense[s] = dn.k ? time_at(&dn, GROWTH_LEVEL) : NAN;
+        t_own[s] = ob.k ? time_at(&ob, GROWTH_LEVEL) : NAN;
         double lo = INFINITY, hi = 0.0;
         for (int l = 0; l < N_LEVELS; l++) {
             const double r = time_at(&rb, levels[l]) / time_at(&cv, levels[l]);
@@ -320,15 +386,15 @@ int main(int argc, char **argv)
         if (hi > 0.0)
             worst_ratio = fmax(worst_ratio, hi);
         if (verbose) {
-            const curve *cs[3] = {&rb, &cv, &dn};
-            const char *names[3] = {"rodas4 band", "CVODE band", "rodas4 dense"};
-            for (int c = 0; c < 3; c++)
+            const curve *cs[4] = {&rb, &cv, &dn, &ob};
+            const char *names[4] = {"rodas4 band", "CVODE band", "rodas4 dense", "rodas4 own"};
+            for (int c = 0; c < 4; c++)
                 for (int i = 0; i < cs[c]->k; i++)
                     fprintf(stderr, "N %d %-12s tol %.0e err %.3e time %.4g steps %ld\n", p.N,
                             names[c], tols[i], cs[c]->err[i], cs[c]->time[i], cs[c]->steps[i]);
         }
-        printf("| %d | %d | %.1e | %.3g | %.3g | %.2f | %.2f–%.2f | %.3g |\n", p.N, p.n,
-               ref_check, t_rod[s], t_cv[s], t_rod[s] / t_cv[s], lo, hi, t_dense[s]);
+        printf("| %d | %d | %.1e | %.3g | %.3g | %.2f | %.2f–%.2f | %.3g | %.3g |\n", p.N, p.n,
+               ref_check, t_rod[s], t_cv[s], t_rod[s] / t_cv[s], lo, hi, t_dense[s], t_own[s]);
         if (quick) {
             /* checks: the errors fall with the tolerance and stay near it */
             for (int i = 0; i + 2 < rb.k; i += 2)
@@ -368,12 +434,34 @@ int main(int argc, char **argv)
     const double s_rod = slope(xs + first, t_rod + first, n_sizes - first);
     const double s_cv = slope(xs + first, t_cv + first, n_sizes - first);
     const double s_dn = slope(xs, t_dense, n_sizes);
+    double own_lo = INFINITY, own_hi = 0.0; /* the library's band LU against LAPACK's */
+    for (int s = 0; s < n_sizes; s++)
+        if (isfinite(t_own[s] / t_rod[s])) {
+            own_lo = fmin(own_lo, t_own[s] / t_rod[s]);
+            own_hi = fmax(own_hi, t_own[s] / t_rod[s]);
+        }
     printf("\nGrowth of the time at error 1e-6 with the number of states (least-squares slope "
            "of log time against log n, N >= 50; 1 is linear): rodas4 band %.2f, CVODE band "
            "%.2f; rodas4 dense (N <= %d) %.2f\n",
            s_rod, s_cv, DENSE_MAX_N, s_dn);
     printf("Worst ratio rodas4/CVODE at equal error over all N and levels: %.2f (target <= 2)\n",
            worst_ratio);
+    if (own_hi > 0.0)
+        printf("rodas4 with the library's own band LU against LAPACK's dgbtrf: %.2f to %.2f "
+               "times the time at error 1e-6\n",
+               own_lo, own_hi);
+    if (!quick) {
+        for (int s = 0; s < n_sizes; s++) {
+            if (sizes[s] < 100)
+                continue;
+            double us;
+            const double r = lu_alone(sizes[s], 2 * reps + 1, &us);
+            if (isfinite(r))
+                printf("band LU alone (factor + 6 solves), n = %d: %s %.1f us, the library's own "
+                       "%.2f times that\n",
+                       2 * sizes[s], band_solver()->name, us, r);
+        }
+    }
     printf("Load average after: %s\n", load1);
     if (svg_dir && !quick) {
         char path[1024];

@@ -187,7 +187,17 @@ static decimal shortest_decimal(uint64_t ieee_mantissa, uint32_t ieee_exponent)
         out = vr + ((vr == vm && (!accept_bounds || !vm_trailing_zeros)) || last_removed >= 5);
     } else {
         int round_up = 0;
-        if (vp / 100 > vm / 100) { /* two digits at once: most doubles lose 1 or 2 */
+        /* several digits at once where the interval allows (removing k digits is allowed
+         * exactly when vp / 10^k > vm / 10^k, and then for every smaller k too); round_up
+         * is decided by the last digit removed, the highest of the group */
+        while (vp / 10000 > vm / 10000) { /* short numbers such as 0.01 or 12.345 */
+            round_up = vr % 10000 >= 5000;
+            vr /= 10000;
+            vp /= 10000;
+            vm /= 10000;
+            removed += 4;
+        }
+        if (vp / 100 > vm / 100) { /* most doubles lose 1 or 2 digits in all */
             round_up = vr % 100 >= 50;
             vr /= 100;
             vp /= 100;
@@ -226,30 +236,38 @@ static int small_integer(uint64_t ieee_mantissa, uint32_t ieee_exponent, decimal
     return 1;
 }
 
-/* Decimal digits of v < 10^17. */
+static const uint64_t POW10[18] = {UINT64_C(1),
+                                   UINT64_C(10),
+                                   UINT64_C(100),
+                                   UINT64_C(1000),
+                                   UINT64_C(10000),
+                                   UINT64_C(100000),
+                                   UINT64_C(1000000),
+                                   UINT64_C(10000000),
+                                   UINT64_C(100000000),
+                                   UINT64_C(1000000000),
+                                   UINT64_C(10000000000),
+                                   UINT64_C(100000000000),
+                                   UINT64_C(1000000000000),
+                                   UINT64_C(10000000000000),
+                                   UINT64_C(100000000000000),
+                                   UINT64_C(1000000000000000),
+                                   UINT64_C(10000000000000000),
+                                   UINT64_C(100000000000000000)};
+
+/* Decimal digits of 0 < v < 10^17: from the bit length b, floor(b log10 2) (1233 / 4096 is
+ * log10 2 to 4 digits, exact for b <= 64) is the digit count or one more. */
 static inline int decimal_length(uint64_t v)
 {
-    static const uint64_t pow10[17] = {1u,
-                                       10u,
-                                       100u,
-                                       1000u,
-                                       10000u,
-                                       100000u,
-                                       1000000u,
-                                       10000000u,
-                                       100000000u,
-                                       1000000000u,
-                                       10000000000u,
-                                       100000000000u,
-                                       1000000000000u,
-                                       10000000000000u,
-                                       100000000000000u,
-                                       1000000000000000u,
-                                       10000000000000000u};
-    int n = 17; /* most doubles need 15 to 17 digits: count down */
-    while (n > 1 && v < pow10[n - 1])
-        n--;
-    return n;
+#if defined(__GNUC__)
+    const int bits = 64 - __builtin_clzll(v);
+#else
+    int bits = 0;
+    for (uint64_t u = v; u; u >>= 1)
+        bits++;
+#endif
+    const int t = (bits * 1233) >> 12;
+    return t + (v >= POW10[t]);
 }
 
 static const char DIGIT_PAIRS[200] = "00010203040506070809101112131415161718192021222324252627282930"
@@ -257,14 +275,21 @@ static const char DIGIT_PAIRS[200] = "000102030405060708091011121314151617181920
                                      "62636465666768697071727374757677787980818283848586878889909192"
                                      "93949596979899";
 
-/* The n decimal digits of v < 10^9 into p[0..n-1], two at a time. */
+/* The n decimal digits of v < 10^9 into p[0..n-1]: four at a time, as two pairs. */
 static inline void write_digits32(char *p, uint32_t v, int n)
 {
-    while (n >= 2) {
-        const uint32_t r = v % 100;
+    while (n >= 4) {
+        const uint32_t c = v % 10000;
+        v /= 10000;
+        n -= 4;
+        memcpy(p + n, DIGIT_PAIRS + 2 * (c / 100), 2);
+        memcpy(p + n + 2, DIGIT_PAIRS + 2 * (c % 100), 2);
+    }
+    if (n >= 2) {
+        const uint32_t c = v % 100;
         v /= 100;
         n -= 2;
-        memcpy(p + n, DIGIT_PAIRS + 2 * r, 2);
+        memcpy(p + n, DIGIT_PAIRS + 2 * c, 2);
     }
     if (n)
         p[0] = (char)('0' + v);
@@ -321,9 +346,10 @@ int dyn_format_double(double x, char *buf)
             write_digits(p, d.digits, n);
             memset(p + n, '0', (size_t)d.exponent);
             p += n + d.exponent;
-        } else if (x10 >= 0) { /* a point inside the digits */
-            write_digits(p, d.digits, n);
-            memmove(p + x10 + 2, p + x10 + 1, (size_t)(n - x10 - 1));
+        } else if (x10 >= 0) { /* a point inside the digits: the integer part moved left */
+            write_digits(p + 1, d.digits, n);
+            for (int k = 0; k <= x10; k++)
+                p[k] = p[k + 1];
             p[x10 + 1] = '.';
             p += n + 1;
         } else { /* 0.000ddd */

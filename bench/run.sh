@@ -5,8 +5,9 @@
 # scripts/install-deps.sh), runs bench_suite (fixed steps, adaptive work-precision, stiff,
 # `dynkit report`, then the table of targets), its fixed-step section again from a tree
 # built at -O2 (build-bench-O2), bench_jit (models compiled at run time; not with --only),
-# bench_sweep and bench_band (large stiff systems; neither with --only) and, when hyperfine
-# is installed, times `dynkit report` with it too. Arguments
+# bench_sweep, bench_band (large stiff systems) and bench_output (numbers as text, every
+# sample written; none of them with --only) and, when hyperfine is installed, times
+# `dynkit report` with it too. Arguments
 # go to bench_suite, e.g.
 #   bench/run.sh                      # everything (about a minute)
 #   bench/run.sh --only fixed --reps 31
@@ -18,8 +19,8 @@ cd "$(dirname "$0")/.."
 build="${DYNKIT_BENCH_BUILD:-build-bench}"
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DDYNKIT_BUILD_BENCH=ON \
   -DDYNKIT_BUILD_TESTS=OFF >/dev/null
-cmake --build "$build" -j"$(nproc)" --target bench_suite bench_fixed bench_sweep bench_band dynkit_cli \
-  >/dev/null
+cmake --build "$build" -j"$(nproc)" --target bench_suite bench_fixed bench_sweep bench_band \
+  bench_output dynkit_cli >/dev/null
 cmake --build "$build" -j"$(nproc)" --target bench_jit >/dev/null 2>&1 || true # needs src/jit
 "$build/bench/bench_suite" "$@"
 
@@ -70,6 +71,11 @@ if [ "$only" -eq 0 ]; then
     if [ "${!i}" = "--svg" ]; then j=$((i + 1)); svg=(--svg "${!j}"); fi
   done
   if [ "$quick" -eq 1 ]; then "$build/bench/bench_band" --quick; else "$build/bench/bench_band" "${svg[@]}"; fi
+fi
+# writing numbers as text (bench_output): with every run that is not limited by --only
+if [ "$only" -eq 0 ]; then
+  echo
+  if [ "$quick" -eq 1 ]; then "$build/bench/bench_output" --quick; else "$build/bench/bench_output"; fi
 fi
 if [ "$quick" -eq 0 ] && [ "$report" -eq 1 ]; then
   echo

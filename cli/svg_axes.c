@@ -1,6 +1,27 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* Grid, frame, ticks and titles of an SVG plot (svg_axes.h). */
+/* Grid, frame, ticks (at nice steps, with their numbers) and titles of an SVG plot
+ * (svg_axes.h). */
+#include <math.h>
+
 #include "svg_axes.h"
+
+double svg_nice_step(double range, int target)
+{
+    double raw = range / target, p = pow(10.0, floor(log10(raw))), f = raw / p;
+    return (f < 1.5 ? 1.0 : f < 3.5 ? 2.0 : f < 7.5 ? 5.0 : 10.0) * p;
+}
+
+void svg_tick_label(double v, double step, char *buf, size_t size)
+{
+    if (fabs(v) < 1e-9 * step)
+        v = 0.0;
+    int digits = (int)ceil(-log10(step) - 1e-9);
+    double mag = fmax(fabs(v), step);
+    if (mag >= 1e5 || mag < 1e-3)
+        snprintf(buf, size, "%.3g", v);
+    else
+        snprintf(buf, size, "%.*f", digits > 0 ? digits : 0, v);
+}
 
 int svg_text_escaped(FILE *out, const char *s)
 {

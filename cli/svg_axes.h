@@ -1,13 +1,23 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* The parts of an SVG plot's axes that the command line's plots (svg_plot.c) and the
- * benchmark's work-precision diagrams (bench/wp_svg.c) draw alike: grid lines, the frame,
- * ticks with their numbers, axis labels and title, and escaped text. Positions are in
+/* The parts of an SVG plot's axes that the command line's plots (svg_plot.c, the sweep
+ * tables' heat maps of sweep_plot.c) and the benchmark's work-precision diagrams
+ * (bench/wp_svg.c) draw alike: grid lines, the frame, ticks at nice steps with their
+ * numbers, axis labels and title, and escaped text. Positions are in
  * pixels; the plot area is x0..x1 (left to right) by y1..y0 (top to bottom). Each function
  * returns non-zero when a write failed. Only stdio: no part of the library. */
 #ifndef DYNKIT_SVG_AXES_H
 #define DYNKIT_SVG_AXES_H
 
+#include <stddef.h>
 #include <stdio.h>
+
+/* The step between ticks: 1, 2 or 5 times a power of ten, about range / target. */
+double svg_nice_step(double range, int target);
+
+/* Tick v (a multiple of step) as text into buf, with no rounding noise
+ * (0.30000000000000004) and no "-0": as many decimals as step needs, %.3g for very large or
+ * small magnitudes. */
+void svg_tick_label(double v, double step, char *buf, size_t size);
 
 /* s with <, > and & escaped (nothing for NULL). */
 int svg_text_escaped(FILE *out, const char *s);

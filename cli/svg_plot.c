@@ -25,13 +25,6 @@ typedef struct axis {
     double step;   /* between ticks */
 } axis;
 
-/* 1, 2 or 5 times a power of ten, about range / target. */
-static double nice_step(double range, int target)
-{
-    double raw = range / target, p = pow(10.0, floor(log10(raw))), f = raw / p;
-    return (f < 1.5 ? 1.0 : f < 3.5 ? 2.0 : f < 7.5 ? 5.0 : 10.0) * p;
-}
-
 static axis make_axis(double lo, double hi, int target)
 {
     axis a;
@@ -47,7 +40,7 @@ static axis make_axis(double lo, double hi, int target)
     const double pad = 0.03 * (hi - lo);
     a.lo = lo - pad;
     a.hi = hi + pad;
-    a.step = nice_step(a.hi - a.lo, target);
+    a.step = svg_nice_step(a.hi - a.lo, target);
     return a;
 }
 
@@ -66,19 +59,6 @@ static void tick_range(const axis *a, long *first, long *last)
 {
     *first = (long)ceil(a->lo / a->step - 1e-9);
     *last = (long)floor(a->hi / a->step + 1e-9);
-}
-
-/* Tick k * step as text, with no rounding noise (0.30000000000000004) and no "-0". */
-static void tick_label(double v, double step, char *buf, size_t size)
-{
-    if (fabs(v) < 1e-9 * step)
-        v = 0.0;
-    int digits = (int)ceil(-log10(step) - 1e-9);
-    double mag = fmax(fabs(v), step);
-    if (mag >= 1e5 || mag < 1e-3)
-        snprintf(buf, size, "%.3g", v);
-    else
-        snprintf(buf, size, "%.*f", digits > 0 ? digits : 0, v);
 }
 
 static void data_range(const cli_svg_plot *p, int use_x, double *lo, double *hi)
@@ -114,12 +94,12 @@ static int axes(FILE *out, const cli_svg_plot *p, const axis *ax, const axis *ay
     bad |= svg_frame_and_ticks_begin(out, x0, x1, y0, y1);
     for (long k = kx0; k <= kx1; k++) {
         const double v = (double)k * ax->step;
-        tick_label(v, ax->step, label, sizeof label);
+        svg_tick_label(v, ax->step, label, sizeof label);
         bad |= svg_xtick(out, to_px_x(ax, v), y0, label);
     }
     for (long k = ky0; k <= ky1; k++) {
         const double v = (double)k * ay->step;
-        tick_label(v, ay->step, label, sizeof label);
+        svg_tick_label(v, ay->step, label, sizeof label);
         bad |= svg_ytick(out, x0, to_px_y(ay, v), label);
     }
     bad |= svg_titles(out, x0, x1, y0, y1, W, H, p->xlabel, p->ylabel, p->title);

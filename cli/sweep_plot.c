@@ -162,24 +162,6 @@ static void colour(double f, char *buf, size_t size)
     snprintf(buf, size, "#%02x%02x%02x", rgb[0], rgb[1], rgb[2]);
 }
 
-static double nice(double range, int target)
-{
-    double raw = range / target, p = pow(10.0, floor(log10(raw))), f = raw / p;
-    return (f < 1.5 ? 1.0 : f < 3.5 ? 2.0 : f < 7.5 ? 5.0 : 10.0) * p;
-}
-
-static void tick_text(double v, double step, char *buf, size_t size)
-{
-    if (fabs(v) < 1e-9 * step)
-        v = 0.0;
-    int digits = (int)ceil(-log10(step) - 1e-9);
-    double mag = fmax(fabs(v), step);
-    if (mag >= 1e5 || mag < 1e-3)
-        snprintf(buf, size, "%.3g", v);
-    else
-        snprintf(buf, size, "%.*f", digits > 0 ? digits : 0, v);
-}
-
 static int cmp_double(const void *a, const void *b)
 {
     const double x = *(const double *)a, y = *(const double *)b;
@@ -288,13 +270,13 @@ static int heat_map(FILE *out, const sweep_table *t, int xc, int yc, int zc, con
     char label[64];
     bad |= svg_grid_begin(out);
     bad |= svg_frame_and_ticks_begin(out, x0, x1, y0, y1);
-    const double sx = nice(xhi - xlo, 8), sy = nice(yhi - ylo, 6);
+    const double sx = svg_nice_step(xhi - xlo, 8), sy = svg_nice_step(yhi - ylo, 6);
     for (long k = (long)ceil(xlo / sx - 1e-9); k <= (long)floor(xhi / sx + 1e-9); k++) {
-        tick_text(k * sx, sx, label, sizeof label);
+        svg_tick_label(k * sx, sx, label, sizeof label);
         bad |= svg_xtick(out, PX(k * sx), y0, label);
     }
     for (long k = (long)ceil(ylo / sy - 1e-9); k <= (long)floor(yhi / sy + 1e-9); k++) {
-        tick_text(k * sy, sy, label, sizeof label);
+        svg_tick_label(k * sy, sy, label, sizeof label);
         bad |= svg_ytick(out, x0, PY(k * sy), label);
     }
     bad |= svg_titles(out, x0, x1, y0, y1, HW, HH, t->names[xc], t->names[yc], title);
@@ -314,10 +296,10 @@ static int heat_map(FILE *out, const sweep_table *t, int xc, int yc, int zc, con
                    "stroke=\"#333\"/>\n</g>\n<g class=\"colorbar-ticks\" font-size=\"12\" "
                    "fill=\"#333\" stroke=\"#333\">\n",
                    bx0, y1, bx1 - bx0, y0 - y1) < 0;
-    const double sz = nice(zhi - zlo, 6);
+    const double sz = svg_nice_step(zhi - zlo, 6);
     for (long k = (long)ceil(zlo / sz - 1e-9); k <= (long)floor(zhi / sz + 1e-9); k++) {
         const double y = y0 - (k * sz - zlo) / (zhi - zlo) * (y0 - y1);
-        tick_text(k * sz, sz, label, sizeof label);
+        svg_tick_label(k * sz, sz, label, sizeof label);
         bad |= fprintf(out,
                        "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/><text x=\"%.2f\" "
                        "y=\"%.2f\" stroke=\"none\">%s</text>\n",

@@ -1,0 +1,247 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* dyn_solve_inline (dynkit/solve_inline.h) against dyn_solve: the same solve compiled at
+ * the call site must give the same numbers bit for bit — final state, every sample at the
+ * requested times (dense output), step, rejection and call counts, h_last — for bs23 and
+ * dp45 on van der Pol (mu = 1, [0, 15]) and the Arenstorf orbit (one period; HNW I
+ * sec. II.0) at rtol = atol = 1e-3 .. 1e-12, with the automatic and a given first step, a
+ * max_step, output at every step, and the failures (too many steps, the right-hand side
+ * failing, a blow-up's step-size underflow); and cases it does not take (events, per-state
+ * tolerances, dop853) go to dyn_solve. A sanity fact as well: the error of dp45 on van der
+ * Pol falls with the tolerance (the inlined solve is a solve, not a copy of nothing). */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "dynkit/dynkit.h"
+#include "dynkit/solve_inline.h"
+
+static int vdp_rhs(double t, const double *y, double *f, void *par)
+{
+    (void)t;
+    const double mu = *(const double *)par;
+    f[0] = y[1];
+    f[1] = mu * (1.0 - y[0] * y[0]) * y[1] - y[0];
+    return 0;
+}
+
+static int arenstorf_rhs(double t, const double *y, double *f, void *par)
+{
+    (void)t;
+    const double mu = *(const double *)par, mup = 1.0 - mu;
+    const double x1 = y[0] + mu, x2 = y[0] - mup;
+    const double r1s = x1 * x1 + y[1] * y[1], r2s = x2 * x2 + y[1] * y[1];
+    const double D1 = r1s * sqrt(r1s), D2 = r2s * sqrt(r2s);
+    f[0] = y[2];
+    f[1] = y[3];
+    f[2] = y[0] + 2.0 * y[3] - mup * x1 / D1 - mu * x2 / D2;
+    f[3] = y[1] - 2.0 * y[2] - mup * y[1] / D1 - mu * y[1] / D2;
+    return 0;
+}
+
+/* y' = y^2, y(0) = 1: blows up at t = 1; fails (returns 3) once y > 1e3 when asked to */
+typedef struct blow_par {
+    int fail;
+} blow_par;
+
+static int blow_rhs(double t, const double *y, double *f, void *par)
+{
+    (void)t;
+    const blow_par *p = par;
+    if (p->fail && y[0] > 1e3)
+        return 3;
+    f[0] = y[0] * y[0];
+    return 0;
+}
+
+/* every sample, appended */
+typedef struct samples {
+    long count;
+    double data[4096 * 5];
+} samples;
+
+static int keep(long k, double t, const double *y, void *ctx)
+{
+    samples *s = ctx;
+    (void)k;
+    if (s->count < 4096) {
+        double *row = s->data + s->count * 5;
+        row[0] = t;
+        for (int i = 0; i < 4; i++)
+            row[1 + i] = y[i];
+    }
+    s->count++;
+    return 0;
+}
+
+static int keep2(long k, double t, const double *y, void *ctx)
+{
+    samples *s = ctx;
+    (void)k;
+    if (s->count < 4096) {
+        double *row = s->data + s->count * 5;
+        row[0] = t;
+        row[1] = y[0];
+    }
+    s->count++;
+    return 0;
+}
+
+static samples sa, sb;
+
+/* Run both solves with the same options and compare every number. */
+static void same(const dyn_tableau *m, const dyn_system *sys, double t0, double t1,
+                 const double *y0, dyn_solve_opts o, int inline_path)
+{
+    const int n = sys->n;
+    const size_t nw = dyn_solve_work_size(m, n, &o);
+    double *wa = calloc(nw, sizeof *wa), *wb = calloc(nw, sizeof *wb);
+    double ya[4] = {0}, yb[4] = {0};
+    dyn_result ra, rb;
+    memset(&sa, 0, sizeof sa);
+    memset(&sb, 0, sizeof sb);
+    dyn_solve_opts oa = o, ob = o;
+    if (o.output) {
+        oa.output_ctx = &sa;
+        ob.output_ctx = &sb;
+    }
+    const int sta = dyn_solve(m, sys, t0, t1, y0, ya, wa, &oa, &ra);
+    const int stb = dyn_solve_inline(m, sys, t0, t1, y0, yb, wb, &ob, &rb);
+    assert_int_equal(sta, stb);
+    assert_memory_equal(ya, yb, (size_t)n * sizeof *ya);
+    assert_int_equal(ra.stats.steps, rb.stats.steps);
+    assert_int_equal(ra.stats.accepted, rb.stats.accepted);
+    assert_int_equal(ra.stats.rejected, rb.stats.rejected);
+    assert_int_equal(ra.stats.rhs_calls, rb.stats.rhs_calls);
+    assert_int_equal(ra.stats.samples, rb.stats.samples);
+    assert_memory_equal(&ra.t, &rb.t, sizeof ra.t);
+    assert_memory_equal(&ra.h_last, &rb.h_last, sizeof ra.h_last);
+    assert_int_equal(ra.stiff, rb.stiff);
+    assert_string_equal(ra.message, rb.message);
+    assert_int_equal(ra.rhs_status, rb.rhs_status);
+    assert_int_equal(sa.count, sb.count);
+    const long kept = sa.count < 4096 ? sa.count : 4096;
+    assert_memory_equal(sa.data, sb.data, (size_t)kept * 5 * sizeof(double));
+    (void)inline_path;
+    free(wa);
+    free(wb);
+}
+
+static const double vdp_mu = 1.0;
+static const double aren_mu = 0.012277471;
+
+static void run_tols(const char *method, const dyn_system *sys, double t1, const double *y0,
+                     long nsamp)
+{
+    const dyn_tableau *m = dyn_method_find(method);
+    assert_non_null(m);
+    double times[64];
+    for (long i = 0; i < nsamp; i++)
+        times[i] = i == nsamp - 1 ? t1 : t1 * (double)i / (double)(nsamp - 1);
+    for (int e = 3; e <= 12; e++) {
+        dyn_solve_opts o = {0};
+        o.rtol = o.atol = pow(10.0, -e);
+        o.out_times = times;
+        o.n_out_times = nsamp;
+        o.output = sys->n == 2 ? keep2 : keep;
+        same(m, sys, 0.0, t1, y0, o, 1);
+        /* no output, a given first step and a max_step */
+        dyn_solve_opts p = {0};
+        p.rtol = p.atol = pow(10.0, -e);
+        same(m, sys, 0.0, t1, y0, p, 1);
+        p.initial_step = 1e-3;
+        p.max_step = t1 / 50.0;
+        same(m, sys, 0.0, t1, y0, p, 1);
+    }
+}
+
+static void test_vanderpol_bit_for_bit(void **state)
+{
+    (void)state;
+    const dyn_system sys = {vdp_rhs, 2, (void *)&vdp_mu};
+    const double y0[2] = {2.0, 0.0};
+    run_tols("dp45", &sys, 15.0, y0, 31);
+    run_tols("bs23", &sys, 15.0, y0, 31);
+}
+
+static void test_arenstorf_bit_for_bit(void **state)
+{
+    (void)state;
+    const dyn_system sys = {arenstorf_rhs, 4, (void *)&aren_mu};
+    const double y0[4] = {0.994, 0.0, 0.0, -2.00158510637908252240537862224};
+    const double T = 17.0652165601579625588917206249;
+    run_tols("dp45", &sys, T, y0, 41);
+    run_tols("bs23", &sys, T, y0, 41);
+}
+
+static void test_every_step_and_failures(void **state)
+{
+    (void)state;
+    const dyn_system sys = {vdp_rhs, 2, (void *)&vdp_mu};
+    const double y0[2] = {2.0, 0.0};
+    const dyn_tableau *m = dyn_method_find("dp45");
+    dyn_solve_opts o = {0};
+    o.rtol = o.atol = 1e-6;
+    o.output = keep2; /* a sample at every step */
+    same(m, &sys, 0.0, 15.0, y0, o, 1);
+    dyn_solve_opts lim = {0};
+    lim.rtol = lim.atol = 1e-9;
+    lim.max_steps = 100;
+    same(m, &sys, 0.0, 15.0, y0, lim, 1);
+    /* a blow-up: step-size underflow; and the right-hand side failing */
+    blow_par bp = {0};
+    const dyn_system blow = {blow_rhs, 1, &bp};
+    const double b0[1] = {1.0};
+    dyn_solve_opts ob = {0};
+    ob.rtol = ob.atol = 1e-6;
+    same(m, &blow, 0.0, 2.0, b0, ob, 1);
+    bp.fail = 1;
+    same(m, &blow, 0.0, 2.0, b0, ob, 1);
+    /* not taken inline: dop853, per-state tolerances; still dyn_solve's results */
+    same(dyn_method_find("dop853"), &sys, 0.0, 15.0, y0, o, 0);
+    const double rv[2] = {1e-6, 1e-7};
+    dyn_solve_opts pv = {0};
+    pv.rtolv = rv;
+    same(m, &sys, 0.0, 15.0, y0, pv, 0);
+}
+
+/* The error at t = 15 against a tight dop853 solve falls with the tolerance. */
+static void test_error_falls(void **state)
+{
+    (void)state;
+    const dyn_system sys = {vdp_rhs, 2, (void *)&vdp_mu};
+    const double y0[2] = {2.0, 0.0};
+    const dyn_tableau *m8 = dyn_method_find("dop853"), *m = dyn_method_find("dp45");
+    dyn_solve_opts ro = {0};
+    ro.rtol = ro.atol = 1e-13;
+    double yref[2], y[2];
+    double *w8 = calloc(dyn_solve_work_size(m8, 2, &ro), sizeof *w8);
+    assert_int_equal(dyn_solve(m8, &sys, 0.0, 15.0, y0, yref, w8, &ro, NULL), DYN_OK);
+    double *w = calloc(dyn_solve_work_size(m, 2, &ro), sizeof *w);
+    double prev = INFINITY;
+    for (int e = 4; e <= 10; e += 2) {
+        dyn_solve_opts o = {0};
+        o.rtol = o.atol = pow(10.0, -e);
+        assert_int_equal(dyn_solve_inline(m, &sys, 0.0, 15.0, y0, y, w, &o, NULL), DYN_OK);
+        const double err = fmax(fabs(y[0] - yref[0]), fabs(y[1] - yref[1]));
+        assert_true(err < prev / 10.0);
+        prev = err;
+    }
+    free(w8);
+    free(w);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_vanderpol_bit_for_bit),
+        cmocka_unit_test(test_arenstorf_bit_for_bit),
+        cmocka_unit_test(test_every_step_and_failures),
+        cmocka_unit_test(test_error_falls),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

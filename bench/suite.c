@@ -9,9 +9,11 @@
  *    peers; the error at the end against a reference.
  * 2. adaptive work-precision on van der Pol (mu = 1, [0, 15]) and the Arenstorf orbit (one
  *    period), rtol = atol = 1e-3 .. 1e-12: error at t1 against the reference, right-hand-side
- *    calls and time, for bs23, dp45, dop853 (dyn_solve, no output grid) and the peers'
+ *    calls and time, for bs23, dp45, dop853 (dyn_solve, no output grid), bs23 and dp45
+ *    through dyn_solve_inline (dynkit/solve_inline.h, right-hand side visible) and the peers'
  *    pairs; calls and time are then compared at equal error (interpolated on the log-log
- *    curve), since equal tolerances are not equal accuracy.
+ *    curve), since equal tolerances are not equal accuracy: dyn_solve against GSL (both
+ *    call the right-hand side through a pointer), dyn_solve_inline against Boost.
  * 3. stiff van der Pol (mu = 1000, [0, 3000]): dynkit's stiff methods against CVODE and
  *    GSL's msbdf, at equal error.
  * 4. `dynkit report` end to end (the whole homework), as a separate process: with its
@@ -54,6 +56,7 @@
 #include <dynkit/ode_inline.h>
 #include <dynkit/problems.h>
 #include <dynkit/solve.h>
+#include <dynkit/solve_inline.h>
 
 #include "suite.h"
 #include "hand_loops.h"
@@ -314,7 +317,32 @@ INLINE_SOLVER(nocheck_rk4_plane, dk_plane, 12, &RK4_CONST, &NO_CHECK)
 /* ------------------------------------------------------------------------------------------
  * The local solvers (hand-written loop and dynkit) behind the bench_solver interface
  * ---------------------------------------------------------------------------------------- */
-enum { DK_HAND, DK_PTR, DK_FIXED, DK_INLINE, DK_INLINE_CONST, DK_INLINE_NOCHECK, DK_SOLVE };
+enum {
+    DK_HAND,
+    DK_PTR,
+    DK_FIXED,
+    DK_INLINE,
+    DK_INLINE_CONST,
+    DK_INLINE_NOCHECK,
+    DK_SOLVE,
+    DK_SOLVE_INLINE
+};
+
+/* dyn_solve_inline with the right-hand side visible: one solver per system */
+typedef int (*solve_inline_fn)(const dyn_tableau *m, void *par, double t0, double t1,
+                               const double *y0, double *y, double *work,
+                               const dyn_solve_opts *o, dyn_result *res);
+#define SOLVE_INLINE(NAME, RHS, N)                                                                 \
+    static __attribute__((noinline)) int NAME(const dyn_tableau *m, void *par, double t0,          \
+                                              double t1, const double *y0, double *y,              \
+                                              double *work, const dyn_solve_opts *o,               \
+                                              dyn_result *res)                                     \
+    {                                                                                              \
+        const dyn_system sys = {RHS, N, par};                                                      \
+        return dyn_solve_inline(m, &sys, t0, t1, y0, y, work, o, res);                             \
+    }
+SOLVE_INLINE(solve_inline_vdp, dk_vdp, 2)
+SOLVE_INLINE(solve_inline_arenstorf, dk_arenstorf, 4)
 
 typedef struct dk_ctx {
     int kind;
@@ -323,6 +351,7 @@ typedef struct dk_ctx {
     const dyn_tableau *m;
     hand_fn hand;
     inline_fn inl;
+    solve_inline_fn sinl;
     dyn_system dsys;
     dyn_solve_opts opts;
     double *work;
@@ -375,7 +404,10 @@ static int dk_solve_run(void *vctx, double tol, long steps, double *y, bench_cou
     dyn_result res;
     (void)steps;
     o.rtol = o.atol = tol;
-    const int rc = dyn_solve(x->m, &x->dsys, s->t0, s->t1, s->y0, y, x->work, &o, &res);
+    const int rc =
+        x->kind == DK_SOLVE_INLINE
+            ? x->sinl(x->m, x->dsys.par, s->t0, s->t1, s->y0, y, x->work, &o, &res)
+            : dyn_solve(x->m, &x->dsys, s->t0, s->t1, s->y0, y, x->work, &o, &res);
     if (counts) {
         counts->rhs = res.stats.rhs_calls;
         counts->jac = res.stats.jac_calls;
@@ -519,6 +551,28 @@ static int local_solve(const bench_sys *sys, bench_task task, bench_solver *out,
                 snprintf(label, sizeof label, "dynkit %s", m->name);
             add_dk(out, &count, max, x, "dynkit", label, 0, m->order, 0.0, dk_solve_run);
         }
+    }
+    /* the header-only driver (dynkit/solve_inline.h) for the pairs it takes inline */
+    const char *inl_names[] = {"bs23", "dp45"};
+    for (int i = 0; task == BENCH_TASK_ADAPTIVE && i < 2; i++) {
+        const dyn_tableau *mi = dyn_method_find(inl_names[i]);
+        solve_inline_fn fn = sys->id == BENCH_VDP         ? solve_inline_vdp
+                             : sys->id == BENCH_ARENSTORF ? solve_inline_arenstorf
+                                                          : NULL;
+        dk_ctx *xi = mi && fn ? dk_new(DK_SOLVE_INLINE, sys, mi) : NULL;
+        if (!xi)
+            continue;
+        xi->sinl = fn;
+        const size_t nw = dyn_solve_work_size(mi, sys->n, &xi->opts);
+        xi->work = malloc((nw ? nw : 1) * sizeof(double));
+        if (!xi->work) {
+            dk_destroy(xi);
+            continue;
+        }
+        char label[80];
+        snprintf(label, sizeof label, "dynkit %s, dyn_solve_inline (rhs inlined)", mi->name);
+        add_dk(out, &count, max, xi, "dynkit inline", label, BENCH_INLINE, mi->order, 0.0,
+               dk_solve_run);
     }
     /* diagnostic: dop853 with the default controller of Hairer's dop853.f (pure I: beta = 0,
      * safety 0.9, 0.333 <= h_new/h <= 6) instead of dynkit's (DOPRI5's PI controller), to
@@ -958,6 +1012,48 @@ static void write_csv(const options *o, const char *file, const bench_solver *s,
     fclose(f);
 }
 
+/* A target row of time at equal error: the fastest dynkit row of the given kind (flags 0:
+ * dyn_solve; BENCH_INLINE: dyn_solve_inline) against the fastest non-diagnostic row of one
+ * peer, at each level; met when the dynkit row is at most the peer's time. */
+static void time_target(const bench_sys *sys, const bench_solver *s, const curve *c, int count,
+                        const double *levels, int nl, int kind, const char *peer,
+                        const char *what)
+{
+    int cmp = 0, met = 0;
+    double worst = 0.0;
+    char worst_at[96] = "";
+    for (int l = 0; l < nl; l++) {
+        double best_dk = INFINITY, best_peer = INFINITY;
+        const char *peer_label = "";
+        for (int i = 0; i < count; i++) {
+            const double v = cost_at(&c[i], c[i].us, levels[l]);
+            if (!isfinite(v) || (s[i].flags & BENCH_DIAG))
+                continue;
+            const int dk = kind ? (s[i].flags & kind) != 0 : s[i].is_dynkit;
+            if (dk)
+                best_dk = fmin(best_dk, v);
+            else if (strcmp(s[i].peer, peer) == 0 && v < best_peer) {
+                best_peer = v;
+                peer_label = s[i].label;
+            }
+        }
+        if (!isfinite(best_dk) || !isfinite(best_peer))
+            continue;
+        cmp++;
+        met += best_dk <= best_peer;
+        if (best_dk / best_peer > worst) {
+            worst = best_dk / best_peer;
+            snprintf(worst_at, sizeof worst_at, "%.72s at %.0e", peer_label, levels[l]);
+        }
+    }
+    if (cmp) {
+        char task_s[64];
+        snprintf(task_s, sizeof task_s, "adaptive, %s", sys->name);
+        add_target(met == cmp, task_s, what, "<= 1 at every level", "%d/%d; worst %.2f (%s)", met,
+                   cmp, worst, worst_at);
+    }
+}
+
 static void adaptive_section(const options *o, const bench_sys *sys, bench_task task,
                              const double *ref, const char *ref_text, const char *file_stem)
 {
@@ -1038,7 +1134,7 @@ static void adaptive_section(const options *o, const bench_sys *sys, bench_task 
         for (int i = 0; i < count; i++) {
             const int has = isfinite(cost_at(&c[i], c[i].us, e));
             dk |= has && s[i].is_dynkit;
-            peer |= has && !s[i].is_dynkit && !(s[i].flags & BENCH_DIAG);
+            peer |= has && !s[i].is_dynkit && !(s[i].flags & (BENCH_DIAG | BENCH_INLINE));
         }
         if (dk && (peer || o->peers_none || sys->id == BENCH_KEPLER))
             levels[nl++] = e;
@@ -1078,7 +1174,8 @@ static void adaptive_section(const options *o, const bench_sys *sys, bench_task 
             double worst = 0.0;
             char worst_at[96] = "";
             for (int j = 0; j < count; j++) {
-                if (s[j].is_dynkit || s[j].order != s[i].order || (s[j].flags & BENCH_DIAG))
+                if (s[j].is_dynkit || s[j].order != s[i].order ||
+                    (s[j].flags & (BENCH_DIAG | BENCH_INLINE)))
                     continue;
                 for (int l = 0; l < nl; l++) {
                     const double a = cost_at(&c[i], c[i].calls, levels[l]);
@@ -1114,7 +1211,7 @@ static void adaptive_section(const options *o, const bench_sys *sys, bench_task 
                     continue;
                 if (s[i].is_dynkit)
                     best_dk = fmin(best_dk, v);
-                else if (!(s[i].flags & BENCH_DIAG) && v < best_peer) {
+                else if (!(s[i].flags & (BENCH_DIAG | BENCH_INLINE)) && v < best_peer) {
                     best_peer = v;
                     peer_label = s[i].label;
                 }
@@ -1134,6 +1231,11 @@ static void adaptive_section(const options *o, const bench_sys *sys, bench_task 
             add_target(met == cmp, task_s, "fastest dynkit pair vs fastest peer (time)",
                        "< 1 at every level", "%d/%d; worst %.2f (%s)", met, cmp, worst, worst_at);
         }
+        /* issue 12 item 1: the same calling convention on each side */
+        time_target(sys, s, c, count, levels, nl, 0, "GSL",
+                    "fastest dyn_solve pair (rhs by pointer) vs fastest GSL pair (time)");
+        time_target(sys, s, c, count, levels, nl, BENCH_INLINE, "Boost",
+                    "fastest dyn_solve_inline pair vs fastest Boost std::array (time)");
     }
     if (!o->quick && task == BENCH_TASK_STIFF) {
         for (int i = 0; i < count; i++) {

@@ -56,8 +56,10 @@ enum {
                          * error, excluded from every comparison */
     BENCH_ACCURACY = 4, /* a different method run at another step so that its error matches
                          * the hand-written loop's: compared by time per solve */
-    BENCH_DIAG = 8      /* a diagnostic variant (e.g. a peer with the right-hand side called
+    BENCH_DIAG = 8,     /* a diagnostic variant (e.g. a peer with the right-hand side called
                          * through a pointer): shown, never a target's comparison */
+    BENCH_INLINE = 16   /* dynkit's header-only adaptive driver (dyn_solve_inline): compared
+                         * only in its own target row, against Boost */
 };
 
 typedef struct bench_solver {

@@ -3,7 +3,7 @@
  *
  * dyn_solve (solve.h) calls the right-hand side through a pointer and runs every table
  * through one generic stage loop. dyn_solve_inline is the same solve as a static inline
- * function for the embedded pairs with first-same-as-last of up to 7 stages (bs23, dp45):
+ * function for the embedded pairs with first-same-as-last of 4 or 7 stages (bs23, dp45):
  * when the right-hand side is defined in the calling translation unit and sys is built
  * there, the compiler inlines it into the stage loop, whose stage count is a compile-time
  * constant. It follows dyn_solve step for step (HNW I sec. II.4-II.6, IV.2, as dyn_solve
@@ -459,15 +459,14 @@ DYN_SINL int dyn_solve_inline(const dyn_tableau *m, const dyn_system *sys, doubl
     for (int i = 0; i < S; i++)
         rows[i] = dyn_inl_row_of(m->a + (size_t)i * (size_t)S, i);
     rows[S] = dyn_inl_row_of(m->b, S);
-    switch (S) {
-    case 2: return dyn_sinl_solve(2, m, rows, f, par, n, t0, t1, y0, y, work, o, rtol, atol, res);
-    case 3: return dyn_sinl_solve(3, m, rows, f, par, n, t0, t1, y0, y, work, o, rtol, atol, res);
-    case 4: return dyn_sinl_solve(4, m, rows, f, par, n, t0, t1, y0, y, work, o, rtol, atol, res);
-    case 5: return dyn_sinl_solve(5, m, rows, f, par, n, t0, t1, y0, y, work, o, rtol, atol, res);
-    case 6: return dyn_sinl_solve(6, m, rows, f, par, n, t0, t1, y0, y, work, o, rtol, atol, res);
-    default:
+    /* the stage counts of bs23 (4) and dp45 (7), each compiled once; other FSAL pairs go to
+     * dyn_solve (a copy of the solve per stage count would make the caller so large that
+     * compilers stop inlining the right-hand side into it) */
+    if (S == 4)
+        return dyn_sinl_solve(4, m, rows, f, par, n, t0, t1, y0, y, work, o, rtol, atol, res);
+    if (S == 7)
         return dyn_sinl_solve(7, m, rows, f, par, n, t0, t1, y0, y, work, o, rtol, atol, res);
-    }
+    return dyn_solve(m, sys, t0, t1, y0, y, work, opts, res);
 }
 
 #undef DYN_SINL

@@ -570,7 +570,7 @@ static int local_solve(const bench_sys *sys, bench_task task, bench_solver *out,
             continue;
         }
         char label[80];
-        snprintf(label, sizeof label, "dynkit %s, dyn_solve_inline (rhs inlined)", mi->name);
+        snprintf(label, sizeof label, "dynkit %s, dyn_solve_inline (header-only)", mi->name);
         add_dk(out, &count, max, xi, "dynkit inline", label, BENCH_INLINE, mi->order, 0.0,
                dk_solve_run);
     }

@@ -5,11 +5,12 @@
  * through one generic stage loop. dyn_solve_inline is the same solve as a static inline
  * function for the embedded pairs with first-same-as-last of 4 or 7 stages (bs23, dp45):
  * when the right-hand side is defined in the calling translation unit and sys is built
- * there, the compiler inlines it into the stage loop, whose stage count is a compile-time
- * constant. It follows dyn_solve step for step (HNW I sec. II.4-II.6, IV.2, as dyn_solve
+ * there, the compiler can inline it into the stage loop, whose stage count is a
+ * compile-time constant (gcc 12 -O3 does when the right-hand side is declared inline; a
+ * plain static one stays a direct call). It follows dyn_solve step for step (HNW I sec. II.4-II.6, IV.2, as dyn_solve
  * does; see src/ode/solve.c): the initial step of HINIT, the stage combinations
  * y + h * (sum of the non-zero a_ij k_j, left to right; a single power-of-two coefficient
- * folded into h), Hairer's error norm sum_q e_q k_q from 0.0, the PI controller of DOPRI5
+ * folded into h) from a plan of each row's non-zero terms as in the library's stage loop, Hairer's error norm sum_q e_q k_q from 0.0, the PI controller of DOPRI5
  * (fac = err^expo / err_old^beta / safety, clamped; no growth right after a rejection),
  * the last step shortened to land on t1 when t + 1.01 h passes it, DOPRI5's stiffness test
  * every stiff_check accepted steps, and output at the requested times from the step's end
@@ -31,7 +32,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "dynkit/ode_inline.h" /* dyn_inl_row, dyn_inl_combine: the library's combinations */
+#include "dynkit/ode_inline.h" /* dyn_inl_is_pow2 */
 #include "dynkit/solve.h"
 
 #ifdef __cplusplus
@@ -50,6 +51,14 @@ extern "C" {
 #endif
 
 #define DYN_SINL_MAX_STAGES 7
+
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+#define DYN_SINL_SCALAR(v) __asm__("" : "+x"(v))
+#elif defined(__GNUC__) && defined(__aarch64__)
+#define DYN_SINL_SCALAR(v) __asm__("" : "+w"(v))
+#else
+#define DYN_SINL_SCALAR(v) ((void)0)
+#endif
 
 /* The PI controller of src/ode/step_control.c (dyn_controller_*), the same operations. */
 typedef struct dyn_sinl_ctl {
@@ -111,9 +120,127 @@ DYN_SINL double dyn_sinl_stage_time(double t, double c, double h, double tend)
     return ti > tend ? tend : ti;
 }
 
-/* The inline solve for an S-stage FSAL pair (rows[S] summarises b). */
-DYN_SINL int dyn_sinl_solve(const int S, const dyn_tableau *m, const dyn_inl_row *rows,
-                            dyn_rhs_fn f, void *par, const int n, double t0, double t1,
+/* The non-zero terms of each row of a (rows 0 .. S-1) and of b (row S), as the library's
+ * stage plan (src/ode/rk_stages.h): terms first[r] .. first[r + 1] - 1 are coef * kp, with
+ * kp pointing at the k_j they multiply. */
+typedef struct dyn_sinl_plan {
+    int first[DYN_SINL_MAX_STAGES + 2];
+    double coef[DYN_SINL_MAX_STAGES * (DYN_SINL_MAX_STAGES + 1)];
+    const double *kp[DYN_SINL_MAX_STAGES * (DYN_SINL_MAX_STAGES + 1)];
+    int fold[DYN_SINL_MAX_STAGES + 1]; /* the row's only term is a power of two */
+} dyn_sinl_plan;
+
+DYN_SINL void dyn_sinl_plan_init(dyn_sinl_plan *p, const dyn_tableau *m, int S, const double *k,
+                                 int n)
+{
+    int t = 0;
+    for (int r = 0; r <= S; r++) {
+        const double *row = r < S ? m->a + (size_t)r * (size_t)S : m->b;
+        const int len = r < S ? r : S;
+        p->first[r] = t;
+        for (int j = 0; j < len; j++)
+            if (row[j] != 0.0) {
+                p->coef[t] = row[j];
+                p->kp[t] = k + (size_t)j * (size_t)n;
+                t++;
+            }
+        p->fold[r] = t - p->first[r] == 1 && dyn_inl_is_pow2(p->coef[t - 1]);
+    }
+    p->first[S + 1] = t;
+}
+
+/* out = y + h * (sum of the row's terms, left to right), or y + (h c) k for a single
+ * power-of-two term: the library's arithmetic. Returns the number of terms. */
+DYN_SINL int dyn_sinl_combine(const dyn_sinl_plan *p, int r, int n, double h,
+                              const double *DYN_SRESTRICT y, double *DYN_SRESTRICT out)
+{
+    const int t0 = p->first[r], nt = p->first[r + 1] - t0;
+    const double *c = p->coef + t0;
+    const double *const *kp = p->kp + t0;
+    if (nt == 0)
+        return 0;
+    if (p->fold[r]) {
+        const double hc = h * c[0];
+        const double *k0 = kp[0];
+        for (int q = 0; q < n; q++) {
+            double v = y[q] + hc * k0[q];
+            DYN_SINL_SCALAR(v);
+            out[q] = v;
+        }
+        return 1;
+    }
+    for (int q = 0; q < n; q++) {
+        double acc = c[0] * kp[0][q];
+        for (int t = 1; t < nt; t++)
+            acc += c[t] * kp[t][q];
+        double v = y[q] + h * acc;
+        DYN_SINL_SCALAR(v);
+        out[q] = v;
+    }
+    return nt;
+}
+
+#if defined(__GNUC__)
+#define DYN_SINL_COLD static __attribute__((noinline, cold, unused))
+#else
+#define DYN_SINL_COLD static
+#endif
+
+/* DOPRI5's |h lambda| from stage j (c = 1) and f(t + h, ynew) = k_{S-1} (FSAL), as
+ * erk_stiffness; out of line (once every stiff_check steps), so that the step loop stays
+ * small enough for the right-hand side to be inlined into it. */
+DYN_SINL_COLD double dyn_sinl_stiffness(const dyn_tableau *m, int S, int n, double hn,
+                                        const double *k, const double *ycur, const double *ynew,
+                                        double *Yj)
+{
+    const size_t N = (size_t)n;
+    const int j = m->stiff_stage;
+    const double *f1 = k + (size_t)(S - 1) * N, *kj = k + (size_t)j * N;
+    const double *row = m->a + (size_t)j * (size_t)S;
+    for (int i = 0; i < n; i++) {
+        double acc = 0.0;
+        for (int p = 0; p < j; p++)
+            if (row[p] != 0.0)
+                acc += row[p] * k[(size_t)p * N + (size_t)i];
+        Yj[i] = ycur[i] + hn * acc;
+    }
+    double num = 0.0, den = 0.0;
+    for (int i = 0; i < n; i++) {
+        num += (f1[i] - kj[i]) * (f1[i] - kj[i]);
+        den += (ynew[i] - Yj[i]) * (ynew[i] - Yj[i]);
+    }
+    return den > 0.0 ? fabs(hn) * sqrt(num / den) : -1.0;
+}
+
+/* The dense output of the step (erk_dense): the cubic Hermite part and the corrections. */
+DYN_SINL_COLD void dyn_sinl_dense(const dyn_tableau *m, int S, int q, int n, double hn,
+                                  const double *k, const double *ycur, const double *ynew,
+                                  double *coef)
+{
+    const size_t N = (size_t)n;
+    const double *f0 = k, *f1 = k + (size_t)(S - 1) * N;
+    for (size_t i = 0; i < N; i++) {
+        const double dy = ynew[i] - ycur[i];
+        coef[i] = ycur[i];
+        coef[N + i] = dy;
+        coef[2 * N + i] = hn * f0[i] - dy;
+        coef[3 * N + i] = 2.0 * dy - hn * (f0[i] + f1[i]);
+    }
+    for (int jj = 4; jj <= q; jj++) {
+        const double *D = m->dense + (size_t)(jj - 4) * (size_t)m->dense_stages;
+        double *cj = coef + (size_t)jj * N;
+        for (size_t i = 0; i < N; i++) {
+            double acc = 0.0;
+            for (int r = 0; r < m->dense_stages; r++)
+                if (D[r] != 0.0)
+                    acc += D[r] * k[(size_t)r * N + i];
+            cj[i] = hn * acc;
+        }
+    }
+}
+
+/* The inline solve for an S-stage FSAL pair. */
+DYN_SINL int dyn_sinl_solve(const int S, const dyn_tableau *m, dyn_rhs_fn f, void *par, const int n, double t0, double t1,
                             const double *y0, double *y, double *work, const dyn_solve_opts *o,
                             double rtol, double atol, dyn_result *res)
 {
@@ -199,6 +326,8 @@ DYN_SINL int dyn_sinl_solve(const int S, const dyn_tableau *m, const dyn_inl_row
         int stiff_count = 0, nonstiff_count = 0, rejected_before = 0;
         const double *c = m->c, *e = m->e;
         dyn_dense d = {0.0, 0.0, n, q, coef};
+        dyn_sinl_plan plan;
+        dyn_sinl_plan_init(&plan, m, S, k, n);
         while (t < t_end) {
             double hn, tnext;
             int last = 0;
@@ -225,8 +354,7 @@ DYN_SINL int dyn_sinl_solve(const int S, const dyn_tableau *m, const dyn_inl_row
     if ((I) < S) {                                                                                 \
         const int I_ = (I) < S ? (I) : 0;                                                          \
         const double *Yi = ycur;                                                                   \
-        if (I_ > 0 &&                                                                              \
-            dyn_inl_combine(n, hn, ycur, k, m->a + (size_t)I_ * (size_t)S, I_, rows[I_], Y) > 0)   \
+        if (I_ > 0 && dyn_sinl_combine(&plan, I_, n, hn, ycur, Y) > 0)                           \
             Yi = Y;                                                                                \
         if (I_ >= first) {                                                                         \
             const double ti = dyn_sinl_stage_time(t, c[I_], hn, t1);                               \
@@ -248,7 +376,7 @@ DYN_SINL int dyn_sinl_solve(const int S, const dyn_tableau *m, const dyn_inl_row
 #undef DYN_SINL_STAGE
             rhs_calls += S - first;
             k0_valid = 1;
-            dyn_inl_combine(n, hn, ycur, k, m->b, S, rows[S], ynew);
+            dyn_sinl_combine(&plan, S, n, hn, ycur, ynew);
             double finite = 0.0, s5 = 0.0, err;
             for (int i = 0; i < n; i++)
                 finite += ynew[i] - ynew[i];
@@ -302,23 +430,7 @@ DYN_SINL int dyn_sinl_solve(const int S, const dyn_tableau *m, const dyn_inl_row
             if (stiff_due)
                 stiff_countdown = stiff_every;
             if (stiff_test && (stiff_due || stiff_count > 0)) {
-                /* |h lambda| from stage j (c = 1) and f(t + h, ynew) = k_{S-1} (FSAL) */
-                const int j = m->stiff_stage;
-                const double *f1 = k + (size_t)(S - 1) * N, *kj = k + (size_t)j * N;
-                const double *row = m->a + (size_t)j * (size_t)S;
-                for (int i = 0; i < n; i++) {
-                    double acc = 0.0;
-                    for (int p = 0; p < j; p++)
-                        if (row[p] != 0.0)
-                            acc += row[p] * k[(size_t)p * N + (size_t)i];
-                    Yj[i] = ycur[i] + hn * acc;
-                }
-                double num = 0.0, den = 0.0;
-                for (int i = 0; i < n; i++) {
-                    num += (f1[i] - kj[i]) * (f1[i] - kj[i]);
-                    den += (ynew[i] - Yj[i]) * (ynew[i] - Yj[i]);
-                }
-                const double hl = den > 0.0 ? fabs(hn) * sqrt(num / den) : -1.0;
+                const double hl = dyn_sinl_stiffness(m, S, n, hn, k, ycur, ynew, Yj);
                 if (hl > m->stiff_bound) {
                     nonstiff_count = 0;
                     if (++stiff_count == 15 && !res->stiff) {
@@ -335,26 +447,7 @@ DYN_SINL int dyn_sinl_solve(const int S, const dyn_tableau *m, const dyn_inl_row
                 }
             }
             if (mode == 2 && next < count && times[next] < tnext) {
-                /* the dense output (erk_dense): the cubic Hermite part and the corrections */
-                const double *f0 = k, *f1 = k + (size_t)(S - 1) * N;
-                for (size_t i = 0; i < N; i++) {
-                    const double dy = ynew[i] - ycur[i];
-                    coef[i] = ycur[i];
-                    coef[N + i] = dy;
-                    coef[2 * N + i] = hn * f0[i] - dy;
-                    coef[3 * N + i] = 2.0 * dy - hn * (f0[i] + f1[i]);
-                }
-                for (int jj = 4; jj <= q; jj++) {
-                    const double *D = m->dense + (size_t)(jj - 4) * (size_t)m->dense_stages;
-                    double *cj = coef + (size_t)jj * N;
-                    for (size_t i = 0; i < N; i++) {
-                        double acc = 0.0;
-                        for (int r = 0; r < m->dense_stages; r++)
-                            if (D[r] != 0.0)
-                                acc += D[r] * k[(size_t)r * N + i];
-                        cj[i] = hn * acc;
-                    }
-                }
+                dyn_sinl_dense(m, S, q, n, hn, k, ycur, ynew, coef);
                 d.t0 = t;
                 d.h = hn;
             }
@@ -455,21 +548,19 @@ DYN_SINL int dyn_solve_inline(const dyn_tableau *m, const dyn_system *sys, doubl
     res->fail_index = -1;
     res->event_index = -1;
     res->stiff_t = NAN;
-    dyn_inl_row rows[DYN_SINL_MAX_STAGES + 1];
-    for (int i = 0; i < S; i++)
-        rows[i] = dyn_inl_row_of(m->a + (size_t)i * (size_t)S, i);
-    rows[S] = dyn_inl_row_of(m->b, S);
     /* the stage counts of bs23 (4) and dp45 (7), each compiled once; other FSAL pairs go to
      * dyn_solve (a copy of the solve per stage count would make the caller so large that
      * compilers stop inlining the right-hand side into it) */
     if (S == 4)
-        return dyn_sinl_solve(4, m, rows, f, par, n, t0, t1, y0, y, work, o, rtol, atol, res);
+        return dyn_sinl_solve(4, m, f, par, n, t0, t1, y0, y, work, o, rtol, atol, res);
     if (S == 7)
-        return dyn_sinl_solve(7, m, rows, f, par, n, t0, t1, y0, y, work, o, rtol, atol, res);
+        return dyn_sinl_solve(7, m, f, par, n, t0, t1, y0, y, work, o, rtol, atol, res);
     return dyn_solve(m, sys, t0, t1, y0, y, work, opts, res);
 }
 
 #undef DYN_SINL
+#undef DYN_SINL_COLD
+#undef DYN_SINL_SCALAR
 #undef DYN_SRESTRICT
 
 #ifdef __cplusplus

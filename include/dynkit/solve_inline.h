@@ -1,21 +1,22 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit/solve_inline.h — dyn_solve for the explicit FSAL pairs compiled into the caller.
  *
- * dyn_solve (solve.h) calls the right-hand side through a pointer and runs every table
- * through one generic stage loop. dyn_solve_inline is the same solve as a static inline
- * function for the embedded pairs with first-same-as-last of 4 or 7 stages (bs23, dp45):
- * when the right-hand side is defined in the calling translation unit and sys is built
- * there, the compiler can inline it into the stage loop, whose stage count is a
- * compile-time constant (gcc 12 -O3 does when the right-hand side is declared inline; a
- * plain static one stays a direct call). It follows dyn_solve step for step (HNW I sec. II.4-II.6, IV.2, as dyn_solve
- * does; see src/ode/solve.c): the initial step of HINIT, the stage combinations
- * y + h * (sum of the non-zero a_ij k_j, left to right; a single power-of-two coefficient
- * folded into h) from a plan of each row's non-zero terms as in the library's stage loop, Hairer's error norm sum_q e_q k_q from 0.0, the PI controller of DOPRI5
- * (fac = err^expo / err_old^beta / safety, clamped; no growth right after a rejection),
- * the last step shortened to land on t1 when t + 1.01 h passes it, DOPRI5's stiffness test
- * every stiff_check accepted steps, and output at the requested times from the step's end
- * state or the same dense output (dyn_dense_eval). So the results are dyn_solve's bit for
- * bit: states, samples, counters, messages (tests/test_solve_inline.c checks it).
+ * dyn_solve (solve.h) calls the right-hand side through a pointer and runs every table through
+ * one generic stage loop. dyn_solve_inline is the same solve as a static inline function for
+ * the embedded pairs with first-same-as-last of 4 or 7 stages (bs23, dp45): when the
+ * right-hand side is defined in the calling translation unit and sys is built there, the
+ * compiler can inline it into the stage loop, whose stage count is a compile-time constant
+ * (gcc 12 -O3 does when the right-hand side is declared always_inline; a plain static one stays a
+ * direct call). It follows dyn_solve step for step (HNW I sec. II.4-II.6, IV.2, as dyn_solve
+ * does; see src/ode/solve.c): the initial step of HINIT, the stage combinations y + h * (sum
+ * of the non-zero a_ij k_j, left to right; a single power-of-two coefficient folded into h)
+ * from a plan of each row's non-zero terms as in the library's stage loop, Hairer's error norm
+ * sum_q e_q k_q from 0.0, the PI controller of DOPRI5 (fac = err^expo / err_old^beta / safety,
+ * clamped; no growth right after a rejection), the last step shortened to land on t1 when t +
+ * 1.01 h passes it, DOPRI5's stiffness test every stiff_check accepted steps, and output at
+ * the requested times from the step's end state or the same dense output (dyn_dense_eval). So
+ * the results are dyn_solve's bit for bit: states, samples, counters, messages
+ * (tests/test_solve_inline.c checks it).
  *
  * Contract: exactly dyn_solve's (arguments, workspace dyn_solve_work_size). It takes the
  * inline path for such a table with scalar tolerances (rtol >= DYN_MIN_RTOL), no events,
@@ -240,9 +241,9 @@ DYN_SINL_COLD void dyn_sinl_dense(const dyn_tableau *m, int S, int q, int n, dou
 }
 
 /* The inline solve for an S-stage FSAL pair. */
-DYN_SINL int dyn_sinl_solve(const int S, const dyn_tableau *m, dyn_rhs_fn f, void *par, const int n, double t0, double t1,
-                            const double *y0, double *y, double *work, const dyn_solve_opts *o,
-                            double rtol, double atol, dyn_result *res)
+DYN_SINL int dyn_sinl_solve(const int S, const dyn_tableau *m, dyn_rhs_fn f, void *par, const int n,
+                            double t0, double t1, const double *y0, double *y, double *work,
+                            const dyn_solve_opts *o, double rtol, double atol, dyn_result *res)
 {
     const size_t N = (size_t)n;
     const int q = m->dense_degree > 3 && m->dense ? m->dense_degree : 3;
@@ -264,8 +265,8 @@ DYN_SINL int dyn_sinl_solve(const int S, const dyn_tableau *m, dyn_rhs_fn f, voi
                 res->stats.samples++;
                 if (output(kout++, t0, ycur, o->output_ctx)) {
                     res->status = DYN_STOPPED;
-                    snprintf(res->message, sizeof res->message,
-                             "output stopped the run at t = %g", t0);
+                    snprintf(res->message, sizeof res->message, "output stopped the run at t = %g",
+                             t0);
                     goto finish;
                 }
             }
@@ -273,88 +274,91 @@ DYN_SINL int dyn_sinl_solve(const int S, const dyn_tableau *m, dyn_rhs_fn f, voi
                 next++;
         } while (mode != 0 && next < count && times[next] == t0);
     }
-    const double t_end = t1;
-    double hmax = t_end - t0;
-    if (o->max_step > 0.0)
-        hmax = fmin(hmax, o->max_step);
-    dyn_sinl_ctl ctl;
-    dyn_sinl_ctl_init(&ctl, m->error_order, o);
-    if (o->initial_step > 0.0) {
-        h = fmin(o->initial_step, hmax);
-    } else {
-        /* HINIT (dyn_initial_step) */
-        rhs_calls++;
-        rc = f(t0, ycur, k, par);
-        if (rc) {
-            res->fail_t = t0;
-            goto rhs_failed;
-        }
-        k0_valid = 1;
-        const double d0 = dyn_sinl_rms(rtol, atol, n, ycur, ycur);
-        const double d1 = dyn_sinl_rms(rtol, atol, n, ycur, k);
-        double h0 = (d0 < 1e-5 || d1 < 1e-5 || !isfinite(d0) || !isfinite(d1)) ? 1e-6
-                                                                                 : 0.01 * d0 / d1;
-        h0 = fmin(h0, hmax);
-        for (int i = 0; i < n; i++)
-            ytmp[i] = ycur[i] + h0 * k[i];
-        rhs_calls++;
-        const double ta = fmin(t0 + h0, t1);
-        rc = f(ta, ytmp, ynew, par);
-        if (rc) {
-            res->fail_t = ta;
-            goto rhs_failed;
-        }
-        for (int i = 0; i < n; i++)
-            ytmp[i] = ynew[i] - k[i];
-        const double d2 = dyn_sinl_rms(rtol, atol, n, ycur, ytmp) / h0;
-        const double dmax = fmax(d1, d2);
-        double h1;
-        if (!(dmax > 1e-15) || !isfinite(dmax))
-            h1 = fmax(1e-6, h0 * 1e-3);
-        else
-            h1 = pow(0.01 / dmax, 1.0 / (double)((m->error_order > 0 ? m->error_order : 1) + 1));
-        h = fmin(fmin(100.0 * h0, h1), hmax);
-        if (!(h > 0.0))
-            h = fmin(1e-6, hmax);
-    }
     {
-        const long stiff_every = o->stiff_check > 0 ? o->stiff_check : 1000;
-        const long max_steps = o->max_steps;
-        const int stiff_test = m->stiff_bound > 0.0 && m->stiff_stage >= 0 &&
-                               m->stiff_stage < S && m->c[m->stiff_stage] == 1.0;
-        long stiff_countdown = stiff_every;
-        int stiff_count = 0, nonstiff_count = 0, rejected_before = 0;
-        const double *c = m->c, *e = m->e;
-        dyn_dense d = {0.0, 0.0, n, q, coef};
-        dyn_sinl_plan plan;
-        dyn_sinl_plan_init(&plan, m, S, k, n);
-        while (t < t_end) {
-            double hn, tnext;
-            int last = 0;
-            if (t + 1.01 * h >= t_end) {
-                hn = t_end - t;
-                tnext = t_end;
-                last = 1;
-            } else {
-                hn = h;
-                tnext = t + h;
+        const double t_end = t1;
+        double hmax = t_end - t0;
+        if (o->max_step > 0.0)
+            hmax = fmin(hmax, o->max_step);
+        dyn_sinl_ctl ctl;
+        dyn_sinl_ctl_init(&ctl, m->error_order, o);
+        if (o->initial_step > 0.0) {
+            h = fmin(o->initial_step, hmax);
+        } else {
+            /* HINIT (dyn_initial_step) */
+            rhs_calls++;
+            rc = f(t0, ycur, k, par);
+            if (rc) {
+                res->fail_t = t0;
+                goto rhs_failed;
             }
-            if (max_steps > 0 && res->stats.steps >= max_steps) {
-                res->status = DYN_ERR_MAX_STEPS;
-                snprintf(res->message, sizeof res->message,
-                         "reached the limit of %ld steps at t = %.17g (h = %g): raise the limit, "
-                         "loosen the tolerances, or use a method for stiff problems",
-                         max_steps, t, h);
-                goto finish;
+            k0_valid = 1;
+            const double d0 = dyn_sinl_rms(rtol, atol, n, ycur, ycur);
+            const double d1 = dyn_sinl_rms(rtol, atol, n, ycur, k);
+            double h0 =
+                (d0 < 1e-5 || d1 < 1e-5 || !isfinite(d0) || !isfinite(d1)) ? 1e-6 : 0.01 * d0 / d1;
+            h0 = fmin(h0, hmax);
+            for (int i = 0; i < n; i++)
+                ytmp[i] = ycur[i] + h0 * k[i];
+            rhs_calls++;
+            const double ta = fmin(t0 + h0, t1);
+            rc = f(ta, ytmp, ynew, par);
+            if (rc) {
+                res->fail_t = ta;
+                goto rhs_failed;
             }
-            res->stats.steps++;
-            /* the stages (dyn_rk_stages_from): k_0 is f(t, y) already after FSAL */
-            const int first = k0_valid && c[0] == 0.0;
+            for (int i = 0; i < n; i++)
+                ytmp[i] = ynew[i] - k[i];
+            const double d2 = dyn_sinl_rms(rtol, atol, n, ycur, ytmp) / h0;
+            const double dmax = fmax(d1, d2);
+            double h1;
+            if (!(dmax > 1e-15) || !isfinite(dmax))
+                h1 = fmax(1e-6, h0 * 1e-3);
+            else
+                h1 =
+                    pow(0.01 / dmax, 1.0 / (double)((m->error_order > 0 ? m->error_order : 1) + 1));
+            h = fmin(fmin(100.0 * h0, h1), hmax);
+            if (!(h > 0.0))
+                h = fmin(1e-6, hmax);
+        }
+        {
+            const long stiff_every = o->stiff_check > 0 ? o->stiff_check : 1000;
+            const long max_steps = o->max_steps;
+            const int stiff_test = m->stiff_bound > 0.0 && m->stiff_stage >= 0 &&
+                                   m->stiff_stage < S && m->c[m->stiff_stage] == 1.0;
+            long stiff_countdown = stiff_every;
+            int stiff_count = 0, nonstiff_count = 0, rejected_before = 0;
+            const double *c = m->c, *e = m->e;
+            dyn_dense d = {0.0, 0.0, n, q, coef};
+            dyn_sinl_plan plan;
+            dyn_sinl_plan_init(&plan, m, S, k, n);
+            while (t < t_end) {
+                double hn, tnext;
+                int last = 0;
+                if (t + 1.01 * h >= t_end) {
+                    hn = t_end - t;
+                    tnext = t_end;
+                    last = 1;
+                } else {
+                    hn = h;
+                    tnext = t + h;
+                }
+                if (max_steps > 0 && res->stats.steps >= max_steps) {
+                    res->status = DYN_ERR_MAX_STEPS;
+                    snprintf(
+                        res->message, sizeof res->message,
+                        "reached the limit of %ld steps at t = %.17g (h = %g): raise the limit, "
+                        "loosen the tolerances, or use a method for stiff problems",
+                        max_steps, t, h);
+                    goto finish;
+                }
+                res->stats.steps++;
+                /* the stages (dyn_rk_stages_from): k_0 is f(t, y) already after FSAL */
+                const int first = k0_valid && c[0] == 0.0;
 #define DYN_SINL_STAGE(I)                                                                          \
     if ((I) < S) {                                                                                 \
         const int I_ = (I) < S ? (I) : 0;                                                          \
         const double *Yi = ycur;                                                                   \
-        if (I_ > 0 && dyn_sinl_combine(&plan, I_, n, hn, ycur, Y) > 0)                           \
+        if (I_ > 0 && dyn_sinl_combine(&plan, I_, n, hn, ycur, Y) > 0)                             \
             Yi = Y;                                                                                \
         if (I_ >= first) {                                                                         \
             const double ti = dyn_sinl_stage_time(t, c[I_], hn, t1);                               \
@@ -366,128 +370,130 @@ DYN_SINL int dyn_sinl_solve(const int S, const dyn_tableau *m, dyn_rhs_fn f, voi
             }                                                                                      \
         }                                                                                          \
     }
-            DYN_SINL_STAGE(0)
-            DYN_SINL_STAGE(1)
-            DYN_SINL_STAGE(2)
-            DYN_SINL_STAGE(3)
-            DYN_SINL_STAGE(4)
-            DYN_SINL_STAGE(5)
-            DYN_SINL_STAGE(6)
+                DYN_SINL_STAGE(0)
+                DYN_SINL_STAGE(1)
+                DYN_SINL_STAGE(2)
+                DYN_SINL_STAGE(3)
+                DYN_SINL_STAGE(4)
+                DYN_SINL_STAGE(5)
+                DYN_SINL_STAGE(6)
 #undef DYN_SINL_STAGE
-            rhs_calls += S - first;
-            k0_valid = 1;
-            dyn_sinl_combine(&plan, S, n, hn, ycur, ynew);
-            double finite = 0.0, s5 = 0.0, err;
-            for (int i = 0; i < n; i++)
-                finite += ynew[i] - ynew[i];
-            if (finite != 0.0) {
-                err = INFINITY;
-            } else {
-                for (int i = 0; i < n; i++) {
-                    double ei = 0.0;
-                    for (int j = 0; j < S; j++)
-                        if (e[j] != 0.0)
-                            ei += e[j] * k[(size_t)j * N + (size_t)i];
-                    const double sk = atol + rtol * fmax(fabs(ycur[i]), fabs(ynew[i]));
-                    const double r = ei / sk;
-                    s5 += r * r;
-                }
-                err = fabs(hn) * sqrt(s5 / n);
-            }
-            if (!(err <= 1.0)) {
-                res->stats.rejected++;
-                rejected_before = 1;
-                h = dyn_sinl_ctl_reject(&ctl, hn, err);
-                const double hmin =
-                    16.0 * DBL_EPSILON * fmax(fabs(t), fmax(DBL_EPSILON * (t_end - t0), DBL_MIN));
-                if (!(h >= hmin) || t + h == t) {
-                    int bad = 0;
-                    while (bad < n && isfinite(ynew[bad]))
-                        bad++;
-                    if (bad < n) {
-                        res->fail_t = tnext;
-                        res->fail_index = bad;
-                        res->status = DYN_ERR_NONFINITE;
-                        snprintf(res->message, sizeof res->message,
-                                 "state %d became not finite at t = %.17g for every step size "
-                                 "down to %g",
-                                 bad, tnext, hn);
-                    } else {
-                        res->fail_t = t;
-                        res->status = DYN_ERR_STEP_SIZE;
-                        snprintf(res->message, sizeof res->message,
-                                 "step size underflow at t = %.17g: the error test fails with "
-                                 "h = %g (a singularity, a discontinuity, or tolerances below "
-                                 "rounding)",
-                                 t, hn);
+                rhs_calls += S - first;
+                k0_valid = 1;
+                dyn_sinl_combine(&plan, S, n, hn, ycur, ynew);
+                double finite = 0.0, s5 = 0.0, err;
+                for (int i = 0; i < n; i++)
+                    finite += ynew[i] - ynew[i];
+                if (finite != 0.0) {
+                    err = INFINITY;
+                } else {
+                    for (int i = 0; i < n; i++) {
+                        double ei = 0.0;
+                        for (int j = 0; j < S; j++)
+                            if (e[j] != 0.0)
+                                ei += e[j] * k[(size_t)j * N + (size_t)i];
+                        const double sk = atol + rtol * fmax(fabs(ycur[i]), fabs(ynew[i]));
+                        const double r = ei / sk;
+                        s5 += r * r;
                     }
-                    goto finish;
+                    err = fabs(hn) * sqrt(s5 / n);
                 }
-                continue;
-            }
-            res->stats.accepted++;
-            const int stiff_due = --stiff_countdown == 0;
-            if (stiff_due)
-                stiff_countdown = stiff_every;
-            if (stiff_test && (stiff_due || stiff_count > 0)) {
-                const double hl = dyn_sinl_stiffness(m, S, n, hn, k, ycur, ynew, Yj);
-                if (hl > m->stiff_bound) {
-                    nonstiff_count = 0;
-                    if (++stiff_count == 15 && !res->stiff) {
-                        res->stiff = 1;
-                        res->stiff_t = t;
-                        snprintf(res->stiff_message, sizeof res->stiff_message,
-                                 "the problem looks stiff from t = %.6g: %s's step size is "
-                                 "limited by stability (|h lambda| > %g for %d steps in a row), "
-                                 "not by accuracy",
-                                 t, m->name, m->stiff_bound, 15);
+                if (!(err <= 1.0)) {
+                    res->stats.rejected++;
+                    rejected_before = 1;
+                    h = dyn_sinl_ctl_reject(&ctl, hn, err);
+                    const double hmin = 16.0 * DBL_EPSILON *
+                                        fmax(fabs(t), fmax(DBL_EPSILON * (t_end - t0), DBL_MIN));
+                    if (!(h >= hmin) || t + h == t) {
+                        int bad = 0;
+                        while (bad < n && isfinite(ynew[bad]))
+                            bad++;
+                        if (bad < n) {
+                            res->fail_t = tnext;
+                            res->fail_index = bad;
+                            res->status = DYN_ERR_NONFINITE;
+                            snprintf(res->message, sizeof res->message,
+                                     "state %d became not finite at t = %.17g for every step size "
+                                     "down to %g",
+                                     bad, tnext, hn);
+                        } else {
+                            res->fail_t = t;
+                            res->status = DYN_ERR_STEP_SIZE;
+                            snprintf(res->message, sizeof res->message,
+                                     "step size underflow at t = %.17g: the error test fails with "
+                                     "h = %g (a singularity, a discontinuity, or tolerances below "
+                                     "rounding)",
+                                     t, hn);
+                        }
+                        goto finish;
                     }
-                } else if (hl >= 0.0 && ++nonstiff_count == 6) {
-                    stiff_count = 0;
+                    continue;
                 }
-            }
-            if (mode == 2 && next < count && times[next] < tnext) {
-                dyn_sinl_dense(m, S, q, n, hn, k, ycur, ynew, coef);
-                d.t0 = t;
-                d.h = hn;
-            }
-            while (mode == 2 && next < count && times[next] <= tnext) {
-                const double to = times[next];
-                const double *yo = ynew;
-                if (to != tnext) {
-                    dyn_dense_eval(&d, to, yout);
-                    yo = yout;
+                res->stats.accepted++;
+                const int stiff_due = --stiff_countdown == 0;
+                if (stiff_due)
+                    stiff_countdown = stiff_every;
+                if (stiff_test && (stiff_due || stiff_count > 0)) {
+                    const double hl = dyn_sinl_stiffness(m, S, n, hn, k, ycur, ynew, Yj);
+                    if (hl > m->stiff_bound) {
+                        nonstiff_count = 0;
+                        if (++stiff_count == 15 && !res->stiff) {
+                            res->stiff = 1;
+                            res->stiff_t = t;
+                            snprintf(
+                                res->stiff_message, sizeof res->stiff_message,
+                                "the problem looks stiff from t = %.6g: %s's step size is "
+                                "limited by stability (|h lambda| > %g for %d steps in a row), "
+                                "not by accuracy",
+                                t, m->name, m->stiff_bound, 15);
+                        }
+                    } else if (hl >= 0.0 && ++nonstiff_count == 6) {
+                        stiff_count = 0;
+                    }
                 }
-                next++;
-                if (output) {
+                if (mode == 2 && next < count && times[next] < tnext) {
+                    dyn_sinl_dense(m, S, q, n, hn, k, ycur, ynew, coef);
+                    d.t0 = t;
+                    d.h = hn;
+                }
+                while (mode == 2 && next < count && times[next] <= tnext) {
+                    const double to = times[next];
+                    const double *yo = ynew;
+                    if (to != tnext) {
+                        dyn_dense_eval(&d, to, yout);
+                        yo = yout;
+                    }
+                    next++;
+                    if (output) {
+                        res->stats.samples++;
+                        if (output(kout++, to, yo, o->output_ctx)) {
+                            res->status = DYN_STOPPED;
+                            snprintf(res->message, sizeof res->message,
+                                     "output stopped the run at t = %g", to);
+                            goto finish;
+                        }
+                    }
+                }
+                memcpy(k, k + (size_t)(S - 1) * N, N * sizeof *k); /* FSAL */
+                memcpy(ycur, ynew, N * sizeof *ycur);
+                t = tnext;
+                res->h_last = hn;
+                if (mode == 0 && output) {
                     res->stats.samples++;
-                    if (output(kout++, to, yo, o->output_ctx)) {
+                    if (output(kout++, t, ycur, o->output_ctx)) {
                         res->status = DYN_STOPPED;
                         snprintf(res->message, sizeof res->message,
-                                 "output stopped the run at t = %g", to);
+                                 "output stopped the run at t = %g", t);
                         goto finish;
                     }
                 }
+                h = fmin(dyn_sinl_ctl_accept(&ctl, hn, err, rejected_before), hmax);
+                if (last)
+                    h = fmax(h, hn);
+                rejected_before = 0;
             }
-            memcpy(k, k + (size_t)(S - 1) * N, N * sizeof *k); /* FSAL */
-            memcpy(ycur, ynew, N * sizeof *ycur);
-            t = tnext;
-            res->h_last = hn;
-            if (mode == 0 && output) {
-                res->stats.samples++;
-                if (output(kout++, t, ycur, o->output_ctx)) {
-                    res->status = DYN_STOPPED;
-                    snprintf(res->message, sizeof res->message,
-                             "output stopped the run at t = %g", t);
-                    goto finish;
-                }
-            }
-            h = fmin(dyn_sinl_ctl_accept(&ctl, hn, err, rejected_before), hmax);
-            if (last)
-                h = fmax(h, hn);
-            rejected_before = 0;
         }
-    }
+    } /* a block, so that no goto jumps past an initialisation (C++) */
     goto finish;
 
 rhs_failed:
@@ -507,12 +513,14 @@ finish:
 /* dyn_solve with the step loop compiled at the call site: same contract, same results bit
  * for bit (see the top of this header for what takes the inline path). */
 DYN_SINL int dyn_solve_inline(const dyn_tableau *m, const dyn_system *sys, double t0, double t1,
-                              const double *y0, double *y, double *work,
-                              const dyn_solve_opts *opts, dyn_result *res)
+                              const double *y0, double *y, double *work, const dyn_solve_opts *opts,
+                              dyn_result *res)
 {
-    static const dyn_solve_opts no_opts;
     if (!sys || !m)
         return dyn_solve(m, sys, t0, t1, y0, y, work, opts, res);
+    dyn_solve_opts no_opts;
+    if (!opts)
+        memset(&no_opts, 0, sizeof no_opts);
     const dyn_solve_opts *o = opts ? opts : &no_opts;
     /* read before any call, so that the compiler sees f as the constant it is */
     const dyn_rhs_fn f = sys->f;
@@ -523,11 +531,11 @@ DYN_SINL int dyn_solve_inline(const dyn_tableau *m, const dyn_system *sys, doubl
     const int S = m->stages;
     int plain = m->kind == DYN_KIND_EMBEDDED_RK && m->e && !m->e3 && m->fsal && S >= 2 &&
                 S <= DYN_SINL_MAX_STAGES && m->dense_stages <= S && f && n > 0 && y0 && work &&
-                isfinite(t0) && isfinite(t1) && t1 > t0 && rtol >= DYN_MIN_RTOL &&
-                isfinite(rtol) && atol >= 0.0 && isfinite(atol) && !o->rtolv && !o->atolv &&
-                o->max_step >= 0.0 && o->initial_step >= 0.0 && !(o->events && o->n_events) &&
-                o->n_events >= 0 && !o->step && !o->record && !o->trace && !o->progress &&
-                o->out_step == 0.0 && !o->jac_banded;
+                isfinite(t0) && isfinite(t1) && t1 > t0 && rtol >= DYN_MIN_RTOL && isfinite(rtol) &&
+                atol >= 0.0 && isfinite(atol) && !o->rtolv && !o->atolv && o->max_step >= 0.0 &&
+                o->initial_step >= 0.0 && !(o->events && o->n_events) && o->n_events >= 0 &&
+                !o->step && !o->record && !o->trace && !o->progress && o->out_step == 0.0 &&
+                !o->jac_banded;
     if (plain && o->out_times)
         for (long i = 0; i < o->n_out_times; i++)
             if (!(o->out_times[i] >= t0 && o->out_times[i] <= t1) ||

@@ -266,6 +266,9 @@ int main(int argc, char **argv)
             remove(csv);
             remove(final_csv);
             printf("bench_output --quick: %s\n", failures ? "FAILED" : "ok");
+            for (int c = 0; c < 4; c++)
+                free(kinds[c]);
+            free(rows);
             return failures ? 1 : 0;
         }
 

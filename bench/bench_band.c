@@ -29,6 +29,7 @@
 
 #include "dynkit/brusselator.h"
 #include "dynkit/solve.h"
+#include "bench_clock.h"
 #include "wp_svg.h"
 #ifdef DYNKIT_HAVE_CVODE
 #include "dynkit/cvode.h"
@@ -51,13 +52,6 @@ enum { N_TOL = sizeof tols / sizeof tols[0], N_LEVELS = sizeof levels / sizeof l
 #define ROD_TOL_MIN 1e-9
 #define GROWTH_LEVEL 1e-6
 #define DENSE_MAX_N 100
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static const dyn_band_solver *band_solver(void)
 {
@@ -185,7 +179,7 @@ static int measure(const problem *p, solver_id s, const double *ref, int reps, c
         double best = INFINITY;
         long steps = 0;
         for (int r = 0; r < reps; r++) {
-            const double t0 = now();
+            const double t0 = bench_wall_seconds();
             if (s == CVODE_BAND) {
 #ifdef DYNKIT_HAVE_CVODE
                 steps = run_cvode(p, tols[t], y);
@@ -195,7 +189,7 @@ static int measure(const problem *p, solver_id s, const double *ref, int reps, c
                                   s == ROD_BAND_BUILTIN ? &dyn_band_solver_builtin : band_solver(),
                                   tols[t], y);
             }
-            best = fmin(best, now() - t0);
+            best = fmin(best, bench_wall_seconds() - t0);
             if (steps < 0) {
                 free(y);
                 return 1;
@@ -244,7 +238,7 @@ static double lu_alone(int N, int rounds, double *us_backend)
     for (int r = 0; r < rounds; r++)
         for (int k = 0; k < 2; k++) {
             const dyn_band_solver *v = sv[(r + k) % 2];
-            const double t0 = now();
+            const double t0 = bench_wall_seconds();
             for (int q = 0; q < batch; q++) {
                 memcpy(W, W0, (size_t)n * ldab * sizeof *W);
                 v->factor(n, kl, ku, W, ldab, piv);
@@ -254,7 +248,7 @@ static double lu_alone(int N, int rounds, double *us_backend)
                     v->solve(n, kl, ku, W, ldab, piv, b);
                 }
             }
-            const double dt = (now() - t0) / batch;
+            const double dt = (bench_wall_seconds() - t0) / batch;
             best[(r + k) % 2] = fmin(best[(r + k) % 2], dt);
         }
     *us_backend = 1e6 * best[1];

@@ -43,15 +43,9 @@
 #include <dynkit/jit.h>
 #include <dynkit/models.h>
 #include <dynkit/ode.h>
+#include "bench_clock.h"
 
 #define MAX_REPS 101
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* CPU time of this thread and of the finished child processes (the compiler): what a first
  * run costs on an idle machine, much less sensitive to the machine's load than wall time */
@@ -301,14 +295,14 @@ int main(int argc, char **argv)
     int variant_id = 0;
     snprintf(src, sizeof src, four_source_fmt, variant_id++);
     dyn_jit_model jm;
-    double t = now();
+    double t = bench_wall_seconds();
     if (load(src, &opts[V_CC], &jm) != 0) {
         nftw(cache, remove_entry, 16, FTW_DEPTH | FTW_PHYS);
         return 1;
     }
     double y4[4];
     failed |= rk4_final(jm.model, 1000, 0.01, y4);
-    double empty_cache_ms = 1e3 * (now() - t);
+    double empty_cache_ms = 1e3 * (bench_wall_seconds() - t);
     dyn_jit_unload(&jm);
 
     /* ---- 1. the right-hand side ---- */
@@ -330,9 +324,9 @@ int main(int argc, char **argv)
             int v = (j + r) % N_VARIANTS;
             if (!models[v])
                 continue;
-            t = now();
+            t = bench_wall_seconds();
             failed |= rk4_final(models[v], steps, h, yv[v]);
-            ns[v][r] = 1e9 * (now() - t) / (double)steps;
+            ns[v][r] = 1e9 * (bench_wall_seconds() - t) / (double)steps;
         }
     int same[N_VARIANTS];
     for (int v = 0; v < N_VARIANTS; v++) {
@@ -374,9 +368,9 @@ int main(int argc, char **argv)
             int v = (j + r) % N_VARIANTS;
             if (!lm[v])
                 continue;
-            t = now();
+            t = bench_wall_seconds();
             failed |= rk4_final(lm[v], l96_steps, 0.001, l96_y[v]);
-            l96_ns[v][r] = 1e9 * (now() - t) / (double)l96_steps;
+            l96_ns[v][r] = 1e9 * (bench_wall_seconds() - t) / (double)l96_steps;
         }
     int l96_same[N_VARIANTS];
     for (int v = 0; v < N_VARIANTS; v++) {
@@ -407,13 +401,13 @@ int main(int argc, char **argv)
                 continue;
             snprintf(src, sizeof src, four_source_fmt, variant_id++);
             double c0 = cpu_now();
-            t = now();
+            t = bench_wall_seconds();
             if (load(src, &opts[first_variant[f]], &jm) != 0) {
                 failed = 1;
                 continue;
             }
             failed |= rk4_final(jm.model, 1000, 0.01, y4);
-            first_ms[f][r] = 1e3 * (now() - t);
+            first_ms[f][r] = 1e3 * (bench_wall_seconds() - t);
             cpu_ms[f][r] = 1e3 * (cpu_now() - c0);
             compile_ms[f][r] = 1e3 * jm.compile_seconds;
             if (jm.cached) {
@@ -433,14 +427,14 @@ int main(int argc, char **argv)
             dyn_jit_unload(&jm);
         }
         /* the last cc source again: from the cache */
-        t = now();
+        t = bench_wall_seconds();
         if (load(src_cc, &opts[V_CC], &jm) != 0 || !jm.cached) {
             fprintf(stderr, "bench_jit: the cached load did not come from the cache\n");
             failed = 1;
         }
         if (jm.model)
             failed |= rk4_final(jm.model, 1000, 0.01, y4);
-        cached_ms[r] = 1e3 * (now() - t);
+        cached_ms[r] = 1e3 * (bench_wall_seconds() - t);
         dyn_jit_unload(&jm);
     }
     nftw(cache, remove_entry, 16, FTW_DEPTH | FTW_PHYS);

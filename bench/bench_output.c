@@ -32,24 +32,9 @@
 
 #include "dynkit/io.h"
 #include "dynkit/ode.h"
+#include "bench_clock.h"
 
 extern char **environ;
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-/* CPU time of this process: what the formatting costs even when other work shares the
- * cores (wall time then includes the waits for a core). */
-static double cpu_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static int failures;
 
@@ -99,14 +84,14 @@ static double time_format(const double *x, long n, int printf_way, long *chars)
 {
     char buf[64];
     long total = 0;
-    const double t0 = cpu_now();
+    const double t0 = bench_process_cpu_seconds();
     if (printf_way)
         for (long i = 0; i < n; i++)
             total += snprintf(buf, sizeof buf, "%.17g", x[i]);
     else
         for (long i = 0; i < n; i++)
             total += dyn_format_double(x[i], buf);
-    const double t = cpu_now() - t0;
+    const double t = bench_process_cpu_seconds() - t0;
     *chars = total;
     return t;
 }
@@ -119,7 +104,7 @@ static double time_rows(const char *path, const double *r, long rows, int printf
     FILE *f = fopen(path, "wb");
     if (!f)
         return NAN;
-    const double t0 = cpu_now();
+    const double t0 = bench_process_cpu_seconds();
     int bad = fputs("t,y1,y2\n", f) < 0;
     if (printf_way) {
         for (long k = 0; k < rows; k++)
@@ -131,7 +116,7 @@ static double time_rows(const char *path, const double *r, long rows, int printf
         bad |= dyn_text_writer_flush(&w) != DYN_OK;
     }
     bad |= fclose(f) != 0;
-    const double t = cpu_now() - t0;
+    const double t = bench_process_cpu_seconds() - t0;
     return bad ? NAN : t;
 }
 
@@ -145,11 +130,11 @@ static double time_cli(char *const argv[], const char *out_path, double *wall)
     pid_t pid;
     int status = 0;
     struct rusage ru;
-    const double t0 = now();
+    const double t0 = bench_wall_seconds();
     int ok = posix_spawn(&pid, argv[0], &fa, NULL, argv, environ) == 0 &&
              wait4(pid, &status, 0, &ru) == pid && WIFEXITED(status) &&
              WEXITSTATUS(status) == 0;
-    *wall = now() - t0;
+    *wall = bench_wall_seconds() - t0;
     posix_spawn_file_actions_destroy(&fa);
     const double cpu = (double)ru.ru_utime.tv_sec + 1e-6 * (double)ru.ru_utime.tv_usec +
                        (double)ru.ru_stime.tv_sec + 1e-6 * (double)ru.ru_stime.tv_usec;

@@ -19,21 +19,7 @@
 
 #include "dynkit/dynkit.h"
 #include "dynkit/sweep.h"
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-/* CPU time of the process, all threads (to see the per-run overhead on a busy machine). */
-static double cpu_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
+#include "bench_clock.h"
 
 static double last_cpu; /* CPU time of the last measurement */
 
@@ -74,10 +60,10 @@ static double run_sweep(const sweep_case *c, double *results, int *status, int *
     s.n_reduce = nr;
     s.reduce = red;
     s.threads = c->threads;
-    const double t = now(), c0 = cpu_now();
+    const double t = bench_wall_seconds(), c0 = bench_process_cpu_seconds();
     int rc = dyn_sweep_run(&s, results, status, err, sizeof err);
-    const double elapsed = now() - t;
-    last_cpu = cpu_now() - c0;
+    const double elapsed = bench_wall_seconds() - t;
+    last_cpu = bench_process_cpu_seconds() - c0;
     free(mu);
     if (rc != DYN_OK) {
         fprintf(stderr, "bench_sweep: %s\n", err);
@@ -94,12 +80,12 @@ static double run_one(long steps, double h, double *y)
     double work[64];
     dyn_system sys = {dyn_vanderpol_rhs, 2, &par};
     dyn_result res;
-    const double t = now(), c0 = cpu_now();
+    const double t = bench_wall_seconds(), c0 = bench_process_cpu_seconds();
     if (dyn_fixed_solve(dyn_method_find("rk4"), &sys, 0.0, (double)steps * h, h, y0, y, work,
                         NULL, &res) != DYN_OK)
         exit(1);
-    last_cpu = cpu_now() - c0;
-    return now() - t;
+    last_cpu = bench_process_cpu_seconds() - c0;
+    return bench_wall_seconds() - t;
 }
 
 static int quick(void)

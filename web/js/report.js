@@ -86,7 +86,7 @@
     small.cols.energy = null;
     const runs = [nonlinear, small, euler];
     const p = player('pendulum-anim', runs, 'pendulum');
-    DK.PendulumView(figure('pendulum-anim', 'The three answers in motion: the nonlinear solution, the small-angle solution and Euler\'s method continued with the step of 1e.'), runs, par.l, p);
+    DK.PendulumView(figure('pendulum-anim', 'The three answers in motion: the nonlinear solution, the small-angle solution and Euler\'s method with the step of question 1e.'), runs, par.l, p);
     DK.timePlot(figure('pendulum-phi', 'φ(t): at t = 0.2 s the three agree closely; over a swing of this amplitude the small-angle solution runs ahead and Euler\'s swing grows.'), runs, 'phi', p, { title: 'angle φ', unit: 'rad' });
     /* 1e, 1f: errors at te on a log scale */
     const st = S['pendulum.step'], tcol = st.data[0];

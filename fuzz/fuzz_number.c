@@ -31,6 +31,16 @@ void dyn_model_set_param(const dyn_model *m, void *par, int i, double value)
     (void)m, (void)par, (void)i, (void)value;
     abort();
 }
+double dyn_model_get_param(const dyn_model *m, const void *par, int i)
+{
+    (void)m, (void)par, (void)i;
+    abort();
+}
+int cli_param_is_size(const dyn_model *m, const char *name)
+{
+    (void)m, (void)name;
+    abort();
+}
 
 int LLVMFuzzerInitialize(int *argc, char ***argv);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);

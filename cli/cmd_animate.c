@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "out_file.h"
 #include "pages.h"
 
 static void animate_help(void)
@@ -131,6 +132,7 @@ int cli_cmd_animate(int argc, char **argv)
     if (rc == CLI_OK && (run_rc == CLI_USAGE || v.n_series == 0))
         rc = run_rc;
     FILE *out = stdout;
+    cli_out outf = {0};
     char default_path[128] = "";
     const char *path = v.run.output_path;
     if (rc == CLI_OK && !path && !(out = open_default(v.run.model->name, default_path,
@@ -139,16 +141,23 @@ int cli_cmd_animate(int argc, char **argv)
                                         "--output FILE.html)",
                              default_path, strerror(errno));
         out = stdout;
-    } else if (rc == CLI_OK && path && strcmp(path, "-") != 0 && !(out = fopen(path, "w"))) {
-        rc = cli_usage_error("animate", "cannot open --output '%s' for writing: %s", path,
-                             strerror(errno));
-        out = stdout;
+    } else if (rc == CLI_OK && path) {
+        /* a named --output: a temporary file renamed over it at the end (out_file.h) */
+        rc = cli_out_open(&outf, "--output", path);
+        out = rc == CLI_OK ? outf.f : stdout;
     }
     if (rc == CLI_OK) {
         char title[160];
         snprintf(title, sizeof title, "dynkit animate %s", v.run.model->name);
         animate_page pg = {&v, &ani};
         rc = cli_html_page_write(out, title, "animate.html", page_data, &pg);
+        if (path) {
+            /* the page of a run that failed part-way is kept: it shows what was computed */
+            int close_rc = cli_out_close(&outf, rc == CLI_OK);
+            if (rc == CLI_OK)
+                rc = close_rc;
+            out = stdout;
+        }
         if (rc == CLI_OK && run_rc != CLI_OK)
             rc = run_rc;
     }

@@ -4,6 +4,7 @@
 #include <errno.h>
 #include <string.h>
 
+#include "out_file.h"
 #include "pages.h"
 
 #define MAX_Y 8
@@ -114,13 +115,11 @@ int cli_cmd_plot(int argc, char **argv)
     int run_rc = rc == CLI_OK ? cli_view_record(&v) : rc;
     if (rc == CLI_OK && (run_rc == CLI_USAGE || v.n_series == 0))
         rc = run_rc;
-    FILE *out = stdout;
-    if (rc == CLI_OK && v.run.output_path && strcmp(v.run.output_path, "-") != 0 &&
-        !(out = fopen(v.run.output_path, "w"))) {
-        rc = cli_usage_error("plot", "cannot open --output '%s' for writing: %s", v.run.output_path,
-                             strerror(errno));
-        out = stdout;
-    }
+    /* written to a temporary file renamed over --output at the end (out_file.h) */
+    cli_out outf = {0};
+    if (rc == CLI_OK)
+        rc = cli_out_open(&outf, "--output", v.run.output_path);
+    FILE *out = outf.f;
     if (rc == CLI_OK) {
         /* one panel per unit of the --y columns (energy in J and height in m are not
          * squashed onto one axis), in the order the units first appear */
@@ -170,11 +169,10 @@ int cli_cmd_plot(int argc, char **argv)
             n_panels++;
         }
         rc = cli_svg_write_panels(out, order, n_panels);
-        if (rc == CLI_OK && run_rc != CLI_OK)
-            rc = run_rc;
+        int close_rc = cli_out_close(&outf, rc == CLI_OK);
+        if (rc == CLI_OK)
+            rc = close_rc != CLI_OK ? close_rc : run_rc;
     }
-    if (out != stdout)
-        fclose(out);
     cli_view_free(&v);
     return rc;
 }

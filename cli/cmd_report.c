@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "out_file.h"
 #include "dynkit/report.h"
 #include "dynkit/report_studies.h"
 #include "pages.h"
@@ -169,18 +170,17 @@ static int write_html(const dyn_homework *hw, const char *path)
             rc = CLI_FAILED;
         }
     }
-    FILE *out = stdout;
-    if (rc == CLI_OK && strcmp(path, "-") != 0 && !(out = fopen(path, "w"))) {
-        rc = cli_usage_error("report", "cannot open --html '%s' for writing: %s", path,
-                             strerror(errno));
-        out = stdout;
-    }
+    /* written to a temporary file renamed over --html at the end: a failure keeps the old
+     * page (out_file.h) */
+    cli_out out = {0};
     if (rc == CLI_OK)
-        rc = cli_html_page_write(out, "dynkit report: homework 8, Advanced Dynamics", "report.html",
-                                 page_data, &page);
-    if (out != stdout && fclose(out) != 0 && rc == CLI_OK) {
-        fprintf(stderr, "dynkit: error: writing %s failed\n", path);
-        rc = CLI_FAILED;
+        rc = cli_out_open(&out, "--html", path);
+    if (rc == CLI_OK) {
+        rc = cli_html_page_write(out.f, "dynkit report: homework 8, Advanced Dynamics",
+                                 "report.html", page_data, &page);
+        int close_rc = cli_out_close(&out, rc == CLI_OK);
+        if (rc == CLI_OK)
+            rc = close_rc;
     }
     free(page.json);
     free(page.text);

@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "out_file.h"
 #include "pages.h"
 #include "svg_axes.h"
 
@@ -506,12 +507,11 @@ int cli_plot_sweep_table(int argc, char **argv)
     if (rc == CLI_OK && output && ends_with_html(output))
         html = output, output = NULL;
     const char *path = html ? html : output;
-    FILE *out = stdout;
-    if (rc == CLI_OK && path && strcmp(path, "-") != 0 && !(out = fopen(path, "w"))) {
-        rc = cli_usage_error("plot", "cannot open %s '%s' for writing: %s",
-                             html ? "the page" : "--output", path, strerror(errno));
-        out = stdout;
-    }
+    /* written to a temporary file renamed over the name at the end (out_file.h) */
+    cli_out outf = {0};
+    if (rc == CLI_OK)
+        rc = cli_out_open(&outf, html ? "--html" : "--output", path);
+    FILE *out = outf.f;
     char auto_title[512];
     if (rc == CLI_OK) {
         const char *base = strrchr(argv[0], '/');
@@ -534,8 +534,11 @@ int cli_plot_sweep_table(int argc, char **argv)
             rc = lines(out, &t, varied[0], ycols, n_y, title ? title : auto_title);
         }
     }
-    if (out != stdout && fclose(out) != 0 && rc == CLI_OK)
-        rc = CLI_FAILED;
+    if (outf.f) {
+        int close_rc = cli_out_close(&outf, rc == CLI_OK);
+        if (rc == CLI_OK)
+            rc = close_rc;
+    }
     table_free(&t);
     return rc;
 }

@@ -6,7 +6,8 @@
  *   naming one file are refused; a missing directory, a directory, a full device give an
  *   error naming the file and exit 1; a failed write to standard output is exit 1 with a
  *   message, for every command; a closed pipe ends quietly; SIGINT and SIGTERM end a run
- *   after a complete row, with exit 130/143 and a valid file;
+ *   after a complete row, with exit 130/143 and a valid file; plots and pages replace
+ *   their file in one rename, as run's outputs do;
  * - a run always reaches T1: a step far larger than the span is one shorter step; a
  *   fixed-step run that fails with --every K keeps its last good sample. */
 #define _POSIX_C_SOURCE 200809L
@@ -125,6 +126,46 @@ static void test_failed_run_with_samples_keeps_them(void **state)
     CHECK(r.status == 1 && strncmp(got, "t,y1,y2\n0,2,0\n", 14) == 0,
           "failed run: exit %d, file '%s'", r.status, got);
     free(got);
+    cli_free(&r);
+}
+
+/* Pages and plots replace their file in one rename, like run's --output: a second name (a
+ * hard link) of the old file keeps the old bytes, the new file is complete, nothing is left
+ * beside it; a page that cannot be written leaves the old file as it was. */
+static void test_pages_replace_their_file_in_one_rename(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *file, *args, *start;
+    } pages[] = {
+        {"p.svg", "plot pendulum --y phi --tspan 0:1 --output p.svg", "<?xml"},
+        {"a.html", "animate pendulum --tspan 0:1 --output a.html", "<!DOCTYPE html>"},
+        {"r.html", "report --no-studies --html r.html", "<!DOCTYPE html>"},
+    };
+    for (size_t i = 0; i < sizeof pages / sizeof pages[0]; i++) {
+        write_text(pages[i].file, "x\n");
+        char old_name[64];
+        snprintf(old_name, sizeof old_name, "old-%s", pages[i].file);
+        char from[600], to[600]; /* cli_path's buffer is reused by each call */
+        snprintf(from, sizeof from, "%s", cli_path(pages[i].file));
+        snprintf(to, sizeof to, "%s", cli_path(old_name));
+        unlink(to);
+        assert_int_equal(link(from, to), 0);
+        cli_result r = cli_in_tmpdir("%s", pages[i].args);
+        size_t len;
+        char *got = cli_read_file(cli_path(pages[i].file), &len);
+        CHECK(r.status == 0 && file_is(old_name, "x\n") &&
+                  strncmp(got, pages[i].start, strlen(pages[i].start)) == 0 && leftovers() == 0,
+              "%s: exit %d, the old file's other name changed or the new one is not whole; "
+              "stderr: %s",
+              pages[i].args, r.status, r.err);
+        free(got);
+        cli_free(&r);
+    }
+    /* a page into a missing directory: an error naming it, nothing written */
+    cli_result r = cli_in_tmpdir("report --no-studies --html nodir/r.html");
+    CHECK(r.status != 0 && strstr(r.err, "nodir/r.html") && leftovers() == 0,
+          "report into a missing directory: exit %d, stderr %s", r.status, r.err);
     cli_free(&r);
 }
 
@@ -730,6 +771,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_late_errors_keep_the_output_file),
         cmocka_unit_test(test_failed_run_with_samples_keeps_them),
+        cmocka_unit_test(test_pages_replace_their_file_in_one_rename),
         cmocka_unit_test(test_bad_output_paths_name_the_file),
         cmocka_unit_test(test_stdout_failures_are_reported),
         cmocka_unit_test(test_closed_pipe_ends_quietly),

@@ -52,6 +52,18 @@ static int cv_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void *user_data)
     return 0;
 }
 
+/* The model's Jacobian at (t, y) into u->jbuf (dense or band storage, as the model gives
+ * it); non-zero when it failed, with the failure recorded as a right-hand side's. */
+static int jac_into_buffer(cv_user *u, sunrealtype t, N_Vector y)
+{
+    int rc = u->jac(t, N_VGetArrayPointer(y), u->jbuf, u->sys->par);
+    if (rc) {
+        u->rhs_status = rc;
+        u->fail_t = t;
+    }
+    return rc;
+}
+
 static int cv_jac(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void *user_data,
                   N_Vector tmp1, N_Vector tmp2, N_Vector tmp3)
 {
@@ -61,12 +73,8 @@ static int cv_jac(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void *use
     (void)tmp2;
     (void)tmp3;
     const int n = u->sys->n;
-    int rc = u->jac(t, N_VGetArrayPointer(y), u->jbuf, u->sys->par);
-    if (rc) {
-        u->rhs_status = rc;
-        u->fail_t = t;
+    if (jac_into_buffer(u, t, y))
         return -1;
-    }
     for (int j = 0; j < n; j++) {
         sunrealtype *col = SUNDenseMatrix_Column(J, j); /* column-major */
         for (int i = 0; i < n; i++)
@@ -86,12 +94,8 @@ static int cv_jac_band(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void
     (void)tmp2;
     (void)tmp3;
     const int n = u->sys->n, kl = u->lower, ku = u->upper;
-    int rc = u->jac(t, N_VGetArrayPointer(y), u->jbuf, u->sys->par);
-    if (rc) {
-        u->rhs_status = rc;
-        u->fail_t = t;
+    if (jac_into_buffer(u, t, y))
         return -1;
-    }
     for (int j = 0; j < n; j++) {
         sunrealtype *col = SUNBandMatrix_Column(J, j);
         const int i0 = j - ku > 0 ? j - ku : 0, i1 = j + kl < n - 1 ? j + kl : n - 1;

@@ -18,30 +18,8 @@
 #include <cmocka.h>
 
 #include "dynkit/dynkit.h"
+#include "dynkit/problems.h"
 #include "dynkit/solve_inline.h"
-
-static int vdp_rhs(double t, const double *y, double *f, void *par)
-{
-    (void)t;
-    const double mu = *(const double *)par;
-    f[0] = y[1];
-    f[1] = mu * (1.0 - y[0] * y[0]) * y[1] - y[0];
-    return 0;
-}
-
-static int arenstorf_rhs(double t, const double *y, double *f, void *par)
-{
-    (void)t;
-    const double mu = *(const double *)par, mup = 1.0 - mu;
-    const double x1 = y[0] + mu, x2 = y[0] - mup;
-    const double r1s = x1 * x1 + y[1] * y[1], r2s = x2 * x2 + y[1] * y[1];
-    const double D1 = r1s * sqrt(r1s), D2 = r2s * sqrt(r2s);
-    f[0] = y[2];
-    f[1] = y[3];
-    f[2] = y[0] + 2.0 * y[3] - mup * x1 / D1 - mu * x2 / D2;
-    f[3] = y[1] - 2.0 * y[2] - mup * y[1] / D1 - mu * y[1] / D2;
-    return 0;
-}
 
 /* y' = y^2, y(0) = 1: blows up at t = 1; fails (returns 3) once y > 1e3 when asked to */
 typedef struct blow_par {
@@ -131,8 +109,8 @@ static void same(const dyn_tableau *m, const dyn_system *sys, double t0, double 
     free(wb);
 }
 
-static const double vdp_mu = 1.0;
-static const double aren_mu = 0.012277471;
+static const dyn_vanderpol_par vdp_par = {1.0};
+static const dyn_arenstorf_par aren_par = {0.012277471};
 
 static void run_tols(const char *method, const dyn_system *sys, double t1, const double *y0,
                      long nsamp)
@@ -162,7 +140,7 @@ static void run_tols(const char *method, const dyn_system *sys, double t1, const
 static void test_vanderpol_bit_for_bit(void **state)
 {
     (void)state;
-    const dyn_system sys = {vdp_rhs, 2, (void *)&vdp_mu};
+    const dyn_system sys = {dyn_vanderpol_rhs, 2, (void *)&vdp_par};
     const double y0[2] = {2.0, 0.0};
     run_tols("dp45", &sys, 15.0, y0, 31);
     run_tols("bs23", &sys, 15.0, y0, 31);
@@ -171,9 +149,9 @@ static void test_vanderpol_bit_for_bit(void **state)
 static void test_arenstorf_bit_for_bit(void **state)
 {
     (void)state;
-    const dyn_system sys = {arenstorf_rhs, 4, (void *)&aren_mu};
-    const double y0[4] = {0.994, 0.0, 0.0, -2.00158510637908252240537862224};
-    const double T = 17.0652165601579625588917206249;
+    const dyn_system sys = {dyn_arenstorf_rhs, 4, (void *)&aren_par};
+    const double y0[4] = {0.994, 0.0, 0.0, DYN_ARENSTORF_Y2DOT0};
+    const double T = DYN_ARENSTORF_PERIOD;
     run_tols("dp45", &sys, T, y0, 41);
     run_tols("bs23", &sys, T, y0, 41);
 }
@@ -181,7 +159,7 @@ static void test_arenstorf_bit_for_bit(void **state)
 static void test_every_step_and_failures(void **state)
 {
     (void)state;
-    const dyn_system sys = {vdp_rhs, 2, (void *)&vdp_mu};
+    const dyn_system sys = {dyn_vanderpol_rhs, 2, (void *)&vdp_par};
     const double y0[2] = {2.0, 0.0};
     const dyn_tableau *m = dyn_method_find("dp45");
     dyn_solve_opts o = {0};
@@ -213,7 +191,7 @@ static void test_every_step_and_failures(void **state)
 static void test_error_falls(void **state)
 {
     (void)state;
-    const dyn_system sys = {vdp_rhs, 2, (void *)&vdp_mu};
+    const dyn_system sys = {dyn_vanderpol_rhs, 2, (void *)&vdp_par};
     const double y0[2] = {2.0, 0.0};
     const dyn_tableau *m8 = dyn_method_find("dop853"), *m = dyn_method_find("dp45");
     dyn_solve_opts ro = {0};

@@ -655,27 +655,24 @@ static void test_numbers_states_and_results_checked(void **state)
 
 /* ---- tables and --times files ---- */
 
-static void test_table_files_of_every_kind(void **state)
+/* A file of raw bytes for an input option, and the message it must give (NULL: accepted). */
+typedef struct input_file {
+    const char *name, *bytes;
+    size_t len; /* 0: strlen(bytes) */
+    const char *expect;
+} input_file;
+
+/* Each file written byte for byte, then `dynkit BEFORE NAME AFTER` run in the temporary
+ * directory: exit 2 with the expected message and no raw escape byte, or exit 0. */
+static void check_input_files(const input_file *files, size_t n, const char *before,
+                              const char *after)
 {
-    (void)state;
-    static const struct {
-        const char *name, *bytes;
-        size_t len;
-        const char *expect; /* NULL: accepted */
-    } files[] = {
-        {"bom.csv", "\xEF\xBB\xBFt,Fx,Fy\n0,1,2\n0.04,1,2\n", 0, NULL},
-        {"cr.csv", "t,Fx,Fy\r0,1,2\r0.04,1,2\r", 0, "CR only"},
-        {"u16.csv", "\xFF\xFEt\0,\0F\0x\0", 9, "UTF-16"},
-        {"nul.csv", "t,Fx,Fy\n0,1\0,2\n", 15, "NUL byte"},
-        {"esc.csv", "t,Fx,Fy\n0,\x1B[31mred,2\n", 0, "'\\x1B[31mred' is not a number"},
-        {"dup.csv", "t,Fx,Fy,Fx\n0,1,2,3\n", 0, "'Fx' appears twice"},
-    };
-    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+    for (size_t i = 0; i < n; i++) {
         FILE *f = fopen(cli_path(files[i].name), "wb");
         assert_non_null(f);
         fwrite(files[i].bytes, 1, files[i].len ? files[i].len : strlen(files[i].bytes), f);
         fclose(f);
-        cli_result r = cli_in_tmpdir("run cart --forces %s --final", files[i].name);
+        cli_result r = cli_in_tmpdir("%s%s%s", before, files[i].name, after);
         if (files[i].expect)
             CHECK(r.status == 2 && strstr(r.err, files[i].expect) && !strchr(r.err, 0x1B),
                   "%s: %d %s", files[i].name, r.status, r.err);
@@ -683,6 +680,20 @@ static void test_table_files_of_every_kind(void **state)
             CHECK(r.status == 0, "%s: %d %s", files[i].name, r.status, r.err);
         cli_free(&r);
     }
+}
+
+static void test_table_files_of_every_kind(void **state)
+{
+    (void)state;
+    static const input_file files[] = {
+        {"bom.csv", "\xEF\xBB\xBFt,Fx,Fy\n0,1,2\n0.04,1,2\n", 0, NULL},
+        {"cr.csv", "t,Fx,Fy\r0,1,2\r0.04,1,2\r", 0, "CR only"},
+        {"u16.csv", "\xFF\xFEt\0,\0F\0x\0", 9, "UTF-16"},
+        {"nul.csv", "t,Fx,Fy\n0,1\0,2\n", 15, "NUL byte"},
+        {"esc.csv", "t,Fx,Fy\n0,\x1B[31mred,2\n", 0, "'\\x1B[31mred' is not a number"},
+        {"dup.csv", "t,Fx,Fy,Fx\n0,1,2,3\n", 0, "'Fx' appears twice"},
+    };
+    check_input_files(files, sizeof files / sizeof files[0], "run cart --forces ", " --final");
     mkdir(cli_path("dir.csv"), 0755);
     cli_result r = cli_in_tmpdir("run cart --forces dir.csv");
     CHECK(r.status == 2 && strstr(r.err, "Is a directory"), "directory: %d %s", r.status, r.err);
@@ -712,11 +723,7 @@ static void test_table_files_of_every_kind(void **state)
 static void test_times_files_of_every_kind(void **state)
 {
     (void)state;
-    static const struct {
-        const char *name, *bytes;
-        size_t len;
-        const char *expect;
-    } files[] = {
+    static const input_file files[] = {
         {"t_bom.txt",
          "\xEF\xBB\xBF"
          "0\n0.5\n",
@@ -732,19 +739,8 @@ static void test_times_files_of_every_kind(void **state)
          7, "NUL byte"},
         {"t_esc.txt", "0\n\x1B[2J\n", 0, "\\x1B[2J"},
     };
-    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
-        FILE *f = fopen(cli_path(files[i].name), "wb");
-        assert_non_null(f);
-        fwrite(files[i].bytes, 1, files[i].len ? files[i].len : strlen(files[i].bytes), f);
-        fclose(f);
-        cli_result r = cli_in_tmpdir("run pendulum --method dp45 --times @%s", files[i].name);
-        if (files[i].expect)
-            CHECK(r.status == 2 && strstr(r.err, files[i].expect) && !strchr(r.err, 0x1B),
-                  "%s: %d %s", files[i].name, r.status, r.err);
-        else
-            CHECK(r.status == 0, "%s: %d %s", files[i].name, r.status, r.err);
-        cli_free(&r);
-    }
+    check_input_files(files, sizeof files / sizeof files[0], "run pendulum --method dp45 --times @",
+                      "");
     /* a line of 300 digits is one time, not two */
     FILE *f = fopen(cli_path("t_long.txt"), "w");
     assert_non_null(f);

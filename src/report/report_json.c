@@ -163,7 +163,7 @@ static void studies(json_out *j, const dyn_hw_studies *s)
     vec(j, "studies.period.amplitude_rad", pe->amplitude_rad, pe->n);
     vec(j, "studies.period.period_s", pe->period_s, pe->n);
     vec(j, "studies.period.exact_s", pe->exact_s, pe->n);
-    num(j, "studies.period.small_angle_period_s", 2.0 * 3.14159265358979323846 / pe->w);
+    num(j, "studies.period.small_angle_period_s", 2.0 * DYN_PI / pe->w);
     num(j, "studies.period.max_difference_s", pe->max_difference_s);
     num(j, "studies.period.amplitude_at_max_rad", pe->amplitude_at_max_rad);
     num(j, "studies.plane.runs", (double)pl->n_runs);

@@ -25,6 +25,15 @@
 
 #include <math.h>
 
+/* the small right-hand sides: always inlined where the caller's code is visible, also into
+ * the large step loop of dyn_solve_inline, whose size stops gcc's inliner otherwise (as
+ * dynkit/solve_inline.h asks of a right-hand side: DYN_INLINE_RHS) */
+#if defined(__GNUC__)
+#define BENCH_SMALL_EVAL static inline __attribute__((always_inline))
+#else
+#define BENCH_SMALL_EVAL static inline
+#endif
+
 #ifdef __cplusplus
 #define BENCH_RESTRICT __restrict
 #else
@@ -37,7 +46,7 @@ typedef struct bench_vdp_par {
     double mu;
 } bench_vdp_par;
 
-static inline void bench_vdp_eval(const double *BENCH_RESTRICT y, double *BENCH_RESTRICT dydt,
+BENCH_SMALL_EVAL void bench_vdp_eval(const double *BENCH_RESTRICT y, double *BENCH_RESTRICT dydt,
                                   const bench_vdp_par *BENCH_RESTRICT p)
 {
     dydt[0] = y[1];
@@ -129,7 +138,7 @@ typedef struct bench_arenstorf_par {
     double mu; /* Moon / (Earth + Moon) */
 } bench_arenstorf_par;
 
-static inline void bench_arenstorf_eval(const double *BENCH_RESTRICT y, double *BENCH_RESTRICT dydt,
+BENCH_SMALL_EVAL void bench_arenstorf_eval(const double *BENCH_RESTRICT y, double *BENCH_RESTRICT dydt,
                                         const bench_arenstorf_par *BENCH_RESTRICT p)
 {
     const double mu = p->mu, mup = 1.0 - mu;
@@ -143,7 +152,7 @@ static inline void bench_arenstorf_eval(const double *BENCH_RESTRICT y, double *
 }
 
 /* ---- Kepler's problem, unit mass parameter ---- */
-static inline void bench_kepler_eval(const double *BENCH_RESTRICT y, double *BENCH_RESTRICT dydt,
+BENCH_SMALL_EVAL void bench_kepler_eval(const double *BENCH_RESTRICT y, double *BENCH_RESTRICT dydt,
                                      const void *p)
 {
     (void)p;

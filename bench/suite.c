@@ -115,6 +115,16 @@ DK_RHS(dk_vdp, bench_vdp_eval)
 DK_RHS(dk_plane, bench_plane_eval)
 DK_RHS(dk_arenstorf, bench_arenstorf_eval)
 DK_RHS(dk_kepler, bench_kepler_eval)
+/* the same bodies for dyn_solve_inline, declared as its header asks (DYN_INLINE_RHS) */
+#define DK_RHS_INLINE(NAME, EVAL)                                                                  \
+    DYN_INLINE_RHS int NAME(double t, const double *y, double *dydt, void *par)                    \
+    {                                                                                              \
+        (void)t;                                                                                   \
+        EVAL(y, dydt, par);                                                                        \
+        return 0;                                                                                  \
+    }
+DK_RHS_INLINE(dk_vdp_inline, bench_vdp_eval)
+DK_RHS_INLINE(dk_arenstorf_inline, bench_arenstorf_eval)
 
 static int dk_vdp_jac(double t, const double *y, double *J, void *par)
 {
@@ -341,8 +351,8 @@ typedef int (*solve_inline_fn)(const dyn_tableau *m, void *par, double t0, doubl
         const dyn_system sys = {RHS, N, par};                                                      \
         return dyn_solve_inline(m, &sys, t0, t1, y0, y, work, o, res);                             \
     }
-SOLVE_INLINE(solve_inline_vdp, dk_vdp, 2)
-SOLVE_INLINE(solve_inline_arenstorf, dk_arenstorf, 4)
+SOLVE_INLINE(solve_inline_vdp, dk_vdp_inline, 2)
+SOLVE_INLINE(solve_inline_arenstorf, dk_arenstorf_inline, 4)
 
 typedef struct dk_ctx {
     int kind;
@@ -553,8 +563,8 @@ static int local_solve(const bench_sys *sys, bench_task task, bench_solver *out,
         }
     }
     /* the header-only driver (dynkit/solve_inline.h) for the pairs it takes inline */
-    const char *inl_names[] = {"bs23", "dp45"};
-    for (int i = 0; task == BENCH_TASK_ADAPTIVE && i < 2; i++) {
+    const char *inl_names[] = {"bs23", "dp45", "dop853"};
+    for (int i = 0; task == BENCH_TASK_ADAPTIVE && i < 3; i++) {
         const dyn_tableau *mi = dyn_method_find(inl_names[i]);
         solve_inline_fn fn = sys->id == BENCH_VDP         ? solve_inline_vdp
                              : sys->id == BENCH_ARENSTORF ? solve_inline_arenstorf

@@ -1,13 +1,18 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* dyn_solve_inline (dynkit/solve_inline.h) against dyn_solve: the same solve compiled at
- * the call site must give the same numbers bit for bit — final state, every sample at the
- * requested times (dense output), step, rejection and call counts, h_last — for bs23 and
- * dp45 on van der Pol (mu = 1, [0, 15]) and the Arenstorf orbit (one period; HNW I
- * sec. II.0) at rtol = atol = 1e-3 .. 1e-12, with the automatic and a given first step, a
- * max_step, output at every step, and the failures (too many steps, the right-hand side
- * failing, a blow-up's step-size underflow); and cases it does not take (events, per-state
- * tolerances, dop853) go to dyn_solve. A sanity fact as well: the error of dp45 on van der
- * Pol falls with the tolerance (the inlined solve is a solve, not a copy of nothing). */
+/* The fast path of the embedded pairs (dynkit/solve_inline.h with the generated kernels of
+ * dynkit/erk_kernels.h) against the general driver (dyn_solve_general, src/ode/solve.c):
+ * dyn_solve_inline (right-hand side inlined) and dyn_solve (the library's fast path, the
+ * right-hand side by pointer) must give the general driver's numbers bit for bit — final
+ * state, every sample at the requested times (dense output), step, rejection and call
+ * counts, h_last, stiffness verdict, messages — for bs23, dp45 and dop853 on van der Pol
+ * (mu = 1, [0, 15]) and the Arenstorf orbit (one period; HNW I sec. II.0) at rtol = atol =
+ * 1e-3 .. 1e-12, with the automatic and a given first step, a max_step, output at every
+ * step, progress callbacks and cancelling, the stiffness test at every step (on van der
+ * Pol with mu = 500), and the failures (too many steps, the right-hand side failing, a
+ * blow-up's step-size underflow); cases it does not take (per-state tolerances, dop853
+ * with output times) go to the general driver. A sanity fact as well: the error of dp45 on
+ * van der Pol falls with the tolerance (the inlined solve is a solve, not a copy of
+ * nothing). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -20,6 +25,7 @@
 #include "dynkit/dynkit.h"
 #include "dynkit/problems.h"
 #include "dynkit/solve_inline.h"
+#include "ode/solve_general.h"
 
 /* y' = y^2, y(0) = 1: blows up at t = 1; fails (returns 3) once y > 1e3 when asked to */
 typedef struct blow_par {
@@ -69,11 +75,27 @@ static int keep2(long k, double t, const double *y, void *ctx)
     return 0;
 }
 
+/* progress: counts its calls, cancels at the call given (0: never) */
+typedef struct progress_log {
+    long calls, cancel_at;
+    double last_t, last_frac;
+} progress_log;
+
+static int log_progress(double t, double frac, void *ctx)
+{
+    progress_log *p = ctx;
+    p->calls++;
+    p->last_t = t;
+    p->last_frac = frac;
+    return p->cancel_at > 0 && p->calls == p->cancel_at;
+}
+
 static samples sa, sb;
 
-/* Run both solves with the same options and compare every number. */
-static void same(const dyn_tableau *m, const dyn_system *sys, double t0, double t1,
-                 const double *y0, dyn_solve_opts o, int inline_path)
+/* Run the general driver and one fast path (fast 0: dyn_solve, 1: dyn_solve_inline) with the
+ * same options and compare every number. */
+static void same_as_general(const dyn_tableau *m, const dyn_system *sys, double t0, double t1,
+                            const double *y0, dyn_solve_opts o, int fast)
 {
     const int n = sys->n;
     const size_t nw = dyn_solve_work_size(m, n, &o);
@@ -82,13 +104,21 @@ static void same(const dyn_tableau *m, const dyn_system *sys, double t0, double 
     dyn_result ra, rb;
     memset(&sa, 0, sizeof sa);
     memset(&sb, 0, sizeof sb);
+    progress_log pa = {0, 0, 0.0, 0.0}, pb = pa;
+    if (o.progress_ctx)
+        pa.cancel_at = pb.cancel_at = ((const progress_log *)o.progress_ctx)->cancel_at;
     dyn_solve_opts oa = o, ob = o;
     if (o.output) {
         oa.output_ctx = &sa;
         ob.output_ctx = &sb;
     }
-    const int sta = dyn_solve(m, sys, t0, t1, y0, ya, wa, &oa, &ra);
-    const int stb = dyn_solve_inline(m, sys, t0, t1, y0, yb, wb, &ob, &rb);
+    if (o.progress) {
+        oa.progress_ctx = &pa;
+        ob.progress_ctx = &pb;
+    }
+    const int sta = dyn_solve_general(m, sys, t0, t1, y0, ya, wa, &oa, &ra);
+    const int stb = fast ? dyn_solve_inline(m, sys, t0, t1, y0, yb, wb, &ob, &rb)
+                         : dyn_solve(m, sys, t0, t1, y0, yb, wb, &ob, &rb);
     assert_int_equal(sta, stb);
     assert_memory_equal(ya, yb, (size_t)n * sizeof *ya);
     assert_int_equal(ra.stats.steps, rb.stats.steps);
@@ -104,9 +134,23 @@ static void same(const dyn_tableau *m, const dyn_system *sys, double t0, double 
     assert_int_equal(sa.count, sb.count);
     const long kept = sa.count < 4096 ? sa.count : 4096;
     assert_memory_equal(sa.data, sb.data, (size_t)kept * 5 * sizeof(double));
-    (void)inline_path;
+    assert_memory_equal(&ra.stiff_t, &rb.stiff_t, sizeof ra.stiff_t);
+    assert_string_equal(ra.stiff_message, rb.stiff_message);
+    assert_memory_equal(&ra.fail_t, &rb.fail_t, sizeof ra.fail_t);
+    assert_int_equal(ra.fail_index, rb.fail_index);
+    assert_int_equal(pa.calls, pb.calls);
+    assert_memory_equal(&pa.last_t, &pb.last_t, sizeof pa.last_t);
+    assert_memory_equal(&pa.last_frac, &pb.last_frac, sizeof pa.last_frac);
     free(wa);
     free(wb);
+}
+
+/* both fast paths against the general driver */
+static void same(const dyn_tableau *m, const dyn_system *sys, double t0, double t1,
+                 const double *y0, dyn_solve_opts o)
+{
+    same_as_general(m, sys, t0, t1, y0, o, 0);
+    same_as_general(m, sys, t0, t1, y0, o, 1);
 }
 
 static const dyn_vanderpol_par vdp_par = {1.0};
@@ -126,14 +170,14 @@ static void run_tols(const char *method, const dyn_system *sys, double t1, const
         o.out_times = times;
         o.n_out_times = nsamp;
         o.output = sys->n == 2 ? keep2 : keep;
-        same(m, sys, 0.0, t1, y0, o, 1);
+        same(m, sys, 0.0, t1, y0, o);
         /* no output, a given first step and a max_step */
         dyn_solve_opts p = {0};
         p.rtol = p.atol = pow(10.0, -e);
-        same(m, sys, 0.0, t1, y0, p, 1);
+        same(m, sys, 0.0, t1, y0, p);
         p.initial_step = 1e-3;
         p.max_step = t1 / 50.0;
-        same(m, sys, 0.0, t1, y0, p, 1);
+        same(m, sys, 0.0, t1, y0, p);
     }
 }
 
@@ -144,6 +188,7 @@ static void test_vanderpol_bit_for_bit(void **state)
     const double y0[2] = {2.0, 0.0};
     run_tols("dp45", &sys, 15.0, y0, 31);
     run_tols("bs23", &sys, 15.0, y0, 31);
+    run_tols("dop853", &sys, 15.0, y0, 31);
 }
 
 static void test_arenstorf_bit_for_bit(void **state)
@@ -154,37 +199,91 @@ static void test_arenstorf_bit_for_bit(void **state)
     const double T = DYN_ARENSTORF_PERIOD;
     run_tols("dp45", &sys, T, y0, 41);
     run_tols("bs23", &sys, T, y0, 41);
+    run_tols("dop853", &sys, T, y0, 41);
 }
 
-static void test_every_step_and_failures(void **state)
+/* every step, too many steps, a blow-up, a failing right-hand side, progress and
+ * cancelling, for one pair */
+static void every_step_and_failures(const char *method)
 {
-    (void)state;
     const dyn_system sys = {dyn_vanderpol_rhs, 2, (void *)&vdp_par};
     const double y0[2] = {2.0, 0.0};
-    const dyn_tableau *m = dyn_method_find("dp45");
+    const dyn_tableau *m = dyn_method_find(method);
+    assert_non_null(m);
     dyn_solve_opts o = {0};
     o.rtol = o.atol = 1e-6;
     o.output = keep2; /* a sample at every step */
-    same(m, &sys, 0.0, 15.0, y0, o, 1);
+    same(m, &sys, 0.0, 15.0, y0, o);
     dyn_solve_opts lim = {0};
     lim.rtol = lim.atol = 1e-9;
     lim.max_steps = 100;
-    same(m, &sys, 0.0, 15.0, y0, lim, 1);
-    /* a blow-up: step-size underflow; and the right-hand side failing */
+    same(m, &sys, 0.0, 15.0, y0, lim);
+    /* progress every 7 accepted steps; cancelled at its 5th call */
+    progress_log plog = {0, 0, 0.0, 0.0};
+    dyn_solve_opts pr = o;
+    pr.progress = log_progress;
+    pr.progress_ctx = &plog;
+    pr.progress_steps = 7;
+    same(m, &sys, 0.0, 15.0, y0, pr);
+    plog.cancel_at = 5;
+    same(m, &sys, 0.0, 15.0, y0, pr);
+    /* a blow-up: step-size underflow; and the right-hand side failing, also in the
+     * stiffness test's f(t + h, y_{n+1}) of dop853 when it runs at every step */
     blow_par bp = {0};
     const dyn_system blow = {blow_rhs, 1, &bp};
     const double b0[1] = {1.0};
     dyn_solve_opts ob = {0};
     ob.rtol = ob.atol = 1e-6;
-    same(m, &blow, 0.0, 2.0, b0, ob, 1);
+    same(m, &blow, 0.0, 2.0, b0, ob);
     bp.fail = 1;
-    same(m, &blow, 0.0, 2.0, b0, ob, 1);
-    /* not taken inline: dop853, per-state tolerances; still dyn_solve's results */
-    same(dyn_method_find("dop853"), &sys, 0.0, 15.0, y0, o, 0);
+    same(m, &blow, 0.0, 2.0, b0, ob);
+    ob.stiff_check = 1;
+    same(m, &blow, 0.0, 2.0, b0, ob);
+    /* stiffness: van der Pol with mu = 500, the test at every accepted step */
+    static const dyn_vanderpol_par stiff_par = {500.0};
+    const dyn_system stiff = {dyn_vanderpol_rhs, 2, (void *)&stiff_par};
+    dyn_solve_opts os = {0};
+    os.rtol = os.atol = 1e-5;
+    os.stiff_check = 1;
+    same(m, &stiff, 0.0, 20.0, y0, os);
+    os.stiff_check = 0; /* the default schedule */
+    same(m, &stiff, 0.0, 200.0, y0, os);
+    /* not taken by the fast path: per-state tolerances; still the general driver's results */
     const double rv[2] = {1e-6, 1e-7};
     dyn_solve_opts pv = {0};
     pv.rtolv = rv;
-    same(m, &sys, 0.0, 15.0, y0, pv, 0);
+    same(m, &sys, 0.0, 15.0, y0, pv);
+}
+
+static void test_every_step_and_failures(void **state)
+{
+    (void)state;
+    every_step_and_failures("bs23");
+    every_step_and_failures("dp45");
+    every_step_and_failures("dop853");
+}
+
+/* dp45 with the stiffness test: it must say stiff on van der Pol with mu = 500 (so that the
+ * comparisons above compare a verdict, not two empty ones) */
+static void test_stiffness_is_detected(void **state)
+{
+    (void)state;
+    static const dyn_vanderpol_par stiff_par = {500.0};
+    const dyn_system stiff = {dyn_vanderpol_rhs, 2, (void *)&stiff_par};
+    const double y0[2] = {2.0, 0.0};
+    const char *pairs[] = {"dp45", "dop853"};
+    for (int i = 0; i < 2; i++) {
+        const dyn_tableau *m = dyn_method_find(pairs[i]);
+        dyn_solve_opts os = {0};
+        os.rtol = os.atol = 1e-5;
+        os.stiff_check = 1;
+        double *w = calloc(dyn_solve_work_size(m, 2, &os), sizeof *w);
+        dyn_result r;
+        double y[2];
+        assert_int_equal(dyn_solve(m, &stiff, 0.0, 20.0, y0, y, w, &os, &r), DYN_OK);
+        assert_int_equal(r.stiff, 1);
+        free(w);
+    }
 }
 
 /* The error at t = 15 against a tight dop853 solve falls with the tolerance. */
@@ -219,6 +318,7 @@ int main(void)
         cmocka_unit_test(test_vanderpol_bit_for_bit),
         cmocka_unit_test(test_arenstorf_bit_for_bit),
         cmocka_unit_test(test_every_step_and_failures),
+        cmocka_unit_test(test_stiffness_is_detected),
         cmocka_unit_test(test_error_falls),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

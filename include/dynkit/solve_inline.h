@@ -1,39 +1,43 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* dynkit/solve_inline.h — dyn_solve for the explicit FSAL pairs compiled into the caller.
+/* dynkit/solve_inline.h — dyn_solve for the embedded pairs bs23, dp45 and dop853 compiled
+ * into the caller.
  *
- * dyn_solve (solve.h) calls the right-hand side through a pointer and runs every table through
- * one generic stage loop. dyn_solve_inline is the same solve as a static inline function for
- * the embedded pairs with first-same-as-last of 4 or 7 stages (bs23, dp45): when the
- * right-hand side is defined in the calling translation unit and sys is built there, the
- * compiler can inline it into the stage loop, whose stage count is a compile-time constant
- * (gcc 12 -O3 does when the right-hand side is declared always_inline; a plain static one stays a
- * direct call). It follows dyn_solve step for step (HNW I sec. II.4-II.6, IV.2, as dyn_solve
- * does; see src/ode/solve.c): the initial step of HINIT, the stage combinations y + h * (sum
- * of the non-zero a_ij k_j, left to right; a single power-of-two coefficient folded into h)
- * from a plan of each row's non-zero terms as in the library's stage loop, Hairer's error norm
- * sum_q e_q k_q from 0.0, the PI controller of DOPRI5 (fac = err^expo / err_old^beta / safety,
- * clamped; no growth right after a rejection), the last step shortened to land on t1 when t +
- * 1.01 h passes it, DOPRI5's stiffness test every stiff_check accepted steps, and output at
- * the requested times from the step's end state or the same dense output (dyn_dense_eval). So
- * the results are dyn_solve's bit for bit: states, samples, counters, messages
- * (tests/test_solve_inline.c checks it).
+ * dyn_solve_inline is dyn_solve as a static inline function: when the right-hand side is
+ * defined in the calling translation unit and sys is built there, the compiler can inline it
+ * into the stage loop. The step of each pair is the generated kernel of dynkit/erk_kernels.h
+ * (its coefficients constants, its zero terms gone), compiled once per pair. It follows
+ * dyn_solve step for step (HNW I sec. II.4-II.6, IV.2, as dyn_solve does; see
+ * src/ode/solve.c): the initial step of HINIT, the stage combinations y + h * (sum of the
+ * non-zero a_ij k_j, left to right; a single power-of-two coefficient folded into h), Hairer's
+ * error norm (DOP853's for dop853), the PI controller of DOPRI5 (fac = err^expo / err_old^beta
+ * / safety, clamped; no growth right after a rejection), the last step shortened to land on t1
+ * when t + 1.01 h passes it, DOPRI5's stiffness test every stiff_check accepted steps, output at
+ * every step or at requested times from the step's end state or the same dense output
+ * (dyn_dense_eval), and the progress callback. So the results are dyn_solve's bit for bit:
+ * states, samples, counters, messages (tests/test_solve_inline.c checks it against the
+ * general driver).
  *
- * Contract: exactly dyn_solve's (arguments, workspace dyn_solve_work_size). It takes the
- * inline path for such a table with scalar tolerances (rtol >= DYN_MIN_RTOL), no events,
- * step callback, recorder, trace or progress callback, and output either at every step or
- * at a list of times (out_times); everything else, including bad arguments, goes to
- * dyn_solve, so it never behaves differently.
- * Cost: code size (the right-hand side is inlined once per stage, per call site).
+ * The library's dyn_solve runs the same code (src/ode/solve_fast.c, dyn_sinl_try) with the
+ * right-hand side behind its pointer for the same cases, and its general driver for the rest.
+ *
+ * Contract: exactly dyn_solve's (arguments, workspace dyn_solve_work_size). The fast path
+ * takes a table whose coefficients are those of bs23, dp45 or dop853, with scalar tolerances
+ * (rtol >= DYN_MIN_RTOL), no events, step callback, recorder or trace, and output at every
+ * step or at a list of times (out_times; not for dop853, whose dense output needs three more
+ * stages); everything else, including bad arguments, goes to dyn_solve, so it never behaves
+ * differently.
+ * Cost: code size (the right-hand side is inlined once per stage, per pair, per call site).
  */
 #ifndef DYNKIT_SOLVE_INLINE_H
 #define DYNKIT_SOLVE_INLINE_H
 
 #include <float.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 
-#include "dynkit/ode_inline.h" /* dyn_inl_is_pow2 */
+#include "dynkit/erk_kernels.h"
 #include "dynkit/solve.h"
 
 #ifdef __cplusplus
@@ -45,20 +49,18 @@ extern "C" {
 #else
 #define DYN_SINL static inline
 #endif
+/* How to declare a right-hand side for dyn_solve_inline, so that compilers inline it into
+ * the stage loop (a plain static function may stay a call: the loop is large):
+ *     DYN_INLINE_RHS int my_rhs(double t, const double *y, double *dydt, void *par) ... */
+#if defined(__GNUC__)
+#define DYN_INLINE_RHS static inline __attribute__((always_inline))
+#else
+#define DYN_INLINE_RHS static inline
+#endif
 #ifdef __cplusplus
 #define DYN_SRESTRICT __restrict
 #else
 #define DYN_SRESTRICT restrict
-#endif
-
-#define DYN_SINL_MAX_STAGES 7
-
-#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
-#define DYN_SINL_SCALAR(v) __asm__("" : "+x"(v))
-#elif defined(__GNUC__) && defined(__aarch64__)
-#define DYN_SINL_SCALAR(v) __asm__("" : "+w"(v))
-#else
-#define DYN_SINL_SCALAR(v) ((void)0)
 #endif
 
 /* The PI controller of src/ode/step_control.c (dyn_controller_*), the same operations. */
@@ -84,7 +86,7 @@ DYN_SINL double dyn_sinl_ctl_accept(dyn_sinl_ctl *c, double h, double err, int r
         fac = 1.0 / c->fac_max;
     if (fac > 1.0 / c->fac_min)
         fac = 1.0 / c->fac_min;
-    c->err_old = fmax(err, 1e-4);
+    c->err_old = err > 1e-4 ? err : 1e-4; /* fmax(err, 1e-4): err is a number here */
     c->err_old_pow = c->beta == 0.0 ? 1.0 : pow(c->err_old, c->beta);
     double hnew = h / fac;
     if (rejected_before && hnew > h)
@@ -121,64 +123,114 @@ DYN_SINL double dyn_sinl_stage_time(double t, double c, double h, double tend)
     return ti > tend ? tend : ti;
 }
 
-/* The non-zero terms of each row of a (rows 0 .. S-1) and of b (row S), as the library's
- * stage plan (src/ode/rk_stages.h): terms first[r] .. first[r + 1] - 1 are coef * kp, with
- * kp pointing at the k_j they multiply. */
-typedef struct dyn_sinl_plan {
-    int first[DYN_SINL_MAX_STAGES + 2];
-    double coef[DYN_SINL_MAX_STAGES * (DYN_SINL_MAX_STAGES + 1)];
-    const double *kp[DYN_SINL_MAX_STAGES * (DYN_SINL_MAX_STAGES + 1)];
-    int fold[DYN_SINL_MAX_STAGES + 1]; /* the row's only term is a power of two */
-} dyn_sinl_plan;
-
-DYN_SINL void dyn_sinl_plan_init(dyn_sinl_plan *p, const dyn_tableau *m, int S, const double *k,
-                                 int n)
+/* sqrt(x) for x >= 0 or NaN, as the instruction: the correctly rounded square root, like
+ * sqrt(), without the call that compilers keep for errno (-fmath-errno, the default) and
+ * the spills around it on the step-to-step path. */
+DYN_SINL double dyn_sinl_sqrt(double x)
 {
-    int t = 0;
-    for (int r = 0; r <= S; r++) {
-        const double *row = r < S ? m->a + (size_t)r * (size_t)S : m->b;
-        const int len = r < S ? r : S;
-        p->first[r] = t;
-        for (int j = 0; j < len; j++)
-            if (row[j] != 0.0) {
-                p->coef[t] = row[j];
-                p->kp[t] = k + (size_t)j * (size_t)n;
-                t++;
-            }
-        p->fold[r] = t - p->first[r] == 1 && dyn_inl_is_pow2(p->coef[t - 1]);
-    }
-    p->first[S + 1] = t;
+#if defined(__GNUC__) && defined(__SSE2__)
+    __asm__("sqrtsd %1, %0" : "=x"(x) : "x"(x));
+    return x;
+#elif defined(__GNUC__) && defined(__aarch64__)
+    __asm__("fsqrt %d0, %d1" : "=w"(x) : "w"(x));
+    return x;
+#else
+    return sqrt(x);
+#endif
 }
 
-/* out = y + h * (sum of the row's terms, left to right), or y + (h c) k for a single
- * power-of-two term: the library's arithmetic. Returns the number of terms. */
-DYN_SINL int dyn_sinl_combine(const dyn_sinl_plan *p, int r, int n, double h,
-                              const double *DYN_SRESTRICT y, double *DYN_SRESTRICT out)
+/* The pairs with a kernel in dynkit/erk_kernels.h. */
+#define DYN_SINL_BS23 0
+#define DYN_SINL_DP45 1
+#define DYN_SINL_DOP853 2
+#define DYN_SINL_DECLINED (-1) /* dyn_sinl_try: not a case of the fast path */
+
+DYN_SINL int dyn_sinl_stages(const int P)
 {
-    const int t0 = p->first[r], nt = p->first[r + 1] - t0;
-    const double *c = p->coef + t0;
-    const double *const *kp = p->kp + t0;
-    if (nt == 0)
-        return 0;
-    if (p->fold[r]) {
-        const double hc = h * c[0];
-        const double *k0 = kp[0];
-        for (int q = 0; q < n; q++) {
-            double v = y[q] + hc * k0[q];
-            DYN_SINL_SCALAR(v);
-            out[q] = v;
-        }
-        return 1;
-    }
-    for (int q = 0; q < n; q++) {
-        double acc = c[0] * kp[0][q];
-        for (int t = 1; t < nt; t++)
-            acc += c[t] * kp[t][q];
-        double v = y[q] + h * acc;
-        DYN_SINL_SCALAR(v);
-        out[q] = v;
-    }
-    return nt;
+    return P == DYN_SINL_BS23 ? 4 : P == DYN_SINL_DP45 ? 7 : 12;
+}
+
+/* The stage slots of dyn_solve's workspace (kslots in src/ode/step_erk.c): the stages,
+ * f(t + h, ynew) for a pair without FSAL, and the dense output's extra stages. */
+DYN_SINL int dyn_sinl_kslots(const int P)
+{
+    return P == DYN_SINL_BS23 ? 4 : P == DYN_SINL_DP45 ? 7 : 16;
+}
+
+DYN_SINL int dyn_sinl_kslots_of(const dyn_tableau *m)
+{
+    const int k = m->fsal ? m->stages : m->stages + 1;
+    return m->dense_stages > k ? m->dense_stages : k;
+}
+
+DYN_SINL double dyn_sinl_c(const int P, const int i)
+{
+    return P == DYN_SINL_BS23 ? dyn_ek_bs23_c[i & 3]
+           : P == DYN_SINL_DP45 ? dyn_ek_dp45_c[i < 7 ? i : 0]
+                                : dyn_ek_dop853_c[i < 12 ? i : 0];
+}
+
+/* Stage r's state (r < S) or y_{n+1} (r == S) of pair P: the generated kernels. */
+DYN_SINL int dyn_sinl_row(const int P, const int r, const int n, const double h,
+                          const double *DYN_SRESTRICT y, const double *DYN_SRESTRICT k,
+                          double *DYN_SRESTRICT out)
+{
+    if (P == DYN_SINL_BS23)
+        return dyn_ek_bs23_row(r, n, h, y, k, out);
+    if (P == DYN_SINL_DP45)
+        return dyn_ek_dp45_row(r, n, h, y, k, out);
+    return dyn_ek_dop853_row(r, n, h, y, k, out);
+}
+
+/* The error norm of the step (erk_error in src/ode/step_erk.c): |h| sqrt(s5 / n), or
+ * DOP853's |h| s5 / sqrt(n (s5 + 0.01 s3)). */
+DYN_SINL double dyn_sinl_err(const int P, const int n, const double rtol, const double atol,
+                             const double h, const double *y, const double *ynew,
+                             const double *k)
+{
+    double s3 = 0.0, s5;
+    if (P == DYN_SINL_BS23)
+        s5 = dyn_ek_bs23_err(n, rtol, atol, y, ynew, k, &s3);
+    else if (P == DYN_SINL_DP45)
+        s5 = dyn_ek_dp45_err(n, rtol, atol, y, ynew, k, &s3);
+    else
+        s5 = dyn_ek_dop853_err(n, rtol, atol, y, ynew, k, &s3);
+    if (P != DYN_SINL_DOP853)
+        return fabs(h) * dyn_sinl_sqrt(s5 / n);
+    if (s5 == 0.0 && s3 == 0.0)
+        return 0.0;
+    return fabs(h) * s5 / dyn_sinl_sqrt((s5 + 0.01 * s3) * n);
+}
+
+DYN_SINL int dyn_sinl_same(const dyn_tableau *m, int s, int fsal, const double *a,
+                           const double *b, const double *c, const double *e, const double *e3)
+{
+    const size_t S = (size_t)s;
+    return m->stages == s && (m->fsal != 0) == fsal && m->a && m->b && m->c && m->e &&
+           memcmp(m->a, a, S * S * sizeof *a) == 0 && memcmp(m->b, b, S * sizeof *b) == 0 &&
+           memcmp(m->c, c, S * sizeof *c) == 0 && memcmp(m->e, e, S * sizeof *e) == 0 &&
+           (e3 ? m->e3 && memcmp(m->e3, e3, S * sizeof *e3) == 0 : !m->e3);
+}
+
+/* Which kernel computes table m: one whose coefficients are m's, bit for bit, and whose
+ * workspace has the same layout (the library's bs23, dp45 and dop853, or copies of them);
+ * DYN_SINL_DECLINED for any other table. */
+DYN_SINL int dyn_sinl_pair_of(const dyn_tableau *m)
+{
+    int P = DYN_SINL_DECLINED;
+    if (m->kind != DYN_KIND_EMBEDDED_RK)
+        return P;
+    if (dyn_sinl_same(m, 4, 1, dyn_ek_bs23_a, dyn_ek_bs23_b, dyn_ek_bs23_c, dyn_ek_bs23_e, NULL))
+        P = DYN_SINL_BS23;
+    else if (dyn_sinl_same(m, 7, 1, dyn_ek_dp45_a, dyn_ek_dp45_b, dyn_ek_dp45_c, dyn_ek_dp45_e,
+                           NULL))
+        P = DYN_SINL_DP45;
+    else if (dyn_sinl_same(m, 12, 0, dyn_ek_dop853_a, dyn_ek_dop853_b, dyn_ek_dop853_c,
+                           dyn_ek_dop853_e, dyn_ek_dop853_e3))
+        P = DYN_SINL_DOP853;
+    return P != DYN_SINL_DECLINED && dyn_sinl_kslots_of(m) == dyn_sinl_kslots(P)
+               ? P
+               : DYN_SINL_DECLINED;
 }
 
 #if defined(__GNUC__)
@@ -187,16 +239,16 @@ DYN_SINL int dyn_sinl_combine(const dyn_sinl_plan *p, int r, int n, double h,
 #define DYN_SINL_COLD static
 #endif
 
-/* DOPRI5's |h lambda| from stage j (c = 1) and f(t + h, ynew) = k_{S-1} (FSAL), as
- * erk_stiffness; out of line (once every stiff_check steps), so that the step loop stays
- * small enough for the right-hand side to be inlined into it. */
-DYN_SINL_COLD double dyn_sinl_stiffness(const dyn_tableau *m, int S, int n, double hn,
-                                        const double *k, const double *ycur, const double *ynew,
-                                        double *Yj)
+/* DOPRI5's |h lambda| from stage j (c = 1) and f1 = f(t + h, ynew), as erk_stiffness; out
+ * of line (once every stiff_check steps), so that the step loop stays small enough for the
+ * right-hand side to be inlined into it. */
+DYN_SINL_COLD double dyn_sinl_stiffness(const dyn_tableau *m, int n, double hn, const double *k,
+                                        const double *f1, const double *ycur,
+                                        const double *ynew, double *Yj)
 {
     const size_t N = (size_t)n;
-    const int j = m->stiff_stage;
-    const double *f1 = k + (size_t)(S - 1) * N, *kj = k + (size_t)j * N;
+    const int j = m->stiff_stage, S = m->stages;
+    const double *kj = k + (size_t)j * N;
     const double *row = m->a + (size_t)j * (size_t)S;
     for (int i = 0; i < n; i++) {
         double acc = 0.0;
@@ -213,13 +265,14 @@ DYN_SINL_COLD double dyn_sinl_stiffness(const dyn_tableau *m, int S, int n, doub
     return den > 0.0 ? fabs(hn) * sqrt(num / den) : -1.0;
 }
 
-/* The dense output of the step (erk_dense): the cubic Hermite part and the corrections. */
-DYN_SINL_COLD void dyn_sinl_dense(const dyn_tableau *m, int S, int q, int n, double hn,
+/* The dense output of an FSAL pair's step (erk_dense): the cubic Hermite part and the
+ * corrections. */
+DYN_SINL_COLD void dyn_sinl_dense(const dyn_tableau *m, int q, int n, double hn,
                                   const double *k, const double *ycur, const double *ynew,
                                   double *coef)
 {
     const size_t N = (size_t)n;
-    const double *f0 = k, *f1 = k + (size_t)(S - 1) * N;
+    const double *f0 = k, *f1 = k + (size_t)(m->stages - 1) * N;
     for (size_t i = 0; i < N; i++) {
         const double dy = ynew[i] - ycur[i];
         coef[i] = ycur[i];
@@ -240,22 +293,91 @@ DYN_SINL_COLD void dyn_sinl_dense(const dyn_tableau *m, int S, int q, int n, dou
     }
 }
 
-/* The inline solve for an S-stage FSAL pair. */
-DYN_SINL int dyn_sinl_solve(const int S, const dyn_tableau *m, dyn_rhs_fn f, void *par, const int n,
-                            double t0, double t1, const double *y0, double *y, double *work,
-                            const dyn_solve_opts *o, double rtol, double atol, dyn_result *res)
+/* A message into res (the failure paths, out of line). */
+#if defined(__GNUC__)
+__attribute__((format(printf, 3, 4)))
+#endif
+DYN_SINL_COLD void dyn_sinl_fail(dyn_result *res, int status, const char *fmt, ...)
 {
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(res->message, sizeof res->message, fmt, ap);
+    va_end(ap);
+    res->status = status;
+}
+
+/* The rejected step's new size, and the end of the solve when it is too small (the general
+ * driver's test and messages). Returns 1 when the solve ends. */
+DYN_SINL_COLD int dyn_sinl_reject(const dyn_sinl_ctl *ctl, int n, double t, double t0,
+                                  double t_end, double tnext, double hn, double err,
+                                  const double *ynew, double *h, dyn_result *res)
+{
+    *h = dyn_sinl_ctl_reject(ctl, hn, err);
+    const double hmin =
+        16.0 * DBL_EPSILON * fmax(fabs(t), fmax(DBL_EPSILON * (t_end - t0), DBL_MIN));
+    if (*h >= hmin && t + *h != t)
+        return 0;
+    int bad = 0;
+    while (bad < n && isfinite(ynew[bad]))
+        bad++;
+    if (bad < n) {
+        res->fail_t = tnext;
+        res->fail_index = bad;
+        dyn_sinl_fail(res, DYN_ERR_NONFINITE,
+                      "state %d became not finite at t = %.17g for every step size down to %g",
+                      bad, tnext, hn);
+    } else {
+        res->fail_t = t;
+        dyn_sinl_fail(res, DYN_ERR_STEP_SIZE,
+                      "step size underflow at t = %.17g: the error test fails with h = %g (a "
+                      "singularity, a discontinuity, or tolerances below rounding)",
+                      t, hn);
+    }
+    return 1;
+}
+
+/* DOPRI5's stiffness bookkeeping of one test (15 steps in a row above the bound). */
+DYN_SINL_COLD void dyn_sinl_stiff_count(const dyn_tableau *m, double hl, double t,
+                                        int *stiff_count, int *nonstiff_count, dyn_result *res)
+{
+    if (hl > m->stiff_bound) {
+        *nonstiff_count = 0;
+        if (++*stiff_count == 15 && !res->stiff) {
+            res->stiff = 1;
+            res->stiff_t = t;
+            snprintf(res->stiff_message, sizeof res->stiff_message,
+                     "the problem looks stiff from t = %.6g: %s's step size is limited by "
+                     "stability (|h lambda| > %g for %d steps in a row), not by accuracy",
+                     t, m->name, m->stiff_bound, 15);
+        }
+    } else if (hl >= 0.0 && ++*nonstiff_count == 6) {
+        *stiff_count = 0;
+    }
+}
+
+/* The solve with pair P's kernel. */
+DYN_SINL int dyn_sinl_solve(const int P, const dyn_tableau *m, dyn_rhs_fn f, void *par,
+                            const int n, double t0, double t1, const double *y0, double *y,
+                            double *work, const dyn_solve_opts *o, double rtol, double atol,
+                            dyn_result *res)
+{
+    const int S = dyn_sinl_stages(P);
+    const int fsal = P != DYN_SINL_DOP853;
     const size_t N = (size_t)n;
     const int q = m->dense_degree > 3 && m->dense ? m->dense_degree : 3;
-    /* the workspace of dyn_solve: k (S) | Y | tmp | ycur ynew yout ytmp | coef (q + 1) */
-    double *k = work, *Y = k + (size_t)S * N, *Yj = Y + N;
+    /* the workspace of dyn_solve: k (slots) | Y | tmp | ycur ynew yout ytmp | coef (q + 1) */
+    /* a constant, so that the compiler sees the stage derivatives apart from the states */
+    const int kslots = dyn_sinl_kslots(P);
+    double *k = work, *Y = k + (size_t)kslots * N, *Yj = Y + N;
     double *ycur = Yj + N, *ynew = ycur + N, *yout = ynew + N, *ytmp = yout + N;
     double *coef = ytmp + N;
+    double *const fnew = k + (size_t)(fsal ? S - 1 : S) * N; /* f(t + h, ynew) */
     const int mode = o->out_times ? 2 : 0;
     const double *times = o->out_times;
     const long count = mode == 2 ? o->n_out_times : 0;
     long next = 0, kout = 0, rhs_calls = 0;
     const dyn_output_fn output = o->output;
+    const dyn_progress_fn progress = o->progress;
     double t = t0, h;
     int rc = 0, k0_valid = 0;
     memmove(ycur, y0, N * sizeof *ycur);
@@ -264,9 +386,7 @@ DYN_SINL int dyn_sinl_solve(const int S, const dyn_tableau *m, dyn_rhs_fn f, voi
             if (output) {
                 res->stats.samples++;
                 if (output(kout++, t0, ycur, o->output_ctx)) {
-                    res->status = DYN_STOPPED;
-                    snprintf(res->message, sizeof res->message, "output stopped the run at t = %g",
-                             t0);
+                    dyn_sinl_fail(res, DYN_STOPPED, "output stopped the run at t = %g", t0);
                     goto finish;
                 }
             }
@@ -322,15 +442,13 @@ DYN_SINL int dyn_sinl_solve(const int S, const dyn_tableau *m, dyn_rhs_fn f, voi
         }
         {
             const long stiff_every = o->stiff_check > 0 ? o->stiff_check : 1000;
+            const long progress_every = o->progress_steps > 0 ? o->progress_steps : 4096;
             const long max_steps = o->max_steps;
             const int stiff_test = m->stiff_bound > 0.0 && m->stiff_stage >= 0 &&
                                    m->stiff_stage < S && m->c[m->stiff_stage] == 1.0;
-            long stiff_countdown = stiff_every;
-            int stiff_count = 0, nonstiff_count = 0, rejected_before = 0;
-            const double *c = m->c, *e = m->e;
+            long stiff_countdown = stiff_every, progress_countdown = progress_every;
+            int stiff_count = 0, nonstiff_count = 0, rejected_before = 0, fnew_valid = 0;
             dyn_dense d = {0.0, 0.0, n, q, coef};
-            dyn_sinl_plan plan;
-            dyn_sinl_plan_init(&plan, m, S, k, n);
             while (t < t_end) {
                 double hn, tnext;
                 int last = 0;
@@ -343,28 +461,29 @@ DYN_SINL int dyn_sinl_solve(const int S, const dyn_tableau *m, dyn_rhs_fn f, voi
                     tnext = t + h;
                 }
                 if (max_steps > 0 && res->stats.steps >= max_steps) {
-                    res->status = DYN_ERR_MAX_STEPS;
-                    snprintf(
-                        res->message, sizeof res->message,
-                        "reached the limit of %ld steps at t = %.17g (h = %g): raise the limit, "
-                        "loosen the tolerances, or use a method for stiff problems",
-                        max_steps, t, h);
+                    dyn_sinl_fail(res, DYN_ERR_MAX_STEPS,
+                                  "reached the limit of %ld steps at t = %.17g (h = %g): raise "
+                                  "the limit, loosen the tolerances, or use a method for stiff "
+                                  "problems",
+                                  max_steps, t, h);
                     goto finish;
                 }
                 res->stats.steps++;
-                /* the stages (dyn_rk_stages_from): k_0 is f(t, y) already after FSAL */
-                const int first = k0_valid && c[0] == 0.0;
+                /* the stages (dyn_rk_stages_from): k_0 is f(t, y) already after FSAL, after
+                 * a rejection, or when the stiffness test computed f(t + h, ynew) */
+                const int first = k0_valid;
 #define DYN_SINL_STAGE(I)                                                                          \
     if ((I) < S) {                                                                                 \
         const int I_ = (I) < S ? (I) : 0;                                                          \
         const double *Yi = ycur;                                                                   \
-        if (I_ > 0 && dyn_sinl_combine(&plan, I_, n, hn, ycur, Y) > 0)                             \
+        if (I_ > 0 && dyn_sinl_row(P, I_, n, hn, ycur, k, Y) > 0)                                  \
             Yi = Y;                                                                                \
         if (I_ >= first) {                                                                         \
-            const double ti = dyn_sinl_stage_time(t, c[I_], hn, t1);                               \
+            const double ti = dyn_sinl_stage_time(t, dyn_sinl_c(P, I_), hn, t1);                   \
             rc = f(ti, Yi, k + (size_t)I_ * N, par);                                               \
             if (rc) {                                                                              \
                 rhs_calls += I_ + 1 - first;                                                       \
+                k0_valid = I_ > 0;                                                                 \
                 res->fail_t = ti;                                                                  \
                 goto rhs_failed;                                                                   \
             }                                                                                      \
@@ -377,56 +496,25 @@ DYN_SINL int dyn_sinl_solve(const int S, const dyn_tableau *m, dyn_rhs_fn f, voi
                 DYN_SINL_STAGE(4)
                 DYN_SINL_STAGE(5)
                 DYN_SINL_STAGE(6)
+                DYN_SINL_STAGE(7)
+                DYN_SINL_STAGE(8)
+                DYN_SINL_STAGE(9)
+                DYN_SINL_STAGE(10)
+                DYN_SINL_STAGE(11)
 #undef DYN_SINL_STAGE
                 rhs_calls += S - first;
                 k0_valid = 1;
-                dyn_sinl_combine(&plan, S, n, hn, ycur, ynew);
-                double finite = 0.0, s5 = 0.0, err;
+                fnew_valid = 0;
+                dyn_sinl_row(P, S, n, hn, ycur, k, ynew);
+                double finite = 0.0, err;
                 for (int i = 0; i < n; i++)
                     finite += ynew[i] - ynew[i];
-                if (finite != 0.0) {
-                    err = INFINITY;
-                } else {
-                    for (int i = 0; i < n; i++) {
-                        double ei = 0.0;
-                        for (int j = 0; j < S; j++)
-                            if (e[j] != 0.0)
-                                ei += e[j] * k[(size_t)j * N + (size_t)i];
-                        const double sk = atol + rtol * fmax(fabs(ycur[i]), fabs(ynew[i]));
-                        const double r = ei / sk;
-                        s5 += r * r;
-                    }
-                    err = fabs(hn) * sqrt(s5 / n);
-                }
+                err = finite != 0.0 ? INFINITY : dyn_sinl_err(P, n, rtol, atol, hn, ycur, ynew, k);
                 if (!(err <= 1.0)) {
                     res->stats.rejected++;
                     rejected_before = 1;
-                    h = dyn_sinl_ctl_reject(&ctl, hn, err);
-                    const double hmin = 16.0 * DBL_EPSILON *
-                                        fmax(fabs(t), fmax(DBL_EPSILON * (t_end - t0), DBL_MIN));
-                    if (!(h >= hmin) || t + h == t) {
-                        int bad = 0;
-                        while (bad < n && isfinite(ynew[bad]))
-                            bad++;
-                        if (bad < n) {
-                            res->fail_t = tnext;
-                            res->fail_index = bad;
-                            res->status = DYN_ERR_NONFINITE;
-                            snprintf(res->message, sizeof res->message,
-                                     "state %d became not finite at t = %.17g for every step size "
-                                     "down to %g",
-                                     bad, tnext, hn);
-                        } else {
-                            res->fail_t = t;
-                            res->status = DYN_ERR_STEP_SIZE;
-                            snprintf(res->message, sizeof res->message,
-                                     "step size underflow at t = %.17g: the error test fails with "
-                                     "h = %g (a singularity, a discontinuity, or tolerances below "
-                                     "rounding)",
-                                     t, hn);
-                        }
+                    if (dyn_sinl_reject(&ctl, n, t, t0, t_end, tnext, hn, err, ynew, &h, res))
                         goto finish;
-                    }
                     continue;
                 }
                 res->stats.accepted++;
@@ -434,25 +522,22 @@ DYN_SINL int dyn_sinl_solve(const int S, const dyn_tableau *m, dyn_rhs_fn f, voi
                 if (stiff_due)
                     stiff_countdown = stiff_every;
                 if (stiff_test && (stiff_due || stiff_count > 0)) {
-                    const double hl = dyn_sinl_stiffness(m, S, n, hn, k, ycur, ynew, Yj);
-                    if (hl > m->stiff_bound) {
-                        nonstiff_count = 0;
-                        if (++stiff_count == 15 && !res->stiff) {
-                            res->stiff = 1;
-                            res->stiff_t = t;
-                            snprintf(
-                                res->stiff_message, sizeof res->stiff_message,
-                                "the problem looks stiff from t = %.6g: %s's step size is "
-                                "limited by stability (|h lambda| > %g for %d steps in a row), "
-                                "not by accuracy",
-                                t, m->name, m->stiff_bound, 15);
-                        }
-                    } else if (hl >= 0.0 && ++nonstiff_count == 6) {
-                        stiff_count = 0;
+                    double hl = -1.0;
+                    if (!fsal) {
+                        /* f(t + h, ynew) into slot S, kept as the next step's k_0 */
+                        rhs_calls++;
+                        const double tf = t + hn > t1 ? t1 : t + hn;
+                        rc = f(tf, ynew, fnew, par);
+                        fnew_valid = rc == 0;
+                        /* a failure here is met again as the next step's first stage */
+                        rc = 0;
                     }
+                    if (fsal || fnew_valid)
+                        hl = dyn_sinl_stiffness(m, n, hn, k, fnew, ycur, ynew, Yj);
+                    dyn_sinl_stiff_count(m, hl, t, &stiff_count, &nonstiff_count, res);
                 }
                 if (mode == 2 && next < count && times[next] < tnext) {
-                    dyn_sinl_dense(m, S, q, n, hn, k, ycur, ynew, coef);
+                    dyn_sinl_dense(m, q, n, hn, k, ycur, ynew, coef);
                     d.t0 = t;
                     d.h = hn;
                 }
@@ -467,27 +552,36 @@ DYN_SINL int dyn_sinl_solve(const int S, const dyn_tableau *m, dyn_rhs_fn f, voi
                     if (output) {
                         res->stats.samples++;
                         if (output(kout++, to, yo, o->output_ctx)) {
-                            res->status = DYN_STOPPED;
-                            snprintf(res->message, sizeof res->message,
-                                     "output stopped the run at t = %g", to);
+                            dyn_sinl_fail(res, DYN_STOPPED, "output stopped the run at t = %g",
+                                          to);
                             goto finish;
                         }
                     }
                 }
-                memcpy(k, k + (size_t)(S - 1) * N, N * sizeof *k); /* FSAL */
+                if (fsal || fnew_valid)
+                    memcpy(k, fnew, N * sizeof *k);
+                else
+                    k0_valid = 0;
                 memcpy(ycur, ynew, N * sizeof *ycur);
                 t = tnext;
                 res->h_last = hn;
                 if (mode == 0 && output) {
                     res->stats.samples++;
                     if (output(kout++, t, ycur, o->output_ctx)) {
-                        res->status = DYN_STOPPED;
-                        snprintf(res->message, sizeof res->message,
-                                 "output stopped the run at t = %g", t);
+                        dyn_sinl_fail(res, DYN_STOPPED, "output stopped the run at t = %g", t);
                         goto finish;
                     }
                 }
-                h = fmin(dyn_sinl_ctl_accept(&ctl, hn, err, rejected_before), hmax);
+                if (progress && --progress_countdown == 0) {
+                    progress_countdown = progress_every;
+                    if (progress(t, (t - t0) / (t_end - t0), o->progress_ctx)) {
+                        dyn_sinl_fail(res, DYN_CANCELLED, "cancelled at t = %g", t);
+                        goto finish;
+                    }
+                }
+                h = dyn_sinl_ctl_accept(&ctl, hn, err, rejected_before);
+                if (h > hmax) /* fmin(h, hmax): neither is NaN */
+                    h = hmax;
                 if (last)
                     h = fmax(h, hn);
                 rejected_before = 0;
@@ -498,9 +592,8 @@ DYN_SINL int dyn_sinl_solve(const int S, const dyn_tableau *m, dyn_rhs_fn f, voi
 
 rhs_failed:
     res->rhs_status = rc;
-    res->status = DYN_ERR_RHS;
-    snprintf(res->message, sizeof res->message,
-             "the right-hand side failed at t = %.17g (status %d)", res->fail_t, rc);
+    dyn_sinl_fail(res, DYN_ERR_RHS, "the right-hand side failed at t = %.17g (status %d)",
+                  res->fail_t, rc);
 
 finish:
     res->t = t;
@@ -510,14 +603,18 @@ finish:
     return res->status;
 }
 
-/* dyn_solve with the step loop compiled at the call site: same contract, same results bit
- * for bit (see the top of this header for what takes the inline path). */
-DYN_SINL int dyn_solve_inline(const dyn_tableau *m, const dyn_system *sys, double t0, double t1,
-                              const double *y0, double *y, double *work, const dyn_solve_opts *opts,
-                              dyn_result *res)
+/* The solve of dyn_solve by a kernel, when this is a case of the fast path: one of the pairs
+ * of dynkit/erk_kernels.h with scalar tolerances (rtol >= DYN_MIN_RTOL), no events, step
+ * callback, recorder or trace, and output at every step or at a list of times (dop853:
+ * every step only; its dense output needs three more stages). Returns DYN_SINL_DECLINED
+ * (touching nothing) for every other case, bad arguments included, which dyn_solve's
+ * general driver then takes. */
+DYN_SINL int dyn_sinl_try(const dyn_tableau *m, const dyn_system *sys, double t0, double t1,
+                          const double *y0, double *y, double *work, const dyn_solve_opts *opts,
+                          dyn_result *res)
 {
     if (!sys || !m)
-        return dyn_solve(m, sys, t0, t1, y0, y, work, opts, res);
+        return DYN_SINL_DECLINED;
     dyn_solve_opts no_opts;
     if (!opts)
         memset(&no_opts, 0, sizeof no_opts);
@@ -528,25 +625,24 @@ DYN_SINL int dyn_solve_inline(const dyn_tableau *m, const dyn_system *sys, doubl
     void *const par = sys->par;
     const double rtol = o->rtol != 0.0 ? o->rtol : DYN_DEFAULT_RTOL;
     const double atol = o->atol != 0.0 ? o->atol : DYN_DEFAULT_ATOL;
-    const int S = m->stages;
-    int plain = m->kind == DYN_KIND_EMBEDDED_RK && m->e && !m->e3 && m->fsal && S >= 2 &&
-                S <= DYN_SINL_MAX_STAGES && m->dense_stages <= S && f && n > 0 && y0 && work &&
-                isfinite(t0) && isfinite(t1) && t1 > t0 && rtol >= DYN_MIN_RTOL && isfinite(rtol) &&
-                atol >= 0.0 && isfinite(atol) && !o->rtolv && !o->atolv && o->max_step >= 0.0 &&
-                o->initial_step >= 0.0 && !(o->events && o->n_events) && o->n_events >= 0 &&
-                !o->step && !o->record && !o->trace && !o->progress && o->out_step == 0.0 &&
-                !o->jac_banded;
-    if (plain && o->out_times)
+    int plain = f && n > 0 && y0 && work && isfinite(t0) && isfinite(t1) && t1 > t0 &&
+                rtol >= DYN_MIN_RTOL && isfinite(rtol) && atol >= 0.0 && isfinite(atol) &&
+                !o->rtolv && !o->atolv && o->max_step >= 0.0 && o->initial_step >= 0.0 &&
+                !(o->events && o->n_events) && o->n_events >= 0 && !o->step && !o->record &&
+                !o->trace && o->out_step == 0.0 && !o->jac_banded;
+    if (!plain)
+        return DYN_SINL_DECLINED;
+    const int P = dyn_sinl_pair_of(m);
+    if (P == DYN_SINL_DECLINED || (P == DYN_SINL_DOP853 && o->out_times))
+        return DYN_SINL_DECLINED;
+    if (o->out_times)
         for (long i = 0; i < o->n_out_times; i++)
             if (!(o->out_times[i] >= t0 && o->out_times[i] <= t1) ||
                 (i > 0 && o->out_times[i] < o->out_times[i - 1]))
-                plain = 0;
-    if (plain)
-        for (int i = 0; i < n; i++)
-            if (!isfinite(y0[i]))
-                plain = 0;
-    if (!plain)
-        return dyn_solve(m, sys, t0, t1, y0, y, work, opts, res);
+                return DYN_SINL_DECLINED;
+    for (int i = 0; i < n; i++)
+        if (!isfinite(y0[i]))
+            return DYN_SINL_DECLINED;
     dyn_result local;
     if (!res)
         res = &local;
@@ -556,19 +652,29 @@ DYN_SINL int dyn_solve_inline(const dyn_tableau *m, const dyn_system *sys, doubl
     res->fail_index = -1;
     res->event_index = -1;
     res->stiff_t = NAN;
-    /* the stage counts of bs23 (4) and dp45 (7), each compiled once; other FSAL pairs go to
-     * dyn_solve (a copy of the solve per stage count would make the caller so large that
-     * compilers stop inlining the right-hand side into it) */
-    if (S == 4)
-        return dyn_sinl_solve(4, m, f, par, n, t0, t1, y0, y, work, o, rtol, atol, res);
-    if (S == 7)
-        return dyn_sinl_solve(7, m, f, par, n, t0, t1, y0, y, work, o, rtol, atol, res);
-    return dyn_solve(m, sys, t0, t1, y0, y, work, opts, res);
+    /* each pair compiled once */
+    if (P == DYN_SINL_BS23)
+        return dyn_sinl_solve(DYN_SINL_BS23, m, f, par, n, t0, t1, y0, y, work, o, rtol, atol,
+                              res);
+    if (P == DYN_SINL_DP45)
+        return dyn_sinl_solve(DYN_SINL_DP45, m, f, par, n, t0, t1, y0, y, work, o, rtol, atol,
+                              res);
+    return dyn_sinl_solve(DYN_SINL_DOP853, m, f, par, n, t0, t1, y0, y, work, o, rtol, atol,
+                          res);
+}
+
+/* dyn_solve with the step loop compiled at the call site: same contract, same results bit
+ * for bit (see the top of this header for what takes the inline path). */
+DYN_SINL int dyn_solve_inline(const dyn_tableau *m, const dyn_system *sys, double t0, double t1,
+                              const double *y0, double *y, double *work, const dyn_solve_opts *opts,
+                              dyn_result *res)
+{
+    const int rc = dyn_sinl_try(m, sys, t0, t1, y0, y, work, opts, res);
+    return rc != DYN_SINL_DECLINED ? rc : dyn_solve(m, sys, t0, t1, y0, y, work, opts, res);
 }
 
 #undef DYN_SINL
 #undef DYN_SINL_COLD
-#undef DYN_SINL_SCALAR
 #undef DYN_SRESTRICT
 
 #ifdef __cplusplus

@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* The general driver dyn_solve: adaptive step-size control for embedded pairs (and fixed
+/* The general driver of dyn_solve (dyn_solve_general; src/ode/solve_fast.c sends the
+ * common cases of bs23, dp45 and dop853 to their kernels first): adaptive step-size control for embedded pairs (and fixed
  * steps for plain tables), output at requested times by dense output, recording of the
  * dense output, events, stiffness detection.
  *
@@ -23,6 +24,7 @@
 
 #include "dynkit/solve.h"
 #include "ode/events.h"
+#include "ode/solve_general.h"
 #include "ode/step_control.h"
 #include "ode/stepper.h"
 
@@ -213,9 +215,9 @@ static int emit_until(out_plan *out, const dyn_solve_opts *o, double limit, int 
     return DYN_OK;
 }
 
-int dyn_solve(const dyn_tableau *m, const dyn_system *sys, double t0, double t1,
-              const double *y0, double *y, double *work, const dyn_solve_opts *opts,
-              dyn_result *res)
+int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, double t1,
+                      const double *y0, double *y, double *work, const dyn_solve_opts *opts,
+                      dyn_result *res)
 {
     static const dyn_solve_opts no_opts;
     dyn_result local;

@@ -25,10 +25,11 @@
 
 #include <math.h>
 
-/* the small right-hand sides: always inlined where the caller's code is visible, also into
- * the large step loop of dyn_solve_inline, whose size stops gcc's inliner otherwise (as
- * dynkit/solve_inline.h asks of a right-hand side: DYN_INLINE_RHS) */
-#if defined(__GNUC__)
+/* the small right-hand sides: in C always inlined, also into the large step loop of
+ * dyn_solve_inline, whose size stops gcc's inliner otherwise (dynkit/solve_inline.h asks
+ * this of a right-hand side: DYN_INLINE_RHS); the C++ peer (Boost) compiles them as before,
+ * plain inline, as its templates are written to be used */
+#if defined(__GNUC__) && !defined(__cplusplus)
 #define BENCH_SMALL_EVAL static inline __attribute__((always_inline))
 #else
 #define BENCH_SMALL_EVAL static inline

@@ -9,8 +9,8 @@
  *    peers; the error at the end against a reference.
  * 2. adaptive work-precision on van der Pol (mu = 1, [0, 15]) and the Arenstorf orbit (one
  *    period), rtol = atol = 1e-3 .. 1e-12: error at t1 against the reference, right-hand-side
- *    calls and time, for bs23, dp45, dop853 (dyn_solve, no output grid), bs23 and dp45
- *    through dyn_solve_inline (dynkit/solve_inline.h, right-hand side visible) and the peers'
+ *    calls and time, for bs23, dp45, dop853 (dyn_solve, no output grid), the same three
+ *    through dyn_solve_inline (dynkit/solve_inline.h, right-hand side inlined) and the peers'
  *    pairs; calls and time are then compared at equal error (interpolated on the log-log
  *    curve), since equal tolerances are not equal accuracy: dyn_solve against GSL (both
  *    call the right-hand side through a pointer), dyn_solve_inline against Boost.

@@ -286,6 +286,40 @@ static void test_stiffness_is_detected(void **state)
     }
 }
 
+/* the right-hand side of docs/solvers.md ("Speed"), declared DYN_INLINE_RHS: the library's
+ * van der Pol arithmetic, so the inlined solve must give dyn_solve's bits */
+DYN_INLINE_RHS int vdp_inline(double t, const double *y, double *dydt, void *par)
+{
+    (void)t;
+    const double mu = *(const double *)par;
+    dydt[0] = y[1];
+    dydt[1] = mu * (1.0 - y[0] * y[0]) * y[1] - y[0];
+    return 0;
+}
+
+static void test_inline_rhs_as_documented(void **state)
+{
+    (void)state;
+    double mu = 1.0;
+    const dyn_system in = {vdp_inline, 2, &mu};
+    const dyn_system lib = {dyn_vanderpol_rhs, 2, (void *)&vdp_par};
+    const double y0[2] = {2.0, 0.0};
+    const char *pairs[] = {"bs23", "dp45", "dop853"};
+    for (int i = 0; i < 3; i++) {
+        const dyn_tableau *m = dyn_method_find(pairs[i]);
+        dyn_solve_opts o = {0};
+        o.rtol = o.atol = 1e-9;
+        double *w = calloc(dyn_solve_work_size(m, 2, &o), sizeof *w);
+        double ya[2], yb[2];
+        dyn_result ra, rb;
+        assert_int_equal(dyn_solve_inline(m, &in, 0.0, 15.0, y0, ya, w, &o, &ra), DYN_OK);
+        assert_int_equal(dyn_solve(m, &lib, 0.0, 15.0, y0, yb, w, &o, &rb), DYN_OK);
+        assert_memory_equal(ya, yb, sizeof ya);
+        assert_int_equal(ra.stats.rhs_calls, rb.stats.rhs_calls);
+        free(w);
+    }
+}
+
 /* The error at t = 15 against a tight dop853 solve falls with the tolerance. */
 static void test_error_falls(void **state)
 {
@@ -319,6 +353,7 @@ int main(void)
         cmocka_unit_test(test_arenstorf_bit_for_bit),
         cmocka_unit_test(test_every_step_and_failures),
         cmocka_unit_test(test_stiffness_is_detected),
+        cmocka_unit_test(test_inline_rhs_as_documented),
         cmocka_unit_test(test_error_falls),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -25,9 +25,11 @@
 #else
 #define DYN_EK_RESTRICT restrict
 #endif
-/* loops over the states: unrolled for small constant n at any optimisation level */
+/* loops over the states: unrolled for small constant n at any optimisation level (clang
+ * does it by itself; its unroll_count pragma kept an indexed loop instead, see
+ * DYN_INL_UNROLL in dynkit/ode_inline.h) */
 #if defined(__clang__)
-#define DYN_EK_LOOP(q) _Pragma("clang loop unroll_count(4)") for (int q = 0; q < n; q++)
+#define DYN_EK_LOOP(q) for (int q = 0; q < n; q++)
 #elif defined(__GNUC__)
 #define DYN_EK_LOOP(q) _Pragma("GCC unroll 4") for (int q = 0; q < n; q++)
 #else

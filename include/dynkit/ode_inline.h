@@ -57,9 +57,12 @@ extern "C" {
 /* DYN_INL_UNROLL: unroll the loop that follows completely when its trip count is a small
  * constant (the stage count, or n of a small system), at -O2 as well as at -O3: gcc -O2
  * does not unroll or peel loops by itself, and the constant folding of a table's
- * coefficients and the keeping of a small state in registers both rely on it. */
+ * coefficients and the keeping of a small state in registers both rely on it. clang
+ * unrolls such loops completely by itself at -O2 and -O3; its own pragma (unroll_count(4))
+ * made it keep a loop with an index instead (clang 14: 1.21x the hand-written RK4 loop on
+ * van der Pol with it, 0.92x without), so it gets none. */
 #if defined(__clang__)
-#define DYN_INL_UNROLL _Pragma("clang loop unroll_count(4)")
+#define DYN_INL_UNROLL
 #elif defined(__GNUC__)
 #define DYN_INL_UNROLL _Pragma("GCC unroll 4")
 #else

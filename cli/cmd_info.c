@@ -192,6 +192,11 @@ static void print_default_run(const dyn_model *m)
            shortest(m->rtol > 0 ? m->rtol : DYN_DEFAULT_RTOL, a, sizeof a),
            shortest(m->atol > 0 ? m->atol : DYN_DEFAULT_ATOL, b, sizeof b),
            m->rtol > 0 || m->atol > 0 ? " (the model's)" : " (the library's defaults)");
+    if (m->jac_banded)
+        printf("Jacobian: banded, %d below and %d above the diagonal (%s); rodas4 and cvode "
+               "use band matrices\n",
+               m->jac_lower, m->jac_upper,
+               m->jacobian_band ? "analytic" : "by banded differences");
     if (m->samples == DYN_SAMPLES_STEPS)
         printf("Adaptive methods without --step or --times write a sample at every accepted "
                "step;\n"

@@ -92,6 +92,13 @@ static void test_refused_features_name_line_and_feature(void **state)
         {"x'=besselj(0,x)\n", 1, 4, "Bessel functions ('besselj')"},
         {"x'=1\noptions my.opt\n", 2, 1, "option files"},
         {"x'=1\n@ dt=-0.1\n", 2, 6, "backwards in time"},
+        /* a band of the Jacobian (@ bandlo, bandup) that does not fit the equations */
+        {"x1'=x3-x1\nx2'=x1*x2\nx3'=-x3\n@ bandlo=1,bandup=1\n", 4, 3,
+         "bandlo=1, bandup=1 do not hold: d(x1')/d(x3) is not zero, 2 places above the "
+         "diagonal"},
+        {"x1'=x2\nx2'=-x1\n@ bandlo=2\n", 3, 3,
+         "a bandwidth of the Jacobian must be below the number of states, 2"},
+        {"x'=1\n@ bandup=1.5\n", 2, 10, "bandup must be a whole number >= 0"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
         expect_error(cases[i].text, cases[i].line, cases[i].col, cases[i].what);

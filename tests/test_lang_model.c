@@ -5,8 +5,8 @@
  * temporaries in dependency order, derived parameters, user functions, arrays, globals'
  * resets applied in sequence, the extensions in `#:` lines, the options as the model's
  * default run; the homework's van der Pol and pendulum written as .ode files reproduce the
- * built-in right-hand sides bit for bit; an exact solution; and the analytic Jacobian
- * against finite differences on several files. */
+ * built-in right-hand sides bit for bit; an exact solution; the analytic Jacobian against
+ * finite differences on several files; and a band declared by @ bandlo, bandup. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -438,6 +438,85 @@ static void test_jacobian_matches_finite_differences(void **state)
     check_jacobian("x[0..3]'=sum(0,3)of(cos(i'-[j])*shift(x0,i'))*x[j]\n");
 }
 
+/* XPPAUT's @ bandlo, bandup: a 1-D reaction-diffusion chain like Debian's schnak2.ode (20
+ * points, states interleaved, two diagonals below and above). The model declares the band;
+ * the generated band Jacobian holds the dense analytic Jacobian's entries in the band, the
+ * dense one is zero outside it; rodas4 with band matrices ends where rodas4 with dense ones
+ * does (1e-10), and cvode likewise when built. A band that misses an entry, or is as wide
+ * as the system, is an error that names them (tests/test_lang.c has the messages). */
+static void test_declared_band(void **state)
+{
+    (void)state;
+    static const char text[] =
+        "f(u,v)=-u+v*u^2\ng(u,v)=a-v*u^2\n"
+        "u0'=f(u0,v0)+duh*(u1-u0)\nv0'=g(u0,v0)+dvh*(v1-v0)\n"
+        "%[1..18]\nu[j]'=f(u[j],v[j])+duh*(u[j+1]-2*u[j]+u[j-1])\n"
+        "v[j]'=g(u[j],v[j])+dvh*(v[j+1]-2*v[j]+v[j-1])\n%\n"
+        "u19'=f(u19,v19)+duh*(u18-u19)\nv19'=g(u19,v19)+dvh*(v18-v19)\n"
+        "par a=1.05,du=5,dv=75,h=1\n!duh=du/(h*h)\n!dvh=dv/(h*h)\n"
+        "init u0=1.5,u1=1.3,u2=1.1,v0=1.05,v1=1.05,v2=1.05\n"
+        "init u[3..19]=1.05,v[j]=1.05\n"
+        "@ total=5,meth=stiff,tol=1e-10,atol=1e-10\n@ bandlo=2,bandup=2\ndone\n";
+    loaded L;
+    load(text, &L);
+    const dyn_model *m = L.m;
+    const int n = m->n_states, ld = 5;
+    assert_int_equal(n, 40);
+    assert_int_equal(m->jac_banded, 1);
+    assert_int_equal(m->jac_lower, 2);
+    assert_int_equal(m->jac_upper, 2);
+    assert_non_null(m->jacobian);
+    assert_non_null(m->jacobian_band);
+    double y[40], J[1600], B[200];
+    for (int i = 0; i < n; i++)
+        y[i] = 1.0 + 0.37 * sin(1.3 * i); /* a state with every entry non-zero */
+    assert_int_equal(m->jacobian(0.0, y, J, L.par), 0);
+    assert_int_equal(m->jacobian_band(0.0, y, B, L.par), 0);
+    int inside = 0;
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++) {
+            if (i - j > 2 || j - i > 2) {
+                CHECK(J[i * n + j] == 0.0, "J[%d][%d] = %g outside the band", i, j,
+                      J[i * n + j]);
+                continue;
+            }
+            const double b = DYN_BAND_AT(B, 2, 2, i, j);
+            CHECK(b == J[i * n + j], "band (%d, %d) = %.17g, dense %.17g", i, j, b,
+                  J[i * n + j]);
+            inside += J[i * n + j] != 0.0;
+        }
+    assert_true(inside > 3 * n); /* the band is used, not empty */
+    (void)ld;
+    /* rodas4: band matrices against dense ones */
+    const dyn_tableau *r4 = dyn_method_find("rodas4");
+    double y0[40], ya[40], yb[40];
+    memcpy(y0, m->y0, sizeof y0);
+    const dyn_system sys = {m->rhs, n, L.par};
+    dyn_solve_opts o = {0};
+    o.rtol = o.atol = 1e-10;
+    o.jacobian = m->jacobian;
+    int *iw = calloc((size_t)dyn_solve_iwork_size(r4, n) + 1, sizeof *iw);
+    o.iwork = iw;
+    double *wa = calloc(dyn_solve_work_size(r4, n, &o), sizeof *wa);
+    dyn_result ra, rb;
+    assert_int_equal(dyn_solve(r4, &sys, 0.0, 5.0, y0, ya, wa, &o, &ra), DYN_OK);
+    dyn_solve_opts ob = o;
+    ob.jac_banded = 1;
+    ob.jac_lower = ob.jac_upper = 2;
+    ob.jacobian_band = m->jacobian_band;
+    double *wb = calloc(dyn_solve_work_size(r4, n, &ob), sizeof *wb);
+    assert_int_equal(dyn_solve(r4, &sys, 0.0, 5.0, y0, yb, wb, &ob, &rb), DYN_OK);
+    double worst = 0.0;
+    for (int i = 0; i < n; i++)
+        worst = fmax(worst, fabs(ya[i] - yb[i]));
+    CHECK(worst < 1e-10, "band and dense rodas4 differ by %g", worst);
+    CHECK(fabs(ya[0] - m->y0[0]) > 0.1, "the solution moved (u0 %g -> %g)", m->y0[0], ya[0]);
+    free(wa);
+    free(wb);
+    free(iw);
+    unload(&L);
+}
+
 /* The C text is clean C11: no warning with -Wall -Wextra -Wshadow -pedantic (unused
  * helpers, functions and temporaries are not written), for the seed files of the fuzzer and
  * the example models. */
@@ -492,6 +571,7 @@ int main(void)
         cmocka_unit_test(test_extensions_and_options_fill_the_model),
         cmocka_unit_test(test_names_cannot_clash_with_c),
         cmocka_unit_test(test_jacobian_matches_finite_differences),
+        cmocka_unit_test(test_declared_band),
         cmocka_unit_test(test_generated_c_compiles_without_warnings),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -376,6 +376,7 @@ typedef struct jac_plan {
     node **partial;       /* their bodies */
     char *text;           /* the Jacobian's C text */
     size_t text_len;
+    int band_bad_i, band_bad_j; /* an entry outside the declared band (-1: none) */
 } jac_plan;
 
 static void plan_partials(lang_ctx *c, jac_plan *j)
@@ -647,42 +648,58 @@ static void emit_jacobian(lang_ctx *c, jac_plan *j)
             if (cols[jj].fixd[k])
                 need(c, cols[jj].fixd[k], jneed);
     }
-    puts_(c, "static int dk_jacobian(double t, const double *y, double *J, void *par)\n{\n"
-             "    const double *p = (const double *)par;\n    (void)t;\n    (void)y;\n"
-             "    (void)p;\n");
-    emit_fixes(c, jneed);
-    outf(c, "    for (int k = 0; k < %d; k++)\n        J[k] = 0.0;\n", n * n);
-    const ectx x = {NULL, 1};
-    for (int jj = 0; jj < n; jj++) {
-        int any = 0;
+    /* entries outside a declared band: the declaration is wrong (reported by the caller,
+     * as an error, not as a Jacobian that could not be formed) */
+    j->band_bad_i = j->band_bad_j = -1;
+    for (int jj = 0; jj < n && m->has_band && j->band_bad_i < 0; jj++)
         for (int i = 0; i < n; i++)
-            any |= cols[jj].entry[i] != NULL;
-        if (!any)
-            continue;
-        outf(c, "    { /* d/d %s */\n", LVEC_AT(m->states, lang_state, jj).name);
-        for (int q = 0; q < m->fixes.n; q++) {
-            const int k = m->fix_order[q];
-            const node *dk = cols[jj].fixd[k];
-            if (!dk || dk->kind == N_NUM)
+            if (cols[jj].entry[i] && (i - jj > m->band_lo || jj - i > m->band_up)) {
+                j->band_bad_i = i;
+                j->band_bad_j = jj;
+                break;
+            }
+    /* dk_jacobian (dense, row-major) and, with a declared band, dk_jacobian_band (the band
+     * in DYN_BAND_AT storage): the same entries */
+    const int ld = m->band_lo + m->band_up + 1;
+    for (int band = 0; band <= (m->has_band && j->band_bad_i < 0); band++) {
+        outf(c, "static int dk_jacobian%s(double t, const double *y, double *J, void *par)\n{\n"
+                "    const double *p = (const double *)par;\n    (void)t;\n    (void)y;\n"
+                "    (void)p;\n",
+             band ? "_band" : "");
+        emit_fixes(c, jneed);
+        outf(c, "    for (int k = 0; k < %d; k++)\n        J[k] = 0.0;\n", band ? n * ld : n * n);
+        const ectx x = {NULL, 1};
+        for (int jj = 0; jj < n; jj++) {
+            int any = 0;
+            for (int i = 0; i < n; i++)
+                any |= cols[jj].entry[i] != NULL;
+            if (!any)
                 continue;
-            const lang_formula *f = &LVEC_AT(m->fixes, lang_formula, k);
-            line_dir(c, f->pos);
-            outf(c, "        const double dv%d_%s = ", jj, f->name);
-            expr(c, dk, &x);
-            puts_(c, ";\n");
-            outf(c, "        (void)dv%d_%s;\n", jj, f->name);
+            outf(c, "    { /* d/d %s */\n", LVEC_AT(m->states, lang_state, jj).name);
+            for (int q = 0; q < m->fixes.n; q++) {
+                const int k = m->fix_order[q];
+                const node *dk = cols[jj].fixd[k];
+                if (!dk || dk->kind == N_NUM)
+                    continue;
+                const lang_formula *f = &LVEC_AT(m->fixes, lang_formula, k);
+                line_dir(c, f->pos);
+                outf(c, "        const double dv%d_%s = ", jj, f->name);
+                expr(c, dk, &x);
+                puts_(c, ";\n");
+                outf(c, "        (void)dv%d_%s;\n", jj, f->name);
+            }
+            for (int i = 0; i < n; i++) {
+                if (!cols[jj].entry[i])
+                    continue;
+                line_dir(c, LVEC_AT(m->states, lang_state, i).pos);
+                outf(c, "        J[%d] = ", band ? jj * ld + m->band_up + i - jj : i * n + jj);
+                expr(c, cols[jj].entry[i], &x);
+                puts_(c, ";\n");
+            }
+            puts_(c, "    }\n");
         }
-        for (int i = 0; i < n; i++) {
-            if (!cols[jj].entry[i])
-                continue;
-            line_dir(c, LVEC_AT(m->states, lang_state, i).pos);
-            outf(c, "        J[%d] = ", i * n + jj);
-            expr(c, cols[jj].entry[i], &x);
-            puts_(c, ";\n");
-        }
-        puts_(c, "    }\n");
+        puts_(c, "    return 0;\n}\n\n");
     }
-    puts_(c, "    return 0;\n}\n\n");
     char *jac = c->out;
     const size_t jac_len = c->out_len;
     c->out = saved;
@@ -816,9 +833,24 @@ char *lang_emit_c(lang_ctx *c)
     jac_plan jp = {0};
     jp.used = lang_alloc(c, ((size_t)m->funcs.n + 1) * LANG_MAX_ARGS);
     c->fused = lang_alloc(c, ((size_t)m->funcs.n + 1) * (LANG_MAX_ARGS + 1));
+    if (m->has_band && (m->band_lo >= n || m->band_up >= n))
+        lang_fail(c, m->band_pos,
+                  "bandlo=%d, bandup=%d: a bandwidth of the Jacobian must be below the number "
+                  "of states, %d",
+                  m->band_lo, m->band_up, n);
     int with_jac = n <= LANG_MAX_JAC_STATES;
     if (with_jac) {
         with_jac = try_jacobian(c, &jp);
+        if (with_jac && jp.band_bad_i >= 0)
+            lang_fail(c, m->band_pos,
+                      "bandlo=%d, bandup=%d do not hold: d(%s')/d(%s) is not zero, %d places "
+                      "%s the diagonal (the band of the Jacobian must contain every state each "
+                      "right-hand side uses)",
+                      m->band_lo, m->band_up,
+                      LVEC_AT(m->states, lang_state, jp.band_bad_i).name,
+                      LVEC_AT(m->states, lang_state, jp.band_bad_j).name,
+                      abs(jp.band_bad_i - jp.band_bad_j),
+                      jp.band_bad_i > jp.band_bad_j ? "below" : "above");
     } else {
         lang_note(c, (lpos){0, 0}, "%d states: no analytic Jacobian (at most %d); the stiff "
                   "methods use finite differences", n, LANG_MAX_JAC_STATES);
@@ -926,6 +958,10 @@ char *lang_emit_c(lang_ctx *c)
     num_lit(c, m->trans);
     outf(c, ",\n    .every = %ld,\n    .bound = ", m->nout);
     num_lit(c, m->bound);
+    if (m->has_band)
+        outf(c, ",\n    .jac_banded = 1,\n    .jac_lower = %d,\n    .jac_upper = %d,\n"
+                "    .jacobian_band = %s",
+             m->band_lo, m->band_up, with_jac ? "dk_jacobian_band" : "NULL");
     puts_(c, ",\n};\n\nconst dyn_model *dynkit_model(void) { return &dk_model; }\n");
     /* the functions the text calls, then what comes before it all */
     size_t main_len, defs_len;

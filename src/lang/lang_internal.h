@@ -197,6 +197,9 @@ typedef struct lang_model {
     int has_meth;
     const char *xp, *yp;
     lpos xp_pos, yp_pos;
+    /* the band of the Jacobian (XPPAUT's @ bandlo, bandup): has_band when either is given */
+    int has_band, band_lo, band_up;
+    lpos band_pos;
 } lang_model;
 
 /* ---- one logical line: text and where each character came from ---- */

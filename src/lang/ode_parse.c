@@ -452,6 +452,18 @@ static void parse_options(lang_ctx *c, lang_lexer *lx)
         } else if (ieqn(name, n, "yp") || ieqn(name, n, "yplot")) {
             m->yp = v;
             m->yp_pos = vpos;
+        } else if (ieqn(name, n, "bandlo") || ieqn(name, n, "bandup")) {
+            const double k = option_number(c, name, v, vpos);
+            if (!(k >= 0 && k <= 1e6) || k != floor(k))
+                lang_fail(c, vpos, "%s must be a whole number >= 0 (a bandwidth of the "
+                          "Jacobian)", name);
+            if (ieqn(name, n, "bandlo"))
+                m->band_lo = (int)k;
+            else
+                m->band_up = (int)k;
+            if (!m->has_band)
+                m->band_pos = pos;
+            m->has_band = 1;
         } else if (ieqn(name, n, "maxstor")) {
             lang_note(c, pos, "option 'maxstor' is accepted and ignored (dynkit streams its "
                       "samples; nothing to store)");

@@ -167,6 +167,9 @@ int dyn_verify_reference(const dyn_verify_problem *p, double *ref, char *err, si
 typedef struct setup {
     dyn_system sys;
     dyn_jac_fn jac;
+    /* the model's band of the Jacobian (dyn_model.jac_banded ...), for dyn_solve's runs */
+    int banded, lower, upper;
+    dyn_jac_fn jac_band;
     double y0[MAX_N];
     double ref[MAX_N];
     void *par;
@@ -186,6 +189,10 @@ static int setup_model(const dyn_model *m, const dyn_reference *r, const dyn_ver
         return 1;
     s->sys = (dyn_system){m->rhs, m->n_states, s->par};
     s->jac = m->jacobian;
+    s->banded = m->jac_banded;
+    s->lower = m->jac_lower;
+    s->upper = m->jac_upper;
+    s->jac_band = m->jacobian_band;
     return dyn_verify_reference(p, s->ref, err, errlen);
 }
 
@@ -411,6 +418,10 @@ static void run_row(const vmethod *m, const setup *s, long max_steps, dyn_verify
         o.atol = row->atol;
         o.max_steps = max_steps;
         o.jacobian = s->jac;
+        o.jac_banded = s->banded;
+        o.jac_lower = s->lower;
+        o.jac_upper = s->upper;
+        o.jacobian_band = s->jac_band;
         const size_t size = dyn_solve_work_size(m->tab, n, &o);
         const size_t isize = dyn_solve_iwork_size(m->tab, n);
         double *work = malloc(size * sizeof *work);

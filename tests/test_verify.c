@@ -253,7 +253,14 @@ static void test_extra_method(void **state)
         dyn_verify_row *ro = run_rows(&r, &m);
         same = find_row(ro, m, rows[k].problem->name, "rodas4", rows[k].rtol, 0);
         assert_non_null(same);
-        assert_true(same->error == rows[k].error);
+        if (strcmp(rows[k].problem->name, "brusselator") != 0) {
+            assert_true(same->error == rows[k].error);
+        } else {
+            /* the built-in rodas4 uses the model's band matrices, the extra method (whose
+             * interface has no band) dense ones: the same method, other rounding */
+            CHECK(fabs(same->error - rows[k].error) <= 0.01 * same->error,
+                  "band %g, dense %g", same->error, rows[k].error);
+        }
         free(ro);
     }
     free(rows);

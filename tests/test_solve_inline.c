@@ -7,10 +7,10 @@
  * counts, h_last, stiffness verdict, messages — for bs23, dp45 and dop853 on van der Pol
  * (mu = 1, [0, 15]) and the Arenstorf orbit (one period; HNW I sec. II.0) at rtol = atol =
  * 1e-3 .. 1e-12, with the automatic and a given first step, a max_step, output at every
- * step, progress callbacks and cancelling, the stiffness test at every step (on van der
- * Pol with mu = 500), and the failures (too many steps, the right-hand side failing, a
- * blow-up's step-size underflow); cases it does not take (per-state tolerances, dop853
- * with output times) go to the general driver. A sanity fact as well: the error of dp45 on
+ * step, on grids (also one that ends before t1), progress callbacks and cancelling, the
+ * stiffness test at every step (on van der Pol with mu = 500), and the failures (too many
+ * steps, the right-hand side failing, also in dop853's dense output, a blow-up's step-size
+ * underflow); cases it does not take (per-state tolerances) go to the general driver. A sanity fact as well: the error of dp45 on
  * van der Pol falls with the tolerance (the inlined solve is a solve, not a copy of
  * nothing). */
 #include <setjmp.h>
@@ -171,6 +171,15 @@ static void run_tols(const char *method, const dyn_system *sys, double t1, const
         o.n_out_times = nsamp;
         o.output = sys->n == 2 ? keep2 : keep;
         same(m, sys, 0.0, t1, y0, o);
+        /* a grid of samples (out_step), ending on t1 and, with DYN_END_GRID, before it */
+        dyn_solve_opts g = {0};
+        g.rtol = g.atol = pow(10.0, -e);
+        g.out_step = t1 / 37.0;
+        g.output = o.output;
+        same(m, sys, 0.0, t1, y0, g);
+        g.out_step = 0.7;
+        g.end = DYN_END_GRID;
+        same(m, sys, 0.0, t1, y0, g);
         /* no output, a given first step and a max_step */
         dyn_solve_opts p = {0};
         p.rtol = p.atol = pow(10.0, -e);
@@ -227,8 +236,13 @@ static void every_step_and_failures(const char *method)
     same(m, &sys, 0.0, 15.0, y0, pr);
     plog.cancel_at = 5;
     same(m, &sys, 0.0, 15.0, y0, pr);
+    /* samples on a grid finer than the steps: dense output at every step */
+    dyn_solve_opts fine = o;
+    fine.out_step = 0.01;
+    same(m, &sys, 0.0, 15.0, y0, fine);
     /* a blow-up: step-size underflow; and the right-hand side failing, also in the
-     * stiffness test's f(t + h, y_{n+1}) of dop853 when it runs at every step */
+     * stiffness test's f(t + h, y_{n+1}) of dop853 when it runs at every step, and in the
+     * dense output's extra stages */
     blow_par bp = {0};
     const dyn_system blow = {blow_rhs, 1, &bp};
     const double b0[1] = {1.0};
@@ -238,6 +252,10 @@ static void every_step_and_failures(const char *method)
     bp.fail = 1;
     same(m, &blow, 0.0, 2.0, b0, ob);
     ob.stiff_check = 1;
+    same(m, &blow, 0.0, 2.0, b0, ob);
+    ob.stiff_check = 0;
+    ob.out_step = 1e-3;
+    ob.output = keep2;
     same(m, &blow, 0.0, 2.0, b0, ob);
     /* stiffness: van der Pol with mu = 500, the test at every accepted step */
     static const dyn_vanderpol_par stiff_par = {500.0};

@@ -12,8 +12,8 @@
  * error norm (DOP853's for dop853), the PI controller of DOPRI5 (fac = err^expo / err_old^beta
  * / safety, clamped; no growth right after a rejection), the last step shortened to land on t1
  * when t + 1.01 h passes it, DOPRI5's stiffness test every stiff_check accepted steps, output at
- * every step or at requested times from the step's end state or the same dense output
- * (dyn_dense_eval), and the progress callback. So the results are dyn_solve's bit for bit:
+ * every step, on a grid or at requested times from the step's end state or the same dense
+ * output (dyn_dense_eval), and the progress callback. So the results are dyn_solve's bit for bit:
  * states, samples, counters, messages (tests/test_solve_inline.c checks it against the
  * general driver).
  *
@@ -23,9 +23,8 @@
  * Contract: exactly dyn_solve's (arguments, workspace dyn_solve_work_size). The fast path
  * takes a table whose coefficients are those of bs23, dp45 or dop853, with scalar tolerances
  * (rtol >= DYN_MIN_RTOL), no events, step callback, recorder or trace, and output at every
- * step or at a list of times (out_times; not for dop853, whose dense output needs three more
- * stages); everything else, including bad arguments, goes to dyn_solve, so it never behaves
- * differently.
+ * step, on a grid (out_step) or at a list of times (out_times); everything else, including
+ * bad arguments, goes to dyn_solve, so it never behaves differently.
  * Cost: code size (the right-hand side is inlined once per stage, per pair, per call site).
  */
 #ifndef DYNKIT_SOLVE_INLINE_H
@@ -265,14 +264,43 @@ DYN_SINL_COLD double dyn_sinl_stiffness(const dyn_tableau *m, int n, double hn, 
     return den > 0.0 ? fabs(hn) * sqrt(num / den) : -1.0;
 }
 
-/* The dense output of an FSAL pair's step (erk_dense): the cubic Hermite part and the
- * corrections. */
-DYN_SINL_COLD void dyn_sinl_dense(const dyn_tableau *m, int q, int n, double hn,
-                                  const double *k, const double *ycur, const double *ynew,
-                                  double *coef)
+/* Where output samples go (the general driver's out_plan): every step (mode 0), a grid
+ * (mode 1: out_step) or a list of times (mode 2: out_times). */
+typedef struct dyn_sinl_out {
+    int mode;
+    dyn_grid grid;
+    const double *times;
+    long count;
+} dyn_sinl_out;
+
+DYN_SINL double dyn_sinl_out_time(const dyn_sinl_out *out, long i)
+{
+    return out->mode == 1 ? dyn_grid_time(&out->grid, i) : out->times[i];
+}
+
+/* The dense output of the step (erk_dense in src/ode/step_erk.c): the cubic Hermite part
+ * and the table's corrections; for a pair without FSAL first f(t + h, ynew) into slot S
+ * (unless the stiffness test computed it: *fnew_valid) and the extra stages of the dense
+ * output. Returns 0, or the right-hand side's non-zero status with res->fail_t set. */
+DYN_SINL_COLD int dyn_sinl_dense(const dyn_tableau *m, int q, int n, double t, double hn,
+                                 double t1, dyn_rhs_fn f, void *par, double *k, double *Y,
+                                 int *fnew_valid, const double *ycur, const double *ynew,
+                                 double *coef, long *rhs_calls, dyn_result *res)
 {
     const size_t N = (size_t)n;
-    const double *f0 = k, *f1 = k + (size_t)(m->stages - 1) * N;
+    const int S = m->stages;
+    double *f1 = k + (size_t)(m->fsal ? S - 1 : S) * N;
+    if (!m->fsal && !*fnew_valid) {
+        const double tf = t + hn > t1 ? t1 : t + hn;
+        ++*rhs_calls;
+        const int rc = f(tf, ynew, f1, par);
+        if (rc) {
+            res->fail_t = tf;
+            return rc;
+        }
+        *fnew_valid = 1;
+    }
+    const double *f0 = k;
     for (size_t i = 0; i < N; i++) {
         const double dy = ynew[i] - ycur[i];
         coef[i] = ycur[i];
@@ -280,17 +308,38 @@ DYN_SINL_COLD void dyn_sinl_dense(const dyn_tableau *m, int q, int n, double hn,
         coef[2 * N + i] = hn * f0[i] - dy;
         coef[3 * N + i] = 2.0 * dy - hn * (f0[i] + f1[i]);
     }
+    const int ds = m->dense_stages;
+    if (q <= 3 || !m->dense)
+        return 0;
+    for (int r = S + 1; r < ds; r++) {
+        const double *row = m->dense_a + (size_t)(r - S - 1) * (size_t)ds;
+        for (size_t i = 0; i < N; i++) {
+            double acc = 0.0;
+            for (int j = 0; j < r; j++)
+                if (row[j] != 0.0)
+                    acc += row[j] * k[(size_t)j * N + i];
+            Y[i] = ycur[i] + hn * acc;
+        }
+        const double tr = dyn_sinl_stage_time(t, m->dense_c[r - S - 1], hn, t1);
+        ++*rhs_calls;
+        const int rc = f(tr, Y, k + (size_t)r * N, par);
+        if (rc) {
+            res->fail_t = tr;
+            return rc;
+        }
+    }
     for (int jj = 4; jj <= q; jj++) {
-        const double *D = m->dense + (size_t)(jj - 4) * (size_t)m->dense_stages;
+        const double *D = m->dense + (size_t)(jj - 4) * (size_t)ds;
         double *cj = coef + (size_t)jj * N;
         for (size_t i = 0; i < N; i++) {
             double acc = 0.0;
-            for (int r = 0; r < m->dense_stages; r++)
+            for (int r = 0; r < ds; r++)
                 if (D[r] != 0.0)
                     acc += D[r] * k[(size_t)r * N + i];
             cj[i] = hn * acc;
         }
     }
+    return 0;
 }
 
 /* A message into res (the failure paths, out of line). */
@@ -358,8 +407,8 @@ DYN_SINL_COLD void dyn_sinl_stiff_count(const dyn_tableau *m, double hl, double 
 /* The solve with pair P's kernel. */
 DYN_SINL int dyn_sinl_solve(const int P, const dyn_tableau *m, dyn_rhs_fn f, void *par,
                             const int n, double t0, double t1, const double *y0, double *y,
-                            double *work, const dyn_solve_opts *o, double rtol, double atol,
-                            dyn_result *res)
+                            double *work, const dyn_solve_opts *o, const dyn_sinl_out *out,
+                            double rtol, double atol, dyn_result *res)
 {
     const int S = dyn_sinl_stages(P);
     const int fsal = P != DYN_SINL_DOP853;
@@ -372,16 +421,15 @@ DYN_SINL int dyn_sinl_solve(const int P, const dyn_tableau *m, dyn_rhs_fn f, voi
     double *ycur = Yj + N, *ynew = ycur + N, *yout = ynew + N, *ytmp = yout + N;
     double *coef = ytmp + N;
     double *const fnew = k + (size_t)(fsal ? S - 1 : S) * N; /* f(t + h, ynew) */
-    const int mode = o->out_times ? 2 : 0;
-    const double *times = o->out_times;
-    const long count = mode == 2 ? o->n_out_times : 0;
+    const int mode = out->mode;
+    const long count = out->count;
     long next = 0, kout = 0, rhs_calls = 0;
     const dyn_output_fn output = o->output;
     const dyn_progress_fn progress = o->progress;
     double t = t0, h;
     int rc = 0, k0_valid = 0;
     memmove(ycur, y0, N * sizeof *ycur);
-    if (mode == 0 || (count > 0 && times[0] == t0)) {
+    if (mode == 0 || (count > 0 && dyn_sinl_out_time(out, 0) == t0)) {
         do {
             if (output) {
                 res->stats.samples++;
@@ -392,10 +440,11 @@ DYN_SINL int dyn_sinl_solve(const int P, const dyn_tableau *m, dyn_rhs_fn f, voi
             }
             if (mode != 0)
                 next++;
-        } while (mode != 0 && next < count && times[next] == t0);
+        } while (mode != 0 && next < count && dyn_sinl_out_time(out, next) == t0);
     }
     {
-        const double t_end = t1;
+        /* the end: t1, or the grid's last sample (DYN_END_GRID may stop before t1) */
+        const double t_end = mode == 1 ? dyn_grid_time(&out->grid, count - 1) : t1;
         double hmax = t_end - t0;
         if (o->max_step > 0.0)
             hmax = fmin(hmax, o->max_step);
@@ -536,13 +585,16 @@ DYN_SINL int dyn_sinl_solve(const int P, const dyn_tableau *m, dyn_rhs_fn f, voi
                         hl = dyn_sinl_stiffness(m, n, hn, k, fnew, ycur, ynew, Yj);
                     dyn_sinl_stiff_count(m, hl, t, &stiff_count, &nonstiff_count, res);
                 }
-                if (mode == 2 && next < count && times[next] < tnext) {
-                    dyn_sinl_dense(m, q, n, hn, k, ycur, ynew, coef);
+                if (mode != 0 && next < count && dyn_sinl_out_time(out, next) < tnext) {
+                    rc = dyn_sinl_dense(m, q, n, t, hn, t1, f, par, k, Y, &fnew_valid, ycur,
+                                        ynew, coef, &rhs_calls, res);
+                    if (rc)
+                        goto rhs_failed;
                     d.t0 = t;
                     d.h = hn;
                 }
-                while (mode == 2 && next < count && times[next] <= tnext) {
-                    const double to = times[next];
+                while (mode != 0 && next < count && dyn_sinl_out_time(out, next) <= tnext) {
+                    const double to = dyn_sinl_out_time(out, next);
                     const double *yo = ynew;
                     if (to != tnext) {
                         dyn_dense_eval(&d, to, yout);
@@ -605,10 +657,9 @@ finish:
 
 /* The solve of dyn_solve by a kernel, when this is a case of the fast path: one of the pairs
  * of dynkit/erk_kernels.h with scalar tolerances (rtol >= DYN_MIN_RTOL), no events, step
- * callback, recorder or trace, and output at every step or at a list of times (dop853:
- * every step only; its dense output needs three more stages). Returns DYN_SINL_DECLINED
- * (touching nothing) for every other case, bad arguments included, which dyn_solve's
- * general driver then takes. */
+ * callback, recorder, trace or band, and output at every step, on a grid (out_step) or at a
+ * list of times. Returns DYN_SINL_DECLINED (touching nothing) for every other case, bad
+ * arguments included, which dyn_solve's general driver then takes. */
 DYN_SINL int dyn_sinl_try(const dyn_tableau *m, const dyn_system *sys, double t0, double t1,
                           const double *y0, double *y, double *work, const dyn_solve_opts *opts,
                           dyn_result *res)
@@ -629,17 +680,28 @@ DYN_SINL int dyn_sinl_try(const dyn_tableau *m, const dyn_system *sys, double t0
                 rtol >= DYN_MIN_RTOL && isfinite(rtol) && atol >= 0.0 && isfinite(atol) &&
                 !o->rtolv && !o->atolv && o->max_step >= 0.0 && o->initial_step >= 0.0 &&
                 !(o->events && o->n_events) && o->n_events >= 0 && !o->step && !o->record &&
-                !o->trace && o->out_step == 0.0 && !o->jac_banded;
+                !o->trace && !o->jac_banded;
     if (!plain)
         return DYN_SINL_DECLINED;
     const int P = dyn_sinl_pair_of(m);
-    if (P == DYN_SINL_DECLINED || (P == DYN_SINL_DOP853 && o->out_times))
+    if (P == DYN_SINL_DECLINED || (o->out_times && o->out_step != 0.0))
         return DYN_SINL_DECLINED;
-    if (o->out_times)
+    dyn_sinl_out out;
+    memset(&out, 0, sizeof out);
+    if (o->out_step != 0.0) {
+        out.mode = 1;
+        if (dyn_grid_plan(t0, t1, o->out_step, o->end, &out.grid, NULL, 0) != DYN_OK)
+            return DYN_SINL_DECLINED;
+        out.count = out.grid.samples;
+    } else if (o->out_times) {
+        out.mode = 2;
+        out.times = o->out_times;
+        out.count = o->n_out_times;
         for (long i = 0; i < o->n_out_times; i++)
             if (!(o->out_times[i] >= t0 && o->out_times[i] <= t1) ||
                 (i > 0 && o->out_times[i] < o->out_times[i - 1]))
                 return DYN_SINL_DECLINED;
+    }
     for (int i = 0; i < n; i++)
         if (!isfinite(y0[i]))
             return DYN_SINL_DECLINED;
@@ -654,13 +716,13 @@ DYN_SINL int dyn_sinl_try(const dyn_tableau *m, const dyn_system *sys, double t0
     res->stiff_t = NAN;
     /* each pair compiled once */
     if (P == DYN_SINL_BS23)
-        return dyn_sinl_solve(DYN_SINL_BS23, m, f, par, n, t0, t1, y0, y, work, o, rtol, atol,
-                              res);
+        return dyn_sinl_solve(DYN_SINL_BS23, m, f, par, n, t0, t1, y0, y, work, o, &out, rtol,
+                              atol, res);
     if (P == DYN_SINL_DP45)
-        return dyn_sinl_solve(DYN_SINL_DP45, m, f, par, n, t0, t1, y0, y, work, o, rtol, atol,
-                              res);
-    return dyn_sinl_solve(DYN_SINL_DOP853, m, f, par, n, t0, t1, y0, y, work, o, rtol, atol,
-                          res);
+        return dyn_sinl_solve(DYN_SINL_DP45, m, f, par, n, t0, t1, y0, y, work, o, &out, rtol,
+                              atol, res);
+    return dyn_sinl_solve(DYN_SINL_DOP853, m, f, par, n, t0, t1, y0, y, work, o, &out, rtol,
+                          atol, res);
 }
 
 /* dyn_solve with the step loop compiled at the call site: same contract, same results bit

@@ -19,6 +19,7 @@
 #include <sunmatrix/sunmatrix_band.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
+#include "dynkit/io.h" /* dyn_shortest: numbers in messages */
 #include "dynkit/cvode.h"
 
 #if SUNDIALS_VERSION_MAJOR >= 7
@@ -279,8 +280,8 @@ static void cv_failed(const cv_solver *cs, int flag, double t, dyn_result *res)
         res->fail_t = cs->u.fail_t;
         char what[96];
         snprintf(what, sizeof what,
-                 "the right-hand side or Jacobian failed at t = %.17g (status %d)",
-                 cs->u.fail_t, cs->u.rhs_status);
+                 "the right-hand side or Jacobian failed at t = %s (status %d)",
+                 dyn_shortest(cs->u.fail_t).s, cs->u.rhs_status);
         fail(res, DYN_ERR_RHS, what, NULL);
     } else if (flag == CV_TOO_MUCH_WORK) {
         fail(res, DYN_ERR_MAX_STEPS, "CVODE reached the limit of steps", &cs->u);
@@ -353,9 +354,9 @@ int dyn_cvode_solve(const dyn_system *sys, double t0, const double *y0, const do
     for (long k = 0; k < n_out; k++)
         if (!isfinite(tout[k]) || tout[k] < t0 || (k > 0 && tout[k] < tout[k - 1])) {
             snprintf(res->message, sizeof res->message,
-                     "output time %.17g (number %ld) is not accepted: the times must be finite, "
-                     ">= t0 = %.17g and non-decreasing",
-                     tout[k], k + 1, t0);
+                     "output time %s (number %ld) is not accepted: the times must be finite, "
+                     ">= t0 = %s and non-decreasing",
+                     dyn_shortest(tout[k]).s, k + 1, dyn_shortest(t0).s);
             res->status = DYN_ERR_ARG;
             return DYN_ERR_ARG;
         }

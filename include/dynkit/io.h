@@ -32,6 +32,19 @@ extern "C" {
  * values are valid JSON numbers; strtod, NumPy and pandas read every string back. */
 int dyn_format_double(double x, char *buf);
 
+/* x as dyn_format_double's text, for printf: printf("t = %s", dyn_shortest(t).s) (the
+ * array lives until the end of the full expression, C11 6.2.4). */
+typedef struct dyn_shortest_text {
+    char s[DYN_DOUBLE_CHARS];
+} dyn_shortest_text;
+
+static inline dyn_shortest_text dyn_shortest(double x)
+{
+    dyn_shortest_text r;
+    dyn_format_double(x, r.s);
+    return r;
+}
+
 /* ---- buffered text output (text_writer.c) ---- */
 
 #define DYN_TEXT_WRITER_BUFFER 65536

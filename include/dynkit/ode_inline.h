@@ -37,6 +37,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "dynkit/io.h" /* dyn_shortest: numbers in messages */
 #include "dynkit/ode.h"
 
 #ifdef __cplusplus
@@ -277,7 +278,8 @@ DYN_INL int dyn_inl_solve(const int S, const dyn_tableau *m, const dyn_inl_row *
         res->fail_t = ti > t1 ? t1 : ti;
         res->status = DYN_ERR_RHS;
         snprintf(res->message, sizeof res->message,
-                 "the right-hand side failed at t = %.17g (status %d)", res->fail_t, rc);
+                 "the right-hand side failed at t = %s (status %d)", dyn_shortest(res->fail_t).s,
+                 rc);
     } else if (nonfinite) {
         const double *bad = cur == ya ? yb : ya;
         int q = 0;
@@ -287,8 +289,8 @@ DYN_INL int dyn_inl_solve(const int S, const dyn_tableau *m, const dyn_inl_row *
         res->fail_t = (g->ends_at_t1 && step + 1 == steps) ? t1 : t0 + (double)(step + 1) * h;
         res->fail_index = q;
         res->status = DYN_ERR_NONFINITE;
-        snprintf(res->message, sizeof res->message, "state %d became not finite at t = %.17g", q,
-                 res->fail_t);
+        snprintf(res->message, sizeof res->message, "state %d became not finite at t = %s", q,
+                 dyn_shortest(res->fail_t).s);
     } else {
         res->stats.rhs_calls = step * S;
     }

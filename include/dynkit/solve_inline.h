@@ -36,6 +36,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "dynkit/io.h" /* dyn_shortest: numbers in messages */
 #include "dynkit/erk_kernels.h"
 #include "dynkit/solve.h"
 
@@ -373,14 +374,14 @@ DYN_SINL_COLD int dyn_sinl_reject(const dyn_sinl_ctl *ctl, int n, double t, doub
         res->fail_t = tnext;
         res->fail_index = bad;
         dyn_sinl_fail(res, DYN_ERR_NONFINITE,
-                      "state %d became not finite at t = %.17g for every step size down to %g",
-                      bad, tnext, hn);
+                      "state %d became not finite at t = %s for every step size down to %g",
+                      bad, dyn_shortest(tnext).s, hn);
     } else {
         res->fail_t = t;
         dyn_sinl_fail(res, DYN_ERR_STEP_SIZE,
-                      "step size underflow at t = %.17g: the error test fails with h = %g (a "
+                      "step size underflow at t = %s: the error test fails with h = %g (a "
                       "singularity, a discontinuity, or tolerances below rounding)",
-                      t, hn);
+                      dyn_shortest(t).s, hn);
     }
     return 1;
 }
@@ -511,10 +512,10 @@ DYN_SINL int dyn_sinl_solve(const int P, const dyn_tableau *m, dyn_rhs_fn f, voi
                 }
                 if (max_steps > 0 && res->stats.steps >= max_steps) {
                     dyn_sinl_fail(res, DYN_ERR_MAX_STEPS,
-                                  "reached the limit of %ld steps at t = %.17g (h = %g): raise "
+                                  "reached the limit of %ld steps at t = %s (h = %g): raise "
                                   "the limit, loosen the tolerances, or use a method for stiff "
                                   "problems",
-                                  max_steps, t, h);
+                                  max_steps, dyn_shortest(t).s, h);
                     goto finish;
                 }
                 res->stats.steps++;
@@ -644,8 +645,8 @@ DYN_SINL int dyn_sinl_solve(const int P, const dyn_tableau *m, dyn_rhs_fn f, voi
 
 rhs_failed:
     res->rhs_status = rc;
-    dyn_sinl_fail(res, DYN_ERR_RHS, "the right-hand side failed at t = %.17g (status %d)",
-                  res->fail_t, rc);
+    dyn_sinl_fail(res, DYN_ERR_RHS, "the right-hand side failed at t = %s (status %d)",
+                  dyn_shortest(res->fail_t).s, rc);
 
 finish:
     res->t = t;

@@ -369,9 +369,10 @@ int dyn_table_read(FILE *in, const char *source, unsigned flags, dyn_table *tabl
             break;
         if ((flags & DYN_TABLE_TIME_FIRST) && table->rows > 0 && !(row[0] > prev_t)) {
             set_err(err, errlen,
-                    "%s:%ld: %s = %.17g does not increase (line %ld has %s = %.17g); the "
+                    "%s:%ld: %s = %s does not increase (line %ld has %s = %s); the "
                     "first column must increase strictly",
-                    src, r.number, table->names[0], row[0], prev_line, table->names[0], prev_t);
+                    src, r.number, table->names[0], dyn_shortest(row[0]).s, prev_line,
+                    table->names[0], dyn_shortest(prev_t).s);
             rc = DYN_ERR_ARG;
             break;
         }

@@ -28,6 +28,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "dynkit/io.h" /* dyn_shortest: numbers in messages */
 #include "dynkit/cart.h"
 
 int dyn_cart_prepare(dyn_cart_par *p, char *err, size_t errlen)
@@ -80,9 +81,9 @@ int dyn_cart_set_forces(dyn_cart_par *p, const double *table, long rows, dyn_int
         if (!isfinite(r[0]) || !isfinite(r[1]) || !isfinite(r[2]))
             FAIL("force table: row %ld (t = %g) has a value that is not finite", k + 1, r[0]);
         if (k > 0 && !(r[0] > r[-3]))
-            FAIL("force table: time must increase strictly, but row %ld has t = %.17g after "
-                 "t = %.17g",
-                 k + 1, r[0], r[-3]);
+            FAIL("force table: time must increase strictly, but row %ld has t = %s after "
+                 "t = %s",
+                 k + 1, dyn_shortest(r[0]).s, dyn_shortest(r[-3]).s);
     }
     double dt = 0.0;
     if (rows > 1) {

@@ -34,6 +34,7 @@
 #include <math.h>
 #include <stdio.h>
 
+#include "dynkit/io.h" /* dyn_shortest: numbers in messages */
 #include "dynkit/cart.h"
 
 void dyn_cart_inverse_forces(const dyn_cart_par *p, double theta, double ddsX, double ddsY,
@@ -149,9 +150,9 @@ int dyn_cart_force_table(const dyn_cart_par *p, double v0, double f, long N, dou
             !isfinite(state[4])) {
             if (err && errlen)
                 snprintf(err, errlen,
-                         "cart force table: the forces are not finite at t = %.17g s (Fx = %g "
+                         "cart force table: the forces are not finite at t = %s s (Fx = %g "
                          "N, Fy = %g N): v0 = %g m/s and f = %g Hz are too large for doubles",
-                         t, table[3 * k + 1], table[3 * k + 2], v0, f);
+                         dyn_shortest(t).s, table[3 * k + 1], table[3 * k + 2], v0, f);
             return DYN_ERR_ARG;
         }
     }

@@ -12,6 +12,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "dynkit/io.h" /* dyn_shortest: numbers in messages */
 #include "dynkit/ode.h"
 #include "ode/rk_stages.h"
 
@@ -205,8 +206,8 @@ int dyn_fixed_solve(const dyn_tableau *m, const dyn_system *sys, double t0, doub
             res->rhs_status = rc;
             res->fail_t = dyn_rk_stage_time(tn, m->c[fail_stage], hn, t1);
             status = result_fail(res, DYN_ERR_RHS,
-                                 "the right-hand side failed at t = %.17g (status %d)",
-                                 res->fail_t, rc);
+                                 "the right-hand side failed at t = %s (status %d)",
+                                 dyn_shortest(res->fail_t).s, rc);
             break;
         }
         const double tnext =
@@ -217,7 +218,8 @@ int dyn_fixed_solve(const dyn_tableau *m, const dyn_system *sys, double t0, doub
             res->fail_t = tnext;
             res->fail_index = bad;
             status = result_fail(res, DYN_ERR_NONFINITE,
-                                 "state %d became not finite at t = %.17g", bad, tnext);
+                                 "state %d became not finite at t = %s", bad,
+                                 dyn_shortest(tnext).s);
             break;
         }
         done++;

@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "dynkit/io.h" /* dyn_shortest: numbers in messages */
 #include "dynkit/ivp.h"
 
 typedef struct ivp_ctx {
@@ -201,8 +202,9 @@ static void run(dyn_ivp_solution *sol, const dyn_tableau *m, dyn_rhs_fn f, void 
     if (c.oom) {
         set_status(sol, DYN_ERR_CAPACITY,
                    "out of memory after %ld samples and %ld events: the solution up to t = "
-                   "%.17g is kept",
-                   sol->n_t, sol->n_events, sol->n_t > 0 ? sol->t[sol->n_t - 1] : t0);
+                   "%s is kept",
+                   sol->n_t, sol->n_events,
+                   dyn_shortest(sol->n_t > 0 ? sol->t[sol->n_t - 1] : t0).s);
     } else {
         sol->status = sol->result.status;
         memcpy(sol->message, sol->result.message, sizeof sol->message);

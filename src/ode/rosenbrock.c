@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "dynkit/io.h" /* dyn_shortest: numbers in messages */
 #include "ode/jacobian.h"
 #include "ode/linalg.h"
 #include "ode/rosenbrock.h"
@@ -277,7 +278,7 @@ void dyn_ros_dense(const dyn_ros_method *m, int n, const double *cont, double th
 static void put_msg(char *msg, size_t msglen, const char *what, double t, double h)
 {
     if (msg && msglen)
-        snprintf(msg, msglen, "%s at t = %.17g (h = %.3g)", what, t, h);
+        snprintf(msg, msglen, "%s at t = %s (h = %.3g)", what, dyn_shortest(t).s, h);
 }
 
 int dyn_ros_integrate(const dyn_ros_method *m, const dyn_ros_problem *p, double t0, double t1,

@@ -22,6 +22,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "dynkit/io.h" /* dyn_shortest: numbers in messages */
 #include "dynkit/solve.h"
 #include "ode/events.h"
 #include "ode/solve_general.h"
@@ -185,12 +186,12 @@ static int plan_output(const dyn_solve_opts *o, double t0, double t1, out_plan *
             const double ti = out->times[i];
             if (!(ti >= t0 && ti <= t1))
                 return fail(res, DYN_ERR_ARG,
-                            "output time %.17g (number %ld) is outside the span [%.17g, %.17g]",
-                            ti, i + 1, t0, t1);
+                            "output time %s (number %ld) is outside the span [%s, %s]",
+                            dyn_shortest(ti).s, i + 1, dyn_shortest(t0).s, dyn_shortest(t1).s);
             if (i > 0 && ti < out->times[i - 1])
                 return fail(res, DYN_ERR_ARG,
-                            "output times must not decrease: %.17g (number %ld) follows %.17g",
-                            ti, i + 1, out->times[i - 1]);
+                            "output times must not decrease: %s (number %ld) follows %s",
+                            dyn_shortest(ti).s, i + 1, dyn_shortest(out->times[i - 1]).s);
         }
     }
     return DYN_OK;
@@ -417,9 +418,9 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
         }
         if (max_steps > 0 && res->stats.steps >= max_steps) {
             fail(res, DYN_ERR_MAX_STEPS,
-                 "reached the limit of %ld steps at t = %.17g (h = %g): raise the limit, "
+                 "reached the limit of %ld steps at t = %s (h = %g): raise the limit, "
                  "loosen the tolerances, or use a method for stiff problems",
-                 max_steps, t, h);
+                 max_steps, dyn_shortest(t).s, h);
             goto finish;
         }
         double err = 0.0;
@@ -432,8 +433,8 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
                 bad = first_nonfinite(ynew, n);
                 res->fail_t = tnext;
                 res->fail_index = bad;
-                fail(res, DYN_ERR_NONFINITE, "state %d became not finite at t = %.17g", bad,
-                     tnext);
+                fail(res, DYN_ERR_NONFINITE, "state %d became not finite at t = %s", bad,
+                     dyn_shortest(tnext).s);
                 goto finish;
             }
         } else if (!(err <= 1.0)) {
@@ -451,15 +452,15 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
                     res->fail_t = tnext;
                     res->fail_index = bad;
                     fail(res, DYN_ERR_NONFINITE,
-                         "state %d became not finite at t = %.17g for every step size down to "
+                         "state %d became not finite at t = %s for every step size down to "
                          "%g",
-                         bad, tnext, hn);
+                         bad, dyn_shortest(tnext).s, hn);
                 } else {
                     res->fail_t = t;
                     fail(res, DYN_ERR_STEP_SIZE,
-                         "step size underflow at t = %.17g: the error test fails with h = %g "
+                         "step size underflow at t = %s: the error test fails with h = %g "
                          "(a singularity, a discontinuity, or tolerances below rounding)",
-                         t, hn);
+                         dyn_shortest(t).s, hn);
                 }
                 goto finish;
             }
@@ -503,7 +504,8 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
                 !(rec->grow && rec->grow(rec, rec->grow_ctx) == 0 &&
                   rec->count < rec->capacity)) {
                 fail(res, DYN_ERR_CAPACITY,
-                     "the dense-output recorder is full (%ld steps) at t = %.17g", rec->count, t);
+                     "the dense-output recorder is full (%ld steps) at t = %s", rec->count,
+                     dyn_shortest(t).s);
                 goto finish;
             }
             double *b = rec->data + (size_t)rec->count * dyn_dense_record_block(n, q);
@@ -558,8 +560,9 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
                     res->rhs_status = rc;
                     res->fail_t = te;
                     fail(res, DYN_ERR_RHS,
-                         "the reset of event %d (%s) failed at t = %.17g (status %d)", idx,
-                         opts->events[idx].name ? opts->events[idx].name : "unnamed", te, rc);
+                         "the reset of event %d (%s) failed at t = %s (status %d)", idx,
+                         opts->events[idx].name ? opts->events[idx].name : "unnamed",
+                         dyn_shortest(te).s, rc);
                     goto finish;
                 }
             }
@@ -572,8 +575,8 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
                 res->fail_t = t;
                 res->fail_index = bad;
                 fail(res, DYN_ERR_NONFINITE,
-                     "the reset of event %d made state %d not finite at t = %.17g", reset_idx,
-                     bad, t);
+                     "the reset of event %d made state %d not finite at t = %s", reset_idx,
+                     bad, dyn_shortest(t).s);
                 goto finish;
             }
             /* Zeno: resets that follow each other without time advancing */
@@ -582,8 +585,8 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
             if (zeno >= DYN_ZENO_RESETS) {
                 fail(res, DYN_ERR_ZENO,
                      "Zeno behaviour: %d resets in a row, each less than %.3g s after the one "
-                     "before, up to t = %.17g (event %d (%s) last): the resets accumulate here",
-                     zeno, window, t, reset_idx,
+                     "before, up to t = %s (event %d (%s) last): the resets accumulate here",
+                     zeno, window, dyn_shortest(t).s, reset_idx,
                      opts->events[reset_idx].name ? opts->events[reset_idx].name : "unnamed");
                 goto finish;
             }
@@ -683,7 +686,8 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
 rhs_failed:
     res->rhs_status = rc;
     res->fail_t = st.fail_t;
-    fail(res, DYN_ERR_RHS, "the right-hand side failed at t = %.17g (status %d)", st.fail_t, rc);
+    fail(res, DYN_ERR_RHS, "the right-hand side failed at t = %s (status %d)",
+         dyn_shortest(st.fail_t).s, rc);
 
 finish:
     res->t = t;

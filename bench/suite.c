@@ -104,27 +104,21 @@ CONST_TABLEAU(RK4_CONST, rk4, 4, 4)
 /* ------------------------------------------------------------------------------------------
  * Right-hand sides for dynkit: dyn_rhs_fn around the shared inline bodies
  * ---------------------------------------------------------------------------------------- */
-#define DK_RHS(NAME, EVAL)                                                                         \
-    static int NAME(double t, const double *y, double *dydt, void *par)                            \
+#define DK_RHS_AS(SPEC, NAME, EVAL)                                                                \
+    SPEC int NAME(double t, const double *y, double *dydt, void *par)                              \
     {                                                                                              \
         (void)t;                                                                                   \
         EVAL(y, dydt, par);                                                                        \
         return 0;                                                                                  \
     }
+#define DK_RHS(NAME, EVAL) DK_RHS_AS(static, NAME, EVAL)
 DK_RHS(dk_vdp, bench_vdp_eval)
 DK_RHS(dk_plane, bench_plane_eval)
 DK_RHS(dk_arenstorf, bench_arenstorf_eval)
 DK_RHS(dk_kepler, bench_kepler_eval)
 /* the same bodies for dyn_solve_inline, declared as its header asks (DYN_INLINE_RHS) */
-#define DK_RHS_INLINE(NAME, EVAL)                                                                  \
-    DYN_INLINE_RHS int NAME(double t, const double *y, double *dydt, void *par)                    \
-    {                                                                                              \
-        (void)t;                                                                                   \
-        EVAL(y, dydt, par);                                                                        \
-        return 0;                                                                                  \
-    }
-DK_RHS_INLINE(dk_vdp_inline, bench_vdp_eval)
-DK_RHS_INLINE(dk_arenstorf_inline, bench_arenstorf_eval)
+DK_RHS_AS(DYN_INLINE_RHS, dk_vdp_inline, bench_vdp_eval)
+DK_RHS_AS(DYN_INLINE_RHS, dk_arenstorf_inline, bench_arenstorf_eval)
 
 static int dk_vdp_jac(double t, const double *y, double *J, void *par)
 {

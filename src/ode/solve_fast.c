@@ -9,9 +9,8 @@
 #include "dynkit/solve_inline.h"
 #include "ode/solve_general.h"
 
-int dyn_solve(const dyn_tableau *m, const dyn_system *sys, double t0, double t1,
-              const double *y0, double *y, double *work, const dyn_solve_opts *opts,
-              dyn_result *res)
+int dyn_solve(const dyn_tableau *m, const dyn_system *sys, double t0, double t1, const double *y0,
+              double *y, double *work, const dyn_solve_opts *opts, dyn_result *res)
 {
     const int rc = dyn_sinl_try(m, sys, t0, t1, y0, y, work, opts, res);
     if (rc != DYN_SINL_DECLINED)

@@ -66,13 +66,15 @@ int main()
         dyn_solve_opts o;
         std::memset(&o, 0, sizeof o);
         o.rtol = o.atol = 1e-9;
-        double *w = static_cast<double *>(std::calloc(dyn_solve_work_size(m, 2, &o), sizeof(double)));
+        double *w =
+            static_cast<double *>(std::calloc(dyn_solve_work_size(m, 2, &o), sizeof(double)));
         double ya[2], yb[2];
         dyn_result ra, rb;
         const int sa = dyn_solve_inline(m, &in, 0.0, 15.0, y0, ya, w, &o, &ra);
         const int sb = dyn_solve(m, &lib, 0.0, 15.0, y0, yb, w, &o, &rb);
         char what[96];
-        std::snprintf(what, sizeof what, "dyn_solve_inline %s from C++ = dyn_solve, bit for bit", name);
+        std::snprintf(what, sizeof what, "dyn_solve_inline %s from C++ = dyn_solve, bit for bit",
+                      name);
         check(sa == DYN_OK && sb == DYN_OK && std::memcmp(ya, yb, sizeof ya) == 0 &&
                   ra.stats.rhs_calls == rb.stats.rhs_calls && ra.stats.steps == rb.stats.steps,
               what);

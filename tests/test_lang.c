@@ -99,6 +99,12 @@ static void test_refused_features_name_line_and_feature(void **state)
         {"x1'=x2\nx2'=-x1\n@ bandlo=2\n", 3, 3,
          "a bandwidth of the Jacobian must be below the number of states, 2"},
         {"x'=1\n@ bandup=1.5\n", 2, 10, "bandup must be a whole number >= 0"},
+        /* above 400 states (no analytic Jacobian): checked from the states each equation
+         * reads, also through temporaries */
+        {"x0'=-x0\nw[1..450]=x[j-1]\nx[1..450]'=w[j]-x[j]\n@ bandlo=0,bandup=3\n", 4, 3,
+         "bandlo=0, bandup=3 do not hold: x1' reads x0, 1 place below the diagonal"},
+        {"x0'=-x0\nx[1..450]'=x[j-1]-x[j]\nx451'=x0\n@ bandlo=1\n", 4, 3,
+         "bandlo=1, bandup=0 do not hold: x451' reads x0, 451 places below the diagonal"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
         expect_error(cases[i].text, cases[i].line, cases[i].col, cases[i].what);
@@ -279,6 +285,27 @@ static void test_meth_maps_to_dynkit_methods(void **state)
 }
 
 /* Files from other systems: a byte order mark, CRLF line ends, tabs. */
+/* @ bandlo, bandup fill the model's band: with the analytic band Jacobian (up to 400
+ * states) or, above, banded differences after the check of the states each equation
+ * reads; only the band's entries are written */
+static void test_band_options_fill_the_model(void **state)
+{
+    (void)state;
+    char *small = expect_ok("x0'=x1-2*x0\nx[1..8]'=x[j-1]-2*x[j]+x[j+1]\nx9'=x8-2*x9\n"
+                            "@ bandlo=1,bandup=1\n",
+                            NULL);
+    assert_non_null(strstr(small, ".jac_banded = 1"));
+    assert_non_null(strstr(small, ".jac_lower = 1"));
+    assert_non_null(strstr(small, ".jacobian_band = dk_jacobian_band"));
+    free(small);
+    char *big = expect_ok("x0'=-x0\nx[1..450]'=x[j-1]-x[j]\n@ bandlo=1,bandup=0\n", NULL);
+    assert_non_null(strstr(big, ".jac_banded = 1"));
+    assert_non_null(strstr(big, ".jac_upper = 0"));
+    assert_non_null(strstr(big, ".jacobian_band = NULL"));
+    assert_null(strstr(big, "dk_jacobian_band("));
+    free(big);
+}
+
 static void test_bom_crlf_and_tabs(void **state)
 {
     (void)state;
@@ -448,6 +475,7 @@ int main(void)
         cmocka_unit_test(test_diag_format_shows_the_line_and_a_caret),
         cmocka_unit_test(test_notes_tell_what_is_ignored),
         cmocka_unit_test(test_meth_maps_to_dynkit_methods),
+        cmocka_unit_test(test_band_options_fill_the_model),
         cmocka_unit_test(test_bom_crlf_and_tabs),
         cmocka_unit_test(test_generated_c_conventions),
         cmocka_unit_test(test_limits_are_refused_with_a_message),

@@ -11,6 +11,7 @@
  * libm. A `#line N "file"` precedes the code of each source line, so a compiler's message
  * points at the model's own line. Nothing mutable at file scope: the model is re-entrant.
  */
+#include <limits.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -712,6 +713,81 @@ static void emit_jacobian(lang_ctx *c, jac_plan *j)
     free(jac);
 }
 
+/* ---- the declared band, checked from the structure of the equations ---- */
+
+/* The lowest and highest state index an expression reads (lo > hi: none), through fixed
+ * temporaries and user functions (each worked out once). */
+typedef struct state_span {
+    int lo, hi;
+} state_span;
+
+typedef struct span_memo {
+    state_span *fix, *fun;
+    unsigned char *fix_done, *fun_done;
+} span_memo;
+
+static state_span span_join(state_span a, state_span b)
+{
+    if (b.lo < a.lo)
+        a.lo = b.lo;
+    if (b.hi > a.hi)
+        a.hi = b.hi;
+    return a;
+}
+
+static state_span span_of(lang_ctx *c, const node *e, span_memo *mm)
+{
+    state_span s = {INT_MAX, INT_MIN};
+    for (int i = 0; i < e->nargs; i++)
+        s = span_join(s, span_of(c, e->args[i], mm));
+    if (e->kind == N_STATE) {
+        s = span_join(s, (state_span){e->index, e->index});
+    } else if (e->kind == N_FIX) {
+        if (!mm->fix_done[e->index]) {
+            mm->fix_done[e->index] = 1;
+            mm->fix[e->index] = span_of(c, LVEC_AT(c->m.fixes, lang_formula, e->index).expr, mm);
+        }
+        s = span_join(s, mm->fix[e->index]);
+    } else if (e->kind == N_UFUN || e->kind == N_UFUN_D) {
+        if (!mm->fun_done[e->index]) {
+            mm->fun_done[e->index] = 1;
+            mm->fun[e->index] = span_of(c, LVEC_AT(c->m.funcs, lang_func, e->index).body, mm);
+        }
+        s = span_join(s, mm->fun[e->index]);
+    }
+    return s;
+}
+
+/* Without the analytic Jacobian (more than LANG_MAX_JAC_STATES states): every right-hand
+ * side must read only states inside the declared band. A state read is taken as a
+ * dependence (a conservative check: x - x would count). */
+static void check_band_by_structure(lang_ctx *c)
+{
+    lang_model *m = &c->m;
+    span_memo mm;
+    const size_t nf = (size_t)m->fixes.n + 1, nu = (size_t)m->funcs.n + 1;
+    mm.fix = lang_alloc(c, nf * sizeof *mm.fix);
+    mm.fun = lang_alloc(c, nu * sizeof *mm.fun);
+    mm.fix_done = lang_alloc(c, nf);
+    mm.fun_done = lang_alloc(c, nu);
+    memset(mm.fix_done, 0, nf);
+    memset(mm.fun_done, 0, nu);
+    for (int i = 0; i < m->states.n; i++) {
+        const state_span s = span_of(c, LVEC_AT(m->states, lang_state, i).rhs, &mm);
+        if (s.lo > s.hi)
+            continue;
+        const int j = i - s.lo > m->band_lo ? s.lo : s.hi - i > m->band_up ? s.hi : -1;
+        if (j >= 0)
+            lang_fail(c, m->band_pos,
+                      "bandlo=%d, bandup=%d do not hold: %s' reads %s, %d place%s %s the "
+                      "diagonal (the band of the Jacobian must contain every state each "
+                      "right-hand side uses)",
+                      m->band_lo, m->band_up, LVEC_AT(m->states, lang_state, i).name,
+                      LVEC_AT(m->states, lang_state, j).name, abs(i - j),
+                      abs(i - j) == 1 ? "" : "s", j < i ? "below" : "above");
+    }
+}
+
 static void emit_events(lang_ctx *c)
 {
     lang_model *m = &c->m;
@@ -843,18 +919,21 @@ char *lang_emit_c(lang_ctx *c)
         with_jac = try_jacobian(c, &jp);
         if (with_jac && jp.band_bad_i >= 0)
             lang_fail(c, m->band_pos,
-                      "bandlo=%d, bandup=%d do not hold: d(%s')/d(%s) is not zero, %d places "
+                      "bandlo=%d, bandup=%d do not hold: d(%s')/d(%s) is not zero, %d place%s "
                       "%s the diagonal (the band of the Jacobian must contain every state each "
                       "right-hand side uses)",
                       m->band_lo, m->band_up,
                       LVEC_AT(m->states, lang_state, jp.band_bad_i).name,
                       LVEC_AT(m->states, lang_state, jp.band_bad_j).name,
                       abs(jp.band_bad_i - jp.band_bad_j),
+                      abs(jp.band_bad_i - jp.band_bad_j) == 1 ? "" : "s",
                       jp.band_bad_i > jp.band_bad_j ? "below" : "above");
     } else {
         lang_note(c, (lpos){0, 0}, "%d states: no analytic Jacobian (at most %d); the stiff "
                   "methods use finite differences", n, LANG_MAX_JAC_STATES);
     }
+    if (m->has_band && !with_jac)
+        check_band_by_structure(c); /* the band is then formed by banded differences */
 
     emit_rhs(c);
     emit_outputs(c);

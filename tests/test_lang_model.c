@@ -526,6 +526,7 @@ static void test_generated_c_compiles_without_warnings(void **state)
     static const char *const files[] = {
         "fuzz/corpus/ode/arrays.ode",        "fuzz/corpus/ode/ball.ode",
         "fuzz/corpus/ode/functions.ode",     "fuzz/corpus/ode/vanderpol.ode",
+        "fuzz/corpus/ode/band.ode",
         "examples/models/double_pendulum.ode", "examples/models/elastic_pendulum.ode",
         "examples/models/bouncing_ball.ode", "examples/models/lorenz.ode",
     };

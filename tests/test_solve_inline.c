@@ -266,6 +266,24 @@ static void every_step_and_failures(const char *method)
     same(m, &stiff, 0.0, 20.0, y0, os);
     os.stiff_check = 0; /* the default schedule */
     same(m, &stiff, 0.0, 200.0, y0, os);
+    /* an extreme controller: the step underflows to 0 and 0/0 makes the next one NaN,
+     * which both drivers clamp to the largest step */
+    dyn_solve_opts ex = {0};
+    ex.safety = 5e-324;
+    ex.fac_min = 5e-324;
+    ex.fac_max = INFINITY;
+    ex.max_steps = 50;
+    same(m, &sys, 0.0, 2.0, y0, ex);
+    /* a beta that makes the controller's exponent <= 0: refused, by both */
+    dyn_solve_opts bb = {0};
+    bb.beta = 0.5;
+    same(m, &sys, 0.0, 2.0, y0, bb);
+    {
+        double w[256], yb[2];
+        dyn_result rb;
+        assert_int_equal(dyn_solve(m, &sys, 0.0, 2.0, y0, yb, w, &bb, &rb), DYN_ERR_ARG);
+        assert_non_null(strstr(rb.message, "beta 0.5 is not accepted"));
+    }
     /* not taken by the fast path: per-state tolerances; still the general driver's results */
     const double rv[2] = {1e-6, 1e-7};
     dyn_solve_opts pv = {0};

@@ -24,6 +24,11 @@
  * everything else (other tables, callbacks, bad arguments, a non-finite initial state), so
  * it never behaves differently. The loops it relies on are unrolled by pragmas, so that it
  * is as fast at -O2 as at -O3 (docs/performance.md).
+ * Bit for bit needs the same rounding as the library: no contraction of a*b + c into fused
+ * multiply-adds in the caller's translation unit. ISO C mode (-std=c11: gcc's default there is
+ * -ffp-contract=off) or a target without FMA gives it; GNU C mode with -march=native (gcc's
+ * -ffp-contract=fast, clang's on) gives the same method with other rounding in the last bits
+ * unless the caller adds -ffp-contract=off.
  * Cost: code size. Each call site gets its own copy of the solver with the right-hand
  * side inlined up to 8 times per table shape (once per stage, twice for systems of at most
  * 4 states; only one shape if the table is a constant). Use it for the hot solve of a

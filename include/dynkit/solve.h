@@ -150,7 +150,8 @@ typedef struct dyn_solve_opts {
     long max_steps;        /* attempted steps at most; 0: no limit (DYN_ERR_MAX_STEPS) */
     /* step-size controller (0: defaults of DOPRI5) */
     double safety;         /* 0.9 */
-    double beta;           /* PI term 0.04; negative: 0 (pure I controller) */
+    double beta;           /* PI term 0.04; negative: 0 (pure I controller); must keep
+                            * 1/(q+1) - 0.75 beta > 0 (q: the error order) */
     double fac_min;        /* smallest step ratio h_new/h, 0.2 */
     double fac_max;        /* largest step ratio, 10 */
     long stiff_check;      /* test stiffness every this many accepted steps (1000) */

@@ -24,7 +24,10 @@
  * takes a table whose coefficients are those of bs23, dp45 or dop853, with scalar tolerances
  * (rtol >= DYN_MIN_RTOL), no events, step callback, recorder or trace, and output at every
  * step, on a grid (out_step) or at a list of times (out_times); everything else, including
- * bad arguments, goes to dyn_solve, so it never behaves differently.
+ * bad arguments, goes to dyn_solve, so it never behaves differently. Bit for bit needs the
+ * library's rounding in the caller's translation unit: no contraction of a*b + c into fused
+ * multiply-adds (ISO C mode, -ffp-contract=off, or a target without FMA; see
+ * dynkit/ode_inline.h).
  * Cost: code size (the right-hand side is inlined once per stage, per pair, per call site).
  */
 #ifndef DYNKIT_SOLVE_INLINE_H
@@ -633,7 +636,7 @@ DYN_SINL int dyn_sinl_solve(const int P, const dyn_tableau *m, dyn_rhs_fn f, voi
                     }
                 }
                 h = dyn_sinl_ctl_accept(&ctl, hn, err, rejected_before);
-                if (h > hmax) /* fmin(h, hmax): neither is NaN */
+                if (!(h <= hmax)) /* fmin(h, hmax): hmax is a number, h may be NaN */
                     h = hmax;
                 if (last)
                     h = fmax(h, hn);
@@ -685,6 +688,10 @@ DYN_SINL int dyn_sinl_try(const dyn_tableau *m, const dyn_system *sys, double t0
     if (!plain)
         return DYN_SINL_DECLINED;
     const int P = dyn_sinl_pair_of(m);
+    /* a beta the general driver refuses (the controller's exponent must stay > 0) */
+    const int q = m->error_order > 0 ? m->error_order : 1;
+    if (o->beta > 0.0 && !(1.0 / (double)(q + 1) - 0.75 * o->beta > 0.0))
+        return DYN_SINL_DECLINED;
     if (P == DYN_SINL_DECLINED || (o->out_times && o->out_step != 0.0))
         return DYN_SINL_DECLINED;
     dyn_sinl_out out;

@@ -259,6 +259,12 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
         return fail(res, DYN_ERR_ARG,
                     "max_step %g and initial_step %g must be >= 0 (0: automatic)", opts->max_step,
                     opts->initial_step);
+    if (!fixed && opts->beta > 0.0 && !(dyn_controller_exponent(m->error_order, opts->beta) > 0.0))
+        return fail(res, DYN_ERR_ARG,
+                    "beta %g is not accepted for %s: the step-size exponent 1/(q+1) - 0.75 beta "
+                    "must stay > 0 (q = %d), so beta < %g",
+                    opts->beta, m->name, m->error_order,
+                    1.0 / (0.75 * (double)((m->error_order > 0 ? m->error_order : 1) + 1)));
     const int ne = opts->events ? opts->n_events : 0;
     if (ne < 0)
         return fail(res, DYN_ERR_ARG, "n_events %d is not accepted", ne);

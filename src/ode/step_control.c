@@ -31,6 +31,11 @@ static double old_pow(const dyn_controller *c)
     return c->beta == 0.0 ? 1.0 : pow(c->err_old, c->beta);
 }
 
+double dyn_controller_exponent(int q, double beta)
+{
+    return 1.0 / (double)((q > 0 ? q : 1) + 1) - 0.75 * beta;
+}
+
 void dyn_controller_init(dyn_controller *c, int q, double safety, double beta, double fac_min,
                          double fac_max)
 {
@@ -38,7 +43,7 @@ void dyn_controller_init(dyn_controller *c, int q, double safety, double beta, d
     c->beta = beta < 0.0 ? 0.0 : beta > 0.0 ? beta : 0.04;
     c->fac_min = fac_min > 0.0 ? fac_min : 0.2;
     c->fac_max = fac_max > 0.0 ? fac_max : 10.0;
-    c->expo = 1.0 / (double)((q > 0 ? q : 1) + 1) - 0.75 * c->beta;
+    c->expo = dyn_controller_exponent(q, c->beta);
     c->err_old = 1e-4;
     c->err_old_pow = old_pow(c);
 }

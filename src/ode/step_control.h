@@ -19,6 +19,9 @@ typedef struct dyn_controller {
     double err_old_pow; /* err_old^beta, computed when err_old is stored (1 when beta == 0) */
 } dyn_controller;
 
+/* The controller's exponent 1/(q + 1) - 0.75 beta: dyn_solve refuses a beta that makes it
+ * <= 0 (the step would shrink as the error falls). */
+double dyn_controller_exponent(int q, double beta);
 /* Set up the controller for error order q (the estimate behaves like h^(q+1)); zeros in
  * safety, fac_min, fac_max mean the defaults, beta < 0 means 0 and beta == 0 the default. */
 void dyn_controller_init(dyn_controller *c, int q, double safety, double beta, double fac_min,

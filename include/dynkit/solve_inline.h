@@ -242,9 +242,9 @@ DYN_SINL int dyn_sinl_pair_of(const dyn_tableau *m)
 #define DYN_SINL_COLD static
 #endif
 
-/* DOPRI5's |h lambda| from stage j (c = 1) and f1 = f(t + h, ynew), as erk_stiffness; out
- * of line (once every stiff_check steps), so that the step loop stays small enough for the
- * right-hand side to be inlined into it. */
+/* DOPRI5's |h lambda| from stage j (c = 1) and f1 = f(t + h, ynew), also the general
+ * driver's (erk_stiffness calls it); out of line (once every stiff_check steps), so that
+ * the step loop stays small enough for the right-hand side to be inlined into it. */
 DYN_SINL_COLD double dyn_sinl_stiffness(const dyn_tableau *m, int n, double hn, const double *k,
                                         const double *f1, const double *ycur,
                                         const double *ynew, double *Yj)
@@ -282,14 +282,15 @@ DYN_SINL double dyn_sinl_out_time(const dyn_sinl_out *out, long i)
     return out->mode == 1 ? dyn_grid_time(&out->grid, i) : out->times[i];
 }
 
-/* The dense output of the step (erk_dense in src/ode/step_erk.c): the cubic Hermite part
- * and the table's corrections; for a pair without FSAL first f(t + h, ynew) into slot S
- * (unless the stiffness test computed it: *fnew_valid) and the extra stages of the dense
- * output. Returns 0, or the right-hand side's non-zero status with res->fail_t set. */
+/* The dense output of the step, also the general driver's (erk_dense in src/ode/step_erk.c
+ * calls it): the cubic Hermite part and the table's corrections; for a pair without FSAL
+ * first f(t + h, ynew) into slot S (unless the stiffness test computed it: *fnew_valid) and
+ * the extra stages of the dense output. Returns 0, or the right-hand side's non-zero status
+ * with *fail_t set to the time of the failing evaluation. */
 DYN_SINL_COLD int dyn_sinl_dense(const dyn_tableau *m, int q, int n, double t, double hn,
                                  double t1, dyn_rhs_fn f, void *par, double *k, double *Y,
                                  int *fnew_valid, const double *ycur, const double *ynew,
-                                 double *coef, long *rhs_calls, dyn_result *res)
+                                 double *coef, long *rhs_calls, double *fail_t)
 {
     const size_t N = (size_t)n;
     const int S = m->stages;
@@ -299,7 +300,7 @@ DYN_SINL_COLD int dyn_sinl_dense(const dyn_tableau *m, int q, int n, double t, d
         ++*rhs_calls;
         const int rc = f(tf, ynew, f1, par);
         if (rc) {
-            res->fail_t = tf;
+            *fail_t = tf;
             return rc;
         }
         *fnew_valid = 1;
@@ -328,7 +329,7 @@ DYN_SINL_COLD int dyn_sinl_dense(const dyn_tableau *m, int q, int n, double t, d
         ++*rhs_calls;
         const int rc = f(tr, Y, k + (size_t)r * N, par);
         if (rc) {
-            res->fail_t = tr;
+            *fail_t = tr;
             return rc;
         }
     }
@@ -591,7 +592,7 @@ DYN_SINL int dyn_sinl_solve(const int P, const dyn_tableau *m, dyn_rhs_fn f, voi
                 }
                 if (mode != 0 && next < count && dyn_sinl_out_time(out, next) < tnext) {
                     rc = dyn_sinl_dense(m, q, n, t, hn, t1, f, par, k, Y, &fnew_valid, ycur,
-                                        ynew, coef, &rhs_calls, res);
+                                        ynew, coef, &rhs_calls, &res->fail_t);
                     if (rc)
                         goto rhs_failed;
                     d.t0 = t;

@@ -16,6 +16,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "dynkit/solve_inline.h" /* dyn_sinl_stiffness, dyn_sinl_dense */
 #include "ode/rosenbrock.h"
 #include "ode/stepper.h"
 
@@ -207,88 +208,31 @@ static int fnew(dyn_stepper *st, double t, double h, const double *ynew, const d
     return 0;
 }
 
+/* DOPRI5's |h lambda| (dyn_sinl_stiffness of dynkit/solve_inline.h: one copy for both
+ * drivers), with f(t + h, ynew) from fnew. */
 static double erk_stiffness(dyn_stepper *st, double t, double h, const double *y,
                             const double *ynew)
 {
     dyn_erk_state *e = &st->u.erk;
     const dyn_tableau *m = st->m;
-    const int n = st->n, j = m->stiff_stage;
+    const int j = m->stiff_stage;
     if (!(m->stiff_bound > 0.0) || j < 0 || j >= m->stages || m->c[j] != 1.0)
         return -1.0;
     const double *f1;
     if (fnew(st, t, h, ynew, &f1))
         return -1.0;
-    /* the stage state Y_j again (the stage loop keeps only the last one) */
-    double *Yj = e->tmp;
-    const double *row = m->a + (size_t)j * (size_t)m->stages;
-    for (int i = 0; i < n; i++) {
-        double acc = 0.0;
-        for (int q = 0; q < j; q++)
-            if (row[q] != 0.0)
-                acc += row[q] * e->k[(size_t)q * (size_t)n + (size_t)i];
-        Yj[i] = y[i] + h * acc;
-    }
-    const double *kj = e->k + (size_t)j * (size_t)n;
-    double num = 0.0, den = 0.0;
-    for (int i = 0; i < n; i++) {
-        num += (f1[i] - kj[i]) * (f1[i] - kj[i]);
-        den += (ynew[i] - Yj[i]) * (ynew[i] - Yj[i]);
-    }
-    return den > 0.0 ? fabs(h) * sqrt(num / den) : -1.0;
+    return dyn_sinl_stiffness(m, st->n, h, e->k, f1, y, ynew, e->tmp);
 }
 
+/* The step's dense output (dyn_sinl_dense of dynkit/solve_inline.h: one copy for both
+ * drivers): f(t + h, ynew) in slot s for a table without FSAL, then the extra stages. */
 static int erk_dense(dyn_stepper *st, double t, double h, const double *y, const double *ynew,
                      double *coef)
 {
     dyn_erk_state *e = &st->u.erk;
-    const dyn_tableau *m = st->m;
-    const int n = st->n, s = m->stages;
-    const size_t N = (size_t)n;
-    double *k = e->k;
-    /* the cubic Hermite part (dyn_dense): y0, dy, h f0 - dy, 2 dy - h (f0 + f1) */
-    const double *f1;
-    int rc = fnew(st, t, h, ynew, &f1);
-    if (rc)
-        return rc;
-    const double *f0 = k;
-    for (size_t i = 0; i < N; i++) {
-        const double dy = ynew[i] - y[i];
-        coef[i] = y[i];
-        coef[N + i] = dy;
-        coef[2 * N + i] = h * f0[i] - dy;
-        coef[3 * N + i] = 2.0 * dy - h * (f0[i] + f1[i]);
-    }
-    const int q = m->dense_degree, ds = m->dense_stages;
-    if (q <= 3 || !m->dense)
-        return 0;
-    /* the method's corrections c_j = h sum_i D[j-4][i] k_i, j = 4..q, over ds stages */
-    for (int r = s + 1; r < ds; r++) {
-        const double *row = m->dense_a + (size_t)(r - s - 1) * (size_t)ds;
-        double *Y = e->Y;
-        for (size_t i = 0; i < N; i++) {
-            double acc = 0.0;
-            for (int j = 0; j < r; j++)
-                if (row[j] != 0.0)
-                    acc += row[j] * k[(size_t)j * N + i];
-            Y[i] = y[i] + h * acc;
-        }
-        const double tr = dyn_rk_stage_time(t, m->dense_c[r - s - 1], h, st->tend);
-        rc = eval(st, tr, Y, k + (size_t)r * N);
-        if (rc)
-            return rc;
-    }
-    for (int j = 4; j <= q; j++) {
-        const double *D = m->dense + (size_t)(j - 4) * (size_t)ds;
-        double *cj = coef + (size_t)j * N;
-        for (size_t i = 0; i < N; i++) {
-            double acc = 0.0;
-            for (int r = 0; r < ds; r++)
-                if (D[r] != 0.0)
-                    acc += D[r] * k[(size_t)r * N + i];
-            cj[i] = h * acc;
-        }
-    }
-    return 0;
+    return dyn_sinl_dense(st->m, erk_dense_degree(st->m), st->n, t, h, st->tend, st->f, st->par,
+                          e->k, e->Y, &e->fnew_valid, y, ynew, coef, &st->rhs_calls,
+                          &st->fail_t);
 }
 
 static void erk_accept(dyn_stepper *st, double t, double h, const double *ynew)

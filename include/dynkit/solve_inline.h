@@ -66,22 +66,47 @@ extern "C" {
 #define DYN_SRESTRICT restrict
 #endif
 
-/* The PI controller of src/ode/step_control.c (dyn_controller_*), the same operations. */
+/* The PI controller of DOPRI5 (Gustafsson 1991; HNW I sec. II.4, HNW II sec. IV.2), for
+ * both drivers (src/ode/solve.c uses it too):
+ *     fac = err^(1/(q+1) - 0.75 beta) / err_old^beta,
+ *     h_new = h / clamp(fac / safety, 1/fac_max, 1/fac_min),
+ * with err_old the error of the previous accepted step, no growth right after a rejection,
+ * and the plain h / min(1/fac_min, err^(1/(q+1) - 0.75 beta) / safety) after a rejection.
+ * err_old^beta is computed when err_old is stored, off the next step's dependency chain;
+ * pow(x, 0) is exactly 1, so beta == 0 (the I controller) needs none. */
 typedef struct dyn_sinl_ctl {
-    double safety, beta, fac_min, fac_max, expo, err_old, err_old_pow;
+    double safety;      /* 0.9 */
+    double beta;        /* PI term (0.04); 0: the classical I controller */
+    double fac_min;     /* smallest h_new / h (0.2) */
+    double fac_max;     /* largest h_new / h (10) */
+    double expo;        /* 1/(q + 1) - 0.75 beta, q = the error order */
+    double err_old;     /* error of the last accepted step (1e-4 at the start) */
+    double err_old_pow; /* err_old^beta (1 when beta == 0) */
 } dyn_sinl_ctl;
 
-DYN_SINL void dyn_sinl_ctl_init(dyn_sinl_ctl *c, int q, const dyn_solve_opts *o)
+/* The controller's exponent 1/(q + 1) - 0.75 beta: dyn_solve refuses a beta that makes it
+ * <= 0 (the step would shrink as the error falls). */
+DYN_SINL double dyn_sinl_ctl_exponent(int q, double beta)
 {
-    c->safety = o->safety > 0.0 ? o->safety : 0.9;
-    c->beta = o->beta < 0.0 ? 0.0 : o->beta > 0.0 ? o->beta : 0.04;
-    c->fac_min = o->fac_min > 0.0 ? o->fac_min : 0.2;
-    c->fac_max = o->fac_max > 0.0 ? o->fac_max : 10.0;
-    c->expo = 1.0 / (double)((q > 0 ? q : 1) + 1) - 0.75 * c->beta;
+    return 1.0 / (double)((q > 0 ? q : 1) + 1) - 0.75 * beta;
+}
+
+/* Set up for error order q (the estimate behaves like h^(q+1)); zeros in safety, fac_min,
+ * fac_max mean the defaults, beta < 0 means 0 and beta == 0 the default. */
+DYN_SINL void dyn_sinl_ctl_init(dyn_sinl_ctl *c, int q, double safety, double beta,
+                                double fac_min, double fac_max)
+{
+    c->safety = safety > 0.0 ? safety : 0.9;
+    c->beta = beta < 0.0 ? 0.0 : beta > 0.0 ? beta : 0.04;
+    c->fac_min = fac_min > 0.0 ? fac_min : 0.2;
+    c->fac_max = fac_max > 0.0 ? fac_max : 10.0;
+    c->expo = dyn_sinl_ctl_exponent(q, c->beta);
     c->err_old = 1e-4;
     c->err_old_pow = c->beta == 0.0 ? 1.0 : pow(c->err_old, c->beta);
 }
 
+/* Next step after an accepted step of size h with error norm err (<= 1); rejected_before
+ * keeps the step from growing right after a rejection. */
 DYN_SINL double dyn_sinl_ctl_accept(dyn_sinl_ctl *c, double h, double err, int rejected_before)
 {
     double fac = pow(err, c->expo) / c->err_old_pow / c->safety;
@@ -97,6 +122,7 @@ DYN_SINL double dyn_sinl_ctl_accept(dyn_sinl_ctl *c, double h, double err, int r
     return hnew;
 }
 
+/* Next try after a rejected step of size h with error norm err (> 1, or NaN/Inf: a quarter). */
 DYN_SINL double dyn_sinl_ctl_reject(const dyn_sinl_ctl *c, double h, double err)
 {
     if (!isfinite(err))
@@ -454,7 +480,7 @@ DYN_SINL int dyn_sinl_solve(const int P, const dyn_tableau *m, dyn_rhs_fn f, voi
         if (o->max_step > 0.0)
             hmax = fmin(hmax, o->max_step);
         dyn_sinl_ctl ctl;
-        dyn_sinl_ctl_init(&ctl, m->error_order, o);
+        dyn_sinl_ctl_init(&ctl, m->error_order, o->safety, o->beta, o->fac_min, o->fac_max);
         if (o->initial_step > 0.0) {
             h = fmin(o->initial_step, hmax);
         } else {
@@ -690,8 +716,7 @@ DYN_SINL int dyn_sinl_try(const dyn_tableau *m, const dyn_system *sys, double t0
         return DYN_SINL_DECLINED;
     const int P = dyn_sinl_pair_of(m);
     /* a beta the general driver refuses (the controller's exponent must stay > 0) */
-    const int q = m->error_order > 0 ? m->error_order : 1;
-    if (o->beta > 0.0 && !(1.0 / (double)(q + 1) - 0.75 * o->beta > 0.0))
+    if (o->beta > 0.0 && !(dyn_sinl_ctl_exponent(m->error_order, o->beta) > 0.0))
         return DYN_SINL_DECLINED;
     if (P == DYN_SINL_DECLINED || (o->out_times && o->out_step != 0.0))
         return DYN_SINL_DECLINED;

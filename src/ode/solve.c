@@ -24,6 +24,7 @@
 
 #include "dynkit/io.h" /* dyn_shortest: numbers in messages */
 #include "dynkit/solve.h"
+#include "dynkit/solve_inline.h" /* dyn_sinl_ctl: the step-size controller */
 #include "ode/events.h"
 #include "ode/solve_general.h"
 #include "ode/step_control.h"
@@ -259,7 +260,7 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
         return fail(res, DYN_ERR_ARG,
                     "max_step %g and initial_step %g must be >= 0 (0: automatic)", opts->max_step,
                     opts->initial_step);
-    if (!fixed && opts->beta > 0.0 && !(dyn_controller_exponent(m->error_order, opts->beta) > 0.0))
+    if (!fixed && opts->beta > 0.0 && !(dyn_sinl_ctl_exponent(m->error_order, opts->beta) > 0.0))
         return fail(res, DYN_ERR_ARG,
                     "beta %g is not accepted for %s: the step-size exponent 1/(q+1) - 0.75 beta "
                     "must stay > 0 (q = %d), so beta < %g",
@@ -364,11 +365,11 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
 
     /* step size */
     double h = 0.0, hmax = t_end - t0;
-    dyn_controller ctl;
+    dyn_sinl_ctl ctl = {0}; /* set up below for adaptive methods */
     if (!fixed) {
         if (opts->max_step > 0.0)
             hmax = fmin(hmax, opts->max_step);
-        dyn_controller_init(&ctl, m->error_order, opts->safety, opts->beta, opts->fac_min,
+        dyn_sinl_ctl_init(&ctl, m->error_order, opts->safety, opts->beta, opts->fac_min,
                             opts->fac_max);
         if (opts->initial_step > 0.0) {
             h = fmin(opts->initial_step, hmax);
@@ -448,7 +449,7 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
             res->stats.rejected++;
             retry = 1;
             rejected_before = 1;
-            h = dyn_controller_reject(&ctl, hn, err);
+            h = dyn_sinl_ctl_reject(&ctl, hn, err);
             /* near t = 0, a step below eps^2 of the span is no step either */
             const double hmin =
                 16.0 * DBL_EPSILON * fmax(fabs(t), fmax(DBL_EPSILON * (t_end - t0), DBL_MIN));
@@ -627,7 +628,7 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
                 if (t == tnext)
                     step++; /* the reset is at a grid point: whole steps go on from it */
             } else {
-                dyn_controller_init(&ctl, m->error_order, opts->safety, opts->beta,
+                dyn_sinl_ctl_init(&ctl, m->error_order, opts->safety, opts->beta,
                                     opts->fac_min, opts->fac_max);
                 rejected_before = 0;
                 /* the step the controller had, or the starting step at the new state when
@@ -681,7 +682,7 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
             }
         }
         if (!fixed) {
-            h = fmin(dyn_controller_accept(&ctl, hn, err, rejected_before), hmax);
+            h = fmin(dyn_sinl_ctl_accept(&ctl, hn, err, rejected_before), hmax);
             if (last)
                 h = fmax(h, hn); /* no meaning past the end */
             rejected_before = 0;

@@ -1,11 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* Step-size selection of the general driver: Hairer's error norm, the initial step of
- * HNW I sec. II.4 (the algorithm of HINIT in DOPRI5/DOP853) and the PI controller of DOPRI5
- * (Gustafsson 1991; HNW I sec. II.4, HNW II sec. IV.2):
- *     fac = err^(1/(q+1) - 0.75 beta) / err_old^beta,
- *     h_new = h / clamp(fac / safety, 1/fac_max, 1/fac_min),
- * with err_old the error of the previous accepted step, no growth right after a rejection,
- * and the plain h / min(1/fac_min, err^(1/(q+1) - 0.75 beta) / safety) after a rejection.
+/* Step-size selection of the general driver: Hairer's error norm and the initial step of
+ * HNW I sec. II.4 (the algorithm of HINIT in DOPRI5/DOP853). The PI controller of DOPRI5
+ * is dyn_sinl_ctl_* of dynkit/solve_inline.h, one copy for both drivers.
  */
 #include <float.h>
 #include <math.h>
@@ -21,58 +17,6 @@ double dyn_err_norm(const dyn_tol *tol, int n, const double *y, const double *yn
         sum += r * r;
     }
     return sqrt(sum / n);
-}
-
-/* err_old^beta. Computed when err_old is stored, so that the pow is off the next step's
- * dependency chain (same value, same steps); pow(x, 0) is exactly 1, so beta == 0 (the
- * I controller) needs none. */
-static double old_pow(const dyn_controller *c)
-{
-    return c->beta == 0.0 ? 1.0 : pow(c->err_old, c->beta);
-}
-
-double dyn_controller_exponent(int q, double beta)
-{
-    return 1.0 / (double)((q > 0 ? q : 1) + 1) - 0.75 * beta;
-}
-
-void dyn_controller_init(dyn_controller *c, int q, double safety, double beta, double fac_min,
-                         double fac_max)
-{
-    c->safety = safety > 0.0 ? safety : 0.9;
-    c->beta = beta < 0.0 ? 0.0 : beta > 0.0 ? beta : 0.04;
-    c->fac_min = fac_min > 0.0 ? fac_min : 0.2;
-    c->fac_max = fac_max > 0.0 ? fac_max : 10.0;
-    c->expo = dyn_controller_exponent(q, c->beta);
-    c->err_old = 1e-4;
-    c->err_old_pow = old_pow(c);
-}
-
-double dyn_controller_accept(dyn_controller *c, double h, double err, int rejected_before)
-{
-    double fac = pow(err, c->expo) / c->err_old_pow / c->safety;
-    if (!(fac >= 1.0 / c->fac_max)) /* also err == 0 */
-        fac = 1.0 / c->fac_max;
-    if (fac > 1.0 / c->fac_min)
-        fac = 1.0 / c->fac_min;
-    c->err_old = fmax(err, 1e-4);
-    c->err_old_pow = old_pow(c);
-    double hnew = h / fac;
-    if (rejected_before && hnew > h)
-        hnew = h;
-    return hnew;
-}
-
-double dyn_controller_reject(const dyn_controller *c, double h, double err)
-{
-    if (!isfinite(err))
-        return 0.25 * h; /* the trial was not finite: no estimate, shrink firmly */
-    double fac = pow(err, c->expo) / c->safety;
-    if (fac > 1.0 / c->fac_min)
-        fac = 1.0 / c->fac_min;
-    if (!(fac > 1.0))
-        fac = 1.0 / 0.9; /* cannot happen for err > 1 with these constants; stay safe */
-    return h / fac;
 }
 
 /* RMS of v / (atol + rtol |y|). */

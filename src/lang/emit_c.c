@@ -768,10 +768,8 @@ static void check_band_by_structure(lang_ctx *c)
     const size_t nf = (size_t)m->fixes.n + 1, nu = (size_t)m->funcs.n + 1;
     mm.fix = lang_alloc(c, nf * sizeof *mm.fix);
     mm.fun = lang_alloc(c, nu * sizeof *mm.fun);
-    mm.fix_done = lang_alloc(c, nf);
+    mm.fix_done = lang_alloc(c, nf); /* zeroed */
     mm.fun_done = lang_alloc(c, nu);
-    memset(mm.fix_done, 0, nf);
-    memset(mm.fun_done, 0, nu);
     for (int i = 0; i < m->states.n; i++) {
         const state_span s = span_of(c, LVEC_AT(m->states, lang_state, i).rhs, &mm);
         if (s.lo > s.hi)

@@ -9,8 +9,8 @@
  * dyn_solve step for step (HNW I sec. II.4-II.6, IV.2, as dyn_solve does; see
  * src/ode/solve.c): the initial step of HINIT, the stage combinations y + h * (sum of the
  * non-zero a_ij k_j, left to right; a single power-of-two coefficient folded into h), Hairer's
- * error norm (DOP853's for dop853), the PI controller of DOPRI5 (fac = err^expo / err_old^beta
- * / safety, clamped; no growth right after a rejection), the last step shortened to land on t1
+ * error norm (DOP853's for dop853), the PI controller of DOPRI5 (h_new / h = safety err_old^beta /
+ * err^expo, clamped; no growth right after a rejection), the last step shortened to land on t1
  * when t + 1.01 h passes it, DOPRI5's stiffness test every stiff_check accepted steps, output at
  * every step, on a grid or at requested times from the step's end state or the same dense
  * output (dyn_dense_eval), and the progress callback. So the results are dyn_solve's bit for bit:
@@ -68,20 +68,23 @@ extern "C" {
 
 /* The PI controller of DOPRI5 (Gustafsson 1991; HNW I sec. II.4, HNW II sec. IV.2), for
  * both drivers (src/ode/solve.c uses it too):
- *     fac = err^(1/(q+1) - 0.75 beta) / err_old^beta,
- *     h_new = h / clamp(fac / safety, 1/fac_max, 1/fac_min),
- * with err_old the error of the previous accepted step, no growth right after a rejection,
- * and the plain h / min(1/fac_min, err^(1/(q+1) - 0.75 beta) / safety) after a rejection.
- * err_old^beta is computed when err_old is stored, off the next step's dependency chain;
- * pow(x, 0) is exactly 1, so beta == 0 (the I controller) needs none. */
+ *     h_new = h * clamp(safety * err_old^beta / err^(1/(q+1) - 0.75 beta), fac_min, fac_max),
+ * with err_old = max(error of the previous accepted step, 1e-4) (1e-4 at the start), no
+ * growth right after a rejection, and h * max(fac_min, safety / err^(1/(q+1) - 0.75 beta))
+ * (0.9 h when that would not shrink it) after a rejection. This is DOPRI5's
+ * h / clamp(err^expo / err_old^beta / safety, 1/fac_max, 1/fac_min), computed in base-2
+ * logarithms: 2^(log2 safety + beta log2 err_old - expo log2 err), so that the
+ * step-to-step dependency chain holds one log2, one multiply-add and one exp2 instead of a
+ * pow and three divisions (the part from err_old is summed off that chain). The step sizes
+ * differ from the quotient form in the last bits only. */
 typedef struct dyn_sinl_ctl {
-    double safety;      /* 0.9 */
-    double beta;        /* PI term (0.04); 0: the classical I controller */
-    double fac_min;     /* smallest h_new / h (0.2) */
-    double fac_max;     /* largest h_new / h (10) */
-    double expo;        /* 1/(q + 1) - 0.75 beta, q = the error order */
-    double err_old;     /* error of the last accepted step (1e-4 at the start) */
-    double err_old_pow; /* err_old^beta (1 when beta == 0) */
+    double safety;  /* 0.9 */
+    double beta;    /* PI term (0.04); 0: the classical I controller */
+    double fac_min; /* smallest h_new / h (0.2) */
+    double fac_max; /* largest h_new / h (10) */
+    double expo;    /* 1/(q + 1) - 0.75 beta, q = the error order */
+    double log2_safety, log2_floor; /* log2(safety), log2(1e-4) */
+    double log2_gain; /* log2(safety) + beta log2(err_old) */
 } dyn_sinl_ctl;
 
 /* The controller's exponent 1/(q + 1) - 0.75 beta: dyn_solve refuses a beta that makes it
@@ -101,22 +104,24 @@ DYN_SINL void dyn_sinl_ctl_init(dyn_sinl_ctl *c, int q, double safety, double be
     c->fac_min = fac_min > 0.0 ? fac_min : 0.2;
     c->fac_max = fac_max > 0.0 ? fac_max : 10.0;
     c->expo = dyn_sinl_ctl_exponent(q, c->beta);
-    c->err_old = 1e-4;
-    c->err_old_pow = c->beta == 0.0 ? 1.0 : pow(c->err_old, c->beta);
+    c->log2_safety = log2(c->safety);
+    c->log2_floor = log2(1e-4);
+    c->log2_gain = c->log2_safety + c->beta * c->log2_floor;
 }
 
 /* Next step after an accepted step of size h with error norm err (<= 1); rejected_before
  * keeps the step from growing right after a rejection. */
 DYN_SINL double dyn_sinl_ctl_accept(dyn_sinl_ctl *c, double h, double err, int rejected_before)
 {
-    double fac = pow(err, c->expo) / c->err_old_pow / c->safety;
-    if (!(fac >= 1.0 / c->fac_max))
-        fac = 1.0 / c->fac_max;
-    if (fac > 1.0 / c->fac_min)
-        fac = 1.0 / c->fac_min;
-    c->err_old = err > 1e-4 ? err : 1e-4; /* fmax(err, 1e-4): err is a number here */
-    c->err_old_pow = c->beta == 0.0 ? 1.0 : pow(c->err_old, c->beta);
-    double hnew = h / fac;
+    const double l = log2(err); /* -inf for err == 0: the ratio becomes fac_max */
+    double ratio = exp2(c->log2_gain - c->expo * l);
+    if (!(ratio <= c->fac_max))
+        ratio = c->fac_max;
+    if (ratio < c->fac_min)
+        ratio = c->fac_min;
+    /* log2(max(err, 1e-4)), as log2 is monotonic */
+    c->log2_gain = c->log2_safety + c->beta * (l > c->log2_floor ? l : c->log2_floor);
+    double hnew = h * ratio;
     if (rejected_before && hnew > h)
         hnew = h;
     return hnew;
@@ -127,12 +132,12 @@ DYN_SINL double dyn_sinl_ctl_reject(const dyn_sinl_ctl *c, double h, double err)
 {
     if (!isfinite(err))
         return 0.25 * h;
-    double fac = pow(err, c->expo) / c->safety;
-    if (fac > 1.0 / c->fac_min)
-        fac = 1.0 / c->fac_min;
-    if (!(fac > 1.0))
-        fac = 1.0 / 0.9;
-    return h / fac;
+    double ratio = exp2(c->log2_safety - c->expo * log2(err));
+    if (ratio < c->fac_min)
+        ratio = c->fac_min;
+    if (!(ratio < 1.0))
+        ratio = 0.9;
+    return h * ratio;
 }
 
 /* RMS of v / (atol + rtol max(|y|, |y|)) (dyn_initial_step's norm). */

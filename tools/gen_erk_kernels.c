@@ -5,10 +5,10 @@
  *
  * For each pair it emits
  * - the table (a, b, c, e, e3) as arrays, by which dyn_ek_match recognises a table;
- * - dyn_ek_<pair>_row(r, ...): stage r's state y + h * (sum of row r's non-zero a_rj k_j,
- *   left to right from the first), or y_{n+1} for r = s (row b), exactly the arithmetic of
- *   the library's stage loop (src/ode/rk_stages.h), including its rule for a row whose only
- *   coefficient is a power of two: y + (h a) k;
+ * - dyn_ek_<pair>_row(r, ...): stage r's state (y + h * (sum of row r's non-zero a_rj k_j
+ *   but the last, left to right from the first)) + (h a_rl) k_l, or y_{n+1} for r = s (row
+ *   b), exactly the arithmetic of the library's stage loop for embedded pairs
+ *   (src/ode/rk_stages.h: the newest term apart, off the chain of the other terms);
  * - dyn_ek_<pair>_err(...): the sums of squares of Hairer's error norm (src/ode/step_erk.c,
  *   err_sums), each component's estimate summed from 0.0.
  * Zero coefficients do not appear, so every compiler folds the whole step at any
@@ -17,19 +17,10 @@
  *     build/tests/gen_erk_kernels > include/dynkit/erk_kernels.h
  * CTest erk_kernels_current fails when the committed header differs from this output.
  */
-#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "dynkit/ode.h"
-
-static int is_pow2(double a)
-{
-    uint64_t bits;
-    memcpy(&bits, &a, sizeof bits);
-    const uint64_t biased = (bits >> 52) & 0x7ff;
-    return (bits & 0xfffffffffffffULL) == 0 && biased >= 1023 - 64 && biased <= 1023 + 64;
-}
 
 /* v as a C array, rows of row_len values (wrapped at 4 a line) */
 static void array(const char *pair, const char *what, const double *v, int count, int row_len)
@@ -58,22 +49,26 @@ static void row_case(int r, const double *row, int len)
         printf("        return 0;\n");
         return;
     }
-    if (nt == 1 && is_pow2(row[j0])) {
-        printf("        {\n            const double hc = h * %.17g;\n", row[j0]);
-        printf("            DYN_EK_LOOP(q) DYN_EK_PUT(q, y[q] + hc * k[%d * N + q]);\n", j0);
+    int jl = len - 1; /* the last term, added apart: (h a_l) k_l */
+    while (row[jl] == 0.0)
+        jl--;
+    printf("        {\n            const double hc = h * %.17g;\n", row[jl]);
+    if (nt == 1) {
+        printf("            DYN_EK_LOOP(q) DYN_EK_PUT(q, y[q] + hc * k[%d * N + q]);\n", jl);
         printf("        }\n        return 1;\n");
         return;
     }
-    printf("        DYN_EK_LOOP(q) DYN_EK_PUT(q, y[q] + h * (");
+    printf("            DYN_EK_LOOP(q) DYN_EK_PUT(q, (y[q] + h * (");
     int t = 0;
-    for (int j = 0; j < len; j++) {
+    for (int j = 0; j < jl; j++) {
         if (row[j] == 0.0)
             continue;
         printf("%s%.17g * k[%d * N + q]",
-               t ? "\n                                            + " : "", row[j], j);
+               t ? "\n                                                    + " : "", row[j], j);
         t++;
     }
-    printf("));\n        return %d;\n", nt);
+    printf("))\n                                          + hc * k[%d * N + q]);\n", jl);
+    printf("        }\n        return %d;\n", nt);
 }
 
 /* the sum of one estimate's terms for component i, from 0.0 */
@@ -101,7 +96,8 @@ static int pair(const char *name)
     array(m->name, "e", m->e, s, s);
     if (m->e3)
         array(m->name, "e3", m->e3, s, s);
-    printf("\n/* Stage r < %d: out = y + h * (row r of a) . k; r = %d: y_{n+1} = y + h * b . k.\n"
+    printf("\n/* Stage r < %d: out = y + h * (row r of a) . k; r = %d: y_{n+1} = y + h * b . k, with\n"
+           " * the last term added apart: (y + h * (the others)) + (h a_l) k_l.\n"
            " * Returns the number of terms (0: out is not written, the stage state is y). */\n",
            s, s);
     printf("DYN_EK_FN int dyn_ek_%s_row(const int r, const int n, const double h,\n"

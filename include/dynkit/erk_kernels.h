@@ -61,7 +61,8 @@ static const double dyn_ek_bs23_e[4] = {
     0.069444444444444448, -0.083333333333333329, -0.1111111111111111, 0.125,
 };
 
-/* Stage r < 4: out = y + h * (row r of a) . k; r = 4: y_{n+1} = y + h * b . k.
+/* Stage r < 4: out = y + h * (row r of a) . k; r = 4: y_{n+1} = y + h * b . k, with
+ * the last term added apart: (y + h * (the others)) + (h a_l) k_l.
  * Returns the number of terms (0: out is not written, the stage state is y). */
 DYN_EK_FN int dyn_ek_bs23_row(const int r, const int n, const double h,
                              const double *DYN_EK_RESTRICT y,
@@ -79,17 +80,26 @@ DYN_EK_FN int dyn_ek_bs23_row(const int r, const int n, const double h,
         }
         return 1;
     case 2:
-        DYN_EK_LOOP(q) DYN_EK_PUT(q, y[q] + h * (0.75 * k[1 * N + q]));
+        {
+            const double hc = h * 0.75;
+            DYN_EK_LOOP(q) DYN_EK_PUT(q, y[q] + hc * k[1 * N + q]);
+        }
         return 1;
     case 3:
-        DYN_EK_LOOP(q) DYN_EK_PUT(q, y[q] + h * (0.22222222222222221 * k[0 * N + q]
-                                            + 0.33333333333333331 * k[1 * N + q]
-                                            + 0.44444444444444442 * k[2 * N + q]));
+        {
+            const double hc = h * 0.44444444444444442;
+            DYN_EK_LOOP(q) DYN_EK_PUT(q, (y[q] + h * (0.22222222222222221 * k[0 * N + q]
+                                                    + 0.33333333333333331 * k[1 * N + q]))
+                                          + hc * k[2 * N + q]);
+        }
         return 3;
     case 4:
-        DYN_EK_LOOP(q) DYN_EK_PUT(q, y[q] + h * (0.22222222222222221 * k[0 * N + q]
-                                            + 0.33333333333333331 * k[1 * N + q]
-                                            + 0.44444444444444442 * k[2 * N + q]));
+        {
+            const double hc = h * 0.44444444444444442;
+            DYN_EK_LOOP(q) DYN_EK_PUT(q, (y[q] + h * (0.22222222222222221 * k[0 * N + q]
+                                                    + 0.33333333333333331 * k[1 * N + q]))
+                                          + hc * k[2 * N + q]);
+        }
         return 3;
     default:
         return 0;
@@ -151,7 +161,8 @@ static const double dyn_ek_dp45_e[7] = {
     -0.05086379716981132, 0.041904761904761903, -0.025000000000000001,
 };
 
-/* Stage r < 7: out = y + h * (row r of a) . k; r = 7: y_{n+1} = y + h * b . k.
+/* Stage r < 7: out = y + h * (row r of a) . k; r = 7: y_{n+1} = y + h * b . k, with
+ * the last term added apart: (y + h * (the others)) + (h a_l) k_l.
  * Returns the number of terms (0: out is not written, the stage state is y). */
 DYN_EK_FN int dyn_ek_dp45_row(const int r, const int n, const double h,
                              const double *DYN_EK_RESTRICT y,
@@ -163,43 +174,64 @@ DYN_EK_FN int dyn_ek_dp45_row(const int r, const int n, const double h,
     case 0:
         return 0;
     case 1:
-        DYN_EK_LOOP(q) DYN_EK_PUT(q, y[q] + h * (0.20000000000000001 * k[0 * N + q]));
+        {
+            const double hc = h * 0.20000000000000001;
+            DYN_EK_LOOP(q) DYN_EK_PUT(q, y[q] + hc * k[0 * N + q]);
+        }
         return 1;
     case 2:
-        DYN_EK_LOOP(q) DYN_EK_PUT(q, y[q] + h * (0.074999999999999997 * k[0 * N + q]
-                                            + 0.22500000000000001 * k[1 * N + q]));
+        {
+            const double hc = h * 0.22500000000000001;
+            DYN_EK_LOOP(q) DYN_EK_PUT(q, (y[q] + h * (0.074999999999999997 * k[0 * N + q]))
+                                          + hc * k[1 * N + q]);
+        }
         return 2;
     case 3:
-        DYN_EK_LOOP(q) DYN_EK_PUT(q, y[q] + h * (0.97777777777777775 * k[0 * N + q]
-                                            + -3.7333333333333334 * k[1 * N + q]
-                                            + 3.5555555555555554 * k[2 * N + q]));
+        {
+            const double hc = h * 3.5555555555555554;
+            DYN_EK_LOOP(q) DYN_EK_PUT(q, (y[q] + h * (0.97777777777777775 * k[0 * N + q]
+                                                    + -3.7333333333333334 * k[1 * N + q]))
+                                          + hc * k[2 * N + q]);
+        }
         return 3;
     case 4:
-        DYN_EK_LOOP(q) DYN_EK_PUT(q, y[q] + h * (2.9525986892242035 * k[0 * N + q]
-                                            + -11.595793324188385 * k[1 * N + q]
-                                            + 9.8228928516994358 * k[2 * N + q]
-                                            + -0.29080932784636487 * k[3 * N + q]));
+        {
+            const double hc = h * -0.29080932784636487;
+            DYN_EK_LOOP(q) DYN_EK_PUT(q, (y[q] + h * (2.9525986892242035 * k[0 * N + q]
+                                                    + -11.595793324188385 * k[1 * N + q]
+                                                    + 9.8228928516994358 * k[2 * N + q]))
+                                          + hc * k[3 * N + q]);
+        }
         return 4;
     case 5:
-        DYN_EK_LOOP(q) DYN_EK_PUT(q, y[q] + h * (2.8462752525252526 * k[0 * N + q]
-                                            + -10.757575757575758 * k[1 * N + q]
-                                            + 8.9064227177434727 * k[2 * N + q]
-                                            + 0.27840909090909088 * k[3 * N + q]
-                                            + -0.2735313036020583 * k[4 * N + q]));
+        {
+            const double hc = h * -0.2735313036020583;
+            DYN_EK_LOOP(q) DYN_EK_PUT(q, (y[q] + h * (2.8462752525252526 * k[0 * N + q]
+                                                    + -10.757575757575758 * k[1 * N + q]
+                                                    + 8.9064227177434727 * k[2 * N + q]
+                                                    + 0.27840909090909088 * k[3 * N + q]))
+                                          + hc * k[4 * N + q]);
+        }
         return 5;
     case 6:
-        DYN_EK_LOOP(q) DYN_EK_PUT(q, y[q] + h * (0.091145833333333329 * k[0 * N + q]
-                                            + 0.44923629829290207 * k[2 * N + q]
-                                            + 0.65104166666666663 * k[3 * N + q]
-                                            + -0.322376179245283 * k[4 * N + q]
-                                            + 0.13095238095238096 * k[5 * N + q]));
+        {
+            const double hc = h * 0.13095238095238096;
+            DYN_EK_LOOP(q) DYN_EK_PUT(q, (y[q] + h * (0.091145833333333329 * k[0 * N + q]
+                                                    + 0.44923629829290207 * k[2 * N + q]
+                                                    + 0.65104166666666663 * k[3 * N + q]
+                                                    + -0.322376179245283 * k[4 * N + q]))
+                                          + hc * k[5 * N + q]);
+        }
         return 5;
     case 7:
-        DYN_EK_LOOP(q) DYN_EK_PUT(q, y[q] + h * (0.091145833333333329 * k[0 * N + q]
-                                            + 0.44923629829290207 * k[2 * N + q]
-                                            + 0.65104166666666663 * k[3 * N + q]
-                                            + -0.322376179245283 * k[4 * N + q]
-                                            + 0.13095238095238096 * k[5 * N + q]));
+        {
+            const double hc = h * 0.13095238095238096;
+            DYN_EK_LOOP(q) DYN_EK_PUT(q, (y[q] + h * (0.091145833333333329 * k[0 * N + q]
+                                                    + 0.44923629829290207 * k[2 * N + q]
+                                                    + 0.65104166666666663 * k[3 * N + q]
+                                                    + -0.322376179245283 * k[4 * N + q]))
+                                          + hc * k[5 * N + q]);
+        }
         return 5;
     default:
         return 0;
@@ -293,7 +325,8 @@ static const double dyn_ek_dop853_e3[12] = {
     -0.42268232132379191, -0.15216094966251609, 0.20136540080403034, 0.022651792198360821,
 };
 
-/* Stage r < 12: out = y + h * (row r of a) . k; r = 12: y_{n+1} = y + h * b . k.
+/* Stage r < 12: out = y + h * (row r of a) . k; r = 12: y_{n+1} = y + h * b . k, with
+ * the last term added apart: (y + h * (the others)) + (h a_l) k_l.
  * Returns the number of terms (0: out is not written, the stage state is y). */
 DYN_EK_FN int dyn_ek_dop853_row(const int r, const int n, const double h,
                              const double *DYN_EK_RESTRICT y,
@@ -305,86 +338,122 @@ DYN_EK_FN int dyn_ek_dop853_row(const int r, const int n, const double h,
     case 0:
         return 0;
     case 1:
-        DYN_EK_LOOP(q) DYN_EK_PUT(q, y[q] + h * (0.05260015195876773 * k[0 * N + q]));
+        {
+            const double hc = h * 0.05260015195876773;
+            DYN_EK_LOOP(q) DYN_EK_PUT(q, y[q] + hc * k[0 * N + q]);
+        }
         return 1;
     case 2:
-        DYN_EK_LOOP(q) DYN_EK_PUT(q, y[q] + h * (0.0197250569845379 * k[0 * N + q]
-                                            + 0.059175170953613701 * k[1 * N + q]));
+        {
+            const double hc = h * 0.059175170953613701;
+            DYN_EK_LOOP(q) DYN_EK_PUT(q, (y[q] + h * (0.0197250569845379 * k[0 * N + q]))
+                                          + hc * k[1 * N + q]);
+        }
         return 2;
     case 3:
-        DYN_EK_LOOP(q) DYN_EK_PUT(q, y[q] + h * (0.029587585476806851 * k[0 * N + q]
-                                            + 0.088762756430420545 * k[2 * N + q]));
+        {
+            const double hc = h * 0.088762756430420545;
+            DYN_EK_LOOP(q) DYN_EK_PUT(q, (y[q] + h * (0.029587585476806851 * k[0 * N + q]))
+                                          + hc * k[2 * N + q]);
+        }
         return 2;
     case 4:
-        DYN_EK_LOOP(q) DYN_EK_PUT(q, y[q] + h * (0.24136513415926669 * k[0 * N + q]
-                                            + -0.88454947932828609 * k[2 * N + q]
-                                            + 0.92483400326179199 * k[3 * N + q]));
+        {
+            const double hc = h * 0.92483400326179199;
+            DYN_EK_LOOP(q) DYN_EK_PUT(q, (y[q] + h * (0.24136513415926669 * k[0 * N + q]
+                                                    + -0.88454947932828609 * k[2 * N + q]))
+                                          + hc * k[3 * N + q]);
+        }
         return 3;
     case 5:
-        DYN_EK_LOOP(q) DYN_EK_PUT(q, y[q] + h * (0.037037037037037035 * k[0 * N + q]
-                                            + 0.17082860872947386 * k[3 * N + q]
-                                            + 0.12546768756682242 * k[4 * N + q]));
+        {
+            const double hc = h * 0.12546768756682242;
+            DYN_EK_LOOP(q) DYN_EK_PUT(q, (y[q] + h * (0.037037037037037035 * k[0 * N + q]
+                                                    + 0.17082860872947386 * k[3 * N + q]))
+                                          + hc * k[4 * N + q]);
+        }
         return 3;
     case 6:
-        DYN_EK_LOOP(q) DYN_EK_PUT(q, y[q] + h * (0.037109375 * k[0 * N + q]
-                                            + 0.17025221101954405 * k[3 * N + q]
-                                            + 0.060216538980455959 * k[4 * N + q]
-                                            + -0.017578125 * k[5 * N + q]));
+        {
+            const double hc = h * -0.017578125;
+            DYN_EK_LOOP(q) DYN_EK_PUT(q, (y[q] + h * (0.037109375 * k[0 * N + q]
+                                                    + 0.17025221101954405 * k[3 * N + q]
+                                                    + 0.060216538980455959 * k[4 * N + q]))
+                                          + hc * k[5 * N + q]);
+        }
         return 4;
     case 7:
-        DYN_EK_LOOP(q) DYN_EK_PUT(q, y[q] + h * (0.037092000118504789 * k[0 * N + q]
-                                            + 0.17038392571223998 * k[3 * N + q]
-                                            + 0.10726203044637328 * k[4 * N + q]
-                                            + -0.015319437748624402 * k[5 * N + q]
-                                            + 0.0082737891638140233 * k[6 * N + q]));
+        {
+            const double hc = h * 0.0082737891638140233;
+            DYN_EK_LOOP(q) DYN_EK_PUT(q, (y[q] + h * (0.037092000118504789 * k[0 * N + q]
+                                                    + 0.17038392571223998 * k[3 * N + q]
+                                                    + 0.10726203044637328 * k[4 * N + q]
+                                                    + -0.015319437748624402 * k[5 * N + q]))
+                                          + hc * k[6 * N + q]);
+        }
         return 5;
     case 8:
-        DYN_EK_LOOP(q) DYN_EK_PUT(q, y[q] + h * (0.62411095871607569 * k[0 * N + q]
-                                            + -3.3608926294469414 * k[3 * N + q]
-                                            + -0.86821934684172597 * k[4 * N + q]
-                                            + 27.59209969944671 * k[5 * N + q]
-                                            + 20.154067550477894 * k[6 * N + q]
-                                            + -43.489884181069961 * k[7 * N + q]));
+        {
+            const double hc = h * -43.489884181069961;
+            DYN_EK_LOOP(q) DYN_EK_PUT(q, (y[q] + h * (0.62411095871607569 * k[0 * N + q]
+                                                    + -3.3608926294469414 * k[3 * N + q]
+                                                    + -0.86821934684172597 * k[4 * N + q]
+                                                    + 27.59209969944671 * k[5 * N + q]
+                                                    + 20.154067550477894 * k[6 * N + q]))
+                                          + hc * k[7 * N + q]);
+        }
         return 6;
     case 9:
-        DYN_EK_LOOP(q) DYN_EK_PUT(q, y[q] + h * (0.47766253643826434 * k[0 * N + q]
-                                            + -2.4881146199716677 * k[3 * N + q]
-                                            + -0.59029082683684297 * k[4 * N + q]
-                                            + 21.230051448181193 * k[5 * N + q]
-                                            + 15.279233632882423 * k[6 * N + q]
-                                            + -33.288210968984863 * k[7 * N + q]
-                                            + -0.020331201708508627 * k[8 * N + q]));
+        {
+            const double hc = h * -0.020331201708508627;
+            DYN_EK_LOOP(q) DYN_EK_PUT(q, (y[q] + h * (0.47766253643826434 * k[0 * N + q]
+                                                    + -2.4881146199716677 * k[3 * N + q]
+                                                    + -0.59029082683684297 * k[4 * N + q]
+                                                    + 21.230051448181193 * k[5 * N + q]
+                                                    + 15.279233632882423 * k[6 * N + q]
+                                                    + -33.288210968984863 * k[7 * N + q]))
+                                          + hc * k[8 * N + q]);
+        }
         return 7;
     case 10:
-        DYN_EK_LOOP(q) DYN_EK_PUT(q, y[q] + h * (-0.9371424300859873 * k[0 * N + q]
-                                            + 5.1863724288440638 * k[3 * N + q]
-                                            + 1.0914373489967295 * k[4 * N + q]
-                                            + -8.1497870107469268 * k[5 * N + q]
-                                            + -18.520065659996959 * k[6 * N + q]
-                                            + 22.739487099350505 * k[7 * N + q]
-                                            + 2.4936055526796523 * k[8 * N + q]
-                                            + -3.0467644718982196 * k[9 * N + q]));
+        {
+            const double hc = h * -3.0467644718982196;
+            DYN_EK_LOOP(q) DYN_EK_PUT(q, (y[q] + h * (-0.9371424300859873 * k[0 * N + q]
+                                                    + 5.1863724288440638 * k[3 * N + q]
+                                                    + 1.0914373489967295 * k[4 * N + q]
+                                                    + -8.1497870107469268 * k[5 * N + q]
+                                                    + -18.520065659996959 * k[6 * N + q]
+                                                    + 22.739487099350505 * k[7 * N + q]
+                                                    + 2.4936055526796523 * k[8 * N + q]))
+                                          + hc * k[9 * N + q]);
+        }
         return 8;
     case 11:
-        DYN_EK_LOOP(q) DYN_EK_PUT(q, y[q] + h * (2.273310147516538 * k[0 * N + q]
-                                            + -10.534495466737249 * k[3 * N + q]
-                                            + -2.0008720582248625 * k[4 * N + q]
-                                            + -17.958931863118799 * k[5 * N + q]
-                                            + 27.94888452941996 * k[6 * N + q]
-                                            + -2.8589982771350235 * k[7 * N + q]
-                                            + -8.8728569335306293 * k[8 * N + q]
-                                            + 12.360567175794303 * k[9 * N + q]
-                                            + 0.64339274601576357 * k[10 * N + q]));
+        {
+            const double hc = h * 0.64339274601576357;
+            DYN_EK_LOOP(q) DYN_EK_PUT(q, (y[q] + h * (2.273310147516538 * k[0 * N + q]
+                                                    + -10.534495466737249 * k[3 * N + q]
+                                                    + -2.0008720582248625 * k[4 * N + q]
+                                                    + -17.958931863118799 * k[5 * N + q]
+                                                    + 27.94888452941996 * k[6 * N + q]
+                                                    + -2.8589982771350235 * k[7 * N + q]
+                                                    + -8.8728569335306293 * k[8 * N + q]
+                                                    + 12.360567175794303 * k[9 * N + q]))
+                                          + hc * k[10 * N + q]);
+        }
         return 9;
     case 12:
-        DYN_EK_LOOP(q) DYN_EK_PUT(q, y[q] + h * (0.054293734116568765 * k[0 * N + q]
-                                            + 4.4503128927524092 * k[5 * N + q]
-                                            + 1.8915178993145003 * k[6 * N + q]
-                                            + -5.8012039600105849 * k[7 * N + q]
-                                            + 0.3111643669578199 * k[8 * N + q]
-                                            + -0.15216094966251609 * k[9 * N + q]
-                                            + 0.20136540080403034 * k[10 * N + q]
-                                            + 0.044710615727772587 * k[11 * N + q]));
+        {
+            const double hc = h * 0.044710615727772587;
+            DYN_EK_LOOP(q) DYN_EK_PUT(q, (y[q] + h * (0.054293734116568765 * k[0 * N + q]
+                                                    + 4.4503128927524092 * k[5 * N + q]
+                                                    + 1.8915178993145003 * k[6 * N + q]
+                                                    + -5.8012039600105849 * k[7 * N + q]
+                                                    + 0.3111643669578199 * k[8 * N + q]
+                                                    + -0.15216094966251609 * k[9 * N + q]
+                                                    + 0.20136540080403034 * k[10 * N + q]))
+                                          + hc * k[11 * N + q]);
+        }
         return 8;
     default:
         return 0;

@@ -7,8 +7,8 @@
  * into the stage loop. The step of each pair is the generated kernel of dynkit/erk_kernels.h
  * (its coefficients constants, its zero terms gone), compiled once per pair. It follows
  * dyn_solve step for step (HNW I sec. II.4-II.6, IV.2, as dyn_solve does; see
- * src/ode/solve.c): the initial step of HINIT, the stage combinations y + h * (sum of the
- * non-zero a_ij k_j, left to right; a single power-of-two coefficient folded into h), Hairer's
+ * src/ode/solve.c): the initial step of HINIT, the stage combinations (y + h * (sum of the
+ * non-zero a_ij k_j but the last, left to right)) + (h a_il) k_l (src/ode/rk_stages.h), Hairer's
  * error norm (DOP853's for dop853), the PI controller of DOPRI5 (h_new / h = safety err_old^beta /
  * err^expo, clamped; no growth right after a rejection), the last step shortened to land on t1
  * when t + 1.01 h passes it, DOPRI5's stiffness test every stiff_check accepted steps, output at

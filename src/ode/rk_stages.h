@@ -9,6 +9,14 @@
  * (1, 1/2, ...) is computed as y + (h*a)*k: equal to y + h*(a*k) bit for bit, since scaling
  * by a power of two is exact, with one multiplication less on the critical path.
  *
+ * Embedded pairs (DYN_KIND_EMBEDDED_RK: bs23, dp45, dop853, whose steps are the adaptive
+ * drivers') keep the newest term apart: Y_i = (y_n + h * sum_{j<l} a_ij k_j) + (h a_il) k_l,
+ * l the last non-zero coefficient of the row (y_n + (h a_il) k_l for a single one). Every
+ * other term can be summed while k_l is still being computed, so the chain from k_l to the
+ * next stage is one multiplication and one addition instead of four (HNW's form): dop853 20%
+ * and dp45 8% less time per step on van der Pol with the right-hand side inlined. The
+ * generated kernels of dynkit/erk_kernels.h do the same, term for term.
+ *
  * Speed. Before a solve the table is turned into a plan (dyn_rk_plan): for each row of a
  * and for b, its non-zero coefficients and pointers to the k_j they multiply. A stage is
  * then one pass over the states with the row's few terms (1 to 5 terms have their own
@@ -51,6 +59,7 @@
  * kp[t] = k_j = k + j * n points into the workspace of the solve. */
 typedef struct dyn_rk_plan {
     int stages;
+    int last_apart; /* an embedded pair: each row's last term added apart (see the top) */
     int first[DYN_RK_PLAN_MAX_STAGES + 2];
     double coef[DYN_RK_PLAN_MAX_TERMS];
     unsigned char pow2[DYN_RK_PLAN_MAX_TERMS]; /* coef is +-2^e, |e| <= 64 (dyn_inl_is_pow2) */
@@ -67,6 +76,7 @@ static inline int dyn_rk_plan_init(dyn_rk_plan *p, const dyn_tableau *m, const d
         return 0;
     int t = 0;
     p->stages = s;
+    p->last_apart = m->kind == DYN_KIND_EMBEDDED_RK;
     for (int r = 0; r <= s; r++) {
         const double *row = r < s ? m->a + (size_t)r * (size_t)s : m->b;
         const int len = r < s ? r : s; /* a is strictly lower triangular */
@@ -205,10 +215,38 @@ DYN_RK_INLINE double dyn_rk_combine_kind(int n, double h, const double *restrict
     return z;
 }
 
+/* out = base + (h c) k, after out = partial sums (base == out) or from y (base == y). */
+DYN_RK_INLINE double dyn_rk_add_apart(int n, double hc, const double *base, const double *kl,
+                                      double *out)
+{
+    double z = 0.0;
+    for (int q = 0; q < n; q++) {
+        double v = base[q] + hc * kl[q];
+        if (n < DYN_RK_VECTOR_MIN_N)
+            DYN_RK_SCALAR(v);
+        out[q] = v;
+        z += v - v;
+    }
+    return z;
+}
+
 DYN_RK_INLINE double dyn_rk_combine(int n, double h, const double *restrict base,
                                     const dyn_rk_plan *p, int row, double *restrict out)
 {
-    const int t0 = p->first[row], nt = p->first[row + 1] - t0;
+    const int t0 = p->first[row];
+    int nt = p->first[row + 1] - t0;
+    if (p->last_apart && nt > 0) {
+        const double hc = h * p->coef[t0 + nt - 1];
+        const double *kl = p->kp[t0 + nt - 1];
+        if (nt == 1)
+            return dyn_rk_add_apart(n, hc, base, kl, out);
+        nt--;
+        if (n < DYN_RK_VECTOR_MIN_N)
+            dyn_rk_combine_kind(n, h, base, p->kp + t0, p->coef + t0, p->pow2 + t0, nt, out, 0);
+        else
+            dyn_rk_combine_kind(n, h, base, p->kp + t0, p->coef + t0, p->pow2 + t0, nt, out, 1);
+        return dyn_rk_add_apart(n, hc, out, kl, out);
+    }
     if (n < DYN_RK_VECTOR_MIN_N)
         return dyn_rk_combine_kind(n, h, base, p->kp + t0, p->coef + t0, p->pow2 + t0, nt, out,
                                    0);
@@ -297,6 +335,23 @@ DYN_RK_INLINE int dyn_rk_stages(const dyn_tableau *m, const dyn_rk_plan *p, dyn_
  * dyn_fixed_solve_inline (dynkit/ode_inline.h), whose row summaries are worked out here
  * for every row of every step. Same arithmetic as dyn_rk_stages, term for term, and the
  * same contract; used for tables of more than DYN_RK_PLAN_MAX_STAGES stages. */
+/* One row of the scan: dyn_inl_combine, or for an embedded pair (apart) the same with the
+ * row's last term added apart as in dyn_rk_combine. Returns the number of terms (0: out is
+ * not written). */
+static inline int dyn_rk_scan_combine(int apart, int n, double h, const double *restrict y,
+                                      const double *k, const double *row, int len,
+                                      double *restrict out)
+{
+    int l = len - 1;
+    while (apart && l >= 0 && row[l] == 0.0)
+        l--;
+    if (!apart || l < 0)
+        return dyn_inl_combine(n, h, y, k, row, len, dyn_inl_row_of(row, len), out);
+    const int nt = dyn_inl_combine(n, h, y, k, row, l, dyn_inl_row_of(row, l), out);
+    dyn_rk_add_apart(n, h * row[l], nt > 0 ? out : y, k + (size_t)l * (size_t)n, out);
+    return nt + 1;
+}
+
 static inline int dyn_rk_stages_scan_from(const dyn_tableau *m, dyn_rhs_fn f, void *par, int n,
                                           double t, double h, double tend,
                                           const double *restrict y, double *restrict ynew,
@@ -304,11 +359,11 @@ static inline int dyn_rk_stages_scan_from(const dyn_tableau *m, dyn_rhs_fn f, vo
                                           int *fail_stage, double *finite, dyn_trace_fn trace,
                                           void *trace_ctx, long step_index, int first)
 {
-    const int s = m->stages;
+    const int s = m->stages, apart = m->kind == DYN_KIND_EMBEDDED_RK;
     for (int i = 0; i < s; i++) {
         const double *row = m->a + (size_t)i * (size_t)s; /* strictly lower: i entries */
         const double *Yi = y;
-        if (dyn_inl_combine(n, h, y, k, row, i, dyn_inl_row_of(row, i), Y) > 0)
+        if (dyn_rk_scan_combine(apart, n, h, y, k, row, i, Y) > 0)
             Yi = Y;
         double *ki = k + (size_t)i * (size_t)n;
         const double ti = dyn_rk_stage_time(t, m->c[i], h, tend);
@@ -322,7 +377,7 @@ static inline int dyn_rk_stages_scan_from(const dyn_tableau *m, dyn_rhs_fn f, vo
         if (trace)
             dyn_rk_trace(trace, trace_ctx, m, step_index, n, t, h, ti, i, y, Yi, ki);
     }
-    if (dyn_inl_combine(n, h, y, k, m->b, s, dyn_inl_row_of(m->b, s), ynew) == 0)
+    if (dyn_rk_scan_combine(apart, n, h, y, k, m->b, s, ynew) == 0)
         memcpy(ynew, y, (size_t)n * sizeof *y);
     double z = 0.0;
     for (int q = 0; q < n; q++)

@@ -1016,10 +1016,11 @@ static void write_csv(const options *o, const char *file, const bench_solver *s,
     fclose(f);
 }
 
-/* A target row of time at equal error: the fastest dynkit row of the given kind (flags 0:
- * dyn_solve; BENCH_INLINE: dyn_solve_inline) against the fastest non-diagnostic row of one
- * peer (NULL: of every peer, dyn_solve_inline not counted as one), at each level; met when
- * the dynkit row is faster (strict) or at most the peer's time. */
+/* A target row of time at equal error: the fastest dynkit row of the given kind (0:
+ * dyn_solve; BENCH_INLINE: dyn_solve_inline; -1: either) against the fastest
+ * non-diagnostic row of one peer (NULL: of every peer, dyn_solve_inline not counted as
+ * one), at each level; met when the dynkit row is faster (strict) or at most the peer's
+ * time. */
 static void time_target(const bench_sys *sys, const bench_solver *s, const curve *c, int count,
                         const double *levels, int nl, int kind, const char *peer, int strict,
                         const char *what)
@@ -1034,7 +1035,9 @@ static void time_target(const bench_sys *sys, const bench_solver *s, const curve
             const double v = cost_at(&c[i], c[i].us, levels[l]);
             if (!isfinite(v) || (s[i].flags & BENCH_DIAG))
                 continue;
-            const int dk = kind ? (s[i].flags & kind) != 0 : s[i].is_dynkit;
+            const int dk = kind < 0   ? s[i].is_dynkit || (s[i].flags & BENCH_INLINE)
+                           : kind > 0 ? (s[i].flags & kind) != 0
+                                      : s[i].is_dynkit;
             if (dk)
                 best_dk = fmin(best_dk, v);
             else if ((peer ? strcmp(s[i].peer, peer) == 0 : !(s[i].flags & BENCH_INLINE)) &&
@@ -1204,9 +1207,10 @@ static void adaptive_section(const options *o, const bench_sys *sys, bench_task 
                            "%d/%d; worst %.2f (%s)", met, cmp, worst, worst_at);
             }
         }
-        /* time: the fastest dynkit pair against the fastest peer, at each level */
-        time_target(sys, s, c, count, levels, nl, 0, NULL, 1,
-                    "fastest dynkit pair vs fastest peer (time)");
+        /* time: dynkit's fastest pair, by either path, against the fastest peer of any
+         * calling convention, at each level */
+        time_target(sys, s, c, count, levels, nl, -1, NULL, 1,
+                    "fastest dynkit pair (dyn_solve or dyn_solve_inline) vs fastest peer (time)");
         /* issue 12 item 1: the same calling convention on each side */
         time_target(sys, s, c, count, levels, nl, 0, "GSL", 0,
                     "fastest dyn_solve pair (rhs by pointer) vs fastest GSL pair (time)");

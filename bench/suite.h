@@ -59,7 +59,8 @@ enum {
     BENCH_DIAG = 8,     /* a diagnostic variant (e.g. a peer with the right-hand side called
                          * through a pointer): shown, never a target's comparison */
     BENCH_INLINE = 16   /* dynkit's header-only adaptive driver (dyn_solve_inline): compared
-                         * only in its own target row, against Boost */
+                         * in its own target row, against Boost, and as one of dynkit's
+                         * pairs in the row of the fastest pair against every peer */
 };
 
 typedef struct bench_solver {

@@ -331,10 +331,6 @@ DYN_RK_INLINE int dyn_rk_stages(const dyn_tableau *m, const dyn_rk_plan *p, dyn_
                               trace, trace_ctx, step_index, 0);
 }
 
-/* The same step for any stage count without a plan: the combinations of the public
- * dyn_fixed_solve_inline (dynkit/ode_inline.h), whose row summaries are worked out here
- * for every row of every step. Same arithmetic as dyn_rk_stages, term for term, and the
- * same contract; used for tables of more than DYN_RK_PLAN_MAX_STAGES stages. */
 /* One row of the scan: dyn_inl_combine, or for an embedded pair (apart) the same with the
  * row's last term added apart as in dyn_rk_combine. Returns the number of terms (0: out is
  * not written). */
@@ -352,6 +348,10 @@ static inline int dyn_rk_scan_combine(int apart, int n, double h, const double *
     return nt + 1;
 }
 
+/* The same step for any stage count without a plan: the combinations of the public
+ * dyn_fixed_solve_inline (dynkit/ode_inline.h), whose row summaries are worked out here
+ * for every row of every step. Same arithmetic as dyn_rk_stages, term for term, and the
+ * same contract; used for tables of more than DYN_RK_PLAN_MAX_STAGES stages. */
 static inline int dyn_rk_stages_scan_from(const dyn_tableau *m, dyn_rhs_fn f, void *par, int n,
                                           double t, double h, double tend,
                                           const double *restrict y, double *restrict ynew,

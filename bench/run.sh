@@ -5,7 +5,8 @@
 # scripts/install-deps.sh), runs bench_suite (fixed steps, adaptive work-precision, stiff,
 # `dynkit report`, then the table of targets), its fixed-step section again from a tree
 # built at -O2 (build-bench-O2), bench_jit (models compiled at run time; not with --only),
-# bench_sweep, bench_band (large stiff systems) and bench_output (numbers as text, every
+# bench_sweep, bench_band (large stiff systems), bench_step (one step of the adaptive pairs)
+# and bench_output (numbers as text, every
 # sample written; none of them with --only) and, when hyperfine is installed, times
 # `dynkit report` with it too. Arguments
 # go to bench_suite, e.g.
@@ -20,7 +21,7 @@ build="${DYNKIT_BENCH_BUILD:-build-bench}"
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DDYNKIT_BUILD_BENCH=ON \
   -DDYNKIT_BUILD_TESTS=OFF >/dev/null
 cmake --build "$build" -j"$(nproc)" --target bench_suite bench_fixed bench_sweep bench_band \
-  bench_output dynkit_cli >/dev/null
+  bench_output bench_step dynkit_cli >/dev/null
 cmake --build "$build" -j"$(nproc)" --target bench_jit >/dev/null 2>&1 || true # needs src/jit
 "$build/bench/bench_suite" "$@"
 
@@ -76,6 +77,11 @@ fi
 if [ "$only" -eq 0 ]; then
   echo
   if [ "$quick" -eq 1 ]; then "$build/bench/bench_output" --quick; else "$build/bench/bench_output"; fi
+fi
+# one attempted step of the adaptive pairs (bench_step): with every run not limited by --only
+if [ "$only" -eq 0 ]; then
+  echo
+  if [ "$quick" -eq 1 ]; then "$build/bench/bench_step" --quick; else "$build/bench/bench_step"; fi
 fi
 if [ "$quick" -eq 0 ] && [ "$report" -eq 1 ]; then
   echo

@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* The arithmetic of a Runge–Kutta stage (src/ode/rk_stages.h), as facts about single steps:
  * - fixed-step methods form Y_i = y + h * (sum_j a_ij k_j) left to right (HNW I eq. II.1.8):
- *   RK4's new state is y + h * (b1 k1 + b2 k2 + b3 k3 + b4 k4) bit for bit;
+ *   RK4's new state is y + h * (b1 k1 + b2 k2 + b3 k3 + b4 k4) bit for bit, Heun's the
+ *   homework's y + 0.5 Ts (k1 + k2) (a row of one power of two is summed first);
  * - embedded pairs (bs23, dp45, dop853) add each row's last term apart,
  *   (y + h * (sum_{j<l} a_ij k_j)) + (h a_il) k_l: checked term by term on every row of dp45
  *   and dop853, recomputed here from the tables;
@@ -67,6 +68,22 @@ static void test_rk4_is_the_textbook_sum(void **state)
     }
 }
 
+static void test_heun_is_the_homeworks_formula(void **state)
+{
+    (void)state;
+    const dyn_tableau *m = dyn_method_find("heun");
+    assert_non_null(m);
+    double k[2 * N], ynew[N];
+    one_step(m, 0, k, ynew);
+    for (int q = 0; q < N; q++) {
+        /* Integrate_ModifiedEuler: y + 0.5*Ts*(dytilde + dy), and the table's sum */
+        const double homework = y0_[q] + 0.5 * h_ * (k[0 * N + q] + k[1 * N + q]);
+        const double table = y0_[q] + h_ * (m->b[0] * k[0 * N + q] + m->b[1] * k[1 * N + q]);
+        assert_memory_equal(&ynew[q], &homework, sizeof homework);
+        assert_memory_equal(&ynew[q], &table, sizeof table);
+    }
+}
+
 /* (y + h * (sum of the row's non-zero terms but the last)) + (h a_l) k_l, from the table */
 static double apart(const double *row, int len, const double *k, int q)
 {
@@ -119,7 +136,7 @@ static void test_embedded_pairs_add_the_newest_term_apart(void **state)
 static void test_scan_equals_plan(void **state)
 {
     (void)state;
-    const char *names[] = {"rk4", "bs23", "dp45", "dop853"};
+    const char *names[] = {"euler", "heun", "rk4", "bs23", "dp45", "dop853"};
     for (size_t i = 0; i < sizeof names / sizeof *names; i++) {
         const dyn_tableau *m = dyn_method_find(names[i]);
         assert_non_null(m);
@@ -137,6 +154,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_rk4_is_the_textbook_sum),
+        cmocka_unit_test(test_heun_is_the_homeworks_formula),
         cmocka_unit_test(test_embedded_pairs_add_the_newest_term_apart),
         cmocka_unit_test(test_scan_equals_plan),
     };

@@ -15,7 +15,9 @@
  * Contract: exactly dyn_fixed_solve's (arguments, workspace size dyn_fixed_work_size,
  * results bit for bit, counters, failure reports), because it runs the same arithmetic:
  * Y_i = y + h * (sum of the non-zero a_ij k_j, left to right), a single power-of-two
- * coefficient folded into h ((h*a)*k == h*(a*k) exactly), stage times clamped to t1.
+ * coefficient folded into h ((h*a)*k == h*(a*k) exactly) and so is one shared by all the
+ * terms of a row (Heun's (h/2)*(k1 + k2) == h*(k1/2 + k2/2) exactly), stage times clamped
+ * to t1.
  * It takes the inline path for options without output, trace or progress callbacks (end
  * policy and no_finite_check are honoured) and explicit tables of 1 to 4 stages that are
  * either compile-time constants or, known only at run time (dyn_method_find), of the
@@ -97,16 +99,17 @@ DYN_INL int dyn_inl_is_pow2(double a)
 }
 
 /* What the combination of one row of a (or of b) needs besides the row: its number of
- * non-zero coefficients nt, the first one's column j0, and fold = the only term has a
+ * non-zero coefficients nt, the first one's column j0, fold = the only term has a
+ * power-of-two coefficient, and same = two or more terms from j0 on, all with the same
  * power-of-two coefficient. Worked out once per solve; only scalars, so that compilers
  * fold them away when the table is a constant. */
 typedef struct dyn_inl_row {
-    int nt, j0, fold;
+    int nt, j0, fold, same;
 } dyn_inl_row;
 
 DYN_INL dyn_inl_row dyn_inl_row_of(const double *row, int len)
 {
-    dyn_inl_row r = {0, 0, 0};
+    dyn_inl_row r = {0, 0, 0, 0};
     DYN_INL_UNROLL
     for (int j = len - 1; j >= 0; j--)
         if (row[j] != 0.0) {
@@ -114,6 +117,11 @@ DYN_INL dyn_inl_row dyn_inl_row_of(const double *row, int len)
             r.j0 = j;
         }
     r.fold = r.nt == 1 && dyn_inl_is_pow2(row[r.j0]);
+    r.same = r.nt >= 2 && r.nt == len - r.j0 && dyn_inl_is_pow2(row[r.j0]);
+    DYN_INL_UNROLL
+    for (int j = r.j0 + 1; j < len; j++)
+        if (row[j] != row[r.j0])
+            r.same = 0;
     return r;
 }
 
@@ -121,7 +129,8 @@ DYN_INL dyn_inl_row dyn_inl_row_of(const double *row, int len)
 DYN_INL int dyn_inl_rows_equal(const dyn_inl_row *a, const dyn_inl_row *b, int count)
 {
     for (int i = 0; i < count; i++)
-        if (a[i].nt != b[i].nt || a[i].j0 != b[i].j0 || a[i].fold != b[i].fold)
+        if (a[i].nt != b[i].nt || a[i].j0 != b[i].j0 || a[i].fold != b[i].fold ||
+            a[i].same != b[i].same)
             return 0;
     return 1;
 }
@@ -145,6 +154,23 @@ DYN_INL int dyn_inl_combine(int n, double h, const double *DYN_RESTRICT y,
             out[q] = v;
         }
         return 1;
+    }
+    if (r.same) {
+        /* every coefficient from j0 on is the same power of two c: y + (h c)(k_j0 + ...),
+         * equal to y + h (c k_j0 + ...) bit for bit (scaling by c is exact), with one
+         * multiplication less after the last stage (Heun: the homework's y + Ts/2 (k1 + k2)) */
+        const double hc = h * row[r.j0];
+        DYN_INL_UNROLL
+        for (int q = 0; q < n; q++) {
+            double acc = k0[q];
+            DYN_INL_UNROLL
+            for (int j = r.j0 + 1; j < len; j++)
+                acc += k[(size_t)j * sn + (size_t)q];
+            double v = y[q] + hc * acc;
+            DYN_INL_SCALAR(v);
+            out[q] = v;
+        }
+        return r.nt;
     }
     if (r.nt == len - r.j0) {
         /* every coefficient from j0 on is non-zero: no tests (the same terms, in order) */
@@ -338,14 +364,15 @@ DYN_INL int dyn_fixed_solve_inline(const dyn_tableau *m, const dyn_system *sys, 
     for (int i = 0; i < S; i++)
         rows[i] = dyn_inl_row_of(m->a + (size_t)i * (size_t)S, i);
     rows[S] = dyn_inl_row_of(m->b, S);
-    /* The common tables' row summaries {nt, j0, fold} (Euler; Heun; the midpoint rule; the
+    /* The common tables' row summaries {nt, j0, fold, same} (Euler; Heun; the midpoint rule; the
      * classical RK4), recognised here once per solve: with these constants the stage loops
      * are fixed at compile time even for a table known only at run time (dyn_method_find).
      * Any table of the same shape takes the same loop; the coefficients are still read. */
-    static const dyn_inl_row euler[2] = {{0, 0, 0}, {1, 0, 1}};
-    static const dyn_inl_row heun[3] = {{0, 0, 0}, {1, 0, 1}, {2, 0, 0}};
-    static const dyn_inl_row midpoint[3] = {{0, 0, 0}, {1, 0, 1}, {1, 1, 1}};
-    static const dyn_inl_row rk4[5] = {{0, 0, 0}, {1, 0, 1}, {1, 1, 1}, {1, 2, 1}, {4, 0, 0}};
+    static const dyn_inl_row euler[2] = {{0, 0, 0, 0}, {1, 0, 1, 0}};
+    static const dyn_inl_row heun[3] = {{0, 0, 0, 0}, {1, 0, 1, 0}, {2, 0, 0, 1}};
+    static const dyn_inl_row midpoint[3] = {{0, 0, 0, 0}, {1, 0, 1, 0}, {1, 1, 1, 0}};
+    static const dyn_inl_row rk4[5] = {{0, 0, 0, 0}, {1, 0, 1, 0}, {1, 1, 1, 0}, {1, 2, 1, 0},
+                                       {4, 0, 0, 0}};
 #define DYN_INL_SAME(known, count) (S + 1 == (count) && dyn_inl_rows_equal(rows, known, count))
     if (DYN_INL_SAME(euler, 2))
         return dyn_inl_solve(1, m, euler, f, par, n, &g, y, work, check, res);

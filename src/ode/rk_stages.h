@@ -7,7 +7,9 @@
  * sums are exactly the textbook formulas: Euler is y + h*k1 and Heun y + h*(k1 + k2)/2 bit
  * for bit, as in the homework's MATLAB code. A row whose only coefficient is a power of two
  * (1, 1/2, ...) is computed as y + (h*a)*k: equal to y + h*(a*k) bit for bit, since scaling
- * by a power of two is exact, with one multiplication less on the critical path.
+ * by a power of two is exact, with one multiplication less on the critical path; so is a
+ * row whose coefficients are all the same power of two c: y + (h*c)*(k_a + k_b + ...), equal
+ * to y + h*(c*k_a + c*k_b + ...) bit for bit (Heun's b: the homework's y + Ts/2*(k1 + k2)).
  *
  * Embedded pairs (DYN_KIND_EMBEDDED_RK: bs23, dp45, dop853, whose steps are the adaptive
  * drivers') keep the newest term apart: Y_i = (y_n + h * sum_{j<l} a_ij k_j) + (h a_il) k_l,
@@ -61,6 +63,7 @@ typedef struct dyn_rk_plan {
     int stages;
     int last_apart; /* an embedded pair: each row's last term added apart (see the top) */
     int first[DYN_RK_PLAN_MAX_STAGES + 2];
+    unsigned char same[DYN_RK_PLAN_MAX_STAGES + 1]; /* row r: 2+ terms, one power of two */
     double coef[DYN_RK_PLAN_MAX_TERMS];
     unsigned char pow2[DYN_RK_PLAN_MAX_TERMS]; /* coef is +-2^e, |e| <= 64 (dyn_inl_is_pow2) */
     const double *kp[DYN_RK_PLAN_MAX_TERMS];
@@ -89,6 +92,9 @@ static inline int dyn_rk_plan_init(dyn_rk_plan *p, const dyn_tableau *m, const d
                 t++;
             }
         }
+        /* the rule of dyn_inl_row_of (dynkit/ode_inline.h): contiguous, equal, 2^e */
+        const dyn_inl_row ri = dyn_inl_row_of(row, len);
+        p->same[r] = (unsigned char)ri.same;
     }
     p->first[s + 1] = t;
     return 1;
@@ -246,6 +252,22 @@ DYN_RK_INLINE double dyn_rk_combine(int n, double h, const double *restrict base
         else
             dyn_rk_combine_kind(n, h, base, p->kp + t0, p->coef + t0, p->pow2 + t0, nt, out, 1);
         return dyn_rk_add_apart(n, hc, out, kl, out);
+    }
+    if (p->same[row]) {
+        /* y + (h c) (k_a + k_b + ...), the sum left to right (see the top) */
+        const double hc = h * p->coef[t0];
+        double z = 0.0;
+        for (int q = 0; q < n; q++) {
+            double acc = p->kp[t0][q];
+            for (int t = 1; t < nt; t++)
+                acc += p->kp[t0 + t][q];
+            double v = base[q] + hc * acc;
+            if (n < DYN_RK_VECTOR_MIN_N)
+                DYN_RK_SCALAR(v);
+            out[q] = v;
+            z += v - v;
+        }
+        return z;
     }
     if (n < DYN_RK_VECTOR_MIN_N)
         return dyn_rk_combine_kind(n, h, base, p->kp + t0, p->coef + t0, p->pow2 + t0, nt, out,

@@ -370,6 +370,8 @@ DYN_INL int dyn_fixed_solve_inline(const dyn_tableau *m, const dyn_system *sys, 
      * Any table of the same shape takes the same loop; the coefficients are still read. */
     static const dyn_inl_row euler[2] = {{0, 0, 0, 0}, {1, 0, 1, 0}};
     static const dyn_inl_row heun[3] = {{0, 0, 0, 0}, {1, 0, 1, 0}, {2, 0, 0, 1}};
+    /* Heun's shape with unequal weights (b = (1/4, 3/4) after a21 = 1, say) */
+    static const dyn_inl_row heun_shape[3] = {{0, 0, 0, 0}, {1, 0, 1, 0}, {2, 0, 0, 0}};
     static const dyn_inl_row midpoint[3] = {{0, 0, 0, 0}, {1, 0, 1, 0}, {1, 1, 1, 0}};
     static const dyn_inl_row rk4[5] = {{0, 0, 0, 0}, {1, 0, 1, 0}, {1, 1, 1, 0}, {1, 2, 1, 0},
                                        {4, 0, 0, 0}};
@@ -378,6 +380,8 @@ DYN_INL int dyn_fixed_solve_inline(const dyn_tableau *m, const dyn_system *sys, 
         return dyn_inl_solve(1, m, euler, f, par, n, &g, y, work, check, res);
     if (DYN_INL_SAME(heun, 3))
         return dyn_inl_solve(2, m, heun, f, par, n, &g, y, work, check, res);
+    if (DYN_INL_SAME(heun_shape, 3))
+        return dyn_inl_solve(2, m, heun_shape, f, par, n, &g, y, work, check, res);
     if (DYN_INL_SAME(midpoint, 3))
         return dyn_inl_solve(2, m, midpoint, f, par, n, &g, y, work, check, res);
     if (DYN_INL_SAME(rk4, 5))

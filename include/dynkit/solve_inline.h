@@ -393,11 +393,11 @@ DYN_SINL_COLD void dyn_sinl_fail(dyn_result *res, int status, const char *fmt, .
 
 /* The rejected step's new size, and the end of the solve when it is too small (the general
  * driver's test and messages). Returns 1 when the solve ends. */
-DYN_SINL_COLD int dyn_sinl_reject(const dyn_sinl_ctl *ctl, int n, double t, double t0,
+DYN_SINL_COLD int dyn_sinl_reject(dyn_sinl_ctl ctl, int n, double t, double t0,
                                   double t_end, double tnext, double hn, double err,
                                   const double *ynew, double *h, dyn_result *res)
 {
-    *h = dyn_sinl_ctl_reject(ctl, hn, err);
+    *h = dyn_sinl_ctl_reject(&ctl, hn, err);
     const double hmin =
         16.0 * DBL_EPSILON * fmax(fabs(t), fmax(DBL_EPSILON * (t_end - t0), DBL_MIN));
     if (*h >= hmin && t + *h != t)
@@ -598,8 +598,12 @@ DYN_SINL int dyn_sinl_solve(const int P, const dyn_tableau *m, dyn_rhs_fn f, voi
                 if (!(err <= 1.0)) {
                     res->stats.rejected++;
                     rejected_before = 1;
-                    if (dyn_sinl_reject(&ctl, n, t, t0, t_end, tnext, hn, err, ynew, &h, res))
+                    /* the controller and h by value and through a temporary: their
+                     * addresses taken, gcc keeps them in memory all along the loop */
+                    double h_try;
+                    if (dyn_sinl_reject(ctl, n, t, t0, t_end, tnext, hn, err, ynew, &h_try, res))
                         goto finish;
+                    h = h_try;
                     continue;
                 }
                 res->stats.accepted++;

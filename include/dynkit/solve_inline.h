@@ -598,8 +598,8 @@ DYN_SINL int dyn_sinl_solve(const int P, const dyn_tableau *m, dyn_rhs_fn f, voi
                 if (!(err <= 1.0)) {
                     res->stats.rejected++;
                     rejected_before = 1;
-                    /* the controller and h by value and through a temporary: their
-                     * addresses taken, gcc keeps them in memory all along the loop */
+                    /* the controller by value and h through a temporary: with their
+                     * addresses taken, gcc kept them in memory all along the loop */
                     double h_try;
                     if (dyn_sinl_reject(ctl, n, t, t0, t_end, tnext, hn, err, ynew, &h_try, res))
                         goto finish;

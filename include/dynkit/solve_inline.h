@@ -76,7 +76,8 @@ extern "C" {
  * logarithms: 2^(log2 safety + beta log2 err_old - expo log2 err), so that the
  * step-to-step dependency chain holds one log2, one multiply-add and one exp2 instead of a
  * pow and three divisions (the part from err_old is summed off that chain). The step sizes
- * differ from the quotient form in the last bits only. */
+ * differ from the quotient form in the last bits only. The explicit pairs give the square
+ * of the error norm (no square root on that chain either): log2 err = log2(err^2) / 2. */
 typedef struct dyn_sinl_ctl {
     double safety;  /* 0.9 */
     double beta;    /* PI term (0.04); 0: the classical I controller */
@@ -84,6 +85,7 @@ typedef struct dyn_sinl_ctl {
     double fac_max; /* largest h_new / h (10) */
     double expo;    /* 1/(q + 1) - 0.75 beta, q = the error order */
     double log2_safety, log2_floor; /* log2(safety), log2(1e-4) */
+    double log2_scale; /* 1, or 1/2 when the errors given are squared norms */
     double log2_gain; /* log2(safety) + beta log2(err_old) */
 } dyn_sinl_ctl;
 
@@ -95,10 +97,12 @@ DYN_SINL double dyn_sinl_ctl_exponent(int q, double beta)
 }
 
 /* Set up for error order q (the estimate behaves like h^(q+1)); zeros in safety, fac_min,
- * fac_max mean the defaults, beta < 0 means 0 and beta == 0 the default. */
+ * fac_max mean the defaults, beta < 0 means 0 and beta == 0 the default; squared: the errors
+ * passed to accept and reject are squares of the norm (1 <=> 1 all the same). */
 DYN_SINL void dyn_sinl_ctl_init(dyn_sinl_ctl *c, int q, double safety, double beta,
-                                double fac_min, double fac_max)
+                                double fac_min, double fac_max, int squared)
 {
+    c->log2_scale = squared ? 0.5 : 1.0;
     c->safety = safety > 0.0 ? safety : 0.9;
     c->beta = beta < 0.0 ? 0.0 : beta > 0.0 ? beta : 0.04;
     c->fac_min = fac_min > 0.0 ? fac_min : 0.2;
@@ -113,7 +117,7 @@ DYN_SINL void dyn_sinl_ctl_init(dyn_sinl_ctl *c, int q, double safety, double be
  * keeps the step from growing right after a rejection. */
 DYN_SINL double dyn_sinl_ctl_accept(dyn_sinl_ctl *c, double h, double err, int rejected_before)
 {
-    const double l = log2(err); /* -inf for err == 0: the ratio becomes fac_max */
+    const double l = c->log2_scale * log2(err); /* -inf for 0: the ratio becomes fac_max */
     double ratio = exp2(c->log2_gain - c->expo * l);
     if (!(ratio <= c->fac_max))
         ratio = c->fac_max;
@@ -132,7 +136,7 @@ DYN_SINL double dyn_sinl_ctl_reject(const dyn_sinl_ctl *c, double h, double err)
 {
     if (!isfinite(err))
         return 0.25 * h;
-    double ratio = exp2(c->log2_safety - c->expo * log2(err));
+    double ratio = exp2(c->log2_safety - c->expo * (c->log2_scale * log2(err)));
     if (ratio < c->fac_min)
         ratio = c->fac_min;
     if (!(ratio < 1.0))
@@ -155,22 +159,6 @@ DYN_SINL double dyn_sinl_stage_time(double t, double c, double h, double tend)
 {
     const double ti = t + c * h;
     return ti > tend ? tend : ti;
-}
-
-/* sqrt(x) for x >= 0 or NaN, as the instruction: the correctly rounded square root, like
- * sqrt(), without the call that compilers keep for errno (-fmath-errno, the default) and
- * the spills around it on the step-to-step path. */
-DYN_SINL double dyn_sinl_sqrt(double x)
-{
-#if defined(__GNUC__) && defined(__SSE2__)
-    __asm__("sqrtsd %1, %0" : "=x"(x) : "x"(x));
-    return x;
-#elif defined(__GNUC__) && defined(__aarch64__)
-    __asm__("fsqrt %d0, %d1" : "=w"(x) : "w"(x));
-    return x;
-#else
-    return sqrt(x);
-#endif
 }
 
 /* The pairs with a kernel in dynkit/erk_kernels.h. */
@@ -216,8 +204,9 @@ DYN_SINL int dyn_sinl_row(const int P, const int r, const int n, const double h,
     return dyn_ek_dop853_row(r, n, h, y, k, out);
 }
 
-/* The error norm of the step (erk_error in src/ode/step_erk.c): |h| sqrt(s5 / n), or
- * DOP853's |h| s5 / sqrt(n (s5 + 0.01 s3)). */
+/* The square of the error norm of the step (erk_error in src/ode/step_erk.c): of
+ * |h| sqrt(s5 / n), or of DOP853's |h| s5 / sqrt(n (s5 + 0.01 s3)); no square root between
+ * the step's error and the next step size (the controller takes log2(err^2) / 2). */
 DYN_SINL double dyn_sinl_err(const int P, const int n, const double rtol, const double atol,
                              const double h, const double *y, const double *ynew,
                              const double *k)
@@ -230,10 +219,10 @@ DYN_SINL double dyn_sinl_err(const int P, const int n, const double rtol, const 
     else
         s5 = dyn_ek_dop853_err(n, rtol, atol, y, ynew, k, &s3);
     if (P != DYN_SINL_DOP853)
-        return fabs(h) * dyn_sinl_sqrt(s5 / n);
+        return h * h * (s5 / n);
     if (s5 == 0.0 && s3 == 0.0)
         return 0.0;
-    return fabs(h) * s5 / dyn_sinl_sqrt((s5 + 0.01 * s3) * n);
+    return h * h * s5 * (s5 / ((s5 + 0.01 * s3) * n));
 }
 
 DYN_SINL int dyn_sinl_same(const dyn_tableau *m, int s, int fsal, const double *a,
@@ -485,7 +474,7 @@ DYN_SINL int dyn_sinl_solve(const int P, const dyn_tableau *m, dyn_rhs_fn f, voi
         if (o->max_step > 0.0)
             hmax = fmin(hmax, o->max_step);
         dyn_sinl_ctl ctl;
-        dyn_sinl_ctl_init(&ctl, m->error_order, o->safety, o->beta, o->fac_min, o->fac_max);
+        dyn_sinl_ctl_init(&ctl, m->error_order, o->safety, o->beta, o->fac_min, o->fac_max, 1);
         if (o->initial_step > 0.0) {
             h = fmin(o->initial_step, hmax);
         } else {

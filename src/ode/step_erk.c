@@ -128,7 +128,8 @@ DYN_RK_INLINE double err_sums(const dyn_tol *tol, int scalar, int n, const doubl
     return s5;
 }
 
-/* The error norm of the step from the stage derivatives. */
+/* The square of the error norm of the step from the stage derivatives (dyn_sinl_err of
+ * dynkit/solve_inline.h computes the same, term for term). */
 static double erk_error(dyn_stepper *st, double h, const double *y, const double *ynew)
 {
     const dyn_erk_state *e = &st->u.erk;
@@ -141,11 +142,13 @@ static double erk_error(dyn_stepper *st, double h, const double *y, const double
         s5 = err_sums(&st->tol, 0, n, y, ynew, e->ne, e->ec, e->ekp, e->ne3, e->e3c, e->e3kp,
                       &s3);
     if (!e->ne3)
-        return fabs(h) * sqrt(s5 / n);
-    /* DOP853: |h| |E5|^2 / sqrt(n (|E5|^2 + 0.01 |E3|^2)) */
+        return h * h * (s5 / n); /* (|h| sqrt(s5 / n))^2 */
+    /* DOP853: (|h| |E5|^2 / sqrt(n (|E5|^2 + 0.01 |E3|^2)))^2, h^2 |E5|^2 formed while the
+     * denominator is (one division and one multiplication after it). A square that
+     * overflows (a norm above 1e154) is rejected as a non-finite one is: h / 4. */
     if (s5 == 0.0 && s3 == 0.0)
         return 0.0;
-    return fabs(h) * s5 / sqrt((s5 + 0.01 * s3) * n);
+    return h * h * s5 * (s5 / ((s5 + 0.01 * s3) * n));
 }
 
 static int erk_attempt(dyn_stepper *st, double t, double h, const double *y, double *ynew,
@@ -265,6 +268,7 @@ static const dyn_stepper_ops erk_ops = {
     .stiffness = erk_stiffness,
     .dense = erk_dense,
     .accept = erk_accept,
+    .err_squared = 1,
 };
 
 const dyn_stepper_ops *dyn_stepper_ops_for(const dyn_tableau *m)

@@ -76,6 +76,9 @@ typedef struct dyn_stepper_ops {
     int (*dense)(dyn_stepper *st, double t, double h, const double *y, const double *ynew,
                  double *coef);
     void (*accept)(dyn_stepper *st, double t, double h, const double *ynew);
+    /* 1: attempt gives the square of the error norm (the explicit pairs: no square root
+     * between a step's error and the next step size; dyn_sinl_ctl_init's `squared`) */
+    int err_squared;
 } dyn_stepper_ops;
 
 /* Explicit Runge–Kutta state (step_erk.c). */

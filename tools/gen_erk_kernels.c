@@ -37,13 +37,9 @@ static void array(const char *pair, const char *what, const double *v, int count
 /* case r of dyn_ek_<pair>_row: the combination of one row of length len */
 static void row_case(int r, const double *row, int len)
 {
-    int nt = 0, j0 = -1;
+    int nt = 0;
     for (int j = 0; j < len; j++)
-        if (row[j] != 0.0) {
-            if (j0 < 0)
-                j0 = j;
-            nt++;
-        }
+        nt += row[j] != 0.0;
     printf("    case %d:\n", r);
     if (nt == 0) {
         printf("        return 0;\n");

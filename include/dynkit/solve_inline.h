@@ -79,12 +79,11 @@ extern "C" {
  * differ from the quotient form in the last bits only. The explicit pairs give the square
  * of the error norm (no square root on that chain either): log2 err = log2(err^2) / 2. */
 typedef struct dyn_sinl_ctl {
-    double safety;  /* 0.9 */
     double beta;    /* PI term (0.04); 0: the classical I controller */
     double fac_min; /* smallest h_new / h (0.2) */
     double fac_max; /* largest h_new / h (10) */
     double expo;    /* 1/(q + 1) - 0.75 beta, q = the error order */
-    double log2_safety, log2_floor; /* log2(safety), log2(1e-4) */
+    double log2_safety, log2_floor; /* log2(safety (0.9)), log2(1e-4) */
     double log2_scale; /* 1, or 1/2 when the errors given are squared norms */
     double log2_gain; /* log2(safety) + beta log2(err_old) */
 } dyn_sinl_ctl;
@@ -103,12 +102,11 @@ DYN_SINL void dyn_sinl_ctl_init(dyn_sinl_ctl *c, int q, double safety, double be
                                 double fac_min, double fac_max, int squared)
 {
     c->log2_scale = squared ? 0.5 : 1.0;
-    c->safety = safety > 0.0 ? safety : 0.9;
     c->beta = beta < 0.0 ? 0.0 : beta > 0.0 ? beta : 0.04;
     c->fac_min = fac_min > 0.0 ? fac_min : 0.2;
     c->fac_max = fac_max > 0.0 ? fac_max : 10.0;
     c->expo = dyn_sinl_ctl_exponent(q, c->beta);
-    c->log2_safety = log2(c->safety);
+    c->log2_safety = log2(safety > 0.0 ? safety : 0.9);
     c->log2_floor = log2(1e-4);
     c->log2_gain = c->log2_safety + c->beta * c->log2_floor;
 }

@@ -236,21 +236,28 @@ DYN_RK_INLINE double dyn_rk_add_apart(int n, double hc, const double *base, cons
     return z;
 }
 
+/* The plan's terms t0 .. t0 + nt - 1 combined by dyn_rk_combine_kind, in the loop kind
+ * that suits n (scalar for small systems). */
+DYN_RK_INLINE double dyn_rk_combine_terms(int n, double h, const double *restrict base,
+                                          const dyn_rk_plan *p, int t0, int nt,
+                                          double *restrict out)
+{
+    if (n < DYN_RK_VECTOR_MIN_N)
+        return dyn_rk_combine_kind(n, h, base, p->kp + t0, p->coef + t0, p->pow2 + t0, nt, out,
+                                   0);
+    return dyn_rk_combine_kind(n, h, base, p->kp + t0, p->coef + t0, p->pow2 + t0, nt, out, 1);
+}
+
 DYN_RK_INLINE double dyn_rk_combine(int n, double h, const double *restrict base,
                                     const dyn_rk_plan *p, int row, double *restrict out)
 {
-    const int t0 = p->first[row];
-    int nt = p->first[row + 1] - t0;
+    const int t0 = p->first[row], nt = p->first[row + 1] - t0;
     if (p->last_apart && nt > 0) {
         const double hc = h * p->coef[t0 + nt - 1];
         const double *kl = p->kp[t0 + nt - 1];
         if (nt == 1)
             return dyn_rk_add_apart(n, hc, base, kl, out);
-        nt--;
-        if (n < DYN_RK_VECTOR_MIN_N)
-            dyn_rk_combine_kind(n, h, base, p->kp + t0, p->coef + t0, p->pow2 + t0, nt, out, 0);
-        else
-            dyn_rk_combine_kind(n, h, base, p->kp + t0, p->coef + t0, p->pow2 + t0, nt, out, 1);
+        dyn_rk_combine_terms(n, h, base, p, t0, nt - 1, out);
         return dyn_rk_add_apart(n, hc, out, kl, out);
     }
     if (p->same[row]) {
@@ -269,10 +276,7 @@ DYN_RK_INLINE double dyn_rk_combine(int n, double h, const double *restrict base
         }
         return z;
     }
-    if (n < DYN_RK_VECTOR_MIN_N)
-        return dyn_rk_combine_kind(n, h, base, p->kp + t0, p->coef + t0, p->pow2 + t0, nt, out,
-                                   0);
-    return dyn_rk_combine_kind(n, h, base, p->kp + t0, p->coef + t0, p->pow2 + t0, nt, out, 1);
+    return dyn_rk_combine_terms(n, h, base, p, t0, nt, out);
 }
 
 /* Time of a stage: t + c h, but never past tend (the end of the span: t + h can round

@@ -92,6 +92,12 @@ static int parse_count(const char *opt, const char *text)
     return (int)v;
 }
 
+static const char usage[] =
+    "usage: bench_step [--reps R] [--batch B] [--quick]\n"
+    "  --reps R    samples per cell, the best counts (default 15)\n"
+    "  --batch B   solves per sample (default 200)\n"
+    "  --quick     one solve per cell: the checks only, the times mean nothing\n";
+
 int main(int argc, char **argv)
 {
     int reps = 15, batch = 200, quick = 0;
@@ -102,8 +108,11 @@ int main(int argc, char **argv)
             reps = parse_count("--reps", argv[++i]);
         else if (strcmp(argv[i], "--batch") == 0 && i + 1 < argc)
             batch = parse_count("--batch", argv[++i]);
-        else {
-            fprintf(stderr, "usage: bench_step [--reps R] [--batch B] [--quick]\n");
+        else if (strcmp(argv[i], "--help") == 0) {
+            printf("%s", usage);
+            return 0;
+        } else {
+            fprintf(stderr, "bench_step: unknown argument '%s'\n%s", argv[i], usage);
             return 2;
         }
     }

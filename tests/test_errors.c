@@ -6,11 +6,13 @@
  *   the failing time, and the last good state (equal to a run that ends at that time).
  * - A state that becomes NaN or Inf (y' = y^2 blowing up; a NaN from f) stops the solve
  *   with DYN_ERR_NONFINITE, the state index and time; the samples before are all finite.
- *   A non-finite initial state is refused.
+ *   A non-finite initial state is refused. The drivers' test of the state's bits
+ *   (dyn_inl_nonfinite) agrees with isfinite on every kind of double, at every position.
  * - The output callback can stop a solve (DYN_STOPPED), the progress callback can cancel it
  *   (DYN_CANCELLED); both leave the state reached.
  * - dyn_rk_step works in place; dyn_integrate fills tout/yout like the homework's
  *   Integrate_ModifiedEuler. */
+#include <float.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -19,6 +21,7 @@
 #include <cmocka.h>
 
 #include "dynkit/models.h"
+#include "dynkit/ode_inline.h" /* dyn_inl_nonfinite */
 #include "test_util.h"
 
 static sample_log logbuf;
@@ -583,6 +586,32 @@ static void test_status_names(void **state)
     assert_non_null(dyn_status_name(-1));
 }
 
+/* dyn_inl_nonfinite, the drivers' test of each new state, against isfinite: every kind of
+ * double (zeros, subnormals, the extremes, infinities, NaNs of either sign and payload) at
+ * every position of vectors of 1 to 13 otherwise finite states. */
+static void test_nonfinite_bits_agree_with_isfinite(void **state)
+{
+    (void)state;
+    const uint64_t nan_bits[] = {0x7ff8000000000000ULL, 0xfff8000000000000ULL,
+                                 0x7ff0000000000001ULL, 0x7fffffffffffffffULL};
+    double kinds[16] = {0.0, -0.0, 1.0, -2.5, DBL_MIN, DBL_MIN / 8.0, -4.9e-324, DBL_MAX,
+                        -DBL_MAX, 1e308, INFINITY, -INFINITY};
+    int nk = 12;
+    for (size_t i = 0; i < sizeof nan_bits / sizeof nan_bits[0]; i++)
+        memcpy(&kinds[nk++], &nan_bits[i], sizeof(double));
+    for (int n = 1; n <= 13; n++)
+        for (int pos = 0; pos < n; pos++)
+            for (int kind = 0; kind < nk; kind++) {
+                double x[13];
+                for (int q = 0; q < n; q++)
+                    x[q] = (q % 2 ? -1.0 : 1.0) * DBL_MAX / (double)(q + 1);
+                x[pos] = kinds[kind];
+                CHECK(dyn_inl_nonfinite(n, x) == !isfinite(kinds[kind]),
+                      "n = %d, position %d, value %g: %d", n, pos, kinds[kind],
+                      dyn_inl_nonfinite(n, x));
+            }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -593,6 +622,7 @@ int main(void)
         cmocka_unit_test(test_nan_from_rhs_stops_nonfinite),
         cmocka_unit_test(test_counters_after_failure_are_consistent),
         cmocka_unit_test(test_nonfinite_initial_state_refused),
+        cmocka_unit_test(test_nonfinite_bits_agree_with_isfinite),
         cmocka_unit_test(test_output_callback_stops),
         cmocka_unit_test(test_progress_reports_and_cancels),
         cmocka_unit_test(test_rk_step_in_place),

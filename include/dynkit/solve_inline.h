@@ -41,6 +41,7 @@
 
 #include "dynkit/io.h" /* dyn_shortest: numbers in messages */
 #include "dynkit/erk_kernels.h"
+#include "dynkit/ode_inline.h" /* dyn_inl_nonfinite */
 #include "dynkit/solve.h"
 
 #ifdef __cplusplus
@@ -578,10 +579,9 @@ DYN_SINL int dyn_sinl_solve(const int P, const dyn_tableau *m, dyn_rhs_fn f, voi
                 k0_valid = 1;
                 fnew_valid = 0;
                 dyn_sinl_row(P, S, n, hn, ycur, k, ynew);
-                double finite = 0.0, err;
-                for (int i = 0; i < n; i++)
-                    finite += ynew[i] - ynew[i];
-                err = finite != 0.0 ? INFINITY : dyn_sinl_err(P, n, rtol, atol, hn, ycur, ynew, k);
+                const double err = dyn_inl_nonfinite(n, ynew)
+                                       ? INFINITY
+                                       : dyn_sinl_err(P, n, rtol, atol, hn, ycur, ynew, k);
                 if (!(err <= 1.0)) {
                     res->stats.rejected++;
                     rejected_before = 1;

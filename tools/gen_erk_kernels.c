@@ -10,7 +10,7 @@
  *   b), exactly the arithmetic of the library's stage loop for embedded pairs
  *   (src/ode/rk_stages.h: the newest term apart, off the chain of the other terms);
  * - dyn_ek_<pair>_err(...): the sums of squares of Hairer's error norm (src/ode/step_erk.c,
- *   err_sums), each component's estimate summed from 0.0.
+ *   err_sums), every sum started from -0.0 as there (the same as from its first term).
  * Zero coefficients do not appear, so every compiler folds the whole step at any
  * optimisation level; a loop over a table known only at run time is what it replaces.
  *
@@ -70,7 +70,7 @@ static void row_case(int r, const double *row, int len)
 /* the sum of one estimate's terms for component i, from 0.0 */
 static void err_sum(const char *var, const double *e, int s)
 {
-    printf("        double %s = 0.0;\n", var);
+    printf("        double %s = -0.0;\n", var);
     for (int j = 0; j < s; j++)
         if (e[j] != 0.0)
             printf("        %s += %.17g * k[%d * N + i];\n", var, e[j], j);
@@ -113,7 +113,7 @@ static int pair(const char *name)
            "                                const double *DYN_EK_RESTRICT y,\n"
            "                                const double *DYN_EK_RESTRICT ynew,\n"
            "                                const double *DYN_EK_RESTRICT k, double *s3)\n{\n"
-           "    const size_t N = (size_t)n;\n    double s5 = 0.0, s3_ = 0.0;\n"
+           "    const size_t N = (size_t)n;\n    double s5 = -0.0, s3_ = -0.0;\n"
            "    DYN_EK_LOOP(i)\n    {\n",
            m->name);
     err_sum("err", m->e, s);

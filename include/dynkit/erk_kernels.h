@@ -114,10 +114,10 @@ DYN_EK_FN double dyn_ek_bs23_err(const int n, const double rtol, const double at
                                 const double *DYN_EK_RESTRICT k, double *s3)
 {
     const size_t N = (size_t)n;
-    double s5 = 0.0, s3_ = 0.0;
+    double s5 = -0.0, s3_ = -0.0;
     DYN_EK_LOOP(i)
     {
-        double err = 0.0;
+        double err = -0.0;
         err += 0.069444444444444448 * k[0 * N + i];
         err += -0.083333333333333329 * k[1 * N + i];
         err += -0.1111111111111111 * k[2 * N + i];
@@ -246,10 +246,10 @@ DYN_EK_FN double dyn_ek_dp45_err(const int n, const double rtol, const double at
                                 const double *DYN_EK_RESTRICT k, double *s3)
 {
     const size_t N = (size_t)n;
-    double s5 = 0.0, s3_ = 0.0;
+    double s5 = -0.0, s3_ = -0.0;
     DYN_EK_LOOP(i)
     {
-        double err = 0.0;
+        double err = -0.0;
         err += 0.0012326388888888888 * k[0 * N + i];
         err += -0.0042527702905061394 * k[2 * N + i];
         err += 0.036979166666666667 * k[3 * N + i];
@@ -468,10 +468,10 @@ DYN_EK_FN double dyn_ek_dop853_err(const int n, const double rtol, const double 
                                 const double *DYN_EK_RESTRICT k, double *s3)
 {
     const size_t N = (size_t)n;
-    double s5 = 0.0, s3_ = 0.0;
+    double s5 = -0.0, s3_ = -0.0;
     DYN_EK_LOOP(i)
     {
-        double err = 0.0;
+        double err = -0.0;
         err += 0.01312004499419488 * k[0 * N + i];
         err += -1.2251564463762044 * k[5 * N + i];
         err += -0.4957589496572502 * k[6 * N + i];
@@ -480,7 +480,7 @@ DYN_EK_FN double dyn_ek_dop853_err(const int n, const double rtol, const double 
         err += 0.33417911871301748 * k[9 * N + i];
         err += 0.08192320648511571 * k[10 * N + i];
         err += -0.022355307863886294 * k[11 * N + i];
-        double err3 = 0.0;
+        double err3 = -0.0;
         err3 += -0.18980075407240762 * k[0 * N + i];
         err3 += 4.4503128927524092 * k[5 * N + i];
         err3 += 1.8915178993145003 * k[6 * N + i];

@@ -67,7 +67,7 @@ static void row_case(int r, const double *row, int len)
     printf("        }\n        return %d;\n", nt);
 }
 
-/* the sum of one estimate's terms for component i, from 0.0 */
+/* the sum of one estimate's terms for component i, from -0.0 (the same as from its first) */
 static void err_sum(const char *var, const double *e, int s)
 {
     printf("        double %s = -0.0;\n", var);

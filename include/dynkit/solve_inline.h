@@ -67,6 +67,23 @@ extern "C" {
 #define DYN_SRESTRICT restrict
 #endif
 
+/* DYN_SINL_STORED(p, n): the n values at p are read from memory here (an empty asm with
+ * them as operands), so that the right-hand side's stores of a stage's derivatives stay at
+ * that stage. Without it gcc 12 kept the derivatives in registers to the end of the step
+ * and stored them there as packed pairs (SLP vectorisation): dp45 took 68 instead of 63 ns
+ * per attempted step on van der Pol, dop853 about 3% more (docs/performance.md). clang
+ * stores them at the stage anyway and handles the operands badly (20% slower with them),
+ * so it gets nothing. */
+#if defined(__GNUC__) && !defined(__clang__)
+#define DYN_SINL_STORED(p, n)                                                                      \
+    do {                                                                                           \
+        for (int q_ = 0; q_ < (n); q_++)                                                           \
+            __asm__("" : : "m"((p)[q_]));                                                          \
+    } while (0)
+#else
+#define DYN_SINL_STORED(p, n) ((void)0)
+#endif
+
 /* The PI controller of DOPRI5 (Gustafsson 1991; HNW I sec. II.4, HNW II sec. IV.2), for
  * both drivers (src/ode/solve.c uses it too):
  *     h_new = h * clamp(safety * err_old^beta / err^(1/(q+1) - 0.75 beta), fac_min, fac_max),
@@ -554,6 +571,7 @@ DYN_SINL int dyn_sinl_solve(const int P, const dyn_tableau *m, dyn_rhs_fn f, voi
         if (I_ >= first) {                                                                         \
             const double ti = dyn_sinl_stage_time(t, dyn_sinl_c(P, I_), hn, t1);                   \
             rc = f(ti, Yi, k + (size_t)I_ * N, par);                                               \
+            DYN_SINL_STORED(k + (size_t)I_ * N, n);                                                \
             if (rc) {                                                                              \
                 rhs_calls += I_ + 1 - first;                                                       \
                 k0_valid = I_ > 0;                                                                 \
@@ -767,6 +785,7 @@ DYN_SINL int dyn_solve_inline(const dyn_tableau *m, const dyn_system *sys, doubl
 
 #undef DYN_SINL
 #undef DYN_SINL_COLD
+#undef DYN_SINL_STORED
 #undef DYN_SRESTRICT
 
 #ifdef __cplusplus

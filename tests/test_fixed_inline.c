@@ -8,7 +8,10 @@
  * - the same failures: a state that overflows to Inf (y' = y^2), a NaN from the right-hand
  *   side in one state, a right-hand side that fails: status, time, state index, the last
  *   good state, the counters and the message;
- * - with no_finite_check the run goes on through the non-finite states, as dyn_fixed_solve's.
+ * - with no_finite_check the run goes on through the non-finite states, as dyn_fixed_solve's;
+ * - dyn_fixed_solve itself gives the same whether its steps run as plain steps (no
+ *   callbacks: for these shapes, dyn_fixed_solve_inline's step with the right-hand side by
+ *   pointer) or each through its general step (an output callback at every step).
  * The library's driver is the reference: tests/test_errors.c and tests/test_conventions.c
  * say what it does.
  */
@@ -103,6 +106,44 @@ typedef struct run {
     dyn_result res;
 } run;
 
+static int ignore_sample(long k, double t, const double *y, void *ctx)
+{
+    (void)k;
+    (void)t;
+    (void)y;
+    (void)ctx;
+    return 0;
+}
+
+/* dyn_fixed_solve with a callback at every step against its plain run: the same state,
+ * status and counters */
+static void compare_general(const char *what, const dyn_tableau *m, const dyn_system *sys,
+                            const double *y0, double t1, double h, const dyn_fixed_opts *opts,
+                            const run *plain)
+{
+    static double work[TEST_WORK];
+    dyn_fixed_opts o;
+    memset(&o, 0, sizeof o);
+    if (opts)
+        o = *opts;
+    o.output = ignore_sample;
+    o.every = 1;
+    run gen;
+    memset(&gen, 0, sizeof gen);
+    gen.rc = dyn_fixed_solve(m, sys, 0.0, t1, h, y0, gen.y, work, &o, &gen.res);
+    CHECK(gen.rc == plain->rc, "%s, %s: status %d with a callback, %d without", what, m->name,
+          gen.rc, plain->rc);
+    for (int i = 0; i < sys->n; i++)
+        CHECK(same_bits(gen.y[i], plain->y[i]),
+              "%s, %s: y[%d] = %.17g with a callback, %.17g without", what, m->name, i, gen.y[i],
+              plain->y[i]);
+    CHECK(gen.res.stats.steps == plain->res.stats.steps &&
+              gen.res.stats.rhs_calls == plain->res.stats.rhs_calls &&
+              gen.res.fail_index == plain->res.fail_index,
+          "%s, %s: steps %ld / %ld, calls %ld / %ld", what, m->name, gen.res.stats.steps,
+          plain->res.stats.steps, gen.res.stats.rhs_calls, plain->res.stats.rhs_calls);
+}
+
 /* Both solvers on the same problem; every field of the results compared. */
 static void compare(const char *what, const dyn_tableau *m, dyn_rhs_fn f, void *par, int n,
                     const double *y0, double t1, double h, const dyn_fixed_opts *opts,
@@ -136,6 +177,7 @@ static void compare(const char *what, const dyn_tableau *m, dyn_rhs_fn f, void *
           inl.res.stats.steps, lib.res.stats.rhs_calls, inl.res.stats.rhs_calls);
     CHECK(strcmp(lib.res.message, inl.res.message) == 0, "%s, %s: message '%s' / '%s'", what,
           m->name, lib.res.message, inl.res.message);
+    compare_general(what, m, &sys, y0, t1, h, opts, &lib);
     if (lib_out)
         *lib_out = lib;
 }

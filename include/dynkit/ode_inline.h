@@ -155,6 +155,28 @@ DYN_INL int dyn_inl_rows_equal(const dyn_inl_row *a, const dyn_inl_row *b, int c
     return 1;
 }
 
+/* The row summaries {nt, j0, fold, same} of the common tables: Euler; Heun; Heun's shape
+ * with unequal weights (b = (1/4, 3/4) after a21 = 1, say); the midpoint rule; the classical
+ * RK4. With these constants the stage loops are fixed at compile time even for a table
+ * known only at run time (dyn_method_find): any table of the same shape takes the same
+ * loop, its coefficients still read. dyn_fixed_solve_inline below and the library's
+ * dyn_fixed_solve (its runs of plain steps, src/ode/fixed_driver.c) use them. */
+#if defined(__GNUC__)
+#define DYN_INL_UNUSED __attribute__((unused))
+#else
+#define DYN_INL_UNUSED
+#endif
+static const dyn_inl_row dyn_inl_euler_rows[2] DYN_INL_UNUSED = {{0, 0, 0, 0}, {1, 0, 1, 0}};
+static const dyn_inl_row dyn_inl_heun_rows[3] DYN_INL_UNUSED = {
+    {0, 0, 0, 0}, {1, 0, 1, 0}, {2, 0, 0, 1}};
+static const dyn_inl_row dyn_inl_heun_shape_rows[3] DYN_INL_UNUSED = {
+    {0, 0, 0, 0}, {1, 0, 1, 0}, {2, 0, 0, 0}};
+static const dyn_inl_row dyn_inl_midpoint_rows[3] DYN_INL_UNUSED = {
+    {0, 0, 0, 0}, {1, 0, 1, 0}, {1, 1, 1, 0}};
+static const dyn_inl_row dyn_inl_rk4_rows[5] DYN_INL_UNUSED = {
+    {0, 0, 0, 0}, {1, 0, 1, 0}, {1, 1, 1, 0}, {1, 2, 1, 0}, {4, 0, 0, 0}};
+#undef DYN_INL_UNUSED
+
 /* out = y + h * (sum_{j<len, row[j] != 0} row[j] k_j, left to right) over n states: the
  * library's arithmetic. Returns the number of terms (0: out is not written). */
 DYN_INL int dyn_inl_combine(int n, double h, const double *DYN_RESTRICT y,
@@ -379,28 +401,18 @@ DYN_INL int dyn_fixed_solve_inline(const dyn_tableau *m, const dyn_system *sys, 
     for (int i = 0; i < S; i++)
         rows[i] = dyn_inl_row_of(m->a + (size_t)i * (size_t)S, i);
     rows[S] = dyn_inl_row_of(m->b, S);
-    /* The common tables' row summaries {nt, j0, fold, same} (Euler; Heun; the midpoint rule; the
-     * classical RK4), recognised here once per solve: with these constants the stage loops
-     * are fixed at compile time even for a table known only at run time (dyn_method_find).
-     * Any table of the same shape takes the same loop; the coefficients are still read. */
-    static const dyn_inl_row euler[2] = {{0, 0, 0, 0}, {1, 0, 1, 0}};
-    static const dyn_inl_row heun[3] = {{0, 0, 0, 0}, {1, 0, 1, 0}, {2, 0, 0, 1}};
-    /* Heun's shape with unequal weights (b = (1/4, 3/4) after a21 = 1, say) */
-    static const dyn_inl_row heun_shape[3] = {{0, 0, 0, 0}, {1, 0, 1, 0}, {2, 0, 0, 0}};
-    static const dyn_inl_row midpoint[3] = {{0, 0, 0, 0}, {1, 0, 1, 0}, {1, 1, 1, 0}};
-    static const dyn_inl_row rk4[5] = {{0, 0, 0, 0}, {1, 0, 1, 0}, {1, 1, 1, 0}, {1, 2, 1, 0},
-                                       {4, 0, 0, 0}};
+    /* the common tables' shapes (dyn_inl_euler_rows ...) with their summaries as constants */
 #define DYN_INL_SAME(known, count) (S + 1 == (count) && dyn_inl_rows_equal(rows, known, count))
-    if (DYN_INL_SAME(euler, 2))
-        return dyn_inl_solve(1, m, euler, f, par, n, &g, y, work, check, res);
-    if (DYN_INL_SAME(heun, 3))
-        return dyn_inl_solve(2, m, heun, f, par, n, &g, y, work, check, res);
-    if (DYN_INL_SAME(heun_shape, 3))
-        return dyn_inl_solve(2, m, heun_shape, f, par, n, &g, y, work, check, res);
-    if (DYN_INL_SAME(midpoint, 3))
-        return dyn_inl_solve(2, m, midpoint, f, par, n, &g, y, work, check, res);
-    if (DYN_INL_SAME(rk4, 5))
-        return dyn_inl_solve(4, m, rk4, f, par, n, &g, y, work, check, res);
+    if (DYN_INL_SAME(dyn_inl_euler_rows, 2))
+        return dyn_inl_solve(1, m, dyn_inl_euler_rows, f, par, n, &g, y, work, check, res);
+    if (DYN_INL_SAME(dyn_inl_heun_rows, 3))
+        return dyn_inl_solve(2, m, dyn_inl_heun_rows, f, par, n, &g, y, work, check, res);
+    if (DYN_INL_SAME(dyn_inl_heun_shape_rows, 3))
+        return dyn_inl_solve(2, m, dyn_inl_heun_shape_rows, f, par, n, &g, y, work, check, res);
+    if (DYN_INL_SAME(dyn_inl_midpoint_rows, 3))
+        return dyn_inl_solve(2, m, dyn_inl_midpoint_rows, f, par, n, &g, y, work, check, res);
+    if (DYN_INL_SAME(dyn_inl_rk4_rows, 5))
+        return dyn_inl_solve(4, m, dyn_inl_rk4_rows, f, par, n, &g, y, work, check, res);
 #undef DYN_INL_SAME
 #if defined(__GNUC__)
     /* A table of another shape known only at run time: the library's solve (the same

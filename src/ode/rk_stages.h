@@ -119,9 +119,10 @@ static inline int dyn_rk_plan_init(dyn_rk_plan *p, const dyn_tableau *m, const d
 /* One combination out = base + h * (sum_t coef[t] * kp[t]) over nt terms, summed left to
  * right from the first term (nt == 0: out = base). Returns the sum of out[q] - out[q]: 0
  * when every out[q] is finite, NaN otherwise (the compiler drops it where unused). Fused
- * into the loop that writes out, this measured faster here than the bit test of the inline
- * drivers (dyn_inl_nonfinite) after it: 1.07 against 1.09 times the pointer floor for Euler
- * on the 12-state plane (docs/performance.md).
+ * into the loop that writes out, this measured faster in this loop than the bit test of the
+ * inline drivers (dyn_inl_nonfinite) after it: 1.07 against 1.09 times the pointer floor for
+ * Euler on the 12-state plane (docs/performance.md). (The plain steps of the common shapes
+ * no longer come here: they take dyn_fixed_solve_inline's step, src/ode/fixed_driver.c.)
  * out must not alias base or any kp[t]. vec (a constant at each call) picks the loop kind:
  * scalar, or left to the vectoriser. (Unrolled scalar loops are no better: the compiler
  * pairs their stores into vector stores, and the right-hand side's loads of the upper

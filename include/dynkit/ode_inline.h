@@ -145,6 +145,16 @@ DYN_INL dyn_inl_row dyn_inl_row_of(const double *row, int len)
     return r;
 }
 
+/* The summaries of every row of an S-stage table (1 <= S <= 4): rows[0 .. S - 1] for a,
+ * rows[S] for b. Unrolled, so that compilers fold them for a constant table. */
+DYN_INL void dyn_inl_rows_of(const dyn_tableau *m, int S, dyn_inl_row *rows)
+{
+    DYN_INL_UNROLL
+    for (int i = 0; i < S; i++)
+        rows[i] = dyn_inl_row_of(m->a + (size_t)i * (size_t)S, i);
+    rows[S] = dyn_inl_row_of(m->b, S);
+}
+
 /* 1 if the row summaries a[0..count) and b[0..count) are equal. */
 DYN_INL int dyn_inl_rows_equal(const dyn_inl_row *a, const dyn_inl_row *b, int count)
 {
@@ -397,10 +407,7 @@ DYN_INL int dyn_fixed_solve_inline(const dyn_tableau *m, const dyn_system *sys, 
     const int check = !(opts && opts->no_finite_check);
     const int S = m->stages;
     dyn_inl_row rows[5];
-    DYN_INL_UNROLL
-    for (int i = 0; i < S; i++)
-        rows[i] = dyn_inl_row_of(m->a + (size_t)i * (size_t)S, i);
-    rows[S] = dyn_inl_row_of(m->b, S);
+    dyn_inl_rows_of(m, S, rows);
     /* the common tables' shapes (dyn_inl_euler_rows ...) with their summaries as constants */
 #define DYN_INL_SAME(known, count) (S + 1 == (count) && dyn_inl_rows_equal(rows, known, count))
     if (DYN_INL_SAME(dyn_inl_euler_rows, 2))

@@ -49,9 +49,8 @@ static int first_nonfinite(const double *y, int n)
  * dynkit/ode_inline.h) by dyn_fixed_solve_inline's step, the summaries rows a constant at each
  * call: the same arithmetic as the plan's (its contract, tests/test_fixed_inline.c), in about
  * two thirds of the instructions (83 against 124 per Euler step on van der Pol besides the
- * right-hand side's 12; the pointer floor takes 17), which a busy machine shows: 0.97 to
- * 1.06 of the pointer floor against 1.08 to 1.13 for Euler on the plane in the same runs.
- * The same contract as plain_steps below. */
+ * right-hand side's 12; the pointer floor takes 17; timings in docs/performance.md). The
+ * same contract as plain_steps below. */
 DYN_RK_INLINE long plain_steps_known(const int S, const dyn_inl_row *rows, const dyn_tableau *m,
                                      dyn_rhs_fn f, void *par, int n, double t0, double h,
                                      double t1, long step, long count, int finite_check,
@@ -83,48 +82,51 @@ DYN_RK_INLINE long plain_steps_known(const int S, const dyn_inl_row *rows, const
     return i;
 }
 
-/* Which common shape m has (dyn_inl_euler_rows ...), as the index of plain_steps' cases, or
- * -1 for any other table (the plan's loop). */
-static int known_shape(const dyn_tableau *m)
+/* The common shape m has (dyn_inl_euler_rows ... themselves, which plain_steps tells
+ * apart), or NULL for any other table (the plan's loop). */
+static const dyn_inl_row *known_shape(const dyn_tableau *m)
 {
-    static const dyn_inl_row *const known[] = {dyn_inl_euler_rows, dyn_inl_heun_rows,
-                                               dyn_inl_heun_shape_rows, dyn_inl_midpoint_rows,
-                                               dyn_inl_rk4_rows};
-    static const int stages[] = {1, 2, 2, 2, 4};
+    static const struct {
+        int stages;
+        const dyn_inl_row *rows;
+    } known[] = {{1, dyn_inl_euler_rows},      {2, dyn_inl_heun_rows},
+                 {2, dyn_inl_heun_shape_rows}, {2, dyn_inl_midpoint_rows},
+                 {4, dyn_inl_rk4_rows}};
     const int S = m->stages;
     if (S < 1 || S > 4)
-        return -1;
+        return NULL;
     dyn_inl_row rows[5];
-    for (int i = 0; i < S; i++)
-        rows[i] = dyn_inl_row_of(m->a + (size_t)i * (size_t)S, i);
-    rows[S] = dyn_inl_row_of(m->b, S);
-    for (int shape = 0; shape < 5; shape++)
-        if (S == stages[shape] && dyn_inl_rows_equal(rows, known[shape], S + 1))
-            return shape;
-    return -1;
+    dyn_inl_rows_of(m, S, rows);
+    for (size_t i = 0; i < sizeof known / sizeof known[0]; i++)
+        if (S == known[i].stages && dyn_inl_rows_equal(rows, known[i].rows, S + 1))
+            return known[i].rows;
+    return NULL;
 }
 
-/* Whole steps step, step+1, ... (count of them, count >= 1) of size h with the plan p,
- * without trace or callbacks: the hot loop. *cur holds the state and is advanced; *nxt is
- * the spare state. Stops at a step whose right-hand side fails (*rc != 0, *fail_stage) or,
- * with finite_check, whose new state (left in *nxt) is not finite (*nonfinite = 1); that
- * step is not counted. Returns the number of steps completed. */
-static long plain_steps(int shape, const dyn_tableau *m, const dyn_rk_plan *p, dyn_rhs_fn f,
-                        void *par, int n, double t0, double h, double t1, long step, long count,
-                        int finite_check, double **cur, double **nxt, double *k, double *Y,
-                        int *rc, int *fail_stage, int *nonfinite)
+/* Whole steps step, step+1, ... (count of them, count >= 1) of size h with the plan p (or,
+ * for a common shape, known_shape's rows), without trace or callbacks: the hot loop. *cur
+ * holds the state and is advanced; *nxt is the spare state. Stops at a step whose right-hand
+ * side fails (*rc != 0, *fail_stage) or, with finite_check, whose new state (left in *nxt) is
+ * not finite (*nonfinite = 1); that step is not counted. Returns the number of steps
+ * completed. */
+static long plain_steps(const dyn_inl_row *shape, const dyn_tableau *m, const dyn_rk_plan *p,
+                        dyn_rhs_fn f, void *par, int n, double t0, double h, double t1, long step,
+                        long count, int finite_check, double **cur, double **nxt, double *k,
+                        double *Y, int *rc, int *fail_stage, int *nonfinite)
 {
 #define KNOWN(S, rows)                                                                             \
     plain_steps_known(S, rows, m, f, par, n, t0, h, t1, step, count, finite_check, cur, nxt, k, \
                       Y, rc, fail_stage, nonfinite)
-    switch (shape) {
-    case 0: return KNOWN(1, dyn_inl_euler_rows);
-    case 1: return KNOWN(2, dyn_inl_heun_rows);
-    case 2: return KNOWN(2, dyn_inl_heun_shape_rows);
-    case 3: return KNOWN(2, dyn_inl_midpoint_rows);
-    case 4: return KNOWN(4, dyn_inl_rk4_rows);
-    default: break;
-    }
+    if (shape == dyn_inl_euler_rows)
+        return KNOWN(1, dyn_inl_euler_rows);
+    if (shape == dyn_inl_heun_rows)
+        return KNOWN(2, dyn_inl_heun_rows);
+    if (shape == dyn_inl_heun_shape_rows)
+        return KNOWN(2, dyn_inl_heun_shape_rows);
+    if (shape == dyn_inl_midpoint_rows)
+        return KNOWN(2, dyn_inl_midpoint_rows);
+    if (shape == dyn_inl_rk4_rows)
+        return KNOWN(4, dyn_inl_rk4_rows);
 #undef KNOWN
     double *a = *cur, *b = *nxt;
     long i = 0;
@@ -215,7 +217,7 @@ int dyn_fixed_solve(const dyn_tableau *m, const dyn_system *sys, double t0, doub
      * in *res or *opts (which the compiler would have to reload after every call of f). */
     dyn_rk_plan plan;
     const int planned = dyn_rk_plan_init(&plan, m, k, n);
-    const int shape = known_shape(m);
+    const dyn_inl_row *const shape = known_shape(m);
     const dyn_output_fn output = opts->output;
     void *const output_ctx = opts->output_ctx;
     const dyn_trace_fn trace = opts->trace;

@@ -103,6 +103,7 @@ typedef struct dyn_sinl_ctl {
     double expo;    /* 1/(q + 1) - 0.75 beta, q = the error order */
     double log2_safety, log2_floor; /* log2(safety (0.9)), log2(1e-4) */
     double log2_scale; /* 1, or 1/2 when the errors given are squared norms */
+    double expo_scaled; /* expo log2_scale: the exponent on log2 of the error as given */
     double log2_gain; /* log2(safety) + beta log2(err_old) */
 } dyn_sinl_ctl;
 
@@ -124,6 +125,7 @@ DYN_SINL void dyn_sinl_ctl_init(dyn_sinl_ctl *c, int q, double safety, double be
     c->fac_min = fac_min > 0.0 ? fac_min : 0.2;
     c->fac_max = fac_max > 0.0 ? fac_max : 10.0;
     c->expo = dyn_sinl_ctl_exponent(q, c->beta);
+    c->expo_scaled = c->expo * c->log2_scale;
     c->log2_safety = log2(safety > 0.0 ? safety : 0.9);
     c->log2_floor = log2(1e-4);
     c->log2_gain = c->log2_safety + c->beta * c->log2_floor;
@@ -133,8 +135,11 @@ DYN_SINL void dyn_sinl_ctl_init(dyn_sinl_ctl *c, int q, double safety, double be
  * keeps the step from growing right after a rejection. */
 DYN_SINL double dyn_sinl_ctl_accept(dyn_sinl_ctl *c, double h, double err, int rejected_before)
 {
-    const double l = c->log2_scale * log2(err); /* -inf for 0: the ratio becomes fac_max */
-    double ratio = exp2(c->log2_gain - c->expo * l);
+    /* expo_scaled l2 is expo (log2_scale l2) bit for bit (log2_scale is a power of two), one
+     * multiplication less on the chain from this step's error to the next step */
+    const double l2 = log2(err); /* -inf for 0: the ratio becomes fac_max */
+    const double l = c->log2_scale * l2;
+    double ratio = exp2(c->log2_gain - c->expo_scaled * l2);
     if (!(ratio <= c->fac_max))
         ratio = c->fac_max;
     if (ratio < c->fac_min)
@@ -152,7 +157,7 @@ DYN_SINL double dyn_sinl_ctl_reject(const dyn_sinl_ctl *c, double h, double err)
 {
     if (!isfinite(err))
         return 0.25 * h;
-    double ratio = exp2(c->log2_safety - c->expo * (c->log2_scale * log2(err)));
+    double ratio = exp2(c->log2_safety - c->expo_scaled * log2(err));
     if (ratio < c->fac_min)
         ratio = c->fac_min;
     if (!(ratio < 1.0))
@@ -677,8 +682,10 @@ DYN_SINL int dyn_sinl_solve(const int P, const dyn_tableau *m, dyn_rhs_fn f, voi
                     }
                 }
                 h = dyn_sinl_ctl_accept(&ctl, hn, err, rejected_before);
-                if (!(h <= hmax)) /* fmin(h, hmax): hmax is a number, h may be NaN */
-                    h = hmax;
+                /* fmin(h, hmax): hmax is a number, h may be NaN; in this form one minimum
+                 * instruction (minsd), where the test and assignment became a four-instruction
+                 * select on the chain to the next step */
+                h = h < hmax ? h : hmax;
                 if (last)
                     h = fmax(h, hn);
                 rejected_before = 0;

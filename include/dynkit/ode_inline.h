@@ -98,24 +98,44 @@ DYN_INL int dyn_inl_is_pow2(double a)
     return (bits & 0xfffffffffffffULL) == 0 && biased >= 1023 - 64 && biased <= 1023 + 64;
 }
 
-/* 1 if some x[q] is NaN or infinite: tested on the bits, (exponent field) + 1 having bit
- * 11 set only for the exponent of NaN and Inf. Integer operations, one state at a time
- * (the empty asm keeps the compiler from loading two states as one vector, which would
- * wait for both scalar stores), so that the test stays off the floating-point units the
- * step is waiting on. The earlier test, the sum of x - x after the step, was a chain of n
- * dependent additions: 15% of an Euler step of the 12-state plane. */
+/* 1 if some x[q] is NaN or infinite: tested on the bits, the exponent field (masked in
+ * place) plus one in its lowest bit reaching bit 63 only for the exponent of NaN and Inf.
+ * Integer operations, four per state (load, and, add, or), one state at
+ * a time (the empty asm keeps the compiler from loading two states as one vector, which
+ * would wait for both scalar stores), so that the test stays off the floating-point units
+ * the step is waiting on. The earlier test, the sum of x - x after the step, was a chain of
+ * n dependent additions: 15% of an Euler step of the 12-state plane. */
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__aarch64__))
+#define DYN_INL_INTEGER(bits) __asm__("" : "+r"(bits))
+#else
+#define DYN_INL_INTEGER(bits) ((void)0)
+#endif
 DYN_INL int dyn_inl_nonfinite(int n, const double *x)
 {
+    const uint64_t exponent = 0x7ff0000000000000ULL, one = 0x0010000000000000ULL;
     uint64_t e = 0;
-    for (int q = 0; q < n; q++) {
-        uint64_t bits;
-        memcpy(&bits, x + q, sizeof bits);
-#if defined(__GNUC__) && (defined(__x86_64__) || defined(__aarch64__))
-        __asm__("" : "+r"(bits));
-#endif
-        e |= ((bits >> 52) & 0x7ff) + 1;
+#define DYN_INL_NONFINITE_TERM(q)                                                                  \
+    do {                                                                                           \
+        uint64_t bits;                                                                             \
+        memcpy(&bits, x + (q), sizeof bits);                                                       \
+        DYN_INL_INTEGER(bits);                                                                     \
+        e |= (bits & exponent) + one;                                                              \
+    } while (0)
+#if defined(__GNUC__) && !defined(__clang__)
+    if (!__builtin_constant_p(n)) {
+        /* n known only at run time (the library): unrolled by two, which takes the loop's
+         * own instructions off half the states without the prologue of a wider unrolling
+         * (callgrind, Euler: 123 -> 95 instructions per step over the pointer floor's on the
+         * 12-state plane, 3 fewer on van der Pol) */
+        _Pragma("GCC unroll 2") for (int q = 0; q < n; q++) DYN_INL_NONFINITE_TERM(q);
+        return (int)(e >> 63);
     }
-    return (int)((e >> 11) & 1);
+#endif
+    /* a constant n: the compiler unrolls the loop completely */
+    for (int q = 0; q < n; q++)
+        DYN_INL_NONFINITE_TERM(q);
+#undef DYN_INL_NONFINITE_TERM
+    return (int)(e >> 63);
 }
 
 /* What the combination of one row of a (or of b) needs besides the row: its number of

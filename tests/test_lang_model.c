@@ -358,6 +358,33 @@ static void test_extensions_and_options_fill_the_model(void **state)
     unload(&L);
 }
 
+/* nout as XPPAUT 6.11 reads it: with its adaptive methods (gear, qualrk, stiff, cvode, 5dp,
+ * 83dp, 2rb) it writes a sample every dt and ignores nout (`@ dt=.1,total=10,nout=10`: 101
+ * rows, 11 with euler, rungekutta, backeul ...), whichever of meth and nout comes first. */
+static void test_nout_is_ignored_with_an_adaptive_meth(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *options;
+        long every;
+    } cases[] = {
+        {"meth=qualrk, dt=.1, nout=10", 1}, {"nout=10, meth=cvode", 1},
+        {"meth=83dp, nout=10", 1},          {"meth=gear, njmp=3", 1},
+        {"meth=2rb, nout=4", 1},            {"meth=dopri5, nout=4", 1},
+        {"meth=rungekutta, nout=10", 10},   {"meth=backeul, nout=10", 10},
+        {"meth=euler, nout=7", 7},          {"nout=10", 10},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char text[200];
+        snprintf(text, sizeof text, "x'=-x\ninit x=1\n@ %s\ndone\n", cases[i].options);
+        loaded L;
+        load(text, &L);
+        CHECK(L.m->every == cases[i].every, "@ %s: every %ld, expected %ld", cases[i].options,
+              (long)L.m->every, cases[i].every);
+        unload(&L);
+    }
+}
+
 /* Names that are C keywords or libm functions, and case folding, compile and mean the file's
  * names. */
 static void test_names_cannot_clash_with_c(void **state)
@@ -570,6 +597,7 @@ int main(void)
         cmocka_unit_test(test_sums_and_shifts),
         cmocka_unit_test(test_globals_reset_in_sequence),
         cmocka_unit_test(test_extensions_and_options_fill_the_model),
+        cmocka_unit_test(test_nout_is_ignored_with_an_adaptive_meth),
         cmocka_unit_test(test_names_cannot_clash_with_c),
         cmocka_unit_test(test_jacobian_matches_finite_differences),
         cmocka_unit_test(test_declared_band),

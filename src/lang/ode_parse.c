@@ -310,40 +310,44 @@ static double option_number(lang_ctx *c, const char *name, const char *v, lpos p
     return x;
 }
 
-/* XPPAUT's methods and dynkit's, to dynkit's: a table anyone can read. */
+/* XPPAUT's methods and dynkit's, to dynkit's: a table anyone can read. every_dt: XPPAUT
+ * writes a sample every dt with this method and ignores nout (measured with XPPAUT 6.11:
+ * `@ dt=.1,total=10,nout=10` gives 101 rows with gear, qualrk, stiff, cvode, 5dp, 83dp and
+ * 2rb, 11 with the others); dynkit's own names of adaptive methods do the same. */
 static const struct {
     const char *name, *method, *why;
+    int every_dt;
 } methods[] = {
     /* XPPAUT's names (manual, "Options": METH=) */
-    {"euler", "euler", NULL},
-    {"modeuler", "heun", NULL},
-    {"rungekutta", "rk4", NULL},
-    {"adams", "rk4", "XPPAUT's 4th-order Adams-Bashforth runs as rk4, the same order and step"},
-    {"gear", "rodas4", NULL},
-    {"volterra", "rodas4", "XPPAUT's implicit volterra method runs as the stiff rodas4"},
-    {"backeul", "rodas4", "backward Euler runs as the stiff rodas4"},
-    {"qualrk", "dp45", NULL},
-    {"stiff", "rodas4", NULL},
-    {"cvode", "rodas4", NULL},
-    {"5dp", "dp45", NULL},
-    {"83dp", "dop853", NULL},
-    {"2rb", "rodas4", NULL},
-    {"ymp", "rk4", "XPPAUT's symplectic ymp runs as rk4 with the same step"},
+    {"euler", "euler", NULL, 0},
+    {"modeuler", "heun", NULL, 0},
+    {"rungekutta", "rk4", NULL, 0},
+    {"adams", "rk4", "XPPAUT's 4th-order Adams-Bashforth runs as rk4, the same order and step", 0},
+    {"gear", "rodas4", NULL, 1},
+    {"volterra", "rodas4", "XPPAUT's implicit volterra method runs as the stiff rodas4", 0},
+    {"backeul", "rodas4", "backward Euler runs as the stiff rodas4", 0},
+    {"qualrk", "dp45", NULL, 1},
+    {"stiff", "rodas4", NULL, 1},
+    {"cvode", "rodas4", NULL, 1},
+    {"5dp", "dp45", NULL, 1},
+    {"83dp", "dop853", NULL, 1},
+    {"2rb", "rodas4", NULL, 1},
+    {"ymp", "rk4", "XPPAUT's symplectic ymp runs as rk4 with the same step", 0},
     /* other spellings */
-    {"rk4", "rk4", NULL},
-    {"runge", "rk4", NULL},
-    {"rk", "rk4", NULL},
-    {"heun", "heun", NULL},
-    {"midpoint", "midpoint", NULL},
-    {"bs23", "bs23", NULL},
-    {"ode23", "bs23", NULL},
-    {"dp45", "dp45", NULL},
-    {"dopri5", "dp45", NULL},
-    {"ode45", "dp45", NULL},
-    {"dop853", "dop853", NULL},
-    {"rodas4", "rodas4", NULL},
-    {"rosen", "rodas4", NULL},
-    {"rosenbrock", "rodas4", NULL},
+    {"rk4", "rk4", NULL, 0},
+    {"runge", "rk4", NULL, 0},
+    {"rk", "rk4", NULL, 0},
+    {"heun", "heun", NULL, 0},
+    {"midpoint", "midpoint", NULL, 0},
+    {"bs23", "bs23", NULL, 1},
+    {"ode23", "bs23", NULL, 1},
+    {"dp45", "dp45", NULL, 1},
+    {"dopri5", "dp45", NULL, 1},
+    {"ode45", "dp45", NULL, 1},
+    {"dop853", "dop853", NULL, 1},
+    {"rodas4", "rodas4", NULL, 1},
+    {"rosen", "rodas4", NULL, 1},
+    {"rosenbrock", "rodas4", NULL, 1},
 };
 
 static void set_method(lang_ctx *c, const char *v, lpos pos)
@@ -381,6 +385,9 @@ static void set_method(lang_ctx *c, const char *v, lpos pos)
     }
     c->m.method = methods[found].method;
     c->m.has_meth = 1;
+    c->m.meth_every_dt = methods[found].every_dt;
+    c->m.meth_name = v;
+    c->m.meth_pos = pos;
     if (methods[found].why)
         lang_note(c, pos, "meth=%s: %s", v, methods[found].why);
     else
@@ -446,6 +453,7 @@ static void parse_options(lang_ctx *c, lang_lexer *lx)
             if (!(k >= 1 && k <= 1e9) || k != floor(k))
                 lang_fail(c, vpos, "%s must be a whole number >= 1", name);
             m->nout = (long)k;
+            m->nout_pos = pos;
         } else if (ieqn(name, n, "xp") || ieqn(name, n, "xplot")) {
             m->xp = v;
             m->xp_pos = vpos;
@@ -864,4 +872,11 @@ void lang_parse_model(lang_ctx *c)
     }
     if (m->states.n == 0)
         lang_fail(c, (lpos){0, 0}, "no differential equation (x'=... or dx/dt=...) in the file");
+    if (m->meth_every_dt && m->nout > 1) {
+        lang_note(c, m->nout_pos,
+                  "nout=%ld is ignored with meth=%s: as in XPPAUT, an adaptive method writes a "
+                  "sample every dt (--every thins them)",
+                  m->nout, m->meth_name);
+        m->nout = 1;
+    }
 }

@@ -104,24 +104,23 @@ def refused_feature(message):
     return text.strip()
 
 
-def file_t0(text):
+def file_option(text, name, default):
+    """The number of option `name` on the file's first @ line that gives it."""
     for line in text.splitlines():
         s = line.strip().lower()
         if s.startswith("@"):
-            m = re.search(r"\bt0\s*=\s*([-+0-9.eE]+)", s)
+            m = re.search(r"\b%s\s*=\s*([-+0-9.eE]+)" % name, s)
             if m:
                 return float(m.group(1))
-    return 0.0
+    return default
+
+
+def file_t0(text):
+    return file_option(text, "t0", 0.0)
 
 
 def file_dt(text):
-    for line in text.splitlines():
-        s = line.strip().lower()
-        if s.startswith("@"):
-            m = re.search(r"\bdt\s*=\s*([-+0-9.e]+)", s)
-            if m:
-                return float(m.group(1))
-    return 0.05
+    return file_option(text, "dt", 0.05)
 
 
 def has_global(text):

@@ -20,6 +20,7 @@ typedef struct csv_sink {
     double last_t;            /* time of the last row written */
     int io_failed;
     int io_errno;             /* errno of the failed write */
+    int table_full;           /* the table kept all the rows its format may (cli_table_full) */
     const char *warned[8];    /* each distinct warning is printed once */
     int n_warned;
     long every;               /* keep samples k % every == 0 and the last one */
@@ -64,6 +65,10 @@ static int write_sample(csv_sink *sink, double t, const double *y)
             sink->extra[i] = 0.0 / 0.0;
     }
     if (cli_table_row(sink->table, t, y, m->n_states, sink->extra, n_extra)) {
+        if (cli_table_full(sink->table, NULL, 0)) {
+            sink->table_full = 1; /* the run stops here; its rows are written */
+            return 1;
+        }
         sink->io_failed = 1;
         sink->io_errno = errno;
         return 1;
@@ -71,6 +76,19 @@ static int write_sample(csv_sink *sink, double t, const double *y)
     sink->rows++;
     sink->last_t = t;
     return cli_stop_signal != 0; /* SIGINT/SIGTERM: stop after a complete row */
+}
+
+/* The rows the run writes when that is known beforehand (a grid or --times, no events that
+ * may end it early), else -1. */
+static long expected_rows(const cli_run *run, const dyn_grid *grid, int at_steps)
+{
+    if (run->final_only)
+        return 1;
+    if (run->n_events > 0 || cli_run_resets(run) > 0 || (at_steps && !run->times))
+        return -1;
+    const long samples = run->times ? run->n_times : grid->samples;
+    const long every = run->every > 1 ? run->every : 1;
+    return samples <= 1 ? samples : (samples - 1) / every + 1 + ((samples - 1) % every != 0);
 }
 
 static int on_sample(long k, double t, const double *y, void *ctx)
@@ -244,6 +262,24 @@ int cli_cmd_run(int argc, char **argv)
         cli_run_free(&run);
         return rc;
     }
+    if (format == CLI_FORMAT_NPZ || format == CLI_FORMAT_MAT) {
+        /* a table its file cannot hold is refused before the run, not after it */
+        const int cols = 1 + n + (run.with_outputs ? m->n_outputs : 0);
+        const char *limit_why;
+        const long limit = cli_table_limit(format, cols, n, &limit_why);
+        const long rows = expected_rows(&run, &grid, at_steps);
+        if (rows > limit) {
+            const long every = run.every > 1 ? run.every : 1;
+            rc = cli_usage_error("run",
+                                 "--output '%s': the run would write %ld rows of %d columns; "
+                                 "at most %ld fit in %s: write .csv or .npy (streamed, no "
+                                 "limit), or keep fewer rows with --every %ld",
+                                 run.output_path, rows, cols, limit, limit_why,
+                                 every * (long)ceil((double)rows / (double)limit));
+            cli_run_free(&run);
+            return rc;
+        }
+    }
     if (run.events_path && (cli_same_file(run.output_path, run.events_path) ||
                             (!run.output_path && strcmp(run.events_path, "-") == 0))) {
         rc = cli_usage_error("run",
@@ -342,6 +378,16 @@ int cli_cmd_run(int argc, char **argv)
     }
     /* a failed run keeps its file when it produced samples */
     keep = res.status == DYN_OK || sink.seen;
+    if (sink.table_full) {
+        char full[200];
+        cli_table_full(table, full, sizeof full);
+        fprintf(stderr,
+                "dynkit: error: --output: %s; the run stopped there and its rows are "
+                "written, the last at t = %s (CSV and NPY files are streamed, with no limit; "
+                "--every K keeps fewer rows)\n",
+                full, CLI_NUM(sink.last_t));
+        rc = CLI_FAILED;
+    }
     if (pipe_gone || (!outf.path && sink.io_failed && sink.io_errno == EPIPE)) {
         /* the reader of a pipe is gone (| head): end quietly */
         clearerr(stdout);
@@ -385,7 +431,7 @@ int cli_cmd_run(int argc, char **argv)
                 "dynkit: %s: the run stopped at t = %s; the samples up to it were written\n",
                 cli_signal_name(), CLI_NUM(res.t));
         rc = cli_signal_status();
-    } else if (res.status != DYN_OK) {
+    } else if (res.status != DYN_OK && !sink.table_full) {
         report_failure(&run, &res, buffers, &sink);
         rc = CLI_FAILED;
     }

@@ -14,7 +14,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "cli.h"
 #include "dynkit/io.h"
@@ -31,6 +33,8 @@ struct cli_table {
     long rows;
     int failed;      /* a write failed */
     int no_memory;   /* keeping the rows failed */
+    int full;        /* a row would have passed limit_rows: not kept */
+    long limit_rows; /* rows a buffered format may keep (cli_table_limit) */
     /* kept rows (buffered formats), row-major */
     double *data;
     long capacity;
@@ -277,11 +281,66 @@ static int npy_stream_end(cli_table *tab)
 
 /* ---- kept rows ---- */
 
+/* The memory a process may use: the machine's, or less under a limit on the address space
+ * or the data segment (ulimit -v, -d); +inf when unknown. */
+static double memory_bytes(void)
+{
+    double bytes = HUGE_VAL;
+#ifdef _SC_PHYS_PAGES
+    const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+    if (pages > 0 && page > 0)
+        bytes = (double)pages * (double)page;
+#endif
+    const int kinds[] = {RLIMIT_AS, RLIMIT_DATA};
+    for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; i++) {
+        struct rlimit rl;
+        if (getrlimit(kinds[i], &rl) == 0 && rl.rlim_cur != RLIM_INFINITY &&
+            (double)rl.rlim_cur < bytes)
+            bytes = (double)rl.rlim_cur;
+    }
+    return bytes;
+}
+
+/* The rows of cols columns (n_y of them the states) that a table of this format may keep in
+ * memory, and why: what the file can hold (an .npz archive without ZIP64 and each variable
+ * of a level 5 MAT-file: 4 GiB, less 1 MiB for the names and headers) and a quarter of the
+ * memory the process may use (the writers copy the columns once more). A run that reaches
+ * it stops with its rows written, instead of failing or being killed for memory at the
+ * end. LONG_MAX for the streamed formats. */
+long cli_table_limit(cli_format format, int cols, int n_y, const char **why)
+{
+    const double row_bytes = 8.0 * (cols > 0 ? cols : 1);
+    double rows = (double)LONG_MAX;
+    *why = NULL;
+    if (format == CLI_FORMAT_NPZ || format == CLI_FORMAT_MAT) {
+        const int widest = format == CLI_FORMAT_NPZ
+                               ? cols
+                               : (n_y > cols - 1 - n_y ? n_y : cols - 1 - n_y);
+        rows = (4294967295.0 - 1048576.0) / (8.0 * (widest > 0 ? widest : 1));
+        *why = format == CLI_FORMAT_NPZ ? "an .npz file without ZIP64 (4 GiB)"
+                                        : "a variable of a level 5 MAT-file (4 GiB)";
+    }
+    if (format == CLI_FORMAT_NPZ || format == CLI_FORMAT_MAT || format == CLI_FORMAT_NPY) {
+        const double budget = memory_bytes() / 4.0 / row_bytes;
+        if (budget < rows) {
+            rows = budget;
+            *why = "a quarter of the memory this process may use";
+        }
+    }
+    return rows >= (double)LONG_MAX ? LONG_MAX : (long)rows;
+}
+
 static int keep_row(cli_table *tab, double t, const double *y, int n, const double *extra, int m)
 {
     const int cols = tab->info.cols;
+    if (tab->rows >= tab->limit_rows) {
+        tab->full = 1;
+        return -1;
+    }
     if (tab->rows == tab->capacity) {
         long cap = tab->capacity ? 2 * tab->capacity : 1024;
+        if (cap > tab->limit_rows)
+            cap = tab->limit_rows;
         if ((double)cap * cols * sizeof(double) > (double)SIZE_MAX / 2)
             return -1;
         double *d = realloc(tab->data, (size_t)cap * (size_t)cols * sizeof *d);
@@ -311,6 +370,8 @@ cli_table *cli_table_open(FILE *out, cli_format format, const cli_table_info *in
     tab->out = out;
     tab->format = format;
     tab->info = *info;
+    const char *limit_why;
+    tab->limit_rows = cli_table_limit(format, info->cols, info->n_y, &limit_why);
     if (!tab->info.y_name)
         tab->info.y_name = "y";
     if (format == CLI_FORMAT_CSV || format == CLI_FORMAT_JSON) {
@@ -361,7 +422,7 @@ cli_table *cli_table_open(FILE *out, cli_format format, const cli_table_info *in
 int cli_table_row(cli_table *tab, double t, const double *y, int n, const double *extra, int m)
 {
     int bad = 0;
-    if (tab->failed || tab->no_memory)
+    if (tab->failed || tab->no_memory || tab->full)
         return -1;
     switch (tab->format) {
     case CLI_FORMAT_CSV:
@@ -373,16 +434,16 @@ int cli_table_row(cli_table *tab, double t, const double *y, int n, const double
     case CLI_FORMAT_NPY:
         if (tab->npy_stream)
             bad = npy_row(tab, t, y, n, extra, m);
-        else if (keep_row(tab, t, y, n, extra, m))
+        else if (keep_row(tab, t, y, n, extra, m) && !tab->full)
             tab->no_memory = 1;
         break;
     case CLI_FORMAT_MAT:
     case CLI_FORMAT_NPZ:
-        if (keep_row(tab, t, y, n, extra, m))
+        if (keep_row(tab, t, y, n, extra, m) && !tab->full)
             tab->no_memory = 1;
         break;
     }
-    if (tab->no_memory)
+    if (tab->no_memory || tab->full)
         return -1;
     if (bad) {
         tab->failed = 1;
@@ -393,6 +454,17 @@ int cli_table_row(cli_table *tab, double t, const double *y, int n, const double
 }
 
 long cli_table_rows(const cli_table *tab) { return tab->rows; }
+
+int cli_table_full(const cli_table *tab, char *why, size_t len)
+{
+    if (!tab->full)
+        return 0;
+    const char *what;
+    cli_table_limit(tab->format, tab->info.cols, tab->info.n_y, &what);
+    snprintf(why, len, "%ld rows of %d columns fill %s", tab->rows, tab->info.cols,
+             what ? what : "the table");
+    return 1;
+}
 
 int cli_table_finish(cli_table *tab, char *err, size_t errlen)
 {

@@ -75,6 +75,12 @@ int cli_table_row(cli_table *tab, double t, const double *y, int n, const double
 int cli_table_finish(cli_table *tab, char *err, size_t errlen);
 /* Rows given so far. */
 long cli_table_rows(const cli_table *tab);
+/* The rows of cols columns (n_y states) a table of format may keep in memory (LONG_MAX for
+ * the streamed formats), with *why the limit's reason (NULL when none). */
+long cli_table_limit(cli_format format, int cols, int n_y, const char **why);
+/* 1 when a row was refused because the table kept all the rows it may (cli_table_limit),
+ * with a sentence in why; the rows kept are still written by cli_table_finish. */
+int cli_table_full(const cli_table *tab, char *why, size_t len);
 void cli_table_free(cli_table *tab);
 
 /* ---- the writers of the buffered formats (table_numpy.c, table_mat.c) ---- */

@@ -249,6 +249,57 @@ static void test_mat_octave(void **state)
     check_format("mat", loader);
 }
 
+/* A table that its file cannot hold: refused before the run when the row count is known
+ * (300,000,001 rows of 3 columns; an .npz file without ZIP64 holds (2^32 - 1 - 2^20) / 24
+ * rows), no file made; when it is not known (an adaptive run sampled at every step), the
+ * run stops at the limit and its rows are written: under a 400,000 KiB address space the
+ * table may use a quarter of it, 4,266,666 rows of 3 doubles. */
+static void test_table_too_large(void **state)
+{
+    (void)state;
+    cli_result r = cli_in_tmpdir("run vanderpol -m rk4 --step 1e-6 --tspan 0:300 -o big.npz");
+    char expect[128];
+    snprintf(expect, sizeof expect, "at most %.0f fit in an .npz file",
+             floor((4294967295.0 - 1048576.0) / 24.0));
+    CHECK(r.status == 2 && strstr(r.err, "300000001 rows of 3 columns") &&
+              strstr(r.err, expect) && strstr(r.err, "--every 2"),
+          "a table too large for .npz: exit %d: %s", r.status, r.err);
+    cli_free(&r);
+    struct stat st;
+    CHECK(stat(cli_path("big.npz"), &st) != 0, "a refused run made big.npz");
+#if defined(__SANITIZE_ADDRESS__)
+    print_message("SKIP: the run under a limit on the address space (AddressSanitizer needs "
+                  "a large one)\n");
+#else
+    char cmd[1024];
+    snprintf(cmd, sizeof cmd,
+             "cd '%s' && ulimit -v 400000 && '%s' run vanderpol -m dp45 --tspan 0:400000 --quiet "
+             "-o big.npz 2>err; echo \"exit $?\"; cat err",
+             cli_tmpdir, DYNKIT_CLI);
+    int status;
+    char *out = cli_capture(cmd, &status);
+    CHECK(strstr(out, "exit 1") && strstr(out, "4266666 rows of 3 columns fill a quarter of the "
+                                                 "memory") &&
+              strstr(out, "its rows are written"),
+          "a run that fills the table: %s", out);
+    free(out);
+    char probe[128];
+    snprintf(probe, sizeof probe, PYTHON " -c 'import numpy'");
+    if (have(probe)) {
+        snprintf(cmd, sizeof cmd,
+                 "cd '%s' && " PYTHON " -c \"import numpy as np; d = np.load('big.npz'); "
+                 "t = d['t']; print(len(t), bool((np.diff(t) > 0).all()), t[-1] < 400000, "
+                 "d['y'].shape)\"",
+                 cli_tmpdir);
+        out = cli_capture(cmd, &status);
+        CHECK(status == 0 && strstr(out, "4266666 True True (4266666, 2)"),
+              "the rows written when the table filled: %s", out);
+        free(out);
+    }
+#endif
+    unlink(cli_path("big.npz"));
+}
+
 /* inverse cart's force table as .npz: t, forces, names t Fx Fy. */
 static void test_inverse_npz(void **state)
 {
@@ -346,6 +397,7 @@ int main(void)
         cmocka_unit_test(test_mat_scipy),
         cmocka_unit_test(test_mat_octave),
         cmocka_unit_test(test_inverse_npz),
+        cmocka_unit_test(test_table_too_large),
     };
     return cmocka_run_group_tests(tests, cli_setup, teardown);
 }

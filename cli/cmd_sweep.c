@@ -585,6 +585,66 @@ static int read_resume(const char *path, sweep_out *o, unsigned char *skip, long
     return rc;
 }
 
+/* --resume: the first finished run of the table, run again with this sweep's options, must
+ * give its row and status bit for bit (a run depends only on its row of the run table: the
+ * determinism of docs/sweeps.md); otherwise the table was made with other run options
+ * (method, step, tspan, tolerances, --set, ...) that its header does not show, or by another
+ * dynkit, and is refused rather than mixed with runs of these options. */
+static int check_resumed(const dyn_sweep *s, const sweep_out *o, const unsigned char *skip,
+                         const char *path)
+{
+    long probe = -1;
+    for (long i = 0; i < s->n_runs && probe < 0; i++)
+        if (skip[i])
+            probe = i;
+    if (probe < 0)
+        return CLI_OK;
+    const size_t n_red = (size_t)o->n_red;
+    unsigned char *only = malloc((size_t)s->n_runs + 1);
+    double *results = malloc(((size_t)s->n_runs * n_red + 1) * sizeof *results);
+    int *status = malloc(((size_t)s->n_runs + 1) * sizeof *status);
+    int rc = CLI_OK;
+    char err[512];
+    if (!only || !results || !status) {
+        fprintf(stderr, "dynkit: error: out of memory\n");
+        rc = CLI_FAILED;
+    } else {
+        memset(only, 1, (size_t)s->n_runs);
+        only[probe] = 0;
+        for (long i = 0; i < s->n_runs; i++)
+            status[i] = DYN_SWEEP_NOT_RUN;
+        dyn_sweep one = *s;
+        one.skip = only;
+        one.threads = 1;
+        one.progress = NULL;
+        one.cancel = NULL;
+        const int src = dyn_sweep_run(&one, results, status, err, sizeof err);
+        if (src != DYN_OK) {
+            fprintf(stderr, "dynkit: error: %s\n", err);
+            rc = src == DYN_ERR_ARG ? CLI_USAGE : CLI_FAILED;
+        }
+        const double *mine = results + (size_t)probe * n_red;
+        const double *kept = o->results + (size_t)probe * n_red;
+        int same = status[probe] == o->status[probe];
+        for (size_t r = 0; r < n_red && same; r++)
+            same = (isnan(mine[r]) && isnan(kept[r])) ||
+                   memcmp(&mine[r], &kept[r], sizeof mine[r]) == 0;
+        if (rc == CLI_OK && !same) {
+            fprintf(stderr,
+                    "dynkit: error: --resume: %s was made with other run options: its run %ld, "
+                    "run again with these, gives %s where the file has %s.\nThe table does not "
+                    "record the method, step, tspan, tolerances or --set: give those of the "
+                    "sweep that wrote it (and the same dynkit)\n",
+                    path, probe, dyn_shortest(mine[0]).s, dyn_shortest(kept[0]).s);
+            rc = CLI_USAGE;
+        }
+    }
+    free(only);
+    free(results);
+    free(status);
+    return rc;
+}
+
 /* ---- progress and Ctrl-C ---- */
 
 static volatile sig_atomic_t sweep_signal;
@@ -857,6 +917,8 @@ static int sweep_command(int argc, char **argv, int rank, int ranks)
     s.stop = stop;
     s.skip = skip;
     s.threads = (int)threads;
+    if (rc == CLI_OK && kept > 0)
+        rc = check_resumed(&s, &o, skip, resume);
     sweep_progress prog = {0};
     prog.enabled = !run.quiet && isatty(fileno(stderr));
     prog.start = prog.last = now_seconds();

@@ -23,6 +23,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <stdlib.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -31,6 +32,7 @@
 
 #include "dynkit/dynkit.h"
 #include "test_cli_run.h"
+#include "test_util.h"
 
 static double ellip_k(double k)
 {
@@ -184,6 +186,25 @@ static void test_resume(void **state)
     cli_result other = cli_in_tmpdir("sweep vanderpol --vary mu=1,2 --resume full.csv");
     assert_int_equal(other.status, 2);
     assert_non_null(strstr(other.err, "is not a table of this sweep"));
+    /* so is a table of the same header and runs made with another step, tspan or method
+     * (its runs would be mixed with runs of these options), and the file is left as it was */
+    static const char *const others[] = {
+        "sweep vanderpol --method rk4 --step 0.005 --tspan 0:10",
+        "sweep vanderpol --method rk4 --step 0.01 --tspan 0:9",
+        "sweep vanderpol --method heun --step 0.01 --tspan 0:10",
+        "sweep vanderpol --method rk4 --step 0.01 --tspan 0:10 --init y2=0.1"};
+    for (size_t i = 0; i < sizeof others / sizeof others[0]; i++) {
+        cli_free(&other);
+        other = cli_in_tmpdir("%s --vary mu=0.5:3:40 --vary y1=1,2 --reduce final,max:y2 "
+                              "--resume full.csv --output again.csv",
+                              others[i]);
+        CHECK(other.status == 2 && strstr(other.err, "was made with other run options"),
+              "%s --resume of a table made with --step 0.01 --tspan 0:10 (rk4): exit %d: %s",
+              others[i], other.status, other.err);
+        struct stat st;
+        CHECK(stat(cli_path("again.csv"), &st) != 0, "%s: a refused resume wrote again.csv",
+              others[i]);
+    }
     cli_free(&full);
     cli_free(&res);
     cli_free(&other);

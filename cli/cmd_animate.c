@@ -128,6 +128,9 @@ int cli_cmd_animate(int argc, char **argv)
     if (rc == CLI_OK && !no_ani)
         rc = cli_ani_open("animate", args[0], extra_values[0], v.run.model, &ani);
     free(args);
+    static const char *const html[] = {".html", ".htm", NULL};
+    if (rc == CLI_OK)
+        rc = cli_out_check_extension("animate", "--output", v.run.output_path, html);
     int run_rc = rc == CLI_OK ? cli_view_record(&v) : rc;
     if (rc == CLI_OK && (run_rc == CLI_USAGE || v.n_series == 0))
         rc = run_rc;

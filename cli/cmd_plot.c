@@ -112,6 +112,9 @@ int cli_cmd_plot(int argc, char **argv)
         rc = parse_names("y", values[0], m, ycols, MAX_Y, &n_y);
     if (rc == CLI_OK && values[1])
         rc = parse_names("x", values[1], m, &xcol, 1, &n_x);
+    static const char *const svg[] = {".svg", NULL};
+    if (rc == CLI_OK)
+        rc = cli_out_check_extension("plot", "--output", v.run.output_path, svg);
     int run_rc = rc == CLI_OK ? cli_view_record(&v) : rc;
     if (rc == CLI_OK && (run_rc == CLI_USAGE || v.n_series == 0))
         rc = run_rc;

@@ -11,6 +11,7 @@
 #include <signal.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -148,6 +149,27 @@ int cli_out_close(cli_out *o, int keep)
         o->tmp = o->target = NULL;
     }
     return rc;
+}
+
+int cli_out_check_extension(const char *command, const char *option, const char *path,
+                            const char *const *exts)
+{
+    if (!path || strcmp(path, "-") == 0)
+        return CLI_OK;
+    const char *slash = strrchr(path, '/');
+    const char *dot = strrchr(slash ? slash + 1 : path, '.');
+    char accepted[128] = "";
+    for (int i = 0; exts[i]; i++) {
+        if (dot && strcasecmp(dot, exts[i]) == 0)
+            return CLI_OK;
+        snprintf(accepted + strlen(accepted), sizeof accepted - strlen(accepted), "%sFILE%s",
+                 i ? (exts[i + 1] ? ", " : " or ") : "", exts[i]);
+    }
+    struct stat st;
+    if (stat(path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode))
+        return CLI_OK; /* a device or a pipe */
+    return cli_usage_error(command, "%s '%s': %s writes %s ('-' is standard output)", option,
+                           path, command, accepted);
 }
 
 int cli_same_file(const char *a, const char *b)

@@ -26,6 +26,11 @@ int cli_out_open(cli_out *o, const char *what, const char *path);
  * a write failed); else it is removed and the real name keeps what it had. Returns CLI_OK
  * or CLI_FAILED (message printed; stdout failures are reported by cli_stdout_check). */
 int cli_out_close(cli_out *o, int keep);
+/* CLI_OK when path (NULL or "-": standard output) ends in one of the extensions exts
+ * (NULL-terminated, e.g. ".svg"; case ignored) or is a device or pipe; else a usage error of
+ * command, printed, that names option, the file and the accepted extensions (CLI_USAGE). */
+int cli_out_check_extension(const char *command, const char *option, const char *path,
+                            const char *const *exts);
 /* 1 if the two paths name the same file (existing or not; "-" is never a file). */
 int cli_same_file(const char *a, const char *b);
 /* At exit: flush stdout; a failed write turns rc into CLI_FAILED with a message (a closed

@@ -504,6 +504,12 @@ int cli_plot_sweep_table(int argc, char **argv)
                              t.names[varied[0]], t.names[varied[1]]);
     if (rc == CLI_OK && html && output)
         rc = cli_usage_error("plot", "give --html FILE or --output FILE, not both");
+    static const char *const svg_html[] = {".svg", ".html", NULL}, *const html_only[] = {".html",
+                                                                                         NULL};
+    if (rc == CLI_OK)
+        rc = cli_out_check_extension("plot", "--output", output, svg_html);
+    if (rc == CLI_OK)
+        rc = cli_out_check_extension("plot", "--html", html, html_only);
     if (rc == CLI_OK && output && ends_with_html(output))
         html = output, output = NULL;
     const char *path = html ? html : output;

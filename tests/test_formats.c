@@ -369,6 +369,26 @@ static void test_unknown_extension(void **state)
     r = cli_in_tmpdir("inverse cart -o forces.dat");
     CHECK(r.status == 2 && strstr(r.err, ".npz"), "inverse -o forces.dat: %s", r.err);
     cli_free(&r);
+    /* the pictures and pages: an SVG picture, an HTML page, nothing else (no SVG written
+     * under a .png name) */
+    static const struct {
+        const char *args, *file, *accepted;
+    } pictures[] = {
+        {"plot pendulum --y phi -o x.png", "x.png", "plot writes FILE.svg"},
+        {"plot pendulum --y phi -o x.html", "x.html", "plot writes FILE.svg"},
+        {"animate pendulum -o x.svg", "x.svg", "animate writes FILE.html or FILE.htm"},
+        {"animate pendulum -o x", "x", "animate writes FILE.html or FILE.htm"},
+    };
+    for (size_t i = 0; i < sizeof pictures / sizeof pictures[0]; i++) {
+        cli_free(&r);
+        r = cli_in_tmpdir("%s", pictures[i].args);
+        CHECK(r.status == 2 && strstr(r.err, pictures[i].accepted), "%s: exit %d: %s",
+              pictures[i].args, r.status, r.err);
+        struct stat st;
+        CHECK(stat(cli_path(pictures[i].file), &st) != 0, "%s made %s", pictures[i].args,
+              pictures[i].file);
+    }
+    cli_free(&r);
     /* the extension is matched without regard to case */
     r = cli_in_tmpdir("run pendulum --tspan 0:0.2 -o UPPER.JSON");
     CHECK(r.status == 0, "-o UPPER.JSON: %s", r.err);

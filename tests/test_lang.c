@@ -238,6 +238,14 @@ static void test_notes_tell_what_is_ignored(void **state)
           "%s", n.text);
     CHECK(strstr(n.text, "4: the value of 'y' is a formula, 'a'"), "%s", n.text);
     CHECK(!strstr(n.text, "'b'"), "a signed number is a number: %s", n.text);
+    /* an initial value given twice: the last one, as in XPPAUT 6.11, and said; nout with
+     * an adaptive meth ignored, as XPPAUT does, and said */
+    out = expect_ok("x'=-x\nx(0)=3\ninit x=1\n@ meth=cvode, nout=5\n", &n);
+    free(out);
+    CHECK(strstr(n.text, "3: the initial value of x is given again (first on line 2): the last "
+                         "one is used"),
+          "%s", n.text);
+    CHECK(strstr(n.text, "4: nout=5 is ignored with meth=cvode"), "%s", n.text);
     /* XPPAUT reads x>1+2 as (x>1)+2: said, not changed */
     out = expect_ok("x'=x>1+2\n", &n);
     free(out);

@@ -23,6 +23,38 @@ void svg_tick_label(double v, double step, char *buf, size_t size)
         snprintf(buf, size, "%.*f", digits > 0 ? digits : 0, v);
 }
 
+int svg_tick_offset(long first, long last, double step, double *offset, double *scale)
+{
+    const double a = (double)first * step, b = (double)last * step;
+    *offset = 0.0;
+    *scale = 1.0;
+    if (!(step > 0.0) || fmax(fabs(a), fabs(b)) < 1e5 * step)
+        return 0;
+    /* the offset: the ticks' common leading digits, down to the power of ten above their
+     * span; the scale: the power of ten of the step */
+    const double span = pow(10.0, ceil(log10(b - a + step)));
+    *offset = floor(a / span) * span;
+    *scale = pow(10.0, floor(log10(step) + 1e-9));
+    return 1;
+}
+
+void svg_offset_note(double offset, double scale, char *buf, size_t size)
+{
+    /* the offset to the digit of the scale (no rounding noise of its computation) */
+    int digits = offset != 0.0 ? (int)(floor(log10(fabs(offset))) - floor(log10(scale) + 1e-9)) + 1
+                               : 1;
+    if (digits < 1)
+        digits = 1;
+    if (digits > 17)
+        digits = 17;
+    const int e = (int)lround(log10(scale));
+    if (offset == 0.0) /* "\xc3\x97" is the multiplication sign, "\xe2\x88\x92" the minus, in UTF-8 */
+        snprintf(buf, size, "\xc3\x97" "1e%d", e);
+    else
+        snprintf(buf, size, "\xc3\x97" "1e%d %s %.*g", e, offset < 0 ? "\xe2\x88\x92" : "+",
+                 digits, fabs(offset));
+}
+
 int svg_text_escaped(FILE *out, const char *s)
 {
     int bad = 0;

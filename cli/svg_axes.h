@@ -19,6 +19,15 @@ double svg_nice_step(double range, int target);
  * small magnitudes. */
 void svg_tick_label(double v, double step, char *buf, size_t size);
 
+/* The offset and scale of an axis whose ticks first*step .. last*step need more than six
+ * significant digits to tell apart (an energy conserved to 1e-9 J: 237.453059002,
+ * 237.453059004, ...): the ticks are then labelled (v - offset) / scale (0, 2, 4, ...) and
+ * the axis carries the note "x1e-9 + 237.453059" (svg_offset_note). Returns 1 with offset
+ * and scale set, or 0 when plain labels are short enough (offset 0, scale 1). */
+int svg_tick_offset(long first, long last, double step, double *offset, double *scale);
+/* The note of an axis with svg_tick_offset's offset and scale, e.g. "×1e-9 + 237.453059". */
+void svg_offset_note(double offset, double scale, char *buf, size_t size);
+
 /* s with <, > and & escaped (nothing for NULL). */
 int svg_text_escaped(FILE *out, const char *s);
 

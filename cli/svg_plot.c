@@ -92,15 +92,31 @@ static int axes(FILE *out, const cli_svg_plot *p, const axis *ax, const axis *ay
     for (long k = ky0; k <= ky1; k++)
         bad |= svg_line(out, x0, to_px_y(ay, k * ay->step), x1, to_px_y(ay, k * ay->step));
     bad |= svg_frame_and_ticks_begin(out, x0, x1, y0, y1);
+    /* ticks that differ only in late digits are labelled from an offset (svg_tick_offset) */
+    double xoff, xscale, yoff, yscale;
+    const int x_offset = svg_tick_offset(kx0, kx1, ax->step, &xoff, &xscale);
+    const int y_offset = svg_tick_offset(ky0, ky1, ay->step, &yoff, &yscale);
     for (long k = kx0; k <= kx1; k++) {
         const double v = (double)k * ax->step;
-        svg_tick_label(v, ax->step, label, sizeof label);
+        svg_tick_label((v - xoff) / xscale, ax->step / xscale, label, sizeof label);
         bad |= svg_xtick(out, to_px_x(ax, v), y0, label);
     }
     for (long k = ky0; k <= ky1; k++) {
         const double v = (double)k * ay->step;
-        svg_tick_label(v, ay->step, label, sizeof label);
+        svg_tick_label((v - yoff) / yscale, ay->step / yscale, label, sizeof label);
         bad |= svg_ytick(out, x0, to_px_y(ay, v), label);
+    }
+    if (x_offset) {
+        svg_offset_note(xoff, xscale, label, sizeof label);
+        bad |= fprintf(out, "<text class=\"offset\" x=\"%.2f\" y=\"%.2f\" text-anchor=\"end\" "
+                            "stroke=\"none\">%s</text>\n",
+                       x1, y0 + 36, label) < 0;
+    }
+    if (y_offset) {
+        svg_offset_note(yoff, yscale, label, sizeof label);
+        bad |= fprintf(out, "<text class=\"offset\" x=\"%.2f\" y=\"%.2f\" text-anchor=\"start\" "
+                            "stroke=\"none\">%s</text>\n",
+                       x0, y1 - 6, label) < 0;
     }
     bad |= svg_titles(out, x0, x1, y0, y1, W, H, p->xlabel, p->ylabel, p->title);
     return bad;

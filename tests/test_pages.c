@@ -152,6 +152,20 @@ static void test_plot_several_names_units_and_compare(void **state)
     CHECK(r.status == 0 && strstr(r.out, ">energy [J]</text>") && strstr(r.out, ">height [m]</text>") &&
               count(r.out, "class=\"panel\"") == 2,
           "outputs as names, a panel per unit: %d %s", r.status, r.err);
+    /* the pendulum's energy, conserved by rk4 to about 1e-8 J of 237.45 J: its ticks differ
+     * in the ninth decimal and are labelled from an offset (short labels that fit the
+     * margin), the offset and scale written above the axis */
+    cli_free(&r);
+    r = cli("plot pendulum --method rk4 --step 0.01 --tspan 0:10 --y energy");
+    const char *note = strstr(r.out, "class=\"offset\"");
+    CHECK(r.status == 0 && note && strstr(note, "\xc3\x97" "1e-") &&
+              strstr(note, " + 237.45"),
+          "the energy axis has no offset note: %d %.300s", r.status, note ? note : r.err);
+    for (const char *p = strstr(r.out, "text-anchor=\"end\" stroke=\"none\">"); p;
+         p = strstr(p + 1, "text-anchor=\"end\" stroke=\"none\">")) {
+        const char *label = strchr(p, '>') + 1;
+        CHECK(strchr(label, '<') - label <= 4, "a long tick label: %.40s", label);
+    }
     /* the same unit shares one axis */
     cli_free(&r);
     r = cli("plot plane --y sX,sZ --method rk4 --step 0.01 --tspan 0:0.5");

@@ -1,11 +1,13 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit plot TABLE.csv: a picture of a sweep's table (dynkit sweep, docs/sweeps.md) as a
  * standalone SVG 1.1 file, or (--html FILE, --output FILE.html) as a self-contained page
- * drawn by web/js/sweep.js with the same choice of picture. One varied name: a line of each reduced column against it
- * (svg_plot.c). Two varied names: a heat map of one reduced column over their grid, a cell
+ * drawn by web/js/sweep.js with the same choice of picture. One varied name: a line of each
+ * reduced column against it (svg_plot.c). Two varied names: a heat map of one reduced column over their grid, a cell
  * per run (edges halfway between neighbouring values, so uneven grids are drawn true), the
  * colours of matplotlib's viridis map (van der Walt and Smith, 2015: even in lightness, read
- * in grey and by colour-blind readers) with a colour bar, failed runs and nan in grey. */
+ * in grey and by colour-blind readers) with a colour bar, failed runs and nan in grey; when
+ * the values were sampled at random (--sample) rather than on a grid, a point per run in
+ * the same colours. Lines follow the varied value, not the run order. */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <math.h>
@@ -225,9 +227,18 @@ static int heat_map(FILE *out, const sweep_table *t, int xc, int yc, int zc, con
     }
     const long nx = distinct(t, xc, xv), ny = distinct(t, yc, yv);
     int bad = nx == 0 || ny == 0;
-    if (!bad) {
+    /* values sampled at random (--sample) rather than on a grid: most cells of the grid of
+     * their distinct values would be empty; a point per run instead */
+    const int scatter = !bad && (double)nx * (double)ny > 2.0 * (double)t->rows;
+    if (!bad && !scatter) {
         edges(xv, nx, xe);
         edges(yv, ny, ye);
+    } else if (!bad) {
+        const double px = 0.03 * (xv[nx - 1] - xv[0]) + (nx == 1), py = 0.03 * (yv[ny - 1] - yv[0]) + (ny == 1);
+        xe[0] = xv[0] - px;
+        xe[nx] = xv[nx - 1] + px;
+        ye[0] = yv[0] - py;
+        ye[ny] = yv[ny - 1] + py;
     }
     double zlo = INFINITY, zhi = -INFINITY;
     for (long r = 0; r < t->rows; r++) {
@@ -250,8 +261,9 @@ static int heat_map(FILE *out, const sweep_table *t, int xc, int yc, int zc, con
                    "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/"
                    "2000/svg\" width=\"%.0f\" height=\"%.0f\" viewBox=\"0 0 %.0f %.0f\" "
                    "font-family=\"sans-serif\">\n<rect width=\"100%%\" height=\"100%%\" "
-                   "fill=\"white\"/>\n<g class=\"cells\" shape-rendering=\"crispEdges\">\n",
-                   HW, HH, HW, HH) < 0;
+                   "fill=\"white\"/>\n<g class=\"%s\"%s>\n",
+                   HW, HH, HW, HH, scatter ? "points" : "cells",
+                   scatter ? "" : " shape-rendering=\"crispEdges\"") < 0;
     char col[16];
     for (long r = 0; r < t->rows && !bad; r++) {
         const double *row = t->data + r * t->cols;
@@ -259,6 +271,14 @@ static int heat_map(FILE *out, const sweep_table *t, int xc, int yc, int zc, con
         if (ix < 0 || iy < 0)
             continue;
         colour((row[zc] - zlo) / (zhi - zlo), col, sizeof col);
+        if (scatter) {
+            bad |= fprintf(out,
+                           "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"3.5\" fill=\"%s\"><title>%s=%s "
+                           "%s=%s: %s=%s</title></circle>\n",
+                           PX(row[xc]), PY(row[yc]), col, t->names[xc], CLI_NUM(row[xc]),
+                           t->names[yc], CLI_NUM(row[yc]), t->names[zc], CLI_NUM(row[zc])) < 0;
+            continue;
+        }
         const double a = PX(xe[ix]), b = PX(xe[ix + 1]), c = PY(ye[iy + 1]), d = PY(ye[iy]);
         bad |= fprintf(out,
                        "<rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" "
@@ -321,10 +341,49 @@ static int heat_map(FILE *out, const sweep_table *t, int xc, int yc, int zc, con
     return bad ? CLI_FAILED : CLI_OK;
 }
 
-/* Lines of the columns ycols against column xc; when the table has another varied name,
- * one line per value of it (of the first column of ycols; at most CLI_SVG_MAX_LINES). */
-static int lines(FILE *out, const sweep_table *t, int xc, const int *ycols, int n_y,
-                 const char *title)
+typedef struct keyed_row {
+    double x;
+    long row;
+} keyed_row;
+
+static int cmp_keyed(const void *a, const void *b)
+{
+    const keyed_row *p = a, *q = b;
+    if (p->x != q->x) {
+        if (isnan(p->x) || isnan(q->x))
+            return isnan(p->x) ? 1 : -1; /* nan last */
+        return p->x < q->x ? -1 : 1;
+    }
+    return p->row < q->row ? -1 : p->row > q->row;
+}
+
+/* The rows of t ordered by column c (ties in run order; nan last), in a new array: a table
+ * of values sampled at random (--sample) is in run order, and a line through its points in
+ * that order would zigzag. NULL when out of memory. */
+static double *rows_by(const sweep_table *t, int c)
+{
+    keyed_row *key = malloc(((size_t)t->rows + 1) * sizeof *key);
+    double *data = malloc(((size_t)t->rows * (size_t)t->cols + 1) * sizeof *data);
+    if (key && data) {
+        for (long r = 0; r < t->rows; r++)
+            key[r] = (keyed_row){t->data[r * t->cols + c], r};
+        qsort(key, (size_t)t->rows, sizeof *key, cmp_keyed);
+        for (long r = 0; r < t->rows; r++)
+            memcpy(data + r * t->cols, t->data + key[r].row * t->cols,
+                   (size_t)t->cols * sizeof *data);
+    } else {
+        free(data);
+        data = NULL;
+    }
+    free(key);
+    return data;
+}
+
+/* Lines of the columns ycols against column xc (rows in the order of xc); when the table
+ * has another varied name, one line per value of it (of the first column of ycols; at
+ * most CLI_SVG_MAX_LINES). */
+static int lines_of(FILE *out, const sweep_table *t, int xc, const int *ycols, int n_y,
+                    const char *title)
 {
     cli_svg_plot p;
     memset(&p, 0, sizeof p);
@@ -370,6 +429,21 @@ static int lines(FILE *out, const sweep_table *t, int xc, const int *ycols, int 
     const int rc = cli_svg_write(out, &p);
     free(vals);
     free(xy);
+    return rc;
+}
+
+/* lines_of on the rows ordered by column xc. */
+static int lines(FILE *out, const sweep_table *unsorted, int xc, const int *ycols, int n_y,
+                 const char *title)
+{
+    sweep_table sorted_rows = *unsorted;
+    const sweep_table *t = &sorted_rows;
+    double *by_x = rows_by(unsorted, xc);
+    if (!by_x)
+        return CLI_FAILED;
+    sorted_rows.data = by_x;
+    const int rc = lines_of(out, t, xc, ycols, n_y, title);
+    free(by_x);
     return rc;
 }
 

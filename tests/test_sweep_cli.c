@@ -399,6 +399,51 @@ static void test_plot_table(void **state)
     assert_non_null(strstr(page, "\"max:y1\":["));
     assert_non_null(strstr(page, "null")); /* the failed runs */
     free(page);
+    /* values sampled at random (Monte Carlo): a line follows the varied value, not the run
+     * order (its points in increasing mu), and two sampled names give a point per run, not
+     * a grid of mostly empty cells */
+    r = cli_in_tmpdir("sweep vanderpol --method rk4 --step 0.01 --tspan 0:5 "
+                      "--sample 'mu=uniform(0.5,2)' --sample 'y1=normal(2,0.1)' --runs 40 "
+                      "--seed 7 --reduce final --output mc.csv");
+    assert_int_equal(r.status, 0);
+    cli_free(&r);
+    r = cli_in_tmpdir("plot mc.csv --y final:y1");
+    long points = 0;
+    for (const char *p = strstr(r.out, "<circle "); p; p = strstr(p + 1, "<circle "))
+        points++;
+    CHECK(r.status == 0 && strstr(r.out, "class=\"points\"") && !strstr(r.out, "class=\"cells\"") &&
+              points == 40,
+          "a Monte Carlo table over two sampled names: exit %d, %ld points", r.status, points);
+    cli_free(&r);
+    r = cli_in_tmpdir("plot mc.csv --x mu --y final:y1");
+    assert_int_equal(r.status, 0);
+    cli_free(&r);
+    r = cli_in_tmpdir("sweep vanderpol --method rk4 --step 0.01 --tspan 0:5 "
+                      "--sample 'mu=uniform(0.5,2)' --runs 40 --seed 7 --reduce final "
+                      "--output mc1.csv");
+    assert_int_equal(r.status, 0);
+    cli_free(&r);
+    r = cli_in_tmpdir("plot mc1.csv --y final:y1");
+    const char *pts = strstr(r.out, "<polyline");
+    pts = pts ? strstr(pts, "points=\"") : NULL;
+    CHECK(r.status == 0 && pts, "no line: %s", r.err);
+    int ordered = 1, n_pts = 0;
+    double last_x = -1e300;
+    for (const char *q = pts + 8; *q && *q != '"';) {
+        char *end;
+        const double px = strtod(q, &end);
+        if (end == q)
+            break;
+        ordered &= px >= last_x;
+        last_x = px;
+        n_pts++;
+        q = strchr(end, ' ');
+        if (!q)
+            break;
+        q++;
+    }
+    CHECK(ordered && n_pts == 40, "the line's %d points are not in increasing mu", n_pts);
+    cli_free(&r);
     r = cli_in_tmpdir("plot p.csv --y event:turn --output p.html");
     assert_int_equal(r.status, 0);
     cli_free(&r);

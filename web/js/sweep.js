@@ -2,7 +2,8 @@
 /* dynkit page: 'dynkit plot TABLE.csv --html' — a sweep's table (dynkit sweep) as the picture
  * the SVG of cli/sweep_plot.c draws: lines of the reduced columns against the varied name
  * (one line per value of a second varied name, with --x), or a heat map of one reduced
- * column over the grid of two varied names (web/js/heatmap.js), failed runs in grey. */
+ * column over the grid of two varied names (web/js/heatmap.js), or a point per run when
+ * their values were sampled rather than a grid, failed runs in grey. */
 'use strict';
 (function (DK) {
   const sorted = v => [...new Set(v.filter(x => x !== null && isFinite(x)))].sort((a, b) => a - b);
@@ -20,6 +21,23 @@
       (data.picture === 'heat' ? data.y[0] + ' over ' + data.x + ' and ' + data.other : data.y.join(', ') + ' against ' + data.x);
     const body = DK.el('div', { class: 'fig-body' });
     fig.appendChild(body);
+    if (data.picture === 'heat' && sorted(C[data.x]).length * sorted(C[data.other]).length > 2 * data.rows) {
+      /* values sampled at random (--sample), not a grid: a point per run, its colour the
+       * reduced value's eighth of the range (as cli/sweep_plot.c's SVG) */
+      const z = C[data.y[0]], zs = z.filter(v => v !== null && isFinite(v));
+      const lo = Math.min(...zs), hi = Math.max(...zs), bins = 8, w = (hi - lo) / bins || 1;
+      const bin = v => Math.min(bins - 1, Math.floor((v - lo) / w));
+      const series = [];
+      for (let k = 0; k < bins; k++) {
+        const pts = line(C[data.x], C[data.other], r => z[r] !== null && isFinite(z[r]) && bin(z[r]) === k);
+        if (pts.x.length) series.push(Object.assign({ label: data.y[0] + ' ' + DK.fmt(lo + k * w, 4) + ' \u2013 ' + DK.fmt(lo + (k + 1) * w, 4), color: DK.viridis((k + 0.5) / bins), width: 0, markers: 3 }, pts));
+      }
+      const failed = line(C[data.x], C[data.other], r => z[r] === null || !isFinite(z[r]));
+      if (failed.x.length) series.push(Object.assign({ label: 'failed or nan', color: '#bbbbbb', width: 0, markers: 3 }, failed));
+      new DK.Plot(body, { title: data.y[0], xlabel: data.x, ylabel: data.other, cursor: 'none', legend: 'tr', legendValues: false, series });
+      fig.appendChild(DK.el('figcaption', { text: 'A point per run (the values were sampled, not a grid), coloured by ' + data.y[0] + ' in eighths of its range; grey: a failed run or nan.' }));
+      return;
+    }
     if (data.picture === 'heat') {
       const xv = sorted(C[data.x]), yv = sorted(C[data.other]), z = new Array(xv.length * yv.length).fill(null);
       C[data.x].forEach((x, r) => {

@@ -48,7 +48,8 @@ void svg_offset_note(double offset, double scale, char *buf, size_t size)
     if (digits > 17)
         digits = 17;
     const int e = (int)lround(log10(scale));
-    if (offset == 0.0) /* "\xc3\x97" is the multiplication sign, "\xe2\x88\x92" the minus, in UTF-8 */
+    /* "\xc3\x97" is the multiplication sign and "\xe2\x88\x92" the minus sign in UTF-8 */
+    if (offset == 0.0)
         snprintf(buf, size, "\xc3\x97" "1e%d", e);
     else
         snprintf(buf, size, "\xc3\x97" "1e%d %s %.*g", e, offset < 0 ? "\xe2\x88\x92" : "+",

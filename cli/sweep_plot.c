@@ -2,12 +2,13 @@
 /* dynkit plot TABLE.csv: a picture of a sweep's table (dynkit sweep, docs/sweeps.md) as a
  * standalone SVG 1.1 file, or (--html FILE, --output FILE.html) as a self-contained page
  * drawn by web/js/sweep.js with the same choice of picture. One varied name: a line of each
- * reduced column against it (svg_plot.c). Two varied names: a heat map of one reduced column over their grid, a cell
- * per run (edges halfway between neighbouring values, so uneven grids are drawn true), the
- * colours of matplotlib's viridis map (van der Walt and Smith, 2015: even in lightness, read
- * in grey and by colour-blind readers) with a colour bar, failed runs and nan in grey; when
- * the values were sampled at random (--sample) rather than on a grid, a point per run in
- * the same colours. Lines follow the varied value, not the run order. */
+ * reduced column against it (svg_plot.c), through the runs in the order of the varied value
+ * (not the run order). Two varied names: a heat map of one reduced column over their grid,
+ * a cell per run (edges halfway between neighbouring values, so uneven grids are drawn
+ * true), the colours of matplotlib's viridis map (van der Walt and Smith, 2015: even in
+ * lightness, read in grey and by colour-blind readers) with a colour bar, failed runs and
+ * nan in grey; when the values were sampled at random (--sample) rather than on a grid, a
+ * point per run in the same colours. */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <math.h>
@@ -234,7 +235,8 @@ static int heat_map(FILE *out, const sweep_table *t, int xc, int yc, int zc, con
         edges(xv, nx, xe);
         edges(yv, ny, ye);
     } else if (!bad) {
-        const double px = 0.03 * (xv[nx - 1] - xv[0]) + (nx == 1), py = 0.03 * (yv[ny - 1] - yv[0]) + (ny == 1);
+        const double px = 0.03 * (xv[nx - 1] - xv[0]) + (nx == 1);
+        const double py = 0.03 * (yv[ny - 1] - yv[0]) + (ny == 1);
         xe[0] = xv[0] - px;
         xe[nx] = xv[nx - 1] + px;
         ye[0] = yv[0] - py;

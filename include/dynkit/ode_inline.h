@@ -100,11 +100,11 @@ DYN_INL int dyn_inl_is_pow2(double a)
 
 /* 1 if some x[q] is NaN or infinite: tested on the bits, the exponent field (masked in
  * place) plus one in its lowest bit reaching bit 63 only for the exponent of NaN and Inf.
- * Integer operations, four per state (load, and, add, or), one state at
- * a time (the empty asm keeps the compiler from loading two states as one vector, which
- * would wait for both scalar stores), so that the test stays off the floating-point units
- * the step is waiting on. The earlier test, the sum of x - x after the step, was a chain of
- * n dependent additions: 15% of an Euler step of the 12-state plane. */
+ * Integer operations, four per state (load, and, add, or), one state at a time (the empty
+ * asm keeps the compiler from loading two states as one vector, which would wait for both
+ * scalar stores), so that the test stays off the floating-point units the step is waiting
+ * on. The earlier test, the sum of x - x after the step, was a chain of n dependent
+ * additions: 15% of an Euler step of the 12-state plane. */
 #if defined(__GNUC__) && (defined(__x86_64__) || defined(__aarch64__))
 #define DYN_INL_INTEGER(bits) __asm__("" : "+r"(bits))
 #else

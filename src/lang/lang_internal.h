@@ -198,7 +198,6 @@ typedef struct lang_model {
     int has_meth;
     int meth_every_dt;       /* XPPAUT ignores nout with this meth (see ode_parse.c) */
     const char *meth_name;   /* meth's value as written */
-    lpos meth_pos;
     const char *xp, *yp;
     lpos xp_pos, yp_pos;
     /* the band of the Jacobian (XPPAUT's @ bandlo, bandup): has_band when either is given */

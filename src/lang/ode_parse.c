@@ -322,7 +322,8 @@ static const struct {
     {"euler", "euler", NULL, 0},
     {"modeuler", "heun", NULL, 0},
     {"rungekutta", "rk4", NULL, 0},
-    {"adams", "rk4", "XPPAUT's 4th-order Adams-Bashforth runs as rk4, the same order and step", 0},
+    {"adams", "rk4", "XPPAUT's 4th-order Adams-Bashforth runs as rk4, the same order and step",
+     0},
     {"gear", "rodas4", NULL, 1},
     {"volterra", "rodas4", "XPPAUT's implicit volterra method runs as the stiff rodas4", 0},
     {"backeul", "rodas4", "backward Euler runs as the stiff rodas4", 0},
@@ -387,7 +388,6 @@ static void set_method(lang_ctx *c, const char *v, lpos pos)
     c->m.has_meth = 1;
     c->m.meth_every_dt = methods[found].every_dt;
     c->m.meth_name = v;
-    c->m.meth_pos = pos;
     if (methods[found].why)
         lang_note(c, pos, "meth=%s: %s", v, methods[found].why);
     else

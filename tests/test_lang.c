@@ -76,6 +76,7 @@ static void test_refused_features_name_line_and_feature(void **state)
         {"x'=1\nwiener w\n", 2, 1, "random processes ('wiener')"},
         {"x'=-delay(x,1)\n", 1, 5, "delay-differential equations ('delay')"},
         {"x'=1\ntable h % 101 0 6.3 sin(t)\n", 2, 1, "lookup tables ('table')"},
+        {"x'=1\ntabular w % 25 -12 12 1/25\n", 2, 1, "lookup tables ('table', here 'tabular')"},
         {"x'=-x+int{exp(-t)#x}\n", 1, 7, "Volterra integrals ('int{...}')"},
         {"x'=-x+int[.5]{exp(-t)#x}\n", 1, 7, "Volterra integrals ('int{...}')"},
         {"x'=1\nvolt u=exp(-t)\n", 2, 1, "Volterra integral equations ('volt')"},

@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "lang/lang_internal.h"
 
@@ -719,6 +720,10 @@ static void statement(lang_ctx *c, lang_lexer *lx, pstate *ps, int *done)
             expect_end(lx, "the statement");
             return;
         }
+        /* XPPAUT 6.11 reads a word that begins with "tab" as 'table' (nnet2.ode's
+         * 'tabular') */
+        if (strlen(w) > 3 && strncasecmp(w, "tab", 3) == 0)
+            lang_fail(c, wpos, "lookup tables ('table', here '%s') are not supported", w);
         const char *near = dyn_lang_nearest(w, keywords, (int)(sizeof keywords /
                                                                 sizeof keywords[0]));
         if (near)

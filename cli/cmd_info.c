@@ -14,9 +14,9 @@ static void info_help(void)
 {
     puts("Usage: dynkit info MODEL\n\n"
          "Describe MODEL: its equations, states (with default initial values), parameters\n"
-         "(with default values), extra outputs, events (for run --event NAME[:stop]), units,\n"
-         "and the default run with its tolerances. Numbers are shown in their shortest form\n"
-         "that reads back to the same double.");
+         "(with default values), extra outputs, events (for run --event\n"
+         "NAME[:stop|:continue]), units, and the default run with its tolerances. Numbers are\n"
+         "shown in their shortest form that reads back to the same double.");
 }
 
 /* The shortest decimal of v that reads back to v (dyn_format_double's digits), in the plain
@@ -172,7 +172,7 @@ static void print_events(const dyn_model *m)
     if (m->n_events <= 0 || !m->events)
         return;
     const int wn = widest(m->n_events, event_name, m, 4);
-    printf("\nEvents (run --event NAME[:stop]):\n");
+    printf("\nEvents (run --event NAME[:stop|:continue]):\n");
     printf("  %-*s  %-9s  %-8s  %s\n", wn, "NAME", "DIRECTION", "TERMINAL", "DESCRIPTION");
     for (int i = 0; i < m->n_events; i++) {
         const dyn_event *e = &m->events[i];

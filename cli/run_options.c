@@ -60,10 +60,12 @@ static void run_options_common(FILE *out)
           "  with animate and plot these options are accepted when the main run or a\n"
           "  --compare run is adaptive; fixed-step runs ignore them\n"
           "Events (any method but cvode):\n"
-          "  --event NAME[:stop]  locate the model's event NAME (repeatable; 'dynkit info\n"
-          "                       MODEL' lists them); with :stop the run ends at it. Events\n"
-          "                       that reset the state (XPPAUT's global) take part in every\n"
-          "                       run; --event NAME reports them too\n",
+          "  --event NAME[:stop|:continue]\n"
+          "                       locate the model's event NAME (repeatable; 'dynkit info\n"
+          "                       MODEL' lists them); the run ends at it when the model\n"
+          "                       declares it terminal, or with :stop (:continue: never).\n"
+          "                       Events that reset the state (XPPAUT's global) take part in\n"
+          "                       every run; --event NAME reports them too\n",
           out);
 }
 

@@ -334,19 +334,26 @@ int cli_parse_times(const char *command, const char *text, cli_run *run)
     return CLI_OK;
 }
 
-/* --event NAME[:stop]: the model's event as a copy, terminal when :stop. */
+/* --event NAME[:stop|:continue]: the model's event as a copy, terminal as the model declares
+ * it (an .ode file's `#: event ... stop`, a C model's .terminal), or as :stop / :continue
+ * say. */
 int cli_add_event(const char *command, const char *text, cli_run *run)
 {
     const dyn_model *m = run->model;
     char name[64], list[512];
     const char *colon = strchr(text, ':');
     size_t len = colon ? (size_t)(colon - text) : strlen(text);
-    int stop = 0;
+    int terminal = -1; /* the model's */
     if (colon) {
-        if (strcmp(colon + 1, "stop") != 0)
+        if (strcmp(colon + 1, "stop") == 0)
+            terminal = 1;
+        else if (strcmp(colon + 1, "continue") == 0)
+            terminal = 0;
+        else
             return cli_usage_error(command,
-                                   "--event '%s' is not accepted: give NAME or NAME:stop", text);
-        stop = 1;
+                                   "--event '%s' is not accepted: give NAME, NAME:stop or "
+                                   "NAME:continue",
+                                   text);
     }
     size_t used = 0;
     list[0] = '\0';
@@ -372,7 +379,8 @@ int cli_add_event(const char *command, const char *text, cli_run *run)
         return cli_usage_error(command, "out of memory");
     run->events = ev;
     ev[run->n_events] = m->events[found];
-    ev[run->n_events].terminal = stop;
+    if (terminal >= 0)
+        ev[run->n_events].terminal = terminal;
     run->n_events++;
     return CLI_OK;
 }

@@ -221,6 +221,36 @@ static void test_bouncing_ball_impacts(void **state)
     unlink(events);
 }
 
+static void write_file(const char *name, const char *text);
+
+/* An event the file declares terminal (`#: event NAME = ..., stop`) ends the run where it
+ * occurs when asked for with --event NAME, in run and in sweep; :continue overrides it.
+ * x = cos(2t) + 0.25 sin(2t) turns back (v = 0) first at t = atan(0.25) / 2. */
+static void test_declared_stop_event_ends_the_run(void **state)
+{
+    (void)state;
+    write_file("osc.ode", "#: event turn = v, falling, stop -- turns back\npar w=2\nx'=v\n"
+                          "v'=-w^2*x\ninit x=1, v=0.5\n@ total=10, dt=0.01\ndone\n");
+    const double t_turn = atan(0.25) / 2.0;
+    cli_result r = cli("run '%s' --event turn --final --quiet", cli_path("osc.ode"));
+    double t = NAN, x = NAN, v = NAN;
+    CHECK(r.status == 0 && sscanf(strchr(r.out, '\n') + 1, "%lf,%lf,%lf", &t, &x, &v) == 3 &&
+              fabs(t - t_turn) < 1e-9 && fabs(v) < 1e-9,
+          "a declared stop event: exit %d, last row t = %.17g (expected %.17g), v = %g: %s",
+          r.status, t, t_turn, v, r.err);
+    cli_free(&r);
+    r = cli("run '%s' --event turn:continue --final --quiet", cli_path("osc.ode"));
+    CHECK(r.status == 0 && sscanf(strchr(r.out, '\n') + 1, "%lf,", &t) == 1 && t == 10.0,
+          "--event turn:continue: exit %d, last row %s", r.status, r.out);
+    cli_free(&r);
+    r = cli("sweep '%s' --vary w=2 --event turn --reduce count:turn,final:x --quiet",
+            cli_path("osc.ode"));
+    CHECK(r.status == 0 && strstr(r.out, "\n0,2,1,"), "sweep with a declared stop event: %s",
+          r.out);
+    cli_free(&r);
+    unlink(cli_path("osc.ode"));
+}
+
 /* A C model: the spring-mass example with k = 4 (m = 1) has the period pi: after one
  * period it is back at x0 = 0.1 with v = 0. */
 static void test_c_model_with_set(void **state)
@@ -323,6 +353,7 @@ int main(void)
         cmocka_unit_test(test_duffing_reduces_to_harmonic),
         cmocka_unit_test(test_lorenz_methods_agree),
         cmocka_unit_test(test_bouncing_ball_impacts),
+        cmocka_unit_test(test_declared_stop_event_ends_the_run),
         cmocka_unit_test(test_c_model_with_set),
         cmocka_unit_test(test_info_of_a_file),
         cmocka_unit_test(test_errors_in_model_files),

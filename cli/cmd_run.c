@@ -78,17 +78,22 @@ static int write_sample(csv_sink *sink, double t, const double *y)
     return cli_stop_signal != 0; /* SIGINT/SIGTERM: stop after a complete row */
 }
 
-/* The rows the run writes when that is known beforehand (a grid or --times, no events that
- * may end it early), else -1. */
-static long expected_rows(const cli_run *run, const dyn_grid *grid, int at_steps)
+/* The rows of samples thinned to every K-th and the last. */
+static long thinned_rows(long samples, long every)
+{
+    return samples <= 1 ? samples : (samples - 1) / every + 1 + ((samples - 1) % every != 0);
+}
+
+/* The samples the run gives when that is known beforehand (a grid or --times, no events
+ * that may end it early, no transient whose samples are left out), else -1. */
+static long expected_samples(const cli_run *run, const dyn_grid *grid, int at_steps)
 {
     if (run->final_only)
         return 1;
-    if (run->n_events > 0 || cli_run_resets(run) > 0 || (at_steps && !run->times))
+    if (run->n_events > 0 || cli_run_resets(run) > 0 || (at_steps && !run->times) ||
+        run->model->t_trans > run->t0)
         return -1;
-    const long samples = run->times ? run->n_times : grid->samples;
-    const long every = run->every > 1 ? run->every : 1;
-    return samples <= 1 ? samples : (samples - 1) / every + 1 + ((samples - 1) % every != 0);
+    return run->times ? run->n_times : grid->samples;
 }
 
 static int on_sample(long k, double t, const double *y, void *ctx)
@@ -267,15 +272,21 @@ int cli_cmd_run(int argc, char **argv)
         const int cols = 1 + n + (run.with_outputs ? m->n_outputs : 0);
         const char *limit_why;
         const long limit = cli_table_limit(format, cols, n, &limit_why);
-        const long rows = expected_rows(&run, &grid, at_steps);
+        const long samples = expected_samples(&run, &grid, at_steps);
+        const long rows = run.final_only ? samples
+                                         : thinned_rows(samples, run.every > 1 ? run.every : 1);
         if (rows > limit) {
-            const long every = run.every > 1 ? run.every : 1;
+            /* the smallest K whose rows fit (the last sample is always kept) */
+            long every = limit > 2 ? (samples - 1 + limit - 3) / (limit - 2) : samples;
+            while (every > 1 && thinned_rows(samples, every - 1) <= limit)
+                every--;
+            while (thinned_rows(samples, every) > limit && every < samples)
+                every++;
             rc = cli_usage_error("run",
                                  "--output '%s': the run would write %ld rows of %d columns; "
                                  "at most %ld fit in %s: write .csv or .npy (streamed, no "
                                  "limit), or keep fewer rows with --every %ld",
-                                 run.output_path, rows, cols, limit, limit_why,
-                                 every * (long)ceil((double)rows / (double)limit));
+                                 run.output_path, rows, cols, limit, limit_why, every);
             cli_run_free(&run);
             return rc;
         }
@@ -383,8 +394,8 @@ int cli_cmd_run(int argc, char **argv)
         cli_table_full(table, full, sizeof full);
         fprintf(stderr,
                 "dynkit: error: --output: %s; the run stopped there and its rows are "
-                "written, the last at t = %s (CSV and NPY files are streamed, with no limit; "
-                "--every K keeps fewer rows)\n",
+                "written, the last at t = %s (CSV files, and NPY files that are not pipes, are "
+                "streamed, with no limit; --every K keeps fewer rows)\n",
                 full, CLI_NUM(sink.last_t));
         rc = CLI_FAILED;
     }

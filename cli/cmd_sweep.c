@@ -625,17 +625,29 @@ static int check_resumed(const dyn_sweep *s, const sweep_out *o, const unsigned 
         }
         const double *mine = results + (size_t)probe * n_red;
         const double *kept = o->results + (size_t)probe * n_red;
-        int same = status[probe] == o->status[probe];
-        for (size_t r = 0; r < n_red && same; r++)
-            same = (isnan(mine[r]) && isnan(kept[r])) ||
-                   memcmp(&mine[r], &kept[r], sizeof mine[r]) == 0;
-        if (rc == CLI_OK && !same) {
+        /* the first column that differs, or n_red for the status */
+        size_t differs = status[probe] != o->status[probe] ? n_red : n_red + 1;
+        for (size_t r = 0; r < n_red && differs > n_red; r++)
+            if (!(isnan(mine[r]) && isnan(kept[r])) &&
+                memcmp(&mine[r], &kept[r], sizeof mine[r]) != 0)
+                differs = r;
+        if (rc == CLI_OK && differs <= n_red) {
+            char name[160], got[64], had[64];
+            if (differs < n_red) {
+                dyn_reduce_name(o->m, &o->red[differs], name, sizeof name);
+                snprintf(got, sizeof got, "%s", dyn_shortest(mine[differs]).s);
+                snprintf(had, sizeof had, "%s", dyn_shortest(kept[differs]).s);
+            } else {
+                snprintf(name, sizeof name, "status");
+                snprintf(got, sizeof got, "%s", status_word(status[probe]));
+                snprintf(had, sizeof had, "%s", status_word(o->status[probe]));
+            }
             fprintf(stderr,
                     "dynkit: error: --resume: %s was made with other run options: its run %ld, "
-                    "run again with these, gives %s where the file has %s.\nThe table does not "
-                    "record the method, step, tspan, tolerances or --set: give those of the "
-                    "sweep that wrote it (and the same dynkit)\n",
-                    path, probe, dyn_shortest(mine[0]).s, dyn_shortest(kept[0]).s);
+                    "run again with these, gives %s = %s where the file has %s.\nThe table "
+                    "does not record the method, step, tspan, tolerances or --set: give those "
+                    "of the sweep that wrote it (and the same dynkit)\n",
+                    path, probe, name, got, had);
             rc = CLI_USAGE;
         }
     }

@@ -13,13 +13,15 @@ double svg_nice_step(double range, int target)
 
 void svg_tick_label(double v, double step, char *buf, size_t size)
 {
-    if (fabs(v) < 1e-9 * step)
+    if (fabs(v) < 1e-6 * step) /* a multiple of step: 0 up to rounding, never "-0" */
         v = 0.0;
     int digits = (int)ceil(-log10(step) - 1e-9);
     double mag = fmax(fabs(v), step);
-    if (mag >= 1e5 || mag < 1e-3)
-        snprintf(buf, size, "%.3g", v);
-    else
+    if (mag >= 1e5 || mag < 1e-3) {
+        /* enough significant digits to tell neighbouring ticks apart (194000, 194050) */
+        int sig = (int)(floor(log10(mag)) - floor(log10(step) + 1e-9)) + 1;
+        snprintf(buf, size, "%.*g", sig < 3 ? 3 : sig > 17 ? 17 : sig, v);
+    } else
         snprintf(buf, size, "%.*f", digits > 0 ? digits : 0, v);
 }
 

@@ -96,14 +96,18 @@ static int axes(FILE *out, const cli_svg_plot *p, const axis *ax, const axis *ay
     double xoff, xscale, yoff, yscale;
     const int x_offset = svg_tick_offset(kx0, kx1, ax->step, &xoff, &xscale);
     const int y_offset = svg_tick_offset(ky0, ky1, ay->step, &yoff, &yscale);
+    /* the offset is a whole number of steps: labels from the tick's index, no rounding */
+    const double kxoff = round(xoff / ax->step), kyoff = round(yoff / ay->step);
     for (long k = kx0; k <= kx1; k++) {
         const double v = (double)k * ax->step;
-        svg_tick_label((v - xoff) / xscale, ax->step / xscale, label, sizeof label);
+        svg_tick_label(((double)k - kxoff) * (ax->step / xscale), ax->step / xscale, label,
+                       sizeof label);
         bad |= svg_xtick(out, to_px_x(ax, v), y0, label);
     }
     for (long k = ky0; k <= ky1; k++) {
         const double v = (double)k * ay->step;
-        svg_tick_label((v - yoff) / yscale, ay->step / yscale, label, sizeof label);
+        svg_tick_label(((double)k - kyoff) * (ay->step / yscale), ay->step / yscale, label,
+                       sizeof label);
         bad |= svg_ytick(out, x0, to_px_y(ay, v), label);
     }
     if (x_offset) {

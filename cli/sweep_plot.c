@@ -14,6 +14,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "out_file.h"
 #include "pages.h"
@@ -351,11 +352,10 @@ typedef struct keyed_row {
 static int cmp_keyed(const void *a, const void *b)
 {
     const keyed_row *p = a, *q = b;
-    if (p->x != q->x) {
-        if (isnan(p->x) || isnan(q->x))
-            return isnan(p->x) ? 1 : -1; /* nan last */
+    if (isnan(p->x) != isnan(q->x))
+        return isnan(p->x) ? 1 : -1; /* nan last */
+    if (p->x != q->x && !isnan(p->x))
         return p->x < q->x ? -1 : 1;
-    }
     return p->row < q->row ? -1 : p->row > q->row;
 }
 
@@ -500,7 +500,8 @@ static int page_data(cli_json *j, void *ctx)
 static int ends_with_html(const char *s)
 {
     const size_t n = strlen(s);
-    return n >= 5 && strcmp(s + n - 5, ".html") == 0;
+    return (n >= 5 && strcasecmp(s + n - 5, ".html") == 0) ||
+           (n >= 4 && strcasecmp(s + n - 4, ".htm") == 0);
 }
 
 int cli_plot_sweep_table(int argc, char **argv)
@@ -580,8 +581,8 @@ int cli_plot_sweep_table(int argc, char **argv)
                              t.names[varied[0]], t.names[varied[1]]);
     if (rc == CLI_OK && html && output)
         rc = cli_usage_error("plot", "give --html FILE or --output FILE, not both");
-    static const char *const svg_html[] = {".svg", ".html", NULL}, *const html_only[] = {".html",
-                                                                                         NULL};
+    static const char *const svg_html[] = {".svg", ".html", ".htm", NULL},
+                             *const html_only[] = {".html", ".htm", NULL};
     if (rc == CLI_OK)
         rc = cli_out_check_extension("plot", "--output", output, svg_html);
     if (rc == CLI_OK)

@@ -243,8 +243,8 @@ static void test_notes_tell_what_is_ignored(void **state)
      * an adaptive meth ignored, as XPPAUT does, and said */
     out = expect_ok("x'=-x\nx(0)=3\ninit x=1\n@ meth=cvode, nout=5\n", &n);
     free(out);
-    CHECK(strstr(n.text, "3: the initial value of x is given again (first on line 2): the last "
-                         "one is used"),
+    CHECK(strstr(n.text, "3: the initial value of x is given again (before, on line 2): the "
+                         "last one is used"),
           "%s", n.text);
     CHECK(strstr(n.text, "4: nout=5 is ignored with meth=cvode"), "%s", n.text);
     /* XPPAUT reads x>1+2 as (x>1)+2: said, not changed */

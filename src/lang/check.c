@@ -606,8 +606,8 @@ void lang_check(lang_ctx *c)
         lang_state *st = &LVEC_AT(m->states, lang_state, s->index);
         if (st->init) /* XPPAUT takes the last one too, without a word */
             lang_note(c, in->pos,
-                      "the initial value of %s is given again (first on line %d): the last "
-                      "one is used, as in XPPAUT",
+                      "the initial value of %s is given again (before, on line %d): the "
+                      "last one is used, as in XPPAUT",
                       st->name, st->init_pos.line);
         st->init = in->value;
         st->init_pos = in->pos;

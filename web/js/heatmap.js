@@ -33,7 +33,8 @@
   DK.heatMap = function (container, o) {
     const ex = edges(o.x), ey = edges(o.y);
     const finite = o.z.filter(v => v !== null && isFinite(v) && (!o.log || v > 0));
-    let lo = o.zrange ? o.zrange[0] : Math.min(...finite), hi = o.zrange ? o.zrange[1] : Math.max(...finite);
+    let lo = o.zrange ? o.zrange[0] : finite.reduce((a, b) => Math.min(a, b), Infinity);
+    let hi = o.zrange ? o.zrange[1] : finite.reduce((a, b) => Math.max(a, b), -Infinity);
     if (!(hi > lo)) hi = lo + 1;
     const T = v => (o.log ? Math.log10(v) : v);
     const frac = v => (v === null || !isFinite(v) ? NaN : o.log && v <= 0 ? 0 : (T(DK.clamp(v, lo, hi)) - T(lo)) / (T(hi) - T(lo)));

@@ -23,9 +23,11 @@
     fig.appendChild(body);
     if (data.picture === 'heat' && sorted(C[data.x]).length * sorted(C[data.other]).length > 2 * data.rows) {
       /* values sampled at random (--sample), not a grid: a point per run, its colour the
-       * reduced value's eighth of the range (as cli/sweep_plot.c's SVG) */
+       * reduced value's eighth of the range (the SVG of cli/sweep_plot.c colours them
+       * continuously, with a colour bar) */
       const z = C[data.y[0]], zs = z.filter(v => v !== null && isFinite(v));
-      const lo = Math.min(...zs), hi = Math.max(...zs), bins = 8, w = (hi - lo) / bins || 1;
+      const lo = zs.reduce((a, b) => Math.min(a, b), Infinity), hi = zs.reduce((a, b) => Math.max(a, b), -Infinity);
+      const bins = 8, w = (hi - lo) / bins || 1;
       const bin = v => Math.min(bins - 1, Math.floor((v - lo) / w));
       const series = [];
       for (let k = 0; k < bins; k++) {

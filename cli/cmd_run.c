@@ -42,18 +42,23 @@ typedef struct event_sink {
     int io_failed;
 } event_sink;
 
-static void check_warning(csv_sink *sink, double t, const double *y)
+/* Warning w at time t, once per run (w is a constant string: compared by address). */
+static void warn_once(csv_sink *sink, double t, const char *w)
 {
-    const dyn_model *m = sink->run->model;
-    const char *w = m->warn ? m->warn(t, y, sink->run->par) : NULL;
-    if (!w)
-        return;
     for (int i = 0; i < sink->n_warned; i++)
         if (sink->warned[i] == w)
             return;
     fprintf(stderr, "dynkit: warning at t = %.6g s: %s\n", t, w);
     if (sink->n_warned < (int)(sizeof sink->warned / sizeof sink->warned[0]))
         sink->warned[sink->n_warned++] = w;
+}
+
+static void check_warning(csv_sink *sink, double t, const double *y)
+{
+    const dyn_model *m = sink->run->model;
+    const char *w = m->warn ? m->warn(t, y, sink->run->par) : NULL;
+    if (w)
+        warn_once(sink, t, w);
 }
 
 static int write_sample(csv_sink *sink, double t, const double *y)
@@ -63,6 +68,9 @@ static int write_sample(csv_sink *sink, double t, const double *y)
     if (n_extra && m->compute_outputs(t, y, sink->run->par, sink->extra)) {
         for (int i = 0; i < n_extra; i++)
             sink->extra[i] = 0.0 / 0.0;
+        warn_once(sink, t,
+                  "the model's outputs failed (a non-zero status): they are written as nan "
+                  "while they fail");
     }
     if (cli_table_row(sink->table, t, y, m->n_states, sink->extra, n_extra)) {
         if (cli_table_full(sink->table, NULL, 0)) {
@@ -162,8 +170,9 @@ static void run_help(void)
          "steps to meet --rtol/--atol (defaults: the model's, else 1e-3 and 1e-6 like MATLAB)\n"
          "and interpolate the samples on the --step grid or at --times (without either: the\n"
          "model's grid, or every accepted step when that grid exceeds 1e6 samples or the\n"
-         "model asks for it). Without --method a model runs its default, an adaptive method\n"
-         "('dynkit info MODEL').\n"
+         "model asks for it). Without --method a model runs its default method ('dynkit info\n"
+         "MODEL'): an adaptive one for the built-in models and .ode files, the one a C model\n"
+         "names.\n"
          "\n"
          "Examples:\n"
          "  dynkit run vanderpol --method heun --step 0.01 --tspan 0:15 --final\n"

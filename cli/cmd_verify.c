@@ -42,6 +42,7 @@ static void verify_help(void)
          "  vanderpol-mu1000  van der Pol mu = 1000 on [0, 3000] (stiff)\n"
          "  robertson         Robertson to t = 1e11, Test Set for IVP Solvers (stiff)\n"
          "  hires             HIRES to t = 321.8122, Test Set for IVP Solvers (stiff)\n"
+         "  brusselator       Brusselator with diffusion, N = 20 (40 states) to t = 10 (stiff)\n"
          "Error: max norm of y(t1) - reference, absolute on the first three problems,\n"
          "relative per component on the stiff ones; DIGITS = -log10(error).\n"
          "Adaptive methods run at rtol = 1e-3, 1e-6, 1e-9 with atol = rtol times the\n"

@@ -251,6 +251,36 @@ static void test_declared_stop_event_ends_the_run(void **state)
     unlink(cli_path("osc.ode"));
 }
 
+/* A C model whose extra outputs fail (a non-zero status) after t = 5: the rows keep nan
+ * there, and the run says so once on stderr. */
+static void test_failing_outputs_are_said(void **state)
+{
+    (void)state;
+    write_file("outerr.c",
+               "#include <dynkit/model.h>\n"
+               "static int rhs(double t, const double *y, double *dydt, void *p)\n"
+               "{ (void)t; (void)p; dydt[0] = y[1]; dydt[1] = -y[0]; return 0; }\n"
+               "static int outputs(double t, const double *y, const void *p, double *out)\n"
+               "{ (void)p; if (t > 5) return 3; out[0] = y[0] * y[0] + y[1] * y[1]; return 0; }\n"
+               "static const dyn_var states[] = {{\"x\", \"m\", \"\"}, {\"v\", \"m/s\", \"\"}};\n"
+               "static const double init[] = {1.0, 0.0};\n"
+               "static const dyn_var outs[] = {{\"r2\", \"m2\", \"\"}};\n"
+               "static const dyn_model model = {.name = \"outerr\", .title = \"t\", .n_states = 2,\n"
+               "  .states = states, .y0 = init, .n_outputs = 1, .outputs = outs,\n"
+               "  .compute_outputs = outputs, .rhs = rhs, .t0 = 0, .t1 = 10, .step = 0.5,\n"
+               "  .method = \"rk4\"};\n"
+               "const dyn_model *dynkit_model(void) { return &model; }\n");
+    cli_result r = cli("run '%s' --outputs", cli_path("outerr.c"));
+    CHECK(r.status == 0 && strstr(r.out, "\n5,") && strstr(r.out, "\n5.5,") &&
+              strstr(strstr(r.out, "\n5.5,"), ",nan\n") && !strstr(strstr(r.out, "\n5,") + 1, "\n5,") &&
+              strstr(r.err, "warning at t = 5.5 s: the model's outputs failed"),
+          "failing outputs: exit %d\n%s\n%s", r.status, r.out, r.err);
+    const char *w = strstr(r.err, "outputs failed");
+    CHECK(w && !strstr(w + 1, "outputs failed"), "the warning is given once: %s", r.err);
+    cli_free(&r);
+    unlink(cli_path("outerr.c"));
+}
+
 /* A C model: the spring-mass example with k = 4 (m = 1) has the period pi: after one
  * period it is back at x0 = 0.1 with v = 0. */
 static void test_c_model_with_set(void **state)
@@ -354,6 +384,7 @@ int main(void)
         cmocka_unit_test(test_lorenz_methods_agree),
         cmocka_unit_test(test_bouncing_ball_impacts),
         cmocka_unit_test(test_declared_stop_event_ends_the_run),
+        cmocka_unit_test(test_failing_outputs_are_said),
         cmocka_unit_test(test_c_model_with_set),
         cmocka_unit_test(test_info_of_a_file),
         cmocka_unit_test(test_errors_in_model_files),

@@ -57,7 +57,8 @@ static const char *robertson_warn(double t, const double *y, const void *par)
     for (int i = 0; i < 3; i++)
         if (y[i] < -1e-6)
             return "a concentration is negative: the run left the model's domain "
-                   "(concentrations >= 0); give a smaller --atol (and --rtol)";
+                   "(concentrations >= 0); give a smaller --atol (and --rtol), with a fixed-step "
+                   "method a smaller --step, or a stiff method (rodas4)";
     return NULL;
 }
 

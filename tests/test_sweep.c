@@ -43,11 +43,16 @@ static int ramp_rhs(double t, const double *y, double *dydt, void *par)
     return 0;
 }
 
+/* 0: z = 2 y; 1: z is nan once y > 1/2; 2: the outputs fail (status 3) once y > 1/2 */
+static int ramp_outputs_mode;
+
 static int ramp_outputs(double t, const double *y, const void *par, double *out)
 {
     (void)t;
     (void)par;
-    out[0] = 2.0 * y[0];
+    if (ramp_outputs_mode == 2 && y[0] > 0.5)
+        return 3;
+    out[0] = ramp_outputs_mode == 1 && y[0] > 0.5 ? NAN : 2.0 * y[0];
     return 0;
 }
 
@@ -137,6 +142,27 @@ static void test_reduce_ramp(void **state)
         assert_true(r[8] == 2.0 * a);                /* final:z */
         assert_true(r[9] == a);                      /* mean:z */
     }
+    /* a nan sample makes min (max, argmin, argmax) nan from there on, as it makes final
+     * and mean (z is nan once y = a t > 1/2) */
+    ramp_outputs_mode = 1;
+    assert_int_equal(dyn_sweep_run(&s, res, st, err, sizeof err), DYN_OK);
+    for (int i = 0; i < 3; i++) {
+        const double a = values[i], *r = res + i * 10;
+        assert_int_equal(st[i], DYN_OK);
+        if (a > 0.5) {
+            assert_true(isnan(r[2]) && isnan(r[8]) && isnan(r[9])); /* min, final, mean of z */
+            assert_true(r[0] == a && r[1] == a);                   /* the states' untouched */
+        } else {
+            assert_true(r[2] == 0.0 && r[8] == 2.0 * a);
+        }
+    }
+    /* outputs that fail: every run that meets the failure has the status of a failed
+     * right-hand side (not of the model's bound), whichever reduction needed them */
+    ramp_outputs_mode = 2;
+    assert_int_equal(dyn_sweep_run(&s, res, st, err, sizeof err), DYN_OK);
+    for (int i = 0; i < 3; i++)
+        assert_int_equal(st[i], values[i] > 0.5 ? DYN_ERR_RHS : DYN_OK);
+    ramp_outputs_mode = 0;
     /* the same with an adaptive method, samples on the grid of 0.125 */
     s.method = dyn_method_find("dp45");
     assert_int_equal(dyn_sweep_run(&s, res, st, err, sizeof err), DYN_OK);

@@ -49,6 +49,7 @@ typedef struct worker {
     int *iwork;
     double *acc, *aux;       /* (n_reduce) accumulators: value, and time or previous value */
     long samples;
+    int outputs_failed; /* the sample callback stopped the run: compute_outputs failed */
     double t_first, t_prev;
     char err[256];
 } worker;
@@ -105,8 +106,10 @@ static int on_sample(long k, double t, const double *y, void *ctx)
                 return 1;
     if (t < m->t_trans)
         return 0;
-    if (p->samples_outputs && m->compute_outputs(t, y, w->par, w->out))
+    if (p->samples_outputs && m->compute_outputs(t, y, w->par, w->out)) {
+        w->outputs_failed = 1; /* the run's status: the model's functions failed */
         return 1;
+    }
     const dyn_sweep *s = p->s;
     const int first = w->samples == 0;
     for (int r = 0; r < s->n_reduce; r++) {
@@ -115,16 +118,17 @@ static int on_sample(long k, double t, const double *y, void *ctx)
             continue;
         const double v = rd->source == DYN_SOURCE_STATE ? y[rd->index] : w->out[rd->index];
         switch (rd->op) {
+        /* a nan sample makes the extreme nan (from there on), as it does final and mean */
         case DYN_REDUCE_MAX:
         case DYN_REDUCE_ARGMAX:
-            if (first || v > w->acc[r]) {
+            if (first || v > w->acc[r] || (isnan(v) && !isnan(w->acc[r]))) {
                 w->acc[r] = v;
                 w->aux[r] = t;
             }
             break;
         case DYN_REDUCE_MIN:
         case DYN_REDUCE_ARGMIN:
-            if (first || v < w->acc[r]) {
+            if (first || v < w->acc[r] || (isnan(v) && !isnan(w->acc[r]))) {
                 w->acc[r] = v;
                 w->aux[r] = t;
             }
@@ -199,6 +203,7 @@ static int run_one(worker *w, long i, double *row)
         w->aux[r] = 0.0;
     }
     w->samples = 0;
+    w->outputs_failed = 0;
     w->t_first = w->t_prev = s->t0;
     const dyn_system sys = {m->rhs, n, w->par};
     dyn_result res;
@@ -223,7 +228,8 @@ static int run_one(worker *w, long i, double *row)
     }
     if (st != DYN_OK) {
         nan_row(row, s->n_reduce);
-        return st;
+        /* stopped by the sample callback: the bound, or the outputs failing */
+        return st == DYN_STOPPED && w->outputs_failed ? DYN_ERR_RHS : st;
     }
     if (p->final_outputs && m->compute_outputs(res.t, w->y, w->par, w->out)) {
         nan_row(row, s->n_reduce);

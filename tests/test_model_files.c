@@ -343,6 +343,35 @@ static void test_errors_in_model_files(void **state)
           "%d %s", r.status, r.err);
     cli_free(&r);
 
+    /* a C model without a default method, or with an empty default span, is refused when
+     * it is loaded, naming the field (not later as an option never given) */
+    static const struct {
+        const char *fields, *message;
+    } defaults[] = {
+        {".t0 = 0, .t1 = 10, .step = 0.1", "names no known default method (dyn_model.method = NULL"},
+        {".t0 = 0, .t1 = 10, .step = 0.1, .method = \"rk5\"", "dyn_model.method = \"rk5\""},
+        {".method = \"dp45\"", "bad default run (t0 = 0, t1 = 0, step = 0)"},
+    };
+    for (size_t i = 0; i < sizeof defaults / sizeof defaults[0]; i++) {
+        char text[1024];
+        snprintf(text, sizeof text,
+                 "#include <dynkit/model.h>\n"
+                 "static int rhs(double t, const double *y, double *dydt, void *p)\n"
+                 "{ (void)t; (void)p; dydt[0] = -y[0]; return 0; }\n"
+                 "static const dyn_var states[] = {{\"x\", \"1\", \"\"}};\n"
+                 "static const double init[] = {1.0};\n"
+                 "static const dyn_model model = {.name = \"bare\", .n_states = 1,\n"
+                 "  .states = states, .y0 = init, .rhs = rhs, %s};\n"
+                 "const dyn_model *dynkit_model(void) { return &model; }\n",
+                 defaults[i].fields);
+        write_file("bare.c", text);
+        r = cli_in_tmpdir("run bare.c --final");
+        CHECK(r.status == 2 && strstr(r.err, defaults[i].message) && r.out[0] == '\0',
+              "%s: exit %d, out '%s': %s", defaults[i].fields, r.status, r.out, r.err);
+        cli_free(&r);
+    }
+    unlink(cli_path("bare.c"));
+
     r = cli_in_tmpdir("run missing.ode");
     CHECK(r.status == 2 && strstr(r.err, "missing.ode") && strstr(r.err, "No such file"), "%d %s",
           r.status, r.err);

@@ -200,9 +200,18 @@ int jit_check_model(const dyn_model *m, const char *where, char *err, size_t err
                         "%s: the model '%s' declares a band of its Jacobian with jac_lower = %d, "
                         "jac_upper = %d (accepted: 0 to n_states - 1 = %d)",
                         where, m->name, m->jac_lower, m->jac_upper, m->n_states - 1);
-    if (!isfinite(m->t0) || !isfinite(m->t1) || !isfinite(m->step) || m->step < 0)
+    if (!m->method || !dyn_method_find(m->method))
         return jit_fail(err, errlen,
-                        "%s: the model '%s' has a bad default run (t0 = %g, t1 = %g, step = %g)",
+                        "%s: the model '%s' names no known default method (dyn_model.method = "
+                        "%s%s%s; e.g. \"dp45\" or \"rk4\")",
+                        where, m->name, m->method ? "\"" : "", m->method ? m->method : "NULL",
+                        m->method ? "\"" : "");
+    if (!isfinite(m->t0) || !isfinite(m->t1) || !(m->t1 > m->t0) || !isfinite(m->step) ||
+        m->step < 0 || (m->step == 0 && m->samples != DYN_SAMPLES_STEPS))
+        return jit_fail(err, errlen,
+                        "%s: the model '%s' has a bad default run (t0 = %g, t1 = %g, step = %g): "
+                        "set dyn_model.t0 < t1 and step > 0 (the sample interval of adaptive "
+                        "methods)",
                         where, m->name, m->t0, m->t1, m->step);
     return 0;
 }

@@ -600,60 +600,52 @@ static int check_resumed(const dyn_sweep *s, const sweep_out *o, const unsigned 
     if (probe < 0)
         return CLI_OK;
     const size_t n_red = (size_t)o->n_red;
-    unsigned char *only = malloc((size_t)s->n_runs + 1);
-    double *results = malloc(((size_t)s->n_runs * n_red + 1) * sizeof *results);
-    int *status = malloc(((size_t)s->n_runs + 1) * sizeof *status);
-    int rc = CLI_OK;
-    char err[512];
-    if (!only || !results || !status) {
+    double *mine = malloc((n_red + 1) * sizeof *mine);
+    if (!mine) {
         fprintf(stderr, "dynkit: error: out of memory\n");
-        rc = CLI_FAILED;
-    } else {
-        memset(only, 1, (size_t)s->n_runs);
-        only[probe] = 0;
-        for (long i = 0; i < s->n_runs; i++)
-            status[i] = DYN_SWEEP_NOT_RUN;
-        dyn_sweep one = *s;
-        one.skip = only;
-        one.threads = 1;
-        one.progress = NULL;
-        one.cancel = NULL;
-        const int src = dyn_sweep_run(&one, results, status, err, sizeof err);
-        if (src != DYN_OK) {
-            fprintf(stderr, "dynkit: error: %s\n", err);
-            rc = src == DYN_ERR_ARG ? CLI_USAGE : CLI_FAILED;
-        }
-        const double *mine = results + (size_t)probe * n_red;
-        const double *kept = o->results + (size_t)probe * n_red;
-        /* the first column that differs, or n_red for the status */
-        size_t differs = status[probe] != o->status[probe] ? n_red : n_red + 1;
-        for (size_t r = 0; r < n_red && differs > n_red; r++)
-            if (!(isnan(mine[r]) && isnan(kept[r])) &&
-                memcmp(&mine[r], &kept[r], sizeof mine[r]) != 0)
-                differs = r;
-        if (rc == CLI_OK && differs <= n_red) {
-            char name[160], got[64], had[64];
-            if (differs < n_red) {
-                dyn_reduce_name(o->m, &o->red[differs], name, sizeof name);
-                snprintf(got, sizeof got, "%s", dyn_shortest(mine[differs]).s);
-                snprintf(had, sizeof had, "%s", dyn_shortest(kept[differs]).s);
-            } else {
-                snprintf(name, sizeof name, "status");
-                snprintf(got, sizeof got, "%s", status_word(status[probe]));
-                snprintf(had, sizeof had, "%s", status_word(o->status[probe]));
-            }
-            fprintf(stderr,
-                    "dynkit: error: --resume: %s was made with other run options: its run %ld, "
-                    "run again with these, gives %s = %s where the file has %s.\nThe table "
-                    "does not record the method, step, tspan, tolerances or --set: give those "
-                    "of the sweep that wrote it (and the same dynkit)\n",
-                    path, probe, name, got, had);
-            rc = CLI_USAGE;
-        }
+        return CLI_FAILED;
     }
-    free(only);
-    free(results);
-    free(status);
+    /* a sweep of that one row of the run table */
+    dyn_sweep one = *s;
+    one.n_runs = 1;
+    one.values = s->values + (size_t)probe * (size_t)s->n_vars;
+    one.skip = NULL;
+    one.threads = 1;
+    one.progress = NULL;
+    one.cancel = NULL;
+    int status = DYN_SWEEP_NOT_RUN, rc = CLI_OK;
+    char err[512];
+    const int src = dyn_sweep_run(&one, mine, &status, err, sizeof err);
+    if (src != DYN_OK) {
+        fprintf(stderr, "dynkit: error: %s\n", err);
+        rc = src == DYN_ERR_ARG ? CLI_USAGE : CLI_FAILED;
+    }
+    const double *kept = o->results + (size_t)probe * n_red;
+    /* the first column that differs, or n_red for the status */
+    size_t differs = status != o->status[probe] ? n_red : n_red + 1;
+    for (size_t r = 0; r < n_red && differs > n_red; r++)
+        if (!(isnan(mine[r]) && isnan(kept[r])) && memcmp(&mine[r], &kept[r], sizeof mine[r]) != 0)
+            differs = r;
+    if (rc == CLI_OK && differs <= n_red) {
+        char name[160], got[64], had[64];
+        if (differs < n_red) {
+            dyn_reduce_name(o->m, &o->red[differs], name, sizeof name);
+            snprintf(got, sizeof got, "%s", dyn_shortest(mine[differs]).s);
+            snprintf(had, sizeof had, "%s", dyn_shortest(kept[differs]).s);
+        } else {
+            snprintf(name, sizeof name, "status");
+            snprintf(got, sizeof got, "%s", status_word(status));
+            snprintf(had, sizeof had, "%s", status_word(o->status[probe]));
+        }
+        fprintf(stderr,
+                "dynkit: error: --resume: %s was made with other run options: its run %ld, run "
+                "again with these, gives %s = %s where the file has %s.\nThe table does not "
+                "record the method, step, tspan, tolerances or --set: give those of the sweep "
+                "that wrote it (and the same dynkit)\n",
+                path, probe, name, got, had);
+        rc = CLI_USAGE;
+    }
+    free(mine);
     return rc;
 }
 

@@ -151,16 +151,21 @@ int cli_out_close(cli_out *o, int keep)
     return rc;
 }
 
+int cli_has_extension(const char *path, const char *ext)
+{
+    const char *slash = strrchr(path, '/');
+    const char *dot = strrchr(slash ? slash + 1 : path, '.');
+    return dot && strcasecmp(dot, ext) == 0;
+}
+
 int cli_out_check_extension(const char *command, const char *option, const char *path,
                             const char *const *exts)
 {
     if (!path || strcmp(path, "-") == 0)
         return CLI_OK;
-    const char *slash = strrchr(path, '/');
-    const char *dot = strrchr(slash ? slash + 1 : path, '.');
     char accepted[128] = "";
     for (int i = 0; exts[i]; i++) {
-        if (dot && strcasecmp(dot, exts[i]) == 0)
+        if (cli_has_extension(path, exts[i]))
             return CLI_OK;
         snprintf(accepted + strlen(accepted), sizeof accepted - strlen(accepted), "%sFILE%s",
                  i ? (exts[i + 1] ? ", " : " or ") : "", exts[i]);

@@ -26,6 +26,8 @@ int cli_out_open(cli_out *o, const char *what, const char *path);
  * a write failed); else it is removed and the real name keeps what it had. Returns CLI_OK
  * or CLI_FAILED (message printed; stdout failures are reported by cli_stdout_check). */
 int cli_out_close(cli_out *o, int keep);
+/* 1 if path's file name ends in the extension ext (".svg"; case ignored). */
+int cli_has_extension(const char *path, const char *ext);
 /* CLI_OK when path (NULL or "-": standard output) ends in one of the extensions exts
  * (NULL-terminated, e.g. ".svg"; case ignored) or is a device or pipe; else a usage error of
  * command, printed, that names option, the file and the accepted extensions (CLI_USAGE). */

@@ -40,7 +40,8 @@ int svg_tick_offset(long first, long last, double step, double *offset, double *
     return 1;
 }
 
-void svg_offset_note(double offset, double scale, char *buf, size_t size)
+int svg_offset_note(FILE *out, double x, double y, const char *anchor, double offset,
+                    double scale)
 {
     /* the offset to the digit of the scale (no rounding noise of its computation) */
     int digits = offset != 0.0 ? (int)(floor(log10(fabs(offset))) - floor(log10(scale) + 1e-9)) + 1
@@ -50,12 +51,17 @@ void svg_offset_note(double offset, double scale, char *buf, size_t size)
     if (digits > 17)
         digits = 17;
     const int e = (int)lround(log10(scale));
+    char note[96];
     /* "\xc3\x97" is the multiplication sign and "\xe2\x88\x92" the minus sign in UTF-8 */
     if (offset == 0.0)
-        snprintf(buf, size, "\xc3\x97" "1e%d", e);
+        snprintf(note, sizeof note, "\xc3\x97" "1e%d", e);
     else
-        snprintf(buf, size, "\xc3\x97" "1e%d %s %.*g", e, offset < 0 ? "\xe2\x88\x92" : "+",
+        snprintf(note, sizeof note, "\xc3\x97" "1e%d %s %.*g", e, offset < 0 ? "\xe2\x88\x92" : "+",
                  digits, fabs(offset));
+    return fprintf(out,
+                   "<text class=\"offset\" x=\"%.2f\" y=\"%.2f\" text-anchor=\"%s\" "
+                   "stroke=\"none\">%s</text>\n",
+                   x, y, anchor, note) < 0;
 }
 
 int svg_text_escaped(FILE *out, const char *s)

@@ -25,8 +25,10 @@ void svg_tick_label(double v, double step, char *buf, size_t size);
  * the axis carries the note "x1e-9 + 237.453059" (svg_offset_note). Returns 1 with offset
  * and scale set, or 0 when plain labels are short enough (offset 0, scale 1). */
 int svg_tick_offset(long first, long last, double step, double *offset, double *scale);
-/* The note of an axis with svg_tick_offset's offset and scale, e.g. "×1e-9 + 237.453059". */
-void svg_offset_note(double offset, double scale, char *buf, size_t size);
+/* The note of an axis with svg_tick_offset's offset and scale, e.g. "×1e-9 + 237.453059",
+ * as a text element at (x, y) anchored by anchor ("start", "end"). */
+int svg_offset_note(FILE *out, double x, double y, const char *anchor, double offset,
+                    double scale);
 
 /* s with <, > and & escaped (nothing for NULL). */
 int svg_text_escaped(FILE *out, const char *s);

@@ -110,18 +110,10 @@ static int axes(FILE *out, const cli_svg_plot *p, const axis *ax, const axis *ay
                        sizeof label);
         bad |= svg_ytick(out, x0, to_px_y(ay, v), label);
     }
-    if (x_offset) {
-        svg_offset_note(xoff, xscale, label, sizeof label);
-        bad |= fprintf(out, "<text class=\"offset\" x=\"%.2f\" y=\"%.2f\" text-anchor=\"end\" "
-                            "stroke=\"none\">%s</text>\n",
-                       x1, y0 + 36, label) < 0;
-    }
-    if (y_offset) {
-        svg_offset_note(yoff, yscale, label, sizeof label);
-        bad |= fprintf(out, "<text class=\"offset\" x=\"%.2f\" y=\"%.2f\" text-anchor=\"start\" "
-                            "stroke=\"none\">%s</text>\n",
-                       x0, y1 - 6, label) < 0;
-    }
+    if (x_offset)
+        bad |= svg_offset_note(out, x1, y0 + 36, "end", xoff, xscale);
+    if (y_offset)
+        bad |= svg_offset_note(out, x0, y1 - 6, "start", yoff, yscale);
     bad |= svg_titles(out, x0, x1, y0, y1, W, H, p->xlabel, p->ylabel, p->title);
     return bad;
 }

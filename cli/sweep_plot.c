@@ -14,7 +14,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 
 #include "out_file.h"
 #include "pages.h"
@@ -497,13 +496,6 @@ static int page_data(cli_json *j, void *ctx)
     return j->bad;
 }
 
-static int ends_with_html(const char *s)
-{
-    const size_t n = strlen(s);
-    return (n >= 5 && strcasecmp(s + n - 5, ".html") == 0) ||
-           (n >= 4 && strcasecmp(s + n - 4, ".htm") == 0);
-}
-
 int cli_plot_sweep_table(int argc, char **argv)
 {
     const char *x = NULL, *y = NULL, *title = NULL, *output = NULL, *html = NULL;
@@ -587,7 +579,8 @@ int cli_plot_sweep_table(int argc, char **argv)
         rc = cli_out_check_extension("plot", "--output", output, svg_html);
     if (rc == CLI_OK)
         rc = cli_out_check_extension("plot", "--html", html, html_only);
-    if (rc == CLI_OK && output && ends_with_html(output))
+    if (rc == CLI_OK && output &&
+        (cli_has_extension(output, ".html") || cli_has_extension(output, ".htm")))
         html = output, output = NULL;
     const char *path = html ? html : output;
     /* written to a temporary file renamed over the name at the end (out_file.h) */

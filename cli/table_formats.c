@@ -35,6 +35,7 @@ struct cli_table {
     int no_memory;   /* keeping the rows failed */
     int full;        /* a row would have passed limit_rows: not kept */
     long limit_rows; /* rows a buffered format may keep (cli_table_limit) */
+    const char *limit_why; /* and why */
     /* kept rows (buffered formats), row-major */
     double *data;
     long capacity;
@@ -370,8 +371,7 @@ cli_table *cli_table_open(FILE *out, cli_format format, const cli_table_info *in
     tab->out = out;
     tab->format = format;
     tab->info = *info;
-    const char *limit_why;
-    tab->limit_rows = cli_table_limit(format, info->cols, info->n_y, &limit_why);
+    tab->limit_rows = cli_table_limit(format, info->cols, info->n_y, &tab->limit_why);
     if (!tab->info.y_name)
         tab->info.y_name = "y";
     if (format == CLI_FORMAT_CSV || format == CLI_FORMAT_JSON) {
@@ -459,10 +459,8 @@ int cli_table_full(const cli_table *tab, char *why, size_t len)
 {
     if (!tab->full)
         return 0;
-    const char *what;
-    cli_table_limit(tab->format, tab->info.cols, tab->info.n_y, &what);
     snprintf(why, len, "%ld rows of %d columns fill %s", tab->rows, tab->info.cols,
-             what ? what : "the table");
+             tab->limit_why ? tab->limit_why : "the table");
     return 1;
 }
 

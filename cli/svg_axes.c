@@ -56,8 +56,8 @@ int svg_offset_note(FILE *out, double x, double y, const char *anchor, double of
     if (offset == 0.0)
         snprintf(note, sizeof note, "\xc3\x97" "1e%d", e);
     else
-        snprintf(note, sizeof note, "\xc3\x97" "1e%d %s %.*g", e, offset < 0 ? "\xe2\x88\x92" : "+",
-                 digits, fabs(offset));
+        snprintf(note, sizeof note, "\xc3\x97" "1e%d %s %.*g", e,
+                 offset < 0 ? "\xe2\x88\x92" : "+", digits, fabs(offset));
     return fprintf(out,
                    "<text class=\"offset\" x=\"%.2f\" y=\"%.2f\" text-anchor=\"%s\" "
                    "stroke=\"none\">%s</text>\n",

@@ -525,6 +525,30 @@ static int local_fixed(const bench_sys *sys, bench_method m, bench_solver *out, 
     return count;
 }
 
+/* A dynkit pair with other controller settings (beta, safety, fac_min, fac_max of ctl), as a
+ * diagnostic row of the adaptive section. */
+static void add_controller_diagnostic(bench_solver *out, int *count, int max,
+                                      const bench_sys *sys, const char *method,
+                                      const dyn_solve_opts *ctl, const char *label)
+{
+    const dyn_tableau *m = dyn_method_find(method);
+    dk_ctx *x = m ? dk_new(DK_SOLVE, sys, m) : NULL;
+    if (x) {
+        x->opts.beta = ctl->beta;
+        x->opts.safety = ctl->safety;
+        x->opts.fac_min = ctl->fac_min;
+        x->opts.fac_max = ctl->fac_max;
+        const size_t nw = dyn_solve_work_size(m, sys->n, &x->opts);
+        x->work = malloc((nw ? nw : 1) * sizeof(double));
+        if (!x->work) {
+            dk_destroy(x);
+            x = NULL;
+        }
+    }
+    add_dk(out, count, max, x, "diagnostic", label, BENCH_DIAG, m ? m->order : 0, 0.0,
+           dk_solve_run);
+}
+
 static int local_solve(const bench_sys *sys, bench_task task, bench_solver *out, int max)
 {
     int count = 0;
@@ -578,24 +602,19 @@ static int local_solve(const bench_sys *sys, bench_task task, bench_solver *out,
         add_dk(out, &count, max, xi, "dynkit inline", label, BENCH_INLINE, mi->order, 0.0,
                dk_solve_run);
     }
-    /* diagnostic: dop853 with the default controller of Hairer's dop853.f (pure I: beta = 0,
-     * safety 0.9, 0.333 <= h_new/h <= 6) instead of dynkit's (DOPRI5's PI controller), to
-     * keep the choice measured (docs/solvers.md) */
-    const dyn_tableau *m8 = dyn_method_find("dop853");
-    dk_ctx *x = task == BENCH_TASK_ADAPTIVE && m8 ? dk_new(DK_SOLVE, sys, m8) : NULL;
-    if (x) {
-        x->opts.beta = -1.0; /* negative: none */
-        x->opts.fac_min = 0.333;
-        x->opts.fac_max = 6.0;
-        const size_t nw = dyn_solve_work_size(m8, sys->n, &x->opts);
-        x->work = malloc((nw ? nw : 1) * sizeof(double));
-        if (!x->work) {
-            dk_destroy(x);
-            x = NULL;
-        }
-        add_dk(out, &count, max, x, "diagnostic",
-               "diagnostic: dynkit dop853, dop853.f's I controller (beta 0, 0.333 .. 6)",
-               BENCH_DIAG, m8->order, 0.0, dk_solve_run);
+    /* diagnostics, to keep the controllers' choices measured (docs/solvers.md): dop853
+     * with the default controller of Hairer's dop853.f (pure I: beta = 0, safety 0.9,
+     * 0.333 <= h_new/h <= 6) instead of dynkit's (DOPRI5's PI controller), and dp45 with
+     * dopri5.f's safety 0.9 instead of its own 0.8 */
+    if (task == BENCH_TASK_ADAPTIVE) {
+        const dyn_solve_opts i_ctl = {.beta = -1.0 /* negative: none */, .fac_min = 0.333,
+                                      .fac_max = 6.0};
+        const dyn_solve_opts safety_09 = {.safety = 0.9};
+        add_controller_diagnostic(out, &count, max, sys, "dop853", &i_ctl,
+                                  "diagnostic: dynkit dop853, dop853.f's I controller "
+                                  "(beta 0, 0.333 .. 6)");
+        add_controller_diagnostic(out, &count, max, sys, "dp45", &safety_09,
+                                  "diagnostic: dynkit dp45, dopri5.f's safety 0.9");
     }
     return count;
 }

@@ -146,6 +146,9 @@ typedef struct dyn_tableau {
     double stiff_bound;
     /* ---- other kinds of method: their own data (e.g. a Rosenbrock table), or NULL ---- */
     const void *impl;
+    /* ---- step-size control: the pair's safety factor when dyn_solve_opts.safety is 0;
+     * 0 here means 0.9 (DOPRI5's and DOP853's). ---- */
+    double safety;
 } dyn_tableau;
 
 /* Number of registered methods; dyn_method_at(i) for 0 <= i < count, NULL otherwise. */

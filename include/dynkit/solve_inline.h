@@ -101,7 +101,7 @@ typedef struct dyn_sinl_ctl {
     double fac_min; /* smallest h_new / h (0.2) */
     double fac_max; /* largest h_new / h (10) */
     double expo;    /* 1/(q + 1) - 0.75 beta, q = the error order */
-    double log2_safety, log2_floor; /* log2(safety (0.9)), log2(1e-4) */
+    double log2_safety, log2_floor; /* log2(safety (the pair's, or 0.9)), log2(1e-4) */
     double log2_scale; /* 1, or 1/2 when the errors given are squared norms */
     double expo_scaled; /* expo log2_scale: the exponent on log2 of the error as given */
     double log2_gain; /* log2(safety) + beta log2(err_old) */
@@ -112,6 +112,12 @@ typedef struct dyn_sinl_ctl {
 DYN_SINL double dyn_sinl_ctl_exponent(int q, double beta)
 {
     return 1.0 / (double)((q > 0 ? q : 1) + 1) - 0.75 * beta;
+}
+
+/* The safety factor of a solve: the caller's, else the pair's own (0: the default 0.9). */
+DYN_SINL double dyn_sinl_ctl_safety(const dyn_tableau *m, double opts_safety)
+{
+    return opts_safety > 0.0 ? opts_safety : m->safety;
 }
 
 /* Set up for error order q (the estimate behaves like h^(q+1)); zeros in safety, fac_min,
@@ -495,7 +501,8 @@ DYN_SINL int dyn_sinl_solve(const int P, const dyn_tableau *m, dyn_rhs_fn f, voi
         if (o->max_step > 0.0)
             hmax = fmin(hmax, o->max_step);
         dyn_sinl_ctl ctl;
-        dyn_sinl_ctl_init(&ctl, m->error_order, o->safety, o->beta, o->fac_min, o->fac_max, 1);
+        dyn_sinl_ctl_init(&ctl, m->error_order, dyn_sinl_ctl_safety(m, o->safety), o->beta,
+                          o->fac_min, o->fac_max, 1);
         if (o->initial_step > 0.0) {
             h = fmin(o->initial_step, hmax);
         } else {

@@ -369,8 +369,8 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
     if (!fixed) {
         if (opts->max_step > 0.0)
             hmax = fmin(hmax, opts->max_step);
-        dyn_sinl_ctl_init(&ctl, m->error_order, opts->safety, opts->beta, opts->fac_min,
-                            opts->fac_max, ops->err_squared);
+        dyn_sinl_ctl_init(&ctl, m->error_order, dyn_sinl_ctl_safety(m, opts->safety),
+                          opts->beta, opts->fac_min, opts->fac_max, ops->err_squared);
         if (opts->initial_step > 0.0) {
             h = fmin(opts->initial_step, hmax);
         } else {
@@ -628,8 +628,8 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
                 if (t == tnext)
                     step++; /* the reset is at a grid point: whole steps go on from it */
             } else {
-                dyn_sinl_ctl_init(&ctl, m->error_order, opts->safety, opts->beta,
-                                    opts->fac_min, opts->fac_max, ops->err_squared);
+                dyn_sinl_ctl_init(&ctl, m->error_order, dyn_sinl_ctl_safety(m, opts->safety),
+                                  opts->beta, opts->fac_min, opts->fac_max, ops->err_squared);
                 rejected_before = 0;
                 /* the step the controller had, or the starting step at the new state when
                  * that is smaller (the reset may make the solution change faster) */

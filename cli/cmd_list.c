@@ -55,12 +55,15 @@ int cli_cmd_methods(int argc, char **argv)
         const int adaptive = dyn_method_is_adaptive(m);
         if (adaptive && m->embedded_order > 0)
             snprintf(order, sizeof order, "%d(%d)", m->order, m->embedded_order);
+        else if (dyn_method_is_map(m))
+            snprintf(order, sizeof order, "-");
         else
             snprintf(order, sizeof order, "%d", m->order);
         printf("%-10s %-15s %-6s %6d %6d %6d %5d %-8s %-5s %s\n", m->name,
                m->alias ? m->alias : "-", order, m->stages, dyn_method_calls_per_step(m),
                dyn_method_jac_per_step(m), dyn_method_dense_degree(m),
-               adaptive ? "adaptive" : "fixed", dyn_method_is_stiff(m) ? "yes" : "no", m->title);
+               adaptive ? "adaptive" : dyn_method_is_map(m) ? "map" : "fixed",
+               dyn_method_is_stiff(m) ? "yes" : "no", m->title);
     }
     const dyn_tableau *cv = cli_cvode_method();
     if (cv)

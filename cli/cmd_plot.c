@@ -166,7 +166,8 @@ int cli_cmd_plot(int argc, char **argv)
                         snprintf(label, sizeof labels[0], "%s (%s)",
                                  cli_series_column_name(m, cols[i]), s->label);
                     p->lines[p->n_lines++] =
-                        (cli_svg_line){label, s->data + xcol, s->data + cols[i], s->rows, s->cols};
+                        (cli_svg_line){label, s->data + xcol, s->data + cols[i], s->rows, s->cols,
+                                       dyn_method_is_map(s->method)};
                 }
             order[n_panels] = p;
             n_panels++;

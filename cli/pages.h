@@ -135,6 +135,7 @@ typedef struct cli_svg_line {
     const char *label;
     const double *x, *y;
     long n, stride;
+    int points; /* 1: a dot per point, unjoined (the iterates of a discrete map) */
 } cli_svg_line;
 
 typedef struct cli_svg_plot {

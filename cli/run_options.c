@@ -284,6 +284,23 @@ static int check_method_options(const char *command, cli_run *run, unsigned give
                                    view ? " (it is accepted when the main run or a --compare "
                                           "run is adaptive)"
                                         : "");
+    const dyn_tableau *model_method = cli_method_find(run->model->method);
+    if (dyn_method_is_map(model_method) != dyn_method_is_map(mt))
+        return cli_usage_error(command,
+                               dyn_method_is_map(mt)
+                                   ? "--method %s iterates a discrete map, and %s is a "
+                                     "differential equation: give an integrator (its default "
+                                     "is %s)"
+                                   : "--method %s integrates differential equations, and %s is "
+                                     "a discrete map (x(t+1)=..., or meth=discrete): it runs "
+                                     "with its own method, %s",
+                               mt->name, run->model->name, run->model->method);
+    if (dyn_method_is_map(mt) && (run->n_events > 0 || cli_run_resets(run) > 0))
+        return cli_usage_error(command,
+                               "%s is a discrete map: its states jump from step to step, so "
+                               "there are no events or resets to locate between them (write "
+                               "every step and look at the rows)",
+                               run->model->name);
     if (cli_method_is_cvode(mt) && run->n_events > 0)
         return cli_usage_error(command,
                                "--event is not available with --method cvode: the CVODE "
@@ -294,6 +311,19 @@ static int check_method_options(const char *command, cli_run *run, unsigned give
                                "--trace prints the stages of a Runge-Kutta step; cvode is a "
                                "multistep (BDF) method and has none (--stats gives its "
                                "counts)");
+    dyn_grid map_grid;
+    if (dyn_method_is_map(mt) &&
+        dyn_grid_plan(run->t0, run->t1, run->step, run->end, &map_grid, NULL, 0) == DYN_OK &&
+        map_grid.partial)
+        return cli_usage_error(command,
+                               "a discrete map takes whole steps: the span %s:%s is not a whole "
+                               "number of steps of %s (give such a span, or --end grid to stop "
+                               "at the last whole step)",
+                               CLI_NUM(run->t0), CLI_NUM(run->t1), CLI_NUM(run->step));
+    if (run->times && dyn_method_is_map(mt))
+        return cli_usage_error(command,
+                               "--times: a discrete map has states only at its steps t0 + k*step "
+                               "(give --step, or --every K to write every K-th)");
     if (run->times && !adaptive)
         return cli_usage_error(command,
                                "--times needs an adaptive method (e.g. --method dp45), whose "

@@ -122,11 +122,14 @@ static int on_sample(long k, double t, const double *y, void *ctx)
     return 0;
 }
 
-/* "rk4, h = 0.01 s"; adaptive methods: "dp45, rtol = 0.001, atol = 1e-06". */
+/* "rk4, h = 0.01 s"; adaptive methods: "dp45, rtol = 0.001, atol = 1e-06"; a map:
+ * "discrete map, 2000 steps". */
 static void label(const cli_run *run, const dyn_tableau *method, double step, char *buf,
                   size_t size)
 {
-    if (dyn_method_is_adaptive(method))
+    if (dyn_method_is_map(method))
+        snprintf(buf, size, "%s map, %.0f steps", method->name, (run->t1 - run->t0) / step);
+    else if (dyn_method_is_adaptive(method))
         snprintf(buf, size, "%s, rtol = %g, atol = %g", method->name,
                  run->rtol > 0 ? run->rtol : DYN_DEFAULT_RTOL,
                  run->atol > 0 ? run->atol : DYN_DEFAULT_ATOL);

@@ -118,9 +118,28 @@ static int axes(FILE *out, const cli_svg_plot *p, const axis *ax, const axis *ay
     return bad;
 }
 
-/* One line: polylines of its runs of finite points. */
+/* The finite points of a line as dots: one path of zero-length segments with round caps. */
+static int dots(FILE *out, const cli_svg_line *l, const char *color, const axis *ax,
+                const axis *ay)
+{
+    int bad = fprintf(out,
+                      "<path fill=\"none\" stroke=\"%s\" stroke-width=\"3\" "
+                      "stroke-linecap=\"round\" d=\"",
+                      color) < 0;
+    for (long k = 0; k < l->n; k++) {
+        const double x = l->x[k * l->stride], y = l->y[k * l->stride];
+        if (isfinite(x) && isfinite(y))
+            bad |= fprintf(out, "M%.2f,%.2fh0", to_px_x(ax, x), to_px_y(ay, y)) < 0;
+    }
+    bad |= fputs("\"/>\n", out) < 0;
+    return bad;
+}
+
+/* One line: polylines of its runs of finite points (dots for a line of points). */
 static int line(FILE *out, const cli_svg_line *l, const char *color, const axis *ax, const axis *ay)
 {
+    if (l->points)
+        return dots(out, l, color, ax, ay);
     int bad = 0, open = 0;
     for (long k = 0; k < l->n; k++) {
         double x = l->x[k * l->stride], y = l->y[k * l->stride];
@@ -187,12 +206,18 @@ static int legend(FILE *out, const cli_svg_plot *p, const axis *ax, const axis *
                    x, y, w, h) < 0;
     for (int i = 0; i < p->n_lines; i++) {
         const double ly = y + 16 + 18.0 * i;
-        bad |= fprintf(out,
-                       "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke=\"%s\" "
-                       "stroke-width=\"2\"/><text x=\"%.2f\" y=\"%.2f\">",
-                       x + 8, ly - 4, x + 30, ly - 4,
-                       palette[(first_color + i) % (int)(sizeof palette / sizeof *palette)], x + 36,
-                       ly) < 0;
+        const char *color = palette[(first_color + i) % (int)(sizeof palette / sizeof *palette)];
+        if (p->lines[i].points)
+            bad |= fprintf(out,
+                           "<path stroke=\"%s\" stroke-width=\"4\" stroke-linecap=\"round\" "
+                           "d=\"M%.2f,%.2fh0M%.2f,%.2fh0M%.2f,%.2fh0\"/>",
+                           color, x + 10, ly - 4, x + 19, ly - 4, x + 28, ly - 4) < 0;
+        else
+            bad |= fprintf(out,
+                           "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" "
+                           "stroke=\"%s\" stroke-width=\"2\"/>",
+                           x + 8, ly - 4, x + 30, ly - 4, color) < 0;
+        bad |= fprintf(out, "<text x=\"%.2f\" y=\"%.2f\">", x + 36, ly) < 0;
         bad |= svg_text_escaped(out, p->lines[i].label);
         bad |= fputs("</text>\n", out) < 0;
     }

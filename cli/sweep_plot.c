@@ -399,7 +399,7 @@ static int lines_of(FILE *out, const sweep_table *t, int xc, const int *ycols, i
         for (int k = 0; k < n_y; k++)
             p.lines[p.n_lines++] =
                 (cli_svg_line){t->names[ycols[k]], t->data + xc, t->data + ycols[k], t->rows,
-                               t->cols};
+                               t->cols, 0};
         return cli_svg_write(out, &p);
     }
     double *vals = malloc((size_t)t->rows * sizeof *vals);
@@ -425,7 +425,7 @@ static int lines_of(FILE *out, const sweep_table *t, int xc, const int *ycols, i
         used += n;
         const int k = p.n_lines++;
         snprintf(labels[k], sizeof labels[0], "%s = %.6g", t->names[other], vals[v]);
-        p.lines[k] = (cli_svg_line){labels[k], line_xy, line_xy + 1, n, 2};
+        p.lines[k] = (cli_svg_line){labels[k], line_xy, line_xy + 1, n, 2, 0};
     }
     const int rc = cli_svg_write(out, &p);
     free(vals);

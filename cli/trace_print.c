@@ -43,7 +43,12 @@ void cli_print_trace(const dyn_trace_stage *st, void *ctx)
         fputs(")\n", stderr);
         print_vector("  y_n = ", st->y_n, st->n);
     }
-    if (i < s) {
+    if (dyn_method_is_map(m)) { /* stage 0 carries f(t_n, y_n), the next state itself */
+        if (i == 0)
+            print_vector("  y_{n+1} = f(t_n, y_n) = ", st->k, st->n);
+        else
+            fprintf(stderr, "  (t_{n+1} = %s)\n", CLI_NUM(st->t_stage));
+    } else if (i < s) {
         char stage_name[32];
         snprintf(stage_name, sizeof stage_name, heun ? "ytilde_{n+1}" : "Y%d", i + 1);
         if (i > 0) {

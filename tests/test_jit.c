@@ -86,7 +86,7 @@ static void write_text(const char *path, const char *text)
 }
 
 /* Integrate m with its default parameters (then set[i] = value) by RK4 from 0 to t1 with
- * step h; final state into y. */
+ * step h (iterate it, for a discrete map); final state into y. */
 static void rk4_run(const dyn_model *m, const char *set_name, double set_value, double t1, double h,
                     double *y)
 {
@@ -105,8 +105,9 @@ static void rk4_run(const dyn_model *m, const char *set_name, double set_value, 
     dyn_model_initial_state(m, par, y0);
     dyn_system sys = {m->rhs, m->n_states, par};
     dyn_result res;
-    assert_int_equal(
-        dyn_fixed_solve(dyn_method_find("rk4"), &sys, 0.0, t1, h, y0, y, work, NULL, &res), DYN_OK);
+    const dyn_tableau *own = dyn_method_find(m->method);
+    const dyn_tableau *method = dyn_method_is_map(own) ? own : dyn_method_find("rk4");
+    assert_int_equal(dyn_fixed_solve(method, &sys, 0.0, t1, h, y0, y, work, NULL, &res), DYN_OK);
 }
 
 static void load_ok(const char *source, const char *name, const dyn_jit_opts *opts,

@@ -82,11 +82,9 @@ static void test_refused_features_name_line_and_feature(void **state)
         {"x'=1\nvolt u=exp(-t)\n", 2, 1, "Volterra integral equations ('volt')"},
         {"x'=1\nbdry x-1\n", 2, 1, "boundary-value problems ('bdry')"},
         {"x'=-y\n0=y+exp(y)-x\n", 2, 1, "algebraic equations ('0=...'"},
-        {"z(t+1)=z*(4-z)\n", 1, 1, "difference equations ('z(t+1)=')"},
         {"x'=1\nspecial k=conv(even,101,21,w,u0)\n", 2, 1, "network sums ('special')"},
         {"x'=1\nsolv y=-.5\n", 2, 1, "differential-algebraic equations ('solv')"},
         {"x'=1\nexport {x} {y}\n", 2, 1, "'export'"},
-        {"x'=1\n@ meth=discrete\n", 2, 8, "difference equations (meth=discrete)"},
         {"x'=ran(1)\n", 1, 4, "random numbers ('ran')"},
         {"x'=normal(0,1)\n", 1, 4, "random numbers ('normal')"},
         {"x'=ishift(x,1)\n", 1, 4, "indirect addressing ('ishift')"},
@@ -184,7 +182,7 @@ static void test_syntax_errors_point_at_the_place(void **state)
     expect_error("x'=1\nglobal 1 x-1 {x=0\n", 2, 18, "missing '}'");
     expect_error("x'=1\n@ total=abc\n", 2, 9, "needs a number");
     expect_error("x'=1\n$\n", 2, 1, "unexpected '$'");
-    expect_error("par a=1\n", 0, 0, "no differential equation");
+    expect_error("par a=1\n", 0, 0, "no differential or difference equation");
     expect_error("x'=1\n#: event hit = x-1, upward\n", 2, 21, "expected rising, falling or "
                  "both");
     expect_error("x'=1\n#: event hit\nx2'=1\n", 2, 1, "next line is not a global");
@@ -290,7 +288,31 @@ static void test_meth_maps_to_dynkit_methods(void **state)
     CHECK(strstr(out, ".rtol = 0.0001,") && strstr(out, ".atol = 1.0000000000000001e-05,"),
           "%s", out);
     free(out);
-    expect_error("x'=-x\n@ meth=d\n", 2, 8, "difference equations");
+    out = expect_ok("x'=-x\n@ meth=d\n", NULL); /* XPPAUT: any prefix of discrete */
+    CHECK(strstr(out, ".method = \"discrete\","), "%s", out);
+    free(out);
+}
+
+/* Difference equations (XPPAUT's manual): x(t+1)= or meth=discrete make the file a map,
+ * iterated by the method "discrete" one step per unit of time whatever dt says; what cannot
+ * be a map is refused with its place. */
+static void test_difference_equations(void **state)
+{
+    (void)state;
+    char *out = expect_ok("z(t+1)=a*z*(1-z)\npar a=3.7\ninit z=0.2\n@ total=100, dt=0.5\n",
+                          NULL);
+    CHECK(strstr(out, ".method = \"discrete\",") && strstr(out, ".step = 1.0,") &&
+              strstr(out, ".t1 = 100.0,"),
+          "%s", out);
+    free(out);
+    /* x'= lines of a map are iterated too, as in XPPAUT */
+    out = expect_ok("x(t+1)=x/2\ny'=y+1\n", NULL);
+    CHECK(strstr(out, ".method = \"discrete\","), "%s", out);
+    free(out);
+    expect_error("x(t+2)=x\n", 1, 5, "steps by 1");
+    expect_error("x(t+1)=x/2\n@ meth=rk4\n", 1, 1, "meth=rk4 is an integrator");
+    expect_error("x(t+1)=x/2\nglobal 1 x-1 {x=0}\n", 2, 1, "events and globals are not supported "
+                                                           "in a discrete map");
 }
 
 /* Files from other systems: a byte order mark, CRLF line ends, tabs. */
@@ -484,6 +506,7 @@ int main(void)
         cmocka_unit_test(test_diag_format_shows_the_line_and_a_caret),
         cmocka_unit_test(test_notes_tell_what_is_ignored),
         cmocka_unit_test(test_meth_maps_to_dynkit_methods),
+        cmocka_unit_test(test_difference_equations),
         cmocka_unit_test(test_band_options_fill_the_model),
         cmocka_unit_test(test_bom_crlf_and_tabs),
         cmocka_unit_test(test_generated_c_conventions),

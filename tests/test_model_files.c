@@ -405,9 +405,56 @@ static void test_ignored_options_noted(void **state)
     unlink(cli_path("opts.ode"));
 }
 
+/* A difference equation (x(t+1)=) runs as a discrete map: one row per step of 1 (the
+ * file's dt is ignored, as in XPPAUT), the iterates exact (x/2 + t stays exact in binary),
+ * nout as --every; sweeps iterate it too. What makes no sense for a map is refused with the
+ * reason: an integrator, events, --times, a span of a fractional number of steps. The
+ * shipped Henon map runs and reaches its attractor's box. */
+static void test_difference_equation_is_a_map(void **state)
+{
+    (void)state;
+    write_file("halves.ode", "par c=1\nx(t+1)=x/2+c*t\ninit x=1\n@ total=6, dt=0.25, nout=2\n"
+                             "done\n");
+    cli_result r = cli("run '%s'", cli_path("halves.ode"));
+    /* x: 1, 0.5, 1.25, 2.625, 4.3125, 6.15625, 8.078125 at t = 0 .. 6; every 2nd row */
+    CHECK(r.status == 0 &&
+              strcmp(r.out, "t,x\n0,1\n2,1.25\n4,4.3125\n6,8.078125\n") == 0,
+          "exit %d:\n%s%s", r.status, r.out, r.err);
+    cli_free(&r);
+    r = cli("sweep '%s' --vary c=0,1 --reduce final:x --quiet", cli_path("halves.ode"));
+    CHECK(r.status == 0 && strstr(r.out, "\n0,0,0.015625\n") && strstr(r.out, "\n1,1,8.078125\n"),
+          "sweep of a map: %s%s", r.out, r.err);
+    cli_free(&r);
+    static const struct {
+        const char *args, *says;
+    } refused[] = {
+        {"--method rk4", "is a discrete map"},
+        {"--times 1,2", "states only at its steps"},
+        {"--tspan 0:4.5", "whole steps"},
+    };
+    for (size_t k = 0; k < sizeof refused / sizeof refused[0]; k++) {
+        r = cli("run '%s' %s", cli_path("halves.ode"), refused[k].args);
+        CHECK(r.status == 2 && strstr(r.err, refused[k].says) && !*r.out,
+              "%s: exit %d, out '%s', err %s", refused[k].args, r.status, r.out, r.err);
+        cli_free(&r);
+    }
+    r = cli("run vanderpol --method discrete");
+    CHECK(r.status == 2 && strstr(r.err, "is a differential equation"), "%s", r.err);
+    cli_free(&r);
+    r = cli("run '%s/examples/models/henon.ode' --final --stats", DYNKIT_SOURCE_DIR);
+    double t = NAN, x = NAN, y = NAN;
+    CHECK(r.status == 0 && sscanf(strchr(r.out, '\n') + 1, "%lf,%lf,%lf", &t, &x, &y) == 3 &&
+              t == 2000.0 && fabs(x) < 1.3 && fabs(y) < 0.4 &&
+              strstr(r.err, "steps=2000 accepted=2000 rejected=0 rhs=2000"),
+          "henon: exit %d, %s%s", r.status, r.out, r.err);
+    cli_free(&r);
+    unlink(cli_path("halves.ode"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_difference_equation_is_a_map),
         cmocka_unit_test(test_pendulum_file_is_the_builtin),
         cmocka_unit_test(test_vanderpol_file_default_run),
         cmocka_unit_test(test_conservative_files_keep_energy),

@@ -95,13 +95,17 @@ typedef enum dyn_status {
 const char *dyn_status_name(int status);
 
 /* Kinds of method, so every solver (fixed step, adaptive pairs, implicit) shares one
- * registry. dyn_fixed_solve runs DYN_KIND_EXPLICIT_RK; dyn_solve (solve.h) runs all. */
+ * registry. dyn_fixed_solve runs DYN_KIND_EXPLICIT_RK and DYN_KIND_MAP; dyn_solve (solve.h)
+ * runs all but DYN_KIND_MAP. */
 typedef enum dyn_method_kind {
     DYN_KIND_EXPLICIT_RK = 0, /* fixed-step explicit Runge–Kutta: a, b, c */
     DYN_KIND_EMBEDDED_RK = 1, /* adaptive explicit Runge–Kutta pair: a, b, c and e */
-    DYN_KIND_ROSENBROCK = 2   /* linearly implicit Rosenbrock method for stiff problems:
+    DYN_KIND_ROSENBROCK = 2,  /* linearly implicit Rosenbrock method for stiff problems:
                                * coefficients in impl (src/ode/rosenbrock.h), c = stage
                                * times, a and b NULL */
+    DYN_KIND_MAP = 3          /* a discrete map (difference equation), not an integrator:
+                               * y_{k+1} = f(t_k, y_k), t_{k+1} = t_k + h (XPPAUT's
+                               * meth=discrete); the right-hand side returns the next state */
 } dyn_method_kind;
 
 /* Butcher table of an explicit Runge–Kutta method with s stages.
@@ -159,10 +163,14 @@ const dyn_tableau *dyn_method_find(const char *name);
 /* Comma-separated list of all accepted method names into buf (for messages); returns buf. */
 char *dyn_method_names(char *buf, size_t size);
 
-/* 1 if the method adapts its step (embedded pairs and later kinds), 0 for fixed-step tables. */
+/* 1 if the method adapts its step (embedded pairs and later kinds), 0 for fixed-step tables
+ * and discrete maps. */
 int dyn_method_is_adaptive(const dyn_tableau *m);
 /* 1 if the method is meant for stiff problems (implicit kinds), else 0. */
 int dyn_method_is_stiff(const dyn_tableau *m);
+/* 1 for a discrete map (DYN_KIND_MAP: "discrete"), which iterates f instead of integrating
+ * it: run with dyn_fixed_solve, without events. */
+int dyn_method_is_map(const dyn_tableau *m);
 /* Right-hand-side calls per accepted step without rejections: s, or s - 1 for FSAL
  * tables. Rosenbrock methods: the calls of a step from a new point with an analytic
  * Jacobian, i.e. f(t, y), each stage that needs its own evaluation and one for df/dt

@@ -150,6 +150,22 @@ static int add_state(lang_ctx *c, const char *name, lpos pos, node *rhs)
     return idx;
 }
 
+/* x(t+1)=expr, the lexer after "x(t": a difference equation (XPPAUT's manual,
+ * "Difference equations"), which makes the whole file a discrete map. */
+static void parse_map_equation(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos)
+{
+    lx->i++; /* '+' */
+    if (lang_skip_blanks(lx) != '1')
+        lang_fail(c, lang_here(lx), "expected x(t+1)=: a difference equation steps by 1");
+    lx->i++;
+    expect_char(lx, ')', "expected ')' in x(t+1)");
+    expect_char(lx, '=', "expected '=' after x(t+1)");
+    add_state(c, w, wpos, expr_to_end(lx, "the right-hand side"));
+    if (!c->m.map_eq && !c->m.map_meth)
+        c->m.map_pos = wpos;
+    c->m.map_eq = 1;
+}
+
 static void add_formula(lang_ctx *c, lvec *v, sym_kind kind, const char *name, lpos pos,
                         node *e)
 {
@@ -359,8 +375,14 @@ static void set_method(lang_ctx *c, const char *v, lpos pos)
     for (size_t k = 0; k < n && is_discrete; k++)
         if (k >= 8 || tolower((unsigned char)v[k]) != "discrete"[k])
             is_discrete = 0;
-    if (is_discrete)
-        lang_fail(c, pos, "difference equations (meth=discrete) are not supported");
+    if (is_discrete) { /* XPPAUT takes any prefix: disc, d */
+        c->m.map_meth = 1;
+        if (!c->m.map_eq)
+            c->m.map_pos = pos;
+        c->m.has_meth = 1;
+        c->m.meth_name = v;
+        return;
+    }
     if (n == 0)
         lang_fail(c, pos, "option 'meth' needs a method name");
     int found = -1;
@@ -427,6 +449,7 @@ static void parse_options(lang_ctx *c, lang_lexer *lx)
                 lang_fail(c, vpos, "t0 must be finite");
         } else if (ieqn(name, n, "dt")) {
             m->dt = option_number(c, name, v, vpos);
+            m->dt_pos = vpos;
             if (m->dt < 0)
                 lang_fail(c, vpos, "dt < 0 (integration backwards in time) is not supported");
             if (!(m->dt > 0) || !isfinite(m->dt))
@@ -770,8 +793,13 @@ static void statement(lang_ctx *c, lang_lexer *lx, pstate *ps, int *done)
         for (;;) {
             const char *arg = read_name(lx, &apos, "expected the function's argument names");
             const int is_t = ieqn(arg, strlen(arg), "t");
+            if (is_t && args.n == 0 && lang_skip_blanks(lx) == '+') {
+                parse_map_equation(c, lx, w, wpos);
+                return;
+            }
             if (is_t && lang_skip_blanks(lx) != ')' && lang_skip_blanks(lx) != ',')
-                lang_fail(c, wpos, "difference equations ('%s(t+1)=') are not supported", w);
+                lang_fail(c, wpos, "expected x(t+1)= (a difference equation) or a function "
+                                   "definition f(t,...)= after '%s('", w);
             if (lang_is_reserved(arg) && !is_t)
                 lang_fail(c, apos, "'%s' is a reserved word and cannot be an argument", arg);
             for (int k = 0; k < args.n; k++)
@@ -844,6 +872,30 @@ static int on_line(lang_ctx *c, const lang_line *l, void *ctx)
     return done;
 }
 
+/* A discrete map iterates its equations (x'= lines too, as XPPAUT does) with the method
+ * "discrete", one step per unit of time whatever dt says (XPPAUT 6.11: t goes 0, 1, 2, ...
+ * with dt = 0.5), and has no events to locate between its steps. */
+static void finish_map(lang_ctx *c)
+{
+    lang_model *m = &c->m;
+    if (m->map_eq && m->has_meth && !m->map_meth)
+        lang_fail(c, m->map_pos,
+                  "x(t+1)= makes the file a discrete map, but meth=%s is an integrator of "
+                  "differential equations (drop meth, or write meth=discrete)",
+                  m->meth_name);
+    if (m->events.n > 0)
+        lang_fail(c, LVEC_AT(m->events, lang_event, 0).pos,
+                  "events and globals are not supported in a discrete map: its states jump "
+                  "from step to step, with nothing to locate between them");
+    m->method = "discrete";
+    m->meth_every_dt = 0;
+    if (m->dt_pos.line && m->dt != 1.0)
+        lang_note(c, m->dt_pos, "dt=%g is ignored by a discrete map: t advances by 1 per step, "
+                                "as in XPPAUT", m->dt);
+    m->dt = 1.0;
+    lang_note(c, m->map_pos, "a discrete map: y(t+1) = f(t, y), one step per unit of time");
+}
+
 void lang_parse_model(lang_ctx *c)
 {
     lang_model *m = &c->m;
@@ -876,7 +928,11 @@ void lang_parse_model(lang_ctx *c)
                              : lead;
     }
     if (m->states.n == 0)
-        lang_fail(c, (lpos){0, 0}, "no differential equation (x'=... or dx/dt=...) in the file");
+        lang_fail(c, (lpos){0, 0},
+                  "no differential or difference equation (x'=..., dx/dt=... or x(t+1)=...) "
+                  "in the file");
+    if (m->map_eq || m->map_meth)
+        finish_map(c);
     if (m->meth_every_dt && m->nout > 1) {
         lang_note(c, m->nout_pos,
                   "nout=%ld is ignored with meth=%s: as in XPPAUT, an adaptive method writes a "

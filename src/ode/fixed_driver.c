@@ -14,6 +14,7 @@
 
 #include "dynkit/io.h" /* dyn_shortest: numbers in messages */
 #include "dynkit/ode.h"
+#include "ode/map_steps.h"
 #include "ode/rk_stages.h"
 
 static void result_init(dyn_result *res, double t0)
@@ -157,9 +158,9 @@ static int check_args(const dyn_tableau *m, const dyn_system *sys, const double 
 {
     if (!m)
         return result_fail(res, DYN_ERR_ARG, "no method given");
-    if (m->kind != DYN_KIND_EXPLICIT_RK)
+    if (m->kind != DYN_KIND_EXPLICIT_RK && m->kind != DYN_KIND_MAP)
         return result_fail(res, DYN_ERR_ARG,
-                           "this method is not a fixed-step explicit Runge-Kutta method");
+                           "%s is not a fixed-step method (dyn_solve runs it)", m->name);
     if (!sys || !sys->f)
         return result_fail(res, DYN_ERR_ARG, "no right-hand side given");
     if (sys->n <= 0)
@@ -189,6 +190,11 @@ int dyn_fixed_solve(const dyn_tableau *m, const dyn_system *sys, double t0, doub
         res->status = DYN_ERR_ARG;
         return res->status;
     }
+    if (m->kind == DYN_KIND_MAP && grid.partial)
+        return result_fail(res, DYN_ERR_ARG,
+                           "a discrete map takes whole steps: [%s, %s] is not a whole number "
+                           "of steps of %s (give a span of whole steps, or DYN_END_GRID)",
+                           dyn_shortest(t0).s, dyn_shortest(t1).s, dyn_shortest(h).s);
     const int n = sys->n, s = m->stages;
     const dyn_rhs_fn f = sys->f;
     void *const par = sys->par;
@@ -212,6 +218,8 @@ int dyn_fixed_solve(const dyn_tableau *m, const dyn_system *sys, double t0, doub
             return result_fail(res, DYN_STOPPED, "output stopped the run at t = %g", t0);
         res->stats.samples = 1;
     }
+    if (m->kind == DYN_KIND_MAP)
+        return dyn_map_steps(m, sys, &grid, y, spare, opts, res);
 
     /* Everything the step loop reads is hoisted into locals: the loop then keeps no state
      * in *res or *opts (which the compiler would have to reload after every call of f). */

@@ -231,6 +231,11 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
     const dyn_stepper_ops *ops = dyn_stepper_ops_for(m);
     if (!m)
         return fail(res, DYN_ERR_ARG, "no method given");
+    if (m->kind == DYN_KIND_MAP)
+        return fail(res, DYN_ERR_ARG,
+                    "%s is a discrete map: dyn_fixed_solve iterates it (events, resets and "
+                    "samples between its steps need an integrator)",
+                    m->name);
     if (!ops)
         return fail(res, DYN_ERR_ARG, "method %s cannot be run by dyn_solve", m->name);
     if (!sys || !sys->f)

@@ -309,6 +309,18 @@ static const dyn_tableau methods[] = {
      .error_order = 3,
      .dense_degree = 3,
      .impl = &dyn_ros_rodas4},
+    /* not an integrator: f is the map itself (one evaluation per step, no coefficients
+     * used; Euler's single-stage table keeps every reader of a, b, c safe) */
+    {.name = "discrete",
+     .alias = "map",
+     .title = "discrete map: y_{k+1} = f(t_k, y_k), t_{k+1} = t_k + h (XPPAUT's meth=discrete)",
+     .reference = "XPPAUT's difference equations (x(t+1)=, meth=discrete)",
+     .kind = DYN_KIND_MAP,
+     .stages = 1,
+     .order = 0,
+     .a = euler_a,
+     .b = euler_b,
+     .c = euler_c},
 };
 
 int dyn_method_count(void) { return (int)(sizeof methods / sizeof methods[0]); }
@@ -332,13 +344,15 @@ const dyn_tableau *dyn_method_find(const char *name)
 
 int dyn_method_is_adaptive(const dyn_tableau *m)
 {
-    return m && m->kind != DYN_KIND_EXPLICIT_RK;
+    return m && m->kind != DYN_KIND_EXPLICIT_RK && m->kind != DYN_KIND_MAP;
 }
 
 int dyn_method_is_stiff(const dyn_tableau *m)
 {
-    return m && m->kind != DYN_KIND_EXPLICIT_RK && m->kind != DYN_KIND_EMBEDDED_RK;
+    return m && dyn_method_is_adaptive(m) && m->kind != DYN_KIND_EMBEDDED_RK;
 }
+
+int dyn_method_is_map(const dyn_tableau *m) { return m && m->kind == DYN_KIND_MAP; }
 
 /* Calls of f in a Rosenbrock step from a new point: f(t, y) (the stages with alpha_i = 0
  * and no a_ij reuse it), one per other stage, and one for df/dt (step_rosenbrock.c). */

@@ -321,6 +321,13 @@ static int check(const dyn_sweep *s, char *err, size_t errlen)
         dyn_grid g;
         if (dyn_grid_plan(s->t0, s->t1, s->step, s->end, &g, err, errlen))
             return -1;
+        if (dyn_method_is_map(s->method) && g.partial) {
+            snprintf(err, errlen,
+                     "a discrete map takes whole steps: [%g, %g] is not a whole number of "
+                     "steps of %g",
+                     s->t0, s->t1, s->step);
+            return -1;
+        }
     }
     return 0;
 }

@@ -234,18 +234,36 @@ typedef struct vmethod {
     int adaptive, stiff;
 } vmethod;
 
-static int n_methods(const dyn_verify_opts *o) { return dyn_method_count() + o->n_extra; }
+/* The library's integrators (not the discrete map, which solves no differential
+ * equation), then the extra methods. */
+static int n_integrators(void)
+{
+    int k = 0;
+    for (int i = 0; i < dyn_method_count(); i++)
+        k += !dyn_method_is_map(dyn_method_at(i));
+    return k;
+}
+
+static const dyn_tableau *integrator_at(int i)
+{
+    for (int j = 0; j < dyn_method_count(); j++)
+        if (!dyn_method_is_map(dyn_method_at(j)) && i-- == 0)
+            return dyn_method_at(j);
+    return NULL;
+}
+
+static int n_methods(const dyn_verify_opts *o) { return n_integrators() + o->n_extra; }
 
 static vmethod method_at(const dyn_verify_opts *o, int i)
 {
     vmethod m = {0};
-    if (i < dyn_method_count()) {
-        m.tab = dyn_method_at(i);
+    if (i < n_integrators()) {
+        m.tab = integrator_at(i);
         m.name = m.tab->name;
         m.adaptive = dyn_method_is_adaptive(m.tab);
         m.stiff = dyn_method_is_stiff(m.tab);
     } else {
-        m.extra = &o->extra[i - dyn_method_count()];
+        m.extra = &o->extra[i - n_integrators()];
         m.name = m.extra->name;
         m.adaptive = 1;
         m.stiff = m.extra->stiff;

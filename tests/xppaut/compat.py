@@ -44,6 +44,14 @@ def file_method(text):
 FIXED_STEP = ("rungekutta", "runge", "r", "euler", "e", "modeuler", "m")
 
 
+def is_map(text, meth):
+    """A discrete map (x(t+1)=, or meth=discrete and its prefixes): both programs iterate
+    it with their own (the only) method."""
+    if meth is not None and "discrete".startswith(meth):
+        return True
+    return re.search(r"(?im)^\s*[a-z_][a-z0-9_]*\s*\(\s*t\s*\+\s*1\s*\)\s*=", text) is not None
+
+
 def rk4_everywhere(text):
     return re.sub(r"(?i)\b(meth(od)?\s*=\s*)[a-z0-9]+", r"\1rungekutta", text)
 
@@ -179,8 +187,8 @@ def main():
             with open(path, errors="replace") as f:
                 text = f.read()
             meth = file_method(text)
-            own_steps = meth is not None and meth not in FIXED_STEP
-            method = "rk4" if meth is None or own_steps else None
+            own_steps = meth is not None and meth not in FIXED_STEP and not is_map(text, meth)
+            method = None if is_map(text, meth) else "rk4" if meth is None or own_steps else None
             r = {"file": base}
             dyn, msg, rc = run_dynkit(args.dynkit, path, method, args.timeout, env)
             if dyn is None and rc == 2:

@@ -3,12 +3,13 @@
  * time series plot of every state and extra output with all runs overlaid. */
 'use strict';
 (function (DK) {
-  /* Runs of the data as the views take them: {label, color, t, cols, raw}. */
+  /* Runs of the data as the views take them: {label, color, t, cols, raw, map} (map: the
+   * iterates of a discrete map, drawn as dots). */
   DK.prepareRuns = function (runs) {
     return runs.map((r, i) => {
       const cols = {};
       r.columns.forEach((name, j) => { cols[name] = r.data[j]; });
-      return { label: r.label, color: DK.colors[i % DK.colors.length], t: r.data[0], cols, raw: r };
+      return { label: r.label, color: DK.colors[i % DK.colors.length], t: r.data[0], cols, raw: r, map: !!r.map };
     });
   };
 

@@ -37,7 +37,7 @@
 
   DK.timePlot = function (container, runs, name, player, o) {
     const unit = o && o.unit !== undefined ? o.unit : DK.unit(runs[0].raw || runs[0], name);
-    const series = runs.filter(r => r.cols[name]).map(r => ({ label: r.label, x: r.t, y: r.cols[name], color: r.color, dash: r.dash, unit: o && o.unit !== undefined ? o.unit : DK.unit(r.raw || r, name) }));
+    const series = runs.filter(r => r.cols[name]).map(r => Object.assign({ label: r.label, x: r.t, y: r.cols[name], color: r.color, dash: r.dash, unit: o && o.unit !== undefined ? o.unit : DK.unit(r.raw || r, name) }, r.map ? { width: 0, markers: 1.8 } : {}));
     const plot = new DK.Plot(container, Object.assign({
       title: (o && o.title) || name, xlabel: 't [s]', ylabel: name + ' [' + unit + ']', unitY: unit === '1' ? '' : unit,
       series, onSeek: t => player.seek(t), legend: series.length > 1 ? 'tr' : 'none'
@@ -80,7 +80,7 @@
   /* ---- phase plane: x against y of every run, drawn up to the current time ---- */
 
   DK.PhaseView = function (container, runs, xname, yname, player, o) {
-    const series = runs.map(r => ({ label: r.label, color: r.color, t: r.t, x: r.cols[xname], y: r.cols[yname], trail: true, width: 1.5 }));
+    const series = runs.map(r => Object.assign({ label: r.label, color: r.color, t: r.t, x: r.cols[xname], y: r.cols[yname], trail: true, width: 1.5 }, r.map ? { width: 0, markers: 1.8 } : {}));
     const ux = DK.unit(runs[0].raw || runs[0], xname), uy = DK.unit(runs[0].raw || runs[0], yname);
     const plot = new DK.Plot(container, Object.assign({
       title: 'phase plane', xlabel: xname + ' [' + ux + ']', ylabel: yname + ' [' + uy + ']',

@@ -75,8 +75,6 @@ static void test_refused_features_name_line_and_feature(void **state)
         {"x'=1\nmarkov z 2\n{0} {a}\n{b} {0}\n", 2, 1, "Markov chains ('markov')"},
         {"x'=1\nwiener w\n", 2, 1, "random processes ('wiener')"},
         {"x'=-delay(x,1)\n", 1, 5, "delay-differential equations ('delay')"},
-        {"x'=1\ntable h % 101 0 6.3 sin(t)\n", 2, 1, "lookup tables ('table')"},
-        {"x'=1\ntabular w % 25 -12 12 1/25\n", 2, 1, "lookup tables ('table', here 'tabular')"},
         {"x'=-x+int{exp(-t)#x}\n", 1, 7, "Volterra integrals ('int{...}')"},
         {"x'=-x+int[.5]{exp(-t)#x}\n", 1, 7, "Volterra integrals ('int{...}')"},
         {"x'=1\nvolt u=exp(-t)\n", 2, 1, "Volterra integral equations ('volt')"},
@@ -293,6 +291,42 @@ static void test_meth_maps_to_dynkit_methods(void **state)
     free(out);
 }
 
+/* Lookup tables (XPPAUT's manual, "table"): a formula of t over npts abscissas, computed by
+ * prepare with the parameters (so --set re-evaluates it) into the parameter array after the
+ * derived parameters; a call interpolates linearly; its derivative is the segment's slope.
+ * Mistakes are refused at their place. */
+static void test_lookup_tables(void **state)
+{
+    (void)state;
+    char *out = expect_ok("table w % 11 -5 5 a*t\npar a=2, b=1\n!c=a+b\nx'=-x+w(x)\n", NULL);
+    CHECK(strstr(out, "for (long k = 0; k < 11; k++)") && strstr(out, "p[3 + k] = (p[0] * t)") &&
+              strstr(out, "dk_table(p + 3, 11, (-5.0), 1.0, y[0])") &&
+              strstr(out, "dk_table_slope(p + 3, 11, (-5.0), 1.0, y[0])") &&
+              strstr(out, ".par_size = 14 * sizeof(double)"),
+          "%s", out);
+    free(out);
+    /* XPPAUT reads any word that begins with tab as table (nnet2.ode's tabular), and takes
+     * table % NAME ... too */
+    out = expect_ok("tabular w % 25 -12 12 1/25\ntable % v 2 0 1 w(t)\nx'=v(x)\n", NULL);
+    CHECK(strstr(out, "p[0 + k] = (1.0 / 25.0)") && strstr(out, "dk_table(p + 25, 2,"), "%s",
+          out);
+    free(out);
+    expect_error("x'=w\ntable w % 3 0 1 t\n", 1, 4, "'w' is a table: look a value up with w(x)");
+    expect_error("x'=w(1,2)\ntable w % 3 0 1 t\n", 1, 4, "takes 1 argument");
+    expect_error("table w % 0 0 1 t\nx'=1\n", 1, 7, "0 points");
+    expect_error("table w % 2.5 0 1 t\nx'=1\n", 1, 7, "2.5 points");
+    expect_error("table w % 3 1 1 t\nx'=1\n", 1, 7, "must be above the first");
+    expect_error("table w % 3 0\nx'=1\n", 1, 14, "the last abscissa");
+    expect_error("table w % 3 0 1 x\nx'=1\n", 1, 17, "cannot depend on the state 'x'");
+    expect_error("table w % 3 0 1 v(t)\ntable v % 3 0 1 t\nx'=1\n", 1, 17,
+                 "uses table 'v', defined after it");
+    expect_error("par a=1\n!b=w(a)\ntable w % 3 0 1 t\nx'=1\n", 2, 4,
+                 "a derived parameter cannot use the table 'w'");
+    expect_error("table w % 3 0 1 t\nf(u)=w(u)\ninit x=f(1)\nx'=1\n", 3, 8,
+                 "cannot call 'f', which depends on a table");
+    expect_error("table w no_such_file.tab\nx'=1\n", 1, 9, "cannot read 'no_such_file.tab'");
+}
+
 /* Difference equations (XPPAUT's manual): x(t+1)= or meth=discrete make the file a map,
  * iterated by the method "discrete" one step per unit of time whatever dt says; what cannot
  * be a map is refused with its place. */
@@ -507,6 +541,7 @@ int main(void)
         cmocka_unit_test(test_notes_tell_what_is_ignored),
         cmocka_unit_test(test_meth_maps_to_dynkit_methods),
         cmocka_unit_test(test_difference_equations),
+        cmocka_unit_test(test_lookup_tables),
         cmocka_unit_test(test_band_options_fill_the_model),
         cmocka_unit_test(test_bom_crlf_and_tabs),
         cmocka_unit_test(test_generated_c_conventions),

@@ -451,9 +451,35 @@ static void test_difference_equation_is_a_map(void **state)
     unlink(cli_path("halves.ode"));
 }
 
+/* Lookup tables: a formula table of t with a parameter and a table file beside the model
+ * (XPPAUT's format), looked up by linear interpolation and extrapolated by the end segments
+ * (as XPPAUT 6.11 does, tests/xppaut); --set re-evaluates the formula table. */
+static void test_lookup_tables_in_a_run(void **state)
+{
+    (void)state;
+    write_file("tab_data.tab", "3\n0\n2\n1\n3\n-1\n");
+    write_file("tab.ode", "table g % 3 0 2 a*t^2\ntable h tab_data.tab\npar a=1\nx'=0\n"
+                          "aux gv=g(t)\naux hv=h(t)\n@ total=3, dt=0.5, meth=euler\ndone\n");
+    cli_result r = cli("run '%s' --outputs", cli_path("tab.ode"));
+    CHECK(r.status == 0 && strcmp(r.out, "t,x,gv,hv\n0,0,0,1\n0.5,0,0.5,2\n1,0,1,3\n1.5,0,2.5,1\n"
+                                         "2,0,4,-1\n2.5,0,5.5,-3\n3,0,7,-5\n") == 0,
+          "exit %d:\n%s%s", r.status, r.out, r.err);
+    cli_free(&r);
+    r = cli("run '%s' --outputs --set a=2 --final", cli_path("tab.ode"));
+    CHECK(r.status == 0 && strstr(r.out, "\n3,0,14,-5\n"), "--set a=2: %s%s", r.out, r.err);
+    cli_free(&r);
+    unlink(cli_path("tab_data.tab"));
+    r = cli("run '%s'", cli_path("tab.ode"));
+    CHECK(r.status == 2 && strstr(r.err, "cannot read") && strstr(r.err, "tab_data.tab") && !*r.out,
+          "missing table file: exit %d, %s", r.status, r.err);
+    cli_free(&r);
+    unlink(cli_path("tab.ode"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_lookup_tables_in_a_run),
         cmocka_unit_test(test_difference_equation_is_a_map),
         cmocka_unit_test(test_pendulum_file_is_the_builtin),
         cmocka_unit_test(test_vanderpol_file_default_run),

@@ -61,6 +61,7 @@ const char *lang_sym_kind_name(sym_kind k)
     case SYM_FIX: return "a fixed quantity";
     case SYM_AUX: return "an aux output";
     case SYM_FUNC: return "a function";
+    case SYM_TABLE: return "a table";
     default: return "a name";
     }
 }
@@ -96,12 +97,15 @@ void lang_declare(lang_ctx *c, const char *name, lpos pos, sym_kind kind, int in
 
 /* ---- resolution ---- */
 
-enum { CTX_RHS, CTX_FUNC, CTX_PARAMS };
+/* CTX_PARAMS and CTX_TABLE: formulas of the parameters only (CTX_TABLE: and of the table's
+ * abscissa t) */
+enum { CTX_RHS, CTX_FUNC, CTX_PARAMS, CTX_TABLE };
 
 typedef struct rctx {
     int kind;
     const lang_func *func;
     const char *what; /* "a derived parameter", "an initial value", ... */
+    int table;        /* CTX_TABLE: the table whose formula this is */
 } rctx;
 
 static const char *nearest_symbol(lang_ctx *c, const char *word, const rctx *r, int funcs)
@@ -169,7 +173,7 @@ static void resolve(lang_ctx *c, node *e, const rctx *r)
             unknown(c, e, r, 0);
         switch (s->kind) {
         case SYM_STATE:
-            if (r->kind == CTX_PARAMS)
+            if (r->kind >= CTX_PARAMS)
                 lang_fail(c, e->pos, "%s cannot depend on the state '%s'", r->what, e->name);
             e->kind = N_STATE;
             e->index = s->index;
@@ -187,7 +191,7 @@ static void resolve(lang_ctx *c, node *e, const rctx *r)
             e->num = LVEC_AT(m->numbers, lang_param, s->index).value;
             return;
         case SYM_FIX:
-            if (r->kind == CTX_PARAMS)
+            if (r->kind >= CTX_PARAMS)
                 lang_fail(c, e->pos, "%s cannot depend on the fixed quantity '%s'", r->what,
                           e->name);
             if (r->kind == CTX_FUNC)
@@ -201,12 +205,26 @@ static void resolve(lang_ctx *c, node *e, const rctx *r)
                       "%s=%s_'", e->name, e->name, e->name, e->name);
         case SYM_FUNC:
             lang_fail(c, e->pos, "'%s' is a function: call it as %s(...)", e->name, e->name);
+        case SYM_TABLE:
+            lang_fail(c, e->pos, "'%s' is a table: look a value up with %s(x)", e->name, e->name);
         default:
             unknown(c, e, r, 0);
         }
     }
     if (e->kind == N_FUN && !lang_resolve_call(c, e))
         unknown(c, e, r, 1);
+    if (e->kind == N_FUN && e->op == F_TABLE) {
+        const char *tname = LVEC_AT(m->tables, lang_table, e->index).name;
+        if (r->kind == CTX_PARAMS)
+            lang_fail(c, e->pos, "%s cannot use the table '%s' (its values come after the "
+                      "parameters)", r->what, tname);
+        if (r->kind == CTX_TABLE && e->index >= r->table)
+            lang_fail(c, e->pos, "the formula of table '%s' uses table '%s', %s", 
+                      LVEC_AT(m->tables, lang_table, r->table).name, tname,
+                      e->index == r->table ? "itself" : "defined after it");
+        if (r->kind == CTX_FUNC)
+            ((lang_func *)r->func)->uses_table = 1;
+    }
 }
 
 /* ---- sums and shifts, unrolled before names are resolved ---- */
@@ -312,7 +330,7 @@ static node *unroll(lang_ctx *c, node *e, int in_sum)
         const long k = const_int(c, e->args[1], "the offset of shift");
         const lang_sym *s = lang_lookup(c, e->args[0]->name);
         if (!s)
-            unknown(c, e->args[0], &(rctx){CTX_RHS, NULL, "a formula"}, 0);
+            unknown(c, e->args[0], &(rctx){CTX_RHS, NULL, "a formula", -1}, 0);
         lvec *v = s->kind == SYM_STATE     ? &c->m.states
                   : s->kind == SYM_PARAM   ? &c->m.params
                   : s->kind == SYM_FIX     ? &c->m.fixes
@@ -350,6 +368,7 @@ static void func_calls(lang_ctx *c, const node *e, int *stack, int depth)
         const lang_func *f = &LVEC_AT(c->m.funcs, lang_func, e->index);
         caller->uses_state |= f->uses_state;
         caller->uses_time |= f->uses_time;
+        caller->uses_table |= f->uses_table;
     }
     if (e->kind == N_STATE || e->kind == N_TIME) {
         lang_func *caller = &LVEC_AT(c->m.funcs, lang_func, stack[depth - 1]);
@@ -459,6 +478,19 @@ static node *inline_fix_calls(lang_ctx *c, node *e, int depth)
     return e;
 }
 
+/* 1 if e calls a table, directly or through the user functions it calls. */
+static int table_calls(lang_ctx *c, const node *e)
+{
+    if (e->kind == N_FUN && e->op == F_TABLE)
+        return 1;
+    if (e->kind == N_UFUN && LVEC_AT(c->m.funcs, lang_func, e->index).uses_table)
+        return 1;
+    for (int i = 0; i < e->nargs; i++)
+        if (table_calls(c, e->args[i]))
+            return 1;
+    return 0;
+}
+
 /* Calls in a parameters-only formula must not reach states or t. */
 static void check_param_calls(lang_ctx *c, const node *e, const char *what)
 {
@@ -466,11 +498,12 @@ static void check_param_calls(lang_ctx *c, const node *e, const char *what)
         check_param_calls(c, e->args[i], what);
     if (e->kind == N_UFUN) {
         const lang_func *f = &LVEC_AT(c->m.funcs, lang_func, e->index);
-        if (f->uses_state || f->uses_time || f->uses_fix)
+        if (f->uses_state || f->uses_time || f->uses_fix || f->uses_table)
             lang_fail(c, e->pos, "%s cannot call '%s', which depends on %s", what, f->name,
-                      f->uses_state ? "the states"
+                      f->uses_state  ? "the states"
                       : f->uses_time ? "the time t"
-                                     : "fixed quantities");
+                      : f->uses_fix  ? "fixed quantities"
+                                     : "a table");
     }
 }
 
@@ -524,7 +557,7 @@ void lang_check(lang_ctx *c)
     /* user functions first: their bodies, then recursion and what they use */
     for (int i = 0; i < m->funcs.n; i++) {
         lang_func *f = &LVEC_AT(m->funcs, lang_func, i);
-        rctx r = {CTX_FUNC, f, "a function"};
+        rctx r = {CTX_FUNC, f, "a function", -1};
         resolve(c, f->body, &r);
     }
     int *stack = lang_alloc(c, (size_t)(m->funcs.n + 1) * sizeof(int));
@@ -543,22 +576,41 @@ void lang_check(lang_ctx *c)
         for (int i = 0; i < m->funcs.n; i++) {
             lang_func *f = &LVEC_AT(m->funcs, lang_func, i);
             int us = f->uses_state, ut = f->uses_time, uf = f->uses_fix;
+            const int ub = f->uses_table || table_calls(c, f->body);
             lang_func_uses(c, f->body, &us, &ut);
             fix_calls(c, f->body, &uf);
-            changed |= us != f->uses_state || ut != f->uses_time || uf != f->uses_fix;
+            changed |= us != f->uses_state || ut != f->uses_time || uf != f->uses_fix ||
+                       ub != f->uses_table;
             f->uses_state = us;
             f->uses_time = ut;
             f->uses_fix = uf;
+            f->uses_table = ub;
         }
         if (!changed)
             break;
     }
-    rctx rhs = {CTX_RHS, NULL, "a formula"};
+    rctx rhs = {CTX_RHS, NULL, "a formula", -1};
     for (int i = 0; i < m->derived.n; i++) {
         lang_formula *f = &LVEC_AT(m->derived, lang_formula, i);
-        rctx r = {CTX_PARAMS, NULL, "a derived parameter"};
+        rctx r = {CTX_PARAMS, NULL, "a derived parameter", -1};
         resolve(c, f->expr, &r);
         check_param_calls(c, f->expr, "a derived parameter");
+    }
+    /* tables: formulas of t and the parameters, computed after the derived parameters;
+     * their values follow those in the parameter array */
+    int offset = m->params.n + m->derived.n;
+    for (int i = 0; i < m->tables.n; i++) {
+        lang_table *tb = &LVEC_AT(m->tables, lang_table, i);
+        if (tb->expr) {
+            tb->expr = unroll(c, tb->expr, 0);
+            rctx r = {CTX_TABLE, NULL, "a table's formula", i};
+            resolve(c, tb->expr, &r);
+            check_param_calls(c, tb->expr, "a table's formula");
+        }
+        tb->offset = offset;
+        offset += (int)tb->npts;
+        if (offset > LANG_MAX_TABLE)
+            lang_fail(c, tb->pos, "tables of more than %d points in all", LANG_MAX_TABLE);
     }
     for (int i = 0; i < m->fixes.n; i++)
         resolve(c, LVEC_AT(m->fixes, lang_formula, i).expr, &rhs);
@@ -600,7 +652,7 @@ void lang_check(lang_ctx *c)
             e.pos = in->pos;
             unknown(c, &e, &rhs, 0);
         }
-        rctx r = {CTX_PARAMS, NULL, "an initial value"};
+        rctx r = {CTX_PARAMS, NULL, "an initial value", -1};
         resolve(c, in->value, &r);
         check_param_calls(c, in->value, "an initial value");
         lang_state *st = &LVEC_AT(m->states, lang_state, s->index);
@@ -675,6 +727,13 @@ int lang_resolve_call(lang_ctx *c, node *e)
         return 1;
     }
     const lang_sym *s = lang_lookup(c, e->name);
+    if (s && s->kind == SYM_TABLE) {
+        if (e->nargs != 1)
+            lang_fail(c, e->pos, "table '%s' takes 1 argument, not %d", e->name, e->nargs);
+        e->op = F_TABLE;
+        e->index = s->index;
+        return 1;
+    }
     if (s && s->kind == SYM_FUNC) {
         const lang_func *fn = &LVEC_AT(c->m.funcs, lang_func, s->index);
         if (fn->nargs != e->nargs)

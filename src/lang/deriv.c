@@ -94,6 +94,8 @@ double lang_eval(lang_ctx *c, const node *e, const double *args, const double *p
 
 static node *fold(lang_ctx *c, node *e)
 {
+    if (e->kind == N_FUN && e->op >= F_COUNT) /* tables: their values come at run time */
+        return e;
     for (int i = 0; i < e->nargs; i++)
         if (!is_const(e->args[i]))
             return e;
@@ -217,6 +219,12 @@ static node *d_fun(lang_ctx *c, node *e, lang_dvar *v)
     if (only_a && (!db || lang_is_num(db, 0.0)))
         return lang_num(c, 0.0);
     switch (e->op) {
+    case F_TABLE: { /* piecewise linear: the slope of the segment at a */
+        node *slope = mk(c, N_FUN, F_TABLE_SLOPE, 1, a, NULL, NULL);
+        slope->index = e->index;
+        return mul(c, slope, da);
+    }
+    case F_TABLE_SLOPE: return lang_num(c, 0.0);
     case F_SIN: return mul(c, fun(c, F_COS, a, NULL), da);
     case F_COS: return neg(c, mul(c, fun(c, F_SIN, a, NULL), da));
     case F_TAN: {

@@ -157,7 +157,8 @@ static const char *c_fun(int f)
 }
 
 enum {
-    H_HEAV = 1, H_SIGN = 2, H_MOD = 4, H_MAX = 8, H_MIN = 16, H_NOT = 32, H_SQ = 64, H_POW = 128
+    H_HEAV = 1, H_SIGN = 2, H_MOD = 4, H_MAX = 8, H_MIN = 16, H_NOT = 32, H_SQ = 64, H_POW = 128,
+    H_TABLE = 256
 };
 
 /* fused: per function, slot 0 the function, slot 1 + k its partial derivative in k */
@@ -265,6 +266,19 @@ static void expr(lang_ctx *c, const node *e, const ectx *x)
         break;
     }
     case N_FUN:
+        if (e->op == F_TABLE || e->op == F_TABLE_SLOPE) {
+            const lang_table *tb = &LVEC_AT(m->tables, lang_table, e->index);
+            c->helpers |= H_TABLE;
+            outf(c, "%s(p + %d, %ld, ", e->op == F_TABLE ? "dk_table" : "dk_table_slope",
+                 tb->offset, tb->npts);
+            num_lit(c, tb->lo);
+            puts_(c, ", ");
+            num_lit(c, tb->npts > 1 ? (tb->hi - tb->lo) / (double)(tb->npts - 1) : 1.0);
+            puts_(c, ", ");
+            expr(c, e->args[0], x);
+            puts_(c, ")");
+            break;
+        }
         c->helpers |= e->op == F_HEAV  ? H_HEAV
                       : e->op == F_SIGN ? H_SIGN
                       : e->op == F_MOD  ? H_MOD
@@ -355,6 +369,18 @@ static void helpers(lang_ctx *c)
     if (h & H_POW)
         puts_(c, "static inline double dk_pow(double x, double y) { return y == 2.0 ? x * x : "
                  "pow(x, y); }\n");
+    if (h & H_TABLE) /* XPPAUT's lookup: linear, extrapolated by the end segments */
+        puts_(c, "static inline long dk_table_at(long n, double lo, double dx, double x)\n"
+                 "{\n    const double k = floor((x - lo) / dx);\n"
+                 "    return !(k > 0.0) ? 0 : k > (double)(n - 2) ? n - 2 : (long)k;\n}\n"
+                 "static inline double dk_table(const double *v, long n, double lo, double dx, "
+                 "double x)\n{\n    if (n < 2)\n        return v[0];\n"
+                 "    const long i = dk_table_at(n, lo, dx, x);\n"
+                 "    return v[i] + (v[i + 1] - v[i]) * (x - (lo + (double)i * dx)) / dx;\n}\n"
+                 "static inline double dk_table_slope(const double *v, long n, double lo, "
+                 "double dx, double x)\n{\n    if (n < 2)\n        return 0.0;\n"
+                 "    const long i = dk_table_at(n, lo, dx, x);\n"
+                 "    return (v[i + 1] - v[i]) / dx;\n}\n");
     if (h)
         puts_(c, "\n");
 }
@@ -511,6 +537,69 @@ static void emit_outputs(lang_ctx *c)
     puts_(c, "    return 0;\n}\n\n");
 }
 
+/* In prepare: each table's values into p, from its formula of t at the abscissas
+ * lo + k dx (with the parameters just set), or from its file's numbers. */
+static void emit_table_values(lang_ctx *c)
+{
+    const lang_model *m = &c->m;
+    const ectx x = {NULL, 0};
+    for (int i = 0; i < m->tables.n; i++) {
+        const lang_table *tb = &LVEC_AT(m->tables, lang_table, i);
+        line_dir(c, tb->pos);
+        if (!tb->expr) {
+            outf(c, "    memcpy(p + %d, dk_table_file%d, sizeof dk_table_file%d);\n", tb->offset,
+                 i, i);
+            continue;
+        }
+        outf(c, "    for (long k = 0; k < %ld; k++) {\n        const double t = ", tb->npts);
+        num_lit(c, tb->lo);
+        puts_(c, " + ");
+        num_lit(c, tb->npts > 1 ? (tb->hi - tb->lo) / (double)(tb->npts - 1) : 1.0);
+        outf(c, " * (double)k;\n        (void)t;\n        p[%d + k] = ", tb->offset);
+        expr(c, tb->expr, &x);
+        outf(c, ";\n        if (!isfinite(p[%d + k])) {\n            snprintf(err, errlen, "
+                "\"table '%%s' is not finite at t = %%g (%%g)\", ",
+             tb->offset);
+        str_lit(c, tb->name);
+        outf(c, ", t, p[%d + k]);\n            return 1;\n        }\n    }\n", tb->offset);
+    }
+}
+
+/* Tables read from files in m. */
+static int table_files(const lang_model *m)
+{
+    int k = 0;
+    for (int i = 0; i < m->tables.n; i++)
+        k += LVEC_AT(m->tables, lang_table, i).expr == NULL;
+    return k;
+}
+
+/* Doubles of the parameter array: parameters, derived parameters, the tables' values. */
+static int par_doubles(const lang_model *m)
+{
+    int k = m->params.n + m->derived.n;
+    for (int i = 0; i < m->tables.n; i++)
+        k += (int)LVEC_AT(m->tables, lang_table, i).npts;
+    return k;
+}
+
+/* The numbers of the tables read from files, as arrays for prepare to copy. */
+static void emit_table_files(lang_ctx *c)
+{
+    const lang_model *m = &c->m;
+    for (int i = 0; i < m->tables.n; i++) {
+        const lang_table *tb = &LVEC_AT(m->tables, lang_table, i);
+        if (tb->expr)
+            continue;
+        outf(c, "static const double dk_table_file%d[%ld] = {", i, tb->npts);
+        for (long k = 0; k < tb->npts; k++) {
+            puts_(c, k % 4 ? ", " : k ? ",\n    " : "\n    ");
+            num_lit(c, tb->values[k]);
+        }
+        puts_(c, "};\n\n");
+    }
+}
+
 static void emit_prepare(lang_ctx *c)
 {
     lang_model *m = &c->m;
@@ -543,6 +632,7 @@ static void emit_prepare(lang_ctx *c)
         str_lit(c, f->name);
         outf(c, ", p[%d]);\n        return 1;\n    }\n", np + k);
     }
+    emit_table_values(c);
     puts_(c, "    (void)err;\n    (void)errlen;\n    return 0;\n}\n\n");
 }
 
@@ -935,6 +1025,7 @@ char *lang_emit_c(lang_ctx *c)
 
     emit_rhs(c);
     emit_outputs(c);
+    emit_table_files(c);
     emit_prepare(c);
     const int has_init = emit_initial(c, y0);
     if (jp.text)
@@ -1000,7 +1091,7 @@ char *lang_emit_c(lang_ctx *c)
             "    .n_params = %d,\n    .params = %s,\n    .par_size = %d * sizeof(double),\n"
             "    .n_outputs = %d,\n    .outputs = %s,\n    .rhs = dk_rhs,\n"
             "    .compute_outputs = %s,\n    .prepare = dk_prepare,\n    .warn = NULL,\n",
-         n, np, np ? "dk_params" : "NULL", np + nd > 0 ? np + nd : 1, m->auxs.n,
+         n, np, np ? "dk_params" : "NULL", par_doubles(m) > 0 ? par_doubles(m) : 1, m->auxs.n,
          m->auxs.n ? "dk_outputs_vars" : "NULL", m->auxs.n ? "dk_outputs" : "NULL");
     puts_(c, "    .t0 = ");
     num_lit(c, m->t0);
@@ -1056,8 +1147,10 @@ char *lang_emit_c(lang_ctx *c)
             put(c, s, 1);
     puts_(c, "\n * (see \"The .ode format\" in docs/model-files.md). Edit the model file, not "
              "this text. */\n"
-             "#include <math.h>\n#include <stddef.h>\n#include <stdio.h>\n\n"
-             "#include <dynkit/model.h>\n\n");
+             "#include <math.h>\n#include <stddef.h>\n#include <stdio.h>\n");
+    if (table_files(m))
+        puts_(c, "#include <string.h>\n");
+    puts_(c, "\n#include <dynkit/model.h>\n\n");
     helpers(c);
     emit_function_protos(c);
     put(c, defs, defs_len);

@@ -70,7 +70,10 @@ typedef enum bin_op {
 typedef enum fun_id {
     F_SIN, F_COS, F_TAN, F_ASIN, F_ACOS, F_ATAN, F_ATAN2, F_SINH, F_COSH, F_TANH, F_EXP,
     F_LN, F_LOG10, F_SQRT, F_ABS, F_HEAV, F_SIGN, F_MOD, F_FLR, F_CEIL, F_MAX, F_MIN, F_ERF,
-    F_ERFC, F_COUNT
+    F_ERFC, F_COUNT,
+    /* not names of the language: a table's value and slope at its argument (index: the
+     * table) */
+    F_TABLE, F_TABLE_SLOPE
 } fun_id;
 
 typedef struct node {
@@ -124,6 +127,7 @@ typedef struct lang_func {
     int mark;
     int uses_state, uses_time; /* directly or through other functions */
     int uses_fix;              /* reads fixed temporaries: inlined where it is called */
+    int uses_table;            /* calls a table (directly or through other functions) */
 } lang_func;
 
 typedef struct lang_assign {
@@ -145,6 +149,22 @@ typedef struct lang_event {
     int is_global;
 } lang_event;
 
+/* A lookup table (XPPAUT's `table`): npts values at x = lo + k (hi - lo) / (npts - 1),
+ * from a formula of t (expr, computed with the parameters by prepare) or from a file
+ * (values); a function of one argument by linear interpolation, extrapolated linearly
+ * beyond [lo, hi] as XPPAUT does. Its values live in the parameter array from offset on. */
+#define LANG_MAX_TABLE 1000000 /* points of one table */
+typedef struct lang_table {
+    const char *name;
+    lpos pos;
+    long npts;
+    double lo, hi;
+    node *expr;           /* formula of t, or NULL */
+    const double *values; /* (npts) from the file, or NULL */
+    const char *file;     /* as written */
+    int offset;           /* index of the first value in p (set by lang_check) */
+} lang_table;
+
 /* A pending `init name=...` or `name(0)=...`, resolved once every state is known. */
 typedef struct lang_init {
     const char *name;
@@ -161,7 +181,7 @@ typedef struct lang_docline {
 
 typedef enum sym_kind {
     SYM_NONE, SYM_STATE, SYM_PARAM, SYM_NUMBER, SYM_DERIVED, SYM_FIX, SYM_AUX, SYM_FUNC,
-    SYM_RESERVED
+    SYM_TABLE, SYM_RESERVED
 } sym_kind;
 
 typedef struct lang_sym {
@@ -180,6 +200,7 @@ typedef struct lang_model {
     lvec auxs;     /* lang_formula */
     lvec funcs;    /* lang_func */
     lvec events;   /* lang_event */
+    lvec tables;   /* lang_table */
     lvec inits;    /* lang_init */
     lvec docs;     /* lang_docline */
     /* symbol table: open addressing on the case-folded name */

@@ -1,12 +1,15 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* Statements of an .ode file (XPPAUT's manual, "Structure of ODE files" and "Options"):
  * x'=, dx/dt=, x(0)=, par/param/p, number, init/i, aux, name=expr (fixed), !name=expr
- * (derived), f(a,b)=expr, global sign cond {x=..;y=..}, @ options, done; and dynkit's
+ * (derived), f(a,b)=expr, x(t+1)=expr, table, global sign cond {x=..;y=..}, @ options, done;
+ * and dynkit's
  * extensions in `#:` comment lines (title, description, units and descriptions of names,
  * named events). XPPAUT's features this translator does not implement are refused with the
  * place and the feature's name. Keywords are case-insensitive, blanks around `=` allowed. */
 #include <ctype.h>
+#include <errno.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -505,6 +508,116 @@ static void parse_options(lang_ctx *c, lang_lexer *lx)
     }
 }
 
+/* ---- lookup tables ---- */
+
+static char *rest_text(lang_lexer *lx);
+
+/* A number written in a table statement, at the cursor. */
+static double table_number(lang_ctx *c, lang_lexer *lx, const char *what)
+{
+    lang_skip_blanks(lx);
+    const lpos pos = lang_here(lx);
+    const char *from = lx->line->text + lx->i;
+    char *end;
+    const double v = strtod(from, &end);
+    if (end == from || !isfinite(v))
+        lang_fail(c, pos, "expected %s of the table (a number)", what);
+    lx->i += (int)(end - from);
+    return v;
+}
+
+static void table_size(lang_ctx *c, lang_table *tb, lpos pos)
+{
+    if (!(tb->npts >= 1 && tb->npts <= LANG_MAX_TABLE))
+        lang_fail(c, pos, "table '%s': %ld points: give 1 to %d", tb->name, tb->npts,
+                  LANG_MAX_TABLE);
+    if (tb->npts > 1 && !(tb->hi > tb->lo))
+        lang_fail(c, pos, "table '%s': the last abscissa %g must be above the first, %g",
+                  tb->name, tb->hi, tb->lo);
+}
+
+/* The values of a table file (XPPAUT's format: npts, xlo, xhi, then npts values, separated
+ * by blanks or line ends), read relative to the model file's folder. */
+static void read_table_file(lang_ctx *c, lang_table *tb, const char *file, lpos pos)
+{
+    const char *slash = c->path ? strrchr(c->path, '/') : NULL;
+    const char *path = file[0] == '/' || !slash
+                           ? file
+                           : lang_printf(c, "%.*s/%s", (int)(slash - c->path), c->path, file);
+    FILE *fp = fopen(path, "r");
+    if (!fp)
+        lang_fail(c, pos, "table '%s': cannot read '%s': %s", tb->name, path, strerror(errno));
+    double head[3];
+    int got = 0;
+    for (; got < 3 && fscanf(fp, "%lf", &head[got]) == 1; got++)
+        ;
+    if (got < 3) {
+        fclose(fp);
+        lang_fail(c, pos, "table '%s': '%s' must begin with the number of points, xlo and xhi",
+                  tb->name, path);
+    }
+    tb->npts = head[0] == floor(head[0]) && head[0] >= 1 && head[0] <= LANG_MAX_TABLE
+                   ? (long)head[0]
+                   : -1;
+    tb->lo = head[1];
+    tb->hi = head[2];
+    if (tb->npts < 0) {
+        fclose(fp);
+        lang_fail(c, pos, "table '%s': '%s' begins with %g points: give a whole number from "
+                  "1 to %d", tb->name, path, head[0], LANG_MAX_TABLE);
+    }
+    double *v = lang_alloc(c, (size_t)tb->npts * sizeof *v);
+    long k = 0;
+    for (; k < tb->npts && fscanf(fp, "%lf", &v[k]) == 1; k++)
+        if (!isfinite(v[k]))
+            break;
+    fclose(fp);
+    if (k < tb->npts)
+        lang_fail(c, pos, "table '%s': '%s' has %ld finite values after its first three "
+                  "numbers; it announces %ld", tb->name, path, k, tb->npts);
+    tb->values = v;
+    table_size(c, tb, pos);
+}
+
+/* table NAME % NPTS XLO XHI FORMULA (also `table % NAME ...`), or table NAME FILE (XPPAUT's
+ * manual, "table"); t in the formula runs over the abscissas. */
+static void parse_table(lang_ctx *c, lang_lexer *lx)
+{
+    lpos npos;
+    int formula = lang_skip_blanks(lx) == '%';
+    if (formula)
+        lx->i++;
+    const char *name = read_name(lx, &npos, "expected the table's name after 'table'");
+    if (!formula && lang_skip_blanks(lx) == '%') {
+        lx->i++;
+        formula = 1;
+    }
+    check_new_name(c, name, npos);
+    lang_table tb = {0};
+    tb.name = name;
+    tb.pos = npos;
+    if (formula) {
+        const double n = table_number(c, lx, "the number of points");
+        tb.npts = n == floor(n) && n >= 1 && n <= LANG_MAX_TABLE ? (long)n : -1;
+        if (tb.npts < 0)
+            lang_fail(c, npos, "table '%s': %g points: give a whole number from 1 to %d", name,
+                      n, LANG_MAX_TABLE);
+        tb.lo = table_number(c, lx, "the first abscissa");
+        tb.hi = table_number(c, lx, "the last abscissa");
+        tb.expr = expr_to_end(lx, "the table's formula of t");
+        table_size(c, &tb, npos);
+    } else {
+        const lpos fpos = (lang_skip_blanks(lx), lang_here(lx));
+        const char *file = rest_text(lx);
+        if (!*file)
+            lang_fail(c, fpos, "table '%s': expected a file name, or %% and a formula", name);
+        tb.file = file;
+        read_table_file(c, &tb, file, fpos);
+    }
+    lang_declare(c, name, npos, SYM_TABLE, c->m.tables.n);
+    *(lang_table *)lvec_push(c, &c->m.tables, sizeof tb) = tb;
+}
+
 /* ---- #: extension lines ---- */
 
 static char *trimmed(lang_ctx *c, const char *s, size_t n)
@@ -672,7 +785,7 @@ static int keyword_statement(lang_ctx *c, lang_lexer *lx, pstate *ps, const char
     else if (KW(w, n, "wiener", "w"))
         lang_fail(c, wpos, "random processes ('wiener') are not supported");
     else if (KW(w, n, "table", "tab"))
-        lang_fail(c, wpos, "lookup tables ('table') are not supported");
+        parse_table(c, lx);
     else if (KW(w, n, "bdry", "bndry", "b", "boundary"))
         lang_fail(c, wpos, "boundary-value problems ('bdry') are not supported");
     else if (KW(w, n, "volt", "volterra", "v"))
@@ -745,8 +858,11 @@ static void statement(lang_ctx *c, lang_lexer *lx, pstate *ps, int *done)
         }
         /* XPPAUT 6.11 reads a word that begins with "tab" as 'table' (nnet2.ode's
          * 'tabular') */
-        if (strlen(w) > 3 && strncasecmp(w, "tab", 3) == 0)
-            lang_fail(c, wpos, "lookup tables ('table', here '%s') are not supported", w);
+        if (strlen(w) > 3 && strncasecmp(w, "tab", 3) == 0) {
+            lang_note(c, wpos, "'%s' is read as 'table', as XPPAUT does", w);
+            parse_table(c, lx);
+            return;
+        }
         const char *near = dyn_lang_nearest(w, keywords, (int)(sizeof keywords /
                                                                 sizeof keywords[0]));
         if (near)

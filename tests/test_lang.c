@@ -80,7 +80,7 @@ static void test_refused_features_name_line_and_feature(void **state)
         {"x'=1\nvolt u=exp(-t)\n", 2, 1, "Volterra integral equations ('volt')"},
         {"x'=1\nbdry x-1\n", 2, 1, "boundary-value problems ('bdry')"},
         {"x'=-y\n0=y+exp(y)-x\n", 2, 1, "algebraic equations ('0=...'"},
-        {"x'=1\nspecial k=conv(even,101,21,w,u0)\n", 2, 1, "network sums ('special')"},
+        {"x'=1\nspecial k=fconv(even,101,21,w,u0,v0,f)\n", 2, 1, "network sums ('special' with fconv)"},
         {"x'=1\nsolv y=-.5\n", 2, 1, "differential-algebraic equations ('solv')"},
         {"x'=1\nexport {x} {y}\n", 2, 1, "'export'"},
         {"x'=ran(1)\n", 1, 4, "random numbers ('ran')"},
@@ -327,6 +327,40 @@ static void test_lookup_tables(void **state)
     expect_error("table w no_such_file.tab\nx'=1\n", 1, 9, "cannot read 'no_such_file.tab'");
 }
 
+/* Network sums (XPPAUT's `special NAME=conv(...)`): computed after the fixed quantities
+ * of the functions that use them (the block of fixed quantities it sums over with them),
+ * element j as NAME(j); no analytic Jacobian (finite differences, with a note). Mistakes
+ * are refused at their place. */
+static void test_network_sums_translate(void **state)
+{
+    (void)state;
+    notes n = {0};
+    char *out = expect_ok("table w % 3 -1 1 1\nf[0..3]=heav(u[j])\nspecial z=conv(even,4,1,w,f0)\n"
+                          "u[0..3]'=-u[j]+z([j])\n", &n);
+    CHECK(strstr(out, "const double spu_z[4] = {v_f0, v_f1, v_f2, v_f3};") &&
+              strstr(out, "dk_conv(sp_z, 4, 1, 1, p + 0, spu_z);") &&
+              strstr(out, "dydt[3] = ((-y[3]) + sp_z[3]);") && !strstr(out, "dk_jacobian(double"),
+          "%s", out);
+    CHECK(strstr(n.text, "no analytic Jacobian: network sums"), "notes: %s", n.text);
+    free(out);
+    out = expect_ok("tab w % 3 -1 1 1\nspecial k=conv(period,2,1,w,x0)\nx[0..1]'=k([j])\n", NULL);
+    CHECK(strstr(out, "dk_conv(sp_k, 2, 1, 2, p + 0, y + 0);"), "%s", out);
+    free(out);
+    expect_error("table w % 3 -1 1 1\nspecial k=conv(even,2,1,w,x0)\nx[0..1]'=k(2)\n", 3, 12,
+                 "from 0 to 1");
+    expect_error("table w % 3 -1 1 1\nspecial k=conv(even,2,1,w,x0)\nx[0..1]'=k\n", 3, 10,
+                 "'k' is a network sum");
+    expect_error("table w % 3 -1 1 1\nspecial k=conv(even,3,1,w,x0)\nx[0..1]'=k(0)\n", 2, 27,
+                 "sums 3 states from 'x0' on, and there are only 2");
+    expect_error("table w % 3 -1 1 1\nspecial k=conv(odd,2,1,w,x0)\nx[0..1]'=k(0)\n", 2, 16,
+                 "conv's type is even, periodic or 0");
+    expect_error("special k=conv(even,2,1,v,x0)\nx[0..1]'=k(0)\n", 1, 25, "'v' is not declared");
+    expect_error("table w % 3 -1 1 1\nspecial k=mmult(2,2,w,x0)\nx[0..1]'=0\n", 2, 1,
+                 "'special' with mmult");
+    expect_error("table w % 3 -1 1 1\nspecial k=conv(even,2,1,w,x0)\nf=k(0)\nx[0..1]'=f\n", 3, 1,
+                 "uses a network sum");
+}
+
 /* Difference equations (XPPAUT's manual): x(t+1)= or meth=discrete make the file a map,
  * iterated by the method "discrete" one step per unit of time whatever dt says; what cannot
  * be a map is refused with its place. */
@@ -542,6 +576,7 @@ int main(void)
         cmocka_unit_test(test_meth_maps_to_dynkit_methods),
         cmocka_unit_test(test_difference_equations),
         cmocka_unit_test(test_lookup_tables),
+        cmocka_unit_test(test_network_sums_translate),
         cmocka_unit_test(test_band_options_fill_the_model),
         cmocka_unit_test(test_bom_crlf_and_tabs),
         cmocka_unit_test(test_generated_c_conventions),

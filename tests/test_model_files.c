@@ -476,9 +476,66 @@ static void test_lookup_tables_in_a_run(void **state)
     unlink(cli_path("tab.ode"));
 }
 
+/* Network sums: special k=conv(TYPE,5,2,w,u0) over five states, beyond the ends zero (0),
+ * mirrored (even: u(-1) = u(1), u(5) = u(3)) or wrapped (periodic), as XPPAUT 6.11 computes
+ * them (measured: tests/xppaut); the sums here are computed again by hand. */
+static void test_network_sums(void **state)
+{
+    (void)state;
+    static const char *const types[] = {"0", "even", "periodic"};
+    const double u[5] = {10, 20, -30, 40, 50};
+    double w[5];
+    for (int k = 0; k < 5; k++) {
+        const double t = -2.0 + k;
+        w[k] = 1 + t + t * t / 3;
+    }
+    for (int ty = 0; ty < 3; ty++) {
+        char text[512];
+        snprintf(text, sizeof text,
+                 "table w %% 5 -2 2 1+t+t^2/3\nspecial k=conv(%s,5,2,w,u0)\nu[0..4]'=0\n"
+                 "init u0=10,u1=20,u2=-30,u3=40,u4=50\naux k[0..4]=k([j])\n"
+                 "@ meth=euler, dt=1, total=1\ndone\n",
+                 types[ty]);
+        write_file("conv.ode", text);
+        cli_result r = cli("run '%s' --outputs --final", cli_path("conv.ode"));
+        double got[11];
+        const char *row = r.status == 0 ? strchr(r.out, '\n') : NULL;
+        int n = 0;
+        for (const char *q = row ? row + 1 : NULL; q && n < 11; n++) {
+            got[n] = strtod(q, NULL);
+            q = strchr(q, ',');
+            q = q ? q + 1 : NULL;
+        }
+        CHECK(n == 11, "%s: exit %d, %s%s", types[ty], r.status, r.out, r.err);
+        for (int j = 0; j < 5; j++) {
+            double want = 0.0;
+            for (int i = -2; i <= 2; i++) {
+                int q = j + i;
+                if (q < 0 || q > 4) {
+                    if (ty == 0)
+                        continue;
+                    q = ty == 1 ? (q < 0 ? -q : 8 - q) : (q + 5) % 5;
+                }
+                want += w[2 + i] * u[q];
+            }
+            CHECK(fabs(got[6 + j] - want) <= 1e-13 * fabs(want), "conv(%s): k%d = %.17g, want %.17g",
+                  types[ty], j, got[6 + j], want);
+        }
+        cli_free(&r);
+    }
+    /* the sum's table must hold 2m + 1 weights */
+    write_file("conv.ode", "table w % 4 -2 2 1\nspecial k=conv(even,5,2,w,u0)\nu[0..4]'=0\n");
+    cli_result r = cli("run '%s'", cli_path("conv.ode"));
+    CHECK(r.status == 2 && strstr(r.err, "2m+1 = 5") && strstr(r.err, "has 4 points"), "%s",
+          r.err);
+    cli_free(&r);
+    unlink(cli_path("conv.ode"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_network_sums),
         cmocka_unit_test(test_lookup_tables_in_a_run),
         cmocka_unit_test(test_difference_equation_is_a_map),
         cmocka_unit_test(test_pendulum_file_is_the_builtin),

@@ -7,6 +7,7 @@
  * derived parameters (a circular definition is refused naming the cycle), recursion of
  * user functions refused, and the `#:` documentation lines attached to their names. */
 #include <ctype.h>
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <string.h>
@@ -62,6 +63,7 @@ const char *lang_sym_kind_name(sym_kind k)
     case SYM_AUX: return "an aux output";
     case SYM_FUNC: return "a function";
     case SYM_TABLE: return "a table";
+    case SYM_SPECIAL: return "a network sum";
     default: return "a name";
     }
 }
@@ -207,6 +209,9 @@ static void resolve(lang_ctx *c, node *e, const rctx *r)
             lang_fail(c, e->pos, "'%s' is a function: call it as %s(...)", e->name, e->name);
         case SYM_TABLE:
             lang_fail(c, e->pos, "'%s' is a table: look a value up with %s(x)", e->name, e->name);
+        case SYM_SPECIAL:
+            lang_fail(c, e->pos, "'%s' is a network sum: take its element j with %s(j)", e->name,
+                      e->name);
         default:
             unknown(c, e, r, 0);
         }
@@ -224,6 +229,16 @@ static void resolve(lang_ctx *c, node *e, const rctx *r)
                       e->index == r->table ? "itself" : "defined after it");
         if (r->kind == CTX_FUNC)
             ((lang_func *)r->func)->uses_table = 1;
+    }
+    if (e->kind == N_FUN && e->op == F_SPECIAL) {
+        const lang_special *sp = &LVEC_AT(m->specials, lang_special, e->index);
+        if (r->kind != CTX_RHS)
+            lang_fail(c, e->pos, "%s cannot use the network sum '%s': use it in the equations, "
+                      "aux outputs or events", r->what, sp->name);
+        const node *j = e->args[0];
+        if (j->kind != N_NUM || j->num != floor(j->num) || j->num < 0 || j->num >= sp->n)
+            lang_fail(c, j->pos, "the element of network sum '%s' must be a whole number from 0 "
+                      "to %d (write %s([j]) in an array line)", sp->name, sp->n - 1, sp->name);
     }
 }
 
@@ -478,6 +493,46 @@ static node *inline_fix_calls(lang_ctx *c, node *e, int depth)
     return e;
 }
 
+/* A network sum's table (2m + 1 weights) and the block of n states or fixed quantities it
+ * sums over. */
+static void resolve_special(lang_ctx *c, lang_special *sp)
+{
+    const lang_sym *t = lang_lookup(c, sp->table_name);
+    if (!t || t->kind != SYM_TABLE)
+        lang_fail(c, sp->table_pos, "network sum '%s': '%s' is %s, not a table", sp->name,
+                  sp->table_name, t ? lang_sym_kind_name(t->kind) : "not declared");
+    const lang_table *tb = &LVEC_AT(c->m.tables, lang_table, t->index);
+    if (tb->npts != 2L * sp->m + 1)
+        lang_fail(c, sp->table_pos, "network sum '%s': conv with m = %d weighs 2m+1 = %d "
+                  "neighbours, and table '%s' has %ld points", sp->name, sp->m, 2 * sp->m + 1,
+                  tb->name, tb->npts);
+    sp->table = t->index;
+    const lang_sym *u = lang_lookup(c, sp->root_name);
+    if (!u || (u->kind != SYM_STATE && u->kind != SYM_FIX))
+        lang_fail(c, sp->root_pos, "network sum '%s': '%s' is %s; conv sums over states or fixed "
+                  "quantities", sp->name, sp->root_name,
+                  u ? lang_sym_kind_name(u->kind) : "not declared");
+    const int avail = u->kind == SYM_STATE ? c->m.states.n : c->m.fixes.n;
+    if (u->index + sp->n > avail)
+        lang_fail(c, sp->root_pos, "network sum '%s' sums %d %s from '%s' on, and there are "
+                  "only %d", sp->name, sp->n,
+                  u->kind == SYM_STATE ? "states" : "fixed quantities", sp->root_name,
+                  avail - u->index);
+    sp->root_kind = u->kind == SYM_STATE ? N_STATE : N_FIX;
+    sp->root = u->index;
+}
+
+/* 1 if e calls a network sum. */
+static int special_calls(const node *e)
+{
+    if (e->kind == N_FUN && e->op == F_SPECIAL)
+        return 1;
+    for (int i = 0; i < e->nargs; i++)
+        if (special_calls(e->args[i]))
+            return 1;
+    return 0;
+}
+
 /* 1 if e calls a table, directly or through the user functions it calls. */
 static int table_calls(lang_ctx *c, const node *e)
 {
@@ -612,8 +667,15 @@ void lang_check(lang_ctx *c)
         if (offset > LANG_MAX_TABLE)
             lang_fail(c, tb->pos, "tables of more than %d points in all", LANG_MAX_TABLE);
     }
-    for (int i = 0; i < m->fixes.n; i++)
-        resolve(c, LVEC_AT(m->fixes, lang_formula, i).expr, &rhs);
+    for (int i = 0; i < m->specials.n; i++)
+        resolve_special(c, &LVEC_AT(m->specials, lang_special, i));
+    for (int i = 0; i < m->fixes.n; i++) {
+        const lang_formula *f = &LVEC_AT(m->fixes, lang_formula, i);
+        resolve(c, f->expr, &rhs);
+        if (special_calls(f->expr))
+            lang_fail(c, f->pos, "the fixed quantity '%s' uses a network sum, which is computed "
+                      "after the fixed quantities: use the sum in the equations", f->name);
+    }
     for (int i = 0; i < m->states.n; i++)
         resolve(c, LVEC_AT(m->states, lang_state, i).rhs, &rhs);
     for (int i = 0; i < m->auxs.n; i++)
@@ -727,6 +789,14 @@ int lang_resolve_call(lang_ctx *c, node *e)
         return 1;
     }
     const lang_sym *s = lang_lookup(c, e->name);
+    if (s && s->kind == SYM_SPECIAL) {
+        if (e->nargs != 1)
+            lang_fail(c, e->pos, "network sum '%s' takes 1 argument (the element), not %d",
+                      e->name, e->nargs);
+        e->op = F_SPECIAL;
+        e->index = s->index;
+        return 1;
+    }
     if (s && s->kind == SYM_TABLE) {
         if (e->nargs != 1)
             lang_fail(c, e->pos, "table '%s' takes 1 argument, not %d", e->name, e->nargs);

@@ -212,6 +212,9 @@ static node *d(lang_ctx *c, node *e, lang_dvar *v);
 
 static node *d_fun(lang_ctx *c, node *e, lang_dvar *v)
 {
+    /* a network sum depends on the states through its block, not through its argument */
+    if (e->op == F_SPECIAL)
+        lang_fail(c, e->pos, "network sums ('special') have no analytic derivative here");
     node *a = e->args[0], *b = e->nargs > 1 ? e->args[1] : NULL;
     node *da = d(c, a, v);
     node *db = b ? d(c, b, v) : NULL;
@@ -225,6 +228,7 @@ static node *d_fun(lang_ctx *c, node *e, lang_dvar *v)
         return mul(c, slope, da);
     }
     case F_TABLE_SLOPE: return lang_num(c, 0.0);
+
     case F_SIN: return mul(c, fun(c, F_COS, a, NULL), da);
     case F_COS: return neg(c, mul(c, fun(c, F_SIN, a, NULL), da));
     case F_TAN: {

@@ -158,7 +158,7 @@ static const char *c_fun(int f)
 
 enum {
     H_HEAV = 1, H_SIGN = 2, H_MOD = 4, H_MAX = 8, H_MIN = 16, H_NOT = 32, H_SQ = 64, H_POW = 128,
-    H_TABLE = 256
+    H_TABLE = 256, H_CONV = 512
 };
 
 /* fused: per function, slot 0 the function, slot 1 + k its partial derivative in k */
@@ -266,6 +266,11 @@ static void expr(lang_ctx *c, const node *e, const ectx *x)
         break;
     }
     case N_FUN:
+        if (e->op == F_SPECIAL) { /* computed before the statements (emit_fixes) */
+            outf(c, "sp_%s[%d]", LVEC_AT(m->specials, lang_special, e->index).name,
+                 (int)e->args[0]->num);
+            break;
+        }
         if (e->op == F_TABLE || e->op == F_TABLE_SLOPE) {
             const lang_table *tb = &LVEC_AT(m->tables, lang_table, e->index);
             c->helpers |= H_TABLE;
@@ -308,8 +313,9 @@ static void expr(lang_ctx *c, const node *e, const ectx *x)
     c->depth--;
 }
 
-/* ---- fixed temporaries needed by a set of expressions ---- */
+/* ---- fixed temporaries (and network sums) needed by a set of expressions ---- */
 
+/* needed: one flag per fixed quantity, then one per network sum */
 static void need(lang_ctx *c, const node *e, unsigned char *needed)
 {
     for (int i = 0; i < e->nargs; i++)
@@ -317,6 +323,42 @@ static void need(lang_ctx *c, const node *e, unsigned char *needed)
     if (e->kind == N_FIX && !needed[e->index]) {
         needed[e->index] = 1;
         need(c, LVEC_AT(c->m.fixes, lang_formula, e->index).expr, needed);
+    }
+    if (e->kind == N_FUN && e->op == F_SPECIAL && !needed[c->m.fixes.n + e->index]) {
+        const lang_special *sp = &LVEC_AT(c->m.specials, lang_special, e->index);
+        needed[c->m.fixes.n + e->index] = 1;
+        for (int k = 0; sp->root_kind == N_FIX && k < sp->n; k++)
+            if (!needed[sp->root + k]) {
+                needed[sp->root + k] = 1;
+                need(c, LVEC_AT(c->m.fixes, lang_formula, sp->root + k).expr, needed);
+            }
+    }
+}
+
+/* The network sums flagged in needed, after the fixed quantities: sp_NAME[j] for each j. */
+static void emit_specials(lang_ctx *c, const unsigned char *needed)
+{
+    const lang_model *m = &c->m;
+    for (int i = 0; i < m->specials.n; i++) {
+        if (!needed[m->fixes.n + i])
+            continue;
+        const lang_special *sp = &LVEC_AT(m->specials, lang_special, i);
+        const lang_table *tb = &LVEC_AT(m->tables, lang_table, sp->table);
+        c->helpers |= H_CONV;
+        line_dir(c, sp->pos);
+        if (sp->root_kind == N_FIX) {
+            outf(c, "    const double spu_%s[%d] = {", sp->name, sp->n);
+            for (int k = 0; k < sp->n; k++)
+                outf(c, "%sv_%s", k ? ", " : "", LVEC_AT(m->fixes, lang_formula, sp->root + k).name);
+            puts_(c, "};\n");
+        }
+        outf(c, "    double sp_%s[%d];\n", sp->name, sp->n);
+        if (sp->root_kind == N_FIX)
+            outf(c, "    dk_conv(sp_%s, %d, %d, %d, p + %d, spu_%s);\n", sp->name, sp->n, sp->m,
+                 sp->type, tb->offset, sp->name);
+        else
+            outf(c, "    dk_conv(sp_%s, %d, %d, %d, p + %d, y + %d);\n", sp->name, sp->n, sp->m,
+                 sp->type, tb->offset, sp->root);
     }
 }
 
@@ -333,11 +375,12 @@ static void emit_fixes(lang_ctx *c, const unsigned char *needed)
         expr(c, f->expr, &x);
         puts_(c, ";\n");
     }
+    emit_specials(c, needed);
 }
 
 static unsigned char *needed_by(lang_ctx *c, node *const *roots, int n)
 {
-    unsigned char *needed = lang_alloc(c, (size_t)c->m.fixes.n + 1);
+    unsigned char *needed = lang_alloc(c, (size_t)c->m.fixes.n + (size_t)c->m.specials.n + 1);
     for (int i = 0; i < n; i++)
         if (roots[i])
             need(c, roots[i], needed);
@@ -369,6 +412,18 @@ static void helpers(lang_ctx *c)
     if (h & H_POW)
         puts_(c, "static inline double dk_pow(double x, double y) { return y == 2.0 ? x * x : "
                  "pow(x, y); }\n");
+    if (h & H_CONV) /* XPPAUT's conv: sum w[m+i] u(j+i), u beyond its ends 0, mirrored, wrapped */
+        puts_(c, "static inline double dk_conv_at(const double *u, int n, int q, int type)\n"
+                 "{\n    if (q >= 0 && q < n)\n        return u[q];\n"
+                 "    if (type == 0)\n        return 0.0;\n    if (n == 1)\n        return u[0];\n"
+                 "    const int period = type == 2 ? n : 2 * (n - 1);\n    q %= period;\n"
+                 "    if (q < 0)\n        q += period;\n"
+                 "    return u[q < n ? q : period - q];\n}\n"
+                 "static void dk_conv(double *out, int n, int m, int type, const double *w, "
+                 "const double *u)\n{\n    for (int j = 0; j < n; j++) {\n"
+                 "        double s = 0.0;\n        for (int i = -m; i <= m; i++)\n"
+                 "            s += w[m + i] * dk_conv_at(u, n, j + i, type);\n"
+                 "        out[j] = s;\n    }\n}\n");
     if (h & H_TABLE) /* XPPAUT's lookup: linear, extrapolated by the end segments */
         puts_(c, "static inline long dk_table_at(long n, double lo, double dx, double x)\n"
                  "{\n    const double k = floor((x - lo) / dx);\n"
@@ -838,6 +893,12 @@ static state_span span_of(lang_ctx *c, const node *e, span_memo *mm)
             mm->fix[e->index] = span_of(c, LVEC_AT(c->m.fixes, lang_formula, e->index).expr, mm);
         }
         s = span_join(s, mm->fix[e->index]);
+    } else if (e->kind == N_FUN && e->op == F_SPECIAL) {
+        const lang_special *sp = &LVEC_AT(c->m.specials, lang_special, e->index);
+        for (int k = 0; k < sp->n; k++) {
+            const node ref = {.kind = sp->root_kind, .index = sp->root + k};
+            s = span_join(s, span_of(c, &ref, mm));
+        }
     } else if (e->kind == N_UFUN || e->kind == N_UFUN_D) {
         if (!mm->fun_done[e->index]) {
             mm->fun_done[e->index] = 1;

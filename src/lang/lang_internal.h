@@ -73,7 +73,8 @@ typedef enum fun_id {
     F_ERFC, F_COUNT,
     /* not names of the language: a table's value and slope at its argument (index: the
      * table) */
-    F_TABLE, F_TABLE_SLOPE
+    F_TABLE, F_TABLE_SLOPE,
+    F_SPECIAL /* element args[0] (a whole number) of the network sum index */
 } fun_id;
 
 typedef struct node {
@@ -165,6 +166,22 @@ typedef struct lang_table {
     int offset;           /* index of the first value in p (set by lang_check) */
 } lang_table;
 
+/* A network sum (XPPAUT's `special NAME=conv(type,n,m,w,root)`): NAME(j), j = 0..n-1, is
+ * sum_{i=-m..m} w[m+i] u(j+i), u the block of n states or fixed quantities from root on,
+ * beyond its ends 0 (type 0), mirrored (even) or wrapped (periodic); w a table of 2m+1
+ * points. Computed after the fixed quantities of each function that uses it. */
+enum { LANG_CONV_ZERO, LANG_CONV_EVEN, LANG_CONV_PERIODIC };
+typedef struct lang_special {
+    const char *name;
+    lpos pos;
+    int type, n, m;
+    const char *table_name, *root_name;
+    lpos table_pos, root_pos;
+    int table;     /* resolved by lang_check */
+    int root_kind; /* N_STATE or N_FIX */
+    int root;      /* index of the block's first element */
+} lang_special;
+
 /* A pending `init name=...` or `name(0)=...`, resolved once every state is known. */
 typedef struct lang_init {
     const char *name;
@@ -181,7 +198,7 @@ typedef struct lang_docline {
 
 typedef enum sym_kind {
     SYM_NONE, SYM_STATE, SYM_PARAM, SYM_NUMBER, SYM_DERIVED, SYM_FIX, SYM_AUX, SYM_FUNC,
-    SYM_TABLE, SYM_RESERVED
+    SYM_TABLE, SYM_SPECIAL, SYM_RESERVED
 } sym_kind;
 
 typedef struct lang_sym {
@@ -201,6 +218,7 @@ typedef struct lang_model {
     lvec funcs;    /* lang_func */
     lvec events;   /* lang_event */
     lvec tables;   /* lang_table */
+    lvec specials; /* lang_special */
     lvec inits;    /* lang_init */
     lvec docs;     /* lang_docline */
     /* symbol table: open addressing on the case-folded name */

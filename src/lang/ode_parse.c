@@ -511,6 +511,7 @@ static void parse_options(lang_ctx *c, lang_lexer *lx)
 /* ---- lookup tables ---- */
 
 static char *rest_text(lang_lexer *lx);
+static char *trimmed(lang_ctx *c, const char *s, size_t n);
 
 /* A number written in a table statement, at the cursor. */
 static double table_number(lang_ctx *c, lang_lexer *lx, const char *what)
@@ -616,6 +617,85 @@ static void parse_table(lang_ctx *c, lang_lexer *lx)
     }
     lang_declare(c, name, npos, SYM_TABLE, c->m.tables.n);
     *(lang_table *)lvec_push(c, &c->m.tables, sizeof tb) = tb;
+}
+
+/* ---- network sums ---- */
+
+/* The next argument of a special's call: the text up to ',' or ')', trimmed; *last set when
+ * it ends the list. */
+static const char *special_arg(lang_ctx *c, lang_lexer *lx, lpos *pos, int *last)
+{
+    lang_skip_blanks(lx);
+    *pos = lang_here(lx);
+    const int from = lx->i;
+    while (lx->i < lx->end && lx->line->text[lx->i] != ',' && lx->line->text[lx->i] != ')')
+        lx->i++;
+    if (lx->i >= lx->end)
+        lang_fail(c, *pos, "expected ',' or ')' in the special's arguments");
+    *last = lx->line->text[lx->i] == ')';
+    lx->i++;
+    return trimmed(c, lx->line->text + from, (size_t)(lx->i - 1 - from));
+}
+
+static int special_count(lang_ctx *c, const char *v, lpos pos, const char *what, int min)
+{
+    char *end;
+    const double x = strtod(v, &end);
+    if (end == v || *end || x != floor(x) || x < min || x > LANG_MAX_RANGE)
+        lang_fail(c, pos, "expected %s (a whole number from %d to %d), not '%s'", what, min,
+                  LANG_MAX_RANGE, v);
+    return (int)x;
+}
+
+/* special NAME=conv(TYPE, N, M, W, ROOT) (XPPAUT's manual, "special"); the other sums are
+ * refused by name. */
+static void parse_special(lang_ctx *c, lang_lexer *lx, lpos kpos)
+{
+    lpos npos, fpos;
+    const char *name = read_name(lx, &npos, "expected the network sum's name after 'special'");
+    expect_char(lx, '=', "expected '=' after the network sum's name");
+    const char *fun = read_name(lx, &fpos, "expected conv(...) after 'special NAME='");
+    if (strcasecmp(fun, "conv") != 0)
+        lang_fail(c, kpos, "network sums ('special' with %s) are not supported: only conv is",
+                  fun);
+    expect_char(lx, '(', "expected '(' after conv");
+    lpos apos[5];
+    const char *arg[5];
+    int last = 0, n = 0;
+    while (!last) {
+        if (n == 5)
+            lang_fail(c, apos[4], "conv takes 5 arguments: type, n, m, the table, the first "
+                      "variable");
+        arg[n] = special_arg(c, lx, &apos[n], &last);
+        n++;
+    }
+    if (n != 5)
+        lang_fail(c, fpos, "conv takes 5 arguments (type, n, m, the table, the first variable), "
+                  "not %d", n);
+    expect_end(lx, "the network sum");
+    check_new_name(c, name, npos);
+    lang_special sp = {0};
+    sp.name = name;
+    sp.pos = npos;
+    /* XPPAUT reads the type by its first letter (junk.ode writes 'period') */
+    const int t0 = tolower((unsigned char)arg[0][0]);
+    if (t0 == 'e' && isalpha((unsigned char)arg[0][0]))
+        sp.type = LANG_CONV_EVEN;
+    else if (t0 == 'p')
+        sp.type = LANG_CONV_PERIODIC;
+    else if (strcmp(arg[0], "0") == 0)
+        sp.type = LANG_CONV_ZERO;
+    else
+        lang_fail(c, apos[0], "conv's type is even, periodic or 0 (zero beyond the ends), not "
+                  "'%s'", arg[0]);
+    sp.n = special_count(c, arg[1], apos[1], "the number of sums", 1);
+    sp.m = special_count(c, arg[2], apos[2], "the half-width", 0);
+    sp.table_name = arg[3];
+    sp.table_pos = apos[3];
+    sp.root_name = arg[4];
+    sp.root_pos = apos[4];
+    lang_declare(c, name, npos, SYM_SPECIAL, c->m.specials.n);
+    *(lang_special *)lvec_push(c, &c->m.specials, sizeof sp) = sp;
 }
 
 /* ---- #: extension lines ---- */
@@ -791,7 +871,7 @@ static int keyword_statement(lang_ctx *c, lang_lexer *lx, pstate *ps, const char
     else if (KW(w, n, "volt", "volterra", "v"))
         lang_fail(c, wpos, "Volterra integral equations ('volt') are not supported");
     else if (KW(w, n, "special", "sp"))
-        lang_fail(c, wpos, "network sums ('special') are not supported");
+        parse_special(c, lx, wpos);
     else if (KW(w, n, "solv", "solve"))
         lang_fail(c, wpos, "differential-algebraic equations ('solv') are not supported");
     else if (KW(w, n, "export"))

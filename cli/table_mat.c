@@ -6,7 +6,9 @@
  * columns cell arrays of char, the columns of the CSV), model, method (char), step, rtol,
  * atol (scalars, when they apply), tspan (1 x 2) and dynkit (the version). matio writes to a
  * file name, so the file is made in the temporary directory ($TMPDIR or /tmp) and copied to
- * the stream the caller opened (which may be a temporary file that is renamed later). */
+ * the stream the caller opened (which may be a temporary file that is renamed later).
+ * matio is loaded (dlopen) when a .mat file is written, not linked: it brings HDF5 and its
+ * dependencies, whose loading would otherwise slow every start of the tool (docs/data-files.md). */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <math.h>
@@ -30,6 +32,7 @@ int cli_mat_write(FILE *out, const cli_table_info *info, const double *data, lon
 
 #else
 
+#include <dlfcn.h>
 #include <matio.h>
 #include <unistd.h>
 
@@ -37,29 +40,76 @@ int cli_mat_write(FILE *out, const cli_table_info *info, const double *data, lon
 #define DYNKIT_VERSION "0.1.0"
 #endif
 
+/* The functions of matio this file calls, from the library loaded at the first write. */
+typedef struct matio_api {
+    matvar_t *(*var_create)(const char *, enum matio_classes, enum matio_types, int, size_t *,
+                            void *, int);
+    void (*var_free)(matvar_t *);
+    matvar_t *(*var_set_cell)(matvar_t *, int, matvar_t *);
+    int (*var_write)(mat_t *, matvar_t *, enum matio_compression);
+    mat_t *(*create_ver)(const char *, const char *, enum mat_ft);
+    int (*close)(mat_t *);
+} matio_api;
+
+static matio_api api;
+
+/* Load matio once; 0, or -1 with a message naming the library. */
+static int load_matio(char *err, size_t errlen)
+{
+    static int loaded;
+    if (loaded)
+        return 0;
+    void *lib = dlopen(DYNKIT_MATIO_SONAME, RTLD_NOW | RTLD_LOCAL);
+    if (!lib) {
+        snprintf(err, errlen, "cannot load matio for the .mat file (%s): install it (Debian: "
+                 "libmatio11), or write .npz, .npy, .csv or .json",
+                 dlerror());
+        return -1;
+    }
+    static const char *const names[] = {"Mat_VarCreate", "Mat_VarFree",   "Mat_VarSetCell",
+                                        "Mat_VarWrite",  "Mat_CreateVer", "Mat_Close"};
+    void *sym[6];
+    for (int i = 0; i < 6; i++)
+        if (!(sym[i] = dlsym(lib, names[i]))) {
+            snprintf(err, errlen, "%s has no %s: not the matio dynkit was built with",
+                     DYNKIT_MATIO_SONAME, names[i]);
+            dlclose(lib);
+            return -1;
+        }
+    /* POSIX: a function pointer converts to and from void * (dlsym's contract) */
+    memcpy(&api.var_create, &sym[0], sizeof sym[0]);
+    memcpy(&api.var_free, &sym[1], sizeof sym[1]);
+    memcpy(&api.var_set_cell, &sym[2], sizeof sym[2]);
+    memcpy(&api.var_write, &sym[3], sizeof sym[3]);
+    memcpy(&api.create_ver, &sym[4], sizeof sym[4]);
+    memcpy(&api.close, &sym[5], sizeof sym[5]);
+    loaded = 1;
+    return 0;
+}
+
 static matvar_t *mat_string(const char *name, const char *s)
 {
     size_t dims[2] = {1, strlen(s)};
-    return Mat_VarCreate(name, MAT_C_CHAR, MAT_T_UTF8, 2, dims, (void *)s, 0);
+    return api.var_create(name, MAT_C_CHAR, MAT_T_UTF8, 2, dims, (void *)s, 0);
 }
 
 static matvar_t *mat_doubles(const char *name, size_t rows, size_t cols, const double *v)
 {
     size_t dims[2] = {rows, cols};
-    return Mat_VarCreate(name, MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims, (void *)v, 0);
+    return api.var_create(name, MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims, (void *)v, 0);
 }
 
 static matvar_t *mat_cell(const char *name, const char *const *s, int n)
 {
     size_t dims[2] = {1, (size_t)n};
-    matvar_t *cell = Mat_VarCreate(name, MAT_C_CELL, MAT_T_CELL, 2, dims, NULL, 0);
+    matvar_t *cell = api.var_create(name, MAT_C_CELL, MAT_T_CELL, 2, dims, NULL, 0);
     for (int i = 0; cell && i < n; i++) {
         matvar_t *item = mat_string(NULL, s[i] ? s[i] : "");
         if (!item) {
-            Mat_VarFree(cell);
+            api.var_free(cell);
             return NULL;
         }
-        Mat_VarSetCell(cell, i, item);
+        api.var_set_cell(cell, i, item);
     }
     return cell;
 }
@@ -69,8 +119,8 @@ static int put(mat_t *mat, matvar_t *var)
 {
     if (!var)
         return -1;
-    int rc = Mat_VarWrite(mat, var, MAT_COMPRESSION_NONE);
-    Mat_VarFree(var);
+    int rc = api.var_write(mat, var, MAT_COMPRESSION_NONE);
+    api.var_free(var);
     return rc != 0;
 }
 
@@ -108,6 +158,8 @@ static int copy_file(const char *path, FILE *out)
 int cli_mat_write(FILE *out, const cli_table_info *info, const double *data, long rows,
                   char *err, size_t errlen)
 {
+    if (load_matio(err, errlen))
+        return -1;
     const char *dir = getenv("TMPDIR");
     char path[4096];
     snprintf(path, sizeof path, "%s/dynkit-mat-XXXXXX", dir && *dir ? dir : "/tmp");
@@ -121,7 +173,7 @@ int cli_mat_write(FILE *out, const cli_table_info *info, const double *data, lon
     char header[116];
     snprintf(header, sizeof header, "MATLAB 5.0 MAT-file, written by dynkit %s",
              DYNKIT_VERSION);
-    mat_t *mat = Mat_CreateVer(path, header, MAT_FT_MAT5);
+    mat_t *mat = api.create_ver(path, header, MAT_FT_MAT5);
     if (!mat) {
         unlink(path);
         snprintf(err, errlen, "matio could not create the mat file");
@@ -146,7 +198,7 @@ int cli_mat_write(FILE *out, const cli_table_info *info, const double *data, lon
     const double span[2] = {info->t0, info->t1};
     bad |= put(mat, mat_doubles("tspan", 1, 2, span));
     bad |= put(mat, mat_string("dynkit", DYNKIT_VERSION));
-    bad |= Mat_Close(mat) != 0;
+    bad |= api.close(mat) != 0;
     if (bad) {
         unlink(path);
         snprintf(err, errlen, "writing the mat file failed (matio; %ld rows of %d columns)",

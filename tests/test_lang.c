@@ -80,7 +80,7 @@ static void test_refused_features_name_line_and_feature(void **state)
         {"x'=1\nvolt u=exp(-t)\n", 2, 1, "Volterra integral equations ('volt')"},
         {"x'=1\nbdry x-1\n", 2, 1, "boundary-value problems ('bdry')"},
         {"x'=-y\n0=y+exp(y)-x\n", 2, 1, "algebraic equations ('0=...'"},
-        {"x'=1\nspecial k=fconv(even,101,21,w,u0,v0,f)\n", 2, 1, "network sums ('special' with fconv)"},
+        {"x'=1\nspecial k=fsparse(51,5,w,ind,u0,v0,f)\n", 2, 1, "network sums ('special' with fsparse)"},
         {"x'=1\nsolv y=-.5\n", 2, 1, "differential-algebraic equations ('solv')"},
         {"x'=1\nexport {x} {y}\n", 2, 1, "'export'"},
         {"x'=ran(1)\n", 1, 4, "random numbers ('ran')"},

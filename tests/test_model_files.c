@@ -523,6 +523,35 @@ static void test_network_sums(void **state)
         }
         cli_free(&r);
     }
+    /* fconv sums w[m+i] f(u(j+i), v(j)): with f(a,b) = a it is conv; with f(a,b) = b it is
+     * v(j) times the sum of the weights */
+    for (int which = 0; which < 2; which++) {
+        char text[512];
+        snprintf(text, sizeof text,
+                 "g(a,b)=%s\ntable w %% 5 -2 2 1+t+t^2/3\nspecial k=fconv(even,5,2,w,u0,u0,g)\n"
+                 "special q=conv(even,5,2,w,u0)\nu[0..4]'=0\n"
+                 "init u0=10,u1=20,u2=-30,u3=40,u4=50\naux k[0..4]=k([j])\naux q[0..4]=q([j])\n"
+                 "@ meth=euler, dt=1, total=1\ndone\n",
+                 which ? "b" : "a");
+        write_file("conv.ode", text);
+        cli_result r = cli("run '%s' --outputs --final", cli_path("conv.ode"));
+        double got[16];
+        const char *q = r.status == 0 ? strchr(r.out, '\n') : NULL;
+        int n = 0;
+        for (q = q ? q + 1 : NULL; q && n < 16; n++) {
+            got[n] = strtod(q, NULL);
+            q = strchr(q, ',');
+            q = q ? q + 1 : NULL;
+        }
+        const double wsum = w[0] + w[1] + w[2] + w[3] + w[4];
+        for (int j = 0; n == 16 && j < 5; j++) {
+            const double want = which ? u[j] * wsum : got[11 + j];
+            CHECK(fabs(got[6 + j] - want) <= 1e-13 * fabs(want), "fconv with f = %s: k%d = %.17g, "
+                  "want %.17g", which ? "b" : "a", j, got[6 + j], want);
+        }
+        CHECK(n == 16, "fconv: exit %d, %s%s", r.status, r.out, r.err);
+        cli_free(&r);
+    }
     /* the sum's table must hold 2m + 1 weights */
     write_file("conv.ode", "table w % 4 -2 2 1\nspecial k=conv(even,5,2,w,u0)\nu[0..4]'=0\n");
     cli_result r = cli("run '%s'", cli_path("conv.ode"));

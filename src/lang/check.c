@@ -493,8 +493,24 @@ static node *inline_fix_calls(lang_ctx *c, node *e, int depth)
     return e;
 }
 
-/* A network sum's table (2m + 1 weights) and the block of n states or fixed quantities it
- * sums over. */
+/* The block of a network sum's n states or fixed quantities that begins at name. */
+static void special_block(lang_ctx *c, const lang_special *sp, const char *name, lpos pos,
+                          int *kind, int *index)
+{
+    const lang_sym *u = lang_lookup(c, name);
+    if (!u || (u->kind != SYM_STATE && u->kind != SYM_FIX))
+        lang_fail(c, pos, "network sum '%s': '%s' is %s; conv sums over states or fixed "
+                  "quantities", sp->name, name, u ? lang_sym_kind_name(u->kind) : "not declared");
+    const int avail = u->kind == SYM_STATE ? c->m.states.n : c->m.fixes.n;
+    if (u->index + sp->n > avail)
+        lang_fail(c, pos, "network sum '%s' sums %d %s from '%s' on, and there are only %d",
+                  sp->name, sp->n, u->kind == SYM_STATE ? "states" : "fixed quantities", name,
+                  avail - u->index);
+    *kind = u->kind == SYM_STATE ? N_STATE : N_FIX;
+    *index = u->index;
+}
+
+/* A network sum's table (2m + 1 weights), the blocks it sums over and fconv's function. */
 static void resolve_special(lang_ctx *c, lang_special *sp)
 {
     const lang_sym *t = lang_lookup(c, sp->table_name);
@@ -507,19 +523,19 @@ static void resolve_special(lang_ctx *c, lang_special *sp)
                   "neighbours, and table '%s' has %ld points", sp->name, sp->m, 2 * sp->m + 1,
                   tb->name, tb->npts);
     sp->table = t->index;
-    const lang_sym *u = lang_lookup(c, sp->root_name);
-    if (!u || (u->kind != SYM_STATE && u->kind != SYM_FIX))
-        lang_fail(c, sp->root_pos, "network sum '%s': '%s' is %s; conv sums over states or fixed "
-                  "quantities", sp->name, sp->root_name,
-                  u ? lang_sym_kind_name(u->kind) : "not declared");
-    const int avail = u->kind == SYM_STATE ? c->m.states.n : c->m.fixes.n;
-    if (u->index + sp->n > avail)
-        lang_fail(c, sp->root_pos, "network sum '%s' sums %d %s from '%s' on, and there are "
-                  "only %d", sp->name, sp->n,
-                  u->kind == SYM_STATE ? "states" : "fixed quantities", sp->root_name,
-                  avail - u->index);
-    sp->root_kind = u->kind == SYM_STATE ? N_STATE : N_FIX;
-    sp->root = u->index;
+    special_block(c, sp, sp->root_name, sp->root_pos, &sp->root_kind, &sp->root);
+    if (!sp->vroot_name)
+        return;
+    special_block(c, sp, sp->vroot_name, sp->vroot_pos, &sp->vroot_kind, &sp->vroot);
+    const lang_sym *f = lang_lookup(c, sp->func_name);
+    if (!f || f->kind != SYM_FUNC)
+        lang_fail(c, sp->func_pos, "network sum '%s': '%s' is %s, not a function", sp->name,
+                  sp->func_name, f ? lang_sym_kind_name(f->kind) : "not declared");
+    const lang_func *fn = &LVEC_AT(c->m.funcs, lang_func, f->index);
+    if (fn->nargs != 2 || fn->uses_fix)
+        lang_fail(c, sp->func_pos, "network sum '%s': fconv's function '%s' must take 2 arguments "
+                  "(u, v) and read no fixed quantities", sp->name, fn->name);
+    sp->func = f->index;
 }
 
 /* 1 if e calls a network sum. */

@@ -327,12 +327,29 @@ static void need(lang_ctx *c, const node *e, unsigned char *needed)
     if (e->kind == N_FUN && e->op == F_SPECIAL && !needed[c->m.fixes.n + e->index]) {
         const lang_special *sp = &LVEC_AT(c->m.specials, lang_special, e->index);
         needed[c->m.fixes.n + e->index] = 1;
-        for (int k = 0; sp->root_kind == N_FIX && k < sp->n; k++)
-            if (!needed[sp->root + k]) {
-                needed[sp->root + k] = 1;
-                need(c, LVEC_AT(c->m.fixes, lang_formula, sp->root + k).expr, needed);
-            }
+        for (int b = 0; b < 2; b++) { /* the blocks of u and (fconv) v */
+            const int kind = b ? sp->vroot_kind : sp->root_kind, first = b ? sp->vroot : sp->root;
+            for (int k = 0; kind == N_FIX && (b == 0 || sp->vroot_name) && k < sp->n; k++)
+                if (!needed[first + k]) {
+                    needed[first + k] = 1;
+                    need(c, LVEC_AT(c->m.fixes, lang_formula, first + k).expr, needed);
+                }
+        }
     }
+}
+
+/* A network sum's block as a C array expression: y + first for states, or a local array
+ * NAME_PREFIX_SUM of the fixed quantities' values (written first). */
+static const char *special_block(lang_ctx *c, const lang_special *sp, int kind, int first,
+                                 const char *prefix)
+{
+    if (kind == N_STATE)
+        return lang_printf(c, "y + %d", first);
+    outf(c, "    const double %s_%s[%d] = {", prefix, sp->name, sp->n);
+    for (int k = 0; k < sp->n; k++)
+        outf(c, "%sv_%s", k ? ", " : "", LVEC_AT(c->m.fixes, lang_formula, first + k).name);
+    puts_(c, "};\n");
+    return lang_printf(c, "%s_%s", prefix, sp->name);
 }
 
 /* The network sums flagged in needed, after the fixed quantities: sp_NAME[j] for each j. */
@@ -346,19 +363,22 @@ static void emit_specials(lang_ctx *c, const unsigned char *needed)
         const lang_table *tb = &LVEC_AT(m->tables, lang_table, sp->table);
         c->helpers |= H_CONV;
         line_dir(c, sp->pos);
-        if (sp->root_kind == N_FIX) {
-            outf(c, "    const double spu_%s[%d] = {", sp->name, sp->n);
-            for (int k = 0; k < sp->n; k++)
-                outf(c, "%sv_%s", k ? ", " : "", LVEC_AT(m->fixes, lang_formula, sp->root + k).name);
-            puts_(c, "};\n");
-        }
+        const char *u = special_block(c, sp, sp->root_kind, sp->root, "spu");
         outf(c, "    double sp_%s[%d];\n", sp->name, sp->n);
-        if (sp->root_kind == N_FIX)
-            outf(c, "    dk_conv(sp_%s, %d, %d, %d, p + %d, spu_%s);\n", sp->name, sp->n, sp->m,
-                 sp->type, tb->offset, sp->name);
-        else
-            outf(c, "    dk_conv(sp_%s, %d, %d, %d, p + %d, y + %d);\n", sp->name, sp->n, sp->m,
-                 sp->type, tb->offset, sp->root);
+        if (!sp->vroot_name) {
+            outf(c, "    dk_conv(sp_%s, %d, %d, %d, p + %d, %s);\n", sp->name, sp->n, sp->m,
+                 sp->type, tb->offset, u);
+            continue;
+        }
+        /* fconv: f(u(j+i), v(j)) in place of u(j+i) */
+        const char *v = special_block(c, sp, sp->vroot_kind, sp->vroot, "spv");
+        mark_func(c, sp->func, 0);
+        outf(c, "    for (int j = 0; j < %d; j++) {\n        double s = 0.0;\n"
+                "        for (int i = -%d; i <= %d; i++)\n"
+                "            s += (p + %d)[%d + i] * u_%s(dk_conv_at(%s, %d, j + i, %d), (%s)[j], "
+                "t, y, p);\n        sp_%s[j] = s;\n    }\n",
+             sp->n, sp->m, sp->m, tb->offset, sp->m,
+             LVEC_AT(m->funcs, lang_func, sp->func).name, u, sp->n, sp->type, v, sp->name);
     }
 }
 
@@ -898,6 +918,10 @@ static state_span span_of(lang_ctx *c, const node *e, span_memo *mm)
         for (int k = 0; k < sp->n; k++) {
             const node ref = {.kind = sp->root_kind, .index = sp->root + k};
             s = span_join(s, span_of(c, &ref, mm));
+            if (sp->vroot_name) {
+                const node vref = {.kind = sp->vroot_kind, .index = sp->vroot + k};
+                s = span_join(s, span_of(c, &vref, mm));
+            }
         }
     } else if (e->kind == N_UFUN || e->kind == N_UFUN_D) {
         if (!mm->fun_done[e->index]) {

@@ -169,7 +169,9 @@ typedef struct lang_table {
 /* A network sum (XPPAUT's `special NAME=conv(type,n,m,w,root)`): NAME(j), j = 0..n-1, is
  * sum_{i=-m..m} w[m+i] u(j+i), u the block of n states or fixed quantities from root on,
  * beyond its ends 0 (type 0), mirrored (even) or wrapped (periodic); w a table of 2m+1
- * points. Computed after the fixed quantities of each function that uses it. */
+ * points. fconv(type,n,m,w,root,vroot,f) sums w[m+i] f(u(j+i), v(j)) instead, f a user
+ * function of two arguments, v the block from vroot on. Computed after the fixed quantities
+ * of each function that uses it. */
 enum { LANG_CONV_ZERO, LANG_CONV_EVEN, LANG_CONV_PERIODIC };
 typedef struct lang_special {
     const char *name;
@@ -180,6 +182,10 @@ typedef struct lang_special {
     int table;     /* resolved by lang_check */
     int root_kind; /* N_STATE or N_FIX */
     int root;      /* index of the block's first element */
+    /* fconv: v's block and f (vroot_name NULL for conv) */
+    const char *vroot_name, *func_name;
+    lpos vroot_pos, func_pos;
+    int vroot_kind, vroot, func;
 } lang_special;
 
 /* A pending `init name=...` or `name(0)=...`, resolved once every state is known. */

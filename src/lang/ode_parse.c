@@ -647,31 +647,31 @@ static int special_count(lang_ctx *c, const char *v, lpos pos, const char *what,
     return (int)x;
 }
 
-/* special NAME=conv(TYPE, N, M, W, ROOT) (XPPAUT's manual, "special"); the other sums are
- * refused by name. */
+/* special NAME=conv(TYPE, N, M, W, ROOT) or fconv(TYPE, N, M, W, ROOT, VROOT, F) (XPPAUT's
+ * manual, "special"); the other sums are refused by name. */
 static void parse_special(lang_ctx *c, lang_lexer *lx, lpos kpos)
 {
     lpos npos, fpos;
     const char *name = read_name(lx, &npos, "expected the network sum's name after 'special'");
     expect_char(lx, '=', "expected '=' after the network sum's name");
     const char *fun = read_name(lx, &fpos, "expected conv(...) after 'special NAME='");
-    if (strcasecmp(fun, "conv") != 0)
-        lang_fail(c, kpos, "network sums ('special' with %s) are not supported: only conv is",
-                  fun);
+    const int fconv = strcasecmp(fun, "fconv") == 0, want = fconv ? 7 : 5;
+    if (!fconv && strcasecmp(fun, "conv") != 0)
+        lang_fail(c, kpos, "network sums ('special' with %s) are not supported: conv and fconv "
+                  "are", fun);
     expect_char(lx, '(', "expected '(' after conv");
-    lpos apos[5];
-    const char *arg[5];
+    lpos apos[7];
+    const char *arg[7];
     int last = 0, n = 0;
     while (!last) {
-        if (n == 5)
-            lang_fail(c, apos[4], "conv takes 5 arguments: type, n, m, the table, the first "
-                      "variable");
+        if (n == want)
+            lang_fail(c, apos[n - 1], "%s takes %d arguments", fun, want);
         arg[n] = special_arg(c, lx, &apos[n], &last);
         n++;
     }
-    if (n != 5)
-        lang_fail(c, fpos, "conv takes 5 arguments (type, n, m, the table, the first variable), "
-                  "not %d", n);
+    if (n != want)
+        lang_fail(c, fpos, "%s takes %d arguments (type, n, m, the table, the first variable%s), "
+                  "not %d", fun, want, fconv ? ", the first of v, the function" : "", n);
     expect_end(lx, "the network sum");
     check_new_name(c, name, npos);
     lang_special sp = {0};
@@ -694,6 +694,12 @@ static void parse_special(lang_ctx *c, lang_lexer *lx, lpos kpos)
     sp.table_pos = apos[3];
     sp.root_name = arg[4];
     sp.root_pos = apos[4];
+    if (fconv) {
+        sp.vroot_name = arg[5];
+        sp.vroot_pos = apos[5];
+        sp.func_name = arg[6];
+        sp.func_pos = apos[6];
+    }
     lang_declare(c, name, npos, SYM_SPECIAL, c->m.specials.n);
     *(lang_special *)lvec_push(c, &c->m.specials, sizeof sp) = sp;
 }

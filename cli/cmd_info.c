@@ -188,7 +188,8 @@ static void print_default_run(const dyn_model *m)
     printf("\nDefault run: --method %s --step %s --tspan %s:%s (times in s)\n", m->method,
            shortest(m->step, a, sizeof a), shortest(m->t0, b, sizeof b),
            shortest(m->t1, c, sizeof c));
-    printf("Tolerances of adaptive methods: --rtol %s --atol %s%s\n",
+    if (!dyn_method_is_map(dyn_method_find(m->method)))
+        printf("Tolerances of adaptive methods: --rtol %s --atol %s%s\n",
            shortest(m->rtol > 0 ? m->rtol : DYN_DEFAULT_RTOL, a, sizeof a),
            shortest(m->atol > 0 ? m->atol : DYN_DEFAULT_ATOL, b, sizeof b),
            m->rtol > 0 || m->atol > 0 ? " (the model's)" : " (the library's defaults)");

@@ -274,7 +274,11 @@ static int check_method_options(const char *command, cli_run *run, unsigned give
     for (size_t i = 0; i < sizeof adaptive_only / sizeof adaptive_only[0] && !adaptive &&
                        !other_adaptive;
          i++)
-        if (given & adaptive_only[i].flag)
+        if ((given & adaptive_only[i].flag) && dyn_method_is_map(mt))
+            return cli_usage_error(command, "%s applies to adaptive methods only: %s iterates "
+                                   "a discrete map, which has no error to control",
+                                   adaptive_only[i].name, mt->name);
+        else if (given & adaptive_only[i].flag)
             return cli_usage_error(command,
                                    "%s applies to adaptive methods only: %s takes fixed steps of "
                                    "--step H. Give --method dp45 (or bs23, dop853, rodas4) to "
@@ -311,6 +315,11 @@ static int check_method_options(const char *command, cli_run *run, unsigned give
                                "--trace prints the stages of a Runge-Kutta step; cvode is a "
                                "multistep (BDF) method and has none (--stats gives its "
                                "counts)");
+    if (dyn_method_is_map(mt) && (given & GIVEN_STEP) && run->step != 1.0)
+        return cli_usage_error(command,
+                               "--step %s: a discrete map steps by 1 (t counts its steps, as in "
+                               "XPPAUT); give --tspan to choose how many",
+                               CLI_NUM(run->step));
     dyn_grid map_grid;
     if (dyn_method_is_map(mt) &&
         dyn_grid_plan(run->t0, run->t1, run->step, run->end, &map_grid, NULL, 0) == DYN_OK &&
@@ -322,8 +331,8 @@ static int check_method_options(const char *command, cli_run *run, unsigned give
                                CLI_NUM(run->t0), CLI_NUM(run->t1), CLI_NUM(run->step));
     if (run->times && dyn_method_is_map(mt))
         return cli_usage_error(command,
-                               "--times: a discrete map has states only at its steps t0 + k*step "
-                               "(give --step, or --every K to write every K-th)");
+                               "--times: a discrete map has states only at its steps t0, t0 + "
+                               "1, ... (give --every K to write every K-th)");
     if (run->times && !adaptive)
         return cli_usage_error(command,
                                "--times needs an adaptive method (e.g. --method dp45), whose "

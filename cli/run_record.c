@@ -127,8 +127,10 @@ static int on_sample(long k, double t, const double *y, void *ctx)
 static void label(const cli_run *run, const dyn_tableau *method, double step, char *buf,
                   size_t size)
 {
-    if (dyn_method_is_map(method))
-        snprintf(buf, size, "%s map, %.0f steps", method->name, (run->t1 - run->t0) / step);
+    dyn_grid g;
+    if (dyn_method_is_map(method) &&
+        dyn_grid_plan(run->t0, run->t1, step, run->end, &g, NULL, 0) == DYN_OK)
+        snprintf(buf, size, "%s map, %ld steps", method->name, g.whole_steps);
     else if (dyn_method_is_adaptive(method))
         snprintf(buf, size, "%s, rtol = %g, atol = %g", method->name,
                  run->rtol > 0 ? run->rtol : DYN_DEFAULT_RTOL,

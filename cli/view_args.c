@@ -95,7 +95,14 @@ int cli_view_parse(const char *command, int argc, char **argv, const char *const
         rc = cli_usage_error(command, "--outputs is not needed here: the picture has the "
                                       "model's extra outputs already");
     for (int k = 0; k < v->n_compare && rc == CLI_OK; k++)
-        if (cli_method_is_cvode(v->compare[k].method) && v->run.n_events > 0)
+        if (dyn_method_is_map(v->compare[k].method) != dyn_method_is_map(v->run.method))
+            rc = cli_usage_error(command, "--compare %s: %s is %s, so only %s can run it",
+                                 v->compare[k].method->name, v->run.model->name,
+                                 dyn_method_is_map(v->run.method) ? "a discrete map"
+                                                                  : "a differential equation",
+                                 dyn_method_is_map(v->run.method) ? "the method discrete"
+                                                                  : "an integrator");
+        else if (cli_method_is_cvode(v->compare[k].method) && v->run.n_events > 0)
             rc = cli_usage_error(command, "--compare cvode: the CVODE backend runs without "
                                           "events here; leave out --event");
     return rc;

@@ -325,6 +325,8 @@ static void test_lookup_tables(void **state)
     expect_error("table w % 3 0 1 t\nf(u)=w(u)\ninit x=f(1)\nx'=1\n", 3, 8,
                  "cannot call 'f', which depends on a table");
     expect_error("table w no_such_file.tab\nx'=1\n", 1, 9, "cannot read 'no_such_file.tab'");
+    expect_error("table w % 3 -1e308 1e308 t\nx'=1\n", 1, 7, "not finite numbers with a finite "
+                 "span");
 }
 
 /* Network sums (XPPAUT's `special NAME=conv(...)`): computed after the fixed quantities
@@ -355,8 +357,13 @@ static void test_network_sums_translate(void **state)
     expect_error("table w % 3 -1 1 1\nspecial k=conv(odd,2,1,w,x0)\nx[0..1]'=k(0)\n", 2, 16,
                  "conv's type is even, periodic or 0");
     expect_error("special k=conv(even,2,1,v,x0)\nx[0..1]'=k(0)\n", 1, 25, "'v' is not declared");
-    expect_error("table w % 3 -1 1 1\nspecial k=mmult(2,2,w,x0)\nx[0..1]'=0\n", 2, 1,
-                 "'special' with mmult");
+    expect_error("table w % 3 -1 1 1\nspecial k=gill(0,1,2)\nx[0..1]'=0\n", 2, 1,
+                 "'special' with gill");
+    expect_error("table w % 3 -1 1 1\nspecial k=mmult(2,2,w,x0)\nx[0..1]'=0\n", 2, 21,
+                 "mmult takes m n = 4 weights, and table 'w' has 3 points");
+    expect_error("table w % 3 -1 1 1\nspecial a=conv(0,40000,1,w,x0)\n"
+                 "special b=conv(0,40000,1,w,x0)\nx[0..39999]'=a([j])+b([j])\n", 3, 9,
+                 "network sums of more than 65536 elements");
     expect_error("table w % 3 -1 1 1\nspecial k=conv(even,2,1,w,x0)\nf=k(0)\nx[0..1]'=f\n", 3, 1,
                  "uses a network sum");
 }
@@ -378,7 +385,17 @@ static void test_difference_equations(void **state)
     CHECK(strstr(out, ".method = \"discrete\","), "%s", out);
     free(out);
     expect_error("x(t+2)=x\n", 1, 5, "steps by 1");
-    expect_error("x(t+1)=x/2\n@ meth=rk4\n", 1, 1, "meth=rk4 is an integrator");
+    /* as in XPPAUT: x(t+1)= makes a map whatever meth says; the last meth counts; a map's
+     * total is its whole steps */
+    notes n = {0};
+    out = expect_ok("x(t+1)=x/2\n@ meth=rk4, total=4.5\n", &n);
+    CHECK(strstr(out, ".method = \"discrete\",") && strstr(out, ".t1 = 4.0,") &&
+              strstr(n.text, "meth=rk4 is ignored") && strstr(n.text, "total=4.5"),
+          "%s\n%s", n.text, out);
+    free(out);
+    out = expect_ok("x'=-x\n@ meth=discrete\n@ meth=euler\n", NULL);
+    CHECK(strstr(out, ".method = \"euler\","), "%s", out);
+    free(out);
     expect_error("x(t+1)=x/2\nglobal 1 x-1 {x=0}\n", 2, 1, "events and globals are not supported "
                                                            "in a discrete map");
 }

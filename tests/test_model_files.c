@@ -438,6 +438,14 @@ static void test_difference_equation_is_a_map(void **state)
               "%s: exit %d, out '%s', err %s", refused[k].args, r.status, r.out, r.err);
         cli_free(&r);
     }
+    r = cli("plot '%s' --y x --compare rk4 --output '%s'", cli_path("halves.ode"),
+            cli_path("halves.svg"));
+    CHECK(r.status == 2 && strstr(r.err, "--compare rk4") && strstr(r.err, "discrete map"), "%s",
+          r.err);
+    cli_free(&r);
+    r = cli("run '%s' --step 0.5", cli_path("halves.ode"));
+    CHECK(r.status == 2 && strstr(r.err, "steps by 1"), "%s", r.err);
+    cli_free(&r);
     r = cli("run vanderpol --method discrete");
     CHECK(r.status == 2 && strstr(r.err, "is a differential equation"), "%s", r.err);
     cli_free(&r);
@@ -552,9 +560,27 @@ static void test_network_sums(void **state)
         CHECK(n == 16, "fconv: exit %d, %s%s", r.status, r.out, r.err);
         cli_free(&r);
     }
+    /* mmult(3,2,w,x0): a(j) = sum_{i<3} w[i+3j] x(i); sparse(2,3,w,l,x0): b(j) =
+     * sum_{i<3} w[3j+i] x(l[3j+i]); w = 1..6, l = 1,0,3,2,1,0, x = 1,10,100,1000 (XPPAUT
+     * 6.11 gives the same: 321, 654, 3012, 456) */
+    write_file("conv.ode", "table w % 6 0 5 t+1\ntable l % 6 0 5 mod(3*t+1,4)\n"
+                           "special a=mmult(3,2,w,x0)\nspecial b=sparse(2,3,w,l,x0)\nx[0..3]'=0\n"
+                           "init x0=1,x1=10,x2=100,x3=1000\naux a[0..1]=a([j])\naux b[0..1]=b([j])\n"
+                           "@ meth=euler, dt=1, total=1\ndone\n");
+    cli_result r = cli("run '%s' --outputs --final", cli_path("conv.ode"));
+    CHECK(r.status == 0 && strstr(r.out, "\n1,1,10,100,1000,321,654,3012,456\n"), "%s%s", r.out,
+          r.err);
+    cli_free(&r);
+    /* an index of sparse outside the states is refused when the tables are computed */
+    write_file("conv.ode", "table w % 2 0 1 1\ntable l % 2 0 1 4*t\nspecial b=sparse(1,2,w,l,x0)\n"
+                           "x[0..3]'=b(0)\n");
+    r = cli("run '%s'", cli_path("conv.ode"));
+    CHECK(r.status == 2 && strstr(r.err, "index 1 of table 'l' is 4, not one of the 4 states"),
+          "exit %d: %s", r.status, r.err);
+    cli_free(&r);
     /* the sum's table must hold 2m + 1 weights */
     write_file("conv.ode", "table w % 4 -2 2 1\nspecial k=conv(even,5,2,w,u0)\nu[0..4]'=0\n");
-    cli_result r = cli("run '%s'", cli_path("conv.ode"));
+    r = cli("run '%s'", cli_path("conv.ode"));
     CHECK(r.status == 2 && strstr(r.err, "2m+1 = 5") && strstr(r.err, "has 4 points"), "%s",
           r.err);
     cli_free(&r);

@@ -238,7 +238,9 @@ static void resolve(lang_ctx *c, node *e, const rctx *r)
         const node *j = e->args[0];
         if (j->kind != N_NUM || j->num != floor(j->num) || j->num < 0 || j->num >= sp->n)
             lang_fail(c, j->pos, "the element of network sum '%s' must be a whole number from 0 "
-                      "to %d (write %s([j]) in an array line)", sp->name, sp->n - 1, sp->name);
+                      "to %d (write %s([j]) in an array line)%s%.15g", sp->name, sp->n - 1,
+                      sp->name, j->kind == N_NUM ? "; here it is " : "",
+                      j->kind == N_NUM ? j->num : 0.0);
     }
 }
 
@@ -493,40 +495,62 @@ static node *inline_fix_calls(lang_ctx *c, node *e, int depth)
     return e;
 }
 
-/* The block of a network sum's n states or fixed quantities that begins at name. */
-static void special_block(lang_ctx *c, const lang_special *sp, const char *name, lpos pos,
-                          int *kind, int *index)
+/* The block of a network sum's len states or fixed quantities (len 0: every state from name
+ * on; states only) that begins at name. */
+static int special_block(lang_ctx *c, const lang_special *sp, const char *name, lpos pos,
+                         int len, int *kind, int *index)
 {
     const lang_sym *u = lang_lookup(c, name);
-    if (!u || (u->kind != SYM_STATE && u->kind != SYM_FIX))
-        lang_fail(c, pos, "network sum '%s': '%s' is %s; conv sums over states or fixed "
-                  "quantities", sp->name, name, u ? lang_sym_kind_name(u->kind) : "not declared");
+    if (!u || (u->kind != SYM_STATE && (u->kind != SYM_FIX || len == 0)))
+        lang_fail(c, pos, "network sum '%s': '%s' is %s; it sums over %s", sp->name, name,
+                  u ? lang_sym_kind_name(u->kind) : "not declared",
+                  len ? "states or fixed quantities" : "states");
     const int avail = u->kind == SYM_STATE ? c->m.states.n : c->m.fixes.n;
-    if (u->index + sp->n > avail)
+    if (u->index + len > avail)
         lang_fail(c, pos, "network sum '%s' sums %d %s from '%s' on, and there are only %d",
-                  sp->name, sp->n, u->kind == SYM_STATE ? "states" : "fixed quantities", name,
+                  sp->name, len, u->kind == SYM_STATE ? "states" : "fixed quantities", name,
                   avail - u->index);
     *kind = u->kind == SYM_STATE ? N_STATE : N_FIX;
     *index = u->index;
+    return len ? len : avail - u->index;
 }
 
-/* A network sum's table (2m + 1 weights), the blocks it sums over and fconv's function. */
+/* A table of a network sum, of npts points. */
+static int special_table(lang_ctx *c, const lang_special *sp, const char *name, lpos pos,
+                         long npts, const char *why)
+{
+    const lang_sym *t = lang_lookup(c, name);
+    if (!t || t->kind != SYM_TABLE)
+        lang_fail(c, pos, "network sum '%s': '%s' is %s, not a table", sp->name, name,
+                  t ? lang_sym_kind_name(t->kind) : "not declared");
+    const lang_table *tb = &LVEC_AT(c->m.tables, lang_table, t->index);
+    if (tb->npts != npts)
+        lang_fail(c, pos, "network sum '%s': %s, and table '%s' has %ld points", sp->name, why,
+                  tb->name, tb->npts);
+    return t->index;
+}
+
+/* A network sum's tables, the blocks it sums over and fconv's function. */
 static void resolve_special(lang_ctx *c, lang_special *sp)
 {
-    const lang_sym *t = lang_lookup(c, sp->table_name);
-    if (!t || t->kind != SYM_TABLE)
-        lang_fail(c, sp->table_pos, "network sum '%s': '%s' is %s, not a table", sp->name,
-                  sp->table_name, t ? lang_sym_kind_name(t->kind) : "not declared");
-    const lang_table *tb = &LVEC_AT(c->m.tables, lang_table, t->index);
-    if (tb->npts != 2L * sp->m + 1)
-        lang_fail(c, sp->table_pos, "network sum '%s': conv with m = %d weighs 2m+1 = %d "
-                  "neighbours, and table '%s' has %ld points", sp->name, sp->m, 2 * sp->m + 1,
-                  tb->name, tb->npts);
-    sp->table = t->index;
-    special_block(c, sp, sp->root_name, sp->root_pos, &sp->root_kind, &sp->root);
-    if (!sp->vroot_name)
+    const long mn = (long)sp->m * sp->n;
+    char why[160];
+    if (sp->kind == LANG_SUM_CONV || sp->kind == LANG_SUM_FCONV)
+        snprintf(why, sizeof why, "%s with m = %d weighs 2m+1 = %d neighbours",
+                 sp->kind == LANG_SUM_CONV ? "conv" : "fconv", sp->m, 2 * sp->m + 1);
+    else
+        snprintf(why, sizeof why, "%s takes m n = %ld weights", sp->kind == LANG_SUM_MMULT
+                                                                    ? "mmult" : "sparse", mn);
+    const long npts = sp->kind <= LANG_SUM_FCONV ? 2L * sp->m + 1 : mn;
+    sp->table = special_table(c, sp, sp->table_name, sp->table_pos, npts, why);
+    if (sp->kind == LANG_SUM_SPARSE)
+        sp->index_table = special_table(c, sp, sp->index_name, sp->index_pos, mn,
+                                        "sparse takes m n = m times n indices");
+    const int len = sp->kind == LANG_SUM_MMULT ? sp->m : sp->kind == LANG_SUM_SPARSE ? 0 : sp->n;
+    sp->ulen = special_block(c, sp, sp->root_name, sp->root_pos, len, &sp->root_kind, &sp->root);
+    if (sp->kind != LANG_SUM_FCONV)
         return;
-    special_block(c, sp, sp->vroot_name, sp->vroot_pos, &sp->vroot_kind, &sp->vroot);
+    special_block(c, sp, sp->vroot_name, sp->vroot_pos, sp->n, &sp->vroot_kind, &sp->vroot);
     const lang_sym *f = lang_lookup(c, sp->func_name);
     if (!f || f->kind != SYM_FUNC)
         lang_fail(c, sp->func_pos, "network sum '%s': '%s' is %s, not a function", sp->name,
@@ -680,11 +704,21 @@ void lang_check(lang_ctx *c)
         }
         tb->offset = offset;
         offset += (int)tb->npts;
-        if (offset > LANG_MAX_TABLE)
+        if (offset - (m->params.n + m->derived.n) > LANG_MAX_TABLE)
             lang_fail(c, tb->pos, "tables of more than %d points in all", LANG_MAX_TABLE);
     }
-    for (int i = 0; i < m->specials.n; i++)
-        resolve_special(c, &LVEC_AT(m->specials, lang_special, i));
+    /* the sums' arrays live on the stack of the functions that use them (OpenMP threads of
+     * sweeps have small stacks): at most LANG_MAX_SUM_STACK doubles in all */
+    long sum_stack = 0;
+    for (int i = 0; i < m->specials.n; i++) {
+        lang_special *sp = &LVEC_AT(m->specials, lang_special, i);
+        resolve_special(c, sp);
+        sum_stack += sp->n + (sp->root_kind == N_FIX ? sp->ulen : 0) +
+                 (sp->kind == LANG_SUM_FCONV && sp->vroot_kind == N_FIX ? sp->n : 0);
+        if (sum_stack > LANG_MAX_SUM_STACK)
+            lang_fail(c, sp->pos, "network sums of more than %d elements in all (with the fixed "
+                      "quantities they sum over): sum over states, or fewer", LANG_MAX_SUM_STACK);
+    }
     for (int i = 0; i < m->fixes.n; i++) {
         const lang_formula *f = &LVEC_AT(m->fixes, lang_formula, i);
         resolve(c, f->expr, &rhs);

@@ -329,7 +329,8 @@ static void need(lang_ctx *c, const node *e, unsigned char *needed)
         needed[c->m.fixes.n + e->index] = 1;
         for (int b = 0; b < 2; b++) { /* the blocks of u and (fconv) v */
             const int kind = b ? sp->vroot_kind : sp->root_kind, first = b ? sp->vroot : sp->root;
-            for (int k = 0; kind == N_FIX && (b == 0 || sp->vroot_name) && k < sp->n; k++)
+            const int len = b ? (sp->kind == LANG_SUM_FCONV ? sp->n : 0) : sp->ulen;
+            for (int k = 0; kind == N_FIX && k < len; k++)
                 if (!needed[first + k]) {
                     needed[first + k] = 1;
                     need(c, LVEC_AT(c->m.fixes, lang_formula, first + k).expr, needed);
@@ -338,15 +339,15 @@ static void need(lang_ctx *c, const node *e, unsigned char *needed)
     }
 }
 
-/* A network sum's block as a C array expression: y + first for states, or a local array
- * NAME_PREFIX_SUM of the fixed quantities' values (written first). */
+/* A network sum's block of len elements as a C array expression: y + first for states, or
+ * a local array PREFIX_NAME of the fixed quantities' values (written first). */
 static const char *special_block(lang_ctx *c, const lang_special *sp, int kind, int first,
-                                 const char *prefix)
+                                 int len, const char *prefix)
 {
     if (kind == N_STATE)
         return lang_printf(c, "y + %d", first);
-    outf(c, "    const double %s_%s[%d] = {", prefix, sp->name, sp->n);
-    for (int k = 0; k < sp->n; k++)
+    outf(c, "    const double %s_%s[%d] = {", prefix, sp->name, len);
+    for (int k = 0; k < len; k++)
         outf(c, "%sv_%s", k ? ", " : "", LVEC_AT(c->m.fixes, lang_formula, first + k).name);
     puts_(c, "};\n");
     return lang_printf(c, "%s_%s", prefix, sp->name);
@@ -363,15 +364,32 @@ static void emit_specials(lang_ctx *c, const unsigned char *needed)
         const lang_table *tb = &LVEC_AT(m->tables, lang_table, sp->table);
         c->helpers |= H_CONV;
         line_dir(c, sp->pos);
-        const char *u = special_block(c, sp, sp->root_kind, sp->root, "spu");
+        const char *u = special_block(c, sp, sp->root_kind, sp->root, sp->ulen, "spu");
         outf(c, "    double sp_%s[%d];\n", sp->name, sp->n);
-        if (!sp->vroot_name) {
+        if (sp->kind == LANG_SUM_CONV) {
             outf(c, "    dk_conv(sp_%s, %d, %d, %d, p + %d, %s);\n", sp->name, sp->n, sp->m,
                  sp->type, tb->offset, u);
             continue;
         }
+        if (sp->kind == LANG_SUM_MMULT || sp->kind == LANG_SUM_SPARSE) {
+            /* mmult: w[i + m j] u(i); sparse: w[j m + i] u(l[j m + i]) (indices checked by
+             * prepare) */
+            const int sparse = sp->kind == LANG_SUM_SPARSE;
+            outf(c, "    for (int j = 0; j < %d; j++) {\n        double s = 0.0;\n"
+                    "        for (int i = 0; i < %d; i++)\n",
+                 sp->n, sp->m);
+            if (sparse)
+                outf(c, "            s += (p + %d)[j * %d + i] * (%s)[(long)(p + %d)[j * %d + i]];\n",
+                     tb->offset, sp->m, u,
+                     LVEC_AT(m->tables, lang_table, sp->index_table).offset, sp->m);
+            else
+                outf(c, "            s += (p + %d)[i + %d * j] * (%s)[i];\n", tb->offset, sp->m,
+                     u);
+            outf(c, "        sp_%s[j] = s;\n    }\n", sp->name);
+            continue;
+        }
         /* fconv: f(u(j+i), v(j)) in place of u(j+i) */
-        const char *v = special_block(c, sp, sp->vroot_kind, sp->vroot, "spv");
+        const char *v = special_block(c, sp, sp->vroot_kind, sp->vroot, sp->n, "spv");
         mark_func(c, sp->func, 0);
         outf(c, "    for (int j = 0; j < %d; j++) {\n        double s = 0.0;\n"
                 "        for (int i = -%d; i <= %d; i++)\n"
@@ -432,10 +450,13 @@ static void helpers(lang_ctx *c)
     if (h & H_POW)
         puts_(c, "static inline double dk_pow(double x, double y) { return y == 2.0 ? x * x : "
                  "pow(x, y); }\n");
-    if (h & H_CONV) /* XPPAUT's conv: sum w[m+i] u(j+i), u beyond its ends 0, mirrored, wrapped */
+    if (h & H_CONV) /* XPPAUT's conv: sum w[m+i] u(j+i), u beyond its ends 0, wrapped, or
+                     * mirrored at both ends; as XPPAUT 6.11 (measured: docs/model-files.md),
+                     * 0 from 2n away on (mirrored) and below -2n (wrapped) */
         puts_(c, "static inline double dk_conv_at(const double *u, int n, int q, int type)\n"
                  "{\n    if (q >= 0 && q < n)\n        return u[q];\n"
-                 "    if (type == 0)\n        return 0.0;\n    if (n == 1)\n        return u[0];\n"
+                 "    if (type == 0 || (type == 1 && (q <= -2 * n || q >= 2 * n)) || q < -2 * n)\n"
+                 "        return 0.0;\n    if (n == 1)\n        return type == 2 ? u[0] : 0.0;\n"
                  "    const int period = type == 2 ? n : 2 * (n - 1);\n    q %= period;\n"
                  "    if (q < 0)\n        q += period;\n"
                  "    return u[q < n ? q : period - q];\n}\n"
@@ -658,6 +679,30 @@ static int par_doubles(const lang_model *m)
     return k;
 }
 
+/* In prepare, after the tables: each index of a sparse sum must point into its block. */
+static void emit_sparse_checks(lang_ctx *c)
+{
+    const lang_model *m = &c->m;
+    for (int i = 0; i < m->specials.n; i++) {
+        const lang_special *sp = &LVEC_AT(m->specials, lang_special, i);
+        if (sp->kind != LANG_SUM_SPARSE)
+            continue;
+        const lang_table *l = &LVEC_AT(m->tables, lang_table, sp->index_table);
+        line_dir(c, sp->pos);
+        outf(c, "    for (long k = 0; k < %ld; k++)\n        if (!(p[%d + k] >= 0.0 && "
+                "p[%d + k] < %d.0)) {\n            snprintf(err, errlen, \"network sum '%%s': "
+                "index %%ld of table '%%s' is %%g, not one of the %d states from '%%s' on (0 "
+                "to %d)\", ",
+             l->npts, l->offset, l->offset, sp->ulen, sp->ulen, sp->ulen - 1);
+        str_lit(c, sp->name);
+        puts_(c, ", k, ");
+        str_lit(c, l->name);
+        outf(c, ", p[%d + k], ", l->offset);
+        str_lit(c, sp->root_name);
+        puts_(c, ");\n            return 1;\n        }\n");
+    }
+}
+
 /* The numbers of the tables read from files, as arrays for prepare to copy. */
 static void emit_table_files(lang_ctx *c)
 {
@@ -708,6 +753,7 @@ static void emit_prepare(lang_ctx *c)
         outf(c, ", p[%d]);\n        return 1;\n    }\n", np + k);
     }
     emit_table_values(c);
+    emit_sparse_checks(c);
     puts_(c, "    (void)err;\n    (void)errlen;\n    return 0;\n}\n\n");
 }
 
@@ -915,13 +961,13 @@ static state_span span_of(lang_ctx *c, const node *e, span_memo *mm)
         s = span_join(s, mm->fix[e->index]);
     } else if (e->kind == N_FUN && e->op == F_SPECIAL) {
         const lang_special *sp = &LVEC_AT(c->m.specials, lang_special, e->index);
-        for (int k = 0; k < sp->n; k++) {
+        for (int k = 0; k < sp->ulen; k++) {
             const node ref = {.kind = sp->root_kind, .index = sp->root + k};
             s = span_join(s, span_of(c, &ref, mm));
-            if (sp->vroot_name) {
-                const node vref = {.kind = sp->vroot_kind, .index = sp->vroot + k};
-                s = span_join(s, span_of(c, &vref, mm));
-            }
+        }
+        for (int k = 0; sp->kind == LANG_SUM_FCONV && k < sp->n; k++) {
+            const node vref = {.kind = sp->vroot_kind, .index = sp->vroot + k};
+            s = span_join(s, span_of(c, &vref, mm));
         }
     } else if (e->kind == N_UFUN || e->kind == N_UFUN_D) {
         if (!mm->fun_done[e->index]) {

@@ -154,7 +154,8 @@ typedef struct lang_event {
  * from a formula of t (expr, computed with the parameters by prepare) or from a file
  * (values); a function of one argument by linear interpolation, extrapolated linearly
  * beyond [lo, hi] as XPPAUT does. Its values live in the parameter array from offset on. */
-#define LANG_MAX_TABLE 1000000 /* points of one table */
+#define LANG_MAX_TABLE 1000000 /* points of the tables */
+#define LANG_MAX_SUM_STACK 65536 /* doubles of the network sums' arrays (on the stack) */
 typedef struct lang_table {
     const char *name;
     lpos pos;
@@ -170,13 +171,18 @@ typedef struct lang_table {
  * sum_{i=-m..m} w[m+i] u(j+i), u the block of n states or fixed quantities from root on,
  * beyond its ends 0 (type 0), mirrored (even) or wrapped (periodic); w a table of 2m+1
  * points. fconv(type,n,m,w,root,vroot,f) sums w[m+i] f(u(j+i), v(j)) instead, f a user
- * function of two arguments, v the block from vroot on. Computed after the fixed quantities
- * of each function that uses it. */
+ * function of two arguments, v the block from vroot on. mmult(m,n,w,u): NAME(j) =
+ * sum_{i<m} w[i+m j] u(i); sparse(n,m,w,l,u): NAME(j) = sum_{i<m} w[j m+i] u(l[j m+i]), l a
+ * table of indices into the states from u on. Computed after the fixed quantities of each
+ * function that uses it. */
 enum { LANG_CONV_ZERO, LANG_CONV_EVEN, LANG_CONV_PERIODIC };
+enum { LANG_SUM_CONV, LANG_SUM_FCONV, LANG_SUM_MMULT, LANG_SUM_SPARSE };
 typedef struct lang_special {
     const char *name;
     lpos pos;
+    int kind;      /* LANG_SUM_* */
     int type, n, m;
+    int ulen;      /* elements of u's block: n (conv), m (mmult), the states from u (sparse) */
     const char *table_name, *root_name;
     lpos table_pos, root_pos;
     int table;     /* resolved by lang_check */
@@ -186,6 +192,10 @@ typedef struct lang_special {
     const char *vroot_name, *func_name;
     lpos vroot_pos, func_pos;
     int vroot_kind, vroot, func;
+    /* sparse: the table of indices */
+    const char *index_name;
+    lpos index_pos;
+    int index_table;
 } lang_special;
 
 /* A pending `init name=...` or `name(0)=...`, resolved once every state is known. */
@@ -251,7 +261,7 @@ typedef struct lang_model {
     /* a discrete map: an x(t+1)= equation (map_eq) or meth=discrete (map_meth), at map_pos;
      * dt_pos: where dt was given (a map steps by 1, as XPPAUT's do) */
     int map_eq, map_meth;
-    lpos map_pos, dt_pos;
+    lpos map_pos, dt_pos, total_pos;
 } lang_model;
 
 /* ---- one logical line: text and where each character came from ---- */

@@ -378,8 +378,8 @@ static void set_method(lang_ctx *c, const char *v, lpos pos)
     for (size_t k = 0; k < n && is_discrete; k++)
         if (k >= 8 || tolower((unsigned char)v[k]) != "discrete"[k])
             is_discrete = 0;
+    c->m.map_meth = is_discrete; /* the last meth counts, as in XPPAUT */
     if (is_discrete) { /* XPPAUT takes any prefix: disc, d */
-        c->m.map_meth = 1;
         if (!c->m.map_eq)
             c->m.map_pos = pos;
         c->m.has_meth = 1;
@@ -444,6 +444,7 @@ static void parse_options(lang_ctx *c, lang_lexer *lx)
         lang_model *m = &c->m;
         if (ieqn(name, n, "total")) {
             m->total = option_number(c, name, v, vpos);
+            m->total_pos = vpos;
             if (!(m->total > 0) || !isfinite(m->total))
                 lang_fail(c, vpos, "total must be a finite number > 0");
         } else if (ieqn(name, n, "t0")) {
@@ -535,6 +536,9 @@ static void table_size(lang_ctx *c, lang_table *tb, lpos pos)
     if (tb->npts > 1 && !(tb->hi > tb->lo))
         lang_fail(c, pos, "table '%s': the last abscissa %g must be above the first, %g",
                   tb->name, tb->hi, tb->lo);
+    if (!isfinite(tb->lo) || !isfinite(tb->hi) || !isfinite(tb->hi - tb->lo))
+        lang_fail(c, pos, "table '%s': the abscissas %g to %g are not finite numbers with a "
+                  "finite span", tb->name, tb->lo, tb->hi);
 }
 
 /* The values of a table file (XPPAUT's format: npts, xlo, xhi, then npts values, separated
@@ -601,7 +605,7 @@ static void parse_table(lang_ctx *c, lang_lexer *lx)
         const double n = table_number(c, lx, "the number of points");
         tb.npts = n == floor(n) && n >= 1 && n <= LANG_MAX_TABLE ? (long)n : -1;
         if (tb.npts < 0)
-            lang_fail(c, npos, "table '%s': %g points: give a whole number from 1 to %d", name,
+            lang_fail(c, npos, "table '%s': %.15g points: give a whole number from 1 to %d", name,
                       n, LANG_MAX_TABLE);
         tb.lo = table_number(c, lx, "the first abscissa");
         tb.hi = table_number(c, lx, "the last abscissa");
@@ -647,18 +651,30 @@ static int special_count(lang_ctx *c, const char *v, lpos pos, const char *what,
     return (int)x;
 }
 
-/* special NAME=conv(TYPE, N, M, W, ROOT) or fconv(TYPE, N, M, W, ROOT, VROOT, F) (XPPAUT's
- * manual, "special"); the other sums are refused by name. */
+/* special NAME=conv(TYPE, N, M, W, ROOT), fconv(TYPE, N, M, W, ROOT, VROOT, F),
+ * mmult(M, N, W, ROOT) or sparse(N, M, W, L, ROOT) (XPPAUT's manual, "special"); the other
+ * sums are refused by name. */
 static void parse_special(lang_ctx *c, lang_lexer *lx, lpos kpos)
 {
     lpos npos, fpos;
     const char *name = read_name(lx, &npos, "expected the network sum's name after 'special'");
     expect_char(lx, '=', "expected '=' after the network sum's name");
     const char *fun = read_name(lx, &fpos, "expected conv(...) after 'special NAME='");
-    const int fconv = strcasecmp(fun, "fconv") == 0, want = fconv ? 7 : 5;
-    if (!fconv && strcasecmp(fun, "conv") != 0)
-        lang_fail(c, kpos, "network sums ('special' with %s) are not supported: conv and fconv "
-                  "are", fun);
+    static const struct {
+        const char *name, *args;
+        int nargs;
+    } sums[] = {{"conv", "type, n, m, the table, the first variable", 5},
+                {"fconv", "type, n, m, the table, the first of u, the first of v, the function", 7},
+                {"mmult", "m, n, the table, the first variable", 4},
+                {"sparse", "n, m, the weights, the indices, the first variable", 5}};
+    int kind = -1;
+    for (int k = 0; k < 4; k++)
+        if (strcasecmp(fun, sums[k].name) == 0)
+            kind = k;
+    if (kind < 0)
+        lang_fail(c, kpos, "network sums ('special' with %s) are not supported: conv, fconv, "
+                  "mmult and sparse are", fun);
+    const int fconv = kind == LANG_SUM_FCONV, want = sums[kind].nargs;
     expect_char(lx, '(', "expected '(' after conv");
     lpos apos[7];
     const char *arg[7];
@@ -670,13 +686,29 @@ static void parse_special(lang_ctx *c, lang_lexer *lx, lpos kpos)
         n++;
     }
     if (n != want)
-        lang_fail(c, fpos, "%s takes %d arguments (type, n, m, the table, the first variable%s), "
-                  "not %d", fun, want, fconv ? ", the first of v, the function" : "", n);
+        lang_fail(c, fpos, "%s takes %d arguments (%s), not %d", fun, want, sums[kind].args, n);
     expect_end(lx, "the network sum");
     check_new_name(c, name, npos);
     lang_special sp = {0};
     sp.name = name;
     sp.pos = npos;
+    sp.kind = kind;
+    if (kind == LANG_SUM_MMULT || kind == LANG_SUM_SPARSE) {
+        const int mm = kind == LANG_SUM_MMULT;
+        sp.n = special_count(c, arg[mm ? 1 : 0], apos[mm ? 1 : 0], "the number of sums", 1);
+        sp.m = special_count(c, arg[mm ? 0 : 1], apos[mm ? 0 : 1], "the terms of each sum", 1);
+        sp.table_name = arg[2];
+        sp.table_pos = apos[2];
+        if (!mm) {
+            sp.index_name = arg[3];
+            sp.index_pos = apos[3];
+        }
+        sp.root_name = arg[mm ? 3 : 4];
+        sp.root_pos = apos[mm ? 3 : 4];
+        lang_declare(c, name, npos, SYM_SPECIAL, c->m.specials.n);
+        *(lang_special *)lvec_push(c, &c->m.specials, sizeof sp) = sp;
+        return;
+    }
     /* XPPAUT reads the type by its first letter (junk.ode writes 'period') */
     const int t0 = tolower((unsigned char)arg[0][0]);
     if (t0 == 'e' && isalpha((unsigned char)arg[0][0]))
@@ -1081,9 +1113,8 @@ static void finish_map(lang_ctx *c)
 {
     lang_model *m = &c->m;
     if (m->map_eq && m->has_meth && !m->map_meth)
-        lang_fail(c, m->map_pos,
-                  "x(t+1)= makes the file a discrete map, but meth=%s is an integrator of "
-                  "differential equations (drop meth, or write meth=discrete)",
+        lang_note(c, m->map_pos,
+                  "x(t+1)= makes the file a discrete map: meth=%s is ignored, as XPPAUT does",
                   m->meth_name);
     if (m->events.n > 0)
         lang_fail(c, LVEC_AT(m->events, lang_event, 0).pos,
@@ -1095,6 +1126,13 @@ static void finish_map(lang_ctx *c)
         lang_note(c, m->dt_pos, "dt=%g is ignored by a discrete map: t advances by 1 per step, "
                                 "as in XPPAUT", m->dt);
     m->dt = 1.0;
+    if (m->total != floor(m->total)) { /* XPPAUT takes the whole steps */
+        lang_note(c, m->total_pos, "total=%g: a discrete map takes whole steps, %.0f of them "
+                  "(as XPPAUT does)", m->total, floor(m->total));
+        m->total = floor(m->total);
+        if (!(m->total >= 1.0))
+            lang_fail(c, m->total_pos, "total must be at least one step of a discrete map");
+    }
     lang_note(c, m->map_pos, "a discrete map: y(t+1) = f(t, y), one step per unit of time");
 }
 

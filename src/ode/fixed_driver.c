@@ -8,13 +8,13 @@
  * Each new state is checked for NaN/Inf; on any failure y keeps the last good state.
  */
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "dynkit/io.h" /* dyn_shortest: numbers in messages */
 #include "dynkit/ode.h"
 #include "ode/map_steps.h"
+#include "ode/result_fail.h"
 #include "ode/rk_stages.h"
 
 static void result_init(dyn_result *res, double t0)
@@ -23,19 +23,6 @@ static void result_init(dyn_result *res, double t0)
     res->t = t0;
     res->fail_t = NAN;
     res->fail_index = -1;
-}
-
-#if defined(__GNUC__)
-__attribute__((format(printf, 3, 4)))
-#endif
-static int result_fail(dyn_result *res, int status, const char *fmt, ...)
-{
-    va_list ap;
-    res->status = status;
-    va_start(ap, fmt);
-    vsnprintf(res->message, sizeof res->message, fmt, ap);
-    va_end(ap);
-    return status;
 }
 
 static int first_nonfinite(const double *y, int n)
@@ -157,17 +144,17 @@ static int check_args(const dyn_tableau *m, const dyn_system *sys, const double 
                       const double *work, dyn_result *res)
 {
     if (!m)
-        return result_fail(res, DYN_ERR_ARG, "no method given");
+        return dyn_result_fail(res, DYN_ERR_ARG, "no method given");
     if (m->kind != DYN_KIND_EXPLICIT_RK && m->kind != DYN_KIND_MAP)
-        return result_fail(res, DYN_ERR_ARG,
-                           "%s is not a fixed-step method (dyn_solve runs it)", m->name);
+        return dyn_result_fail(res, DYN_ERR_ARG,
+                               "%s is not a fixed-step method (dyn_solve runs it)", m->name);
     if (!sys || !sys->f)
-        return result_fail(res, DYN_ERR_ARG, "no right-hand side given");
+        return dyn_result_fail(res, DYN_ERR_ARG, "no right-hand side given");
     if (sys->n <= 0)
-        return result_fail(res, DYN_ERR_ARG,
-                           "number of states %d is not accepted: it must be >= 1", sys->n);
+        return dyn_result_fail(res, DYN_ERR_ARG,
+                               "number of states %d is not accepted: it must be >= 1", sys->n);
     if (!y0 || !work)
-        return result_fail(res, DYN_ERR_ARG, "initial state or workspace is NULL");
+        return dyn_result_fail(res, DYN_ERR_ARG, "initial state or workspace is NULL");
     return DYN_OK;
 }
 
@@ -191,10 +178,10 @@ int dyn_fixed_solve(const dyn_tableau *m, const dyn_system *sys, double t0, doub
         return res->status;
     }
     if (m->kind == DYN_KIND_MAP && grid.partial)
-        return result_fail(res, DYN_ERR_ARG,
-                           "a discrete map takes whole steps: [%s, %s] is not a whole number "
-                           "of steps of %s (give a span of whole steps, or DYN_END_GRID)",
-                           dyn_shortest(t0).s, dyn_shortest(t1).s, dyn_shortest(h).s);
+        return dyn_result_fail(res, DYN_ERR_ARG,
+                               "a discrete map takes whole steps: [%s, %s] is not a whole number "
+                               "of steps of %s (give a span of whole steps, or DYN_END_GRID)",
+                               dyn_shortest(t0).s, dyn_shortest(t1).s, dyn_shortest(h).s);
     const int n = sys->n, s = m->stages;
     const dyn_rhs_fn f = sys->f;
     void *const par = sys->par;
@@ -210,12 +197,12 @@ int dyn_fixed_solve(const dyn_tableau *m, const dyn_system *sys, double t0, doub
     if (bad >= 0) {
         res->fail_t = t0;
         res->fail_index = bad;
-        return result_fail(res, DYN_ERR_NONFINITE,
-                           "initial state %d is not finite (%g)", bad, y[bad]);
+        return dyn_result_fail(res, DYN_ERR_NONFINITE, "initial state %d is not finite (%g)", bad,
+                               y[bad]);
     }
     if (opts->output) {
         if (opts->output(0, t0, y, opts->output_ctx))
-            return result_fail(res, DYN_STOPPED, "output stopped the run at t = %g", t0);
+            return dyn_result_fail(res, DYN_STOPPED, "output stopped the run at t = %g", t0);
         res->stats.samples = 1;
     }
     if (m->kind == DYN_KIND_MAP)
@@ -288,9 +275,9 @@ int dyn_fixed_solve(const dyn_tableau *m, const dyn_system *sys, double t0, doub
             res->stats.rhs_calls = done * s + fail_stage + 1;
             res->rhs_status = rc;
             res->fail_t = dyn_rk_stage_time(tn, m->c[fail_stage], hn, t1);
-            status = result_fail(res, DYN_ERR_RHS,
-                                 "the right-hand side failed at t = %s (status %d)",
-                                 dyn_shortest(res->fail_t).s, rc);
+            status = dyn_result_fail(res, DYN_ERR_RHS,
+                                     "the right-hand side failed at t = %s (status %d)",
+                                     dyn_shortest(res->fail_t).s, rc);
             break;
         }
         const double tnext =
@@ -300,9 +287,8 @@ int dyn_fixed_solve(const dyn_tableau *m, const dyn_system *sys, double t0, doub
             res->stats.rhs_calls = (done + 1) * s;
             res->fail_t = tnext;
             res->fail_index = bad;
-            status = result_fail(res, DYN_ERR_NONFINITE,
-                                 "state %d became not finite at t = %s", bad,
-                                 dyn_shortest(tnext).s);
+            status = dyn_result_fail(res, DYN_ERR_NONFINITE, "state %d became not finite at t = %s",
+                                     bad, dyn_shortest(tnext).s);
             break;
         }
         done++;
@@ -315,15 +301,15 @@ int dyn_fixed_solve(const dyn_tableau *m, const dyn_system *sys, double t0, doub
             countdown = every;
             samples++;
             if (output(step, tnext, cur, output_ctx)) {
-                status = result_fail(res, DYN_STOPPED, "output stopped the run at t = %g",
-                                     tnext);
+                status =
+                    dyn_result_fail(res, DYN_STOPPED, "output stopped the run at t = %g", tnext);
                 break;
             }
         }
         if (progress && --progress_countdown == 0) {
             progress_countdown = progress_every;
             if (progress(tnext, (double)step / (double)steps, progress_ctx)) {
-                status = result_fail(res, DYN_CANCELLED, "cancelled at t = %g", tnext);
+                status = dyn_result_fail(res, DYN_CANCELLED, "cancelled at t = %g", tnext);
                 break;
             }
         }

@@ -9,25 +9,12 @@
  * refuses a span with a partial last step).
  */
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "dynkit/io.h" /* dyn_shortest: numbers in messages */
 #include "ode/map_steps.h"
-
-#if defined(__GNUC__)
-__attribute__((format(printf, 3, 4)))
-#endif
-static int fail(dyn_result *res, int status, const char *fmt, ...)
-{
-    va_list ap;
-    res->status = status;
-    va_start(ap, fmt);
-    vsnprintf(res->message, sizeof res->message, fmt, ap);
-    va_end(ap);
-    return status;
-}
+#include "ode/result_fail.h"
 
 static void trace_step(const dyn_fixed_opts *o, const dyn_tableau *m, long step, int n,
                        double t, double h, double tnext, const double *y, const double *ynew)
@@ -62,8 +49,8 @@ int dyn_map_steps(const dyn_tableau *m, const dyn_system *sys, const dyn_grid *g
             res->rhs_status = rc;
             res->fail_t = tn;
             res->stats.rhs_calls = step + 1;
-            status = fail(res, DYN_ERR_RHS, "the map failed at t = %s (status %d)",
-                          dyn_shortest(tn).s, rc);
+            status = dyn_result_fail(res, DYN_ERR_RHS, "the map failed at t = %s (status %d)",
+                                     dyn_shortest(tn).s, rc);
             break;
         }
         if (o->trace && step < o->trace_steps)
@@ -74,8 +61,9 @@ int dyn_map_steps(const dyn_tableau *m, const dyn_system *sys, const dyn_grid *g
                     res->stats.rhs_calls = step + 1;
                     res->fail_t = tnext;
                     res->fail_index = q;
-                    status = fail(res, DYN_ERR_NONFINITE, "state %d became not finite at t = %s",
-                                  q, dyn_shortest(tnext).s);
+                    status = dyn_result_fail(res, DYN_ERR_NONFINITE,
+                                             "state %d became not finite at t = %s", q,
+                                             dyn_shortest(tnext).s);
                     break;
                 }
         if (status)
@@ -89,7 +77,8 @@ int dyn_map_steps(const dyn_tableau *m, const dyn_system *sys, const dyn_grid *g
             res->stats.samples++;
             if (o->output(step + 1, tnext, cur, o->output_ctx)) {
                 step++;
-                status = fail(res, DYN_STOPPED, "output stopped the run at t = %g", tnext);
+                status =
+                    dyn_result_fail(res, DYN_STOPPED, "output stopped the run at t = %g", tnext);
                 break;
             }
         }
@@ -97,7 +86,7 @@ int dyn_map_steps(const dyn_tableau *m, const dyn_system *sys, const dyn_grid *g
             progress_countdown = progress_every;
             if (o->progress(tnext, (double)(step + 1) / (double)steps, o->progress_ctx)) {
                 step++;
-                status = fail(res, DYN_CANCELLED, "cancelled at t = %g", tnext);
+                status = dyn_result_fail(res, DYN_CANCELLED, "cancelled at t = %g", tnext);
                 break;
             }
         }

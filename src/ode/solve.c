@@ -26,6 +26,7 @@
 #include "dynkit/solve.h"
 #include "dynkit/solve_inline.h" /* dyn_sinl_ctl: the step-size controller */
 #include "ode/events.h"
+#include "ode/result_fail.h"
 #include "ode/solve_general.h"
 #include "ode/step_control.h"
 #include "ode/stepper.h"
@@ -43,19 +44,6 @@ static void result_init(dyn_result *res, double t0)
     res->fail_index = -1;
     res->event_index = -1;
     res->stiff_t = NAN;
-}
-
-#if defined(__GNUC__)
-__attribute__((format(printf, 3, 4)))
-#endif
-static int fail(dyn_result *res, int status, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(res->message, sizeof res->message, fmt, ap);
-    va_end(ap);
-    res->status = status;
-    return status;
 }
 
 static int first_nonfinite(const double *y, int n)
@@ -134,31 +122,35 @@ static int check_tolerances(const dyn_solve_opts *o, int n, dyn_tol *tol, dyn_re
     tol->rtolv = o ? o->rtolv : NULL;
     tol->atolv = o ? o->atolv : NULL;
     if (!(tol->rtol >= 0.0) || !isfinite(tol->rtol))
-        return fail(res, DYN_ERR_ARG, "rtol %g is not accepted: it must be a finite number >= 0",
-                    tol->rtol);
+        return dyn_result_fail(res, DYN_ERR_ARG,
+                               "rtol %g is not accepted: it must be a finite number >= 0",
+                               tol->rtol);
     if (tol->rtol < DYN_MIN_RTOL) { /* below rounding: MATLAB's floor */
         tol->rtol = DYN_MIN_RTOL;
         res->rtol_raised = 1;
     }
     if (!(tol->atol >= 0.0) || !isfinite(tol->atol))
-        return fail(res, DYN_ERR_ARG, "atol %g is not accepted: it must be a finite number >= 0",
-                    tol->atol);
+        return dyn_result_fail(res, DYN_ERR_ARG,
+                               "atol %g is not accepted: it must be a finite number >= 0",
+                               tol->atol);
     for (int i = 0; i < n; i++) {
         const double r = tol->rtolv ? tol->rtolv[i] : tol->rtol;
         const double a = tol->atolv ? tol->atolv[i] : tol->atol;
         if (!(r >= 0.0) || !isfinite(r) || !(a >= 0.0) || !isfinite(a))
-            return fail(res, DYN_ERR_ARG,
-                        "tolerance of state %d (rtol %g, atol %g) is not accepted: both must be "
-                        "finite numbers >= 0",
-                        i, r, a);
+            return dyn_result_fail(
+                res, DYN_ERR_ARG,
+                "tolerance of state %d (rtol %g, atol %g) is not accepted: both must be "
+                "finite numbers >= 0",
+                i, r, a);
         if (r > 0.0 && r < DYN_MIN_RTOL)
-            return fail(res, DYN_ERR_ARG,
-                        "rtol %g of state %d is below rounding: give 0 or at least %g (100 "
-                        "eps)",
-                        r, i, DYN_MIN_RTOL);
+            return dyn_result_fail(
+                res, DYN_ERR_ARG,
+                "rtol %g of state %d is below rounding: give 0 or at least %g (100 "
+                "eps)",
+                r, i, DYN_MIN_RTOL);
         if (r == 0.0 && a == 0.0)
-            return fail(res, DYN_ERR_ARG,
-                        "state %d has rtol = atol = 0: give at least one of them > 0", i);
+            return dyn_result_fail(
+                res, DYN_ERR_ARG, "state %d has rtol = atol = 0: give at least one of them > 0", i);
     }
     return DYN_OK;
 }
@@ -169,7 +161,7 @@ static int plan_output(const dyn_solve_opts *o, double t0, double t1, out_plan *
     memset(out, 0, sizeof *out);
     *t_end = t1;
     if (o && o->out_step != 0.0 && o->out_times)
-        return fail(res, DYN_ERR_ARG, "give either out_step or out_times, not both");
+        return dyn_result_fail(res, DYN_ERR_ARG, "give either out_step or out_times, not both");
     if (o && o->out_step != 0.0) {
         out->mode = 1;
         if (dyn_grid_plan(t0, t1, o->out_step, o->end, &out->grid, res->message,
@@ -186,13 +178,13 @@ static int plan_output(const dyn_solve_opts *o, double t0, double t1, out_plan *
         for (long i = 0; i < out->count; i++) {
             const double ti = out->times[i];
             if (!(ti >= t0 && ti <= t1))
-                return fail(res, DYN_ERR_ARG,
-                            "output time %s (number %ld) is outside the span [%s, %s]",
-                            dyn_shortest(ti).s, i + 1, dyn_shortest(t0).s, dyn_shortest(t1).s);
+                return dyn_result_fail(
+                    res, DYN_ERR_ARG, "output time %s (number %ld) is outside the span [%s, %s]",
+                    dyn_shortest(ti).s, i + 1, dyn_shortest(t0).s, dyn_shortest(t1).s);
             if (i > 0 && ti < out->times[i - 1])
-                return fail(res, DYN_ERR_ARG,
-                            "output times must not decrease: %s (number %ld) follows %s",
-                            dyn_shortest(ti).s, i + 1, dyn_shortest(out->times[i - 1]).s);
+                return dyn_result_fail(
+                    res, DYN_ERR_ARG, "output times must not decrease: %s (number %ld) follows %s",
+                    dyn_shortest(ti).s, i + 1, dyn_shortest(out->times[i - 1]).s);
         }
     }
     return DYN_OK;
@@ -211,7 +203,7 @@ static int emit_until(out_plan *out, const dyn_solve_opts *o, double limit, int 
         if (o->output) {
             res->stats.samples++;
             if (o->output(out->k++, to, yo, o->output_ctx))
-                return fail(res, DYN_STOPPED, "output stopped the run at t = %g", to);
+                return dyn_result_fail(res, DYN_STOPPED, "output stopped the run at t = %g", to);
         }
     }
     return DYN_OK;
@@ -230,25 +222,27 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
         opts = &no_opts;
     const dyn_stepper_ops *ops = dyn_stepper_ops_for(m);
     if (!m)
-        return fail(res, DYN_ERR_ARG, "no method given");
+        return dyn_result_fail(res, DYN_ERR_ARG, "no method given");
     if (m->kind == DYN_KIND_MAP)
-        return fail(res, DYN_ERR_ARG,
-                    "%s is a discrete map: dyn_fixed_solve iterates it (events, resets and "
-                    "samples between its steps need an integrator)",
-                    m->name);
+        return dyn_result_fail(
+            res, DYN_ERR_ARG,
+            "%s is a discrete map: dyn_fixed_solve iterates it (events, resets and "
+            "samples between its steps need an integrator)",
+            m->name);
     if (!ops)
-        return fail(res, DYN_ERR_ARG, "method %s cannot be run by dyn_solve", m->name);
+        return dyn_result_fail(res, DYN_ERR_ARG, "method %s cannot be run by dyn_solve", m->name);
     if (!sys || !sys->f)
-        return fail(res, DYN_ERR_ARG, "no right-hand side given");
+        return dyn_result_fail(res, DYN_ERR_ARG, "no right-hand side given");
     const int n = sys->n;
     if (n <= 0)
-        return fail(res, DYN_ERR_ARG, "number of states %d is not accepted: it must be >= 1", n);
+        return dyn_result_fail(res, DYN_ERR_ARG,
+                               "number of states %d is not accepted: it must be >= 1", n);
     if (!y0 || !work)
-        return fail(res, DYN_ERR_ARG, "initial state or workspace is NULL");
+        return dyn_result_fail(res, DYN_ERR_ARG, "initial state or workspace is NULL");
     if (!isfinite(t0) || !isfinite(t1) || !(t1 > t0))
-        return fail(res, DYN_ERR_ARG,
-                    "time span [%g, %g] is not accepted: t0 and t1 must be finite and t1 > t0", t0,
-                    t1);
+        return dyn_result_fail(
+            res, DYN_ERR_ARG,
+            "time span [%g, %g] is not accepted: t0 and t1 must be finite and t1 > t0", t0, t1);
     const int fixed = !dyn_method_is_adaptive(m);
     dyn_grid steps;
     if (fixed && dyn_grid_plan(t0, t1, opts->h, opts->end, &steps, res->message,
@@ -262,29 +256,32 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
     if (fixed)
         memset(&tol, 0, sizeof tol);
     if (!fixed && (!(opts->max_step >= 0.0) || !(opts->initial_step >= 0.0)))
-        return fail(res, DYN_ERR_ARG,
-                    "max_step %g and initial_step %g must be >= 0 (0: automatic)", opts->max_step,
-                    opts->initial_step);
+        return dyn_result_fail(res, DYN_ERR_ARG,
+                               "max_step %g and initial_step %g must be >= 0 (0: automatic)",
+                               opts->max_step, opts->initial_step);
     if (!fixed && opts->beta > 0.0 && !(dyn_sinl_ctl_exponent(m->error_order, opts->beta) > 0.0))
-        return fail(res, DYN_ERR_ARG,
-                    "beta %g is not accepted for %s: the step-size exponent 1/(q+1) - 0.75 beta "
-                    "must stay > 0 (q = %d), so beta < %g",
-                    opts->beta, m->name, m->error_order,
-                    1.0 / (0.75 * (double)((m->error_order > 0 ? m->error_order : 1) + 1)));
+        return dyn_result_fail(
+            res, DYN_ERR_ARG,
+            "beta %g is not accepted for %s: the step-size exponent 1/(q+1) - 0.75 beta "
+            "must stay > 0 (q = %d), so beta < %g",
+            opts->beta, m->name, m->error_order,
+            1.0 / (0.75 * (double)((m->error_order > 0 ? m->error_order : 1) + 1)));
     const int ne = opts->events ? opts->n_events : 0;
     if (ne < 0)
-        return fail(res, DYN_ERR_ARG, "n_events %d is not accepted", ne);
+        return dyn_result_fail(res, DYN_ERR_ARG, "n_events %d is not accepted", ne);
     for (int i = 0; i < ne; i++)
         if (!opts->events[i].g)
-            return fail(res, DYN_ERR_ARG, "event %d has no function g", i);
+            return dyn_result_fail(res, DYN_ERR_ARG, "event %d has no function g", i);
     if (opts->jac_banded && (opts->jac_lower < 0 || opts->jac_upper < 0 ||
                              opts->jac_lower >= n || opts->jac_upper >= n))
-        return fail(res, DYN_ERR_ARG,
-                    "the band of the Jacobian (lower %d, upper %d) must have 0 <= lower, upper < "
-                    "n = %d",
-                    opts->jac_lower, opts->jac_upper, n);
+        return dyn_result_fail(
+            res, DYN_ERR_ARG,
+            "the band of the Jacobian (lower %d, upper %d) must have 0 <= lower, upper < "
+            "n = %d",
+            opts->jac_lower, opts->jac_upper, n);
     if (dyn_solve_iwork_size(m, n) > 0 && !opts->iwork)
-        return fail(res, DYN_ERR_ARG, "method %s needs integer workspace (opts.iwork)", m->name);
+        return dyn_result_fail(res, DYN_ERR_ARG, "method %s needs integer workspace (opts.iwork)",
+                               m->name);
     out_plan out;
     double t_end;
     if (plan_output(opts, t0, t1, &out, &t_end, res))
@@ -294,10 +291,11 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
     const int q = ops->dense_degree(m);
     dyn_dense_record *rec = opts->record;
     if (rec && (rec->n != n || rec->degree != q))
-        return fail(res, DYN_ERR_ARG,
-                    "the recorder is for %d states and degree %d; method %s needs %d states and "
-                    "degree %d (dyn_method_dense_degree)",
-                    rec->n, rec->degree, m->name, n, q);
+        return dyn_result_fail(
+            res, DYN_ERR_ARG,
+            "the recorder is for %d states and degree %d; method %s needs %d states and "
+            "degree %d (dyn_method_dense_degree)",
+            rec->n, rec->degree, m->name, n, q);
 
     /* workspace */
     const size_t N = (size_t)n;
@@ -345,8 +343,8 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
     if (bad >= 0) {
         res->fail_t = t0;
         res->fail_index = bad;
-        return fail(res, DYN_ERR_NONFINITE, "initial state %d is not finite (%g)", bad,
-                    ycur[bad]);
+        return dyn_result_fail(res, DYN_ERR_NONFINITE, "initial state %d is not finite (%g)", bad,
+                               ycur[bad]);
     }
     int rc = ops->start(&st, t0, ycur);
     if (rc)
@@ -359,7 +357,7 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
             if (opts->output) {
                 res->stats.samples++;
                 if (opts->output(out.k++, t0, ycur, opts->output_ctx)) {
-                    fail(res, DYN_STOPPED, "output stopped the run at t = %g", t0);
+                    dyn_result_fail(res, DYN_STOPPED, "output stopped the run at t = %g", t0);
                     goto finish;
                 }
             }
@@ -429,10 +427,10 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
             }
         }
         if (max_steps > 0 && res->stats.steps >= max_steps) {
-            fail(res, DYN_ERR_MAX_STEPS,
-                 "reached the limit of %ld steps at t = %s (h = %g): raise the limit, "
-                 "loosen the tolerances, or use a method for stiff problems",
-                 max_steps, dyn_shortest(t).s, h);
+            dyn_result_fail(res, DYN_ERR_MAX_STEPS,
+                            "reached the limit of %ld steps at t = %s (h = %g): raise the limit, "
+                            "loosen the tolerances, or use a method for stiff problems",
+                            max_steps, dyn_shortest(t).s, h);
             goto finish;
         }
         double err = 0.0;
@@ -445,8 +443,8 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
                 bad = first_nonfinite(ynew, n);
                 res->fail_t = tnext;
                 res->fail_index = bad;
-                fail(res, DYN_ERR_NONFINITE, "state %d became not finite at t = %s", bad,
-                     dyn_shortest(tnext).s);
+                dyn_result_fail(res, DYN_ERR_NONFINITE, "state %d became not finite at t = %s", bad,
+                                dyn_shortest(tnext).s);
                 goto finish;
             }
         } else if (!(err <= 1.0)) {
@@ -463,16 +461,18 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
                 if (bad >= 0) {
                     res->fail_t = tnext;
                     res->fail_index = bad;
-                    fail(res, DYN_ERR_NONFINITE,
-                         "state %d became not finite at t = %s for every step size down to "
-                         "%g",
-                         bad, dyn_shortest(tnext).s, hn);
+                    dyn_result_fail(
+                        res, DYN_ERR_NONFINITE,
+                        "state %d became not finite at t = %s for every step size down to "
+                        "%g",
+                        bad, dyn_shortest(tnext).s, hn);
                 } else {
                     res->fail_t = t;
-                    fail(res, DYN_ERR_STEP_SIZE,
-                         "step size underflow at t = %s: the error test fails with h = %g "
-                         "(a singularity, a discontinuity, or tolerances below rounding)",
-                         dyn_shortest(t).s, hn);
+                    dyn_result_fail(
+                        res, DYN_ERR_STEP_SIZE,
+                        "step size underflow at t = %s: the error test fails with h = %g "
+                        "(a singularity, a discontinuity, or tolerances below rounding)",
+                        dyn_shortest(t).s, hn);
                 }
                 goto finish;
             }
@@ -515,9 +515,9 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
             if (rec->count >= rec->capacity &&
                 !(rec->grow && rec->grow(rec, rec->grow_ctx) == 0 &&
                   rec->count < rec->capacity)) {
-                fail(res, DYN_ERR_CAPACITY,
-                     "the dense-output recorder is full (%ld steps) at t = %s", rec->count,
-                     dyn_shortest(t).s);
+                dyn_result_fail(res, DYN_ERR_CAPACITY,
+                                "the dense-output recorder is full (%ld steps) at t = %s",
+                                rec->count, dyn_shortest(t).s);
                 goto finish;
             }
             double *b = rec->data + (size_t)rec->count * dyn_dense_record_block(n, q);
@@ -527,7 +527,7 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
             rec->count++;
         }
         if (opts->step && opts->step(&d, opts->step_ctx)) {
-            fail(res, DYN_STOPPED, "the step callback stopped the run at t = %g", tnext);
+            dyn_result_fail(res, DYN_STOPPED, "the step callback stopped the run at t = %g", tnext);
             goto finish;
         }
         /* events and output samples of this step, in time order */
@@ -571,10 +571,10 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
                     t = te;
                     res->rhs_status = rc;
                     res->fail_t = te;
-                    fail(res, DYN_ERR_RHS,
-                         "the reset of event %d (%s) failed at t = %s (status %d)", idx,
-                         opts->events[idx].name ? opts->events[idx].name : "unnamed",
-                         dyn_shortest(te).s, rc);
+                    dyn_result_fail(res, DYN_ERR_RHS,
+                                    "the reset of event %d (%s) failed at t = %s (status %d)", idx,
+                                    opts->events[idx].name ? opts->events[idx].name : "unnamed",
+                                    dyn_shortest(te).s, rc);
                     goto finish;
                 }
             }
@@ -586,20 +586,21 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
             if (bad >= 0) {
                 res->fail_t = t;
                 res->fail_index = bad;
-                fail(res, DYN_ERR_NONFINITE,
-                     "the reset of event %d made state %d not finite at t = %s", reset_idx,
-                     bad, dyn_shortest(t).s);
+                dyn_result_fail(res, DYN_ERR_NONFINITE,
+                                "the reset of event %d made state %d not finite at t = %s",
+                                reset_idx, bad, dyn_shortest(t).s);
                 goto finish;
             }
             /* Zeno: resets that follow each other without time advancing */
             const double window = DYN_ZENO_WINDOW * fmax(fabs(t), t1 - t0);
             zeno = n_resets > 0 && t - t_last_reset <= window ? zeno + 1 : 0;
             if (zeno >= DYN_ZENO_RESETS) {
-                fail(res, DYN_ERR_ZENO,
-                     "Zeno behaviour: %d resets in a row, each less than %.3g s after the one "
-                     "before, up to t = %s (event %d (%s) last): the resets accumulate here",
-                     zeno, window, dyn_shortest(t).s, reset_idx,
-                     opts->events[reset_idx].name ? opts->events[reset_idx].name : "unnamed");
+                dyn_result_fail(
+                    res, DYN_ERR_ZENO,
+                    "Zeno behaviour: %d resets in a row, each less than %.3g s after the one "
+                    "before, up to t = %s (event %d (%s) last): the resets accumulate here",
+                    zeno, window, dyn_shortest(t).s, reset_idx,
+                    opts->events[reset_idx].name ? opts->events[reset_idx].name : "unnamed");
                 goto finish;
             }
             n_resets++;
@@ -621,7 +622,7 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
                 /* with a sample at every step, the state after the reset at the event */
                 res->stats.samples++;
                 if (output(out.k++, t, ycur, opts->output_ctx)) {
-                    fail(res, DYN_STOPPED, "output stopped the run at t = %g", t);
+                    dyn_result_fail(res, DYN_STOPPED, "output stopped the run at t = %g", t);
                     goto finish;
                 }
             }
@@ -656,7 +657,7 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
             if (!already && opts->output) {
                 res->stats.samples++;
                 if (opts->output(out.k++, t_stop, ycur, opts->output_ctx)) {
-                    fail(res, DYN_STOPPED, "output stopped the run at t = %g", t_stop);
+                    dyn_result_fail(res, DYN_STOPPED, "output stopped the run at t = %g", t_stop);
                     t = t_stop;
                     goto finish;
                 }
@@ -675,14 +676,14 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
         if (out.mode == 0 && output) {
             res->stats.samples++;
             if (output(out.k++, t, ycur, opts->output_ctx)) {
-                fail(res, DYN_STOPPED, "output stopped the run at t = %g", t);
+                dyn_result_fail(res, DYN_STOPPED, "output stopped the run at t = %g", t);
                 goto finish;
             }
         }
         if (progress && --progress_countdown == 0) {
             progress_countdown = progress_every;
             if (progress(t, (t - t0) / (t_end - t0), opts->progress_ctx)) {
-                fail(res, DYN_CANCELLED, "cancelled at t = %g", t);
+                dyn_result_fail(res, DYN_CANCELLED, "cancelled at t = %g", t);
                 goto finish;
             }
         }
@@ -698,8 +699,8 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
 rhs_failed:
     res->rhs_status = rc;
     res->fail_t = st.fail_t;
-    fail(res, DYN_ERR_RHS, "the right-hand side failed at t = %s (status %d)",
-         dyn_shortest(st.fail_t).s, rc);
+    dyn_result_fail(res, DYN_ERR_RHS, "the right-hand side failed at t = %s (status %d)",
+                    dyn_shortest(st.fail_t).s, rc);
 
 finish:
     res->t = t;

@@ -1,6 +1,20 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* Names of solve statuses, for messages. */
+/* Names of solve statuses, for messages, and the failure of a result (result_fail.h). */
+#include <stdarg.h>
+#include <stdio.h>
+
 #include "dynkit/ode.h"
+#include "ode/result_fail.h"
+
+int dyn_result_fail(dyn_result *res, int status, const char *fmt, ...)
+{
+    va_list ap;
+    res->status = status;
+    va_start(ap, fmt);
+    vsnprintf(res->message, sizeof res->message, fmt, ap);
+    va_end(ap);
+    return status;
+}
 
 const char *dyn_status_name(int status)
 {

@@ -362,7 +362,8 @@ static void emit_specials(lang_ctx *c, const unsigned char *needed)
             continue;
         const lang_special *sp = &LVEC_AT(m->specials, lang_special, i);
         const lang_table *tb = &LVEC_AT(m->tables, lang_table, sp->table);
-        c->helpers |= H_CONV;
+        if (sp->kind == LANG_SUM_CONV || sp->kind == LANG_SUM_FCONV)
+            c->helpers |= H_CONV;
         line_dir(c, sp->pos);
         const char *u = special_block(c, sp, sp->root_kind, sp->root, sp->ulen, "spu");
         outf(c, "    double sp_%s[%d];\n", sp->name, sp->n);
@@ -460,7 +461,8 @@ static void helpers(lang_ctx *c)
                  "    const int period = type == 2 ? n : 2 * (n - 1);\n    q %= period;\n"
                  "    if (q < 0)\n        q += period;\n"
                  "    return u[q < n ? q : period - q];\n}\n"
-                 "static void dk_conv(double *out, int n, int m, int type, const double *w, "
+                 "static inline void dk_conv(double *out, int n, int m, int type, "
+                 "const double *w, "
                  "const double *u)\n{\n    for (int j = 0; j < n; j++) {\n"
                  "        double s = 0.0;\n        for (int i = -m; i <= m; i++)\n"
                  "            s += w[m + i] * dk_conv_at(u, n, j + i, type);\n"

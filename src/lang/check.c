@@ -224,11 +224,9 @@ static void resolve(lang_ctx *c, node *e, const rctx *r)
             lang_fail(c, e->pos, "%s cannot use the table '%s' (its values come after the "
                       "parameters)", r->what, tname);
         if (r->kind == CTX_TABLE && e->index >= r->table)
-            lang_fail(c, e->pos, "the formula of table '%s' uses table '%s', %s", 
+            lang_fail(c, e->pos, "the formula of table '%s' uses table '%s', %s",
                       LVEC_AT(m->tables, lang_table, r->table).name, tname,
                       e->index == r->table ? "itself" : "defined after it");
-        if (r->kind == CTX_FUNC)
-            ((lang_func *)r->func)->uses_table = 1;
     }
     if (e->kind == N_FUN && e->op == F_SPECIAL) {
         const lang_special *sp = &LVEC_AT(m->specials, lang_special, e->index);
@@ -385,7 +383,6 @@ static void func_calls(lang_ctx *c, const node *e, int *stack, int depth)
         const lang_func *f = &LVEC_AT(c->m.funcs, lang_func, e->index);
         caller->uses_state |= f->uses_state;
         caller->uses_time |= f->uses_time;
-        caller->uses_table |= f->uses_table;
     }
     if (e->kind == N_STATE || e->kind == N_TIME) {
         lang_func *caller = &LVEC_AT(c->m.funcs, lang_func, stack[depth - 1]);

@@ -228,7 +228,6 @@ static node *d_fun(lang_ctx *c, node *e, lang_dvar *v)
         return mul(c, slope, da);
     }
     case F_TABLE_SLOPE: return lang_num(c, 0.0);
-
     case F_SIN: return mul(c, fun(c, F_COS, a, NULL), da);
     case F_COS: return neg(c, mul(c, fun(c, F_SIN, a, NULL), da));
     case F_TAN: {

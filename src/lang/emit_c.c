@@ -174,6 +174,12 @@ static int func_marked(const lang_ctx *c, int f, int slot)
 
 static void expr(lang_ctx *c, const node *e, const ectx *x);
 
+/* The spacing of a table's abscissas (1 for a table of one point, never used then). */
+static double table_dx(const lang_table *tb)
+{
+    return tb->npts > 1 ? (tb->hi - tb->lo) / (double)(tb->npts - 1) : 1.0;
+}
+
 static void call_args(lang_ctx *c, const node *e, const ectx *x)
 {
     for (int i = 0; i < e->nargs; i++) {
@@ -278,7 +284,7 @@ static void expr(lang_ctx *c, const node *e, const ectx *x)
                  tb->offset, tb->npts);
             num_lit(c, tb->lo);
             puts_(c, ", ");
-            num_lit(c, tb->npts > 1 ? (tb->hi - tb->lo) / (double)(tb->npts - 1) : 1.0);
+            num_lit(c, table_dx(tb));
             puts_(c, ", ");
             expr(c, e->args[0], x);
             puts_(c, ")");
@@ -652,7 +658,7 @@ static void emit_table_values(lang_ctx *c)
         outf(c, "    for (long k = 0; k < %ld; k++) {\n        const double t = ", tb->npts);
         num_lit(c, tb->lo);
         puts_(c, " + ");
-        num_lit(c, tb->npts > 1 ? (tb->hi - tb->lo) / (double)(tb->npts - 1) : 1.0);
+        num_lit(c, table_dx(tb));
         outf(c, " * (double)k;\n        (void)t;\n        p[%d + k] = ", tb->offset);
         expr(c, tb->expr, &x);
         outf(c, ";\n        if (!isfinite(p[%d + k])) {\n            snprintf(err, errlen, "

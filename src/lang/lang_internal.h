@@ -29,6 +29,8 @@
 #define LANG_MAX_MEMORY ((size_t)1 << 29) /* bytes of the translator's own memory */
 #define LANG_MAX_COPIES 500000        /* nodes copied by inlining function bodies */
 #define LANG_MAX_OUTPUT ((size_t)1 << 28) /* bytes of C text */
+#define LANG_MAX_TABLE 1000000            /* points of the lookup tables */
+#define LANG_MAX_SUM_STACK 65536          /* doubles of the network sums' arrays (on the stack) */
 
 typedef struct lpos {
     int line, col; /* 1-based; 0 when not tied to a place */
@@ -128,7 +130,8 @@ typedef struct lang_func {
     int mark;
     int uses_state, uses_time; /* directly or through other functions */
     int uses_fix;              /* reads fixed temporaries: inlined where it is called */
-    int uses_table;            /* calls a table (directly or through other functions) */
+    int uses_table;            /* calls a table (directly or through other functions; set by
+                                * lang_check's passes over the functions) */
 } lang_func;
 
 typedef struct lang_assign {
@@ -154,8 +157,6 @@ typedef struct lang_event {
  * from a formula of t (expr, computed with the parameters by prepare) or from a file
  * (values); a function of one argument by linear interpolation, extrapolated linearly
  * beyond [lo, hi] as XPPAUT does. Its values live in the parameter array from offset on. */
-#define LANG_MAX_TABLE 1000000 /* points of the tables */
-#define LANG_MAX_SUM_STACK 65536 /* doubles of the network sums' arrays (on the stack) */
 typedef struct lang_table {
     const char *name;
     lpos pos;

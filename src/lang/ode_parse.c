@@ -528,17 +528,36 @@ static double table_number(lang_ctx *c, lang_lexer *lx, const char *what)
     return v;
 }
 
+/* The number of points n of table name, written where (NULL: in the statement, else the
+ * file that begins with it): a whole number from 1 to LANG_MAX_TABLE, or fail. */
+static long table_points(lang_ctx *c, const char *name, double n, const char *where, lpos pos)
+{
+    if (!(n == floor(n) && n >= 1 && n <= LANG_MAX_TABLE))
+        lang_fail(c, pos, "table '%s'%s%s%s: %.15g points: give a whole number from 1 to %d", name,
+                  where ? " ('" : "", where ? where : "", where ? "' begins with it)" : "", n,
+                  LANG_MAX_TABLE);
+    return (long)n;
+}
+
+/* The abscissas of a table whose points are counted already. */
 static void table_size(lang_ctx *c, lang_table *tb, lpos pos)
 {
-    if (!(tb->npts >= 1 && tb->npts <= LANG_MAX_TABLE))
-        lang_fail(c, pos, "table '%s': %ld points: give 1 to %d", tb->name, tb->npts,
-                  LANG_MAX_TABLE);
     if (tb->npts > 1 && !(tb->hi > tb->lo))
         lang_fail(c, pos, "table '%s': the last abscissa %g must be above the first, %g",
                   tb->name, tb->hi, tb->lo);
     if (!isfinite(tb->lo) || !isfinite(tb->hi) || !isfinite(tb->hi - tb->lo))
         lang_fail(c, pos, "table '%s': the abscissas %g to %g are not finite numbers with a "
                   "finite span", tb->name, tb->lo, tb->hi);
+}
+
+/* Up to max values from fp into v, stopping at a word that is not a number or at a value
+ * that is not finite; returns how many finite ones were read. */
+static long scan_values(FILE *fp, double *v, long max)
+{
+    long k = 0;
+    while (k < max && fscanf(fp, "%lf", &v[k]) == 1 && isfinite(v[k]))
+        k++;
+    return k;
 }
 
 /* The values of a table file (XPPAUT's format: npts, xlo, xhi, then npts values, separated
@@ -552,31 +571,21 @@ static void read_table_file(lang_ctx *c, lang_table *tb, const char *file, lpos 
     FILE *fp = fopen(path, "r");
     if (!fp)
         lang_fail(c, pos, "table '%s': cannot read '%s': %s", tb->name, path, strerror(errno));
-    double head[3];
+    double head[3]; /* read as numbers, finite or not (table_size judges the abscissas) */
     int got = 0;
-    for (; got < 3 && fscanf(fp, "%lf", &head[got]) == 1; got++)
-        ;
-    if (got < 3) {
-        fclose(fp);
+    while (got < 3 && fscanf(fp, "%lf", &head[got]) == 1)
+        got++;
+    /* the values when the count can be one (table_points judges it below) */
+    const long want = got == 3 && head[0] >= 1 && head[0] <= LANG_MAX_TABLE ? (long)head[0] : 0;
+    double *v = want ? lang_alloc(c, (size_t)want * sizeof *v) : NULL;
+    const long k = want ? scan_values(fp, v, want) : 0;
+    fclose(fp);
+    if (got < 3)
         lang_fail(c, pos, "table '%s': '%s' must begin with the number of points, xlo and xhi",
                   tb->name, path);
-    }
-    tb->npts = head[0] == floor(head[0]) && head[0] >= 1 && head[0] <= LANG_MAX_TABLE
-                   ? (long)head[0]
-                   : -1;
+    tb->npts = table_points(c, tb->name, head[0], path, pos);
     tb->lo = head[1];
     tb->hi = head[2];
-    if (tb->npts < 0) {
-        fclose(fp);
-        lang_fail(c, pos, "table '%s': '%s' begins with %g points: give a whole number from "
-                  "1 to %d", tb->name, path, head[0], LANG_MAX_TABLE);
-    }
-    double *v = lang_alloc(c, (size_t)tb->npts * sizeof *v);
-    long k = 0;
-    for (; k < tb->npts && fscanf(fp, "%lf", &v[k]) == 1; k++)
-        if (!isfinite(v[k]))
-            break;
-    fclose(fp);
     if (k < tb->npts)
         lang_fail(c, pos, "table '%s': '%s' has %ld finite values after its first three "
                   "numbers; it announces %ld", tb->name, path, k, tb->npts);
@@ -602,11 +611,7 @@ static void parse_table(lang_ctx *c, lang_lexer *lx)
     tb.name = name;
     tb.pos = npos;
     if (formula) {
-        const double n = table_number(c, lx, "the number of points");
-        tb.npts = n == floor(n) && n >= 1 && n <= LANG_MAX_TABLE ? (long)n : -1;
-        if (tb.npts < 0)
-            lang_fail(c, npos, "table '%s': %.15g points: give a whole number from 1 to %d", name,
-                      n, LANG_MAX_TABLE);
+        tb.npts = table_points(c, name, table_number(c, lx, "the number of points"), NULL, npos);
         tb.lo = table_number(c, lx, "the first abscissa");
         tb.hi = table_number(c, lx, "the last abscissa");
         tb.expr = expr_to_end(lx, "the table's formula of t");
@@ -705,32 +710,32 @@ static void parse_special(lang_ctx *c, lang_lexer *lx, lpos kpos)
         }
         sp.root_name = arg[mm ? 3 : 4];
         sp.root_pos = apos[mm ? 3 : 4];
-        lang_declare(c, name, npos, SYM_SPECIAL, c->m.specials.n);
-        *(lang_special *)lvec_push(c, &c->m.specials, sizeof sp) = sp;
-        return;
-    }
-    /* XPPAUT reads the type by its first letter (junk.ode writes 'period') */
-    const int t0 = tolower((unsigned char)arg[0][0]);
-    if (t0 == 'e' && isalpha((unsigned char)arg[0][0]))
-        sp.type = LANG_CONV_EVEN;
-    else if (t0 == 'p')
-        sp.type = LANG_CONV_PERIODIC;
-    else if (strcmp(arg[0], "0") == 0)
-        sp.type = LANG_CONV_ZERO;
-    else
-        lang_fail(c, apos[0], "conv's type is even, periodic or 0 (zero beyond the ends), not "
-                  "'%s'", arg[0]);
-    sp.n = special_count(c, arg[1], apos[1], "the number of sums", 1);
-    sp.m = special_count(c, arg[2], apos[2], "the half-width", 0);
-    sp.table_name = arg[3];
-    sp.table_pos = apos[3];
-    sp.root_name = arg[4];
-    sp.root_pos = apos[4];
-    if (fconv) {
-        sp.vroot_name = arg[5];
-        sp.vroot_pos = apos[5];
-        sp.func_name = arg[6];
-        sp.func_pos = apos[6];
+    } else {
+        /* XPPAUT reads the type by its first letter (junk.ode writes 'period') */
+        const int t0 = tolower((unsigned char)arg[0][0]);
+        if (t0 == 'e')
+            sp.type = LANG_CONV_EVEN;
+        else if (t0 == 'p')
+            sp.type = LANG_CONV_PERIODIC;
+        else if (strcmp(arg[0], "0") == 0)
+            sp.type = LANG_CONV_ZERO;
+        else
+            lang_fail(c, apos[0],
+                      "conv's type is even, periodic or 0 (zero beyond the ends), "
+                      "not '%s'",
+                      arg[0]);
+        sp.n = special_count(c, arg[1], apos[1], "the number of sums", 1);
+        sp.m = special_count(c, arg[2], apos[2], "the half-width", 0);
+        sp.table_name = arg[3];
+        sp.table_pos = apos[3];
+        sp.root_name = arg[4];
+        sp.root_pos = apos[4];
+        if (fconv) {
+            sp.vroot_name = arg[5];
+            sp.vroot_pos = apos[5];
+            sp.func_name = arg[6];
+            sp.func_pos = apos[6];
+        }
     }
     lang_declare(c, name, npos, SYM_SPECIAL, c->m.specials.n);
     *(lang_special *)lvec_push(c, &c->m.specials, sizeof sp) = sp;

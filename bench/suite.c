@@ -58,8 +58,10 @@
 #include <dynkit/solve.h>
 #include <dynkit/solve_inline.h>
 
-#include "suite.h"
+#include "family.h"
 #include "hand_loops.h"
+#include "suite.h"
+#include "wp_front.h"
 #include "wp_svg.h"
 
 #define MAX_N 12
@@ -602,17 +604,20 @@ static int local_solve(const bench_sys *sys, bench_task task, bench_solver *out,
         add_dk(out, &count, max, xi, "dynkit inline", label, BENCH_INLINE, mi->order, 0.0,
                dk_solve_run);
     }
-    /* diagnostics, to keep the controllers' choices measured (docs/solvers.md): dop853
-     * with the default controller of Hairer's dop853.f (pure I: beta = 0, safety 0.9,
-     * 0.333 <= h_new/h <= 6) instead of dynkit's (DOPRI5's PI controller), and dp45 with
-     * dopri5.f's safety 0.9 instead of its own 0.8 */
+    /* diagnostics, to keep the controllers' choices measured (docs/solvers.md; over many
+     * problems in section 2b, family.c): dop853 with the default controller of Hairer's
+     * dop853.f (pure I: beta = 0, safety 0.9, 0.333 <= h_new/h <= 6) instead of dynkit's
+     * (DOPRI5's PI controller), and dop853 and dp45 with the reference codes' safety 0.9
+     * instead of their own 0.85 and 0.8 */
     if (task == BENCH_TASK_ADAPTIVE) {
-        const dyn_solve_opts i_ctl = {.beta = -1.0 /* negative: none */, .fac_min = 0.333,
-                                      .fac_max = 6.0};
+        const dyn_solve_opts i_ctl = {
+            .safety = 0.9, .beta = -1.0 /* negative: none */, .fac_min = 0.333, .fac_max = 6.0};
         const dyn_solve_opts safety_09 = {.safety = 0.9};
         add_controller_diagnostic(out, &count, max, sys, "dop853", &i_ctl,
                                   "diagnostic: dynkit dop853, dop853.f's I controller "
                                   "(beta 0, 0.333 .. 6)");
+        add_controller_diagnostic(out, &count, max, sys, "dop853", &safety_09,
+                                  "diagnostic: dynkit dop853, dop853.f's safety 0.9");
         add_controller_diagnostic(out, &count, max, sys, "dp45", &safety_09,
                                   "diagnostic: dynkit dp45, dopri5.f's safety 0.9");
     }
@@ -674,6 +679,31 @@ static void release(bench_solver *s, int count)
     for (int i = 0; i < count; i++)
         if (s[i].destroy)
             s[i].destroy(s[i].ctx);
+}
+
+/* section 2b (family.c): the adaptive section's solvers without its diagnostic and
+ * header-only rows, and dynkit's pairs with other controller settings */
+static const options *family_options;
+static int family_collect(const bench_sys *sys, bench_solver *out, int max)
+{
+    bench_solver all[MAX_SOLVERS];
+    const int n = collect(family_options, sys, BENCH_TASK_ADAPTIVE, BENCH_NMETHOD, all);
+    int count = 0;
+    for (int i = 0; i < n; i++) {
+        if (!(all[i].flags & (BENCH_DIAG | BENCH_INLINE | BENCH_WRONG)) && count < max)
+            out[count++] = all[i];
+        else if (all[i].destroy)
+            all[i].destroy(all[i].ctx);
+    }
+    return count;
+}
+
+static int family_variant(const bench_sys *sys, const char *method, const dyn_solve_opts *ctl,
+                          const char *label, bench_solver *out, int max)
+{
+    int count = 0;
+    add_controller_diagnostic(out, &count, max, sys, method, ctl, label);
+    return count;
 }
 
 /* ------------------------------------------------------------------------------------------
@@ -820,6 +850,12 @@ static void add_target(int met, const char *task, const char *what, const char *
     t->met = met;
 }
 
+static void family_target(int met, const char *task, const char *what, const char *goal,
+                          const char *value)
+{
+    add_target(met, task, what, goal, "%s", value);
+}
+
 static int checks_failed;
 static void check(int ok, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 static void check(int ok, const char *fmt, ...)
@@ -836,6 +872,8 @@ static void check(int ok, const char *fmt, ...)
 }
 
 /* Notes under a table: each distinct one once. */
+static void family_check(int ok, const char *message) { check(ok, "%s", message); }
+
 static void print_notes(const bench_solver *s, int count)
 {
     for (int i = 0; i < count; i++) {
@@ -948,37 +986,10 @@ typedef struct curve {
     int ok[MAX_TOLS];
 } curve;
 
-/* Cost at error level e on the solver's Pareto front (points sorted by cost, each kept when
- * its error is below that of every cheaper point), linear in log-log between neighbours;
- * NAN outside the errors the front covers. */
+/* Cost at error level e on the solver's work-precision front (wp_front.h). */
 static double cost_at(const curve *c, const double *cost, double e)
 {
-    int idx[MAX_TOLS], k = 0;
-    for (int i = 0; i < c->n; i++)
-        if (c->ok[i] && c->err[i] > 0 && cost[i] > 0)
-            idx[k++] = i;
-    for (int a = 1; a < k; a++) /* insertion sort by cost */
-        for (int b = a; b > 0 && cost[idx[b]] < cost[idx[b - 1]]; b--) {
-            const int t = idx[b];
-            idx[b] = idx[b - 1];
-            idx[b - 1] = t;
-        }
-    double fe[MAX_TOLS], fc[MAX_TOLS];
-    int nf = 0;
-    for (int a = 0; a < k; a++)
-        if (nf == 0 || c->err[idx[a]] < fe[nf - 1]) {
-            fe[nf] = c->err[idx[a]];
-            fc[nf] = cost[idx[a]];
-            nf++;
-        }
-    for (int a = 0; a + 1 < nf; a++)
-        if (e <= fe[a] && e >= fe[a + 1]) {
-            const double w = (log(e) - log(fe[a])) / (log(fe[a + 1]) - log(fe[a]));
-            return exp(log(fc[a]) + w * (log(fc[a + 1]) - log(fc[a])));
-        }
-    if (nf == 1 && e == fe[0])
-        return fc[0];
-    return NAN;
+    return wp_front_cost_at(c->n, c->err, cost, c->ok, e);
 }
 
 static void write_svg(const options *o, const char *file, const char *title, const char *ylabel,
@@ -1421,16 +1432,17 @@ static void usage(FILE *out)
             "  --min            the minimum of the timed samples, not their median (a loaded "
             "machine)\n"
             "  --reps N         timed repetitions (default 15 fixed step, 7 adaptive)\n"
-            "  --only LIST      sections, comma-separated: fixed,adaptive,stiff,report\n"
+            "  --only LIST      sections, comma-separated: fixed,adaptive,family,stiff,report\n"
             "  --peers LIST     gsl,boost,sundials (those built), all, or none\n"
             "  --svg DIR        write the work-precision diagrams wp-*.svg into DIR\n"
-            "  --csv DIR        write the adaptive and stiff measurements wp-*.csv into DIR\n"
+            "  --csv DIR        write the adaptive, family and stiff measurements wp-*.csv into "
+            "DIR\n"
             "  --report-runs N  runs of `dynkit report` (default 20)\n");
 }
 
 int main(int argc, char **argv)
 {
-    options o = {0, 15, 7, 15, 0, "", NULL, NULL, 20};
+    options o = {0, 15, 7, 31, 0, "", NULL, NULL, 20};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         int n;
@@ -1446,9 +1458,11 @@ int main(int argc, char **argv)
             i++;
         } else if (strcmp(a, "--only") == 0 && v) {
             o.sections = (strstr(v, "fixed") ? 1 : 0) | (strstr(v, "adaptive") ? 2 : 0) |
-                         (strstr(v, "stiff") ? 4 : 0) | (strstr(v, "report") ? 8 : 0);
+                         (strstr(v, "stiff") ? 4 : 0) | (strstr(v, "report") ? 8 : 0) |
+                         (strstr(v, "family") ? 16 : 0);
             if (!o.sections) {
-                fprintf(stderr, "bench_suite: --only %s: give fixed, adaptive, stiff, report\n", v);
+                fprintf(stderr,
+                        "bench_suite: --only %s: give fixed, adaptive, family, stiff, report\n", v);
                 return 2;
             }
             i++;
@@ -1568,6 +1582,12 @@ int main(int argc, char **argv)
                          "arenstorf-period (dynkit/problems.h)", "wp-arenstorf");
         adaptive_section(&o, &sys_kep, BENCH_TASK_ADAPTIVE, kep_start,
                          "the initial state (exact after one period, 2 pi)", "wp-kepler");
+    }
+    if (o.sections & 16) {
+        family_options = &o;
+        const family_env env = {o.quick,        o.csv_dir,     family_collect,
+                                family_variant, family_target, family_check};
+        family_section(&env);
     }
     if (o.sections & 4) {
         printf("\n## 3. Stiff\n");

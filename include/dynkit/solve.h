@@ -149,8 +149,8 @@ typedef struct dyn_solve_opts {
     double max_step;       /* adaptive: largest step; 0: t1 - t0 */
     long max_steps;        /* attempted steps at most; 0: no limit (DYN_ERR_MAX_STEPS) */
     /* step-size controller (0: the defaults below) */
-    double safety;         /* the pair's own: 0.8 for dp45 (MATLAB's ode45), 0.9 for the
-                            * others (dopri5.f, dop853.f) */
+    double safety;         /* the pair's own: 0.8 for bs23 and dp45 (MATLAB's ode23 and
+                            * ode45), 0.85 for dop853 */
     double beta;           /* PI term 0.04; negative: 0 (pure I controller); must keep
                             * 1/(q+1) - 0.75 beta > 0 (q: the error order) */
     double fac_min;        /* smallest step ratio h_new/h, 0.2 */

@@ -2,8 +2,9 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # bench/run.sh — every benchmark in one command: builds a Release tree (build-bench, or
 # $DYNKIT_BENCH_BUILD) with the peers CMake finds (GSL, Boost.Odeint, SUNDIALS; installed by
-# scripts/install-deps.sh), runs bench_suite (fixed steps, adaptive work-precision, stiff,
-# `dynkit report`, then the table of targets), its fixed-step section again from a tree
+# scripts/install-deps.sh), runs bench_suite (fixed steps, adaptive work-precision, calls
+# over families of problems, stiff, `dynkit report`, then the table of targets), its
+# fixed-step section again from a tree
 # built at -O2 (build-bench-O2), bench_jit (models compiled at run time; not with --only),
 # bench_sweep, bench_band (large stiff systems), bench_step (one step of the adaptive pairs)
 # and bench_output (numbers as text, every

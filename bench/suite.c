@@ -14,6 +14,9 @@
  *    pairs; calls and time are then compared at equal error (interpolated on the log-log
  *    curve), since equal tolerances are not equal accuracy: dyn_solve against GSL (both
  *    call the right-hand side through a pointer), dyn_solve_inline against Boost.
+ * 2b. right-hand-side calls at equal error over families of problems (family.c): the pairs
+ *    against the peers' methods of the same order over 24 van der Pol orbits, and each
+ *    pair's controller settings over 30 problems.
  * 3. stiff van der Pol (mu = 1000, [0, 3000]): dynkit's stiff methods against CVODE and
  *    GSL's msbdf, at equal error.
  * 4. `dynkit report` end to end (the whole homework), as a separate process: with its

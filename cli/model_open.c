@@ -19,10 +19,6 @@ enum { MODEL_FILE_MAX_BYTES = 16 << 20, MAX_LOADED = 16 };
 
 static dyn_jit_model loaded[MAX_LOADED];
 static int n_loaded;
-/* loaded from a model file with algebraic equations (0=...), for the messages of a failed
- * run: the C text defines the solver's constants */
-static unsigned char loaded_algebraic[MAX_LOADED];
-static int next_algebraic;
 static int verbose;
 
 void cli_set_verbose(int on) { verbose = on; }
@@ -122,8 +118,6 @@ static int keep_loaded(const dyn_jit_model *jm, const char *path, const dyn_mode
 {
     if (n_loaded == 0)
         atexit(unload_all);
-    loaded_algebraic[n_loaded] = (unsigned char)next_algebraic;
-    next_algebraic = 0;
     loaded[n_loaded++] = *jm;
     *model = jm->model;
     if (verbose && jm->cached)
@@ -171,7 +165,6 @@ static int open_model_file(const char *spec, const dyn_model **model)
             fputs(dyn_lang_diag_format(&diag, shown, sizeof shown), stderr);
             return rc == 1 ? CLI_FAILED : CLI_USAGE;
         }
-        next_algebraic = strstr(c_source, "#define DK_ALG_M ") != NULL;
         rc = dyn_jit_load_source(c_source, strlen(c_source), spec, NULL, &jm, err, sizeof err);
         free(c_source);
     }
@@ -180,18 +173,12 @@ static int open_model_file(const char *spec, const dyn_model **model)
     return keep_loaded(&jm, spec, model);
 }
 
-int cli_model_has_algebraic(const dyn_model *m)
-{
-    for (int i = 0; i < n_loaded; i++)
-        if (loaded[i].model == m)
-            return loaded_algebraic[i];
-    return 0;
-}
-
 int cli_model_is_file(const char *spec)
 {
-    return ends_with(spec, ".ode") || ends_with(spec, ".c") || ends_with(spec, ".so");
+    return cli_is_ode_path(spec) || ends_with(spec, ".c") || ends_with(spec, ".so");
 }
+
+int cli_is_ode_path(const char *spec) { return ends_with(spec, ".ode"); }
 
 /* The Brusselator of size N (dynkit/brusselator.h): "brusselator" (the default N) or
  * "brusselator:N". Returns 1 when spec names it (then *rc is the status), else 0. */

@@ -620,30 +620,26 @@ static const char *display_name(lang_ctx *c, const char *name, lpos pos, const c
         return LVEC_AT(c->m.states, lang_state, s->index).name;
     if (s && s->kind == SYM_AUX)
         return LVEC_AT(c->m.auxs, lang_formula, s->index).name;
-    if (s && s->kind == SYM_ALG)
-        lang_fail(c, pos,
-                  "option '%s': '%s' is an algebraic variable: name an aux output of "
-                  "it (aux %s_=%s)",
-                  option, name, name, name);
     const char *near = nearest_symbol(c, name, NULL, 0);
     lang_fail(c, pos, "option '%s': '%s' is not a state or an aux output%s%s%s", option, name,
               near ? " (did you mean '" : "", near ? near : "", near ? "'?)" : "");
 }
 
-void lang_alg_uses(lang_ctx *c, const node *e, unsigned char *used, unsigned char *fix_seen,
-                   unsigned char *fun_seen)
+/* The algebraic variables e reads, directly or through fixed quantities and functions
+ * (each visited once). */
+static void alg_uses(lang_ctx *c, const node *e, unsigned char *used, unsigned char *fix_seen,
+                     unsigned char *fun_seen)
 {
     for (int i = 0; i < e->nargs; i++)
-        lang_alg_uses(c, e->args[i], used, fix_seen, fun_seen);
+        alg_uses(c, e->args[i], used, fix_seen, fun_seen);
     if (e->kind == N_ALG)
         used[e->index] = 1;
     else if (e->kind == N_FIX && !fix_seen[e->index]) {
         fix_seen[e->index] = 1;
-        lang_alg_uses(c, LVEC_AT(c->m.fixes, lang_formula, e->index).expr, used, fix_seen,
-                      fun_seen);
+        alg_uses(c, LVEC_AT(c->m.fixes, lang_formula, e->index).expr, used, fix_seen, fun_seen);
     } else if (e->kind == N_UFUN && !fun_seen[e->index]) {
         fun_seen[e->index] = 1;
-        lang_alg_uses(c, LVEC_AT(c->m.funcs, lang_func, e->index).body, used, fix_seen, fun_seen);
+        alg_uses(c, LVEC_AT(c->m.funcs, lang_func, e->index).body, used, fix_seen, fun_seen);
     }
 }
 
@@ -678,7 +674,7 @@ static void check_algebraic(lang_ctx *c, const rctx *rhs)
     unsigned char *fix_seen = lang_alloc(c, (size_t)m->fixes.n + 1);
     unsigned char *fun_seen = lang_alloc(c, (size_t)m->funcs.n + 1);
     for (int i = 0; i < m->algeqs.n; i++)
-        lang_alg_uses(c, LVEC_AT(m->algeqs, lang_formula, i).expr, used, fix_seen, fun_seen);
+        alg_uses(c, LVEC_AT(m->algeqs, lang_formula, i).expr, used, fix_seen, fun_seen);
     for (int i = 0; i < m->algs.n; i++)
         if (!used[i]) {
             const lang_formula *f = &LVEC_AT(m->algs, lang_formula, i);

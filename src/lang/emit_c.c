@@ -434,13 +434,12 @@ static unsigned char *needed_by(lang_ctx *c, node *const *roots, int n)
 }
 
 /* ---- differential-algebraic systems ----
- * The algebraic variables w solve the 0= equations r(t, y, w) = 0 (XPPAUT's solv and 0=)
- * at every evaluation of the right-hand side (so that the branch followed is tracked along
- * the run) and wherever else they are read, by the solver of alg_solver.c. Their slots in
- * p, after the tables: the last solution, the initial guesses, each variable's scale (the
- * largest magnitude so far), the earliest time solved, the time and the state of the last
- * solution. An evaluation at or before that earliest time (the start of every run, also a
- * second run from the same parameters) starts from the guesses. */
+ * The algebraic variables w solve the 0= equations r(t, y, w) = 0 (XPPAUT's solv and 0=),
+ * by Newton's method with a difference Jacobian, at every evaluation that needs them. Their
+ * slots in p, after the tables: the last solution (the next start), the initial guesses,
+ * and the earliest time evaluated so far. An evaluation at or before that time (the start
+ * of every run, also a second run from the same parameters) starts from the guesses, every
+ * later one from the last solution, so the branch followed is the guesses' at t0. */
 
 /* Index in p of the first slot of the algebraic variables. */
 static int alg_offset(const lang_model *m)
@@ -476,39 +475,25 @@ static int needs_alg(lang_ctx *c, node *const *roots, int n, const unsigned char
 }
 
 /* w at (t, y) into a local array; on failure the statement fail. In the right-hand side
- * (keep), the solution and its point are the next start. */
-static void emit_alg_solve(lang_ctx *c, const char *fail, int keep)
-{
-    outf(c, "    double w[DK_ALG_M];\n    if (dk_alg_solve(t, y, p, w))\n        %s\n", fail);
-    if (keep)
-        puts_(c, "    dk_alg_keep(t, y, par, w);\n");
-}
-
-/* The constants of alg_solver.c's text: sizes, slots in p, limits. */
-static void emit_alg_constants(lang_ctx *c)
+ * (remember), the solution and the time are kept for the next start. */
+static void emit_alg_solve(lang_ctx *c, const char *fail, int remember)
 {
     const lang_model *m = &c->m;
-    const int na = m->algs.n, n = m->states.n, off = alg_offset(m);
-    outf(c,
-         "#define DK_ALG_M %d /* algebraic variables */\n#define DK_ALG_N %d /* states */\n"
-         "#define DK_ALG_W %d /* p: the last solution */\n"
-         "#define DK_ALG_G %d /* the initial guesses */\n"
-         "#define DK_ALG_S %d /* the scales, the largest magnitudes so far */\n"
-         "#define DK_ALG_T %d /* the earliest time solved */\n"
-         "#define DK_ALG_TP %d /* the time of the last solution */\n"
-         "#define DK_ALG_YP %d /* its state */\n"
-         "#define DK_ALG_ITER %ld /* iterations at most (newt_iter) */\n"
-         "#define DK_ALG_PATH %d /* continuation along a segment (up to 4096 states) */\n"
-         "#define DK_ALG_FAILED %d /* no solution near the branch (dynkit/lang.h) */\n\n",
-         na, n, off, off + na, off + 2 * na, off + 3 * na, off + 3 * na + 1, off + 3 * na + 2,
-         m->newt_iter > 0 ? m->newt_iter : 50L, n <= 4096, DYN_LANG_ALG_FAILED);
+    const int off = alg_offset(m), na = m->algs.n;
+    outf(c, "    double w[%d];\n    if (dk_alg_solve(t, y, p, w))\n        %s\n", na, fail);
+    if (remember)
+        outf(c,
+             "    {\n        double *q = (double *)par;\n"
+             "        for (int i = 0; i < %d; i++)\n            q[%d + i] = w[i];\n"
+             "        if (t < q[%d])\n            q[%d] = t;\n    }\n",
+             na, off, off + 2 * na, off + 2 * na);
 }
 
-/* dk_alg_residual (r from the 0= equations), then the solver (alg_solver.c). */
+/* dk_alg_residual (r from the 0= equations) and dk_alg_solve (Newton's method). */
 static void emit_alg_functions(lang_ctx *c)
 {
     lang_model *m = &c->m;
-    const int na = m->algs.n;
+    const int na = m->algs.n, off = alg_offset(m);
     if (na == 0)
         return;
     node **roots = lang_alloc(c, (size_t)na * sizeof *roots);
@@ -527,8 +512,57 @@ static void emit_alg_functions(lang_ctx *c)
         expr(c, f->expr, &x);
         puts_(c, ";\n");
     }
-    puts_(c, "}\n\n#line 1 \"<dynkit: the solver of the algebraic equations>\"\n");
-    puts_(c, lang_alg_solver_text());
+    puts_(c, "}\n\n");
+    /* Newton: J dw = r by elimination with partial pivoting, w -= dw, until the largest
+     * relative step is below 1e-13, or below 1e-9 and no longer halving (the rounding
+     * floor of r). It fails on a zero pivot (a singular Jacobian: an equation that does not
+     * depend on the variables), a step that is not finite, too many iterations, or, from
+     * the last solution, a root more than half of 1 + |w| away from it: another branch,
+     * reached where the one followed ends (an impasse point) */
+    outf(c,
+         "static int dk_alg_solve(double t, const double *y, const double *p, double *w)\n"
+         "{\n    enum { M = %d };\n    const double *start = t <= p[%d] ? p + %d : p + %d;\n"
+         "    double r[M], r1[M], J[M * M], dw[M], last = INFINITY;\n"
+         "    for (int i = 0; i < M; i++)\n        w[i] = start[i];\n"
+         "    for (long it = 0; it < %ld; it++) {\n"
+         "        dk_alg_residual(t, y, p, w, r);\n"
+         "        for (int j = 0; j < M; j++) {\n"
+         "            const double wj = w[j];\n"
+         "            const double h = 1.4901161193847656e-08 * (fabs(wj) > 1.0 ? fabs(wj) : "
+         "1.0);\n"
+         "            w[j] = wj + h;\n            dk_alg_residual(t, y, p, w, r1);\n"
+         "            w[j] = wj;\n            for (int i = 0; i < M; i++)\n"
+         "                J[i * M + j] = (r1[i] - r[i]) / h;\n        }\n"
+         "        for (int i = 0; i < M; i++)\n            dw[i] = r[i];\n"
+         "        for (int k = 0; k < M; k++) {\n            int q = k;\n"
+         "            for (int i = k + 1; i < M; i++)\n"
+         "                if (fabs(J[i * M + k]) > fabs(J[q * M + k]))\n"
+         "                    q = i;\n"
+         "            if (!(fabs(J[q * M + k]) > 0.0))\n                return 1;\n"
+         "            if (q != k) {\n                for (int j = 0; j < M; j++) {\n"
+         "                    const double s = J[k * M + j];\n"
+         "                    J[k * M + j] = J[q * M + j];\n"
+         "                    J[q * M + j] = s;\n                }\n"
+         "                const double s = dw[k];\n                dw[k] = dw[q];\n"
+         "                dw[q] = s;\n            }\n"
+         "            for (int i = k + 1; i < M; i++) {\n"
+         "                const double f = J[i * M + k] / J[k * M + k];\n"
+         "                for (int j = k; j < M; j++)\n"
+         "                    J[i * M + j] -= f * J[k * M + j];\n"
+         "                dw[i] -= f * dw[k];\n            }\n        }\n"
+         "        double step = 0.0;\n        for (int k = M - 1; k >= 0; k--) {\n"
+         "            double s = dw[k];\n            for (int j = k + 1; j < M; j++)\n"
+         "                s -= J[k * M + j] * dw[j];\n            dw[k] = s / J[k * M + k];\n"
+         "            w[k] -= dw[k];\n"
+         "            const double d = fabs(dw[k]) / (1.0 + fabs(w[k]));\n"
+         "            if (!(d <= step))\n                step = d;\n        }\n"
+         "        if (!(step <= 1e300))\n            return 1;\n"
+         "        if (step <= 1e-13 || (step <= 1e-9 && step >= 0.5 * last)) {\n"
+         "            for (int i = 0; start == p + %d && i < M; i++)\n"
+         "                if (!(fabs(w[i] - start[i]) <= 0.5 * (1.0 + fabs(start[i]))))\n"
+         "                    return 1;\n            return 0;\n        }\n"
+         "        last = step;\n    }\n    return 1;\n}\n\n",
+         na, off + 2 * na, off + na, off, m->newt_iter > 0 ? m->newt_iter : 50L, off);
 }
 
 /* ---- pieces of the model ---- */
@@ -704,13 +738,8 @@ static void emit_rhs(lang_ctx *c)
     puts_(c, "static int dk_rhs(double t, const double *y, double *dydt, void *par)\n{\n"
              "    const double *p = (const double *)par;\n    (void)t;\n    (void)y;\n"
              "    (void)p;\n");
-    if (m->algs.n) /* also when no derivative reads them: the branch is tracked here. No
-                    * solution: derivatives that are not finite, so that an adaptive method
-                    * tries a shorter step, as after any trial state that is not finite */
-        emit_alg_solve(c,
-                       "{\n        for (int i = 0; i < DK_ALG_N; i++)\n"
-                       "            dydt[i] = NAN;\n        return 0;\n    }",
-                       1);
+    if (needs_alg(c, roots, m->states.n, needed))
+        emit_alg_solve(c, "return DK_ALG_FAILED;", 1);
     emit_fixes(c, needed);
     const ectx x = {NULL, 1};
     for (int i = 0; i < m->states.n; i++) {
@@ -790,7 +819,7 @@ static int table_files(const lang_model *m)
  * algebraic variables' slots. */
 static int par_doubles(const lang_model *m)
 {
-    return alg_offset(m) + (m->algs.n ? 3 * m->algs.n + 2 + m->states.n : 0);
+    return alg_offset(m) + (m->algs.n ? 2 * m->algs.n + 1 : 0);
 }
 
 /* In prepare, after the tables: each index of a sparse sum must point into its block. */
@@ -834,30 +863,27 @@ static void emit_table_files(lang_ctx *c)
     }
 }
 
-/* In prepare: the algebraic variables' initial guesses (also their first start and their
- * first scale), and no time solved yet. */
+/* In prepare: the algebraic variables' initial guesses (also their first start), and no
+ * time evaluated yet. */
 static void emit_alg_guesses(lang_ctx *c)
 {
     const lang_model *m = &c->m;
-    const int na = m->algs.n;
+    const int na = m->algs.n, off = alg_offset(m);
     const ectx x = {NULL, 0};
     for (int i = 0; i < na; i++) {
         const lang_formula *f = &LVEC_AT(m->algs, lang_formula, i);
         line_dir(c, f->pos);
-        outf(c, "    p[DK_ALG_G + %d] = ", i);
+        outf(c, "    p[%d] = p[%d] = ", off + i, off + na + i);
         expr(c, f->expr, &x);
         outf(c,
-             ";\n    if (!isfinite(p[DK_ALG_G + %d])) {\n        snprintf(err, errlen, \"the "
-             "initial guess of algebraic variable '%%s' is not finite (%%g)\", ",
-             i);
+             ";\n    if (!isfinite(p[%d])) {\n        snprintf(err, errlen, \"the initial "
+             "guess of algebraic variable '%%s' is not finite (%%g)\", ",
+             off + i);
         str_lit(c, f->name);
-        outf(c,
-             ", p[DK_ALG_G + %d]);\n        return 1;\n    }\n    p[DK_ALG_W + %d] = "
-             "p[DK_ALG_G + %d];\n    p[DK_ALG_S + %d] = fabs(p[DK_ALG_G + %d]);\n",
-             i, i, i, i, i);
+        outf(c, ", p[%d]);\n        return 1;\n    }\n", off + i);
     }
     if (na)
-        puts_(c, "    p[DK_ALG_T] = INFINITY;\n    p[DK_ALG_TP] = 0.0;\n");
+        outf(c, "    p[%d] = INFINITY;\n", off + 2 * na);
 }
 
 static void emit_prepare(lang_ctx *c)
@@ -1076,8 +1102,6 @@ typedef struct state_span {
 typedef struct span_memo {
     state_span *fix, *fun;
     unsigned char *fix_done, *fun_done;
-    state_span alg; /* the states the algebraic equations read, together */
-    int alg_done;   /* 0, 1 while it is computed, 2 */
 } span_memo;
 
 static state_span span_join(state_span a, state_span b)
@@ -1096,17 +1120,8 @@ static state_span span_of(lang_ctx *c, const node *e, span_memo *mm)
         s = span_join(s, span_of(c, e->args[i], mm));
     if (e->kind == N_STATE) {
         s = span_join(s, (state_span){e->index, e->index});
-    } else if (e->kind == N_ALG) { /* solved from all the equations together */
-        if (mm->alg_done == 0) {
-            mm->alg_done = 1;
-            state_span a = {INT_MAX, INT_MIN};
-            for (int i = 0; i < c->m.algeqs.n; i++)
-                a = span_join(a, span_of(c, LVEC_AT(c->m.algeqs, lang_formula, i).expr, mm));
-            mm->alg = a;
-            mm->alg_done = 2;
-        }
-        if (mm->alg_done == 2)
-            s = span_join(s, mm->alg);
+    } else if (e->kind == N_ALG) { /* solved from equations that may read any state */
+        s = span_join(s, (state_span){0, c->m.states.n - 1});
     } else if (e->kind == N_FIX) {
         if (!mm->fix_done[e->index]) {
             mm->fix_done[e->index] = 1;
@@ -1145,14 +1160,6 @@ static void check_band_by_structure(lang_ctx *c)
     mm.fun = lang_alloc(c, nu * sizeof *mm.fun);
     mm.fix_done = lang_alloc(c, nf); /* zeroed */
     mm.fun_done = lang_alloc(c, nu);
-    mm.alg_done = 0;
-    if (m->algs.n) { /* the equations' states first; what was memoized on the way may miss
-                      * them: forgotten */
-        const node alg = {.kind = N_ALG};
-        (void)span_of(c, &alg, &mm);
-        memset(mm.fix_done, 0, nf);
-        memset(mm.fun_done, 0, nu);
-    }
     for (int i = 0; i < m->states.n; i++) {
         const state_span s = span_of(c, LVEC_AT(m->states, lang_state, i).rhs, &mm);
         if (s.lo > s.hi)
@@ -1453,8 +1460,8 @@ char *lang_emit_c(lang_ctx *c)
     if (table_files(m))
         puts_(c, "#include <string.h>\n");
     puts_(c, "\n#include <dynkit/model.h>\n\n");
-    if (m->algs.n)
-        emit_alg_constants(c);
+    if (m->algs.n) /* the status of a failed Newton's method (dynkit/lang.h) */
+        outf(c, "#define DK_ALG_FAILED %d\n\n", DYN_LANG_ALG_FAILED);
     helpers(c);
     emit_function_protos(c);
     put(c, defs, defs_len);

@@ -339,11 +339,6 @@ void lang_declare(lang_ctx *c, const char *name, lpos pos, sym_kind kind, int in
 const char *lang_sym_kind_name(sym_kind k);
 int lang_is_reserved(const char *name);
 void lang_check(lang_ctx *c);
-/* Flags in used (one per algebraic variable) for those e reads, directly or through fixed
- * quantities and functions; fix_seen and fun_seen (zeroed, one per fixed quantity and
- * function) mark what was visited. */
-void lang_alg_uses(lang_ctx *c, const node *e, unsigned char *used, unsigned char *fix_seen,
-                   unsigned char *fun_seen);
 
 /* source lines (source.c): the text as logical lines with continuation joined and arrays
  * expanded; calls fn for each line in order (stops when fn returns non-zero). */
@@ -393,8 +388,7 @@ double lang_eval(lang_ctx *c, const node *e, const double *args, const double *p
 double lang_apply_bin(int op, double a, double b);
 double lang_apply_fun(int op, double a, double b);
 
-/* C text (emit_c.c); the solver of the algebraic equations, a constant text (alg_solver.c) */
+/* C text (emit_c.c) */
 char *lang_emit_c(lang_ctx *c);
-const char *lang_alg_solver_text(void);
 
 #endif /* DYNKIT_LANG_INTERNAL_H */

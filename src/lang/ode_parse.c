@@ -508,10 +508,8 @@ static void parse_options(lang_ctx *c, lang_lexer *lx)
             m->has_band = 1;
         } else if (ieqn(name, n, "newt_iter")) {
             const double it = option_number(c, name, v, vpos);
-            if (!(it >= 2 && it <= 1e6 && it == floor(it)))
-                lang_fail(c, vpos,
-                          "newt_iter must be a whole number from 2 to 1000000 (a converged "
-                          "iteration takes two)");
+            if (!(it >= 1 && it <= 1e6 && it == floor(it)))
+                lang_fail(c, vpos, "newt_iter must be a whole number from 1 to 1000000");
             m->newt_iter = (long)it;
         } else if (ieqn(name, n, "newt_tol") || ieqn(name, n, "jac_eps")) {
             lang_note(c, pos,

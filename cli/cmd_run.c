@@ -6,8 +6,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "dynkit/lang.h"
-
 #include "cli.h"
 #include "table_formats.h"
 #include "out_file.h"
@@ -221,13 +219,6 @@ static void report_failure(const cli_run *run, const dyn_result *res, const doub
                 res->message);
     else
         fprintf(stderr, "dynkit: run failed: %s\n", res->message);
-    if (res->status == DYN_ERR_RHS && res->rhs_status == DYN_LANG_ALG_FAILED && m->source &&
-        cli_is_ode_path(m->source))
-        fprintf(stderr,
-                "dynkit: status %d of a model file: its algebraic equations (0=...) have "
-                "no solution near the last one (Newton's method failed: the branch followed "
-                "may end there, an impasse point)\n",
-                DYN_LANG_ALG_FAILED);
     fprintf(stderr, "dynkit: last good state at t = %s:", CLI_NUM(res->t));
     for (int i = 0; i < m->n_states; i++)
         fprintf(stderr, " %s = %s", m->states[i].name, CLI_NUM(y_good[i]));

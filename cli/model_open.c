@@ -175,10 +175,8 @@ static int open_model_file(const char *spec, const dyn_model **model)
 
 int cli_model_is_file(const char *spec)
 {
-    return cli_is_ode_path(spec) || ends_with(spec, ".c") || ends_with(spec, ".so");
+    return ends_with(spec, ".ode") || ends_with(spec, ".c") || ends_with(spec, ".so");
 }
-
-int cli_is_ode_path(const char *spec) { return ends_with(spec, ".ode"); }
 
 /* The Brusselator of size N (dynkit/brusselator.h): "brusselator" (the default N) or
  * "brusselator:N". Returns 1 when spec names it (then *rc is the status), else 0. */

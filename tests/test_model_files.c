@@ -587,83 +587,10 @@ static void test_network_sums(void **state)
     unlink(cli_path("conv.ode"));
 }
 
-/* The rows of a CSV text with cols columns into v; returns the number of rows. */
-static long csv_table(const char *text, double *v, long max_rows, int cols)
-{
-    int got = 0;
-    const long k = csv_numbers(text, v, max_rows * cols, &got);
-    return got == cols ? k / cols : -1;
-}
-
-/* Differential-algebraic systems (solv and 0=): two linear equations with a closed-form
- * solution, a quintic whose solution satisfies t = 2.75 - ln|y| - 1.5 y^2 - 1.25 y^4 (from
- * x' = y and x = -(y + y^3 + y^5)), and a cubic with a fold at w = 2/(3 sqrt 3), where the
- * branch chosen by the initial guess ends at t = 1 - ln sqrt 3 (an impasse point: the run
- * stops there with status 3, DYN_LANG_ALG_FAILED, and says why). */
-static void test_algebraic_equations(void **state)
-{
-    (void)state;
-    static double v[64 * 4];
-    write_file("lin.ode", "x'=-x+a\n0=a+b-x\n0=a-b-sin(t)\nsolv a=0, b=0\ninit x=1\naux av=a\n"
-                          "@ total=10, dt=0.5\ndone\n");
-    cli_result r = cli("run '%s' --outputs --rtol 1e-10 --atol 1e-12", cli_path("lin.ode"));
-    long rows = csv_table(r.out, v, 64, 3);
-    double ex = 0.0, ea = 0.0;
-    for (long k = 0; k < rows; k++) {
-        const double t = v[3 * k], x = v[3 * k + 1], a = v[3 * k + 2];
-        ex = fmax(ex, fabs(x - (sin(t) / 5.0 - 2.0 * cos(t) / 5.0 + 1.4 * exp(-t / 2.0))));
-        ea = fmax(ea, fabs(a - (x + sin(t)) / 2.0));
-    }
-    CHECK(r.status == 0 && rows == 21 && ex < 1e-8 && ea < 1e-13,
-          "linear DAE: exit %d, %ld rows, error of x %.3g, of a %.3g\n%s", r.status, rows, ex, ea,
-          r.err);
-    cli_free(&r);
-    write_file("quintic.ode", "x'=y\n0=x+y+y^3+y^5\nsolve y=-1\nx(0)=3\naux yy=y\n"
-                              "@ total=10, dt=0.5\ndone\n");
-    r = cli("run '%s' --outputs --rtol 1e-10 --atol 1e-12", cli_path("quintic.ode"));
-    rows = csv_table(r.out, v, 64, 3);
-    double et = 0.0, res = 0.0;
-    for (long k = 0; k < rows; k++) {
-        const double t = v[3 * k], x = v[3 * k + 1], y = v[3 * k + 2];
-        et = fmax(et, fabs(2.75 - log(fabs(y)) - 1.5 * y * y - 1.25 * pow(y, 4) - t));
-        res = fmax(res, fabs(x + y + pow(y, 3) + pow(y, 5)));
-    }
-    CHECK(r.status == 0 && rows == 21 && et < 1e-8 && res < 1e-14,
-          "quintic DAE: exit %d, %ld rows, error in t(y) %.3g, residual %.3g\n%s", r.status, rows,
-          et, res, r.err);
-    cli_free(&r);
-    write_file("fold.ode", "par g=1\nw'=v_\n0=v_*(1-v_*v_)-w\nsolv v_=g\naux v=v_\n"
-                           "@ total=2, dt=0.05\ndone\n");
-    const double t_fold = 1.0 - 0.5 * log(3.0), w_fold = 2.0 / (3.0 * sqrt(3.0));
-    for (int sign = 1; sign >= -1; sign -= 2) {
-        r = cli("run '%s' --final --set g=%d", cli_path("fold.ode"), sign);
-        double t = NAN, w = NAN;
-        const char *row = strchr(r.out, '\n');
-        CHECK(r.status == 1 && row && sscanf(row + 1, "%lf,%lf", &t, &w) == 2 &&
-                  t > t_fold - 0.05 && t < t_fold && sign * w > 0.9 * w_fold && sign * w < w_fold &&
-                  strstr(r.err, "status 3") &&
-                  strstr(r.err, "algebraic equations (0=...) have no solution near the last"),
-              "fold, guess %d: exit %d, %s%s", sign, r.status, r.out, r.err);
-        cli_free(&r);
-    }
-    /* a guess near 0 follows the middle branch, v = w = 0 */
-    r = cli("run '%s' --final --outputs --set g=0.1", cli_path("fold.ode"));
-    double t2 = NAN, w2 = NAN, v2 = NAN;
-    const char *row2 = strchr(r.out, '\n');
-    CHECK(r.status == 0 && row2 && sscanf(row2 + 1, "%lf,%lf,%lf", &t2, &w2, &v2) == 3 &&
-              t2 == 2.0 && fabs(w2) < 1e-12 && fabs(v2) < 1e-12,
-          "fold, the middle branch: exit %d, %s%s", r.status, r.out, r.err);
-    cli_free(&r);
-    unlink(cli_path("lin.ode"));
-    unlink(cli_path("quintic.ode"));
-    unlink(cli_path("fold.ode"));
-}
-
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_network_sums),
-        cmocka_unit_test(test_algebraic_equations),
         cmocka_unit_test(test_lookup_tables_in_a_run),
         cmocka_unit_test(test_difference_equation_is_a_map),
         cmocka_unit_test(test_pendulum_file_is_the_builtin),

@@ -200,7 +200,6 @@ static void expr(lang_ctx *c, const node *e, const ectx *x)
     case N_STATE: outf(c, "y[%d]", e->index); break;
     case N_PARAM: outf(c, "p[%d]", e->index); break;
     case N_FIX: outf(c, "v_%s", LVEC_AT(m->fixes, lang_formula, e->index).name); break;
-    case N_ALG: outf(c, "w[%d]", e->index); break;
     case N_DFIX:
         outf(c, "dv%d_%s", e->op, LVEC_AT(m->fixes, lang_formula, e->index).name);
         break;
@@ -433,138 +432,6 @@ static unsigned char *needed_by(lang_ctx *c, node *const *roots, int n)
     return needed;
 }
 
-/* ---- differential-algebraic systems ----
- * The algebraic variables w solve the 0= equations r(t, y, w) = 0 (XPPAUT's solv and 0=),
- * by Newton's method with a difference Jacobian, at every evaluation that needs them. Their
- * slots in p, after the tables: the last solution (the next start), the initial guesses,
- * and the earliest time evaluated so far. An evaluation at or before that time (the start
- * of every run, also a second run from the same parameters) starts from the guesses, every
- * later one from the last solution, so the branch followed is the guesses' at t0. */
-
-/* Index in p of the first slot of the algebraic variables. */
-static int alg_offset(const lang_model *m)
-{
-    int k = m->params.n + m->derived.n;
-    for (int i = 0; i < m->tables.n; i++)
-        k += (int)LVEC_AT(m->tables, lang_table, i).npts;
-    return k;
-}
-
-static int has_alg(const node *e)
-{
-    if (e->kind == N_ALG)
-        return 1;
-    for (int i = 0; i < e->nargs; i++)
-        if (has_alg(e->args[i]))
-            return 1;
-    return 0;
-}
-
-/* Whether roots, or the fixed quantities they need, read an algebraic variable. */
-static int needs_alg(lang_ctx *c, node *const *roots, int n, const unsigned char *needed)
-{
-    if (c->m.algs.n == 0)
-        return 0;
-    for (int i = 0; i < n; i++)
-        if (roots[i] && has_alg(roots[i]))
-            return 1;
-    for (int k = 0; k < c->m.fixes.n; k++)
-        if (needed[k] && has_alg(LVEC_AT(c->m.fixes, lang_formula, k).expr))
-            return 1;
-    return 0;
-}
-
-/* w at (t, y) into a local array; on failure the statement fail. In the right-hand side
- * (remember), the solution and the time are kept for the next start. */
-static void emit_alg_solve(lang_ctx *c, const char *fail, int remember)
-{
-    const lang_model *m = &c->m;
-    const int off = alg_offset(m), na = m->algs.n;
-    outf(c, "    double w[%d];\n    if (dk_alg_solve(t, y, p, w))\n        %s\n", na, fail);
-    if (remember)
-        outf(c,
-             "    {\n        double *q = (double *)par;\n"
-             "        for (int i = 0; i < %d; i++)\n            q[%d + i] = w[i];\n"
-             "        if (t < q[%d])\n            q[%d] = t;\n    }\n",
-             na, off, off + 2 * na, off + 2 * na);
-}
-
-/* dk_alg_residual (r from the 0= equations) and dk_alg_solve (Newton's method). */
-static void emit_alg_functions(lang_ctx *c)
-{
-    lang_model *m = &c->m;
-    const int na = m->algs.n, off = alg_offset(m);
-    if (na == 0)
-        return;
-    node **roots = lang_alloc(c, (size_t)na * sizeof *roots);
-    for (int i = 0; i < na; i++)
-        roots[i] = LVEC_AT(m->algeqs, lang_formula, i).expr;
-    unsigned char *needed = needed_by(c, roots, na);
-    puts_(c, "static void dk_alg_residual(double t, const double *y, const double *p, "
-             "const double *w, double *r)\n{\n    (void)t;\n    (void)y;\n    (void)p;\n"
-             "    (void)w;\n");
-    emit_fixes(c, needed);
-    const ectx x = {NULL, 1};
-    for (int i = 0; i < na; i++) {
-        const lang_formula *f = &LVEC_AT(m->algeqs, lang_formula, i);
-        line_dir(c, f->pos);
-        outf(c, "    r[%d] = ", i);
-        expr(c, f->expr, &x);
-        puts_(c, ";\n");
-    }
-    puts_(c, "}\n\n");
-    /* Newton: J dw = r by elimination with partial pivoting, w -= dw, until the largest
-     * relative step is below 1e-13, or below 1e-9 and no longer halving (the rounding
-     * floor of r). It fails on a zero pivot (a singular Jacobian: an equation that does not
-     * depend on the variables), a step that is not finite, too many iterations, or, from
-     * the last solution, a root more than half of 1 + |w| away from it: another branch,
-     * reached where the one followed ends (an impasse point) */
-    outf(c,
-         "static int dk_alg_solve(double t, const double *y, const double *p, double *w)\n"
-         "{\n    enum { M = %d };\n    const double *start = t <= p[%d] ? p + %d : p + %d;\n"
-         "    double r[M], r1[M], J[M * M], dw[M], last = INFINITY;\n"
-         "    for (int i = 0; i < M; i++)\n        w[i] = start[i];\n"
-         "    for (long it = 0; it < %ld; it++) {\n"
-         "        dk_alg_residual(t, y, p, w, r);\n"
-         "        for (int j = 0; j < M; j++) {\n"
-         "            const double wj = w[j];\n"
-         "            const double h = 1.4901161193847656e-08 * (fabs(wj) > 1.0 ? fabs(wj) : "
-         "1.0);\n"
-         "            w[j] = wj + h;\n            dk_alg_residual(t, y, p, w, r1);\n"
-         "            w[j] = wj;\n            for (int i = 0; i < M; i++)\n"
-         "                J[i * M + j] = (r1[i] - r[i]) / h;\n        }\n"
-         "        for (int i = 0; i < M; i++)\n            dw[i] = r[i];\n"
-         "        for (int k = 0; k < M; k++) {\n            int q = k;\n"
-         "            for (int i = k + 1; i < M; i++)\n"
-         "                if (fabs(J[i * M + k]) > fabs(J[q * M + k]))\n"
-         "                    q = i;\n"
-         "            if (!(fabs(J[q * M + k]) > 0.0))\n                return 1;\n"
-         "            if (q != k) {\n                for (int j = 0; j < M; j++) {\n"
-         "                    const double s = J[k * M + j];\n"
-         "                    J[k * M + j] = J[q * M + j];\n"
-         "                    J[q * M + j] = s;\n                }\n"
-         "                const double s = dw[k];\n                dw[k] = dw[q];\n"
-         "                dw[q] = s;\n            }\n"
-         "            for (int i = k + 1; i < M; i++) {\n"
-         "                const double f = J[i * M + k] / J[k * M + k];\n"
-         "                for (int j = k; j < M; j++)\n"
-         "                    J[i * M + j] -= f * J[k * M + j];\n"
-         "                dw[i] -= f * dw[k];\n            }\n        }\n"
-         "        double step = 0.0;\n        for (int k = M - 1; k >= 0; k--) {\n"
-         "            double s = dw[k];\n            for (int j = k + 1; j < M; j++)\n"
-         "                s -= J[k * M + j] * dw[j];\n            dw[k] = s / J[k * M + k];\n"
-         "            w[k] -= dw[k];\n"
-         "            const double d = fabs(dw[k]) / (1.0 + fabs(w[k]));\n"
-         "            if (!(d <= step))\n                step = d;\n        }\n"
-         "        if (!(step <= 1e300))\n            return 1;\n"
-         "        if (step <= 1e-13 || (step <= 1e-9 && step >= 0.5 * last)) {\n"
-         "            for (int i = 0; start == p + %d && i < M; i++)\n"
-         "                if (!(fabs(w[i] - start[i]) <= 0.5 * (1.0 + fabs(start[i]))))\n"
-         "                    return 1;\n            return 0;\n        }\n"
-         "        last = step;\n    }\n    return 1;\n}\n\n",
-         na, off + 2 * na, off + na, off, m->newt_iter > 0 ? m->newt_iter : 50L, off);
-}
-
 /* ---- pieces of the model ---- */
 
 static void helpers(lang_ctx *c)
@@ -738,8 +605,6 @@ static void emit_rhs(lang_ctx *c)
     puts_(c, "static int dk_rhs(double t, const double *y, double *dydt, void *par)\n{\n"
              "    const double *p = (const double *)par;\n    (void)t;\n    (void)y;\n"
              "    (void)p;\n");
-    if (needs_alg(c, roots, m->states.n, needed))
-        emit_alg_solve(c, "return DK_ALG_FAILED;", 1);
     emit_fixes(c, needed);
     const ectx x = {NULL, 1};
     for (int i = 0; i < m->states.n; i++) {
@@ -764,8 +629,6 @@ static void emit_outputs(lang_ctx *c)
     puts_(c, "static int dk_outputs(double t, const double *y, const void *par, double *out)\n"
              "{\n    const double *p = (const double *)par;\n    (void)t;\n    (void)y;\n"
              "    (void)p;\n");
-    if (needs_alg(c, roots, m->auxs.n, needed))
-        emit_alg_solve(c, "return DK_ALG_FAILED;", 0);
     emit_fixes(c, needed);
     const ectx x = {NULL, 1};
     for (int i = 0; i < m->auxs.n; i++) {
@@ -815,11 +678,13 @@ static int table_files(const lang_model *m)
     return k;
 }
 
-/* Doubles of the parameter array: parameters, derived parameters, the tables' values, the
- * algebraic variables' slots. */
+/* Doubles of the parameter array: parameters, derived parameters, the tables' values. */
 static int par_doubles(const lang_model *m)
 {
-    return alg_offset(m) + (m->algs.n ? 2 * m->algs.n + 1 : 0);
+    int k = m->params.n + m->derived.n;
+    for (int i = 0; i < m->tables.n; i++)
+        k += (int)LVEC_AT(m->tables, lang_table, i).npts;
+    return k;
 }
 
 /* In prepare, after the tables: each index of a sparse sum must point into its block. */
@@ -863,29 +728,6 @@ static void emit_table_files(lang_ctx *c)
     }
 }
 
-/* In prepare: the algebraic variables' initial guesses (also their first start), and no
- * time evaluated yet. */
-static void emit_alg_guesses(lang_ctx *c)
-{
-    const lang_model *m = &c->m;
-    const int na = m->algs.n, off = alg_offset(m);
-    const ectx x = {NULL, 0};
-    for (int i = 0; i < na; i++) {
-        const lang_formula *f = &LVEC_AT(m->algs, lang_formula, i);
-        line_dir(c, f->pos);
-        outf(c, "    p[%d] = p[%d] = ", off + i, off + na + i);
-        expr(c, f->expr, &x);
-        outf(c,
-             ";\n    if (!isfinite(p[%d])) {\n        snprintf(err, errlen, \"the initial "
-             "guess of algebraic variable '%%s' is not finite (%%g)\", ",
-             off + i);
-        str_lit(c, f->name);
-        outf(c, ", p[%d]);\n        return 1;\n    }\n", off + i);
-    }
-    if (na)
-        outf(c, "    p[%d] = INFINITY;\n", off + 2 * na);
-}
-
 static void emit_prepare(lang_ctx *c)
 {
     lang_model *m = &c->m;
@@ -920,7 +762,6 @@ static void emit_prepare(lang_ctx *c)
     }
     emit_table_values(c);
     emit_sparse_checks(c);
-    emit_alg_guesses(c);
     puts_(c, "    (void)err;\n    (void)errlen;\n    return 0;\n}\n\n");
 }
 
@@ -1120,8 +961,6 @@ static state_span span_of(lang_ctx *c, const node *e, span_memo *mm)
         s = span_join(s, span_of(c, e->args[i], mm));
     if (e->kind == N_STATE) {
         s = span_join(s, (state_span){e->index, e->index});
-    } else if (e->kind == N_ALG) { /* solved from equations that may read any state */
-        s = span_join(s, (state_span){0, c->m.states.n - 1});
     } else if (e->kind == N_FIX) {
         if (!mm->fix_done[e->index]) {
             mm->fix_done[e->index] = 1;
@@ -1188,8 +1027,6 @@ static void emit_events(lang_ctx *c)
                 "    const double *p = (const double *)par;\n    (void)t;\n    (void)y;\n"
                 "    (void)p;\n",
              i);
-        if (needs_alg(c, &root, 1, needed))
-            emit_alg_solve(c, "return NAN;", 0);
         emit_fixes(c, needed);
         line_dir(c, ev->pos);
         puts_(c, "    return ");
@@ -1206,8 +1043,6 @@ static void emit_events(lang_ctx *c)
             root = a->value;
             needed = needed_by(c, &root, 1);
             puts_(c, "    {\n");
-            if (needs_alg(c, &root, 1, needed))
-                emit_alg_solve(c, "return DK_ALG_FAILED;", 0);
             emit_fixes(c, needed);
             line_dir(c, a->pos);
             outf(c, "        y[%d] = ", a->state);
@@ -1306,11 +1141,7 @@ char *lang_emit_c(lang_ctx *c)
                   "bandlo=%d, bandup=%d: a bandwidth of the Jacobian must be below the number "
                   "of states, %d",
                   m->band_lo, m->band_up, n);
-    int with_jac = n <= LANG_MAX_JAC_STATES && m->algs.n == 0;
-    if (m->algs.n)
-        lang_note(c, LVEC_AT(m->algs, lang_formula, 0).pos,
-                  "no analytic Jacobian: the algebraic variables are solved for numerically; "
-                  "the stiff methods use finite differences");
+    int with_jac = n <= LANG_MAX_JAC_STATES;
     if (with_jac) {
         with_jac = try_jacobian(c, &jp);
         if (with_jac && jp.band_bad_i >= 0)
@@ -1324,14 +1155,13 @@ char *lang_emit_c(lang_ctx *c)
                       abs(jp.band_bad_i - jp.band_bad_j),
                       abs(jp.band_bad_i - jp.band_bad_j) == 1 ? "" : "s",
                       jp.band_bad_i > jp.band_bad_j ? "below" : "above");
-    } else if (m->algs.n == 0) {
+    } else {
         lang_note(c, (lpos){0, 0}, "%d states: no analytic Jacobian (at most %d); the stiff "
                   "methods use finite differences", n, LANG_MAX_JAC_STATES);
     }
     if (m->has_band && !with_jac)
         check_band_by_structure(c); /* the band is then formed by banded differences */
 
-    emit_alg_functions(c);
     emit_rhs(c);
     emit_outputs(c);
     emit_table_files(c);
@@ -1460,8 +1290,6 @@ char *lang_emit_c(lang_ctx *c)
     if (table_files(m))
         puts_(c, "#include <string.h>\n");
     puts_(c, "\n#include <dynkit/model.h>\n\n");
-    if (m->algs.n) /* the status of a failed Newton's method (dynkit/lang.h) */
-        outf(c, "#define DK_ALG_FAILED %d\n\n", DYN_LANG_ALG_FAILED);
     helpers(c);
     emit_function_protos(c);
     put(c, defs, defs_len);

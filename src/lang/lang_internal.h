@@ -31,7 +31,6 @@
 #define LANG_MAX_OUTPUT ((size_t)1 << 28) /* bytes of C text */
 #define LANG_MAX_TABLE 1000000            /* points of the lookup tables */
 #define LANG_MAX_SUM_STACK 65536          /* doubles of the network sums' arrays (on the stack) */
-#define LANG_MAX_ALG 100                  /* algebraic variables (a dense Newton system) */
 
 typedef struct lpos {
     int line, col; /* 1-based; 0 when not tied to a place */
@@ -45,24 +44,23 @@ typedef struct lvec {
 
 /* ---- expression tree ---- */
 typedef enum node_kind {
-    N_NUM,    /* num */
-    N_NAME,   /* unresolved name (after parsing) */
-    N_TIME,   /* t */
-    N_STATE,  /* y[index] */
-    N_PARAM,  /* p[index] (parameters, then derived parameters) */
-    N_FIX,    /* fixed temporary index */
-    N_ARG,    /* argument index of the enclosing user function */
-    N_NEG,    /* -a */
-    N_NOT,    /* not a */
-    N_BIN,    /* a op b */
-    N_FUN,    /* built-in function op of args */
-    N_UFUN,   /* user function index of args */
-    N_IF,     /* if(a)then(b)else(c) */
-    N_DFIX,   /* derivative of fixed temporary index with respect to state op (a local) */
+    N_NUM,   /* num */
+    N_NAME,  /* unresolved name (after parsing) */
+    N_TIME,  /* t */
+    N_STATE, /* y[index] */
+    N_PARAM, /* p[index] (parameters, then derived parameters) */
+    N_FIX,   /* fixed temporary index */
+    N_ARG,   /* argument index of the enclosing user function */
+    N_NEG,   /* -a */
+    N_NOT,   /* not a */
+    N_BIN,   /* a op b */
+    N_FUN,   /* built-in function op of args */
+    N_UFUN,  /* user function index of args */
+    N_IF,    /* if(a)then(b)else(c) */
+    N_DFIX,  /* derivative of fixed temporary index with respect to state op (a local) */
     N_UFUN_D, /* partial derivative op (argument) of user function index, of args */
     N_SUM,    /* sum(a,b)of(c): unrolled by check.c before names are resolved */
-    N_SUMIDX, /* i', the index of a sum */
-    N_ALG     /* algebraic variable index (solved from the 0= equations) */
+    N_SUMIDX  /* i', the index of a sum */
 } node_kind;
 
 typedef enum bin_op {
@@ -216,18 +214,8 @@ typedef struct lang_docline {
 } lang_docline;
 
 typedef enum sym_kind {
-    SYM_NONE,
-    SYM_STATE,
-    SYM_PARAM,
-    SYM_NUMBER,
-    SYM_DERIVED,
-    SYM_FIX,
-    SYM_AUX,
-    SYM_FUNC,
-    SYM_TABLE,
-    SYM_SPECIAL,
-    SYM_ALG,
-    SYM_RESERVED
+    SYM_NONE, SYM_STATE, SYM_PARAM, SYM_NUMBER, SYM_DERIVED, SYM_FIX, SYM_AUX, SYM_FUNC,
+    SYM_TABLE, SYM_SPECIAL, SYM_RESERVED
 } sym_kind;
 
 typedef struct lang_sym {
@@ -248,12 +236,6 @@ typedef struct lang_model {
     lvec events;   /* lang_event */
     lvec tables;   /* lang_table */
     lvec specials; /* lang_special */
-    /* differential-algebraic systems (XPPAUT's `solv NAME=guess` and `0=expr`): the
-     * algebraic variables (expr: the initial guess, a formula of the parameters, or NULL
-     * for 0) and the equations that determine them, as many of each */
-    lvec algs;      /* lang_formula */
-    lvec algeqs;    /* lang_formula (name: NULL) */
-    long newt_iter; /* Newton iterations at most (XPPAUT's @ newt_iter; 0: the default) */
     lvec inits;    /* lang_init */
     lvec docs;     /* lang_docline */
     /* symbol table: open addressing on the case-folded name */

@@ -50,6 +50,8 @@ int cli_is_help(const char *arg);
 int cli_model_open(const char *command, const char *spec, const dyn_model **model);
 /* 1 if MODEL names a model file (.ode, .c, .so) rather than a built-in model. */
 int cli_model_is_file(const char *spec);
+/* 1 for a model loaded from a model file with algebraic equations (0=...). */
+int cli_model_has_algebraic(const dyn_model *m);
 /* 1 when parameter `name` of m is its size (the Brusselator's N), which --set and sweeps
  * must not change: the size is chosen with the model (brusselator:N). */
 int cli_param_is_size(const dyn_model *m, const char *name);

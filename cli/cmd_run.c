@@ -6,6 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "dynkit/lang.h"
+
 #include "cli.h"
 #include "table_formats.h"
 #include "out_file.h"
@@ -219,6 +221,16 @@ static void report_failure(const cli_run *run, const dyn_result *res, const doub
                 res->message);
     else
         fprintf(stderr, "dynkit: run failed: %s\n", res->message);
+    /* a model file's algebraic equations: a right-hand side that is not finite is theirs
+     * (alg_solver.c); a stiff method may fail on the step size before */
+    if (cli_model_has_algebraic(m) && res->status != DYN_STOPPED && res->status != DYN_ERR_IO)
+        fprintf(stderr, "dynkit: the model's algebraic equations (0=...) %s\n",
+                res->status == DYN_ERR_NONFINITE ||
+                        (res->status == DYN_ERR_RHS && res->rhs_status == DYN_LANG_ALG_FAILED)
+                    ? "have no solution near the branch followed there: it ends at an "
+                      "impasse point (or the equations have no solution at all)"
+                    : "may have no solution past there: the branch followed may end at an "
+                      "impasse point");
     fprintf(stderr, "dynkit: last good state at t = %s:", CLI_NUM(res->t));
     for (int i = 0; i < m->n_states; i++)
         fprintf(stderr, " %s = %s", m->states[i].name, CLI_NUM(y_good[i]));

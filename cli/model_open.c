@@ -19,6 +19,10 @@ enum { MODEL_FILE_MAX_BYTES = 16 << 20, MAX_LOADED = 16 };
 
 static dyn_jit_model loaded[MAX_LOADED];
 static int n_loaded;
+/* loaded from a model file with algebraic equations (0=...), for the messages of a failed
+ * run: the C text defines the solver's constants */
+static unsigned char loaded_algebraic[MAX_LOADED];
+static int next_algebraic;
 static int verbose;
 
 void cli_set_verbose(int on) { verbose = on; }
@@ -118,6 +122,8 @@ static int keep_loaded(const dyn_jit_model *jm, const char *path, const dyn_mode
 {
     if (n_loaded == 0)
         atexit(unload_all);
+    loaded_algebraic[n_loaded] = (unsigned char)next_algebraic;
+    next_algebraic = 0;
     loaded[n_loaded++] = *jm;
     *model = jm->model;
     if (verbose && jm->cached)
@@ -165,12 +171,21 @@ static int open_model_file(const char *spec, const dyn_model **model)
             fputs(dyn_lang_diag_format(&diag, shown, sizeof shown), stderr);
             return rc == 1 ? CLI_FAILED : CLI_USAGE;
         }
+        next_algebraic = strstr(c_source, "#define DK_ALG_M ") != NULL;
         rc = dyn_jit_load_source(c_source, strlen(c_source), spec, NULL, &jm, err, sizeof err);
         free(c_source);
     }
     if (rc != 0)
         return compile_failed("compiling model", spec, err);
     return keep_loaded(&jm, spec, model);
+}
+
+int cli_model_has_algebraic(const dyn_model *m)
+{
+    for (int i = 0; i < n_loaded; i++)
+        if (loaded[i].model == m)
+            return loaded_algebraic[i];
+    return 0;
 }
 
 int cli_model_is_file(const char *spec)

@@ -79,9 +79,8 @@ static void test_refused_features_name_line_and_feature(void **state)
         {"x'=-x+int[.5]{exp(-t)#x}\n", 1, 7, "Volterra integrals ('int{...}')"},
         {"x'=1\nvolt u=exp(-t)\n", 2, 1, "Volterra integral equations ('volt')"},
         {"x'=1\nbdry x-1\n", 2, 1, "boundary-value problems ('bdry')"},
-        {"x'=-y\n0=y+exp(y)-x\n", 2, 1, "algebraic equations ('0=...'"},
-        {"x'=1\nspecial k=fsparse(51,5,w,ind,u0,v0,f)\n", 2, 1, "network sums ('special' with fsparse)"},
-        {"x'=1\nsolv y=-.5\n", 2, 1, "differential-algebraic equations ('solv')"},
+        {"x'=1\nspecial k=fsparse(51,5,w,ind,u0,v0,f)\n", 2, 1,
+         "network sums ('special' with fsparse)"},
         {"x'=1\nexport {x} {y}\n", 2, 1, "'export'"},
         {"x'=ran(1)\n", 1, 4, "random numbers ('ran')"},
         {"x'=normal(0,1)\n", 1, 4, "random numbers ('normal')"},
@@ -105,6 +104,33 @@ static void test_refused_features_name_line_and_feature(void **state)
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
         expect_error(cases[i].text, cases[i].line, cases[i].col, cases[i].what);
+}
+
+/* Differential-algebraic systems: as many 0= equations as solv variables, guesses and
+ * derived parameters of the parameters only, 0= written so, not in maps. */
+static void test_algebraic_equations_are_checked(void **state)
+{
+    (void)state;
+    expect_error("x'=1\n0=x-1\n", 2, 1,
+                 "1 algebraic equation (0=...) for 0 algebraic variables (solv): give as many of "
+                 "each");
+    expect_error("x'=1\nsolv y=-.5\n", 2, 6,
+                 "0 algebraic equations (0=...) for 1 algebraic variable (solv)");
+    expect_error("x'=-y\nsolv y\n0=y+exp(y)-x\n!a=2*y\n", 4, 6,
+                 "a derived parameter cannot depend on the algebraic variable 'y'");
+    expect_error("x'=-y\nsolv y=x\n0=y+exp(y)-x\n", 2, 8,
+                 "the initial guess of an algebraic variable cannot depend on the state 'x'");
+    expect_error("x'=1\n01=x\n", 2, 1, "an algebraic equation is written 0=expression");
+    expect_error("x'=z\nsolv v, z\n0=z-x\n0=z+x-1\n", 2, 6,
+                 "the algebraic variable 'v' appears in no algebraic equation");
+    expect_error("solv y\nx(t+1)=y\n0=y-x\n", 1, 6, "not discrete maps");
+    char *out = expect_ok("x'=-y\nsolv y=-.5\n0=y+exp(y)-x\n", NULL);
+    CHECK(strstr(out, "dk_alg_solve") && strstr(out, "w[0]"), "%s", out);
+    free(out);
+    /* read through a function only: the function is inlined where it is called */
+    out = expect_ok("f(u)=u+v\nx'=v\nsolv v\n0=f(x)\n", NULL);
+    CHECK(strstr(out, "w[0]"), "%s", out);
+    free(out);
 }
 
 static void test_unknown_names_suggest_the_nearest(void **state)
@@ -583,6 +609,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_refused_features_name_line_and_feature),
+        cmocka_unit_test(test_algebraic_equations_are_checked),
         cmocka_unit_test(test_unknown_names_suggest_the_nearest),
         cmocka_unit_test(test_kinds_of_names_are_checked),
         cmocka_unit_test(test_sums_and_shifts_are_checked),

@@ -587,10 +587,142 @@ static void test_network_sums(void **state)
     unlink(cli_path("conv.ode"));
 }
 
+/* The rows of a CSV text with cols columns into v; returns the number of rows. */
+static long csv_table(const char *text, double *v, long max_rows, int cols)
+{
+    int got = 0;
+    const long k = csv_numbers(text, v, max_rows * cols, &got);
+    return got == cols ? k / cols : -1;
+}
+
+/* Differential-algebraic systems (solv and 0=): two linear equations with a closed-form
+ * solution, a quintic whose solution satisfies t = 2.75 - ln|y| - 1.5 y^2 - 1.25 y^4 (from
+ * x' = y and x = -(y + y^3 + y^5)), and a cubic with a fold at w = 2/(3 sqrt 3), where the
+ * branch chosen by the initial guess ends at t = 1 - ln sqrt 3 (an impasse point: the run
+ * stops there, the adaptive method's steps shrinking onto it, and says why). Then the
+ * branch is followed through long steps, a reset by a global, half turns of an angle and
+ * in an aux output alone, and a small variable is solved to its equation's rounding. */
+static void test_algebraic_equations(void **state)
+{
+    (void)state;
+    static double v[64 * 4];
+    write_file("lin.ode", "x'=-x+a\n0=a+b-x\n0=a-b-sin(t)\nsolv a=0, b=0\ninit x=1\naux av=a\n"
+                          "@ total=10, dt=0.5\ndone\n");
+    cli_result r = cli("run '%s' --outputs --rtol 1e-10 --atol 1e-12", cli_path("lin.ode"));
+    long rows = csv_table(r.out, v, 64, 3);
+    double ex = 0.0, ea = 0.0;
+    for (long k = 0; k < rows; k++) {
+        const double t = v[3 * k], x = v[3 * k + 1], a = v[3 * k + 2];
+        ex = fmax(ex, fabs(x - (sin(t) / 5.0 - 2.0 * cos(t) / 5.0 + 1.4 * exp(-t / 2.0))));
+        ea = fmax(ea, fabs(a - (x + sin(t)) / 2.0));
+    }
+    CHECK(r.status == 0 && rows == 21 && ex < 1e-8 && ea < 1e-13,
+          "linear DAE: exit %d, %ld rows, error of x %.3g, of a %.3g\n%s", r.status, rows, ex, ea,
+          r.err);
+    cli_free(&r);
+    write_file("quintic.ode", "x'=y\n0=x+y+y^3+y^5\nsolve y=-1\nx(0)=3\naux yy=y\n"
+                              "@ total=10, dt=0.5\ndone\n");
+    r = cli("run '%s' --outputs --rtol 1e-10 --atol 1e-12", cli_path("quintic.ode"));
+    rows = csv_table(r.out, v, 64, 3);
+    double et = 0.0, res = 0.0;
+    for (long k = 0; k < rows; k++) {
+        const double t = v[3 * k], x = v[3 * k + 1], y = v[3 * k + 2];
+        et = fmax(et, fabs(2.75 - log(fabs(y)) - 1.5 * y * y - 1.25 * pow(y, 4) - t));
+        res = fmax(res, fabs(x + y + pow(y, 3) + pow(y, 5)));
+    }
+    CHECK(r.status == 0 && rows == 21 && et < 1e-8 && res < 1e-14,
+          "quintic DAE: exit %d, %ld rows, error in t(y) %.3g, residual %.3g\n%s", r.status, rows,
+          et, res, r.err);
+    cli_free(&r);
+    write_file("fold.ode", "par g=1\nw'=v_\n0=v_*(1-v_*v_)-w\nsolv v_=g\naux v=v_\n"
+                           "@ total=2, dt=0.05\ndone\n");
+    const double t_fold = 1.0 - 0.5 * log(3.0), w_fold = 2.0 / (3.0 * sqrt(3.0));
+    for (int sign = 1; sign >= -1; sign -= 2) {
+        r = cli("run '%s' --final --set g=%d", cli_path("fold.ode"), sign);
+        double t = NAN, w = NAN;
+        const char *row = strchr(r.out, '\n');
+        CHECK(r.status == 1 && row && sscanf(row + 1, "%lf,%lf", &t, &w) == 2 &&
+                  fabs(t - t_fold) < 1e-5 && fabs(sign * w - w_fold) < 1e-9 &&
+                  strstr(r.err, "algebraic equations (0=...) have no solution near the branch "
+                                "followed there"),
+              "fold, guess %d: exit %d, %s%s", sign, r.status, r.out, r.err);
+        cli_free(&r);
+    }
+    /* a guess near 0 follows the middle branch, v = w = 0 */
+    r = cli("run '%s' --final --outputs --set g=0.1", cli_path("fold.ode"));
+    double t2 = NAN, w2 = NAN, v2 = NAN;
+    const char *row2 = strchr(r.out, '\n');
+    CHECK(r.status == 0 && row2 && sscanf(row2 + 1, "%lf,%lf,%lf", &t2, &w2, &v2) == 3 &&
+              t2 == 2.0 && fabs(w2) < 1e-12 && fabs(v2) < 1e-12,
+          "fold, the middle branch: exit %d, %s%s", r.status, r.out, r.err);
+    cli_free(&r);
+    /* w = x while x runs from 0 to 3 in steps as long as dp45 takes them (moves of several
+     * times the variable's size in one solve), is reset to 0 by a global and runs to 2 */
+    write_file("follow.ode", "x'=1+0*w\n0=w-x\nsolv w=0\nglobal 1 x-3 {x=0}\naux ww=w\n"
+                             "@ total=5, dt=0.5\ndone\n");
+    r = cli("run '%s' --outputs", cli_path("follow.ode"));
+    rows = csv_table(r.out, v, 64, 3);
+    double ef = 0.0;
+    for (long k = 0; k < rows; k++)
+        ef = fmax(ef, fabs(v[3 * k + 2] - v[3 * k + 1]) +
+                          fabs(v[3 * k + 1] - (v[3 * k] <= 3.0 ? v[3 * k] : v[3 * k] - 3.0)));
+    CHECK(r.status == 0 && rows == 11 && ef < 1e-9, "follow: exit %d, %ld rows, error %.3g\n%s%s",
+          r.status, rows, ef, r.out, r.err);
+    cli_free(&r);
+    /* the upper branch of the cubic read by an aux output alone (v = 1.088 at w = -0.2, 1 at
+     * 0, 0.879 at 0.2: XPPAUT's numbers), from the guess -1.5, which picks it at w = -1 */
+    write_file("aux_only.ode", "w'=1\n0=v*(1-v^2)-w\nsolv v=-1.5\ninit w=-1\naux vv=v\n"
+                               "@ total=1.2, dt=0.2\ndone\n");
+    r = cli("run '%s' --outputs", cli_path("aux_only.ode"));
+    rows = csv_table(r.out, v, 64, 3);
+    double eb = 0.0;
+    for (long k = 0; k < rows; k++) { /* v (1 - v^2) = w on the branch v > 1/sqrt 3 */
+        const double w = v[3 * k + 1], vv = v[3 * k + 2];
+        eb = fmax(eb, fabs(vv * (1.0 - vv * vv) - w) + (vv > 1.0 / sqrt(3.0) ? 0.0 : 1.0));
+    }
+    CHECK(r.status == 0 && rows == 7 && eb < 1e-12, "aux only: exit %d, %ld rows, %.3g\n%s%s",
+          r.status, rows, eb, r.out, r.err);
+    cli_free(&r);
+    /* an angle run through by half turns between two samples: (c, s) = (cos x, sin x),
+     * not its opposite, which solves the same equations */
+    write_file("circle.ode", "x'=5\nsolv c=1, s=0\n0=c^2+s^2-1\n0=s*cos(x)-c*sin(x)\n"
+                             "aux err=abs(c-cos(x))+abs(s-sin(x))\n@ total=20, dt=0.5\ndone\n");
+    r = cli("run '%s' --outputs", cli_path("circle.ode"));
+    rows = csv_table(r.out, v, 64, 3);
+    double ec = 0.0;
+    for (long k = 0; k < rows; k++)
+        ec = fmax(ec, v[3 * k + 2]);
+    CHECK(r.status == 0 && rows == 41 && ec < 1e-12, "circle: exit %d, %ld rows, %.3g\n%s",
+          r.status, rows, ec, r.err);
+    cli_free(&r);
+    /* w = ln(1 + x) near 1e-9 from exp(w) - 1 - x, whose terms are near 1: solved to the
+     * equation's rounding, with an adaptive and a stiff method */
+    write_file("floor.ode", "x'=1e-9\ninit x=0\nsolv w\n0=exp(w)-1-x\naux ww=w\n"
+                            "@ total=1, dt=0.25\ndone\n");
+    for (int stiff = 0; stiff < 2; stiff++) {
+        r = cli("run '%s' --outputs --method %s", cli_path("floor.ode"), stiff ? "rodas4" : "dp45");
+        rows = csv_table(r.out, v, 64, 3);
+        double el = 0.0;
+        for (long k = 0; k < rows; k++)
+            el = fmax(el, fabs(v[3 * k + 2] - log1p(v[3 * k + 1])));
+        CHECK(r.status == 0 && rows == 5 && el < 1e-15, "floor (%s): exit %d, %ld rows, %.3g\n%s",
+              stiff ? "rodas4" : "dp45", r.status, rows, el, r.err);
+        cli_free(&r);
+    }
+    unlink(cli_path("lin.ode"));
+    unlink(cli_path("quintic.ode"));
+    unlink(cli_path("fold.ode"));
+    unlink(cli_path("follow.ode"));
+    unlink(cli_path("aux_only.ode"));
+    unlink(cli_path("circle.ode"));
+    unlink(cli_path("floor.ode"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_network_sums),
+        cmocka_unit_test(test_algebraic_equations),
         cmocka_unit_test(test_lookup_tables_in_a_run),
         cmocka_unit_test(test_difference_equation_is_a_map),
         cmocka_unit_test(test_pendulum_file_is_the_builtin),

@@ -44,6 +44,12 @@ typedef void (*dyn_lang_note_fn)(const char *path, int line, const char *message
 int dyn_ode_to_c(const char *path, const char *text, size_t len, char **c_source,
                  dyn_lang_diag *diag, dyn_lang_note_fn note, void *note_ctx);
 
+/* The status the outputs and a global's reset of a translated model return when its
+ * algebraic equations (0=...) have no solution near the branch followed, as at an impasse
+ * point where the branch ends. Its right-hand side writes derivatives that are not finite
+ * there instead, so that an adaptive method tries a shorter step. */
+#define DYN_LANG_ALG_FAILED 3
+
 /* The name among names[0..n) nearest to word (Damerau–Levenshtein distance, case folded),
  * or NULL when none is close enough to be a likely typo (distance > max(1, len/3)). */
 const char *dyn_lang_nearest(const char *word, const char *const *names, int n);

@@ -147,6 +147,23 @@ static _Noreturn void unknown(lang_ctx *c, const node *e, int funcs)
                            "parameters, t and numbers");
 }
 
+/* Whether fixed quantity k of the model reads an algebraic variable, which the animation's
+ * evaluator cannot solve for. */
+static int fix_reads_alg(lang_ctx *c, int k)
+{
+    const lang_model *m = &c->m;
+    if (m->algs.n == 0)
+        return 0;
+    unsigned char *used = lang_alloc(c, (size_t)m->algs.n);
+    unsigned char *fix_seen = lang_alloc(c, (size_t)m->fixes.n);
+    unsigned char *fun_seen = lang_alloc(c, (size_t)m->funcs.n + 1);
+    lang_alg_uses(c, LVEC_AT(m->fixes, lang_formula, k).expr, used, fix_seen, fun_seen);
+    for (int i = 0; i < m->algs.n; i++)
+        if (used[i])
+            return 1;
+    return 0;
+}
+
 /* Names of a formula bound to the model's quantities (check.c's resolve, for a formula
  * that may also read the outputs). */
 static void resolve(dyn_ani *a, node *e, int depth)
@@ -169,7 +186,20 @@ static void resolve(dyn_ani *a, node *e, int depth)
             e->kind = N_NUM;
             e->num = LVEC_AT(m->numbers, lang_param, s->index).value;
             return;
-        case SYM_FIX: e->kind = N_FIX; e->index = s->index; return;
+        case SYM_FIX:
+            if (fix_reads_alg(c, s->index))
+                lang_fail(c, e->pos,
+                          "'%s' reads an algebraic variable (0=...), which an "
+                          "animation cannot solve for: show an aux output of it instead",
+                          e->name);
+            e->kind = N_FIX;
+            e->index = s->index;
+            return;
+        case SYM_ALG:
+            lang_fail(c, e->pos,
+                      "'%s' is an algebraic variable (0=...), which an animation "
+                      "cannot solve for: show an aux output of it instead (aux %s_=%s)",
+                      e->name, e->name, e->name);
         case SYM_AUX:
             /* XPPAUT's animator knows states and fixed quantities, not aux outputs (its
              * manual: "both regular and fixed, but not auxiliary") */

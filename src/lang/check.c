@@ -64,6 +64,7 @@ const char *lang_sym_kind_name(sym_kind k)
     case SYM_FUNC: return "a function";
     case SYM_TABLE: return "a table";
     case SYM_SPECIAL: return "a network sum";
+    case SYM_ALG: return "an algebraic variable";
     default: return "a name";
     }
 }
@@ -199,6 +200,17 @@ static void resolve(lang_ctx *c, node *e, const rctx *r)
             if (r->kind == CTX_FUNC)
                 ((lang_func *)r->func)->uses_fix = 1;
             e->kind = N_FIX;
+            e->index = s->index;
+            return;
+        case SYM_ALG:
+            if (r->kind >= CTX_PARAMS)
+                lang_fail(c, e->pos,
+                          "%s cannot depend on the algebraic variable '%s' (it is "
+                          "solved for along the run)",
+                          r->what, e->name);
+            if (r->kind == CTX_FUNC) /* inlined where it is called, as with a fixed quantity */
+                ((lang_func *)r->func)->uses_fix = 1;
+            e->kind = N_ALG;
             e->index = s->index;
             return;
         case SYM_AUX:
@@ -608,9 +620,73 @@ static const char *display_name(lang_ctx *c, const char *name, lpos pos, const c
         return LVEC_AT(c->m.states, lang_state, s->index).name;
     if (s && s->kind == SYM_AUX)
         return LVEC_AT(c->m.auxs, lang_formula, s->index).name;
+    if (s && s->kind == SYM_ALG)
+        lang_fail(c, pos,
+                  "option '%s': '%s' is an algebraic variable: name an aux output of "
+                  "it (aux %s_=%s)",
+                  option, name, name, name);
     const char *near = nearest_symbol(c, name, NULL, 0);
     lang_fail(c, pos, "option '%s': '%s' is not a state or an aux output%s%s%s", option, name,
               near ? " (did you mean '" : "", near ? near : "", near ? "'?)" : "");
+}
+
+void lang_alg_uses(lang_ctx *c, const node *e, unsigned char *used, unsigned char *fix_seen,
+                   unsigned char *fun_seen)
+{
+    for (int i = 0; i < e->nargs; i++)
+        lang_alg_uses(c, e->args[i], used, fix_seen, fun_seen);
+    if (e->kind == N_ALG)
+        used[e->index] = 1;
+    else if (e->kind == N_FIX && !fix_seen[e->index]) {
+        fix_seen[e->index] = 1;
+        lang_alg_uses(c, LVEC_AT(c->m.fixes, lang_formula, e->index).expr, used, fix_seen,
+                      fun_seen);
+    } else if (e->kind == N_UFUN && !fun_seen[e->index]) {
+        fun_seen[e->index] = 1;
+        lang_alg_uses(c, LVEC_AT(c->m.funcs, lang_func, e->index).body, used, fix_seen, fun_seen);
+    }
+}
+
+/* A differential-algebraic system: as many 0= equations as algebraic variables (solv),
+ * each variable used by some equation; the equations are formulas like the right-hand
+ * sides, the initial guesses formulas of the parameters. */
+static void check_algebraic(lang_ctx *c, const rctx *rhs)
+{
+    lang_model *m = &c->m;
+    if (m->algs.n == 0 && m->algeqs.n == 0)
+        return;
+    for (int i = 0; i < m->algeqs.n; i++)
+        resolve(c, LVEC_AT(m->algeqs, lang_formula, i).expr, rhs);
+    for (int i = 0; i < m->algs.n; i++) {
+        lang_formula *f = &LVEC_AT(m->algs, lang_formula, i);
+        rctx r = {CTX_PARAMS, NULL, "the initial guess of an algebraic variable", -1};
+        resolve(c, f->expr, &r);
+        check_param_calls(c, f->expr, "the initial guess of an algebraic variable");
+    }
+    if (m->algeqs.n != m->algs.n) {
+        const lpos at = m->algeqs.n > m->algs.n ? LVEC_AT(m->algeqs, lang_formula, m->algs.n).pos
+                                                : LVEC_AT(m->algs, lang_formula, m->algeqs.n).pos;
+        lang_fail(c, at,
+                  "%d algebraic equation%s (0=...) for %d algebraic variable%s (solv): "
+                  "give as many of each",
+                  m->algeqs.n, m->algeqs.n == 1 ? "" : "s", m->algs.n, m->algs.n == 1 ? "" : "s");
+    }
+    if (m->map_eq || m->map_meth)
+        lang_fail(c, LVEC_AT(m->algs, lang_formula, 0).pos,
+                  "algebraic equations are for differential equations, not discrete maps");
+    unsigned char *used = lang_alloc(c, (size_t)m->algs.n + 1);
+    unsigned char *fix_seen = lang_alloc(c, (size_t)m->fixes.n + 1);
+    unsigned char *fun_seen = lang_alloc(c, (size_t)m->funcs.n + 1);
+    for (int i = 0; i < m->algeqs.n; i++)
+        lang_alg_uses(c, LVEC_AT(m->algeqs, lang_formula, i).expr, used, fix_seen, fun_seen);
+    for (int i = 0; i < m->algs.n; i++)
+        if (!used[i]) {
+            const lang_formula *f = &LVEC_AT(m->algs, lang_formula, i);
+            lang_fail(c, f->pos,
+                      "the algebraic variable '%s' appears in no algebraic equation "
+                      "(0=...), which must determine it",
+                      f->name);
+        }
 }
 
 void lang_check(lang_ctx *c)
@@ -634,6 +710,14 @@ void lang_check(lang_ctx *c)
     }
     for (int i = 0; i < m->auxs.n; i++) {
         lang_formula *f = &LVEC_AT(m->auxs, lang_formula, i);
+        f->expr = unroll(c, f->expr, 0);
+    }
+    for (int i = 0; i < m->algeqs.n; i++) {
+        lang_formula *f = &LVEC_AT(m->algeqs, lang_formula, i);
+        f->expr = unroll(c, f->expr, 0);
+    }
+    for (int i = 0; i < m->algs.n; i++) {
+        lang_formula *f = &LVEC_AT(m->algs, lang_formula, i);
         f->expr = unroll(c, f->expr, 0);
     }
     for (int i = 0; i < m->events.n; i++) {
@@ -727,6 +811,7 @@ void lang_check(lang_ctx *c)
         resolve(c, LVEC_AT(m->states, lang_state, i).rhs, &rhs);
     for (int i = 0; i < m->auxs.n; i++)
         resolve(c, LVEC_AT(m->auxs, lang_formula, i).expr, &rhs);
+    check_algebraic(c, &rhs);
     for (int i = 0; i < m->events.n; i++) {
         lang_event *ev = &LVEC_AT(m->events, lang_event, i);
         resolve(c, ev->cond, &rhs);
@@ -783,6 +868,10 @@ void lang_check(lang_ctx *c)
     }
     for (int i = 0; i < m->auxs.n; i++) {
         lang_formula *f = &LVEC_AT(m->auxs, lang_formula, i);
+        f->expr = inline_fix_calls(c, f->expr, 0);
+    }
+    for (int i = 0; i < m->algeqs.n; i++) {
+        lang_formula *f = &LVEC_AT(m->algeqs, lang_formula, i);
         f->expr = inline_fix_calls(c, f->expr, 0);
     }
     for (int i = 0; i < m->events.n; i++) {

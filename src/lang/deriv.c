@@ -332,11 +332,11 @@ static node *d(lang_ctx *c, node *e, lang_dvar *v)
     switch (e->kind) {
     case N_STATE:
     case N_ARG:
-        r = lang_num(c, (int)e->kind == v->kind && e->index == v->index ? 1.0 : 0.0);
-        break;
+    case N_ALG: r = lang_num(c, (int)e->kind == v->kind && e->index == v->index ? 1.0 : 0.0); break;
     case N_FIX:
-        r = v->kind == N_STATE && v->fixd && v->fixd[e->index] ? v->fixd[e->index]
-                                                                : lang_num(c, 0.0);
+        r = (v->kind == N_STATE || v->kind == N_ALG) && v->fixd && v->fixd[e->index]
+                ? v->fixd[e->index]
+                : lang_num(c, 0.0);
         break;
     case N_NEG: r = neg(c, d(c, e->args[0], v)); break;
     case N_BIN: r = d_bin(c, e, v); break;

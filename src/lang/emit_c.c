@@ -12,6 +12,7 @@
  * points at the model's own line. Nothing mutable at file scope: the model is re-entrant.
  */
 #include <limits.h>
+#include <setjmp.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -200,6 +201,7 @@ static void expr(lang_ctx *c, const node *e, const ectx *x)
     case N_STATE: outf(c, "y[%d]", e->index); break;
     case N_PARAM: outf(c, "p[%d]", e->index); break;
     case N_FIX: outf(c, "v_%s", LVEC_AT(m->fixes, lang_formula, e->index).name); break;
+    case N_ALG: outf(c, "w[%d]", e->index); break;
     case N_DFIX:
         outf(c, "dv%d_%s", e->op, LVEC_AT(m->fixes, lang_formula, e->index).name);
         break;
@@ -432,6 +434,76 @@ static unsigned char *needed_by(lang_ctx *c, node *const *roots, int n)
     return needed;
 }
 
+/* ---- differential-algebraic systems ----
+ * The algebraic variables w solve the 0= equations r(t, y, w) = 0 (XPPAUT's solv and 0=)
+ * at every evaluation of the right-hand side (so that the branch followed is tracked along
+ * the run) and wherever else they are read, by the solver of alg_solver.c. Their slots in
+ * p, after the tables: the last solution, the initial guesses, each variable's scale (the
+ * largest magnitude so far), the earliest time solved, the time and the state of the last
+ * solution. An evaluation at or before that earliest time (the start of every run, also a
+ * second run from the same parameters) starts from the guesses. */
+
+/* Index in p of the first slot of the algebraic variables. */
+static int alg_offset(const lang_model *m)
+{
+    int k = m->params.n + m->derived.n;
+    for (int i = 0; i < m->tables.n; i++)
+        k += (int)LVEC_AT(m->tables, lang_table, i).npts;
+    return k;
+}
+
+static int has_alg(const node *e)
+{
+    if (e->kind == N_ALG)
+        return 1;
+    for (int i = 0; i < e->nargs; i++)
+        if (has_alg(e->args[i]))
+            return 1;
+    return 0;
+}
+
+/* Whether roots, or the fixed quantities they need, read an algebraic variable. */
+static int needs_alg(lang_ctx *c, node *const *roots, int n, const unsigned char *needed)
+{
+    if (c->m.algs.n == 0)
+        return 0;
+    for (int i = 0; i < n; i++)
+        if (roots[i] && has_alg(roots[i]))
+            return 1;
+    for (int k = 0; k < c->m.fixes.n; k++)
+        if (needed[k] && has_alg(LVEC_AT(c->m.fixes, lang_formula, k).expr))
+            return 1;
+    return 0;
+}
+
+/* w at (t, y) into a local array; on failure the statement fail. In the right-hand side
+ * (keep), the solution and its point are the next start. */
+static void emit_alg_solve(lang_ctx *c, const char *fail, int keep)
+{
+    outf(c, "    double w[DK_ALG_M];\n    if (dk_alg_solve(t, y, p, w))\n        %s\n", fail);
+    if (keep)
+        puts_(c, "    dk_alg_keep(t, y, par, w);\n");
+}
+
+/* The constants of alg_solver.c's text: sizes, slots in p, limits. */
+static void emit_alg_constants(lang_ctx *c)
+{
+    const lang_model *m = &c->m;
+    const int na = m->algs.n, n = m->states.n, off = alg_offset(m);
+    outf(c,
+         "#define DK_ALG_M %d /* algebraic variables */\n#define DK_ALG_N %d /* states */\n"
+         "#define DK_ALG_W %d /* p: the last solution */\n"
+         "#define DK_ALG_G %d /* the initial guesses */\n"
+         "#define DK_ALG_S %d /* the largest magnitudes so far */\n"
+         "#define DK_ALG_T %d /* the earliest time solved */\n"
+         "#define DK_ALG_TP %d /* the time of the last solution */\n"
+         "#define DK_ALG_YP %d /* its state */\n"
+         "#define DK_ALG_PATH %d /* continuation along a segment (up to 4096 states) */\n"
+         "#define DK_ALG_FAILED %d /* no solution near the branch (dynkit/lang.h) */\n\n",
+         na, n, off, off + na, off + 2 * na, off + 3 * na, off + 3 * na + 1, off + 3 * na + 2,
+         n <= 4096, DYN_LANG_ALG_FAILED);
+}
+
 /* ---- pieces of the model ---- */
 
 static void helpers(lang_ctx *c)
@@ -605,6 +677,13 @@ static void emit_rhs(lang_ctx *c)
     puts_(c, "static int dk_rhs(double t, const double *y, double *dydt, void *par)\n{\n"
              "    const double *p = (const double *)par;\n    (void)t;\n    (void)y;\n"
              "    (void)p;\n");
+    if (m->algs.n) /* also when no derivative reads them: the branch is tracked here. No
+                    * solution: derivatives that are not finite, so that an adaptive method
+                    * tries a shorter step, as after any trial state that is not finite */
+        emit_alg_solve(c,
+                       "{\n        for (int i = 0; i < DK_ALG_N; i++)\n"
+                       "            dydt[i] = NAN;\n        return 0;\n    }",
+                       1);
     emit_fixes(c, needed);
     const ectx x = {NULL, 1};
     for (int i = 0; i < m->states.n; i++) {
@@ -629,6 +708,8 @@ static void emit_outputs(lang_ctx *c)
     puts_(c, "static int dk_outputs(double t, const double *y, const void *par, double *out)\n"
              "{\n    const double *p = (const double *)par;\n    (void)t;\n    (void)y;\n"
              "    (void)p;\n");
+    if (needs_alg(c, roots, m->auxs.n, needed))
+        emit_alg_solve(c, "return DK_ALG_FAILED;", 0);
     emit_fixes(c, needed);
     const ectx x = {NULL, 1};
     for (int i = 0; i < m->auxs.n; i++) {
@@ -678,13 +759,11 @@ static int table_files(const lang_model *m)
     return k;
 }
 
-/* Doubles of the parameter array: parameters, derived parameters, the tables' values. */
+/* Doubles of the parameter array: parameters, derived parameters, the tables' values, the
+ * algebraic variables' slots. */
 static int par_doubles(const lang_model *m)
 {
-    int k = m->params.n + m->derived.n;
-    for (int i = 0; i < m->tables.n; i++)
-        k += (int)LVEC_AT(m->tables, lang_table, i).npts;
-    return k;
+    return alg_offset(m) + (m->algs.n ? 3 * m->algs.n + 2 + m->states.n : 0);
 }
 
 /* In prepare, after the tables: each index of a sparse sum must point into its block. */
@@ -728,6 +807,32 @@ static void emit_table_files(lang_ctx *c)
     }
 }
 
+/* In prepare: the algebraic variables' initial guesses (also their first start and their
+ * first scale), and no time solved yet. */
+static void emit_alg_guesses(lang_ctx *c)
+{
+    const lang_model *m = &c->m;
+    const int na = m->algs.n;
+    const ectx x = {NULL, 0};
+    for (int i = 0; i < na; i++) {
+        const lang_formula *f = &LVEC_AT(m->algs, lang_formula, i);
+        line_dir(c, f->pos);
+        outf(c, "    p[DK_ALG_G + %d] = ", i);
+        expr(c, f->expr, &x);
+        outf(c,
+             ";\n    if (!isfinite(p[DK_ALG_G + %d])) {\n        snprintf(err, errlen, \"the "
+             "initial guess of algebraic variable '%%s' is not finite (%%g)\", ",
+             i);
+        str_lit(c, f->name);
+        outf(c,
+             ", p[DK_ALG_G + %d]);\n        return 1;\n    }\n    p[DK_ALG_W + %d] = "
+             "p[DK_ALG_G + %d];\n    p[DK_ALG_S + %d] = fabs(p[DK_ALG_G + %d]);\n",
+             i, i, i, i, i);
+    }
+    if (na)
+        puts_(c, "    p[DK_ALG_T] = INFINITY;\n    p[DK_ALG_TP] = 0.0;\n");
+}
+
 static void emit_prepare(lang_ctx *c)
 {
     lang_model *m = &c->m;
@@ -762,6 +867,7 @@ static void emit_prepare(lang_ctx *c)
     }
     emit_table_values(c);
     emit_sparse_checks(c);
+    emit_alg_guesses(c);
     puts_(c, "    (void)err;\n    (void)errlen;\n    return 0;\n}\n\n");
 }
 
@@ -943,6 +1049,8 @@ typedef struct state_span {
 typedef struct span_memo {
     state_span *fix, *fun;
     unsigned char *fix_done, *fun_done;
+    state_span alg; /* the states the algebraic equations read, together */
+    int alg_done;   /* 0, 1 while it is computed, 2 */
 } span_memo;
 
 static state_span span_join(state_span a, state_span b)
@@ -961,6 +1069,17 @@ static state_span span_of(lang_ctx *c, const node *e, span_memo *mm)
         s = span_join(s, span_of(c, e->args[i], mm));
     if (e->kind == N_STATE) {
         s = span_join(s, (state_span){e->index, e->index});
+    } else if (e->kind == N_ALG) { /* solved from all the equations together */
+        if (mm->alg_done == 0) {
+            mm->alg_done = 1;
+            state_span a = {INT_MAX, INT_MIN};
+            for (int i = 0; i < c->m.algeqs.n; i++)
+                a = span_join(a, span_of(c, LVEC_AT(c->m.algeqs, lang_formula, i).expr, mm));
+            mm->alg = a;
+            mm->alg_done = 2;
+        }
+        if (mm->alg_done == 2)
+            s = span_join(s, mm->alg);
     } else if (e->kind == N_FIX) {
         if (!mm->fix_done[e->index]) {
             mm->fix_done[e->index] = 1;
@@ -987,6 +1106,183 @@ static state_span span_of(lang_ctx *c, const node *e, span_memo *mm)
     return s;
 }
 
+/* The exact Jacobian of the algebraic equations, J[i M + k] = d r_i / d w_k, from the
+ * derivatives of their formulas (deriv.c) as for the right-hand side's: its columns, with
+ * the derivatives of the fixed quantities in each. */
+typedef struct alg_jac {
+    node **entry; /* entry[k * M + i] (NULL: zero) */
+    node **fixd;  /* fixd[k * (fixes + 1) + f] (NULL: zero) */
+} alg_jac;
+
+/* Fills aj and returns 1, or 0 (with a note) when a formula has no analytic derivative
+ * (a network sum): Newton's method then takes differences. */
+static int alg_jacobian_entries(lang_ctx *c, jac_plan *jp, const unsigned char *needed, alg_jac *aj)
+{
+    lang_model *m = &c->m;
+    const int na = m->algs.n, nf = m->fixes.n;
+    jmp_buf fail;
+    jmp_buf *outer = c->fail;
+    c->fail = &fail;
+    if (setjmp(fail) == 0) {
+        aj->entry = lang_alloc(c, (size_t)na * (size_t)na * sizeof *aj->entry);
+        aj->fixd = lang_alloc(c, (size_t)na * ((size_t)nf + 1) * sizeof *aj->fixd);
+        node **fixd = lang_alloc(c, ((size_t)nf + 1) * sizeof *fixd);
+        for (int k = 0; k < na; k++) {
+            memset(fixd, 0, ((size_t)nf + 1) * sizeof *fixd);
+            lang_dvar v = {N_ALG, k, fixd, jp->used, 0};
+            for (int q = 0; q < nf; q++) {
+                const int f = m->fix_order[q];
+                if (!needed[f])
+                    continue;
+                node *df = lang_deriv(c, LVEC_AT(m->fixes, lang_formula, f).expr, &v);
+                if (lang_is_num(df, 0.0))
+                    continue;
+                aj->fixd[(size_t)k * ((size_t)nf + 1) + (size_t)f] = df;
+                if (df->kind == N_NUM) {
+                    fixd[f] = df;
+                } else {
+                    node *ref = lang_node(c, N_DFIX, (lpos){0, 0});
+                    ref->index = f;
+                    ref->op = k;
+                    fixd[f] = ref;
+                }
+            }
+            for (int i = 0; i < na; i++) {
+                node *e = lang_deriv(c, LVEC_AT(m->algeqs, lang_formula, i).expr, &v);
+                aj->entry[(size_t)k * (size_t)na + (size_t)i] = lang_is_num(e, 0.0) ? NULL : e;
+            }
+        }
+        plan_partials(c, jp);
+        c->fail = outer;
+        return 1;
+    }
+    c->fail = outer;
+    if (c->status != 2)
+        longjmp(*outer, 1);
+    c->status = 0;
+    lpos at = {c->diag->line, c->diag->col};
+    lang_note(c, at, "the algebraic equations' Jacobian by differences: %s", c->diag->message);
+    c->diag->message[0] = '\0';
+    c->diag->line = c->diag->col = 0;
+    c->diag->excerpt[0] = '\0';
+    memset(jp->used, 0, ((size_t)m->funcs.n + 1) * LANG_MAX_ARGS);
+    jp->partial = NULL;
+    return 0;
+}
+
+/* C text of a bound on the magnitudes that enter e, for the rounding error of computing
+ * it: sums and differences add the bounds of their terms, products and quotients combine
+ * them (|u| |v|, |u| / |v|), a negation keeps its operand's, anything else is its own
+ * magnitude. eps times it bounds the rounding of e within a small factor (Wilkinson's
+ * running error bound, to first order). */
+static void emit_bound(lang_ctx *c, const node *e, const ectx *x)
+{
+    if (e->kind == N_NEG) {
+        emit_bound(c, e->args[0], x);
+        return;
+    }
+    if (e->kind == N_BIN &&
+        (e->op == OP_ADD || e->op == OP_SUB || e->op == OP_MUL || e->op == OP_DIV)) {
+        puts_(c, "(");
+        if (e->op == OP_DIV) {
+            emit_bound(c, e->args[0], x);
+            puts_(c, " / fabs(");
+            expr(c, e->args[1], x);
+            puts_(c, ")");
+        } else {
+            emit_bound(c, e->args[0], x);
+            puts_(c, e->op == OP_MUL ? " * " : " + ");
+            emit_bound(c, e->args[1], x);
+        }
+        puts_(c, ")");
+        return;
+    }
+    puts_(c, "fabs(");
+    expr(c, e, x);
+    puts_(c, ")");
+}
+
+/* dk_alg_residual (r from the 0= equations), the exact dk_alg_jacobian when it can be
+ * formed, then the solver (alg_solver.c). */
+static void emit_alg_functions(lang_ctx *c, jac_plan *jp)
+{
+    lang_model *m = &c->m;
+    const int na = m->algs.n, nf = m->fixes.n;
+    if (na == 0)
+        return;
+    node **roots = lang_alloc(c, (size_t)na * sizeof *roots);
+    for (int i = 0; i < na; i++)
+        roots[i] = LVEC_AT(m->algeqs, lang_formula, i).expr;
+    unsigned char *needed = needed_by(c, roots, na);
+    const ectx x = {NULL, 1};
+    for (int bound = 0; bound < 2; bound++) {
+        outf(c,
+             "static void dk_alg_%s(double t, const double *y, const double *p, "
+             "const double *w, double *r)\n{\n    (void)t;\n    (void)y;\n    (void)p;\n"
+             "    (void)w;\n",
+             bound ? "bound" : "residual");
+        emit_fixes(c, needed);
+        for (int i = 0; i < na; i++) {
+            const lang_formula *f = &LVEC_AT(m->algeqs, lang_formula, i);
+            line_dir(c, f->pos);
+            outf(c, "    r[%d] = ", i);
+            if (bound)
+                emit_bound(c, f->expr, &x);
+            else
+                expr(c, f->expr, &x);
+            puts_(c, ";\n");
+        }
+        puts_(c, "}\n\n");
+    }
+    alg_jac aj;
+    const int exact = alg_jacobian_entries(c, jp, needed, &aj);
+    if (exact) {
+        unsigned char *jneed = lang_alloc(c, (size_t)nf + 1);
+        for (size_t q = 0; q < (size_t)na * (size_t)na; q++)
+            if (aj.entry[q])
+                need(c, aj.entry[q], jneed);
+        for (size_t q = 0; q < (size_t)na * ((size_t)nf + 1); q++)
+            if (aj.fixd[q])
+                need(c, aj.fixd[q], jneed);
+        puts_(c, "/* r and J = dr/dw, exact */\n"
+                 "static void dk_alg_jacobian(double t, const double *y, const double *p, "
+                 "double *w, const double *s, double *r, double *J)\n{\n    (void)s;\n"
+                 "    dk_alg_residual(t, y, p, w, r);\n");
+        emit_fixes(c, jneed);
+        outf(c, "    for (int k = 0; k < %d; k++)\n        J[k] = 0.0;\n", na * na);
+        for (int k = 0; k < na; k++) {
+            outf(c, "    { /* d/d %s */\n", LVEC_AT(m->algs, lang_formula, k).name);
+            for (int q = 0; q < nf; q++) {
+                const int f = m->fix_order[q];
+                const node *df = aj.fixd[(size_t)k * ((size_t)nf + 1) + (size_t)f];
+                if (!df || df->kind == N_NUM)
+                    continue;
+                const lang_formula *fx = &LVEC_AT(m->fixes, lang_formula, f);
+                line_dir(c, fx->pos);
+                outf(c, "        const double dv%d_%s = ", k, fx->name);
+                expr(c, df, &x);
+                outf(c, ";\n        (void)dv%d_%s;\n", k, fx->name);
+            }
+            for (int i = 0; i < na; i++) {
+                const node *e = aj.entry[(size_t)k * (size_t)na + (size_t)i];
+                if (!e)
+                    continue;
+                line_dir(c, LVEC_AT(m->algeqs, lang_formula, i).pos);
+                outf(c, "        J[%d] = ", i * na + k);
+                expr(c, e, &x);
+                puts_(c, ";\n");
+            }
+            puts_(c, "    }\n");
+        }
+        puts_(c, "}\n\n");
+    }
+    outf(c,
+         "#define DK_ALG_EXACT_JACOBIAN %d\n#line 1 \"<dynkit: the solver of the algebraic "
+         "equations>\"\n",
+         exact);
+    puts_(c, lang_alg_solver_text());
+}
+
 /* Without the analytic Jacobian (more than LANG_MAX_JAC_STATES states): every right-hand
  * side must read only states inside the declared band. A state read is taken as a
  * dependence (a conservative check: x - x would count). */
@@ -999,6 +1295,14 @@ static void check_band_by_structure(lang_ctx *c)
     mm.fun = lang_alloc(c, nu * sizeof *mm.fun);
     mm.fix_done = lang_alloc(c, nf); /* zeroed */
     mm.fun_done = lang_alloc(c, nu);
+    mm.alg_done = 0;
+    if (m->algs.n) { /* the equations' states first; what was memoized on the way may miss
+                      * them: forgotten */
+        const node alg = {.kind = N_ALG};
+        (void)span_of(c, &alg, &mm);
+        memset(mm.fix_done, 0, nf);
+        memset(mm.fun_done, 0, nu);
+    }
     for (int i = 0; i < m->states.n; i++) {
         const state_span s = span_of(c, LVEC_AT(m->states, lang_state, i).rhs, &mm);
         if (s.lo > s.hi)
@@ -1027,6 +1331,8 @@ static void emit_events(lang_ctx *c)
                 "    const double *p = (const double *)par;\n    (void)t;\n    (void)y;\n"
                 "    (void)p;\n",
              i);
+        if (needs_alg(c, &root, 1, needed))
+            emit_alg_solve(c, "return NAN;", 0);
         emit_fixes(c, needed);
         line_dir(c, ev->pos);
         puts_(c, "    return ");
@@ -1043,6 +1349,8 @@ static void emit_events(lang_ctx *c)
             root = a->value;
             needed = needed_by(c, &root, 1);
             puts_(c, "    {\n");
+            if (needs_alg(c, &root, 1, needed))
+                emit_alg_solve(c, "return DK_ALG_FAILED;", 0);
             emit_fixes(c, needed);
             line_dir(c, a->pos);
             outf(c, "        y[%d] = ", a->state);
@@ -1141,7 +1449,11 @@ char *lang_emit_c(lang_ctx *c)
                   "bandlo=%d, bandup=%d: a bandwidth of the Jacobian must be below the number "
                   "of states, %d",
                   m->band_lo, m->band_up, n);
-    int with_jac = n <= LANG_MAX_JAC_STATES;
+    int with_jac = n <= LANG_MAX_JAC_STATES && m->algs.n == 0;
+    if (m->algs.n)
+        lang_note(c, LVEC_AT(m->algs, lang_formula, 0).pos,
+                  "no analytic Jacobian: the algebraic variables are solved for numerically; "
+                  "the stiff methods use finite differences");
     if (with_jac) {
         with_jac = try_jacobian(c, &jp);
         if (with_jac && jp.band_bad_i >= 0)
@@ -1155,13 +1467,14 @@ char *lang_emit_c(lang_ctx *c)
                       abs(jp.band_bad_i - jp.band_bad_j),
                       abs(jp.band_bad_i - jp.band_bad_j) == 1 ? "" : "s",
                       jp.band_bad_i > jp.band_bad_j ? "below" : "above");
-    } else {
+    } else if (m->algs.n == 0) {
         lang_note(c, (lpos){0, 0}, "%d states: no analytic Jacobian (at most %d); the stiff "
                   "methods use finite differences", n, LANG_MAX_JAC_STATES);
     }
     if (m->has_band && !with_jac)
         check_band_by_structure(c); /* the band is then formed by banded differences */
 
+    emit_alg_functions(c, &jp);
     emit_rhs(c);
     emit_outputs(c);
     emit_table_files(c);
@@ -1290,6 +1603,8 @@ char *lang_emit_c(lang_ctx *c)
     if (table_files(m))
         puts_(c, "#include <string.h>\n");
     puts_(c, "\n#include <dynkit/model.h>\n\n");
+    if (m->algs.n)
+        emit_alg_constants(c);
     helpers(c);
     emit_function_protos(c);
     put(c, defs, defs_len);

@@ -31,6 +31,7 @@
 #define LANG_MAX_OUTPUT ((size_t)1 << 28) /* bytes of C text */
 #define LANG_MAX_TABLE 1000000            /* points of the lookup tables */
 #define LANG_MAX_SUM_STACK 65536          /* doubles of the network sums' arrays (on the stack) */
+#define LANG_MAX_ALG 100                  /* algebraic variables (a dense Newton system) */
 
 typedef struct lpos {
     int line, col; /* 1-based; 0 when not tied to a place */
@@ -44,23 +45,24 @@ typedef struct lvec {
 
 /* ---- expression tree ---- */
 typedef enum node_kind {
-    N_NUM,   /* num */
-    N_NAME,  /* unresolved name (after parsing) */
-    N_TIME,  /* t */
-    N_STATE, /* y[index] */
-    N_PARAM, /* p[index] (parameters, then derived parameters) */
-    N_FIX,   /* fixed temporary index */
-    N_ARG,   /* argument index of the enclosing user function */
-    N_NEG,   /* -a */
-    N_NOT,   /* not a */
-    N_BIN,   /* a op b */
-    N_FUN,   /* built-in function op of args */
-    N_UFUN,  /* user function index of args */
-    N_IF,    /* if(a)then(b)else(c) */
-    N_DFIX,  /* derivative of fixed temporary index with respect to state op (a local) */
+    N_NUM,    /* num */
+    N_NAME,   /* unresolved name (after parsing) */
+    N_TIME,   /* t */
+    N_STATE,  /* y[index] */
+    N_PARAM,  /* p[index] (parameters, then derived parameters) */
+    N_FIX,    /* fixed temporary index */
+    N_ARG,    /* argument index of the enclosing user function */
+    N_NEG,    /* -a */
+    N_NOT,    /* not a */
+    N_BIN,    /* a op b */
+    N_FUN,    /* built-in function op of args */
+    N_UFUN,   /* user function index of args */
+    N_IF,     /* if(a)then(b)else(c) */
+    N_DFIX,   /* derivative of fixed temporary index with respect to state op (a local) */
     N_UFUN_D, /* partial derivative op (argument) of user function index, of args */
     N_SUM,    /* sum(a,b)of(c): unrolled by check.c before names are resolved */
-    N_SUMIDX  /* i', the index of a sum */
+    N_SUMIDX, /* i', the index of a sum */
+    N_ALG     /* algebraic variable index (solved from the 0= equations) */
 } node_kind;
 
 typedef enum bin_op {
@@ -214,8 +216,18 @@ typedef struct lang_docline {
 } lang_docline;
 
 typedef enum sym_kind {
-    SYM_NONE, SYM_STATE, SYM_PARAM, SYM_NUMBER, SYM_DERIVED, SYM_FIX, SYM_AUX, SYM_FUNC,
-    SYM_TABLE, SYM_SPECIAL, SYM_RESERVED
+    SYM_NONE,
+    SYM_STATE,
+    SYM_PARAM,
+    SYM_NUMBER,
+    SYM_DERIVED,
+    SYM_FIX,
+    SYM_AUX,
+    SYM_FUNC,
+    SYM_TABLE,
+    SYM_SPECIAL,
+    SYM_ALG,
+    SYM_RESERVED
 } sym_kind;
 
 typedef struct lang_sym {
@@ -236,6 +248,11 @@ typedef struct lang_model {
     lvec events;   /* lang_event */
     lvec tables;   /* lang_table */
     lvec specials; /* lang_special */
+    /* differential-algebraic systems (XPPAUT's `solv NAME=guess` and `0=expr`): the
+     * algebraic variables (expr: the initial guess, a formula of the parameters, or NULL
+     * for 0) and the equations that determine them, as many of each */
+    lvec algs;     /* lang_formula */
+    lvec algeqs;   /* lang_formula (name: NULL) */
     lvec inits;    /* lang_init */
     lvec docs;     /* lang_docline */
     /* symbol table: open addressing on the case-folded name */
@@ -321,6 +338,11 @@ void lang_declare(lang_ctx *c, const char *name, lpos pos, sym_kind kind, int in
 const char *lang_sym_kind_name(sym_kind k);
 int lang_is_reserved(const char *name);
 void lang_check(lang_ctx *c);
+/* Flags in used (one per algebraic variable) for those e reads, directly or through fixed
+ * quantities and functions; fix_seen and fun_seen (zeroed, one per fixed quantity and
+ * function) mark what was visited. */
+void lang_alg_uses(lang_ctx *c, const node *e, unsigned char *used, unsigned char *fix_seen,
+                   unsigned char *fun_seen);
 
 /* source lines (source.c): the text as logical lines with continuation joined and arrays
  * expanded; calls fn for each line in order (stops when fn returns non-zero). */
@@ -353,9 +375,9 @@ void lang_parse_model(lang_ctx *c);
 
 /* derivatives and simplification (deriv.c) */
 typedef struct lang_dvar {
-    int kind;               /* N_STATE or N_ARG */
+    int kind; /* N_STATE, N_ARG or N_ALG */
     int index;
-    node **fixd;            /* N_STATE: derivatives of the fixed temporaries (NULL: zero) */
+    node **fixd;            /* N_STATE, N_ALG: derivatives of the fixed temporaries (NULL: zero) */
     unsigned char *used;    /* funcs * LANG_MAX_ARGS flags: partial derivatives used */
     int inline_depth;
 } lang_dvar;
@@ -370,7 +392,8 @@ double lang_eval(lang_ctx *c, const node *e, const double *args, const double *p
 double lang_apply_bin(int op, double a, double b);
 double lang_apply_fun(int op, double a, double b);
 
-/* C text (emit_c.c) */
+/* C text (emit_c.c); the solver of the algebraic equations, a constant text (alg_solver.c) */
 char *lang_emit_c(lang_ctx *c);
+const char *lang_alg_solver_text(void);
 
 #endif /* DYNKIT_LANG_INTERNAL_H */

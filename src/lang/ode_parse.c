@@ -188,7 +188,7 @@ static void add_init(lang_ctx *c, const char *name, lpos pos, node *value)
     in->value = value;
 }
 
-/* par / number / init: name=value lists, separated by commas or blanks. */
+/* par / number / init / solv: name=value lists, separated by commas or blanks. */
 static void name_value_list(lang_ctx *c, lang_lexer *lx, int kind, const char *keyword)
 {
     int count = 0;
@@ -201,13 +201,15 @@ static void name_value_list(lang_ctx *c, lang_lexer *lx, int kind, const char *k
             lx->i++;
             const int from = (lang_skip_blanks(lx), lx->i);
             e = lang_parse_expr(lx);
-            note_formula_value(c, lx, from, e, name);
+            if (kind != SYM_ALG)
+                note_formula_value(c, lx, from, e, name);
         } else {
             /* XPPAUT reads a name without a value as 0 */
             const int nx = lang_skip_blanks(lx);
             if (nx && nx != ',' && !lang_is_ident_start(nx))
                 lang_fail(c, lang_here(lx), "expected '=' after the name, found '%c'", nx);
-            lang_note(c, pos, "'%s' has no value in the %s list: 0", name, keyword);
+            if (kind != SYM_ALG) /* solv y: the usual way to start Newton's method at 0 */
+                lang_note(c, pos, "'%s' has no value in the %s list: 0", name, keyword);
             e = lang_num(c, 0.0);
         }
         if (kind == SYM_PARAM || kind == SYM_NUMBER) {
@@ -220,6 +222,10 @@ static void name_value_list(lang_ctx *c, lang_lexer *lx, int kind, const char *k
             p->name = name;
             p->pos = pos;
             p->value = v;
+        } else if (kind == SYM_ALG) {
+            if (c->m.algs.n >= LANG_MAX_ALG)
+                lang_fail(c, pos, "more than %d algebraic variables ('solv')", LANG_MAX_ALG);
+            add_formula(c, &c->m.algs, SYM_ALG, name, pos, e);
         } else {
             add_init(c, name, pos, e);
         }
@@ -500,6 +506,13 @@ static void parse_options(lang_ctx *c, lang_lexer *lx)
             if (!m->has_band)
                 m->band_pos = pos;
             m->has_band = 1;
+        } else if (ieqn(name, n, "newt_iter") || ieqn(name, n, "newt_tol") ||
+                   ieqn(name, n, "jac_eps")) {
+            lang_note(c, pos,
+                      "option '%s' is accepted and ignored: dynkit solves the algebraic "
+                      "equations by Newton's method until it converges, with its own "
+                      "difference step",
+                      name);
         } else if (ieqn(name, n, "maxstor")) {
             lang_note(c, pos, "option 'maxstor' is accepted and ignored (dynkit streams its "
                       "samples; nothing to store)");
@@ -916,7 +929,7 @@ static int keyword_statement(lang_ctx *c, lang_lexer *lx, pstate *ps, const char
     else if (KW(w, n, "special", "sp"))
         parse_special(c, lx, wpos);
     else if (KW(w, n, "solv", "solve"))
-        lang_fail(c, wpos, "differential-algebraic equations ('solv') are not supported");
+        name_value_list(c, lx, SYM_ALG, "solv");
     else if (KW(w, n, "export"))
         lang_fail(c, wpos, "dynamically loaded right-hand sides ('export') are not supported");
     else if (KW(w, n, "options", "opt"))
@@ -959,9 +972,17 @@ static void statement(lang_ctx *c, lang_lexer *lx, pstate *ps, int *done)
             k++;
         while (k < lx->end && (lx->line->text[k] == ' ' || lx->line->text[k] == '\t'))
             k++;
-        if (k < lx->end && lx->line->text[k] == '=')
-            lang_fail(c, start, "algebraic equations ('0=...', differential-algebraic "
-                      "systems) are not supported");
+        if (k < lx->end && lx->line->text[k] == '=') {
+            const char *digits = lx->line->text + lx->i;
+            if (digits[0] != '0' || isdigit((unsigned char)digits[1]))
+                lang_fail(c, start, "an algebraic equation is written 0=expression");
+            lx->i = k + 1;
+            lang_formula *f = lvec_push(c, &m->algeqs, sizeof *f);
+            f->name = NULL;
+            f->pos = start;
+            f->expr = expr_to_end(lx, "the algebraic equation");
+            return;
+        }
         lang_fail(c, start, "a statement starts with a name, '@', '!' or '#'");
     }
     if (!lang_is_ident_start(ch))

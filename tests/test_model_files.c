@@ -709,6 +709,26 @@ static void test_algebraic_equations(void **state)
               stiff ? "rodas4" : "dp45", r.status, rows, el, r.err);
         cli_free(&r);
     }
+    /* cancellation inside a user function: w = ln((1/2 + x)/(1/2 - x)) from
+     * 1/(1 + exp(-w)) - 1/2 = x while x decays to 2e-10 */
+    write_file("sigmoid.ode", "x'=-x\ninit x=0.1\ns(v)=1/(1+exp(-v))-0.5\nsolv w=0\n0=s(w)-x\n"
+                              "aux rel=w/ln((0.5+x)/(0.5-x))-1\n@ total=20, dt=1\ndone\n");
+    r = cli("run '%s' --outputs", cli_path("sigmoid.ode"));
+    rows = csv_table(r.out, v, 64, 3);
+    double er = 0.0;
+    for (long k = 0; k < rows; k++)
+        er = fmax(er, fabs(v[3 * k + 2]));
+    CHECK(r.status == 0 && rows == 21 && er < 1e-5, "sigmoid: exit %d, %ld rows, %.3g\n%s",
+          r.status, rows, er, r.err);
+    cli_free(&r);
+    /* a guess where the residual overflows is no solution */
+    write_file("overflow.ode", "x'=1\ninit x=2\nsolv w=1000\n0=exp(w)-x\n@ total=1\ndone\n");
+    r = cli("run '%s'", cli_path("overflow.ode"));
+    CHECK(r.status == 1 && strstr(r.err, "algebraic equations (0=...) have no solution"),
+          "overflow: exit %d\n%s%s", r.status, r.out, r.err);
+    cli_free(&r);
+    unlink(cli_path("sigmoid.ode"));
+    unlink(cli_path("overflow.ode"));
     unlink(cli_path("lin.ode"));
     unlink(cli_path("quintic.ode"));
     unlink(cli_path("fold.ode"));

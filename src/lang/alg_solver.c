@@ -3,7 +3,8 @@
  * into the generated model by emit_c.c after the constants it uses (DK_ALG_*, see
  * emit_alg_constants there) and the residual function dk_alg_residual(t, y, p, w, r).
  *
- * Newton's method with a difference Jacobian and elimination with partial pivoting. At the
+ * Newton's method with the exact Jacobian of the equations (emit_c.c forms it; by
+ * differences where a formula has no derivative) and elimination with partial pivoting. At the
  * start of a run it starts from the initial guesses; after that the solution is followed
  * from the last point where the right-hand side solved (t_p, y_p, w_p, kept in p) to the
  * new point by natural continuation: the tangent there, dw = -J^{-1} (dr/dz) dz in the
@@ -23,15 +24,20 @@
 const char *lang_alg_solver_text(void)
 {
     return "#if !DK_ALG_EXACT_JACOBIAN\n"
-           "/* r = r(t, y, w) and J = dr/dw by differences, steps 1.5e-8 times the scales s */\n"
+           "/* r = r(t, y, w) and J = dr/dw by differences, steps 1.5e-8 times the scales s, or\n"
+           " * the largest of all the variables so far where that is larger (a variable near 0\n"
+           " * beside others of size one) */\n"
            "static void dk_alg_jacobian(double t, const double *y, const double *p, double *w,\n"
            "                            const double *s, double *r, double *J)\n"
            "{\n"
-           "    double r1[DK_ALG_M];\n"
+           "    double r1[DK_ALG_M], big = 0.0;\n"
+           "    for (int j = 0; j < DK_ALG_M; j++)\n"
+           "        if (p[DK_ALG_S + j] > big)\n"
+           "            big = p[DK_ALG_S + j];\n"
            "    dk_alg_residual(t, y, p, w, r);\n"
            "    for (int j = 0; j < DK_ALG_M; j++) {\n"
-           "        const double wj = w[j];\n"
-           "        const double h = 1.4901161193847656e-08 * (s[j] > 0.0 ? s[j] : 1.0);\n"
+           "        const double wj = w[j], sj = s[j] > big ? s[j] : big;\n"
+           "        const double h = 1.4901161193847656e-08 * (sj > 0.0 ? sj : 1.0);\n"
            "        w[j] = wj + h;\n"
            "        dk_alg_residual(t, y, p, w, r1);\n"
            "        w[j] = wj;\n"
@@ -89,14 +95,18 @@ const char *lang_alg_solver_text(void)
            "    for (int j = 0; j < DK_ALG_M; j++)\n"
            "        w0[j] = w[j];\n"
            "    for (int it = 0; it < 100; it++) {\n"
-           "        for (int j = 0; j < DK_ALG_M; j++)\n"
-           "            s[j] = fabs(w[j]) > fabs(w0[j]) ? fabs(w[j]) : fabs(w0[j]);\n"
+           "        for (int j = 0; j < DK_ALG_M; j++) { /* scales: |w|, its start, its largest "
+           "*/\n"
+           "            const double a = fabs(w[j]), b = fabs(w0[j]), c = p[DK_ALG_S + j];\n"
+           "            s[j] = a > b ? (a > c ? a : c) : (b > c ? b : c);\n"
+           "        }\n"
            "        dk_alg_jacobian(t, y, p, w, s, r, J);\n"
            "        /* every residual within its rounding error: solved */\n"
            "        dk_alg_bound(t, y, p, w, rb);\n"
            "        int rounding = 1;\n"
            "        for (int i = 0; i < DK_ALG_M; i++)\n"
-           "            rounding &= fabs(r[i]) <= 1.7763568394002505e-15 * rb[i];\n"
+           "            rounding &= isfinite(r[i]) && fabs(r[i]) <= 1.7763568394002505e-15 * "
+           "rb[i];\n"
            "        if (rounding)\n"
            "            return 0;\n"
            "        if (dk_alg_lu_solve(J, r))\n"

@@ -1181,6 +1181,28 @@ static void emit_bound(lang_ctx *c, const node *e, const ectx *x)
         emit_bound(c, e->args[0], x);
         return;
     }
+    if (e->kind == N_FIX) { /* its bound, a local written before (emit_fix_bounds) */
+        outf(c, "b_%s", LVEC_AT(c->m.fixes, lang_formula, e->index).name);
+        return;
+    }
+    if (e->kind == N_UFUN) { /* the body with the arguments in place */
+        const lang_func *fn = &LVEC_AT(c->m.funcs, lang_func, e->index);
+        if (++c->depth > LANG_MAX_INLINE)
+            lang_fail(c, e->pos, "calls of '%s' nested too deeply to bound", fn->name);
+        emit_bound(c, lang_subst(c, fn->body, e->args), x);
+        c->depth--;
+        return;
+    }
+    if (e->kind == N_IF) {
+        puts_(c, "((");
+        expr(c, e->args[0], x);
+        puts_(c, ") != 0.0 ? ");
+        emit_bound(c, e->args[1], x);
+        puts_(c, " : ");
+        emit_bound(c, e->args[2], x);
+        puts_(c, ")");
+        return;
+    }
     if (e->kind == N_BIN &&
         (e->op == OP_ADD || e->op == OP_SUB || e->op == OP_MUL || e->op == OP_DIV)) {
         puts_(c, "(");
@@ -1222,6 +1244,15 @@ static void emit_alg_functions(lang_ctx *c, jac_plan *jp)
              "    (void)w;\n",
              bound ? "bound" : "residual");
         emit_fixes(c, needed);
+        for (int q = 0; bound && q < m->fixes.n; q++) { /* the fixed quantities' bounds */
+            const int k = m->fix_order[q];
+            if (!needed[k])
+                continue;
+            const lang_formula *f = &LVEC_AT(m->fixes, lang_formula, k);
+            outf(c, "    const double b_%s = ", f->name);
+            emit_bound(c, f->expr, &x);
+            outf(c, ";\n    (void)b_%s;\n", f->name);
+        }
         for (int i = 0; i < na; i++) {
             const lang_formula *f = &LVEC_AT(m->algeqs, lang_formula, i);
             line_dir(c, f->pos);

@@ -912,6 +912,31 @@ static int emit_initial(lang_ctx *c, const double *y0)
 
 /* Jacobian: the fixed temporaries, then one block per column j with the derivatives of the
  * fixed temporaries with respect to y[j] (locals dvJ_NAME) and the non-zero entries. */
+/* The derivatives of the needed fixed quantities with respect to v's variable, in their
+ * order, into out (NULL: zero), and for the derivatives after them into v->fixd: the
+ * number, or a reference dv<column>_NAME to the local the Jacobian's text writes. */
+static void derive_fixes(lang_ctx *c, lang_dvar *v, const unsigned char *needed, node **out)
+{
+    const lang_model *m = &c->m;
+    for (int q = 0; q < m->fixes.n; q++) {
+        const int k = m->fix_order[q];
+        if (!needed[k])
+            continue;
+        node *dk = lang_deriv(c, LVEC_AT(m->fixes, lang_formula, k).expr, v);
+        if (lang_is_num(dk, 0.0))
+            continue;
+        out[k] = dk;
+        if (dk->kind == N_NUM) {
+            v->fixd[k] = dk;
+        } else {
+            node *ref = lang_node(c, N_DFIX, (lpos){0, 0});
+            ref->index = k;
+            ref->op = v->index;
+            v->fixd[k] = ref;
+        }
+    }
+}
+
 static void emit_jacobian(lang_ctx *c, jac_plan *j)
 {
     lang_model *m = &c->m;
@@ -933,23 +958,7 @@ static void emit_jacobian(lang_ctx *c, jac_plan *j)
         cols[jj].fixd = lang_alloc(c, ((size_t)m->fixes.n + 1) * sizeof(node *));
         cols[jj].entry = lang_alloc(c, (size_t)n * sizeof(node *));
         lang_dvar v = {N_STATE, jj, fixd, j->used, 0};
-        for (int q = 0; q < m->fixes.n; q++) {
-            const int k = m->fix_order[q];
-            if (!needed[k])
-                continue;
-            node *dk = lang_deriv(c, LVEC_AT(m->fixes, lang_formula, k).expr, &v);
-            if (lang_is_num(dk, 0.0))
-                continue;
-            cols[jj].fixd[k] = dk;
-            if (dk->kind == N_NUM) {
-                fixd[k] = dk;
-            } else {
-                node *ref = lang_node(c, N_DFIX, (lpos){0, 0});
-                ref->index = k;
-                ref->op = jj;
-                fixd[k] = ref;
-            }
-        }
+        derive_fixes(c, &v, needed, cols[jj].fixd);
         for (int i = 0; i < n; i++) {
             node *e = lang_deriv(c, roots[i], &v);
             cols[jj].entry[i] = lang_is_num(e, 0.0) ? NULL : e;
@@ -1130,23 +1139,7 @@ static int alg_jacobian_entries(lang_ctx *c, jac_plan *jp, const unsigned char *
         for (int k = 0; k < na; k++) {
             memset(fixd, 0, ((size_t)nf + 1) * sizeof *fixd);
             lang_dvar v = {N_ALG, k, fixd, jp->used, 0};
-            for (int q = 0; q < nf; q++) {
-                const int f = m->fix_order[q];
-                if (!needed[f])
-                    continue;
-                node *df = lang_deriv(c, LVEC_AT(m->fixes, lang_formula, f).expr, &v);
-                if (lang_is_num(df, 0.0))
-                    continue;
-                aj->fixd[(size_t)k * ((size_t)nf + 1) + (size_t)f] = df;
-                if (df->kind == N_NUM) {
-                    fixd[f] = df;
-                } else {
-                    node *ref = lang_node(c, N_DFIX, (lpos){0, 0});
-                    ref->index = f;
-                    ref->op = k;
-                    fixd[f] = ref;
-                }
-            }
+            derive_fixes(c, &v, needed, aj->fixd + (size_t)k * ((size_t)nf + 1));
             for (int i = 0; i < na; i++) {
                 node *e = lang_deriv(c, LVEC_AT(m->algeqs, lang_formula, i).expr, &v);
                 aj->entry[(size_t)k * (size_t)na + (size_t)i] = lang_is_num(e, 0.0) ? NULL : e;

@@ -421,9 +421,20 @@ static void test_errors_name_their_place(void **state)
     expect_error("line 2x;0;1;1\n", 1, 7, "missing operator");
     expect_error("\"quoted\n", 1, 1, "unknown command");
     expect_error("l 0;0;1;1\n", 1, 1, "unknown command 'l'");
-    /* the diagnostic's display: FILE:LINE:COL, the line and a caret under the column */
+    /* the algebraic variables of a model (0=...), and the fixed quantities that read them,
+     * are solved for by the model, not by the animation's evaluator */
+    static const char *const dae = "x'=-x\nsolv v\n0=v-2*x\nq=x+v\naux vv=v\ndone\n";
     dyn_ani *a;
     dyn_lang_diag d;
+    assert_int_equal(parse(dae, "line 0;0;v;1\n", &a, &d), 2);
+    CHECK(d.line == 1 && d.col == 10 && strstr(d.message, "'v' is an algebraic variable") &&
+              strstr(d.message, "aux"),
+          "%d:%d %s", d.line, d.col, d.message);
+    assert_int_equal(parse(dae, "line 0;0;q;1\n", &a, &d), 2);
+    CHECK(d.line == 1 && strstr(d.message, "'q' reads an algebraic variable"), "%s", d.message);
+    assert_int_equal(parse(dae, "line 0;0;vv;1\n", &a, &d), 0);
+    dyn_ani_free(a);
+    /* the diagnostic's display: FILE:LINE:COL, the line and a caret under the column */
     char buf[2048];
     assert_int_equal(parse(MODEL, "line 0;0;1;1\nline x;omega;1;1\n", &a, &d), 2);
     dyn_lang_diag_format(&d, buf, sizeof buf);

@@ -124,6 +124,8 @@ static void test_algebraic_equations_are_checked(void **state)
     expect_error("x'=z\nsolv v, z\n0=z-x\n0=z+x-1\n", 2, 6,
                  "the algebraic variable 'v' appears in no algebraic equation");
     expect_error("solv y\nx(t+1)=y\n0=y-x\n", 1, 6, "not discrete maps");
+    expect_error("x'=-y\nsolv y\n0=y-x\n@ xp=y\n", 4, 6,
+                 "option 'xp': 'y' is an algebraic variable: name an aux output of it");
     char *out = expect_ok("x'=-y\nsolv y=-.5\n0=y+exp(y)-x\n", NULL);
     CHECK(strstr(out, "dk_alg_solve") && strstr(out, "w[0]"), "%s", out);
     free(out);

@@ -22,7 +22,6 @@ static int n_loaded;
 /* loaded from a model file with algebraic equations (0=...), for the messages of a failed
  * run: the C text defines the solver's constants */
 static unsigned char loaded_algebraic[MAX_LOADED];
-static int next_algebraic;
 static int verbose;
 
 void cli_set_verbose(int on) { verbose = on; }
@@ -118,12 +117,12 @@ static int compile_failed(const char *what, const char *path, const char *err)
     return CLI_USAGE;
 }
 
-static int keep_loaded(const dyn_jit_model *jm, const char *path, const dyn_model **model)
+static int keep_loaded(const dyn_jit_model *jm, int algebraic, const char *path,
+                       const dyn_model **model)
 {
     if (n_loaded == 0)
         atexit(unload_all);
-    loaded_algebraic[n_loaded] = (unsigned char)next_algebraic;
-    next_algebraic = 0;
+    loaded_algebraic[n_loaded] = (unsigned char)algebraic;
     loaded[n_loaded++] = *jm;
     *model = jm->model;
     if (verbose && jm->cached)
@@ -145,9 +144,9 @@ static int open_model_file(const char *spec, const dyn_model **model)
     if (ends_with(spec, ".so")) {
         if (dyn_jit_load_shared(spec, &jm, err, sizeof err))
             return compile_failed("loading", spec, err);
-        return keep_loaded(&jm, spec, model);
+        return keep_loaded(&jm, 0, spec, model);
     }
-    int rc;
+    int rc, algebraic = 0;
     if (ends_with(spec, ".c")) {
         struct stat st;
         const int found = stat(spec, &st) == 0;
@@ -171,13 +170,13 @@ static int open_model_file(const char *spec, const dyn_model **model)
             fputs(dyn_lang_diag_format(&diag, shown, sizeof shown), stderr);
             return rc == 1 ? CLI_FAILED : CLI_USAGE;
         }
-        next_algebraic = strstr(c_source, "#define DK_ALG_M ") != NULL;
+        algebraic = strstr(c_source, "#define DK_ALG_M ") != NULL;
         rc = dyn_jit_load_source(c_source, strlen(c_source), spec, NULL, &jm, err, sizeof err);
         free(c_source);
     }
     if (rc != 0)
         return compile_failed("compiling model", spec, err);
-    return keep_loaded(&jm, spec, model);
+    return keep_loaded(&jm, algebraic, spec, model);
 }
 
 int cli_model_has_algebraic(const dyn_model *m)

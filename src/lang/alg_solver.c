@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* The C text that solves a model file's algebraic equations (XPPAUT's solv and 0=), put
  * into the generated model by emit_c.c after the constants it uses (DK_ALG_*, see
- * emit_alg_constants there) and the residual function dk_alg_residual(t, y, p, w, r).
+ * emit_alg_constants there) and the residual function dk_alg_residual(t, y, p, w, r, rb)
+ * (rb, when not NULL: the bounds of the residuals' rounding).
  *
  * Newton's method with the exact Jacobian of the equations (emit_c.c forms it; by
  * differences where a formula has no derivative) and elimination with partial pivoting. At the
@@ -15,7 +16,7 @@
  * one before), or there is no solution near the branch followed: where the branch ends at
  * an impasse point the tangent grows without bound and the parts fail, where starting again
  * from the guesses would land on another branch without a word. An iteration stops when
- * every residual is within its rounding error (8 eps times dk_alg_bound, the magnitudes
+ * every residual is within its rounding error (8 eps times rb, the magnitudes
  * that enter it: exp(w) - 1 - x for w near 1e-20 cannot resolve w better), or when the
  * largest step relative to its variable is below 1e-13.
  */
@@ -24,22 +25,23 @@
 const char *lang_alg_solver_text(void)
 {
     return "#if !DK_ALG_EXACT_JACOBIAN\n"
-           "/* r = r(t, y, w) and J = dr/dw by differences, steps 1.5e-8 times the scales s, or\n"
+           "/* r = r(t, y, w) (rb: their rounding's bounds, or NULL) and J = dr/dw by\n"
+           " * differences, steps 1.5e-8 times the scales s, or\n"
            " * the largest of all the variables so far where that is larger (a variable near 0\n"
            " * beside others of size one) */\n"
            "static void dk_alg_jacobian(double t, const double *y, const double *p, double *w,\n"
-           "                            const double *s, double *r, double *J)\n"
+           "                            const double *s, double *r, double *rb, double *J)\n"
            "{\n"
            "    double r1[DK_ALG_M], big = 0.0;\n"
            "    for (int j = 0; j < DK_ALG_M; j++)\n"
            "        if (p[DK_ALG_S + j] > big)\n"
            "            big = p[DK_ALG_S + j];\n"
-           "    dk_alg_residual(t, y, p, w, r);\n"
+           "    dk_alg_residual(t, y, p, w, r, rb);\n"
            "    for (int j = 0; j < DK_ALG_M; j++) {\n"
            "        const double wj = w[j], sj = s[j] > big ? s[j] : big;\n"
            "        const double h = 1.4901161193847656e-08 * (sj > 0.0 ? sj : 1.0);\n"
            "        w[j] = wj + h;\n"
-           "        dk_alg_residual(t, y, p, w, r1);\n"
+           "        dk_alg_residual(t, y, p, w, r1, NULL);\n"
            "        w[j] = wj;\n"
            "        for (int i = 0; i < DK_ALG_M; i++)\n"
            "            J[i * DK_ALG_M + j] = (r1[i] - r[i]) / h;\n"
@@ -100,9 +102,8 @@ const char *lang_alg_solver_text(void)
            "            const double a = fabs(w[j]), b = fabs(w0[j]), c = p[DK_ALG_S + j];\n"
            "            s[j] = a > b ? (a > c ? a : c) : (b > c ? b : c);\n"
            "        }\n"
-           "        dk_alg_jacobian(t, y, p, w, s, r, J);\n"
+           "        dk_alg_jacobian(t, y, p, w, s, r, rb, J);\n"
            "        /* every residual within its rounding error: solved */\n"
-           "        dk_alg_bound(t, y, p, w, rb);\n"
            "        int rounding = 1;\n"
            "        for (int i = 0; i < DK_ALG_M; i++)\n"
            "            rounding &= isfinite(r[i]) && fabs(r[i]) <= 1.7763568394002505e-15 * "
@@ -150,10 +151,10 @@ const char *lang_alg_solver_text(void)
            "        const double a = fabs(w[j]), b = 0.1 * p[DK_ALG_S + j];\n"
            "        s[j] = a > b ? a : b;\n"
            "    }\n"
-           "    dk_alg_jacobian(tp, p + DK_ALG_YP, p, w, s, r0, J);\n"
+           "    dk_alg_jacobian(tp, p + DK_ALG_YP, p, w, s, r0, NULL, J);\n"
            "    for (int i = 0; i < DK_ALG_N; i++)\n"
            "        ys[i] = p[DK_ALG_YP + i] + e * (y[i] - p[DK_ALG_YP + i]);\n"
-           "    dk_alg_residual(tp + e * (t - tp), ys, p, w, r1);\n"
+           "    dk_alg_residual(tp + e * (t - tp), ys, p, w, r1, NULL);\n"
            "    for (int i = 0; i < DK_ALG_M; i++)\n"
            "        r1[i] = (r1[i] - r0[i]) / e;\n"
            "    double move = INFINITY; /* the predicted move over the scales */\n"

@@ -1123,6 +1123,24 @@ typedef struct alg_jac {
     node **fixd;  /* fixd[k * (fixes + 1) + f] (NULL: zero) */
 } alg_jac;
 
+/* After a derivative that could not be formed (the error exit back in c->fail's hands):
+ * an error other than one in the file (out of memory) goes on to the caller; otherwise a
+ * note with the reason between before and after, the diagnostic cleared and the partial
+ * derivatives of functions forgotten, so that differences take over. */
+static void derivative_failed(lang_ctx *c, jac_plan *jp, const char *before, const char *after)
+{
+    if (c->status != 2)
+        longjmp(*c->fail, 1);
+    c->status = 0;
+    lpos at = {c->diag->line, c->diag->col};
+    lang_note(c, at, "%s%s%s", before, c->diag->message, after);
+    c->diag->message[0] = '\0';
+    c->diag->line = c->diag->col = 0;
+    c->diag->excerpt[0] = '\0';
+    memset(jp->used, 0, ((size_t)c->m.funcs.n + 1) * LANG_MAX_ARGS);
+    jp->partial = NULL;
+}
+
 /* Fills aj and returns 1, or 0 (with a note) when a formula has no analytic derivative
  * (a network sum): Newton's method then takes differences. */
 static int alg_jacobian_entries(lang_ctx *c, jac_plan *jp, const unsigned char *needed, alg_jac *aj)
@@ -1150,16 +1168,7 @@ static int alg_jacobian_entries(lang_ctx *c, jac_plan *jp, const unsigned char *
         return 1;
     }
     c->fail = outer;
-    if (c->status != 2)
-        longjmp(*outer, 1);
-    c->status = 0;
-    lpos at = {c->diag->line, c->diag->col};
-    lang_note(c, at, "the algebraic equations' Jacobian by differences: %s", c->diag->message);
-    c->diag->message[0] = '\0';
-    c->diag->line = c->diag->col = 0;
-    c->diag->excerpt[0] = '\0';
-    memset(jp->used, 0, ((size_t)m->funcs.n + 1) * LANG_MAX_ARGS);
-    jp->partial = NULL;
+    derivative_failed(c, jp, "the algebraic equations' Jacobian by differences: ", "");
     return 0;
 }
 
@@ -1217,8 +1226,8 @@ static void emit_bound(lang_ctx *c, const node *e, const ectx *x)
     puts_(c, ")");
 }
 
-/* dk_alg_residual (r from the 0= equations), the exact dk_alg_jacobian when it can be
- * formed, then the solver (alg_solver.c). */
+/* dk_alg_residual (r from the 0= equations, and the bounds of their rounding), the exact
+ * dk_alg_jacobian when it can be formed, then the solver (alg_solver.c). */
 static void emit_alg_functions(lang_ctx *c, jac_plan *jp)
 {
     lang_model *m = &c->m;
@@ -1230,34 +1239,36 @@ static void emit_alg_functions(lang_ctx *c, jac_plan *jp)
         roots[i] = LVEC_AT(m->algeqs, lang_formula, i).expr;
     unsigned char *needed = needed_by(c, roots, na);
     const ectx x = {NULL, 1};
-    for (int bound = 0; bound < 2; bound++) {
-        outf(c,
-             "static void dk_alg_%s(double t, const double *y, const double *p, "
-             "const double *w, double *r)\n{\n    (void)t;\n    (void)y;\n    (void)p;\n"
-             "    (void)w;\n",
-             bound ? "bound" : "residual");
-        emit_fixes(c, needed);
-        for (int q = 0; bound && q < m->fixes.n; q++) { /* the fixed quantities' bounds */
-            const int k = m->fix_order[q];
-            if (!needed[k])
-                continue;
-            const lang_formula *f = &LVEC_AT(m->fixes, lang_formula, k);
-            outf(c, "    const double b_%s = ", f->name);
-            emit_bound(c, f->expr, &x);
-            outf(c, ";\n    (void)b_%s;\n", f->name);
-        }
-        for (int i = 0; i < na; i++) {
-            const lang_formula *f = &LVEC_AT(m->algeqs, lang_formula, i);
-            line_dir(c, f->pos);
-            outf(c, "    r[%d] = ", i);
-            if (bound)
-                emit_bound(c, f->expr, &x);
-            else
-                expr(c, f->expr, &x);
-            puts_(c, ";\n");
-        }
-        puts_(c, "}\n\n");
+    /* r, and when rb is not NULL the bounds of their rounding (emit_bound) */
+    puts_(c, "static void dk_alg_residual(double t, const double *y, const double *p, "
+             "const double *w, double *r, double *rb)\n{\n    (void)t;\n    (void)y;\n"
+             "    (void)p;\n    (void)w;\n");
+    emit_fixes(c, needed);
+    for (int i = 0; i < na; i++) {
+        const lang_formula *f = &LVEC_AT(m->algeqs, lang_formula, i);
+        line_dir(c, f->pos);
+        outf(c, "    r[%d] = ", i);
+        expr(c, f->expr, &x);
+        puts_(c, ";\n");
     }
+    puts_(c, "    if (!rb)\n        return;\n");
+    for (int q = 0; q < m->fixes.n; q++) { /* the fixed quantities' bounds */
+        const int k = m->fix_order[q];
+        if (!needed[k])
+            continue;
+        const lang_formula *f = &LVEC_AT(m->fixes, lang_formula, k);
+        outf(c, "    const double b_%s = ", f->name);
+        emit_bound(c, f->expr, &x);
+        outf(c, ";\n    (void)b_%s;\n", f->name);
+    }
+    for (int i = 0; i < na; i++) {
+        const lang_formula *f = &LVEC_AT(m->algeqs, lang_formula, i);
+        line_dir(c, f->pos);
+        outf(c, "    rb[%d] = ", i);
+        emit_bound(c, f->expr, &x);
+        puts_(c, ";\n");
+    }
+    puts_(c, "}\n\n");
     alg_jac aj;
     const int exact = alg_jacobian_entries(c, jp, needed, &aj);
     if (exact) {
@@ -1270,8 +1281,8 @@ static void emit_alg_functions(lang_ctx *c, jac_plan *jp)
                 need(c, aj.fixd[q], jneed);
         puts_(c, "/* r and J = dr/dw, exact */\n"
                  "static void dk_alg_jacobian(double t, const double *y, const double *p, "
-                 "double *w, const double *s, double *r, double *J)\n{\n    (void)s;\n"
-                 "    dk_alg_residual(t, y, p, w, r);\n");
+                 "double *w, const double *s, double *r, double *rb, double *J)\n{\n"
+                 "    (void)s;\n    dk_alg_residual(t, y, p, w, r, rb);\n");
         emit_fixes(c, jneed);
         outf(c, "    for (int k = 0; k < %d; k++)\n        J[k] = 0.0;\n", na * na);
         for (int k = 0; k < na; k++) {
@@ -1426,9 +1437,8 @@ static int try_jacobian(lang_ctx *c, jac_plan *jp)
         return 1;
     }
     c->fail = outer;
-    if (c->status != 2)
-        longjmp(*outer, 1);
-    c->status = 0;
+    derivative_failed(c, jp,
+                      "no analytic Jacobian: ", "; the stiff methods use finite differences");
     if (c->out_saved) { /* failed while writing: back to the main text */
         free(c->out);
         c->out = c->out_saved;
@@ -1436,14 +1446,6 @@ static int try_jacobian(lang_ctx *c, jac_plan *jp)
         c->out_cap = c->out_saved_cap;
         c->out_saved = NULL;
     }
-    lpos at = {c->diag->line, c->diag->col};
-    lang_note(c, at, "no analytic Jacobian: %s; the stiff methods use finite differences",
-              c->diag->message);
-    c->diag->message[0] = '\0';
-    c->diag->line = c->diag->col = 0;
-    c->diag->excerpt[0] = '\0';
-    memset(jp->used, 0, ((size_t)c->m.funcs.n + 1) * LANG_MAX_ARGS);
-    jp->partial = NULL;
     jp->text = NULL;
     return 0;
 }

@@ -6,6 +6,7 @@
  * same code (cli/svg_axes.c).
  */
 #include "wp_svg.h"
+#include "escape.h"
 #include "svg_axes.h"
 
 #include <math.h>
@@ -143,7 +144,7 @@ static int legend(FILE *out, const wp_plot *p)
                        "stroke-width=\"%s\"%s/><text x=\"%.2f\" y=\"%.2f\">",
                        x + 8, ly - 4, x + 30, ly - 4, color, l->emphasis ? "2.2" : "1.4",
                        l->emphasis ? "" : " stroke-dasharray=\"6 3\"", x + 36, ly) < 0;
-        bad |= svg_text_escaped(out, l->label);
+        bad |= cli_xml_escaped(out, l->label);
         bad |= fputs("</text>\n", out) < 0;
     }
     bad |= fputs("</g>\n", out) < 0;

@@ -5,6 +5,7 @@
  * of a model and of a recorded run, shared by the pages. */
 #include <string.h>
 
+#include "escape.h"
 #include "pages.h"
 #include "web_assets.h"
 
@@ -35,21 +36,6 @@ static int write_assets(FILE *out, const char *suffix)
     return bad;
 }
 
-static int write_escaped(FILE *out, const char *text)
-{
-    int bad = 0;
-    for (const char *p = text; *p; p++) {
-        switch (*p) {
-        case '<': bad |= fputs("&lt;", out) < 0; break;
-        case '>': bad |= fputs("&gt;", out) < 0; break;
-        case '&': bad |= fputs("&amp;", out) < 0; break;
-        case '"': bad |= fputs("&quot;", out) < 0; break;
-        default: bad |= fputc(*p, out) == EOF;
-        }
-    }
-    return bad;
-}
-
 int cli_html_page_write(FILE *out, const char *title, const char *body_asset, cli_page_data_fn data,
                         void *ctx)
 {
@@ -74,7 +60,7 @@ int cli_html_page_write(FILE *out, const char *title, const char *body_asset, cl
         const char *name = m + sizeof marker - 1;
         const size_t len = (size_t)(close - name);
         if (len == 5 && strncmp(name, "title", 5) == 0) {
-            bad |= write_escaped(out, title);
+            bad |= cli_xml_escaped(out, title);
         } else if (len == 5 && strncmp(name, "style", 5) == 0) {
             bad |= write_assets(out, ".css");
         } else if (len == 6 && strncmp(name, "script", 6) == 0) {

@@ -1,10 +1,11 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* A small streaming JSON writer (RFC 8259) for the data of the HTML pages: it places the
  * commas, writes numbers compactly (%.*g, null when not finite) and escapes strings so the
- * text can sit inside an HTML <script> element. */
+ * text can sit inside an HTML <script> element (escape.h). */
 #include <math.h>
 #include <string.h>
 
+#include "escape.h"
 #include "pages.h"
 
 void cli_json_init(cli_json *j, FILE *out, int digits)
@@ -49,33 +50,10 @@ void cli_json_end_object(cli_json *j) { end(j, '}'); }
 void cli_json_begin_array(cli_json *j) { begin(j, '['); }
 void cli_json_end_array(cli_json *j) { end(j, ']'); }
 
-static void put_string(cli_json *j, const char *s)
-{
-    FILE *out = j->out;
-    j->bad |= fputc('"', out) == EOF;
-    for (const unsigned char *p = (const unsigned char *)(s ? s : ""); *p; p++) {
-        switch (*p) {
-        case '"': j->bad |= fputs("\\\"", out) < 0; break;
-        case '\\': j->bad |= fputs("\\\\", out) < 0; break;
-        case '\n': j->bad |= fputs("\\n", out) < 0; break;
-        case '\t': j->bad |= fputs("\\t", out) < 0; break;
-        case '<':
-        case '>':
-        case '&': j->bad |= fprintf(out, "\\u%04x", *p) < 0; break;
-        default:
-            if (*p < 0x20)
-                j->bad |= fprintf(out, "\\u%04x", *p) < 0;
-            else
-                j->bad |= fputc(*p, out) == EOF;
-        }
-    }
-    j->bad |= fputc('"', out) == EOF;
-}
-
 void cli_json_key(cli_json *j, const char *key)
 {
     separate(j);
-    put_string(j, key);
+    j->bad |= cli_json_escaped(j->out, key);
     j->bad |= fputc(':', j->out) == EOF;
     j->after_key = 1;
 }
@@ -97,7 +75,7 @@ void cli_json_number(cli_json *j, double v)
 void cli_json_string(cli_json *j, const char *s)
 {
     separate(j);
-    put_string(j, s);
+    j->bad |= cli_json_escaped(j->out, s);
 }
 
 void cli_json_bool(cli_json *j, int v)

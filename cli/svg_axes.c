@@ -3,6 +3,7 @@
  * (svg_axes.h). */
 #include <math.h>
 
+#include "escape.h"
 #include "svg_axes.h"
 
 double svg_nice_step(double range, int target)
@@ -64,22 +65,6 @@ int svg_offset_note(FILE *out, double x, double y, const char *anchor, double of
                    x, y, anchor, note) < 0;
 }
 
-int svg_text_escaped(FILE *out, const char *s)
-{
-    int bad = 0;
-    for (; s && *s; s++) {
-        if (*s == '<')
-            bad |= fputs("&lt;", out) < 0;
-        else if (*s == '>')
-            bad |= fputs("&gt;", out) < 0;
-        else if (*s == '&')
-            bad |= fputs("&amp;", out) < 0;
-        else
-            bad |= fputc(*s, out) == EOF;
-    }
-    return bad;
-}
-
 int svg_grid_begin(FILE *out)
 {
     return fputs("<g class=\"grid\" stroke=\"#e4e4e4\" stroke-width=\"1\">\n", out) < 0;
@@ -126,17 +111,17 @@ int svg_titles(FILE *out, double x0, double x1, double y0, double y1, double w, 
                    "<text class=\"xlabel\" x=\"%.2f\" y=\"%.2f\" font-size=\"14\" "
                    "text-anchor=\"middle\">",
                    (x0 + x1) / 2, h - 18) < 0;
-    bad |= svg_text_escaped(out, xlabel);
+    bad |= cli_xml_escaped(out, xlabel);
     bad |= fprintf(out,
                    "</text>\n<text class=\"ylabel\" x=\"0\" y=\"0\" font-size=\"14\" "
                    "text-anchor=\"middle\" transform=\"translate(20 %.2f) rotate(-90)\">",
                    (y0 + y1) / 2) < 0;
-    bad |= svg_text_escaped(out, ylabel);
+    bad |= cli_xml_escaped(out, ylabel);
     bad |= fprintf(out,
                    "</text>\n<text class=\"title\" x=\"%.2f\" y=\"26\" font-size=\"16\" "
                    "text-anchor=\"middle\">",
                    w / 2) < 0;
-    bad |= svg_text_escaped(out, title);
+    bad |= cli_xml_escaped(out, title);
     bad |= fputs("</text>\n", out) < 0;
     return bad;
 }

@@ -2,7 +2,7 @@
 /* The parts of an SVG plot's axes that the command line's plots (svg_plot.c, the sweep
  * tables' heat maps of sweep_plot.c) and the benchmark's work-precision diagrams
  * (bench/wp_svg.c) draw alike: grid lines, the frame, ticks at nice steps with their
- * numbers, axis labels and title, and escaped text. Positions are in
+ * numbers, axis labels and title (their text through escape.h). Positions are in
  * pixels; the plot area is x0..x1 (left to right) by y1..y0 (top to bottom). Each function
  * returns non-zero when a write failed. Only stdio: no part of the library. */
 #ifndef DYNKIT_SVG_AXES_H
@@ -29,9 +29,6 @@ int svg_tick_offset(long first, long last, double step, double *offset, double *
  * as a text element at (x, y) anchored by anchor ("start", "end"). */
 int svg_offset_note(FILE *out, double x, double y, const char *anchor, double offset,
                     double scale);
-
-/* s with <, > and & escaped (nothing for NULL). */
-int svg_text_escaped(FILE *out, const char *s);
 
 /* Opens the group of grid lines. */
 int svg_grid_begin(FILE *out);

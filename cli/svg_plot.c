@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "pages.h"
+#include "escape.h"
 #include "svg_axes.h"
 
 #define W 800.0
@@ -218,7 +219,7 @@ static int legend(FILE *out, const cli_svg_plot *p, const axis *ax, const axis *
                            "stroke=\"%s\" stroke-width=\"2\"/>",
                            x + 8, ly - 4, x + 30, ly - 4, color) < 0;
         bad |= fprintf(out, "<text x=\"%.2f\" y=\"%.2f\">", x + 36, ly) < 0;
-        bad |= svg_text_escaped(out, p->lines[i].label);
+        bad |= cli_xml_escaped(out, p->lines[i].label);
         bad |= fputs("</text>\n", out) < 0;
     }
     bad |= fputs("</g>\n", out) < 0;

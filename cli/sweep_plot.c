@@ -17,6 +17,7 @@
 
 #include "out_file.h"
 #include "pages.h"
+#include "escape.h"
 #include "svg_axes.h"
 
 #define MAX_COLS 256
@@ -214,6 +215,19 @@ static long index_of(const double *v, long n, double x)
     return -1;
 }
 
+/* The tooltip of a cell or point: "x=1 y=2: z=3" with the column names escaped. */
+static int cell_title(FILE *out, const sweep_table *t, const double *row, int xc, int yc, int zc)
+{
+    const int cols[3] = {xc, yc, zc};
+    int bad = fputs("<title>", out) < 0;
+    for (int k = 0; k < 3; k++) {
+        bad |= fputs(k == 0 ? "" : k == 1 ? " " : ": ", out) < 0;
+        bad |= cli_xml_escaped(out, t->names[cols[k]]);
+        bad |= fprintf(out, "=%s", CLI_NUM(row[cols[k]])) < 0;
+    }
+    return bad | (fputs("</title>", out) < 0);
+}
+
 static int heat_map(FILE *out, const sweep_table *t, int xc, int yc, int zc, const char *title)
 {
     double *xv = malloc((size_t)t->rows * sizeof *xv), *yv = malloc((size_t)t->rows * sizeof *yv);
@@ -274,19 +288,19 @@ static int heat_map(FILE *out, const sweep_table *t, int xc, int yc, int zc, con
             continue;
         colour((row[zc] - zlo) / (zhi - zlo), col, sizeof col);
         if (scatter) {
-            bad |= fprintf(out,
-                           "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"3.5\" fill=\"%s\"><title>%s=%s "
-                           "%s=%s: %s=%s</title></circle>\n",
-                           PX(row[xc]), PY(row[yc]), col, t->names[xc], CLI_NUM(row[xc]),
-                           t->names[yc], CLI_NUM(row[yc]), t->names[zc], CLI_NUM(row[zc])) < 0;
+            bad |= fprintf(out, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"3.5\" fill=\"%s\">",
+                           PX(row[xc]), PY(row[yc]), col) < 0;
+            bad |= cell_title(out, t, row, xc, yc, zc);
+            bad |= fputs("</circle>\n", out) < 0;
             continue;
         }
         const double a = PX(xe[ix]), b = PX(xe[ix + 1]), c = PY(ye[iy + 1]), d = PY(ye[iy]);
         bad |= fprintf(out,
                        "<rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" "
-                       "fill=\"%s\"><title>%s=%s %s=%s: %s=%s</title></rect>\n",
-                       a, c, b - a, d - c, col, t->names[xc], CLI_NUM(row[xc]), t->names[yc],
-                       CLI_NUM(row[yc]), t->names[zc], CLI_NUM(row[zc])) < 0;
+                       "fill=\"%s\">",
+                       a, c, b - a, d - c, col) < 0;
+        bad |= cell_title(out, t, row, xc, yc, zc);
+        bad |= fputs("</rect>\n", out) < 0;
     }
     bad |= fputs("</g>\n", out) < 0;
     /* axes: ticks at nice values inside the edges */
@@ -332,7 +346,7 @@ static int heat_map(FILE *out, const sweep_table *t, int xc, int yc, int zc, con
                    "</g>\n<text class=\"zlabel\" x=\"0\" y=\"0\" font-size=\"14\" "
                    "text-anchor=\"middle\" transform=\"translate(%.2f %.2f) rotate(-90)\">",
                    HW - 12, (y0 + y1) / 2) < 0;
-    bad |= svg_text_escaped(out, t->names[zc]);
+    bad |= cli_xml_escaped(out, t->names[zc]);
     bad |= fputs("</text>\n</svg>\n", out) < 0;
 #undef PX
 #undef PY

@@ -20,6 +20,7 @@
 
 #include "cli.h"
 #include "dynkit/io.h"
+#include "escape.h"
 #include "table_formats.h"
 
 #ifndef DYNKIT_VERSION
@@ -158,21 +159,6 @@ static int csv_header(cli_table *tab)
 
 /* ---- JSON ---- */
 
-/* A JSON string (RFC 8259 sec. 7): quotes, backslashes and control characters escaped. */
-static int json_string(FILE *out, const char *s)
-{
-    int bad = fputc('"', out) == EOF;
-    for (const unsigned char *p = (const unsigned char *)(s ? s : ""); *p; p++) {
-        if (*p == '"' || *p == '\\')
-            bad |= fprintf(out, "\\%c", *p) < 0;
-        else if (*p < 0x20)
-            bad |= fprintf(out, "\\u%04x", *p) < 0;
-        else
-            bad |= fputc(*p, out) == EOF;
-    }
-    return bad | (fputc('"', out) == EOF);
-}
-
 /* A number as the shortest string that reads back to it, or null when not finite (JSON has
  * no NaN or Inf). */
 static int json_number(FILE *out, double v)
@@ -196,7 +182,7 @@ static int json_strings(FILE *out, const char *key, const char *const *s, int n)
     for (int i = 0; i < n; i++) {
         if (i)
             bad |= fputs(", ", out) < 0;
-        bad |= json_string(out, s[i]);
+        bad |= cli_json_escaped(out, s[i]);
     }
     return bad | (fputs("],\n", out) < 0);
 }
@@ -206,11 +192,11 @@ static int json_header(cli_table *tab)
     const cli_table_info *in = &tab->info;
     FILE *out = tab->out;
     int bad = fputs("{\n  \"dynkit\": ", out) < 0;
-    bad |= json_string(out, DYNKIT_VERSION);
+    bad |= cli_json_escaped(out, DYNKIT_VERSION);
     bad |= fputs(",\n  \"model\": ", out) < 0;
-    bad |= json_string(out, in->model);
+    bad |= cli_json_escaped(out, in->model);
     bad |= fputs(",\n  \"method\": ", out) < 0;
-    bad |= in->method ? json_string(out, in->method) : fputs("null", out) < 0;
+    bad |= in->method ? cli_json_escaped(out, in->method) : fputs("null", out) < 0;
     bad |= fputs(",\n  \"step\": ", out) < 0;
     bad |= json_number(out, in->step);
     bad |= fputs(",\n  \"rtol\": ", out) < 0;

@@ -35,7 +35,7 @@
  *                  machine: the least disturbed sample of each solver)
  *   --quick        one run per solver, few tolerances: checks only, times meaningless (CI)
  *   --reps N       timed repetitions (default 15 for fixed steps, 7 for the adaptive runs)
- *   --only LIST    sections: fixed,adaptive,stiff,report (default all)
+ *   --only LIST    sections: fixed,adaptive,family,stiff,report (default all)
  *   --peers LIST   gsl,boost,sundials, all (default) or none
  *   --svg DIR      write the work-precision diagrams (wp-*.svg) into DIR
  *   --csv DIR      write the adaptive and stiff measurements (wp-*.csv) into DIR

@@ -3,8 +3,8 @@
  *
  * dyn_fixed_solve (ode.h) calls the right-hand side through a pointer: every stage stores
  * its state and derivative to memory and calls a function the compiler cannot see. For
- * small systems that is most of the cost of a step (van der Pol, 2 states: about 1.6x a
- * hand-written RK4 loop; see docs/performance.md). dyn_fixed_solve_inline is the same
+ * small systems that is most of the cost of a step (van der Pol, 2 states: about 2.4x the
+ * fastest hand-written RK4 loop; see docs/performance.md). dyn_fixed_solve_inline is the same
  * solve as a static inline function: when the right-hand side is defined in the calling
  * translation unit and sys is built there (dyn_system sys = {my_rhs, 2, &par}), the
  * compiler inlines my_rhs into the stage loop, unrolls the stages, and keeps the stage

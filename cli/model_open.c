@@ -125,6 +125,8 @@ static int keep_loaded(const dyn_jit_model *jm, int algebraic, const char *path,
     loaded_algebraic[n_loaded] = (unsigned char)algebraic;
     loaded[n_loaded++] = *jm;
     *model = jm->model;
+    if (jm->note[0]) /* libtcc instead of the compiler, a damaged cache entry replaced */
+        fprintf(stderr, "dynkit: note: %s: %s\n", path, jm->note);
     if (verbose && jm->cached)
         fprintf(stderr, "dynkit: note: %s: loaded from the cache (%s)\n", path, jm->so_path);
     else if (verbose)

@@ -28,13 +28,20 @@ typedef struct dyn_jit_opts {
     const char *cache_dir;  /* NULL: $DYNKIT_CACHE_DIR, else $XDG_CACHE_HOME/dynkit, else
                              * ~/.cache/dynkit */
     const char *cc;         /* NULL: $DYNKIT_CC, else $CC, else "cc" */
-    const char *cflags;     /* NULL: $DYNKIT_CFLAGS, else "-O2" (plus what a shared object
-                             * needs, and -ffp-contract=off before them) */
+    const char *cflags;     /* NULL: $DYNKIT_CFLAGS, else "-O2" (-O1 above 256 KiB of source,
+                             * -O0 above 1 MiB), plus what a shared object needs, and
+                             * -ffp-contract=off before them */
+    double cc_timeout;      /* seconds the system compiler may take (it is then stopped);
+                             * 0: $DYNKIT_CC_TIMEOUT, else 60 */
 } dyn_jit_opts;
-/* DYN_JIT_AUTO reads $DYNKIT_JIT (auto, cc or tcc) first. The cache holds
+/* DYN_JIT_AUTO reads $DYNKIT_JIT (auto, cc or tcc) first; it compiles with libtcc (when
+ * built in) a source larger than 4 MiB, and one the system compiler did not finish within
+ * its time limit, and says so in dyn_jit_model.note. The cache holds
  * include-<version>-<hash>/ (dynkit's public headers, embedded in the library, written once)
  * and NAME-<hash>.so, one per (source, source name, dynkit version, DYN_MODEL_ABI, headers,
- * compiler command and flags); it is never pruned: removing it is always safe. */
+ * compiler command and flags); it is never pruned: removing it is always safe. What is read
+ * from it is checked first (owner, mode, the SHA-256 an object ends with): another user's
+ * entry is refused, a damaged object compiled again (docs/model-files.md, "The cache"). */
 
 /* A loaded model: model points into the compiled code, valid until dyn_jit_unload. */
 typedef struct dyn_jit_model {
@@ -44,6 +51,8 @@ typedef struct dyn_jit_model {
     int cached;             /* 1: the shared object came from the cache, no compilation */
     double compile_seconds; /* time spent compiling (0 when cached) */
     char so_path[1024];     /* the shared object loaded (cc), "" for tcc */
+    char note[1024];        /* for the user, "" when nothing: libtcc used instead of the
+                             * system compiler and why, a damaged cache entry replaced */
 } dyn_jit_model;
 
 /* Compile C source (len bytes) that defines dynkit_model() (model.h) and load it.

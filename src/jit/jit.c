@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "jit_internal.h"
 
@@ -31,15 +32,17 @@ int dyn_jit_backend_available(dyn_jit_backend backend)
     return backend == DYN_JIT_CC || backend == DYN_JIT_AUTO;
 }
 
-/* DYN_JIT_AUTO: $DYNKIT_JIT when set, else the system compiler, and libtcc when there is no
- * system compiler and none was named (*fallback = 1). See docs/model-files.md, "Compiling models":
- * the system compiler's code runs up to 3 times faster than libtcc's, its first compilation of a
- * model (about 0.13 s) is within the target, and every later run only loads the cached object. */
-static int choose_backend(const dyn_jit_opts *opts, dyn_jit_backend *b, int *fallback, char *err,
-                          size_t errlen)
+/* DYN_JIT_AUTO: $DYNKIT_JIT when set, else the system compiler (*automatic = 1), and libtcc
+ * when there is no system compiler and none was named (*fallback = 1). See
+ * docs/model-files.md, "Compiling models": the system compiler's code runs up to 3 times
+ * faster than libtcc's, its first compilation of a model (about 0.13 s) is within the target,
+ * and every later run only loads the cached object. */
+static int choose_backend(const dyn_jit_opts *opts, dyn_jit_backend *b, int *automatic,
+                          int *fallback, char *err, size_t errlen)
 {
     *b = opts ? opts->backend : DYN_JIT_AUTO;
     *fallback = 0;
+    *automatic = 0;
     if (*b == DYN_JIT_AUTO) {
         const char *env = getenv("DYNKIT_JIT");
         if (env && env[0] && strcmp(env, "auto") != 0) {
@@ -53,10 +56,10 @@ static int choose_backend(const dyn_jit_opts *opts, dyn_jit_backend *b, int *fal
                                 env);
         } else {
             *b = DYN_JIT_CC;
+            *automatic = dyn_jit_backend_available(DYN_JIT_TCC);
             /* only when no compiler was named: a named one that is missing is an error */
             const char *cc1 = getenv("DYNKIT_CC"), *cc2 = getenv("CC");
-            *fallback = dyn_jit_backend_available(DYN_JIT_TCC) && !(opts && opts->cc) &&
-                        !(cc1 && cc1[0]) && !(cc2 && cc2[0]);
+            *fallback = *automatic && !(opts && opts->cc) && !(cc1 && cc1[0]) && !(cc2 && cc2[0]);
         }
     }
     if (*b != DYN_JIT_CC && *b != DYN_JIT_TCC)
@@ -66,6 +69,20 @@ static int choose_backend(const dyn_jit_opts *opts, dyn_jit_backend *b, int *fal
                         "this dynkit was built without libtcc: install libtcc-dev and tcc "
                         "(apt-get install libtcc-dev tcc) and rebuild, or use the system C "
                         "compiler (cc)");
+    return 0;
+}
+
+/* libtcc instead of the system compiler, with `why` in the model's note */
+static int tcc_instead(const char *source, size_t len, const char *source_name,
+                       const dyn_jit_opts *opts, const char *why, dyn_jit_model *out, char *err,
+                       size_t errlen)
+{
+    if (jit_tcc_load(source, len, source_name, opts, out, err, errlen) != 0)
+        return 1;
+    char text[800];
+    snprintf(text, sizeof text,
+             "%s: compiled with libtcc instead, whose code runs up to 3 times slower", why);
+    jit_note(out->note, sizeof out->note, text);
     return 0;
 }
 
@@ -81,14 +98,26 @@ int dyn_jit_load_source(const char *source, size_t len, const char *source_name,
         return jit_fail(err, errlen, "%s: not a C source (contains a NUL byte)",
                         source_name ? source_name : "model");
     dyn_jit_backend b;
-    int fallback;
-    if (choose_backend(opts, &b, &fallback, err, errlen) != 0)
+    int automatic, fallback;
+    if (choose_backend(opts, &b, &automatic, &fallback, err, errlen) != 0)
         return 1;
     if (b == DYN_JIT_TCC)
         return jit_tcc_load(source, len, source_name, opts, out, err, errlen);
+    char why[600];
+    if (automatic && len > JIT_CC_MAX_SOURCE) { /* minutes and gigabytes for cc */
+        snprintf(why, sizeof why,
+                 "the generated C is %.1f MiB, more than the %u MiB given to the system C "
+                 "compiler (DYNKIT_JIT=cc gives it anyway)",
+                 (double)len / (1 << 20), JIT_CC_MAX_SOURCE >> 20);
+        return tcc_instead(source, len, source_name, opts, why, out, err, errlen);
+    }
     int rc = jit_cc_load(source, len, source_name, opts, out, err, errlen);
     if (rc == 2 && fallback) /* no system compiler: libtcc */
         return jit_tcc_load(source, len, source_name, opts, out, err, errlen);
+    if (rc == 3 && automatic) { /* the compiler's time limit, named in out->note */
+        snprintf(why, sizeof why, "%.500s", out->note);
+        return tcc_instead(source, len, source_name, opts, why, out, err, errlen);
+    }
     return rc != 0;
 }
 
@@ -229,18 +258,43 @@ static const char *base_name(const char *path)
     return s ? s + 1 : path;
 }
 
-int jit_load_so(const char *path, const char *where, dyn_jit_model *out, char *err, size_t errlen)
+/* A loaded shared object: the dlopen handle, and the descriptor of the private copy it was
+ * loaded from (kept open while it is loaded, so that no other object gets its name). */
+typedef struct loaded_so {
+    void *dl;
+    int fd;
+} loaded_so;
+
+static void close_so(loaded_so *s)
 {
-    memset(out, 0, sizeof *out);
+    if (s->dl)
+        dlclose(s->dl);
+    if (s->fd >= 0)
+        close(s->fd);
+    free(s);
+}
+
+static int load_so(const char *path, int fd, const char *where, dyn_jit_model *out, char *err,
+                   size_t errlen)
+{
     /* dlopen searches the library path for a name without '/': a file is meant */
     char full[1024];
-    int n = strchr(path, '/') ? snprintf(full, sizeof full, "%s", path)
-                              : snprintf(full, sizeof full, "./%s", path);
-    if (n < 0 || (size_t)n >= sizeof full)
-        return jit_fail(err, errlen, "path too long: %s", path);
+    int n = fd >= 0               ? snprintf(full, sizeof full, "/proc/self/fd/%d", fd)
+            : strchr(path, '/') ? snprintf(full, sizeof full, "%s", path)
+                                : snprintf(full, sizeof full, "./%s", path);
+    loaded_so *so = n < 0 || (size_t)n >= sizeof full ? NULL : malloc(sizeof *so);
+    if (!so) {
+        if (fd >= 0)
+            close(fd);
+        return jit_fail(err, errlen, n < 0 || (size_t)n >= sizeof full ? "path too long: %s"
+                                                                         : "out of memory (%s)",
+                        path);
+    }
+    so->fd = fd;
     dlerror();
-    void *h = dlopen(full, RTLD_NOW | RTLD_LOCAL);
+    void *h = so->dl = dlopen(full, RTLD_NOW | RTLD_LOCAL);
     if (!h) {
+        close_so(so);
         const char *e = dlerror();
         if (e && strstr(e, "undefined symbol"))
             return jit_fail(err, errlen,
@@ -254,7 +308,7 @@ int jit_load_so(const char *path, const char *where, dyn_jit_model *out, char *e
     }
     const unsigned *abi = (const unsigned *)dlsym(h, "dynkit_model_abi");
     if (!abi) {
-        dlclose(h);
+        close_so(so);
         return jit_fail(err, errlen,
                         "%s does not record a model ABI (the symbol dynkit_model_abi, which "
                         "dynkit adds when it compiles a model): this dynkit reads ABI %d: "
@@ -263,7 +317,7 @@ int jit_load_so(const char *path, const char *where, dyn_jit_model *out, char *e
     }
     if (*abi != (unsigned)DYN_MODEL_ABI) {
         unsigned got = *abi;
-        dlclose(h);
+        close_so(so);
         return jit_fail(err, errlen,
                         "%s was built for model ABI %u, this dynkit reads ABI %d: recompile it",
                         where, got, DYN_MODEL_ABI);
@@ -272,7 +326,7 @@ int jit_load_so(const char *path, const char *where, dyn_jit_model *out, char *e
     void *sym = dlsym(h, DYN_MODEL_ENTRY);
     dyn_model_entry_fn entry;
     if (!sym) {
-        dlclose(h);
+        close_so(so);
         return jit_fail(err, errlen,
                         "%s does not define the entry point %s() (model.h: "
                         "const dyn_model *dynkit_model(void))",
@@ -281,19 +335,26 @@ int jit_load_so(const char *path, const char *where, dyn_jit_model *out, char *e
     memcpy(&entry, &sym, sizeof entry);
     const dyn_model *m = entry();
     if (jit_check_model(m, where, err, errlen) != 0) {
-        dlclose(h);
+        close_so(so);
         return 1;
     }
     out->model = m;
-    out->handle = h;
+    out->handle = so;
     out->backend = DYN_JIT_CC;
     snprintf(out->so_path, sizeof out->so_path, "%s", path);
     return 0;
 }
 
+int jit_load_so(const char *path, int fd, const char *where, dyn_jit_model *out, char *err,
+                size_t errlen)
+{
+    memset(out, 0, sizeof *out);
+    return load_so(path, fd, where, out, err, errlen); /* which closes fd when it fails */
+}
+
 int dyn_jit_load_shared(const char *path, dyn_jit_model *out, char *err, size_t errlen)
 {
-    return jit_load_so(path, base_name(path), out, err, errlen);
+    return jit_load_so(path, -1, base_name(path), out, err, errlen);
 }
 
 void dyn_jit_unload(dyn_jit_model *m)
@@ -306,7 +367,7 @@ void dyn_jit_unload(dyn_jit_model *m)
     if (m->backend == DYN_JIT_TCC)
         jit_tcc_unload(m->handle);
     else
-        dlclose(m->handle);
+        close_so(m->handle);
     m->handle = NULL;
     m->model = NULL;
 }

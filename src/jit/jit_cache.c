@@ -1,8 +1,9 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* The jit layer's cache directory: where it is ($DYNKIT_CACHE_DIR, $XDG_CACHE_HOME/dynkit,
  * ~/.cache/dynkit), the embedded public headers written into it once per version and header
- * set, unique temporary names for concurrent compilations, and small helpers (messages,
- * the text given to the compilers, a monotonic clock). */
+ * set (checked before each use, jit_trust.c), unique temporary names for concurrent
+ * compilations, and small helpers (messages, notes, the text given to the compilers, a
+ * monotonic clock). */
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
 #include <errno.h>
@@ -36,7 +37,7 @@ double jit_now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* mkdir -p: each missing component created (0777 minus the umask) */
+/* mkdir -p: each missing component created for this user alone (0700) */
 static int make_dirs(const char *path, char *err, size_t errlen)
 {
     char buf[1024];
@@ -49,14 +50,11 @@ static int make_dirs(const char *path, char *err, size_t errlen)
             continue;
         char c = buf[i];
         buf[i] = '\0';
-        if (mkdir(buf, 0777) != 0 && errno != EEXIST)
+        if (mkdir(buf, 0700) != 0 && errno != EEXIST)
             return jit_fail(err, errlen, "cannot create the cache directory %s: %s", buf,
                             strerror(errno));
         buf[i] = c;
     }
-    struct stat st;
-    if (stat(path, &st) != 0 || !S_ISDIR(st.st_mode))
-        return jit_fail(err, errlen, "the cache directory %s is not a directory", path);
     return 0;
 }
 
@@ -82,7 +80,20 @@ int jit_cache_dir(const dyn_jit_opts *opts, char *dir, size_t size, char *err, s
     if (dyn_jit_cache_dir(opts, dir, size) != 0)
         return jit_fail(err, errlen,
                         "no cache directory for compiled models: set DYNKIT_CACHE_DIR (or HOME)");
-    return make_dirs(dir, err, errlen);
+    char given[1024];
+    snprintf(given, sizeof given, "%s", dir);
+    if (make_dirs(given, err, errlen) != 0)
+        return 1;
+    return jit_trust_cache_dir(given, dir, size, err, errlen);
+}
+
+void jit_note(char *note, size_t size, const char *text)
+{
+    if (!note || size == 0)
+        return;
+    size_t used = strlen(note);
+    if (used + 1 < size)
+        snprintf(note + used, size - used, "%s%s", used ? "; " : "", text);
 }
 
 void jit_unique_path(const char *dir, const char *prefix, const char *suffix, char *out,
@@ -116,16 +127,29 @@ static int write_file(const char *path, const void *data, size_t len)
     return close(fd);
 }
 
-static void remove_tree(const char *tmp)
+/* Remove a tree this user wrote (a temporary or replaced headers directory): what belongs to
+ * someone else, and what lies deeper than dynkit writes, stays. */
+static void remove_tree(const char *path, int depth)
 {
-    char path[1600];
-    for (int i = 0; i < dyn_jit_header_count; i++) {
-        snprintf(path, sizeof path, "%s/dynkit/%s", tmp, dyn_jit_headers[i].name);
+    struct stat st;
+    if (lstat(path, &st) != 0 || st.st_uid != geteuid())
+        return;
+    if (!S_ISDIR(st.st_mode)) {
         unlink(path);
+        return;
     }
-    snprintf(path, sizeof path, "%s/dynkit", tmp);
+    DIR *d = depth < 3 ? opendir(path) : NULL;
+    struct dirent *e;
+    char sub[1600];
+    while (d && (e = readdir(d)) != NULL) {
+        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
+            continue;
+        snprintf(sub, sizeof sub, "%s/%s", path, e->d_name);
+        remove_tree(sub, depth + 1);
+    }
+    if (d)
+        closedir(d);
     rmdir(path);
-    rmdir(tmp);
 }
 
 void jit_sweep_stale(const char *cache)
@@ -143,29 +167,38 @@ void jit_sweep_stale(const char *cache)
         struct stat st;
         if (lstat(path, &st) != 0 || st.st_uid != geteuid() || now - st.st_mtime < 3600)
             continue;
-        if (S_ISDIR(st.st_mode))
-            remove_tree(path);
-        else
-            unlink(path);
+        remove_tree(path, 0);
     }
     closedir(d);
 }
 
-int jit_include_dir(const char *cache, char *dir, size_t size, char *err, size_t errlen)
+int jit_include_dir(const char *cache, char *dir, size_t size, char *note, size_t notelen,
+                    char *err, size_t errlen)
 {
     int n = snprintf(dir, size, "%s/include-%s-%.16s", cache, DYNKIT_VERSION, dyn_jit_headers_hash);
     if (n < 0 || (size_t)n >= size)
         return jit_fail(err, errlen, "cache directory path too long: %s", cache);
-    struct stat st;
-    if (stat(dir, &st) == 0 && S_ISDIR(st.st_mode))
-        return 0; /* complete: it appears only by the rename below */
+    char why[1400], tmp[1024], path[1200];
+    int rc = jit_include_check(dir, why, sizeof why, err, errlen);
+    if (rc == JIT_OK)
+        return 0; /* complete: it appears only by the rename below, and nothing changed it */
+    if (rc == JIT_REFUSED)
+        return 1;
+    if (rc == JIT_STALE) { /* moved aside and removed, then written anew */
+        jit_unique_path(cache, "tmp-replaced-", "", tmp, sizeof tmp);
+        if (rename(dir, tmp) != 0 && errno != ENOENT)
+            return jit_fail(err, errlen, "cannot replace %s (%s): %s", dir, why, strerror(errno));
+        remove_tree(tmp, 0);
+        char text[1600];
+        snprintf(text, sizeof text, "replaced the headers in the cache: %s", why);
+        jit_note(note, notelen, text);
+    }
 
-    char tmp[1024], path[1200];
     jit_unique_path(cache, "tmp-include-", "", tmp, sizeof tmp);
     snprintf(path, sizeof path, "%s/dynkit", tmp);
     if (mkdir(tmp, 0755) != 0 || mkdir(path, 0755) != 0) {
         int e = errno;
-        remove_tree(tmp);
+        remove_tree(tmp, 0);
         return jit_fail(err, errlen, "cannot write into the cache directory %s: %s", cache,
                         strerror(e));
     }
@@ -173,15 +206,15 @@ int jit_include_dir(const char *cache, char *dir, size_t size, char *err, size_t
         snprintf(path, sizeof path, "%s/dynkit/%s", tmp, dyn_jit_headers[i].name);
         if (write_file(path, dyn_jit_headers[i].data, dyn_jit_headers[i].size) != 0) {
             int e = errno;
-            remove_tree(tmp);
+            remove_tree(tmp, 0);
             return jit_fail(err, errlen, "cannot write %s: %s", path, strerror(e));
         }
     }
     if (rename(tmp, dir) != 0) {
         int e = errno;
-        remove_tree(tmp);
+        remove_tree(tmp, 0);
         /* another process put the same directory in place first: use it */
-        if (stat(dir, &st) == 0 && S_ISDIR(st.st_mode))
+        if (jit_include_check(dir, why, sizeof why, err, errlen) == JIT_OK)
             return 0;
         return jit_fail(err, errlen, "cannot create %s: %s", dir, strerror(e));
     }

@@ -4,10 +4,15 @@
  * version, the model ABI, the embedded headers, the compiler command and flags). A cached
  * run only dlopens. Concurrent runs compile to unique temporary names and rename(2) the
  * result into place, so a reader never sees a half-written file. The compiler runs through
- * posix_spawnp with an argument vector (no shell), its diagnostics captured for the caller. */
+ * posix_spawnp with an argument vector (no shell), its diagnostics captured for the caller,
+ * within a time limit; large sources get a lower optimisation level. What is read from the
+ * cache is checked first (jit_trust.c). */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <fcntl.h>
+#include <math.h>
+#include <poll.h>
+#include <signal.h>
 #include <spawn.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -22,7 +27,15 @@
 extern char **environ;
 
 #define MAX_ARGS 64
+/* The optimisation level by the size of the source (docs/model-files.md, "Large models"):
+ * -O2 pays off for small right-hand sides and costs little to compile; on generated sources
+ * of hundreds of kilobytes its compile time grows faster than the source (minutes), and -O1
+ * or -O0 compile in seconds. */
 #define DEFAULT_CFLAGS "-O2"
+#define LARGE_CFLAGS "-O1"
+#define HUGE_CFLAGS "-O0"
+#define DEFAULT_TIMEOUT 60.0 /* seconds; DYNKIT_CC_TIMEOUT */
+#define RUN_TIMEOUT 1000     /* run(): the time limit was reached */
 /* Always passed before the flags (which may override it): no contraction of a*b + c into
  * fused multiply-adds, so that a model computes the same numbers as the library (compiled as
  * ISO C, where GCC does not contract) whatever the target and the compiler's default. */
@@ -106,9 +119,11 @@ static void capture_add(capture *c, const char *p, size_t n)
     c->buf[c->len] = '\0';
 }
 
-/* Run argv with stdin from /dev/null and stdout+stderr into out. Returns the exit status
- * (0..255), 256 + signal when killed, or -errno when it could not start. */
-static int run(char *const argv[], capture *out)
+/* Run argv with stdin from /dev/null and stdout+stderr into out, in a process group of its
+ * own, killed as a whole (the driver, cc1, as, ld) after `limit` seconds. Returns the exit
+ * status (0..255), 256 + signal when killed, RUN_TIMEOUT when the limit was reached, or
+ * -errno when it could not start. */
+static int run(char *const argv[], double limit, capture *out)
 {
     int fds[2];
     if (pipe(fds) != 0)
@@ -120,16 +135,34 @@ static int run(char *const argv[], capture *out)
     posix_spawn_file_actions_adddup2(&fa, fds[1], 2);
     posix_spawn_file_actions_addclose(&fa, fds[0]);
     posix_spawn_file_actions_addclose(&fa, fds[1]);
+    posix_spawnattr_t attr;
+    posix_spawnattr_init(&attr);
+    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
+    posix_spawnattr_setpgroup(&attr, 0);
     pid_t pid;
-    int rc = posix_spawnp(&pid, argv[0], &fa, NULL, argv, environ);
+    int rc = posix_spawnp(&pid, argv[0], &fa, &attr, argv, environ);
     posix_spawn_file_actions_destroy(&fa);
+    posix_spawnattr_destroy(&attr);
     close(fds[1]);
     if (rc != 0) {
         close(fds[0]);
         return -rc;
     }
+    const double deadline = jit_now() + limit;
+    int timed_out = 0;
     char chunk[4096];
     for (;;) {
+        double left = deadline - jit_now();
+        if (left <= 0) {
+            timed_out = 1;
+            break;
+        }
+        struct pollfd p = {.fd = fds[0], .events = POLLIN};
+        int ready = poll(&p, 1, left > 3600 ? 3600000 : (int)(left * 1000) + 1);
+        if (ready < 0 && errno != EINTR)
+            break;
+        if (ready <= 0)
+            continue;
         ssize_t r = read(fds[0], chunk, sizeof chunk);
         if (r > 0)
             capture_add(out, chunk, (size_t)r);
@@ -137,13 +170,40 @@ static int run(char *const argv[], capture *out)
             break;
     }
     close(fds[0]);
+    if (timed_out)
+        kill(-pid, SIGKILL);
     int status;
     while (waitpid(pid, &status, 0) < 0)
         if (errno != EINTR)
             return -errno;
+    if (timed_out)
+        return RUN_TIMEOUT;
     if (WIFEXITED(status))
         return WEXITSTATUS(status);
     return 256 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+}
+
+/* The time limit of the compiler: opts, else $DYNKIT_CC_TIMEOUT, else DEFAULT_TIMEOUT. */
+static int time_limit(const dyn_jit_opts *opts, double *limit, char *err, size_t errlen)
+{
+    *limit = DEFAULT_TIMEOUT;
+    if (opts && opts->cc_timeout > 0) {
+        *limit = opts->cc_timeout;
+        return 0;
+    }
+    const char *env = getenv("DYNKIT_CC_TIMEOUT");
+    if (!env || !env[0])
+        return 0;
+    char *end = NULL;
+    errno = 0;
+    double v = strtod(env, &end);
+    if (end == env || *end != '\0' || errno || !isfinite(v) || v <= 0)
+        return jit_fail(err, errlen,
+                        "DYNKIT_CC_TIMEOUT=%s is not a number of seconds > 0 (the time the C "
+                        "compiler may take for one model, %g s when unset)",
+                        env, DEFAULT_TIMEOUT);
+    *limit = v;
+    return 0;
 }
 
 /* "head: text" into err, cut at a line end when the room is short, with a note of how many
@@ -222,7 +282,13 @@ int jit_cc_load(const char *source, size_t len, const char *source_name, const d
     if (jit_cache_dir(opts, cache, sizeof cache, err, errlen) != 0)
         return 1;
     const char *cc = pick(opts ? opts->cc : NULL, "DYNKIT_CC", "CC", "cc");
-    const char *cflags = pick(opts ? opts->cflags : NULL, "DYNKIT_CFLAGS", NULL, DEFAULT_CFLAGS);
+    const char *cflags = pick(opts ? opts->cflags : NULL, "DYNKIT_CFLAGS", NULL,
+                              len > JIT_CC_LARGE_SOURCE  ? HUGE_CFLAGS
+                              : len > JIT_CC_O2_SOURCE ? LARGE_CFLAGS
+                                                       : DEFAULT_CFLAGS);
+    double limit;
+    if (time_limit(opts, &limit, err, errlen) != 0)
+        return 1;
 
     words *argv = malloc(sizeof *argv); /* 9 KB: not on the stack */
     if (!argv)
@@ -242,7 +308,8 @@ int jit_cc_load(const char *source, size_t len, const char *source_name, const d
     char key[65], ver[64];
     jit_sha256 h;
     jit_sha256_init(&h);
-    snprintf(ver, sizeof ver, "dynkit-jit-cc %s abi %d ", DYNKIT_VERSION, DYN_MODEL_ABI);
+    /* "cc2": objects end with the SHA-256 of their bytes (jit_object_seal) */
+    snprintf(ver, sizeof ver, "dynkit-jit-cc2 %s abi %d ", DYNKIT_VERSION, DYN_MODEL_ABI);
     jit_sha256_update(&h, ver, strlen(ver) + 1);
     jit_sha256_update(&h, dyn_jit_headers_hash, strlen(dyn_jit_headers_hash) + 1);
     for (int i = 0; i < n_command; i++)
@@ -259,22 +326,28 @@ int jit_cc_load(const char *source, size_t len, const char *source_name, const d
         return jit_fail(err, errlen, "cache directory path too long: %s", cache);
     }
 
-    struct stat st;
-    if (stat(so, &st) == 0) {
+    char note[sizeof out->note] = "", why[1400];
+    int fd;
+    int state = jit_object_open(so, &fd, why, sizeof why, err, errlen);
+    if (state == JIT_REFUSED) {
         free(argv);
-        if (!S_ISREG(st.st_mode) || st.st_uid != geteuid())
-            return jit_fail(err, errlen,
-                            "refusing to load %s: not a regular file owned by this user "
-                            "(the cache directory %s is shared?)",
-                            so, cache);
-        if (jit_load_so(so, where, out, err, errlen) != 0)
+        return 1;
+    }
+    if (state == JIT_OK) {
+        free(argv);
+        if (jit_load_so(so, fd, where, out, err, errlen) != 0)
             return 1;
         out->cached = 1;
         return 0;
     }
+    if (state == JIT_STALE) { /* replaced by the rename below */
+        char text[1600];
+        snprintf(text, sizeof text, "compiled again: %s", why);
+        jit_note(note, sizeof note, text);
+    }
 
     jit_sweep_stale(cache); /* rare: on a compilation only */
-    if (jit_include_dir(cache, inc, sizeof inc, err, errlen) != 0) {
+    if (jit_include_dir(cache, inc, sizeof inc, note, sizeof note, err, errlen) != 0) {
         free(argv);
         return 1;
     }
@@ -306,7 +379,7 @@ int jit_cc_load(const char *source, size_t len, const char *source_name, const d
 
     capture output = {0};
     double t_start = jit_now();
-    int status = run(argv->argv, &output);
+    int status = run(argv->argv, limit, &output);
     double seconds = jit_now() - t_start;
     unlink(tmp_c);
     int rc = 0;
@@ -322,6 +395,17 @@ int jit_cc_load(const char *source, size_t len, const char *source_name, const d
         else
             rc = jit_fail(err, errlen, "cannot run the C compiler '%s': %s", argv->argv[0],
                           strerror(-status));
+    } else if (status == RUN_TIMEOUT) {
+        jit_fail(err, errlen,
+                 "compiling %s: the C compiler '%s' did not finish within %g s and was stopped "
+                 "(the bound is DYNKIT_CC_TIMEOUT, in seconds: raise it, or compile with "
+                 "libtcc: DYNKIT_JIT=tcc)",
+                 where, argv->argv[0], limit);
+        snprintf(out->note, sizeof out->note,
+                 "the C compiler '%.200s' did not finish within %g s (DYNKIT_CC_TIMEOUT=SECONDS "
+                 "allows more)",
+                 argv->argv[0], limit);
+        rc = 3;
     } else if (status != 0) {
         char head[600];
         if (status > 255)
@@ -342,15 +426,25 @@ int jit_cc_load(const char *source, size_t len, const char *source_name, const d
         unlink(tmp_so);
         return rc;
     }
+    if (jit_object_seal(tmp_so, so, err, errlen) != 0) {
+        unlink(tmp_so);
+        return 1;
+    }
     if (rename(tmp_so, so) != 0) {
         int e = errno;
         unlink(tmp_so);
         return jit_fail(err, errlen, "cannot put the compiled model in place (%s): %s", so,
                         strerror(e));
     }
-    if (jit_load_so(so, where, out, err, errlen) != 0)
+    state = jit_object_open(so, &fd, why, sizeof why, err, errlen);
+    if (state == JIT_REFUSED)
+        return 1;
+    if (state != JIT_OK)
+        return jit_fail(err, errlen, "the model just compiled cannot be loaded: %s", why);
+    if (jit_load_so(so, fd, where, out, err, errlen) != 0)
         return 1;
     out->cached = 0;
     out->compile_seconds = seconds;
+    snprintf(out->note, sizeof out->note, "%s", note);
     return 0;
 }

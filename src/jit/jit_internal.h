@@ -43,12 +43,35 @@ int jit_fail(char *err, size_t errlen, const char *fmt, ...)
 #endif
     ;
 
-/* The cache directory of opts (see jit.h), created with its parents; 0 or non-zero with a
- * message. */
+/* The cache directory of opts (see jit.h), created (0700) with its missing parents, then
+ * checked by jit_trust_cache_dir; its resolved path into dir. 0 or non-zero with a message. */
 int jit_cache_dir(const dyn_jit_opts *opts, char *dir, size_t size, char *err, size_t errlen);
 /* <cache>/include-<version>-<hash>: the embedded headers under dynkit/, written once
- * (atomically: a whole directory renamed into place). */
-int jit_include_dir(const char *cache, char *dir, size_t size, char *err, size_t errlen);
+ * (atomically: a whole directory renamed into place), checked by jit_include_check before
+ * each use and replaced when it fails (why into note, appended). */
+int jit_include_dir(const char *cache, char *dir, size_t size, char *note, size_t notelen,
+                    char *err, size_t errlen);
+
+/* ---- trust (jit_trust.c; docs/model-files.md, "Who may write the cache") ---- */
+enum { JIT_OK = 0, JIT_ABSENT = 1, JIT_STALE = 2, JIT_REFUSED = 3 };
+/* path resolved (realpath) into canon; refused unless it is a directory of this user or root,
+ * not writable by group or others, under directories of this user or root that no one else
+ * may write (sticky ones excepted). 0 or non-zero with a message. */
+int jit_trust_cache_dir(const char *path, char *canon, size_t size, char *err, size_t errlen);
+/* A compiled object of the cache, opened without following a link and checked on the open
+ * descriptor: JIT_OK (*fd: a private copy of its checked bytes, -1 where memfd_create is
+ * missing), JIT_ABSENT, JIT_STALE (why: to be compiled again: a link, not a regular file,
+ * writable by others, truncated, or not matching the SHA-256 of its name and bytes it ends
+ * with), JIT_REFUSED (err:
+ * another user's). */
+int jit_object_open(const char *path, int *fd, char *why, size_t whylen, char *err,
+                    size_t errlen);
+/* Append to a freshly compiled object the SHA-256 of the name it will have (final) and its
+ * bytes; 0 or non-zero with a message. */
+int jit_object_seal(const char *path, const char *final, char *err, size_t errlen);
+/* The headers directory: JIT_OK, JIT_ABSENT, JIT_STALE (why) or JIT_REFUSED (err), by the
+ * same rules; it must hold exactly dynkit/ with the embedded headers, byte for byte. */
+int jit_include_check(const char *dir, char *why, size_t whylen, char *err, size_t errlen);
 /* Remove what interrupted compilations left in the cache (tmp-* entries older than an
  * hour, owned by this user). */
 void jit_sweep_stale(const char *cache);
@@ -70,16 +93,28 @@ double jit_now(void);
 int jit_check_model(const dyn_model *m, const char *where, char *err, size_t errlen);
 
 /* dlopen a shared object, check its ABI stamp and its model; `where` names it in messages
- * (the user's source for a compiled one). */
-int jit_load_so(const char *path, const char *where, dyn_jit_model *out, char *err, size_t errlen);
+ * (the user's source for a compiled one). fd >= 0: load that file (/proc/self/fd/fd), which
+ * stays open while the model is loaded (and is closed on failure); path is what so_path
+ * reports. */
+int jit_load_so(const char *path, int fd, const char *where, dyn_jit_model *out, char *err,
+                size_t errlen);
+
+/* Sizes of generated C (bytes) above which the system compiler gets -O1, then -O0, when no
+ * flags were given, and above which DYN_JIT_AUTO compiles with libtcc (docs/model-files.md,
+ * "Large models"). */
+#define JIT_CC_O2_SOURCE (256u << 10)
+#define JIT_CC_LARGE_SOURCE (1u << 20)
+#define JIT_CC_MAX_SOURCE (4u << 20)
 
 /* Backends: compile and load; fill out (model, handle, backend, cached, compile_seconds,
- * so_path). 0, or non-zero with a message: jit_cc_load returns 2 when the compiler was not
- * found. */
+ * so_path, note). 0, or non-zero with a message: jit_cc_load returns 2 when the compiler was
+ * not found, 3 when it ran out of time (JIT_CC_TIMEOUT) and the caller may use libtcc. */
 int jit_cc_load(const char *source, size_t len, const char *source_name, const dyn_jit_opts *opts,
                 dyn_jit_model *out, char *err, size_t errlen);
 int jit_tcc_load(const char *source, size_t len, const char *source_name, const dyn_jit_opts *opts,
                  dyn_jit_model *out, char *err, size_t errlen);
 void jit_tcc_unload(void *handle);
+/* Append "text" to a note buffer ("; " between two). */
+void jit_note(char *note, size_t size, const char *text);
 
 #endif /* DYNKIT_JIT_INTERNAL_H */

@@ -5,6 +5,7 @@
  * compilation at a time (a mutex). Calls into dynkit from the model are resolved in the
  * running program (libtcc looks undefined symbols up with dlsym). */
 #define _POSIX_C_SOURCE 200809L
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -60,9 +61,9 @@ int jit_tcc_load(const char *source, size_t len, const char *source_name, const 
                  dyn_jit_model *out, char *err, size_t errlen)
 {
     const char *where = source_name && source_name[0] ? source_name : "model.c";
-    char cache[1024], inc[1100];
+    char cache[1024], inc[1100], note[sizeof out->note] = "";
     if (jit_cache_dir(opts, cache, sizeof cache, err, errlen) != 0 ||
-        jit_include_dir(cache, inc, sizeof inc, err, errlen) != 0)
+        jit_include_dir(cache, inc, sizeof inc, note, sizeof note, err, errlen) != 0)
         return 1;
     char *text = jit_source_with_line(source, len, where, NULL);
     messages *msgs = calloc(1, sizeof *msgs);
@@ -126,6 +127,7 @@ int jit_tcc_load(const char *source, size_t len, const char *source_name, const 
     out->cached = 0;
     out->compile_seconds = seconds;
     out->so_path[0] = '\0';
+    snprintf(out->note, sizeof out->note, "%s", note);
     free(text);
     free(msgs);
     return 0;

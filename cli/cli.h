@@ -34,6 +34,12 @@ int cli_parse_number(const char *text, double *out);
 /* Parse a count >= min (decimal or 1e6 style); 0 on success, -1 otherwise. */
 int cli_parse_count(const char *text, long min, long *out);
 
+/* The values of --vary NAME=VALUES (value_list.c): VALUES (v) "A:B:N", N evenly spaced
+ * values from A to B (dyn_linspace_at), or "V1,V2,...", at most max of them, into *values
+ * (owned, malloc) and *count. text is the whole option value, for messages. Returns CLI_OK,
+ * or CLI_USAGE (message printed) or CLI_FAILED (out of memory). */
+int cli_parse_values(const char *command, const char *text, const char *v, long max,
+                     double **values, long *count);
 /* Option matching: if argv[*i] is "--name" or "--name=VALUE", set *value (taking the next
  * argument when needed) and return 1; return -1 when the value is missing; 0 otherwise. */
 int cli_option(int argc, char **argv, int *i, const char *name, const char **value);
@@ -58,6 +64,9 @@ int cli_param_is_size(const dyn_model *m, const char *name);
 /* The band solver of stiff runs (band_solver.c): LAPACK's when built with it, else NULL
  * (the library's own). */
 const dyn_band_solver *cli_band_solver(void);
+/* The eigenvalue solver of linearize (band_solver.c): LAPACK's dgeev when built with it,
+ * else NULL (the core has none). */
+const struct dyn_eig_solver *cli_eig_solver(void);
 /* --verbose (any command): notes on stderr, e.g. a model file's ignored options. */
 void cli_set_verbose(int on);
 int cli_verbose(void);
@@ -175,6 +184,7 @@ int cli_cmd_inverse(int argc, char **argv);
 int cli_cmd_report(int argc, char **argv);
 int cli_cmd_verify(int argc, char **argv);
 int cli_cmd_sweep(int argc, char **argv);
+int cli_cmd_linearize(int argc, char **argv);
 /* dynkit plot TABLE.csv: a sweep's table as lines or a heat map (sweep_plot.c). */
 int cli_plot_sweep_table(int argc, char **argv);
 

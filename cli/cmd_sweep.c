@@ -169,60 +169,9 @@ static int parse_vary(const dyn_model *m, sweep_spec *sp, const char *text)
     if (add_var(m, sp, text, (size_t)(eq - text), "--vary") != CLI_OK)
         return CLI_USAGE;
     const int j = sp->n_vars - 1;
-    const char *v = eq + 1;
-    char buf[256];
-    if (strchr(v, ':')) {
-        double a, b;
-        long n;
-        const char *c1 = strchr(v, ':'), *c2 = c1 ? strchr(c1 + 1, ':') : NULL;
-        int ok = c2 && (size_t)(c1 - v) < sizeof buf && (size_t)(c2 - c1 - 1) < sizeof buf;
-        if (ok) {
-            memcpy(buf, v, (size_t)(c1 - v));
-            buf[c1 - v] = '\0';
-            ok = cli_parse_number(buf, &a) == 0;
-            memcpy(buf, c1 + 1, (size_t)(c2 - c1 - 1));
-            buf[c2 - c1 - 1] = '\0';
-            ok = ok && cli_parse_number(buf, &b) == 0 && cli_parse_count(c2 + 1, 1, &n) == 0;
-        }
-        if (!ok)
-            return cli_usage_error("sweep",
-                                   "--vary '%s': A:B:N needs two numbers and a count >= 1 "
-                                   "(e.g. dphi=0.1:1.9:50)",
-                                   text);
-        if (n > SWEEP_MAX_ROWS)
-            return cli_usage_error("sweep", "--vary '%s': at most %ld values", text,
-                                   SWEEP_MAX_ROWS);
-        sp->axis[j] = malloc((size_t)n * sizeof(double));
-        if (!sp->axis[j])
-            return CLI_FAILED;
-        for (long k = 0; k < n; k++)
-            sp->axis[j][k] = dyn_linspace_at(a, b, n, k);
-        sp->count[j] = n;
-    } else {
-        long n = 1;
-        for (const char *p = v; *p; p++)
-            n += *p == ',';
-        sp->axis[j] = malloc((size_t)n * sizeof(double));
-        if (!sp->axis[j])
-            return CLI_FAILED;
-        const char *p = v;
-        for (long k = 0; k < n; k++) {
-            size_t len = strcspn(p, ",");
-            if (len >= sizeof buf)
-                len = sizeof buf - 1;
-            memcpy(buf, p, len);
-            buf[len] = '\0';
-            if (cli_parse_number(buf, &sp->axis[j][k]))
-                return cli_usage_error("sweep",
-                                       "--vary '%s': '%s' is not a number (give NAME=A:B:N or "
-                                       "NAME=V1,V2,...)",
-                                       text, buf);
-            p += strcspn(p, ",");
-            if (*p)
-                p++;
-        }
-        sp->count[j] = n;
-    }
+    int rc = cli_parse_values("sweep", text, eq + 1, SWEEP_MAX_ROWS, &sp->axis[j], &sp->count[j]);
+    if (rc != CLI_OK)
+        return rc;
     sp->n_vary++;
     return CLI_OK;
 }

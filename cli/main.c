@@ -26,6 +26,8 @@ static void main_help(void)
          "                 per method and tolerance (--quick, --json, --problem, --method)\n"
          "  sweep MODEL    many runs, one row each: --vary NAME=A:B:N, --sample, --from FILE;\n"
          "                 --reduce final,max:NAME,event:NAME,... on every core\n"
+         "  linearize MODEL the Jacobian df/dy about a state (--init, --set), its eigenvalues\n"
+         "                 and the stability; --vary NAME=A:B:N gives one block per value\n"
          "  help [COMMAND] this text, or the help of COMMAND (as 'dynkit COMMAND --help')\n"
          "\n"
          "MODEL is a built-in model's name ('dynkit models'), an XPPAUT .ode file or a C file\n"
@@ -57,6 +59,7 @@ int main(int argc, char **argv)
         {"plot", cli_cmd_plot},
         {"verify", cli_cmd_verify},
         {"sweep", cli_cmd_sweep},
+        {"linearize", cli_cmd_linearize},
     };
     /* --verbose is accepted anywhere, by every command */
     int kept = 1;
@@ -100,7 +103,7 @@ int main(int argc, char **argv)
     const char *near = dyn_lang_nearest(argv[1], names, n);
     return cli_usage_error(NULL,
                            "unknown command '%s' (%s%s%saccepted: run, models, methods, info, "
-                           "inverse, report, animate, plot, verify, sweep, help)",
+                           "inverse, report, animate, plot, verify, sweep, linearize, help)",
                            argv[1], near ? "did you mean '" : "", near ? near : "",
                            near ? "'? " : "");
 }

@@ -1,0 +1,105 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* dynkit/analysis.h — analysis of a model about a state: the Jacobian A = df/dy (the model's
+ * own analytic one, or central differences with Richardson extrapolation), its reduction to
+ * a subspace of admissible directions (A_min = P^+ A P), and its eigenvalues, sorted and
+ * classified (asymptotically stable, unstable, marginal). Over the public model API only
+ * (dynkit/model.h); C11 + libm. Eigenvalues of a nonsymmetric matrix come from a solver
+ * given by the caller (dyn_eig_solver): the optional backend dynkit_lapack provides LAPACK's
+ * dgeev (dynkit/lapack.h); the core has none. docs/analysis.md states the accuracy. */
+#ifndef DYNKIT_ANALYSIS_H
+#define DYNKIT_ANALYSIS_H
+
+#include <stddef.h>
+
+#include "dynkit/model.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* How the Jacobian is formed. */
+typedef enum dyn_jac_scheme {
+    DYN_JAC_AUTO = 0,       /* the model's analytic Jacobian when it has one, else RICHARDSON */
+    DYN_JAC_ANALYTIC = 1,   /* the model's dyn_model.jacobian (an error when it has none) */
+    DYN_JAC_CENTRAL = 2,    /* central differences, step eps^(1/3) * scale: 2n calls of f */
+    DYN_JAC_RICHARDSON = 3  /* central differences at h, h/2, h/4, extrapolated twice
+                             * (error O(h^6)), h = 2^-5 * scale: 6n calls of f */
+} dyn_jac_scheme;
+
+typedef struct dyn_linearize_opts {
+    dyn_jac_scheme scheme;
+    /* Typical magnitude of each state (n values, > 0), or NULL for 1: the difference step of
+     * column j is proportional to max(|y_j|, typ_j). */
+    const double *typ;
+} dyn_linearize_opts;
+
+/* What dyn_linearize did. */
+typedef struct dyn_linearize_info {
+    dyn_jac_scheme scheme; /* the scheme used (never AUTO) */
+    long rhs_calls;        /* evaluations of f */
+    /* RICHARDSON: the largest over columns of |R2 - R1| / max(|R2|, |f|/scale) in the
+     * max norm, R1 and R2 the last two extrapolations (an estimate of the relative error of
+     * a column); 0 for the others. */
+    double err_est;
+    char message[256];     /* why it failed, when it did */
+} dyn_linearize_info;
+
+/* Doubles of workspace dyn_linearize needs for n states. */
+size_t dyn_linearize_work_size(int n);
+
+/* A = df/dy of model m at (t, y) with the prepared parameter struct par (n x n, row-major,
+ * A[i*n + j] = d f_i / d y_j). opts may be NULL (AUTO). work: dyn_linearize_work_size(n)
+ * doubles. Returns 0; DYN_ERR_ARG (no analytic Jacobian, bad typ); DYN_ERR_RHS when f or
+ * the Jacobian returns non-zero; DYN_ERR_NONFINITE when an entry is not finite (message
+ * names the entry). info may be NULL. */
+int dyn_linearize(const dyn_model *m, double t, const double *y, void *par,
+                  const dyn_linearize_opts *opts, double *A, double *work,
+                  dyn_linearize_info *info);
+
+/* A reduced to the k admissible directions that are the columns of P (n x k, row-major,
+ * full column rank): A_min = P^+ A P with P^+ = (P^T P)^-1 P^T (k x k into Amin). For a
+ * constrained model whose motions stay in span(P) (coordinates and speeds of a minimal set,
+ * dependent ones eliminated), Amin carries the eigenvalues of those motions. work: n k +
+ * k k + k doubles. Returns 0, or DYN_ERR_ARG when P^T P is not positive definite (P's columns
+ * are dependent). */
+int dyn_linear_reduce(int n, int k, const double *A, const double *P, double *Amin,
+                      double *work);
+
+/* An eigenvalue solver for a real nonsymmetric matrix: the eigenvalues of the n x n matrix
+ * a (row-major; overwritten) into re, im (n values; a complex pair as consecutive entries,
+ * positive imaginary part first). Returns 0, or non-zero with a message in err. */
+typedef struct dyn_eig_solver {
+    const char *name;
+    int (*eigenvalues)(int n, double *a, double *re, double *im, char *err, size_t errlen);
+} dyn_eig_solver;
+
+/* Sort n eigenvalues by imaginary part, then real part (ascending), in place; the
+ * imaginary parts of a pair are exact negatives, so each pair sits symmetrically. */
+void dyn_eig_sort(int n, double *re, double *im);
+
+/* Stability of a linearization from its eigenvalues. */
+typedef enum dyn_stability {
+    DYN_STABLE = 0,   /* asymptotically stable: every re < -tol */
+    DYN_MARGINAL = 1, /* no re > tol, some |re| <= tol */
+    DYN_UNSTABLE = 2  /* some re > tol */
+} dyn_stability;
+
+/* The default tolerance of dyn_classify relative to the matrix norm. */
+#define DYN_STABILITY_RTOL 1e-8
+
+/* The classification with tol (absolute: a real part within [-tol, tol] counts as zero). */
+dyn_stability dyn_classify(int n, const double *re, double tol);
+/* The tolerance dyn_classify is given by dynkit: rtol * ||A||_inf (max row sum of |a_ij|),
+ * at least DBL_MIN; rtol 0 means DYN_STABILITY_RTOL. */
+double dyn_stability_tol(int n, const double *A, double rtol);
+/* "asymptotically stable", "marginal", "unstable". */
+const char *dyn_stability_name(dyn_stability s);
+
+/* For an eigenvalue re + i im with im != 0: the undamped natural frequency |lambda| (rad/s)
+ * into *wn and the damping ratio -re/|lambda| into *zeta. */
+void dyn_eig_mode(double re, double im, double *wn, double *zeta);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* DYNKIT_ANALYSIS_H */

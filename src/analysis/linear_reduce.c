@@ -1,0 +1,75 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* linear_reduce.c — a linearization restricted to admissible directions: with the columns
+ * of P (n x k) spanning them, A_min = P^+ A P, P^+ = (P^T P)^-1 P^T the Moore-Penrose
+ * pseudo-inverse of a P of full column rank, formed through the Cholesky factor of the
+ * Gram matrix P^T P (Golub & Van Loan, Matrix Computations, 4th ed., sec. 4.2 and 5.3).
+ * When span(P) is invariant under A (A P = P A_min), A_min has exactly the eigenvalues of
+ * A on that subspace. */
+#include <math.h>
+#include <string.h>
+
+#include "dynkit/analysis.h"
+
+int dyn_linear_reduce(int n, int k, const double *A, const double *P, double *Amin,
+                      double *work)
+{
+    if (n < 1 || k < 1 || k > n)
+        return DYN_ERR_ARG;
+    const size_t N = (size_t)n, K = (size_t)k;
+    double *AP = work, *G = work + N * K; /* A P (n x k), then P^T P (k x k) */
+    for (size_t i = 0; i < N; i++)
+        for (size_t c = 0; c < K; c++) {
+            double s = 0.0;
+            for (size_t l = 0; l < N; l++)
+                s += A[i * N + l] * P[l * K + c];
+            AP[i * K + c] = s;
+        }
+    for (size_t a = 0; a < K; a++)
+        for (size_t b = 0; b < K; b++) {
+            double s = 0.0;
+            for (size_t l = 0; l < N; l++)
+                s += P[l * K + a] * P[l * K + b];
+            G[a * K + b] = s;
+        }
+    /* Cholesky G = L L^T in place (lower triangle) */
+    for (size_t j = 0; j < K; j++) {
+        double d = G[j * K + j];
+        for (size_t l = 0; l < j; l++)
+            d -= G[j * K + l] * G[j * K + l];
+        if (!(d > 0.0))
+            return DYN_ERR_ARG;
+        d = sqrt(d);
+        G[j * K + j] = d;
+        for (size_t i = j + 1; i < K; i++) {
+            double s = G[i * K + j];
+            for (size_t l = 0; l < j; l++)
+                s -= G[i * K + l] * G[j * K + l];
+            G[i * K + j] = s / d;
+        }
+    }
+    /* Amin = G^-1 (P^T (A P)), column by column of A P */
+    double *rhs = work + N * K + K * K; /* k */
+    for (size_t c = 0; c < K; c++) {
+        for (size_t a = 0; a < K; a++) {
+            double s = 0.0;
+            for (size_t l = 0; l < N; l++)
+                s += P[l * K + a] * AP[l * K + c];
+            rhs[a] = s;
+        }
+        for (size_t i = 0; i < K; i++) { /* L z = rhs */
+            double s = rhs[i];
+            for (size_t l = 0; l < i; l++)
+                s -= G[i * K + l] * rhs[l];
+            rhs[i] = s / G[i * K + i];
+        }
+        for (size_t i = K; i-- > 0;) { /* L^T x = z */
+            double s = rhs[i];
+            for (size_t l = i + 1; l < K; l++)
+                s -= G[l * K + i] * rhs[l];
+            rhs[i] = s / G[i * K + i];
+        }
+        for (size_t a = 0; a < K; a++)
+            Amin[a * K + c] = rhs[a];
+    }
+    return 0;
+}

@@ -22,8 +22,9 @@ typedef enum dyn_jac_scheme {
     DYN_JAC_AUTO = 0,       /* the model's analytic Jacobian when it has one, else RICHARDSON */
     DYN_JAC_ANALYTIC = 1,   /* the model's dyn_model.jacobian (an error when it has none) */
     DYN_JAC_CENTRAL = 2,    /* central differences, step eps^(1/3) * scale: 2n calls of f */
-    DYN_JAC_RICHARDSON = 3  /* central differences at h, h/2, h/4, extrapolated twice
-                             * (error O(h^6)), h = 2^-5 * scale: 6n calls of f */
+    DYN_JAC_RICHARDSON = 3  /* central differences at h, h/2, h/4, ... from h = 2^-3 *
+                             * scale, extrapolated in Ridders' form until converged:
+                             * 2 to 32 calls of f per column */
 } dyn_jac_scheme;
 
 typedef struct dyn_linearize_opts {
@@ -37,9 +38,9 @@ typedef struct dyn_linearize_opts {
 typedef struct dyn_linearize_info {
     dyn_jac_scheme scheme; /* the scheme used (never AUTO) */
     long rhs_calls;        /* evaluations of f */
-    /* RICHARDSON: the largest over columns of |R2 - R1| / max(|R2|, |f|/scale) in the
-     * max norm, R1 and R2 the last two extrapolations (an estimate of the relative error of
-     * a column); 0 for the others. */
+    /* RICHARDSON: the largest over the columns of the estimated error (the difference of
+     * the kept extrapolation from its neighbours in the tableau, max norm) relative to
+     * max(|column|, |f|/scale); 0 for the others. */
     double err_est;
     char message[256];     /* why it failed, when it did */
 } dyn_linearize_info;

@@ -5,6 +5,7 @@
  * Gram matrix P^T P (Golub & Van Loan, Matrix Computations, 4th ed., sec. 4.2 and 5.3).
  * When span(P) is invariant under A (A P = P A_min), A_min has exactly the eigenvalues of
  * A on that subspace. */
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -33,10 +34,12 @@ int dyn_linear_reduce(int n, int k, const double *A, const double *P, double *Am
         }
     /* Cholesky G = L L^T in place (lower triangle) */
     for (size_t j = 0; j < K; j++) {
-        double d = G[j * K + j];
+        const double gjj = G[j * K + j];
+        double d = gjj;
         for (size_t l = 0; l < j; l++)
             d -= G[j * K + l] * G[j * K + l];
-        if (!(d > 0.0))
+        /* column j within rounding of the span of the columns before it: dependent */
+        if (!(d > 64.0 * DBL_EPSILON * gjj))
             return DYN_ERR_ARG;
         d = sqrt(d);
         G[j * K + j] = d;

@@ -2,11 +2,12 @@
 /* linearize.c — the Jacobian A = df/dy of a model at one state: the model's analytic
  * Jacobian, central differences (step eps^(1/3) times the column's scale), or central
  * differences extrapolated by Richardson's rule in Ridders' form (Ridders 1982, Adv. Eng.
- * Software 4(2) 75-76; Numerical Recipes, 3rd ed., sec. 5.7): steps h, h/2, h/4, ... from
- * h = 2^-3 times the scale, a Neville tableau in h^2 per column, the extrapolation whose
- * estimated error is least kept, stopped when the error grows again (rounding has taken
- * over). Steps are powers of two and the increments actually taken are used, so no
- * rounding of the step enters the quotient. */
+ * Software 4(2) 75-76; Numerical Recipes, 3rd ed., sec. 5.7): steps h, h/2, h/4, ... (at
+ * most 16) from h = 2^-3 times the column's scale, a Neville tableau in h^2 of up to six
+ * columns, the extrapolation whose estimated error is least kept, stopped once it is below
+ * 1e-7 relative and the extrapolations drift apart again (rounding has taken over). Steps
+ * are powers of two and the increments actually taken are used, so no rounding of the
+ * step enters the quotient. */
 #include <float.h>
 #include <limits.h>
 #include <math.h>
@@ -16,15 +17,17 @@
 
 #include "dynkit/analysis.h"
 
-#define RIDDERS_LEVELS 10
+#define RIDDERS_LEVELS 16    /* steps h0 ... h0 / 2^15 */
+#define RIDDERS_COLS 6       /* the raw differences and 5 extrapolations (error O(h^12)) */
 #define RIDDERS_SAFE 2.0
+#define RIDDERS_CONVERGED 1e-7 /* relative error below which growing drift stops it */
 /* what central() returns for a difference that is not finite (f returned 0) */
 #define NOT_FINITE INT_MIN
 
 size_t dyn_linearize_work_size(int n)
 {
-    /* y+-, f+-, f(y), two tableau rows of RIDDERS_LEVELS columns, the best column */
-    return (size_t)n * (5 + 2 * RIDDERS_LEVELS + 1);
+    /* y, f(y), the column; f+-, two tableau rows of RIDDERS_COLS columns */
+    return (size_t)n * (5 + 2 * RIDDERS_COLS);
 }
 
 #if defined(__GNUC__)
@@ -100,7 +103,7 @@ static int ridders(const dyn_model *m, double t, double *yw, void *par, int j, d
     const int n = m->n_states;
     const size_t N = (size_t)n;
     double *fp = work, *fm = work + N;
-    double *prev = work + 2 * N, *cur = prev + RIDDERS_LEVELS * N;
+    double *prev = work + 2 * N, *cur = prev + RIDDERS_COLS * N;
     double h = h0, err = INFINITY;
     int rc = 0;
     /* a first step where f is defined and finite (shrink by 4 up to 12 times) */
@@ -117,8 +120,9 @@ static int ridders(const dyn_model *m, double t, double *yw, void *par, int j, d
         h *= 0.5;
         if (central(m, t, yw, par, j, h, fp, fm, cur, calls))
             break; /* keep the best so far */
+        const int top = k < RIDDERS_COLS - 1 ? k : RIDDERS_COLS - 1;
         double fac = 4.0;
-        for (int l = 1; l <= k; l++) {
+        for (int l = 1; l <= top; l++) {
             double *tl = cur + (size_t)l * N;
             const double *tl1 = cur + (size_t)(l - 1) * N, *pl1 = prev + (size_t)(l - 1) * N;
             for (int i = 0; i < n; i++)
@@ -130,12 +134,14 @@ static int ridders(const dyn_model *m, double t, double *yw, void *par, int j, d
                 memcpy(best, tl, N * sizeof *best);
             }
         }
-        const double *diag = cur + (size_t)k * N, *pdiag = prev + (size_t)(k - 1) * N;
-        const double drift = max_diff(n, diag, pdiag);
+        const int ptop = k - 1 < RIDDERS_COLS - 1 ? k - 1 : RIDDERS_COLS - 1;
+        const double drift =
+            max_diff(n, cur + (size_t)top * N, prev + (size_t)ptop * N);
         double *swap = prev;
         prev = cur;
         cur = swap;
-        if (drift >= RIDDERS_SAFE * err)
+        /* converged, and the extrapolations drift apart again: rounding has taken over */
+        if (drift >= RIDDERS_SAFE * err && err <= RIDDERS_CONVERGED * fmax(max_abs(n, best), fscale))
             break;
     }
     const double size = fmax(max_abs(n, best), fscale);

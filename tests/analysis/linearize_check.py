@@ -1,0 +1,173 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
+"""dynkit linearize against closed forms and NumPy: the pendulum at the bottom (+-i
+sqrt(g/l), marginal) and the top (+-sqrt(g/l), unstable); van der Pol at the origin
+(mu/2 +- i sqrt(1 - mu^2/4) for mu < 2, two real roots above, unstable); Lorenz
+(examples/models/lorenz.ode) at the origin (-beta and the roots of
+l^2 + (sigma+1) l + sigma (1-rho)) and at C+- (the roots of l^3 + (sigma+beta+1) l^2 +
+beta (sigma+rho) l + 2 sigma beta (rho-1): unstable at rho = 28, stable at rho = 20, below
+the Hopf value sigma (sigma+beta+3)/(sigma-beta-1) = 24.74); a linear model file x' = A x
+against numpy.linalg.eigvals; the differences against the model file's analytic Jacobian;
+the --vary table (N*n rows, columns NAME,re,im), --matrix and --json; bad input refused
+with exit status 2. Exit 0 when all hold, 1 when not, 77 (skipped) without NumPy or when
+dynkit is built without LAPACK.
+"""
+import csv
+import io
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+try:
+    import numpy as np
+except ImportError:
+    print("SKIP: NumPy is missing (python3-numpy)")
+    sys.exit(77)
+
+DYNKIT = sys.argv[1] if len(sys.argv) > 1 else "dynkit"
+SOURCE = sys.argv[2] if len(sys.argv) > 2 else "."
+LORENZ = os.path.join(SOURCE, "examples", "models", "lorenz.ode")
+FAILED = []
+
+
+def run(*args, status=0):
+    p = subprocess.run([DYNKIT, "linearize", *args], capture_output=True, text=True)
+    if p.returncode != status:
+        FAILED.append(f"linearize {' '.join(args)}: exit {p.returncode}, expected {status}:"
+                      f" {p.stderr.strip()}")
+    return p
+
+
+def check(cond, what):
+    print(("ok    " if cond else "FAIL  ") + what)
+    if not cond:
+        FAILED.append(what)
+
+
+def eig(*args):
+    """The first point of --json: (eigenvalues as complex numbers, the point)."""
+    p = run(*args, "--json")
+    doc = json.loads(p.stdout)
+    pt = doc["points"][0]
+    return np.array(pt["re"]) + 1j * np.array(pt["im"]), pt
+
+
+def close(got, want, tol):
+    """Sorted like dynkit (by im, then re), then compared."""
+    want = sorted(want, key=lambda z: (z.imag, z.real))
+    return len(got) == len(want) and max(abs(a - b) for a, b in zip(got, want)) <= tol
+
+
+def main():
+    p = subprocess.run([DYNKIT, "linearize", "pendulum", "--json"], capture_output=True,
+                       text=True)
+    if "need LAPACK" in p.stderr:
+        print("SKIP: dynkit is built without LAPACK (liblapack-dev)")
+        return 77
+    g, l = 9.81, 2.0
+    w = math.sqrt(g / l)
+    ev, pt = eig("pendulum", "--set", "l=2", "--init", "phi=0", "--init", "dphi=0")
+    check(close(ev, [1j * w, -1j * w], 1e-12 * w) and pt["stability"] == "marginal",
+          f"pendulum at the bottom: +-i sqrt(g/l) = +-{w:.6f}i, marginal ({ev})")
+    ev, pt = eig("pendulum", "--set", "l=2", "--init", "phi=pi", "--init", "dphi=0")
+    check(close(ev, [w, -w], 1e-12 * w) and pt["stability"] == "unstable",
+          f"pendulum at the top: +-sqrt(g/l), unstable ({ev})")
+
+    # van der Pol at the origin over mu: one block per value, N*n rows
+    mus = [0.5, 1.0, 1.5, 2.5, 4.0]
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "vdp.csv")
+        run("vanderpol", "--init", "y1=0", "--init", "y2=0", "--vary",
+            "mu=" + ",".join(map(str, mus)), "--output", out)
+        with open(out) as f:
+            rows = list(csv.reader(f))
+    check(rows[0] == ["mu", "re", "im"], f"--vary table header mu,re,im ({rows[0]})")
+    check(len(rows) - 1 == 2 * len(mus), f"--vary table: N*n = {2 * len(mus)} rows")
+    for mu in mus:
+        got = [complex(float(r[1]), float(r[2])) for r in rows[1:] if float(r[0]) == mu]
+        d = complex(mu * mu / 4 - 1) ** 0.5
+        check(close(got, [mu / 2 + d, mu / 2 - d], 1e-13),
+              f"van der Pol at the origin, mu = {mu}: mu/2 +- sqrt(mu^2/4 - 1)")
+    p = run("vanderpol", "--init", "y1=0", "--init", "y2=0", "--vary", "mu=0.5:3:6")
+    check(p.stdout.count("stability: unstable") == 6, "van der Pol's origin is unstable for mu > 0")
+
+    # Lorenz at the origin and at C+-
+    sigma, rho, beta = 10.0, 28.0, 2.6666666666666665
+    ev, pt = eig(LORENZ, "--init", "x=0", "--init", "y=0", "--init", "z=0")
+    want = list(np.roots([1, sigma + 1, sigma * (1 - rho)])) + [-beta]
+    check(close(ev, want, 1e-12 * 30) and pt["jacobian"] == "analytic",
+          f"Lorenz at the origin: -beta and the roots of the quadratic ({ev})")
+    for r, stab in ((28.0, "unstable"), (20.0, "asymptotically stable")):
+        for sign in (1, -1):
+            c = sign * math.sqrt(beta * (r - 1))
+            args = (LORENZ, "--set", f"rho={r!r}", "--init", f"x={c!r}", "--init",
+                    f"y={c!r}", "--init", f"z={r - 1!r}")
+            ev, pt = eig(*args)
+            want = np.roots([1, sigma + beta + 1, beta * (sigma + r), 2 * sigma * beta * (r - 1)])
+            check(close(ev, want, 1e-11 * 30) and pt["stability"] == stab
+                  and max(abs(v) for v in pt["f"]) < 1e-12,
+                  f"Lorenz at C{'+' if sign > 0 else '-'}, rho = {r}: the cubic's roots, {stab}")
+            _, pd = eig(*args, "--jacobian", "richardson")
+            A, D = np.array(pt["A"]), np.array(pd["A"])
+            rel = np.max(np.abs(A - D)) / np.max(np.abs(A))
+            check(pd["jacobian"] == "richardson" and rel < 1e-12,
+                  f"Lorenz at C+-: differences within {rel:.1e} of the analytic Jacobian")
+
+    # a linear model file x' = A x against NumPy
+    A = np.array([[-0.5, 2.0, 0.0, 1.0, 0.3],
+                  [-3.0, -0.1, 0.7, 0.0, 0.0],
+                  [0.2, 0.0, 0.4, -5.0, 1.0],
+                  [0.0, 1.5, 4.0, -0.2, 0.0],
+                  [1.0, 0.0, 0.0, 0.5, -2.0]])
+    n = len(A)
+    names = [f"x{i + 1}" for i in range(n)]
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "linear5.ode")
+        with open(path, "w") as f:
+            f.write("# x' = A x\n")
+            for i in range(n):
+                terms = "+".join(f"({A[i, j]!r})*{names[j]}" for j in range(n))
+                f.write(f"{names[i]}'={terms}\n")
+            f.write("done\n")
+        ev, pt = eig(path)
+        want = np.linalg.eigvals(A)
+        check(close(ev, list(want), 1e-12 * np.abs(A).sum(axis=1).max()),
+              f"linear model file: numpy.linalg.eigvals ({want})")
+        m = run(path, "--matrix").stdout
+        rows = list(csv.reader(io.StringIO(m)))
+        got = np.array([[float(v) for v in r[1:]] for r in rows[1:]])
+        check(rows[0] == ["state"] + names and [r[0] for r in rows[1:]] == names
+              and np.array_equal(got, A), "--matrix: A exactly, rows and columns named")
+        p = run(path, "--vary", "x1=0:1:3", "--json")
+        doc = json.loads(p.stdout)
+        check(doc["vary"] == "x1" and len(doc["points"]) == 3
+              and [q["x1"] for q in doc["points"]] == [0, 0.5, 1],
+              "--json with --vary: one point per value")
+
+    # a state varied: the pendulum from the bottom to the top
+    p = run("pendulum", "--init", "dphi=0", "--vary", "phi=0:pi:5", "--output", "-",
+            "--matrix")
+    check(len(p.stdout.strip().split("\n")) == 1 + 5 * 2, "--matrix with --vary: n rows per value")
+
+    # bad input: exit status 2 with the reason
+    for args, word in ((("pendulum", "--bogus"), "unknown option"),
+                       (("pendulum", "--vary", "q=1:2:3"), "neither a parameter"),
+                       (("pendulum", "--vary", "l=1:2"), "A:B:N"),
+                       (("pendulum", "--jacobian", "analytic"), "no analytic Jacobian"),
+                       (("pendulum", "--jacobian", "exact"), "accepted: auto"),
+                       (("pendulum", "--matrix", "--json"), "one of them"),
+                       (("pendulum", "--output", "eig.txt"), ".csv"),
+                       (("pendulum", "--t", "soon"), "--t")):
+        p = run(*args, status=2)
+        check(word in p.stderr, f"refused: {' '.join(args)} ({p.stderr.strip()[:70]})")
+
+    for f in FAILED:
+        print("FAILED:", f)
+    return 1 if FAILED else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

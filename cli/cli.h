@@ -54,6 +54,10 @@ int cli_is_help(const char *arg);
 /* The model MODEL names (model_open.c): a built-in name, or a model file. Returns CLI_OK
  * with *model, or a usage error (message printed, with the nearest known name). */
 int cli_model_open(const char *command, const char *spec, const dyn_model **model);
+/* The options --table NAME=FILE among argv[1..argc) (the command's other options are left
+ * to it), for the model file that cli_model_open opens next: its `table NAME FILE` is read
+ * from FILE (dynkit/lang.h, dyn_ode_to_c_tables). CLI_OK or a usage error (printed). */
+int cli_model_table_options(const char *command, int argc, char **argv);
 /* 1 if MODEL names a model file (.ode, .c, .so) rather than a built-in model. */
 int cli_model_is_file(const char *spec);
 /* 1 for a model loaded from a model file with algebraic equations (0=...). */

@@ -12,11 +12,14 @@
 
 static void info_help(void)
 {
-    puts("Usage: dynkit info MODEL\n\n"
+    puts("Usage: dynkit info MODEL [--table NAME=FILE]...\n\n"
          "Describe MODEL: its equations, states (with default initial values), parameters\n"
          "(with default values), extra outputs, events (for run --event\n"
          "NAME[:stop|:continue]), units, and the default run with its tolerances. Numbers are\n"
-         "shown in their shortest form that reads back to the same double.");
+         "shown in their shortest form that reads back to the same double.\n\n"
+         "Options:\n"
+         "  --table NAME=FILE    a model file's 'table NAME FILE' read from FILE instead\n"
+         "                       (repeatable; as for run)");
 }
 
 /* The shortest decimal of v that reads back to v (dyn_format_double's digits), in the plain
@@ -214,10 +217,16 @@ int cli_cmd_info(int argc, char **argv)
     if (argc < 1)
         return cli_usage_error("info", "missing MODEL (accepted: %s)",
                                dyn_model_names(names, sizeof names));
-    if (argc > 1)
-        return cli_usage_error("info", "unexpected argument '%s'", argv[1]);
+    for (int i = 1; i < argc; i++) {
+        const char *v;
+        if (cli_option(argc, argv, &i, "table", &v) == 0)
+            return cli_usage_error("info", "unexpected argument '%s' (accepted: --table NAME=FILE)",
+                                   argv[i]);
+    }
     const dyn_model *m;
-    int open_rc = cli_model_open("info", argv[0], &m);
+    int open_rc = cli_model_table_options("info", argc, argv);
+    if (open_rc == CLI_OK)
+        open_rc = cli_model_open("info", argv[0], &m);
     if (open_rc != CLI_OK)
         return open_rc;
     /* the default initial state of the default parameters (it may depend on them) */

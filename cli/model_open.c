@@ -135,6 +135,38 @@ static int keep_loaded(const dyn_jit_model *jm, int algebraic, const char *path,
     return CLI_OK;
 }
 
+/* The files of --table NAME=FILE, for the next model file opened. */
+enum { MAX_TABLE_FILES = 64, MAX_TABLE_NAME = 128 };
+static dyn_lang_table_file table_files[MAX_TABLE_FILES];
+static char table_names[MAX_TABLE_FILES][MAX_TABLE_NAME];
+static int n_table_files;
+
+int cli_model_table_options(const char *command, int argc, char **argv)
+{
+    n_table_files = 0;
+    for (int i = 1; i < argc; i++) {
+        const char *v = NULL;
+        const int r = cli_option(argc, argv, &i, "table", &v);
+        if (r < 0)
+            return cli_usage_error(command, "option --table needs a value: NAME=FILE");
+        if (r == 0)
+            continue;
+        const char *eq = strchr(v, '=');
+        if (!eq || eq == v || !eq[1] || (size_t)(eq - v) >= MAX_TABLE_NAME)
+            return cli_usage_error(command,
+                                   "--table '%s' is not accepted: give NAME=FILE, a table of "
+                                   "the model file ('table NAME FILE') and the file to read "
+                                   "it from",
+                                   v);
+        if (n_table_files >= MAX_TABLE_FILES)
+            return cli_usage_error(command, "more than %d --table options", MAX_TABLE_FILES);
+        snprintf(table_names[n_table_files], MAX_TABLE_NAME, "%.*s", (int)(eq - v), v);
+        table_files[n_table_files] = (dyn_lang_table_file){table_names[n_table_files], eq + 1};
+        n_table_files++;
+    }
+    return CLI_OK;
+}
+
 static int open_model_file(const char *spec, const dyn_model **model)
 {
     dyn_jit_model jm;
@@ -165,7 +197,8 @@ static int open_model_file(const char *spec, const dyn_model **model)
             return CLI_USAGE;
         char *c_source = NULL;
         dyn_lang_diag diag;
-        rc = dyn_ode_to_c(spec, text, len, &c_source, &diag, print_note, NULL);
+        rc = dyn_ode_to_c_tables(spec, text, len, table_files, n_table_files, &c_source, &diag,
+                                 print_note, NULL);
         free(text);
         if (rc != 0) {
             char shown[2048];
@@ -245,6 +278,11 @@ int cli_param_is_size(const dyn_model *m, const char *name)
 int cli_model_open(const char *command, const char *spec, const dyn_model **model)
 {
     *model = NULL;
+    if (n_table_files > 0 && !ends_with(spec, ".ode"))
+        return cli_usage_error(command,
+                               "--table %s=%s: '%s' is not a model file NAME.ode (only .ode "
+                               "files read tables from files)",
+                               table_files[0].name, table_files[0].path, spec);
     if (cli_model_is_file(spec))
         return open_model_file(spec, model);
     int rc;

@@ -25,6 +25,9 @@ static void run_options_common(FILE *out)
           "                       T0 + k*H <= T1 like MATLAB's T0:H:T1\n"
           "  --set NAME=VALUE     set a parameter (repeatable; see 'dynkit info MODEL')\n"
           "  --init NAME=VALUE    set an initial state (repeatable)\n"
+          "  --table NAME=FILE    a model file's 'table NAME FILE' read from FILE instead\n"
+          "                       (repeatable; without it the table's file must be a regular\n"
+          "                       file beside the model file, named without a folder)\n"
           "                       numbers may be multiples of pi: pi/2, -0.5pi, 2*pi/3, or\n"
           "                       angles in degrees: 45deg (in rad)\n"
           "  --forces FILE        models with inputs (cart): read the inputs from a CSV table\n"
@@ -105,7 +108,7 @@ static int unknown_option(const char *command, const char *arg)
         "--forces", "--interp", "--output", "--header",      "--every",        "--trace",
         "--rtol",   "--atol",  "--times",  "--max-step",     "--initial-step", "--max-steps",
         "--event",  "--events-output",     "--stats",        "--final",        "--outputs",
-        "--quiet",  "--compare"};
+        "--quiet",  "--compare", "--table"};
     char word[64];
     snprintf(word, sizeof word, "%s%.*s", strncmp(arg, "--", 2) == 0 ? "" : "--",
              (int)strcspn(arg, "="), arg);
@@ -158,6 +161,9 @@ static int parse_option(const char *command, int argc, char **argv, int *i, cli_
         if (r < 0)
             return CLI_USAGE;
         as[(*n_as)++] = (assignment){v, 0};
+    } else if (OPT("table")) {
+        if (r < 0)
+            return CLI_USAGE; /* taken before the model was opened (cli_model_table_options) */
     } else if (OPT("forces")) {
         if (r < 0)
             return CLI_USAGE;
@@ -451,7 +457,9 @@ int cli_run_parse_with(const char *command, int argc, char **argv, int other_ada
     if (argc < 1 || argv[0][0] == '-')
         return cli_usage_error(command, "missing MODEL (accepted: %s)",
                                dyn_model_names(names, sizeof names));
-    int open_rc = cli_model_open(command, argv[0], &run->model);
+    int open_rc = cli_model_table_options(command, argc, argv);
+    if (open_rc == CLI_OK)
+        open_rc = cli_model_open(command, argv[0], &run->model);
     if (open_rc != CLI_OK)
         return open_rc;
     const dyn_model *m = run->model;

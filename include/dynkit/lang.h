@@ -40,9 +40,30 @@ typedef void (*dyn_lang_note_fn)(const char *path, int line, const char *message
 /* Translate the .ode text (len bytes, need not be NUL-terminated; path is used in messages
  * and in #line directives of the C text) into C source. On success returns 0 and
  * *c_source (NUL-terminated, malloc'd: the caller frees it). On failure returns non-zero
- * with *diag filled and *c_source NULL: 2 for an error in the file, 1 when out of memory. */
+ * with *diag filled and *c_source NULL: 2 for an error in the file, 1 when out of memory.
+ *
+ * `table NAME FILE` reads FILE only when it is a regular file in the folder of path (the
+ * current folder when path has none), named without a folder (no '/': no absolute path, no
+ * ".."), and not a symbolic link; it is opened without blocking (O_NONBLOCK) and checked
+ * on the descriptor opened, so a FIFO, a device or a directory is refused at once. Anything
+ * else is an error naming the file and what is accepted. */
 int dyn_ode_to_c(const char *path, const char *text, size_t len, char **c_source,
                  dyn_lang_diag *diag, dyn_lang_note_fn note, void *note_ctx);
+
+/* A file the caller names for a model file's `table NAME FILE` (dynkit's --table
+ * NAME=FILE): the table NAME (case folded, as every name of a model file) is read from
+ * path, anywhere, instead of the FILE written in the model file; path must be a regular
+ * file (symbolic links followed: the caller chose it). */
+typedef struct dyn_lang_table_file {
+    const char *name;
+    const char *path;
+} dyn_lang_table_file;
+
+/* dyn_ode_to_c with n_tables files named by the caller; a name that no `table NAME FILE` of
+ * the model reads is an error. */
+int dyn_ode_to_c_tables(const char *path, const char *text, size_t len,
+                        const dyn_lang_table_file *tables, int n_tables, char **c_source,
+                        dyn_lang_diag *diag, dyn_lang_note_fn note, void *note_ctx);
 
 /* The status the outputs and a global's reset of a translated model return when its
  * algebraic equations (0=...) have no solution near the branch followed, as at an impasse

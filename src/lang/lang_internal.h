@@ -13,6 +13,7 @@
 
 #include <setjmp.h>
 #include <stddef.h>
+#include <stdio.h>
 
 #include "dynkit/lang.h"
 
@@ -317,6 +318,9 @@ typedef struct lang_ctx {
     char *out_saved2;     /* the text while the path's literal is written apart */
     const char *path_lit; /* the path as a C string literal */
     size_t out_len, out_cap;
+    const dyn_lang_table_file *table_files; /* named by the caller (dyn_ode_to_c_tables) */
+    int n_table_files;
+    unsigned char *table_file_used;
 } lang_ctx;
 
 /* arena, errors, notes (diag.c) */
@@ -330,6 +334,15 @@ _Noreturn void lang_fail(lang_ctx *c, lpos p, const char *fmt, ...);
 void lang_note(lang_ctx *c, lpos p, const char *fmt, ...);
 void *lvec_push(lang_ctx *c, lvec *v, size_t elem);
 #define LVEC_AT(v, type, i) (((type *)(v).data)[i])
+
+/* table files (table_file.c): the file of `table NAME FILE` opened for reading, where
+ * the rules allow (a regular file beside the model file or named by the caller), else
+ * lang_fail naming what is accepted; *shown is the path opened, for messages. Then
+ * lang_check_table_files fails when a file was named for a table the model does not read
+ * from a file. */
+FILE *lang_open_table_file(lang_ctx *c, const char *table, const char *file, lpos pos,
+                           const char **shown);
+void lang_check_table_files(lang_ctx *c);
 
 /* names (check.c) */
 void lang_fold(char *dst, const char *src, size_t size);

@@ -574,16 +574,12 @@ static long scan_values(FILE *fp, double *v, long max)
 }
 
 /* The values of a table file (XPPAUT's format: npts, xlo, xhi, then npts values, separated
- * by blanks or line ends), read relative to the model file's folder. */
+ * by blanks or line ends): a file beside the model file or named by the caller
+ * (table_file.c). */
 static void read_table_file(lang_ctx *c, lang_table *tb, const char *file, lpos pos)
 {
-    const char *slash = c->path ? strrchr(c->path, '/') : NULL;
-    const char *path = file[0] == '/' || !slash
-                           ? file
-                           : lang_printf(c, "%.*s/%s", (int)(slash - c->path), c->path, file);
-    FILE *fp = fopen(path, "r");
-    if (!fp)
-        lang_fail(c, pos, "table '%s': cannot read '%s': %s", tb->name, path, strerror(errno));
+    const char *path;
+    FILE *fp = lang_open_table_file(c, tb->name, file, pos, &path);
     double head[3]; /* read as numbers, finite or not (table_size judges the abscissas) */
     int got = 0;
     while (got < 3 && fscanf(fp, "%lf", &head[got]) == 1)

@@ -37,6 +37,7 @@ static void translate(lang_ctx *c)
         c->nlines--; /* no empty last line */
     c->m.name = base_name(c, c->path);
     lang_parse_model(c);
+    lang_check_table_files(c);
     lang_check(c);
     lang_model *m = &c->m;
     if (!m->title || !*m->title) {
@@ -55,6 +56,13 @@ static void translate(lang_ctx *c)
 int dyn_ode_to_c(const char *path, const char *text, size_t len, char **c_source,
                  dyn_lang_diag *diag, dyn_lang_note_fn note, void *note_ctx)
 {
+    return dyn_ode_to_c_tables(path, text, len, NULL, 0, c_source, diag, note, note_ctx);
+}
+
+int dyn_ode_to_c_tables(const char *path, const char *text, size_t len,
+                        const dyn_lang_table_file *tables, int n_tables, char **c_source,
+                        dyn_lang_diag *diag, dyn_lang_note_fn note, void *note_ctx)
+{
     dyn_lang_diag scratch;
     if (!diag)
         diag = &scratch;
@@ -64,10 +72,15 @@ int dyn_ode_to_c(const char *path, const char *text, size_t len, char **c_source
     strncpy(diag->path, path, sizeof diag->path - 1);
     if (c_source)
         *c_source = NULL;
-    if (!c_source || (!text && len)) {
+    if (!c_source || (!text && len) || n_tables < 0 || (n_tables > 0 && !tables)) {
         strcpy(diag->message, "no text or no place for the C text (a NULL argument)");
         return 2;
     }
+    for (int k = 0; k < n_tables; k++)
+        if (!tables[k].name || !tables[k].path) {
+            strcpy(diag->message, "a table file without a name or a path (a NULL argument)");
+            return 2;
+        }
     lang_ctx *c = calloc(1, sizeof *c);
     if (!c) {
         strcpy(diag->message, "out of memory while translating the model");
@@ -79,6 +92,8 @@ int dyn_ode_to_c(const char *path, const char *text, size_t len, char **c_source
     c->diag = diag;
     c->note = note;
     c->note_ctx = note_ctx;
+    c->table_files = tables;
+    c->n_table_files = n_tables;
     jmp_buf fail;
     c->fail = &fail;
     if (setjmp(fail)) {
@@ -90,6 +105,8 @@ int dyn_ode_to_c(const char *path, const char *text, size_t len, char **c_source
         free(c);
         return status;
     }
+    c->table_file_used = lang_alloc(c, (size_t)n_tables + 1);
+    memset(c->table_file_used, 0, (size_t)n_tables + 1);
     translate(c);
     char *out = lang_emit_c(c);
     lang_free_all(c);

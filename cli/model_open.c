@@ -14,6 +14,7 @@
 #include "dynkit/brusselator.h"
 #include "dynkit/jit.h"
 #include "dynkit/lang.h"
+#include "dynkit/mbs.h"
 
 enum { MODEL_FILE_MAX_BYTES = 16 << 20, MAX_LOADED = 16 };
 
@@ -197,8 +198,11 @@ static int open_model_file(const char *spec, const dyn_model **model)
             return CLI_USAGE;
         char *c_source = NULL;
         dyn_lang_diag diag;
-        rc = dyn_ode_to_c_tables(spec, text, len, table_files, n_table_files, &c_source, &diag,
-                                 print_note, NULL);
+        rc = ends_with(spec, ".mech")
+                 ? dyn_mech_to_c(spec, text, len, table_files, n_table_files, &c_source,
+                                 &diag, print_note, NULL)
+                 : dyn_ode_to_c_tables(spec, text, len, table_files, n_table_files, &c_source,
+                                       &diag, print_note, NULL);
         free(text);
         if (rc != 0) {
             char shown[2048];
@@ -224,7 +228,8 @@ int cli_model_has_algebraic(const dyn_model *m)
 
 int cli_model_is_file(const char *spec)
 {
-    return ends_with(spec, ".ode") || ends_with(spec, ".c") || ends_with(spec, ".so");
+    return ends_with(spec, ".ode") || ends_with(spec, ".mech") || ends_with(spec, ".c") ||
+           ends_with(spec, ".so");
 }
 
 /* The Brusselator of size N (dynkit/brusselator.h): "brusselator" (the default N) or

@@ -188,6 +188,13 @@ static node *cond(lang_ctx *c, node *test, node *a, node *b)
     return mk(c, N_IF, 0, 3, test, a, b);
 }
 
+node *lang_add(lang_ctx *c, node *a, node *b) { return add(c, a, b); }
+node *lang_sub(lang_ctx *c, node *a, node *b) { return sub(c, a, b); }
+node *lang_mul(lang_ctx *c, node *a, node *b) { return mul(c, a, b); }
+node *lang_div(lang_ctx *c, node *a, node *b) { return dvd(c, a, b); }
+node *lang_neg(lang_ctx *c, node *a) { return neg(c, a); }
+node *lang_fun1(lang_ctx *c, int f, node *a) { return fun(c, f, a, NULL); }
+
 /* ---- derivatives ---- */
 
 /* body with its arguments replaced by args (for inlining a call) */

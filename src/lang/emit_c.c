@@ -1475,7 +1475,7 @@ char *lang_emit_c(lang_ctx *c)
                   "bandlo=%d, bandup=%d: a bandwidth of the Jacobian must be below the number "
                   "of states, %d",
                   m->band_lo, m->band_up, n);
-    int with_jac = n <= LANG_MAX_JAC_STATES && m->algs.n == 0;
+    int with_jac = n <= LANG_MAX_JAC_STATES && m->algs.n == 0 && !m->no_jacobian;
     if (m->algs.n)
         lang_note(c, LVEC_AT(m->algs, lang_formula, 0).pos,
                   "no analytic Jacobian: the algebraic variables are solved for numerically; "
@@ -1493,7 +1493,7 @@ char *lang_emit_c(lang_ctx *c)
                       abs(jp.band_bad_i - jp.band_bad_j),
                       abs(jp.band_bad_i - jp.band_bad_j) == 1 ? "" : "s",
                       jp.band_bad_i > jp.band_bad_j ? "below" : "above");
-    } else if (m->algs.n == 0) {
+    } else if (m->algs.n == 0 && !m->no_jacobian) {
         lang_note(c, (lpos){0, 0}, "%d states: no analytic Jacobian (at most %d); the stiff "
                   "methods use finite differences", n, LANG_MAX_JAC_STATES);
     }

@@ -281,6 +281,9 @@ typedef struct lang_model {
      * dt_pos: where dt was given (a map steps by 1, as XPPAUT's do) */
     int map_eq, map_meth;
     lpos map_pos, dt_pos, total_pos;
+    /* no analytic Jacobian is written (the stiff methods use differences): set by front
+     * ends whose right-hand sides are long chains of fixed quantities (src/mbs) */
+    int no_jacobian;
 } lang_model;
 
 /* ---- one logical line: text and where each character came from ---- */
@@ -292,6 +295,7 @@ typedef struct lang_line {
 
 /* ---- the context ---- */
 typedef struct lang_block lang_block;
+struct lang_lexer;
 
 typedef struct lang_ctx {
     jmp_buf *fail;        /* where lang_fail and lang_oom go */
@@ -321,6 +325,12 @@ typedef struct lang_ctx {
     const dyn_lang_table_file *table_files; /* named by the caller (dyn_ode_to_c_tables) */
     int n_table_files;
     unsigned char *table_file_used;
+    /* A front end's own statements (src/mbs): called with the lexer after the first word w
+     * of a statement that is not an equation; returns 0 (handled, the line is done), 1
+     * (handled, the file is done) or -1 (not its statement: read it as .ode). */
+    int (*stmt_hook)(struct lang_ctx *c, struct lang_lexer *lx, const char *w, lpos wpos);
+    void *hook_ctx;
+    int no_arrays; /* lines are not expanded as arrays: [ ] holds units (src/mbs) */
 } lang_ctx;
 
 /* arena, errors, notes (diag.c) */
@@ -397,6 +407,13 @@ typedef struct lang_dvar {
 node *lang_num(lang_ctx *c, double v);
 node *lang_deriv(lang_ctx *c, const node *e, const lang_dvar *v);
 node *lang_subst(lang_ctx *c, node *body, node **args);
+/* the simplifying constructors of the derivatives (0*x, 1*x, x+0, constant folding) */
+node *lang_add(lang_ctx *c, node *a, node *b);
+node *lang_sub(lang_ctx *c, node *a, node *b);
+node *lang_mul(lang_ctx *c, node *a, node *b);
+node *lang_div(lang_ctx *c, node *a, node *b);
+node *lang_neg(lang_ctx *c, node *a);
+node *lang_fun1(lang_ctx *c, int f, node *a);
 int lang_is_num(const node *e, double v);
 void lang_func_uses(lang_ctx *c, const node *e, int *state, int *time);
 double lang_eval(lang_ctx *c, const node *e, const double *args, const double *pvals);
@@ -407,6 +424,15 @@ double lang_apply_fun(int op, double a, double b);
 
 /* C text (emit_c.c); the solver of the algebraic equations, a constant text (alg_solver.c) */
 char *lang_emit_c(lang_ctx *c);
+/* A translation from the text of a model file to C (translate.c): the context, the error
+ * exit and the C text around front, which reads the file into c->m and checks it (the .ode
+ * front end: lang_parse_model then lang_check). */
+int lang_translate(const char *path, const char *text, size_t len,
+                   const dyn_lang_table_file *tables, int n_tables, char **c_source,
+                   dyn_lang_diag *diag, dyn_lang_note_fn note, void *note_ctx,
+                   void (*front)(lang_ctx *c));
+/* The default name of a model from its path: the file name without the extension ext. */
+const char *lang_base_name(lang_ctx *c, const char *path, const char *ext);
 const char *lang_alg_solver_text(void);
 
 #endif /* DYNKIT_LANG_INTERNAL_H */

@@ -887,6 +887,11 @@ static int keyword_is(const char *w, size_t n, const char *const *list, int coun
 static int keyword_statement(lang_ctx *c, lang_lexer *lx, pstate *ps, const char *w, lpos wpos)
 {
     const size_t n = strlen(w);
+    if (c->stmt_hook) {
+        const int r = c->stmt_hook(c, lx, w, wpos);
+        if (r >= 0)
+            return r;
+    }
     if (KW(w, n, "done", "d"))
         return 1;
     if (KW(w, n, "par", "param", "params", "pars", "parameter", "parameters", "p"))

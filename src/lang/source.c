@@ -311,6 +311,10 @@ static void logical_line(lang_ctx *c, lines_state *s, const lang_line *l)
     const int ch = first_char(l, &at);
     if (ch != '#' && ch != '"')
         refuse_volterra(c, l);
+    if (c->no_arrays) { /* [ ] holds units (src/mbs) */
+        emit(c, s, l);
+        return;
+    }
     if (s->in_block) {
         if (ch == '%') {
             /* the end of the block: each line once per j */

@@ -6,20 +6,30 @@
  * what is supported, dynkit's extensions and what is refused. */
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "lang/lang_internal.h"
 
-static const char *base_name(lang_ctx *c, const char *path)
+const char *lang_base_name(lang_ctx *c, const char *path, const char *ext)
 {
     const char *b = strrchr(path, '/');
     b = b ? b + 1 : path;
     size_t n = strlen(b);
-    if (n > 4 && (strcmp(b + n - 4, ".ode") == 0 || strcmp(b + n - 4, ".ODE") == 0))
-        n -= 4;
+    const size_t k = strlen(ext);
+    if (n > k && strncasecmp(b + n - k, ext, k) == 0)
+        n -= k;
     return n ? lang_strndup(c, b, n) : "model";
 }
 
-static void translate(lang_ctx *c)
+static void ode_front(lang_ctx *c)
+{
+    c->m.name = lang_base_name(c, c->path, ".ode");
+    lang_parse_model(c);
+    lang_check_table_files(c);
+    lang_check(c);
+}
+
+static void translate(lang_ctx *c, void (*front)(lang_ctx *c))
 {
     if (c->len > LANG_MAX_TEXT)
         lang_fail(c, (lpos){0, 0}, "file too large (%zu bytes; at most %u)", c->len,
@@ -35,10 +45,7 @@ static void translate(lang_ctx *c)
             c->line_start[c->nlines++] = i + 1;
     if (c->len > 0 && c->text[c->len - 1] == '\n')
         c->nlines--; /* no empty last line */
-    c->m.name = base_name(c, c->path);
-    lang_parse_model(c);
-    lang_check_table_files(c);
-    lang_check(c);
+    front(c);
     lang_model *m = &c->m;
     if (!m->title || !*m->title) {
         if (m->description && *m->description) {
@@ -62,6 +69,15 @@ int dyn_ode_to_c(const char *path, const char *text, size_t len, char **c_source
 int dyn_ode_to_c_tables(const char *path, const char *text, size_t len,
                         const dyn_lang_table_file *tables, int n_tables, char **c_source,
                         dyn_lang_diag *diag, dyn_lang_note_fn note, void *note_ctx)
+{
+    return lang_translate(path, text, len, tables, n_tables, c_source, diag, note, note_ctx,
+                          ode_front);
+}
+
+int lang_translate(const char *path, const char *text, size_t len,
+                   const dyn_lang_table_file *tables, int n_tables, char **c_source,
+                   dyn_lang_diag *diag, dyn_lang_note_fn note, void *note_ctx,
+                   void (*front)(lang_ctx *c))
 {
     dyn_lang_diag scratch;
     if (!diag)
@@ -107,7 +123,7 @@ int dyn_ode_to_c_tables(const char *path, const char *text, size_t len,
     }
     c->table_file_used = lang_alloc(c, (size_t)n_tables + 1);
     memset(c->table_file_used, 0, (size_t)n_tables + 1);
-    translate(c);
+    translate(c, front);
     char *out = lang_emit_c(c);
     lang_free_all(c);
     free(c);

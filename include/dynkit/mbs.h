@@ -1,0 +1,32 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* dynkit/mbs.h — mechanism files: bodies, joints by formulas, loads and constraints in;
+ * the C text of a dyn_model out, its equations of motion derived by TMT (virtual power with
+ * generalized coordinates). The syntax and the method are in docs/mechanisms.md.
+ *
+ * A mechanism becomes an ordinary dyn_model: the states are the coordinates and their
+ * speeds, the outputs the constraints' multipliers (named after the constraints, with
+ * units) and the energies. Part of the optional layer dynkit_lang; never prints or exits.
+ */
+#ifndef DYNKIT_MBS_H
+#define DYNKIT_MBS_H
+
+#include <stddef.h>
+
+#include "dynkit/lang.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Translate the mechanism text (len bytes; path for messages) into C source, as
+ * dyn_ode_to_c_tables does for an .ode file (tables: the files named for `table NAME FILE`
+ * lines, may be NULL with n_tables 0): 0 and *c_source (malloc'd), or 2 (error in the
+ * file, *diag filled with FILE:LINE:COL) or 1 (out of memory). */
+int dyn_mech_to_c(const char *path, const char *text, size_t len,
+                  const dyn_lang_table_file *tables, int n_tables, char **c_source,
+                  dyn_lang_diag *diag, dyn_lang_note_fn note, void *note_ctx);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* DYNKIT_MBS_H */

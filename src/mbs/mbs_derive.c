@@ -1,0 +1,689 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* The equations of motion of a mechanism by TMT, the virtual power method with generalized
+ * coordinates (Vallery & Schwab, "Advanced Dynamics", TU Delft, ch. "TMT"), written into
+ * the model as fixed quantities (docs/mechanisms.md, "The method"):
+ *   symbolic, by src/lang's derivatives: each body's mass centre x(q,t), rotation R(q,t)
+ *   (N->B, a product of elementary rotations), J_v = dx/dq, J_w (omega_B = J_w qd + w_t,
+ *   the rotations' rates carried to B), the convective terms g = d(J qd + v_t)/dq qd +
+ *   d(J qd + v_t)/dt, and for each constraint its row D = dh/dqd of its velocity form h
+ *   with its convective term;
+ *   numeric, per evaluation: M = sum m J_v'J_v + J_w' I J_w, F = sum J_v'(m g_N - m g_v) +
+ *   J_w'(-I g_w - w x I w) + the loads' J'f, qdd = M^-1 F by Cholesky, then the
+ *   multipliers from the Schur complement (D M^-1 D') lambda = -(D M^-1 F + conv + stab)
+ *   and qdd += M^-1 D' lambda (Baumgarte's stab = 2 a h + a^2 f for f(q,t) = 0, a h for
+ *   a constraint on the speeds). */
+#include <stdio.h>
+#include <string.h>
+
+#include "mbs/mbs_internal.h"
+
+typedef struct dctx {
+    lang_ctx *c;
+    mbs_model *mb;
+    int n;        /* coordinates */
+    int *q, *u;   /* their state indices, and their speeds' */
+    int nfix0;    /* fixed quantities before the derivation */
+    int count;    /* fixed quantities written */
+} dctx;
+
+static node *num(dctx *d, double v) { return lang_num(d->c, v); }
+static node *add(dctx *d, node *a, node *b) { return lang_add(d->c, a, b); }
+static node *sub(dctx *d, node *a, node *b) { return lang_sub(d->c, a, b); }
+static node *mul(dctx *d, node *a, node *b) { return lang_mul(d->c, a, b); }
+
+static node *ref(dctx *d, node_kind kind, int index)
+{
+    node *e = lang_node(d->c, kind, (lpos){0, 0});
+    e->index = index;
+    return e;
+}
+
+/* a fixed quantity of value e (simple values stay as they are) */
+static node *fix(dctx *d, const char *role, node *e)
+{
+    if (e->kind == N_NUM || e->kind == N_STATE || e->kind == N_PARAM || e->kind == N_FIX ||
+        e->kind == N_TIME)
+        return e;
+    lang_ctx *c = d->c;
+    mbs_model *mb = d->mb;
+    lang_formula *f = lvec_push(c, &c->m.fixes, sizeof *f);
+    f->name = lang_printf(c, "mbs%d_%s", d->count++, role);
+    f->pos = (lpos){0, 0};
+    f->expr = e;
+    if (mb->norder >= mb->ordercap) {
+        const int cap = mb->ordercap ? 2 * mb->ordercap : 256;
+        int *o = lang_alloc(c, (size_t)cap * sizeof *o);
+        if (mb->norder)
+            memcpy(o, mb->order, (size_t)mb->norder * sizeof *o);
+        mb->order = o;
+        mb->ordercap = cap;
+    }
+    mb->order[mb->norder++] = c->m.fixes.n - 1;
+    return ref(d, N_FIX, c->m.fixes.n - 1);
+}
+
+static node *input_ref(dctx *d, int k) { return k < 0 ? num(d, 0.0) : ref(d, N_FIX, k); }
+
+/* ---- expansion of the inputs (fixed quantities and user functions inlined) ---- */
+
+static node *expand(dctx *d, node *e)
+{
+    lang_ctx *c = d->c;
+    switch (e->kind) {
+    case N_FIX: {
+        mbs_model *mb = d->mb;
+        if (e->index >= d->nfix0)
+            lang_fail(c, e->pos, "internal: a derived quantity in a kinematic formula");
+        if (!mb->expanded[e->index])
+            mb->expanded[e->index] = expand(d, LVEC_AT(c->m.fixes, lang_formula, e->index).expr);
+        return mb->expanded[e->index];
+    }
+    case N_UFUN: {
+        node **args = lang_alloc(c, (size_t)(e->nargs + 1) * sizeof *args);
+        for (int i = 0; i < e->nargs; i++)
+            args[i] = expand(d, e->args[i]);
+        return expand(d, lang_subst(c, LVEC_AT(c->m.funcs, lang_func, e->index).body, args));
+    }
+    case N_ALG:
+        lang_fail(c, e->pos, "an algebraic variable cannot enter the kinematics of a mechanism");
+    case N_DFIX:
+    case N_UFUN_D:
+    case N_SUM:
+    case N_SUMIDX:
+        lang_fail(c, e->pos, "this formula cannot enter the kinematics of a mechanism");
+    default:
+        break;
+    }
+    if (e->kind == N_FUN && e->op == F_SPECIAL)
+        lang_fail(c, e->pos, "a network sum cannot enter the kinematics of a mechanism");
+    if (e->nargs == 0)
+        return e;
+    node *r = lang_node(c, e->kind, e->pos);
+    *r = *e;
+    r->args = lang_alloc(c, (size_t)e->nargs * sizeof *r->args);
+    for (int i = 0; i < e->nargs; i++)
+        r->args[i] = expand(d, e->args[i]);
+    return r;
+}
+
+static node *input(dctx *d, int k) { return k < 0 ? num(d, 0.0) : expand(d, ref(d, N_FIX, k)); }
+
+static int uses(const node *e, node_kind kind, int index)
+{
+    if ((int)e->kind == (int)kind && (index < 0 || e->index == index))
+        return 1;
+    for (int i = 0; i < e->nargs; i++)
+        if (uses(e->args[i], kind, index))
+            return 1;
+    return 0;
+}
+
+/* ---- symbolic derivatives ---- */
+
+static node *dq(dctx *d, node *e, int state)
+{
+    const lang_dvar v = {N_STATE, state, NULL, NULL, 0};
+    return lang_deriv(d->c, e, &v);
+}
+
+static node *time_as_arg(dctx *d, node *e)
+{
+    if (e->kind == N_TIME)
+        return ref(d, N_ARG, 0);
+    if (e->nargs == 0)
+        return e;
+    node *r = lang_node(d->c, e->kind, e->pos);
+    *r = *e;
+    r->args = lang_alloc(d->c, (size_t)e->nargs * sizeof *r->args);
+    for (int i = 0; i < e->nargs; i++)
+        r->args[i] = time_as_arg(d, e->args[i]);
+    return r;
+}
+
+static node *dt(dctx *d, node *e)
+{
+    if (!uses(e, N_TIME, -1))
+        return num(d, 0.0);
+    const lang_dvar v = {N_ARG, 0, NULL, NULL, 0};
+    node *de = lang_deriv(d->c, time_as_arg(d, e), &v);
+    node *t = lang_node(d->c, N_TIME, (lpos){0, 0});
+    return lang_subst(d->c, de, &t);
+}
+
+/* the time derivative along the motion: sum_k de/dq_k u_k + de/dt (u held) */
+static node *rate(dctx *d, node *e)
+{
+    node *r = dt(d, e);
+    for (int k = 0; k < d->n; k++)
+        r = add(d, r, mul(d, dq(d, e, d->q[k]), ref(d, N_STATE, d->u[k])));
+    return r;
+}
+
+/* Jacobian columns (3 n, symbolic) and velocity of a point r(q, t) */
+static void point_jacobian(dctx *d, node *const r[3], node **J, node *vel[3])
+{
+    for (int j = 0; j < 3; j++) {
+        vel[j] = dt(d, r[j]);
+        for (int k = 0; k < d->n; k++) {
+            J[3 * k + j] = dq(d, r[j], d->q[k]);
+            vel[j] = add(d, vel[j], mul(d, J[3 * k + j], ref(d, N_STATE, d->u[k])));
+        }
+    }
+}
+
+static void fix_vec(dctx *d, const char *role, node **v, int count)
+{
+    for (int i = 0; i < count; i++)
+        v[i] = fix(d, lang_printf(d->c, "%s%d", role, i), v[i]);
+}
+
+/* ---- rotations: R (N->B) = E_last ... E_first, passive elementary rotations ---- */
+
+static void elementary(dctx *d, int axis, node *angle, node *E[9])
+{
+    node *cs = lang_fun1(d->c, F_COS, angle), *sn = lang_fun1(d->c, F_SIN, angle);
+    for (int i = 0; i < 9; i++)
+        E[i] = num(d, 0.0);
+    const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+    E[4 * axis] = num(d, 1.0);
+    E[3 * a + a] = cs;
+    E[3 * b + b] = cs;
+    E[3 * a + b] = sn;
+    E[3 * b + a] = lang_neg(d->c, sn);
+}
+
+static void matmul(dctx *d, node *const A[9], node *const B[9], node *C[9])
+{
+    node *T[9];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            node *s = num(d, 0.0);
+            for (int k = 0; k < 3; k++)
+                s = add(d, s, mul(d, A[3 * i + k], B[3 * k + j]));
+            T[3 * i + j] = s;
+        }
+    memcpy(C, T, sizeof T);
+}
+
+static void identity(dctx *d, node *M[9])
+{
+    for (int i = 0; i < 9; i++)
+        M[i] = num(d, i % 4 == 0 ? 1.0 : 0.0);
+}
+
+/* R, and J_w (3 n symbolic) with the angular velocity in B */
+static void rotation(dctx *d, mbs_body *b, node **Jw, node *w[3])
+{
+    node *ang[MBS_MAX_ROT], *P[MBS_MAX_ROT][9];
+    identity(d, b->R);
+    for (int i = 0; i < b->nrot; i++) {
+        node *E[9];
+        ang[i] = input(d, b->angle[i]);
+        elementary(d, b->axis[i], ang[i], E);
+        matmul(d, E, b->R, b->R);
+    }
+    node *Pr[9];
+    identity(d, Pr);
+    for (int i = b->nrot - 1; i >= 0; i--) { /* P_i = E_last ... E_(i+1) */
+        memcpy(P[i], Pr, sizeof Pr);
+        node *E[9];
+        elementary(d, b->axis[i], ang[i], E);
+        matmul(d, Pr, E, Pr);
+    }
+    for (int j = 0; j < 3; j++) {
+        w[j] = num(d, 0.0);
+        for (int k = 0; k < d->n; k++)
+            Jw[3 * k + j] = num(d, 0.0);
+    }
+    for (int i = 0; i < b->nrot; i++) {
+        const int a = b->axis[i];
+        node *dth_t = dt(d, ang[i]);
+        for (int j = 0; j < 3; j++) {
+            node *col = P[i][3 * j + a];
+            w[j] = add(d, w[j], mul(d, col, dth_t));
+            for (int k = 0; k < d->n; k++)
+                Jw[3 * k + j] = add(d, Jw[3 * k + j], mul(d, col, dq(d, ang[i], d->q[k])));
+        }
+    }
+    for (int j = 0; j < 3; j++)
+        for (int k = 0; k < d->n; k++)
+            w[j] = add(d, w[j], mul(d, Jw[3 * k + j], ref(d, N_STATE, d->u[k])));
+}
+
+static node *dot(dctx *d, node *const *a, node *const *b)
+{
+    return add(d, add(d, mul(d, a[0], b[0]), mul(d, a[1], b[1])), mul(d, a[2], b[2]));
+}
+
+/* R^T v (B to N) and R v (N to B) with R's fixed quantities */
+static void to_n(dctx *d, node *const R[9], node *const v[3], node *out[3])
+{
+    for (int j = 0; j < 3; j++)
+        out[j] = add(d, add(d, mul(d, R[j], v[0]), mul(d, R[3 + j], v[1])), mul(d, R[6 + j], v[2]));
+}
+
+static void to_b(dctx *d, node *const R[9], node *const v[3], node *out[3])
+{
+    for (int j = 0; j < 3; j++)
+        out[j] = dot(d, R + 3 * j, v);
+}
+
+static void body_kinematics(dctx *d, mbs_body *b, int bi)
+{
+    lang_ctx *c = d->c;
+    const int n = d->n;
+    node **Jv = lang_alloc(c, 3 * (size_t)n * sizeof *Jv);
+    for (int j = 0; j < 3; j++)
+        b->x[j] = input(d, b->at[j]);
+    point_jacobian(d, b->x, Jv, b->v);
+    for (int j = 0; j < 3; j++)
+        b->gv[j] = rate(d, b->v[j]);
+    b->Jv = Jv;
+    fix_vec(d, lang_printf(c, "b%d_Jv", bi), Jv, 3 * n);
+    fix_vec(d, lang_printf(c, "b%d_v", bi), b->v, 3);
+    fix_vec(d, lang_printf(c, "b%d_gv", bi), b->gv, 3);
+    if (b->point)
+        return;
+    node **Jw = lang_alloc(c, 3 * (size_t)n * sizeof *Jw);
+    rotation(d, b, Jw, b->w);
+    for (int j = 0; j < 3; j++)
+        b->gw[j] = rate(d, b->w[j]);
+    b->Jw = Jw;
+    memcpy(b->Rf, b->R, sizeof b->Rf);
+    fix_vec(d, lang_printf(c, "b%d_R", bi), b->Rf, 9);
+    fix_vec(d, lang_printf(c, "b%d_Jw", bi), Jw, 3 * n);
+    fix_vec(d, lang_printf(c, "b%d_w", bi), b->w, 3);
+    fix_vec(d, lang_printf(c, "b%d_gw", bi), b->gw, 3);
+}
+
+/* a point of a body (p in B) or of the ground (p in N): symbolic position */
+static void attach_position(dctx *d, const mbs_attach *a, node *r[3])
+{
+    node *p[3];
+    for (int j = 0; j < 3; j++)
+        p[j] = input(d, a->p[j]);
+    if (a->body < 0) {
+        memcpy(r, p, sizeof p);
+        return;
+    }
+    const mbs_body *b = &LVEC_AT(d->mb->bodies, mbs_body, a->body);
+    for (int j = 0; j < 3; j++) {
+        r[j] = b->x[j];
+        if (!b->point)
+            for (int i = 0; i < 3; i++)
+                r[j] = add(d, r[j], mul(d, b->R[3 * i + j], p[i]));
+    }
+}
+
+/* Q += J' f for a point with symbolic position r; its fixed position and velocity out */
+static void point_force(dctx *d, node **Q, node *const J[], node *const f[3])
+{
+    for (int k = 0; k < d->n; k++)
+        Q[k] = add(d, Q[k], dot(d, J + 3 * k, f));
+}
+
+static void point_fixes(dctx *d, const char *role, node *r[3], node **J, node *vel[3])
+{
+    point_jacobian(d, r, J, vel);
+    fix_vec(d, lang_printf(d->c, "%s_r", role), r, 3);
+    fix_vec(d, lang_printf(d->c, "%s_J", role), J, 3 * d->n);
+    fix_vec(d, lang_printf(d->c, "%s_v", role), vel, 3);
+}
+
+/* ---- dense Cholesky in fixed quantities ---- */
+
+static void cholesky(dctx *d, const char *tag, node **A, int n, node **L, node **dinv)
+{
+    for (int j = 0; j < n; j++) {
+        node *s = A[j * n + j];
+        for (int k = 0; k < j; k++)
+            s = sub(d, s, mul(d, L[j * n + k], L[j * n + k]));
+        L[j * n + j] = fix(d, lang_printf(d->c, "%s_L%d_%d", tag, j, j),
+                           lang_fun1(d->c, F_SQRT, s));
+        dinv[j] = fix(d, lang_printf(d->c, "%s_inv%d", tag, j),
+                      lang_div(d->c, num(d, 1.0), L[j * n + j]));
+        for (int i = j + 1; i < n; i++) {
+            node *t = A[i * n + j];
+            for (int k = 0; k < j; k++)
+                t = sub(d, t, mul(d, L[i * n + k], L[j * n + k]));
+            L[i * n + j] = fix(d, lang_printf(d->c, "%s_L%d_%d", tag, i, j), mul(d, t, dinv[j]));
+        }
+    }
+}
+
+static void chol_solve(dctx *d, const char *tag, node **L, node **dinv, int n, node *const *b,
+                       node **x)
+{
+    node **y = lang_alloc(d->c, (size_t)n * sizeof *y);
+    for (int i = 0; i < n; i++) {
+        node *s = b[i];
+        for (int k = 0; k < i; k++)
+            s = sub(d, s, mul(d, L[i * n + k], y[k]));
+        y[i] = fix(d, lang_printf(d->c, "%s_y%d", tag, i), mul(d, s, dinv[i]));
+    }
+    for (int i = n - 1; i >= 0; i--) {
+        node *s = y[i];
+        for (int k = i + 1; k < n; k++)
+            s = sub(d, s, mul(d, L[k * n + i], x[k]));
+        x[i] = fix(d, lang_printf(d->c, "%s_x%d", tag, i), mul(d, s, dinv[i]));
+    }
+}
+
+static node *dot_n(dctx *d, node *const *a, node *const *b, int n)
+{
+    node *s = num(d, 0.0);
+    for (int i = 0; i < n; i++)
+        s = add(d, s, mul(d, a[i], b[i]));
+    return s;
+}
+
+/* ---- units of the multipliers ---- */
+
+static const char *force_unit(lang_ctx *c, const char *unit, int rate)
+{
+    if (!unit)
+        return "N m";
+    if (!strcmp(unit, "m") || !strcmp(unit, "m/s"))
+        return "N";
+    if (!strcmp(unit, "rad") || !strcmp(unit, "rad/s") || !strcmp(unit, "1") ||
+        !strcmp(unit, "1/s"))
+        return "N m";
+    return lang_printf(c, rate ? "W/(%s)" : "J/(%s)", unit);
+}
+
+static void constraints(dctx *d, node **F_Q, node **qdd, node **a0, node **L, node **dinv)
+{
+    lang_ctx *c = d->c;
+    mbs_model *mb = d->mb;
+    const int n = d->n, m = mb->cons.n;
+    node **D = lang_alloc(c, (size_t)(m * n + 1) * sizeof *D);
+    node **X = lang_alloc(c, (size_t)(m * n + 1) * sizeof *X);
+    node **A = lang_alloc(c, (size_t)(m * m + 1) * sizeof *A);
+    node **b = lang_alloc(c, (size_t)(m + 1) * sizeof *b);
+    (void)F_Q;
+    for (int r = 0; r < m; r++) {
+        mbs_constraint *k = &LVEC_AT(mb->cons, mbs_constraint, r);
+        node *f = input(d, k->expr);
+        int on_speeds = 0;
+        for (int j = 0; j < n; j++)
+            on_speeds |= uses(f, N_STATE, d->u[j]);
+        if (on_speeds)
+            for (int j = 0; j < n; j++)
+                for (int l = j; l < n; l++) {
+                    node *d2 = dq(d, dq(d, f, d->u[j]), d->u[l]);
+                    if (!lang_is_num(d2, 0.0)) {
+                        const mbs_coord *qj = &LVEC_AT(mb->coords, mbs_coord, j);
+                        const mbs_coord *ql = &LVEC_AT(mb->coords, mbs_coord, l);
+                        lang_fail(c, k->pos, "constraint '%s' is not linear in the speeds (its "
+                                  "second derivative in %s and %s is not 0): a constraint is "
+                                  "f(q, t) = 0 or linear in the speeds", k->name, qj->speed,
+                                  ql->speed);
+                    }
+                }
+        node *h = on_speeds ? f : rate(d, f);
+        const char *tag = lang_printf(c, "c%d", r);
+        int first = -1;
+        for (int j = 0; j < n; j++) {
+            D[r * n + j] = fix(d, lang_printf(c, "%s_D%d", tag, j), dq(d, h, d->u[j]));
+            if (first < 0 && !lang_is_num(D[r * n + j], 0.0))
+                first = j;
+        }
+        if (first < 0)
+            lang_fail(c, k->pos, "constraint '%s' does not involve the %s of any coordinate",
+                      k->name, on_speeds ? "speed" : "position");
+        node *conv = rate(d, h);
+        /* the speeds' terms of rate(h) are D u_dot; rate holds u, so conv is the rest */
+        node *stab = num(d, 0.0);
+        if (mb->alpha > 0) {
+            node *al = num(d, mb->alpha);
+            node *hf = fix(d, lang_printf(c, "%s_h", tag), h);
+            stab = mul(d, lang_mul(c, num(d, 2.0), al), hf);
+            if (!on_speeds)
+                stab = add(d, stab, mul(d, num(d, mb->alpha * mb->alpha),
+                                        fix(d, lang_printf(c, "%s_f", tag), f)));
+            if (on_speeds)
+                stab = mul(d, al, hf);
+        }
+        b[r] = fix(d, lang_printf(c, "%s_b", tag),
+                   lang_neg(c, add(d, add(d, dot_n(d, D + r * n, a0, n), conv), stab)));
+        chol_solve(d, lang_printf(c, "%s_X", tag), L, dinv, n, D + r * n, X + r * n);
+        const char *cu = k->prescribed >= 0
+                             ? force_unit(c, LVEC_AT(mb->coords, mbs_coord, k->prescribed).unit, 0)
+                         : k->unit ? force_unit(c, k->unit, on_speeds)
+                                   : force_unit(c, LVEC_AT(mb->coords, mbs_coord, first).unit, 0);
+        lang_formula *out = &LVEC_AT(c->m.auxs, lang_formula, k->aux);
+        out->doc.unit = cu;
+        if (!out->doc.description)
+            out->doc.description = lang_printf(c, "force of the constraint %s (%s)", k->name,
+                                               on_speeds ? "on the speeds" : "holonomic");
+    }
+    for (int r = 0; r < m; r++)
+        for (int s = 0; s <= r; s++) {
+            A[r * m + s] = fix(d, lang_printf(c, "A%d_%d", r, s),
+                               dot_n(d, D + r * n, X + s * n, n));
+            A[s * m + r] = A[r * m + s];
+        }
+    node **LA = lang_alloc(c, (size_t)(m * m + 1) * sizeof *LA);
+    node **dA = lang_alloc(c, (size_t)(m + 1) * sizeof *dA);
+    node **lam = lang_alloc(c, (size_t)(m + 1) * sizeof *lam);
+    cholesky(d, "A", A, m, LA, dA);
+    chol_solve(d, "lam", LA, dA, m, b, lam);
+    for (int i = 0; i < n; i++) {
+        node *s = a0[i];
+        for (int r = 0; r < m; r++)
+            s = add(d, s, mul(d, X[r * n + i], lam[r]));
+        qdd[i] = fix(d, lang_printf(c, "qdd%d", i), s);
+    }
+    for (int r = 0; r < m; r++) {
+        mbs_constraint *k = &LVEC_AT(mb->cons, mbs_constraint, r);
+        LVEC_AT(c->m.auxs, lang_formula, k->aux).expr = lam[r];
+    }
+}
+
+/* ---- loads: gravity, springs, forces and torques ---- */
+
+static node *loads(dctx *d, node **Q)
+{
+    lang_ctx *c = d->c;
+    mbs_model *mb = d->mb;
+    const int n = d->n;
+    node *V = num(d, 0.0);
+    node *g[3];
+    for (int j = 0; j < 3; j++)
+        g[j] = input_ref(d, mb->gravity[j]);
+    for (int bi = 0; bi < mb->bodies.n; bi++) {
+        mbs_body *b = &LVEC_AT(mb->bodies, mbs_body, bi);
+        node *x[3];
+        memcpy(x, b->x, sizeof x);
+        fix_vec(d, lang_printf(c, "b%d_x", bi), x, 3);
+        V = sub(d, V, mul(d, input_ref(d, b->mass), dot(d, g, x)));
+    }
+    for (int si = 0; si < mb->springs.n; si++) {
+        const mbs_spring *sp = &LVEC_AT(mb->springs, mbs_spring, si);
+        node *ra[3], *rb[3], *va[3], *vb[3], *dd[3], *fa[3], *fb[3];
+        node **Ja = lang_alloc(c, 3 * (size_t)n * sizeof *Ja);
+        node **Jb = lang_alloc(c, 3 * (size_t)n * sizeof *Jb);
+        attach_position(d, &sp->a, ra);
+        attach_position(d, &sp->b, rb);
+        point_fixes(d, lang_printf(c, "s%da", si), ra, Ja, va);
+        point_fixes(d, lang_printf(c, "s%db", si), rb, Jb, vb);
+        for (int j = 0; j < 3; j++)
+            dd[j] = fix(d, lang_printf(c, "s%d_d%d", si, j), sub(d, rb[j], ra[j]));
+        node *l = fix(d, lang_printf(c, "s%d_l", si), lang_fun1(c, F_SQRT, dot(d, dd, dd)));
+        node *stretch = sub(d, l, input_ref(d, sp->l0));
+        node *fm = sp->k >= 0 ? mul(d, input_ref(d, sp->k), stretch) : num(d, 0.0);
+        if (sp->c >= 0) {
+            node *dv[3];
+            for (int j = 0; j < 3; j++)
+                dv[j] = sub(d, vb[j], va[j]);
+            fm = add(d, fm, mul(d, input_ref(d, sp->c), lang_div(c, dot(d, dd, dv), l)));
+        }
+        fm = fix(d, lang_printf(c, "s%d_f", si), lang_div(c, fm, l));
+        for (int j = 0; j < 3; j++) {
+            fa[j] = fix(d, lang_printf(c, "s%d_fa%d", si, j), mul(d, fm, dd[j]));
+            fb[j] = lang_neg(c, fa[j]);
+        }
+        point_force(d, Q, Ja, fa);
+        point_force(d, Q, Jb, fb);
+        if (sp->k >= 0)
+            V = add(d, V, mul(d, mul(d, num(d, 0.5), input_ref(d, sp->k)), mul(d, stretch, stretch)));
+    }
+    for (int li = 0; li < mb->loads.n; li++) {
+        const mbs_load *ld = &LVEC_AT(mb->loads, mbs_load, li);
+        const mbs_body *b = &LVEC_AT(mb->bodies, mbs_body, ld->body);
+        node *f[3], *fn[3];
+        for (int j = 0; j < 3; j++)
+            f[j] = input_ref(d, ld->f[j]);
+        if (ld->torque) {
+            if (ld->in_body)
+                memcpy(fn, f, sizeof f);
+            else
+                to_b(d, b->Rf, f, fn);
+            point_force(d, Q, b->Jw, fn);
+            continue;
+        }
+        if (ld->in_body)
+            to_n(d, b->Rf, f, fn);
+        else
+            memcpy(fn, f, sizeof f);
+        const mbs_attach at = {ld->body, {ld->at[0], ld->at[1], ld->at[2]}};
+        node *r[3], *v[3];
+        node **J = lang_alloc(c, 3 * (size_t)n * sizeof *J);
+        attach_position(d, &at, r);
+        point_fixes(d, lang_printf(c, "f%d", li), r, J, v);
+        point_force(d, Q, J, fn);
+    }
+    return V;
+}
+
+static void describe(dctx *d)
+{
+    lang_ctx *c = d->c;
+    mbs_model *mb = d->mb;
+    const char *s = "Mechanism (equations of motion by TMT): coordinates";
+    for (int i = 0; i < mb->coords.n; i++) {
+        const mbs_coord *q = &LVEC_AT(mb->coords, mbs_coord, i);
+        s = lang_printf(c, "%s %s (speed %s)%s", s, q->name, q->speed,
+                        i + 1 < mb->coords.n ? "," : ";");
+    }
+    s = lang_printf(c, "%s bodies", s);
+    for (int i = 0; i < mb->bodies.n; i++) {
+        const mbs_body *b = &LVEC_AT(mb->bodies, mbs_body, i);
+        s = lang_printf(c, "%s %s (%s)%s", s, b->name, b->point ? "point mass" : "rigid body",
+                        i + 1 < mb->bodies.n ? "," : ";");
+    }
+    if (mb->cons.n == 0)
+        s = lang_printf(c, "%s no constraints.", s);
+    for (int i = 0; i < mb->cons.n; i++) {
+        const mbs_constraint *k = &LVEC_AT(mb->cons, mbs_constraint, i);
+        s = lang_printf(c, "%s%s %s (multiplier %s)%s", s, i ? "" : " constraints", k->name,
+                        k->name, i + 1 < mb->cons.n ? "," : ".");
+    }
+    lang_model *m = &c->m;
+    m->description = m->description && *m->description
+                         ? lang_printf(c, "%s\n%s", m->description, s)
+                         : s;
+}
+
+void mbs_derive(lang_ctx *c, mbs_model *mb)
+{
+    lang_model *m = &c->m;
+    dctx d = {c, mb, mb->coords.n, NULL, NULL, m->fixes.n, 0};
+    const int n = d.n;
+    d.q = lang_alloc(c, (size_t)n * sizeof *d.q);
+    d.u = lang_alloc(c, (size_t)n * sizeof *d.u);
+    for (int i = 0; i < n; i++) {
+        d.q[i] = LVEC_AT(mb->coords, mbs_coord, i).q;
+        d.u[i] = LVEC_AT(mb->coords, mbs_coord, i).u;
+    }
+    mb->expanded = lang_alloc(c, ((size_t)m->fixes.n + 1) * sizeof *mb->expanded);
+    memset(mb->expanded, 0, ((size_t)m->fixes.n + 1) * sizeof *mb->expanded);
+    mb->ordercap = m->fixes.n + 256;
+    mb->order = lang_alloc(c, (size_t)mb->ordercap * sizeof *mb->order);
+    memcpy(mb->order, m->fix_order, (size_t)m->fixes.n * sizeof *mb->order);
+    mb->norder = m->fixes.n;
+    for (int bi = 0; bi < mb->bodies.n; bi++)
+        body_kinematics(&d, &LVEC_AT(mb->bodies, mbs_body, bi), bi);
+    /* M and F */
+    node **M = lang_alloc(c, (size_t)n * n * sizeof *M);
+    node **F = lang_alloc(c, (size_t)n * sizeof *F);
+    for (int i = 0; i < n * n; i++)
+        M[i] = num(&d, 0.0);
+    for (int i = 0; i < n; i++)
+        F[i] = num(&d, 0.0);
+    node *g[3];
+    for (int j = 0; j < 3; j++)
+        g[j] = input_ref(&d, mb->gravity[j]);
+    node *T = num(&d, 0.0);
+    for (int bi = 0; bi < mb->bodies.n; bi++) {
+        mbs_body *b = &LVEC_AT(mb->bodies, mbs_body, bi);
+        node *ms = input_ref(&d, b->mass);
+        node *fv[3], *fw[3], *Iw[3], *Igw[3], *I[9];
+        for (int j = 0; j < 3; j++)
+            fv[j] = fix(&d, lang_printf(c, "b%d_fv%d", bi, j), mul(&d, ms, sub(&d, g[j], b->gv[j])));
+        T = add(&d, T, mul(&d, ms, dot(&d, b->v, b->v)));
+        for (int i = 0; i < n; i++) {
+            F[i] = add(&d, F[i], dot(&d, b->Jv + 3 * i, fv));
+            for (int k = 0; k <= i; k++)
+                M[i * n + k] = add(&d, M[i * n + k],
+                                   mul(&d, ms, dot(&d, b->Jv + 3 * i, b->Jv + 3 * k)));
+        }
+        if (b->point)
+            continue;
+        static const int at[9] = {0, 3, 4, 3, 1, 5, 4, 5, 2}; /* Ixx Ixy Ixz; Ixy Iyy Iyz; ... */
+        for (int k = 0; k < 9; k++)
+            I[k] = input_ref(&d, b->inertia[at[k]]);
+        for (int j = 0; j < 3; j++) {
+            Iw[j] = fix(&d, lang_printf(c, "b%d_Iw%d", bi, j), dot(&d, I + 3 * j, b->w));
+            Igw[j] = dot(&d, I + 3 * j, b->gw);
+        }
+        for (int j = 0; j < 3; j++) {
+            const int a = (j + 1) % 3, e = (j + 2) % 3;
+            node *gyro = sub(&d, mul(&d, b->w[a], Iw[e]), mul(&d, b->w[e], Iw[a]));
+            fw[j] = fix(&d, lang_printf(c, "b%d_fw%d", bi, j),
+                        lang_neg(c, add(&d, Igw[j], gyro)));
+        }
+        T = add(&d, T, dot(&d, b->w, Iw));
+        for (int i = 0; i < n; i++) {
+            F[i] = add(&d, F[i], dot(&d, b->Jw + 3 * i, fw));
+            for (int k = 0; k <= i; k++) {
+                node *IJ[3];
+                for (int j = 0; j < 3; j++)
+                    IJ[j] = dot(&d, I + 3 * j, b->Jw + 3 * k);
+                M[i * n + k] = add(&d, M[i * n + k], dot(&d, b->Jw + 3 * i, IJ));
+            }
+        }
+    }
+    node *V = loads(&d, F);
+    for (int i = 0; i < n; i++) {
+        F[i] = fix(&d, lang_printf(c, "F%d", i), F[i]);
+        for (int k = 0; k <= i; k++) {
+            M[i * n + k] = fix(&d, lang_printf(c, "M%d_%d", i, k), M[i * n + k]);
+            M[k * n + i] = M[i * n + k];
+        }
+    }
+    node **L = lang_alloc(c, (size_t)n * n * sizeof *L);
+    node **dinv = lang_alloc(c, (size_t)n * sizeof *dinv);
+    node **a0 = lang_alloc(c, (size_t)n * sizeof *a0);
+    node **qdd = lang_alloc(c, (size_t)n * sizeof *qdd);
+    cholesky(&d, "M", M, n, L, dinv);
+    chol_solve(&d, "a0", L, dinv, n, F, a0);
+    if (mb->cons.n)
+        constraints(&d, F, qdd, a0, L, dinv);
+    else
+        memcpy(qdd, a0, (size_t)n * sizeof *qdd);
+    for (int i = 0; i < n; i++) {
+        LVEC_AT(m->states, lang_state, d.q[i]).rhs = ref(&d, N_STATE, d.u[i]);
+        LVEC_AT(m->states, lang_state, d.u[i]).rhs = qdd[i];
+    }
+    T = fix(&d, "T", mul(&d, num(&d, 0.5), T));
+    V = fix(&d, "V", V);
+    if (mb->aux_kinetic >= 0)
+        LVEC_AT(m->auxs, lang_formula, mb->aux_kinetic).expr = T;
+    if (mb->aux_potential >= 0)
+        LVEC_AT(m->auxs, lang_formula, mb->aux_potential).expr = V;
+    if (mb->aux_energy >= 0)
+        LVEC_AT(m->auxs, lang_formula, mb->aux_energy).expr = add(&d, T, V);
+    m->fix_order = mb->order;
+    describe(&d);
+}

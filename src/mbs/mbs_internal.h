@@ -1,0 +1,91 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* Internal interface of the mechanism front end (src/mbs): a mechanism file read into
+ * coordinates, bodies, loads and constraints on top of src/lang's model (statements of
+ * mbs_parse.c), then the equations of motion by TMT (mbs_derive.c) written into that model
+ * as fixed quantities, so that src/lang's checks and C text do the rest. See
+ * docs/mechanisms.md for the file's syntax and the method's equations. */
+#ifndef DYNKIT_MBS_INTERNAL_H
+#define DYNKIT_MBS_INTERNAL_H
+
+#include "lang/lang_internal.h"
+
+#define MBS_MAX_ROT 12 /* elementary rotations of one body */
+#define MBS_DEFAULT_ALPHA 0.0 /* Baumgarte's rate [1/s] unless `stabilize` says */
+
+/* An input is an expression of the file, kept as a fixed quantity of the model (not a
+ * name of the file) so that lang_check resolves it; -1: none (zero). */
+typedef struct mbs_coord {
+    const char *name, *speed, *unit;
+    lpos pos;
+    int q, u; /* state indices of the coordinate and its speed */
+    lpos speed_pos;
+    node *speed_init;
+    lang_doc speed_doc;
+} mbs_coord;
+
+typedef struct mbs_body {
+    const char *name;
+    lpos pos;
+    int point;          /* a point mass: no inertia, no orientation */
+    int mass;           /* input */
+    int inertia[6];     /* inputs: Ixx, Iyy, Izz, Ixy, Ixz, Iyz about the mass centre in B */
+    int at[3];          /* inputs: the mass centre in N */
+    int nrot;
+    int axis[MBS_MAX_ROT];  /* 0 x, 1 y, 2 z */
+    int angle[MBS_MAX_ROT]; /* inputs */
+    /* derived (mbs_derive.c) */
+    node *x[3], *R[9];  /* symbolic: position, N->B rotation */
+    node *Rf[9];        /* R as fixed quantities */
+    node **Jv, **Jw;    /* (3 n) fixed quantities: column k at 3 k */
+    node *v[3], *w[3], *gv[3], *gw[3];
+} mbs_body;
+
+typedef struct mbs_attach {
+    int body; /* -1: the ground */
+    int p[3]; /* inputs: the point in the body frame (in N for the ground) */
+} mbs_attach;
+
+typedef struct mbs_spring {
+    const char *name;
+    lpos pos;
+    mbs_attach a, b;
+    int k, l0, c; /* inputs */
+} mbs_spring;
+
+typedef struct mbs_load {
+    const char *name;
+    lpos pos;
+    int body, torque, in_body;
+    int at[3], f[3]; /* inputs */
+} mbs_load;
+
+typedef struct mbs_constraint {
+    const char *name, *unit;
+    lpos pos;
+    int expr;       /* input: expression = 0 */
+    int prescribed; /* coordinate index (prescribe), or -1 */
+    int aux;        /* index of its multiplier among the outputs */
+} mbs_constraint;
+
+typedef struct mbs_model {
+    lvec coords;  /* mbs_coord */
+    lvec bodies;  /* mbs_body */
+    lvec springs; /* mbs_spring */
+    lvec loads;   /* mbs_load */
+    lvec cons;    /* mbs_constraint */
+    int gravity[3];
+    double alpha; /* Baumgarte's rate [1/s] of the holonomic constraints */
+    int aux_kinetic, aux_potential, aux_energy; /* output indices, -1: not written */
+    int ninputs;
+    node **expanded; /* expanded inputs, by fixed quantity (mbs_derive.c) */
+    int *order;      /* the order of the fixed quantities, growing */
+    int norder, ordercap;
+} mbs_model;
+
+/* statements (mbs_parse.c): the hook of lang_parse_model, and the end of the file */
+int mbs_statement(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos);
+void mbs_finish_parse(lang_ctx *c, mbs_model *mb);
+/* the equations of motion, after lang_check (mbs_derive.c) */
+void mbs_derive(lang_ctx *c, mbs_model *mb);
+
+#endif /* DYNKIT_MBS_INTERNAL_H */

@@ -1,0 +1,601 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* Statements of a mechanism file (docs/mechanisms.md): coord, gravity, point, body, spring,
+ * force, torque, constraint, prescribe, stabilize, and units and descriptions in par lines;
+ * every other line is an .ode statement (par, number, !derived, name=formula, f(x)=...,
+ * aux, table, global, @ options), read by src/lang as in an .ode file. Expressions are
+ * src/lang's; each is kept as an unnamed fixed quantity of the model (an input) so that
+ * lang_check resolves its names with FILE:LINE:COL messages. */
+#include <ctype.h>
+#include <stdio.h>
+#include <string.h>
+#include <strings.h>
+
+#include "mbs/mbs_internal.h"
+
+static mbs_model *model_of(lang_ctx *c) { return c->hook_ctx; }
+
+static int peek(lang_lexer *lx) { return lang_skip_blanks(lx); }
+
+static const char *read_word(lang_lexer *lx, lpos *pos, const char *what)
+{
+    const int ch = peek(lx);
+    *pos = lang_here(lx);
+    if (!lang_is_ident_start(ch)) {
+        if (ch)
+            lang_fail(lx->c, *pos, "%s, found '%c'", what, ch);
+        lang_fail(lx->c, *pos, "%s, found the end of the line", what);
+    }
+    const int a = lx->i;
+    while (lx->i < lx->end && lang_is_ident_char((unsigned char)lx->line->text[lx->i]))
+        lx->i++;
+    return lang_strndup(lx->c, lx->line->text + a, (size_t)(lx->i - a));
+}
+
+/* The next word if it is w (case folded; then consumed). */
+static int take_word(lang_lexer *lx, const char *w)
+{
+    if (!lang_is_ident_start(peek(lx)))
+        return 0;
+    const size_t n = strlen(w);
+    const char *s = lx->line->text + lx->i;
+    if ((int)n > lx->end - lx->i || strncasecmp(s, w, n) != 0)
+        return 0;
+    if (lx->i + (int)n < lx->end && lang_is_ident_char((unsigned char)s[n]))
+        return 0;
+    lx->i += (int)n;
+    return 1;
+}
+
+static void expect(lang_lexer *lx, int ch, const char *what)
+{
+    const int got = peek(lx);
+    if (got != ch) {
+        if (got)
+            lang_fail(lx->c, lang_here(lx), "%s, found '%c'", what, got);
+        lang_fail(lx->c, lang_here(lx), "%s, found the end of the line", what);
+    }
+    lx->i++;
+}
+
+static void expect_end(lang_lexer *lx, const char *after)
+{
+    const int ch = peek(lx);
+    if (ch)
+        lang_fail(lx->c, lang_here(lx), "unexpected '%c' after %s", ch, after);
+}
+
+/* An expression of the file kept as an input (an unnamed fixed quantity). */
+static int add_input(lang_ctx *c, node *e)
+{
+    mbs_model *mb = model_of(c);
+    lang_formula *f = lvec_push(c, &c->m.fixes, sizeof *f);
+    f->name = lang_printf(c, "mbs_in%d", mb->ninputs++);
+    f->pos = e->pos;
+    f->expr = e;
+    return c->m.fixes.n - 1;
+}
+
+static node *parse_value(lang_lexer *lx, const char *what)
+{
+    if (!peek(lx))
+        lang_fail(lx->c, lang_here(lx), "expected %s, found the end of the line", what);
+    return lang_parse_expr(lx);
+}
+
+static int input_expr(lang_lexer *lx, const char *what)
+{
+    return add_input(lx->c, parse_value(lx, what));
+}
+
+static void tuple(lang_lexer *lx, int *out, const char *what)
+{
+    expect(lx, '(', lang_printf(lx->c, "expected '(' before %s (x, y, z)", what));
+    for (int k = 0; k < 3; k++) {
+        out[k] = input_expr(lx, what);
+        expect(lx, k < 2 ? ',' : ')',
+               lang_printf(lx->c, k < 2 ? "expected ',' in %s (x, y, z)"
+                                        : "expected ')' after %s (x, y, z)", what));
+    }
+}
+
+/* [unit] and "description", each optional, in either order */
+static void doc_of(lang_lexer *lx, lang_doc *doc)
+{
+    for (;;) {
+        const int ch = peek(lx);
+        const int close = ch == '[' ? ']' : ch == '"' ? '"' : 0;
+        if (!close)
+            return;
+        const lpos at = lang_here(lx);
+        const int a = ++lx->i;
+        while (lx->i < lx->end && lx->line->text[lx->i] != close)
+            lx->i++;
+        if (lx->i >= lx->end)
+            lang_fail(lx->c, at, "'%c' without its closing '%c'", ch, close);
+        const char *s = lang_strndup(lx->c, lx->line->text + a, (size_t)(lx->i - a));
+        lx->i++;
+        if (close == ']')
+            doc->unit = s;
+        else
+            doc->description = s;
+    }
+}
+
+static void add_doc(lang_ctx *c, const char *name, lpos pos, lang_doc doc)
+{
+    if (!doc.unit && !doc.description)
+        return;
+    lang_docline *d = lvec_push(c, &c->m.docs, sizeof *d);
+    d->name = name;
+    d->pos = pos;
+    d->doc = doc;
+}
+
+static int add_state(lang_ctx *c, const char *name, lpos pos, node *init)
+{
+    if (lang_is_reserved(name))
+        lang_fail(c, pos, "'%s' is a reserved word and cannot be a coordinate", name);
+    const int idx = c->m.states.n;
+    lang_declare(c, name, pos, SYM_STATE, idx);
+    lang_state *s = lvec_push(c, &c->m.states, sizeof *s);
+    s->name = name;
+    s->pos = pos;
+    s->rhs = lang_num(c, 0.0); /* written by mbs_derive */
+    if (!init)
+        return idx; /* 0 unless an init line says */
+    lang_init *in = lvec_push(c, &c->m.inits, sizeof *in);
+    in->name = name;
+    in->pos = pos;
+    in->value = init;
+    return idx;
+}
+
+/* a value, in degrees when it ends in deg (30deg, 30 deg, pi/6 deg) */
+static node *angle_value(lang_lexer *lx, const char *what)
+{
+    const char *t = lx->line->text;
+    int end = lx->i, depth = 0;
+    while (end < lx->end) {
+        const char ch = t[end];
+        if (ch == '(')
+            depth++;
+        else if (ch == ')')
+            depth--;
+        else if (depth == 0 && (ch == ',' || ch == '[' || ch == '"'))
+            break;
+        else if (depth == 0 && lang_is_ident_start((unsigned char)ch) &&
+                 (end == 0 || !lang_is_ident_char((unsigned char)t[end - 1]) ||
+                  isdigit((unsigned char)t[end - 1])) &&
+                 strncasecmp(t + end, "deg", 3) == 0 &&
+                 (end + 3 >= lx->end || !lang_is_ident_char((unsigned char)t[end + 3])))
+            break;
+        end++;
+    }
+    const int deg = end < lx->end && strncasecmp(t + end, "deg", 3) == 0;
+    const int save = lx->end;
+    if (deg)
+        lx->end = end;
+    node *e = parse_value(lx, what);
+    if (deg) {
+        if (peek(lx))
+            lang_fail(lx->c, lang_here(lx), "unexpected '%c' before deg", peek(lx));
+        lx->end = save;
+        lx->i = end + 3;
+        node *k = lang_node(lx->c, N_NUM, e->pos);
+        k->num = 3.14159265358979323846 / 180.0;
+        node *r = lang_node(lx->c, N_BIN, e->pos);
+        r->op = OP_MUL;
+        r->nargs = 2;
+        r->args = lang_alloc(lx->c, 2 * sizeof *r->args);
+        r->args[0] = e;
+        r->args[1] = k;
+        e->paren = 1;
+        e = r;
+    }
+    return e;
+}
+
+static const char *speed_unit(lang_ctx *c, const char *unit)
+{
+    if (!unit)
+        return NULL;
+    if (strcmp(unit, "1") == 0)
+        return "1/s";
+    return lang_printf(c, "%s/s", unit);
+}
+
+/* coord NAME=VALUE[deg] [UNIT] "DESCRIPTION" [speed NAME[=VALUE]], ... */
+static void parse_coord(lang_ctx *c, lang_lexer *lx)
+{
+    mbs_model *mb = model_of(c);
+    do {
+        mbs_coord *q = lvec_push(c, &mb->coords, sizeof *q);
+        q->name = read_word(lx, &q->pos, "expected a coordinate's name");
+        node *init = NULL;
+        if (peek(lx) == '=') {
+            lx->i++;
+            init = angle_value(lx, "the coordinate's initial value");
+        } else {
+            init = lang_num(c, 0.0);
+        }
+        lang_doc doc = {0};
+        doc_of(lx, &doc);
+        q->unit = doc.unit;
+        q->q = add_state(c, q->name, q->pos, init);
+        add_doc(c, q->name, q->pos, doc);
+        lpos spos = q->pos;
+        node *sinit = NULL;
+        q->speed = lang_printf(c, "d%s", q->name);
+        if (take_word(lx, "speed")) {
+            q->speed = read_word(lx, &spos, "expected the speed's name after 'speed'");
+            if (peek(lx) == '=') {
+                lx->i++;
+                sinit = angle_value(lx, "the speed's initial value");
+            }
+        }
+        q->u = -1;
+        q->speed_pos = spos;
+        q->speed_init = sinit;
+        q->speed_doc = (lang_doc){speed_unit(c, doc.unit), lang_printf(c, "d%s/dt", q->name)};
+        doc_of(lx, &q->speed_doc);
+    } while (peek(lx) == ',' && (lx->i++, 1));
+    expect_end(lx, "the coordinates");
+}
+
+/* par lines: [unit] and "description" after a value go to the name before them; they are
+ * blanked so that src/lang reads the rest as an .ode par line */
+static void par_docs(lang_ctx *c, lang_lexer *lx)
+{
+    char *t = (char *)lx->line->text;
+    const char *name = NULL;
+    lpos npos = {0, 0};
+    for (int i = lx->i; i < lx->end; i++) {
+        if (lang_is_ident_start((unsigned char)t[i]) && (i == 0 || !lang_is_ident_char(
+                                                                       (unsigned char)t[i - 1]))) {
+            int k = i;
+            while (k < lx->end && lang_is_ident_char((unsigned char)t[k]))
+                k++;
+            int e = k;
+            while (e < lx->end && (t[e] == ' ' || t[e] == '\t'))
+                e++;
+            if (e < lx->end && t[e] == '=') {
+                name = lang_strndup(c, t + i, (size_t)(k - i));
+                npos = lx->line->pos[i];
+            }
+            i = k - 1;
+        } else if (t[i] == '[' || t[i] == '"') {
+            const char close = t[i] == '[' ? ']' : '"';
+            int k = i + 1;
+            while (k < lx->end && t[k] != close)
+                k++;
+            if (k >= lx->end)
+                lang_fail(c, lx->line->pos[i], "'%c' without its closing '%c'", t[i], close);
+            if (!name)
+                lang_fail(c, lx->line->pos[i], "a unit or description follows a parameter's "
+                          "value: NAME=VALUE [UNIT] \"DESCRIPTION\"");
+            lang_doc doc = {0};
+            const char *s = lang_strndup(c, t + i + 1, (size_t)(k - i - 1));
+            if (close == ']')
+                doc.unit = s;
+            else
+                doc.description = s;
+            add_doc(c, name, npos, doc);
+            for (int j = i; j <= k; j++)
+                t[j] = ' ';
+            i = k;
+        }
+    }
+}
+
+static int find_body(lang_ctx *c, const char *name, lpos pos, int ground_ok)
+{
+    mbs_model *mb = model_of(c);
+    if (ground_ok && strcasecmp(name, "ground") == 0)
+        return -1;
+    const char **names = lang_alloc(c, ((size_t)mb->bodies.n + 1) * sizeof *names);
+    for (int i = 0; i < mb->bodies.n; i++) {
+        names[i] = LVEC_AT(mb->bodies, mbs_body, i).name;
+        if (strcasecmp(names[i], name) == 0)
+            return i;
+    }
+    names[mb->bodies.n] = ground_ok ? "ground" : "";
+    const char *near = dyn_lang_nearest(name, names, mb->bodies.n + 1);
+    lang_fail(c, pos, "unknown body '%s'%s%s%s (bodies are declared before they are used%s)",
+              name, near ? " (did you mean '" : "", near ? near : "", near ? "'?)" : "",
+              ground_ok ? "; 'ground' is the fixed frame" : "");
+}
+
+static void new_body_name(lang_ctx *c, const char *name, lpos pos)
+{
+    mbs_model *mb = model_of(c);
+    if (strcasecmp(name, "ground") == 0)
+        lang_fail(c, pos, "'ground' is the fixed frame; a body needs another name");
+    for (int i = 0; i < mb->bodies.n; i++)
+        if (strcasecmp(LVEC_AT(mb->bodies, mbs_body, i).name, name) == 0)
+            lang_fail(c, pos, "body '%s' is declared twice", name);
+}
+
+/* point NAME mass=M at (x, y, z)
+ * body NAME mass=M inertia=(Ixx, Iyy, Izz[, Ixy, Ixz, Iyz]) at (x, y, z) [rot AXIS:ANGLE ...] */
+static void parse_body(lang_ctx *c, lang_lexer *lx, int point, lpos kpos)
+{
+    mbs_model *mb = model_of(c);
+    mbs_body b = {0};
+    b.point = point;
+    b.name = read_word(lx, &b.pos, point ? "expected the point's name" : "expected the body's "
+                       "name");
+    new_body_name(c, b.name, b.pos);
+    b.mass = -1;
+    for (int k = 0; k < 6; k++)
+        b.inertia[k] = -1;
+    int has_at = 0, has_inertia = 0;
+    while (peek(lx)) {
+        lpos wpos;
+        const char *w = read_word(lx, &wpos, "expected mass=, inertia=, at or rot");
+        if (strcasecmp(w, "mass") == 0) {
+            expect(lx, '=', "expected '=' after mass");
+            b.mass = input_expr(lx, "the mass");
+        } else if (strcasecmp(w, "inertia") == 0 && !point) {
+            expect(lx, '=', "expected '=' after inertia");
+            const int paren = peek(lx) == '(';
+            if (paren)
+                lx->i++;
+            for (int k = 0; k < 6; k++) {
+                b.inertia[k] = input_expr(lx, "a moment of inertia");
+                if (k == 2 || k == 5) {
+                    if (peek(lx) != ',' || k == 5)
+                        break;
+                    if (!paren) { /* Ixx,Iyy,Izz then a keyword or products */
+                        int save = lx->i;
+                        lx->i++;
+                        if (lang_is_ident_start(peek(lx))) {
+                            lpos p2;
+                            const char *nx = read_word(lx, &p2, "");
+                            lx->i = save;
+                            if (!strcasecmp(nx, "at") || !strcasecmp(nx, "rot") ||
+                                !strcasecmp(nx, "mass"))
+                                break;
+                        }
+                        lx->i = save;
+                    }
+                }
+                expect(lx, ',', "expected ',' between the moments of inertia");
+            }
+            if (paren)
+                expect(lx, ')', "expected ')' after the moments of inertia (Ixx, Iyy, Izz[, "
+                                "Ixy, Ixz, Iyz])");
+            has_inertia = 1;
+        } else if (strcasecmp(w, "at") == 0) {
+            tuple(lx, b.at, "the mass centre");
+            has_at = 1;
+        } else if (strcasecmp(w, "rot") == 0 && !point) {
+            while (lang_is_ident_start(peek(lx))) {
+                const int save = lx->i;
+                lpos apos;
+                const char *a = read_word(lx, &apos, "expected an axis x, y or z");
+                if (peek(lx) != ':' || strlen(a) != 1 || !strchr("xyzXYZ", a[0])) {
+                    lx->i = save;
+                    break;
+                }
+                lx->i++;
+                if (b.nrot >= MBS_MAX_ROT)
+                    lang_fail(c, apos, "more than %d elementary rotations", MBS_MAX_ROT);
+                b.axis[b.nrot] = tolower((unsigned char)a[0]) - 'x';
+                b.angle[b.nrot++] = add_input(c, angle_value(lx, "the rotation's angle"));
+            }
+            if (b.nrot == 0)
+                lang_fail(c, lang_here(lx), "expected elementary rotations AXIS:ANGLE after "
+                          "'rot' (e.g. rot z:psi y:theta x:phi)");
+        } else {
+            lang_fail(c, wpos, "unknown word '%s' in a %s: expected mass=, %sat (x, y, z)%s",
+                      w, point ? "point" : "body", point ? "" : "inertia=(Ixx, Iyy, Izz), ",
+                      point ? "" : " or rot AXIS:ANGLE ...");
+        }
+    }
+    if (b.mass < 0)
+        lang_fail(c, kpos, "%s '%s' has no mass: write mass=M", point ? "point" : "body",
+                  b.name);
+    if (!point && !has_inertia)
+        lang_fail(c, kpos, "body '%s' has no inertia: write inertia=(Ixx, Iyy, Izz) about its "
+                  "mass centre in its frame, or declare a point mass with 'point'", b.name);
+    if (!has_at)
+        lang_fail(c, kpos, "%s '%s' has no position: write at (x, y, z), its mass centre in N "
+                  "as formulas of the coordinates", point ? "point" : "body", b.name);
+    *(mbs_body *)lvec_push(c, &mb->bodies, sizeof b) = b;
+}
+
+/* BODY[(x, y, z)] */
+static mbs_attach attachment(lang_ctx *c, lang_lexer *lx)
+{
+    mbs_attach a;
+    lpos pos;
+    const char *name = read_word(lx, &pos, "expected a body's name or ground");
+    a.body = find_body(c, name, pos, 1);
+    a.p[0] = a.p[1] = a.p[2] = -1;
+    if (peek(lx) == '(')
+        tuple(lx, a.p, "the attachment point");
+    return a;
+}
+
+/* spring NAME between A[(x,y,z)] and B[(x,y,z)] k=K [l0=L0] [c=C] */
+static void parse_spring(lang_ctx *c, lang_lexer *lx, lpos kpos)
+{
+    mbs_model *mb = model_of(c);
+    mbs_spring s = {0};
+    s.name = read_word(lx, &s.pos, "expected the spring's name");
+    if (!take_word(lx, "between"))
+        lang_fail(c, lang_here(lx), "expected 'between' A and B after the spring's name");
+    s.a = attachment(c, lx);
+    if (!take_word(lx, "and"))
+        lang_fail(c, lang_here(lx), "expected 'and' between the spring's two ends");
+    s.b = attachment(c, lx);
+    s.k = s.l0 = s.c = -1;
+    while (peek(lx)) {
+        lpos wpos;
+        const char *w = read_word(lx, &wpos, "expected k=, l0= or c=");
+        int *to = !strcasecmp(w, "k") ? &s.k : !strcasecmp(w, "l0") ? &s.l0
+                                             : !strcasecmp(w, "c") ? &s.c : NULL;
+        if (!to)
+            lang_fail(c, wpos, "unknown word '%s' in a spring: expected k=, l0= or c=", w);
+        expect(lx, '=', "expected '='");
+        *to = input_expr(lx, w);
+    }
+    if (s.k < 0 && s.c < 0)
+        lang_fail(c, kpos, "spring '%s' has neither a stiffness k= nor a damping c=", s.name);
+    *(mbs_spring *)lvec_push(c, &mb->springs, sizeof s) = s;
+}
+
+/* force NAME on BODY [at (x,y,z)] = (fx, fy, fz) [in N|B]; torque NAME on BODY = (...) */
+static void parse_load(lang_ctx *c, lang_lexer *lx, int torque)
+{
+    mbs_model *mb = model_of(c);
+    mbs_load l = {0};
+    l.torque = torque;
+    l.name = read_word(lx, &l.pos, torque ? "expected the torque's name"
+                                          : "expected the force's name");
+    if (!take_word(lx, "on"))
+        lang_fail(c, lang_here(lx), "expected 'on' BODY after the name");
+    lpos bpos;
+    const char *b = read_word(lx, &bpos, "expected a body's name");
+    l.body = find_body(c, b, bpos, 0);
+    l.at[0] = l.at[1] = l.at[2] = -1;
+    if (!torque && take_word(lx, "at"))
+        tuple(lx, l.at, "the point of application");
+    expect(lx, '=', torque ? "expected '= (mx, my, mz)'" : "expected '= (fx, fy, fz)'");
+    tuple(lx, l.f, torque ? "the torque" : "the force");
+    if (take_word(lx, "in")) {
+        lpos fpos;
+        const char *f = read_word(lx, &fpos, "expected the frame N or B");
+        if (strcasecmp(f, "B") == 0)
+            l.in_body = 1;
+        else if (strcasecmp(f, "N") != 0)
+            lang_fail(c, fpos, "unknown frame '%s': N (fixed) or B (the body's)", f);
+    }
+    if (l.in_body && LVEC_AT(mb->bodies, mbs_body, l.body).point)
+        lang_fail(c, l.pos, "'%s' is a point mass: it has no frame B", b);
+    if (torque && LVEC_AT(mb->bodies, mbs_body, l.body).point)
+        lang_fail(c, l.pos, "'%s' is a point mass: a torque on it does nothing", b);
+    expect_end(lx, torque ? "the torque" : "the force");
+    *(mbs_load *)lvec_push(c, &mb->loads, sizeof l) = l;
+}
+
+static void declare_output(lang_ctx *c, const char *name, lpos pos, int *index)
+{
+    *index = c->m.auxs.n;
+    lang_declare(c, name, pos, SYM_AUX, c->m.auxs.n);
+    lang_formula *f = lvec_push(c, &c->m.auxs, sizeof *f);
+    f->name = name;
+    f->pos = pos;
+    f->expr = lang_num(c, 0.0); /* written by mbs_derive */
+}
+
+/* constraint NAME [UNIT]: EXPR [= EXPR];  prescribe NAME: COORD = EXPR */
+static void parse_constraint(lang_ctx *c, lang_lexer *lx, int prescribe)
+{
+    mbs_model *mb = model_of(c);
+    mbs_constraint k = {0};
+    k.prescribed = -1;
+    k.name = read_word(lx, &k.pos, "expected the constraint's name (its force is named so)");
+    lang_doc doc = {0};
+    doc_of(lx, &doc);
+    k.unit = doc.unit;
+    expect(lx, ':', "expected ':' after the constraint's name");
+    node *lhs = parse_value(lx, "the constraint's expression");
+    if (prescribe) {
+        if (lhs->kind != N_NAME)
+            lang_fail(c, lhs->pos, "prescribe NAME: COORDINATE = formula of t");
+        for (int i = 0; i < mb->coords.n; i++)
+            if (strcasecmp(LVEC_AT(mb->coords, mbs_coord, i).name, lhs->name) == 0)
+                k.prescribed = i;
+        if (k.prescribed < 0)
+            lang_fail(c, lhs->pos, "'%s' is not a coordinate (prescribe NAME: COORDINATE = "
+                      "formula of t)", lhs->name);
+    }
+    if (peek(lx) == '=') {
+        lx->i++;
+        node *rhs = parse_value(lx, "the right-hand side");
+        node *d = lang_node(c, N_BIN, lhs->pos);
+        d->op = OP_SUB;
+        d->nargs = 2;
+        d->args = lang_alloc(c, 2 * sizeof *d->args);
+        d->args[0] = lhs;
+        d->args[1] = rhs;
+        rhs->paren = 1;
+        lhs = d;
+    } else if (prescribe) {
+        lang_fail(c, lang_here(lx), "expected '= formula of t' after the coordinate");
+    }
+    expect_end(lx, "the constraint");
+    k.expr = add_input(c, lhs);
+    declare_output(c, k.name, k.pos, &k.aux);
+    add_doc(c, k.name, k.pos, (lang_doc){NULL, doc.description});
+    *(mbs_constraint *)lvec_push(c, &mb->cons, sizeof k) = k;
+}
+
+int mbs_statement(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos)
+{
+    mbs_model *mb = model_of(c);
+    if (!strcasecmp(w, "par") || !strcasecmp(w, "p") || !strcasecmp(w, "param") ||
+        !strcasecmp(w, "params") || !strcasecmp(w, "parameter") ||
+        !strcasecmp(w, "parameters") || !strcasecmp(w, "pars")) {
+        par_docs(c, lx);
+        return -1;
+    }
+    if (!strcasecmp(w, "coord") || !strcasecmp(w, "coords"))
+        parse_coord(c, lx);
+    else if (!strcasecmp(w, "gravity")) {
+        for (int k = 0; k < 3; k++) {
+            mb->gravity[k] = input_expr(lx, "a component of gravity (gx, gy, gz)");
+            if (k < 2)
+                expect(lx, ',', "expected ',' between the components gx, gy, gz");
+        }
+        expect_end(lx, "gravity");
+    } else if (!strcasecmp(w, "point") || !strcasecmp(w, "body"))
+        parse_body(c, lx, !strcasecmp(w, "point"), wpos);
+    else if (!strcasecmp(w, "spring"))
+        parse_spring(c, lx, wpos);
+    else if (!strcasecmp(w, "force") || !strcasecmp(w, "torque"))
+        parse_load(c, lx, !strcasecmp(w, "torque"));
+    else if (!strcasecmp(w, "constraint") || !strcasecmp(w, "prescribe"))
+        parse_constraint(c, lx, !strcasecmp(w, "prescribe"));
+    else if (!strcasecmp(w, "stabilize")) {
+        node *e = parse_value(lx, "Baumgarte's rate [1/s]");
+        if (e->kind != N_NUM || !(e->num >= 0.0))
+            lang_fail(c, e->pos, "stabilize takes a number >= 0 (Baumgarte's rate, 1/s)");
+        mb->alpha = e->num;
+        expect_end(lx, "stabilize");
+    } else
+        return -1;
+    return 0;
+}
+
+void mbs_finish_parse(lang_ctx *c, mbs_model *mb)
+{
+    if (mb->coords.n == 0)
+        lang_fail(c, (lpos){0, 0}, "no coordinates: declare them with coord NAME=VALUE");
+    if (mb->bodies.n == 0)
+        lang_fail(c, (lpos){0, 0}, "no bodies: declare them with point or body");
+    for (int i = 0; i < c->m.symcap; i++) {
+        const lang_sym *s = &c->m.syms[i];
+        if (s->key && strncmp(s->key, "mbs_", 4) == 0)
+            lang_fail(c, s->pos, "names beginning with mbs_ are dynkit's own");
+    }
+    for (int i = 0; i < mb->coords.n; i++) { /* the speeds after the coordinates */
+        mbs_coord *q = &LVEC_AT(mb->coords, mbs_coord, i);
+        q->u = add_state(c, q->speed, q->speed_pos, q->speed_init);
+        add_doc(c, q->speed, q->speed_pos, q->speed_doc);
+    }
+    static const char *const names[3] = {"kinetic", "potential", "energy"};
+    int *idx[3] = {&mb->aux_kinetic, &mb->aux_potential, &mb->aux_energy};
+    static const char *const desc[3] = {
+        "kinetic energy, 1/2 sum m v.v + omega.I omega",
+        "potential energy of gravity and the springs (0 at the origin and rest lengths)",
+        "kinetic + potential energy"};
+    for (int k = 0; k < 3; k++) {
+        *idx[k] = -1;
+        if (lang_lookup(c, names[k]))
+            continue; /* the name is the file's own */
+        declare_output(c, names[k], (lpos){0, 0}, idx[k]);
+        add_doc(c, names[k], (lpos){0, 0}, (lang_doc){"J", desc[k]});
+    }
+}

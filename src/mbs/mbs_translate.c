@@ -1,0 +1,32 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* dyn_mech_to_c (dynkit/mbs.h): a mechanism file to the C text of a dyn_model — its
+ * statements (mbs_parse.c, inside src/lang's reading of the lines), src/lang's checks, the
+ * equations of motion by TMT (mbs_derive.c), then src/lang's C text. */
+#include "dynkit/mbs.h"
+#include "mbs/mbs_internal.h"
+
+static void mech_front(lang_ctx *c)
+{
+    mbs_model mb = {0};
+    mb.alpha = MBS_DEFAULT_ALPHA;
+    c->m.name = lang_base_name(c, c->path, ".mech");
+    c->stmt_hook = mbs_statement;
+    c->hook_ctx = &mb;
+    c->no_arrays = 1;
+    lang_parse_model(c);
+    mbs_finish_parse(c, &mb);
+    lang_check_table_files(c);
+    c->stmt_hook = NULL;
+    lang_check(c);
+    c->m.no_jacobian = 1;
+    mbs_derive(c, &mb);
+    c->hook_ctx = NULL;
+}
+
+int dyn_mech_to_c(const char *path, const char *text, size_t len,
+                  const dyn_lang_table_file *tables, int n_tables, char **c_source,
+                  dyn_lang_diag *diag, dyn_lang_note_fn note, void *note_ctx)
+{
+    return lang_translate(path, text, len, tables, n_tables, c_source, diag, note, note_ctx,
+                          mech_front);
+}

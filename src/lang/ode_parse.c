@@ -1194,7 +1194,7 @@ void lang_parse_model(lang_ctx *c)
                              ? lang_printf(c, "%s\n%s", lead, m->description)
                              : lead;
     }
-    if (m->states.n == 0)
+    if (m->states.n == 0 && !c->stmt_hook) /* a front end's own statements may add them */
         lang_fail(c, (lpos){0, 0},
                   "no differential or difference equation (x'=..., dx/dt=... or x(t+1)=...) "
                   "in the file");

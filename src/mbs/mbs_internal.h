@@ -10,7 +10,7 @@
 #include "lang/lang_internal.h"
 
 #define MBS_MAX_ROT 12 /* elementary rotations of one body */
-#define MBS_DEFAULT_ALPHA 0.0 /* Baumgarte's rate [1/s] unless `stabilize` says */
+#define MBS_DEFAULT_ALPHA 10.0 /* Baumgarte's rate [1/s] unless `stabilize` says */
 
 /* An input is an expression of the file, kept as a fixed quantity of the model (not a
  * name of the file) so that lang_check resolves it; -1: none (zero). */

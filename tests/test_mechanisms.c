@@ -1,0 +1,331 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* test_mechanisms.c — mechanism files (src/mbs, docs/mechanisms.md) against independent
+ * answers: the double pendulum's hand-derived Lagrange equations at random states (1e-12),
+ * its energy over 100 s; the plane of examples/mechanisms against the hand-written built-in
+ * plane (centre of mass and Euler angles within 1e-8 over 5 s at rtol = atol = 1e-12); the
+ * heavy symmetric top's steady precession at the closed-form rates; the four-bar loop kept
+ * closed over 100 s with its energy; and errors at FILE:LINE:COL. */
+#define _POSIX_C_SOURCE 200809L
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+#include <math.h>
+
+#include "dynkit/dynkit.h"
+#include "dynkit/jit.h"
+#include "dynkit/mbs.h"
+#include "test_cli_run.h"
+#include "test_util.h"
+
+#define MECH DYNKIT_SOURCE_DIR "/examples/mechanisms/"
+
+static char cache_dir[512];
+
+static int setup_all(void **state)
+{
+    (void)state;
+    if (cli_make_tmpdir("mechanisms"))
+        return -1;
+    snprintf(cache_dir, sizeof cache_dir, "%s/cache", cli_tmpdir);
+    return setenv("DYNKIT_CACHE_DIR", cache_dir, 1);
+}
+
+static int teardown_all(void **state)
+{
+    (void)state;
+    char cmd[1024];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", cli_tmpdir);
+    return system(cmd) == 0 ? 0 : -1;
+}
+
+typedef struct loaded {
+    dyn_jit_model jm;
+    const dyn_model *m;
+    double par[4096];
+} loaded;
+
+static void load_file(const char *path, loaded *L)
+{
+    size_t len;
+    char *text = cli_read_file(path, &len);
+    char *c_src = NULL;
+    dyn_lang_diag d;
+    char buf[4096];
+    const int rc = dyn_mech_to_c(path, text, len, &c_src, &d, NULL, NULL);
+    free(text);
+    CHECK(rc == 0, "%s", dyn_lang_diag_format(&d, buf, sizeof buf));
+    dyn_jit_opts opts = {0};
+    opts.cache_dir = cache_dir;
+    char err[4096];
+    CHECK(dyn_jit_load_source(c_src, strlen(c_src), path, &opts, &L->jm, err, sizeof err) == 0,
+          "%s", err);
+    free(c_src);
+    L->m = L->jm.model;
+    assert_true(L->m->par_size <= sizeof L->par);
+    memset(L->par, 0, sizeof L->par);
+    char perr[256];
+    CHECK(dyn_model_default_params(L->m, L->par, perr, sizeof perr) == 0, "%s", perr);
+}
+
+static void set(loaded *L, const char *name, double v)
+{
+    const int i = dyn_model_param_index(L->m, name);
+    CHECK(i >= 0, "no parameter %s", name);
+    dyn_model_set_param(L->m, L->par, i, v);
+}
+
+static int state(const loaded *L, const char *name)
+{
+    const int i = dyn_model_state_index(L->m, name);
+    CHECK(i >= 0, "no state %s", name);
+    return i;
+}
+
+static double urand(uint64_t *s, double lo, double hi)
+{
+    *s = *s * 6364136223846793005ULL + 1442695040888963407ULL;
+    return lo + (hi - lo) * (double)(*s >> 11) / 9007199254740992.0;
+}
+
+/* Lagrange's equations of the double pendulum by hand (angles from the downward vertical):
+ *   (m1+m2) l1^2 a1 + m2 l1 l2 cos(d) a2 = -m2 l1 l2 w2^2 sin(d) - (m1+m2) g l1 sin(p1)
+ *   m2 l1 l2 cos(d) a1 + m2 l2^2 a2      =  m2 l1 l2 w1^2 sin(d) - m2 g l2 sin(p2),
+ * d = p1 - p2, solved by Cramer's rule. */
+static void test_double_pendulum_matches_hand_derivation(void **state_)
+{
+    (void)state_;
+    loaded L;
+    load_file(MECH "double_pendulum.mech", &L);
+    const int ip1 = state(&L, "phi1"), ip2 = state(&L, "phi2"), iw1 = state(&L, "dphi1"),
+              iw2 = state(&L, "dphi2");
+    uint64_t seed = 12345;
+    double worst = 0.0;
+    for (int trial = 0; trial < 200; trial++) {
+        const double m1 = urand(&seed, 0.1, 3), m2 = urand(&seed, 0.1, 3),
+                     l1 = urand(&seed, 0.2, 2), l2 = urand(&seed, 0.2, 2),
+                     g = urand(&seed, 1, 20);
+        set(&L, "m1", m1);
+        set(&L, "m2", m2);
+        set(&L, "l1", l1);
+        set(&L, "l2", l2);
+        set(&L, "g", g);
+        double y[4], f[4];
+        y[ip1] = urand(&seed, -4, 4);
+        y[ip2] = urand(&seed, -4, 4);
+        y[iw1] = urand(&seed, -5, 5);
+        y[iw2] = urand(&seed, -5, 5);
+        assert_int_equal(L.m->rhs(0.0, y, f, L.par), 0);
+        const double d = y[ip1] - y[ip2], w1 = y[iw1], w2 = y[iw2];
+        const double a11 = (m1 + m2) * l1 * l1, a12 = m2 * l1 * l2 * cos(d), a22 = m2 * l2 * l2;
+        const double b1 = -m2 * l1 * l2 * w2 * w2 * sin(d) - (m1 + m2) * g * l1 * sin(y[ip1]);
+        const double b2 = m2 * l1 * l2 * w1 * w1 * sin(d) - m2 * g * l2 * sin(y[ip2]);
+        const double det = a11 * a22 - a12 * a12;
+        const double acc1 = (b1 * a22 - a12 * b2) / det, acc2 = (a11 * b2 - a12 * b1) / det;
+        const double scale = fabs(acc1) + fabs(acc2) + g / fmin(l1, l2);
+        worst = fmax(worst, fmax(fabs(f[iw1] - acc1), fabs(f[iw2] - acc2)) / scale);
+        CHECK(f[ip1] == w1 && f[ip2] == w2, "the coordinates' rates are the speeds");
+    }
+    CHECK(worst < 1e-12, "worst relative difference %.3g", worst);
+    dyn_jit_unload(&L.jm);
+}
+
+/* The numbers of a CSV text (header skipped): returns the rows, columns in *cols. */
+static long csv_table(const char *text, double *v, long max, int *cols)
+{
+    const char *p = strchr(text, '\n');
+    long k = 0;
+    *cols = 1;
+    for (const char *h = text; h < p; h++)
+        *cols += *h == ',';
+    while (p && *p && k < max) {
+        char *end;
+        p++;
+        const double x = strtod(p, &end);
+        if (end == p)
+            break;
+        v[k++] = x;
+        p = end;
+    }
+    return k / *cols;
+}
+
+static double column_spread(const double *v, long rows, int cols, int j, double *first)
+{
+    double lo = INFINITY, hi = -INFINITY;
+    for (long r = 0; r < rows; r++) {
+        lo = fmin(lo, v[r * cols + j]);
+        hi = fmax(hi, v[r * cols + j]);
+    }
+    if (first)
+        *first = v[j];
+    return hi - lo;
+}
+
+static void test_double_pendulum_keeps_its_energy(void **state_)
+{
+    (void)state_;
+    static double v[1 << 16];
+    cli_result r = cli("run %sdouble_pendulum.mech --outputs --method dop853 --rtol 1e-12 "
+                       "--atol 1e-12 --tspan 0:100 --step 1", MECH);
+    CHECK(r.status == 0, "%s", r.err);
+    int cols;
+    const long rows = csv_table(r.out, v, 1 << 16, &cols);
+    CHECK(rows == 101 && cols == 8, "rows %ld cols %d", rows, cols);
+    double e0;
+    const double spread = column_spread(v, rows, cols, 7, &e0);
+    CHECK(fabs(e0 + 9.81) < 1e-12, "energy at the start %.17g (potential -m1 g l1 - ...)", e0);
+    CHECK(spread < 1e-8 * 9.81, "energy changed by %.3g J over 100 s", spread);
+    cli_free(&r);
+}
+
+static void test_plane_matches_the_builtin_plane(void **state_)
+{
+    (void)state_;
+    static double a[1 << 16], b[1 << 16];
+    const char *opts = "--method dop853 --rtol 1e-12 --atol 1e-12 --tspan 0:5 --step 0.05";
+    cli_result ra = cli("run %splane.mech %s", MECH, opts), rb = cli("run plane %s", opts);
+    CHECK(ra.status == 0 && rb.status == 0, "%s %s", ra.err, rb.err);
+    /* the same column names first: t, sX, sY, sZ, psi, theta, phi */
+    CHECK(strncmp(ra.out, "t,sX,sY,sZ,psi,theta,phi,", 25) == 0, "%.60s", ra.out);
+    CHECK(strncmp(rb.out, "t,sX,sY,sZ,psi,theta,phi,", 25) == 0, "%.60s", rb.out);
+    int ca, cb;
+    const long na = csv_table(ra.out, a, 1 << 16, &ca), nb = csv_table(rb.out, b, 1 << 16, &cb);
+    CHECK(na == nb && na == 101, "rows %ld %ld", na, nb);
+    double worst = 0.0;
+    for (long r = 0; r < na; r++)
+        for (int j = 0; j < 7; j++)
+            worst = fmax(worst, fabs(a[r * ca + j] - b[r * cb + j]));
+    CHECK(worst < 1e-8, "largest difference %.3g", worst);
+    cli_free(&ra);
+    cli_free(&rb);
+}
+
+/* Steady precession of a heavy symmetric top at nutation theta with spin w3 = dphi + dpsi
+ * cos(theta): m g L = Omega (C w3 - A' Omega cos(theta)), A' = A + m L^2 the transverse
+ * inertia about the tip (Goldstein, Classical Mechanics, 5.7): both roots. */
+static void test_top_precesses_at_the_closed_form_rates(void **state_)
+{
+    (void)state_;
+    loaded L;
+    load_file(MECH "top.mech", &L);
+    const double m = 1, Lc = 0.1, A = 0.002, C = 0.004, g = 9.81;
+    const double Ap = A + m * Lc * Lc;
+    for (int k = 0; k < 6; k++) {
+        const double th = 0.3 + 0.2 * k, w3 = 60 + 20 * k;
+        const double disc = C * C * w3 * w3 - 4 * Ap * cos(th) * m * g * Lc;
+        assert_true(disc > 0);
+        for (int root = -1; root <= 1; root += 2) {
+            const double Om = (C * w3 + root * sqrt(disc)) / (2 * Ap * cos(th));
+            double y[6], f[6];
+            y[state(&L, "psi")] = 0.7;
+            y[state(&L, "theta")] = th;
+            y[state(&L, "phi")] = -0.4;
+            y[state(&L, "dpsi")] = Om;
+            y[state(&L, "dtheta")] = 0;
+            y[state(&L, "dphi")] = w3 - Om * cos(th);
+            assert_int_equal(L.m->rhs(0.0, y, f, L.par), 0);
+            const double scale = m * g * Lc / Ap;
+            for (int i = 3; i < 6; i++)
+                CHECK(fabs(f[i]) < 1e-12 * scale + 1e-13 * Om * w3, "theta %g w3 %g root %d: "
+                      "acceleration %d is %.3g", th, w3, root, i, f[i]);
+            /* off the closed-form rate the top nods */
+            y[state(&L, "dpsi")] = Om * 1.01;
+            y[state(&L, "dphi")] = w3 - 1.01 * Om * cos(th);
+            assert_int_equal(L.m->rhs(0.0, y, f, L.par), 0);
+            CHECK(fabs(f[state(&L, "dtheta")]) > 1e-4 * scale, "no nodding off steady");
+        }
+    }
+    dyn_jit_unload(&L.jm);
+}
+
+static void test_fourbar_loop_stays_closed(void **state_)
+{
+    (void)state_;
+    static double v[1 << 17];
+    cli_result r = cli("run %sfourbar.mech --outputs --method dop853 --rtol 1e-12 --atol 1e-12 "
+                       "--tspan 0:100 --step 0.1", MECH);
+    CHECK(r.status == 0, "%s", r.err);
+    int cols;
+    const long rows = csv_table(r.out, v, 1 << 17, &cols);
+    CHECK(rows == 1001 && cols == 13, "rows %ld cols %d", rows, cols);
+    /* t q1 q2 q3 dq1 dq2 dq3 loop_x loop_y gap kinetic potential energy */
+    double gap0, e0;
+    column_spread(v, rows, cols, 9, &gap0);
+    double worst = 0.0, turns = 0.0;
+    for (long k = 0; k < rows; k++)
+        worst = fmax(worst, v[k * cols + 9]);
+    turns = column_spread(v, rows, cols, 1, NULL) / (2 * DYN_PI);
+    CHECK(worst < 1e-10, "loop open by %.3g m", worst);
+    CHECK(turns > 0.5, "the crank swings through most of a turn (%.2f)", turns);
+    const double spread = column_spread(v, rows, cols, 12, &e0);
+    CHECK(spread < 1e-9 * fabs(e0), "energy changed by %.3g J of %.3g", spread, e0);
+    cli_free(&r);
+}
+
+static void test_info_lists_the_mechanism(void **state_)
+{
+    (void)state_;
+    cli_result r = cli("info %sfourbar.mech", MECH);
+    CHECK(r.status == 0, "%s", r.err);
+    const char *want[] = {"coordinates q1 (speed dq1)", "bodies crank (rigid body)",
+                          "constraints loop_x (multiplier loop_x)", "loop_y", "dq3",
+                          "kinetic", "energy"};
+    for (size_t i = 0; i < sizeof want / sizeof *want; i++)
+        CHECK(strstr(r.out, want[i]), "info lacks '%s':\n%s", want[i], r.out);
+    CHECK(strstr(r.out, "loop_x") && strstr(strstr(r.out, "Extra outputs"), "loop_x     N "),
+          "loop_x's unit is N:\n%s", r.out);
+    cli_free(&r);
+}
+
+static void expect_error(const char *text, const char *where, const char *what)
+{
+    const char *path = cli_path("bad.mech");
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    fclose(f);
+    cli_result r = cli("run %s", path);
+    CHECK(r.status == 2, "status %d for:\n%s", r.status, text);
+    CHECK(strstr(r.err, where) && strstr(r.err, what), "expected '%s' and '%s' in:\n%s", where,
+          what, r.err);
+    cli_free(&r);
+}
+
+static void test_errors_name_the_place(void **state_)
+{
+    (void)state_;
+    const char *head = "coord x=1 [m], y=0 [m]\npar m=1 [kg]\n";
+    char buf[1024];
+    snprintf(buf, sizeof buf, "%spoint p mass=m at (x, yy, 0)\n", head);
+    expect_error(buf, "bad.mech:3:23:", "unknown name 'yy' (did you mean 'y'?)");
+    snprintf(buf, sizeof buf, "%sbody b mass=m at (x, y, 0)\n", head);
+    expect_error(buf, "bad.mech:3:1:", "body 'b' has no inertia");
+    snprintf(buf, sizeof buf, "%sbody b inertia=(1,1,1) at (x, y, 0)\n", head);
+    expect_error(buf, "bad.mech:3:1:", "body 'b' has no mass");
+    snprintf(buf, sizeof buf, "%spoint p mass=m at (x, y, 0)\nconstraint roll: dx*dy = 0\n",
+             head);
+    expect_error(buf, "bad.mech:4:12:", "not linear in the speeds");
+    snprintf(buf, sizeof buf, "%spoint p mass=m at (x, y, 0)\nspring s between p and wall k=1\n",
+             head);
+    expect_error(buf, "bad.mech:4:24:", "unknown body 'wall'");
+    snprintf(buf, sizeof buf, "%spoint p mass=m at (x, y, 0)\nforce f on p = (1, 2)\n", head);
+    expect_error(buf, "bad.mech:4:21:", "expected ',' in the force");
+    expect_error("par m=1\npoint p mass=m at (0, 0, 0)\n", "bad.mech", "no coordinates");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_double_pendulum_matches_hand_derivation),
+        cmocka_unit_test(test_double_pendulum_keeps_its_energy),
+        cmocka_unit_test(test_plane_matches_the_builtin_plane),
+        cmocka_unit_test(test_top_precesses_at_the_closed_form_rates),
+        cmocka_unit_test(test_fourbar_loop_stays_closed),
+        cmocka_unit_test(test_info_lists_the_mechanism),
+        cmocka_unit_test(test_errors_name_the_place),
+    };
+    return cmocka_run_group_tests(tests, setup_all, teardown_all);
+}

@@ -54,7 +54,7 @@ static void load_file(const char *path, loaded *L)
     char *c_src = NULL;
     dyn_lang_diag d;
     char buf[4096];
-    const int rc = dyn_mech_to_c(path, text, len, &c_src, &d, NULL, NULL);
+    const int rc = dyn_mech_to_c(path, text, len, NULL, 0, &c_src, &d, NULL, NULL);
     free(text);
     CHECK(rc == 0, "%s", dyn_lang_diag_format(&d, buf, sizeof buf));
     dyn_jit_opts opts = {0};

@@ -50,9 +50,9 @@ static void linearize_help(void)
          "printed and the eigenvalues are refused (exit status 1).\n"
          "\n"
          "Examples:\n"
-         "  dynkit linearize pendulum                       # the bottom: +-i sqrt(g/l)\n"
-         "  dynkit linearize pendulum --init phi=pi         # the top: +-sqrt(g/l), unstable\n"
-         "  dynkit linearize vanderpol --vary mu=0:3:7 --output vdp-eig.csv\n"
+         "  dynkit linearize pendulum --init dphi=0           # the bottom: +-i sqrt(g/l)\n"
+         "  dynkit linearize pendulum --init phi=pi --init dphi=0   # the top: unstable\n"
+         "  dynkit linearize vanderpol --init y1=0 --vary mu=0:3:7 --output vdp-eig.csv\n"
          "  dynkit linearize examples/models/lorenz.ode --init x=0 --init y=0 --init z=0");
 }
 
@@ -119,7 +119,7 @@ static int linearize_point(const dyn_model *m, double t, void *par, const lin_op
         return rc == DYN_ERR_ARG ? CLI_USAGE : CLI_FAILED;
     }
     p->tol = dyn_stability_tol(n, p->A, 0.0);
-    if (!solver)
+    if (!solver || o->matrix) /* --matrix: A alone, no eigenvalues to compute */
         return CLI_OK;
     char err[256] = "";
     memcpy(scratch, p->A, (size_t)n * (size_t)n * sizeof *scratch);
@@ -261,6 +261,8 @@ static void print_json(FILE *f, const dyn_model *m, double t, const char *vname,
         cli_json_string(&j, words[p->info.scheme]);
         cli_json_key(&j, "error_estimate");
         cli_json_number(&j, p->info.err_est);
+        cli_json_key(&j, "rhs_calls");
+        cli_json_number(&j, (double)p->info.rhs_calls);
         cli_json_key(&j, "A");
         cli_json_begin_array(&j);
         for (int i = 0; i < n; i++)

@@ -9,7 +9,7 @@ beta (sigma+rho) l + 2 sigma beta (rho-1): unstable at rho = 28, stable at rho =
 the Hopf value sigma (sigma+beta+3)/(sigma-beta-1) = 24.74); a linear model file x' = A x
 against numpy.linalg.eigvals; the differences against the model file's analytic Jacobian;
 the --vary table (N*n rows, columns NAME,re,im), --matrix and --json; bad input refused
-with exit status 2. Exit 0 when all hold, 1 when not, 77 (skipped) without NumPy or when
+with exit status 2; every command docs/analysis.md shows runs. Exit 0 when all hold, 1 when not, 77 (skipped) without NumPy or when
 dynkit is built without LAPACK.
 """
 import csv
@@ -17,6 +17,8 @@ import io
 import json
 import math
 import os
+import re
+import shlex
 import subprocess
 import sys
 import tempfile
@@ -147,6 +149,17 @@ def main():
               and [q["x1"] for q in doc["points"]] == [0, 0.5, 1],
               "--json with --vary: one point per value")
 
+    # an ignorable coordinate (x does not appear in f): its eigenvalue is exactly zero
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "slide.ode")
+        with open(path, "w") as f:
+            f.write("# a block sliding with viscous friction\npar c=0.7\ninit x=3, v=2\n"
+                    "x'=v\nv'=-c*v\ndone\n")
+        for scheme in ("analytic", "richardson"):
+            ev, pt = eig(path, "--jacobian", scheme)
+            check(ev[1] == 0 and abs(ev[0] + 0.7) < 1e-14 and pt["stability"] == "marginal",
+                  f"ignorable coordinate ({scheme}): eigenvalues exactly 0, and -c, marginal")
+
     # a state varied: the pendulum from the bottom to the top
     p = run("pendulum", "--init", "dphi=0", "--vary", "phi=0:pi:5", "--output", "-",
             "--matrix")
@@ -163,6 +176,24 @@ def main():
                        (("pendulum", "--t", "soon"), "--t")):
         p = run(*args, status=2)
         check(word in p.stderr, f"refused: {' '.join(args)} ({p.stderr.strip()[:70]})")
+
+    # every command of docs/analysis.md and of the examples of --help, in a scratch
+    # directory with examples/ linked in
+    with open(os.path.join(SOURCE, "docs", "analysis.md")) as f:
+        doc = f.read()
+    lines = [l.split("#")[0].strip() for b in re.findall(r"```sh\n(.*?)```", doc, re.S)
+             for l in b.splitlines() if l.startswith("dynkit ")]
+    check(len(lines) >= 5, f"docs/analysis.md shows {len(lines)} commands")
+    shown = run("--help").stdout.split("Examples:")[1]
+    lines += [l.split("#")[0].strip() for l in shown.splitlines() if l.strip()]
+    check(len(lines) >= 9, "--help shows four examples")
+    with tempfile.TemporaryDirectory() as tmp:
+        os.symlink(os.path.join(os.path.abspath(SOURCE), "examples"), os.path.join(tmp, "examples"))
+        for line in lines:
+            args = shlex.split(line)[1:]
+            p = subprocess.run([os.path.abspath(DYNKIT), *args], capture_output=True, text=True,
+                               cwd=tmp)
+            check(p.returncode == 0, f"shown: {line} ({p.stderr.strip()[:60]})")
 
     for f in FAILED:
         print("FAILED:", f)

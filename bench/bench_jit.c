@@ -486,7 +486,8 @@ int main(int argc, char **argv)
                median(first_ms[f], reps), minimum(first_ms[f], reps), median(compile_ms[f], reps),
                median(cpu_ms[f], reps));
     }
-    printf("\n| cached run: load from the cache (hash, stat, dlopen, checks) + 1000 RK4 steps "
+    printf("\n| cached run: load from the cache (key, owner and mode, SHA-256 of the object, "
+           "dlopen of a private copy, checks) + 1000 RK4 steps "
            "| ms |\n"
            "|---|---:|\n| cc | %.2f (%.2f) |\n",
            median(cached_ms, reps), minimum(cached_ms, reps));

@@ -5,8 +5,9 @@
  * files of examples/models the same from both backends), the cache (a second load runs no
  * compiler; concurrent first loads in several processes), compiler errors that
  * name the user's file and line, the model ABI check and the checks of the returned model, a
- * missing compiler (libtcc instead when none was named), and a model calling the library's
- * mech.h functions from this program.
+ * missing compiler (libtcc instead when none was named), a compiler stopped at its time limit
+ * (libtcc instead, with a note), and a model calling the library's mech.h functions from this
+ * program.
  * Each test has a cache directory of its own under /tmp (with a blank in its name).
  */
 #define _XOPEN_SOURCE 700 /* nftw */
@@ -656,6 +657,44 @@ static void test_missing_compiler(void **state)
     assert_non_null(strstr(err, "cannot open /nonexistent/model.c"));
 }
 
+/* a compiler that never finishes (a script that sleeps 30 s) is stopped at the time limit,
+ * 0.2 s: with the system compiler chosen the message names the bound, with the automatic
+ * choice libtcc compiles the model instead, says so in the note, and gives van der Pol's
+ * numbers bit for bit */
+static void test_compiler_time_limit(void **state)
+{
+    fixture *f = *state;
+    char script[512], err[ERRLEN];
+    snprintf(script, sizeof script, "%s/slow cc", f->dir);
+    write_text(script, "#!/bin/sh\nexec sleep 30\n");
+    assert_int_equal(chmod(script, 0755), 0);
+    dyn_jit_opts opts = f->cc;
+    opts.cc = script;
+    opts.cc_timeout = 0.2;
+    dyn_jit_model jm;
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    assert_int_not_equal(
+        dyn_jit_load_source(vdp_source, strlen(vdp_source), "vdp.c", &opts, &jm, err, sizeof err),
+        0);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    assert_true((double)(t1.tv_sec - t0.tv_sec) < 20); /* stopped, not waited for */
+    assert_non_null(strstr(err, "did not finish within 0.2 s and was stopped"));
+    assert_non_null(strstr(err, "DYNKIT_CC_TIMEOUT"));
+    if (!dyn_jit_backend_available(DYN_JIT_TCC))
+        return;
+    opts.backend = DYN_JIT_AUTO;
+    load_ok(vdp_source, "vdp.c", &opts, &jm);
+    assert_int_equal(jm.backend, DYN_JIT_TCC);
+    assert_non_null(strstr(jm.note, "did not finish within 0.2 s"));
+    assert_non_null(strstr(jm.note, "compiled with libtcc instead"));
+    double ref[2], y[2];
+    rk4_run(&dyn_model_vanderpol, NULL, 0, 15.0, 0.01, ref);
+    rk4_run(jm.model, NULL, 0, 15.0, 0.01, y);
+    assert_true(same_bits(y[0], ref[0]) && same_bits(y[1], ref[1]));
+    dyn_jit_unload(&jm);
+}
+
 /* the cache directory: the option, then DYNKIT_CACHE_DIR, XDG_CACHE_HOME, HOME */
 static void test_cache_dir(void **state)
 {
@@ -704,6 +743,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_abi_mismatch_refused, setup, teardown),
         cmocka_unit_test_setup_teardown(test_bad_models_refused, setup, teardown),
         cmocka_unit_test_setup_teardown(test_missing_compiler, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_compiler_time_limit, setup, teardown),
         cmocka_unit_test(test_cache_dir),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -35,7 +35,7 @@ typedef struct dyn_jit_opts {
                              * 0: $DYNKIT_CC_TIMEOUT, else 60 */
 } dyn_jit_opts;
 /* DYN_JIT_AUTO reads $DYNKIT_JIT (auto, cc or tcc) first; it compiles with libtcc (when
- * built in) a source larger than 4 MiB, and one the system compiler did not finish within
+ * built in) a source larger than 1 MiB, and one the system compiler did not finish within
  * its time limit, and says so in dyn_jit_model.note. The cache holds
  * include-<version>-<hash>/ (dynkit's public headers, embedded in the library, written once)
  * and NAME-<hash>.so, one per (source, source name, dynkit version, DYN_MODEL_ABI, headers,

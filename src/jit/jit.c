@@ -107,7 +107,7 @@ int dyn_jit_load_source(const char *source, size_t len, const char *source_name,
     if (automatic && len > JIT_CC_MAX_SOURCE) { /* minutes and gigabytes for cc */
         snprintf(why, sizeof why,
                  "the generated C is %.1f MiB, more than the %u MiB given to the system C "
-                 "compiler (DYNKIT_JIT=cc gives it anyway)",
+                 "compiler (DYNKIT_JIT=cc gives it anyway, at -O0)",
                  (double)len / (1 << 20), JIT_CC_MAX_SOURCE >> 20);
         return tcc_instead(source, len, source_name, opts, why, out, err, errlen);
     }
@@ -277,6 +277,10 @@ static void close_so(loaded_so *s)
 static int load_so(const char *path, int fd, const char *where, dyn_jit_model *out, char *err,
                    size_t errlen)
 {
+    if (fd >= 0 && access("/proc/self/fd", X_OK) != 0) { /* no /proc: the checked path */
+        close(fd);
+        fd = -1;
+    }
     /* dlopen searches the library path for a name without '/': a file is meant */
     char full[1024];
     int n = fd >= 0               ? snprintf(full, sizeof full, "/proc/self/fd/%d", fd)

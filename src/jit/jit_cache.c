@@ -107,24 +107,13 @@ void jit_unique_path(const char *dir, const char *prefix, const char *suffix, ch
              (unsigned long)ts.tv_sec, (unsigned long)ts.tv_nsec, suffix);
 }
 
-static int write_file(const char *path, const void *data, size_t len)
+int jit_write_new(const char *path, const void *data, size_t len)
 {
-    int fd = open(path, O_WRONLY | O_CREAT | O_EXCL, 0644);
+    int fd = open(path, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
     if (fd < 0)
         return -1;
-    const char *p = data;
-    while (len > 0) {
-        ssize_t w = write(fd, p, len);
-        if (w < 0) {
-            if (errno == EINTR)
-                continue;
-            close(fd);
-            return -1;
-        }
-        p += w;
-        len -= (size_t)w;
-    }
-    return close(fd);
+    int bad = jit_write_fd(fd, data, len);
+    return close(fd) != 0 || bad ? -1 : 0;
 }
 
 /* Remove a tree this user wrote (a temporary or replaced headers directory): what belongs to
@@ -204,7 +193,7 @@ int jit_include_dir(const char *cache, char *dir, size_t size, char *note, size_
     }
     for (int i = 0; i < dyn_jit_header_count; i++) {
         snprintf(path, sizeof path, "%s/dynkit/%s", tmp, dyn_jit_headers[i].name);
-        if (write_file(path, dyn_jit_headers[i].data, dyn_jit_headers[i].size) != 0) {
+        if (jit_write_new(path, dyn_jit_headers[i].data, dyn_jit_headers[i].size) != 0) {
             int e = errno;
             remove_tree(tmp, 0);
             return jit_fail(err, errlen, "cannot write %s: %s", path, strerror(e));

@@ -124,10 +124,11 @@ int jit_trust_cache_dir(const char *path, char *canon, size_t size, char *err, s
                          (unsigned)(st.st_mode & 07777));
             return jit_fail(err, errlen,
                             "refusing the cache directory %s: the directory %s above it is "
-                            "writable by %s, who could put another cache in its place: set "
-                            "DYNKIT_CACHE_DIR to a directory whose parents belong to you or "
-                            "root and are not writable by others",
-                            canon, up, them);
+                            "writable by %s, who could put another cache in its place: "
+                            "chmod go-w '%s' if it is yours, or set DYNKIT_CACHE_DIR to a "
+                            "directory whose parents belong to you or root and are not "
+                            "writable by others",
+                            canon, up, them, up);
         }
     }
     return 0;
@@ -199,7 +200,7 @@ static int read_all(int fd, unsigned char *buf, size_t len)
     return 0;
 }
 
-static int write_all_fd(int fd, const void *data, size_t len)
+int jit_write_fd(int fd, const void *data, size_t len)
 {
     const char *p = data;
     while (len > 0) {
@@ -247,7 +248,7 @@ int jit_object_seal(const char *path, const char *final, char *err, size_t errle
     int bad = !data || read_all(fd, data, len) != 0;
     if (!bad) {
         trailer_of(final, data, len, trailer);
-        bad = lseek(fd, 0, SEEK_END) < 0 || write_all_fd(fd, trailer, TRAILER_LEN) != 0;
+        bad = lseek(fd, 0, SEEK_END) < 0 || jit_write_fd(fd, trailer, TRAILER_LEN) != 0;
     }
     free(data);
     if (close(fd) != 0 || bad)
@@ -292,7 +293,7 @@ int jit_object_open(const char *path, int *out_fd, char *why, size_t whylen, cha
     /* a private copy of the checked bytes: no one can change what is loaded */
 #ifdef MFD_CLOEXEC
     int mfd = memfd_create("dynkit-model", MFD_CLOEXEC);
-    if (mfd >= 0 && write_all_fd(mfd, data, body) != 0) {
+    if (mfd >= 0 && jit_write_fd(mfd, data, body) != 0) {
         close(mfd);
         mfd = -1;
     }

@@ -265,6 +265,72 @@ static void test_fourbar_loop_stays_closed(void **state_)
     cli_free(&r);
 }
 
+/* Columns of the same name in two CSV runs agree within tol; returns the largest
+ * difference over the names. */
+static double compare_runs(const char *a_args, const char *b_args, const char *const *names,
+                           int count)
+{
+    static double a[1 << 17], b[1 << 17];
+    cli_result ra = cli("run %s", a_args), rb = cli("run %s", b_args);
+    CHECK(ra.status == 0 && rb.status == 0, "%s\n%s", ra.err, rb.err);
+    int ca, cb;
+    const long na = csv_table(ra.out, a, 1 << 17, &ca), nb = csv_table(rb.out, b, 1 << 17, &cb);
+    CHECK(na == nb && na > 10, "rows %ld %ld", na, nb);
+    double worst = 0.0;
+    for (int k = 0; k < count; k++) {
+        int ja = -1, jb = -1, col = 0;
+        const size_t len = strlen(names[k]);
+        for (const char *h = ra.out; *h != '\n'; col++) {
+            if (!strncmp(h, names[k], len) && (h[len] == ',' || h[len] == '\n'))
+                ja = col;
+            h += strcspn(h, ",\n");
+            if (*h == ',')
+                h++;
+        }
+        col = 0;
+        for (const char *h = rb.out; *h != '\n'; col++) {
+            if (!strncmp(h, names[k], len) && (h[len] == ',' || h[len] == '\n'))
+                jb = col;
+            h += strcspn(h, ",\n");
+            if (*h == ',')
+                h++;
+        }
+        CHECK(ja >= 0 && jb >= 0, "column %s missing", names[k]);
+        for (long r = 0; r < na; r++)
+            worst = fmax(worst, fabs(a[r * ca + ja] - b[r * cb + jb]));
+    }
+    cli_free(&ra);
+    cli_free(&rb);
+    return worst;
+}
+
+/* The cart with its rear axle's constraint on the speeds against the built-in cart (Lagrange
+ * with one multiplier, by hand): the homework's forward run of problem 4c (Heun with the
+ * force table of the inverse dynamics, zero-order hold) and dop853 with constant forces. */
+static void test_cart_matches_the_builtin_cart(void **state_)
+{
+    (void)state_;
+    const char *table = cli_path("forces.csv");
+    cli_result r = cli("inverse cart --quiet -o %s", table);
+    CHECK(r.status == 0, "%s", r.err);
+    cli_free(&r);
+    static const char *const names[] = {"sX", "sY", "theta", "dsX", "dsY", "omega", "lambda"};
+    const char *init = "--init sX=0 --init sY=0 --init theta=0 --init dsX=-20 "
+                       "--init dsY=4.934802200544679 --init omega=4.934802200544679 "
+                       "--tspan 0:4.99 --step 0.01 --outputs";
+    char a[2048], b[2048];
+    snprintf(a, sizeof a, "%scart.mech --forces %s --method heun %s", MECH, table, init);
+    snprintf(b, sizeof b, "cart --forces %s --method heun %s", table, init);
+    double worst = compare_runs(a, b, names, 7);
+    CHECK(worst < 1e-8, "heun with the force table: largest difference %.3g", worst);
+    snprintf(a, sizeof a, "%scart.mech --method dop853 --rtol 1e-12 --atol 1e-12 --tspan 0:10 "
+             "--outputs", MECH);
+    snprintf(b, sizeof b, "cart --method dop853 --rtol 1e-12 --atol 1e-12 --tspan 0:10 "
+             "--outputs");
+    worst = compare_runs(a, b, names, 7);
+    CHECK(worst < 1e-8, "dop853, constant forces: largest difference %.3g", worst);
+}
+
 static void test_info_lists_the_mechanism(void **state_)
 {
     (void)state_;
@@ -324,6 +390,7 @@ int main(void)
         cmocka_unit_test(test_plane_matches_the_builtin_plane),
         cmocka_unit_test(test_top_precesses_at_the_closed_form_rates),
         cmocka_unit_test(test_fourbar_loop_stays_closed),
+        cmocka_unit_test(test_cart_matches_the_builtin_cart),
         cmocka_unit_test(test_info_lists_the_mechanism),
         cmocka_unit_test(test_errors_name_the_place),
     };

@@ -199,7 +199,13 @@ static void expr(lang_ctx *c, const node *e, const ectx *x)
     case N_NUM: num_lit(c, e->num); break;
     case N_TIME: puts_(c, "t"); break;
     case N_STATE: outf(c, "y[%d]", e->index); break;
-    case N_PARAM: outf(c, "p[%d]", e->index); break;
+    case N_PARAM:
+        if (m->param_input && e->index < m->params.n && m->param_input[e->index] >= 0 &&
+            (x->has_state || x->func))
+            outf(c, "dk_input(p, t, %d, %d)", m->param_input[e->index], e->index);
+        else
+            outf(c, "p[%d]", e->index);
+        break;
     case N_FIX: outf(c, "v_%s", LVEC_AT(m->fixes, lang_formula, e->index).name); break;
     case N_ALG: outf(c, "w[%d]", e->index); break;
     case N_DFIX:
@@ -761,9 +767,55 @@ static int table_files(const lang_model *m)
 
 /* Doubles of the parameter array: parameters, derived parameters, the tables' values, the
  * algebraic variables' slots. */
-static int par_doubles(const lang_model *m)
+/* the doubles of the parameter array before the input table (a dyn_input_table) */
+static int input_offset(const lang_model *m)
 {
     return alg_offset(m) + (m->algs.n ? 3 * m->algs.n + 2 + m->states.n : 0);
+}
+
+#define LANG_INPUT_DOUBLES 8 /* room for a dyn_input_table */
+
+static int par_doubles(const lang_model *m)
+{
+    return input_offset(m) + (m->n_inputs ? LANG_INPUT_DOUBLES : 0);
+}
+
+/* The inputs: reading one (dk_input), attaching a table (dk_set_input), their names. */
+static void emit_inputs(lang_ctx *c)
+{
+    const lang_model *m = &c->m;
+    if (!m->n_inputs)
+        return;
+    outf(c, "_Static_assert(sizeof(dyn_input_table) <= %d * sizeof(double), \"room for the "
+            "input table\");\n"
+            "static inline double dk_input(const double *p, double t, int k, int i)\n{\n"
+            "    dyn_input_table it;\n    memcpy(&it, p + %d, sizeof it);\n"
+            "    return dyn_input_table_at(&it, t, k, p[i]);\n}\n\n"
+            "static int dk_set_input(void *par, const double *table, long rows, dyn_interp "
+            "interp, char *err, size_t errlen)\n{\n    dyn_input_table it;\n"
+            "    if (dyn_input_table_set(&it, table, rows, %d, interp, err, errlen))\n"
+            "        return 1;\n    memcpy((double *)par + %d, &it, sizeof it);\n"
+            "    return 0;\n}\n\n",
+         LANG_INPUT_DOUBLES, input_offset(m), m->n_inputs, input_offset(m));
+}
+
+static void emit_input_vars(lang_ctx *c)
+{
+    const lang_model *m = &c->m;
+    if (!m->n_inputs)
+        return;
+    puts_(c, "static const dyn_var dk_inputs_vars[] = {\n");
+    for (int k = 0; k < m->n_inputs; k++) {
+        const lang_param *p = &LVEC_AT(m->params, lang_param, m->input_param[k]);
+        puts_(c, "    {");
+        str_lit(c, p->name);
+        puts_(c, ", ");
+        str_lit(c, p->doc.unit);
+        puts_(c, ", ");
+        str_lit(c, p->doc.description);
+        puts_(c, "},\n");
+    }
+    puts_(c, "};\n");
 }
 
 /* In prepare, after the tables: each index of a sparse sum must point into its block. */
@@ -1500,6 +1552,7 @@ char *lang_emit_c(lang_ctx *c)
     if (m->has_band && !with_jac)
         check_band_by_structure(c); /* the band is then formed by banded differences */
 
+    emit_inputs(c);
     emit_alg_functions(c, &jp);
     emit_rhs(c);
     emit_outputs(c);
@@ -1538,6 +1591,7 @@ char *lang_emit_c(lang_ctx *c)
     }
     if (m->auxs.n)
         vars(c, "dk_outputs_vars", &m->auxs, 0);
+    emit_input_vars(c);
     if (m->events.n) {
         puts_(c, "static const dyn_event dk_events[] = {\n");
         for (int i = 0; i < m->events.n; i++) {
@@ -1579,10 +1633,11 @@ char *lang_emit_c(lang_ctx *c)
     num_lit(c, m->dt);
     puts_(c, ",\n    .method = ");
     str_lit(c, m->method ? m->method : "dp45");
-    outf(c, ",\n    .n_inputs = 0,\n    .inputs = NULL,\n    .set_input = NULL,\n"
+    outf(c, ",\n    .n_inputs = %d,\n    .inputs = %s,\n    .set_input = %s,\n"
             "    .jacobian = %s,\n    .n_events = %d,\n    .events = %s,\n"
             "    .samples = DYN_SAMPLES_GRID,\n    .initial_state = %s,\n",
-         with_jac ? "dk_jacobian" : "NULL", m->events.n, m->events.n ? "dk_events" : "NULL",
+         m->n_inputs, m->n_inputs ? "dk_inputs_vars" : "NULL",
+         m->n_inputs ? "dk_set_input" : "NULL", with_jac ? "dk_jacobian" : "NULL", m->events.n, m->events.n ? "dk_events" : "NULL",
          has_init ? "dk_initial_state" : "NULL");
     puts_(c, "    .rtol = ");
     num_lit(c, rtol);
@@ -1626,9 +1681,10 @@ char *lang_emit_c(lang_ctx *c)
     puts_(c, "\n * (see \"The .ode format\" in docs/model-files.md). Edit the model file, not "
              "this text. */\n"
              "#include <math.h>\n#include <stddef.h>\n#include <stdio.h>\n");
-    if (table_files(m))
+    if (table_files(m) || m->n_inputs)
         puts_(c, "#include <string.h>\n");
-    puts_(c, "\n#include <dynkit/model.h>\n\n");
+    puts_(c, "\n#include <dynkit/model.h>\n");
+    puts_(c, m->n_inputs ? "#include <dynkit/input.h>\n\n" : "\n");
     if (m->algs.n)
         emit_alg_constants(c);
     helpers(c);

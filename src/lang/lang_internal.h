@@ -284,6 +284,11 @@ typedef struct lang_model {
     /* no analytic Jacobian is written (the stiff methods use differences): set by front
      * ends whose right-hand sides are long chains of fixed quantities (src/mbs) */
     int no_jacobian;
+    /* inputs: parameters that a time table attached by set_input overrides (dyn_model.inputs;
+     * src/mbs's `input` lines): n_inputs of them, input_param[k] the parameter of input k,
+     * param_input[i] the input of parameter i or -1 (NULL when there are none) */
+    int n_inputs;
+    int *input_param, *param_input;
 } lang_model;
 
 /* ---- one logical line: text and where each character came from ---- */

@@ -10,8 +10,8 @@
  *   numeric, per evaluation: M = sum m J_v'J_v + J_w' I J_w, F = sum J_v'(m g_N - m g_v) +
  *   J_w'(-I g_w - w x I w) + the loads' J'f, qdd = M^-1 F by Cholesky, then the
  *   multipliers from the Schur complement (D M^-1 D') lambda = -(D M^-1 F + conv + stab)
- *   and qdd += M^-1 D' lambda (Baumgarte's stab = 2 a h + a^2 f for f(q,t) = 0, a h for
- *   a constraint on the speeds). */
+ *   and qdd += M^-1 D' lambda (Baumgarte's stab = 2 a h + a^2 f for f(q,t) = 0; none for
+ *   a constraint on the speeds, which has no position to drift from). */
 #include <stdio.h>
 #include <string.h>
 
@@ -434,15 +434,10 @@ static void constraints(dctx *d, node **F_Q, node **qdd, node **a0, node **L, no
         node *conv = rate(d, h);
         /* the speeds' terms of rate(h) are D u_dot; rate holds u, so conv is the rest */
         node *stab = num(d, 0.0);
-        if (mb->alpha > 0) {
-            node *al = num(d, mb->alpha);
+        if (mb->alpha > 0 && !on_speeds) { /* Baumgarte on the positions' constraints */
             node *hf = fix(d, lang_printf(c, "%s_h", tag), h);
-            stab = mul(d, lang_mul(c, num(d, 2.0), al), hf);
-            if (!on_speeds)
-                stab = add(d, stab, mul(d, num(d, mb->alpha * mb->alpha),
-                                        fix(d, lang_printf(c, "%s_f", tag), f)));
-            if (on_speeds)
-                stab = mul(d, al, hf);
+            stab = add(d, mul(d, num(d, 2.0 * mb->alpha), hf),
+                       mul(d, num(d, mb->alpha * mb->alpha), fix(d, lang_printf(c, "%s_f", tag), f)));
         }
         b[r] = fix(d, lang_printf(c, "%s_b", tag),
                    lang_neg(c, add(d, add(d, dot_n(d, D + r * n, a0, n), conv), stab)));

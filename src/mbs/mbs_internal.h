@@ -67,6 +67,11 @@ typedef struct mbs_constraint {
     int aux;        /* index of its multiplier among the outputs */
 } mbs_constraint;
 
+typedef struct mbs_named {
+    const char *name;
+    lpos pos;
+} mbs_named;
+
 typedef struct mbs_model {
     lvec coords;  /* mbs_coord */
     lvec bodies;  /* mbs_body */
@@ -77,6 +82,7 @@ typedef struct mbs_model {
     double alpha; /* Baumgarte's rate [1/s] of the holonomic constraints */
     int aux_kinetic, aux_potential, aux_energy; /* output indices, -1: not written */
     int ninputs;
+    lvec input_names; /* mbs_named: parameters a table of inputs overrides (`input`) */
     node **expanded; /* expanded inputs, by fixed quantity (mbs_derive.c) */
     int *order;      /* the order of the fixed quantities, growing */
     int norder, ordercap;
@@ -85,6 +91,8 @@ typedef struct mbs_model {
 /* statements (mbs_parse.c): the hook of lang_parse_model, and the end of the file */
 int mbs_statement(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos);
 void mbs_finish_parse(lang_ctx *c, mbs_model *mb);
+/* the `input` parameters into the model's inputs, after lang_check */
+void mbs_resolve_inputs(lang_ctx *c, mbs_model *mb);
 /* the equations of motion, after lang_check (mbs_derive.c) */
 void mbs_derive(lang_ctx *c, mbs_model *mb);
 

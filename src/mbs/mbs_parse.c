@@ -558,7 +558,13 @@ int mbs_statement(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos)
         parse_load(c, lx, !strcasecmp(w, "torque"));
     else if (!strcasecmp(w, "constraint") || !strcasecmp(w, "prescribe"))
         parse_constraint(c, lx, !strcasecmp(w, "prescribe"));
-    else if (!strcasecmp(w, "stabilize")) {
+    else if (!strcasecmp(w, "input") || !strcasecmp(w, "inputs")) {
+        do {
+            mbs_named *in = lvec_push(c, &mb->input_names, sizeof *in);
+            in->name = read_word(lx, &in->pos, "expected a parameter's name");
+        } while (peek(lx) == ',' && (lx->i++, 1));
+        expect_end(lx, "the inputs");
+    } else if (!strcasecmp(w, "stabilize")) {
         node *e = parse_value(lx, "Baumgarte's rate [1/s]");
         if (e->kind != N_NUM || !(e->num >= 0.0))
             lang_fail(c, e->pos, "stabilize takes a number >= 0 (Baumgarte's rate, 1/s)");
@@ -597,5 +603,30 @@ void mbs_finish_parse(lang_ctx *c, mbs_model *mb)
             continue; /* the name is the file's own */
         declare_output(c, names[k], (lpos){0, 0}, idx[k]);
         add_doc(c, names[k], (lpos){0, 0}, (lang_doc){"J", desc[k]});
+    }
+}
+
+void mbs_resolve_inputs(lang_ctx *c, mbs_model *mb)
+{
+    lang_model *m = &c->m;
+    const int n = mb->input_names.n;
+    if (!n)
+        return;
+    m->n_inputs = n;
+    m->input_param = lang_alloc(c, (size_t)n * sizeof *m->input_param);
+    m->param_input = lang_alloc(c, ((size_t)m->params.n + 1) * sizeof *m->param_input);
+    for (int i = 0; i < m->params.n; i++)
+        m->param_input[i] = -1;
+    for (int k = 0; k < n; k++) {
+        const mbs_named *in = &LVEC_AT(mb->input_names, mbs_named, k);
+        const lang_sym *s = lang_lookup(c, in->name);
+        if (!s || s->kind != SYM_PARAM)
+            lang_fail(c, in->pos, "input '%s': an input is a parameter (par %s=VALUE, its value "
+                      "when no table is given)%s%s", in->name, in->name, s ? "; it is " : "",
+                      s ? lang_sym_kind_name(s->kind) : "");
+        if (m->param_input[s->index] >= 0)
+            lang_fail(c, in->pos, "input '%s' is named twice", in->name);
+        m->param_input[s->index] = k;
+        m->input_param[k] = s->index;
     }
 }

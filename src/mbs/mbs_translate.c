@@ -9,6 +9,7 @@ static void mech_front(lang_ctx *c)
 {
     mbs_model mb = {0};
     mb.alpha = MBS_DEFAULT_ALPHA;
+    mb.gravity[0] = mb.gravity[1] = mb.gravity[2] = -1; /* none: 0 */
     c->m.name = lang_base_name(c, c->path, ".mech");
     c->stmt_hook = mbs_statement;
     c->hook_ctx = &mb;
@@ -18,6 +19,7 @@ static void mech_front(lang_ctx *c)
     lang_check_table_files(c);
     c->stmt_hook = NULL;
     lang_check(c);
+    mbs_resolve_inputs(c, &mb);
     c->m.no_jacobian = 1;
     mbs_derive(c, &mb);
     c->hook_ctx = NULL;

@@ -31,14 +31,15 @@ static void plot_help(void)
          "  dynkit plot vanderpol --x y1 --y y2 --compare euler --compare heun --output phase.svg\n"
          "  dynkit plot pendulum --tspan 0:10 --step 0.01 --method rk4 --y energy --output e.svg\n"
          "\n"
-         "A sweep's table (dynkit sweep ... --output TABLE.csv) in place of MODEL:\n"
-         "  dynkit plot TABLE.csv [--y NAME[,NAME...]] [--x NAME] [--title TEXT] [--output "
+         "A sweep's table (dynkit sweep ... --output TABLE.csv or TABLE.json) in place of MODEL:\n"
+         "  dynkit plot TABLE.json [--y NAME[,NAME...]] [--x NAME] [--title TEXT] [--output "
          "FILE.svg] [--html FILE]\n"
-         "with one varied name, lines of the reduced columns (--y, default all) against it; with\n"
-         "two, a heat map of one reduced column (--y, default the first) over their grid with a\n"
-         "colour bar (failed runs and nan in grey), or with --x NAME lines against it, one per\n"
-         "value of the other. --html FILE (or --output FILE.html) writes the same picture into\n"
-         "a self-contained page.\n");
+         "with one varied name, lines of the reduced columns (--y, default all; max_height or\n"
+         "max:height) against it; with two, a heat map of one reduced column (--y, default the\n"
+         "first) over their grid with a colour bar (failed runs and nan in grey), or with --x\n"
+         "NAME lines against it, one per value of the other. The axes carry the units of a\n"
+         "JSON table (a CSV table has names only). --html FILE (or --output FILE.html) writes\n"
+         "the same picture into a self-contained page.\n");
     cli_view_options_help(stdout);
 }
 
@@ -96,7 +97,7 @@ int cli_cmd_plot(int argc, char **argv)
         }
     /* a sweep's table (dynkit sweep --output FILE.csv) rather than a model */
     const char *dot = argc > 0 ? strrchr(argv[0], '.') : NULL;
-    if (dot && strcmp(dot, ".csv") == 0)
+    if (dot && (strcmp(dot, ".csv") == 0 || strcmp(dot, ".json") == 0))
         return cli_plot_sweep_table(argc, argv);
     static const char *const extra[] = {"y", "x", "title", NULL};
     const char *values[3];

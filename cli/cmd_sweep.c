@@ -20,6 +20,7 @@
 #include "dynkit/io.h"
 #include "dynkit/sweep.h"
 #include "out_file.h"
+#include "sweep_table.h"
 #include "table_formats.h"
 #ifdef DYNKIT_HAVE_MPI
 #include <mpi.h>
@@ -38,12 +39,13 @@ static void sweep_help(void)
          "\n"
          "Runs MODEL many times with one method and one set of run options, each run with its\n"
          "own parameter or initial-state values, and writes one row per run, in run order:\n"
-         "run,<varied names>,<reduced names>. Runs are numbered from 0. Numbers are the\n"
-         "shortest decimals that read back to the same double; a failed run (a state NaN\n"
-         "or Inf, the step size underflowing, --max-steps reached, parameters the model\n"
-         "refuses) is a row of nan with its reason in a last column 'status' (present when a\n"
-         "run failed: ok, nonfinite, step-size, max-steps, rhs, parameters, bound, zeno). The\n"
-         "results are the same bytes for any number of threads.\n"
+         "run,<varied names>,<reduced names>, a reduction named OP_NAME (max_height for\n"
+         "max:height). Runs are numbered from 0. Numbers are the shortest decimals that read\n"
+         "back to the same double; a failed run (a state NaN or Inf, the step size\n"
+         "underflowing, --max-steps reached, parameters the model refuses) is a row of nan\n"
+         "with its reason in a last column 'status' (present when a run failed: ok,\n"
+         "nonfinite, step-size, max-steps, rhs, parameters, bound, zeno). The results are the\n"
+         "same bytes for any number of threads.\n"
          "\n"
          "The runs (one of):\n"
          "  --vary NAME=A:B:N    N values from A to B, A + k (B-A)/(N-1), the ends exactly A\n"
@@ -57,11 +59,12 @@ static void sweep_help(void)
          "                       values depend on (S, i, column) alone: Philox4x32-10, normal\n"
          "                       values by the Box-Muller transform\n"
          "  --from FILE.csv      one run per row of a CSV table whose columns are named like\n"
-         "                       parameters and states\n"
+         "                       parameters and states, or of a sweep's table (.csv, .json:\n"
+         "                       its varied names)\n"
          "Numbers may be multiples of pi (pi/4) or degrees (45deg), as in --set.\n"
          "\n"
          "What each run gives (--reduce, comma-separated; default: final):\n"
-         "  final                every state at the end of the run (columns final:NAME)\n"
+         "  final                every state at the end of the run (columns final_NAME)\n"
          "  final:NAME           a state or an output (dynkit info MODEL) at the end\n"
          "  max:NAME, min:NAME   largest, smallest value over the samples\n"
          "  argmax:NAME, argmin:NAME   the time of the (first) largest, smallest sample\n"
@@ -77,9 +80,10 @@ static void sweep_help(void)
          "Sweep options:\n"
          "  --threads N          threads (default: all cores, or OMP_NUM_THREADS)\n"
          "  -o, --output FILE    write the table to FILE in the format of its extension: .csv,\n"
-         "                       .json or .npy (default: standard output, CSV); in .json and\n"
-         "                       .npy the status is the library's number (0 ok, 3 nonfinite,\n"
-         "                       7 step-size, 8 max-steps; docs/sweeps.md)\n"
+         "                       .json, .npy, .npz or .mat (default: standard output, CSV);\n"
+         "                       .json, .npz and .mat carry the units; outside CSV the status\n"
+         "                       is the library's number (0 ok, 3 nonfinite, 7 step-size,\n"
+         "                       8 max-steps; docs/sweeps.md)\n"
          "  --resume FILE        keep the finished runs of FILE (a table an interrupted sweep\n"
          "                       with the same options wrote), run the others, and write the\n"
          "                       whole table to --output (default: FILE itself)\n"
@@ -224,11 +228,48 @@ static int parse_sample(const dyn_model *m, sweep_spec *sp, const char *text)
     return CLI_OK;
 }
 
-/* --from FILE.csv: every column a parameter or a state. */
+/* --from a sweep's table (CSV or JSON, sweep_table.h): its runs again, from the varied
+ * names after the run column (up to the first column that is neither a parameter nor a
+ * state: the reductions). */
+static int read_from_sweep(const dyn_model *m, sweep_spec *sp, const sweep_table *st)
+{
+    int rc = CLI_OK, nv = 0;
+    dyn_sweep_var v;
+    char err[512];
+    while (rc == CLI_OK && 1 + nv < st->cols && 1 + nv != st->status_col &&
+           dyn_sweep_var_find(m, st->names[1 + nv], &v, err, sizeof err) == 0) {
+        rc = add_var(m, sp, st->names[1 + nv], strlen(st->names[1 + nv]), "--from column");
+        nv++;
+    }
+    if (rc == CLI_OK && nv == 0)
+        rc = cli_usage_error("sweep", "--from %s: the column after run, %s, is neither a "
+                                      "parameter nor a state of %s",
+                             sp->from, st->cols > 1 ? st->names[1] : "(none)", m->name);
+    if (rc != CLI_OK)
+        return rc;
+    sp->n_runs = st->rows;
+    sp->values = malloc((size_t)st->rows * (size_t)nv * sizeof(double) + 1);
+    if (!sp->values)
+        return CLI_FAILED;
+    for (long i = 0; i < st->rows; i++)
+        for (int j = 0; j < nv; j++)
+            sp->values[(size_t)i * (size_t)nv + (size_t)j] =
+                st->data[(size_t)i * (size_t)st->cols + 1 + (size_t)j];
+    return CLI_OK;
+}
+
+/* --from FILE.csv: every column a parameter or a state; or a sweep's table. */
 static int read_from(const dyn_model *m, sweep_spec *sp)
 {
     dyn_table t;
     char err[512];
+    sweep_table st;
+    if (sweep_table_read(sp->from, &st, err, sizeof err) == 0) {
+        const int rc = read_from_sweep(m, sp, &st);
+        sweep_table_free(&st);
+        return rc;
+    }
+    sweep_table_free(&st);
     if (dyn_table_read_file(sp->from, 0, &t, err, sizeof err) != DYN_OK) {
         fprintf(stderr, "dynkit: error: --from: %s\n", err);
         return CLI_USAGE;
@@ -325,16 +366,21 @@ static int put_number(FILE *f, double x)
     return fwrite(num, 1, (size_t)len, f) != (size_t)len ? -1 : 0;
 }
 
-static void header_line(const sweep_out *o, int with_status, char *buf, size_t size)
+/* The header; with colon, the reductions named OP:NAME as tables of earlier versions of
+ * dynkit have them (read by --resume). */
+static void header_line(const sweep_out *o, int with_status, int colon, char *buf, size_t size)
 {
     size_t used = (size_t)snprintf(buf, size, "run");
     char name[160];
     for (int j = 0; j < o->sp->n_vars && used < size; j++)
         used += (size_t)snprintf(buf + used, size - used, ",%s",
                                  dyn_sweep_var_name(o->m, &o->sp->vars[j]));
-    for (int r = 0; r < o->n_red && used < size; r++)
-        used += (size_t)snprintf(buf + used, size - used, ",%s",
-                                 dyn_reduce_name(o->m, &o->red[r], name, sizeof name));
+    for (int r = 0; r < o->n_red && used < size; r++) {
+        dyn_reduce_name(o->m, &o->red[r], name, sizeof name);
+        if (colon)
+            name[strcspn(name, "_")] = ':'; /* OP_NAME: the operations have no '_' */
+        used += (size_t)snprintf(buf + used, size - used, ",%s", name);
+    }
     if (with_status && used < size)
         snprintf(buf + used, size - used, ",status");
 }
@@ -346,7 +392,7 @@ static int write_table(FILE *f, const sweep_out *o)
     for (long i = 0; i < o->sp->n_runs; i++)
         with_status |= o->status[i] != DYN_OK && o->status[i] != DYN_SWEEP_NOT_RUN;
     char head[8192];
-    header_line(o, with_status, head, sizeof head);
+    header_line(o, with_status, 0, head, sizeof head);
     int bad = fprintf(f, "%s\n", head) < 0;
     const int nv = o->sp->n_vars;
     for (long i = 0; i < o->sp->n_runs && !bad; i++) {
@@ -365,7 +411,7 @@ static int write_table(FILE *f, const sweep_out *o)
     return bad ? -1 : 0;
 }
 
-/* The table as JSON or NPY (table_formats.h): columns run, the varied names, the
+/* The table as JSON, NPY, NPZ or MAT (table_formats.h): columns run, the varied names, the
  * reductions, and when a run failed a numeric status (the library's dyn_status: 0 ok). */
 static int write_data_file(FILE *f, cli_format format, const sweep_out *o, const cli_run *run)
 {
@@ -410,20 +456,24 @@ static int write_data_file(FILE *f, cli_format format, const sweep_out *o, const
         names[cols - 1] = "status";
         units[cols - 1] = "1";
     }
+    /* run->rtol and atol are the model's when not given (run_options.c) */
     const int adaptive = dyn_method_is_adaptive(run->method);
-    cli_table_info info = {.model = m->name,
-                           .method = run->method->name,
-                           .step = run->step,
-                           .rtol = adaptive ? (run->rtol > 0 ? run->rtol : DYN_DEFAULT_RTOL) : NAN,
-                           .atol = adaptive ? (run->atol > 0 ? run->atol : DYN_DEFAULT_ATOL) : NAN,
-                           .t0 = run->t0,
-                           .t1 = run->t1,
-                           .cols = cols,
-                           .n_y = cols - 1,
-                           .y_name = "values",
-                           .names = names,
-                           .units = units,
-                           .header = CLI_HEADER_NAMES};
+    cli_table_info info = {
+        .model = m->name,
+        .method = run->method->name,
+        .step = run->step,
+        .rtol = adaptive && !run->rtolv ? (run->rtol > 0 ? run->rtol : DYN_DEFAULT_RTOL) : NAN,
+        .atol = adaptive && !run->atolv ? (run->atol > 0 ? run->atol : DYN_DEFAULT_ATOL) : NAN,
+        .t0 = run->t0,
+        .t1 = run->t1,
+        .cols = cols,
+        .n_y = m->n_states,
+        .names = names,
+        .units = units,
+        .header = CLI_HEADER_NAMES,
+        .sweep = 1,
+        .n_varied = nv,
+        .n_reduced = nr};
     char err[512] = "a write failed";
     cli_table *tab = cli_table_open(f, format, &info, err, sizeof err);
     int bad = tab == NULL;
@@ -462,9 +512,11 @@ static int read_resume(const char *path, sweep_out *o, unsigned char *skip, long
     }
     size_t cap = 1 << 16;
     char *line = malloc(cap);
-    char head[8192], head_status[8192];
-    header_line(o, 0, head, sizeof head);
-    header_line(o, 1, head_status, sizeof head_status);
+    char head[8192], head_status[8192], old[8192], old_status[8192];
+    header_line(o, 0, 0, head, sizeof head);
+    header_line(o, 1, 0, head_status, sizeof head_status);
+    header_line(o, 0, 1, old, sizeof old);
+    header_line(o, 1, 1, old_status, sizeof old_status);
     int rc = CLI_OK, with_status = 0;
     long lineno = 0;
     *kept = 0;
@@ -475,8 +527,8 @@ static int read_resume(const char *path, sweep_out *o, unsigned char *skip, long
         while (len > 0 && (line[len - 1] == '\n' || line[len - 1] == '\r'))
             line[--len] = '\0';
         if (lineno == 1) {
-            with_status = strcmp(line, head_status) == 0;
-            if (!with_status && strcmp(line, head) != 0) {
+            with_status = strcmp(line, head_status) == 0 || strcmp(line, old_status) == 0;
+            if (!with_status && strcmp(line, head) != 0 && strcmp(line, old) != 0) {
                 fprintf(stderr,
                         "dynkit: error: --resume: %s is not a table of this sweep: its header "
                         "is\n  %s\nand this sweep writes\n  %s\n(give the same model, runs and "
@@ -788,11 +840,16 @@ static int sweep_command(int argc, char **argv, int rank, int ranks)
         char ferr[512];
         if (cli_format_of_path(out_path, &format, ferr, sizeof ferr))
             rc = cli_usage_error("sweep", "--output: %s", ferr);
-        else if (format == CLI_FORMAT_NPZ || format == CLI_FORMAT_MAT)
-            rc = cli_usage_error("sweep",
-                                 "--output '%s': a sweep's table is written as .csv, .json or "
-                                 ".npy (.npz and .mat files hold a run's t and y)",
-                                 out_path);
+        for (int j = 0; j < sp.n_vars && rc == CLI_OK; j++) {
+            const char *name = dyn_sweep_var_name(m, &sp.vars[j]);
+            if ((format == CLI_FORMAT_NPZ || format == CLI_FORMAT_MAT) &&
+                cli_table_name_taken(name))
+                rc = cli_usage_error("sweep",
+                                     "--output '%s': the column %s would have the name of "
+                                     "another variable of the .%s file; write .csv, .json or "
+                                     ".npy",
+                                     out_path, name, cli_format_name(format));
+        }
     }
     if (rc == CLI_OK && resume && !output && format != CLI_FORMAT_CSV)
         rc = cli_usage_error("sweep", "--resume '%s': give the CSV table of the interrupted "

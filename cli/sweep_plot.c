@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* dynkit plot TABLE.csv: a picture of a sweep's table (dynkit sweep, docs/sweeps.md) as a
- * standalone SVG 1.1 file, or (--html FILE, --output FILE.html) as a self-contained page
+/* dynkit plot TABLE.csv|TABLE.json: a picture of a sweep's table (dynkit sweep,
+ * docs/sweeps.md; read by sweep_table.c, the axes labelled with the units a JSON table
+ * carries) as a standalone SVG 1.1 file, or (--html FILE, --output FILE.html) as a self-contained page
  * drawn by web/js/sweep.js with the same choice of picture. One varied name: a line of each
  * reduced column against it (svg_plot.c), through the runs in the order of the varied value
  * (not the run order). Two varied names: a heat map of one reduced column over their grid,
@@ -19,109 +20,60 @@
 #include "pages.h"
 #include "escape.h"
 #include "svg_axes.h"
+#include "sweep_table.h"
 
-#define MAX_COLS 256
-
-typedef struct sweep_table {
-    int cols;
-    char *names[MAX_COLS];
-    long rows;
-    double *data;   /* (rows x cols); text fields (status) are NaN */
-    int status_col; /* -1 if none */
-} sweep_table;
-
-static void table_free(sweep_table *t)
+/* An axis label: the column's name, and its unit in brackets when the table has one (its
+ * JSON does, its CSV does not). */
+static const char *col_label(const sweep_table *t, int c, char *buf, size_t size)
 {
-    for (int c = 0; c < t->cols; c++)
-        free(t->names[c]);
-    free(t->data);
+    if (t->units[c] && t->units[c][0])
+        snprintf(buf, size, "%s [%s]", t->names[c], t->units[c]);
+    else
+        snprintf(buf, size, "%s", t->names[c]);
+    return buf;
 }
 
-static int table_read(const char *path, sweep_table *t, char *err, size_t errlen)
+/* 1 when name is a reduction's column: OP_NAME, or OP:NAME as in tables of earlier versions
+ * of dynkit, OP one of the reductions of dynkit/sweep.h. */
+static int is_reduction(const char *name)
 {
-    memset(t, 0, sizeof *t);
-    t->status_col = -1;
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        snprintf(err, errlen, "cannot open %s: %s", path, strerror(errno));
-        return -1;
-    }
-    size_t cap = 1 << 16;
-    char *line = malloc(cap);
-    long capacity = 0, lineno = 0;
-    int rc = line ? 0 : -1;
-    while (rc == 0 && fgets(line, (int)cap, f)) {
-        lineno++;
-        line[strcspn(line, "\r\n")] = '\0';
-        if (!line[0])
-            continue;
-        if (t->cols == 0) {
-            for (char *p = line; p && t->cols < MAX_COLS;) {
-                char *comma = strchr(p, ',');
-                if (comma)
-                    *comma = '\0';
-                t->names[t->cols] = strdup(p);
-                if (strcmp(p, "status") == 0)
-                    t->status_col = t->cols;
-                t->cols++;
-                p = comma ? comma + 1 : NULL;
-            }
-            if (t->cols < 2 || strcmp(t->names[0], "run") != 0) {
-                snprintf(err, errlen,
-                         "%s is not a sweep's table (its header should start with run, as "
-                         "dynkit sweep writes it)",
-                         path);
-                rc = -1;
-            }
-            continue;
-        }
-        if (t->rows == capacity) {
-            capacity = capacity ? 2 * capacity : 256;
-            double *d = realloc(t->data, (size_t)capacity * (size_t)t->cols * sizeof *d);
-            if (!d) {
-                rc = -1;
-                break;
-            }
-            t->data = d;
-        }
-        double *row = t->data + (size_t)t->rows * (size_t)t->cols;
-        char *p = line;
-        for (int c = 0; c < t->cols; c++) {
-            char *end;
-            row[c] = strtod(p, &end);
-            if (end == p || (*end && *end != ','))
-                row[c] = NAN;
-            p += strcspn(p, ",");
-            if (c < t->cols - 1 && *p != ',') {
-                snprintf(err, errlen, "%s:%ld: %d fields, the header has %d", path, lineno, c + 1,
-                         t->cols);
-                rc = -1;
-                break;
-            }
-            if (*p)
-                p++;
-        }
-        t->rows++;
-    }
-    free(line);
-    fclose(f);
-    if (rc == 0 && t->rows == 0) {
-        snprintf(err, errlen, "%s has no rows", path);
-        rc = -1;
-    }
-    return rc;
+    static const char *const ops[] = {"final",  "max",    "min",   "mean",
+                                      "argmax", "argmin", "event", "count"};
+    const size_t len = strcspn(name, "_:");
+    for (size_t k = 0; name[len] && name[len + 1] && k < sizeof ops / sizeof ops[0]; k++)
+        if (strlen(ops[k]) == len && strncmp(name, ops[k], len) == 0)
+            return 1;
+    return 0;
 }
 
-/* Varied columns: named without ':' (the reductions are OP:NAME), not run or status. */
+/* Varied columns: those before the reductions, which end the table (run, the varied names,
+ * the reductions, status): a column is reduced when it and every column after it are named
+ * like reductions, so that a varied parameter named like one (max_rate) before another
+ * varied name is still told apart. */
 static int is_varied(const sweep_table *t, int c)
 {
-    return c > 0 && c != t->status_col && !strchr(t->names[c], ':');
+    if (c <= 0 || c == t->status_col)
+        return 0;
+    for (int k = c; k < t->cols; k++)
+        if (k != t->status_col && !is_reduction(t->names[k]))
+            return 1;
+    return 0;
 }
 
+/* The column named name; a reduction may be given as on the command line (max:height for
+ * the column max_height). */
 static int find_col(const sweep_table *t, const char *name)
 {
+    char alt[256];
+    const size_t len = strlen(name);
+    if (len >= sizeof alt)
+        return -1;
+    memcpy(alt, name, len + 1);
+    const size_t colon = strcspn(alt, ":");
+    if (alt[colon])
+        alt[colon] = '_';
     for (int c = 0; c < t->cols; c++)
-        if (strcmp(t->names[c], name) == 0)
+        if (strcmp(t->names[c], name) == 0 || strcmp(t->names[c], alt) == 0)
             return c;
     return -1;
 }
@@ -316,7 +268,9 @@ static int heat_map(FILE *out, const sweep_table *t, int xc, int yc, int zc, con
         svg_tick_label(k * sy, sy, label, sizeof label);
         bad |= svg_ytick(out, x0, PY(k * sy), label);
     }
-    bad |= svg_titles(out, x0, x1, y0, y1, HW, HH, t->names[xc], t->names[yc], title);
+    char xl[320], yl[320], zl[320];
+    bad |= svg_titles(out, x0, x1, y0, y1, HW, HH, col_label(t, xc, xl, sizeof xl),
+                      col_label(t, yc, yl, sizeof yl), title);
     /* the colour bar: 64 bands from zlo (bottom) to zhi (top), ticks on its right */
     const double bx0 = x1 + 24, bx1 = x1 + 44;
     bad |= fputs("<g class=\"colorbar\" shape-rendering=\"crispEdges\">\n", out) < 0;
@@ -346,7 +300,7 @@ static int heat_map(FILE *out, const sweep_table *t, int xc, int yc, int zc, con
                    "</g>\n<text class=\"zlabel\" x=\"0\" y=\"0\" font-size=\"14\" "
                    "text-anchor=\"middle\" transform=\"translate(%.2f %.2f) rotate(-90)\">",
                    HW - 12, (y0 + y1) / 2) < 0;
-    bad |= cli_xml_escaped(out, t->names[zc]);
+    bad |= cli_xml_escaped(out, col_label(t, zc, zl, sizeof zl));
     bad |= fputs("</text>\n</svg>\n", out) < 0;
 #undef PX
 #undef PY
@@ -402,9 +356,10 @@ static int lines_of(FILE *out, const sweep_table *t, int xc, const int *ycols, i
 {
     cli_svg_plot p;
     memset(&p, 0, sizeof p);
+    char xl[320], yl[320];
     p.title = title;
-    p.xlabel = t->names[xc];
-    p.ylabel = n_y == 1 ? t->names[ycols[0]] : "";
+    p.xlabel = col_label(t, xc, xl, sizeof xl);
+    p.ylabel = n_y == 1 ? col_label(t, ycols[0], yl, sizeof yl) : "";
     int other = -1;
     for (int c = 1; c < t->cols; c++)
         if (c != xc && is_varied(t, c) && other < 0)
@@ -426,7 +381,7 @@ static int lines_of(FILE *out, const sweep_table *t, int xc, const int *ycols, i
     }
     const long nv = distinct(t, other, vals);
     long used = 0;
-    p.ylabel = t->names[ycols[0]];
+    p.ylabel = col_label(t, ycols[0], yl, sizeof yl);
     for (long v = 0; v < nv && p.n_lines < CLI_SVG_MAX_LINES; v++) {
         double *line_xy = xy + 2 * used;
         long n = 0;
@@ -493,6 +448,14 @@ static int page_data(cli_json *j, void *ctx)
     for (int k = 0; k < p->n_y; k++)
         cli_json_string(j, t->names[p->ycols[k]]);
     cli_json_end_array(j);
+    cli_json_key(j, "labels"); /* the columns' axis labels, with units when the table has them */
+    cli_json_begin_object(j);
+    char buf[320];
+    for (int c = 1; c < t->cols; c++) {
+        cli_json_key(j, t->names[c]);
+        cli_json_string(j, col_label(t, c, buf, sizeof buf));
+    }
+    cli_json_end_object(j);
     cli_json_key(j, "rows");
     cli_json_number(j, (double)t->rows);
     cli_json_key(j, "columns"); /* the numbers of the columns drawn, in row order; nan: null */
@@ -536,8 +499,8 @@ int cli_plot_sweep_table(int argc, char **argv)
     }
     sweep_table t;
     char err[512], names[2048];
-    if (table_read(argv[0], &t, err, sizeof err)) {
-        table_free(&t);
+    if (sweep_table_read(argv[0], &t, err, sizeof err)) {
+        sweep_table_free(&t);
         return cli_usage_error("plot", "%s", err);
     }
     int rc = CLI_OK, varied[2], n_varied = 0, ycols[CLI_SVG_MAX_LINES], n_y = 0;
@@ -629,6 +592,6 @@ int cli_plot_sweep_table(int argc, char **argv)
         if (rc == CLI_OK)
             rc = close_rc;
     }
-    table_free(&t);
+    sweep_table_free(&t);
     return rc;
 }

@@ -121,6 +121,16 @@ int cli_format_of_path(const char *path, cli_format *format, char *err, size_t e
     return -1;
 }
 
+int cli_table_name_taken(const char *name)
+{
+    static const char *const taken[] = {"run",  "status", "names", "units", "model", "method",
+                                        "step", "rtol",   "atol",  "tspan", "dynkit"};
+    for (size_t i = 0; i < sizeof taken / sizeof taken[0]; i++)
+        if (strcmp(name, taken[i]) == 0)
+            return 1;
+    return 0;
+}
+
 /* ---- CSV ---- */
 
 /* One header field, quoted (RFC 4180) when it holds a comma, a quote or a line break. */
@@ -208,6 +218,9 @@ static int json_header(cli_table *tab)
     bad |= fputs(", ", out) < 0;
     bad |= json_number(out, in->t1);
     bad |= fprintf(out, "],\n  \"states\": %d,\n", in->n_y) < 0;
+    if (in->sweep)
+        bad |= fprintf(out, "  \"varied\": %d,\n  \"reduced\": %d,\n", in->n_varied,
+                       in->n_reduced) < 0;
     bad |= json_strings(out, "columns", in->names, in->cols);
     bad |= json_strings(out, "units", in->units, in->cols);
     bad |= fputs("  \"rows\": [", out) < 0;
@@ -357,7 +370,9 @@ cli_table *cli_table_open(FILE *out, cli_format format, const cli_table_info *in
     tab->out = out;
     tab->format = format;
     tab->info = *info;
-    tab->limit_rows = cli_table_limit(format, info->cols, info->n_y, &tab->limit_why);
+    /* a sweep's .mat file has a variable per column: no wider than the split of a run's */
+    tab->limit_rows = cli_table_limit(format, info->cols, info->sweep ? 0 : info->n_y,
+                                      &tab->limit_why);
     if (!tab->info.y_name)
         tab->info.y_name = "y";
     if (format == CLI_FORMAT_CSV || format == CLI_FORMAT_JSON) {

@@ -47,7 +47,16 @@ typedef struct cli_table_info {
     const char *const *names; /* (cols) column names, names[0] = "t" */
     const char *const *units; /* (cols) their units, "" when none */
     cli_header header;  /* CSV only */
+    /* A sweep's table (dynkit sweep) when sweep = 1: one row per run, column 0 the run
+     * number, then n_varied varied names, n_reduced reductions and, when a run failed, the
+     * status; n_y is then the model's number of states (JSON "states"), not a split of the
+     * columns, and .npz and .mat hold one variable per column, named as the column. */
+    int sweep, n_varied, n_reduced;
 } cli_table_info;
+
+/* 1 when a column of a sweep's table named name would have the name of another variable of
+ * its .npz or .mat file (the settings, names, units, run, status). */
+int cli_table_name_taken(const char *name);
 
 typedef struct cli_table cli_table;
 

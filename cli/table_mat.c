@@ -4,7 +4,8 @@
  * (libmatio, BSD-2-Clause) when dynkit is built with it. Variables: t (samples x 1), y
  * (samples x states), outputs (samples x outputs, when there are any), names and units (1 x
  * columns cell arrays of char, the columns of the CSV), model, method (char), step, rtol,
- * atol (scalars, when they apply), tspan (1 x 2) and dynkit (the version). matio writes to a
+ * atol (scalars, when they apply), tspan (1 x 2) and dynkit (the version); a sweep's table
+ * has a variable per column (runs x 1, named as the column) in place of t, y and outputs. matio writes to a
  * file name, so the file is made in the temporary directory ($TMPDIR or /tmp) and copied to
  * the stream the caller opened (which may be a temporary file that is renamed later).
  * matio is loaded (dlopen) when a .mat file is written, not linked: it brings HDF5 and its
@@ -180,10 +181,16 @@ int cli_mat_write(FILE *out, const cli_table_info *info, const double *data, lon
         return -1;
     }
     const int cols = info->cols, n_y = info->n_y, n_out = cols - 1 - n_y;
-    int bad = put(mat, mat_columns("t", data, rows, cols, 0, 1));
-    bad |= put(mat, mat_columns(info->y_name ? info->y_name : "y", data, rows, cols, 1, n_y));
-    if (n_out > 0)
-        bad |= put(mat, mat_columns("outputs", data, rows, cols, 1 + n_y, n_out));
+    int bad = 0;
+    if (info->sweep) { /* a variable per column, named as the column */
+        for (int j = 0; j < cols; j++)
+            bad |= put(mat, mat_columns(info->names[j], data, rows, cols, j, 1));
+    } else {
+        bad |= put(mat, mat_columns("t", data, rows, cols, 0, 1));
+        bad |= put(mat, mat_columns(info->y_name ? info->y_name : "y", data, rows, cols, 1, n_y));
+        if (n_out > 0)
+            bad |= put(mat, mat_columns("outputs", data, rows, cols, 1 + n_y, n_out));
+    }
     bad |= put(mat, mat_cell("names", info->names, cols));
     bad |= put(mat, mat_cell("units", info->units, cols));
     bad |= put(mat, mat_string("model", info->model));

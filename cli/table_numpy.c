@@ -4,7 +4,8 @@
  *   NPY format version 1.0 (numpy.lib.format; NEP 1): the magic "\x93NUMPY", the version
  *   1.0, a 2-byte little-endian header length, and the header, a Python dict literal padded
  *   with spaces and a newline so that the data starts at a multiple of 64 bytes.
- * - .npz: named arrays (t, y, outputs, names, units and the settings) as .npy members of a
+ * - .npz: named arrays (t, y, outputs, names, units and the settings; for a sweep's table an
+ *   array per column, named as the column, in place of t, y and outputs) as .npy members of a
  *   ZIP archive, stored without compression, following PKWARE's APPNOTE.TXT 6.3 (local file
  *   headers, central directory, end of central directory record; CRC-32 of ISO 3309 /
  *   ITU-T V.42, polynomial 0xEDB88320 reflected), which is what numpy.savez writes.
@@ -106,7 +107,7 @@ int cli_npy_write(FILE *out, const double *data, long rows, int cols, char *err,
 /* ---- members of the archive, each a whole .npy file in memory ---- */
 
 typedef struct member {
-    char name[32];
+    char name[208]; /* a column's name (at most 200 bytes) and ".npy" */
     unsigned char *bytes;
     size_t size;
     uint32_t crc;
@@ -319,16 +320,24 @@ static int zip_write(FILE *out, member *mbs, int n, char *err, size_t errlen)
 int cli_npz_write(FILE *out, const cli_table_info *info, const double *data, long rows,
                   char *err, size_t errlen)
 {
-    enum { MAX_MEMBERS = 16 };
-    member mbs[MAX_MEMBERS];
-    int n = 0, bad = 0;
-    memset(mbs, 0, sizeof mbs);
     const int cols = info->cols, n_y = info->n_y, n_out = cols - 1 - n_y;
-    const char *y_name = info->y_name ? info->y_name : "y";
-    bad |= member_columns(&mbs[n++], "t", data, rows, cols, 0, 1, 1);
-    bad |= member_columns(&mbs[n++], y_name, data, rows, cols, 1, n_y, 0);
-    if (n_out > 0)
-        bad |= member_columns(&mbs[n++], "outputs", data, rows, cols, 1 + n_y, n_out, 0);
+    /* a run's table: t, y, outputs; a sweep's: a member per column */
+    member *mbs = calloc((size_t)cols + 16, sizeof *mbs);
+    if (!mbs) {
+        snprintf(err, errlen, "out of memory for the npz file");
+        return -1;
+    }
+    int n = 0, bad = 0;
+    if (info->sweep) {
+        for (int j = 0; j < cols; j++)
+            bad |= member_columns(&mbs[n++], info->names[j], data, rows, cols, j, 1, 1);
+    } else {
+        bad |= member_columns(&mbs[n++], "t", data, rows, cols, 0, 1, 1);
+        bad |= member_columns(&mbs[n++], info->y_name ? info->y_name : "y", data, rows, cols, 1,
+                              n_y, 0);
+        if (n_out > 0)
+            bad |= member_columns(&mbs[n++], "outputs", data, rows, cols, 1 + n_y, n_out, 0);
+    }
     bad |= member_strings(&mbs[n++], "names", info->names, cols, 0);
     bad |= member_strings(&mbs[n++], "units", info->units, cols, 0);
     const char *model = info->model;
@@ -357,5 +366,6 @@ int cli_npz_write(FILE *out, const cli_table_info *info, const double *data, lon
     }
     for (int i = 0; i < n; i++)
         free(mbs[i].bytes);
+    free(mbs);
     return rc;
 }

@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* Data files of `dynkit run --output FILE` and `dynkit inverse --output FILE` (docs/
- * data-files.md): each format is loaded by the reader people use for it and compared with
- * the CSV of the same run, bit for bit (float64):
+/* Data files of `dynkit run --output FILE`, `dynkit inverse --output FILE` and `dynkit sweep
+ * --output FILE` (docs/data-files.md, docs/sweeps.md): each format is loaded by the reader
+ * people use for it and compared with the CSV of the same run or sweep, bit for bit
+ * (float64), names (the CSV header's in every format) and units included:
  * - .json with Python's json, .npy and .npz with numpy.load, .mat with scipy.io.loadmat
  *   (tests/formats/load_table.py, run by /usr/bin/python3) and with Octave's load
  *   (tests/formats/load_table.m, run by octave-cli); each loader prints the values exactly
@@ -168,6 +169,53 @@ static void check_format(const char *ext, const char *loader)
     }
 }
 
+/* The sweeps compared (docs/sweeps.md): a grid of two varied names with the pendulum's
+ * reductions (max:height in m, an event count, an event time in s), and an adaptive Monte
+ * Carlo table of van der Pol. Each format holds the CSV's columns under the CSV's names, with
+ * their units. */
+static const struct {
+    const char *args, *units, *meta;
+} sweeps[] = {
+    {"sweep pendulum --method rk4 --step 0.01 --tspan 0:10 --vary l=1:10:4 --vary "
+     "dphi=0.5:1.5:3 --reduce max:height,count:bottom,event:turn --quiet",
+     "units 1 m rad/s m 1 s", "states=2 varied=2 reduced=3"},
+    {"sweep vanderpol --method dp45 --tspan 0:10 --sample 'mu=uniform(0.5,2)' --sample "
+     "'y1=normal(2,0.1)' --runs 40 --seed 7 --reduce final,argmax:y1,mean:y2 --quiet",
+     "units 1 1 1 1 1/s s 1/s", "states=2 varied=2 reduced=4"},
+};
+
+/* Every sweep in format ext, loaded by loader, against its CSV. */
+static void check_sweep_format(const char *ext, const char *loader)
+{
+    for (size_t k = 0; k < sizeof sweeps / sizeof sweeps[0]; k++) {
+        cli_result r = cli_in_tmpdir("%s -o s.csv", sweeps[k].args);
+        CHECK(r.status == 0, "%s -o s.csv: exit %d: %s", sweeps[k].args, r.status, r.err);
+        cli_free(&r);
+        char *text = cli_read_file(cli_path("s.csv"), NULL);
+        parse_csv(text, &csv);
+        free(text);
+        CHECK(csv.rows > 1 && !strchr(csv.header, ':'), "%s: %ld rows, names %s",
+              sweeps[k].args, csv.rows, csv.header);
+        r = cli_in_tmpdir("%s -o s.%s", sweeps[k].args, ext);
+        CHECK(r.status == 0, "%s -o s.%s: exit %d: %s", sweeps[k].args, ext, r.status, r.err);
+        cli_free(&r);
+        char cmd[1024], what[512];
+        snprintf(cmd, sizeof cmd, "cd '%s' && %s s.%s 2>/dev/null", cli_tmpdir, loader, ext);
+        int status;
+        char *out = cli_capture(cmd, &status);
+        snprintf(what, sizeof what, "%s -o s.%s, loaded by %s", sweeps[k].args, ext, loader);
+        CHECK(status == 0, "%s: exit %d:\n%.600s", what, status, out);
+        compare(what, out, &csv);
+        if (strcmp(ext, "npy") != 0)
+            CHECK(strstr(out, sweeps[k].units) && strstr(out, "method="),
+                  "%s: not the units '%s' and the method:\n%.400s", what, sweeps[k].units, out);
+        if (strcmp(ext, "json") == 0)
+            CHECK(strstr(out, sweeps[k].meta), "%s: the counts are not '%s':\n%.400s", what,
+                  sweeps[k].meta, out);
+        free(out);
+    }
+}
+
 static void python_loader(char *buf, size_t size, const char *module, const char *ext)
 {
     char probe[128];
@@ -187,6 +235,7 @@ static void test_json_python(void **state)
     char loader[512];
     python_loader(loader, sizeof loader, "numpy", "json");
     check_format("json", loader);
+    check_sweep_format("json", loader);
 }
 
 static void test_npy_numpy(void **state)
@@ -195,6 +244,7 @@ static void test_npy_numpy(void **state)
     char loader[512];
     python_loader(loader, sizeof loader, "numpy", "npy");
     check_format("npy", loader);
+    check_sweep_format("npy", loader);
 }
 
 static void test_npz_numpy(void **state)
@@ -203,6 +253,7 @@ static void test_npz_numpy(void **state)
     char loader[512];
     python_loader(loader, sizeof loader, "numpy", "npz");
     check_format("npz", loader);
+    check_sweep_format("npz", loader);
 }
 
 /* 1 if this dynkit writes .mat (built with matio). */
@@ -228,6 +279,7 @@ static void test_mat_scipy(void **state)
     char loader[512];
     python_loader(loader, sizeof loader, "scipy.io", "mat");
     check_format("mat", loader);
+    check_sweep_format("mat", loader);
 }
 
 static void test_mat_octave(void **state)
@@ -247,6 +299,7 @@ static void test_mat_octave(void **state)
              "octave-cli --norc --quiet --no-window-system '%s/tests/formats/load_table.m'",
              DYNKIT_SOURCE_DIR);
     check_format("mat", loader);
+    check_sweep_format("mat", loader);
 }
 
 /* A table that its file cannot hold: refused before the run when the row count is known
@@ -407,6 +460,7 @@ static int teardown(void **state)
 {
     (void)state;
     static const char *const files[] = {"x.csv", "x.json", "x.npy", "x.npz", "x.mat",
+                                        "s.csv", "s.json", "s.npy", "s.npz", "s.mat",
                                         "UPPER.JSON", NULL};
     return cli_teardown_files(files);
 }

@@ -182,10 +182,10 @@ static void test_names(void **state)
     const dyn_model *pend = dyn_model_find("pendulum");
     assert_int_equal(dyn_reduce_parse(pend, "final", red, 4, &nr, err, sizeof err), 0);
     assert_int_equal(nr, 2);
-    assert_string_equal(dyn_reduce_name(pend, &red[1], buf, sizeof buf), "final:dphi");
+    assert_string_equal(dyn_reduce_name(pend, &red[1], buf, sizeof buf), "final_dphi");
     assert_int_equal(dyn_reduce_parse(pend, "max:energy,event:turn", red, 4, &nr, err, sizeof err),
                      0);
-    assert_string_equal(dyn_reduce_name(pend, &red[0], buf, sizeof buf), "max:energy");
+    assert_string_equal(dyn_reduce_name(pend, &red[0], buf, sizeof buf), "max_energy");
     assert_int_equal(red[1].source, DYN_SOURCE_EVENT);
     assert_int_equal(dyn_reduce_parse(pend, "max:nothing", red, 4, &nr, err, sizeof err), -1);
     assert_non_null(strstr(err, "states: phi, dphi; outputs: energy, height"));

@@ -51,7 +51,7 @@ static void test_period_curve(void **state)
     cli_result r = cli("sweep pendulum --method dop853 --rtol 1e-12 --atol 1e-12 --tspan 0:5 "
                        "--vary dphi=0.1:1.9:50 --reduce event:turn");
     assert_int_equal(r.status, 0);
-    assert_true(strncmp(r.out, "run,dphi,event:turn\n", 20) == 0);
+    assert_true(strncmp(r.out, "run,dphi,event_turn\n", 20) == 0);
     assert_int_equal(csv_rows(r.out), 50);
     const char *p = strchr(r.out, '\n') + 1;
     double worst = 0.0;
@@ -104,9 +104,30 @@ static void test_from(void **state)
     assert_int_equal(a.status, 0);
     assert_int_equal(b.status, 0);
     assert_string_equal(a.out, b.out);
-    assert_true(strncmp(a.out, "run,l,dphi,final:phi,final:dphi,max:energy\n", 43) == 0);
+    assert_true(strncmp(a.out, "run,l,dphi,final_phi,final_dphi,max_energy\n", 43) == 0);
     cli_free(&a);
     cli_free(&b);
+    /* a sweep's table, CSV or JSON, failed runs and all: its runs again (its varied names) */
+    cli_result t = cli_in_tmpdir("sweep vanderpol --method rk4 --step 0.5 --tspan 0:20 "
+                                 "--vary mu=1,1000,0.5 --reduce final,max:y1 --output t.json");
+    assert_int_equal(t.status, 0);
+    cli_free(&t);
+    t = cli_in_tmpdir("sweep vanderpol --method rk4 --step 0.5 --tspan 0:20 --vary mu=1,1000,0.5 "
+                      "--reduce final,max:y1 --output t.csv");
+    assert_int_equal(t.status, 0);
+    cli_free(&t);
+    char *want = cli_read_file(cli_path("t.csv"), NULL);
+    for (int k = 0; k < 2; k++) {
+        t = cli_in_tmpdir("sweep vanderpol --method rk4 --step 0.5 --tspan 0:20 --from t.%s "
+                          "--reduce final,max:y1",
+                          k ? "json" : "csv");
+        CHECK(t.status == 0 && strcmp(t.out, want) == 0, "--from t.%s: exit %d: %s%s",
+              k ? "json" : "csv", t.status, t.out, t.err);
+        cli_free(&t);
+    }
+    free(want);
+    unlink(cli_path("t.csv"));
+    unlink(cli_path("t.json"));
     /* a column that is neither a parameter nor a state */
     f = fopen(cli_path("bad.csv"), "w");
     assert_non_null(f);
@@ -125,7 +146,7 @@ static void test_failed_run(void **state)
     cli_result r = cli("sweep vanderpol --method rk4 --step 0.5 --tspan 0:20 "
                        "--vary mu=1,1000,0.5 --reduce final,max:y1");
     assert_int_equal(r.status, 0);
-    assert_non_null(strstr(r.out, "run,mu,final:y1,final:y2,max:y1,status\n"));
+    assert_non_null(strstr(r.out, "run,mu,final_y1,final_y2,max_y1,status\n"));
     assert_non_null(strstr(r.out, "\n1,1000,nan,nan,nan,nonfinite\n"));
     assert_non_null(strstr(r.out, "\n0,1,"));
     assert_non_null(strstr(r.out, "nonfinite\n2,0.5,"));
@@ -136,8 +157,10 @@ static void test_failed_run(void **state)
                       "--vary mu=1,1000,0.5 --reduce final,argmax:y1 --output t.json");
     assert_int_equal(r.status, 0);
     char *json = cli_read_file(cli_path("t.json"), NULL);
-    assert_non_null(strstr(json, "\"columns\": [\"run\", \"mu\", \"final:y1\", \"final:y2\", "
-                                 "\"argmax:y1\", \"status\"]"));
+    assert_non_null(strstr(json, "\"columns\": [\"run\", \"mu\", \"final_y1\", \"final_y2\", "
+                                 "\"argmax_y1\", \"status\"]"));
+    /* the counts: the model's states, the varied names, the reductions */
+    assert_non_null(strstr(json, "\"states\": 2,\n  \"varied\": 1,\n  \"reduced\": 3,\n"));
     assert_non_null(strstr(json, "\"units\": [\"1\", \"1\", \"1\", \"1/s\", \"s\", \"1\"]"));
     assert_non_null(strstr(json, "[1,1000,null,null,null,3]"));
     free(json);
@@ -182,6 +205,21 @@ static void test_resume(void **state)
     char *resumed = cli_read_file(cli_path("part.csv"), &len2);
     assert_int_equal(len, len2);
     assert_memory_equal(whole, resumed, len);
+    /* a table whose reductions are named OP:NAME, as earlier versions wrote them: resumed,
+     * written with the names of now */
+    f = fopen(cli_path("old.csv"), "w");
+    assert_non_null(f);
+    const char *body = strchr(whole, '\n') + 1;
+    fprintf(f, "run,mu,y1,final:y1,final:y2,max:y2\n%.*s", (int)(strchr(body, '\n') + 1 - body),
+            body);
+    fclose(f);
+    cli_result old = cli_in_tmpdir("%s --resume old.csv", args);
+    assert_int_equal(old.status, 0);
+    char *renamed = cli_read_file(cli_path("old.csv"), NULL);
+    assert_string_equal(renamed, whole);
+    free(renamed);
+    cli_free(&old);
+    unlink(cli_path("old.csv"));
     /* another sweep's table is refused */
     cli_result other = cli_in_tmpdir("sweep vanderpol --vary mu=1,2 --resume full.csv");
     assert_int_equal(other.status, 2);
@@ -322,7 +360,6 @@ static void test_errors(void **state)
         {"sweep pendulum --vary l=1,2 --runs 5", "--runs and --seed go with --sample"},
         {"sweep pendulum --vary l=1,l=2", "'l=2' is not a number"},
         {"sweep pendulum --vary l=1,2 --vary l=3", "varied twice"},
-        {"sweep pendulum --vary l=1,2 --output t.mat", "written as .csv, .json or .npy"},
         {"sweep pendulum --vary l=1,2 --output t.txt", "unknown file extension '.txt'"},
         {"sweep pendulum --vary l=1,2 --resume missing.csv", "cannot open missing.csv"},
         {"sweep", "missing MODEL"},
@@ -335,6 +372,18 @@ static void test_errors(void **state)
         assert_non_null(strstr(r.err, cases[k].message));
         cli_free(&r);
     }
+    /* a sweep's .npz and .mat have a variable per column: a varied parameter named like
+     * another of their variables is refused before the runs */
+    FILE *f = fopen(cli_path("clash.ode"), "w");
+    assert_non_null(f);
+    fputs("par step=1\nx'=-step*x\ninit x=1\ndone\n", f);
+    fclose(f);
+    cli_result c = cli_in_tmpdir("sweep clash.ode --vary step=1,2 --output c.npz");
+    CHECK(c.status == 2 && strstr(c.err, "the column step would have the name of another "
+                                         "variable of the .npz file"),
+          "a column named step in .npz: exit %d: %s", c.status, c.err);
+    cli_free(&c);
+    unlink(cli_path("clash.ode"));
     /* parameters the model refuses: a row with the status 'parameters' */
     cli_result r = cli("sweep pendulum --method rk4 --step 0.1 --tspan 0:1 --vary l=-1,1");
     assert_int_equal(r.status, 0);
@@ -362,10 +411,42 @@ static void test_plot_table(void **state)
     char *svg = cli_read_file(cli_path("p.svg"), NULL);
     assert_non_null(strstr(svg, "<svg"));
     assert_non_null(strstr(svg, "<polyline"));
-    assert_non_null(strstr(svg, "event:turn"));
-    assert_non_null(strstr(svg, "max:height"));
+    assert_non_null(strstr(svg, "event_turn"));
+    assert_non_null(strstr(svg, "max_height"));
     free(svg);
     cli_free(&r);
+    /* the same sweep's JSON table carries the units: the axes are labelled with them (a
+     * reduction may be named as in --reduce) */
+    r = cli_in_tmpdir("sweep pendulum --method rk4 --step 0.01 --tspan 0:5 "
+                      "--vary dphi=0.5:1.5:5 --reduce max:height,event:turn --output p.json");
+    assert_int_equal(r.status, 0);
+    cli_free(&r);
+    r = cli_in_tmpdir("plot p.json --y max:height --output pj.svg");
+    assert_int_equal(r.status, 0);
+    cli_free(&r);
+    svg = cli_read_file(cli_path("pj.svg"), NULL);
+    CHECK(strstr(svg, ">dphi [rad/s]</text>") && strstr(svg, ">max_height [m]</text>"),
+          "the axes of a JSON table's plot are not labelled with units:\n%.2000s", svg);
+    free(svg);
+    r = cli_in_tmpdir("sweep pendulum --method rk4 --step 0.01 --tspan 0:5 --vary l=1,2 "
+                      "--vary dphi=0.5:1.5:5 --reduce max:height,event:turn --output pg.json");
+    assert_int_equal(r.status, 0);
+    cli_free(&r);
+    r = cli_in_tmpdir("plot pg.json --y event_turn");
+    CHECK(r.status == 0 && strstr(r.out, ">l [m]</text>") && strstr(r.out, ">dphi [rad/s]</text>") &&
+              strstr(r.out, ">event_turn [s]</text>"),
+          "a heat map of a JSON table: exit %d: %s", r.status, r.err);
+    cli_free(&r);
+    r = cli_in_tmpdir("plot pg.json --y event_turn --html pg.html");
+    assert_int_equal(r.status, 0);
+    cli_free(&r);
+    char *pg = cli_read_file(cli_path("pg.html"), NULL);
+    assert_non_null(strstr(pg, "\"event_turn\":\"event_turn [s]\""));
+    free(pg);
+    unlink(cli_path("p.json"));
+    unlink(cli_path("pj.svg"));
+    unlink(cli_path("pg.json"));
+    unlink(cli_path("pg.html"));
     r = cli_in_tmpdir("sweep vanderpol --method rk4 --step 0.5 --tspan 0:20 --vary mu=0.5,1,1000 "
                       "--vary y1=1,2 --reduce max:y1,final:y2 --output g.csv");
     assert_int_equal(r.status, 0);
@@ -373,7 +454,7 @@ static void test_plot_table(void **state)
     r = cli_in_tmpdir("plot g.csv --y max:y1");
     assert_int_equal(r.status, 0);
     assert_non_null(strstr(r.out, "class=\"colorbar\""));
-    assert_non_null(strstr(r.out, "fill=\"#bbbbbb\"><title>mu=1000 y1=1: max:y1=nan"));
+    assert_non_null(strstr(r.out, "fill=\"#bbbbbb\"><title>mu=1000 y1=1: max_y1=nan"));
     long cells = 0;
     for (const char *p = strstr(r.out, "<title>mu="); p; p = strstr(p + 1, "<title>mu="))
         cells++;
@@ -396,7 +477,7 @@ static void test_plot_table(void **state)
     assert_non_null(strstr(page, "\"picture\":\"heat\""));
     assert_non_null(strstr(page, "\"other\":\"y1\""));
     assert_non_null(strstr(page, "\"mu\":[0.5,0.5,1,1,1000,1000]"));
-    assert_non_null(strstr(page, "\"max:y1\":["));
+    assert_non_null(strstr(page, "\"max_y1\":["));
     assert_non_null(strstr(page, "null")); /* the failed runs */
     free(page);
     /* values sampled at random (Monte Carlo): a line follows the varied value, not the run
@@ -449,14 +530,14 @@ static void test_plot_table(void **state)
     cli_free(&r);
     page = cli_read_file(cli_path("p.html"), NULL);
     assert_non_null(strstr(page, "\"picture\":\"lines\""));
-    assert_non_null(strstr(page, "\"y\":[\"event:turn\"]"));
+    assert_non_null(strstr(page, "\"y\":[\"event_turn\"]"));
     assert_non_null(strstr(page, "\"other\":null"));
     free(page);
     static const struct {
         const char *args, *message;
     } errors[] = {
         {"plot g.csv --y max:y1,final:y2", "shows one reduced column: give --y NAME"},
-        {"plot g.csv --y speed", "not a reduced column of g.csv (accepted: max:y1, final:y2)"},
+        {"plot g.csv --y speed", "not a reduced column of g.csv (accepted: max_y1, final_y2)"},
         {"plot g.csv --x max:y1 --y final:y2", "not a varied name of g.csv (accepted: mu, y1)"},
         {"plot missing.csv", "cannot open missing.csv"},
         {"plot g.csv --y max:y1 --compare euler", "a sweep's table takes --y"},
@@ -476,6 +557,49 @@ static void test_plot_table(void **state)
     unlink(cli_path("g.csv"));
     unlink(cli_path("g.html"));
     unlink(cli_path("p.html"));
+}
+
+/* The commands of docs/sweeps.md's pictures section run as shown, one after the other (the
+ * plots read the tables the sweeps wrote), and the heat map's axes carry the units. */
+static void test_doc_pictures(void **state)
+{
+    (void)state;
+    char *doc = cli_read_file(DYNKIT_SOURCE_DIR "/docs/sweeps.md", NULL);
+    const char *sec = strstr(doc, "## Pictures");
+    const char *block = sec ? strstr(sec, "```sh\n") : NULL;
+    const char *end = block ? strstr(block + 6, "```") : NULL;
+    CHECK(end, "docs/sweeps.md has no ```sh block under '## Pictures'");
+    char cmd[2048] = "";
+    int ran = 0;
+    for (const char *p = block + 6; p < end;) {
+        const char *nl = strchr(p, '\n');
+        char line[1024];
+        snprintf(line, sizeof line, "%.*s", (int)(nl - p), p);
+        p = nl + 1;
+        char *hash = strstr(line, " #");
+        if (hash)
+            *hash = '\0';
+        const size_t len = strlen(line);
+        const int more = len > 0 && line[len - 1] == '\\';
+        if (more)
+            line[len - 1] = '\0';
+        strncat(cmd, line, sizeof cmd - strlen(cmd) - 1);
+        if (more)
+            continue;
+        if (strncmp(cmd, "dynkit ", 7) == 0) {
+            cli_result r = cli_in_tmpdir("%s", cmd + 7);
+            CHECK(r.status == 0, "docs/sweeps.md: %s: exit %d: %s", cmd, r.status, r.err);
+            cli_free(&r);
+            ran++;
+        }
+        cmd[0] = '\0';
+    }
+    CHECK(ran >= 6, "docs/sweeps.md's pictures: %d commands run", ran);
+    char *svg = cli_read_file(cli_path("heat.svg"), NULL);
+    CHECK(strstr(svg, ">l [m]</text>") && strstr(svg, ">max_height [m]</text>"),
+          "heat.svg of docs/sweeps.md: no units on its axes");
+    free(svg);
+    free(doc);
 }
 
 /* A model file is a model like any other: the .ode van der Pol gives the built-in model's
@@ -530,6 +654,7 @@ int main(void)
         cmocka_unit_test(test_resume),       cmocka_unit_test(test_interrupt),
         cmocka_unit_test(test_help_examples), cmocka_unit_test(test_errors),
         cmocka_unit_test(test_plot_table),    cmocka_unit_test(test_model_file),
+        cmocka_unit_test(test_doc_pictures),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

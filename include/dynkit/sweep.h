@@ -91,7 +91,9 @@ typedef struct dyn_reduce {
  * reduction or name, naming what is accepted; more than max columns). */
 int dyn_reduce_parse(const dyn_model *m, const char *list, dyn_reduce *out, int max,
                      int *count, char *err, size_t errlen);
-/* The column's name, "OP:NAME" (e.g. "max:height", "event:turn"), into buf; returns buf. */
+/* The column's name, "OP_NAME" (e.g. "max_height", "event_turn" for max:height and
+ * event:turn: a name that NumPy, pandas, MATLAB and Octave keep as it is), into buf;
+ * returns buf. */
 char *dyn_reduce_name(const dyn_model *m, const dyn_reduce *r, char *buf, size_t size);
 
 /* ---- the sweep ---- */

@@ -1,6 +1,8 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* The names of a sweep: run-table columns (parameters, then states) and reductions
- * ("final", "max:NAME", "event:NAME", ...), parsed and printed (dynkit/sweep.h). */
+/* The names of a sweep: run-table columns (parameters, then states) and reductions, parsed
+ * as given ("final", "max:NAME", "event:NAME", ...) and named as columns ("max_NAME",
+ * "event_NAME": letters, digits and '_', which NumPy, pandas, MATLAB and Octave keep as they
+ * are; dynkit/sweep.h). */
 #include <stdio.h>
 #include <string.h>
 
@@ -72,7 +74,7 @@ char *dyn_reduce_name(const dyn_model *m, const dyn_reduce *r, char *buf, size_t
     const char *name = r->source == DYN_SOURCE_STATE    ? m->states[r->index].name
                        : r->source == DYN_SOURCE_OUTPUT ? m->outputs[r->index].name
                                                         : m->events[r->index].name;
-    snprintf(buf, size, "%s:%s", op, name);
+    snprintf(buf, size, "%s_%s", op, name);
     return buf;
 }
 

@@ -12,7 +12,7 @@
 // (#t=..&speed=..) opens the page there and follows the player. On the report also: the
 // figures of the three studies of many runs are drawn and fit the width (the period curve,
 // the two histograms, the slip map with its cells, colour bar and boundary). And a sweep's
-// table as a page (`dynkit plot TABLE.csv --html`): a heat map and lines.
+// table as a page (`dynkit plot TABLE.json --html`): a heat map and lines.
 // Screenshots go to the artifacts directory (at 390 px wide with the suffix -390).
 //
 // Usage: node run.mjs DYNKIT_BINARY [ARTIFACTS_DIR]
@@ -108,14 +108,14 @@ if (pages.some(p => p.name === 'vanderpol')) {
   pages.push({ name: 'generic', file, generic: true });
 }
 
-// a sweep's table as a page (dynkit plot TABLE.csv --html): a heat map and lines
+// a sweep's table as a page (dynkit plot TABLE.json --html, axes with units): a heat map and lines
 const sweepPages = [];
 if (!process.env.DYNKIT_BROWSER_ONLY || process.env.DYNKIT_BROWSER_ONLY.split(',').includes('sweep')) {
-  const grid = path.join(artifacts, 'sweep-grid.csv');
+  const grid = path.join(artifacts, 'sweep-grid.json');
   run(['sweep', 'pendulum', '--method', 'rk4', '--step', '0.01', '--tspan', '0:10', '--vary', 'l=1:10:10',
     '--vary', 'dphi=0.5:2.5:12', '--reduce', 'max:height,count:bottom', '--output', grid]);
-  sweepPages.push({ name: 'sweep-heat', runs: 120, heat: true, args: ['plot', grid, '--y', 'max:height', '--html'] },
-    { name: 'sweep-lines', runs: 120, lines: 10, args: ['plot', grid, '--x', 'dphi', '--y', 'count:bottom', '--html'] });
+  sweepPages.push({ name: 'sweep-heat', runs: 120, heat: true, args: ['plot', grid, '--y', 'max_height', '--html'] },
+    { name: 'sweep-lines', runs: 120, lines: 10, args: ['plot', grid, '--x', 'dphi', '--y', 'count_bottom', '--html'] });
   for (const p of sweepPages) {
     p.file = path.join(artifacts, `${p.name}.html`);
     run(p.args.concat(p.file));

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* dynkit page: 'dynkit plot TABLE.csv --html' — a sweep's table (dynkit sweep) as the picture
+/* dynkit page: 'dynkit plot TABLE.csv|TABLE.json --html' — a sweep's table (dynkit sweep) as the picture
  * the SVG of cli/sweep_plot.c draws: lines of the reduced columns against the varied name
  * (one line per value of a second varied name, with --x), or a heat map of one reduced
  * column over the grid of two varied names (web/js/heatmap.js), or a point per run when
@@ -16,6 +16,8 @@
 
   DK.buildSweep = function (data) {
     const C = data.columns, fig = document.querySelector('[data-fig="sweep"]');
+    /* a column's axis label: its name, with its unit when the table carries units */
+    const L = name => (data.labels && data.labels[name]) || name;
     document.getElementById('title').textContent = data.title;
     document.getElementById('subtitle').textContent = data.rows + ' runs · ' +
       (data.picture === 'heat' ? data.y[0] + ' over ' + data.x + ' and ' + data.other : data.y.join(', ') + ' against ' + data.x);
@@ -36,7 +38,7 @@
       }
       const failed = line(C[data.x], C[data.other], r => z[r] === null || !isFinite(z[r]));
       if (failed.x.length) series.push(Object.assign({ label: 'failed or nan', color: '#bbbbbb', width: 0, markers: 3 }, failed));
-      new DK.Plot(body, { title: data.y[0], xlabel: data.x, ylabel: data.other, cursor: 'none', legend: 'tr', legendValues: false, series });
+      new DK.Plot(body, { title: data.y[0], xlabel: L(data.x), ylabel: L(data.other), cursor: 'none', legend: 'tr', legendValues: false, series });
       fig.appendChild(DK.el('figcaption', { text: 'A point per run (the values were sampled, not a grid), coloured by ' + data.y[0] + ' in eighths of its range; grey: a failed run or nan.' }));
       return;
     }
@@ -46,7 +48,7 @@
         const i = xv.indexOf(x), j = yv.indexOf(C[data.other][r]);
         if (i >= 0 && j >= 0) z[i * yv.length + j] = C[data.y[0]][r];
       });
-      DK.heatMap(body, { title: data.y[0], xlabel: data.x, ylabel: data.other, zlabel: data.y[0], x: xv, y: yv, z, lines: [] });
+      DK.heatMap(body, { title: data.y[0], xlabel: L(data.x), ylabel: L(data.other), zlabel: L(data.y[0]), x: xv, y: yv, z, lines: [] });
       fig.appendChild(DK.el('figcaption', { text: 'A cell per run (edges halfway between neighbouring values), viridis colours; grey: a failed run or nan.' }));
       return;
     }
@@ -59,7 +61,7 @@
       series = data.y.map((name, k) => Object.assign({ label: name, color: DK.colors[k % DK.colors.length], markers: 2.5 }, line(C[data.x], C[name], () => true)));
     }
     new DK.Plot(body, {
-      title: data.title, xlabel: data.x, ylabel: data.y.length === 1 || data.other ? data.y[0] : '', cursor: 'none', legend: 'tr', legendValues: false, series
+      title: data.title, xlabel: L(data.x), ylabel: data.y.length === 1 || data.other ? L(data.y[0]) : '', cursor: 'none', legend: 'tr', legendValues: false, series
     });
     fig.appendChild(DK.el('figcaption', { text: 'A point per run; gaps: failed runs or nan.' }));
   };

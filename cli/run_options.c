@@ -86,7 +86,9 @@ void cli_run_options_help(FILE *out)
           "  --outputs            add the model's extra outputs (energy, ...) as columns\n"
           "  --trace N            print each stage of the first N steps on stderr\n"
           "  --stats              print the counts on stderr: steps=N accepted=N rejected=N rhs=N\n"
-          "                       (+ jac=N for stiff methods)\n"
+          "                       (+ jac=N for stiff methods, and jac_fd_columns=N when\n"
+          "                       columns of the exact Jacobian were not finite and were\n"
+          "                       formed by differences instead)\n"
           "  --quiet              no progress display on stderr\n",
           out);
 }

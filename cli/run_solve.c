@@ -285,6 +285,9 @@ char *cli_stats_line(const cli_run *run, const dyn_result *res, char *buf, size_
     int w = snprintf(buf, size, "steps=%ld accepted=%ld rejected=%ld rhs=%ld", s->steps,
                      s->accepted, s->rejected, s->rhs_calls);
     if (dyn_method_is_stiff(run->method) && w >= 0 && (size_t)w < size)
-        snprintf(buf + w, size - (size_t)w, " jac=%ld", s->jac_calls);
+        w += snprintf(buf + w, size - (size_t)w, " jac=%ld", s->jac_calls);
+    /* columns of the exact Jacobian that could not be evaluated (an entry not finite) */
+    if (s->jac_fd_columns > 0 && w >= 0 && (size_t)w < size)
+        snprintf(buf + w, size - (size_t)w, " jac_fd_columns=%ld", s->jac_fd_columns);
     return buf;
 }

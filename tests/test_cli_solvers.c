@@ -67,6 +67,48 @@ static int stats_of(const char *err, long *steps, long *acc, long *rej, long *rh
     return 0;
 }
 
+/* ---- an exact Jacobian that cannot be evaluated ---- */
+
+/* x' = -x + 1/(1 + kb (1 + 1/p)), p' = -p, p(0) = 0: p stays 0, where the fraction is 0 and
+ * x = exp(-t); the exact Jacobian's d/dp entry is NaN there (0 * inf). rodas4 and cvode take
+ * that column by differences (jac_fd_columns in --stats) and agree with dp45 and with
+ * exp(-5) at tight tolerances. */
+static void test_jacobian_not_finite_where_f_is(void **state)
+{
+    (void)state;
+    FILE *f = fopen(cli_path("pole.ode"), "w");
+    assert_non_null(f);
+    fputs("par kb=0.4\nx'=-x+1/(1+kb*(1+1/p))\np'=-p\ninit x=1,p=0\ndone\n", f);
+    fclose(f);
+    const double exact = exp(-5.0);
+    double dp45 = NAN;
+    static const char *const methods[] = {"dp45", "rodas4", "cvode"};
+    const int n_methods = cli_has_cvode() ? 3 : 2;
+    for (int k = 0; k < n_methods; k++) {
+        cli_result r = cli("run %s --method %s --tspan 0:5 --rtol 1e-10 --atol 1e-12 --final "
+                           "--stats",
+                           cli_path("pole.ode"), methods[k]);
+        CHECK(r.status == 0, "%s: exit %d: %s", methods[k], r.status, r.err);
+        double v[3];
+        assert_int_equal(last_row(r.out, v, 3), 3);
+        assert_true(v[0] == 5.0 && v[2] == 0.0);
+        const double tol = k == 2 ? 1e-9 : 1e-11; /* cvode's BDF: 2e-10 measured */
+        CHECK(fabs(v[1] - exact) < tol, "%s: x(5) = %.17g, exp(-5) = %.17g", methods[k], v[1],
+              exact);
+        if (k == 0)
+            dp45 = v[1];
+        else
+            CHECK(fabs(v[1] - dp45) < tol, "%s: x(5) = %.17g, dp45 %.17g", methods[k], v[1], dp45);
+        const char *cols = strstr(r.err, " jac_fd_columns=");
+        if (k == 0)
+            CHECK(!cols, "dp45 has no Jacobian: %s", r.err);
+        else
+            CHECK(cols && atol(cols + 16) > 0, "%s: no jac_fd_columns > 0 in: %s", methods[k],
+                  r.err);
+        cli_free(&r);
+    }
+}
+
 /* ---- cvode ---- */
 
 static void test_cvode_robertson(void **state)
@@ -350,6 +392,7 @@ int main(void)
         cmocka_unit_test(test_progress_on_a_terminal),
         cmocka_unit_test(test_stiff_defaults),
         cmocka_unit_test(test_tolerances_with_compare),
+        cmocka_unit_test(test_jacobian_not_finite_where_f_is),
     };
     return cmocka_run_group_tests(tests, cli_setup, teardown);
 }

@@ -3,7 +3,9 @@
  * analytic derivatives: the error is about sqrt(eps) relative to the scale of the entries,
  * every column costs one call of f, a state at zero of a stiff system gets a usable
  * increment, states far below one need a typical size of their own (and get it), the state
- * passed in is left alone, and a failing f is passed through. */
+ * passed in is left alone, and a failing f is passed through; an exact Jacobian whose
+ * column is not finite where f is (dyn_jacobian_mend) gets that column by differences: the
+ * one-sided limit of the derivative, backward when f is defined on that side only. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -12,6 +14,7 @@
 #include <cmocka.h>
 #include <float.h>
 
+#include "dynkit/ode.h"
 #include "ode/jacobian.h"
 #include "test_util.h"
 
@@ -184,6 +187,106 @@ static void test_failing_rhs_is_passed_through(void **state)
     assert_int_equal(dyn_fd_dfdt(&sys, 0.0, y, f0, 1.0, ft, work, &rhs), 7);
 }
 
+/* ---- an exact Jacobian mended where it cannot be evaluated (dyn_jacobian_mend) ---- */
+
+/* x' = -x + 1/(1 + kb (1 + 1/p)), p' = -p: at p = 0, 1/p = inf and the fraction is 0, so f
+ * is finite; its derivative in p, kb / (p^2 (1 + kb (1 + 1/p))^2), is 0 * inf = NaN there,
+ * while the one-sided limit is 1/kb (the fraction is p / (kb + (1 + kb) p)). */
+#define KB 0.4
+
+static int f_pole(double t, const double *y, double *f, void *par)
+{
+    (void)t;
+    int *calls = par;
+    if (calls)
+        (*calls)++;
+    f[0] = -y[0] + 1.0 / (1.0 + KB * (1.0 + 1.0 / y[1]));
+    f[1] = -y[1];
+    return 0;
+}
+
+static void jac_pole(const double *y, double *J)
+{
+    const double q = 1.0 + KB * (1.0 + 1.0 / y[1]);
+    J[0] = -1.0;
+    J[1] = KB / (y[1] * y[1] * q * q);
+    J[2] = 0.0;
+    J[3] = -1.0;
+}
+
+static void test_columns_that_are_not_finite_are_differenced(void **state)
+{
+    (void)state;
+    int calls = 0;
+    dyn_system sys = {f_pole, 2, &calls};
+    double y[2] = {1.0, 0.0}, f0[2], J[4], work[4];
+    f_pole(0.0, y, f0, NULL);
+    jac_pole(y, J);
+    assert_true(isfinite(f0[0]) && isfinite(f0[1]) && isnan(J[1])); /* the case itself */
+    long rhs = 0, columns = 0;
+    assert_int_equal(dyn_jacobian_mend(&sys, 0.0, y, f0, NULL, J, work, &rhs, &columns), 0);
+    assert_int_equal(columns, 1); /* column p only */
+    assert_int_equal(rhs, 1);
+    assert_int_equal(calls, 1);
+    assert_true(J[0] == -1.0 && J[2] == 0.0); /* the finite column untouched */
+    /* the forward difference with d = sqrt(eps): (f1(d) - f1(0))/d = 1/(kb + (1 + kb) d),
+     * the limit 1/kb = 2.5 less 1.3e-7, up to the rounding of f1 = -1 + ...: eps |f1| / d */
+    const double d = sqrt(DBL_EPSILON), quotient = 1.0 / (KB + (1.0 + KB) * d);
+    const double rounding = 2.0 * DBL_EPSILON / d;
+    CHECK(fabs(J[1] - quotient) < rounding && fabs(J[1] - 1.0 / KB) < 2e-7,
+          "d f1/dp = %.17g, the quotient %.17g", J[1], quotient);
+    CHECK(fabs(J[3] + 1.0) < 1e-12, "d f2/dp = %.17g", J[3]);
+    assert_true(y[0] == 1.0 && y[1] == 0.0);
+
+    /* a finite Jacobian costs nothing; neither does one where f itself is not finite */
+    jac_pole((double[]){1.0, 0.5}, J);
+    const double J1 = J[1];
+    rhs = columns = 0;
+    dyn_jacobian_mend(&sys, 0.0, (double[]){1.0, 0.5}, f0, NULL, J, work, &rhs, &columns);
+    assert_true(rhs == 0 && columns == 0 && J[1] == J1);
+    double fbad[2] = {NAN, 0.0};
+    jac_pole(y, J);
+    dyn_jacobian_mend(&sys, 0.0, y, fbad, NULL, J, work, &rhs, &columns);
+    assert_true(rhs == 0 && columns == 0 && isnan(J[1]));
+
+    /* the same in band storage (lower = upper = 1: the whole 2 x 2 matrix) */
+    double B[6] = {0};
+    jac_pole(y, J);
+    for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 2; j++)
+            DYN_BAND_AT(B, 1, 1, i, j) = J[i * 2 + j];
+    rhs = columns = 0;
+    assert_int_equal(dyn_jacobian_band_mend(&sys, 0.0, y, f0, NULL, 1, 1, B, work, &rhs,
+                                            &columns), 0);
+    assert_true(columns == 1 && rhs == 1);
+    CHECK(fabs(DYN_BAND_AT(B, 1, 1, 0, 1) - quotient) < rounding, "band: %.17g",
+          DYN_BAND_AT(B, 1, 1, 0, 1));
+    assert_true(DYN_BAND_AT(B, 1, 1, 0, 0) == -1.0 && DYN_BAND_AT(B, 1, 1, 1, 0) == 0.0);
+}
+
+/* f = p + 0 sqrt(-p): defined for p <= 0 only, so the forward difference at p = 0 is NaN
+ * and the backward one gives the slope 1; the formula of the derivative, 1 + 0 (-inf), is
+ * NaN. */
+static int f_left(double t, const double *y, double *f, void *par)
+{
+    (void)t;
+    (void)par;
+    f[0] = y[0] + 0.0 * sqrt(-y[0]);
+    return 0;
+}
+
+static void test_one_sided_formula_is_differenced_backward(void **state)
+{
+    (void)state;
+    dyn_system sys = {f_left, 1, NULL};
+    double y[1] = {0.0}, f0[1], J[1] = {NAN}, work[2];
+    f_left(0.0, y, f0, NULL);
+    long rhs = 0, columns = 0;
+    assert_int_equal(dyn_jacobian_mend(&sys, 0.0, y, f0, NULL, J, work, &rhs, &columns), 0);
+    assert_true(columns == 1 && rhs == 2); /* forward (NaN), then backward */
+    CHECK(fabs(J[0] - 1.0) < 1e-12, "J = %.17g", J[0]);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -192,6 +295,8 @@ int main(void)
         cmocka_unit_test(test_zero_state_of_a_stiff_system),
         cmocka_unit_test(test_time_derivative),
         cmocka_unit_test(test_failing_rhs_is_passed_through),
+        cmocka_unit_test(test_columns_that_are_not_finite_are_differenced),
+        cmocka_unit_test(test_one_sided_formula_is_differenced_backward),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -2,7 +2,8 @@
 /* cvode.c — the SUNDIALS CVODE backend (dynkit/cvode.h): a dyn_system solved by CVODE's
  * variable-order BDF (or Adams) method with Newton iteration and the dense direct linear
  * solver (the band matrix and solver when the Jacobian is banded), the model's Jacobian when
- * it has one (Hindmarsh et al., ACM TOMS 31 (2005);
+ * it has one, its columns with an entry that is not finite formed by differences
+ * (dyn_jacobian_mend) (Hindmarsh et al., ACM TOMS 31 (2005);
  * CVODE user guide v6). Works with SUNDIALS 6 and 7 (the context and error-handler calls
  * differ and are selected by SUNDIALS_VERSION_MAJOR).
  */
@@ -33,7 +34,10 @@ typedef struct cv_user {
     const dyn_system *sys;
     dyn_jac_fn jac;
     double *jbuf;      /* (n x n) row-major Jacobian from the user's function, or its band */
+    double *jwork;     /* (2 n) for the columns mended by differences (dyn_jacobian_mend) */
     int lower, upper;  /* the band, when jbuf holds one */
+    long jac_rhs_calls; /* calls of f for those columns (CVODE does not count them) */
+    long jac_fd_columns; /* columns mended */
     const double *rtolv, *atolv; /* per-state tolerances (cv_ewt), or NULL */
     double atol;       /* scalar absolute tolerance when atolv is NULL */
     int rhs_status;    /* non-zero value f or jac returned */
@@ -54,10 +58,19 @@ static int cv_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void *user_data)
 }
 
 /* The model's Jacobian at (t, y) into u->jbuf (dense or band storage, as the model gives
- * it); non-zero when it failed, with the failure recorded as a right-hand side's. */
-static int jac_into_buffer(cv_user *u, sunrealtype t, N_Vector y)
+ * it), its columns with an entry that is not finite formed by differences where f(t, y) =
+ * fy is finite (dyn_jacobian_mend); non-zero when it failed, with the failure recorded as
+ * a right-hand side's. */
+static int jac_into_buffer(cv_user *u, sunrealtype t, N_Vector y, N_Vector fy, int banded)
 {
-    int rc = u->jac(t, N_VGetArrayPointer(y), u->jbuf, u->sys->par);
+    const double *yv = N_VGetArrayPointer(y), *f0 = N_VGetArrayPointer(fy);
+    int rc = u->jac(t, yv, u->jbuf, u->sys->par);
+    if (!rc && banded)
+        rc = dyn_jacobian_band_mend(u->sys, t, yv, f0, NULL, u->lower, u->upper, u->jbuf,
+                                    u->jwork, &u->jac_rhs_calls, &u->jac_fd_columns);
+    else if (!rc)
+        rc = dyn_jacobian_mend(u->sys, t, yv, f0, NULL, u->jbuf, u->jwork, &u->jac_rhs_calls,
+                               &u->jac_fd_columns);
     if (rc) {
         u->rhs_status = rc;
         u->fail_t = t;
@@ -69,12 +82,11 @@ static int cv_jac(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void *use
                   N_Vector tmp1, N_Vector tmp2, N_Vector tmp3)
 {
     cv_user *u = user_data;
-    (void)fy;
     (void)tmp1;
     (void)tmp2;
     (void)tmp3;
     const int n = u->sys->n;
-    if (jac_into_buffer(u, t, y))
+    if (jac_into_buffer(u, t, y, fy, 0))
         return -1;
     for (int j = 0; j < n; j++) {
         sunrealtype *col = SUNDenseMatrix_Column(J, j); /* column-major */
@@ -90,12 +102,11 @@ static int cv_jac_band(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void
                        N_Vector tmp1, N_Vector tmp2, N_Vector tmp3)
 {
     cv_user *u = user_data;
-    (void)fy;
     (void)tmp1;
     (void)tmp2;
     (void)tmp3;
     const int n = u->sys->n, kl = u->lower, ku = u->upper;
-    if (jac_into_buffer(u, t, y))
+    if (jac_into_buffer(u, t, y, fy, 1))
         return -1;
     for (int j = 0; j < n; j++) {
         sunrealtype *col = SUNBandMatrix_Column(J, j);
@@ -201,10 +212,12 @@ static int cv_open(cv_solver *cs, const dyn_system *sys, double t0, const double
     cs->u.atolv = opts->atolv;
     cs->u.atol = atol;
     cs->ycur = malloc(N * sizeof *cs->ycur);
-    if (jac)
+    if (jac) {
         cs->u.jbuf = malloc((banded ? N * (size_t)(cs->u.lower + cs->u.upper + 1) : N * N) *
                             sizeof *cs->u.jbuf);
-    if (!cs->ycur || (jac && !cs->u.jbuf))
+        cs->u.jwork = malloc(2 * N * sizeof *cs->u.jwork);
+    }
+    if (!cs->ycur || (jac && (!cs->u.jbuf || !cs->u.jwork)))
         return fail(res, DYN_ERR_ARG, "out of memory", NULL);
     memcpy(cs->ycur, y0, N * sizeof *cs->ycur);
 
@@ -309,8 +322,9 @@ static void cv_counters(const cv_solver *cs, dyn_result *res)
     res->stats.accepted = nst;
     res->stats.rejected = netf + ncf;
     res->stats.steps = nst + netf + ncf;
-    res->stats.rhs_calls = nfe + nfeLS;
+    res->stats.rhs_calls = nfe + nfeLS + cs->u.jac_rhs_calls;
     res->stats.jac_calls = nje;
+    res->stats.jac_fd_columns = cs->u.jac_fd_columns;
     sunrealtype hlast = 0;
     CVodeGetLastStep(cs->mem, &hlast);
     res->h_last = hlast;
@@ -333,6 +347,7 @@ static void cv_close(cv_solver *cs, int n, double *y)
     if (cs->sctx)
         SUNContext_Free(&cs->sctx);
     free(cs->u.jbuf);
+    free(cs->u.jwork);
     free(cs->ycur);
 }
 

@@ -224,6 +224,8 @@ typedef struct dyn_stats {
     long accepted;   /* accepted steps (for fixed steps: every step) */
     long rejected;   /* adaptive: rejected steps */
     long jac_calls;  /* evaluations of the Jacobian (stiff methods) */
+    long jac_fd_columns; /* columns of exact Jacobians formed by differences instead, an
+                          * entry not being finite (dyn_jacobian_mend) */
 } dyn_stats;
 
 /* Called with every kept sample (k = sample index); return non-zero to stop the solve. */
@@ -298,6 +300,24 @@ int dyn_fixed_solve(const dyn_tableau *m, const dyn_system *sys, double t0, doub
  * y1 may equal y0. Returns 0 or the non-zero value of f. Adds s to *rhs_calls if non-NULL. */
 int dyn_rk_step(const dyn_tableau *m, const dyn_system *sys, double t, double h,
                 const double *y0, double *y1, double *work, long *rhs_calls);
+
+/* An exact Jacobian J (n x n, row-major, from a dyn_jac_fn at (t, y)) mended where it
+ * cannot be evaluated: each column with an entry that is not finite, while f0 = f(t, y) is
+ * finite, is formed by a forward difference instead (backward when that is not finite
+ * either), with the increments of the stiff methods' difference Jacobians: sqrt(eps)
+ * max(|y_j|, typ_j), typ (n) the states' typical magnitudes or NULL for 1. A formula can
+ * be finite where its derivative is not: 1/(1 + 1/p) is 0 at p = 0, its derivative's
+ * formula inf * 0. work has 2n doubles. Adds the columns replaced to *columns and the
+ * calls of f to *rhs_calls (either may be NULL). Returns 0 or the non-zero value of f. The
+ * stiff methods (rodas4, cvode) call it on every exact Jacobian. */
+int dyn_jacobian_mend(const dyn_system *sys, double t, const double *y, const double *f0,
+                      const double *typ, double *J, double *work, long *rhs_calls,
+                      long *columns);
+/* The same for a banded Jacobian in DYN_BAND_AT storage (entries outside the matrix are
+ * neither read nor written). */
+int dyn_jacobian_band_mend(const dyn_system *sys, double t, const double *y, const double *f0,
+                           const double *typ, int lower, int upper, double *J, double *work,
+                           long *rhs_calls, long *columns);
 
 /* The homework's [tout, yout] = Integrate_X(odefun, tspan, Ts, y0, par), into caller arrays:
  * tout has grid->samples entries and yout is (samples x n) row-major, where the grid is

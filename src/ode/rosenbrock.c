@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* rosenbrock.c — one step of a linearly implicit Rosenbrock method in the transformed form
  * of Hairer & Wanner, "Solving ODEs II", sec. IV.7, eq. (7.4') (their code RODAS), with an
- * analytic or forward-difference Jacobian and a forward-difference df/dt; the dense output
+ * analytic (mended by differences where an entry is not finite) or forward-difference
+ * Jacobian and a forward-difference df/dt; the dense output
  * of RODAS (CONTRO), with dense or band matrices (band_lu.c, jacobian_band.c); and a simple adaptive loop with RODAS's step-size control (sec. IV.8,
  * with Gustafsson's predictive controller) for tests and reference computations.
  */
@@ -90,6 +91,8 @@ int dyn_ros_linearize(const dyn_ros_problem *p, double t, double h, const double
             ws->rhs_status = rc;
             return DYN_ROS_JAC_FAIL;
         }
+        rc = dyn_jacobian_band_mend(sys, t, y, ws->f0, p->typ, ws->lower, ws->upper, ws->J,
+                                    ws->scratch, &calls, &st->jac_fd_columns);
     } else if (ws->banded) {
         rc = dyn_fd_jacobian_band(sys, t, y, ws->f0, p->typ, ws->lower, ws->upper, ws->J,
                                   ws->scratch, &calls);
@@ -99,6 +102,8 @@ int dyn_ros_linearize(const dyn_ros_problem *p, double t, double h, const double
             ws->rhs_status = rc;
             return DYN_ROS_JAC_FAIL;
         }
+        rc = dyn_jacobian_mend(sys, t, y, ws->f0, p->typ, ws->J, ws->scratch, &calls,
+                               &st->jac_fd_columns);
     } else {
         rc = dyn_fd_jacobian(sys, t, y, ws->f0, p->typ, ws->J, ws->scratch, &calls);
     }

@@ -87,6 +87,8 @@ typedef struct dyn_ros_stats {
     long rhs_calls;          /* every evaluation of f, including those below */
     long jac_evals;          /* Jacobians formed: analytic calls or difference matrices */
     long jac_rhs_calls;      /* evaluations of f for difference Jacobians and df/dt */
+    long jac_fd_columns;     /* columns of the analytic Jacobian formed by differences, an
+                              * entry not being finite (dyn_jacobian_mend) */
     long lu_decomps;         /* factorisations of I/(h gamma) - J */
     long lin_solves;         /* forward/back substitutions (one per stage) */
 } dyn_ros_stats;

@@ -706,6 +706,7 @@ finish:
     res->t = t;
     res->stats.rhs_calls = st.rhs_calls;
     res->stats.jac_calls = st.jac_calls;
+    res->stats.jac_fd_columns = st.jac_fd_columns;
     if (y && y != ycur)
         memcpy(y, ycur, N * sizeof *y);
     return res->status;

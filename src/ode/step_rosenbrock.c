@@ -122,6 +122,7 @@ static int ros_attempt(dyn_stepper *st, double t, double h, const double *y, dou
         rc = dyn_ros_step(v.rm, &p, t, h, y, &v.ws, ynew, v.err, NULL, &rs);
     st->rhs_calls += rs.rhs_calls;
     st->jac_calls += rs.jac_evals;
+    st->jac_fd_columns += rs.jac_fd_columns;
     *v.h_lu = v.ws.h_lu;
     if (rc == DYN_ROS_SINGULAR) {
         *err = INFINITY;

@@ -113,6 +113,7 @@ struct dyn_stepper {
     double *work;       /* ops->work_size doubles */
     int *iwork;         /* ops->iwork_size ints */
     long rhs_calls, jac_calls;
+    long jac_fd_columns; /* exact Jacobians' columns formed by differences */
     double fail_t;      /* time of the failing evaluation */
     dyn_trace_fn trace; /* stages of the first trace_steps attempts */
     void *trace_ctx;

@@ -2,8 +2,10 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # Checks an installed dynkit (prefix as $1): the CLI runs, its manual page and bash completion
 # are there, a CMake project finds the package with find_package(dynkit) and builds on
-# dynkit::dynkit and dynkit::sweep, and pkg-config
-# compiles and links the example.
+# dynkit::dynkit, dynkit::sweep, dynkit::lang and dynkit::jit, and pkg-config compiles and
+# links the same programs with dynkit.pc and the component's dynkit-NAME.pc. The programs
+# print known numbers: the pendulum's first turn (docs/sweeps.md) and the closed-form
+# solution of a damped linear oscillator loaded from an .ode file (ode_user.c).
 set -euo pipefail
 prefix="$1"
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -23,7 +25,23 @@ LD_LIBRARY_PATH="$prefix/lib:$prefix/lib64:${LD_LIBRARY_PATH:-}" "$work/cmake/us
 # dynkit::sweep: docs/sweeps.md's example, the pendulum's first turn of run 49 on 2 threads
 turn=$(OMP_NUM_THREADS=2 "$work/cmake/user_sweep")
 [ "$turn" = "2.59001123087446" ] || { echo "dynkit::sweep's example printed '$turn'"; exit 1; }
+# the model-file API: oscillator.ode translated, compiled (the system compiler, into a cache
+# of this check) and run; ode_user exits 1 unless x(5) is the closed form's to 1e-9 m
+export DYNKIT_CACHE_DIR="$work/cache"
+LD_LIBRARY_PATH="$prefix/lib:$prefix/lib64:${LD_LIBRARY_PATH:-}" "$work/cmake/user_ode" \
+  "$here/oscillator.ode"
 libdir=$(ls -d "$prefix"/lib*/pkgconfig | head -n1)
+# a .pc file per component; the sweep and the model file built with theirs
+for pc in dynkit dynkit-sweep dynkit-lang dynkit-jit; do
+  [ -f "$libdir/$pc.pc" ] || { echo "$pc.pc not installed"; exit 1; }
+done
+cc -std=c11 "$here/sweep_user.c" -o "$work/pc_sweep" \
+  $(PKG_CONFIG_PATH="$libdir" pkg-config --cflags --libs dynkit-sweep)
+turn=$(OMP_NUM_THREADS=2 "$work/pc_sweep")
+[ "$turn" = "2.59001123087446" ] || { echo "dynkit-sweep.pc's sweep printed '$turn'"; exit 1; }
+cc -std=c11 "$here/ode_user.c" -o "$work/pc_ode" \
+  $(PKG_CONFIG_PATH="$libdir" pkg-config --cflags --libs dynkit-jit dynkit-lang)
+env -u LD_LIBRARY_PATH "$work/pc_ode" "$here/oscillator.ode"
 PKG_CONFIG_PATH="$libdir" cc -std=c11 "$here/../../examples/vanderpol.c" -o "$work/pc_example" \
   $(PKG_CONFIG_PATH="$libdir" pkg-config --cflags --libs --static dynkit)
 LD_LIBRARY_PATH="$prefix/lib:$prefix/lib64:${LD_LIBRARY_PATH:-}" "$work/pc_example"
@@ -44,4 +62,5 @@ if [ -f "$libdir/dynkit-cvode.pc" ]; then
   grep -q '^cvode ' <<<"$methods" || { echo "dynkit methods lacks cvode"; exit 1; }
   echo "install check: dynkit::cvode and dynkit-cvode.pc work"
 fi
-echo "install check: find_package (dynkit::dynkit, dynkit::sweep) and pkg-config work"
+echo "install check: find_package (dynkit::dynkit, dynkit::sweep, dynkit::lang, dynkit::jit)" \
+  "and pkg-config (dynkit, dynkit-sweep, dynkit-lang, dynkit-jit) work"

@@ -380,6 +380,19 @@ static void test_errors_name_the_place(void **state_)
     snprintf(buf, sizeof buf, "%spoint p mass=m at (x, y, 0)\nforce f on p = (1, 2)\n", head);
     expect_error(buf, "bad.mech:4:21:", "expected ',' in the force");
     expect_error("par m=1\npoint p mass=m at (0, 0, 0)\n", "bad.mech", "no coordinates");
+    expect_error("coord x=1 [m], y=0 [m], z=0 [m]\npoint p mass=1 at (x, y, 0)\n",
+                 "bad.mech:1:25:", "no mass or inertia moves with z");
+    expect_error("coord x=1, y=0\npoint p mass=1 at (x+y, x+y, 0)\n", "bad.mech:1:12:",
+                 "y moves no mass that the coordinates before it do not");
+    expect_error("coord x=1, y=0\npoint p mass=1 at (x, y, 0)\nconstraint c1: x^2+y^2-2 = 0\n",
+                 "bad.mech:3:12:", "constraint 'c1' does not hold at the initial state: its "
+                 "value is -1");
+    expect_error("coord x=1, y=0\ninit dx=1\npoint p mass=1 at (x, y, 0)\n"
+                 "constraint c1: x^2+y^2-1 = 0\n", "bad.mech:4:12:", "its rate is 2");
+    expect_error("coord x=1, y=0\npoint p mass=1 at (x, y, 0)\nconstraint c1: x-1 = 0\n"
+                 "constraint c2: 2*x-2 = 0\n", "bad.mech:4:12:",
+                 "constraint 'c2' is redundant at the initial state: its row depends on those "
+                 "of c1");
 }
 
 int main(void)

@@ -12,10 +12,11 @@
  *   multipliers from the Schur complement (D M^-1 D') lambda = -(D M^-1 F + conv + stab)
  *   and qdd += M^-1 D' lambda (Baumgarte's stab = 2 a h + a^2 f for f(q,t) = 0; none for
  *   a constraint on the speeds, which has no position to drift from). */
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
-#include "mbs/mbs_internal.h"
+#include "mbs/mbs_check.h"
 
 typedef struct dctx {
     lang_ctx *c;
@@ -24,6 +25,8 @@ typedef struct dctx {
     int *q, *u;   /* their state indices, and their speeds' */
     int nfix0;    /* fixed quantities before the derivation */
     int count;    /* fixed quantities written */
+    mbs_initial ini; /* the initial state, for the checks */
+    double *D0;      /* the constraints' rows there (m x n) */
 } dctx;
 
 static node *num(dctx *d, double v) { return lang_num(d->c, v); }
@@ -279,6 +282,9 @@ static void body_kinematics(dctx *d, mbs_body *b, int bi)
     for (int j = 0; j < 3; j++)
         b->gv[j] = rate(d, b->v[j]);
     b->Jv = Jv;
+    b->Jv0 = lang_alloc(c, 3 * (size_t)n * sizeof *b->Jv0);
+    for (int i = 0; i < 3 * n; i++)
+        b->Jv0[i] = mbs_value(c, &d->ini, Jv[i]);
     fix_vec(d, lang_printf(c, "b%d_Jv", bi), Jv, 3 * n);
     fix_vec(d, lang_printf(c, "b%d_v", bi), b->v, 3);
     fix_vec(d, lang_printf(c, "b%d_gv", bi), b->gv, 3);
@@ -289,6 +295,9 @@ static void body_kinematics(dctx *d, mbs_body *b, int bi)
     for (int j = 0; j < 3; j++)
         b->gw[j] = rate(d, b->w[j]);
     b->Jw = Jw;
+    b->Jw0 = lang_alloc(c, 3 * (size_t)n * sizeof *b->Jw0);
+    for (int i = 0; i < 3 * n; i++)
+        b->Jw0[i] = mbs_value(c, &d->ini, Jw[i]);
     memcpy(b->Rf, b->R, sizeof b->Rf);
     fix_vec(d, lang_printf(c, "b%d_R", bi), b->Rf, 9);
     fix_vec(d, lang_printf(c, "b%d_Jw", bi), Jw, 3 * n);
@@ -422,9 +431,25 @@ static void constraints(dctx *d, node **F_Q, node **qdd, node **a0, node **L, no
                 }
         node *h = on_speeds ? f : rate(d, f);
         const char *tag = lang_printf(c, "c%d", r);
+        const double f0 = mbs_value(c, &d->ini, f), h0 = mbs_value(c, &d->ini, h);
+        double scale = 1.0;
+        for (int j = 0; j < n; j++)
+            scale = fmax(scale, fabs(d->ini.args[on_speeds ? d->u[j] : d->q[j]]));
+        if (!on_speeds && fabs(f0) > 1e-9 * scale)
+            lang_fail(c, k->pos, "constraint '%s' does not hold at the initial state: its "
+                      "value is %.17g, not 0 (change the initial values)", k->name, f0);
+        scale = 1.0;
+        for (int j = 0; j < n; j++)
+            scale = fmax(scale, fabs(d->ini.args[d->u[j]]));
+        if (fabs(h0) > 1e-9 * scale)
+            lang_fail(c, k->pos, "constraint '%s' does not hold at the initial state: %s %.17g, "
+                      "not 0 (change the initial speeds)", k->name,
+                      on_speeds ? "its value is" : "its rate is", h0);
         int first = -1;
         for (int j = 0; j < n; j++) {
-            D[r * n + j] = fix(d, lang_printf(c, "%s_D%d", tag, j), dq(d, h, d->u[j]));
+            node *dj = dq(d, h, d->u[j]);
+            d->D0[r * n + j] = mbs_value(c, &d->ini, dj);
+            D[r * n + j] = fix(d, lang_printf(c, "%s_D%d", tag, j), dj);
             if (first < 0 && !lang_is_num(D[r * n + j], 0.0))
                 first = j;
         }
@@ -583,8 +608,9 @@ static void describe(dctx *d)
 void mbs_derive(lang_ctx *c, mbs_model *mb)
 {
     lang_model *m = &c->m;
-    dctx d = {c, mb, mb->coords.n, NULL, NULL, m->fixes.n, 0};
+    dctx d = {c, mb, mb->coords.n, NULL, NULL, m->fixes.n, 0, {NULL, NULL, 0}, NULL};
     const int n = d.n;
+    mbs_initial_values(c, &d.ini);
     d.q = lang_alloc(c, (size_t)n * sizeof *d.q);
     d.u = lang_alloc(c, (size_t)n * sizeof *d.u);
     for (int i = 0; i < n; i++) {
@@ -649,6 +675,26 @@ void mbs_derive(lang_ctx *c, mbs_model *mb)
             }
         }
     }
+    double *M0 = lang_alloc(c, (size_t)n * n * sizeof *M0);
+    memset(M0, 0, (size_t)n * n * sizeof *M0);
+    for (int bi = 0; bi < mb->bodies.n; bi++) {
+        const mbs_body *b = &LVEC_AT(mb->bodies, mbs_body, bi);
+        const double ms = mbs_value(c, &d.ini, input(&d, b->mass));
+        double I[9] = {0};
+        static const int at[9] = {0, 3, 4, 3, 1, 5, 4, 5, 2};
+        for (int k = 0; k < 9 && !b->point; k++)
+            I[k] = mbs_value(c, &d.ini, input(&d, b->inertia[at[k]]));
+        for (int i = 0; i < n; i++)
+            for (int k = 0; k < n; k++) {
+                double v = 0.0;
+                for (int j = 0; j < 3; j++) {
+                    v += ms * b->Jv0[3 * i + j] * b->Jv0[3 * k + j];
+                    for (int l = 0; l < 3 && !b->point; l++)
+                        v += b->Jw0[3 * i + j] * I[3 * j + l] * b->Jw0[3 * k + l];
+                }
+                M0[i * n + k] += v;
+            }
+    }
     node *V = loads(&d, F);
     for (int i = 0; i < n; i++) {
         F[i] = fix(&d, lang_printf(c, "F%d", i), F[i]);
@@ -663,10 +709,12 @@ void mbs_derive(lang_ctx *c, mbs_model *mb)
     node **qdd = lang_alloc(c, (size_t)n * sizeof *qdd);
     cholesky(&d, "M", M, n, L, dinv);
     chol_solve(&d, "a0", L, dinv, n, F, a0);
+    d.D0 = lang_alloc(c, ((size_t)mb->cons.n * n + 1) * sizeof *d.D0);
     if (mb->cons.n)
         constraints(&d, F, qdd, a0, L, dinv);
     else
         memcpy(qdd, a0, (size_t)n * sizeof *qdd);
+    mbs_check_initial(c, mb, M0, d.D0);
     for (int i = 0; i < n; i++) {
         LVEC_AT(m->states, lang_state, d.q[i]).rhs = ref(&d, N_STATE, d.u[i]);
         LVEC_AT(m->states, lang_state, d.u[i]).rhs = qdd[i];

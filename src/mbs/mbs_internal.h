@@ -37,6 +37,7 @@ typedef struct mbs_body {
     node *x[3], *R[9];  /* symbolic: position, N->B rotation */
     node *Rf[9];        /* R as fixed quantities */
     node **Jv, **Jw;    /* (3 n) fixed quantities: column k at 3 k */
+    double *Jv0, *Jw0;  /* (3 n) their values at the initial state */
     node *v[3], *w[3], *gv[3], *gw[3];
 } mbs_body;
 

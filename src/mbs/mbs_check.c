@@ -1,0 +1,150 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* Checks of a mechanism at its initial state, before any C is written (docs/mechanisms.md,
+ * "Errors"): the constraints hold (positions and speeds), the mass matrix M is positive
+ * definite (else the coordinates that move no mass of their own are named) and the
+ * constraints' rows D are independent (D M^-1 D' positive definite; else the redundant
+ * constraints are named). Values come from src/lang's evaluation of the symbolic formulas
+ * with the states and t as arguments. */
+#include <math.h>
+#include <string.h>
+
+#include "mbs/mbs_check.h"
+
+static node *as_args(lang_ctx *c, const node *e, int nstates)
+{
+    if (e->kind == N_STATE || e->kind == N_TIME) {
+        node *a = lang_node(c, N_ARG, e->pos);
+        a->index = e->kind == N_STATE ? e->index : nstates;
+        return a;
+    }
+    if (e->nargs == 0)
+        return (node *)e;
+    node *r = lang_node(c, e->kind, e->pos);
+    *r = *e;
+    r->args = lang_alloc(c, (size_t)e->nargs * sizeof *r->args);
+    for (int i = 0; i < e->nargs; i++)
+        r->args[i] = as_args(c, e->args[i], nstates);
+    return r;
+}
+
+void mbs_initial_values(lang_ctx *c, mbs_initial *ini)
+{
+    lang_model *m = &c->m;
+    const int np = m->params.n, nd = m->derived.n, n = m->states.n;
+    ini->pv = lang_alloc(c, ((size_t)np + nd + 1) * sizeof *ini->pv);
+    for (int i = 0; i < np; i++)
+        ini->pv[i] = LVEC_AT(m->params, lang_param, i).value;
+    for (int i = 0; i < nd; i++) {
+        const int k = m->derived_order[i];
+        ini->pv[np + k] = lang_eval(c, LVEC_AT(m->derived, lang_formula, k).expr, NULL, ini->pv);
+    }
+    ini->args = lang_alloc(c, ((size_t)n + 1) * sizeof *ini->args);
+    for (int i = 0; i < n; i++) {
+        const node *in = LVEC_AT(m->states, lang_state, i).init;
+        ini->args[i] = in ? lang_eval(c, in, NULL, ini->pv) : 0.0;
+    }
+    ini->args[n] = m->t0;
+    ini->nstates = n;
+}
+
+double mbs_value(lang_ctx *c, const mbs_initial *ini, const node *e)
+{
+    return lang_eval(c, as_args(c, e, ini->nstates), ini->args, ini->pv);
+}
+
+/* Cholesky in place (lower triangle of A, n x n); returns the first column whose pivot is
+ * not clearly positive, or -1. */
+static int cholesky(double *A, int n)
+{
+    double big = 0.0;
+    for (int j = 0; j < n; j++)
+        big = fmax(big, fabs(A[j * n + j]));
+    for (int j = 0; j < n; j++) {
+        double s = A[j * n + j];
+        for (int k = 0; k < j; k++)
+            s -= A[j * n + k] * A[j * n + k];
+        if (!(s > 1e-12 * big))
+            return j;
+        A[j * n + j] = sqrt(s);
+        for (int i = j + 1; i < n; i++) {
+            double t = A[i * n + j];
+            for (int k = 0; k < j; k++)
+                t -= A[i * n + k] * A[j * n + k];
+            A[i * n + j] = t / A[j * n + j];
+        }
+    }
+    return -1;
+}
+
+static void solve(const double *L, int n, double *x)
+{
+    for (int i = 0; i < n; i++) {
+        for (int k = 0; k < i; k++)
+            x[i] -= L[i * n + k] * x[k];
+        x[i] /= L[i * n + i];
+    }
+    for (int i = n - 1; i >= 0; i--) {
+        for (int k = i + 1; k < n; k++)
+            x[i] -= L[k * n + i] * x[k];
+        x[i] /= L[i * n + i];
+    }
+}
+
+void mbs_check_initial(lang_ctx *c, const mbs_model *mb, double *M, const double *D)
+{
+    const int n = mb->coords.n, m = mb->cons.n;
+    for (int i = 0; i < n * n; i++)
+        if (!isfinite(M[i]))
+            return; /* not known before the run (an input, a table): not checked */
+    double *L = lang_alloc(c, (size_t)n * n * sizeof *L);
+    memcpy(L, M, (size_t)n * n * sizeof *L);
+    const int j = cholesky(L, n);
+    if (j >= 0) {
+        const char *names = "";
+        int first = -1;
+        double big = 0.0;
+        for (int i = 0; i < n; i++)
+            big = fmax(big, fabs(M[i * n + i]));
+        for (int i = 0; i < n; i++)
+            if (!(fabs(M[i * n + i]) > 1e-12 * big) && (first < 0 ? (first = i) : i) >= 0)
+                names = lang_printf(c, "%s%s%s", names, *names ? ", " : "",
+                                    LVEC_AT(mb->coords, mbs_coord, i).name);
+        const mbs_coord *q = &LVEC_AT(mb->coords, mbs_coord, first >= 0 ? first : j);
+        if (*names)
+            lang_fail(c, q->pos, "the mass matrix is singular at the initial state: no mass or "
+                      "inertia moves with %s (give the bodies that move with it a mass, or "
+                      "their rotation an inertia)", names);
+        lang_fail(c, LVEC_AT(mb->coords, mbs_coord, j).pos, "the mass matrix is singular at the "
+                  "initial state: %s moves no mass that the coordinates before it do not "
+                  "(choose independent coordinates, or give the bodies inertia)",
+                  LVEC_AT(mb->coords, mbs_coord, j).name);
+    }
+    if (m == 0)
+        return;
+    for (int i = 0; i < m * n; i++)
+        if (!isfinite(D[i]))
+            return;
+    double *X = lang_alloc(c, (size_t)m * n * sizeof *X);
+    double *A = lang_alloc(c, (size_t)m * m * sizeof *A);
+    memcpy(X, D, (size_t)m * n * sizeof *X);
+    for (int r = 0; r < m; r++)
+        solve(L, n, X + r * n);
+    for (int r = 0; r < m; r++)
+        for (int s = 0; s < m; s++) {
+            double v = 0.0;
+            for (int k = 0; k < n; k++)
+                v += D[r * n + k] * X[s * n + k];
+            A[r * m + s] = v;
+        }
+    const int bad = cholesky(A, m);
+    if (bad >= 0) {
+        const mbs_constraint *k = &LVEC_AT(mb->cons, mbs_constraint, bad);
+        const char *before = "";
+        for (int r = 0; r < bad; r++)
+            before = lang_printf(c, "%s%s%s", before, r ? ", " : "",
+                                 LVEC_AT(mb->cons, mbs_constraint, r).name);
+        lang_fail(c, k->pos, "constraint '%s' is redundant at the initial state: its row "
+                  "depends on %s%s (remove one, or start away from this configuration)", k->name,
+                  *before ? "those of " : "no coordinate", before);
+    }
+}

@@ -4,7 +4,8 @@
  * its energy over 100 s; the plane of examples/mechanisms against the hand-written built-in
  * plane (centre of mass and Euler angles within 1e-8 over 5 s at rtol = atol = 1e-12); the
  * heavy symmetric top's steady precession at the closed-form rates; the four-bar loop kept
- * closed over 100 s with its energy; and errors at FILE:LINE:COL. */
+ * closed over 100 s with its energy; the cart against the built-in cart; a prescribed motion's
+ * driving torque by hand; and errors at FILE:LINE:COL. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -331,6 +332,27 @@ static void test_cart_matches_the_builtin_cart(void **state_)
     CHECK(worst < 1e-8, "dop853, constant forces: largest difference %.3g", worst);
 }
 
+/* A prescribed angle: the multiplier is the driving torque m l^2 phi'' + m g l sin(phi). */
+static void test_prescribed_motion_gives_the_driving_torque(void **state_)
+{
+    (void)state_;
+    static double v[1 << 16];
+    cli_result r = cli("run %sdriven_pendulum.mech --outputs --rtol 1e-10 --atol 1e-12 "
+                       "--step 0.05", MECH);
+    CHECK(r.status == 0, "%s", r.err);
+    int cols;
+    const long rows = csv_table(r.out, v, 1 << 16, &cols);
+    CHECK(rows == 201 && cols == 8, "rows %ld cols %d", rows, cols);
+    double worst = 0.0, big = 0.0; /* t phi dphi drive exact kinetic potential energy */
+    for (long k = 0; k < rows; k++) {
+        worst = fmax(worst, fabs(v[k * cols + 3] - v[k * cols + 4]));
+        big = fmax(big, fabs(v[k * cols + 4]));
+        CHECK(fabs(v[k * cols + 1] - 0.3 * sin(2 * v[k * cols])) < 1e-9, "phi off its path");
+    }
+    CHECK(worst < 1e-8 * big && big > 1, "torque off by %.3g N m (largest %.3g)", worst, big);
+    cli_free(&r);
+}
+
 static void test_info_lists_the_mechanism(void **state_)
 {
     (void)state_;
@@ -404,6 +426,7 @@ int main(void)
         cmocka_unit_test(test_top_precesses_at_the_closed_form_rates),
         cmocka_unit_test(test_fourbar_loop_stays_closed),
         cmocka_unit_test(test_cart_matches_the_builtin_cart),
+        cmocka_unit_test(test_prescribed_motion_gives_the_driving_torque),
         cmocka_unit_test(test_info_lists_the_mechanism),
         cmocka_unit_test(test_errors_name_the_place),
     };

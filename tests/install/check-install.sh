@@ -3,9 +3,11 @@
 # Checks an installed dynkit (prefix as $1): the CLI runs, its manual page and bash completion
 # are there, a CMake project finds the package with find_package(dynkit) and builds on
 # dynkit::dynkit, dynkit::sweep, dynkit::lang and dynkit::jit, and pkg-config compiles and
-# links the same programs with dynkit.pc and the component's dynkit-NAME.pc. The programs
-# print known numbers: the pendulum's first turn (docs/sweeps.md) and the closed-form
-# solution of a damped linear oscillator loaded from an .ode file (ode_user.c).
+# links the same programs with dynkit.pc and the component's dynkit-NAME.pc; so for each
+# backend installed (lapack, sweep-mpi, cvode). The programs print known numbers: the
+# pendulum's first turn (docs/sweeps.md, also on 2 MPI ranks), the closed-form solution of
+# a damped linear oscillator loaded from an .ode file (ode_user.c) and its eigenvalues
+# (lapack_user.c).
 set -euo pipefail
 prefix="$1"
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -51,6 +53,28 @@ cc -std=c11 "$here/../../examples/vanderpol.c" -o "$work/pc_shared" \
   $(PKG_CONFIG_PATH="$libdir" pkg-config --cflags --libs dynkit)
 env -u LD_LIBRARY_PATH "$work/pc_shared" >/dev/null ||
   { echo "a program built with pkg-config's flags does not find libdynkit.so"; exit 1; }
+# the optional LAPACK backend: the oscillator's eigenvalues by dgeev against the closed form
+if [ -f "$libdir/dynkit-lapack.pc" ]; then
+  [ -x "$work/cmake/user_lapack" ] || { echo "dynkit::lapack not found by find_package"; exit 1; }
+  "$work/cmake/user_lapack"
+  cc -std=c11 "$here/lapack_user.c" -o "$work/pc_lapack" \
+    $(PKG_CONFIG_PATH="$libdir" pkg-config --cflags --libs dynkit-lapack)
+  "$work/pc_lapack"
+  echo "install check: dynkit::lapack and dynkit-lapack.pc work"
+fi
+# sweeps over MPI ranks: the sweep example on 2 ranks, the same turn as in one process
+if [ -f "$libdir/dynkit-sweep-mpi.pc" ]; then
+  [ -x "$work/cmake/user_sweep_mpi" ] || { echo "dynkit::sweep_mpi not found by find_package"; exit 1; }
+  cc -std=c11 -DSWEEP_USER_MPI "$here/sweep_user.c" -o "$work/pc_sweep_mpi" \
+    $(PKG_CONFIG_PATH="$libdir" pkg-config --cflags --libs dynkit-sweep-mpi)
+  mpi_flags="--oversubscribe"
+  [ "$(id -u)" -eq 0 ] && mpi_flags="$mpi_flags --allow-run-as-root"
+  for program in "$work/cmake/user_sweep_mpi" "$work/pc_sweep_mpi"; do
+    turn=$(OMP_NUM_THREADS=1 mpirun -n 2 $mpi_flags "$program")
+    [ "$turn" = "2.59001123087446" ] || { echo "$program on 2 ranks printed '$turn'"; exit 1; }
+  done
+  echo "install check: dynkit::sweep_mpi and dynkit-sweep-mpi.pc work (2 ranks)"
+fi
 # the optional CVODE backend, when it was built and installed
 if [ -f "$libdir/dynkit-cvode.pc" ]; then
   [ -x "$work/cmake/user_cvode" ] || { echo "dynkit::cvode not found by find_package"; exit 1; }

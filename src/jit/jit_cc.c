@@ -8,6 +8,7 @@
  * within a time limit; large sources get a lower optimisation level. What is read from the
  * cache is checked first (jit_trust.c). */
 #define _POSIX_C_SOURCE 200809L
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
@@ -120,10 +121,63 @@ static void capture_add(capture *c, const char *p, size_t n)
     c->buf[c->len] = '\0';
 }
 
-/* Run argv with stdin from /dev/null and stdout+stderr into out, in a process group of its
- * own, killed as a whole (the driver, cc1, as, ld) after `limit` seconds. Returns the exit
- * status (0..255), 256 + signal when killed, RUN_TIMEOUT when the limit was reached, or
- * -errno when it could not start. */
+/* The parent of process pid (from /proc/PID/stat), or -1. */
+static pid_t parent_of(pid_t pid)
+{
+    char path[64], line[512];
+    snprintf(path, sizeof path, "/proc/%ld/stat", (long)pid);
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return -1;
+    size_t n = fread(line, 1, sizeof line - 1, f);
+    fclose(f);
+    line[n] = '\0';
+    const char *close_paren = strrchr(line, ')'); /* the command name may hold anything */
+    long ppid;
+    return close_paren && sscanf(close_paren + 1, " %*c %ld", &ppid) == 1 ? (pid_t)ppid : -1;
+}
+
+/* SIGKILL pid and the processes it started (the compiler driver's cc1, as, collect2, ld):
+ * each stopped first, so that it starts no more, found through /proc where there is one. The
+ * compiler stays in the caller's process group, so that Ctrl-C still reaches it. */
+static void kill_tree(pid_t pid)
+{
+    enum { MAX_TREE = 64 };
+    pid_t tree[MAX_TREE];
+    int n = 1, grown = 1;
+    tree[0] = pid;
+    kill(pid, SIGSTOP);
+    for (int round = 0; grown && round < 16; round++) {
+        grown = 0;
+        DIR *d = opendir("/proc");
+        struct dirent *e;
+        while (d && n < MAX_TREE && (e = readdir(d)) != NULL) {
+            char *end;
+            long p = strtol(e->d_name, &end, 10);
+            if (*end != '\0' || p <= 0)
+                continue;
+            pid_t parent = parent_of((pid_t)p);
+            int known = 0, under = 0;
+            for (int i = 0; i < n; i++) {
+                known |= tree[i] == (pid_t)p;
+                under |= tree[i] == parent;
+            }
+            if (under && !known) {
+                kill((pid_t)p, SIGSTOP);
+                tree[n++] = (pid_t)p;
+                grown = 1;
+            }
+        }
+        if (d)
+            closedir(d);
+    }
+    for (int i = n - 1; i >= 0; i--)
+        kill(tree[i], SIGKILL);
+}
+
+/* Run argv with stdin from /dev/null and stdout+stderr into out, killed with what it started
+ * (kill_tree) after `limit` seconds. Returns the exit status (0..255), 256 + signal when
+ * killed, RUN_TIMEOUT when the limit was reached, or -errno when it could not start. */
 static int run(char *const argv[], double limit, capture *out)
 {
     int fds[2];
@@ -136,14 +190,9 @@ static int run(char *const argv[], double limit, capture *out)
     posix_spawn_file_actions_adddup2(&fa, fds[1], 2);
     posix_spawn_file_actions_addclose(&fa, fds[0]);
     posix_spawn_file_actions_addclose(&fa, fds[1]);
-    posix_spawnattr_t attr;
-    posix_spawnattr_init(&attr);
-    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
-    posix_spawnattr_setpgroup(&attr, 0);
     pid_t pid;
-    int rc = posix_spawnp(&pid, argv[0], &fa, &attr, argv, environ);
+    int rc = posix_spawnp(&pid, argv[0], &fa, NULL, argv, environ);
     posix_spawn_file_actions_destroy(&fa);
-    posix_spawnattr_destroy(&attr);
     close(fds[1]);
     if (rc != 0) {
         close(fds[0]);
@@ -172,7 +221,7 @@ static int run(char *const argv[], double limit, capture *out)
     }
     close(fds[0]);
     if (timed_out)
-        kill(-pid, SIGKILL);
+        kill_tree(pid);
     int status;
     while (waitpid(pid, &status, 0) < 0)
         if (errno != EINTR)

@@ -2,14 +2,22 @@
 /* The C text of an .ode model: a translation unit that defines
  * `const dyn_model *dynkit_model(void)` (dynkit/model.h), compiled by the jit layer.
  *
+ * A model file is data. Nothing from outside (the path, names, numbers as written, `#:`
+ * text, units, descriptions, table contents, options) is written here except through
+ * lang_c_str (emit_out.c), as an escaped string literal: code comes only from string
+ * literals of this file (LANG_C_CODE), numbers this translator formats (LANG_C_CODEF,
+ * lang_c_num), and identifiers made of a prefix and numbers, never from a name of the
+ * file; no comment holds anything from outside. emit_out.c is the only writer of the text
+ * (docs/model-files.md, "What the generated C contains").
+ *
  * Conventions (docs/model-files.md): states are y[i] in the order of their equations;
  * the parameter struct is an array of doubles p[], the parameters in the order of the file
  * then the derived parameters (computed by prepare); fixed temporaries are const locals
- * v_NAME computed in dependency order where needed; user functions are static functions
- * u_NAME(a_ARG..., t, y, p), their partial derivatives udK_NAME; XPPAUT's functions are
- * static inline helpers dk_*; every user name carries a prefix, so none can clash with C or
- * libm. A `#line N "file"` precedes the code of each source line, so a compiler's message
- * points at the model's own line. Nothing mutable at file scope: the model is re-entrant.
+ * v_K (K: the quantity's number) computed in dependency order where needed; user functions
+ * are static functions u_F(a_0..., t, y, p) (F: the function's number), their partial
+ * derivatives udK_F; XPPAUT's functions are static inline helpers dk_*. A
+ * `#line N "file"` precedes the code of each source line, so a compiler's message points
+ * at the model's own line. Nothing mutable at file scope: the model is re-entrant.
  */
 #include <limits.h>
 #include <setjmp.h>
@@ -21,119 +29,19 @@
 
 #include "lang/lang_internal.h"
 
-/* ---- output buffer ---- */
-
-static void put(lang_ctx *c, const char *s, size_t n)
-{
-    if (c->out_len + n + 1 > c->out_cap) {
-        size_t cap = c->out_cap ? c->out_cap : 4096;
-        if (c->out_len + n + 1 > LANG_MAX_OUTPUT)
-            lang_fail(c, (lpos){0, 0}, "the model's C text would be too large (more than %u "
-                      "MB)", (unsigned)(LANG_MAX_OUTPUT >> 20));
-        while (c->out_len + n + 1 > cap)
-            cap *= 2;
-        char *o = realloc(c->out, cap);
-        if (!o)
-            lang_oom(c);
-        c->out = o;
-        c->out_cap = cap;
-    }
-    memcpy(c->out + c->out_len, s, n);
-    c->out_len += n;
-    c->out[c->out_len] = '\0';
-}
-
-static void puts_(lang_ctx *c, const char *s) { put(c, s, strlen(s)); }
-
-static void outf(lang_ctx *c, const char *fmt, ...)
-{
-    char buf[512];
-    va_list ap;
-    va_start(ap, fmt);
-    const int n = vsnprintf(buf, sizeof buf, fmt, ap);
-    va_end(ap);
-    if (n < 0)
-        lang_oom(c);
-    if ((size_t)n < sizeof buf) {
-        put(c, buf, (size_t)n);
-        return;
-    }
-    char *big = lang_alloc(c, (size_t)n + 1);
-    va_start(ap, fmt);
-    vsnprintf(big, (size_t)n + 1, fmt, ap);
-    va_end(ap);
-    put(c, big, (size_t)n);
-}
-
-/* A C string literal of s (NULL: ""); runs of plain characters are written at once. */
-static void str_lit(lang_ctx *c, const char *s)
-{
-    puts_(c, "\"");
-    const unsigned char *q = (const unsigned char *)(s ? s : "");
-    while (*q) {
-        const unsigned char *run = q;
-        while (*q && *q >= 32 && *q < 127 && *q != '"' && *q != '\\' && *q != '?')
-            q++;
-        if (q > run)
-            put(c, (const char *)run, (size_t)(q - run));
-        if (!*q)
-            break;
-        char b[8];
-        if (*q == '"' || *q == '\\' || *q == '?') {
-            b[0] = '\\';
-            b[1] = (char)*q;
-            put(c, b, 2);
-        } else if (*q == '\n') {
-            puts_(c, "\\n");
-        } else {
-            snprintf(b, sizeof b, "\\%03o", *q);
-            puts_(c, b);
-        }
-        q++;
-    }
-    puts_(c, "\"");
-}
-
+/* #line N "PATH" before the code of a source line: the path only as an escaped string */
 static void line_dir(lang_ctx *c, lpos p)
 {
     if (p.line <= 0)
         return;
-    if (!c->path_lit) { /* the path as a C string, once */
-        char *saved = c->out;
-        const size_t len = c->out_len, cap = c->out_cap;
-        c->out = NULL;
-        c->out_len = c->out_cap = 0;
-        c->out_saved2 = saved;
-        str_lit(c, c->path);
-        c->path_lit = lang_strdup(c, c->out);
-        free(c->out);
-        c->out = saved;
-        c->out_len = len;
-        c->out_cap = cap;
-        c->out_saved2 = NULL;
-    }
-    outf(c, "#line %d %s\n", p.line, c->path_lit);
+    LANG_C_CODEF(c, "#line %d ", p.line);
+    lang_c_str(c, c->path);
+    LANG_C_CODE(c, "\n");
 }
 
-static void num_lit(lang_ctx *c, double v)
-{
-    if (isnan(v)) {
-        puts_(c, "NAN");
-        return;
-    }
-    if (isinf(v)) {
-        puts_(c, v > 0 ? "HUGE_VAL" : "(-HUGE_VAL)");
-        return;
-    }
-    char b[40];
-    snprintf(b, sizeof b, "%.17g", v);
-    if (!strpbrk(b, ".en"))
-        strcat(b, ".0");
-    if (v < 0 || (v == 0 && signbit(v)))
-        outf(c, "(%s)", b);
-    else
-        puts_(c, b);
-}
+/* The literal ident when cond holds, else NULL */
+#define CODE_OR_NULL(c, cond, ident) \
+    ((cond) ? LANG_C_CODE((c), ident) : LANG_C_CODE((c), "NULL"))
 
 /* ---- expressions ---- */
 
@@ -142,18 +50,48 @@ typedef struct ectx {
     int has_state;         /* y and t are in scope */
 } ectx;
 
-static const char *c_fun(int f)
+/* The C function of a built-in function (all of XPPAUT's names are C's or a dk_ helper's) */
+static void c_fun(lang_ctx *c, int f)
 {
     switch (f) {
-    case F_LN: return "log";
-    case F_ABS: return "fabs";
-    case F_HEAV: return "dk_heav";
-    case F_SIGN: return "dk_sign";
-    case F_MOD: return "dk_mod";
-    case F_FLR: return "floor";
-    case F_MAX: return "dk_max";
-    case F_MIN: return "dk_min";
-    default: return lang_fun_name(f);
+    case F_SIN: LANG_C_CODE(c, "sin"); break;
+    case F_COS: LANG_C_CODE(c, "cos"); break;
+    case F_TAN: LANG_C_CODE(c, "tan"); break;
+    case F_ASIN: LANG_C_CODE(c, "asin"); break;
+    case F_ACOS: LANG_C_CODE(c, "acos"); break;
+    case F_ATAN: LANG_C_CODE(c, "atan"); break;
+    case F_ATAN2: LANG_C_CODE(c, "atan2"); break;
+    case F_SINH: LANG_C_CODE(c, "sinh"); break;
+    case F_COSH: LANG_C_CODE(c, "cosh"); break;
+    case F_TANH: LANG_C_CODE(c, "tanh"); break;
+    case F_EXP: LANG_C_CODE(c, "exp"); break;
+    case F_LN: LANG_C_CODE(c, "log"); break;
+    case F_LOG10: LANG_C_CODE(c, "log10"); break;
+    case F_SQRT: LANG_C_CODE(c, "sqrt"); break;
+    case F_ABS: LANG_C_CODE(c, "fabs"); break;
+    case F_HEAV: LANG_C_CODE(c, "dk_heav"); break;
+    case F_SIGN: LANG_C_CODE(c, "dk_sign"); break;
+    case F_MOD: LANG_C_CODE(c, "dk_mod"); break;
+    case F_FLR: LANG_C_CODE(c, "floor"); break;
+    case F_CEIL: LANG_C_CODE(c, "ceil"); break;
+    case F_MAX: LANG_C_CODE(c, "dk_max"); break;
+    case F_MIN: LANG_C_CODE(c, "dk_min"); break;
+    case F_ERF: LANG_C_CODE(c, "erf"); break;
+    case F_ERFC: LANG_C_CODE(c, "erfc"); break;
+    default: lang_fail(c, (lpos){0, 0}, "internal error: no C function for %d", f);
+    }
+}
+
+/* A comparison's C operator */
+static void c_cmp(lang_ctx *c, int op)
+{
+    switch (op) {
+    case OP_GT: LANG_C_CODE(c, ") > ("); break;
+    case OP_LT: LANG_C_CODE(c, ") < ("); break;
+    case OP_GE: LANG_C_CODE(c, ") >= ("); break;
+    case OP_LE: LANG_C_CODE(c, ") <= ("); break;
+    case OP_EQ: LANG_C_CODE(c, ") == ("); break;
+    default: LANG_C_CODE(c, ") != ("); break;
     }
 }
 
@@ -185,9 +123,12 @@ static void call_args(lang_ctx *c, const node *e, const ectx *x)
 {
     for (int i = 0; i < e->nargs; i++) {
         expr(c, e->args[i], x);
-        puts_(c, ", ");
+        LANG_C_CODE(c, ", ");
     }
-    puts_(c, x->has_state ? "t, y, p)" : "0.0, (const double *)0, p)");
+    if (x->has_state)
+        LANG_C_CODE(c, "t, y, p)");
+    else
+        LANG_C_CODE(c, "0.0, (const double *)0, p)");
 }
 
 static void expr(lang_ctx *c, const node *e, const ectx *x)
@@ -196,41 +137,41 @@ static void expr(lang_ctx *c, const node *e, const ectx *x)
         lang_fail(c, e->pos, "expression too deep to write as C");
     lang_model *m = &c->m;
     switch (e->kind) {
-    case N_NUM: num_lit(c, e->num); break;
-    case N_TIME: puts_(c, "t"); break;
-    case N_STATE: outf(c, "y[%d]", e->index); break;
+    case N_NUM: lang_c_num(c, e->num); break;
+    case N_TIME: LANG_C_CODE(c, "t"); break;
+    case N_STATE: LANG_C_CODEF(c, "y[%d]", e->index); break;
     case N_PARAM:
         if (m->param_input && e->index < m->params.n && m->param_input[e->index] >= 0 &&
             (x->has_state || x->func))
-            outf(c, "dk_input(p, t, %d, %d)", m->param_input[e->index], e->index);
+            LANG_C_CODEF(c, "dk_input(p, t, %d, %d)", m->param_input[e->index], e->index);
         else
-            outf(c, "p[%d]", e->index);
+            LANG_C_CODEF(c, "p[%d]", e->index);
         break;
-    case N_FIX: outf(c, "v_%s", LVEC_AT(m->fixes, lang_formula, e->index).name); break;
-    case N_ALG: outf(c, "w[%d]", e->index); break;
+    case N_FIX: LANG_C_CODEF(c, "v_%d", e->index); break;
+    case N_ALG: LANG_C_CODEF(c, "w[%d]", e->index); break;
     case N_DFIX:
-        outf(c, "dv%d_%s", e->op, LVEC_AT(m->fixes, lang_formula, e->index).name);
+        LANG_C_CODEF(c, "dv%d_%d", e->op, e->index);
         break;
-    case N_ARG: outf(c, "a_%s", x->func ? x->func->argnames[e->index] : "?"); break;
+    case N_ARG: LANG_C_CODEF(c, "a_%d", e->index); break;
     case N_NEG:
-        puts_(c, "(-");
+        LANG_C_CODE(c, "(-");
         expr(c, e->args[0], x);
-        puts_(c, ")");
+        LANG_C_CODE(c, ")");
         break;
     case N_NOT:
         c->helpers |= H_NOT;
-        puts_(c, "dk_not(");
+        LANG_C_CODE(c, "dk_not(");
         expr(c, e->args[0], x);
-        puts_(c, ")");
+        LANG_C_CODE(c, ")");
         break;
     case N_IF:
-        puts_(c, "((");
+        LANG_C_CODE(c, "((");
         expr(c, e->args[0], x);
-        puts_(c, ") != 0.0 ? (");
+        LANG_C_CODE(c, ") != 0.0 ? (");
         expr(c, e->args[1], x);
-        puts_(c, ") : (");
+        LANG_C_CODE(c, ") : (");
         expr(c, e->args[2], x);
-        puts_(c, "))");
+        LANG_C_CODE(c, "))");
         break;
     case N_BIN: {
         const node *a = e->args[0], *b = e->args[1];
@@ -239,63 +180,74 @@ static void expr(lang_ctx *c, const node *e, const ectx *x)
         case OP_SUB:
         case OP_MUL:
         case OP_DIV:
-            puts_(c, "(");
+            LANG_C_CODE(c, "(");
             expr(c, a, x);
-            puts_(c, e->op == OP_ADD ? " + " : e->op == OP_SUB ? " - " : e->op == OP_MUL ? " * "
-                                                                                        : " / ");
+            if (e->op == OP_ADD)
+                LANG_C_CODE(c, " + ");
+            else if (e->op == OP_SUB)
+                LANG_C_CODE(c, " - ");
+            else if (e->op == OP_MUL)
+                LANG_C_CODE(c, " * ");
+            else
+                LANG_C_CODE(c, " / ");
             expr(c, b, x);
-            puts_(c, ")");
+            LANG_C_CODE(c, ")");
             break;
         case OP_POW:
             if (b->kind == N_NUM && b->num == 2.0) {
                 c->helpers |= H_SQ;
-                puts_(c, "dk_sq(");
+                LANG_C_CODE(c, "dk_sq(");
                 expr(c, a, x);
-                puts_(c, ")");
+                LANG_C_CODE(c, ")");
             } else {
                 c->helpers |= H_POW;
-                puts_(c, "dk_pow(");
+                LANG_C_CODE(c, "dk_pow(");
                 expr(c, a, x);
-                puts_(c, ", ");
+                LANG_C_CODE(c, ", ");
                 expr(c, b, x);
-                puts_(c, ")");
+                LANG_C_CODE(c, ")");
             }
             break;
         case OP_AND:
         case OP_OR:
-            puts_(c, "((");
+            LANG_C_CODE(c, "((");
             expr(c, a, x);
-            puts_(c, e->op == OP_AND ? ") != 0.0 && (" : ") != 0.0 || (");
+            if (e->op == OP_AND)
+                LANG_C_CODE(c, ") != 0.0 && (");
+            else
+                LANG_C_CODE(c, ") != 0.0 || (");
             expr(c, b, x);
-            puts_(c, ") != 0.0 ? 1.0 : 0.0)");
+            LANG_C_CODE(c, ") != 0.0 ? 1.0 : 0.0)");
             break;
         default:
-            puts_(c, "((");
+            LANG_C_CODE(c, "((");
             expr(c, a, x);
-            outf(c, ") %s (", lang_op_text(e->op));
+            c_cmp(c, e->op);
             expr(c, b, x);
-            puts_(c, ") ? 1.0 : 0.0)");
+            LANG_C_CODE(c, ") ? 1.0 : 0.0)");
             break;
         }
         break;
     }
     case N_FUN:
         if (e->op == F_SPECIAL) { /* computed before the statements (emit_fixes) */
-            outf(c, "sp_%s[%d]", LVEC_AT(m->specials, lang_special, e->index).name,
-                 (int)e->args[0]->num);
+            LANG_C_CODEF(c, "sp_%d[%d]", e->index, (int)e->args[0]->num);
             break;
         }
         if (e->op == F_TABLE || e->op == F_TABLE_SLOPE) {
             const lang_table *tb = &LVEC_AT(m->tables, lang_table, e->index);
             c->helpers |= H_TABLE;
-            outf(c, "%s(p + %d, %ld, ", e->op == F_TABLE ? "dk_table" : "dk_table_slope",
-                 tb->offset, tb->npts);
-            num_lit(c, tb->lo);
-            puts_(c, ", ");
-            num_lit(c, table_dx(tb));
-            puts_(c, ", ");
+            if (e->op == F_TABLE)
+                LANG_C_CODE(c, "dk_table");
+            else
+                LANG_C_CODE(c, "dk_table_slope");
+            LANG_C_CODEF(c, "(p + %d, %ld, ", tb->offset, tb->npts);
+            lang_c_num(c, tb->lo);
+            LANG_C_CODE(c, ", ");
+            lang_c_num(c, table_dx(tb));
+            LANG_C_CODE(c, ", ");
             expr(c, e->args[0], x);
-            puts_(c, ")");
+            LANG_C_CODE(c, ")");
             break;
         }
         c->helpers |= e->op == F_HEAV  ? H_HEAV
@@ -304,25 +256,26 @@ static void expr(lang_ctx *c, const node *e, const ectx *x)
                       : e->op == F_MAX  ? H_MAX
                       : e->op == F_MIN  ? H_MIN
                                         : 0;
-        outf(c, "%s(", c_fun(e->op));
+        c_fun(c, e->op);
+        LANG_C_CODE(c, "(");
         for (int i = 0; i < e->nargs; i++) {
             if (i)
-                puts_(c, ", ");
+                LANG_C_CODE(c, ", ");
             expr(c, e->args[i], x);
         }
-        puts_(c, ")");
+        LANG_C_CODE(c, ")");
         break;
     case N_UFUN:
         mark_func(c, e->index, 0);
-        outf(c, "u_%s(", LVEC_AT(m->funcs, lang_func, e->index).name);
+        LANG_C_CODEF(c, "u_%d(", e->index);
         call_args(c, e, x);
         break;
     case N_UFUN_D:
         mark_func(c, e->index, 1 + e->op);
-        outf(c, "ud%d_%s(", e->op, LVEC_AT(m->funcs, lang_func, e->index).name);
+        LANG_C_CODEF(c, "ud%d_%d(", e->op, e->index);
         call_args(c, e, x);
         break;
-    default: puts_(c, "NAN"); break;
+    default: LANG_C_CODE(c, "NAN"); break;
     }
     c->depth--;
 }
@@ -353,21 +306,34 @@ static void need(lang_ctx *c, const node *e, unsigned char *needed)
     }
 }
 
-/* A network sum's block of len elements as a C array expression: y + first for states, or
- * a local array PREFIX_NAME of the fixed quantities' values (written first). */
-static const char *special_block(lang_ctx *c, const lang_special *sp, int kind, int first,
-                                 int len, const char *prefix)
+/* The block of len elements of network sum i (v: fconv's second block), states from first
+ * on (y + first) or fixed quantities, then a local array spu_I (spv_I) of their values
+ * written here. */
+static void block_decl(lang_ctx *c, int i, int v, int kind, int first, int len)
 {
     if (kind == N_STATE)
-        return lang_printf(c, "y + %d", first);
-    outf(c, "    const double %s_%s[%d] = {", prefix, sp->name, len);
+        return;
+    if (v)
+        LANG_C_CODEF(c, "    const double spv_%d[%d] = {", i, len);
+    else
+        LANG_C_CODEF(c, "    const double spu_%d[%d] = {", i, len);
     for (int k = 0; k < len; k++)
-        outf(c, "%sv_%s", k ? ", " : "", LVEC_AT(c->m.fixes, lang_formula, first + k).name);
-    puts_(c, "};\n");
-    return lang_printf(c, "%s_%s", prefix, sp->name);
+        LANG_C_CODEF(c, k ? ", v_%d" : "v_%d", first + k);
+    LANG_C_CODE(c, "};\n");
 }
 
-/* The network sums flagged in needed, after the fixed quantities: sp_NAME[j] for each j. */
+/* The block as a C array expression (y + first, or the local of block_decl) */
+static void block_ref(lang_ctx *c, int i, int v, int kind, int first)
+{
+    if (kind == N_STATE)
+        LANG_C_CODEF(c, "(y + %d)", first);
+    else if (v)
+        LANG_C_CODEF(c, "spv_%d", i);
+    else
+        LANG_C_CODEF(c, "spu_%d", i);
+}
+
+/* The network sums flagged in needed, after the fixed quantities: sp_I[j] for each j. */
 static void emit_specials(lang_ctx *c, const unsigned char *needed)
 {
     const lang_model *m = &c->m;
@@ -379,39 +345,46 @@ static void emit_specials(lang_ctx *c, const unsigned char *needed)
         if (sp->kind == LANG_SUM_CONV || sp->kind == LANG_SUM_FCONV)
             c->helpers |= H_CONV;
         line_dir(c, sp->pos);
-        const char *u = special_block(c, sp, sp->root_kind, sp->root, sp->ulen, "spu");
-        outf(c, "    double sp_%s[%d];\n", sp->name, sp->n);
+        block_decl(c, i, 0, sp->root_kind, sp->root, sp->ulen);
+        LANG_C_CODEF(c, "    double sp_%d[%d];\n", i, sp->n);
         if (sp->kind == LANG_SUM_CONV) {
-            outf(c, "    dk_conv(sp_%s, %d, %d, %d, p + %d, %s);\n", sp->name, sp->n, sp->m,
-                 sp->type, tb->offset, u);
+            LANG_C_CODEF(c, "    dk_conv(sp_%d, %d, %d, %d, p + %d, ", i, sp->n, sp->m, sp->type,
+                         tb->offset);
+            block_ref(c, i, 0, sp->root_kind, sp->root);
+            LANG_C_CODE(c, ");\n");
             continue;
         }
         if (sp->kind == LANG_SUM_MMULT || sp->kind == LANG_SUM_SPARSE) {
             /* mmult: w[i + m j] u(i); sparse: w[j m + i] u(l[j m + i]) (indices checked by
              * prepare) */
             const int sparse = sp->kind == LANG_SUM_SPARSE;
-            outf(c, "    for (int j = 0; j < %d; j++) {\n        double s = 0.0;\n"
-                    "        for (int i = 0; i < %d; i++)\n",
-                 sp->n, sp->m);
+            LANG_C_CODEF(c, "    for (int j = 0; j < %d; j++) {\n        double s = 0.0;\n"
+                            "        for (int i = 0; i < %d; i++)\n",
+                         sp->n, sp->m);
             if (sparse)
-                outf(c, "            s += (p + %d)[j * %d + i] * (%s)[(long)(p + %d)[j * %d + i]];\n",
-                     tb->offset, sp->m, u,
-                     LVEC_AT(m->tables, lang_table, sp->index_table).offset, sp->m);
+                LANG_C_CODEF(c, "            s += (p + %d)[j * %d + i] * ", tb->offset, sp->m);
             else
-                outf(c, "            s += (p + %d)[i + %d * j] * (%s)[i];\n", tb->offset, sp->m,
-                     u);
-            outf(c, "        sp_%s[j] = s;\n    }\n", sp->name);
+                LANG_C_CODEF(c, "            s += (p + %d)[i + %d * j] * ", tb->offset, sp->m);
+            block_ref(c, i, 0, sp->root_kind, sp->root);
+            if (sparse)
+                LANG_C_CODEF(c, "[(long)(p + %d)[j * %d + i]];\n",
+                             LVEC_AT(m->tables, lang_table, sp->index_table).offset, sp->m);
+            else
+                LANG_C_CODE(c, "[i];\n");
+            LANG_C_CODEF(c, "        sp_%d[j] = s;\n    }\n", i);
             continue;
         }
         /* fconv: f(u(j+i), v(j)) in place of u(j+i) */
-        const char *v = special_block(c, sp, sp->vroot_kind, sp->vroot, sp->n, "spv");
+        block_decl(c, i, 1, sp->vroot_kind, sp->vroot, sp->n);
         mark_func(c, sp->func, 0);
-        outf(c, "    for (int j = 0; j < %d; j++) {\n        double s = 0.0;\n"
-                "        for (int i = -%d; i <= %d; i++)\n"
-                "            s += (p + %d)[%d + i] * u_%s(dk_conv_at(%s, %d, j + i, %d), (%s)[j], "
-                "t, y, p);\n        sp_%s[j] = s;\n    }\n",
-             sp->n, sp->m, sp->m, tb->offset, sp->m,
-             LVEC_AT(m->funcs, lang_func, sp->func).name, u, sp->n, sp->type, v, sp->name);
+        LANG_C_CODEF(c, "    for (int j = 0; j < %d; j++) {\n        double s = 0.0;\n"
+                        "        for (int i = -%d; i <= %d; i++)\n"
+                        "            s += (p + %d)[%d + i] * u_%d(dk_conv_at(",
+                     sp->n, sp->m, sp->m, tb->offset, sp->m, sp->func);
+        block_ref(c, i, 0, sp->root_kind, sp->root);
+        LANG_C_CODEF(c, ", %d, j + i, %d), ", sp->n, sp->type);
+        block_ref(c, i, 1, sp->vroot_kind, sp->vroot);
+        LANG_C_CODEF(c, "[j], t, y, p);\n        sp_%d[j] = s;\n    }\n", i);
     }
 }
 
@@ -424,9 +397,9 @@ static void emit_fixes(lang_ctx *c, const unsigned char *needed)
             continue;
         const lang_formula *f = &LVEC_AT(c->m.fixes, lang_formula, k);
         line_dir(c, f->pos);
-        outf(c, "    const double v_%s = ", f->name);
+        LANG_C_CODEF(c, "    const double v_%d = ", k);
         expr(c, f->expr, &x);
-        puts_(c, ";\n");
+        LANG_C_CODE(c, ";\n");
     }
     emit_specials(c, needed);
 }
@@ -482,13 +455,24 @@ static int needs_alg(lang_ctx *c, node *const *roots, int n, const unsigned char
     return 0;
 }
 
-/* w at (t, y) into a local array; on failure the statement fail. In the right-hand side
- * (keep), the solution and its point are the next start. */
-static void emit_alg_solve(lang_ctx *c, const char *fail, int keep)
+/* What a function does when the algebraic equations have no solution (emit_alg_solve) */
+enum { ALG_FAIL_RHS, ALG_FAIL_STATUS, ALG_FAIL_NAN };
+
+/* w at (t, y) into a local array; on failure fail's statement. In the right-hand side
+ * (ALG_FAIL_RHS), the solution and its point are the next start. */
+static void emit_alg_solve(lang_ctx *c, int fail)
 {
-    outf(c, "    double w[DK_ALG_M];\n    if (dk_alg_solve(t, y, p, w))\n        %s\n", fail);
-    if (keep)
-        puts_(c, "    dk_alg_keep(t, y, par, w);\n");
+    LANG_C_CODE(c, "    double w[DK_ALG_M];\n    if (dk_alg_solve(t, y, p, w))\n        ");
+    if (fail == ALG_FAIL_RHS) /* derivatives that are not finite, so that an adaptive method
+                               * tries a shorter step, as after any trial state that is not
+                               * finite */
+        LANG_C_CODE(c, "{\n        for (int i = 0; i < DK_ALG_N; i++)\n"
+                       "            dydt[i] = NAN;\n        return 0;\n    }\n"
+                       "    dk_alg_keep(t, y, par, w);\n");
+    else if (fail == ALG_FAIL_STATUS)
+        LANG_C_CODE(c, "return DK_ALG_FAILED;\n");
+    else
+        LANG_C_CODE(c, "return NAN;\n");
 }
 
 /* The constants of alg_solver.c's text: sizes, slots in p, limits. */
@@ -496,7 +480,7 @@ static void emit_alg_constants(lang_ctx *c)
 {
     const lang_model *m = &c->m;
     const int na = m->algs.n, n = m->states.n, off = alg_offset(m);
-    outf(c,
+    LANG_C_CODEF(c,
          "#define DK_ALG_M %d /* algebraic variables */\n#define DK_ALG_N %d /* states */\n"
          "#define DK_ALG_W %d /* p: the last solution */\n"
          "#define DK_ALG_G %d /* the initial guesses */\n"
@@ -516,29 +500,29 @@ static void helpers(lang_ctx *c)
 {
     const unsigned h = c->helpers;
     if (h & H_HEAV)
-        puts_(c, "static inline double dk_heav(double x) { return x < 0.0 ? 0.0 : 1.0; }\n");
+        LANG_C_CODE(c, "static inline double dk_heav(double x) { return x < 0.0 ? 0.0 : 1.0; }\n");
     if (h & H_SIGN)
-        puts_(c, "static inline double dk_sign(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? "
+        LANG_C_CODE(c, "static inline double dk_sign(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? "
                  "-1.0 : 0.0); }\n");
     if (h & H_MOD)
-        puts_(c, "static inline double dk_mod(double x, double y)\n"
+        LANG_C_CODE(c, "static inline double dk_mod(double x, double y)\n"
                  "{\n    double z = fmod(x, y);\n    if (z < 0.0)\n        z += y;\n"
                  "    return z;\n}\n");
     if (h & H_MAX)
-        puts_(c, "static inline double dk_max(double x, double y) { return x > y ? x : y; }\n");
+        LANG_C_CODE(c, "static inline double dk_max(double x, double y) { return x > y ? x : y; }\n");
     if (h & H_MIN)
-        puts_(c, "static inline double dk_min(double x, double y) { return x < y ? x : y; }\n");
+        LANG_C_CODE(c, "static inline double dk_min(double x, double y) { return x < y ? x : y; }\n");
     if (h & H_NOT)
-        puts_(c, "static inline double dk_not(double x) { return x == 0.0 ? 1.0 : 0.0; }\n");
+        LANG_C_CODE(c, "static inline double dk_not(double x) { return x == 0.0 ? 1.0 : 0.0; }\n");
     if (h & H_SQ)
-        puts_(c, "static inline double dk_sq(double x) { return x * x; }\n");
+        LANG_C_CODE(c, "static inline double dk_sq(double x) { return x * x; }\n");
     if (h & H_POW)
-        puts_(c, "static inline double dk_pow(double x, double y) { return y == 2.0 ? x * x : "
+        LANG_C_CODE(c, "static inline double dk_pow(double x, double y) { return y == 2.0 ? x * x : "
                  "pow(x, y); }\n");
     if (h & H_CONV) /* XPPAUT's conv: sum w[m+i] u(j+i), u beyond its ends 0, wrapped, or
                      * mirrored at both ends; as XPPAUT 6.11 (measured: docs/model-files.md),
                      * 0 from 2n away on (mirrored) and below -2n (wrapped) */
-        puts_(c, "static inline double dk_conv_at(const double *u, int n, int q, int type)\n"
+        LANG_C_CODE(c, "static inline double dk_conv_at(const double *u, int n, int q, int type)\n"
                  "{\n    if (q >= 0 && q < n)\n        return u[q];\n"
                  "    if (type == 0 || (type == 1 && (q <= -2 * n || q >= 2 * n)) || q < -2 * n)\n"
                  "        return 0.0;\n    if (n == 1)\n        return type == 2 ? u[0] : 0.0;\n"
@@ -552,7 +536,7 @@ static void helpers(lang_ctx *c)
                  "            s += w[m + i] * dk_conv_at(u, n, j + i, type);\n"
                  "        out[j] = s;\n    }\n}\n");
     if (h & H_TABLE) /* XPPAUT's lookup: linear, extrapolated by the end segments */
-        puts_(c, "static inline long dk_table_at(long n, double lo, double dx, double x)\n"
+        LANG_C_CODE(c, "static inline long dk_table_at(long n, double lo, double dx, double x)\n"
                  "{\n    const double k = floor((x - lo) / dx);\n"
                  "    return !(k > 0.0) ? 0 : k > (double)(n - 2) ? n - 2 : (long)k;\n}\n"
                  "static inline double dk_table(const double *v, long n, double lo, double dx, "
@@ -564,18 +548,19 @@ static void helpers(lang_ctx *c)
                  "    const long i = dk_table_at(n, lo, dx, x);\n"
                  "    return (v[i + 1] - v[i]) / dx;\n}\n");
     if (h)
-        puts_(c, "\n");
+        LANG_C_CODE(c, "\n");
 }
 
-static void func_proto(lang_ctx *c, const lang_func *f, int partial)
+/* user function fi, u_FI(a_0, ..., t, y, p), or its partial derivative udK_FI */
+static void func_proto(lang_ctx *c, const lang_func *f, int fi, int partial)
 {
     if (partial < 0)
-        outf(c, "static double u_%s(", f->name);
+        LANG_C_CODEF(c, "static double u_%d(", fi);
     else
-        outf(c, "static double ud%d_%s(", partial, f->name);
+        LANG_C_CODEF(c, "static double ud%d_%d(", partial, fi);
     for (int k = 0; k < f->nargs; k++)
-        outf(c, "double a_%s, ", f->argnames[k]);
-    puts_(c, "double t, const double *y, const double *p)");
+        LANG_C_CODEF(c, "double a_%d, ", k);
+    LANG_C_CODE(c, "double t, const double *y, const double *p)");
 }
 
 /* ---- the whole unit ---- */
@@ -583,8 +568,9 @@ static void func_proto(lang_ctx *c, const lang_func *f, int partial)
 typedef struct jac_plan {
     unsigned char *used;  /* partials of user functions used (funcs * LANG_MAX_ARGS) */
     node **partial;       /* their bodies */
-    char *text;           /* the Jacobian's C text */
-    size_t text_len;
+    lang_ctext text;      /* the Jacobian's C text */
+    lang_ctext before;    /* the main text, while the Jacobian's is written */
+    int writing;          /* 1 while the Jacobian's text is written */
     int band_bad_i, band_bad_j; /* an entry outside the declared band (-1: none) */
 } jac_plan;
 
@@ -629,15 +615,15 @@ static void emit_function_defs(lang_ctx *c, const jac_plan *j, unsigned char *do
                 changed = 1;
                 if (!body)
                     continue;
-                puts_(c, "\n");
+                LANG_C_CODE(c, "\n");
                 line_dir(c, fn->pos);
-                func_proto(c, fn, k);
-                puts_(c, "\n{\n    (void)t;\n    (void)y;\n    (void)p;\n");
+                func_proto(c, fn, f, k);
+                LANG_C_CODE(c, "\n{\n    (void)t;\n    (void)y;\n    (void)p;\n");
                 for (int a = 0; a < fn->nargs; a++)
-                    outf(c, "    (void)a_%s;\n", fn->argnames[a]);
-                puts_(c, "    return ");
+                    LANG_C_CODEF(c, "    (void)a_%d;\n", a);
+                LANG_C_CODE(c, "    return ");
                 expr(c, body, &x);
-                puts_(c, ";\n}\n");
+                LANG_C_CODE(c, ";\n}\n");
             }
         }
     }
@@ -652,25 +638,14 @@ static void emit_function_protos(lang_ctx *c)
         for (int k = -1; k < fn->nargs; k++)
             if (func_marked(c, f, k + 1)) {
                 if (!any)
-                    puts_(c, "/* user functions and their partial derivatives */\n");
+                    LANG_C_CODE(c, "/* user functions and their partial derivatives */\n");
                 any = 1;
-                func_proto(c, fn, k);
-                puts_(c, ";\n");
+                func_proto(c, fn, f, k);
+                LANG_C_CODE(c, ";\n");
             }
     }
     if (any)
-        puts_(c, "\n");
-}
-
-/* The text written so far, moved into the arena; the output starts empty. */
-static char *take_text(lang_ctx *c, size_t *len)
-{
-    char *s = lang_strndup(c, c->out ? c->out : "", c->out ? c->out_len : 0);
-    *len = c->out ? c->out_len : 0;
-    free(c->out);
-    c->out = NULL;
-    c->out_len = c->out_cap = 0;
-    return s;
+        LANG_C_CODE(c, "\n");
 }
 
 static void emit_rhs(lang_ctx *c)
@@ -680,26 +655,21 @@ static void emit_rhs(lang_ctx *c)
     for (int i = 0; i < m->states.n; i++)
         roots[i] = LVEC_AT(m->states, lang_state, i).rhs;
     unsigned char *needed = needed_by(c, roots, m->states.n);
-    puts_(c, "static int dk_rhs(double t, const double *y, double *dydt, void *par)\n{\n"
+    LANG_C_CODE(c, "static int dk_rhs(double t, const double *y, double *dydt, void *par)\n{\n"
              "    const double *p = (const double *)par;\n    (void)t;\n    (void)y;\n"
              "    (void)p;\n");
-    if (m->algs.n) /* also when no derivative reads them: the branch is tracked here. No
-                    * solution: derivatives that are not finite, so that an adaptive method
-                    * tries a shorter step, as after any trial state that is not finite */
-        emit_alg_solve(c,
-                       "{\n        for (int i = 0; i < DK_ALG_N; i++)\n"
-                       "            dydt[i] = NAN;\n        return 0;\n    }",
-                       1);
+    if (m->algs.n) /* also when no derivative reads them: the branch is tracked here */
+        emit_alg_solve(c, ALG_FAIL_RHS);
     emit_fixes(c, needed);
     const ectx x = {NULL, 1};
     for (int i = 0; i < m->states.n; i++) {
         const lang_state *s = &LVEC_AT(m->states, lang_state, i);
         line_dir(c, s->pos);
-        outf(c, "    dydt[%d] = ", i);
+        LANG_C_CODEF(c, "    dydt[%d] = ", i);
         expr(c, s->rhs, &x);
-        puts_(c, ";\n");
+        LANG_C_CODE(c, ";\n");
     }
-    puts_(c, "    return 0;\n}\n\n");
+    LANG_C_CODE(c, "    return 0;\n}\n\n");
 }
 
 static void emit_outputs(lang_ctx *c)
@@ -711,21 +681,21 @@ static void emit_outputs(lang_ctx *c)
     for (int i = 0; i < m->auxs.n; i++)
         roots[i] = LVEC_AT(m->auxs, lang_formula, i).expr;
     unsigned char *needed = needed_by(c, roots, m->auxs.n);
-    puts_(c, "static int dk_outputs(double t, const double *y, const void *par, double *out)\n"
+    LANG_C_CODE(c, "static int dk_outputs(double t, const double *y, const void *par, double *out)\n"
              "{\n    const double *p = (const double *)par;\n    (void)t;\n    (void)y;\n"
              "    (void)p;\n");
     if (needs_alg(c, roots, m->auxs.n, needed))
-        emit_alg_solve(c, "return DK_ALG_FAILED;", 0);
+        emit_alg_solve(c, ALG_FAIL_STATUS);
     emit_fixes(c, needed);
     const ectx x = {NULL, 1};
     for (int i = 0; i < m->auxs.n; i++) {
         const lang_formula *f = &LVEC_AT(m->auxs, lang_formula, i);
         line_dir(c, f->pos);
-        outf(c, "    out[%d] = ", i);
+        LANG_C_CODEF(c, "    out[%d] = ", i);
         expr(c, f->expr, &x);
-        puts_(c, ";\n");
+        LANG_C_CODE(c, ";\n");
     }
-    puts_(c, "    return 0;\n}\n\n");
+    LANG_C_CODE(c, "    return 0;\n}\n\n");
 }
 
 /* In prepare: each table's values into p, from its formula of t at the abscissas
@@ -738,21 +708,21 @@ static void emit_table_values(lang_ctx *c)
         const lang_table *tb = &LVEC_AT(m->tables, lang_table, i);
         line_dir(c, tb->pos);
         if (!tb->expr) {
-            outf(c, "    memcpy(p + %d, dk_table_file%d, sizeof dk_table_file%d);\n", tb->offset,
+            LANG_C_CODEF(c, "    memcpy(p + %d, dk_table_file%d, sizeof dk_table_file%d);\n", tb->offset,
                  i, i);
             continue;
         }
-        outf(c, "    for (long k = 0; k < %ld; k++) {\n        const double t = ", tb->npts);
-        num_lit(c, tb->lo);
-        puts_(c, " + ");
-        num_lit(c, table_dx(tb));
-        outf(c, " * (double)k;\n        (void)t;\n        p[%d + k] = ", tb->offset);
+        LANG_C_CODEF(c, "    for (long k = 0; k < %ld; k++) {\n        const double t = ", tb->npts);
+        lang_c_num(c, tb->lo);
+        LANG_C_CODE(c, " + ");
+        lang_c_num(c, table_dx(tb));
+        LANG_C_CODEF(c, " * (double)k;\n        (void)t;\n        p[%d + k] = ", tb->offset);
         expr(c, tb->expr, &x);
-        outf(c, ";\n        if (!isfinite(p[%d + k])) {\n            snprintf(err, errlen, "
+        LANG_C_CODEF(c, ";\n        if (!isfinite(p[%d + k])) {\n            snprintf(err, errlen, "
                 "\"table '%%s' is not finite at t = %%g (%%g)\", ",
              tb->offset);
-        str_lit(c, tb->name);
-        outf(c, ", t, p[%d + k]);\n            return 1;\n        }\n    }\n", tb->offset);
+        lang_c_str(c, tb->name);
+        LANG_C_CODEF(c, ", t, p[%d + k]);\n            return 1;\n        }\n    }\n", tb->offset);
     }
 }
 
@@ -786,17 +756,18 @@ static void emit_inputs(lang_ctx *c)
     const lang_model *m = &c->m;
     if (!m->n_inputs)
         return;
-    outf(c, "_Static_assert(sizeof(dyn_input_table) <= %d * sizeof(double), \"room for the "
-            "input table\");\n"
-            "static inline double dk_input(const double *p, double t, int k, int i)\n{\n"
-            "    dyn_input_table it;\n    memcpy(&it, p + %d, sizeof it);\n"
-            "    return dyn_input_table_at(&it, t, k, p[i]);\n}\n\n"
-            "static int dk_set_input(void *par, const double *table, long rows, dyn_interp "
-            "interp, char *err, size_t errlen)\n{\n    dyn_input_table it;\n"
-            "    if (dyn_input_table_set(&it, table, rows, %d, interp, err, errlen))\n"
-            "        return 1;\n    memcpy((double *)par + %d, &it, sizeof it);\n"
-            "    return 0;\n}\n\n",
-         LANG_INPUT_DOUBLES, input_offset(m), m->n_inputs, input_offset(m));
+    LANG_C_CODEF(c,
+                 "_Static_assert(sizeof(dyn_input_table) <= %d * sizeof(double), \"room for "
+                 "the input table\");\n"
+                 "static inline double dk_input(const double *p, double t, int k, int i)\n{\n"
+                 "    dyn_input_table it;\n    memcpy(&it, p + %d, sizeof it);\n"
+                 "    return dyn_input_table_at(&it, t, k, p[i]);\n}\n\n"
+                 "static int dk_set_input(void *par, const double *table, long rows, "
+                 "dyn_interp interp, char *err, size_t errlen)\n{\n    dyn_input_table it;\n"
+                 "    if (dyn_input_table_set(&it, table, rows, %d, interp, err, errlen))\n"
+                 "        return 1;\n    memcpy((double *)par + %d, &it, sizeof it);\n"
+                 "    return 0;\n}\n\n",
+                 LANG_INPUT_DOUBLES, input_offset(m), m->n_inputs, input_offset(m));
 }
 
 static void emit_input_vars(lang_ctx *c)
@@ -804,18 +775,18 @@ static void emit_input_vars(lang_ctx *c)
     const lang_model *m = &c->m;
     if (!m->n_inputs)
         return;
-    puts_(c, "static const dyn_var dk_inputs_vars[] = {\n");
+    LANG_C_CODE(c, "static const dyn_var dk_inputs_vars[] = {\n");
     for (int k = 0; k < m->n_inputs; k++) {
         const lang_param *p = &LVEC_AT(m->params, lang_param, m->input_param[k]);
-        puts_(c, "    {");
-        str_lit(c, p->name);
-        puts_(c, ", ");
-        str_lit(c, p->doc.unit);
-        puts_(c, ", ");
-        str_lit(c, p->doc.description);
-        puts_(c, "},\n");
+        LANG_C_CODE(c, "    {");
+        lang_c_str(c, p->name);
+        LANG_C_CODE(c, ", ");
+        lang_c_str(c, p->doc.unit);
+        LANG_C_CODE(c, ", ");
+        lang_c_str(c, p->doc.description);
+        LANG_C_CODE(c, "},\n");
     }
-    puts_(c, "};\n");
+    LANG_C_CODE(c, "};\n");
 }
 
 /* In prepare, after the tables: each index of a sparse sum must point into its block. */
@@ -828,17 +799,17 @@ static void emit_sparse_checks(lang_ctx *c)
             continue;
         const lang_table *l = &LVEC_AT(m->tables, lang_table, sp->index_table);
         line_dir(c, sp->pos);
-        outf(c, "    for (long k = 0; k < %ld; k++)\n        if (!(p[%d + k] >= 0.0 && "
+        LANG_C_CODEF(c, "    for (long k = 0; k < %ld; k++)\n        if (!(p[%d + k] >= 0.0 && "
                 "p[%d + k] < %d.0)) {\n            snprintf(err, errlen, \"network sum '%%s': "
                 "index %%ld of table '%%s' is %%g, not one of the %d states from '%%s' on (0 "
                 "to %d)\", ",
              l->npts, l->offset, l->offset, sp->ulen, sp->ulen, sp->ulen - 1);
-        str_lit(c, sp->name);
-        puts_(c, ", k, ");
-        str_lit(c, l->name);
-        outf(c, ", p[%d + k], ", l->offset);
-        str_lit(c, sp->root_name);
-        puts_(c, ");\n            return 1;\n        }\n");
+        lang_c_str(c, sp->name);
+        LANG_C_CODE(c, ", k, ");
+        lang_c_str(c, l->name);
+        LANG_C_CODEF(c, ", p[%d + k], ", l->offset);
+        lang_c_str(c, sp->root_name);
+        LANG_C_CODE(c, ");\n            return 1;\n        }\n");
     }
 }
 
@@ -850,12 +821,17 @@ static void emit_table_files(lang_ctx *c)
         const lang_table *tb = &LVEC_AT(m->tables, lang_table, i);
         if (tb->expr)
             continue;
-        outf(c, "static const double dk_table_file%d[%ld] = {", i, tb->npts);
+        LANG_C_CODEF(c, "static const double dk_table_file%d[%ld] = {", i, tb->npts);
         for (long k = 0; k < tb->npts; k++) {
-            puts_(c, k % 4 ? ", " : k ? ",\n    " : "\n    ");
-            num_lit(c, tb->values[k]);
+            if (k % 4)
+                LANG_C_CODE(c, ", ");
+            else if (k)
+                LANG_C_CODE(c, ",\n    ");
+            else
+                LANG_C_CODE(c, "\n    ");
+            lang_c_num(c, tb->values[k]);
         }
-        puts_(c, "};\n\n");
+        LANG_C_CODE(c, "};\n\n");
     }
 }
 
@@ -869,36 +845,36 @@ static void emit_alg_guesses(lang_ctx *c)
     for (int i = 0; i < na; i++) {
         const lang_formula *f = &LVEC_AT(m->algs, lang_formula, i);
         line_dir(c, f->pos);
-        outf(c, "    p[DK_ALG_G + %d] = ", i);
+        LANG_C_CODEF(c, "    p[DK_ALG_G + %d] = ", i);
         expr(c, f->expr, &x);
-        outf(c,
+        LANG_C_CODEF(c,
              ";\n    if (!isfinite(p[DK_ALG_G + %d])) {\n        snprintf(err, errlen, \"the "
              "initial guess of algebraic variable '%%s' is not finite (%%g)\", ",
              i);
-        str_lit(c, f->name);
-        outf(c,
+        lang_c_str(c, f->name);
+        LANG_C_CODEF(c,
              ", p[DK_ALG_G + %d]);\n        return 1;\n    }\n    p[DK_ALG_W + %d] = "
              "p[DK_ALG_G + %d];\n    p[DK_ALG_S + %d] = fabs(p[DK_ALG_G + %d]);\n",
              i, i, i, i, i);
     }
     if (na)
-        puts_(c, "    p[DK_ALG_T] = INFINITY;\n    p[DK_ALG_TP] = 0.0;\n");
+        LANG_C_CODE(c, "    p[DK_ALG_T] = INFINITY;\n    p[DK_ALG_TP] = 0.0;\n");
 }
 
 static void emit_prepare(lang_ctx *c)
 {
     lang_model *m = &c->m;
     const int np = m->params.n;
-    puts_(c, "static int dk_prepare(void *par, char *err, size_t errlen)\n{\n"
+    LANG_C_CODE(c, "static int dk_prepare(void *par, char *err, size_t errlen)\n{\n"
              "    double *p = (double *)par;\n    (void)p;\n");
     if (np > 0) {
-        puts_(c, "    static const char *const names[] = {");
+        LANG_C_CODE(c, "    static const char *const names[] = {");
         for (int i = 0; i < np; i++) {
             if (i)
-                puts_(c, ", ");
-            str_lit(c, LVEC_AT(m->params, lang_param, i).name);
+                LANG_C_CODE(c, ", ");
+            lang_c_str(c, LVEC_AT(m->params, lang_param, i).name);
         }
-        outf(c, "};\n    for (int i = 0; i < %d; i++)\n        if (!isfinite(p[i])) {\n"
+        LANG_C_CODEF(c, "};\n    for (int i = 0; i < %d; i++)\n        if (!isfinite(p[i])) {\n"
                 "            snprintf(err, errlen, \"parameter '%%s' is not finite (%%g)\", "
                 "names[i], p[i]);\n            return 1;\n        }\n",
              np);
@@ -908,19 +884,19 @@ static void emit_prepare(lang_ctx *c)
         const int k = m->derived_order[i];
         const lang_formula *f = &LVEC_AT(m->derived, lang_formula, k);
         line_dir(c, f->pos);
-        outf(c, "    p[%d] = ", np + k);
+        LANG_C_CODEF(c, "    p[%d] = ", np + k);
         expr(c, f->expr, &x);
-        puts_(c, ";\n");
-        outf(c, "    if (!isfinite(p[%d])) {\n        snprintf(err, errlen, \"derived parameter "
+        LANG_C_CODE(c, ";\n");
+        LANG_C_CODEF(c, "    if (!isfinite(p[%d])) {\n        snprintf(err, errlen, \"derived parameter "
                 "'%%s' is not finite (%%g)\", ",
              np + k);
-        str_lit(c, f->name);
-        outf(c, ", p[%d]);\n        return 1;\n    }\n", np + k);
+        lang_c_str(c, f->name);
+        LANG_C_CODEF(c, ", p[%d]);\n        return 1;\n    }\n", np + k);
     }
     emit_table_values(c);
     emit_sparse_checks(c);
     emit_alg_guesses(c);
-    puts_(c, "    (void)err;\n    (void)errlen;\n    return 0;\n}\n\n");
+    LANG_C_CODE(c, "    (void)err;\n    (void)errlen;\n    return 0;\n}\n\n");
 }
 
 static int init_needs_params(const node *e)
@@ -943,30 +919,30 @@ static int emit_initial(lang_ctx *c, const double *y0)
         any |= init_needs_params(LVEC_AT(m->states, lang_state, i).init);
     if (!any)
         return 0;
-    puts_(c, "static void dk_initial_state(const void *par, double *y0)\n{\n"
+    LANG_C_CODE(c, "static void dk_initial_state(const void *par, double *y0)\n{\n"
              "    const double *p = (const double *)par;\n    (void)p;\n");
     const ectx x = {NULL, 0};
     for (int i = 0; i < m->states.n; i++) {
         const lang_state *s = &LVEC_AT(m->states, lang_state, i);
         if (init_needs_params(s->init)) {
             line_dir(c, s->init_pos);
-            outf(c, "    y0[%d] = ", i);
+            LANG_C_CODEF(c, "    y0[%d] = ", i);
             expr(c, s->init, &x);
         } else {
-            outf(c, "    y0[%d] = ", i);
-            num_lit(c, y0[i]);
+            LANG_C_CODEF(c, "    y0[%d] = ", i);
+            lang_c_num(c, y0[i]);
         }
-        puts_(c, ";\n");
+        LANG_C_CODE(c, ";\n");
     }
-    puts_(c, "}\n\n");
+    LANG_C_CODE(c, "}\n\n");
     return 1;
 }
 
 /* Jacobian: the fixed temporaries, then one block per column j with the derivatives of the
- * fixed temporaries with respect to y[j] (locals dvJ_NAME) and the non-zero entries. */
+ * fixed temporaries with respect to y[j] (locals dvJ_K) and the non-zero entries. */
 /* The derivatives of the needed fixed quantities with respect to v's variable, in their
  * order, into out (NULL: zero), and for the derivatives after them into v->fixd: the
- * number, or a reference dv<column>_NAME to the local the Jacobian's text writes. */
+ * number, or a reference dv<column>_K to the local the Jacobian's text writes. */
 static void derive_fixes(lang_ctx *c, lang_dvar *v, const unsigned char *needed, node **out)
 {
     const lang_model *m = &c->m;
@@ -1018,13 +994,8 @@ static void emit_jacobian(lang_ctx *c, jac_plan *j)
     }
     plan_partials(c, j);
     /* the functions' text comes before the Jacobian's: write it into a buffer of its own */
-    char *saved = c->out;
-    size_t saved_len = c->out_len, saved_cap = c->out_cap;
-    c->out_saved = saved;
-    c->out_saved_len = saved_len;
-    c->out_saved_cap = saved_cap;
-    c->out = NULL;
-    c->out_len = c->out_cap = 0;
+    j->before = lang_c_take(c);
+    j->writing = 1;
     /* the fixed temporaries the derivatives use (not all those of the right-hand side) */
     unsigned char *jneed = lang_alloc(c, (size_t)m->fixes.n + 1);
     for (int jj = 0; jj < n; jj++) {
@@ -1049,12 +1020,15 @@ static void emit_jacobian(lang_ctx *c, jac_plan *j)
      * in DYN_BAND_AT storage): the same entries */
     const int ld = m->band_lo + m->band_up + 1;
     for (int band = 0; band <= (m->has_band && j->band_bad_i < 0); band++) {
-        outf(c, "static int dk_jacobian%s(double t, const double *y, double *J, void *par)\n{\n"
-                "    const double *p = (const double *)par;\n    (void)t;\n    (void)y;\n"
-                "    (void)p;\n",
-             band ? "_band" : "");
+        if (band)
+            LANG_C_CODE(c, "static int dk_jacobian_band");
+        else
+            LANG_C_CODE(c, "static int dk_jacobian");
+        LANG_C_CODE(c, "(double t, const double *y, double *J, void *par)\n{\n"
+                       "    const double *p = (const double *)par;\n    (void)t;\n    (void)y;\n"
+                       "    (void)p;\n");
         emit_fixes(c, jneed);
-        outf(c, "    for (int k = 0; k < %d; k++)\n        J[k] = 0.0;\n", band ? n * ld : n * n);
+        LANG_C_CODEF(c, "    for (int k = 0; k < %d; k++)\n        J[k] = 0.0;\n", band ? n * ld : n * n);
         const ectx x = {NULL, 1};
         for (int jj = 0; jj < n; jj++) {
             int any = 0;
@@ -1062,7 +1036,7 @@ static void emit_jacobian(lang_ctx *c, jac_plan *j)
                 any |= cols[jj].entry[i] != NULL;
             if (!any)
                 continue;
-            outf(c, "    { /* d/d %s */\n", LVEC_AT(m->states, lang_state, jj).name);
+            LANG_C_CODEF(c, "    { /* d/d y[%d] */\n", jj);
             for (int q = 0; q < m->fixes.n; q++) {
                 const int k = m->fix_order[q];
                 const node *dk = cols[jj].fixd[k];
@@ -1070,33 +1044,27 @@ static void emit_jacobian(lang_ctx *c, jac_plan *j)
                     continue;
                 const lang_formula *f = &LVEC_AT(m->fixes, lang_formula, k);
                 line_dir(c, f->pos);
-                outf(c, "        const double dv%d_%s = ", jj, f->name);
+                LANG_C_CODEF(c, "        const double dv%d_%d = ", jj, k);
                 expr(c, dk, &x);
-                puts_(c, ";\n");
-                outf(c, "        (void)dv%d_%s;\n", jj, f->name);
+                LANG_C_CODE(c, ";\n");
+                LANG_C_CODEF(c, "        (void)dv%d_%d;\n", jj, k);
             }
             for (int i = 0; i < n; i++) {
                 if (!cols[jj].entry[i])
                     continue;
                 line_dir(c, LVEC_AT(m->states, lang_state, i).pos);
-                outf(c, "        J[%d] = ", band ? jj * ld + m->band_up + i - jj : i * n + jj);
+                LANG_C_CODEF(c, "        J[%d] = ", band ? jj * ld + m->band_up + i - jj : i * n + jj);
                 expr(c, cols[jj].entry[i], &x);
-                puts_(c, ";\n");
+                LANG_C_CODE(c, ";\n");
             }
-            puts_(c, "    }\n");
+            LANG_C_CODE(c, "    }\n");
         }
-        puts_(c, "    return 0;\n}\n\n");
+        LANG_C_CODE(c, "    return 0;\n}\n\n");
     }
-    char *jac = c->out;
-    const size_t jac_len = c->out_len;
-    c->out = saved;
-    c->out_saved = NULL;
-    c->out_len = saved_len;
-    c->out_cap = saved_cap;
     /* keep the Jacobian's text in the arena until it is appended */
-    j->text = lang_strndup(c, jac ? jac : "", jac ? jac_len : 0);
-    j->text_len = jac ? jac_len : 0;
-    free(jac);
+    j->text = lang_c_take(c);
+    lang_c_splice(c, j->before);
+    j->writing = 0;
 }
 
 /* ---- the declared band, checked from the structure of the equations ---- */
@@ -1236,7 +1204,7 @@ static void emit_bound(lang_ctx *c, const node *e, const ectx *x)
         return;
     }
     if (e->kind == N_FIX) { /* its bound, a local written before (emit_fix_bounds) */
-        outf(c, "b_%s", LVEC_AT(c->m.fixes, lang_formula, e->index).name);
+        LANG_C_CODEF(c, "b_%d", e->index);
         return;
     }
     if (e->kind == N_UFUN) { /* the body with the arguments in place */
@@ -1248,34 +1216,37 @@ static void emit_bound(lang_ctx *c, const node *e, const ectx *x)
         return;
     }
     if (e->kind == N_IF) {
-        puts_(c, "((");
+        LANG_C_CODE(c, "((");
         expr(c, e->args[0], x);
-        puts_(c, ") != 0.0 ? ");
+        LANG_C_CODE(c, ") != 0.0 ? ");
         emit_bound(c, e->args[1], x);
-        puts_(c, " : ");
+        LANG_C_CODE(c, " : ");
         emit_bound(c, e->args[2], x);
-        puts_(c, ")");
+        LANG_C_CODE(c, ")");
         return;
     }
     if (e->kind == N_BIN &&
         (e->op == OP_ADD || e->op == OP_SUB || e->op == OP_MUL || e->op == OP_DIV)) {
-        puts_(c, "(");
+        LANG_C_CODE(c, "(");
         if (e->op == OP_DIV) {
             emit_bound(c, e->args[0], x);
-            puts_(c, " / fabs(");
+            LANG_C_CODE(c, " / fabs(");
             expr(c, e->args[1], x);
-            puts_(c, ")");
+            LANG_C_CODE(c, ")");
         } else {
             emit_bound(c, e->args[0], x);
-            puts_(c, e->op == OP_MUL ? " * " : " + ");
+            if (e->op == OP_MUL)
+                LANG_C_CODE(c, " * ");
+            else
+                LANG_C_CODE(c, " + ");
             emit_bound(c, e->args[1], x);
         }
-        puts_(c, ")");
+        LANG_C_CODE(c, ")");
         return;
     }
-    puts_(c, "fabs(");
+    LANG_C_CODE(c, "fabs(");
     expr(c, e, x);
-    puts_(c, ")");
+    LANG_C_CODE(c, ")");
 }
 
 /* dk_alg_residual (r from the 0= equations, and the bounds of their rounding), the exact
@@ -1292,35 +1263,35 @@ static void emit_alg_functions(lang_ctx *c, jac_plan *jp)
     unsigned char *needed = needed_by(c, roots, na);
     const ectx x = {NULL, 1};
     /* r, and when rb is not NULL the bounds of their rounding (emit_bound) */
-    puts_(c, "static void dk_alg_residual(double t, const double *y, const double *p, "
+    LANG_C_CODE(c, "static void dk_alg_residual(double t, const double *y, const double *p, "
              "const double *w, double *r, double *rb)\n{\n    (void)t;\n    (void)y;\n"
              "    (void)p;\n    (void)w;\n");
     emit_fixes(c, needed);
     for (int i = 0; i < na; i++) {
         const lang_formula *f = &LVEC_AT(m->algeqs, lang_formula, i);
         line_dir(c, f->pos);
-        outf(c, "    r[%d] = ", i);
+        LANG_C_CODEF(c, "    r[%d] = ", i);
         expr(c, f->expr, &x);
-        puts_(c, ";\n");
+        LANG_C_CODE(c, ";\n");
     }
-    puts_(c, "    if (!rb)\n        return;\n");
+    LANG_C_CODE(c, "    if (!rb)\n        return;\n");
     for (int q = 0; q < m->fixes.n; q++) { /* the fixed quantities' bounds */
         const int k = m->fix_order[q];
         if (!needed[k])
             continue;
         const lang_formula *f = &LVEC_AT(m->fixes, lang_formula, k);
-        outf(c, "    const double b_%s = ", f->name);
+        LANG_C_CODEF(c, "    const double b_%d = ", k);
         emit_bound(c, f->expr, &x);
-        outf(c, ";\n    (void)b_%s;\n", f->name);
+        LANG_C_CODEF(c, ";\n    (void)b_%d;\n", k);
     }
     for (int i = 0; i < na; i++) {
         const lang_formula *f = &LVEC_AT(m->algeqs, lang_formula, i);
         line_dir(c, f->pos);
-        outf(c, "    rb[%d] = ", i);
+        LANG_C_CODEF(c, "    rb[%d] = ", i);
         emit_bound(c, f->expr, &x);
-        puts_(c, ";\n");
+        LANG_C_CODE(c, ";\n");
     }
-    puts_(c, "}\n\n");
+    LANG_C_CODE(c, "}\n\n");
     alg_jac aj;
     const int exact = alg_jacobian_entries(c, jp, needed, &aj);
     if (exact) {
@@ -1331,14 +1302,14 @@ static void emit_alg_functions(lang_ctx *c, jac_plan *jp)
         for (size_t q = 0; q < (size_t)na * ((size_t)nf + 1); q++)
             if (aj.fixd[q])
                 need(c, aj.fixd[q], jneed);
-        puts_(c, "/* r and J = dr/dw, exact */\n"
+        LANG_C_CODE(c, "/* r and J = dr/dw, exact */\n"
                  "static void dk_alg_jacobian(double t, const double *y, const double *p, "
                  "double *w, const double *s, double *r, double *rb, double *J)\n{\n"
                  "    (void)s;\n    dk_alg_residual(t, y, p, w, r, rb);\n");
         emit_fixes(c, jneed);
-        outf(c, "    for (int k = 0; k < %d; k++)\n        J[k] = 0.0;\n", na * na);
+        LANG_C_CODEF(c, "    for (int k = 0; k < %d; k++)\n        J[k] = 0.0;\n", na * na);
         for (int k = 0; k < na; k++) {
-            outf(c, "    { /* d/d %s */\n", LVEC_AT(m->algs, lang_formula, k).name);
+            LANG_C_CODEF(c, "    { /* d/d w[%d] */\n", k);
             for (int q = 0; q < nf; q++) {
                 const int f = m->fix_order[q];
                 const node *df = aj.fixd[(size_t)k * ((size_t)nf + 1) + (size_t)f];
@@ -1346,28 +1317,28 @@ static void emit_alg_functions(lang_ctx *c, jac_plan *jp)
                     continue;
                 const lang_formula *fx = &LVEC_AT(m->fixes, lang_formula, f);
                 line_dir(c, fx->pos);
-                outf(c, "        const double dv%d_%s = ", k, fx->name);
+                LANG_C_CODEF(c, "        const double dv%d_%d = ", k, f);
                 expr(c, df, &x);
-                outf(c, ";\n        (void)dv%d_%s;\n", k, fx->name);
+                LANG_C_CODEF(c, ";\n        (void)dv%d_%d;\n", k, f);
             }
             for (int i = 0; i < na; i++) {
                 const node *e = aj.entry[(size_t)k * (size_t)na + (size_t)i];
                 if (!e)
                     continue;
                 line_dir(c, LVEC_AT(m->algeqs, lang_formula, i).pos);
-                outf(c, "        J[%d] = ", i * na + k);
+                LANG_C_CODEF(c, "        J[%d] = ", i * na + k);
                 expr(c, e, &x);
-                puts_(c, ";\n");
+                LANG_C_CODE(c, ";\n");
             }
-            puts_(c, "    }\n");
+            LANG_C_CODE(c, "    }\n");
         }
-        puts_(c, "}\n\n");
+        LANG_C_CODE(c, "}\n\n");
     }
-    outf(c,
+    LANG_C_CODEF(c,
          "#define DK_ALG_EXACT_JACOBIAN %d\n#line 1 \"<dynkit: the solver of the algebraic "
          "equations>\"\n",
          exact);
-    puts_(c, lang_alg_solver_text());
+    lang_c_solver(c);
 }
 
 /* Without the analytic Jacobian (more than LANG_MAX_JAC_STATES states): every right-hand
@@ -1414,43 +1385,47 @@ static void emit_events(lang_ctx *c)
         const lang_event *ev = &LVEC_AT(m->events, lang_event, i);
         node *root = ev->cond;
         unsigned char *needed = needed_by(c, &root, 1);
-        outf(c, "static double dk_event%d(double t, const double *y, void *par)\n{\n"
+        LANG_C_CODEF(c, "static double dk_event%d(double t, const double *y, void *par)\n{\n"
                 "    const double *p = (const double *)par;\n    (void)t;\n    (void)y;\n"
                 "    (void)p;\n",
              i);
         if (needs_alg(c, &root, 1, needed))
-            emit_alg_solve(c, "return NAN;", 0);
+            emit_alg_solve(c, ALG_FAIL_NAN);
         emit_fixes(c, needed);
         line_dir(c, ev->pos);
-        puts_(c, "    return ");
+        LANG_C_CODE(c, "    return ");
         expr(c, ev->cond, &x);
-        puts_(c, ";\n}\n\n");
+        LANG_C_CODE(c, ";\n}\n\n");
         if (!ev->nassign)
             continue;
         /* XPPAUT applies a global's assignments in sequence: each sees the ones before */
-        outf(c, "static int dk_reset%d(double t, double *y, void *par)\n{\n"
+        LANG_C_CODEF(c, "static int dk_reset%d(double t, double *y, void *par)\n{\n"
                 "    const double *p = (const double *)par;\n    (void)t;\n    (void)p;\n",
              i);
         for (int k = 0; k < ev->nassign; k++) {
             const lang_assign *a = &ev->assign[k];
             root = a->value;
             needed = needed_by(c, &root, 1);
-            puts_(c, "    {\n");
+            LANG_C_CODE(c, "    {\n");
             if (needs_alg(c, &root, 1, needed))
-                emit_alg_solve(c, "return DK_ALG_FAILED;", 0);
+                emit_alg_solve(c, ALG_FAIL_STATUS);
             emit_fixes(c, needed);
             line_dir(c, a->pos);
-            outf(c, "        y[%d] = ", a->state);
+            LANG_C_CODEF(c, "        y[%d] = ", a->state);
             expr(c, a->value, &x);
-            puts_(c, ";\n    }\n");
+            LANG_C_CODE(c, ";\n    }\n");
         }
-        puts_(c, "    return 0;\n}\n\n");
+        LANG_C_CODE(c, "    return 0;\n}\n\n");
     }
 }
 
-static void vars(lang_ctx *c, const char *decl, lvec *v, int states)
+/* the states' (dk_states) or the outputs' (dk_outputs_vars) names and documentation */
+static void vars(lang_ctx *c, lvec *v, int states)
 {
-    outf(c, "static const dyn_var %s[] = {\n", decl);
+    if (states)
+        LANG_C_CODE(c, "static const dyn_var dk_states[] = {\n");
+    else
+        LANG_C_CODE(c, "static const dyn_var dk_outputs_vars[] = {\n");
     for (int i = 0; i < v->n; i++) {
         const char *name;
         const lang_doc *d;
@@ -1463,15 +1438,15 @@ static void vars(lang_ctx *c, const char *decl, lvec *v, int states)
             name = f->name;
             d = &f->doc;
         }
-        puts_(c, "    {");
-        str_lit(c, name);
-        puts_(c, ", ");
-        str_lit(c, d->unit);
-        puts_(c, ", ");
-        str_lit(c, d->description);
-        puts_(c, "},\n");
+        LANG_C_CODE(c, "    {");
+        lang_c_str(c, name);
+        LANG_C_CODE(c, ", ");
+        lang_c_str(c, d->unit);
+        LANG_C_CODE(c, ", ");
+        lang_c_str(c, d->description);
+        LANG_C_CODE(c, "},\n");
     }
-    puts_(c, "};\n");
+    LANG_C_CODE(c, "};\n");
 }
 
 /* The Jacobian, computed first (it decides the partials of user functions to write). One
@@ -1491,14 +1466,12 @@ static int try_jacobian(lang_ctx *c, jac_plan *jp)
     c->fail = outer;
     derivative_failed(c, jp,
                       "no analytic Jacobian: ", "; the stiff methods use finite differences");
-    if (c->out_saved) { /* failed while writing: back to the main text */
-        free(c->out);
-        c->out = c->out_saved;
-        c->out_len = c->out_saved_len;
-        c->out_cap = c->out_saved_cap;
-        c->out_saved = NULL;
+    if (jp->writing) { /* failed while writing: back to the main text */
+        lang_c_discard(c);
+        lang_c_splice(c, jp->before);
+        jp->writing = 0;
     }
-    jp->text = NULL;
+    jp->text = (lang_ctext){NULL, 0};
     return 0;
 }
 
@@ -1559,140 +1532,147 @@ char *lang_emit_c(lang_ctx *c)
     emit_table_files(c);
     emit_prepare(c);
     const int has_init = emit_initial(c, y0);
-    if (jp.text)
-        put(c, jp.text, jp.text_len);
+    lang_c_splice(c, jp.text);
     emit_events(c);
 
     /* data */
-    puts_(c, "#line 1 \"<dynkit: the model's tables>\"\n");
-    vars(c, "dk_states", &m->states, 1);
-    puts_(c, "static const double dk_y0[] = {");
+    LANG_C_CODE(c, "#line 1 \"<dynkit: the model's tables>\"\n");
+    vars(c, &m->states, 1);
+    LANG_C_CODE(c, "static const double dk_y0[] = {");
     for (int i = 0; i < n; i++) {
         if (i)
-            puts_(c, ", ");
-        num_lit(c, y0[i]);
+            LANG_C_CODE(c, ", ");
+        lang_c_num(c, y0[i]);
     }
-    puts_(c, "};\n");
+    LANG_C_CODE(c, "};\n");
     if (np) {
-        puts_(c, "static const dyn_param dk_params[] = {\n");
+        LANG_C_CODE(c, "static const dyn_param dk_params[] = {\n");
         for (int i = 0; i < np; i++) {
             const lang_param *p = &LVEC_AT(m->params, lang_param, i);
-            puts_(c, "    {");
-            str_lit(c, p->name);
-            puts_(c, ", ");
-            str_lit(c, p->doc.unit);
-            puts_(c, ", ");
-            str_lit(c, p->doc.description);
-            outf(c, ", %d * sizeof(double), ", i);
-            num_lit(c, p->value);
-            puts_(c, "},\n");
+            LANG_C_CODE(c, "    {");
+            lang_c_str(c, p->name);
+            LANG_C_CODE(c, ", ");
+            lang_c_str(c, p->doc.unit);
+            LANG_C_CODE(c, ", ");
+            lang_c_str(c, p->doc.description);
+            LANG_C_CODEF(c, ", %d * sizeof(double), ", i);
+            lang_c_num(c, p->value);
+            LANG_C_CODE(c, "},\n");
         }
-        puts_(c, "};\n");
+        LANG_C_CODE(c, "};\n");
     }
     if (m->auxs.n)
-        vars(c, "dk_outputs_vars", &m->auxs, 0);
+        vars(c, &m->auxs, 0);
     emit_input_vars(c);
     if (m->events.n) {
-        puts_(c, "static const dyn_event dk_events[] = {\n");
+        LANG_C_CODE(c, "static const dyn_event dk_events[] = {\n");
         for (int i = 0; i < m->events.n; i++) {
             const lang_event *ev = &LVEC_AT(m->events, lang_event, i);
-            puts_(c, "    {");
-            str_lit(c, ev->name);
-            puts_(c, ", ");
+            LANG_C_CODE(c, "    {");
+            lang_c_str(c, ev->name);
+            LANG_C_CODE(c, ", ");
             const char *desc = ev->description;
             if (!desc && ev->is_global)
                 desc = lang_printf(c, "XPPAUT global on line %d: resets the state", ev->pos.line);
-            str_lit(c, desc);
-            outf(c, ", dk_event%d, %d, %d, ", i, ev->direction, ev->terminal);
+            lang_c_str(c, desc);
+            LANG_C_CODEF(c, ", dk_event%d, %d, %d, ", i, ev->direction, ev->terminal);
             if (ev->nassign)
-                outf(c, "dk_reset%d},\n", i);
+                LANG_C_CODEF(c, "dk_reset%d},\n", i);
             else
-                puts_(c, "NULL},\n");
+                LANG_C_CODE(c, "NULL},\n");
         }
-        puts_(c, "};\n");
+        LANG_C_CODE(c, "};\n");
     }
     const double rtol = m->rtol > 0 ? m->rtol : 1e-6;
     const double atol = m->atol > 0 ? m->atol : 1e-9;
-    puts_(c, "\nstatic const dyn_model dk_model = {\n    .name = ");
-    str_lit(c, m->name);
-    puts_(c, ",\n    .title = ");
-    str_lit(c, m->title);
-    puts_(c, ",\n    .description = ");
-    str_lit(c, m->description);
-    outf(c, ",\n    .n_states = %d,\n    .states = dk_states,\n    .y0 = dk_y0,\n"
-            "    .n_params = %d,\n    .params = %s,\n    .par_size = %d * sizeof(double),\n"
-            "    .n_outputs = %d,\n    .outputs = %s,\n    .rhs = dk_rhs,\n"
-            "    .compute_outputs = %s,\n    .prepare = dk_prepare,\n    .warn = NULL,\n",
-         n, np, np ? "dk_params" : "NULL", par_doubles(m) > 0 ? par_doubles(m) : 1, m->auxs.n,
-         m->auxs.n ? "dk_outputs_vars" : "NULL", m->auxs.n ? "dk_outputs" : "NULL");
-    puts_(c, "    .t0 = ");
-    num_lit(c, m->t0);
-    puts_(c, ",\n    .t1 = ");
-    num_lit(c, m->t0 + m->total);
-    puts_(c, ",\n    .step = ");
-    num_lit(c, m->dt);
-    puts_(c, ",\n    .method = ");
-    str_lit(c, m->method ? m->method : "dp45");
-    outf(c, ",\n    .n_inputs = %d,\n    .inputs = %s,\n    .set_input = %s,\n"
-            "    .jacobian = %s,\n    .n_events = %d,\n    .events = %s,\n"
-            "    .samples = DYN_SAMPLES_GRID,\n    .initial_state = %s,\n",
-         m->n_inputs, m->n_inputs ? "dk_inputs_vars" : "NULL",
-         m->n_inputs ? "dk_set_input" : "NULL", with_jac ? "dk_jacobian" : "NULL", m->events.n, m->events.n ? "dk_events" : "NULL",
-         has_init ? "dk_initial_state" : "NULL");
-    puts_(c, "    .rtol = ");
-    num_lit(c, rtol);
-    puts_(c, ",\n    .atol = ");
-    num_lit(c, atol);
-    puts_(c, ",\n    .phase_x = ");
+    LANG_C_CODE(c, "\nstatic const dyn_model dk_model = {\n    .name = ");
+    lang_c_str(c, m->name);
+    LANG_C_CODE(c, ",\n    .title = ");
+    lang_c_str(c, m->title);
+    LANG_C_CODE(c, ",\n    .description = ");
+    lang_c_str(c, m->description);
+    LANG_C_CODEF(c, ",\n    .n_states = %d,\n    .states = dk_states,\n    .y0 = dk_y0,\n"
+                    "    .n_params = %d,\n    .params = ",
+                 n, np);
+    CODE_OR_NULL(c, np, "dk_params");
+    LANG_C_CODEF(c, ",\n    .par_size = %d * sizeof(double),\n    .n_outputs = %d,\n"
+                    "    .outputs = ",
+                 par_doubles(m) > 0 ? par_doubles(m) : 1, m->auxs.n);
+    CODE_OR_NULL(c, m->auxs.n, "dk_outputs_vars");
+    LANG_C_CODE(c, ",\n    .rhs = dk_rhs,\n    .compute_outputs = ");
+    CODE_OR_NULL(c, m->auxs.n, "dk_outputs");
+    LANG_C_CODE(c, ",\n    .prepare = dk_prepare,\n    .warn = NULL,\n");
+    LANG_C_CODE(c, "    .t0 = ");
+    lang_c_num(c, m->t0);
+    LANG_C_CODE(c, ",\n    .t1 = ");
+    lang_c_num(c, m->t0 + m->total);
+    LANG_C_CODE(c, ",\n    .step = ");
+    lang_c_num(c, m->dt);
+    LANG_C_CODE(c, ",\n    .method = ");
+    lang_c_str(c, m->method ? m->method : "dp45");
+    LANG_C_CODEF(c, ",\n    .n_inputs = %d,\n    .inputs = ", m->n_inputs);
+    CODE_OR_NULL(c, m->n_inputs, "dk_inputs_vars");
+    LANG_C_CODE(c, ",\n    .set_input = ");
+    CODE_OR_NULL(c, m->n_inputs, "dk_set_input");
+    LANG_C_CODE(c, ",\n    .jacobian = ");
+    CODE_OR_NULL(c, with_jac, "dk_jacobian");
+    LANG_C_CODEF(c, ",\n    .n_events = %d,\n    .events = ", m->events.n);
+    CODE_OR_NULL(c, m->events.n, "dk_events");
+    LANG_C_CODE(c, ",\n    .samples = DYN_SAMPLES_GRID,\n    .initial_state = ");
+    CODE_OR_NULL(c, has_init, "dk_initial_state");
+    LANG_C_CODE(c, ",\n");
+    LANG_C_CODE(c, "    .rtol = ");
+    lang_c_num(c, rtol);
+    LANG_C_CODE(c, ",\n    .atol = ");
+    lang_c_num(c, atol);
+    LANG_C_CODE(c, ",\n    .phase_x = ");
     if (m->xp)
-        str_lit(c, m->xp);
+        lang_c_str(c, m->xp);
     else
-        puts_(c, "NULL");
-    puts_(c, ",\n    .phase_y = ");
+        LANG_C_CODE(c, "NULL");
+    LANG_C_CODE(c, ",\n    .phase_y = ");
     if (m->yp)
-        str_lit(c, m->yp);
+        lang_c_str(c, m->yp);
     else
-        puts_(c, "NULL");
-    puts_(c, ",\n    .source = ");
-    str_lit(c, c->path);
-    puts_(c, ",\n    .t_trans = ");
-    num_lit(c, m->trans);
-    outf(c, ",\n    .every = %ld,\n    .bound = ", m->nout);
-    num_lit(c, m->bound);
-    if (m->has_band)
-        outf(c, ",\n    .jac_banded = 1,\n    .jac_lower = %d,\n    .jac_upper = %d,\n"
-                "    .jacobian_band = %s",
-             m->band_lo, m->band_up, with_jac ? "dk_jacobian_band" : "NULL");
-    puts_(c, ",\n};\n\nconst dyn_model *dynkit_model(void) { return &dk_model; }\n");
+        LANG_C_CODE(c, "NULL");
+    LANG_C_CODE(c, ",\n    .source = ");
+    lang_c_str(c, c->path);
+    LANG_C_CODE(c, ",\n    .t_trans = ");
+    lang_c_num(c, m->trans);
+    LANG_C_CODEF(c, ",\n    .every = %ld,\n    .bound = ", m->nout);
+    lang_c_num(c, m->bound);
+    if (m->has_band) {
+        LANG_C_CODEF(c, ",\n    .jac_banded = 1,\n    .jac_lower = %d,\n    .jac_upper = %d,\n"
+                        "    .jacobian_band = ",
+                     m->band_lo, m->band_up);
+        CODE_OR_NULL(c, with_jac, "dk_jacobian_band");
+    }
+    LANG_C_CODE(c, ",\n};\n\nconst dyn_model *dynkit_model(void) { return &dk_model; }\n");
     /* the functions the text calls, then what comes before it all */
-    size_t main_len, defs_len;
-    const char *main_text = take_text(c, &main_len);
+    const lang_ctext main_text = lang_c_take(c);
     unsigned char *done = lang_alloc(c, ((size_t)m->funcs.n + 1) * (LANG_MAX_ARGS + 1));
     emit_function_defs(c, &jp, done);
-    const char *defs = take_text(c, &defs_len);
-    puts_(c, "/* ");
-    puts_(c, m->name);
-    puts_(c, ": C text generated by dynkit from the model file ");
-    for (const char *s = c->path; *s; s++)
-        if (*s == '*' && s[1] == '/')
-            puts_(c, "*\\/"), s++;
-        else if ((unsigned char)*s >= 32)
-            put(c, s, 1);
-    puts_(c, "\n * (see \"The .ode format\" in docs/model-files.md). Edit the model file, not "
-             "this text. */\n"
-             "#include <math.h>\n#include <stddef.h>\n#include <stdio.h>\n");
+    const lang_ctext defs = lang_c_take(c);
+    /* the file's path and name are in .source and .name (string literals), not here */
+    LANG_C_CODE(c, "/* C text generated by dynkit from a model file (dk_model.source names it; "
+                   "see \"The .ode\n * format\" in docs/model-files.md). Edit the model file, "
+                   "not this text. */\n"
+                   "#include <math.h>\n#include <stddef.h>\n#include <stdio.h>\n");
     if (table_files(m) || m->n_inputs)
-        puts_(c, "#include <string.h>\n");
-    puts_(c, "\n#include <dynkit/model.h>\n");
-    puts_(c, m->n_inputs ? "#include <dynkit/input.h>\n\n" : "\n");
+        LANG_C_CODE(c, "#include <string.h>\n");
+    LANG_C_CODE(c, "\n#include <dynkit/model.h>\n");
+    if (m->n_inputs)
+        LANG_C_CODE(c, "#include <dynkit/input.h>\n\n");
+    else
+        LANG_C_CODE(c, "\n");
     if (m->algs.n)
         emit_alg_constants(c);
     helpers(c);
     emit_function_protos(c);
-    put(c, defs, defs_len);
-    if (defs_len)
-        puts_(c, "\n");
-    put(c, main_text, main_len);
+    lang_c_splice(c, defs);
+    if (defs.len)
+        LANG_C_CODE(c, "\n");
+    lang_c_splice(c, main_text);
     char *r = c->out;
     c->out = NULL;
     return r;

@@ -322,10 +322,6 @@ typedef struct lang_ctx {
     unsigned helpers;     /* emit_c.c: the dk_ helpers the C text uses */
     unsigned char *fused; /* emit_c.c: user functions (and partials) the C text calls */
     char *out;            /* the C text being written (malloc'd; freed on failure) */
-    char *out_saved;      /* the main text while the Jacobian's is written apart */
-    size_t out_saved_len, out_saved_cap;
-    char *out_saved2;     /* the text while the path's literal is written apart */
-    const char *path_lit; /* the path as a C string literal */
     size_t out_len, out_cap;
     const dyn_lang_table_file *table_files; /* named by the caller (dyn_ode_to_c_tables) */
     int n_table_files;
@@ -439,5 +435,25 @@ int lang_translate(const char *path, const char *text, size_t len,
 /* The default name of a model from its path: the file name without the extension ext. */
 const char *lang_base_name(lang_ctx *c, const char *path, const char *ext);
 const char *lang_alg_solver_text(void);
+
+/* The C text's only writer (emit_out.c, where the rule is written): bytes from outside only
+ * through lang_c_str, as an escaped string literal; code only from string literals of the
+ * translator (LANG_C_CODE) and formats that convert numbers (LANG_C_CODEF; %s, %c, %p, %n
+ * are refused). lang_c_take moves the text written so far out (the output starts empty),
+ * lang_c_splice appends such a text again; lang_c_solver appends alg_solver.c's text. */
+typedef struct lang_ctext {
+    const char *text;
+    size_t len;
+} lang_ctext;
+void lang_c_code_(lang_ctx *c, const char *literal, size_t n);
+#define LANG_C_CODE(c, lit) lang_c_code_((c), "" lit "", sizeof("" lit "") - 1)
+__attribute__((format(printf, 2, 3))) void lang_c_codef_(lang_ctx *c, const char *fmt, ...);
+#define LANG_C_CODEF(c, ...) lang_c_codef_((c), __VA_ARGS__)
+void lang_c_str(lang_ctx *c, const char *s);
+void lang_c_num(lang_ctx *c, double v);
+lang_ctext lang_c_take(lang_ctx *c);
+void lang_c_discard(lang_ctx *c); /* the text written so far is dropped */
+void lang_c_splice(lang_ctx *c, lang_ctext t);
+void lang_c_solver(lang_ctx *c);
 
 #endif /* DYNKIT_LANG_INTERNAL_H */

@@ -115,8 +115,6 @@ int lang_translate(const char *path, const char *text, size_t len,
     if (setjmp(fail)) {
         const int status = c->status ? c->status : 2;
         free(c->out);
-        free(c->out_saved);
-        free(c->out_saved2);
         lang_free_all(c);
         free(c);
         return status;

@@ -41,7 +41,8 @@ static void linearize_help(void)
          "                       else richardson), analytic, central (differences, step\n"
          "                       eps^(1/3)), richardson (central differences extrapolated)\n"
          "  -o, --output FILE    .csv: one row per eigenvalue, columns [NAME,]re,im (sorted\n"
-         "                       by im, then re); .json: as --json; nothing on stdout\n"
+         "                       by im, then re); .json: as --json; '-': the CSV on\n"
+         "                       standard output\n"
          "  --matrix             print A alone as CSV: a column 'state' (the row's state),\n"
          "                       then one column per state ([NAME,] first with --vary)\n"
          "  --json               print everything as one JSON object\n"
@@ -158,7 +159,7 @@ static void print_text(FILE *f, const dyn_model *m, double t, const char *vname,
         fprintf(f, " %13s", m->states[j].name);
     fputc('\n', f);
     for (int i = 0; i < n; i++) {
-        fprintf(f, "  d%-*s", w + 1, m->states[i].name);
+        fprintf(f, "  %s'%*s", m->states[i].name, w + 1 - (int)strlen(m->states[i].name), "");
         for (int j = 0; j < n; j++)
             fprintf(f, " %13.6g", p->A[(size_t)i * (size_t)n + (size_t)j] + 0.0); /* no -0 */
         fputc('\n', f);
@@ -395,7 +396,7 @@ static void free_points(lin_point *pts, long n)
 static int write_all(FILE *f, const dyn_model *m, double t, const char *vname,
                      const lin_opts *o, const lin_point *pts, long n_pts)
 {
-    const int table = o->output && strcmp(o->output, "-") != 0;
+    const int table = o->output != NULL; /* "-": the table on standard output */
     if (o->json)
         print_json(f, m, t, vname, pts, n_pts);
     else if (o->matrix)

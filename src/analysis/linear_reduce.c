@@ -11,13 +11,27 @@
 
 #include "dynkit/analysis.h"
 
+/* out (a x b) = X^T Y for X (r x a) and Y (r x b), all row-major. */
+static void product_tn(size_t r, size_t a, size_t b, const double *X, const double *Y,
+                       double *out)
+{
+    for (size_t i = 0; i < a; i++)
+        for (size_t j = 0; j < b; j++) {
+            double s = 0.0;
+            for (size_t l = 0; l < r; l++)
+                s += X[l * a + i] * Y[l * b + j];
+            out[i * b + j] = s;
+        }
+}
+
 int dyn_linear_reduce(int n, int k, const double *A, const double *P, double *Amin,
                       double *work)
 {
     if (n < 1 || k < 1 || k > n)
         return DYN_ERR_ARG;
     const size_t N = (size_t)n, K = (size_t)k;
-    double *AP = work, *G = work + N * K; /* A P (n x k), then P^T P (k x k) */
+    /* A P (n x k), then P^T P (k x k) and P^T A P (k x k, into Amin) */
+    double *AP = work, *G = work + N * K, *rhs = work + N * K + K * K;
     for (size_t i = 0; i < N; i++)
         for (size_t c = 0; c < K; c++) {
             double s = 0.0;
@@ -25,13 +39,8 @@ int dyn_linear_reduce(int n, int k, const double *A, const double *P, double *Am
                 s += A[i * N + l] * P[l * K + c];
             AP[i * K + c] = s;
         }
-    for (size_t a = 0; a < K; a++)
-        for (size_t b = 0; b < K; b++) {
-            double s = 0.0;
-            for (size_t l = 0; l < N; l++)
-                s += P[l * K + a] * P[l * K + b];
-            G[a * K + b] = s;
-        }
+    product_tn(N, K, K, P, P, G);
+    product_tn(N, K, K, P, AP, Amin);
     /* Cholesky G = L L^T in place (lower triangle) */
     for (size_t j = 0; j < K; j++) {
         const double gjj = G[j * K + j];
@@ -50,15 +59,10 @@ int dyn_linear_reduce(int n, int k, const double *A, const double *P, double *Am
             G[i * K + j] = s / d;
         }
     }
-    /* Amin = G^-1 (P^T (A P)), column by column of A P */
-    double *rhs = work + N * K + K * K; /* k */
+    /* Amin = G^-1 (P^T A P), column by column */
     for (size_t c = 0; c < K; c++) {
-        for (size_t a = 0; a < K; a++) {
-            double s = 0.0;
-            for (size_t l = 0; l < N; l++)
-                s += P[l * K + a] * AP[l * K + c];
-            rhs[a] = s;
-        }
+        for (size_t a = 0; a < K; a++)
+            rhs[a] = Amin[a * K + c];
         for (size_t i = 0; i < K; i++) { /* L z = rhs */
             double s = rhs[i];
             for (size_t l = 0; l < i; l++)

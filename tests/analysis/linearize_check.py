@@ -93,6 +93,9 @@ def main():
         d = complex(mu * mu / 4 - 1) ** 0.5
         check(close(got, [mu / 2 + d, mu / 2 - d], 1e-13),
               f"van der Pol at the origin, mu = {mu}: mu/2 +- sqrt(mu^2/4 - 1)")
+    p = run("vanderpol", "--init", "y1=0", "--output", "-")
+    check(p.stdout.splitlines()[0] == "re,im" and len(p.stdout.splitlines()) == 3,
+          "--output -: the table re,im on standard output")
     p = run("vanderpol", "--init", "y1=0", "--init", "y2=0", "--vary", "mu=0.5:3:6")
     check(p.stdout.count("stability: unstable") == 6, "van der Pol's origin is unstable for mu > 0")
 

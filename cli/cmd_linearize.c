@@ -75,11 +75,13 @@ typedef struct lin_point {
     dyn_stability stability;
 } lin_point;
 
+/* --jacobian's words, in the order of dyn_jac_scheme */
+static const char *const scheme_names[] = {"auto", "analytic", "central", "richardson"};
+
 static int parse_scheme(const char *text, dyn_jac_scheme *s)
 {
-    static const char *const names[] = {"auto", "analytic", "central", "richardson"};
     for (int k = 0; k < 4; k++)
-        if (strcmp(text, names[k]) == 0) {
+        if (strcmp(text, scheme_names[k]) == 0) {
             *s = (dyn_jac_scheme)k;
             return CLI_OK;
         }
@@ -258,8 +260,7 @@ static void print_json(FILE *f, const dyn_model *m, double t, const char *vname,
         cli_json_key(&j, "f");
         cli_json_numbers(&j, p->f, n, 1);
         cli_json_key(&j, "jacobian");
-        static const char *const words[] = {"auto", "analytic", "central", "richardson"};
-        cli_json_string(&j, words[p->info.scheme]);
+        cli_json_string(&j, scheme_names[p->info.scheme]);
         cli_json_key(&j, "error_estimate");
         cli_json_number(&j, p->info.err_est);
         cli_json_key(&j, "rhs_calls");

@@ -179,7 +179,10 @@ static void print_events(const dyn_model *m)
     printf("  %-*s  %-9s  %-8s  %s\n", wn, "NAME", "DIRECTION", "TERMINAL", "DESCRIPTION");
     for (int i = 0; i < m->n_events; i++) {
         const dyn_event *e = &m->events[i];
-        const char *dir = e->direction > 0 ? "rising" : e->direction < 0 ? "falling" : "both";
+        const char *dir = e->direction == DYN_EVENT_JUMPS ? "by resets only"
+                          : e->direction > 0                ? "rising"
+                          : e->direction < 0                ? "falling"
+                                                            : "both";
         printf("  %-*s  %-9s  %-8s  %s%s\n", wn, e->name, dir, e->terminal ? "yes" : "no",
                e->description ? e->description : "", e->reset ? " (resets the state)" : "");
     }

@@ -364,6 +364,17 @@ int cli_cmd_run(int argc, char **argv)
                 "dynkit: note: the model's step %g over %g:%g would give %.3g samples; writing "
                 "a sample at every accepted step instead (give --step or --times for a grid)\n",
                 run.step, run.t0, run.t1, (run.t1 - run.t0) / run.step + 1.0);
+    for (int i = 0; i < m->n_events && !run.quiet; i++)
+        if (m->events[i].direction == DYN_EVENT_JUMPS) {
+            /* XPPAUT's global with sign 0: the one place its rule is not followed */
+            fprintf(stderr,
+                    "dynkit: note: event %s fires only when a reset takes its condition onto or "
+                    "across zero (XPPAUT's global with sign 0); XPPAUT 6.11 also fires it where "
+                    "one of its own steps ends with the condition within 5e-16 of zero, at a "
+                    "time that is not the crossing's: dynkit does not\n",
+                    m->events[i].name);
+            break;
+        }
     cli_progress progress;
     cli_progress_start(&progress, run.quiet);
     sink.progress = progress.enabled ? &progress : NULL;

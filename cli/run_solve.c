@@ -89,42 +89,64 @@ int cli_run_resets(const cli_run *run)
     return count;
 }
 
-/* The events of a run: those asked for (--event), then the model's resets not among them,
- * which are not reported (their index is past run->n_events). */
+/* The events of a run, in the model's order (the resets of one instant, and a cascade of
+ * them, go in that order, as XPPAUT fires its globals): the model's events that are asked
+ * for (--event) or reset the state, then asked events the model does not have. asked maps
+ * an index of that list to run->events, or -1 for a reset that is not reported. */
 typedef struct run_events {
     const cli_run *run;
     dyn_event_fn on_event;
     void *ctx;
+    const int *asked;
 } run_events;
 
 static int forward_event(int index, double t, const double *y, int direction, void *ctx)
 {
     const run_events *re = ctx;
-    if (index >= re->run->n_events || !re->on_event)
+    const int k = re->asked[index];
+    if (k < 0 || !re->on_event)
         return 0;
-    return re->on_event(index, t, y, direction, re->ctx);
+    return re->on_event(k, t, y, direction, re->ctx);
 }
 
-static dyn_event *all_events(const cli_run *run, int *count)
+static dyn_event *all_events(const cli_run *run, int *count, int **asked)
 {
     const dyn_model *m = run->model;
-    *count = run->n_events;
-    dyn_event *ev = malloc((size_t)(run->n_events + m->n_events + 1) * sizeof *ev);
-    if (!ev)
+    const size_t cap = (size_t)(run->n_events + m->n_events + 1);
+    dyn_event *ev = malloc(cap * sizeof *ev);
+    int *map = malloc(cap * sizeof *map);
+    unsigned char *used = calloc((size_t)run->n_events + 1, 1);
+    if (!ev || !map || !used) {
+        free(ev);
+        free(map);
+        free(used);
         return NULL;
-    if (run->n_events > 0)
-        memcpy(ev, run->events, (size_t)run->n_events * sizeof *ev);
-    for (int i = 0; i < m->n_events; i++) {
-        if (!m->events[i].reset)
-            continue;
-        int asked = 0;
-        for (int j = 0; j < run->n_events; j++)
-            asked |= strcmp(run->events[j].name, m->events[i].name) == 0;
-        if (!asked) {
-            ev[*count] = m->events[i];
-            ev[(*count)++].terminal = 0;
-        }
     }
+    int ne = 0;
+    for (int i = 0; i < m->n_events; i++) {
+        int k = -1;
+        for (int j = 0; j < run->n_events && k < 0; j++)
+            if (!used[j] && strcmp(run->events[j].name, m->events[i].name) == 0)
+                k = j;
+        if (k < 0 && !m->events[i].reset)
+            continue;
+        if (k >= 0) {
+            used[k] = 1;
+            ev[ne] = run->events[k];
+        } else {
+            ev[ne] = m->events[i];
+            ev[ne].terminal = 0;
+        }
+        map[ne++] = k;
+    }
+    for (int j = 0; j < run->n_events; j++)
+        if (!used[j]) {
+            ev[ne] = run->events[j];
+            map[ne++] = j;
+        }
+    free(used);
+    *count = ne;
+    *asked = map;
     return ev;
 }
 
@@ -241,15 +263,15 @@ static int solve_run(const cli_run *run, long every, dyn_output_fn output, void 
     }
     opts.output = output;
     opts.output_ctx = output_ctx;
-    int n_events = 0;
-    dyn_event *events = all_events(run, &n_events);
+    int n_events = 0, *asked = NULL;
+    dyn_event *events = all_events(run, &n_events, &asked);
     if (!events)
         return -1;
-    run_events re = {run, on_event, event_ctx};
+    run_events re = {run, on_event, event_ctx, asked};
     opts.events = events;
     opts.n_events = n_events;
-    opts.on_event = n_events > run->n_events ? forward_event : on_event;
-    opts.event_ctx = n_events > run->n_events ? (void *)&re : event_ctx;
+    opts.on_event = forward_event;
+    opts.event_ctx = &re;
     opts.jacobian = m->jacobian;
     opts.jac_banded = m->jac_banded;
     opts.jac_lower = m->jac_lower;
@@ -269,13 +291,17 @@ static int solve_run(const cli_run *run, long every, dyn_output_fn output, void 
         free(work);
         free(iwork);
         free(events);
+        free(asked);
         return -1;
     }
     opts.iwork = iwork;
     int rc = dyn_solve(run->method, &sys, run->t0, run->t1, run->y0, y, work, &opts, res);
+    if (res->stopped_by_event && res->event_index >= 0)
+        res->event_index = asked[res->event_index];
     free(work);
     free(iwork);
     free(events);
+    free(asked);
     return rc;
 }
 

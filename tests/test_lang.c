@@ -204,7 +204,7 @@ static void test_syntax_errors_point_at_the_place(void **state)
     expect_error("x'=a b\npar a=1,b=1\n", 1, 6, "missing operator");
     expect_error("x'=1e\n", 1, 5, "exponent needs digits");
     expect_error("x'=if(x>1)then(1)\n", 1, 18, "expected 'else'");
-    expect_error("x'=1\nglobal 2 x {x=0}\n", 2, 8, "1 (rising), -1 (falling) or 0 (both)");
+    expect_error("x'=1\nglobal 2 x {x=0}\n", 2, 8, "1 (rising), -1 (falling) or 0 (when ");
     expect_error("x'=1\nglobal 1 x-1 {x=0\n", 2, 18, "missing '}'");
     expect_error("x'=1\n@ total=abc\n", 2, 9, "needs a number");
     expect_error("x'=1\n$\n", 2, 1, "unexpected '$'");

@@ -14,6 +14,9 @@
  * - e = 0.5 over a span past the accumulation time stops with DYN_ERR_ZENO near it;
  * - a reset returning non-zero stops with DYN_ERR_RHS, the state at the event kept;
  * - terminal events still end the solve, also with resets in the same run;
+ * - cascades: a reset that carries another event's g across zero fires it at the same
+ *   instant, each event once (XPPAUT's globals), a DYN_EVENT_JUMPS event only by resets
+ *   and onto zero, a cascade that re-arms itself ever sooner stops with DYN_ERR_ZENO;
  * - the command line: a model file's reset takes part in every run without --event, rows
  *   stay on the --step grid for rk4, --event reports the bounces, cvode refuses the model. */
 #define _POSIX_C_SOURCE 200809L
@@ -489,6 +492,242 @@ static void test_counter_reset_fires_once_per_crossing(void **state)
     }
 }
 
+/* ---- cascades: a reset that carries another event's g across zero fires it at once ---- */
+
+/* x' = 1, y' = 1/2, z' = 0 (a tally). A: x - 1 rising, x = 0, y += 1, z += 1; B: y - 1
+ * rising, y = 0, x += 2, z += 10 (XPPAUT's two globals, tests/xppaut/events/
+ * cascade_chain.ode). From y(0) = 0.2: at t = 1 A fires (y = 0.7 -> 1.7), B fires in the
+ * same instant (x = 0 -> 2, back across A's zero: A does not fire twice), so x = t + 1 and
+ * y = (t - 1)/2 after it, z = 11. Z: a DYN_EVENT_JUMPS event on x - 3.5, which the flow
+ * crosses at t = 2.5 (no event) and no reset does. */
+static int xyz_rhs(double t, const double *y, double *dydt, void *par)
+{
+    (void)t;
+    (void)y;
+    (void)par;
+    dydt[0] = 1.0;
+    dydt[1] = 0.5;
+    dydt[2] = 0.0;
+    return 0;
+}
+
+static double x_minus_1(double t, const double *y, void *par)
+{
+    (void)t;
+    (void)par;
+    return y[0] - 1.0;
+}
+
+static double y_minus_1(double t, const double *y, void *par)
+{
+    (void)t;
+    (void)par;
+    return y[1] - 1.0;
+}
+
+static double x_minus_35(double t, const double *y, void *par)
+{
+    (void)t;
+    (void)par;
+    return y[0] - 3.5;
+}
+
+static int reset_a(double t, double *y, void *par)
+{
+    (void)t;
+    (void)par;
+    y[0] = 0.0;
+    y[1] += 1.0;
+    y[2] += 1.0;
+    return 0;
+}
+
+static int reset_b(double t, double *y, void *par)
+{
+    (void)t;
+    (void)par;
+    y[1] = 0.0;
+    y[0] += 2.0;
+    y[2] += 10.0;
+    return 0;
+}
+
+static int reset_z(double t, double *y, void *par)
+{
+    (void)t;
+    (void)par;
+    y[2] += 100.0;
+    return 0;
+}
+
+static int solve_xyz(const char *method, const dyn_event *ev, int ne, double t1, ev_log *log,
+                     double y[3], dyn_result *res)
+{
+    const dyn_tableau *m = dyn_method_find(method);
+    assert_non_null(m);
+    dyn_system sys = {xyz_rhs, 3, NULL};
+    dyn_solve_opts o = {0};
+    o.rtol = o.atol = 1e-10;
+    o.h = 0.07;
+    o.events = ev;
+    o.n_events = ne;
+    o.on_event = log_event;
+    o.event_ctx = log;
+    int iwork[4];
+    o.iwork = iwork;
+    log->count = 0;
+    double *work = malloc(dyn_solve_work_size(m, 3, &o) * sizeof *work);
+    assert_non_null(work);
+    const double y0[3] = {0.0, 0.2, 0.0};
+    const int rc = dyn_solve(m, &sys, 0.0, t1, y0, y, work, &o, res);
+    free(work);
+    return rc;
+}
+
+static void test_cascade_fires_at_the_instant(void **state)
+{
+    (void)state;
+    const dyn_event ev[] = {
+        {.name = "A", .g = x_minus_1, .direction = 1, .reset = reset_a},
+        {.name = "B", .g = y_minus_1, .direction = 1, .reset = reset_b},
+        {.name = "Z", .g = x_minus_35, .direction = DYN_EVENT_JUMPS, .reset = reset_z},
+    };
+    const char *methods[] = {"dp45", "rk4", "rodas4"};
+    for (int r = 0; r < 3; r++) {
+        ev_log log = {.stop_at = -1};
+        double y[3];
+        dyn_result res;
+        assert_int_equal(solve_xyz(methods[r], ev, 3, 2.8, &log, y, &res), DYN_OK);
+        assert_int_equal(log.count, 2);
+        assert_int_equal(res.events, 2);
+        assert_int_equal(res.cascades, 1);
+        assert_int_equal(log.index[0], 0);
+        assert_int_equal(log.index[1], 1);
+        assert_true(log.t[0] == log.t[1] && fabs(log.t[0] - 1.0) < 1e-9);
+        /* B sees the state after A's reset */
+        assert_true(fabs(log.y[1][0]) < 1e-15 && fabs(log.y[1][1] - 1.7) < 1e-9);
+        assert_true(fabs(y[0] - 3.8) < 1e-8 && fabs(y[1] - 0.9) < 1e-8 && y[2] == 11.0);
+        /* on to t = 4.5: y crosses 1 again at t = 3 (B alone, by the flow) */
+        assert_int_equal(solve_xyz(methods[r], ev, 3, 4.5, &log, y, &res), DYN_OK);
+        assert_int_equal(log.count, 3);
+        assert_int_equal(log.index[2], 1);
+        assert_true(fabs(log.t[2] - 3.0) < 1e-9);
+        assert_true(y[2] == 21.0);
+    }
+}
+
+/* A DYN_EVENT_JUMPS event fires when a reset takes g onto zero, not when the next one takes
+ * it off: y steps 0.5 at each crossing of x = 1 (from y = 0.5: 1, 1.5, 2 at t = 1, 2, 3). */
+static int reset_step(double t, double *y, void *par)
+{
+    (void)t;
+    (void)par;
+    y[0] = 0.0;
+    y[1] += 0.5;
+    return 0;
+}
+
+static double y_minus_1_flat(double t, const double *y, void *par)
+{
+    (void)t;
+    (void)par;
+    return y[1] - 1.0;
+}
+
+static int tally(double t, double *y, void *par)
+{
+    (void)t;
+    (void)par;
+    y[2] += 1.0;
+    return 0;
+}
+
+static int steps_rhs(double t, const double *y, double *dydt, void *par)
+{
+    (void)t;
+    (void)y;
+    (void)par;
+    dydt[0] = 1.0;
+    dydt[1] = dydt[2] = 0.0;
+    return 0;
+}
+
+static void test_jumps_onto_zero_only(void **state)
+{
+    (void)state;
+    const dyn_event ev[] = {
+        {.name = "step", .g = x_minus_1, .direction = 1, .reset = reset_step},
+        {.name = "onto", .g = y_minus_1_flat, .direction = DYN_EVENT_JUMPS, .reset = tally},
+    };
+    const dyn_tableau *m = dyn_method_find("dp45");
+    dyn_system sys = {steps_rhs, 3, NULL};
+    dyn_solve_opts o = {0};
+    o.rtol = o.atol = 1e-10;
+    o.events = ev;
+    o.n_events = 2;
+    double *work = malloc(dyn_solve_work_size(m, 3, &o) * sizeof *work);
+    assert_non_null(work);
+    const double y0[3] = {0.0, 0.5, 0.0};
+    double y[3];
+    dyn_result res;
+    assert_int_equal(dyn_solve(m, &sys, 0.0, 3.5, y0, y, work, &o, &res), DYN_OK);
+    free(work);
+    assert_true(y[1] == 2.0);
+    assert_true(y[2] == 1.0); /* onto zero at t = 2 only */
+    assert_int_equal(res.cascades, 1);
+}
+
+/* A cascade that re-arms the event that started it, ever sooner: A (x - 1 rising) raises a
+ * flag y, B (y - 1/2 rising) lowers it and sets x just below 1 again. The pair fires at
+ * shorter and shorter intervals: DYN_ERR_ZENO near t = 1 rather than a run that hangs. */
+static int raise_flag(double t, double *y, void *par)
+{
+    (void)t;
+    (void)par;
+    y[1] = 1.0;
+    return 0;
+}
+
+static double flag_half(double t, const double *y, void *par)
+{
+    (void)t;
+    (void)par;
+    return y[1] - 0.5;
+}
+
+static int rearm(double t, double *y, void *par)
+{
+    (void)t;
+    (void)par;
+    y[1] = 0.0;
+    y[0] = 1.0 - 1e-13;
+    return 0;
+}
+
+static void test_cascade_zeno(void **state)
+{
+    (void)state;
+    const dyn_event ev[] = {
+        {.name = "A", .g = x_minus_1, .direction = 1, .reset = raise_flag},
+        {.name = "B", .g = flag_half, .direction = 1, .reset = rearm},
+    };
+    const dyn_tableau *m = dyn_method_find("dp45");
+    dyn_system sys = {steps_rhs, 3, NULL};
+    dyn_solve_opts o = {0};
+    o.rtol = o.atol = 1e-10;
+    o.events = ev;
+    o.n_events = 2;
+    double *work = malloc(dyn_solve_work_size(m, 3, &o) * sizeof *work);
+    assert_non_null(work);
+    const double y0[3] = {0.0, 0.0, 0.0};
+    double y[3];
+    dyn_result res;
+    assert_int_equal(dyn_solve(m, &sys, 0.0, 3.0, y0, y, work, &o, &res), DYN_ERR_ZENO);
+    free(work);
+    assert_true(fabs(res.t - 1.0) < 1e-9);
+    assert_true(res.cascades >= DYN_ZENO_RESETS / 2);
+}
+
 /* ---- the command line, with the ball as an XPPAUT file ---- */
 
 static const char ball_ode[] = "# a bouncing ball\n"
@@ -586,6 +825,9 @@ int main(void)
         cmocka_unit_test(test_terminal_events_with_resets),
         cmocka_unit_test(test_old_trajectory_events_dropped),
         cmocka_unit_test(test_counter_reset_fires_once_per_crossing),
+        cmocka_unit_test(test_cascade_fires_at_the_instant),
+        cmocka_unit_test(test_jumps_onto_zero_only),
+        cmocka_unit_test(test_cascade_zeno),
         cmocka_unit_test(test_cli_resets),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

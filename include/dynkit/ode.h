@@ -54,11 +54,16 @@ extern const dyn_band_solver dyn_band_solver_builtin;
  * An event happens where g changes sign: from < 0 to > 0 (rising) or > 0 to < 0 (falling),
  * passing through or jumping over zero. A zero at the start time and a touch of zero
  * without a change of sign are not events. */
+/* dyn_event.direction of an event that the flow never fires: only a reset at another
+ * event's instant that takes g onto or across zero, either way (a cascade, solve.h), as
+ * XPPAUT's `global 0` ("the condition vanishes identically"). */
+#define DYN_EVENT_JUMPS 2
+
 typedef struct dyn_event {
     const char *name;        /* e.g. "turn" */
     const char *description; /* one line for humans */
     double (*g)(double t, const double *y, void *par);
-    int direction;           /* +1 rising only, -1 falling only, 0 both */
+    int direction;           /* +1 rising only, -1 falling only, 0 both, DYN_EVENT_JUMPS */
     int terminal;            /* 1: stop the solve at the first occurrence (default for it) */
     /* Optional state reset (XPPAUT's `global` with assignments, a bouncing ball's impact):
      * NULL for none. At each occurrence of a non-terminal event the solver calls reset with
@@ -277,6 +282,7 @@ typedef struct dyn_result {
     int stopped_by_event;  /* 1: a terminal event ended the solve at t (status DYN_OK) */
     int event_index;       /* which event, when stopped_by_event */
     long events;           /* events found (reported through dyn_solve_opts.on_event) */
+    long cascades;         /* of them, fired by a reset at the same instant (solve.h) */
     int stiff;             /* 1: the problem looked stiff (see stiff_t, stiff_message) */
     double stiff_t;        /* time where stiffness was detected first */
     char stiff_message[192];

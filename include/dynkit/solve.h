@@ -31,7 +31,15 @@
  * tables: a partial step from the event to the next grid point t0 + k*h, then whole steps
  * again). Crossings found later in the step belong to the old trajectory and are dropped;
  * events at the same time are all reported (with the state before the resets) and their
- * resets applied in time-then-index order. Samples after the event (grid, out_times) come
+ * resets applied in time-then-index order. Cascades (XPPAUT's globals): after those resets,
+ * every event that has not fired at this instant and whose g the resets carried onto or
+ * across zero in its direction (from <= 0 to >= 0 rising, from >= 0 to <= 0 falling, g
+ * compared between the state before the instant's resets and after them; a
+ * DYN_EVENT_JUMPS event onto or across zero, not off it) fires at the same instant: these
+ * are reported (with the state after the resets so far), then their resets applied in
+ * index order, and so on in cycles; each event fires at most once per instant
+ * (dyn_result.cascades counts them; a terminal one stops the solve with the state after the
+ * resets). Samples after the event (grid, out_times) come
  * from the new trajectory; with a sample at every step, the state after the reset is
  * written at the event's time. The event that fired is not found again leaving its own
  * zero in the other direction within DYN_RESET_ULPS ulps of the restart (rounding left

@@ -14,6 +14,7 @@
 #include <string.h>
 #include <strings.h>
 
+#include "dynkit/ode.h" /* DYN_EVENT_JUMPS */
 #include "lang/lang_internal.h"
 
 typedef struct pstate {
@@ -256,7 +257,7 @@ static void parse_global(lang_ctx *c, lang_lexer *lx, pstate *ps, lpos kpos)
     }
     if (!isdigit(ch))
         lang_fail(c, spos, "expected the direction of the global after 'global': 1 (rising), "
-                  "-1 (falling) or 0 (both)");
+                  "-1 (falling) or 0 (when a reset takes it to zero)");
     int d = 0;
     while (lx->i < lx->end && isdigit((unsigned char)lx->line->text[lx->i])) {
         d = d * 10 + (lx->line->text[lx->i] - '0');
@@ -265,7 +266,7 @@ static void parse_global(lang_ctx *c, lang_lexer *lx, pstate *ps, lpos kpos)
         lx->i++;
     }
     if (d > 1)
-        lang_fail(c, spos, "the direction of a global is 1 (rising), -1 (falling) or 0 (both)");
+        lang_fail(c, spos, "the direction of a global is 1 (rising), -1 (falling) or 0 (when a reset takes it to zero)");
     node *cond;
     if (lang_skip_blanks(lx) == '{') {
         /* global 1 {x-1} {x=0}: the condition in braces */
@@ -318,7 +319,10 @@ static void parse_global(lang_ctx *c, lang_lexer *lx, pstate *ps, lpos kpos)
     ps->global_name = NULL;
     ps->global_name_line = 0;
     ev->pos = kpos;
-    ev->direction = sign * d;
+    /* sign 0: "the condition vanishes identically" (XPPAUT's manual); XPPAUT 6.11 fires it
+     * when another global's reset takes the condition onto or across zero, never when the
+     * flow crosses it (measured; docs/model-files.md) */
+    ev->direction = d == 0 ? DYN_EVENT_JUMPS : sign * d;
     ev->cond = cond;
     ev->nassign = assign.n;
     ev->assign = assign.data;

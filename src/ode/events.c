@@ -15,6 +15,10 @@
  * 1973, ch. 4, zeroin) on t -> g(t, y(t)) with y(t) the interpolant, to a bracket of a few
  * ulps of t; the end of the final bracket on the side of the new sign is reported.
  * A zero at the start and a touch of zero without a sign change are not events.
+ * Cascades (dyn_events_cascade): after the resets at an instant, an event whose g the resets
+ * carried onto or across zero fires at the same instant, as XPPAUT 6.11's globals do
+ * (flags.c, one_flag_step): each event at most once per instant, g compared between the
+ * state before the instant's resets and the state after them.
  */
 #include <float.h>
 #include <math.h>
@@ -37,6 +41,29 @@ int dyn_events_max_hits(int n_events, int samples)
 }
 
 static int sign_of(double g) { return g > 0.0 ? 1 : g < 0.0 ? -1 : 0; }
+
+int dyn_events_cascade(const dyn_event *ev, int ne, void *par, double t, const double *y,
+                       const double *g0, double *fired, int cycle)
+{
+    int count = 0;
+    for (int i = 0; i < ne; i++) {
+        if (fired[i] != 0.0)
+            continue;
+        const double a = g0[i], b = ev[i].g(t, y, par);
+        const int dir = ev[i].direction;
+        /* XPPAUT's test: rising when a <= 0 <= b, falling when a >= 0 >= b, g moved; a
+         * DYN_EVENT_JUMPS event fires onto or across zero, not leaving it (XPPAUT's sign 0
+         * sitting on zero is taken as hit at every step, so a reset moving it off is none) */
+        const int from = dir == DYN_EVENT_JUMPS ? a != 0.0 : 1;
+        const int up = from && a <= 0.0 && b >= 0.0 && b != a;
+        const int down = from && a >= 0.0 && b <= 0.0 && b != a;
+        if ((up && dir != -1) || (down && dir != 1)) {
+            fired[i] = up ? cycle : -cycle;
+            count++;
+        }
+    }
+    return count;
+}
 
 void dyn_events_start(const dyn_event *ev, int ne, void *par, double t0, const double *y0,
                       double *memo)
@@ -270,7 +297,7 @@ int dyn_events_step(const dyn_event *ev, int ne, void *par, const dyn_dense *d, 
                 else
                     te = brent(&p, pt[last_nz >= 0 ? last_nz : 0], pg[last_nz >= 0 ? last_nz : 0],
                                pt[k], gk);
-                if (ev[i].direction == 0 || ev[i].direction == sk) {
+                if (ev[i].direction == 0 || ev[i].direction == sk) { /* not DYN_EVENT_JUMPS */
                     hits[3 * nh] = te;
                     hits[3 * nh + 1] = i;
                     hits[3 * nh + 2] = sk;

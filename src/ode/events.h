@@ -38,4 +38,11 @@ int dyn_events_step(const dyn_event *ev, int ne, void *par, const dyn_dense *d, 
                     const double *y1, int samples, double *memo, double *work, double *hits,
                     long *g_calls, int restart);
 
+/* One cycle of a cascade at time t (solve.h, "Cascades"): every event not yet fired at t
+ * (fired[i] == 0) whose g went from g0[i] (before the instant's resets) onto or across zero
+ * at the state y, in its direction (DYN_EVENT_JUMPS: either), gets fired[i] = cycle when
+ * rising, -cycle when falling. Returns how many. */
+int dyn_events_cascade(const dyn_event *ev, int ne, void *par, double t, const double *y,
+                       const double *g0, double *fired, int cycle);
+
 #endif /* DYN_ODE_EVENTS_H */

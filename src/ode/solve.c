@@ -54,6 +54,16 @@ static int first_nonfinite(const double *y, int n)
     return -1;
 }
 
+/* A reset returned rc != 0 at te. */
+static void reset_failed(dyn_result *res, const dyn_solve_opts *opts, int idx, double te, int rc)
+{
+    res->rhs_status = rc;
+    res->fail_t = te;
+    dyn_result_fail(res, DYN_ERR_RHS, "the reset of event %d (%s) failed at t = %s (status %d)",
+                    idx, opts->events[idx].name ? opts->events[idx].name : "unnamed",
+                    dyn_shortest(te).s, rc);
+}
+
 static int samples_of(const dyn_solve_opts *o)
 {
     int m = o && o->event_samples > 0 ? o->event_samples : DEFAULT_SAMPLES;
@@ -77,7 +87,7 @@ size_t dyn_solve_work_size(const dyn_tableau *m, int n, const dyn_solve_opts *op
     size += ((size_t)q + 1) * N;    /* dense coefficients */
     if (ne > 0) {
         const int M = samples_of(opts);
-        size += 2 * (size_t)ne;     /* event memo (g, sign) */
+        size += 4 * (size_t)ne;     /* event memo (g, sign); cascades (g before, fired) */
         size += dyn_events_work(n, ne, M);
         size += 3 * (size_t)dyn_events_max_hits(ne, M); /* hits (t, index, direction) */
     }
@@ -326,9 +336,11 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
     double *coef = w;
     w += ((size_t)q + 1) * N;
     const int M = samples_of(opts);
-    double *memo = NULL, *ev_work = NULL, *hits = NULL;
+    double *memo = NULL, *ev_work = NULL, *hits = NULL, *casc = NULL;
     if (ne > 0) {
         memo = w;
+        w += 2 * (size_t)ne;
+        casc = w;
         w += 2 * (size_t)ne;
         ev_work = w;
         w += dyn_events_work(n, ne, M);
@@ -569,13 +581,49 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
                 rc = opts->events[idx].reset(te, ytmp, sys->par);
                 if (rc) {
                     t = te;
-                    res->rhs_status = rc;
-                    res->fail_t = te;
-                    dyn_result_fail(res, DYN_ERR_RHS,
-                                    "the reset of event %d (%s) failed at t = %s (status %d)", idx,
-                                    opts->events[idx].name ? opts->events[idx].name : "unnamed",
-                                    dyn_shortest(te).s, rc);
+                    reset_failed(res, opts, idx, te, rc);
                     goto finish;
+                }
+            }
+        }
+        if (reset && !stop) {
+            /* cascades: events whose g the resets carried onto or across zero fire at the
+             * same instant, each once, in cycles (index order within one) */
+            double *g0 = casc, *fired = casc + ne;
+            for (int i = 0; i < ne; i++) {
+                g0[i] = opts->events[i].g(t_reset, ycur, sys->par);
+                fired[i] = 0.0;
+            }
+            for (int k = 0; k < nh && DYN_HIT_T(hits, k) <= t_reset; k++)
+                if (DYN_HIT_T(hits, k) == t_reset)
+                    fired[DYN_HIT_INDEX(hits, k)] = 1.0;
+            for (int cycle = 2; !stop; cycle++) {
+                if (!dyn_events_cascade(opts->events, ne, sys->par, t_reset, ytmp, g0, fired,
+                                        cycle))
+                    break;
+                for (int i = 0; i < ne && !stop; i++) {
+                    if (fabs(fired[i]) != (double)cycle)
+                        continue;
+                    res->events++;
+                    res->cascades++;
+                    int terminal = opts->events[i].terminal;
+                    if (opts->on_event && opts->on_event(i, t_reset, ytmp, fired[i] > 0 ? 1 : -1,
+                                                         opts->event_ctx))
+                        terminal = 1;
+                    if (terminal) {
+                        stop = 1;
+                        t_stop = t_reset;
+                        res->stopped_by_event = 1;
+                        res->event_index = i;
+                        memcpy(ycur, ytmp, N * sizeof *ycur);
+                    } else if (opts->events[i].reset) {
+                        rc = opts->events[i].reset(t_reset, ytmp, sys->par);
+                        if (rc) {
+                            t = t_reset;
+                            reset_failed(res, opts, i, t_reset, rc);
+                            goto finish;
+                        }
+                    }
                 }
             }
         }

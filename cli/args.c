@@ -9,13 +9,43 @@
 
 #include "cli.h"
 #include "dynkit/lang.h"
+#include "escape.h"
+
+/* "dynkit: error: " and the message on stderr, its control bytes escaped (escape.h): a
+ * message quotes names, lines and values from files. */
+static void print_error(const char *fmt, va_list ap)
+{
+    va_list copy;
+    va_copy(copy, ap);
+    const int len = vsnprintf(NULL, 0, fmt, copy);
+    va_end(copy);
+    char *msg = len >= 0 ? malloc((size_t)len + 1) : NULL;
+    char *shown = msg ? malloc(4 * (size_t)len + 8) : NULL;
+    if (shown) {
+        vsnprintf(msg, (size_t)len + 1, fmt, ap);
+        fprintf(stderr, "dynkit: error: %s",
+                cli_terminal_text(msg, 1, shown, 4 * (size_t)len + 8));
+    } else {
+        fputs("dynkit: error: out of memory\n", stderr);
+    }
+    free(msg);
+    free(shown);
+}
+
+void cli_error(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    print_error(fmt, ap);
+    va_end(ap);
+    fputc('\n', stderr);
+}
 
 int cli_usage_error(const char *command, const char *fmt, ...)
 {
     va_list ap;
-    fputs("dynkit: error: ", stderr);
     va_start(ap, fmt);
-    vfprintf(stderr, fmt, ap);
+    print_error(fmt, ap);
     va_end(ap);
     fprintf(stderr, "\nTry 'dynkit %s%s--help'.\n", command ? command : "", command ? " " : "");
     return CLI_USAGE;

@@ -20,10 +20,18 @@ static inline const char *cli_num(double v, char *buf)
 /* Exit statuses of the contract. */
 enum { CLI_OK = 0, CLI_FAILED = 1, CLI_USAGE = 2 };
 
-/* Print "dynkit: error: <msg>" and a hint to the subcommand's --help; return CLI_USAGE. */
+/* Print "dynkit: error: <msg>" and a hint to the subcommand's --help; return CLI_USAGE.
+ * Control bytes of the message (from names and lines of files) are escaped \xNN
+ * (escape.h, cli_terminal_text); its line feeds are kept. */
 int cli_usage_error(const char *command, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+/* Print "dynkit: error: <msg>" and a line feed, control bytes escaped as above. */
+void cli_error(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
 #endif
     ;
 

@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit info MODEL: equations, states, parameters, outputs, events, units and defaults.
  * Numbers are printed in their shortest form that reads back exactly (9.81, 321.8122), and
- * each table's columns are as wide as their longest entry. */
+ * each table's columns are as wide as their longest entry; text of the model with its
+ * control bytes escaped (escape.h). */
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
@@ -9,6 +10,7 @@
 
 #include "cli.h"
 #include "dynkit/io.h"
+#include "escape.h"
 
 static void info_help(void)
 {
@@ -73,14 +75,24 @@ static int widest(int n, const char *(*get)(const void *, int), const void *ctx,
     return w;
 }
 
+/* Text of the model as shown on a terminal, control bytes escaped (escape.h), from a ring
+ * of buffers: one line shows several. */
+static const char *term(const char *s)
+{
+    static char ring[8][1024];
+    static unsigned next;
+    char *buf = ring[next++ % 8];
+    return cli_terminal_text(s, 0, buf, sizeof ring[0]);
+}
+
 /* A unit as shown: "-" when the model gives none (a model file without a #: unit). */
-static const char *shown_unit(const char *unit) { return unit && *unit ? unit : "-"; }
+static const char *shown_unit(const char *unit) { return unit && *unit ? term(unit) : "-"; }
 /* A description as shown: "" when there is none. */
-static const char *shown_text(const char *text) { return text ? text : ""; }
+static const char *shown_text(const char *text) { return text ? term(text) : ""; }
 
 static const char *state_name(const void *m, int i)
 {
-    return ((const dyn_model *)m)->states[i].name;
+    return term(((const dyn_model *)m)->states[i].name);
 }
 static const char *state_unit(const void *m, int i)
 {
@@ -88,7 +100,7 @@ static const char *state_unit(const void *m, int i)
 }
 static const char *param_name(const void *m, int i)
 {
-    return ((const dyn_model *)m)->params[i].name;
+    return term(((const dyn_model *)m)->params[i].name);
 }
 static const char *param_unit(const void *m, int i)
 {
@@ -96,7 +108,7 @@ static const char *param_unit(const void *m, int i)
 }
 static const char *output_name(const void *m, int i)
 {
-    return ((const dyn_model *)m)->outputs[i].name;
+    return term(((const dyn_model *)m)->outputs[i].name);
 }
 static const char *output_unit(const void *m, int i)
 {
@@ -104,7 +116,7 @@ static const char *output_unit(const void *m, int i)
 }
 static const char *event_name(const void *m, int i)
 {
-    return ((const dyn_model *)m)->events[i].name;
+    return term(((const dyn_model *)m)->events[i].name);
 }
 
 /* One table of named values: NAME UNIT default VALUE DESCRIPTION, aligned. */
@@ -165,7 +177,7 @@ static void print_outputs(const dyn_model *m)
     printf("\nExtra outputs (run --outputs):\n");
     for (int i = 0; i < m->n_outputs; i++) {
         const char *desc = shown_text(m->outputs[i].description);
-        printf("  %-*s  %-*s%s%s\n", wn, m->outputs[i].name, *desc ? wu : 0, output_unit(m, i),
+        printf("  %-*s  %-*s%s%s\n", wn, output_name(m, i), *desc ? wu : 0, output_unit(m, i),
                *desc ? "  " : "", desc);
     }
 }
@@ -183,8 +195,8 @@ static void print_events(const dyn_model *m)
                           : e->direction > 0                ? "rising"
                           : e->direction < 0                ? "falling"
                                                             : "both";
-        printf("  %-*s  %-9s  %-8s  %s%s\n", wn, e->name, dir, e->terminal ? "yes" : "no",
-               e->description ? e->description : "", e->reset ? " (resets the state)" : "");
+        printf("  %-*s  %-9s  %-8s  %s%s\n", wn, event_name(m, i), dir, e->terminal ? "yes" : "no",
+               shown_text(e->description), e->reset ? " (resets the state)" : "");
     }
 }
 
@@ -245,9 +257,15 @@ int cli_cmd_info(int argc, char **argv)
         dyn_model_initial_state(m, par, y0);
     else
         memcpy(y0, m->y0, (size_t)m->n_states * sizeof *y0);
-    printf("%s: %s\n", m->name, shown_text(m->title));
-    if (m->description && *m->description)
-        printf("\n%s\n", m->description);
+    printf("%s: %s\n", term(m->name), shown_text(m->title));
+    if (m->description && *m->description) {
+        /* its lines kept, every other control byte escaped */
+        const size_t size = 4 * strlen(m->description) + 8;
+        char *shown = malloc(size);
+        if (shown)
+            printf("\n%s\n", cli_terminal_text(m->description, 1, shown, size));
+        free(shown);
+    }
     print_states(m, y0);
     print_params(m);
     print_outputs(m);

@@ -8,6 +8,7 @@
  * Ctrl-C writes the finished runs, and --resume FILE runs only the others. */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <signal.h>
 #include <stdint.h>
@@ -224,6 +225,24 @@ static int parse_sample(const dyn_model *m, sweep_spec *sp, const char *text)
     if (kind != DYN_DIST_UNIFORM && !(b >= 0))
         return cli_usage_error("sweep", "--sample '%s': the standard deviation must be >= 0",
                                text);
+    /* every value the generator can give must be a finite number, or runs fail one by one:
+     * u is in [2^-54, 1 - 2^-54] (dyn_dist_value), so |z| <= sqrt(-2 log 2^-54) = 8.65 */
+    const double zmax = sqrt(-2.0 * log(ldexp(1.0, -54)));
+    if (kind == DYN_DIST_UNIFORM && !isfinite(b - a))
+        return cli_usage_error("sweep",
+                               "--sample '%s': B - A is beyond the range of doubles, so the "
+                               "values A + (B - A) u are not finite: give B - A below 1.8e308",
+                               text);
+    if (kind != DYN_DIST_UNIFORM && !(isfinite(a - b * zmax) && isfinite(a + b * zmax)))
+        return cli_usage_error("sweep",
+                               "--sample '%s': MEAN +- %.3g SD (the extremes of the normal "
+                               "values drawn) must be finite numbers",
+                               text, zmax);
+    if (kind == DYN_DIST_LOGNORMAL && !isfinite(exp(a + b * zmax)))
+        return cli_usage_error("sweep",
+                               "--sample '%s': exp(M + %.3g S), the largest value drawn, is "
+                               "beyond the range of doubles: give M + %.3g S <= %.6g",
+                               text, zmax, zmax, log(DBL_MAX));
     sp->dist[sp->n_sample++] = (dyn_dist){(dyn_dist_kind)kind, a, b};
     return CLI_OK;
 }
@@ -271,7 +290,7 @@ static int read_from(const dyn_model *m, sweep_spec *sp)
     }
     sweep_table_free(&st);
     if (dyn_table_read_file(sp->from, 0, &t, err, sizeof err) != DYN_OK) {
-        fprintf(stderr, "dynkit: error: --from: %s\n", err);
+        cli_error("--from: %s", err);
         return CLI_USAGE;
     }
     int rc = CLI_OK;
@@ -507,7 +526,7 @@ static int read_resume(const char *path, sweep_out *o, unsigned char *skip, long
 {
     FILE *f = fopen(path, "r");
     if (!f) {
-        fprintf(stderr, "dynkit: error: --resume: cannot open %s: %s\n", path, strerror(errno));
+        cli_error("--resume: cannot open %s: %s", path, strerror(errno));
         return CLI_USAGE;
     }
     size_t cap = 1 << 16;
@@ -529,11 +548,10 @@ static int read_resume(const char *path, sweep_out *o, unsigned char *skip, long
         if (lineno == 1) {
             with_status = strcmp(line, head_status) == 0 || strcmp(line, old_status) == 0;
             if (!with_status && strcmp(line, head) != 0 && strcmp(line, old) != 0) {
-                fprintf(stderr,
-                        "dynkit: error: --resume: %s is not a table of this sweep: its header "
-                        "is\n  %s\nand this sweep writes\n  %s\n(give the same model, runs and "
-                        "--reduce as the sweep that wrote it)\n",
-                        path, line, head);
+                cli_error("--resume: %s is not a table of this sweep: its header is\n  %s\nand "
+                          "this sweep writes\n  %s\n(give the same model, runs and --reduce as "
+                          "the sweep that wrote it)",
+                          path, line, head);
                 rc = CLI_USAGE;
             }
             continue;
@@ -563,11 +581,10 @@ static int read_resume(const char *path, sweep_out *o, unsigned char *skip, long
         else if (ok)
             ok = *p == '\0';
         if (!ok) {
-            fprintf(stderr,
-                    "dynkit: error: --resume: %s:%ld: not a row of this sweep (a run number "
-                    "0..%ld not seen before, the same values of the varied names, then %d "
-                    "numbers%s)\n",
-                    path, lineno, o->sp->n_runs - 1, o->n_red, with_status ? " and a status" : "");
+            cli_error("--resume: %s:%ld: not a row of this sweep (a run number 0..%ld not seen "
+                      "before, the same values of the varied names, then %d numbers%s)",
+                      path, lineno, o->sp->n_runs - 1, o->n_red,
+                      with_status ? " and a status" : "");
             rc = CLI_USAGE;
             break;
         }
@@ -578,7 +595,7 @@ static int read_resume(const char *path, sweep_out *o, unsigned char *skip, long
     if (!line)
         rc = CLI_FAILED;
     if (rc == CLI_OK && lineno == 0) {
-        fprintf(stderr, "dynkit: error: --resume: %s is empty\n", path);
+        cli_error("--resume: %s is empty", path);
         rc = CLI_USAGE;
     }
     free(line);

@@ -1,7 +1,10 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* Escaping of outside text for XML (SVG, HTML) and for JSON inside HTML's <script>
- * (escape.h): W3C XML 1.0 sec. 2.2 (Char) and 2.4, RFC 8259 sec. 7, RFC 3629 (UTF-8),
- * HTML's script data state (WHATWG HTML, 13.2.5.4). */
+/* Escaping of outside text for XML (SVG, HTML), for JSON inside HTML's <script> and for a
+ * terminal (escape.h): W3C XML 1.0 sec. 2.2 (Char) and 2.4, RFC 8259 sec. 7, RFC 3629
+ * (UTF-8), HTML's script data state (WHATWG HTML, 13.2.5.4), ECMA-48's C0 and C1 control
+ * functions. */
+#include <string.h>
+
 #include "escape.h"
 
 #define REPLACEMENT 0xFFFDL
@@ -108,4 +111,35 @@ int cli_json_escaped(FILE *out, const char *s)
         }
     }
     return bad | (fputc('"', out) == EOF);
+}
+
+const char *cli_terminal_text(const char *s, int lines, char *buf, size_t size)
+{
+    size_t used = 0, cut = 0; /* cut: where "..." fits after the text kept */
+    const unsigned char *p = (const unsigned char *)(s ? s : "");
+    while (*p) {
+        if (used + 4 <= size)
+            cut = used;
+        const unsigned char *start = p;
+        const long v = next_char(&p);
+        const size_t len = (size_t)(p - start);
+        /* kept: printable characters, and tab and line feed when asked */
+        const int keep = (v >= 0x20 && v != 0x7F && !(v >= 0x80 && v <= 0x9F) &&
+                          !(v == REPLACEMENT && len == 1)) ||
+                         (lines && (v == '\t' || v == '\n'));
+        const size_t need = keep ? len : 4 * len;
+        if (used + need + 1 > size) { /* no room for it and the NUL */
+            memcpy(buf + cut, "...", 4);
+            return buf;
+        }
+        if (keep) {
+            memcpy(buf + used, start, len);
+            used += len;
+        } else {
+            for (size_t k = 0; k < len; k++)
+                used += (size_t)snprintf(buf + used, size - used, "\\x%02X", start[k]);
+        }
+    }
+    buf[used] = '\0';
+    return buf;
 }

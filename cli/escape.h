@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* The escaping of text from outside (names, units, descriptions, titles, file names, column
  * names of a table) for each place the tool writes it: one function per context, and no
- * other way for such text into a picture or a page.
+ * other way for such text into a picture, a page or a terminal.
  *
  * - XML (SVG documents, the HTML pages' title): character data and attribute values
  *   alike (W3C XML 1.0, sec. 2.2 and 2.4; HTML's rules are looser).
@@ -28,5 +28,13 @@ int cli_xml_escaped(FILE *out, const char *s);
  * characters, '<', '>', '&', U+2028 and U+2029 as \u escapes (the last two end a line in
  * JavaScript before ES2019). */
 int cli_json_escaped(FILE *out, const char *s);
+
+/* s for a terminal, into buf (size > 4): printable ASCII and well-formed UTF-8 are kept,
+ * every other byte is written \xNN: control characters (ESC, BEL, and the C1 controls
+ * U+0080..U+009F, which some terminals obey too), DEL, and bytes that are not UTF-8, so text
+ * from a file cannot move the cursor, set a window title or change colours. Tab and line
+ * feed are kept when lines is 1. Cut with "..." when buf is too small (4 times the length
+ * of s, plus 1, always suffices). Returns buf. */
+const char *cli_terminal_text(const char *s, int lines, char *buf, size_t size);
 
 #endif

@@ -58,12 +58,15 @@ void cli_json_key(cli_json *j, const char *key)
     j->after_key = 1;
 }
 
+/* A number, null when not finite; negative zero as -0.0 (JSON readers take "-0" for 0). */
 static void put_number(cli_json *j, double v)
 {
-    if (isfinite(v))
-        j->bad |= fprintf(j->out, "%.*g", j->digits, v) < 0;
-    else
+    if (!isfinite(v))
         j->bad |= fputs("null", j->out) < 0;
+    else if (v == 0.0 && signbit(v))
+        j->bad |= fputs("-0.0", j->out) < 0;
+    else
+        j->bad |= fprintf(j->out, "%.*g", j->digits, v) < 0;
 }
 
 void cli_json_number(cli_json *j, double v)

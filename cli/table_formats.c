@@ -170,12 +170,15 @@ static int csv_header(cli_table *tab)
 /* ---- JSON ---- */
 
 /* A number as the shortest string that reads back to it, or null when not finite (JSON has
- * no NaN or Inf). */
+ * no NaN or Inf); negative zero as -0.0, since JSON readers (Python's json, JavaScript)
+ * read "-0" as the integer 0. */
 static int json_number(FILE *out, double v)
 {
     char num[DYN_DOUBLE_CHARS];
     if (!isfinite(v))
         return fputs("null", out) < 0;
+    if (v == 0.0 && signbit(v))
+        return fputs("-0.0", out) < 0;
     dyn_format_double(v, num);
     return fputs(num, out) < 0;
 }
@@ -183,7 +186,11 @@ static int json_number(FILE *out, double v)
 /* The same into a row's writer. */
 static int json_number_to(dyn_text_writer *w, double v)
 {
-    return (isfinite(v) ? dyn_text_write_double(w, v) : dyn_text_write(w, "null", 4)) != DYN_OK;
+    if (!isfinite(v))
+        return dyn_text_write(w, "null", 4) != DYN_OK;
+    if (v == 0.0 && signbit(v))
+        return dyn_text_write(w, "-0.0", 4) != DYN_OK;
+    return dyn_text_write_double(w, v) != DYN_OK;
 }
 
 static int json_strings(FILE *out, const char *key, const char *const *s, int n)

@@ -193,6 +193,17 @@ static tok next_tok(lang_lexer *lx, int consume)
         t.kind = T_NUM;
         t.num = strtod(buf, NULL);
         t.end = k;
+        /* what is no double is refused, as on the command line: 1e999 is not infinity and
+         * 1e-999 not zero */
+        if (isinf(t.num))
+            lang_fail(lx->c, pos_at(lx, i),
+                      "the number '%s' is beyond the range of doubles (at most about 1.8e308)",
+                      buf);
+        if (t.num == 0.0 && strcspn(buf, "123456789") < strcspn(buf, "eE"))
+            lang_fail(lx->c, pos_at(lx, i),
+                      "the number '%s' is below the smallest double (about 4.9e-324) and "
+                      "would be 0",
+                      buf);
     } else if (lang_is_ident_start(ch)) {
         int k = i;
         while (k < lx->end && lang_is_ident_char((unsigned char)s[k]))

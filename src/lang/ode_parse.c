@@ -110,10 +110,40 @@ static void resolve_const(lang_ctx *c, node *e, const char *what)
     }
 }
 
+/* The value of a formula of numbers and built-in functions; one that is not finite
+ * (1/0, exp(1000)) is refused at its place. */
 static double const_value(lang_ctx *c, node *e, const char *what)
 {
     resolve_const(c, e, what);
-    return lang_eval(c, e, NULL, NULL);
+    const double v = lang_eval(c, e, NULL, NULL);
+    if (!isfinite(v))
+        lang_fail(c, e->pos, "%s is not finite (%g): give a finite number", what, v);
+    return v;
+}
+
+/* 1 when e is a formula of numbers and built-in functions only (its value is known when the
+ * file is read). */
+static int is_constant(const node *e)
+{
+    if (e->kind == N_NAME || e->kind == N_TIME || e->kind == N_SUM || e->kind == N_SUMIDX)
+        return 0;
+    if (e->kind == N_FUN) {
+        int arity;
+        if (lang_fun_lookup(e->name, &arity) < 0 || arity != e->nargs)
+            return 0;
+    }
+    for (int i = 0; i < e->nargs; i++)
+        if (!is_constant(e->args[i]))
+            return 0;
+    return 1;
+}
+
+/* An initial value or guess that is a constant formula must be finite (one of parameters
+ * is checked when the parameters are known, at each run). */
+static void check_constant_value(lang_ctx *c, node *e, const char *what, const char *name)
+{
+    if (is_constant(e))
+        (void)const_value(c, e, lang_printf(c, "%s of '%s'", what, name));
 }
 
 /* XPPAUT 6.11 reads a value of par, number, init and x(0)= with atof: of '2*pi' only the 2,
@@ -183,6 +213,7 @@ static void add_formula(lang_ctx *c, lvec *v, sym_kind kind, const char *name, l
 
 static void add_init(lang_ctx *c, const char *name, lpos pos, node *value)
 {
+    check_constant_value(c, value, "the initial value", name);
     lang_init *in = lvec_push(c, &c->m.inits, sizeof *in);
     in->name = name;
     in->pos = pos;
@@ -214,8 +245,10 @@ static void name_value_list(lang_ctx *c, lang_lexer *lx, int kind, const char *k
             e = lang_num(c, 0.0);
         }
         if (kind == SYM_PARAM || kind == SYM_NUMBER) {
-            const double v = const_value(c, e, kind == SYM_PARAM ? "a parameter's value"
-                                                                 : "a number's value");
+            const double v = const_value(c, e, lang_printf(c, "the value of %s '%s'",
+                                                           kind == SYM_PARAM ? "parameter"
+                                                                             : "number",
+                                                           name));
             check_new_name(c, name, pos);
             lvec *vec = kind == SYM_PARAM ? &c->m.params : &c->m.numbers;
             lang_declare(c, name, pos, kind, vec->n);
@@ -226,6 +259,7 @@ static void name_value_list(lang_ctx *c, lang_lexer *lx, int kind, const char *k
         } else if (kind == SYM_ALG) {
             if (c->m.algs.n >= LANG_MAX_ALG)
                 lang_fail(c, pos, "more than %d algebraic variables ('solv')", LANG_MAX_ALG);
+            check_constant_value(c, e, "the initial guess", name);
             add_formula(c, &c->m.algs, SYM_ALG, name, pos, e);
         } else {
             add_init(c, name, pos, e);

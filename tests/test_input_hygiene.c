@@ -1,0 +1,203 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* Inputs that are no doubles, bytes that are no text, and a zero with a sign:
+ *
+ * - a model file's number beyond the range of doubles (1e999) or below it (1e-999, which
+ *   would be 0), and a parameter's, number's, initial value's or initial guess's constant
+ *   formula that is not finite (1/0, exp(1000)) are refused when the file is translated,
+ *   at FILE:LINE:COL, as the command line refuses them; a value that depends on parameters
+ *   is checked at each run;
+ * - `info` of a model whose title, description, units and descriptions hold terminal
+ *   control sequences (ESC [, OSC ... BEL, the C1 CSI 0x9B), and the error messages of
+ *   sweep --from and --resume quoting a file's column names and header, write those bytes
+ *   as \xNN: nothing reaches the terminal raw; UTF-8 text (units in degrees) is kept;
+ * - JSON writes negative zero as -0.0, which Python's json reads back as -0.0 (it reads
+ *   "-0" as the integer 0);
+ * - sweep --sample refuses, before any run, a distribution whose values can be infinite:
+ *   uniform(-1e308,1e308) (B - A overflows), normal(1e308,1e307), lognormal(0,100). */
+#define _POSIX_C_SOURCE 200809L
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+
+#include <cmocka.h>
+
+#include "dynkit/lang.h"
+#include "test_cli_run.h"
+#include "test_util.h"
+
+static int setup(void **state)
+{
+    (void)state;
+    return cli_make_tmpdir("hygiene");
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    char cmd[600];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", cli_tmpdir);
+    return system(cmd) == 0 ? 0 : -1;
+}
+
+static void write_text(const char *name, const char *text)
+{
+    FILE *f = fopen(cli_path(name), "wb");
+    assert_non_null(f);
+    fputs(text, f);
+    fclose(f);
+}
+
+/* 1 if text holds a byte below 0x20 other than line feed and tab, DEL or a C1 byte after
+ * 0xC2 (U+0080..U+009F), or 0x9B alone. */
+static int has_control_bytes(const char *text)
+{
+    for (const unsigned char *p = (const unsigned char *)text; *p; p++)
+        if ((*p < 0x20 && *p != '\n' && *p != '\t') || *p == 0x7F ||
+            (*p == 0xC2 && p[1] >= 0x80 && p[1] <= 0x9F) || *p == 0x9B)
+            return 1;
+    return 0;
+}
+
+static void test_values_that_are_no_doubles_are_refused_at_their_place(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *text, *why;
+        int line, col;
+    } cases[] = {
+        {"x'=1e999\ninit x=1\n", "'1e999' is beyond the range of doubles", 1, 4},
+        {"x'=-x*1e-999\ninit x=1\n", "'1e-999' is below the smallest double", 1, 7},
+        {"par a=1e999\nx'=-a*x\n", "'1e999' is beyond the range of doubles", 1, 7},
+        {"par a=1/0\nx'=-a*x\n", "the value of parameter 'a' is not finite (inf)", 1, 8},
+        {"number a=-exp(1000)\nx'=-a*x\n", "the value of number 'a' is not finite", 1, 10},
+        {"par a=1\nx'=-x+y\nsolv y=1/0\n0=y-1\ninit x=1\n",
+         "the initial guess of 'y' is not finite (inf)", 3, 9},
+        {"x'=-x\ninit x=0/0\n", "the initial value of 'x' is not finite", 2, 9},
+        {"x'=-x\nx(0)=exp(1000)\n", "the initial value of 'x' is not finite (inf)", 2, 6},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        char *c_src = NULL;
+        dyn_lang_diag d;
+        const int rc = dyn_ode_to_c("v.ode", cases[k].text, strlen(cases[k].text), &c_src, &d,
+                                    NULL, NULL);
+        CHECK(rc == 2 && strstr(d.message, cases[k].why) && d.line == cases[k].line &&
+                  d.col == cases[k].col,
+              "%s: rc %d, %d:%d: %s", cases[k].text, rc, d.line, d.col, d.message);
+        free(c_src);
+    }
+    /* the smallest subnormal and the largest double are numbers; so is 0e999 */
+    static const char fine[] = "par a=4.9e-324,b=1.7976931348623157e308,c=0e999\nx'=-a*x\n";
+    char *c_src = NULL;
+    dyn_lang_diag d;
+    CHECK(dyn_ode_to_c("v.ode", fine, strlen(fine), &c_src, &d, NULL, NULL) == 0, "%s",
+          d.message);
+    free(c_src);
+    /* through the command line: exit 2 with the place, not a run that fails */
+    write_text("big.ode", "x'=1e999\ninit x=1\ndone\n");
+    cli_result r = cli("run %s --final", cli_path("big.ode"));
+    CHECK(r.status == 2 && strstr(r.err, "big.ode:1:4: error: the number '1e999'") &&
+              r.out_len == 0,
+          "exit %d: %s", r.status, r.err);
+    cli_free(&r);
+}
+
+static void test_terminal_control_bytes_are_escaped(void **state)
+{
+    (void)state;
+    /* ESC [ 31 m (colour), OSC 0 ; title BEL, ESC [ 2 J (clear), C1 CSI (0xC2 0x9B) */
+    write_text("esc.ode", "#: title T\033[31mRED\n"
+                          "#: description D\033]0;pwned\007 x\n"
+                          "#: x [m\033[2J] pos \033[5m\n"
+                          "#: k [\xC2\x9B" "31m] kk\n"
+                          "#: v [\xC2\xB0/s] rate in degrees\n"
+                          "par k=1\nx'=-k*x\naux v=x\ninit x=1\ndone\n");
+    cli_result r = cli("info %s", cli_path("esc.ode"));
+    CHECK(r.status == 0, "exit %d: %s", r.status, r.err);
+    CHECK(!has_control_bytes(r.out), "info writes control bytes raw:\n%s", r.out);
+    CHECK(strstr(r.out, "T\\x1B[31mRED") && strstr(r.out, "D\\x1B]0;pwned\\x07 x") &&
+              strstr(r.out, "m\\x1B[2J") && strstr(r.out, "\\xC2\\x9B31m") &&
+              strstr(r.out, "\xC2\xB0/s"),
+          "info does not show the bytes escaped (and UTF-8 kept):\n%s", r.out);
+    cli_free(&r);
+
+    /* sweep --from: a column name; --resume: the header quoted */
+    write_text("from.csv", "run,mu\033[31m\n0,1\n");
+    r = cli("sweep vanderpol --from %s", cli_path("from.csv"));
+    CHECK(r.status == 2 && strstr(r.err, "mu\\x1B[31m") && !has_control_bytes(r.err),
+          "exit %d: %s", r.status, r.err);
+    cli_free(&r);
+    write_text("resume.csv", "run,m\033[1mu,final_y1\n0,1,2\n");
+    r = cli("sweep vanderpol --vary mu=1:2:2 --resume %s", cli_path("resume.csv"));
+    CHECK(r.status == 2 && strstr(r.err, "run,m\\x1B[1mu,final_y1") && !has_control_bytes(r.err),
+          "exit %d: %s", r.status, r.err);
+    cli_free(&r);
+    /* a --from table of numbers: the field quoted in the message */
+    write_text("field.csv", "mu\n1\x1B[1m\n");
+    r = cli("sweep vanderpol --from %s", cli_path("field.csv"));
+    CHECK(r.status == 2 && !has_control_bytes(r.err), "exit %d: %s", r.status, r.err);
+    cli_free(&r);
+}
+
+static void test_negative_zero_reads_back_in_json(void **state)
+{
+    (void)state;
+    /* x(0) = -0.0; after a step -0.0 + 0.5 * 0 = +0.0 (IEEE 754 round to nearest), so only
+     * the first row has -0.0 */
+    write_text("negz.ode", "x'=0\ny'=-1\ninit x=-0,y=0\n@ total=1\ndone\n");
+    char model[600];
+    snprintf(model, sizeof model, "%s", cli_path("negz.ode"));
+    cli_result r = cli("run %s --method euler --step 0.5 --output %s", model,
+                       cli_path("negz.json"));
+    CHECK(r.status == 0, "%s", r.err);
+    cli_free(&r);
+    char *json = cli_read_file(cli_path("negz.json"), NULL);
+    CHECK(strstr(json, "[0,-0.0,0]") != NULL, "no -0.0 in:\n%s", json);
+    free(json);
+    if (access("/usr/bin/python3", X_OK) != 0)
+        return;
+    char cmd[1024];
+    snprintf(cmd, sizeof cmd,
+             "/usr/bin/python3 -c \"import json, math; d = json.load(open('%s')); "
+             "print(math.copysign(1, d['rows'][0][1]), type(d['rows'][0][1]).__name__)\"",
+             cli_path("negz.json"));
+    int status;
+    char *out = cli_capture(cmd, &status);
+    CHECK(status == 0 && strcmp(out, "-1.0 float\n") == 0, "python reads: %s", out);
+    free(out);
+}
+
+static void test_samples_that_can_be_infinite_are_refused(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *sample, *why;
+    } cases[] = {
+        {"mu=uniform(-1e308,1e308)", "B - A is beyond the range of doubles"},
+        {"mu=normal(1e308,1e307)", "must be finite numbers"},
+        {"mu=lognormal(0,100)", "beyond the range of doubles: give M + 8.65 S <= 709.783"},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        cli_result r = cli("sweep vanderpol --tspan 0:1 --sample '%s' --runs 3", cases[k].sample);
+        CHECK(r.status == 2 && strstr(r.err, cases[k].why) && r.out_len == 0,
+              "%s: exit %d: %s", cases[k].sample, r.status, r.err);
+        cli_free(&r);
+    }
+    /* wide but finite: accepted, and the values drawn are finite */
+    cli_result r = cli("sweep vanderpol --tspan 0:1e-3 --sample 'y1=uniform(-8e307,8e307)' "
+                       "--runs 3");
+    CHECK(r.status == 0 && !strstr(r.out, "inf"), "exit %d: %s%s", r.status, r.out, r.err);
+    cli_free(&r);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_values_that_are_no_doubles_are_refused_at_their_place),
+        cmocka_unit_test(test_terminal_control_bytes_are_escaped),
+        cmocka_unit_test(test_negative_zero_reads_back_in_json),
+        cmocka_unit_test(test_samples_that_can_be_infinite_are_refused),
+    };
+    return cmocka_run_group_tests(tests, setup, teardown);
+}

@@ -262,10 +262,9 @@ static int json_skip(json_in *in, int depth)
     return json_number(in, &v);
 }
 
-/* An array of strings into names (NULL: count only), at most SWEEP_TABLE_MAX_COLS. */
-static int json_strings(json_in *in, char **into, int *n)
+/* Each item of an array, read by item(in, ctx); 0, or -1 with the message in err. */
+static int json_array(json_in *in, int (*item)(json_in *, void *), void *ctx)
 {
-    *n = 0;
     if (expect(in, '['))
         return -1;
     ws(in);
@@ -274,14 +273,8 @@ static int json_strings(json_in *in, char **into, int *n)
         return 0;
     }
     for (;;) {
-        char *s = json_string(in);
-        if (!s)
+        if (item(in, ctx))
             return -1;
-        if (*n >= SWEEP_TABLE_MAX_COLS) {
-            free(s);
-            return fail(in, "too many columns");
-        }
-        into[(*n)++] = s;
         ws(in);
         if (in->p < in->end && *in->p == ',') {
             in->p++;
@@ -291,35 +284,69 @@ static int json_strings(json_in *in, char **into, int *n)
     }
 }
 
+typedef struct strings_in {
+    char **into;
+    int n;
+} strings_in;
+
+static int string_item(json_in *in, void *ctx)
+{
+    strings_in *st = ctx;
+    char *s = json_string(in);
+    if (!s)
+        return -1;
+    if (st->n >= SWEEP_TABLE_MAX_COLS) {
+        free(s);
+        return fail(in, "too many columns");
+    }
+    st->into[st->n++] = s;
+    return 0;
+}
+
+/* An array of strings into into[], at most SWEEP_TABLE_MAX_COLS; *n receives how many. */
+static int json_strings(json_in *in, char **into, int *n)
+{
+    strings_in st = {into, 0};
+    const int rc = json_array(in, string_item, &st);
+    *n = st.n;
+    return rc;
+}
+
+typedef struct rows_in {
+    sweep_table *t;
+    long capacity;
+    int col; /* of the row being read */
+} rows_in;
+
+static int number_item(json_in *in, void *ctx)
+{
+    rows_in *r = ctx;
+    if (r->col >= r->t->cols)
+        return fail(in, "a row of more numbers than columns");
+    double *row = r->t->data + (size_t)r->t->rows * (size_t)r->t->cols;
+    return json_number(in, &row[r->col++]);
+}
+
+static int row_item(json_in *in, void *ctx)
+{
+    rows_in *r = ctx;
+    if (grow(r->t, &r->capacity))
+        return fail(in, "out of memory");
+    r->col = 0;
+    if (json_array(in, number_item, r))
+        return -1;
+    if (r->col != r->t->cols)
+        return fail(in, "a row of fewer numbers than columns");
+    r->t->rows++;
+    return 0;
+}
+
 static int json_rows(json_in *in, sweep_table *t)
 {
-    long capacity = 0;
     if (t->cols == 0)
         return fail(in, "\"rows\" before \"columns\"");
-    if (expect(in, '['))
-        return -1;
-    ws(in);
-    if (in->p < in->end && *in->p == ']') {
-        in->p++;
-        return 0;
-    }
-    for (;;) {
-        if (grow(t, &capacity) || expect(in, '['))
-            return -1;
-        double *row = t->data + (size_t)t->rows * (size_t)t->cols;
-        for (int c = 0; c < t->cols; c++)
-            if ((c > 0 && expect(in, ',')) || json_number(in, &row[c]))
-                return -1;
-        if (expect(in, ']'))
-            return fail(in, "a row of more numbers than columns");
-        t->rows++;
-        ws(in);
-        if (in->p < in->end && *in->p == ',') {
-            in->p++;
-            continue;
-        }
-        return expect(in, ']');
-    }
+    rows_in r = {t, 0, 0};
+    return json_array(in, row_item, &r);
 }
 
 static int read_json(FILE *f, const char *path, sweep_table *t, char *err, size_t errlen)

@@ -552,6 +552,17 @@ static void test_plot_table(void **state)
         assert_non_null(strstr(r.err, errors[k].message));
         cli_free(&r);
     }
+    /* a JSON table that is not a sweep's: refused with its line and what is wrong */
+    FILE *f = fopen(cli_path("bad.json"), "w");
+    assert_non_null(f);
+    fputs("{\"columns\": [\"run\", \"a\", \"max_b\"],\n \"rows\": [[0, 1, 2], [1, 2]]}\n", f);
+    fclose(f);
+    r = cli_in_tmpdir("plot bad.json");
+    CHECK(r.status == 2 && strstr(r.err, "bad.json:2: not a sweep's JSON table: a row of fewer "
+                                         "numbers than columns"),
+          "plot of a bad JSON table: exit %d: %s", r.status, r.err);
+    cli_free(&r);
+    unlink(cli_path("bad.json"));
     unlink(cli_path("p.csv"));
     unlink(cli_path("p.svg"));
     unlink(cli_path("g.csv"));

@@ -63,18 +63,15 @@ static inline const char *cli_path(const char *name)
     return path;
 }
 
-/* Run `dynkit ARGS` (ARGS already formatted), capturing stdout and stderr. With in_tmpdir
- * the command runs from inside the temporary directory, so relative file names in ARGS are
- * there. */
-static inline cli_result cli_run_args(int in_tmpdir, const char *args)
+/* Run `WRAPPER dynkit ARGS` (ARGS already formatted; WRAPPER e.g. "timeout 20 " or "")
+ * from the folder dir (NULL: the current one), capturing stdout and stderr into the
+ * temporary directory. */
+static inline cli_result cli_run_at(const char *dir, const char *wrapper, const char *args)
 {
     char cmd[4096];
-    if (in_tmpdir)
-        snprintf(cmd, sizeof cmd, "cd '%s' && '%s' %s >out 2>err </dev/null", cli_tmpdir,
-                 DYNKIT_CLI, args);
-    else
-        snprintf(cmd, sizeof cmd, "'%s' %s >'%s/out' 2>'%s/err' </dev/null", DYNKIT_CLI, args,
-                 cli_tmpdir, cli_tmpdir);
+    snprintf(cmd, sizeof cmd, "%s%s%s%s'%s' %s >'%s/out' 2>'%s/err' </dev/null",
+             dir ? "cd '" : "", dir ? dir : "", dir ? "' && " : "", wrapper, DYNKIT_CLI, args,
+             cli_tmpdir, cli_tmpdir);
     cli_result r;
     int w = system(cmd);
     r.status = (w != -1 && WIFEXITED(w)) ? WEXITSTATUS(w) : -1;
@@ -84,6 +81,14 @@ static inline cli_result cli_run_args(int in_tmpdir, const char *args)
     snprintf(path, sizeof path, "%s/err", cli_tmpdir);
     r.err = cli_read_file(path, NULL);
     return r;
+}
+
+/* Run `dynkit ARGS` (ARGS already formatted), capturing stdout and stderr. With in_tmpdir
+ * the command runs from inside the temporary directory, so relative file names in ARGS are
+ * there. */
+static inline cli_result cli_run_args(int in_tmpdir, const char *args)
+{
+    return cli_run_at(in_tmpdir ? cli_tmpdir : NULL, "", args);
 }
 
 /* Run `dynkit ARGS` (ARGS as for the shell), capturing stdout and stderr. */
@@ -121,6 +126,25 @@ static inline int cli_setup(void **state)
 {
     (void)state;
     return cli_make_tmpdir("test");
+}
+
+/* Write text into the file name of the temporary directory; 0, or -1 when it cannot. */
+static inline int cli_write_file(const char *name, const char *text)
+{
+    FILE *f = fopen(cli_path(name), "wb");
+    if (!f)
+        return -1;
+    const int bad = fputs(text, f) < 0;
+    return fclose(f) != 0 || bad ? -1 : 0;
+}
+
+/* Remove the temporary directory with everything in it (a cmocka group teardown). */
+static inline int cli_remove_tmpdir(void **state)
+{
+    (void)state;
+    char cmd[600];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", cli_tmpdir);
+    return system(cmd) == 0 ? 0 : -1;
 }
 
 /* Remove the temporary directory and the files named (NULL-terminated) plus out and err. */

@@ -39,20 +39,9 @@ static int setup(void **state)
     return cli_make_tmpdir("hostile");
 }
 
-static int teardown(void **state)
-{
-    (void)state;
-    char cmd[600];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", cli_tmpdir);
-    return system(cmd) == 0 ? 0 : -1;
-}
-
 static void write_text(const char *name, const char *text)
 {
-    FILE *f = fopen(cli_path(name), "wb");
-    assert_non_null(f);
-    fputs(text, f);
-    fclose(f);
+    assert_int_equal(cli_write_file(name, text), 0);
 }
 
 /* s escaped by fn into a static buffer. */
@@ -262,5 +251,5 @@ int main(void)
         cmocka_unit_test(test_model_text_is_text_in_plots_and_pages),
         cmocka_unit_test(test_page_scripts_never_parse_text_as_html),
     };
-    return cmocka_run_group_tests(tests, setup, teardown);
+    return cmocka_run_group_tests(tests, setup, cli_remove_tmpdir);
 }

@@ -33,20 +33,9 @@ static int setup(void **state)
     return cli_make_tmpdir("hygiene");
 }
 
-static int teardown(void **state)
-{
-    (void)state;
-    char cmd[600];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", cli_tmpdir);
-    return system(cmd) == 0 ? 0 : -1;
-}
-
 static void write_text(const char *name, const char *text)
 {
-    FILE *f = fopen(cli_path(name), "wb");
-    assert_non_null(f);
-    fputs(text, f);
-    fclose(f);
+    assert_int_equal(cli_write_file(name, text), 0);
 }
 
 /* 1 if text holds a byte below 0x20 other than line feed and tab, DEL or a C1 byte after
@@ -199,5 +188,5 @@ int main(void)
         cmocka_unit_test(test_negative_zero_reads_back_in_json),
         cmocka_unit_test(test_samples_that_can_be_infinite_are_refused),
     };
-    return cmocka_run_group_tests(tests, setup, teardown);
+    return cmocka_run_group_tests(tests, setup, cli_remove_tmpdir);
 }

@@ -34,20 +34,9 @@ static int setup(void **state)
     return system(cmd) == 0 ? 0 : -1;
 }
 
-static int teardown(void **state)
-{
-    (void)state;
-    char cmd[600];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", cli_tmpdir);
-    return system(cmd) == 0 ? 0 : -1;
-}
-
 static void write_text(const char *name, const char *text)
 {
-    FILE *f = fopen(cli_path(name), "wb");
-    assert_non_null(f);
-    fputs(text, f);
-    fclose(f);
+    assert_int_equal(cli_write_file(name, text), 0);
 }
 
 #define TABLE "3 0 2\n0 1 4\n"
@@ -64,19 +53,9 @@ static void write_model(const char *name, const char *file)
 /* `dynkit ARGS` from inside tmpdir/m, ended after 20 s if it blocks (exit 124). */
 static cli_result in_model_dir(const char *args)
 {
-    char cmd[4096];
-    snprintf(cmd, sizeof cmd,
-             "cd '%s/m' && timeout 20 '%s' %s >'%s/out' 2>'%s/err' </dev/null", cli_tmpdir,
-             DYNKIT_CLI, args, cli_tmpdir, cli_tmpdir);
-    cli_result r;
-    const int w = system(cmd);
-    r.status = (w != -1 && WIFEXITED(w)) ? WEXITSTATUS(w) : -1;
-    char path[600];
-    snprintf(path, sizeof path, "%s/out", cli_tmpdir);
-    r.out = cli_read_file(path, &r.out_len);
-    snprintf(path, sizeof path, "%s/err", cli_tmpdir);
-    r.err = cli_read_file(path, NULL);
-    return r;
+    char dir[300];
+    snprintf(dir, sizeof dir, "%s/m", cli_tmpdir);
+    return cli_run_at(dir, "timeout 20 ", args);
 }
 
 /* The final x of a --final run's CSV output "t,x\n2,X\n". */
@@ -231,5 +210,5 @@ int main(void)
         cmocka_unit_test(test_the_command_line_names_a_table_file),
         cmocka_unit_test(test_help_lists_the_option),
     };
-    return cmocka_run_group_tests(tests, setup, teardown);
+    return cmocka_run_group_tests(tests, setup, cli_remove_tmpdir);
 }

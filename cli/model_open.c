@@ -62,11 +62,11 @@ static int unknown_model(const char *command, const char *spec)
     if (near)
         return cli_usage_error(command,
                                "unknown model '%s' (did you mean '%s'? accepted: %s, "
-                               "brusselator:N, or a model file NAME.ode or NAME.c)",
+                               "brusselator:N, or a model file NAME.ode, NAME.mech or NAME.c)",
                                spec, near, list);
     return cli_usage_error(command,
                            "unknown model '%s' (accepted: %s, brusselator:N, or a model file "
-                           "NAME.ode or NAME.c)",
+                           "NAME.ode, NAME.mech or NAME.c)",
                            spec, list);
 }
 
@@ -283,10 +283,10 @@ int cli_param_is_size(const dyn_model *m, const char *name)
 int cli_model_open(const char *command, const char *spec, const dyn_model **model)
 {
     *model = NULL;
-    if (n_table_files > 0 && !ends_with(spec, ".ode"))
+    if (n_table_files > 0 && !ends_with(spec, ".ode") && !ends_with(spec, ".mech"))
         return cli_usage_error(command,
                                "--table %s=%s: '%s' is not a model file NAME.ode (only .ode "
-                               "files read tables from files)",
+                               "and .mech files read tables from files)",
                                table_files[0].name, table_files[0].path, spec);
     if (cli_model_is_file(spec))
         return open_model_file(spec, model);

@@ -11,7 +11,7 @@
   error followed by it, as a terminal shows a trace) must be exactly the lines shown after
   it (up to the next `$`), and a `$ cat FILE` shows a file written by the command before.
 
-Usage: run_readme.py DYNKIT README.md
+Usage: run_readme.py DYNKIT README.md [PROJECT_ROOT]
 """
 import os
 import re
@@ -70,7 +70,8 @@ def console_steps(block):
 
 def main():
     dynkit, readme = os.path.abspath(sys.argv[1]), sys.argv[2]
-    root = os.path.dirname(os.path.abspath(readme))
+    # the folder whose examples/ the commands read: the README's, or a third argument
+    root = sys.argv[3] if len(sys.argv) > 3 else os.path.dirname(os.path.abspath(readme))
     with open(readme) as f:
         text = f.read()
     failures = 0

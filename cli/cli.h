@@ -68,6 +68,8 @@ int cli_model_open(const char *command, const char *spec, const dyn_model **mode
 int cli_model_table_options(const char *command, int argc, char **argv);
 /* 1 if MODEL names a model file (.ode, .c, .so) rather than a built-in model. */
 int cli_model_is_file(const char *spec);
+/* A model file's text (malloc'd, NUL-terminated, *len bytes); NULL with a message printed. */
+char *cli_read_model_file(const char *path, size_t *len);
 /* 1 for a model loaded from a model file with algebraic equations (0=...). */
 int cli_model_has_algebraic(const dyn_model *m);
 /* 1 when parameter `name` of m is its size (the Brusselator's N), which --set and sweeps
@@ -197,6 +199,7 @@ int cli_cmd_report(int argc, char **argv);
 int cli_cmd_verify(int argc, char **argv);
 int cli_cmd_sweep(int argc, char **argv);
 int cli_cmd_linearize(int argc, char **argv);
+int cli_cmd_derive(int argc, char **argv);
 /* dynkit plot TABLE.csv: a sweep's table as lines or a heat map (sweep_plot.c). */
 int cli_plot_sweep_table(int argc, char **argv);
 

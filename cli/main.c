@@ -28,10 +28,12 @@ static void main_help(void)
          "                 --reduce final,max:NAME,event:NAME,... on every core\n"
          "  linearize MODEL the Jacobian df/dy about a state (--init, --set), its eigenvalues\n"
          "                 and the stability; --vary NAME=A:B:N gives one block per value\n"
+         "  derive FILE.mech the equations of motion of a mechanism file as formulas\n"
          "  help [COMMAND] this text, or the help of COMMAND (as 'dynkit COMMAND --help')\n"
          "\n"
-         "MODEL is a built-in model's name ('dynkit models'), an XPPAUT .ode file or a C file\n"
-         "defining dynkit_model() (see docs/model-files.md); both are compiled to native code.\n"
+         "MODEL is a built-in model's name ('dynkit models'), an XPPAUT .ode file, a mechanism\n"
+         "file .mech (docs/mechanisms.md) or a C file defining dynkit_model() (see\n"
+         "docs/model-files.md); all are compiled to native code.\n"
          "--verbose (any command) prints notes on stderr.\n"
          "\n"
          "'dynkit help COMMAND' tells more about each command; 'man dynkit' tells all.\n"
@@ -60,6 +62,7 @@ int main(int argc, char **argv)
         {"verify", cli_cmd_verify},
         {"sweep", cli_cmd_sweep},
         {"linearize", cli_cmd_linearize},
+        {"derive", cli_cmd_derive},
     };
     /* --verbose is accepted anywhere, by every command */
     int kept = 1;
@@ -103,7 +106,7 @@ int main(int argc, char **argv)
     const char *near = dyn_lang_nearest(argv[1], names, n);
     return cli_usage_error(NULL,
                            "unknown command '%s' (%s%s%saccepted: run, models, methods, info, "
-                           "inverse, report, animate, plot, verify, sweep, linearize, help)",
+                           "inverse, report, animate, plot, verify, sweep, linearize, derive, help)",
                            argv[1], near ? "did you mean '" : "", near ? near : "",
                            near ? "'? " : "");
 }

@@ -71,7 +71,7 @@ static int unknown_model(const char *command, const char *spec)
 }
 
 /* The whole file into a malloc'd, NUL-terminated buffer; NULL with a message printed. */
-static char *read_model_file(const char *path, size_t *len)
+char *cli_read_model_file(const char *path, size_t *len)
 {
     struct stat st;
     if (stat(path, &st) != 0) {
@@ -193,7 +193,7 @@ static int open_model_file(const char *spec, const dyn_model **model)
         rc = dyn_jit_load_c_file(spec, NULL, &jm, err, sizeof err);
     } else {
         size_t len = 0;
-        char *text = read_model_file(spec, &len);
+        char *text = cli_read_model_file(spec, &len);
         if (!text)
             return CLI_USAGE;
         char *c_source = NULL;

@@ -1,14 +1,14 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # bash completion of dynkit (bash-completion's programmable completion, `complete -F`):
 # commands; each command's options, read from its --help (so they follow the installed
-# dynkit); model names (`dynkit models`) and model files (.ode, .c, .so); method names
+# dynkit); model names (`dynkit models`) and model files (.ode, .mech, .c, .so); method names
 # (`dynkit methods`, with aliases and MATLAB's ode45, ode23, ode15s, ode23s); parameter and
 # state names for --set and --init (`dynkit info MODEL`); the values of --end, --interp and
 # --header; files for --output, --forces and --events-output.
 # Installed by `cmake --install` into share/bash-completion/completions/dynkit; or
 # `source completions/dynkit.bash`.
 
-_dynkit_commands="run models methods info inverse report animate plot verify sweep linearize help"
+_dynkit_commands="run models methods info inverse report animate plot verify sweep linearize derive help"
 
 # The options of a command, from its --help (cached per command for the shell's life).
 declare -gA _dynkit_options_cache 2>/dev/null || true
@@ -45,7 +45,7 @@ _dynkit_files() {
     local IFS=$'\n' restore=""
     shopt -q extglob || { shopt -s extglob; restore=1; }
     COMPREPLY+=($(compgen -d -- "$1"))
-    COMPREPLY+=($(compgen -f -X '!*.@(ode|c|so)' -- "$1"))
+    COMPREPLY+=($(compgen -f -X "!*.@(${2:-ode|mech|c|so})" -- "$1"))
     [[ -n $restore ]] && shopt -u extglob
     return 0
 }
@@ -138,6 +138,14 @@ _dynkit() {
             compopt -o filenames 2>/dev/null
             COMPREPLY=($(compgen -W "$(_dynkit_models "$prog")" -- "$cur"))
             _dynkit_files "$cur"
+            return 0
+        fi
+        ;;
+    derive)
+        if ((COMP_CWORD == i + 1)); then
+            compopt -o filenames 2>/dev/null
+            COMPREPLY=()
+            _dynkit_files "$cur" mech
             return 0
         fi
         ;;

@@ -16,8 +16,9 @@ packages+=(libtcc-dev tcc) # src/jit: models compiled in process by libtcc (opti
 packages+=(liblapack-dev) # backends/lapack: LAPACK's band LU for the stiff methods (optional)
 packages+=(libopenmpi-dev openmpi-bin) # backends/mpi: sweeps over MPI ranks (optional)
 # .mat output with matio (optional); the data-file tests load every format with NumPy, SciPy
-# and Octave (tests/test_formats.c; octave installs in about 30 s)
-packages+=(libmatio-dev python3-numpy python3-scipy octave)
+# and Octave (tests/test_formats.c; octave installs in about 30 s); SymPy checks the derived
+# equations of mechanisms (tests/mbs/sympy_check.py)
+packages+=(libmatio-dev python3-numpy python3-scipy python3-sympy octave)
 packages+=(man-db) # tests/test_manpage.c renders docs/dynkit.1
 packages+=(xppaut) # tests/xppaut: .ode files run by XPPAUT itself and compared
 packages+=(libclang-rt-dev) # fuzz/: libFuzzer and the sanitizers' runtime for clang (CI)

@@ -69,7 +69,8 @@ static void test_every_option_is_in_the_page(void **state)
     (void)state;
     static const char *const commands[] = {"",        "run",    "models",  "methods",
                                            "info",    "inverse", "report", "animate",
-                                           "plot",    "verify",  "sweep",  "linearize"};
+                                           "plot",    "verify",  "sweep",  "linearize",
+                                           "derive"};
     char *page = cli_read_file(PAGE, NULL);
     CHECK(strlen(page) > 1000, "cannot read %s", PAGE);
     char missing[2048] = "";
@@ -178,6 +179,7 @@ static void test_bash_completion(void **state)
         {"dynkit help an", {"animate", NULL}},
         {"dynkit plot vanderpol --ti", {"--title", NULL}},
         {"dynkit lin", {"linearize", NULL}},
+        {"dynkit de", {"derive", NULL}},
         {"dynkit linearize pendulum --ma", {"--matrix", NULL}},
         {"dynkit linearize pendulum --jacobian r", {"richardson", NULL}},
         {"dynkit linearize pendulum --set \"\"", {"l=", "g=", NULL}},

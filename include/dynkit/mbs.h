@@ -26,6 +26,13 @@ int dyn_mech_to_c(const char *path, const char *text, size_t len,
                   const dyn_lang_table_file *tables, int n_tables, char **c_source,
                   dyn_lang_diag *diag, dyn_lang_note_fn note, void *note_ctx);
 
+/* What was derived, as readable formulas in the file's names (dynkit derive): the mass
+ * matrix M (lower triangle), the forces F, and each constraint's row D and convective term
+ * c, with M q'' = F + D' lambda and D q'' + c = 0; then the fixed quantities they use.
+ * 0 and *out (malloc'd), or non-zero with *diag filled as dyn_mech_to_c. */
+int dyn_mech_derive_text(const char *path, const char *text, size_t len, char **out,
+                         dyn_lang_diag *diag);
+
 #ifdef __cplusplus
 }
 #endif

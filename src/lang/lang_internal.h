@@ -427,11 +427,12 @@ double lang_apply_fun(int op, double a, double b);
 char *lang_emit_c(lang_ctx *c);
 /* A translation from the text of a model file to C (translate.c): the context, the error
  * exit and the C text around front, which reads the file into c->m and checks it (the .ode
- * front end: lang_parse_model then lang_check). */
+ * front end: lang_parse_model then lang_check); back writes the text instead of the C
+ * (NULL: lang_emit_c), malloc'd. */
 int lang_translate(const char *path, const char *text, size_t len,
                    const dyn_lang_table_file *tables, int n_tables, char **c_source,
                    dyn_lang_diag *diag, dyn_lang_note_fn note, void *note_ctx,
-                   void (*front)(lang_ctx *c));
+                   void (*front)(lang_ctx *c), char *(*back)(lang_ctx *c));
 /* The default name of a model from its path: the file name without the extension ext. */
 const char *lang_base_name(lang_ctx *c, const char *path, const char *ext);
 const char *lang_alg_solver_text(void);

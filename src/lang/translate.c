@@ -71,13 +71,13 @@ int dyn_ode_to_c_tables(const char *path, const char *text, size_t len,
                         dyn_lang_diag *diag, dyn_lang_note_fn note, void *note_ctx)
 {
     return lang_translate(path, text, len, tables, n_tables, c_source, diag, note, note_ctx,
-                          ode_front);
+                          ode_front, NULL);
 }
 
 int lang_translate(const char *path, const char *text, size_t len,
                    const dyn_lang_table_file *tables, int n_tables, char **c_source,
                    dyn_lang_diag *diag, dyn_lang_note_fn note, void *note_ctx,
-                   void (*front)(lang_ctx *c))
+                   void (*front)(lang_ctx *c), char *(*back)(lang_ctx *c))
 {
     dyn_lang_diag scratch;
     if (!diag)
@@ -122,7 +122,7 @@ int lang_translate(const char *path, const char *text, size_t len,
     c->table_file_used = lang_alloc(c, (size_t)n_tables + 1);
     memset(c->table_file_used, 0, (size_t)n_tables + 1);
     translate(c, front);
-    char *out = lang_emit_c(c);
+    char *out = back ? back(c) : lang_emit_c(c);
     lang_free_all(c);
     free(c);
     *c_source = out;

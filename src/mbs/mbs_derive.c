@@ -29,6 +29,8 @@ typedef struct dctx {
     double *D0;      /* the constraints' rows there (m x n) */
 } dctx;
 
+static int symbolic(const dctx *d) { return d->mb->symbolic; }
+
 static node *num(dctx *d, double v) { return lang_num(d->c, v); }
 static node *add(dctx *d, node *a, node *b) { return lang_add(d->c, a, b); }
 static node *sub(dctx *d, node *a, node *b) { return lang_sub(d->c, a, b); }
@@ -44,6 +46,8 @@ static node *ref(dctx *d, node_kind kind, int index)
 /* a fixed quantity of value e (simple values stay as they are) */
 static node *fix(dctx *d, const char *role, node *e)
 {
+    if (symbolic(d))
+        return e; /* the formulas themselves, to print (dynkit derive) */
     if (e->kind == N_NUM || e->kind == N_STATE || e->kind == N_PARAM || e->kind == N_FIX ||
         e->kind == N_TIME)
         return e;
@@ -65,7 +69,14 @@ static node *fix(dctx *d, const char *role, node *e)
     return ref(d, N_FIX, c->m.fixes.n - 1);
 }
 
-static node *input_ref(dctx *d, int k) { return k < 0 ? num(d, 0.0) : ref(d, N_FIX, k); }
+static node *input_ref(dctx *d, int k)
+{
+    if (k < 0)
+        return num(d, 0.0);
+    if (symbolic(d)) /* the formula as written, to print */
+        return LVEC_AT(d->c->m.fixes, lang_formula, k).expr;
+    return ref(d, N_FIX, k);
+}
 
 /* ---- expansion of the inputs (fixed quantities and user functions inlined) ---- */
 
@@ -410,6 +421,11 @@ static void constraints(dctx *d, node **F_Q, node **qdd, node **a0, node **L, no
     node **A = lang_alloc(c, (size_t)(m * m + 1) * sizeof *A);
     node **b = lang_alloc(c, (size_t)(m + 1) * sizeof *b);
     (void)F_Q;
+    if (symbolic(d)) {
+        mb->con_D = D;
+        mb->con_c = lang_alloc(c, (size_t)(m + 1) * sizeof *mb->con_c);
+        mb->con_speeds = lang_alloc(c, (size_t)(m + 1) * sizeof *mb->con_speeds);
+    }
     for (int r = 0; r < m; r++) {
         mbs_constraint *k = &LVEC_AT(mb->cons, mbs_constraint, r);
         node *f = input(d, k->expr);
@@ -458,6 +474,11 @@ static void constraints(dctx *d, node **F_Q, node **qdd, node **a0, node **L, no
                       k->name, on_speeds ? "speed" : "position");
         node *conv = rate(d, h);
         /* the speeds' terms of rate(h) are D u_dot; rate holds u, so conv is the rest */
+        if (symbolic(d)) {
+            mb->con_c[r] = conv;
+            mb->con_speeds[r] = on_speeds;
+            continue;
+        }
         node *stab = num(d, 0.0);
         if (mb->alpha > 0 && !on_speeds) { /* Baumgarte on the positions' constraints */
             node *hf = fix(d, lang_printf(c, "%s_h", tag), h);
@@ -477,6 +498,8 @@ static void constraints(dctx *d, node **F_Q, node **qdd, node **a0, node **L, no
             out->doc.description = lang_printf(c, "force of the constraint %s (%s)", k->name,
                                                on_speeds ? "on the speeds" : "holonomic");
     }
+    if (symbolic(d))
+        return;
     for (int r = 0; r < m; r++)
         for (int s = 0; s <= r; s++) {
             A[r * m + s] = fix(d, lang_printf(c, "A%d_%d", r, s),
@@ -702,6 +725,15 @@ void mbs_derive(lang_ctx *c, mbs_model *mb)
             M[i * n + k] = fix(&d, lang_printf(c, "M%d_%d", i, k), M[i * n + k]);
             M[k * n + i] = M[i * n + k];
         }
+    }
+    if (symbolic(&d)) { /* dynkit derive: the formulas of M, F and the constraints */
+        mb->M = M;
+        mb->F = F;
+        d.D0 = lang_alloc(c, ((size_t)mb->cons.n * n + 1) * sizeof *d.D0);
+        if (mb->cons.n)
+            constraints(&d, F, NULL, NULL, NULL, NULL);
+        mbs_check_initial(c, mb, M0, d.D0);
+        return;
     }
     node **L = lang_alloc(c, (size_t)n * n * sizeof *L);
     node **dinv = lang_alloc(c, (size_t)n * sizeof *dinv);

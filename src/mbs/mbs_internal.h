@@ -86,6 +86,11 @@ typedef struct mbs_model {
     lvec input_names; /* mbs_named: parameters a table of inputs overrides (`input`) */
     node **expanded; /* expanded inputs, by fixed quantity (mbs_derive.c) */
     int *order;      /* the order of the fixed quantities, growing */
+    /* dynkit derive: the formulas themselves instead of fixed quantities, kept here */
+    int symbolic;
+    node **M, **F;    /* (n x n), (n) */
+    node **con_D, **con_c; /* (m x n) rows, (m) convective terms: D q'' + c = 0 */
+    int *con_speeds;  /* (m) 1: a constraint on the speeds */
     int norder, ordercap;
 } mbs_model;
 
@@ -96,5 +101,7 @@ void mbs_finish_parse(lang_ctx *c, mbs_model *mb);
 void mbs_resolve_inputs(lang_ctx *c, mbs_model *mb);
 /* the equations of motion, after lang_check (mbs_derive.c) */
 void mbs_derive(lang_ctx *c, mbs_model *mb);
+/* the formulas of mb->symbolic as readable text, malloc'd (mbs_text.c) */
+char *mbs_text(lang_ctx *c, const mbs_model *mb);
 
 #endif /* DYNKIT_MBS_INTERNAL_H */

@@ -3,32 +3,46 @@
  * statements (mbs_parse.c, inside src/lang's reading of the lines), src/lang's checks, the
  * equations of motion by TMT (mbs_derive.c), then src/lang's C text. */
 #include "dynkit/mbs.h"
+#include <string.h>
+
 #include "mbs/mbs_internal.h"
 
-static void mech_front(lang_ctx *c)
+static void front(lang_ctx *c, int symbolic)
 {
-    mbs_model mb = {0};
-    mb.alpha = MBS_DEFAULT_ALPHA;
-    mb.gravity[0] = mb.gravity[1] = mb.gravity[2] = -1; /* none: 0 */
+    mbs_model *mb = lang_alloc(c, sizeof *mb);
+    memset(mb, 0, sizeof *mb);
+    mb->alpha = MBS_DEFAULT_ALPHA;
+    mb->gravity[0] = mb->gravity[1] = mb->gravity[2] = -1; /* none: 0 */
+    mb->symbolic = symbolic;
     c->m.name = lang_base_name(c, c->path, ".mech");
     c->stmt_hook = mbs_statement;
-    c->hook_ctx = &mb;
+    c->hook_ctx = mb;
     c->no_arrays = 1;
     lang_parse_model(c);
-    mbs_finish_parse(c, &mb);
+    mbs_finish_parse(c, mb);
     lang_check_table_files(c);
     c->stmt_hook = NULL;
     lang_check(c);
-    mbs_resolve_inputs(c, &mb);
+    mbs_resolve_inputs(c, mb);
     c->m.no_jacobian = 1;
-    mbs_derive(c, &mb);
-    c->hook_ctx = NULL;
+    mbs_derive(c, mb);
 }
+
+static void mech_front(lang_ctx *c) { front(c, 0); }
+static void derive_front(lang_ctx *c) { front(c, 1); }
+static char *derive_back(lang_ctx *c) { return mbs_text(c, c->hook_ctx); }
 
 int dyn_mech_to_c(const char *path, const char *text, size_t len,
                   const dyn_lang_table_file *tables, int n_tables, char **c_source,
                   dyn_lang_diag *diag, dyn_lang_note_fn note, void *note_ctx)
 {
     return lang_translate(path, text, len, tables, n_tables, c_source, diag, note, note_ctx,
-                          mech_front);
+                          mech_front, NULL);
+}
+
+int dyn_mech_derive_text(const char *path, const char *text, size_t len, char **out,
+                         dyn_lang_diag *diag)
+{
+    return lang_translate(path, text, len, NULL, 0, out, diag, NULL, NULL, derive_front,
+                          derive_back);
 }

@@ -146,8 +146,8 @@ static void test_unknown_names_suggest_the_nearest(void **state)
     expect_error("x'=1\n@ xp=xx\n", 2, 6, "'xx' is not a state or an aux output (did you mean "
                  "'x'?)");
     expect_error("x'=1\n#: xq [m] position\n", 2, 4, "not a declared name");
-    expect_error("x'=1\nparm a=2\n", 2, 1, "unknown statement 'parm' (did you mean 'par'?)");
-    expect_error("x'=1\n@ meth=rk5\n", 2, 8, "unknown method 'rk5' (did you mean 'rk4'?)");
+    expect_error("x'=1\nsett a=2\n", 2, 1, "unknown statement 'sett' (did you mean 'set'?)");
+    expect_error("x'=1\n@ meth=tk4\n", 2, 8, "unknown method 'tk4' (did you mean 'rk4'?)");
 }
 
 static void test_kinds_of_names_are_checked(void **state)

@@ -738,6 +738,63 @@ static void test_algebraic_equations(void **state)
     unlink(cli_path("floor.ode"));
 }
 
+/* The last value of a one-state run's output (t,x rows). */
+static double final_x(const cli_result *r)
+{
+    double t = NAN, x = NAN;
+    const char *row = strchr(r->out, '\n');
+    if (!row || sscanf(row + 1, "%lf,%lf", &t, &x) != 2)
+        return NAN;
+    return x;
+}
+
+/* Lines XPPAUT 6.11 reads without a word, each with the meaning it gives them (measured
+ * with xppaut -silent: tests/xppaut/lenient/ compares the runs): a ';' after a value in a
+ * par, number or init list; a statement word read by its first letter (par1-3 is par); a
+ * method read by its first letter. The answers are closed forms or exact Runge-Kutta
+ * polynomials. */
+static void test_xppaut_leniency(void **state)
+{
+    (void)state;
+    /* x' = -x c/K4 + a K5/K4 = -x/100 + 1/2: x = 50 - 49 exp(-t/100) */
+    write_file("semi.ode", "param K4=200; K5=100;\nparam a=1;b=2\nnumber c=2;\n"
+                           "x'=-x*c/K4+a*K5/K4\ninit x=1;\n@ total=2,dt=0.5\ndone\n");
+    cli_result r = cli_in_tmpdir("run semi.ode --method rk4 --final --verbose");
+    CHECK(r.status == 0 && fabs(final_x(&r) - (50.0 - 49.0 * exp(-0.02))) < 1e-10 &&
+              strstr(r.err, "semi.ode:2: 'b=2' after ';' in the par list is not read"),
+          "exit %d: %s%s", r.status, r.out, r.err);
+    cli_free(&r);
+    /* par1-3 is par; meth=runge-kutta is RK4: x' = -2x + 1, four steps of 1/4, each
+     * multiplying x - 1/2 by R(-1/2) = 1 - 1/2 + 1/8 - 1/48 + 1/384 */
+    write_file("first.ode", "par1-3 vc=2,a=1\nx'=-vc*x+a\ninit x=1\n"
+                            "@ meth=runge-kutta, total=1, dt=0.25\ndone\n");
+    r = cli_in_tmpdir("run first.ode --final --verbose");
+    const double R = 1.0 - 0.5 + 0.125 - 1.0 / 48.0 + 1.0 / 384.0;
+    CHECK(r.status == 0 && fabs(final_x(&r) - (0.5 + 0.5 * pow(R, 4))) < 1e-15 &&
+              strstr(r.err, "'par1-3' is read as 'par'") &&
+              strstr(r.err, "meth=runge-kutta is read by its first letter as 'rungekutta'"),
+          "exit %d: %s%s", r.status, r.out, r.err);
+    cli_free(&r);
+    /* x' = -x, two steps of 1/2: Euler 1/4, the modified Euler method (5/8)^2 */
+    static const struct {
+        const char *meth;
+        double x;
+    } by_letter[] = {{"euler-foo", 0.25}, {"modx", 0.390625}};
+    for (size_t k = 0; k < 2; k++) {
+        char text[128];
+        snprintf(text, sizeof text, "x'=-x\ninit x=1\n@ meth=%s, total=1, dt=0.5\ndone\n",
+                 by_letter[k].meth);
+        write_file("meth.ode", text);
+        r = cli_in_tmpdir("run meth.ode --final");
+        CHECK(r.status == 0 && final_x(&r) == by_letter[k].x, "meth=%s: exit %d: %s%s",
+              by_letter[k].meth, r.status, r.out, r.err);
+        cli_free(&r);
+    }
+    unlink(cli_path("semi.ode"));
+    unlink(cli_path("first.ode"));
+    unlink(cli_path("meth.ode"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -757,6 +814,7 @@ int main(void)
         cmocka_unit_test(test_info_of_a_file),
         cmocka_unit_test(test_errors_in_model_files),
         cmocka_unit_test(test_ignored_options_noted),
+        cmocka_unit_test(test_xppaut_leniency),
     };
     return cmocka_run_group_tests(tests, setup_all, teardown_all);
 }

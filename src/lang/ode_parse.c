@@ -265,7 +265,20 @@ static void name_value_list(lang_ctx *c, lang_lexer *lx, int kind, const char *k
             add_init(c, name, pos, e);
         }
         count++;
-        const int ch = lang_skip_blanks(lx);
+        int ch = lang_skip_blanks(lx);
+        if (ch == ';') {
+            /* XPPAUT 6.11 reads an item's value with atof: `K4=200;` is 200, and what is
+             * joined to the ';' (`a=1;b=2`: b) is not read (measured) */
+            const lpos spos = lang_here(lx);
+            const int from = ++lx->i;
+            while (lx->i < lx->end && lx->line->text[lx->i] != ',' &&
+                   lx->line->text[lx->i] != ' ' && lx->line->text[lx->i] != '\t')
+                lx->i++;
+            if (lx->i > from)
+                lang_note(c, spos, "'%.*s' after ';' in the %s list is not read, as XPPAUT "
+                          "does not read it", lx->i - from, lx->line->text + from, keyword);
+            ch = lang_skip_blanks(lx);
+        }
         if (ch == ',') {
             lx->i++;
             continue;
@@ -446,6 +459,25 @@ static void set_method(lang_ctx *c, const char *v, lpos pos)
             if (ok)
                 found = (int)i;
         }
+    /* and otherwise by its first letter alone (measured with XPPAUT 6.11: runge-kutta and rxyz
+     * run RK4, euler-foo Euler, modx the modified Euler method, 5dpx Dormand-Prince, dx a
+     * discrete map); the first letters of its 15 methods differ */
+    const int first = tolower((unsigned char)v[0]);
+    for (size_t i = 0; i < 14 && found < 0; i++)
+        if (first == methods[i].name[0]) {
+            found = (int)i;
+            lang_note(c, pos, "meth=%s is read by its first letter as '%s', as XPPAUT does", v,
+                      methods[i].name);
+        }
+    if (found < 0 && first == 'd') {
+        lang_note(c, pos, "meth=%s is read by its first letter as 'discrete', as XPPAUT does", v);
+        c->m.map_meth = 1;
+        if (!c->m.map_eq)
+            c->m.map_pos = pos;
+        c->m.has_meth = 1;
+        c->m.meth_name = v;
+        return;
+    }
     if (found < 0) {
         const char *names[sizeof methods / sizeof methods[0]];
         for (size_t i = 0; i < sizeof methods / sizeof methods[0]; i++)
@@ -986,6 +1018,40 @@ static int keyword_statement(lang_ctx *c, lang_lexer *lx, pstate *ps, const char
     return 0;
 }
 
+/* XPPAUT 6.11 takes a first word followed by a blank (and not by '=') as a statement and
+ * reads it by its first letter (form_ode.c, compile_em): `par1-3 vc=2` is `par vc=2`, so
+ * is any word that begins with p; likewise n (number), i (init), au (aux) and g (global,
+ * not gr). The word starts at offset from; 0 when read, -1 when it is not such a
+ * statement. */
+static int by_first_letters(lang_ctx *c, lang_lexer *lx, pstate *ps, lpos wpos, int from)
+{
+    const char *text = lx->line->text;
+    int k = from;
+    while (k < lx->end && text[k] != ' ' && text[k] != '\t') {
+        if (strchr("=/'(", text[k]))
+            return -1;
+        k++;
+    }
+    int next = k;
+    while (next < lx->end && (text[next] == ' ' || text[next] == '\t'))
+        next++;
+    if (k == lx->end || next == lx->end || text[next] == '=')
+        return -1;
+    const int a = tolower((unsigned char)text[from]), b = tolower((unsigned char)text[from + 1]);
+    const char *as = a == 'p'                 ? "par"
+                     : a == 'n'               ? "number"
+                     : a == 'i'               ? "init"
+                     : a == 'a' && b == 'u'   ? "aux"
+                     : a == 'g' && b != 'r'   ? "global"
+                                              : NULL;
+    if (!as)
+        return -1;
+    lang_note(c, wpos, "'%.*s' is read as '%s', as XPPAUT reads a statement by its first "
+              "letters", k - from, text + from, as);
+    lx->i = k;
+    return keyword_statement(c, lx, ps, as, wpos);
+}
+
 static void statement(lang_ctx *c, lang_lexer *lx, pstate *ps, int *done)
 {
     lang_model *m = &c->m;
@@ -1027,6 +1093,7 @@ static void statement(lang_ctx *c, lang_lexer *lx, pstate *ps, int *done)
     if (!lang_is_ident_start(ch))
         lang_fail(c, start, "unexpected '%c' at the start of a statement", ch);
     lpos wpos;
+    const int wstart = lx->i;
     const char *w = read_name(lx, &wpos, "expected a name");
     const int nc = lang_skip_blanks(lx);
     if (nc != '=' && nc != '\'' && nc != '(' && nc != '/') {
@@ -1044,6 +1111,10 @@ static void statement(lang_ctx *c, lang_lexer *lx, pstate *ps, int *done)
         if (strlen(w) > 3 && strncasecmp(w, "tab", 3) == 0) {
             lang_note(c, wpos, "'%s' is read as 'table', as XPPAUT does", w);
             parse_table(c, lx);
+            return;
+        }
+        if (by_first_letters(c, lx, ps, wpos, wstart) == 0) {
+            expect_end(lx, "the statement");
             return;
         }
         const char *near = dyn_lang_nearest(w, keywords, (int)(sizeof keywords /

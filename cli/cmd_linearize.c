@@ -20,7 +20,7 @@ static void linearize_help(void)
 {
     puts("Usage: dynkit linearize MODEL [--init NAME=VALUE]... [--set NAME=VALUE]... [--t T]\n"
          "                        [--vary NAME=A:B:N] [--output FILE.csv|FILE.json]\n"
-         "                        [--matrix] [--json] [--jacobian SCHEME]\n"
+         "                        [--matrix] [--json] [--jacobian SCHEME] [--equilibrium]\n"
          "\n"
          "Linearizes MODEL about a state: prints the Jacobian A = df/dy at (t, y) with the\n"
          "states' names, its eigenvalues (re, im; for an oscillating pair the natural\n"
@@ -35,6 +35,9 @@ static void linearize_help(void)
          "  --set NAME=VALUE     a parameter's value (repeatable)\n"
          "  --forces FILE        the model's input table (as in dynkit run), read at T\n"
          "  --t T                the time (default: the model's start time)\n"
+         "  --equilibrium        first find an equilibrium f(t, y) = 0 from the state as a\n"
+         "                       guess (Levenberg-Marquardt; along --vary of a parameter,\n"
+         "                       from the previous value's), and linearize there\n"
          "  --vary NAME=A:B:N    one block per value: N values from A to B (or NAME=V1,V2,...);\n"
          "                       NAME a parameter or a state, as in dynkit sweep\n"
          "  --jacobian SCHEME    auto (default: the model's analytic Jacobian when it has one,\n"
@@ -54,12 +57,14 @@ static void linearize_help(void)
          "  dynkit linearize pendulum --init dphi=0           # the bottom: +-i sqrt(g/l)\n"
          "  dynkit linearize pendulum --init phi=pi --init dphi=0   # the top: unstable\n"
          "  dynkit linearize vanderpol --init y1=0 --vary mu=0:3:7 --output vdp-eig.csv\n"
-         "  dynkit linearize examples/models/lorenz.ode --init x=0 --init y=0 --init z=0");
+         "  dynkit linearize examples/models/lorenz.ode --init x=0 --init y=0 --init z=0\n"
+         "  dynkit linearize examples/models/lorenz.ode --equilibrium --init x=8 --init y=8 "
+         "--init z=25 --vary rho=20:30:6");
 }
 
 typedef struct lin_opts {
     const char *output, *vary, *scheme_text;
-    int matrix, json;
+    int matrix, json, equilibrium;
     dyn_jac_scheme scheme;
     int t_given;
     double t;
@@ -71,6 +76,8 @@ typedef struct lin_point {
     double *y, *f, *A, *re, *im;
     dyn_linearize_info info;
     int have_eig;
+    int have_eq;            /* --equilibrium: y was found by dyn_equilibrium */
+    dyn_equilibrium_info eq;
     double tol;
     dyn_stability stability;
 } lin_point;
@@ -152,6 +159,9 @@ static void print_text(FILE *f, const dyn_model *m, double t, const char *vname,
     for (int i = 0; i < n; i++)
         fprintf(f, "  %-*s = %-14.12g %-8s f = %.6g\n", w, m->states[i].name, p->y[i] + 0.0,
                 m->states[i].unit, p->f[i] + 0.0);
+    if (p->have_eq)
+        fprintf(f, "equilibrium: %d iterations, |f|_inf = %.3g (tolerance %.3g)\n",
+                p->eq.iterations, p->eq.residual, p->eq.tol);
     fprintf(f, "A = df/dy (%s", scheme_words(p->info.scheme));
     if (p->info.scheme == DYN_JAC_RICHARDSON)
         fprintf(f, "; estimated relative error %.1e", p->info.err_est);
@@ -259,6 +269,17 @@ static void print_json(FILE *f, const dyn_model *m, double t, const char *vname,
         cli_json_numbers(&j, p->y, n, 1);
         cli_json_key(&j, "f");
         cli_json_numbers(&j, p->f, n, 1);
+        if (p->have_eq) {
+            cli_json_key(&j, "equilibrium");
+            cli_json_begin_object(&j);
+            cli_json_key(&j, "iterations");
+            cli_json_number(&j, p->eq.iterations);
+            cli_json_key(&j, "residual");
+            cli_json_number(&j, p->eq.residual);
+            cli_json_key(&j, "tol");
+            cli_json_number(&j, p->eq.tol);
+            cli_json_end_object(&j);
+        }
         cli_json_key(&j, "jacobian");
         cli_json_string(&j, scheme_names[p->info.scheme]);
         cli_json_key(&j, "error_estimate");
@@ -293,7 +314,7 @@ static int parse_args(int argc, char **argv, char **pass, int *n_pass, lin_opts 
 {
     static const char *const options[] = {"--init",   "--set",  "--forces", "--interp",
                                           "--t",      "--vary", "--output", "--matrix",
-                                          "--json",   "--jacobian"};
+                                          "--json",   "--jacobian", "--equilibrium"};
     pass[(*n_pass)++] = argv[0];
     for (int i = 1; i < argc; i++) {
         const char *v = NULL;
@@ -335,8 +356,10 @@ static int parse_args(int argc, char **argv, char **pass, int *n_pass, lin_opts 
             o->matrix = 1;
         else if (cli_flag(argv[i], "json"))
             o->json = 1;
+        else if (cli_flag(argv[i], "equilibrium"))
+            o->equilibrium = 1;
         else
-            return cli_unknown_option("linearize", argv[i], options, 10);
+            return cli_unknown_option("linearize", argv[i], options, 11);
     }
     if (o->scheme_text && parse_scheme(o->scheme_text, &o->scheme) != CLI_OK)
         return CLI_USAGE;
@@ -464,7 +487,8 @@ int cli_cmd_linearize(int argc, char **argv)
     const size_t N = (size_t)n;
     lin_point *pts = rc == CLI_OK ? calloc((size_t)n_pts, sizeof *pts) : NULL;
     void *par = rc == CLI_OK ? malloc(m->par_size) : NULL;
-    double *work = rc == CLI_OK ? malloc((dyn_linearize_work_size(n) + N * N) * sizeof *work)
+    /* the equilibrium's workspace holds the linearization's and A's copy for dgeev */
+    double *work = rc == CLI_OK ? malloc((dyn_equilibrium_work_size(n) + N * N) * sizeof *work)
                                 : NULL;
     if (rc == CLI_OK && (!pts || !par || !work)) {
         fprintf(stderr, "dynkit: error: out of memory\n");
@@ -496,6 +520,22 @@ int cli_cmd_linearize(int argc, char **argv)
                 dyn_model_initial_state(m, par, p->y);
         } else if (o.vary) {
             p->y[var.index] = p->value;
+        }
+        if (o.equilibrium) {
+            /* along a parameter, each search starts from the equilibrium before it */
+            if (k > 0 && var.kind == DYN_SWEEP_PARAM)
+                memcpy(p->y, pts[k - 1].y, N * sizeof *p->y);
+            const dyn_equilibrium_opts eo = {{o.scheme, NULL}, 0.0, 0};
+            p->have_eq = 1;
+            int st = dyn_equilibrium(m, t, p->y, par, &eo, work, &p->eq);
+            if (st) {
+                fprintf(stderr, "dynkit: error: linearize --equilibrium");
+                if (vname)
+                    fprintf(stderr, " at %s = %.17g", vname, p->value);
+                fprintf(stderr, ": %s\n", p->eq.message);
+                rc = st == DYN_ERR_ARG ? CLI_USAGE : CLI_FAILED;
+                break;
+            }
         }
         rc = linearize_point(m, t, par, &o, solver, work, work + dyn_linearize_work_size(n),
                              p);

@@ -4,7 +4,8 @@
  * 2e-6), the pendulum's eigenvalues at the bottom (+-i sqrt(g/l), marginal) and at the
  * top (+-sqrt(g/l), unstable) from differences, van der Pol at the origin (mu/2 +- i
  * sqrt(1 - mu^2/4)), the stability classes and their tolerance, the reduction P^+ A P to
- * an invariant subspace, and bad input named. Eigenvalues need the LAPACK backend; those
+ * an invariant subspace, equilibria (Lorenz's C+, the pendulum's bottom and top, an
+ * ignorable coordinate left alone, none where there is none), and bad input named. Eigenvalues need the LAPACK backend; those
  * tests are skipped without it. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -243,6 +244,77 @@ static void test_reduction_to_invariant_subspace(void **state)
     assert_int_equal(dyn_linear_reduce(3, 2, A, Pd, Am, work), DYN_ERR_ARG);
 }
 
+/* Lorenz's system without its Jacobian (differences), sigma 10, rho 28, beta 8/3. */
+static int f_lorenz(double t, const double *y, double *f, void *par)
+{
+    (void)t;
+    (void)par;
+    f[0] = 10.0 * (y[1] - y[0]);
+    f[1] = y[0] * (28.0 - y[2]) - y[1];
+    f[2] = y[0] * y[1] - 8.0 / 3.0 * y[2];
+    return 0;
+}
+
+/* A block sliding with friction, pushed by 1 + x^2 when push is set: x does not enter
+ * the equations without it (an ignorable coordinate), and with it x' = v, v' = 1 + x^2 - v
+ * has no equilibrium (|f| is least at a point where f is not 0). */
+static int f_slide(double t, const double *y, double *f, void *par)
+{
+    (void)t;
+    const int push = *(const int *)par;
+    f[0] = push ? 1.0 + y[0] * y[0] : y[1];
+    f[1] = -0.7 * y[1];
+    return 0;
+}
+
+static const dyn_model lorenz_model = {
+    .name = "lorenz", .n_states = 3, .states = test_states, .y0 = test_y0, .rhs = f_lorenz};
+static const dyn_model slide_model = {
+    .name = "slide", .n_states = 2, .states = test_states, .y0 = test_y0, .rhs = f_slide};
+
+static void test_equilibria(void **state)
+{
+    (void)state;
+    double work[512];
+    assert_true(dyn_equilibrium_work_size(3) <= 512);
+    dyn_equilibrium_info info;
+    /* Lorenz's C+ = (sqrt(beta (rho-1)), same, rho - 1) from a guess off it */
+    double y[3] = {7.0, 9.5, 25.0};
+    assert_int_equal(dyn_equilibrium(&lorenz_model, 0.0, y, NULL, NULL, work, &info), 0);
+    const double c = sqrt(8.0 / 3.0 * 27.0);
+    assert_close(y[0], c, 1e-12 * c);
+    assert_close(y[1], c, 1e-12 * c);
+    assert_close(y[2], 27.0, 1e-12 * 27.0);
+    assert_true(info.residual <= info.tol && info.iterations <= 10);
+    print_message("Lorenz C+: %d iterations, %ld calls of f, |f| = %.1e\n", info.iterations,
+                  info.rhs_calls, info.residual);
+    /* the pendulum: the bottom from 0.4 rad, the top from 3 rad */
+    const dyn_model *pend = dyn_model_find("pendulum");
+    char par[256], err[256];
+    memset(par, 0, sizeof par);
+    assert_int_equal(dyn_model_default_params(pend, par, err, sizeof err), 0);
+    double p[2] = {0.4, 0.3};
+    assert_int_equal(dyn_equilibrium(pend, 0.0, p, par, NULL, work, &info), 0);
+    assert_true(fabs(p[0]) < 1e-12 && fabs(p[1]) < 1e-12);
+    p[0] = 3.0;
+    p[1] = 0.0;
+    assert_int_equal(dyn_equilibrium(pend, 0.0, p, par, NULL, work, &info), 0);
+    assert_close(p[0], DYN_PI, 1e-12);
+    /* an ignorable coordinate stays where it is, bit for bit */
+    int push = 0;
+    double s[2] = {3.25, 2.0};
+    assert_int_equal(dyn_equilibrium(&slide_model, 0.0, s, &push, NULL, work, &info), 0);
+    assert_true(s[0] == 3.25 && fabs(s[1]) <= info.tol);
+    /* no equilibrium: refused with the residual named */
+    push = 1;
+    s[0] = 0.5;
+    s[1] = 0.0;
+    assert_int_equal(dyn_equilibrium(&slide_model, 0.0, s, &push, NULL, work, &info),
+                     DYN_ERR_STEP_SIZE);
+    assert_true(fabs(s[0]) < 1e-3 && info.residual >= 1.0 - 1e-6);
+    assert_non_null(strstr(info.message, "|f|_inf = 1"));
+}
+
 #ifdef DYNKIT_HAVE_LAPACK
 /* Eigenvalues of m at y (parameters by name) into re, im (sorted); the stability back. */
 static dyn_stability eig_of(const char *model, const char *const *pn, const double *pv,
@@ -314,6 +386,7 @@ int main(void)
         cmocka_unit_test(test_no_analytic_jacobian_is_named),
         cmocka_unit_test(test_classification),
         cmocka_unit_test(test_reduction_to_invariant_subspace),
+        cmocka_unit_test(test_equilibria),
 #ifdef DYNKIT_HAVE_LAPACK
         cmocka_unit_test(test_pendulum_eigenvalues),
         cmocka_unit_test(test_vanderpol_origin),

@@ -1,8 +1,9 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* dynkit/analysis.h — analysis of a model about a state: the Jacobian A = df/dy (the model's
- * own analytic one, or central differences with Richardson extrapolation), its reduction to
- * a subspace of admissible directions (A_min = P^+ A P), and its eigenvalues, sorted and
- * classified (asymptotically stable, unstable, marginal). Over the public model API only
+/* dynkit/analysis.h — analysis of a model about a state: equilibria f(t, y) = 0, the
+ * Jacobian A = df/dy (the model's own analytic one, or central differences with Richardson
+ * extrapolation), its reduction to a subspace of admissible directions (A_min = P^+ A P),
+ * and its eigenvalues, sorted and classified (asymptotically stable, unstable, marginal).
+ * Over the public model API only
  * (dynkit/model.h); C11 + libm. Eigenvalues of a nonsymmetric matrix come from a solver
  * given by the caller (dyn_eig_solver): the optional backend dynkit_lapack provides LAPACK's
  * dgeev (dynkit/lapack.h); the core has none. docs/analysis.md states the accuracy. */
@@ -56,6 +57,46 @@ size_t dyn_linearize_work_size(int n);
 int dyn_linearize(const dyn_model *m, double t, const double *y, void *par,
                   const dyn_linearize_opts *opts, double *A, double *work,
                   dyn_linearize_info *info);
+
+/* ---- equilibria ---- */
+
+/* The default tolerance of dyn_equilibrium: converged when ||f||_inf <= tol * max(||A||_inf
+ * max(||y||_inf, 1), DBL_MIN), or when no step lowers ||f|| and it is within
+ * DYN_EQUILIBRIUM_FLOOR times that (f has reached its rounding, which can lie above tol
+ * where f has large terms that cancel). */
+#define DYN_EQUILIBRIUM_TOL 1e-14
+#define DYN_EQUILIBRIUM_FLOOR 1e4
+
+typedef struct dyn_equilibrium_opts {
+    dyn_linearize_opts jac; /* how the Jacobian of each iteration is formed */
+    double tol;             /* relative; 0: DYN_EQUILIBRIUM_TOL */
+    int max_iter;           /* 0: 100 Jacobians */
+} dyn_equilibrium_opts;
+
+typedef struct dyn_equilibrium_info {
+    int iterations;        /* Jacobians formed */
+    double residual;       /* ||f(t, y)||_inf at the returned y */
+    double tol;            /* the absolute tolerance the residual was held to */
+    long rhs_calls;        /* evaluations of f, the Jacobians' included */
+    char message[256];     /* why it failed, when it did */
+} dyn_equilibrium_info;
+
+/* Doubles of workspace dyn_equilibrium needs for n states. */
+size_t dyn_equilibrium_work_size(int n);
+
+/* An equilibrium f(t, y) = 0 of model m near the guess y (n values, overwritten by the
+ * solution; the last iterate on failure) with the prepared parameters par: Levenberg-
+ * Marquardt steps (J^T J + mu I) d = -J^T f with the Jacobian of dyn_linearize, mu relative
+ * to the largest diagonal entry of J^T J, divided by 10 after a step that lowers ||f||_2
+ * and multiplied by 10 until one does: Newton's method near a regular solution, and a state
+ * that f does not depend on (an ignorable coordinate) is left where it is. opts may be
+ * NULL. Returns 0 when converged; DYN_ERR_MAX_STEPS (max_iter reached), DYN_ERR_STEP_SIZE
+ * (no step lowers ||f||: a minimum of ||f|| that is not a zero, or none near), with the
+ * residual in the message; DYN_ERR_RHS, DYN_ERR_NONFINITE or DYN_ERR_ARG from f or the
+ * Jacobian. info may be NULL. */
+int dyn_equilibrium(const dyn_model *m, double t, double *y, void *par,
+                    const dyn_equilibrium_opts *opts, double *work,
+                    dyn_equilibrium_info *info);
 
 /* A reduced to the k admissible directions that are the columns of P (n x k, row-major,
  * full column rank): A_min = P^+ A P with P^+ = (P^T P)^-1 P^T (k x k into Amin). For a

@@ -5,10 +5,9 @@
  * Gram matrix P^T P (Golub & Van Loan, Matrix Computations, 4th ed., sec. 4.2 and 5.3).
  * When span(P) is invariant under A (A P = P A_min), A_min has exactly the eigenvalues of
  * A on that subspace. */
-#include <float.h>
-#include <math.h>
-#include <string.h>
+#include <stddef.h>
 
+#include "analysis/cholesky.h"
 #include "dynkit/analysis.h"
 
 /* out (a x b) = X^T Y for X (r x a) and Y (r x b), all row-major. */
@@ -41,40 +40,13 @@ int dyn_linear_reduce(int n, int k, const double *A, const double *P, double *Am
         }
     product_tn(N, K, K, P, P, G);
     product_tn(N, K, K, P, AP, Amin);
-    /* Cholesky G = L L^T in place (lower triangle) */
-    for (size_t j = 0; j < K; j++) {
-        const double gjj = G[j * K + j];
-        double d = gjj;
-        for (size_t l = 0; l < j; l++)
-            d -= G[j * K + l] * G[j * K + l];
-        /* column j within rounding of the span of the columns before it: dependent */
-        if (!(d > 64.0 * DBL_EPSILON * gjj))
-            return DYN_ERR_ARG;
-        d = sqrt(d);
-        G[j * K + j] = d;
-        for (size_t i = j + 1; i < K; i++) {
-            double s = G[i * K + j];
-            for (size_t l = 0; l < j; l++)
-                s -= G[i * K + l] * G[j * K + l];
-            G[i * K + j] = s / d;
-        }
-    }
+    if (dyn_cholesky_factor(k, G))
+        return DYN_ERR_ARG;
     /* Amin = G^-1 (P^T A P), column by column */
     for (size_t c = 0; c < K; c++) {
         for (size_t a = 0; a < K; a++)
             rhs[a] = Amin[a * K + c];
-        for (size_t i = 0; i < K; i++) { /* L z = rhs */
-            double s = rhs[i];
-            for (size_t l = 0; l < i; l++)
-                s -= G[i * K + l] * rhs[l];
-            rhs[i] = s / G[i * K + i];
-        }
-        for (size_t i = K; i-- > 0;) { /* L^T x = z */
-            double s = rhs[i];
-            for (size_t l = i + 1; l < K; l++)
-                s -= G[l * K + i] * rhs[l];
-            rhs[i] = s / G[i * K + i];
-        }
+        dyn_cholesky_solve(k, G, rhs);
         for (size_t a = 0; a < K; a++)
             Amin[a * K + c] = rhs[a];
     }

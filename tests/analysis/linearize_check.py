@@ -121,6 +121,25 @@ def main():
             check(pd["jacobian"] == "richardson" and rel < 1e-12,
                   f"Lorenz at C+-: differences within {rel:.1e} of the analytic Jacobian")
 
+    # --equilibrium: C+ found from a guess, followed along rho across the Hopf value 24.74
+    rhos = [20.0, 24.5, 25.0, 28.0]
+    doc = json.loads(run(LORENZ, "--equilibrium", "--init", "x=8", "--init", "y=8", "--init",
+                         "z=25", "--vary", "rho=" + ",".join(map(repr, rhos)), "--json").stdout)
+    for r, q in zip(rhos, doc["points"]):
+        c = math.sqrt(beta * (r - 1))
+        err = max(abs(q["y"][0] - c), abs(q["y"][1] - c), abs(q["y"][2] - (r - 1)))
+        stab = "asymptotically stable" if r < 24.74 else "unstable"
+        check(err < 1e-12 * 30 and q["stability"] == stab and q["equilibrium"]["iterations"] <= 6,
+              f"--equilibrium, rho = {r}: C+ to {err:.1e}, {stab}")
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "push.ode")
+        with open(path, "w") as f:
+            f.write("# pushed harder the further it goes: no equilibrium\ninit x=0.5\n"
+                    "x'=1+x^2\ndone\n")
+        p = run(path, "--equilibrium", status=1)
+        check("no step lowers |f|" in p.stderr and "|f|_inf = 1" in p.stderr,
+              f"--equilibrium without one: refused with the residual ({p.stderr.strip()[:90]})")
+
     # a linear model file x' = A x against NumPy
     A = np.array([[-0.5, 2.0, 0.0, 1.0, 0.3],
                   [-3.0, -0.1, 0.7, 0.0, 0.0],
@@ -184,12 +203,13 @@ def main():
     # directory with examples/ linked in
     with open(os.path.join(SOURCE, "docs", "analysis.md")) as f:
         doc = f.read()
-    lines = [l.split("#")[0].strip() for b in re.findall(r"```sh\n(.*?)```", doc, re.S)
-             for l in b.splitlines() if l.startswith("dynkit ")]
-    check(len(lines) >= 5, f"docs/analysis.md shows {len(lines)} commands")
+    blocks = [b.replace("\\\n", " ") for b in re.findall(r"```sh\n(.*?)```", doc, re.S)]
+    lines = [l.split("#")[0].strip() for b in blocks for l in b.splitlines()
+             if l.startswith("dynkit ")]
+    check(len(lines) >= 6, f"docs/analysis.md shows {len(lines)} commands")
     shown = run("--help").stdout.split("Examples:")[1]
     lines += [l.split("#")[0].strip() for l in shown.splitlines() if l.strip()]
-    check(len(lines) >= 9, "--help shows four examples")
+    check(len(lines) >= 11, "--help shows five examples")
     with tempfile.TemporaryDirectory() as tmp:
         os.symlink(os.path.join(os.path.abspath(SOURCE), "examples"), os.path.join(tmp, "examples"))
         for line in lines:

@@ -1,0 +1,183 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* equilibrium.c — an equilibrium f(t, y) = 0 of a model near a guess by Levenberg-
+ * Marquardt steps on ||f||_2^2 / 2 (K. Levenberg 1944, D. W. Marquardt 1963; Nocedal &
+ * Wright, Numerical Optimization, 2nd ed., sec. 10.3): (J^T J + mu I) d = -J^T f, solved by
+ * Cholesky, mu = lambda * max_i (J^T J)_ii, lambda divided by 10 after a step that lowers
+ * ||f||_2 (down to 1e-15: Newton's step near a regular solution) and multiplied by 10 until
+ * one does. The Jacobian is dyn_linearize's, formed again at every accepted point.
+ * Converged when ||f||_inf is within the tolerance, or within DYN_EQUILIBRIUM_FLOOR times it
+ * when no step lowers ||f|| any more (f has reached its rounding). */
+#include <float.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "analysis/cholesky.h"
+#include "dynkit/analysis.h"
+
+#define LM_LAMBDA_MIN 1e-15
+#define LM_LAMBDA_MAX 1e12
+
+size_t dyn_equilibrium_work_size(int n)
+{
+    const size_t N = (size_t)n;
+    return 2 * N * N + 5 * N + dyn_linearize_work_size(n);
+}
+
+#if defined(__GNUC__)
+__attribute__((format(printf, 2, 3)))
+#endif
+static void say(dyn_equilibrium_info *info, const char *fmt, ...)
+{
+    if (!info)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(info->message, sizeof info->message, fmt, ap);
+    va_end(ap);
+}
+
+static double norm_inf(int n, const double *v)
+{
+    double r = 0.0;
+    for (int i = 0; i < n; i++)
+        r = fmax(r, fabs(v[i]));
+    return r;
+}
+
+static double norm_2(int n, const double *v)
+{
+    double s = 0.0;
+    for (int i = 0; i < n; i++)
+        s += v[i] * v[i];
+    return sqrt(s);
+}
+
+/* f(t, y) into f; 0, or the rhs status, or -1 when a component is not finite. */
+static int eval(const dyn_model *m, double t, const double *y, void *par, double *f,
+                long *calls)
+{
+    (*calls)++;
+    const int rc = m->rhs(t, y, f, par);
+    if (rc)
+        return rc;
+    for (int i = 0; i < m->n_states; i++)
+        if (!isfinite(f[i]))
+            return -1;
+    return 0;
+}
+
+int dyn_equilibrium(const dyn_model *m, double t, double *y, void *par,
+                    const dyn_equilibrium_opts *opts, double *work,
+                    dyn_equilibrium_info *info)
+{
+    const int n = m->n_states;
+    const size_t N = (size_t)n;
+    double *J = work, *H = J + N * N, *f = H + N * N, *g = f + N, *d = g + N, *yt = d + N,
+           *ft = yt + N, *lw = ft + N;
+    const double rtol = opts && opts->tol > 0.0 ? opts->tol : DYN_EQUILIBRIUM_TOL;
+    const int max_iter = opts && opts->max_iter > 0 ? opts->max_iter : 100;
+    dyn_equilibrium_info local;
+    if (!info)
+        info = &local;
+    memset(info, 0, sizeof *info);
+    long calls = 0;
+    if (eval(m, t, y, par, f, &calls)) {
+        say(info, "the right-hand side of %s fails or is not finite at the guess", m->name);
+        info->rhs_calls = calls;
+        return DYN_ERR_RHS;
+    }
+    double fn = norm_2(n, f), lambda = 1e-3;
+    int status = DYN_ERR_MAX_STEPS;
+    for (;;) {
+        dyn_linearize_info li;
+        const int rc = dyn_linearize(m, t, y, par, opts ? &opts->jac : NULL, J, lw, &li);
+        calls += li.rhs_calls;
+        if (rc) {
+            say(info, "%s", li.message);
+            status = rc;
+            break;
+        }
+        double jn = 0.0;
+        for (size_t i = 0; i < N; i++) {
+            double row = 0.0;
+            for (size_t j = 0; j < N; j++)
+                row += fabs(J[i * N + j]);
+            jn = fmax(jn, row);
+        }
+        info->tol = fmax(rtol * jn * fmax(norm_inf(n, y), 1.0), DBL_MIN);
+        if (norm_inf(n, f) <= info->tol) {
+            status = 0;
+            break;
+        }
+        if (info->iterations >= max_iter) {
+            say(info, "no equilibrium within %d iterations: |f|_inf = %.3g (tolerance %.3g)",
+                max_iter, norm_inf(n, f), info->tol);
+            break;
+        }
+        info->iterations++;
+        /* g = J^T f, H = J^T J */
+        double hmax = 0.0;
+        for (size_t a = 0; a < N; a++) {
+            double s = 0.0;
+            for (size_t l = 0; l < N; l++)
+                s += J[l * N + a] * f[l];
+            g[a] = s;
+            for (size_t b = 0; b <= a; b++) {
+                double h = 0.0;
+                for (size_t l = 0; l < N; l++)
+                    h += J[l * N + a] * J[l * N + b];
+                H[a * N + b] = H[b * N + a] = h;
+            }
+            hmax = fmax(hmax, H[a * N + a]);
+        }
+        if (!(hmax > 0.0)) {
+            say(info, "f does not depend on the state here (J = 0): |f|_inf = %.3g stays",
+                norm_inf(n, f));
+            status = DYN_ERR_STEP_SIZE;
+            break;
+        }
+        int accepted = 0;
+        while (!accepted && lambda <= LM_LAMBDA_MAX) {
+            /* (H + mu I) d = -g: H + mu I factored in J's place (J is formed again at the
+             * next point) */
+            memcpy(J, H, N * N * sizeof *J);
+            for (size_t a = 0; a < N; a++) {
+                J[a * N + a] += lambda * hmax;
+                d[a] = -g[a];
+            }
+            if (dyn_cholesky_factor(n, J)) {
+                lambda *= 10.0;
+                continue;
+            }
+            dyn_cholesky_solve(n, J, d);
+            for (size_t a = 0; a < N; a++)
+                yt[a] = y[a] + d[a];
+            const double ftn = eval(m, t, yt, par, ft, &calls) ? INFINITY : norm_2(n, ft);
+            if (ftn < fn) {
+                memcpy(y, yt, N * sizeof *y);
+                memcpy(f, ft, N * sizeof *f);
+                fn = ftn;
+                lambda = fmax(lambda / 10.0, LM_LAMBDA_MIN);
+                accepted = 1;
+            } else {
+                lambda *= 10.0;
+            }
+        }
+        if (!accepted && norm_inf(n, f) <= DYN_EQUILIBRIUM_FLOOR * info->tol) {
+            status = 0; /* f is at its rounding: no step can lower it */
+            break;
+        }
+        if (!accepted) {
+            say(info, "no step lowers |f| (a minimum of |f| that is not an equilibrium, or "
+                      "none near the guess): |f|_inf = %.3g",
+                norm_inf(n, f));
+            status = DYN_ERR_STEP_SIZE;
+            break;
+        }
+    }
+    info->residual = norm_inf(n, f);
+    info->rhs_calls = calls;
+    return status;
+}

@@ -3,7 +3,8 @@
  * answers: the double pendulum's hand-derived Lagrange equations at random states (1e-12),
  * its energy over 100 s; the plane of examples/mechanisms against the hand-written built-in
  * plane (centre of mass and Euler angles within 1e-8 over 5 s at rtol = atol = 1e-12); the
- * heavy symmetric top's steady precession at the closed-form rates; the four-bar loop kept
+ * heavy symmetric top's steady precession at the closed-form rates, and its sleeping
+ * stability limit and eigenvalues by linearization; the four-bar loop kept
  * closed over 100 s with its energy; the cart against the built-in cart; a prescribed motion's
  * driving torque by hand; and errors at FILE:LINE:COL. */
 #define _POSIX_C_SOURCE 200809L
@@ -242,6 +243,54 @@ static void test_top_precesses_at_the_closed_form_rates(void **state_)
     dyn_jit_unload(&L.jm);
 }
 
+/* The sleeping top (upright, spinning at W): linearized, lambda = i (C W +- sqrt(C^2 W^2 -
+ * 4 A' m g L)) / (2 A') (Goldstein 5.7), stable above W = 2 sqrt(A' m g L) / C; the spin
+ * angle and its rate give two zeros. */
+static void test_sleeping_top_is_stable_above_the_closed_form_spin(void **state_)
+{
+    (void)state_;
+    const double m = 1, Lc = 0.1, A = 0.002, C = 0.004, g = 9.81, Ap = A + m * Lc * Lc;
+    const double Wc = 2 * sqrt(Ap * m * g * Lc) / C;
+    const double W[4] = {0.9 * Wc, 0.99 * Wc, 1.01 * Wc, 1.5 * Wc};
+    for (int k = 0; k < 4; k++) {
+        cli_result r = cli("linearize %ssleeping_top.mech --init dphi=%.17g -o %s", MECH, W[k],
+                           cli_path("eig.csv"));
+        CHECK(r.status == 0, "%s", r.err);
+        cli_free(&r);
+        char *csv = cli_read_file(cli_path("eig.csv"), NULL);
+        static double v[64];
+        int cols;
+        const long rows = csv_table(csv, v, 64, &cols);
+        free(csv);
+        CHECK(rows == 6 && cols == 2, "rows %ld cols %d", rows, cols);
+        const double disc = C * C * W[k] * W[k] - 4 * Ap * m * g * Lc;
+        double want_re = 0, want_im[2];
+        if (disc < 0) {
+            want_re = sqrt(-disc) / (2 * Ap);
+            want_im[0] = want_im[1] = C * W[k] / (2 * Ap);
+        } else {
+            want_im[0] = (C * W[k] + sqrt(disc)) / (2 * Ap);
+            want_im[1] = (C * W[k] - sqrt(disc)) / (2 * Ap);
+        }
+        int zeros = 0, matched = 0;
+        for (long i = 0; i < rows; i++) {
+            const double re = v[2 * i], im = v[2 * i + 1];
+            if (fabs(re) < 1e-9 && fabs(im) < 1e-9) {
+                zeros++;
+                continue;
+            }
+            for (int j = 0; j < 2; j++)
+                if (fabs(fabs(re) - want_re) < 1e-7 * want_im[0] &&
+                    fabs(fabs(im) - want_im[j]) < 1e-7 * want_im[0]) {
+                    matched++;
+                    break;
+                }
+        }
+        CHECK(zeros == 2 && matched == 4, "W = %g (Wc %g): %d zeros, %d of 4 eigenvalues match",
+              W[k], Wc, zeros, matched);
+    }
+}
+
 static void test_fourbar_loop_stays_closed(void **state_)
 {
     (void)state_;
@@ -424,6 +473,7 @@ int main(void)
         cmocka_unit_test(test_double_pendulum_keeps_its_energy),
         cmocka_unit_test(test_plane_matches_the_builtin_plane),
         cmocka_unit_test(test_top_precesses_at_the_closed_form_rates),
+        cmocka_unit_test(test_sleeping_top_is_stable_above_the_closed_form_spin),
         cmocka_unit_test(test_fourbar_loop_stays_closed),
         cmocka_unit_test(test_cart_matches_the_builtin_cart),
         cmocka_unit_test(test_prescribed_motion_gives_the_driving_torque),

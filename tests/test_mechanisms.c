@@ -4,7 +4,8 @@
  * its energy over 100 s; the plane of examples/mechanisms against the hand-written built-in
  * plane (centre of mass and Euler angles within 1e-8 over 5 s at rtol = atol = 1e-12); the
  * heavy symmetric top's steady precession at the closed-form rates, and its sleeping
- * stability limit and eigenvalues by linearization; the four-bar loop kept
+ * stability limit and eigenvalues by linearization; the rolling disk's critical speed and
+ * eigenvalues, and its energy; the four-bar loop kept
  * closed over 100 s with its energy; the cart against the built-in cart; a prescribed motion's
  * driving torque by hand; and errors at FILE:LINE:COL. */
 #define _POSIX_C_SOURCE 200809L
@@ -291,6 +292,63 @@ static void test_sleeping_top_is_stable_above_the_closed_form_spin(void **state_
     }
 }
 
+/* Eigenvalues of a linearization (-o FILE.csv, columns re,im) into v; returns the count. */
+static long eigenvalues(const char *args, double *v, long max)
+{
+    cli_result r = cli("linearize %s -o %s", args, cli_path("eig.csv"));
+    CHECK(r.status == 0, "%s", r.err);
+    cli_free(&r);
+    char *csv = cli_read_file(cli_path("eig.csv"), NULL);
+    int cols;
+    const long rows = csv_table(csv, v, 2 * max, &cols);
+    free(csv);
+    CHECK(cols == 2, "columns %d", cols);
+    return rows;
+}
+
+/* The upright rolling disk (two constraints on the speeds): its lean obeys
+ * (A + m r^2) theta'' = (m g r - W^2 C (C + m r^2) / A) theta (Neimark and Fufaev,
+ * Dynamics of Nonholonomic Systems), stable above W^2 = m g r A / (C (C + m r^2)), g/(3 r)
+ * for a thin disk; the other eight eigenvalues are 0. Its energy is kept while it rolls. */
+static void test_rolling_disk_is_stable_above_the_closed_form_speed(void **state_)
+{
+    (void)state_;
+    const double m = 1, r = 0.3, g = 9.81, A = m * r * r / 4, C = m * r * r / 2;
+    const double Wc = sqrt(m * g * r * A / (C * (C + m * r * r)));
+    const double W[4] = {0.9 * Wc, 0.99 * Wc, 1.01 * Wc, 3 * Wc};
+    for (int k = 0; k < 4; k++) {
+        static double v[64];
+        char args[512];
+        snprintf(args, sizeof args, "%srolling_disk.mech --set W=%.17g", MECH, W[k]);
+        const long rows = eigenvalues(args, v, 32);
+        CHECK(rows == 10, "rows %ld", rows);
+        const double l2 = (m * g * r - W[k] * W[k] * C * (C + m * r * r) / A) / (A + m * r * r);
+        const double want = sqrt(fabs(l2));
+        int zeros = 0, matched = 0;
+        for (long i = 0; i < rows; i++) {
+            const double re = v[2 * i], im = v[2 * i + 1];
+            if (fabs(re) < 1e-9 && fabs(im) < 1e-9)
+                zeros++;
+            else if (fabs(fabs(l2 > 0 ? re : im) - want) < 1e-7 * want &&
+                     fabs(l2 > 0 ? im : re) < 1e-9)
+                matched++;
+        }
+        CHECK(zeros == 8 && matched == 2, "W = %g (Wc %g): %d zeros, %d of 2 match %g", W[k],
+              Wc, zeros, matched, want);
+    }
+    static double v[1 << 14];
+    cli_result run = cli("run %srolling_disk.mech --init theta=0.2 --outputs --method dop853 "
+                         "--rtol 1e-12 --atol 1e-12 --tspan 0:20 --step 0.5", MECH);
+    CHECK(run.status == 0, "%s", run.err);
+    int cols;
+    const long rows = csv_table(run.out, v, 1 << 14, &cols);
+    CHECK(rows == 41, "rows %ld", rows);
+    double e0;
+    const double spread = column_spread(v, rows, cols, cols - 1, &e0);
+    CHECK(spread < 1e-9 * e0, "energy changed by %.3g J of %.3g", spread, e0);
+    cli_free(&run);
+}
+
 static void test_fourbar_loop_stays_closed(void **state_)
 {
     (void)state_;
@@ -474,6 +532,7 @@ int main(void)
         cmocka_unit_test(test_plane_matches_the_builtin_plane),
         cmocka_unit_test(test_top_precesses_at_the_closed_form_rates),
         cmocka_unit_test(test_sleeping_top_is_stable_above_the_closed_form_spin),
+        cmocka_unit_test(test_rolling_disk_is_stable_above_the_closed_form_speed),
         cmocka_unit_test(test_fourbar_loop_stays_closed),
         cmocka_unit_test(test_cart_matches_the_builtin_cart),
         cmocka_unit_test(test_prescribed_motion_gives_the_driving_torque),

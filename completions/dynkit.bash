@@ -137,7 +137,11 @@ _dynkit() {
         if ((COMP_CWORD == i + 1)); then
             compopt -o filenames 2>/dev/null
             COMPREPLY=($(compgen -W "$(_dynkit_models "$prog")" -- "$cur"))
-            _dynkit_files "$cur"
+            if [[ $cmd == plot ]]; then # or a sweep's table
+                _dynkit_files "$cur" "ode|mech|c|so|csv|json"
+            else
+                _dynkit_files "$cur"
+            fi
             return 0
         fi
         ;;

@@ -191,6 +191,23 @@ static void test_bash_completion(void **state)
                   cases[i].words, cases[i].expect[k], out);
         free(out);
     }
+    /* plot also takes a sweep's table, .csv or .json; run takes models only */
+    static const char *const tables[] = {"grid.csv", "grid.json"};
+    for (size_t i = 0; i < 2; i++) {
+        FILE *f = fopen(cli_path(tables[i]), "w");
+        CHECK(f, "cannot write %s", tables[i]);
+        fclose(f);
+    }
+    char *out = complete("dynkit plot gr");
+    CHECK(has_line(out, "grid.csv") && has_line(out, "grid.json"),
+          "completing 'dynkit plot gr': not the tables in:\n%s", out);
+    free(out);
+    out = complete("dynkit run gr");
+    CHECK(!has_line(out, "grid.csv") && !has_line(out, "grid.json"),
+          "completing 'dynkit run gr' offers a table:\n%s", out);
+    free(out);
+    for (size_t i = 0; i < 2; i++)
+        unlink(cli_path(tables[i]));
 }
 
 static int teardown(void **state)

@@ -76,7 +76,7 @@ typedef struct lin_point {
     double *y, *f, *A, *re, *im;
     dyn_linearize_info info;
     int have_eig;
-    int have_eq;            /* --equilibrium: y was found by dyn_equilibrium */
+    int have_eq; /* --equilibrium: y was found by dyn_equilibrium */
     dyn_equilibrium_info eq;
     double tol;
     dyn_stability stability;
@@ -93,19 +93,15 @@ static int parse_scheme(const char *text, dyn_jac_scheme *s)
             return CLI_OK;
         }
     return cli_usage_error("linearize",
-                           "--jacobian '%s': accepted: auto, analytic, central, richardson",
-                           text);
+                           "--jacobian '%s': accepted: auto, analytic, central, richardson", text);
 }
 
 static const char *scheme_words(dyn_jac_scheme s)
 {
     switch (s) {
-    case DYN_JAC_ANALYTIC:
-        return "the model's analytic Jacobian";
-    case DYN_JAC_CENTRAL:
-        return "central differences";
-    default:
-        return "central differences, Richardson extrapolation";
+    case DYN_JAC_ANALYTIC: return "the model's analytic Jacobian";
+    case DYN_JAC_CENTRAL: return "central differences";
+    default: return "central differences, Richardson extrapolation";
     }
 }
 
@@ -118,8 +114,9 @@ static int linearize_point(const dyn_model *m, double t, void *par, const lin_op
     const dyn_linearize_opts lo = {o->scheme, NULL};
     int rc = m->rhs(t, p->y, p->f, par);
     if (rc) {
-        fprintf(stderr, "dynkit: error: the right-hand side of %s failed at the state "
-                        "(status %d)\n",
+        fprintf(stderr,
+                "dynkit: error: the right-hand side of %s failed at the state "
+                "(status %d)\n",
                 m->name, rc);
         return CLI_FAILED;
     }
@@ -145,8 +142,7 @@ static int linearize_point(const dyn_model *m, double t, void *par, const lin_op
 
 /* ---- text ---- */
 
-static void print_text(FILE *f, const dyn_model *m, double t, const char *vname,
-                       const lin_point *p)
+static void print_text(FILE *f, const dyn_model *m, double t, const char *vname, const lin_point *p)
 {
     const int n = m->n_states;
     fprintf(f, "%s at t = %.12g", m->name, t);
@@ -205,8 +201,8 @@ static void csv_header(FILE *f, const char *vname, const char *rest)
     fputs(rest, f);
 }
 
-static void print_matrix_csv(FILE *f, const dyn_model *m, const char *vname,
-                             const lin_point *p, int header)
+static void print_matrix_csv(FILE *f, const dyn_model *m, const char *vname, const lin_point *p,
+                             int header)
 {
     const int n = m->n_states;
     if (header) {
@@ -312,9 +308,9 @@ static void print_json(FILE *f, const dyn_model *m, double t, const char *vname,
  * linearize's own. */
 static int parse_args(int argc, char **argv, char **pass, int *n_pass, lin_opts *o)
 {
-    static const char *const options[] = {"--init",   "--set",  "--forces", "--interp",
-                                          "--t",      "--vary", "--output", "--matrix",
-                                          "--json",   "--jacobian", "--equilibrium"};
+    static const char *const options[] = {"--init", "--set",      "--forces",     "--interp",
+                                          "--t",    "--vary",     "--output",     "--matrix",
+                                          "--json", "--jacobian", "--equilibrium"};
     pass[(*n_pass)++] = argv[0];
     for (int i = 1; i < argc; i++) {
         const char *v = NULL;
@@ -324,8 +320,7 @@ static int parse_args(int argc, char **argv, char **pass, int *n_pass, lin_opts 
         for (int k = 0; k < 4 && !done; k++)
             if ((r = cli_option(argc, argv, &i, passed[k], &v)) != 0) {
                 if (r < 0)
-                    return cli_usage_error("linearize", "option --%s needs a value",
-                                           passed[k]);
+                    return cli_usage_error("linearize", "option --%s needs a value", passed[k]);
                 pass[(*n_pass)++] = (char *)options[k];
                 pass[(*n_pass)++] = (char *)v;
                 done = 1;
@@ -340,8 +335,7 @@ static int parse_args(int argc, char **argv, char **pass, int *n_pass, lin_opts 
                     return cli_usage_error("linearize", "option --%s needs a value", own[k]);
                 if (k == 0) {
                     if (cli_parse_number(v, &o->t))
-                        return cli_usage_error("linearize", "--t '%s': give a finite number",
-                                               v);
+                        return cli_usage_error("linearize", "--t '%s': give a finite number", v);
                     o->t_given = 1;
                 } else if (k == 1 && o->vary) {
                     return cli_usage_error("linearize", "--vary is given once (one name)");
@@ -367,8 +361,8 @@ static int parse_args(int argc, char **argv, char **pass, int *n_pass, lin_opts 
         return cli_usage_error("linearize", "--matrix and --json: give one of them");
     if (o->output && strcmp(o->output, "-") != 0) {
         static const char *const csv[] = {".csv", NULL}, *const both[] = {".csv", ".json", NULL};
-        if (cli_out_check_extension("linearize", "--output", o->output,
-                                    o->matrix ? csv : both) != CLI_OK)
+        if (cli_out_check_extension("linearize", "--output", o->output, o->matrix ? csv : both) !=
+            CLI_OK)
             return CLI_USAGE;
         if (cli_has_extension(o->output, ".json"))
             o->json = 1;
@@ -377,8 +371,8 @@ static int parse_args(int argc, char **argv, char **pass, int *n_pass, lin_opts 
 }
 
 /* The varied name and its values (one value, the start, without --vary). */
-static int vary_values(const cli_run *run, const lin_opts *o, dyn_sweep_var *var,
-                       double **values, long *count)
+static int vary_values(const cli_run *run, const lin_opts *o, dyn_sweep_var *var, double **values,
+                       long *count)
 {
     const dyn_model *m = run->model;
     if (!o->vary) {
@@ -399,9 +393,8 @@ static int vary_values(const cli_run *run, const lin_opts *o, dyn_sweep_var *var
     if (dyn_sweep_var_find(m, name, var, err, sizeof err))
         return cli_usage_error("linearize", "--vary %s: %s", name, err);
     if (cli_param_is_size(m, name))
-        return cli_usage_error("linearize",
-                               "--vary %s: %s is the size of the model and cannot be varied",
-                               name, name);
+        return cli_usage_error(
+            "linearize", "--vary %s: %s is the size of the model and cannot be varied", name, name);
     return cli_parse_values("linearize", o->vary, eq + 1, LIN_MAX_POINTS, values, count);
 }
 
@@ -417,8 +410,8 @@ static void free_points(lin_point *pts, long n)
     free(pts);
 }
 
-static int write_all(FILE *f, const dyn_model *m, double t, const char *vname,
-                     const lin_opts *o, const lin_point *pts, long n_pts)
+static int write_all(FILE *f, const dyn_model *m, double t, const char *vname, const lin_opts *o,
+                     const lin_point *pts, long n_pts)
 {
     const int table = o->output != NULL; /* "-": the table on standard output */
     if (o->json)
@@ -488,8 +481,8 @@ int cli_cmd_linearize(int argc, char **argv)
     lin_point *pts = rc == CLI_OK ? calloc((size_t)n_pts, sizeof *pts) : NULL;
     void *par = rc == CLI_OK ? malloc(m->par_size) : NULL;
     /* the equilibrium's workspace holds the linearization's and A's copy for dgeev */
-    double *work = rc == CLI_OK ? malloc((dyn_equilibrium_work_size(n) + N * N) * sizeof *work)
-                                : NULL;
+    double *work =
+        rc == CLI_OK ? malloc((dyn_equilibrium_work_size(n) + N * N) * sizeof *work) : NULL;
     if (rc == CLI_OK && (!pts || !par || !work)) {
         fprintf(stderr, "dynkit: error: out of memory\n");
         rc = CLI_FAILED;
@@ -537,8 +530,7 @@ int cli_cmd_linearize(int argc, char **argv)
                 break;
             }
         }
-        rc = linearize_point(m, t, par, &o, solver, work, work + dyn_linearize_work_size(n),
-                             p);
+        rc = linearize_point(m, t, par, &o, solver, work, work + dyn_linearize_work_size(n), p);
     }
     if (rc == CLI_OK) {
         cli_out out;

@@ -5,8 +5,8 @@
  * top (+-sqrt(g/l), unstable) from differences, van der Pol at the origin (mu/2 +- i
  * sqrt(1 - mu^2/4)), the stability classes and their tolerance, the reduction P^+ A P to
  * an invariant subspace, equilibria (Lorenz's C+, the pendulum's bottom and top, an
- * ignorable coordinate left alone, none where there is none), and bad input named. Eigenvalues need the LAPACK backend; those
- * tests are skipped without it. */
+ * ignorable coordinate left alone, none where there is none), and bad input named. Eigenvalues need
+ * the LAPACK backend; those tests are skipped without it. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -31,8 +31,8 @@
 static void assert_close_at(double a, double b, double tol, const char *file, int line)
 {
     if (!(fabs(a - b) <= tol)) {
-        print_error("%s:%d: %.17g and %.17g differ by %.3g > %.3g\n", file, line, a, b,
-                    fabs(a - b), tol);
+        print_error("%s:%d: %.17g and %.17g differ by %.3g > %.3g\n", file, line, a, b, fabs(a - b),
+                    tol);
         fail();
     }
 }
@@ -317,8 +317,8 @@ static void test_equilibria(void **state)
 
 #ifdef DYNKIT_HAVE_LAPACK
 /* Eigenvalues of m at y (parameters by name) into re, im (sorted); the stability back. */
-static dyn_stability eig_of(const char *model, const char *const *pn, const double *pv,
-                            int np, const double *y, double *re, double *im)
+static dyn_stability eig_of(const char *model, const char *const *pn, const double *pv, int np,
+                            const double *y, double *re, double *im)
 {
     const dyn_model *m = dyn_model_find(model);
     char par[4096], err[256];

@@ -9,19 +9,17 @@
 
 #include "dynkit/lapack.h"
 
-extern void dgeev_(const char *jobvl, const char *jobvr, const int *n, double *a,
-                   const int *lda, double *wr, double *wi, double *vl, const int *ldvl,
-                   double *vr, const int *ldvr, double *work, const int *lwork, int *info,
-                   unsigned long jobvl_len, unsigned long jobvr_len);
+extern void dgeev_(const char *jobvl, const char *jobvr, const int *n, double *a, const int *lda,
+                   double *wr, double *wi, double *vl, const int *ldvl, double *vr, const int *ldvr,
+                   double *work, const int *lwork, int *info, unsigned long jobvl_len,
+                   unsigned long jobvr_len);
 
-static int lapack_eigenvalues(int n, double *a, double *re, double *im, char *err,
-                              size_t errlen)
+static int lapack_eigenvalues(int n, double *a, double *re, double *im, char *err, size_t errlen)
 {
     const int one = 1, query = -1;
     double size = 0.0, dummy = 0.0;
     int info = 0;
-    dgeev_("N", "N", &n, a, &n, re, im, &dummy, &one, &dummy, &one, &size, &query, &info, 1,
-           1);
+    dgeev_("N", "N", &n, a, &n, re, im, &dummy, &one, &dummy, &one, &size, &query, &info, 1, 1);
     int lwork = info == 0 && size >= 3.0 * n ? (int)size : 4 * n + 1;
     double *work = malloc((size_t)lwork * sizeof *work);
     if (!work) {
@@ -33,8 +31,7 @@ static int lapack_eigenvalues(int n, double *a, double *re, double *im, char *er
     if (info != 0) {
         if (info > 0)
             snprintf(err, errlen,
-                     "dgeev: the QR algorithm did not converge (%d eigenvalues not found)",
-                     info);
+                     "dgeev: the QR algorithm did not converge (%d eigenvalues not found)", info);
         else
             snprintf(err, errlen, "dgeev: argument %d was invalid", -info);
         return -1;

@@ -20,12 +20,12 @@ extern "C" {
 
 /* How the Jacobian is formed. */
 typedef enum dyn_jac_scheme {
-    DYN_JAC_AUTO = 0,       /* the model's analytic Jacobian when it has one, else RICHARDSON */
-    DYN_JAC_ANALYTIC = 1,   /* the model's dyn_model.jacobian (an error when it has none) */
-    DYN_JAC_CENTRAL = 2,    /* central differences, step eps^(1/3) * scale: 2n calls of f */
-    DYN_JAC_RICHARDSON = 3  /* central differences at h, h/2, h/4, ... from h = 2^-3 *
-                             * scale, extrapolated in Ridders' form until converged:
-                             * 2 to 32 calls of f per column */
+    DYN_JAC_AUTO = 0,      /* the model's analytic Jacobian when it has one, else RICHARDSON */
+    DYN_JAC_ANALYTIC = 1,  /* the model's dyn_model.jacobian (an error when it has none) */
+    DYN_JAC_CENTRAL = 2,   /* central differences, step eps^(1/3) * scale: 2n calls of f */
+    DYN_JAC_RICHARDSON = 3 /* central differences at h, h/2, h/4, ... from h = 2^-3 *
+                            * scale, extrapolated in Ridders' form until converged:
+                            * 4 to 32 calls of f per column */
 } dyn_jac_scheme;
 
 typedef struct dyn_linearize_opts {
@@ -43,7 +43,7 @@ typedef struct dyn_linearize_info {
      * the kept extrapolation from its neighbours in the tableau, max norm) relative to
      * max(|column|, |f|/scale); 0 for the others. */
     double err_est;
-    char message[256];     /* why it failed, when it did */
+    char message[256]; /* why it failed, when it did */
 } dyn_linearize_info;
 
 /* Doubles of workspace dyn_linearize needs for n states. */
@@ -74,11 +74,11 @@ typedef struct dyn_equilibrium_opts {
 } dyn_equilibrium_opts;
 
 typedef struct dyn_equilibrium_info {
-    int iterations;        /* Jacobians formed */
-    double residual;       /* ||f(t, y)||_inf at the returned y */
-    double tol;            /* the absolute tolerance the residual was held to */
-    long rhs_calls;        /* evaluations of f, the Jacobians' included */
-    char message[256];     /* why it failed, when it did */
+    int iterations;    /* Jacobians formed */
+    double residual;   /* ||f(t, y)||_inf at the returned y */
+    double tol;        /* the absolute tolerance the residual was held to */
+    long rhs_calls;    /* evaluations of f, the Jacobians' included */
+    char message[256]; /* why it failed, when it did */
 } dyn_equilibrium_info;
 
 /* Doubles of workspace dyn_equilibrium needs for n states. */
@@ -95,8 +95,7 @@ size_t dyn_equilibrium_work_size(int n);
  * residual in the message; DYN_ERR_RHS, DYN_ERR_NONFINITE or DYN_ERR_ARG from f or the
  * Jacobian. info may be NULL. */
 int dyn_equilibrium(const dyn_model *m, double t, double *y, void *par,
-                    const dyn_equilibrium_opts *opts, double *work,
-                    dyn_equilibrium_info *info);
+                    const dyn_equilibrium_opts *opts, double *work, dyn_equilibrium_info *info);
 
 /* A reduced to the k admissible directions that are the columns of P (n x k, row-major,
  * full column rank): A_min = P^+ A P with P^+ = (P^T P)^-1 P^T (k x k into Amin). For a
@@ -104,8 +103,7 @@ int dyn_equilibrium(const dyn_model *m, double t, double *y, void *par,
  * dependent ones eliminated), Amin carries the eigenvalues of those motions. work: n k +
  * k k + k doubles. Returns 0, or DYN_ERR_ARG when P^T P is not positive definite (P's columns
  * are dependent). */
-int dyn_linear_reduce(int n, int k, const double *A, const double *P, double *Amin,
-                      double *work);
+int dyn_linear_reduce(int n, int k, const double *A, const double *P, double *Amin, double *work);
 
 /* An eigenvalue solver for a real nonsymmetric matrix: the eigenvalues of the n x n matrix
  * a (row-major; overwritten) into re, im (n values; a complex pair as consecutive entries,

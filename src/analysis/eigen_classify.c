@@ -60,12 +60,9 @@ double dyn_stability_tol(int n, const double *A, double rtol)
 const char *dyn_stability_name(dyn_stability s)
 {
     switch (s) {
-    case DYN_STABLE:
-        return "asymptotically stable";
-    case DYN_UNSTABLE:
-        return "unstable";
-    default:
-        return "marginal";
+    case DYN_STABLE: return "asymptotically stable";
+    case DYN_UNSTABLE: return "unstable";
+    default: return "marginal";
     }
 }
 

@@ -9,7 +9,6 @@
  * when no step lowers ||f|| any more (f has reached its rounding). */
 #include <float.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -23,19 +22,6 @@ size_t dyn_equilibrium_work_size(int n)
 {
     const size_t N = (size_t)n;
     return 2 * N * N + 5 * N + dyn_linearize_work_size(n);
-}
-
-#if defined(__GNUC__)
-__attribute__((format(printf, 2, 3)))
-#endif
-static void say(dyn_equilibrium_info *info, const char *fmt, ...)
-{
-    if (!info)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(info->message, sizeof info->message, fmt, ap);
-    va_end(ap);
 }
 
 static double norm_inf(int n, const double *v)
@@ -55,8 +41,7 @@ static double norm_2(int n, const double *v)
 }
 
 /* f(t, y) into f; 0, or the rhs status, or -1 when a component is not finite. */
-static int eval(const dyn_model *m, double t, const double *y, void *par, double *f,
-                long *calls)
+static int eval(const dyn_model *m, double t, const double *y, void *par, double *f, long *calls)
 {
     (*calls)++;
     const int rc = m->rhs(t, y, f, par);
@@ -69,8 +54,7 @@ static int eval(const dyn_model *m, double t, const double *y, void *par, double
 }
 
 int dyn_equilibrium(const dyn_model *m, double t, double *y, void *par,
-                    const dyn_equilibrium_opts *opts, double *work,
-                    dyn_equilibrium_info *info)
+                    const dyn_equilibrium_opts *opts, double *work, dyn_equilibrium_info *info)
 {
     const int n = m->n_states;
     const size_t N = (size_t)n;
@@ -84,7 +68,8 @@ int dyn_equilibrium(const dyn_model *m, double t, double *y, void *par,
     memset(info, 0, sizeof *info);
     long calls = 0;
     if (eval(m, t, y, par, f, &calls)) {
-        say(info, "the right-hand side of %s fails or is not finite at the guess", m->name);
+        snprintf(info->message, sizeof info->message,
+                 "the right-hand side of %s fails or is not finite at the guess", m->name);
         info->rhs_calls = calls;
         return DYN_ERR_RHS;
     }
@@ -95,7 +80,7 @@ int dyn_equilibrium(const dyn_model *m, double t, double *y, void *par,
         const int rc = dyn_linearize(m, t, y, par, opts ? &opts->jac : NULL, J, lw, &li);
         calls += li.rhs_calls;
         if (rc) {
-            say(info, "%s", li.message);
+            snprintf(info->message, sizeof info->message, "%s", li.message);
             status = rc;
             break;
         }
@@ -112,8 +97,9 @@ int dyn_equilibrium(const dyn_model *m, double t, double *y, void *par,
             break;
         }
         if (info->iterations >= max_iter) {
-            say(info, "no equilibrium within %d iterations: |f|_inf = %.3g (tolerance %.3g)",
-                max_iter, norm_inf(n, f), info->tol);
+            snprintf(info->message, sizeof info->message,
+                     "no equilibrium within %d iterations: |f|_inf = %.3g (tolerance %.3g)",
+                     max_iter, norm_inf(n, f), info->tol);
             break;
         }
         info->iterations++;
@@ -133,8 +119,9 @@ int dyn_equilibrium(const dyn_model *m, double t, double *y, void *par,
             hmax = fmax(hmax, H[a * N + a]);
         }
         if (!(hmax > 0.0)) {
-            say(info, "f does not depend on the state here (J = 0): |f|_inf = %.3g stays",
-                norm_inf(n, f));
+            snprintf(info->message, sizeof info->message,
+                     "f does not depend on the state here (J = 0): |f|_inf = %.3g stays",
+                     norm_inf(n, f));
             status = DYN_ERR_STEP_SIZE;
             break;
         }
@@ -170,9 +157,10 @@ int dyn_equilibrium(const dyn_model *m, double t, double *y, void *par,
             break;
         }
         if (!accepted) {
-            say(info, "no step lowers |f| (a minimum of |f| that is not an equilibrium, or "
-                      "none near the guess): |f|_inf = %.3g",
-                norm_inf(n, f));
+            snprintf(info->message, sizeof info->message,
+                     "no step lowers |f| (a minimum of |f| that is not an equilibrium, or "
+                     "none near the guess): |f|_inf = %.3g",
+                     norm_inf(n, f));
             status = DYN_ERR_STEP_SIZE;
             break;
         }

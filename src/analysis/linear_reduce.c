@@ -11,8 +11,7 @@
 #include "dynkit/analysis.h"
 
 /* out (a x b) = X^T Y for X (r x a) and Y (r x b), all row-major. */
-static void product_tn(size_t r, size_t a, size_t b, const double *X, const double *Y,
-                       double *out)
+static void product_tn(size_t r, size_t a, size_t b, const double *X, const double *Y, double *out)
 {
     for (size_t i = 0; i < a; i++)
         for (size_t j = 0; j < b; j++) {
@@ -23,8 +22,7 @@ static void product_tn(size_t r, size_t a, size_t b, const double *X, const doub
         }
 }
 
-int dyn_linear_reduce(int n, int k, const double *A, const double *P, double *Amin,
-                      double *work)
+int dyn_linear_reduce(int n, int k, const double *A, const double *P, double *Amin, double *work)
 {
     if (n < 1 || k < 1 || k > n)
         return DYN_ERR_ARG;

@@ -11,14 +11,13 @@
 #include <float.h>
 #include <limits.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "dynkit/analysis.h"
 
-#define RIDDERS_LEVELS 16    /* steps h0 ... h0 / 2^15 */
-#define RIDDERS_COLS 6       /* the raw differences and 5 extrapolations (error O(h^12)) */
+#define RIDDERS_LEVELS 16 /* steps h0 ... h0 / 2^15 */
+#define RIDDERS_COLS 6    /* the raw differences and 5 extrapolations (error O(h^12)) */
 #define RIDDERS_SAFE 2.0
 #define RIDDERS_CONVERGED 1e-7 /* relative error below which growing drift stops it */
 /* what central() returns for a difference that is not finite (f returned 0) */
@@ -28,19 +27,6 @@ size_t dyn_linearize_work_size(int n)
 {
     /* y, f(y), the column; f+-, two tableau rows of RIDDERS_COLS columns */
     return (size_t)n * (5 + 2 * RIDDERS_COLS);
-}
-
-#if defined(__GNUC__)
-__attribute__((format(printf, 2, 3)))
-#endif
-static void fail(dyn_linearize_info *info, const char *fmt, ...)
-{
-    if (!info)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(info->message, sizeof info->message, fmt, ap);
-    va_end(ap);
 }
 
 /* The largest power of two not above x (x > 0, finite). */
@@ -53,8 +39,8 @@ static double pow2_below(double x)
 
 /* Central difference of column j with step h into d (n values): (f(y + h e_j) -
  * f(y - h e_j)) / (taken increments). Returns 0, the rhs status, or NOT_FINITE. */
-static int central(const dyn_model *m, double t, double *yw, void *par, int j, double h,
-                   double *fp, double *fm, double *d, long *calls)
+static int central(const dyn_model *m, double t, double *yw, void *par, int j, double h, double *fp,
+                   double *fm, double *d, long *calls)
 {
     const int n = m->n_states;
     const double yj = yw[j];
@@ -135,13 +121,13 @@ static int ridders(const dyn_model *m, double t, double *yw, void *par, int j, d
             }
         }
         const int ptop = k - 1 < RIDDERS_COLS - 1 ? k - 1 : RIDDERS_COLS - 1;
-        const double drift =
-            max_diff(n, cur + (size_t)top * N, prev + (size_t)ptop * N);
+        const double drift = max_diff(n, cur + (size_t)top * N, prev + (size_t)ptop * N);
         double *swap = prev;
         prev = cur;
         cur = swap;
         /* converged, and the extrapolations drift apart again: rounding has taken over */
-        if (drift >= RIDDERS_SAFE * err && err <= RIDDERS_CONVERGED * fmax(max_abs(n, best), fscale))
+        if (drift >= RIDDERS_SAFE * err &&
+            err <= RIDDERS_CONVERGED * fmax(max_abs(n, best), fscale))
             break;
     }
     const double size = fmax(max_abs(n, best), fscale);
@@ -150,8 +136,8 @@ static int ridders(const dyn_model *m, double t, double *yw, void *par, int j, d
 }
 
 static int jac_differences(const dyn_model *m, double t, const double *y, void *par,
-                           const dyn_linearize_opts *o, int richardson, double *A,
-                           double *work, dyn_linearize_info *info)
+                           const dyn_linearize_opts *o, int richardson, double *A, double *work,
+                           dyn_linearize_info *info)
 {
     const int n = m->n_states;
     const size_t N = (size_t)n;
@@ -165,8 +151,9 @@ static int jac_differences(const dyn_model *m, double t, const double *y, void *
     for (int j = 0; j < n && rc == 0; j++) {
         const double typ = o && o->typ ? o->typ[j] : 1.0;
         if (!(typ > 0.0) || !isfinite(typ)) {
-            fail(info, "the typical magnitude of state %s must be a finite number > 0 (got %g)",
-                 m->states[j].name, typ);
+            snprintf(info->message, sizeof info->message,
+                     "the typical magnitude of state %s must be a finite number > 0 (got %g)",
+                     m->states[j].name, typ);
             return DYN_ERR_ARG;
         }
         const double scale = fmax(fabs(y[j]), typ);
@@ -176,51 +163,50 @@ static int jac_differences(const dyn_model *m, double t, const double *y, void *
                          &rel, &calls);
             worst = fmax(worst, rel);
         } else {
-            rc = central(m, t, yw, par, j, pow2_below(cbrt(DBL_EPSILON) * scale), rest,
-                         rest + N, col, &calls);
+            rc = central(m, t, yw, par, j, pow2_below(cbrt(DBL_EPSILON) * scale), rest, rest + N,
+                         col, &calls);
         }
         if (rc == NOT_FINITE) {
-            fail(info, "the differences in %s are not finite at every step tried",
-                 m->states[j].name);
+            snprintf(info->message, sizeof info->message,
+                     "the differences in %s are not finite at every step tried", m->states[j].name);
             return DYN_ERR_NONFINITE;
         }
         for (int i = 0; i < n; i++)
             A[(size_t)i * N + (size_t)j] = col[i];
     }
-    if (info) {
-        info->rhs_calls = calls;
-        info->err_est = richardson ? worst : 0.0;
-    }
+    info->rhs_calls = calls;
+    info->err_est = richardson ? worst : 0.0;
     if (rc) {
-        fail(info, "the right-hand side of %s failed (status %d)", m->name, rc);
+        snprintf(info->message, sizeof info->message,
+                 "the right-hand side of %s failed (status %d)", m->name, rc);
         return DYN_ERR_RHS;
     }
     return 0;
 }
 
 int dyn_linearize(const dyn_model *m, double t, const double *y, void *par,
-                  const dyn_linearize_opts *opts, double *A, double *work,
-                  dyn_linearize_info *info)
+                  const dyn_linearize_opts *opts, double *A, double *work, dyn_linearize_info *info)
 {
     dyn_jac_scheme s = opts ? opts->scheme : DYN_JAC_AUTO;
-    if (info)
-        memset(info, 0, sizeof *info);
+    dyn_linearize_info local;
+    if (!info)
+        info = &local;
+    memset(info, 0, sizeof *info);
     if (s == DYN_JAC_AUTO)
         s = m->jacobian ? DYN_JAC_ANALYTIC : DYN_JAC_RICHARDSON;
-    if (info)
-        info->scheme = s;
+    info->scheme = s;
     const int n = m->n_states;
     int rc;
     if (s == DYN_JAC_ANALYTIC) {
         if (!m->jacobian) {
-            fail(info, "%s has no analytic Jacobian (use differences)", m->name);
+            snprintf(info->message, sizeof info->message,
+                     "%s has no analytic Jacobian (use differences)", m->name);
             return DYN_ERR_ARG;
         }
         rc = m->jacobian(t, y, A, par);
-        if (info)
-            info->rhs_calls = 0;
         if (rc) {
-            fail(info, "the Jacobian of %s failed (status %d)", m->name, rc);
+            snprintf(info->message, sizeof info->message, "the Jacobian of %s failed (status %d)",
+                     m->name, rc);
             return DYN_ERR_RHS;
         }
     } else if (s == DYN_JAC_CENTRAL || s == DYN_JAC_RICHARDSON) {
@@ -228,13 +214,15 @@ int dyn_linearize(const dyn_model *m, double t, const double *y, void *par,
         if (rc)
             return rc;
     } else {
-        fail(info, "unknown Jacobian scheme %d (accepted: 0 to 3)", (int)s);
+        snprintf(info->message, sizeof info->message,
+                 "unknown Jacobian scheme %d (accepted: 0 to 3)", (int)s);
         return DYN_ERR_ARG;
     }
     for (int i = 0; i < n; i++)
         for (int j = 0; j < n; j++)
             if (!isfinite(A[(size_t)i * (size_t)n + (size_t)j])) {
-                fail(info, "d %s / d %s is not finite", m->states[i].name, m->states[j].name);
+                snprintf(info->message, sizeof info->message, "d %s / d %s is not finite",
+                         m->states[i].name, m->states[j].name);
                 return DYN_ERR_NONFINITE;
             }
     return 0;

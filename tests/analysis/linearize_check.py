@@ -140,6 +140,16 @@ def main():
         check("no step lowers |f|" in p.stderr and "|f|_inf = 1" in p.stderr,
               f"--equilibrium without one: refused with the residual ({p.stderr.strip()[:90]})")
 
+    # a mechanism file (examples/mechanisms/double_pendulum.mech, m = l = 1) hanging at rest:
+    # the two modes of the double pendulum, omega^2 = (g/l) (2 -+ sqrt 2)
+    mech = os.path.join(SOURCE, "examples", "mechanisms", "double_pendulum.mech")
+    if os.path.exists(mech):
+        ev, pt = eig(mech, "--init", "phi1=0", "--init", "phi2=0")
+        w = [math.sqrt(9.81 * (2 - math.sqrt(2))), math.sqrt(9.81 * (2 + math.sqrt(2)))]
+        check(close(ev, [1j * w[0], -1j * w[0], 1j * w[1], -1j * w[1]], 1e-12 * w[1])
+              and pt["stability"] == "marginal",
+              f"double_pendulum.mech at rest: +-i sqrt(g (2 -+ sqrt 2) / l) ({ev.imag})")
+
     # a linear model file x' = A x against NumPy
     A = np.array([[-0.5, 2.0, 0.0, 1.0, 0.3],
                   [-3.0, -0.1, 0.7, 0.0, 0.0],

@@ -107,7 +107,10 @@ char *cli_read_model_file(const char *path, size_t *len)
 static void print_note(const char *path, int line, const char *message, void *ctx)
 {
     (void)ctx;
-    if (verbose)
+    const size_t w = strlen(DYN_LANG_WARNING);
+    if (strncmp(message, DYN_LANG_WARNING, w) == 0)
+        fprintf(stderr, "dynkit: warning: %s:%d: %s\n", path, line, message + w);
+    else if (verbose)
         fprintf(stderr, "dynkit: note: %s:%d: %s\n", path, line, message);
 }
 

@@ -751,7 +751,8 @@ static double final_x(const cli_result *r)
 /* Lines XPPAUT 6.11 reads without a word, each with the meaning it gives them (measured
  * with xppaut -silent: tests/xppaut/lenient/ compares the runs): a ';' after a value in a
  * par, number or init list; a statement word read by its first letter (par1-3 is par); a
- * method read by its first letter. The answers are closed forms or exact Runge-Kutta
+ * method read by its first letter; a plot option naming no variable (left out, with a
+ * warning shown always). The answers are closed forms or exact Runge-Kutta
  * polynomials. */
 static void test_xppaut_leniency(void **state)
 {
@@ -790,9 +791,17 @@ static void test_xppaut_leniency(void **state)
               by_letter[k].meth, r.status, r.out, r.err);
         cli_free(&r);
     }
+    /* a plot option naming no variable: a warning without --verbose, the run unchanged */
+    write_file("plotv.ode", "x'=-x\ninit x=1\n@ xp=t, yp=v, total=1, dt=0.5\ndone\n");
+    r = cli_in_tmpdir("run plotv.ode --final");
+    CHECK(r.status == 0 && fabs(final_x(&r) - exp(-1.0)) < 1e-6 &&
+              strstr(r.err, "dynkit: warning: plotv.ode:3: option 'yp': 'v' is not a state"),
+          "exit %d: %s%s", r.status, r.out, r.err);
+    cli_free(&r);
     unlink(cli_path("semi.ode"));
     unlink(cli_path("first.ode"));
     unlink(cli_path("meth.ode"));
+    unlink(cli_path("plotv.ode"));
 }
 
 int main(void)

@@ -34,7 +34,10 @@ typedef struct dyn_lang_diag {
 char *dyn_lang_diag_format(const dyn_lang_diag *d, char *buf, size_t size);
 
 /* Notes of a successful translation (options accepted and ignored, ...), one line each,
- * for --verbose; may be NULL. */
+ * for --verbose; may be NULL. A message that begins with DYN_LANG_WARNING ("warning: ") is
+ * a warning: something in the file was left out (a plot option naming no variable), to be
+ * shown always. */
+#define DYN_LANG_WARNING "warning: "
 typedef void (*dyn_lang_note_fn)(const char *path, int line, const char *message, void *ctx);
 
 /* Translate the .ode text (len bytes, need not be NUL-terminated; path is used in messages

@@ -625,9 +625,12 @@ static const char *display_name(lang_ctx *c, const char *name, lpos pos, const c
                   "option '%s': '%s' is an algebraic variable: name an aux output of "
                   "it (aux %s_=%s)",
                   option, name, name, name);
+    /* XPPAUT 6.11 runs such a file and leaves the option out (measured) */
     const char *near = nearest_symbol(c, name, NULL, 0);
-    lang_fail(c, pos, "option '%s': '%s' is not a state or an aux output%s%s%s", option, name,
-              near ? " (did you mean '" : "", near ? near : "", near ? "'?)" : "");
+    lang_warn(c, pos, "option '%s': '%s' is not a state or an aux output%s%s%s; the option is "
+              "ignored, as XPPAUT ignores it", option, name, near ? " (did you mean '" : "",
+              near ? near : "", near ? "'?)" : "");
+    return NULL;
 }
 
 void lang_alg_uses(lang_ctx *c, const node *e, unsigned char *used, unsigned char *fix_seen,

@@ -174,6 +174,19 @@ void lang_note(lang_ctx *c, lpos p, const char *fmt, ...)
     c->note(c->path, p.line, msg, c->note_ctx);
 }
 
+void lang_warn(lang_ctx *c, lpos p, const char *fmt, ...)
+{
+    if (!c->note)
+        return;
+    char msg[600];
+    const int k = snprintf(msg, sizeof msg, "%s", DYN_LANG_WARNING);
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg + k, sizeof msg - (size_t)k, fmt, ap);
+    va_end(ap);
+    c->note(c->path, p.line, msg, c->note_ctx);
+}
+
 char *dyn_lang_diag_format(const dyn_lang_diag *d, char *buf, size_t size)
 {
     if (!buf || size == 0)

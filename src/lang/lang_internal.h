@@ -343,6 +343,8 @@ void lang_free_all(lang_ctx *c);
 _Noreturn void lang_oom(lang_ctx *c);
 _Noreturn void lang_fail(lang_ctx *c, lpos p, const char *fmt, ...);
 void lang_note(lang_ctx *c, lpos p, const char *fmt, ...);
+/* A note that is a warning (DYN_LANG_WARNING): the file's line was left out. */
+void lang_warn(lang_ctx *c, lpos p, const char *fmt, ...);
 void *lvec_push(lang_ctx *c, lvec *v, size_t elem);
 #define LVEC_AT(v, type, i) (((type *)(v).data)[i])
 

@@ -86,10 +86,12 @@ size_t dyn_equilibrium_work_size(int n);
 
 /* An equilibrium f(t, y) = 0 of model m near the guess y (n values, overwritten by the
  * solution; the last iterate on failure) with the prepared parameters par: Levenberg-
- * Marquardt steps (J^T J + mu I) d = -J^T f with the Jacobian of dyn_linearize, mu relative
- * to the largest diagonal entry of J^T J, divided by 10 after a step that lowers ||f||_2
- * and multiplied by 10 until one does: Newton's method near a regular solution, and a state
- * that f does not depend on (an ignorable coordinate) is left where it is. opts may be
+ * Marquardt steps (J^T J + mu I) d = -J^T f with the Jacobian of dyn_linearize, mu = 0.1
+ * times the largest diagonal entry of J^T J at first, divided by 10 after a step that
+ * lowers ||f||_2 and multiplied by 10 until one does and the step is no longer than
+ * max(||y||_inf, 1): Newton's method near a regular solution, a search that stays near the
+ * guess, and a state that f does not depend on (an ignorable coordinate) left where it is.
+ * opts may be
  * NULL. Returns 0 when converged; DYN_ERR_MAX_STEPS (max_iter reached), DYN_ERR_STEP_SIZE
  * (no step lowers ||f||: a minimum of ||f|| that is not a zero, or none near), with the
  * residual in the message; DYN_ERR_RHS, DYN_ERR_NONFINITE or DYN_ERR_ARG from f or the

@@ -2,9 +2,10 @@
 /* equilibrium.c — an equilibrium f(t, y) = 0 of a model near a guess by Levenberg-
  * Marquardt steps on ||f||_2^2 / 2 (K. Levenberg 1944, D. W. Marquardt 1963; Nocedal &
  * Wright, Numerical Optimization, 2nd ed., sec. 10.3): (J^T J + mu I) d = -J^T f, solved by
- * Cholesky, mu = lambda * max_i (J^T J)_ii, lambda divided by 10 after a step that lowers
- * ||f||_2 (down to 1e-15: Newton's step near a regular solution) and multiplied by 10 until
- * one does. The Jacobian is dyn_linearize's, formed again at every accepted point.
+ * Cholesky, mu = lambda * max_i (J^T J)_ii, lambda from 0.1 divided by 10 after a step
+ * that lowers ||f||_2 (down to 1e-15: Newton's step near a regular solution) and multiplied
+ * by 10 until one does, and until the step is no longer than max(||y||_inf, 1), so that the
+ * search stays near the guess. The Jacobian is dyn_linearize's, formed again at every accepted point.
  * Converged when ||f||_inf is within the tolerance, or within DYN_EQUILIBRIUM_FLOOR times it
  * when no step lowers ||f|| any more (f has reached its rounding). */
 #include <float.h>
@@ -15,6 +16,7 @@
 #include "analysis/cholesky.h"
 #include "dynkit/analysis.h"
 
+#define LM_LAMBDA_START 0.1 /* a cautious first step: the equilibrium near the guess */
 #define LM_LAMBDA_MIN 1e-15
 #define LM_LAMBDA_MAX 1e12
 
@@ -73,7 +75,7 @@ int dyn_equilibrium(const dyn_model *m, double t, double *y, void *par,
         info->rhs_calls = calls;
         return DYN_ERR_RHS;
     }
-    double fn = norm_2(n, f), lambda = 1e-3;
+    double fn = norm_2(n, f), lambda = LM_LAMBDA_START;
     int status = DYN_ERR_MAX_STEPS;
     for (;;) {
         dyn_linearize_info li;
@@ -139,6 +141,12 @@ int dyn_equilibrium(const dyn_model *m, double t, double *y, void *par,
                 continue;
             }
             dyn_cholesky_solve(n, J, d);
+            /* no step longer than the state's size (at least 1): not a jump to a far
+             * equilibrium */
+            if (norm_inf(n, d) > fmax(norm_inf(n, y), 1.0)) {
+                lambda *= 10.0;
+                continue;
+            }
             for (size_t a = 0; a < N; a++)
                 yt[a] = y[a] + d[a];
             const double ftn = eval(m, t, yt, par, ft, &calls) ? INFINITY : norm_2(n, ft);

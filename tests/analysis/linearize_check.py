@@ -149,6 +149,16 @@ def main():
         check(close(ev, [1j * w[0], -1j * w[0], 1j * w[1], -1j * w[1]], 1e-12 * w[1])
               and pt["stability"] == "marginal",
               f"double_pendulum.mech at rest: +-i sqrt(g (2 -+ sqrt 2) / l) ({ev.imag})")
+        # --equilibrium finds the equilibrium near the guess: hanging from (30, -20) deg,
+        # both rods upright from (170, 160) deg, there +-sqrt(g (2 -+ sqrt 2) / l), unstable
+        ev, pt = eig(mech, "--init", "phi1=30deg", "--init", "phi2=-20deg", "--equilibrium")
+        check(max(abs(v) for v in pt["y"]) < 1e-12 and pt["stability"] == "marginal",
+              f"double_pendulum.mech --equilibrium from (30, -20) deg: hanging ({pt['y']})")
+        ev, pt = eig(mech, "--init", "phi1=170deg", "--init", "phi2=160deg", "--equilibrium")
+        up = max(abs(pt["y"][0] - math.pi), abs(pt["y"][1] - math.pi))
+        check(up < 1e-12 and close(ev, [w[0], -w[0], w[1], -w[1]], 1e-12 * w[1])
+              and pt["stability"] == "unstable",
+              f"double_pendulum.mech --equilibrium from (170, 160) deg: upright to {up:.1e}")
 
     # a linear model file x' = A x against NumPy
     A = np.array([[-0.5, 2.0, 0.0, 1.0, 0.3],

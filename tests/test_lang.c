@@ -144,6 +144,15 @@ static void test_unknown_names_suggest_the_nearest(void **state)
     expect_error("x'=zzzzzz\n", 1, 4, "unknown name 'zzzzzz'");
     expect_error("par a=1\nx'=1\ninit xx=2\n", 3, 6, "unknown name 'xx' (did you mean 'x'?)");
     {
+        /* an aux named like a function and, declared before it, a state: a label only */
+        notes n;
+        char *out = expect_ok("f(u)=u^2\naux f=x+1\naux x=2*x\nx'=-f(x)\n", &n);
+        CHECK(strstr(n.text, "2: aux 'f' shares its name with a function") &&
+                  strstr(n.text, "4: aux 'x' shares its name with a state"),
+              "%s", n.text);
+        free(out);
+    }
+    {
         /* a plot option naming no variable: a warning, the option left out (XPPAUT runs the
          * file and ignores it) */
         notes n;

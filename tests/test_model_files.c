@@ -752,7 +752,7 @@ static double final_x(const cli_result *r)
  * with xppaut -silent: tests/xppaut/lenient/ compares the runs): a ';' after a value in a
  * par, number or init list; a statement word read by its first letter (par1-3 is par); a
  * method read by its first letter; a plot option naming no variable (left out, with a
- * warning shown always). The answers are closed forms or exact Runge-Kutta
+ * warning shown always); an aux named like a state, a parameter or a function. The answers are closed forms or exact Runge-Kutta
  * polynomials. */
 static void test_xppaut_leniency(void **state)
 {
@@ -798,6 +798,22 @@ static void test_xppaut_leniency(void **state)
               strstr(r.err, "dynkit: warning: plotv.ode:3: option 'yp': 'v' is not a state"),
           "exit %d: %s%s", r.status, r.out, r.err);
     cli_free(&r);
+    /* aux outputs named like a state, a parameter and a function: columns only; the
+     * formulas mean the others (x' = -x, y' = x^2 with f(u) = u^2, a = 3) */
+    write_file("auxn.ode", "par a=3\naux x=2*x\naux a=a*x\nx'=-x\nf(u)=u^2\ny'=f(x)\n"
+                           "aux f=x+1\ninit x=1\n@ total=1,dt=0.5\ndone\n");
+    r = cli_in_tmpdir("run auxn.ode --final --outputs --rtol 1e-12 --atol 1e-14");
+    double v[6] = {0};
+    int cols = 0;
+    const long got = csv_numbers(r.out, v, 6, &cols);
+    const double e1 = exp(-1.0);
+    CHECK(r.status == 0 && got == 6 && strncmp(r.out, "t,x,y,x,a,f\n", 12) == 0 &&
+              fabs(v[1] - e1) < 1e-12 && fabs(v[2] - (1.0 - e1 * e1) / 2.0) < 1e-12 &&
+              fabs(v[3] - 2.0 * e1) < 1e-12 && fabs(v[4] - 3.0 * e1) < 1e-12 &&
+              fabs(v[5] - (e1 + 1.0)) < 1e-12,
+          "exit %d: %s%s", r.status, r.out, r.err);
+    cli_free(&r);
+    unlink(cli_path("auxn.ode"));
     unlink(cli_path("semi.ode"));
     unlink(cli_path("first.ode"));
     unlink(cli_path("meth.ode"));

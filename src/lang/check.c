@@ -73,6 +73,26 @@ void lang_declare(lang_ctx *c, const char *name, lpos pos, sym_kind kind, int in
 {
     lang_model *m = &c->m;
     lang_sym *old = lang_lookup(c, name);
+    /* XPPAUT's rule (measured with 6.11): an aux's name is a label of its output column and
+     * no formula reads it, so it may repeat the name of a state, a parameter, a number, a
+     * fixed quantity or a function, which the formulas then mean, in either order */
+    const int label = (kind == SYM_AUX) != (old && old->kind == SYM_AUX);
+    const sym_kind other = kind == SYM_AUX ? (old ? old->kind : SYM_NONE) : kind;
+    if (old && label &&
+        (other == SYM_STATE || other == SYM_PARAM || other == SYM_NUMBER || other == SYM_FIX ||
+         other == SYM_FUNC)) {
+        lang_note(c, pos, "aux '%s' shares its name with %s: it names an output column only, "
+                  "and formulas mean the %s, as in XPPAUT", name, lang_sym_kind_name(other),
+                  other == SYM_STATE ? "state" : other == SYM_FUNC ? "function"
+                  : other == SYM_FIX ? "fixed quantity" : other == SYM_PARAM ? "parameter"
+                                                                            : "number");
+        if (kind != SYM_AUX) { /* the later declaration takes the name */
+            old->kind = kind;
+            old->index = index;
+            old->pos = pos;
+        }
+        return;
+    }
     if (old)
         lang_fail(c, pos, "'%s' is already declared as %s on line %d (XPPAUT's names ignore "
                   "case)", name, lang_sym_kind_name(old->kind), old->pos.line);

@@ -13,6 +13,7 @@
 #include <strings.h>
 #include <sys/stat.h>
 
+#include "escape.h"
 #include "pages.h"
 
 enum { ANI_FILE_MAX_BYTES = 16 << 20 };
@@ -57,8 +58,10 @@ static char *read_all(const char *what, const char *path, size_t *len)
 static void print_note(const char *path, int line, const char *message, void *ctx)
 {
     (void)ctx;
+    char where[1024], shown[4096]; /* control bytes of the file escaped */
     if (cli_verbose())
-        fprintf(stderr, "dynkit: note: %s:%d: %s\n", path, line, message);
+        fprintf(stderr, "dynkit: note: %s:%d: %s\n", cli_terminal_text(path, 0, where, sizeof where),
+                line, cli_terminal_text(message, 0, shown, sizeof shown));
 }
 
 static int ends_with(const char *s, const char *suffix)

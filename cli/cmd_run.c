@@ -9,6 +9,7 @@
 #include "dynkit/lang.h"
 
 #include "cli.h"
+#include "escape.h"
 #include "table_formats.h"
 #include "out_file.h"
 
@@ -202,25 +203,30 @@ static void report_failure(const cli_run *run, const dyn_result *res, const doub
                            const csv_sink *sink)
 {
     const dyn_model *m = run->model;
+    /* names and the message with their control bytes escaped (a model file's name) */
+    char state[256], model[256], message[4 * sizeof res->message + 8];
+    if (res->fail_index >= 0 && res->fail_index < m->n_states)
+        cli_terminal_text(m->states[res->fail_index].name, 0, state, sizeof state);
+    cli_terminal_text(m->name, 0, model, sizeof model);
+    cli_terminal_text(res->message, 1, message, sizeof message);
     if (res->status == DYN_ERR_NONFINITE && res->fail_index >= 0 &&
         dyn_method_is_adaptive(run->method))
         fprintf(stderr,
                 "dynkit: run failed: state %s of model %s became NaN or Inf at t = %s "
                 "(method %s, rtol %g, atol %g; every smaller step failed too)\n",
-                m->states[res->fail_index].name, m->name, CLI_NUM(res->fail_t), run->method->name,
+                state, model, CLI_NUM(res->fail_t), run->method->name,
                 run->rtol > 0 ? run->rtol : DYN_DEFAULT_RTOL,
                 run->atol > 0 ? run->atol : DYN_DEFAULT_ATOL);
     else if (res->status == DYN_ERR_NONFINITE && res->fail_index >= 0)
         fprintf(stderr,
                 "dynkit: run failed: state %s of model %s became NaN or Inf at t = %s "
                 "(method %s, step %g)\n",
-                m->states[res->fail_index].name, m->name, CLI_NUM(res->fail_t), run->method->name,
-                run->step);
+                state, model, CLI_NUM(res->fail_t), run->method->name, run->step);
     else if (res->status == DYN_ERR_MAX_STEPS)
         fprintf(stderr, "dynkit: run failed: %s (--max-steps N sets the limit, default 1e7)\n",
-                res->message);
+                message);
     else
-        fprintf(stderr, "dynkit: run failed: %s\n", res->message);
+        fprintf(stderr, "dynkit: run failed: %s\n", message);
     /* a model file's algebraic equations: a right-hand side that is not finite is theirs
      * (alg_solver.c); a stiff method may fail on the step size before */
     if (cli_model_has_algebraic(m) && res->status != DYN_STOPPED && res->status != DYN_ERR_IO)

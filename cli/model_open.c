@@ -15,6 +15,7 @@
 #include "dynkit/jit.h"
 #include "dynkit/lang.h"
 #include "dynkit/mbs.h"
+#include "escape.h"
 
 enum { MODEL_FILE_MAX_BYTES = 16 << 20, MAX_LOADED = 16 };
 
@@ -108,10 +109,14 @@ static void print_note(const char *path, int line, const char *message, void *ct
 {
     (void)ctx;
     const size_t w = strlen(DYN_LANG_WARNING);
+    char where[1024], shown[4096]; /* control bytes of the file escaped */
+    cli_terminal_text(path, 0, where, sizeof where);
     if (strncmp(message, DYN_LANG_WARNING, w) == 0)
-        fprintf(stderr, "dynkit: warning: %s:%d: %s\n", path, line, message + w);
+        fprintf(stderr, "dynkit: warning: %s:%d: %s\n", where, line,
+                cli_terminal_text(message + w, 0, shown, sizeof shown));
     else if (verbose)
-        fprintf(stderr, "dynkit: note: %s:%d: %s\n", path, line, message);
+        fprintf(stderr, "dynkit: note: %s:%d: %s\n", where, line,
+                cli_terminal_text(message, 0, shown, sizeof shown));
 }
 
 static int compile_failed(const char *what, const char *path, const char *err)

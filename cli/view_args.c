@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "escape.h"
 #include "pages.h"
 
 int cli_compare_parse(const char *command, const char *text, cli_compare *c)
@@ -121,7 +122,9 @@ int cli_view_record(cli_view *v)
         if (r == CLI_USAGE)
             return r;
         if (r != CLI_OK) {
-            fprintf(stderr, "dynkit: run failed: %s\n", s->message);
+            char shown[4 * sizeof s->message + 8];
+            fprintf(stderr, "dynkit: run failed: %s\n",
+                    cli_terminal_text(s->message, 1, shown, sizeof shown));
             if (rc == CLI_OK)
                 rc = r;
         }

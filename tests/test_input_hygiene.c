@@ -8,8 +8,9 @@
  *   is checked at each run;
  * - `info` of a model whose title, description, units and descriptions hold terminal
  *   control sequences (ESC [, OSC ... BEL, the C1 CSI 0x9B), and the error messages of
- *   sweep --from and --resume quoting a file's column names and header, write those bytes
- *   as \xNN: nothing reaches the terminal raw; UTF-8 text (units in degrees) is kept;
+ *   sweep --from and --resume quoting a file's column names and header, and the message of
+ *   a failed run naming a model file, write those bytes as \xNN: nothing reaches the
+ *   terminal raw; UTF-8 text (units in degrees) is kept;
  * - JSON writes negative zero as -0.0, which Python's json reads back as -0.0 (it reads
  *   "-0" as the integer 0);
  * - sweep --sample refuses, before any run, a distribution whose values can be infinite:
@@ -120,6 +121,13 @@ static void test_terminal_control_bytes_are_escaped(void **state)
     write_text("resume.csv", "run,m\033[1mu,final_y1\n0,1,2\n");
     r = cli("sweep vanderpol --vary mu=1:2:2 --resume %s", cli_path("resume.csv"));
     CHECK(r.status == 2 && strstr(r.err, "run,m\\x1B[1mu,final_y1") && !has_control_bytes(r.err),
+          "exit %d: %s", r.status, r.err);
+    cli_free(&r);
+    /* a model file whose name holds ESC [ 31 m: the message of a failed run names it
+     * escaped (x' = sqrt(1 - t) is NaN after t = 1) */
+    write_text("m\033[31m.ode", "x'=sqrt(1-t)\ninit x=1\n@ total=2\ndone\n");
+    r = cli("run '%s' --final", cli_path("m\033[31m.ode"));
+    CHECK(r.status == 1 && strstr(r.err, "of model m\\x1B[31m became") && !has_control_bytes(r.err),
           "exit %d: %s", r.status, r.err);
     cli_free(&r);
     /* a --from table of numbers: the field quoted in the message */

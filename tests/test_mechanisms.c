@@ -460,6 +460,47 @@ static void test_prescribed_motion_gives_the_driving_torque(void **state_)
     cli_free(&r);
 }
 
+/* The four-bar with its crank driven at a constant rate w (prescribe): by virtual power the
+ * drive's torque times w is the rate of the energy (the loop's forces do no work), so its
+ * integral over time (Simpson's rule on 1 ms samples) is the energy's change. */
+static void test_fourbar_drive_torque_by_virtual_power(void **state_)
+{
+    (void)state_;
+    char *text = cli_read_file(MECH "fourbar.mech", NULL);
+    char *at = strstr(text, "coord q1=");
+    assert_non_null(at);
+    at = strchr(at, '\n') + 1;
+    FILE *f = fopen(cli_path("driven.mech"), "w");
+    assert_non_null(f);
+    fprintf(f, "%.*s", (int)(at - text), text);
+    fputs("par w=2 [rad/s]\n!dq20=a*w*sin(q30-q10)/(b*sin(q20-q30))\n"
+          "!dq30=a*w*sin(q20-q10)/(c*sin(q20-q30))\ninit dq1=w, dq2=dq20, dq3=dq30\n"
+          "prescribe drive: q1 = q10 + w*t\n", f);
+    fputs(at, f);
+    fclose(f);
+    free(text);
+    static double v[1 << 16];
+    cli_result r = cli("run %s --outputs --method dop853 --rtol 1e-12 --atol 1e-12 --tspan 0:3 "
+                       "--step 0.001", cli_path("driven.mech"));
+    CHECK(r.status == 0, "%s", r.err);
+    int cols;
+    const long rows = csv_table(r.out, v, 1 << 16, &cols);
+    /* t q1 q2 q3 dq1 dq2 dq3 drive loop_x loop_y gap kinetic potential energy */
+    CHECK(rows == 3001 && cols == 14, "rows %ld cols %d", rows, cols);
+    double work = 0.0, worst = 0.0, big = 0.0;
+    for (long k = 2; k < rows; k += 2) {
+        const double *a = v + (k - 2) * cols, *b = v + (k - 1) * cols, *c = v + k * cols;
+        work += 0.001 / 3 * 2 * (a[7] + 4 * b[7] + c[7]); /* w = 2 */
+        const double dE = c[13] - v[13];
+        worst = fmax(worst, fabs(work - dE));
+        big = fmax(big, fabs(dE));
+        CHECK(fabs(c[1] - 1 - 2 * c[0]) < 1e-9, "the crank follows its motion");
+    }
+    CHECK(big > 10 && worst < 1e-8 * big, "work of the drive off the energy's change by %.3g J "
+          "(largest change %.3g J)", worst, big);
+    cli_free(&r);
+}
+
 static void test_info_lists_the_mechanism(void **state_)
 {
     (void)state_;
@@ -536,6 +577,7 @@ int main(void)
         cmocka_unit_test(test_fourbar_loop_stays_closed),
         cmocka_unit_test(test_cart_matches_the_builtin_cart),
         cmocka_unit_test(test_prescribed_motion_gives_the_driving_torque),
+        cmocka_unit_test(test_fourbar_drive_torque_by_virtual_power),
         cmocka_unit_test(test_info_lists_the_mechanism),
         cmocka_unit_test(test_errors_name_the_place),
     };

@@ -316,7 +316,7 @@ static void body_kinematics(dctx *d, mbs_body *b, int bi)
     fix_vec(d, lang_printf(c, "b%d_gw", bi), b->gw, 3);
 }
 
-/* a point of a body (p in B) or of the ground (p in N): symbolic position */
+/* a point of a body (p in B; for a point mass and the ground, p in N): symbolic position */
 static void attach_position(dctx *d, const mbs_attach *a, node *r[3])
 {
     node *p[3];
@@ -329,7 +329,9 @@ static void attach_position(dctx *d, const mbs_attach *a, node *r[3])
     const mbs_body *b = &LVEC_AT(d->mb->bodies, mbs_body, a->body);
     for (int j = 0; j < 3; j++) {
         r[j] = b->x[j];
-        if (!b->point)
+        if (b->point) /* a point mass has no frame: the offset is in N */
+            r[j] = add(d, r[j], p[j]);
+        else
             for (int i = 0; i < 3; i++)
                 r[j] = add(d, r[j], mul(d, b->R[3 * i + j], p[i]));
     }

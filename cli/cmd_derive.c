@@ -10,13 +10,16 @@
 
 static void derive_help(void)
 {
-    puts("Usage: dynkit derive FILE.mech\n\n"
+    puts("Usage: dynkit derive FILE.mech [--c FILE.c]\n\n"
          "Print the equations of motion that dynkit derives from a mechanism file by TMT\n"
          "(docs/mechanisms.md): M q'' = F + D' lambda with the constraints D q'' + c = 0, as\n"
          "formulas of the coordinates q, their speeds, t and the parameters: each entry\n"
          "M[a,b] of the mass matrix's lower triangle, each force F[a], and for each\n"
          "constraint its row D[name,a] and convective term c[name]; then the file's fixed\n"
-         "quantities they use. The formulas are in the file's operators (^ is a power).");
+         "quantities they use. The formulas are in the file's operators (^ is a power).\n\n"
+         "Options:\n"
+         "  --c FILE.c           write the model as C instead (the text dynkit compiles): a\n"
+         "                       model of its own, 'dynkit run FILE.c' runs it");
 }
 
 int cli_cmd_derive(int argc, char **argv)
@@ -25,8 +28,11 @@ int cli_cmd_derive(int argc, char **argv)
         derive_help();
         return CLI_OK;
     }
-    if (argc != 1)
-        return cli_usage_error("derive", argc ? "expected one mechanism file, got %d arguments"
+    const char *c_path = NULL;
+    if (argc == 3 && strcmp(argv[1], "--c") == 0)
+        c_path = argv[2];
+    else if (argc != 1)
+        return cli_usage_error("derive", argc ? "expected FILE.mech [--c FILE.c], got %d arguments"
                                               : "expected a mechanism file FILE.mech",
                                argc);
     const char *path = argv[0];
@@ -39,14 +45,27 @@ int cli_cmd_derive(int argc, char **argv)
         return CLI_USAGE;
     char *out = NULL;
     dyn_lang_diag diag;
-    const int rc = dyn_mech_derive_text(path, text, len, &out, &diag);
+    const int rc = c_path ? dyn_mech_to_c(path, text, len, NULL, 0, &out, &diag, NULL, NULL)
+                          : dyn_mech_derive_text(path, text, len, &out, &diag);
     free(text);
     if (rc != 0) {
         char shown[2048];
         fputs(dyn_lang_diag_format(&diag, shown, sizeof shown), stderr);
         return rc == 1 ? CLI_FAILED : CLI_USAGE;
     }
-    fputs(out, stdout);
+    if (!c_path) {
+        fputs(out, stdout);
+        free(out);
+        return CLI_OK;
+    }
+    FILE *f = fopen(c_path, "w");
+    int bad = !f || fputs(out, f) < 0;
+    if (f && fclose(f) != 0)
+        bad = 1;
     free(out);
+    if (bad) {
+        fprintf(stderr, "dynkit: error: cannot write '%s'\n", c_path);
+        return CLI_FAILED;
+    }
     return CLI_OK;
 }

@@ -418,7 +418,9 @@ static double compare_runs(const char *a_args, const char *b_args, const char *c
 static void test_cart_matches_the_builtin_cart(void **state_)
 {
     (void)state_;
-    const char *table = cli_path("forces.csv");
+    char table[512], model[512];
+    snprintf(table, sizeof table, "%s", cli_path("forces.csv"));
+    snprintf(model, sizeof model, "%s", cli_path("cart_model.c"));
     cli_result r = cli("inverse cart --quiet -o %s", table);
     CHECK(r.status == 0, "%s", r.err);
     cli_free(&r);
@@ -437,6 +439,14 @@ static void test_cart_matches_the_builtin_cart(void **state_)
              "--outputs");
     worst = compare_runs(a, b, names, 7);
     CHECK(worst < 1e-8, "dop853, constant forces: largest difference %.3g", worst);
+    /* the C text of derive --c is the same model */
+    r = cli("derive %scart.mech --c %s", MECH, model);
+    CHECK(r.status == 0, "%s", r.err);
+    cli_free(&r);
+    snprintf(a, sizeof a, "%s --forces %s --method heun %s", model, table, init);
+    snprintf(b, sizeof b, "%scart.mech --forces %s --method heun %s", MECH, table, init);
+    worst = compare_runs(a, b, names, 7);
+    CHECK(worst == 0.0, "derive --c: largest difference %.3g", worst);
 }
 
 /* A prescribed angle: the multiplier is the driving torque m l^2 phi'' + m g l sin(phi). */

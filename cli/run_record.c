@@ -191,6 +191,16 @@ int cli_series_record(const cli_run *run, const dyn_tableau *method, double step
         return CLI_FAILED;
     }
     r.latest = y + n;
+    /* a global may assign parameters (XPPAUT's spike counter): each series starts from the
+     * run's values, and they are back when it ends */
+    void *par0 = malloc(m->par_size ? m->par_size : 1);
+    if (!par0) {
+        free(y);
+        snprintf(s->message, sizeof s->message, "out of memory");
+        s->status = DYN_ERR_ARG;
+        return CLI_FAILED;
+    }
+    memcpy(par0, run->par, m->par_size);
     dyn_result res;
     memset(&res, 0, sizeof res);
     if (cli_run_solve(&one, 1, on_sample, &r, NULL, NULL, NULL, NULL, y, &res) < 0) {
@@ -210,6 +220,8 @@ int cli_series_record(const cli_run *run, const dyn_tableau *method, double step
     if (r.have_latest && (s->rows == 0 || s->data[(s->rows - 1) * s->cols] < r.latest_t))
         store(&r, r.latest_t, r.latest);
     s->samples = s->samples > 0 ? s->samples : r.seen;
+    memcpy(run->par, par0, m->par_size);
+    free(par0);
     free(y);
     return s->status == DYN_OK ? CLI_OK : CLI_FAILED;
 }

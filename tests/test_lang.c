@@ -184,7 +184,8 @@ static void test_kinds_of_names_are_checked(void **state)
     expect_error("par a=1, b=a\nx'=1\n", 1, 12, "must be a number, not a formula of 'a'");
     expect_error("x'=1\ninit x=t\n", 2, 8, "cannot depend on the time t");
     expect_error("x'=1\nglobal 1 x-1 {a=0}\n", 2, 15, "unknown name 'a'");
-    expect_error("par a=1\nx'=1\nglobal 1 x-1 {a=0}\n", 3, 15, "a global assigns states");
+    expect_error("number a=1\nx'=1\nglobal 1 x-1 {a=0}\n", 3, 15,
+                 "a global assigns states and parameters; 'a' is a number");
     expect_error("sin=1\nx'=sin\n", 1, 1, "reserved word");
     expect_error("f(a)=f(a)+1\nx'=f(x)\n", 1, 1, "calls itself");
     expect_error("x'=1\nx(0)=y\n", 2, 6, "unknown name 'y'");

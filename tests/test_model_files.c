@@ -752,7 +752,8 @@ static double final_x(const cli_result *r)
  * with xppaut -silent: tests/xppaut/lenient/ compares the runs): a ';' after a value in a
  * par, number or init list; a statement word read by its first letter (par1-3 is par); a
  * method read by its first letter; a plot option naming no variable (left out, with a
- * warning shown always); an aux named like a state, a parameter or a function. The answers are closed forms or exact Runge-Kutta
+ * warning shown always); an aux named like a state, a parameter or a function; a global
+ * that assigns parameters. The answers are closed forms or exact Runge-Kutta
  * polynomials. */
 static void test_xppaut_leniency(void **state)
 {
@@ -814,6 +815,23 @@ static void test_xppaut_leniency(void **state)
           "exit %d: %s%s", r.status, r.out, r.err);
     cli_free(&r);
     unlink(cli_path("auxn.ode"));
+    /* a global that counts in a parameter: k = 1 + the crossings of x = 1 (at t = 1, 2, 3),
+     * the derived k2 = 2k follows it, n reads k from before the crossing; y' = k2 gives
+     * y(3.5) = 2 + 4 + 6 + 4 */
+    write_file("count.ode", "par k=1, n=0\n!k2=2*k\nx'=1\ny'=k2\nglobal 1 x-1 {x=0; k=k+1; "
+                            "n=k}\naux kk=k\naux nn=n\n@ total=3.5, dt=0.07\ndone\n");
+    r = cli_in_tmpdir("run count.ode --final --outputs --rtol 1e-12 --atol 1e-14");
+    double w[5] = {0};
+    CHECK(r.status == 0 && csv_numbers(r.out, w, 5, &cols) == 5 && fabs(w[1] - 0.5) < 1e-9 &&
+              fabs(w[2] - 16.0) < 1e-9 && w[3] == 4.0 && w[4] == 3.0,
+          "exit %d: %s%s", r.status, r.out, r.err);
+    cli_free(&r);
+    /* a picture of it beside two more runs (each series starts from k = 1) */
+    r = cli_in_tmpdir("plot count.ode --y y --compare dp45 --compare rk4 --output count.svg");
+    CHECK(r.status == 0, "exit %d: %s", r.status, r.err);
+    cli_free(&r);
+    unlink(cli_path("count.svg"));
+    unlink(cli_path("count.ode"));
     unlink(cli_path("semi.ode"));
     unlink(cli_path("first.ode"));
     unlink(cli_path("meth.ode"));

@@ -631,6 +631,48 @@ static void check_param_calls(lang_ctx *c, const node *e, const char *what)
     }
 }
 
+/* e reads parameter k */
+static int reads_param(const node *e, int k)
+{
+    if (!e)
+        return 0;
+    if (e->kind == N_PARAM && e->index == k)
+        return 1;
+    for (int i = 0; i < e->nargs; i++)
+        if (reads_param(e->args[i], k))
+            return 1;
+    return 0;
+}
+
+/* XPPAUT sets the parameters its globals assign after the assignments of every global that
+ * fires in the same cycle (flags.c); dynkit after each global's own: a global that reads a
+ * parameter another assigns could see another value when both fire at one instant. */
+static void warn_shared_parameters(lang_ctx *c)
+{
+    const lang_model *m = &c->m;
+    for (int i = 0; i < m->events.n; i++) {
+        const lang_event *ev = &LVEC_AT(m->events, lang_event, i);
+        for (int a = 0; a < ev->nassign; a++) {
+            if (ev->assign[a].state >= 0)
+                continue;
+            const int k = -1 - ev->assign[a].state;
+            for (int j = 0; j < m->events.n; j++) {
+                const lang_event *other = &LVEC_AT(m->events, lang_event, j);
+                for (int b = 0; j != i && b < other->nassign; b++)
+                    if (reads_param(other->assign[b].value, k)) {
+                        lang_warn(c, other->assign[b].pos,
+                                  "this global reads '%s', which the global on line %d "
+                                  "assigns: when both fire at one instant, XPPAUT reads the "
+                                  "value from before that instant, dynkit the new one if that "
+                                  "global comes first in the file", ev->assign[a].name,
+                                  ev->pos.line);
+                        return;
+                    }
+            }
+        }
+    }
+}
+
 static const char *display_name(lang_ctx *c, const char *name, lpos pos, const char *option)
 {
     if (same_name(name, "t"))
@@ -749,6 +791,7 @@ void lang_check(lang_ctx *c)
         for (int k = 0; k < ev->nassign; k++)
             ev->assign[k].value = unroll(c, ev->assign[k].value, 0);
     }
+    warn_shared_parameters(c);
     for (int i = 0; i < m->inits.n; i++) {
         lang_init *in = &LVEC_AT(m->inits, lang_init, i);
         in->value = unroll(c, in->value, 0);
@@ -847,10 +890,12 @@ void lang_check(lang_ctx *c)
                 e.pos = a->pos;
                 unknown(c, &e, &rhs, 0);
             }
-            if (s->kind != SYM_STATE)
-                lang_fail(c, a->pos, "a global assigns states; '%s' is %s", a->name,
-                          lang_sym_kind_name(s->kind));
-            a->state = s->index;
+            /* XPPAUT's globals assign states and parameters (flags.c): a parameter keeps its
+             * new value for the rest of the run (a spike counter) */
+            if (s->kind != SYM_STATE && s->kind != SYM_PARAM)
+                lang_fail(c, a->pos, "a global assigns states and parameters; '%s' is %s",
+                          a->name, lang_sym_kind_name(s->kind));
+            a->state = s->kind == SYM_STATE ? s->index : -1 - s->index;
             resolve(c, a->value, &rhs);
         }
         for (int k = 0; k < i; k++)

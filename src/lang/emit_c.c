@@ -1402,6 +1402,13 @@ static void emit_events(lang_ctx *c)
         LANG_C_CODEF(c, "static int dk_reset%d(double t, double *y, void *par)\n{\n"
                 "    const double *p = (const double *)par;\n    (void)t;\n    (void)p;\n",
              i);
+        /* a parameter (XPPAUT's spike counter) is set after the global's assignments, which
+         * all read its old value (flags.c), and the derived parameters follow it */
+        int n_par = 0;
+        for (int k = 0; k < ev->nassign; k++)
+            if (ev->assign[k].state < 0)
+                LANG_C_CODEF(c, "    double dk_par%d = 0.0;\n", n_par++);
+        n_par = 0;
         for (int k = 0; k < ev->nassign; k++) {
             const lang_assign *a = &ev->assign[k];
             root = a->value;
@@ -1411,9 +1418,28 @@ static void emit_events(lang_ctx *c)
                 emit_alg_solve(c, ALG_FAIL_STATUS);
             emit_fixes(c, needed);
             line_dir(c, a->pos);
-            LANG_C_CODEF(c, "        y[%d] = ", a->state);
+            if (a->state >= 0)
+                LANG_C_CODEF(c, "        y[%d] = ", a->state);
+            else
+                LANG_C_CODEF(c, "        dk_par%d = ", n_par++);
             expr(c, a->value, &x);
             LANG_C_CODE(c, ";\n    }\n");
+        }
+        if (n_par) {
+            LANG_C_CODE(c, "    double *pw = (double *)par;\n");
+            n_par = 0;
+            for (int k = 0; k < ev->nassign; k++)
+                if (ev->assign[k].state < 0)
+                    LANG_C_CODEF(c, "    pw[%d] = dk_par%d;\n", -1 - ev->assign[k].state,
+                                 n_par++);
+            const ectx px = {NULL, 0};
+            for (int k = 0; k < m->derived.n; k++) {
+                const int d = m->derived_order[k];
+                const lang_formula *f = &LVEC_AT(m->derived, lang_formula, d);
+                LANG_C_CODEF(c, "    pw[%d] = ", m->params.n + d);
+                expr(c, f->expr, &px);
+                LANG_C_CODE(c, ";\n");
+            }
         }
         LANG_C_CODE(c, "    return 0;\n}\n\n");
     }

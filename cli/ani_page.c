@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* The XPPAUT animation (.ani) of a model file on the page of `dynkit animate`: finding
- * NAME.ani beside NAME.ode (or NAME.c), reading it with the model's names (dynkit/ani.h),
+ * NAME.ani beside NAME.ode (or NAME.mech, NAME.c), reading it with the model's names
+ * (dynkit/ani.h),
  * evaluating every primitive at every sample the page shows, and writing the numbers into
  * the page's data — per run and primitive, one number when a value is the same in every
  * frame (numbers and parameters only, and every value of a `permanent` primitive, which
@@ -75,10 +76,13 @@ int cli_ani_open(const char *command, const char *model_spec, const char *ani_pa
 {
     memset(out, 0, sizeof *out);
     if (!ani_path) {
-        /* NAME.ani beside a model file NAME.ode or NAME.c */
-        if (!model_spec || !(ends_with(model_spec, ".ode") || ends_with(model_spec, ".c")))
+        /* NAME.ani beside a model file NAME.ode, NAME.mech or NAME.c */
+        if (!model_spec || !(ends_with(model_spec, ".ode") || ends_with(model_spec, ".c") ||
+                             ends_with(model_spec, ".mech")))
             return CLI_OK;
-        const size_t n = strlen(model_spec) - (ends_with(model_spec, ".c") ? 2 : 4);
+        const size_t n = strlen(model_spec) - (ends_with(model_spec, ".c")      ? 2
+                                               : ends_with(model_spec, ".mech") ? 5
+                                                                                : 4);
         if (n + 5 > sizeof out->path)
             return CLI_OK;
         memcpy(out->path, model_spec, n);

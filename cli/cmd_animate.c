@@ -29,7 +29,7 @@ static void animate_help(void)
          "                       unasked), and the file written is named on stderr;\n"
          "                       '-' writes the page to standard output\n"
          "  --ani FILE.ani       play XPPAUT's animation FILE.ani above the plots; a model\n"
-         "                       file NAME.ode (or NAME.c) plays NAME.ani beside it without\n"
+         "                       file NAME.ode (or .mech, .c) plays NAME.ani beside it without\n"
          "                       this option, when there is one\n"
          "  --no-ani             leave out the model file's NAME.ani\n"
          "A long run is thinned to at most 2000 samples (first and last kept).\n"

@@ -526,6 +526,20 @@ static void test_info_lists_the_mechanism(void **state_)
     cli_free(&r);
 }
 
+/* animate plays NAME.ani beside NAME.mech (its formulas in the mechanism's names) */
+static void test_animate_plays_the_ani_beside(void **state_)
+{
+    (void)state_;
+    char page[512];
+    snprintf(page, sizeof page, "%s", cli_path("dp.html"));
+    cli_result r = cli("animate %sdouble_pendulum.mech --tspan 0:2 -o %s", MECH, page);
+    CHECK(r.status == 0, "%s", r.err);
+    cli_free(&r);
+    char *html = cli_read_file(page, NULL);
+    CHECK(strstr(html, "\"ani\":{\"file\":\"double_pendulum.ani\""), "no animation in the page");
+    free(html);
+}
+
 static void expect_error(const char *text, const char *where, const char *what)
 {
     const char *path = cli_path("bad.mech");
@@ -589,6 +603,7 @@ int main(void)
         cmocka_unit_test(test_prescribed_motion_gives_the_driving_torque),
         cmocka_unit_test(test_fourbar_drive_torque_by_virtual_power),
         cmocka_unit_test(test_info_lists_the_mechanism),
+        cmocka_unit_test(test_animate_plays_the_ani_beside),
         cmocka_unit_test(test_errors_name_the_place),
     };
     return cmocka_run_group_tests(tests, setup_all, teardown_all);

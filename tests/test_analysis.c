@@ -5,7 +5,8 @@
  * top (+-sqrt(g/l), unstable) from differences, van der Pol at the origin (mu/2 +- i
  * sqrt(1 - mu^2/4)), the stability classes and their tolerance, the reduction P^+ A P to
  * an invariant subspace, equilibria (Lorenz's C+, the pendulum's bottom and top, an
- * ignorable coordinate left alone, none where there is none), and bad input named. Eigenvalues need
+ * ignorable coordinate left alone, none where there is none), the column of a coordinate
+ * that f does not depend on exactly zero, and bad input named. Eigenvalues need
  * the LAPACK backend; those tests are skipped without it. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -267,6 +268,35 @@ static int f_slide(double t, const double *y, double *f, void *par)
     return 0;
 }
 
+/* A rotor whose damping is written with sin^2 + cos^2 of its angle: the angle does not
+ * enter f, but its differences are rounding noise unless told apart from 0. */
+static int f_rotor(double t, const double *y, double *f, void *par)
+{
+    (void)t;
+    (void)par;
+    const double s = sin(y[0] + 0.3), c = cos(y[0] + 0.3);
+    f[0] = y[1];
+    f[1] = -0.5 * y[1] * (s * s + c * c) + 1e3 * (s * s + c * c) - 997.0;
+    return 0;
+}
+
+static const dyn_model rotor_model = {
+    .name = "rotor", .n_states = 2, .states = test_states, .y0 = test_y0, .rhs = f_rotor};
+
+static void test_ignorable_column_is_zero(void **state)
+{
+    (void)state;
+    double A[4], work[64];
+    const dyn_linearize_opts o = {DYN_JAC_RICHARDSON, NULL};
+    for (double x = -2.0; x <= 2.0; x += 0.37) {
+        const double y[2] = {x, 6.0};
+        assert_int_equal(dyn_linearize(&rotor_model, 0.0, y, NULL, &o, A, work, NULL), 0);
+        assert_true(A[0] == 0.0 && A[2] == 0.0); /* the angle's column exactly */
+        assert_true(A[1] == 1.0);
+        assert_close(A[3], -0.5, 1e-13);
+    }
+}
+
 static const dyn_model lorenz_model = {
     .name = "lorenz", .n_states = 3, .states = test_states, .y0 = test_y0, .rhs = f_lorenz};
 static const dyn_model slide_model = {
@@ -387,6 +417,7 @@ int main(void)
         cmocka_unit_test(test_classification),
         cmocka_unit_test(test_reduction_to_invariant_subspace),
         cmocka_unit_test(test_equilibria),
+        cmocka_unit_test(test_ignorable_column_is_zero),
 #ifdef DYNKIT_HAVE_LAPACK
         cmocka_unit_test(test_pendulum_eigenvalues),
         cmocka_unit_test(test_vanderpol_origin),

@@ -5,9 +5,10 @@
  * Cholesky, mu = lambda * max_i (J^T J)_ii, lambda from 0.1 divided by 10 after a step
  * that lowers ||f||_2 (down to 1e-15: Newton's step near a regular solution) and multiplied
  * by 10 until one does, and until the step is no longer than max(||y||_inf, 1), so that the
- * search stays near the guess. The Jacobian is dyn_linearize's, formed again at every accepted point.
- * Converged when ||f||_inf is within the tolerance, or within DYN_EQUILIBRIUM_FLOOR times it
- * when no step lowers ||f|| any more (f has reached its rounding). */
+ * search stays near the guess. The Jacobian is dyn_linearize's, formed again at every
+ * accepted point. Converged when ||f||_inf is within the tolerance, or within
+ * DYN_EQUILIBRIUM_FLOOR times it when no step lowers ||f|| any more (f has reached its
+ * rounding). */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>

@@ -574,6 +574,8 @@ static void test_errors_name_the_place(void **state_)
     snprintf(buf, sizeof buf, "%spoint p mass=m at (x, y, 0)\nforce f on p = (1, 2)\n", head);
     expect_error(buf, "bad.mech:4:21:", "expected ',' in the force");
     expect_error("par m=1\npoint p mass=m at (0, 0, 0)\n", "bad.mech", "no coordinates");
+    snprintf(buf, sizeof buf, "%sbdy b mass=m inertia=(1,1,1) at (x, y, 0)\n", head);
+    expect_error(buf, "bad.mech:3:1:", "unknown statement 'bdy' (did you mean 'body'?)");
     expect_error("coord x=1 [m], y=0 [m], z=0 [m]\npoint p mass=1 at (x, y, 0)\n",
                  "bad.mech:1:25:", "no mass or inertia moves with z");
     expect_error("coord x=1, y=0\npoint p mass=1 at (x+y, x+y, 0)\n", "bad.mech:1:12:",

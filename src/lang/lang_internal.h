@@ -398,6 +398,8 @@ int lang_is_ident_char(int ch);
 
 /* statements (ode_parse.c) */
 void lang_parse_model(lang_ctx *c);
+/* 1 when w is a keyword of an .ode statement (par, aux, table, ...), case folded */
+int lang_is_statement_keyword(const char *w);
 
 /* derivatives and simplification (deriv.c) */
 typedef struct lang_dvar {

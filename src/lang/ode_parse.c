@@ -943,6 +943,14 @@ static const char *const keywords[] = {
     "bdry", "bndry", "b", "boundary", "volt", "volterra", "v", "set", "special", "sp", "solv",
     "solve", "only", "export", "options", "opt"};
 
+int lang_is_statement_keyword(const char *w)
+{
+    for (size_t i = 0; i < sizeof keywords / sizeof keywords[0]; i++)
+        if (strcasecmp(w, keywords[i]) == 0)
+            return 1;
+    return 0;
+}
+
 static int keyword_is(const char *w, size_t n, const char *const *list, int count)
 {
     for (int i = 0; i < count; i++)

@@ -570,8 +570,17 @@ int mbs_statement(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos)
             lang_fail(c, e->pos, "stabilize takes a number >= 0 (Baumgarte's rate, 1/s)");
         mb->alpha = e->num;
         expect_end(lx, "stabilize");
-    } else
+    } else {
+        static const char *const words[] = {"coord", "gravity", "point", "body", "spring",
+                                            "force", "torque", "constraint", "prescribe",
+                                            "stabilize", "input"};
+        const char *near = lang_is_statement_keyword(w)
+                               ? NULL
+                               : dyn_lang_nearest(w, words, (int)(sizeof words / sizeof *words));
+        if (near)
+            lang_fail(c, wpos, "unknown statement '%s' (did you mean '%s'?)", w, near);
         return -1;
+    }
     return 0;
 }
 

@@ -349,6 +349,86 @@ static void test_rolling_disk_is_stable_above_the_closed_form_speed(void **state
     cli_free(&run);
 }
 
+/* The square of the rolling disk's lean eigenvalue at spin W: the eigenvalue of largest
+ * modulus l of its linearization, l^2 = re^2 - im^2 (positive while the lean diverges,
+ * negative while it oscillates). */
+static double disk_lean_square(double W)
+{
+    static double v[64];
+    char args[512];
+    snprintf(args, sizeof args, "%srolling_disk.mech --set W=%.17g", MECH, W);
+    const long rows = eigenvalues(args, v, 32);
+    long k = 0;
+    for (long i = 1; i < rows; i++)
+        if (hypot(v[2 * i], v[2 * i + 1]) > hypot(v[2 * k], v[2 * k + 1]))
+            k = i;
+    return v[2 * k] * v[2 * k] - v[2 * k + 1] * v[2 * k + 1];
+}
+
+/* The speed at which the lean's real part reaches zero, found by the secant method on
+ * l^2(W^2) from linearizations alone, is the closed form's W^2 = g / (3 r). */
+static void test_rolling_disk_critical_speed_by_root_finding(void **state_)
+{
+    (void)state_;
+    const double r = 0.3, g = 9.81, Wc = sqrt(g / (3 * r));
+    double a = 0.5 * Wc * Wc, b = 2 * Wc * Wc;
+    double fa = disk_lean_square(sqrt(a)), fb = disk_lean_square(sqrt(b));
+    CHECK(fa > 0 && fb < 0, "no change of sign: %g %g", fa, fb);
+    for (int it = 0; it < 4 && fb != fa; it++) {
+        const double c = b - fb * (b - a) / (fb - fa);
+        a = b;
+        fa = fb;
+        b = c;
+        fb = disk_lean_square(sqrt(b));
+    }
+    CHECK(fabs(sqrt(b) - Wc) < 1e-9 * Wc, "critical spin %.17g, closed form %.17g", sqrt(b), Wc);
+}
+
+/* Steady turning: the disk leaning by theta, its heading turning at Omega and its spin
+ * phi' keep their values when (C + m r^2) Omega w3 cos(theta) - A Omega^2 sin(theta)
+ * cos(theta) + m g r sin(theta) = 0, w3 = phi' + Omega sin(theta) the angular velocity
+ * along the axle (the moment of momentum about the mass centre, Neimark and Fufaev,
+ * Dynamics of Nonholonomic Systems, ch. 1; O'Reilly, Nonlinear Dyn. 10 (1996) 287); the
+ * contact point then runs on a circle of radius r |phi'| / Omega. A spin 1% off the
+ * relation makes the lean wander by more than 1e-4. */
+static void test_rolling_disk_keeps_a_steady_turn(void **state_)
+{
+    (void)state_;
+    const double m = 1, r = 0.3, g = 9.81, A = m * r * r / 4, C = m * r * r / 2;
+    const double theta[3] = {0.3, -0.6, 1.0}, Omega[3] = {2, 5, -1.5};
+    for (int k = 0; k < 6; k++) {
+        const double th = theta[k % 3], Om = Omega[k % 3];
+        const double w3 = (A * Om * Om * sin(th) * cos(th) - m * g * r * sin(th)) /
+                          ((C + m * r * r) * Om * cos(th));
+        const double dphi = (w3 - Om * sin(th)) * (k < 3 ? 1.0 : 1.01);
+        static double v[1 << 14];
+        cli_result run = cli("run %srolling_disk.mech --init theta=%.17g --init dpsi=%.17g "
+                             "--init dphi=%.17g --init dx=%.17g --init dy=0 --method dop853 "
+                             "--rtol 1e-12 --atol 1e-12 --tspan 0:10 --step 0.1",
+                             MECH, th, Om, dphi, r * dphi);
+        CHECK(run.status == 0, "%s", run.err);
+        int cols;
+        const long rows = csv_table(run.out, v, 1 << 14, &cols);
+        cli_free(&run);
+        CHECK(rows == 101, "rows %ld", rows);
+        const double lean = column_spread(v, rows, cols, 4, NULL);
+        double rmax = 0, rmin = 1e300; /* distance of the contact point from the centre */
+        const double cx = 0, cy = r * dphi / Om;
+        for (long i = 0; i < rows; i++) {
+            const double d = hypot(v[i * cols + 1] - cx, v[i * cols + 2] - cy);
+            rmax = fmax(rmax, d);
+            rmin = fmin(rmin, d);
+        }
+        if (k < 3)
+            CHECK(lean < 1e-10 && rmax - rmin < 1e-9 && fabs(rmax - fabs(r * dphi / Om)) < 1e-9,
+                  "theta %g, Omega %g: lean varied by %.3g, radius %.12g to %.12g", th, Om,
+                  lean, rmin, rmax);
+        else
+            CHECK(lean > 1e-4, "theta %g, Omega %g, spin off by 1%%: lean varied by %.3g only",
+                  th, Om, lean);
+    }
+}
+
 static void test_fourbar_loop_stays_closed(void **state_)
 {
     (void)state_;
@@ -600,6 +680,8 @@ int main(void)
         cmocka_unit_test(test_top_precesses_at_the_closed_form_rates),
         cmocka_unit_test(test_sleeping_top_is_stable_above_the_closed_form_spin),
         cmocka_unit_test(test_rolling_disk_is_stable_above_the_closed_form_speed),
+        cmocka_unit_test(test_rolling_disk_critical_speed_by_root_finding),
+        cmocka_unit_test(test_rolling_disk_keeps_a_steady_turn),
         cmocka_unit_test(test_fourbar_loop_stays_closed),
         cmocka_unit_test(test_cart_matches_the_builtin_cart),
         cmocka_unit_test(test_prescribed_motion_gives_the_driving_torque),

@@ -526,9 +526,24 @@ static void test_limits_are_refused_with_a_message(void **state)
     assert_int_equal(translate(deep, &out, &d, NULL), 2);
     CHECK(strstr(d.message, "nested too deeply"), "%s", d.message);
     free(deep);
-    /* functions that read a fixed quantity are inlined: 2^40 copies are refused */
+    /* functions that read a fixed quantity take it as an argument: 2^38 calls are 39 C
+     * functions (and their partial derivatives), a text of linear size */
     char *bomb = malloc(4096);
     strcpy(bomb, "phi=2*x\nf1(a)=phi*a\n");
+    for (int i = 2; i < 40; i++)
+        sprintf(bomb + strlen(bomb), "f%d(a)=f%d(a)+f%d(a)\n", i, i - 1, i - 1);
+    strcat(bomb, "x'=f39(x)\n");
+    assert_int_equal(translate(bomb, &out, &d, NULL), 0);
+    CHECK(strlen(out) < 100000 && strstr(out, ".jacobian = dk_jacobian"), "%zu bytes",
+          strlen(out));
+    free(out);
+    /* with more than 20 arguments and fixed quantities together the calls are expanded
+     * where they are called: 2^40 copies are refused */
+    strcpy(bomb, "");
+    for (int i = 0; i < 20; i++)
+        sprintf(bomb + strlen(bomb), "q%d=x+%d\n", i, i);
+    strcat(bomb, "f1(a)=a*(q0+q1+q2+q3+q4+q5+q6+q7+q8+q9+q10+q11+q12+q13+q14+q15+q16+q17+q18"
+                 "+q19)\n");
     for (int i = 2; i < 40; i++)
         sprintf(bomb + strlen(bomb), "f%d(a)=f%d(a)+f%d(a)\n", i, i - 1, i - 1);
     strcat(bomb, "x'=f39(x)\n");

@@ -512,6 +512,7 @@ static void fix_calls(lang_ctx *c, const node *e, int *uf)
  * cannot see the caller's locals). */
 static node *inline_fix_calls(lang_ctx *c, node *e, int depth)
 {
+    LANG_WORK(c, e->pos);
     if (depth > LANG_MAX_INLINE)
         lang_fail(c, e->pos, "calls nested too deeply to inline");
     for (int i = 0; i < e->nargs; i++)
@@ -522,6 +523,140 @@ static node *inline_fix_calls(lang_ctx *c, node *e, int depth)
             return inline_fix_calls(c, lang_subst(c, f->body, e->args), depth + 1);
     }
     return e;
+}
+
+/* ---- functions that read fixed quantities take them as arguments ----
+ * A C function cannot see its caller's locals: a function that reads fixed quantities (or
+ * algebraic variables), directly or through the functions it calls, takes them as
+ * arguments after its own, and every call passes them. Each function stays one C function
+ * and each call one call, so the C text grows with the file, not with the number of ways
+ * calls nest (f1(u)=f0(f0(u)), f2(u)=f1(f1(u)), ...: 2^k copies when the bodies were
+ * expanded where called). Only when a function would take more than LANG_MAX_ARGS
+ * arguments are the calls expanded instead (inline_fix_calls, bounded by LANG_MAX_COPIES). */
+typedef struct pass_set {
+    int n, over, done;
+    int kind[LANG_MAX_ARGS], index[LANG_MAX_ARGS]; /* N_FIX or N_ALG, and which */
+} pass_set;
+
+static void pass_add(pass_set *s, int kind, int index)
+{
+    for (int i = 0; i < s->n; i++)
+        if (s->kind[i] == kind && s->index[i] == index)
+            return;
+    if (s->n == LANG_MAX_ARGS) {
+        s->over = 1;
+        return;
+    }
+    s->kind[s->n] = kind;
+    s->index[s->n++] = index;
+}
+
+static void pass_of(lang_ctx *c, pass_set *sets, int f);
+
+/* What e reads that a function must be passed, into s. */
+static void pass_collect(lang_ctx *c, pass_set *sets, const node *e, pass_set *s)
+{
+    for (int i = 0; i < e->nargs; i++)
+        pass_collect(c, sets, e->args[i], s);
+    if (e->kind == N_FIX || e->kind == N_ALG) {
+        pass_add(s, e->kind, e->index);
+    } else if (e->kind == N_UFUN && LVEC_AT(c->m.funcs, lang_func, e->index).uses_fix) {
+        pass_of(c, sets, e->index);
+        const pass_set *g = &sets[e->index];
+        s->over |= g->over;
+        for (int i = 0; i < g->n; i++)
+            pass_add(s, g->kind[i], g->index[i]);
+    }
+}
+
+/* (functions do not call themselves, directly or not: refused before) */
+static void pass_of(lang_ctx *c, pass_set *sets, int f)
+{
+    if (sets[f].done)
+        return;
+    sets[f].done = 1;
+    pass_collect(c, sets, LVEC_AT(c->m.funcs, lang_func, f).body, &sets[f]);
+}
+
+/* e with each call of such a function given what it reads after its own arguments; in the
+ * body of function own (own_nargs arguments of its own), what it is passed read as those
+ * arguments. */
+static node *pass_rewrite(lang_ctx *c, const pass_set *sets, node *e, const pass_set *own,
+                          int own_nargs)
+{
+    if (own && (e->kind == N_FIX || e->kind == N_ALG)) {
+        int k = 0;
+        while (own->kind[k] != (int)e->kind || own->index[k] != e->index)
+            k++;
+        node *a = lang_node(c, N_ARG, e->pos);
+        a->index = own_nargs + k;
+        return a;
+    }
+    const int call = e->kind == N_UFUN && LVEC_AT(c->m.funcs, lang_func, e->index).uses_fix;
+    if (e->nargs == 0 && !call)
+        return e;
+    const int extra = call ? sets[e->index].n : 0;
+    node *n = lang_node(c, e->kind, e->pos);
+    *n = *e;
+    n->args = lang_alloc(c, (size_t)(e->nargs + extra + 1) * sizeof *n->args);
+    for (int i = 0; i < e->nargs; i++)
+        n->args[i] = pass_rewrite(c, sets, e->args[i], own, own_nargs);
+    for (int i = 0; i < extra; i++) {
+        node *x = lang_node(c, sets[e->index].kind[i], e->pos);
+        x->index = sets[e->index].index[i];
+        n->args[e->nargs + i] = pass_rewrite(c, sets, x, own, own_nargs);
+    }
+    n->nargs = e->nargs + extra;
+    return n;
+}
+
+/* Gives the functions that read fixed quantities these as arguments and returns what each
+ * is passed, or NULL (nothing changed) when one would take more than LANG_MAX_ARGS. */
+static const pass_set *pass_fixes_as_args(lang_ctx *c)
+{
+    lang_model *m = &c->m;
+    const int nf = m->funcs.n;
+    pass_set *sets = lang_alloc(c, ((size_t)nf + 1) * sizeof *sets);
+    int any = 0;
+    for (int f = 0; f < nf; f++) {
+        const lang_func *fn = &LVEC_AT(m->funcs, lang_func, f);
+        if (!fn->uses_fix)
+            continue;
+        any = 1;
+        pass_of(c, sets, f);
+        if (sets[f].over || fn->nargs + sets[f].n > LANG_MAX_ARGS)
+            return NULL;
+    }
+    if (!any)
+        return sets;
+    for (int f = 0; f < nf; f++) {
+        lang_func *fn = &LVEC_AT(m->funcs, lang_func, f);
+        if (fn->uses_fix)
+            fn->body = pass_rewrite(c, sets, fn->body, &sets[f], fn->nargs);
+    }
+    for (int f = 0; f < nf; f++) { /* then the arguments (the bodies used the old counts) */
+        lang_func *fn = &LVEC_AT(m->funcs, lang_func, f);
+        if (!fn->uses_fix || sets[f].n == 0)
+            continue;
+        const char **names = lang_alloc(c, (size_t)(fn->nargs + sets[f].n) * sizeof *names);
+        for (int k = 0; k < fn->nargs; k++)
+            names[k] = fn->argnames[k];
+        for (int k = 0; k < sets[f].n; k++)
+            names[fn->nargs + k] =
+                sets[f].kind[k] == N_FIX
+                    ? LVEC_AT(m->fixes, lang_formula, sets[f].index[k]).name
+                    : LVEC_AT(m->algs, lang_formula, sets[f].index[k]).name;
+        fn->argnames = names;
+        fn->nargs += sets[f].n;
+    }
+    return sets;
+}
+
+/* A top-level formula's calls by pass_fixes_as_args's rule when it held (sets), else
+ * expanded */
+static node *fix_calls_of(lang_ctx *c, node *e, const pass_set *sets)
+{
+    return sets ? pass_rewrite(c, sets, e, NULL, 0) : inline_fix_calls(c, e, 0);
 }
 
 /* The block of a network sum's len states or fixed quantities (len 0: every state from name
@@ -926,27 +1061,28 @@ void lang_check(lang_ctx *c)
         st->init = in->value;
         st->init_pos = in->pos;
     }
+    const pass_set *sets = pass_fixes_as_args(c);
     for (int i = 0; i < m->fixes.n; i++) {
         lang_formula *f = &LVEC_AT(m->fixes, lang_formula, i);
-        f->expr = inline_fix_calls(c, f->expr, 0);
+        f->expr = fix_calls_of(c, f->expr, sets);
     }
     for (int i = 0; i < m->states.n; i++) {
         lang_state *st = &LVEC_AT(m->states, lang_state, i);
-        st->rhs = inline_fix_calls(c, st->rhs, 0);
+        st->rhs = fix_calls_of(c, st->rhs, sets);
     }
     for (int i = 0; i < m->auxs.n; i++) {
         lang_formula *f = &LVEC_AT(m->auxs, lang_formula, i);
-        f->expr = inline_fix_calls(c, f->expr, 0);
+        f->expr = fix_calls_of(c, f->expr, sets);
     }
     for (int i = 0; i < m->algeqs.n; i++) {
         lang_formula *f = &LVEC_AT(m->algeqs, lang_formula, i);
-        f->expr = inline_fix_calls(c, f->expr, 0);
+        f->expr = fix_calls_of(c, f->expr, sets);
     }
     for (int i = 0; i < m->events.n; i++) {
         lang_event *ev = &LVEC_AT(m->events, lang_event, i);
-        ev->cond = inline_fix_calls(c, ev->cond, 0);
+        ev->cond = fix_calls_of(c, ev->cond, sets);
         for (int k = 0; k < ev->nassign; k++)
-            ev->assign[k].value = inline_fix_calls(c, ev->assign[k].value, 0);
+            ev->assign[k].value = fix_calls_of(c, ev->assign[k].value, sets);
     }
     m->fix_order = order(c, &m->fixes, N_FIX, 0, "fixed quantities");
     m->derived_order = order(c, &m->derived, N_PARAM, m->params.n, "derived parameters");

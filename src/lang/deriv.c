@@ -200,6 +200,7 @@ node *lang_fun1(lang_ctx *c, int f, node *a) { return fun(c, f, a, NULL); }
 /* body with its arguments replaced by args (for inlining a call) */
 node *lang_subst(lang_ctx *c, node *body, node **args)
 {
+    LANG_WORK(c, body->pos);
     if (body->kind == N_ARG)
         return args[body->index];
     if (body->nargs == 0)
@@ -333,6 +334,7 @@ static node *d_ufun(lang_ctx *c, node *e, lang_dvar *v)
 
 static node *d(lang_ctx *c, node *e, lang_dvar *v)
 {
+    LANG_WORK(c, e->pos);
     if (++c->depth > 8 * LANG_MAX_DEPTH)
         lang_fail(c, e->pos, "expression nested too deeply to differentiate");
     node *r;

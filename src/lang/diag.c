@@ -135,6 +135,16 @@ _Noreturn void lang_oom(lang_ctx *c)
     longjmp(*c->fail, 1);
 }
 
+_Noreturn void lang_work_exceeded(lang_ctx *c, lpos p)
+{
+    lang_fail(c, p, "the formulas expand to more than %ld terms (the bound of the "
+              "translator's work: calls of functions that read the states are expanded "
+              "where they are differentiated, and so are all calls when a function would "
+              "take more than %d arguments with the fixed quantities it reads); write the "
+              "nested calls as fixed quantities, each computed once",
+              LANG_MAX_WORK, LANG_MAX_ARGS);
+}
+
 _Noreturn void lang_fail(lang_ctx *c, lpos p, const char *fmt, ...)
 {
     c->status = 2;

@@ -133,6 +133,7 @@ static void call_args(lang_ctx *c, const node *e, const ectx *x)
 
 static void expr(lang_ctx *c, const node *e, const ectx *x)
 {
+    LANG_WORK(c, e->pos);
     if (++c->depth > 16 * LANG_MAX_DEPTH)
         lang_fail(c, e->pos, "expression too deep to write as C");
     lang_model *m = &c->m;
@@ -285,6 +286,7 @@ static void expr(lang_ctx *c, const node *e, const ectx *x)
 /* needed: one flag per fixed quantity, then one per network sum */
 static void need(lang_ctx *c, const node *e, unsigned char *needed)
 {
+    LANG_WORK(c, e->pos);
     for (int i = 0; i < e->nargs; i++)
         need(c, e->args[i], needed);
     if (e->kind == N_FIX && !needed[e->index]) {
@@ -1169,6 +1171,7 @@ static int alg_jacobian_entries(lang_ctx *c, jac_plan *jp, const unsigned char *
     const int na = m->algs.n, nf = m->fixes.n;
     jmp_buf fail;
     jmp_buf *outer = c->fail;
+    const long work = c->work;
     c->fail = &fail;
     if (setjmp(fail) == 0) {
         aj->entry = lang_alloc(c, (size_t)na * (size_t)na * sizeof *aj->entry);
@@ -1188,6 +1191,7 @@ static int alg_jacobian_entries(lang_ctx *c, jac_plan *jp, const unsigned char *
         return 1;
     }
     c->fail = outer;
+    c->work = work;
     derivative_failed(c, jp, "the algebraic equations' Jacobian by differences: ", "");
     return 0;
 }
@@ -1199,6 +1203,7 @@ static int alg_jacobian_entries(lang_ctx *c, jac_plan *jp, const unsigned char *
  * running error bound, to first order). */
 static void emit_bound(lang_ctx *c, const node *e, const ectx *x)
 {
+    LANG_WORK(c, e->pos);
     if (e->kind == N_NEG) {
         emit_bound(c, e->args[0], x);
         return;
@@ -1482,6 +1487,7 @@ static int try_jacobian(lang_ctx *c, jac_plan *jp)
 {
     jmp_buf jac_fail;
     jmp_buf *outer = c->fail;
+    const long work = c->work; /* a Jacobian given up gives its work back to the rest */
     c->copies = 0;
     c->fail = &jac_fail;
     if (setjmp(jac_fail) == 0) {
@@ -1490,6 +1496,7 @@ static int try_jacobian(lang_ctx *c, jac_plan *jp)
         return 1;
     }
     c->fail = outer;
+    c->work = work;
     derivative_failed(c, jp,
                       "no analytic Jacobian: ", "; the stiff methods use finite differences");
     if (jp->writing) { /* failed while writing: back to the main text */

@@ -30,6 +30,8 @@
 #define LANG_MAX_MEMORY ((size_t)1 << 29) /* bytes of the translator's own memory */
 #define LANG_MAX_COPIES 500000        /* nodes copied by inlining function bodies */
 #define LANG_MAX_OUTPUT ((size_t)1 << 28) /* bytes of C text */
+#define LANG_MAX_WORK 100000000L /* visits of expression nodes (expanding calls, deriving,
+                                  * writing C): 1 to 3 s */
 #define LANG_MAX_TABLE 1000000            /* points of the lookup tables */
 #define LANG_MAX_SUM_STACK 65536          /* doubles of the network sums' arrays (on the stack) */
 #define LANG_MAX_ALG 100                  /* algebraic variables (a dense Newton system) */
@@ -132,7 +134,8 @@ typedef struct lang_func {
     node *body;
     int mark;
     int uses_state, uses_time; /* directly or through other functions */
-    int uses_fix;              /* reads fixed temporaries: inlined where it is called */
+    int uses_fix;              /* reads fixed temporaries (or algebraic variables): given
+                                * them as arguments after its own (check.c) */
     int uses_table;            /* calls a table (directly or through other functions; set by
                                 * lang_check's passes over the functions) */
 } lang_func;
@@ -318,6 +321,7 @@ typedef struct lang_ctx {
     int depth;            /* recursion guard of the parser and the derivative */
     size_t bytes;         /* memory taken by the arena */
     long copies;          /* nodes copied by lang_subst */
+    long work;            /* nodes visited (LANG_WORK) */
     struct node *zero, *one; /* shared constants of the derivatives (never changed) */
     unsigned helpers;     /* emit_c.c: the dk_ helpers the C text uses */
     unsigned char *fused; /* emit_c.c: user functions (and partials) the C text calls */
@@ -346,6 +350,14 @@ void lang_note(lang_ctx *c, lpos p, const char *fmt, ...);
 /* A note that is a warning (DYN_LANG_WARNING): the file's line was left out. */
 void lang_warn(lang_ctx *c, lpos p, const char *fmt, ...);
 void *lvec_push(lang_ctx *c, lvec *v, size_t elem);
+/* One more visit of an expression node at p; past LANG_MAX_WORK the translation stops with
+ * a message naming the bound. */
+_Noreturn void lang_work_exceeded(lang_ctx *c, lpos p);
+#define LANG_WORK(c, p)                                                                      \
+    do {                                                                                     \
+        if (++(c)->work > LANG_MAX_WORK)                                                     \
+            lang_work_exceeded((c), (p));                                                    \
+    } while (0)
 #define LVEC_AT(v, type, i) (((type *)(v).data)[i])
 
 /* table files (table_file.c): the file of `table NAME FILE` opened for reading, where

@@ -90,6 +90,16 @@ static void solve(const double *L, int n, double *x)
     }
 }
 
+int mbs_positive_definite(lang_ctx *c, const double *M, int n)
+{
+    for (int i = 0; i < n * n; i++)
+        if (!isfinite(M[i]))
+            return 1; /* not known before the run: taken as it is */
+    double *L = lang_alloc(c, (size_t)n * n * sizeof *L);
+    memcpy(L, M, (size_t)n * n * sizeof *L);
+    return cholesky(L, n) < 0;
+}
+
 void mbs_check_initial(lang_ctx *c, const mbs_model *mb, double *M, const double *D)
 {
     const int n = mb->coords.n, m = mb->cons.n;

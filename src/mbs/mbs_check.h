@@ -16,6 +16,8 @@ void mbs_initial_values(lang_ctx *c, mbs_initial *ini);
 /* a symbolic formula of the states and t at the initial state (NaN where a table or an
  * input would be read) */
 double mbs_value(lang_ctx *c, const mbs_initial *ini, const node *e);
+/* 1 when the n x n matrix M is positive definite (or not known: not finite), else 0 */
+int mbs_positive_definite(lang_ctx *c, const double *M, int n);
 /* M (n x n, the mass matrix; overwritten) positive definite and the rows D (m x n)
  * independent, else fails naming the coordinates or constraints */
 void mbs_check_initial(lang_ctx *c, const mbs_model *mb, double *M, const double *D);

@@ -413,16 +413,13 @@ static const char *force_unit(lang_ctx *c, const char *unit, int rate)
     return lang_printf(c, rate ? "W/(%s)" : "J/(%s)", unit);
 }
 
-static void constraints(dctx *d, node **F_Q, node **qdd, node **a0, node **L, node **dinv)
+/* The constraints' rows D (m x n) and their terms btot = c + Baumgarte's (m), with the
+ * multipliers' units: D q'' + btot = 0. */
+static void constraint_rows(dctx *d, node **D, node **btot)
 {
     lang_ctx *c = d->c;
     mbs_model *mb = d->mb;
     const int n = d->n, m = mb->cons.n;
-    node **D = lang_alloc(c, (size_t)(m * n + 1) * sizeof *D);
-    node **X = lang_alloc(c, (size_t)(m * n + 1) * sizeof *X);
-    node **A = lang_alloc(c, (size_t)(m * m + 1) * sizeof *A);
-    node **b = lang_alloc(c, (size_t)(m + 1) * sizeof *b);
-    (void)F_Q;
     if (symbolic(d)) {
         mb->con_D = D;
         mb->con_c = lang_alloc(c, (size_t)(m + 1) * sizeof *mb->con_c);
@@ -487,9 +484,7 @@ static void constraints(dctx *d, node **F_Q, node **qdd, node **a0, node **L, no
             stab = add(d, mul(d, num(d, 2.0 * mb->alpha), hf),
                        mul(d, num(d, mb->alpha * mb->alpha), fix(d, lang_printf(c, "%s_f", tag), f)));
         }
-        b[r] = fix(d, lang_printf(c, "%s_b", tag),
-                   lang_neg(c, add(d, add(d, dot_n(d, D + r * n, a0, n), conv), stab)));
-        chol_solve(d, lang_printf(c, "%s_X", tag), L, dinv, n, D + r * n, X + r * n);
+        btot[r] = fix(d, lang_printf(c, "%s_c", tag), add(d, conv, stab));
         const char *cu = k->prescribed >= 0
                              ? force_unit(c, LVEC_AT(mb->coords, mbs_coord, k->prescribed).unit, 0)
                          : k->unit ? force_unit(c, k->unit, on_speeds)
@@ -500,8 +495,25 @@ static void constraints(dctx *d, node **F_Q, node **qdd, node **a0, node **L, no
             out->doc.description = lang_printf(c, "force of the constraint %s (%s)", k->name,
                                                on_speeds ? "on the speeds" : "holonomic");
     }
-    if (symbolic(d))
-        return;
+}
+
+/* The multipliers by the Schur complement: with M's factor (L, dinv; of M + D'D when
+ * regularized), q'' = a0 + X mu, X = M^-1 D', (D X) mu = -(D a0 + btot); lambda = mu, or
+ * mu + btot for M + D'D (whose q'' solves M q'' = F + D' lambda as D q'' = -btot). */
+static void multipliers(dctx *d, node **D, node **btot, node **a0, node **L, node **dinv,
+                        int regularized, node **qdd)
+{
+    lang_ctx *c = d->c;
+    mbs_model *mb = d->mb;
+    const int n = d->n, m = mb->cons.n;
+    node **X = lang_alloc(c, (size_t)(m * n + 1) * sizeof *X);
+    node **A = lang_alloc(c, (size_t)(m * m + 1) * sizeof *A);
+    node **b = lang_alloc(c, (size_t)(m + 1) * sizeof *b);
+    for (int r = 0; r < m; r++) {
+        b[r] = fix(d, lang_printf(c, "c%d_b", r),
+                   lang_neg(c, add(d, dot_n(d, D + r * n, a0, n), btot[r])));
+        chol_solve(d, lang_printf(c, "c%d_X", r), L, dinv, n, D + r * n, X + r * n);
+    }
     for (int r = 0; r < m; r++)
         for (int s = 0; s <= r; s++) {
             A[r * m + s] = fix(d, lang_printf(c, "A%d_%d", r, s),
@@ -521,7 +533,8 @@ static void constraints(dctx *d, node **F_Q, node **qdd, node **a0, node **L, no
     }
     for (int r = 0; r < m; r++) {
         mbs_constraint *k = &LVEC_AT(mb->cons, mbs_constraint, r);
-        LVEC_AT(c->m.auxs, lang_formula, k->aux).expr = lam[r];
+        LVEC_AT(c->m.auxs, lang_formula, k->aux).expr =
+            regularized ? fix(d, lang_printf(c, "lam%d", r), add(d, lam[r], btot[r])) : lam[r];
     }
 }
 
@@ -728,27 +741,44 @@ void mbs_derive(lang_ctx *c, mbs_model *mb)
             M[k * n + i] = M[i * n + k];
         }
     }
+    const int nc = mb->cons.n;
+    node **D = lang_alloc(c, ((size_t)nc * n + 1) * sizeof *D);
+    node **btot = lang_alloc(c, ((size_t)nc + 1) * sizeof *btot);
+    d.D0 = lang_alloc(c, ((size_t)nc * n + 1) * sizeof *d.D0);
+    if (nc)
+        constraint_rows(&d, D, btot);
     if (symbolic(&d)) { /* dynkit derive: the formulas of M, F and the constraints */
         mb->M = M;
         mb->F = F;
-        d.D0 = lang_alloc(c, ((size_t)mb->cons.n * n + 1) * sizeof *d.D0);
-        if (mb->cons.n)
-            constraints(&d, F, NULL, NULL, NULL, NULL);
         mbs_check_initial(c, mb, M0, d.D0);
         return;
     }
+    /* M singular where the constraints fix the motion (the radial direction of Euler
+     * parameters): M + D'D instead, positive definite when [M; D] has full rank */
+    const int regularized = nc && !mbs_positive_definite(c, M0, n);
+    if (regularized) {
+        for (int i = 0; i < n; i++)
+            for (int k = 0; k <= i; k++) {
+                node *s = M[i * n + k];
+                for (int r = 0; r < nc; r++)
+                    s = add(&d, s, mul(&d, D[r * n + i], D[r * n + k]));
+                M[i * n + k] = M[k * n + i] = fix(&d, lang_printf(c, "Mr%d_%d", i, k), s);
+                for (int r = 0; r < nc; r++)
+                    M0[i * n + k] += d.D0[r * n + i] * d.D0[r * n + k];
+                M0[k * n + i] = M0[i * n + k];
+            }
+    }
+    mbs_check_initial(c, mb, M0, d.D0);
     node **L = lang_alloc(c, (size_t)n * n * sizeof *L);
     node **dinv = lang_alloc(c, (size_t)n * sizeof *dinv);
     node **a0 = lang_alloc(c, (size_t)n * sizeof *a0);
     node **qdd = lang_alloc(c, (size_t)n * sizeof *qdd);
     cholesky(&d, "M", M, n, L, dinv);
     chol_solve(&d, "a0", L, dinv, n, F, a0);
-    d.D0 = lang_alloc(c, ((size_t)mb->cons.n * n + 1) * sizeof *d.D0);
-    if (mb->cons.n)
-        constraints(&d, F, qdd, a0, L, dinv);
+    if (nc)
+        multipliers(&d, D, btot, a0, L, dinv, regularized, qdd);
     else
         memcpy(qdd, a0, (size_t)n * sizeof *qdd);
-    mbs_check_initial(c, mb, M0, d.D0);
     for (int i = 0; i < n; i++) {
         LVEC_AT(m->states, lang_state, d.q[i]).rhs = ref(&d, N_STATE, d.u[i]);
         LVEC_AT(m->states, lang_state, d.u[i]).rhs = qdd[i];

@@ -44,6 +44,9 @@ static int teardown_all(void **state)
     return system(cmd) == 0 ? 0 : -1;
 }
 
+static double compare_runs(const char *a_args, const char *b_args, const char *const *names,
+                           int count);
+
 typedef struct loaded {
     dyn_jit_model jm;
     const dyn_model *m;
@@ -204,6 +207,20 @@ static void test_plane_matches_the_builtin_plane(void **state_)
     CHECK(worst < 1e-8, "largest difference %.3g", worst);
     cli_free(&ra);
     cli_free(&rb);
+}
+
+/* The plane with Euler parameters (their norm a constraint; M + D'D, as M is singular along
+ * the parameters' radial direction) against the built-in plane-quat. */
+static void test_plane_quat_matches_the_builtin_plane_quat(void **state_)
+{
+    (void)state_;
+    static const char *const names[] = {"sX", "sY", "sZ", "qw", "qx", "qy", "qz"};
+    char a[1024], b[1024];
+    const char *opts = "--method dop853 --rtol 1e-12 --atol 1e-12 --tspan 0:5 --step 0.05";
+    snprintf(a, sizeof a, "%splane_quat.mech %s", MECH, opts);
+    snprintf(b, sizeof b, "plane-quat %s", opts);
+    const double worst = compare_runs(a, b, names, 7);
+    CHECK(worst < 1e-8, "largest difference %.3g", worst);
 }
 
 /* Steady precession of a heavy symmetric top at nutation theta with spin w3 = dphi + dpsi
@@ -677,6 +694,7 @@ int main(void)
         cmocka_unit_test(test_double_pendulum_matches_hand_derivation),
         cmocka_unit_test(test_double_pendulum_keeps_its_energy),
         cmocka_unit_test(test_plane_matches_the_builtin_plane),
+        cmocka_unit_test(test_plane_quat_matches_the_builtin_plane_quat),
         cmocka_unit_test(test_top_precesses_at_the_closed_form_rates),
         cmocka_unit_test(test_sleeping_top_is_stable_above_the_closed_form_spin),
         cmocka_unit_test(test_rolling_disk_is_stable_above_the_closed_form_speed),

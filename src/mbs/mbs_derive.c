@@ -225,9 +225,59 @@ static void identity(dctx *d, node *M[9])
         M[i] = num(d, i % 4 == 0 ? 1.0 : 0.0);
 }
 
+static node *dot(dctx *d, node *const *a, node *const *b);
+
+/* R of Euler parameters (w, x, y, z), divided by their norm (dyn_quat_to_mat's formula,
+ * orthogonal for any nonzero q), and the angular velocity in B from skew(w_B) = R dR'/dt,
+ * w_B = (S32, S13, S21) with S = R dR'/dq_k for column k of J_w. */
+static void quaternion(dctx *d, mbs_body *b, node **Jw, node *w[3])
+{
+    node *q[4];
+    for (int k = 0; k < 4; k++)
+        q[k] = input(d, b->quat[k]);
+    node *n2 = add(d, add(d, mul(d, q[0], q[0]), mul(d, q[1], q[1])),
+                   add(d, mul(d, q[2], q[2]), mul(d, q[3], q[3])));
+    node *s = lang_div(d->c, num(d, 2.0), n2);
+#define QP(a, b) mul(d, s, mul(d, q[a], q[b]))
+    node **R = b->R;
+    R[0] = sub(d, num(d, 1.0), add(d, QP(2, 2), QP(3, 3)));
+    R[1] = add(d, QP(1, 2), QP(0, 3));
+    R[2] = sub(d, QP(1, 3), QP(0, 2));
+    R[3] = sub(d, QP(1, 2), QP(0, 3));
+    R[4] = sub(d, num(d, 1.0), add(d, QP(1, 1), QP(3, 3)));
+    R[5] = add(d, QP(2, 3), QP(0, 1));
+    R[6] = add(d, QP(1, 3), QP(0, 2));
+    R[7] = sub(d, QP(2, 3), QP(0, 1));
+    R[8] = sub(d, num(d, 1.0), add(d, QP(1, 1), QP(2, 2)));
+#undef QP
+    for (int k = -1; k < d->n; k++) { /* k = -1: the partial derivative in t */
+        node *dR[9];
+        for (int i = 0; i < 9; i++)
+            dR[i] = k < 0 ? dt(d, R[i]) : dq(d, R[i], d->q[k]);
+        node *S[9];
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++) /* S = R dR' */
+                S[3 * i + j] = dot(d, R + 3 * i, dR + 3 * j);
+        node *col[3] = {S[7], S[2], S[3]};
+        for (int j = 0; j < 3; j++) {
+            if (k < 0)
+                w[j] = col[j];
+            else
+                Jw[3 * k + j] = col[j];
+        }
+    }
+    for (int j = 0; j < 3; j++)
+        for (int k = 0; k < d->n; k++)
+            w[j] = add(d, w[j], mul(d, Jw[3 * k + j], ref(d, N_STATE, d->u[k])));
+}
+
 /* R, and J_w (3 n symbolic) with the angular velocity in B */
 static void rotation(dctx *d, mbs_body *b, node **Jw, node *w[3])
 {
+    if (b->quat[0] >= 0) {
+        quaternion(d, b, Jw, w);
+        return;
+    }
     node *ang[MBS_MAX_ROT], *P[MBS_MAX_ROT][9];
     identity(d, b->R);
     for (int i = 0; i < b->nrot; i++) {

@@ -33,6 +33,7 @@ typedef struct mbs_body {
     int nrot;
     int axis[MBS_MAX_ROT];  /* 0 x, 1 y, 2 z */
     int angle[MBS_MAX_ROT]; /* inputs */
+    int quat[4];        /* inputs: Euler parameters (w, x, y, z) in place of rotations, or -1 */
     /* derived (mbs_derive.c) */
     node *x[3], *R[9];  /* symbolic: position, N->B rotation */
     node *Rf[9];        /* R as fixed quantities */

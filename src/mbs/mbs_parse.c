@@ -328,6 +328,8 @@ static void parse_body(lang_ctx *c, lang_lexer *lx, int point, lpos kpos)
     b.mass = -1;
     for (int k = 0; k < 6; k++)
         b.inertia[k] = -1;
+    for (int k = 0; k < 4; k++)
+        b.quat[k] = -1;
     int has_at = 0, has_inertia = 0;
     while (peek(lx)) {
         lpos wpos;
@@ -373,6 +375,23 @@ static void parse_body(lang_ctx *c, lang_lexer *lx, int point, lpos kpos)
                 const int save = lx->i;
                 lpos apos;
                 const char *a = read_word(lx, &apos, "expected an axis x, y or z");
+                if (peek(lx) == ':' && strcasecmp(a, "quat") == 0) { /* Euler parameters */
+                    lx->i++;
+                    if (b.nrot || b.quat[0] >= 0)
+                        lang_fail(c, apos, "quat:(w, x, y, z) is the whole orientation: no "
+                                  "other rotation beside it");
+                    expect(lx, '(', "expected '(' before the Euler parameters (w, x, y, z)");
+                    for (int k = 0; k < 4; k++) {
+                        b.quat[k] = input_expr(lx, "an Euler parameter");
+                        expect(lx, k < 3 ? ',' : ')', k < 3 ? "expected ',' between the Euler "
+                               "parameters (w, x, y, z)" : "expected ')' after the Euler "
+                               "parameters (w, x, y, z)");
+                    }
+                    continue;
+                }
+                if (b.quat[0] >= 0)
+                    lang_fail(c, apos, "quat:(w, x, y, z) is the whole orientation: no other "
+                              "rotation beside it");
                 if (peek(lx) != ':' || strlen(a) != 1 || !strchr("xyzXYZ", a[0])) {
                     lx->i = save;
                     break;
@@ -383,9 +402,9 @@ static void parse_body(lang_ctx *c, lang_lexer *lx, int point, lpos kpos)
                 b.axis[b.nrot] = tolower((unsigned char)a[0]) - 'x';
                 b.angle[b.nrot++] = add_input(c, angle_value(lx, "the rotation's angle"));
             }
-            if (b.nrot == 0)
+            if (b.nrot == 0 && b.quat[0] < 0)
                 lang_fail(c, lang_here(lx), "expected elementary rotations AXIS:ANGLE after "
-                          "'rot' (e.g. rot z:psi y:theta x:phi)");
+                          "'rot' (e.g. rot z:psi y:theta x:phi), or quat:(w, x, y, z)");
         } else {
             lang_fail(c, wpos, "unknown word '%s' in a %s: expected mass=, %sat (x, y, z)%s",
                       w, point ? "point" : "body", point ? "" : "inertia=(Ixx, Iyy, Izz), ",

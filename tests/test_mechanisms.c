@@ -446,6 +446,41 @@ static void test_rolling_disk_keeps_a_steady_turn(void **state_)
     }
 }
 
+/* A pendulum on a freely rolling cart: about phi = 0 it swings at sqrt(g (mc + mb) / (mc l))
+ * (the cart's and the bob's motions opposite), the cart's position and speed give two zeros;
+ * the common centre of mass stays where it is (no horizontal force). */
+static void test_cart_pendulum_frequency_and_centre_of_mass(void **state_)
+{
+    (void)state_;
+    static double v[1 << 14];
+    char args[512];
+    snprintf(args, sizeof args, "%scart_pendulum.mech --init phi=0", MECH);
+    const long n = eigenvalues(args, v, 16);
+    CHECK(n == 4, "rows %ld", n);
+    const double w = sqrt(9.81 * 2.5 / (2 * 0.8));
+    int zeros = 0, matched = 0;
+    for (long i = 0; i < n; i++) {
+        if (fabs(v[2 * i]) < 1e-9 && fabs(v[2 * i + 1]) < 1e-9)
+            zeros++;
+        else if (fabs(v[2 * i]) < 1e-9 && fabs(fabs(v[2 * i + 1]) - w) < 1e-9 * w)
+            matched++;
+    }
+    CHECK(zeros == 2 && matched == 2, "%d zeros, %d of 2 at %.17g", zeros, matched, w);
+    cli_result r = cli("run %scart_pendulum.mech --outputs --method dop853 --rtol 1e-12 "
+                       "--atol 1e-12 --step 0.1", MECH);
+    CHECK(r.status == 0, "%s", r.err);
+    int cols;
+    const long rows = csv_table(r.out, v, 1 << 14, &cols);
+    CHECK(rows == 101 && cols == 9, "rows %ld cols %d", rows, cols);
+    double x0;
+    const double spread = column_spread(v, rows, cols, 5, &x0); /* t x phi dx dphi xcm ... */
+    CHECK(fabs(x0 - 0.5 * 0.8 * sin(20 * DYN_PI / 180) / 2.5) < 1e-15 && spread < 1e-10,
+          "centre of mass %.17g moved by %.3g m", x0, spread);
+    const double swing = column_spread(v, rows, cols, 1, NULL);
+    CHECK(swing > 0.05, "the cart moves (%.3g m)", swing);
+    cli_free(&r);
+}
+
 static void test_fourbar_loop_stays_closed(void **state_)
 {
     (void)state_;
@@ -700,6 +735,7 @@ int main(void)
         cmocka_unit_test(test_rolling_disk_is_stable_above_the_closed_form_speed),
         cmocka_unit_test(test_rolling_disk_critical_speed_by_root_finding),
         cmocka_unit_test(test_rolling_disk_keeps_a_steady_turn),
+        cmocka_unit_test(test_cart_pendulum_frequency_and_centre_of_mass),
         cmocka_unit_test(test_fourbar_loop_stays_closed),
         cmocka_unit_test(test_cart_matches_the_builtin_cart),
         cmocka_unit_test(test_prescribed_motion_gives_the_driving_torque),

@@ -85,6 +85,16 @@ const struct dyn_eig_solver *cli_eig_solver(void);
 void cli_set_verbose(int on);
 int cli_verbose(void);
 
+/* A model's default method and tolerances (model_defaults.c): its own, or DYN_MODEL_METHOD,
+ * DYN_MODEL_RTOL, DYN_MODEL_ATOL when it names none; and where each comes from, in words
+ * ("the model's", "@ rtol in ml.ode", "dynkit's default ..."), in buf or a constant. */
+typedef enum { CLI_DEFAULT_METHOD, CLI_DEFAULT_RTOL, CLI_DEFAULT_ATOL } cli_default_field;
+const char *cli_model_method(const dyn_model *m);
+double cli_model_rtol(const dyn_model *m);
+double cli_model_atol(const dyn_model *m);
+const char *cli_model_default_source(const dyn_model *m, cli_default_field field, char *buf,
+                                     size_t size);
+
 /* Everything needed to make one run of a model: parsed from the run options. */
 typedef struct cli_run {
     const dyn_model *model;
@@ -106,7 +116,7 @@ typedef struct cli_run {
     double *input;        /* (input_rows x (1 + n_inputs)), owned; attached to par */
     long input_rows;
     /* adaptive methods (dyn_solve): tolerances, output times, step limits */
-    double rtol, atol;    /* 0: the library's defaults (1e-3, 1e-6) */
+    double rtol, atol;    /* the model's (cli_model_rtol) unless --rtol/--atol */
     double *rtolv, *atolv; /* (n_states) per-state tolerances, owned, or NULL */
     double *times;        /* --times: (n_times) output times, owned, or NULL */
     long n_times;

@@ -202,15 +202,19 @@ static void print_events(const dyn_model *m)
 
 static void print_default_run(const dyn_model *m)
 {
-    char a[32], b[32], c[32];
-    printf("\nDefault run: --method %s --step %s --tspan %s:%s (times in s)\n", m->method,
+    char a[32], b[32], c[32], from[3][96];
+    const char *method = cli_model_method(m);
+    printf("\nDefault run: --method %s --step %s --tspan %s:%s (times in s)\n", method,
            shortest(m->step, a, sizeof a), shortest(m->t0, b, sizeof b),
            shortest(m->t1, c, sizeof c));
-    if (!dyn_method_is_map(dyn_method_find(m->method)))
-        printf("Tolerances of adaptive methods: --rtol %s --atol %s%s\n",
-           shortest(m->rtol > 0 ? m->rtol : DYN_DEFAULT_RTOL, a, sizeof a),
-           shortest(m->atol > 0 ? m->atol : DYN_DEFAULT_ATOL, b, sizeof b),
-           m->rtol > 0 || m->atol > 0 ? " (the model's)" : " (the library's defaults)");
+    printf("Method: %s (%s)\n", method,
+           cli_model_default_source(m, CLI_DEFAULT_METHOD, from[0], sizeof from[0]));
+    if (!dyn_method_is_map(dyn_method_find(method)))
+        printf("Tolerances of adaptive methods: --rtol %s (%s) --atol %s (%s)\n",
+               shortest(cli_model_rtol(m), a, sizeof a),
+               cli_model_default_source(m, CLI_DEFAULT_RTOL, from[1], sizeof from[1]),
+               shortest(cli_model_atol(m), b, sizeof b),
+               cli_model_default_source(m, CLI_DEFAULT_ATOL, from[2], sizeof from[2]));
     if (m->jac_banded)
         printf("Jacobian: banded, %d below and %d above the diagonal (%s); rodas4 and cvode "
                "use band matrices\n",

@@ -133,6 +133,7 @@ static int parse_option(const char *command, int argc, char **argv, int *i, cli_
         if (r < 0)
             return CLI_USAGE;
         *method_name = v;
+        *given |= GIVEN_METHOD;
     } else if (OPT("step")) {
         if (r < 0)
             return CLI_USAGE;
@@ -296,7 +297,7 @@ static int check_method_options(const char *command, cli_run *run, unsigned give
                                    view ? " (it is accepted when the main run or a --compare "
                                           "run is adaptive)"
                                         : "");
-    const dyn_tableau *model_method = cli_method_find(run->model->method);
+    const dyn_tableau *model_method = cli_method_find(cli_model_method(run->model));
     if (dyn_method_is_map(model_method) != dyn_method_is_map(mt))
         return cli_usage_error(command,
                                dyn_method_is_map(mt)
@@ -306,7 +307,7 @@ static int check_method_options(const char *command, cli_run *run, unsigned give
                                    : "--method %s integrates differential equations, and %s is "
                                      "a discrete map (x(t+1)=..., or meth=discrete): it runs "
                                      "with its own method, %s",
-                               mt->name, run->model->name, run->model->method);
+                               mt->name, run->model->name, cli_model_method(run->model));
     if (dyn_method_is_map(mt) && (run->n_events > 0 || cli_run_resets(run) > 0))
         return cli_usage_error(command,
                                "%s is a discrete map: its states jump from step to step, so "
@@ -382,16 +383,38 @@ static int check_method_options(const char *command, cli_run *run, unsigned give
     return CLI_OK;
 }
 
-/* The model's tolerances when --rtol/--atol are not given (every method, cvode too); a
- * relative tolerance below rounding raised to DYN_MIN_RTOL with a warning; the default
- * limit on the steps of adaptive runs. */
+/* --verbose: the method and tolerances of the run and where each came from. */
+static void note_method(const cli_run *run, unsigned given)
+{
+    const dyn_model *m = run->model;
+    char b[3][96];
+    fprintf(stderr, "dynkit: note: method %s (%s)", run->method->name,
+            given & GIVEN_METHOD ? "--method"
+                                 : cli_model_default_source(m, CLI_DEFAULT_METHOD, b[0], 96));
+    if (dyn_method_is_adaptive(run->method) && !run->rtolv && !run->atolv)
+        fprintf(stderr, ", rtol %s (%s), atol %s (%s)", CLI_NUM(run->rtol),
+                given & GIVEN_RTOL ? "--rtol"
+                                   : cli_model_default_source(m, CLI_DEFAULT_RTOL, b[1], 96),
+                CLI_NUM(run->atol),
+                given & GIVEN_ATOL ? "--atol"
+                                   : cli_model_default_source(m, CLI_DEFAULT_ATOL, b[2], 96));
+    else if (dyn_method_is_adaptive(run->method))
+        fprintf(stderr, ", per-state tolerances (--rtol/--atol)");
+    else
+        fprintf(stderr, ", step %s", CLI_NUM(run->step));
+    fputc('\n', stderr);
+}
+
+/* The model's tolerances when --rtol/--atol are not given (every method, cvode too: its own,
+ * or DYN_MODEL_RTOL and DYN_MODEL_ATOL); a relative tolerance below rounding raised to
+ * DYN_MIN_RTOL with a warning; the default limit on the steps of adaptive runs. */
 static void tolerance_defaults(cli_run *run, unsigned given)
 {
     const dyn_model *m = run->model;
-    if (!(given & GIVEN_RTOL) && m->rtol > 0.0)
-        run->rtol = m->rtol;
-    if (!(given & GIVEN_ATOL) && m->atol > 0.0)
-        run->atol = m->atol;
+    if (!(given & GIVEN_RTOL))
+        run->rtol = cli_model_rtol(m);
+    if (!(given & GIVEN_ATOL))
+        run->atol = cli_model_atol(m);
     int raised = run->rtol > 0.0 && run->rtol < DYN_MIN_RTOL;
     if (raised)
         run->rtol = DYN_MIN_RTOL;
@@ -408,6 +431,8 @@ static void tolerance_defaults(cli_run *run, unsigned given)
     if (!(given & GIVEN_MAX_STEPS) && dyn_method_is_adaptive(run->method) &&
         !cli_method_is_cvode(run->method))
         run->max_steps = CLI_DEFAULT_MAX_STEPS;
+    if (cli_verbose())
+        note_method(run, given);
 }
 
 /* The initial state, named when it cannot start a run: a state that is not finite (a
@@ -478,7 +503,7 @@ int cli_run_parse_with(const char *command, int argc, char **argv, int other_ada
     run->t1 = m->t1;
     run->step = m->step;
     run->every = m->every > 1 ? m->every : 1; /* a model file's @ nout */
-    const char *method_name = m->method;
+    const char *method_name = cli_model_method(m);
     int n_as = 0, rc = CLI_OK;
     unsigned given = 0;
     for (int i = 1; i < argc && rc == CLI_OK; i++)

@@ -345,12 +345,11 @@ static void test_errors_in_model_files(void **state)
           "%d %s", r.status, r.err);
     cli_free(&r);
 
-    /* a C model without a default method, or with an empty default span, is refused when
-     * it is loaded, naming the field (not later as an option never given) */
+    /* a C model with an unknown default method, or with an empty default span, is refused
+     * when it is loaded, naming the field (not later as an option never given) */
     static const struct {
         const char *fields, *message;
     } defaults[] = {
-        {".t0 = 0, .t1 = 10, .step = 0.1", "names no known default method (dyn_model.method = NULL"},
         {".t0 = 0, .t1 = 10, .step = 0.1, .method = \"rk5\"", "dyn_model.method = \"rk5\""},
         {".method = \"dp45\"", "bad default run (t0 = 0, t1 = 0, step = 0)"},
     };
@@ -385,6 +384,67 @@ static void test_errors_in_model_files(void **state)
     unlink(cli_path("typo.ode"));
     unlink(cli_path("markov.ode"));
     unlink(cli_path("broken.c"));
+}
+
+/* One rule for the default run of every kind of model: a C model that names no method and
+ * no tolerances runs dp45 at rtol 1e-6, atol 1e-9 (DYN_MODEL_*), as an .ode file without
+ * @ meth does; info and run --verbose say so and where each value came from. The harmonic
+ * oscillator x'' = -x from x = 1 ends at cos(50) = 0.96496602849 at t = 50: within 1e-5
+ * at these tolerances, 3e-4 off at dyn_solve's rtol 1e-3. */
+static void test_model_defaults_one_rule(void **state)
+{
+    (void)state;
+    write_file("osc.c", "#include <dynkit/model.h>\n"
+                        "static int rhs(double t, const double *y, double *f, void *p)\n"
+                        "{ (void)t; (void)p; f[0] = y[1]; f[1] = -y[0]; return 0; }\n"
+                        "static const dyn_var st[] = {{\"x\", \"m\", \"\"}, {\"v\", \"m/s\", \"\"}};\n"
+                        "static const double init[] = {1.0, 0.0};\n"
+                        "static const dyn_model model = {.name = \"osc\", .n_states = 2,\n"
+                        "  .states = st, .y0 = init, .rhs = rhs, .t0 = 0, .t1 = 50, .step = 0.5};\n"
+                        "const dyn_model *dynkit_model(void) { return &model; }\n");
+    cli_result r = cli_in_tmpdir("info osc.c");
+    CHECK(r.status == 0 && strstr(r.out, "Method: dp45 (dynkit's default for models that name none)") &&
+              strstr(r.out, "--rtol 1e-6 (dynkit's default") && strstr(r.out, "--atol 1e-9 (dynkit's default"),
+          "%d %s %s", r.status, r.out, r.err);
+    cli_free(&r);
+    r = cli_in_tmpdir("run osc.c --final --verbose");
+    CHECK(r.status == 0 && strstr(r.err, "method dp45 (dynkit's default") &&
+              strstr(r.err, "rtol 1e-6 (dynkit's default"),
+          "%d %s", r.status, r.err);
+    double t = 0, x = 0, v = 0;
+    const char *row = strchr(r.out, '\n');
+    CHECK(row && sscanf(row + 1, "%lf,%lf,%lf", &t, &x, &v) == 3, "%s", r.out);
+    CHECK(t == 50.0 && fabs(x - cos(50.0)) < 1e-5, "x(50) = %.12g, cos 50 = %.12g", x, cos(50.0));
+    cli_free(&r);
+    r = cli_in_tmpdir("run osc.c --final --rtol 1e-3 --atol 1e-6 --verbose");
+    row = strchr(r.out, '\n');
+    CHECK(r.status == 0 && strstr(r.err, "rtol 0.001 (--rtol)") && row &&
+              sscanf(row + 1, "%lf,%lf,%lf", &t, &x, &v) == 3 && fabs(x - cos(50.0)) > 1e-4,
+          "%s %s", r.out, r.err);
+    cli_free(&r);
+    unlink(cli_path("osc.c"));
+
+    /* a model file's @ options are named as such, a built-in model's as its own */
+    write_file("decay.ode", "x'=-x\ninit x=1\n@ meth=rk4, total=1\ndone\n");
+    r = cli_in_tmpdir("info decay.ode");
+    CHECK(r.status == 0 && strstr(r.out, "Method: rk4 (@ meth in decay.ode)") &&
+              strstr(r.out, "--rtol 1e-6 (dynkit's default"),
+          "%s %s", r.out, r.err);
+    cli_free(&r);
+    unlink(cli_path("decay.ode"));
+    r = cli("info " MODELS "lorenz.ode"); /* docs/model-files.md */
+    CHECK(r.status == 0 &&
+              strstr(r.out, "Method: dp45 (dynkit's default for models that name none)\n"
+                            "Tolerances of adaptive methods: --rtol 1e-6 (dynkit's default for "
+                            "models that name none) --atol 1e-9 (dynkit's default for models "
+                            "that name none)\n"),
+          "%s", r.out);
+    cli_free(&r);
+    r = cli("info pendulum");
+    CHECK(r.status == 0 && strstr(r.out, "Method: dp45 (the model's)") &&
+              strstr(r.out, "--rtol 1e-8 (the model's) --atol 1e-10 (the model's)"),
+          "%s", r.out);
+    cli_free(&r);
 }
 
 /* XPPAUT's options that do not concern a run are accepted; --verbose says so. */
@@ -856,6 +916,7 @@ int main(void)
         cmocka_unit_test(test_c_model_with_set),
         cmocka_unit_test(test_info_of_a_file),
         cmocka_unit_test(test_errors_in_model_files),
+        cmocka_unit_test(test_model_defaults_one_rule),
         cmocka_unit_test(test_ignored_options_noted),
         cmocka_unit_test(test_xppaut_leniency),
     };

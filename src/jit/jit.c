@@ -229,12 +229,11 @@ int jit_check_model(const dyn_model *m, const char *where, char *err, size_t err
                         "%s: the model '%s' declares a band of its Jacobian with jac_lower = %d, "
                         "jac_upper = %d (accepted: 0 to n_states - 1 = %d)",
                         where, m->name, m->jac_lower, m->jac_upper, m->n_states - 1);
-    if (!m->method || !dyn_method_find(m->method))
+    if (m->method && !dyn_method_find(m->method))
         return jit_fail(err, errlen,
-                        "%s: the model '%s' names no known default method (dyn_model.method = "
-                        "%s%s%s; e.g. \"dp45\" or \"rk4\")",
-                        where, m->name, m->method ? "\"" : "", m->method ? m->method : "NULL",
-                        m->method ? "\"" : "");
+                        "%s: the model '%s' names an unknown default method (dyn_model.method = "
+                        "\"%s\"; e.g. \"dp45\" or \"rk4\", or NULL for " DYN_MODEL_METHOD ")",
+                        where, m->name, m->method);
     if (!isfinite(m->t0) || !isfinite(m->t1) || !(m->t1 > m->t0) || !isfinite(m->step) ||
         m->step < 0 || (m->step == 0 && m->samples != DYN_SAMPLES_STEPS))
         return jit_fail(err, errlen,

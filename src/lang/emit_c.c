@@ -1616,8 +1616,9 @@ char *lang_emit_c(lang_ctx *c)
         }
         LANG_C_CODE(c, "};\n");
     }
-    const double rtol = m->rtol > 0 ? m->rtol : 1e-6;
-    const double atol = m->atol > 0 ? m->atol : 1e-9;
+    /* 0 and NULL when the file names none: DYN_MODEL_RTOL, DYN_MODEL_ATOL, DYN_MODEL_METHOD */
+    const double rtol = m->rtol > 0 ? m->rtol : 0.0;
+    const double atol = m->atol > 0 ? m->atol : 0.0;
     LANG_C_CODE(c, "\nstatic const dyn_model dk_model = {\n    .name = ");
     lang_c_str(c, m->name);
     LANG_C_CODE(c, ",\n    .title = ");
@@ -1642,7 +1643,10 @@ char *lang_emit_c(lang_ctx *c)
     LANG_C_CODE(c, ",\n    .step = ");
     lang_c_num(c, m->dt);
     LANG_C_CODE(c, ",\n    .method = ");
-    lang_c_str(c, m->method ? m->method : "dp45");
+    if (m->method)
+        lang_c_str(c, m->method);
+    else
+        LANG_C_CODE(c, "NULL");
     LANG_C_CODEF(c, ",\n    .n_inputs = %d,\n    .inputs = ", m->n_inputs);
     CODE_OR_NULL(c, m->n_inputs, "dk_inputs_vars");
     LANG_C_CODE(c, ",\n    .set_input = ");

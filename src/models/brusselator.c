@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "dynkit/brusselator.h"
+#include "dynkit/solve.h"
 
 /* Boundary values of the reference problem. */
 #define U_EDGE 1.0
@@ -172,6 +173,9 @@ dyn_model *dyn_brusselator_new(int N, char *err, size_t errlen)
     m->t1 = 10.0;
     m->step = 0.1;
     m->method = "rodas4";
+    /* dyn_solve's tolerances (MATLAB's ode15s defaults), those its tests were measured at */
+    m->rtol = DYN_DEFAULT_RTOL;
+    m->atol = DYN_DEFAULT_ATOL;
     m->jacobian = dyn_brusselator_jac;
     m->initial_state = bruss_initial_state;
     m->phase_x = "u1";

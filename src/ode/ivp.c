@@ -283,7 +283,9 @@ dyn_ivp_solution *dyn_ivp_solve_model(const dyn_model *model, const void *par,
     const double t0 = tspan ? tspan[0] : model->t0, t1 = tspan ? tspan[1] : model->t1;
     sol->result.t = t0;
     const dyn_tableau *m =
-        find_method(sol, o->method ? o->method : model->method ? model->method : "dp45");
+        find_method(sol, o->method    ? o->method
+                         : model->method ? model->method
+                                         : DYN_MODEL_METHOD);
     if (!m)
         return sol;
     /* the parameters: a copy (prepared defaults when par is NULL) */
@@ -311,9 +313,9 @@ dyn_ivp_solution *dyn_ivp_solve_model(const dyn_model *model, const void *par,
         if (!(mo.h > 0.0))
             mo.h = model->step;
         if (mo.rtol == 0.0)
-            mo.rtol = model->rtol;
+            mo.rtol = model->rtol > 0.0 ? model->rtol : DYN_MODEL_RTOL;
         if (mo.atol == 0.0)
-            mo.atol = model->atol;
+            mo.atol = model->atol > 0.0 ? model->atol : DYN_MODEL_ATOL;
         if (!mo.jacobian)
             mo.jacobian = model->jacobian;
         if (!mo.jac_banded && model->jac_banded) {

@@ -75,6 +75,9 @@ int cli_ani_open(const char *command, const char *model_spec, const char *ani_pa
                  const dyn_model *m, cli_ani *out)
 {
     memset(out, 0, sizeof *out);
+    /* NAME.ani found beside a C model or mechanism, not named by --ani: XPPAUT's format,
+     * perhaps written for another model of that name, so a misfit is a warning */
+    int implicit = 0;
     if (!ani_path) {
         /* NAME.ani beside a model file NAME.ode, NAME.mech or NAME.c */
         if (!model_spec || !(ends_with(model_spec, ".ode") || ends_with(model_spec, ".c") ||
@@ -91,6 +94,22 @@ int cli_ani_open(const char *command, const char *model_spec, const char *ani_pa
             out->path[0] = '\0';
             return CLI_OK;
         }
+        /* NAME.ani beside NAME.ode is the .ode file's (XPPAUT's pair), not NAME.c's */
+        char ode[sizeof out->path];
+        memcpy(ode, model_spec, n);
+        memcpy(ode + n, ".ode", 5);
+        if (!ends_with(model_spec, ".ode") && is_regular(ode)) {
+            char a[1024], b[1024], c[1024];
+            fprintf(stderr,
+                    "dynkit: warning: %s belongs to %s, not to %s: the page plays no "
+                    "animation (--ani FILE.ani plays one)\n",
+                    cli_terminal_text(out->path, 0, a, sizeof a),
+                    cli_terminal_text(ode, 0, b, sizeof b),
+                    cli_terminal_text(model_spec, 0, c, sizeof c));
+            out->path[0] = '\0';
+            return CLI_OK;
+        }
+        implicit = !ends_with(model_spec, ".ode");
     } else {
         if (strlen(ani_path) + 1 > sizeof out->path)
             return cli_usage_error(command, "--ani: the path is too long");
@@ -146,6 +165,17 @@ int cli_ani_open(const char *command, const char *model_spec, const char *ani_pa
     free(names);
     if (rc != 0) {
         char shown[2048];
+        if (implicit && rc != 1) {
+            char a[1024];
+            cli_terminal_text(out->path, 0, a, sizeof a);
+            fprintf(stderr, "dynkit: warning: %s, found beside the model, does not fit it; the "
+                            "page plays no animation (--no-ani leaves it out without this "
+                            "warning):\n",
+                    a);
+            fputs(dyn_lang_diag_format(&diag, shown, sizeof shown), stderr);
+            out->path[0] = '\0';
+            return CLI_OK;
+        }
         fputs(dyn_lang_diag_format(&diag, shown, sizeof shown), stderr);
         return rc == 1 ? CLI_FAILED : CLI_USAGE;
     }

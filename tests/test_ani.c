@@ -831,6 +831,40 @@ static void test_command_line(void **state)
     page = read_file("ani-cli/out.html", &n);
     assert_non_null(strstr(page, "\"file\":\"p.ani\""));
     free(page);
+    /* NAME.ani beside a C model belongs to the model it was written for: one that names
+     * other quantities (a top's theta) is a warning and a page without animation, and one
+     * beside NAME.ode is the .ode file's, even when its names fit the C model */
+    write_text("ani-cli/top.c",
+               "#include <dynkit/model.h>\n"
+               "static int rhs(double t, const double *y, double *f, void *p)\n"
+               "{ (void)t; (void)p; f[0] = y[1]; f[1] = -y[0]; return 0; }\n"
+               "static const dyn_var st[] = {{\"x\", \"m\", \"\"}, {\"v\", \"m/s\", \"\"}};\n"
+               "static const double init[] = {1.0, 0.0};\n"
+               "static const dyn_model model = {.name = \"top\", .n_states = 2, .states = st,\n"
+               "  .y0 = init, .rhs = rhs, .t0 = 0, .t1 = 1, .step = 0.5};\n"
+               "const dyn_model *dynkit_model(void) { return &model; }\n");
+    write_text("ani-cli/top.ani", "line .5;.5;.5+.4*sin(theta);.5-.4*cos(theta)\n");
+    remove("ani-cli/out.html");
+    rc = animate("top.c --output out.html", err, sizeof err);
+    CHECK(rc == 0 && strstr(err, "warning: top.ani, found beside the model, does not fit it") &&
+              strstr(err, "unknown name 'theta'"),
+          "status %d: %s", rc, err);
+    page = read_file("ani-cli/out.html", &n);
+    assert_non_null(page);
+    assert_null(strstr(page, "\"ani\":{"));
+    free(page);
+    write_text("ani-cli/top.ani", "line .5;.5;.5+.4*sin(x);.5-.4*cos(x)\n");
+    rc = animate("top.c --output out.html", err, sizeof err);
+    page = read_file("ani-cli/out.html", &n);
+    CHECK(rc == 0 && page && strstr(page, "\"file\":\"top.ani\""), "status %d: %s", rc, err);
+    free(page);
+    write_text("ani-cli/top.ode", "x'=v\nv'=-x\ninit x=1\ndone\n");
+    rc = animate("top.c --output out.html", err, sizeof err);
+    page = read_file("ani-cli/out.html", &n);
+    CHECK(rc == 0 && strstr(err, "warning: top.ani belongs to top.ode, not to top.c") && page &&
+              !strstr(page, "\"ani\":{"),
+          "status %d: %s", rc, err);
+    free(page);
     /* --help says it */
     rc = animate("--help > help.txt", err, sizeof err);
     char *help = read_file("ani-cli/help.txt", &n);

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "dynkit/cart.h"
 #include "out_file.h"
 #include "pages.h"
 
@@ -49,6 +50,38 @@ typedef struct animate_page {
     const cli_ani *ani;
 } animate_page;
 
+/* What the run shows when the model has inputs and no --forces table was given: the inputs
+ * held at the parameters of their names (the cart's Fx = -50 N), which is not a homework's
+ * run; said on the page, with the command of the homework's run for the cart. */
+static void write_shows(cli_json *j, const cli_run *run)
+{
+    const dyn_model *m = run->model;
+    if (m->n_inputs <= 0 || run->forces_path)
+        return;
+    char text[768];
+    size_t n = (size_t)snprintf(text, sizeof text,
+                                "Shown: a run with the inputs held constant, as no --forces "
+                                "table was given");
+    for (int i = 0; i < m->n_inputs && n < sizeof text; i++) {
+        const int k = dyn_model_param_index(m, m->inputs[i].name);
+        if (k < 0)
+            continue;
+        const char *unit = m->inputs[i].unit ? m->inputs[i].unit : "";
+        n += (size_t)snprintf(text + n, sizeof text - n, "%s %s = %s%s%s", i ? "," : ":",
+                              m->inputs[i].name, CLI_NUM(dyn_model_get_param(m, run->par, k)),
+                              *unit ? " " : "", unit);
+    }
+    if (n < sizeof text && m == &dyn_model_cart)
+        snprintf(text + n, sizeof text - n,
+                 ". The homework's run (problem 4) drives the cart with the forces of its "
+                 "prescribed path: dynkit inverse cart -o forces.csv, then dynkit animate cart "
+                 "--forces forces.csv --method heun with the --init options it prints.");
+    else if (n < sizeof text)
+        snprintf(text + n, sizeof text - n, ".");
+    cli_json_key(j, "shows");
+    cli_json_string(j, text);
+}
+
 static int page_data(cli_json *j, void *ctx)
 {
     const animate_page *pg = ctx;
@@ -58,6 +91,7 @@ static int page_data(cli_json *j, void *ctx)
     cli_json_string(j, "animate");
     cli_json_key(j, "model");
     cli_json_model(j, v->run.model, v->run.par);
+    write_shows(j, &v->run);
     cli_json_key(j, "span");
     const double span[2] = {v->run.t0, v->run.t1};
     cli_json_numbers(j, span, 2, 1);

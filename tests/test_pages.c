@@ -337,6 +337,25 @@ static void test_animate_pages(void **state)
     html = file_in_tmp("cart.html");
     check_self_contained(html, "cart");
     CHECK(strstr(html, "\"length_cart\":3") != NULL, "--set is not in the page");
+    /* without --forces the cart's forces are its constant parameters, not the homework's
+     * table: the page says so and names the homework's run */
+    CHECK(strstr(html, "\"shows\":\"Shown: a run with the inputs held constant") &&
+              strstr(html, "Fx = -50 N, Fy = ") &&
+              strstr(html, "dynkit inverse cart -o forces.csv, then dynkit animate cart "
+                           "--forces forces.csv --method heun"),
+          "the cart's page does not say what it shows");
+    free(html);
+    /* the homework's run that the page names: nothing to explain */
+    r = cli_in_tmpdir("inverse cart -o forces.csv --quiet");
+    CHECK(r.status == 0, "inverse cart: %s", r.err);
+    cli_free(&r);
+    r = cli_in_tmpdir("animate cart --forces forces.csv --method heun --init dsX=-20 "
+                      "--init dsY=4.934802200544679 --init omega=4.934802200544679 "
+                      "--output cart-hw.html");
+    CHECK(r.status == 0, "animate cart --forces: %d %s", r.status, r.err);
+    cli_free(&r);
+    html = file_in_tmp("cart-hw.html");
+    CHECK(!strstr(html, "\"shows\":"), "a run with --forces needs no explanation");
     free(html);
     r = cli("animate vanderpol -o -");
     CHECK(r.status == 0 && strncmp(r.out, "<!DOCTYPE html>", 15) == 0,

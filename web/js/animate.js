@@ -30,6 +30,7 @@
     document.getElementById('title').textContent = model.name + ' — ' + model.title;
     document.getElementById('subtitle').textContent = runs.map(r => r.label + ' (' + r.raw.samples + ' samples' + (r.raw.samples > r.t.length ? ', ' + r.t.length + ' shown' : '') + ')').join(' · ');
     const messages = document.getElementById('messages');
+    if (data.shows) messages.appendChild(DK.el('p', { class: 'note', text: data.shows }));
     for (const r of data.runs) if (r.message) messages.appendChild(DK.el('p', { class: 'warning', text: r.message }));
     const t0 = data.span[0];
     const t1 = Math.max(...runs.map(r => r.t[r.t.length - 1]));

@@ -11,6 +11,7 @@
 #include "cli.h"
 #include "dynkit/analysis.h"
 #include "dynkit/sweep.h"
+#include "lin_constrained.h"
 #include "out_file.h"
 #include "pages.h"
 
@@ -80,6 +81,11 @@ typedef struct lin_point {
     dyn_equilibrium_info eq;
     double tol;
     dyn_stability stability;
+    /* a mechanism with constraints: the eigenvalues (k of them) are those of A_min = P^+ A P
+     * on the admissible directions, the states kept their coordinates (lin_constrained.c) */
+    int k;
+    int *kept;
+    double *Amin;
 } lin_point;
 
 /* --jacobian's words, in the order of dyn_jac_scheme */
@@ -107,10 +113,11 @@ static const char *scheme_words(dyn_jac_scheme s)
 
 /* Linearize at the point p (its y, par prepared); eigenvalues when solver is not NULL. */
 static int linearize_point(const dyn_model *m, double t, void *par, const lin_opts *o,
-                           const dyn_eig_solver *solver, double *work, double *scratch,
-                           lin_point *p)
+                           const dyn_eig_solver *solver, const cli_lin_constraints *cc,
+                           double *work, double *scratch, lin_point *p)
 {
     const int n = m->n_states;
+    p->k = n;
     const dyn_linearize_opts lo = {o->scheme, NULL};
     int rc = m->rhs(t, p->y, p->f, par);
     if (rc) {
@@ -129,14 +136,35 @@ static int linearize_point(const dyn_model *m, double t, void *par, const lin_op
     if (!solver || o->matrix) /* --matrix: A alone, no eigenvalues to compute */
         return CLI_OK;
     char err[256] = "";
-    memcpy(scratch, p->A, (size_t)n * (size_t)n * sizeof *scratch);
-    if (solver->eigenvalues(n, scratch, p->re, p->im, err, sizeof err)) {
+    const double *Ause = p->A;
+    if (cc->m > 0) {
+        const size_t N = (size_t)n;
+        double *P = malloc(N * N * sizeof *P), *rw = malloc((N * N + N * N + N) * sizeof *rw);
+        p->kept = malloc(N * sizeof *p->kept);
+        p->Amin = malloc(N * N * sizeof *p->Amin);
+        rc = !P || !rw || !p->kept || !p->Amin ? -1
+             : cli_lin_basis(cc, t, p->y, par, P, p->kept, &p->k, err, sizeof err);
+        if (!rc)
+            rc = dyn_linear_reduce(n, p->k, p->A, P, p->Amin, rw);
+        free(P);
+        free(rw);
+        if (rc) {
+            fprintf(stderr, "dynkit: error: linearize: the admissible directions: %s\n",
+                    err[0] ? err : "their basis is singular");
+            return CLI_FAILED;
+        }
+        Ause = p->Amin;
+        p->tol = dyn_stability_tol(p->k, p->Amin, 0.0);
+    }
+    const int k = p->k;
+    memcpy(scratch, Ause, (size_t)k * (size_t)k * sizeof *scratch);
+    if (k > 0 && solver->eigenvalues(k, scratch, p->re, p->im, err, sizeof err)) {
         fprintf(stderr, "dynkit: error: eigenvalues: %s\n", err);
         return CLI_FAILED;
     }
-    dyn_eig_sort(n, p->re, p->im);
+    dyn_eig_sort(k, p->re, p->im);
     p->have_eig = 1;
-    p->stability = dyn_classify(n, p->re, p->tol);
+    p->stability = dyn_classify(k, p->re, p->tol);
     return CLI_OK;
 }
 
@@ -174,9 +202,16 @@ static void print_text(FILE *f, const dyn_model *m, double t, const char *vname,
     }
     if (!p->have_eig)
         return;
-    fputs("eigenvalues:\n", f);
+    if (p->kept) {
+        fprintf(f, "minimal coordinates and speeds (%d of %d, the constraints' directions "
+                   "removed):", p->k, n);
+        for (int k = 0; k < p->k; k++)
+            fprintf(f, " %s", m->states[p->kept[k]].name);
+        fputc('\n', f);
+    }
+    fputs(p->kept ? "eigenvalues of A_min:\n" : "eigenvalues:\n", f);
     fprintf(f, "  %22s %22s %14s %10s\n", "re [1/s]", "im [rad/s]", "wn [rad/s]", "zeta");
-    for (int k = 0; k < n; k++) {
+    for (int k = 0; k < p->k; k++) {
         fprintf(f, "  %22.15g %22.15g", p->re[k] + 0.0, p->im[k] + 0.0);
         if (p->im[k] != 0.0) {
             double wn, zeta;
@@ -186,10 +221,10 @@ static void print_text(FILE *f, const dyn_model *m, double t, const char *vname,
         fputc('\n', f);
     }
     double top = -INFINITY;
-    for (int k = 0; k < n; k++)
+    for (int k = 0; k < p->k; k++)
         top = fmax(top, p->re[k]);
-    fprintf(f, "stability: %s (largest re = %.6g; |re| <= %.3g = 1e-8 ||A||_inf counts as 0)\n",
-            dyn_stability_name(p->stability), top + 0.0, p->tol);
+    fprintf(f, "stability: %s (largest re = %.6g; |re| <= %.3g = 1e-8 ||A%s||_inf counts as 0)\n",
+            dyn_stability_name(p->stability), top + 0.0, p->tol, p->kept ? "_min" : "");
 }
 
 /* ---- tables ---- */
@@ -287,10 +322,22 @@ static void print_json(FILE *f, const dyn_model *m, double t, const char *vname,
         for (int i = 0; i < n; i++)
             cli_json_numbers(&j, p->A + (size_t)i * (size_t)n, n, 1);
         cli_json_end_array(&j);
+        if (p->kept) {
+            cli_json_key(&j, "kept");
+            cli_json_begin_array(&j);
+            for (int i = 0; i < p->k; i++)
+                cli_json_string(&j, m->states[p->kept[i]].name);
+            cli_json_end_array(&j);
+            cli_json_key(&j, "A_min");
+            cli_json_begin_array(&j);
+            for (int i = 0; i < p->k; i++)
+                cli_json_numbers(&j, p->Amin + (size_t)i * (size_t)p->k, p->k, 1);
+            cli_json_end_array(&j);
+        }
         cli_json_key(&j, "re");
-        cli_json_numbers(&j, p->re, n, 1);
+        cli_json_numbers(&j, p->re, p->k, 1);
         cli_json_key(&j, "im");
-        cli_json_numbers(&j, p->im, n, 1);
+        cli_json_numbers(&j, p->im, p->k, 1);
         cli_json_key(&j, "tol");
         cli_json_number(&j, p->tol);
         cli_json_key(&j, "stability");
@@ -406,6 +453,8 @@ static void free_points(lin_point *pts, long n)
         free(pts[k].A);
         free(pts[k].re);
         free(pts[k].im);
+        free(pts[k].kept);
+        free(pts[k].Amin);
     }
     free(pts);
 }
@@ -421,7 +470,7 @@ static int write_all(FILE *f, const dyn_model *m, double t, const char *vname, c
             print_matrix_csv(f, m, vname, &pts[k], k == 0);
     else if (table)
         for (long k = 0; k < n_pts; k++)
-            print_eig_csv(f, m->n_states, vname, &pts[k], k == 0);
+            print_eig_csv(f, pts[k].k, vname, &pts[k], k == 0);
     else
         for (long k = 0; k < n_pts; k++) {
             if (k > 0)
@@ -465,10 +514,13 @@ int cli_cmd_linearize(int argc, char **argv)
     const dyn_model *m = run.model;
     const int n = m->n_states;
     const double t = o.t_given ? o.t : run.t0;
+    cli_lin_constraints cc;
+    rc = cli_lin_constraints_open(argv[0], m, &cc);
     dyn_sweep_var var = {DYN_SWEEP_PARAM, -1};
     double *values = NULL;
     long n_pts = 0;
-    rc = vary_values(&run, &o, &var, &values, &n_pts);
+    if (rc == CLI_OK)
+        rc = vary_values(&run, &o, &var, &values, &n_pts);
     const char *vname = o.vary ? dyn_sweep_var_name(m, &var) : NULL;
     const dyn_eig_solver *solver = cli_eig_solver();
     if (rc == CLI_OK && !solver && (o.json || (o.output && !o.matrix))) {
@@ -530,7 +582,8 @@ int cli_cmd_linearize(int argc, char **argv)
                 break;
             }
         }
-        rc = linearize_point(m, t, par, &o, solver, work, work + dyn_linearize_work_size(n), p);
+        rc = linearize_point(m, t, par, &o, solver, &cc, work,
+                             work + dyn_linearize_work_size(n), p);
     }
     if (rc == CLI_OK) {
         cli_out out;
@@ -551,6 +604,7 @@ int cli_cmd_linearize(int argc, char **argv)
         rc = CLI_FAILED;
     }
     free_points(pts, n_pts);
+    cli_lin_constraints_close(&cc);
     free(values);
     free(par);
     free(work);

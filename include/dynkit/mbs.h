@@ -33,6 +33,16 @@ int dyn_mech_to_c(const char *path, const char *text, size_t len,
 int dyn_mech_derive_text(const char *path, const char *text, size_t len, char **out,
                          dyn_lang_diag *diag);
 
+/* The same mechanism as dyn_mech_to_c, but each constraint's output is its value on the
+ * speeds, h = D(q, t) u + h_t(q, t) (for a holonomic constraint f(q, t) = 0, h = df/dt),
+ * instead of its multiplier, with the unit "holonomic" or "speeds" saying which kind it
+ * is; the other outputs, the states and the parameters (their struct) are those of
+ * dyn_mech_to_c's model. The admissible directions of the linearization come from it:
+ * dh/du for the positions of holonomic ones, (dh/dq, dh/du) for all (docs/analysis.md). */
+int dyn_mech_constraints_to_c(const char *path, const char *text, size_t len,
+                              const dyn_lang_table_file *tables, int n_tables, char **c_source,
+                              dyn_lang_diag *diag);
+
 #ifdef __cplusplus
 }
 #endif

@@ -540,7 +540,9 @@ static void constraint_rows(dctx *d, node **D, node **btot)
                          : k->unit ? force_unit(c, k->unit, on_speeds)
                                    : force_unit(c, LVEC_AT(mb->coords, mbs_coord, first).unit, 0);
         lang_formula *out = &LVEC_AT(c->m.auxs, lang_formula, k->aux);
-        out->doc.unit = cu;
+        out->doc.unit = mb->values ? (on_speeds ? "speeds" : "holonomic") : cu;
+        if (mb->values)
+            out->expr = h;
         if (!out->doc.description)
             out->doc.description = lang_printf(c, "force of the constraint %s (%s)", k->name,
                                                on_speeds ? "on the speeds" : "holonomic");
@@ -583,8 +585,10 @@ static void multipliers(dctx *d, node **D, node **btot, node **a0, node **L, nod
     }
     for (int r = 0; r < m; r++) {
         mbs_constraint *k = &LVEC_AT(mb->cons, mbs_constraint, r);
-        LVEC_AT(c->m.auxs, lang_formula, k->aux).expr =
-            regularized ? fix(d, lang_printf(c, "lam%d", r), add(d, lam[r], btot[r])) : lam[r];
+        if (!mb->values) /* else the value h, set with the rows */
+            LVEC_AT(c->m.auxs, lang_formula, k->aux).expr =
+                regularized ? fix(d, lang_printf(c, "lam%d", r), add(d, lam[r], btot[r]))
+                            : lam[r];
     }
 }
 

@@ -93,6 +93,9 @@ typedef struct mbs_model {
     node **con_D, **con_c; /* (m x n) rows, (m) convective terms: D q'' + c = 0 */
     int *con_speeds;  /* (m) 1: a constraint on the speeds */
     int norder, ordercap;
+    /* dyn_mech_constraints_to_c: each constraint's output is its value on the speeds h
+     * (D u + h_t) instead of its multiplier, its unit "holonomic" or "speeds" */
+    int values;
 } mbs_model;
 
 /* statements (mbs_parse.c): the hook of lang_parse_model, and the end of the file */

@@ -7,13 +7,14 @@
 
 #include "mbs/mbs_internal.h"
 
-static void front(lang_ctx *c, int symbolic)
+static void front(lang_ctx *c, int symbolic, int values)
 {
     mbs_model *mb = lang_alloc(c, sizeof *mb);
     memset(mb, 0, sizeof *mb);
     mb->alpha = MBS_DEFAULT_ALPHA;
     mb->gravity[0] = mb->gravity[1] = mb->gravity[2] = -1; /* none: 0 */
     mb->symbolic = symbolic;
+    mb->values = values;
     c->m.name = lang_base_name(c, c->path, ".mech");
     c->stmt_hook = mbs_statement;
     c->hook_ctx = mb;
@@ -28,8 +29,9 @@ static void front(lang_ctx *c, int symbolic)
     mbs_derive(c, mb);
 }
 
-static void mech_front(lang_ctx *c) { front(c, 0); }
-static void derive_front(lang_ctx *c) { front(c, 1); }
+static void mech_front(lang_ctx *c) { front(c, 0, 0); }
+static void values_front(lang_ctx *c) { front(c, 0, 1); }
+static void derive_front(lang_ctx *c) { front(c, 1, 0); }
 static char *derive_back(lang_ctx *c) { return mbs_text(c, c->hook_ctx); }
 
 int dyn_mech_to_c(const char *path, const char *text, size_t len,
@@ -45,4 +47,12 @@ int dyn_mech_derive_text(const char *path, const char *text, size_t len, char **
 {
     return lang_translate(path, text, len, NULL, 0, out, diag, NULL, NULL, derive_front,
                           derive_back);
+}
+
+int dyn_mech_constraints_to_c(const char *path, const char *text, size_t len,
+                              const dyn_lang_table_file *tables, int n_tables, char **c_source,
+                              dyn_lang_diag *diag)
+{
+    return lang_translate(path, text, len, tables, n_tables, c_source, diag, NULL, NULL,
+                          values_front, NULL);
 }

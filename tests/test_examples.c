@@ -1,12 +1,14 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* The C API examples (examples/solve_ivp.c, events.c, double_pendulum.c), built beside the
- * tool, run and their output checked against independent numbers:
+/* The C API examples (examples/solve_ivp.c, events.c, double_pendulum.c, linearize.c),
+ * built beside the tool, run and their output checked against independent numbers:
  * - solve_ivp: the Lorenz rows at t = 0, 0.25, ..., 2 and the dense-output value at 1.1
  *   against dyn_solve with dp45 at 1e-12;
  * - events: every printed bounce time against the closed form t_{k+1} = t_k + 2 t_1 e^k,
  *   and the terminal event at 9 s;
  * - double_pendulum: the energy column stays at its initial 19.62 J (both rods level, m2 =
- *   0.5 kg), and the drift the example reports is below 1e-7 J. */
+ *   0.5 kg), and the drift the example reports is below 1e-7 J;
+ * - linearize (when built with LAPACK): the pendulum's bottom and top with +-i sqrt(g/l)
+ *   and +-sqrt(g/l). */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -151,12 +153,54 @@ static void test_double_pendulum_example(void **state)
     free(out);
 }
 
+/* linearize (built when dynkit is built with LAPACK): the equilibria found from (0.5, 0.2)
+ * and (2.8, 0) are the bottom and the top, with +-i sqrt(g/l) and +-sqrt(g/l) for l = 2 m
+ * to 1e-12 (checked by the program itself, which exits 1 otherwise, and here). */
+static void test_linearize_example(void **state)
+{
+    (void)state;
+    char path[1024];
+    const char *cli = DYNKIT_CLI;
+    const char *slash = strrchr(cli, '/');
+    snprintf(path, sizeof path, "%.*s/example_linearize", slash ? (int)(slash - cli) : 0, cli);
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        print_message("SKIP: example_linearize is not built (dynkit without LAPACK)\n");
+        skip();
+    }
+    fclose(f);
+    int status;
+    char *out = run_example("linearize", &status);
+    assert_int_equal(status, 0);
+    const double w = sqrt(9.81 / 2.0);
+    const char *line = out;
+    for (int k = 0; k < 2; k++) {
+        double phi, r0, i0, r1, i1;
+        int it;
+        line = strstr(line, "phi = ");
+        assert_non_null(line);
+        assert_int_equal(sscanf(line,
+                                "phi = %lf rad after %d iterations: eigenvalues %lf %lfi, "
+                                "%lf %lfi",
+                                &phi, &it, &r0, &i0, &r1, &i1),
+                         6);
+        assert_true(fabs(phi - (k ? DYN_PI : 0.0)) < 1e-12);
+        const double a = k ? r1 : i1, b = k ? i1 : r1; /* the pair, the other part */
+        assert_true(fabs(a - w) < 1e-12 * w && fabs(b) < 1e-12 * w);
+        line++;
+    }
+    assert_non_null(strstr(out, ": marginal"));
+    assert_non_null(strstr(out, ": unstable"));
+    free(out);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_solve_ivp_example),
         cmocka_unit_test(test_events_example),
         cmocka_unit_test(test_double_pendulum_example),
+        cmocka_unit_test(test_linearize_example),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

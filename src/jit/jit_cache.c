@@ -220,19 +220,25 @@ char *jit_source_with_line(const char *source, size_t len, const char *source_na
                         "extern const unsigned dynkit_model_abi;\n"
                         "const unsigned dynkit_model_abi = %uu;\n",
                         (unsigned)DYN_MODEL_ABI);
-    char *buf = malloc(16 + 2 * nlen + len + 2 + (size_t)slen);
+    char *buf = malloc(16 + 4 * nlen + len + 2 + (size_t)slen);
     if (!buf)
         return NULL;
     size_t k = 0;
     memcpy(buf, "#line 1 \"", 9);
     k = 9;
+    /* the name as a string literal by the rule of the model files' C text
+     * (src/lang/emit_out.c): printable ASCII as itself (" \ and ? after a backslash, so
+     * no trigraph forms), every other byte as a three-digit octal escape */
     for (size_t i = 0; i < nlen; i++) {
-        char c = name[i];
-        if (c == '\n' || c == '\r')
-            c = ' ';
-        if (c == '"' || c == '\\')
+        const unsigned char c = (unsigned char)name[i];
+        if (c == '"' || c == '\\' || c == '?') {
             buf[k++] = '\\';
-        buf[k++] = c;
+            buf[k++] = (char)c;
+        } else if (c >= 32 && c < 127) {
+            buf[k++] = (char)c;
+        } else {
+            k += (size_t)snprintf(buf + k, 5, "\\%03o", c);
+        }
     }
     buf[k++] = '"';
     buf[k++] = '\n';

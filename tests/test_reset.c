@@ -652,6 +652,23 @@ static int steps_rhs(double t, const double *y, double *dydt, void *par)
     return 0;
 }
 
+/* dp45 at tolerance 1e-10 on steps_rhs from (0, y0) to t1 with the events ev. */
+static int solve_steps(const dyn_event *ev, int ne, const double y0[3], double t1, double y[3],
+                       dyn_result *res)
+{
+    const dyn_tableau *m = dyn_method_find("dp45");
+    dyn_system sys = {steps_rhs, 3, NULL};
+    dyn_solve_opts o = {0};
+    o.rtol = o.atol = 1e-10;
+    o.events = ev;
+    o.n_events = ne;
+    double *work = malloc(dyn_solve_work_size(m, 3, &o) * sizeof *work);
+    assert_non_null(work);
+    const int rc = dyn_solve(m, &sys, 0.0, t1, y0, y, work, &o, res);
+    free(work);
+    return rc;
+}
+
 static void test_jumps_onto_zero_only(void **state)
 {
     (void)state;
@@ -659,19 +676,10 @@ static void test_jumps_onto_zero_only(void **state)
         {.name = "step", .g = x_minus_1, .direction = 1, .reset = reset_step},
         {.name = "onto", .g = y_minus_1_flat, .direction = DYN_EVENT_JUMPS, .reset = tally},
     };
-    const dyn_tableau *m = dyn_method_find("dp45");
-    dyn_system sys = {steps_rhs, 3, NULL};
-    dyn_solve_opts o = {0};
-    o.rtol = o.atol = 1e-10;
-    o.events = ev;
-    o.n_events = 2;
-    double *work = malloc(dyn_solve_work_size(m, 3, &o) * sizeof *work);
-    assert_non_null(work);
     const double y0[3] = {0.0, 0.5, 0.0};
     double y[3];
     dyn_result res;
-    assert_int_equal(dyn_solve(m, &sys, 0.0, 3.5, y0, y, work, &o, &res), DYN_OK);
-    free(work);
+    assert_int_equal(solve_steps(ev, 2, y0, 3.5, y, &res), DYN_OK);
     assert_true(y[1] == 2.0);
     assert_true(y[2] == 1.0); /* onto zero at t = 2 only */
     assert_int_equal(res.cascades, 1);
@@ -711,19 +719,10 @@ static void test_cascade_zeno(void **state)
         {.name = "A", .g = x_minus_1, .direction = 1, .reset = raise_flag},
         {.name = "B", .g = flag_half, .direction = 1, .reset = rearm},
     };
-    const dyn_tableau *m = dyn_method_find("dp45");
-    dyn_system sys = {steps_rhs, 3, NULL};
-    dyn_solve_opts o = {0};
-    o.rtol = o.atol = 1e-10;
-    o.events = ev;
-    o.n_events = 2;
-    double *work = malloc(dyn_solve_work_size(m, 3, &o) * sizeof *work);
-    assert_non_null(work);
     const double y0[3] = {0.0, 0.0, 0.0};
     double y[3];
     dyn_result res;
-    assert_int_equal(dyn_solve(m, &sys, 0.0, 3.0, y0, y, work, &o, &res), DYN_ERR_ZENO);
-    free(work);
+    assert_int_equal(solve_steps(ev, 2, y0, 3.0, y, &res), DYN_ERR_ZENO);
     assert_true(fabs(res.t - 1.0) < 1e-9);
     assert_true(res.cascades >= DYN_ZENO_RESETS / 2);
 }

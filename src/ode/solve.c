@@ -54,6 +54,22 @@ static int first_nonfinite(const double *y, int n)
     return -1;
 }
 
+/* Event idx at te (state ye, direction dir) counted and handed to on_event; 1 when it ends
+ * the solve (terminal, or on_event asked to stop). */
+static int report_event(const dyn_solve_opts *opts, dyn_result *res, int idx, double te,
+                        const double *ye, int dir)
+{
+    res->events++;
+    int terminal = opts->events[idx].terminal;
+    if (opts->on_event && opts->on_event(idx, te, ye, dir, opts->event_ctx))
+        terminal = 1;
+    if (terminal) {
+        res->stopped_by_event = 1;
+        res->event_index = idx;
+    }
+    return terminal;
+}
+
 /* A reset returned rc != 0 at te. */
 static void reset_failed(dyn_result *res, const dyn_solve_opts *opts, int idx, double te, int rc)
 {
@@ -557,15 +573,9 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
                 goto finish;
             /* events at the time of a reset see the state before the resets */
             const double *ye = reset ? ycur : state_at(te, tnext, ynew, &d, ytmp);
-            res->events++;
-            int terminal = opts->events[idx].terminal;
-            if (opts->on_event && opts->on_event(idx, te, ye, dir, opts->event_ctx))
-                terminal = 1;
-            if (terminal) {
+            if (report_event(opts, res, idx, te, ye, dir)) {
                 stop = 1;
                 t_stop = te;
-                res->stopped_by_event = 1;
-                res->event_index = idx;
                 if (ye != ycur)
                     memcpy(ycur, ye, N * sizeof *ycur);
             } else if (opts->events[idx].reset) {
@@ -604,17 +614,10 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
                 for (int i = 0; i < ne && !stop; i++) {
                     if (fabs(fired[i]) != (double)cycle)
                         continue;
-                    res->events++;
                     res->cascades++;
-                    int terminal = opts->events[i].terminal;
-                    if (opts->on_event && opts->on_event(i, t_reset, ytmp, fired[i] > 0 ? 1 : -1,
-                                                         opts->event_ctx))
-                        terminal = 1;
-                    if (terminal) {
+                    if (report_event(opts, res, i, t_reset, ytmp, fired[i] > 0 ? 1 : -1)) {
                         stop = 1;
                         t_stop = t_reset;
-                        res->stopped_by_event = 1;
-                        res->event_index = i;
                         memcpy(ycur, ytmp, N * sizeof *ycur);
                     } else if (opts->events[i].reset) {
                         rc = opts->events[i].reset(t_reset, ytmp, sys->par);

@@ -813,7 +813,7 @@ static double final_x(const cli_result *r)
  * par, number or init list; a statement word read by its first letter (par1-3 is par); a
  * method read by its first letter; a plot option naming no variable (left out, with a
  * warning shown always); an aux named like a state, a parameter or a function; a global
- * that assigns parameters. The answers are closed forms or exact Runge-Kutta
+ * that assigns parameters; a global with sign 0. The answers are closed forms or exact Runge-Kutta
  * polynomials. */
 static void test_xppaut_leniency(void **state)
 {
@@ -892,6 +892,20 @@ static void test_xppaut_leniency(void **state)
     cli_free(&r);
     unlink(cli_path("count.svg"));
     unlink(cli_path("count.ode"));
+    /* global 0 is fired by resets only (XPPAUT's sign 0): the flow takes x across 1 at t = 1
+     * without firing it, and run says once where XPPAUT differs */
+    write_file("zero.ode", "x'=1\nz'=0\nglobal 0 x-1 {z=z+1}\n@ total=2, dt=0.1\ndone\n");
+    r = cli_in_tmpdir("run zero.ode --final");
+    double u[3] = {0};
+    CHECK(r.status == 0 && csv_numbers(r.out, u, 3, &cols) == 3 && u[2] == 0.0 &&
+              strstr(r.err, "dynkit: note: event global1 fires only when a reset takes its "
+                            "condition onto or across zero"),
+          "exit %d: %s%s", r.status, r.out, r.err);
+    cli_free(&r);
+    r = cli_in_tmpdir("info zero.ode");
+    CHECK(r.status == 0 && strstr(r.out, "by resets only"), "%s%s", r.out, r.err);
+    cli_free(&r);
+    unlink(cli_path("zero.ode"));
     unlink(cli_path("semi.ode"));
     unlink(cli_path("first.ode"));
     unlink(cli_path("meth.ode"));

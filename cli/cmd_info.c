@@ -204,9 +204,9 @@ static void print_default_run(const dyn_model *m)
 {
     char a[32], b[32], c[32], from[3][96];
     const char *method = cli_model_method(m);
-    printf("\nDefault run: --method %s --step %s --tspan %s:%s (times in s)\n", method,
+    printf("\nDefault run: --method %s --step %s --tspan %s:%s (times in %s)\n", method,
            shortest(m->step, a, sizeof a), shortest(m->t0, b, sizeof b),
-           shortest(m->t1, c, sizeof c));
+           shortest(m->t1, c, sizeof c), cli_time_unit(m));
     printf("Method: %s (%s)\n", method,
            cli_model_default_source(m, CLI_DEFAULT_METHOD, from[0], sizeof from[0]));
     if (!dyn_method_is_map(dyn_method_find(method)))

@@ -82,9 +82,9 @@ static void axis_label(const dyn_model *m, const int *cols, int n, char *buf, si
         const int unit_here = !same || i == n - 1;
         used += (size_t)snprintf(buf + used, size - used, "%s%s", i ? ", " : "",
                                  cli_series_column_name(m, cols[i]));
-        if (unit_here && used < size)
-            used += (size_t)snprintf(buf + used, size - used, " [%s]",
-                                     cli_series_column_unit(m, cols[i]));
+        const char *unit = cli_series_column_unit(m, cols[i]);
+        if (unit_here && unit && *unit && used < size) /* no "[]" for a unitless quantity */
+            used += (size_t)snprintf(buf + used, size - used, " [%s]", unit);
     }
 }
 

@@ -136,6 +136,21 @@ void cli_json_model(cli_json *j, const dyn_model *m, const void *par)
         cli_json_string(j, m->phase_y);
         cli_json_end_array(j);
     }
+    cli_json_key(j, "time_unit");
+    cli_json_string(j, cli_time_unit(m));
+    /* XPPAUT's @ xlo, xhi, ylo, yhi: the window of an axis whose lo < hi, else null */
+    const double *w = m->phase_window;
+    if (w[0] < w[1] || w[2] < w[3]) {
+        cli_json_key(j, "phase_window");
+        cli_json_begin_array(j);
+        for (int k = 0; k < 4; k += 2) {
+            if (w[k] < w[k + 1])
+                cli_json_numbers(j, w + k, 2, 1);
+            else
+                cli_json_null(j);
+        }
+        cli_json_end_array(j);
+    }
     cli_json_end_object(j);
 }
 

@@ -29,10 +29,15 @@ const char *cli_series_column_name(const dyn_model *m, int j)
     return m->outputs[j - 1 - m->n_states].name;
 }
 
+const char *cli_time_unit(const dyn_model *m)
+{
+    return m->time_unit && *m->time_unit ? m->time_unit : "s";
+}
+
 const char *cli_series_column_unit(const dyn_model *m, int j)
 {
     if (j == 0)
-        return "s";
+        return cli_time_unit(m);
     if (j <= m->n_states)
         return m->states[j - 1].unit;
     return m->outputs[j - 1 - m->n_states].unit;
@@ -136,7 +141,7 @@ static void label(const cli_run *run, const dyn_tableau *method, double step, ch
                  run->rtol > 0 ? run->rtol : DYN_DEFAULT_RTOL,
                  run->atol > 0 ? run->atol : DYN_DEFAULT_ATOL);
     else
-        snprintf(buf, size, "%s, h = %g s", method->name, step);
+        snprintf(buf, size, "%s, h = %g %s", method->name, step, cli_time_unit(run->model));
 }
 
 int cli_series_record(const cli_run *run, const dyn_tableau *method, double step, long max_rows,

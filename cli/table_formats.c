@@ -538,7 +538,7 @@ cli_table *cli_table_open_run(FILE *out, cli_format format, const cli_run *run, 
         const dyn_var *v = j == 0 ? NULL : j <= m->n_states ? &m->states[j - 1]
                                                             : &m->outputs[j - 1 - m->n_states];
         s[j] = v ? v->name : "t";
-        s[cols + j] = v ? (v->unit ? v->unit : "") : "s";
+        s[cols + j] = v ? (v->unit ? v->unit : "") : cli_time_unit(m);
     }
     const int adaptive = dyn_method_is_adaptive(run->method);
     /* the samples' step: the fixed step, or the output grid of an adaptive run */

@@ -382,6 +382,47 @@ static void test_animate_pages(void **state)
     free(html);
 }
 
+/* Morris-Lecar (Rinzel and Ermentrout's parameters, i = 100 uA/cm^2: a limit cycle of v
+ * between about -60 and 35 mV while w stays within 0 and 0.5) in milliseconds: its time unit
+ * (#: t [ms]) is in info, the page, the plot's axis and the labels of runs; the phase plane of
+ * mV against a unitless w has no equal scales (they would flatten the cycle into a line) but
+ * XPPAUT's window @ xlo, xhi, ylo, yhi; a unitless quantity is labelled without "[]". */
+static void test_time_unit_and_phase_window(void **state)
+{
+    (void)state;
+    FILE *f = fopen(cli_path("ml.ode"), "w");
+    assert_non_null(f);
+    fputs("# Morris-Lecar\n#: t [ms]\n#: v [mV] membrane potential\n"
+          "#: w [] fraction of open K channels\n"
+          "par i=100,phi=.04,v1=-1.2,v2=18,v3=2,v4=30\n"
+          "par gca=4.4,gk=8,gl=2,vk=-84,vl=-60,vca=120,c=20\n"
+          "minf(v)=.5*(1+tanh((v-v1)/v2))\nwinf(v)=.5*(1+tanh((v-v3)/v4))\n"
+          "tauw(v)=1/cosh((v-v3)/(2*v4))\n"
+          "v'=(i-gca*minf(v)*(v-vca)-gk*w*(v-vk)-gl*(v-vl))/c\n"
+          "w'=phi*(winf(v)-w)/tauw(v)\ninit v=-60,w=0.01\n"
+          "@ total=400, dt=0.5, xp=v, yp=w, xlo=-75, xhi=45, ylo=0, yhi=0.6\ndone\n",
+          f);
+    fclose(f);
+    cli_result r = cli_in_tmpdir("info ml.ode");
+    CHECK(r.status == 0 && strstr(r.out, "--tspan 0:400 (times in ms)"), "%s %s", r.out, r.err);
+    cli_free(&r);
+    r = cli_in_tmpdir("animate ml.ode --method rk4 --step 0.05 --output ml.html");
+    CHECK(r.status == 0, "%s", r.err);
+    cli_free(&r);
+    char *html = file_in_tmp("ml.html");
+    CHECK(strstr(html, "\"time_unit\":\"ms\"") &&
+              strstr(html, "\"phase_window\":[[-75,45],[0,0.6]]") &&
+              strstr(html, "\"label\":\"rk4, h = 0.05 ms\""),
+          "the page has no time unit or window");
+    free(html);
+    r = cli_in_tmpdir("plot ml.ode --y w --output ml.svg");
+    CHECK(r.status == 0, "%s", r.err);
+    cli_free(&r);
+    char *svg = file_in_tmp("ml.svg");
+    CHECK(strstr(svg, ">t [ms]<") && !strstr(svg, "[]"), "axis labels of ml.svg");
+    free(svg);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -392,6 +433,7 @@ int main(void)
         cmocka_unit_test(test_compare_is_validated),
         cmocka_unit_test(test_report_html_is_self_contained),
         cmocka_unit_test(test_animate_pages),
+        cmocka_unit_test(test_time_unit_and_phase_window),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

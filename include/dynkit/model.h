@@ -138,13 +138,19 @@ typedef struct dyn_model {
     int jac_banded;
     int jac_lower, jac_upper;
     dyn_jac_fn jacobian_band;
+    /* The unit of the time t (NULL or "": s), e.g. "ms" for a neuron model (a model file's
+     * `#: t [ms]`): the pages and plots label t with it. */
+    const char *time_unit;
+    /* The window of the phase plane, xlo, xhi, ylo, yhi (XPPAUT's @ xlo, xhi, ylo, yhi):
+     * an axis whose lo < hi is drawn over it, else over the data (zeros). */
+    double phase_window[4];
 } dyn_model;
 
 /* Version of the layout of dyn_model, dyn_var, dyn_param and dyn_event. A model compiled
  * into a shared object records the version it was built with (the symbol
  * dynkit_model_abi, added when dynkit compiles a model), and dynkit refuses a model built
  * for another version instead of misreading it. Raised whenever a layout changes. */
-#define DYN_MODEL_ABI 2
+#define DYN_MODEL_ABI 3
 
 /* The entry point of a model in a C file or a shared object: `dynkit run mymodel.c`
  * compiles the file and calls it. Define it in your file:

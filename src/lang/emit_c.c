@@ -1672,6 +1672,18 @@ char *lang_emit_c(lang_ctx *c)
         lang_c_str(c, m->yp);
     else
         LANG_C_CODE(c, "NULL");
+    LANG_C_CODE(c, ",\n    .time_unit = ");
+    if (m->time_unit && *m->time_unit)
+        lang_c_str(c, m->time_unit);
+    else
+        LANG_C_CODE(c, "NULL");
+    LANG_C_CODE(c, ",\n    .phase_window = {");
+    for (int k = 0; k < 4; k++) {
+        if (k)
+            LANG_C_CODE(c, ", ");
+        lang_c_num(c, m->window[k]);
+    }
+    LANG_C_CODE(c, "}");
     LANG_C_CODE(c, ",\n    .source = ");
     lang_c_str(c, c->path);
     LANG_C_CODE(c, ",\n    .t_trans = ");

@@ -277,6 +277,9 @@ typedef struct lang_model {
     const char *meth_name;   /* meth's value as written */
     const char *xp, *yp;
     lpos xp_pos, yp_pos;
+    /* @ xlo, xhi, ylo, yhi (window: all four 0 when none given), and `#: t [UNIT]` */
+    double window[4];
+    const char *time_unit;
     /* the band of the Jacobian (XPPAUT's @ bandlo, bandup): has_band when either is given */
     int has_band, band_lo, band_up;
     lpos band_pos;

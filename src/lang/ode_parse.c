@@ -561,6 +561,13 @@ static void parse_options(lang_ctx *c, lang_lexer *lx)
         } else if (ieqn(name, n, "xp") || ieqn(name, n, "xplot")) {
             m->xp = v;
             m->xp_pos = vpos;
+        } else if (ieqn(name, n, "xlo") || ieqn(name, n, "xhi") || ieqn(name, n, "ylo") ||
+                   ieqn(name, n, "yhi")) {
+            const double w = option_number(c, name, v, vpos);
+            if (!isfinite(w))
+                lang_fail(c, vpos, "%s must be a finite number", name);
+            m->window[(tolower((unsigned char)name[0]) == 'y' ? 2 : 0) +
+                      (tolower((unsigned char)name[1]) == 'h' ? 1 : 0)] = w;
         } else if (ieqn(name, n, "yp") || ieqn(name, n, "yplot")) {
             m->yp = v;
             m->yp_pos = vpos;
@@ -916,6 +923,21 @@ static void extension(lang_ctx *c, lang_lexer *lx, pstate *ps)
         ev->direction = direction;
         ev->terminal = terminal;
         ev->cond = cond;
+        return;
+    }
+    /* t [UNIT]: the unit of the time (ms for a neuron model); a description is allowed */
+    if (n == 1 && word[0] == 't') {
+        if (lang_skip_blanks(lx) != '[')
+            lang_fail(c, lang_here(lx), "expected the unit of the time in brackets after "
+                      "'#: t' (e.g. '#: t [ms]')");
+        const int a = ++lx->i;
+        while (lx->i < lx->end && lx->line->text[lx->i] != ']')
+            lx->i++;
+        if (lx->i >= lx->end)
+            lang_fail(c, lang_here(lx), "missing ']' after the unit");
+        c->m.time_unit = trimmed(c, lx->line->text + a, (size_t)(lx->i - a));
+        lx->i++;
+        rest_text(lx);
         return;
     }
     /* NAME [UNIT] description */

@@ -34,7 +34,12 @@
     for (const r of data.runs) if (r.message) messages.appendChild(DK.el('p', { class: 'warning', text: r.message }));
     const t0 = data.span[0];
     const t1 = Math.max(...runs.map(r => r.t[r.t.length - 1]));
-    const player = new DK.Player(document.getElementById('player'), { t0, t1, times: runs[0].t, label: model.name, watch: document.querySelector('.stage') });
+    /* the model's time unit; 1x plays one second per second when that fits a watchable
+     * minute, else the whole run in 20 s (a neuron's 400 ms, van der Pol's 1000 s) */
+    const unit = model.time_unit || 's';
+    DK.timeUnit = unit;
+    const rate = unit === 's' && t1 - t0 <= 60 ? 1 : (t1 - t0) / 20;
+    const player = new DK.Player(document.getElementById('player'), { t0, t1, times: runs[0].t, label: model.name, watch: document.querySelector('.stage'), unit, rate });
     const view = document.getElementById('view');
     const kind = pictureOf(model, params);
     /* an XPPAUT animation of the model file (NAME.ani): first, beside the model's other
@@ -57,10 +62,15 @@
     else if (kind === 'pendulum') DK.PendulumView(view, runs, params.l, player);
     else if (kind === 'phase') {
       /* the model's own phase plane (a model file's @ xp=, yp=), or van der Pol's; equal
-       * scales when both axes have the same unit (a path in space) */
+       * scales only when both axes are lengths in the same unit (a path in space) */
       const [xn, yn] = model.phase || ['y1', 'y2'];
-      const same = DK.unit(runs[0].raw, xn) === DK.unit(runs[0].raw, yn) && xn !== 't' && yn !== 't';
-      DK.PhaseView(view, runs, xn, yn, player, same ? { equal: true } : undefined);
+      const ux = DK.unit(runs[0].raw, xn);
+      const same = ux === DK.unit(runs[0].raw, yn) && DK.isLength(ux) && xn !== 't' && yn !== 't';
+      const o = same ? { equal: true } : {};
+      const w = model.phase_window; /* XPPAUT's @ xlo, xhi, ylo, yhi */
+      if (w && w[0]) o.xrange = w[0];
+      if (w && w[1]) o.yrange = w[1];
+      DK.PhaseView(view, runs, xn, yn, player, o);
     }
     else view.remove();
     document.body.classList.toggle('no-picture', !kind && !hasAni);

@@ -36,6 +36,9 @@
     constructor(container, opts) {
       this.t0 = opts.t0;
       this.t1 = opts.t1 > opts.t0 ? opts.t1 : opts.t0 + 1;
+      /* the unit of the time, and the model time that passes in a second at 1x */
+      this.unit = opts.unit || 's';
+      this.rate = opts.rate > 0 ? opts.rate : 1;
       this.times = opts.times || [];
       this.t = this.t0;
       this.speed = 1;
@@ -126,13 +129,15 @@
     update() {
       const span = this.t1 - this.t0;
       const digits = span < 1 ? 4 : span < 100 ? 3 : 1;
-      this.timeText.textContent = 't = ' + this.t.toFixed(digits) + ' s / ' + this.t1.toFixed(digits) + ' s';
-      this.speedText.textContent = (this.speed < 1 ? this.speed.toFixed(2) : this.speed.toFixed(1)) + '×';
+      this.timeText.textContent = 't = ' + this.t.toFixed(digits) + ' ' + this.unit + ' / ' + this.t1.toFixed(digits) + ' ' + this.unit;
+      this.speedText.textContent = (this.speed < 1 ? this.speed.toFixed(2) : this.speed.toFixed(1)) + '×' +
+        (this.rate !== 1 || this.unit !== 's' ? ' (' + short(this.rate * this.speed) + ' ' + this.unit + '/s)' : '');
       this.slider.value = this.t;
       this.playButton.textContent = this.playing ? '❚❚' : '▶';
       this.playButton.setAttribute('aria-label', this.playing ? 'pause' : 'play');
       this.root.dataset.time = this.t;
       this.root.dataset.speed = this.speed;
+      this.root.dataset.rate = this.rate;
       this.root.dataset.playing = this.playing ? '1' : '0';
       for (const fn of this.listeners) fn(this.t);
       this.saveFragment();
@@ -176,7 +181,7 @@
     frame(now) {
       if (!this.playing) return;
       if (this.last !== null) {
-        let t = this.t + (now - this.last) / 1000 * this.speed;
+        let t = this.t + (now - this.last) / 1000 * this.speed * this.rate;
         if (t >= this.t1) {
           if (this.loopBox.checked) t = this.t0 + (t - this.t1) % (this.t1 - this.t0);
           else { t = this.t1; this.playing = false; }

@@ -332,10 +332,12 @@
       const unit = o.unitY ? ' ' + o.unitY : '';
       const texts = items.map(s => {
         let text = s.label;
-        if (o.legendValues && sample) text += ' = −8.888e−88' + unit;
+        /* "rk4: 0.25" after a label with its own "=" (rk4, h = 0.01 s), never "= ... = ..." */
+        const sep = s.label.includes('=') ? ': ' : ' = ';
+        if (o.legendValues && sample) text += sep + '−8.888e−88' + unit;
         else if (o.legendValues && t !== null) {
           const v = this.valueAt(s, t);
-          if (v && v.y !== null) text += ' = ' + DK.fmt(v.y, 4) + unit;
+          if (v && v.y !== null) text += sep + DK.fmt(v.y, 4) + unit;
         }
         return text;
       });

@@ -33,13 +33,18 @@
       s[2] + R[2] * rB[0] + R[5] * rB[1] + R[8] * rB[2]];
   };
 
+  /* "v [mV]", or "w" for a quantity without a unit (never "w []") */
+  DK.label = function (name, unit) { return unit ? name + ' [' + unit + ']' : name; };
+  /* units of length: a phase plane of two of them (the same) is a path, drawn to scale */
+  DK.isLength = function (unit) { return ['m', 'km', 'cm', 'mm', 'um', 'µm', 'nm', 'ft', 'in'].includes(unit); };
+
   /* ---- time series: one plot per quantity, every run overlaid ---- */
 
   DK.timePlot = function (container, runs, name, player, o) {
     const unit = o && o.unit !== undefined ? o.unit : DK.unit(runs[0].raw || runs[0], name);
     const series = runs.filter(r => r.cols[name]).map(r => Object.assign({ label: r.label, x: r.t, y: r.cols[name], color: r.color, dash: r.dash, unit: o && o.unit !== undefined ? o.unit : DK.unit(r.raw || r, name) }, r.map ? { width: 0, markers: 1.8 } : {}));
     const plot = new DK.Plot(container, Object.assign({
-      title: (o && o.title) || name, xlabel: 't [s]', ylabel: name + ' [' + unit + ']', unitY: unit === '1' ? '' : unit,
+      title: (o && o.title) || name, xlabel: 't [' + (DK.timeUnit || 's') + ']', ylabel: DK.label(name, unit), unitY: unit === '1' ? '' : unit,
       series, onSeek: t => player.seek(t), legend: series.length > 1 ? 'tr' : 'none'
     }, o || {}));
     player.onTime(t => plot.setTime(t));
@@ -83,7 +88,7 @@
     const series = runs.map(r => Object.assign({ label: r.label, color: r.color, t: r.t, x: r.cols[xname], y: r.cols[yname], trail: true, width: 1.5 }, r.map ? { width: 0, markers: 1.8 } : {}));
     const ux = DK.unit(runs[0].raw || runs[0], xname), uy = DK.unit(runs[0].raw || runs[0], yname);
     const plot = new DK.Plot(container, Object.assign({
-      title: 'phase plane', xlabel: xname + ' [' + ux + ']', ylabel: yname + ' [' + uy + ']',
+      title: 'phase plane', xlabel: DK.label(xname, ux), ylabel: DK.label(yname, uy),
       series, cursor: 'points', legend: 'tr', legendValues: false, aspect: 0.8
     }, o || {}));
     player.onTime(t => plot.setTime(t));

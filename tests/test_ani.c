@@ -844,6 +844,7 @@ static void test_command_line(void **state)
                "  .y0 = init, .rhs = rhs, .t0 = 0, .t1 = 1, .step = 0.5};\n"
                "const dyn_model *dynkit_model(void) { return &model; }\n");
     write_text("ani-cli/top.ani", "line .5;.5;.5+.4*sin(theta);.5-.4*cos(theta)\n");
+    remove("ani-cli/top.ode");
     remove("ani-cli/out.html");
     rc = animate("top.c --output out.html", err, sizeof err);
     CHECK(rc == 0 && strstr(err, "warning: top.ani, found beside the model, does not fit it") &&
@@ -865,6 +866,7 @@ static void test_command_line(void **state)
               !strstr(page, "\"ani\":{"),
           "status %d: %s", rc, err);
     free(page);
+    remove("ani-cli/top.ode");
     /* --help says it */
     rc = animate("--help > help.txt", err, sizeof err);
     char *help = read_file("ani-cli/help.txt", &n);

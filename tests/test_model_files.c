@@ -451,16 +451,16 @@ static void test_model_defaults_one_rule(void **state)
 static void test_ignored_options_noted(void **state)
 {
     (void)state;
-    write_file("opts.ode", "x'=-x\ninit x=1\n@ xlo=-2, xhi=2, total=1\ndone\n");
+    write_file("opts.ode", "x'=-x\ninit x=1\n@ axes=2, total=1\ndone\n");
     cli_result r = cli_in_tmpdir("run opts.ode --final --verbose");
     CHECK(r.status == 0, "%s", r.err);
-    CHECK(strstr(r.err, "opts.ode:3: option 'xlo' is accepted and ignored") != NULL, "%s", r.err);
+    CHECK(strstr(r.err, "opts.ode:3: option 'axes' is accepted and ignored") != NULL, "%s", r.err);
     double t = NAN, x = NAN;
     CHECK(sscanf(strchr(r.out, '\n') + 1, "%lf,%lf", &t, &x) == 2 && t == 1.0, "%s", r.out);
     CHECK(fabs(x - exp(-1.0)) < 1e-5, "x(1) = %.17g", x);
     cli_free(&r);
     r = cli_in_tmpdir("run opts.ode --final");
-    CHECK(r.status == 0 && strstr(r.err, "xlo") == NULL, "notes only with --verbose: %s", r.err);
+    CHECK(r.status == 0 && strstr(r.err, "axes") == NULL, "notes only with --verbose: %s", r.err);
     cli_free(&r);
     unlink(cli_path("opts.ode"));
 }

@@ -2,6 +2,7 @@
 /* dynkit plot MODEL: a run (and --compare runs) as a standalone SVG line plot of chosen
  * states or outputs against t or another state. */
 #include <errno.h>
+#include <math.h>
 #include <string.h>
 
 #include "out_file.h"
@@ -18,7 +19,9 @@ static void plot_help(void)
          "--output): axes with ticks, labels with units, a legend.\n"
          "\n"
          "  --y NAMES            what to plot: states or extra outputs of the model, comma-\n"
-         "                       separated (see 'dynkit info MODEL')\n"
+         "                       separated (see 'dynkit info MODEL'); one panel per unit,\n"
+         "                       and unitless ones share a panel when their ranges are\n"
+         "                       within a factor of 10\n"
          "  --x NAME             the abscissa: t (default), a state or an output\n"
          "  --compare M[:H]      overlay a run with method M (and step H; default the run's\n"
          "                       step), repeatable, e.g. --compare euler --compare rk4:0.001\n"
@@ -88,6 +91,38 @@ static void axis_label(const dyn_model *m, const int *cols, int n, char *buf, si
     }
 }
 
+/* No unit, or the unit 1: quantities whose sizes say nothing about each other. */
+static int unitless(const char *unit)
+{
+    return !unit || !*unit || strcmp(unit, "1") == 0;
+}
+
+/* The range max - min of column c over every run's samples (0 when constant). */
+static double column_span(const cli_view *v, int c)
+{
+    double lo = INFINITY, hi = -INFINITY;
+    for (int k = 0; k < v->n_series; k++) {
+        const cli_series *s = &v->series[k];
+        for (long r = 0; r < s->rows; r++) {
+            const double y = s->data[r * s->cols + c];
+            if (isfinite(y)) {
+                lo = fmin(lo, y);
+                hi = fmax(hi, y);
+            }
+        }
+    }
+    return hi >= lo ? hi - lo : 0.0;
+}
+
+/* Two unitless quantities share an axis when their ranges are within a factor of 10 (a
+ * gate variable within 0..1 beside a potential over 100 would be a flat line). */
+static int spans_agree(double a, double b)
+{
+    if (a == 0.0 || b == 0.0)
+        return a == b;
+    return fmax(a, b) <= 10.0 * fmin(a, b);
+}
+
 int cli_cmd_plot(int argc, char **argv)
 {
     for (int i = 0; i < argc; i++)
@@ -126,7 +161,8 @@ int cli_cmd_plot(int argc, char **argv)
     FILE *out = outf.f;
     if (rc == CLI_OK) {
         /* one panel per unit of the --y columns (energy in J and height in m are not
-         * squashed onto one axis), in the order the units first appear */
+         * squashed onto one axis), in the order the units first appear; unitless columns
+         * share a panel only when their ranges are within a factor of 10 */
         static cli_svg_plot panels[MAX_Y];
         static char ylabels[MAX_Y][512];
         static char labels[CLI_SVG_MAX_LINES][160];
@@ -143,9 +179,11 @@ int cli_cmd_plot(int argc, char **argv)
             if (done[first])
                 continue;
             const char *unit = cli_series_column_unit(m, ycols[first]);
+            const double span = column_span(&v, ycols[first]);
             int cols[MAX_Y], n_cols = 0;
             for (int i = first; i < n_y; i++)
-                if (!done[i] && strcmp(cli_series_column_unit(m, ycols[i]), unit) == 0) {
+                if (!done[i] && strcmp(cli_series_column_unit(m, ycols[i]), unit) == 0 &&
+                    (!unitless(unit) || spans_agree(span, column_span(&v, ycols[i])))) {
                     cols[n_cols++] = ycols[i];
                     done[i] = 1;
                 }

@@ -421,6 +421,32 @@ static void test_time_unit_and_phase_window(void **state)
     char *svg = file_in_tmp("ml.svg");
     CHECK(strstr(svg, ">t [ms]<") && !strstr(svg, "[]"), "axis labels of ml.svg");
     free(svg);
+    /* unitless states share a panel only when their ranges are within a factor of 10:
+     * Morris-Lecar's v (-60 .. 35) and w (0 .. 0.5) without units get one each, Lorenz's x
+     * and y (both about -20 .. 20) one together */
+    f = fopen(cli_path("ml2.ode"), "w");
+    assert_non_null(f);
+    fputs("v'=(100-4.4*.5*(1+tanh((v+1.2)/18))*(v-120)-8*w*(v+84)-2*(v+60))/20\n"
+          "w'=.04*(.5*(1+tanh((v-2)/30))-w)*cosh((v-2)/60)\ninit v=-60,w=0.01\n"
+          "@ total=400\ndone\n",
+          f);
+    fclose(f);
+    static const struct {
+        const char *args;
+        int panels;
+    } plots[] = {{"ml2.ode --y v,w", 2},
+                 {DYNKIT_SOURCE_DIR "/examples/models/lorenz.ode --y x,y", 1}};
+    for (size_t i = 0; i < sizeof plots / sizeof plots[0]; i++) {
+        r = cli_in_tmpdir("plot %s --output p.svg", plots[i].args);
+        CHECK(r.status == 0, "%s", r.err);
+        cli_free(&r);
+        svg = file_in_tmp("p.svg");
+        int frames = 0;
+        for (const char *q = svg; (q = strstr(q, "<rect class=\"frame\"")) != NULL; q++)
+            frames++;
+        CHECK(frames == plots[i].panels, "plot %s: %d panels", plots[i].args, frames);
+        free(svg);
+    }
 }
 
 int main(void)

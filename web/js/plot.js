@@ -186,8 +186,11 @@
         ctx.fillText(k.label, m.l - 6, y);
       }
       ctx.stroke();
-      ctx.textAlign = 'center';
+      /* the offset of tick labels relative to it (DK.ticks): above the y axis, right of x */
       ctx.textBaseline = 'alphabetic';
+      if (yt.offset) { ctx.textAlign = 'left'; ctx.fillText(DK.fmt(yt.offset, 12), m.l + 4, m.t + 12); }
+      if (xt.offset) { ctx.textAlign = 'right'; ctx.fillText(DK.fmt(xt.offset, 12), w - m.r, h - 8); }
+      ctx.textAlign = 'center';
       if (o.xlabel) ctx.fillText(o.xlabel, m.l + (w - m.l - m.r) / 2, h - 8);
       if (o.ylabel) {
         ctx.save();

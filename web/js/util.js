@@ -36,17 +36,27 @@ window.DK = window.DK || {};
     return (f < 1.5 ? 1 : f < 3.5 ? 2 : f < 7.5 ? 5 : 10) * p;
   };
 
-  /* Tick values inside [lo, hi] and their labels. */
+  /* Tick values inside [lo, hi] and their labels. A tiny range on large values (a conserved
+   * energy, 237.453059026 .. 237.453059031) is labelled relative to an offset, out.offset
+   * (the ticks' common leading digits, as cli/svg_axes.c does), which the plot shows. */
   DK.ticks = function (lo, hi, target) {
     const step = DK.niceStep(hi - lo, target), out = [];
     const digits = Math.max(0, Math.ceil(-Math.log10(step) - 1e-9));
-    for (let k = Math.ceil(lo / step - 1e-9); k <= Math.floor(hi / step + 1e-9); k++) {
+    const k0 = Math.ceil(lo / step - 1e-9), k1 = Math.floor(hi / step + 1e-9);
+    let offset = 0;
+    if (Math.max(Math.abs(k0 * step), Math.abs(k1 * step)) >= 1e5 * step && k1 >= k0) {
+      const span = Math.pow(10, Math.ceil(Math.log10((k1 - k0) * step + step)));
+      offset = Math.floor(k0 * step / span) * span;
+    }
+    for (let k = k0; k <= k1; k++) {
       let v = k * step;
       if (Math.abs(v) < 1e-9 * step) v = 0;
-      const mag = Math.max(Math.abs(v), step);
-      const label = v === 0 ? '0' : mag >= 1e5 || mag < 1e-3 ? Number(v.toPrecision(3)).toExponential().replace('e+', 'e') : v.toFixed(digits);
-      out.push({ v: v, label: label });
+      const d = offset ? (k - Math.round(offset / step)) * step : v;
+      const mag = Math.max(Math.abs(d), step);
+      const label = d === 0 ? '0' : mag >= 1e5 || mag < 1e-3 ? Number(d.toPrecision(3)).toExponential().replace('e+', 'e') : d.toFixed(digits);
+      out.push({ v: v, label: offset && d > 0 ? '+' + label : label });
     }
+    out.offset = offset;
     return out;
   };
 

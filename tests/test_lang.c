@@ -144,6 +144,20 @@ static void test_unknown_names_suggest_the_nearest(void **state)
     expect_error("x'=zzzzzz\n", 1, 4, "unknown name 'zzzzzz'");
     expect_error("par a=1\nx'=1\ninit xx=2\n", 3, 6, "unknown name 'xx' (did you mean 'x'?)");
     {
+        /* a global reads a parameter another assigns: XPPAUT sets it after the whole cycle
+         * of a cascade, dynkit after each global, so the file gets a warning */
+        notes n;
+        char *out = expect_ok("par k=0\nx'=1\ny'=1\nglobal 1 x-1 {x=0;k=k+1}\n"
+                              "global 1 y-1 {y=0;x=k}\n", &n);
+        CHECK(strstr(n.text, "5: warning: this global reads 'k', which the global on line 4 "
+                             "assigns") != NULL,
+              "%s", n.text);
+        free(out);
+        out = expect_ok("par k=0\nx'=1\nglobal 1 x-1 {x=0;k=k+1}\n", &n);
+        CHECK(strstr(n.text, "warning") == NULL, "%s", n.text);
+        free(out);
+    }
+    {
         /* an aux named like a function and, declared before it, a state: a label only */
         notes n;
         char *out = expect_ok("f(u)=u^2\naux f=x+1\naux x=2*x\nx'=-f(x)\n", &n);

@@ -926,7 +926,6 @@ void lang_check(lang_ctx *c)
         for (int k = 0; k < ev->nassign; k++)
             ev->assign[k].value = unroll(c, ev->assign[k].value, 0);
     }
-    warn_shared_parameters(c);
     for (int i = 0; i < m->inits.n; i++) {
         lang_init *in = &LVEC_AT(m->inits, lang_init, i);
         in->value = unroll(c, in->value, 0);
@@ -1037,6 +1036,7 @@ void lang_check(lang_ctx *c)
             if (same_name(LVEC_AT(m->events, lang_event, k).name, ev->name))
                 lang_fail(c, ev->pos, "event '%s' is declared twice", ev->name);
     }
+    warn_shared_parameters(c);
     for (int i = 0; i < m->inits.n; i++) {
         lang_init *in = &LVEC_AT(m->inits, lang_init, i);
         const lang_sym *s = lang_lookup(c, in->name);

@@ -22,6 +22,8 @@
 #include <stdio.h>
 #include <string.h>
 
+/* Every identifier the translator's own text writes: a new one (a field of dyn_model, a
+ * helper) goes here too, or this check fails on every model. */
 static const char *const emit_check_idents[] = {
     /* C keywords the text uses */
     "auto", "break", "case", "char", "const", "continue", "default", "do", "double", "else",
@@ -41,6 +43,7 @@ static const char *const emit_check_idents[] = {
     "t1", "step", "method", "n_inputs", "inputs", "set_input", "jacobian", "n_events",
     "events", "samples", "initial_state", "rtol", "atol", "phase_x", "phase_y", "source",
     "t_trans", "every", "bound", "jac_banded", "jac_lower", "jac_upper", "jacobian_band",
+    "time_unit", "phase_window",
     /* the translator's own names */
     "t", "y", "p", "par", "dydt", "out", "J", "err", "errlen", "names", "k", "i", "j", "s",
     "x", "u", "n", "m", "q", "v", "z", "type", "period", "w", "r", "rb", "lo", "dx", "dk_model",

@@ -83,6 +83,8 @@ const pages = [
   { name: 'double-pendulum-file', args: ['animate', path.join(here, '..', '..', 'examples', 'models', 'double_pendulum.ode')], ani: { ratio: 1, comet: true } },
   { name: 'double-pendulum-no-ani', args: ['animate', path.join(here, '..', '..', 'examples', 'models', 'double_pendulum.ode'), '--no-ani'], ani: false },
   { name: 'pendulum-file-ani', args: ['animate', path.join(here, '..', '..', 'examples', 'models', 'pendulum.ode'), '--compare', 'euler:0.05'], ani: { ratio: 1 } },
+  // a model in milliseconds with an XPPAUT window, mV against a unitless gate
+  { name: 'morris-lecar', args: ['animate', path.join(here, 'morris_lecar.ode')] },
 ];
 // XPPAUT's own pend2.ani (text, settext, the symbol font, a colour formula), when Debian's
 // xppaut examples are installed
@@ -295,6 +297,26 @@ async function checkPage(spec, vp) {
   // checked below)
   await page.evaluate(() => DK.players.forEach(p => p.pause()));
 
+  if (spec.name === 'cart') {
+    // the whole path at equal scales: the frame takes the path's shape, so that neither axis
+    // spans more than 1.6 times the path's extent on it (not 24 m beside a 4 m path)
+    const v = await page.evaluate(() => {
+      const c = [...document.querySelectorAll('canvas.plot-canvas')].find(c => c.dkPlot.o.title === 'cart, seen from above');
+      const sel = document.querySelector('select.view-mode'); sel.value = '-1'; c.dkPlot.draw();
+      const p = c.dkPlot, e = [DK.extent(p.o.series.map(s => s.x)), DK.extent(p.o.series.map(s => s.y))];
+      return { xr: p.xr, yr: p.yr, e };
+    });
+    const fx = (v.xr[1] - v.xr[0]) / (v.e[0][1] - v.e[0][0]), fy = (v.yr[1] - v.yr[0]) / (v.e[1][1] - v.e[1][0]);
+    check(Math.min(fx, fy) < 1.6, `the whole path fills its frame (X ${(v.xr[1] - v.xr[0]).toFixed(1)} m for ${(v.e[0][1] - v.e[0][0]).toFixed(1)} m, Y ${(v.yr[1] - v.yr[0]).toFixed(1)} m for ${(v.e[1][1] - v.e[1][0]).toFixed(1)} m)`);
+  }
+  if (spec.name === 'morris-lecar') {
+    // mV against a unitless gate: no equal scales, XPPAUT's window @ xlo..yhi
+    const v = await page.evaluate(() => { const c = [...document.querySelectorAll('canvas.plot-canvas')].find(c => c.dkPlot.o.title === 'phase plane'); return { xr: c.dkPlot.xr, yr: c.dkPlot.yr, eq: !!c.dkPlot.o.equal }; });
+    check(!v.eq && Math.abs(v.xr[0] + 75) < 1e-9 && Math.abs(v.xr[1] - 45) < 1e-9 && Math.abs(v.yr[1] - 0.6) < 1e-9, `the phase plane is XPPAUT's window, not equal scales (x ${v.xr}, y ${v.yr})`);
+    const t = await page.evaluate(() => document.querySelector('.player output.now, .player output').textContent);
+    check(/ms/.test(t), `the player counts in ms (${t})`);
+  }
+
   // every canvas draws something
   const prints0 = await page.evaluate(canvasPrints);
   check(prints0.length > 0, `${prints0.length} canvases`);
@@ -496,6 +518,12 @@ async function checkPage(spec, vp) {
     check(period.points[0] === json['studies.period.runs'] && period.points[1] === json['studies.period.runs'], `the period curve: exact and swept, ${period.points.join(' and ')} points`);
     check(map.cells === json['studies.cart.runs'] && map.bar, `the slip map: ${map.cells} cells and a colour bar`);
     check(map.points[0] >= 2, `the slip boundary (ratio = 1) is drawn (${map.points[0]} points)`);
+    // the section links: each on one line (none broken at 390 px); the text report wraps
+    // rather than scrolling sideways
+    const toc = await page.evaluate(() => [...document.querySelectorAll('.toc a')].filter(a => a.getClientRects().length !== 1 || a.getBoundingClientRect().height > 30).map(a => a.textContent));
+    check(toc.length === 0, `every section link is on one line (broken: ${toc.join(', ') || 'none'})`);
+    const pre = await page.evaluate(() => { const d = document.querySelector('#report-text').closest('details'); d.open = true; const e = document.getElementById('report-text'); return [e.scrollWidth, e.clientWidth]; });
+    if (!vp.full) check(pre[0] <= pre[1] + 1, `the text report does not scroll sideways (${pre[0]} of ${pre[1]} px)`);
     for (const id of ['p1', 'p2', 'p3', 'p4']) {
       await page.locator('#' + id).screenshot({ path: path.join(artifacts, `report${vp.suffix}-${id}.png`) });
     }

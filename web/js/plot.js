@@ -92,9 +92,18 @@
 
     /* Size the canvas to its box; true when the size changed. */
     layout() {
-      const w = Math.max(200, Math.floor(this.wrap.clientWidth || 480));
+      let w = Math.max(200, Math.floor(this.wrap.clientWidth || 480));
       const aspect = this.o.aspect || 0.58;
-      const h = Math.floor(this.o.height || DK.clamp(w * (w < 480 ? Math.max(aspect, 0.8) : aspect), 180, 560)); /* taller on a phone */
+      let h = Math.floor(this.o.height || DK.clamp(w * (w < 480 ? Math.max(aspect, 0.8) : aspect), 180, 560)); /* taller on a phone */
+      if (this.o.equal && this.o.fitData) {
+        /* equal scales: the frame takes the data's shape (within 180..560 px high), and is
+         * narrower than its box rather than showing metres of nothing beside the path */
+        const a = (this.baseY[1] - this.baseY[0]) / (this.baseX[1] - this.baseX[0]);
+        if (a > 0 && isFinite(a)) {
+          h = Math.floor(DK.clamp((w - 78) * a + 72, 180, 560));
+          w = Math.min(w, Math.max(200, Math.floor((h - 72) / a + 78)));
+        }
+      }
       if (w === this.w && h === this.h0) return false;
       this.w = w; this.h = this.h0 = h;
       this.m0 = { l: 64, r: 14, t: this.o.title ? 28 : 12, b: 44 };

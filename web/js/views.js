@@ -292,7 +292,7 @@
     container.appendChild(DK.el('div', { class: 'view-controls' }, [DK.el('label', {}, ['view: ', select])]));
     const win = o.window || 16;
     const plot = new DK.Plot(container, Object.assign({
-      title: 'cart, seen from above', xlabel: 'X [m]', ylabel: 'Y [m]', equal: true, series, cursor: 'none', legend: 'tr', legendValues: false, aspect: 0.7,
+      title: 'cart, seen from above', xlabel: 'X [m]', ylabel: 'Y [m]', equal: true, fitData: true, series, cursor: 'none', legend: 'tr', legendValues: false, aspect: 0.7,
       viewport: t => {
         const i = parseInt(select.value, 10);
         if (i < 0) return null;

@@ -130,8 +130,9 @@
       const span = this.t1 - this.t0;
       const digits = span < 1 ? 4 : span < 100 ? 3 : 1;
       this.timeText.textContent = 't = ' + this.t.toFixed(digits) + ' ' + this.unit + ' / ' + this.t1.toFixed(digits) + ' ' + this.unit;
-      this.speedText.textContent = (this.speed < 1 ? this.speed.toFixed(2) : this.speed.toFixed(1)) + '×' +
-        (this.rate !== 1 || this.unit !== 's' ? ' (' + short(this.rate * this.speed) + ' ' + this.unit + '/s)' : '');
+      this.speedText.textContent = (this.speed < 1 ? this.speed.toFixed(2) : this.speed.toFixed(1)) + '×';
+      /* 1x of a run that is not in seconds, or too long for real time: the model time per second */
+      this.speedText.title = short(this.rate * this.speed) + ' ' + this.unit + ' per second' + (this.rate !== 1 ? ' (1× plays the whole run in 20 s)' : '');
       this.slider.value = this.t;
       this.playButton.textContent = this.playing ? '❚❚' : '▶';
       this.playButton.setAttribute('aria-label', this.playing ? 'pause' : 'play');

@@ -518,6 +518,13 @@ async function checkPage(spec, vp) {
     check(period.points[0] === json['studies.period.runs'] && period.points[1] === json['studies.period.runs'], `the period curve: exact and swept, ${period.points.join(' and ')} points`);
     check(map.cells === json['studies.cart.runs'] && map.bar, `the slip map: ${map.cells} cells and a colour bar`);
     check(map.points[0] >= 2, `the slip boundary (ratio = 1) is drawn (${map.points[0]} points)`);
+    // the pendulum's conserved energy is drawn clear of the frame, not along its bottom
+    const gap = await page.evaluate(() => {
+      const c = [...document.querySelectorAll('#p1 canvas.plot-canvas')].find(c => c.dkPlot.o.title === 'energy');
+      const p = c.dkPlot, e = DK.extent([p.o.series[0].y]);
+      return Math.min(e[0] - p.yr[0], p.yr[1] - e[1]) / (p.yr[1] - p.yr[0]);
+    });
+    check(gap > 0.08, `the constant energy lies clear of the frame (${(100 * gap).toFixed(1)} % of the height)`);
     // the section links: each on one line (none broken at 390 px); the text report wraps
     // rather than scrolling sideways
     const toc = await page.evaluate(() => [...document.querySelectorAll('.toc a')].filter(a => a.getClientRects().length !== 1 || a.getBoundingClientRect().height > 30).map(a => a.textContent));

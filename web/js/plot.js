@@ -63,7 +63,20 @@
         }
         for (const l of extra || []) if (finite(l.v, log)) { lo = Math.min(lo, l.v); hi = Math.max(hi, l.v); }
         if (!(lo <= hi)) { lo = log ? 1 : 0; hi = log ? 10 : 1; }
-        return pad(lo, hi, log);
+        /* a flat series (a conserved energy) at an end of the range: a wider margin there, so
+         * that it is not drawn along the frame */
+        const near = (a, b) => Math.abs(a - b) <= 0.01 * (hi - lo); /* a pixel or two */
+        const flat = { lo: false, hi: false };
+        if (key === 'y' && !log && hi > lo) for (const s of o.series) {
+          const e = DK.extent([s.y]);
+          if (!e || !near(e[0], e[1])) continue;
+          if (near(e[0], lo)) flat.lo = true;
+          if (near(e[1], hi)) flat.hi = true;
+        }
+        const r = pad(lo, hi, log);
+        if (flat.lo) r[0] = lo - 0.12 * (hi - lo);
+        if (flat.hi) r[1] = hi + 0.12 * (hi - lo);
+        return r;
       };
       const pad = (lo, hi, log) => {
         if (log) {

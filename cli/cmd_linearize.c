@@ -526,7 +526,7 @@ int cli_cmd_linearize(int argc, char **argv)
     long n_pts = 0;
     if (rc == CLI_OK)
         rc = vary_values(&run, &o, &var, &values, &n_pts);
-    const char *vname = o.vary ? dyn_sweep_var_name(m, &var) : NULL;
+    const char *vname = rc == CLI_OK && o.vary ? dyn_sweep_var_name(m, &var) : NULL;
     const dyn_eig_solver *solver = cli_eig_solver();
     if (rc == CLI_OK && !solver && (o.json || (o.output && !o.matrix))) {
         fprintf(stderr, "dynkit: error: linearize: eigenvalues need LAPACK, and this dynkit "

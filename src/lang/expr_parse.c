@@ -147,6 +147,27 @@ int lang_skip_blanks(lang_lexer *lx)
     return lx->i < lx->end ? (unsigned char)lx->line->text[lx->i] : 0;
 }
 
+void lang_expect_char(lang_lexer *lx, int ch, const char *what)
+{
+    const int got = lang_skip_blanks(lx);
+    if (got != ch) {
+        if (got)
+            lang_fail(lx->c, lang_here(lx), "%s, found '%c'", what, got);
+        lang_fail(lx->c, lang_here(lx), "%s, found the end of the line", what);
+    }
+    lx->i++;
+}
+
+void lang_expect_end(lang_lexer *lx, const char *after)
+{
+    const int ch = lang_skip_blanks(lx);
+    if (!ch)
+        return;
+    if (lang_is_ident_start(ch) || isdigit(ch) || ch == '(')
+        lang_fail(lx->c, lang_here(lx), "missing operator before '%c' (after %s)", ch, after);
+    lang_fail(lx->c, lang_here(lx), "unexpected '%c' after %s", ch, after);
+}
+
 static lpos pos_at(const lang_lexer *lx, int i) { return lx->line->pos[i < lx->end ? i : lx->end]; }
 
 static tok next_tok(lang_lexer *lx, int consume)

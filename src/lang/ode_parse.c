@@ -51,31 +51,10 @@ static const char *read_name(lang_lexer *lx, lpos *pos, const char *what)
     return lang_strndup(lx->c, lx->line->text + a, (size_t)(lx->i - a));
 }
 
-static void expect_char(lang_lexer *lx, int ch, const char *what)
-{
-    const int got = lang_skip_blanks(lx);
-    if (got != ch) {
-        if (got)
-            lang_fail(lx->c, lang_here(lx), "%s, found '%c'", what, got);
-        lang_fail(lx->c, lang_here(lx), "%s, found the end of the line", what);
-    }
-    lx->i++;
-}
-
-static void expect_end(lang_lexer *lx, const char *after)
-{
-    const int ch = lang_skip_blanks(lx);
-    if (!ch)
-        return;
-    if (lang_is_ident_start(ch) || isdigit(ch) || ch == '(')
-        lang_fail(lx->c, lang_here(lx), "missing operator before '%c' (after %s)", ch, after);
-    lang_fail(lx->c, lang_here(lx), "unexpected '%c' after %s", ch, after);
-}
-
 static node *expr_to_end(lang_lexer *lx, const char *after)
 {
     node *e = lang_parse_expr(lx);
-    expect_end(lx, after);
+    lang_expect_end(lx, after);
     return e;
 }
 
@@ -192,8 +171,8 @@ static void parse_map_equation(lang_ctx *c, lang_lexer *lx, const char *w, lpos 
     if (lang_skip_blanks(lx) != '1')
         lang_fail(c, lang_here(lx), "expected x(t+1)=: a difference equation steps by 1");
     lx->i++;
-    expect_char(lx, ')', "expected ')' in x(t+1)");
-    expect_char(lx, '=', "expected '=' after x(t+1)");
+    lang_expect_char(lx, ')', "expected ')' in x(t+1)");
+    lang_expect_char(lx, '=', "expected '=' after x(t+1)");
     add_state(c, w, wpos, expr_to_end(lx, "the right-hand side"));
     if (!c->m.map_eq && !c->m.map_meth)
         c->m.map_pos = wpos;
@@ -319,11 +298,11 @@ static void parse_global(lang_ctx *c, lang_lexer *lx, pstate *ps, lpos kpos)
         /* global 1 {x-1} {x=0}: the condition in braces */
         lx->i++;
         cond = lang_parse_expr(lx);
-        expect_char(lx, '}', "expected '}' after the global's condition");
+        lang_expect_char(lx, '}', "expected '}' after the global's condition");
     } else {
         cond = lang_parse_expr(lx);
     }
-    expect_char(lx, '{', "expected '{' with the assignments after the global's condition");
+    lang_expect_char(lx, '{', "expected '{' with the assignments after the global's condition");
     lvec assign = {0};
     for (;;) {
         ch = lang_skip_blanks(lx);
@@ -333,7 +312,7 @@ static void parse_global(lang_ctx *c, lang_lexer *lx, pstate *ps, lpos kpos)
         }
         lpos pos;
         const char *name = read_name(lx, &pos, "expected 'name=value' or '}' in the global");
-        expect_char(lx, '=', "expected '=' after the name in the global");
+        lang_expect_char(lx, '=', "expected '=' after the name in the global");
         lang_assign *a = lvec_push(c, &assign, sizeof *a);
         a->name = name;
         a->pos = pos;
@@ -349,7 +328,7 @@ static void parse_global(lang_ctx *c, lang_lexer *lx, pstate *ps, lpos kpos)
             lang_fail(c, lang_here(lx), "missing '}' at the end of the global");
         lang_fail(c, lang_here(lx), "expected ';' or '}' in the global, found '%c'", ch);
     }
-    expect_end(lx, "the global's '}'");
+    lang_expect_end(lx, "the global's '}'");
     if (assign.n == 0)
         lang_fail(c, kpos, "a global needs at least one assignment in { }");
     lang_event *ev = lvec_push(c, &c->m.events, sizeof *ev);
@@ -508,7 +487,7 @@ static void parse_options(lang_ctx *c, lang_lexer *lx)
         }
         lpos pos;
         const char *name = read_name(lx, &pos, "expected an option name=value");
-        expect_char(lx, '=', "expected '=' after the option's name");
+        lang_expect_char(lx, '=', "expected '=' after the option's name");
         lang_skip_blanks(lx);
         const lpos vpos = lang_here(lx);
         const int a = lx->i;
@@ -749,7 +728,7 @@ static void parse_special(lang_ctx *c, lang_lexer *lx, lpos kpos)
 {
     lpos npos, fpos;
     const char *name = read_name(lx, &npos, "expected the network sum's name after 'special'");
-    expect_char(lx, '=', "expected '=' after the network sum's name");
+    lang_expect_char(lx, '=', "expected '=' after the network sum's name");
     const char *fun = read_name(lx, &fpos, "expected conv(...) after 'special NAME='");
     static const struct {
         const char *name, *args;
@@ -766,7 +745,7 @@ static void parse_special(lang_ctx *c, lang_lexer *lx, lpos kpos)
         lang_fail(c, kpos, "network sums ('special' with %s) are not supported: conv, fconv, "
                   "mmult and sparse are", fun);
     const int fconv = kind == LANG_SUM_FCONV, want = sums[kind].nargs;
-    expect_char(lx, '(', "expected '(' after conv");
+    lang_expect_char(lx, '(', "expected '(' after conv");
     lpos apos[7];
     const char *arg[7];
     int last = 0, n = 0;
@@ -778,7 +757,7 @@ static void parse_special(lang_ctx *c, lang_lexer *lx, lpos kpos)
     }
     if (n != want)
         lang_fail(c, fpos, "%s takes %d arguments (%s), not %d", fun, want, sums[kind].args, n);
-    expect_end(lx, "the network sum");
+    lang_expect_end(lx, "the network sum");
     check_new_name(c, name, npos);
     lang_special sp = {0};
     sp.name = name;
@@ -887,8 +866,8 @@ static void extension(lang_ctx *c, lang_lexer *lx, pstate *ps)
         }
         lx->i++;
         node *cond = lang_parse_expr(lx);
-        expect_char(lx, ',', "expected ', rising', ', falling' or ', both' after the event's "
-                    "expression");
+        lang_expect_char(lx, ',', "expected ', rising', ', falling' or ', both' after the event's "
+                                  "expression");
         lpos dpos;
         const char *dir = read_name(lx, &dpos, "expected rising, falling or both");
         int direction;
@@ -1013,7 +992,7 @@ static int keyword_statement(lang_ctx *c, lang_lexer *lx, pstate *ps, const char
                                 strlen(name) + (size_t)(k - lx->i));
             lx->i = k;
         }
-        expect_char(lx, '=', "expected '=' after the output's name");
+        lang_expect_char(lx, '=', "expected '=' after the output's name");
         add_formula(c, &c->m.auxs, SYM_AUX, name, pos, expr_to_end(lx, "the aux formula"));
     } else if (KW(w, n, "global", "g"))
         parse_global(c, lx, ps, wpos);
@@ -1096,7 +1075,7 @@ static void statement(lang_ctx *c, lang_lexer *lx, pstate *ps, int *done)
         lx->i++;
         lpos pos;
         const char *name = read_name(lx, &pos, "expected a derived parameter's name after '!'");
-        expect_char(lx, '=', "expected '=' after the derived parameter's name");
+        lang_expect_char(lx, '=', "expected '=' after the derived parameter's name");
         add_formula(c, &m->derived, SYM_DERIVED, name, pos,
                     expr_to_end(lx, "the derived parameter's formula"));
         return;
@@ -1133,7 +1112,7 @@ static void statement(lang_ctx *c, lang_lexer *lx, pstate *ps, int *done)
             return;
         }
         if (r == 0) {
-            expect_end(lx, "the statement");
+            lang_expect_end(lx, "the statement");
             return;
         }
         /* XPPAUT 6.11 reads a word that begins with "tab" as 'table' (nnet2.ode's
@@ -1144,7 +1123,7 @@ static void statement(lang_ctx *c, lang_lexer *lx, pstate *ps, int *done)
             return;
         }
         if (by_first_letters(c, lx, ps, wpos, wstart) == 0) {
-            expect_end(lx, "the statement");
+            lang_expect_end(lx, "the statement");
             return;
         }
         const char *near = dyn_lang_nearest(w, keywords, (int)(sizeof keywords /
@@ -1157,7 +1136,7 @@ static void statement(lang_ctx *c, lang_lexer *lx, pstate *ps, int *done)
     }
     if (nc == '\'') {
         lx->i++;
-        expect_char(lx, '=', "expected '=' after the prime of a differential equation");
+        lang_expect_char(lx, '=', "expected '=' after the prime of a differential equation");
         add_state(c, w, wpos, expr_to_end(lx, "the right-hand side"));
         return;
     }
@@ -1168,7 +1147,7 @@ static void statement(lang_ctx *c, lang_lexer *lx, pstate *ps, int *done)
         const char *dt = read_name(lx, &tpos, "expected 'dt' in dx/dt");
         if ((w[0] != 'd' && w[0] != 'D') || !w[1] || !ieqn(dt, strlen(dt), "dt"))
             lang_fail(c, wpos, "expected a differential equation dx/dt=... or x'=...");
-        expect_char(lx, '=', "expected '=' after dx/dt");
+        lang_expect_char(lx, '=', "expected '=' after dx/dt");
         lpos npos = wpos;
         npos.col++;
         add_state(c, w + 1, npos, expr_to_end(lx, "the right-hand side"));
@@ -1180,8 +1159,8 @@ static void statement(lang_ctx *c, lang_lexer *lx, pstate *ps, int *done)
         const int a1 = lang_skip_blanks(lx);
         if (a1 == '0') {
             lx->i++;
-            expect_char(lx, ')', "expected ')' in x(0)");
-            expect_char(lx, '=', "expected '=' after x(0)");
+            lang_expect_char(lx, ')', "expected ')' in x(0)");
+            lang_expect_char(lx, '=', "expected '=' after x(0)");
             const int from = (lang_skip_blanks(lx), lx->i);
             node *e = expr_to_end(lx, "the initial value");
             note_formula_value(c, lx, from, e, w);
@@ -1215,7 +1194,7 @@ static void statement(lang_ctx *c, lang_lexer *lx, pstate *ps, int *done)
             if (sep != ',')
                 lang_fail(c, lang_here(lx), "expected ',' or ')' in the argument list");
         }
-        expect_char(lx, '=', "expected '=' after the function's arguments");
+        lang_expect_char(lx, '=', "expected '=' after the function's arguments");
         node *body = expr_to_end(lx, "the function's formula");
         check_new_name(c, w, wpos);
         lang_declare(c, w, wpos, SYM_FUNC, m->funcs.n);

@@ -46,24 +46,6 @@ static int take_word(lang_lexer *lx, const char *w)
     return 1;
 }
 
-static void expect(lang_lexer *lx, int ch, const char *what)
-{
-    const int got = peek(lx);
-    if (got != ch) {
-        if (got)
-            lang_fail(lx->c, lang_here(lx), "%s, found '%c'", what, got);
-        lang_fail(lx->c, lang_here(lx), "%s, found the end of the line", what);
-    }
-    lx->i++;
-}
-
-static void expect_end(lang_lexer *lx, const char *after)
-{
-    const int ch = peek(lx);
-    if (ch)
-        lang_fail(lx->c, lang_here(lx), "unexpected '%c' after %s", ch, after);
-}
-
 /* An expression of the file kept as an input (an unnamed fixed quantity). */
 static int add_input(lang_ctx *c, node *e)
 {
@@ -89,12 +71,12 @@ static int input_expr(lang_lexer *lx, const char *what)
 
 static void tuple(lang_lexer *lx, int *out, const char *what)
 {
-    expect(lx, '(', lang_printf(lx->c, "expected '(' before %s (x, y, z)", what));
+    lang_expect_char(lx, '(', lang_printf(lx->c, "expected '(' before %s (x, y, z)", what));
     for (int k = 0; k < 3; k++) {
         out[k] = input_expr(lx, what);
-        expect(lx, k < 2 ? ',' : ')',
-               lang_printf(lx->c, k < 2 ? "expected ',' in %s (x, y, z)"
-                                        : "expected ')' after %s (x, y, z)", what));
+        lang_expect_char(lx, k < 2 ? ',' : ')',
+                         lang_printf(lx->c, k < 2 ? "expected ',' in %s (x, y, z)"
+                                                  : "expected ')' after %s (x, y, z)", what));
     }
 }
 
@@ -239,7 +221,7 @@ static void parse_coord(lang_ctx *c, lang_lexer *lx)
         q->speed_doc = (lang_doc){speed_unit(c, doc.unit), lang_printf(c, "d%s/dt", q->name)};
         doc_of(lx, &q->speed_doc);
     } while (peek(lx) == ',' && (lx->i++, 1));
-    expect_end(lx, "the coordinates");
+    lang_expect_end(lx, "the coordinates");
 }
 
 /* par lines: [unit] and "description" after a value go to the name before them; they are
@@ -335,10 +317,10 @@ static void parse_body(lang_ctx *c, lang_lexer *lx, int point, lpos kpos)
         lpos wpos;
         const char *w = read_word(lx, &wpos, "expected mass=, inertia=, at or rot");
         if (strcasecmp(w, "mass") == 0) {
-            expect(lx, '=', "expected '=' after mass");
+            lang_expect_char(lx, '=', "expected '=' after mass");
             b.mass = input_expr(lx, "the mass");
         } else if (strcasecmp(w, "inertia") == 0 && !point) {
-            expect(lx, '=', "expected '=' after inertia");
+            lang_expect_char(lx, '=', "expected '=' after inertia");
             const int paren = peek(lx) == '(';
             if (paren)
                 lx->i++;
@@ -361,11 +343,12 @@ static void parse_body(lang_ctx *c, lang_lexer *lx, int point, lpos kpos)
                         lx->i = save;
                     }
                 }
-                expect(lx, ',', "expected ',' between the moments of inertia");
+                lang_expect_char(lx, ',', "expected ',' between the moments of inertia");
             }
             if (paren)
-                expect(lx, ')', "expected ')' after the moments of inertia (Ixx, Iyy, Izz[, "
-                                "Ixy, Ixz, Iyz])");
+                lang_expect_char(lx, ')',
+                                 "expected ')' after the moments of inertia (Ixx, Iyy, Izz[, "
+                                 "Ixy, Ixz, Iyz])");
             has_inertia = 1;
         } else if (strcasecmp(w, "at") == 0) {
             tuple(lx, b.at, "the mass centre");
@@ -380,12 +363,15 @@ static void parse_body(lang_ctx *c, lang_lexer *lx, int point, lpos kpos)
                     if (b.nrot || b.quat[0] >= 0)
                         lang_fail(c, apos, "quat:(w, x, y, z) is the whole orientation: no "
                                   "other rotation beside it");
-                    expect(lx, '(', "expected '(' before the Euler parameters (w, x, y, z)");
+                    lang_expect_char(lx, '(',
+                                     "expected '(' before the Euler parameters (w, x, y, z)");
                     for (int k = 0; k < 4; k++) {
                         b.quat[k] = input_expr(lx, "an Euler parameter");
-                        expect(lx, k < 3 ? ',' : ')', k < 3 ? "expected ',' between the Euler "
-                               "parameters (w, x, y, z)" : "expected ')' after the Euler "
-                               "parameters (w, x, y, z)");
+                        lang_expect_char(lx, k < 3 ? ',' : ')',
+                                         k < 3 ? "expected ',' between the Euler parameters "
+                                                 "(w, x, y, z)"
+                                               : "expected ')' after the Euler parameters "
+                                                 "(w, x, y, z)");
                     }
                     continue;
                 }
@@ -456,7 +442,7 @@ static void parse_spring(lang_ctx *c, lang_lexer *lx, lpos kpos)
                                              : !strcasecmp(w, "c") ? &s.c : NULL;
         if (!to)
             lang_fail(c, wpos, "unknown word '%s' in a spring: expected k=, l0= or c=", w);
-        expect(lx, '=', "expected '='");
+        lang_expect_char(lx, '=', "expected '='");
         *to = input_expr(lx, w);
     }
     if (s.k < 0 && s.c < 0)
@@ -480,7 +466,7 @@ static void parse_load(lang_ctx *c, lang_lexer *lx, int torque)
     l.at[0] = l.at[1] = l.at[2] = -1;
     if (!torque && take_word(lx, "at"))
         tuple(lx, l.at, "the point of application");
-    expect(lx, '=', torque ? "expected '= (mx, my, mz)'" : "expected '= (fx, fy, fz)'");
+    lang_expect_char(lx, '=', torque ? "expected '= (mx, my, mz)'" : "expected '= (fx, fy, fz)'");
     tuple(lx, l.f, torque ? "the torque" : "the force");
     if (take_word(lx, "in")) {
         lpos fpos;
@@ -494,7 +480,7 @@ static void parse_load(lang_ctx *c, lang_lexer *lx, int torque)
         lang_fail(c, l.pos, "'%s' is a point mass: it has no frame B", b);
     if (torque && LVEC_AT(mb->bodies, mbs_body, l.body).point)
         lang_fail(c, l.pos, "'%s' is a point mass: a torque on it does nothing", b);
-    expect_end(lx, torque ? "the torque" : "the force");
+    lang_expect_end(lx, torque ? "the torque" : "the force");
     *(mbs_load *)lvec_push(c, &mb->loads, sizeof l) = l;
 }
 
@@ -518,7 +504,7 @@ static void parse_constraint(lang_ctx *c, lang_lexer *lx, int prescribe)
     lang_doc doc = {0};
     doc_of(lx, &doc);
     k.unit = doc.unit;
-    expect(lx, ':', "expected ':' after the constraint's name");
+    lang_expect_char(lx, ':', "expected ':' after the constraint's name");
     node *lhs = parse_value(lx, "the constraint's expression");
     if (prescribe) {
         if (lhs->kind != N_NAME)
@@ -544,7 +530,7 @@ static void parse_constraint(lang_ctx *c, lang_lexer *lx, int prescribe)
     } else if (prescribe) {
         lang_fail(c, lang_here(lx), "expected '= formula of t' after the coordinate");
     }
-    expect_end(lx, "the constraint");
+    lang_expect_end(lx, "the constraint");
     k.expr = add_input(c, lhs);
     declare_output(c, k.name, k.pos, &k.aux);
     add_doc(c, k.name, k.pos, (lang_doc){NULL, doc.description});
@@ -566,9 +552,9 @@ int mbs_statement(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos)
         for (int k = 0; k < 3; k++) {
             mb->gravity[k] = input_expr(lx, "a component of gravity (gx, gy, gz)");
             if (k < 2)
-                expect(lx, ',', "expected ',' between the components gx, gy, gz");
+                lang_expect_char(lx, ',', "expected ',' between the components gx, gy, gz");
         }
-        expect_end(lx, "gravity");
+        lang_expect_end(lx, "gravity");
     } else if (!strcasecmp(w, "point") || !strcasecmp(w, "body"))
         parse_body(c, lx, !strcasecmp(w, "point"), wpos);
     else if (!strcasecmp(w, "spring"))
@@ -582,13 +568,13 @@ int mbs_statement(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos)
             mbs_named *in = lvec_push(c, &mb->input_names, sizeof *in);
             in->name = read_word(lx, &in->pos, "expected a parameter's name");
         } while (peek(lx) == ',' && (lx->i++, 1));
-        expect_end(lx, "the inputs");
+        lang_expect_end(lx, "the inputs");
     } else if (!strcasecmp(w, "stabilize")) {
         node *e = parse_value(lx, "Baumgarte's rate [1/s]");
         if (e->kind != N_NUM || !(e->num >= 0.0))
             lang_fail(c, e->pos, "stabilize takes a number >= 0 (Baumgarte's rate, 1/s)");
         mb->alpha = e->num;
-        expect_end(lx, "stabilize");
+        lang_expect_end(lx, "stabilize");
     } else {
         static const char *const words[] = {"coord", "gravity", "point", "body", "spring",
                                             "force", "torque", "constraint", "prescribe",

@@ -147,6 +147,21 @@ int lang_skip_blanks(lang_lexer *lx)
     return lx->i < lx->end ? (unsigned char)lx->line->text[lx->i] : 0;
 }
 
+const char *lang_read_name(lang_lexer *lx, lpos *pos, const char *what)
+{
+    const int ch = lang_skip_blanks(lx);
+    *pos = lang_here(lx);
+    if (!lang_is_ident_start(ch)) {
+        if (ch)
+            lang_fail(lx->c, *pos, "%s, found '%c'", what, ch);
+        lang_fail(lx->c, *pos, "%s, found the end of the line", what);
+    }
+    const int a = lx->i;
+    while (lx->i < lx->end && lang_is_ident_char((unsigned char)lx->line->text[lx->i]))
+        lx->i++;
+    return lang_strndup(lx->c, lx->line->text + a, (size_t)(lx->i - a));
+}
+
 void lang_expect_char(lang_lexer *lx, int ch, const char *what)
 {
     const int got = lang_skip_blanks(lx);

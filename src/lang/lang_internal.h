@@ -398,6 +398,8 @@ typedef struct lang_lexer {
 } lang_lexer;
 node *lang_parse_expr(lang_lexer *lx);  /* one expression; stops before , ; } { or the end */
 int lang_skip_blanks(lang_lexer *lx);   /* returns the next character or 0 at the end */
+/* a name at the cursor (after blanks), its place in pos; else fails: WHAT, found ... */
+const char *lang_read_name(lang_lexer *lx, lpos *pos, const char *what);
 void lang_expect_char(lang_lexer *lx, int ch, const char *what); /* else fails: WHAT, found ... */
 void lang_expect_end(lang_lexer *lx, const char *after); /* nothing but blanks left, else fails */
 lpos lang_here(const lang_lexer *lx);

@@ -35,22 +35,6 @@ static int ieqn(const char *a, size_t n, const char *word)
     return 1;
 }
 
-/* Read a name at the cursor (after blanks); fails with what when there is none. */
-static const char *read_name(lang_lexer *lx, lpos *pos, const char *what)
-{
-    const int ch = lang_skip_blanks(lx);
-    *pos = lang_here(lx);
-    if (!lang_is_ident_start(ch)) {
-        if (ch)
-            lang_fail(lx->c, *pos, "%s, found '%c'", what, ch);
-        lang_fail(lx->c, *pos, "%s, found the end of the line", what);
-    }
-    const int a = lx->i;
-    while (lx->i < lx->end && lang_is_ident_char((unsigned char)lx->line->text[lx->i]))
-        lx->i++;
-    return lang_strndup(lx->c, lx->line->text + a, (size_t)(lx->i - a));
-}
-
 static node *expr_to_end(lang_lexer *lx, const char *after)
 {
     node *e = lang_parse_expr(lx);
@@ -205,8 +189,8 @@ static void name_value_list(lang_ctx *c, lang_lexer *lx, int kind, const char *k
     int count = 0;
     for (;;) {
         lpos pos;
-        const char *name = read_name(lx, &pos, count ? "expected a name" : "expected a name "
-                                     "after the keyword");
+        const char *name = lang_read_name(lx, &pos, count ? "expected a name"
+                                                          : "expected a name after the keyword");
         node *e;
         if (lang_skip_blanks(lx) == '=') {
             lx->i++;
@@ -311,7 +295,7 @@ static void parse_global(lang_ctx *c, lang_lexer *lx, pstate *ps, lpos kpos)
             break;
         }
         lpos pos;
-        const char *name = read_name(lx, &pos, "expected 'name=value' or '}' in the global");
+        const char *name = lang_read_name(lx, &pos, "expected 'name=value' or '}' in the global");
         lang_expect_char(lx, '=', "expected '=' after the name in the global");
         lang_assign *a = lvec_push(c, &assign, sizeof *a);
         a->name = name;
@@ -486,7 +470,7 @@ static void parse_options(lang_ctx *c, lang_lexer *lx)
             continue;
         }
         lpos pos;
-        const char *name = read_name(lx, &pos, "expected an option name=value");
+        const char *name = lang_read_name(lx, &pos, "expected an option name=value");
         lang_expect_char(lx, '=', "expected '=' after the option's name");
         lang_skip_blanks(lx);
         const lpos vpos = lang_here(lx);
@@ -666,7 +650,7 @@ static void parse_table(lang_ctx *c, lang_lexer *lx)
     int formula = lang_skip_blanks(lx) == '%';
     if (formula)
         lx->i++;
-    const char *name = read_name(lx, &npos, "expected the table's name after 'table'");
+    const char *name = lang_read_name(lx, &npos, "expected the table's name after 'table'");
     if (!formula && lang_skip_blanks(lx) == '%') {
         lx->i++;
         formula = 1;
@@ -727,9 +711,9 @@ static int special_count(lang_ctx *c, const char *v, lpos pos, const char *what,
 static void parse_special(lang_ctx *c, lang_lexer *lx, lpos kpos)
 {
     lpos npos, fpos;
-    const char *name = read_name(lx, &npos, "expected the network sum's name after 'special'");
+    const char *name = lang_read_name(lx, &npos, "expected the network sum's name after 'special'");
     lang_expect_char(lx, '=', "expected '=' after the network sum's name");
-    const char *fun = read_name(lx, &fpos, "expected conv(...) after 'special NAME='");
+    const char *fun = lang_read_name(lx, &fpos, "expected conv(...) after 'special NAME='");
     static const struct {
         const char *name, *args;
         int nargs;
@@ -842,8 +826,8 @@ static void extension(lang_ctx *c, lang_lexer *lx, pstate *ps)
     const int ch = lang_skip_blanks(lx);
     if (!ch)
         return; /* an empty "#:" line */
-    const char *word = read_name(lx, &pos, "expected 'title', 'description', 'event' or a "
-                                 "declared name after '#:'");
+    const char *word = lang_read_name(lx, &pos, "expected 'title', 'description', 'event' or a "
+                                                "declared name after '#:'");
     const size_t n = strlen(word);
     if (ieqn(word, n, "title")) {
         c->m.title = rest_text(lx);
@@ -854,7 +838,7 @@ static void extension(lang_ctx *c, lang_lexer *lx, pstate *ps)
         return;
     }
     if (ieqn(word, n, "event") && lang_skip_blanks(lx) != '[') {
-        const char *name = read_name(lx, &pos, "expected the event's name after '#: event'");
+        const char *name = lang_read_name(lx, &pos, "expected the event's name after '#: event'");
         const lpos npos = pos;
         if (lang_skip_blanks(lx) != '=') {
             /* names the global on the next line */
@@ -869,7 +853,7 @@ static void extension(lang_ctx *c, lang_lexer *lx, pstate *ps)
         lang_expect_char(lx, ',', "expected ', rising', ', falling' or ', both' after the event's "
                                   "expression");
         lpos dpos;
-        const char *dir = read_name(lx, &dpos, "expected rising, falling or both");
+        const char *dir = lang_read_name(lx, &dpos, "expected rising, falling or both");
         int direction;
         if (ieqn(dir, strlen(dir), "rising"))
             direction = 1;
@@ -883,7 +867,7 @@ static void extension(lang_ctx *c, lang_lexer *lx, pstate *ps)
         if (lang_skip_blanks(lx) == ',') {
             lx->i++;
             lpos tpos;
-            const char *w = read_name(lx, &tpos, "expected 'stop' after ','");
+            const char *w = lang_read_name(lx, &tpos, "expected 'stop' after ','");
             if (!ieqn(w, strlen(w), "stop"))
                 lang_fail(c, tpos, "expected 'stop' after ',', found '%s'", w);
             terminal = 1;
@@ -981,7 +965,7 @@ static int keyword_statement(lang_ctx *c, lang_lexer *lx, pstate *ps, const char
         name_value_list(c, lx, 0, "init");
     else if (KW(w, n, "aux", "a")) {
         lpos pos;
-        const char *name = read_name(lx, &pos, "expected the output's name after 'aux'");
+        const char *name = lang_read_name(lx, &pos, "expected the output's name after 'aux'");
         /* XPPAUT's aux names are labels: P.E. is one */
         if (lx->i < lx->end && lx->line->text[lx->i] == '.') {
             int k = lx->i;
@@ -1074,7 +1058,8 @@ static void statement(lang_ctx *c, lang_lexer *lx, pstate *ps, int *done)
     if (ch == '!') {
         lx->i++;
         lpos pos;
-        const char *name = read_name(lx, &pos, "expected a derived parameter's name after '!'");
+        const char *name =
+            lang_read_name(lx, &pos, "expected a derived parameter's name after '!'");
         lang_expect_char(lx, '=', "expected '=' after the derived parameter's name");
         add_formula(c, &m->derived, SYM_DERIVED, name, pos,
                     expr_to_end(lx, "the derived parameter's formula"));
@@ -1103,7 +1088,7 @@ static void statement(lang_ctx *c, lang_lexer *lx, pstate *ps, int *done)
         lang_fail(c, start, "unexpected '%c' at the start of a statement", ch);
     lpos wpos;
     const int wstart = lx->i;
-    const char *w = read_name(lx, &wpos, "expected a name");
+    const char *w = lang_read_name(lx, &wpos, "expected a name");
     const int nc = lang_skip_blanks(lx);
     if (nc != '=' && nc != '\'' && nc != '(' && nc != '/') {
         const int r = keyword_statement(c, lx, ps, w, wpos);
@@ -1144,7 +1129,7 @@ static void statement(lang_ctx *c, lang_lexer *lx, pstate *ps, int *done)
         /* dx/dt=... */
         lx->i++;
         lpos tpos;
-        const char *dt = read_name(lx, &tpos, "expected 'dt' in dx/dt");
+        const char *dt = lang_read_name(lx, &tpos, "expected 'dt' in dx/dt");
         if ((w[0] != 'd' && w[0] != 'D') || !w[1] || !ieqn(dt, strlen(dt), "dt"))
             lang_fail(c, wpos, "expected a differential equation dx/dt=... or x'=...");
         lang_expect_char(lx, '=', "expected '=' after dx/dt");
@@ -1170,7 +1155,7 @@ static void statement(lang_ctx *c, lang_lexer *lx, pstate *ps, int *done)
         lpos apos;
         lvec args = {0};
         for (;;) {
-            const char *arg = read_name(lx, &apos, "expected the function's argument names");
+            const char *arg = lang_read_name(lx, &apos, "expected the function's argument names");
             const int is_t = ieqn(arg, strlen(arg), "t");
             if (is_t && args.n == 0 && lang_skip_blanks(lx) == '+') {
                 parse_map_equation(c, lx, w, wpos);

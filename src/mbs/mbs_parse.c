@@ -16,21 +16,6 @@ static mbs_model *model_of(lang_ctx *c) { return c->hook_ctx; }
 
 static int peek(lang_lexer *lx) { return lang_skip_blanks(lx); }
 
-static const char *read_word(lang_lexer *lx, lpos *pos, const char *what)
-{
-    const int ch = peek(lx);
-    *pos = lang_here(lx);
-    if (!lang_is_ident_start(ch)) {
-        if (ch)
-            lang_fail(lx->c, *pos, "%s, found '%c'", what, ch);
-        lang_fail(lx->c, *pos, "%s, found the end of the line", what);
-    }
-    const int a = lx->i;
-    while (lx->i < lx->end && lang_is_ident_char((unsigned char)lx->line->text[lx->i]))
-        lx->i++;
-    return lang_strndup(lx->c, lx->line->text + a, (size_t)(lx->i - a));
-}
-
 /* The next word if it is w (case folded; then consumed). */
 static int take_word(lang_lexer *lx, const char *w)
 {
@@ -192,7 +177,7 @@ static void parse_coord(lang_ctx *c, lang_lexer *lx)
     mbs_model *mb = model_of(c);
     do {
         mbs_coord *q = lvec_push(c, &mb->coords, sizeof *q);
-        q->name = read_word(lx, &q->pos, "expected a coordinate's name");
+        q->name = lang_read_name(lx, &q->pos, "expected a coordinate's name");
         node *init = NULL;
         if (peek(lx) == '=') {
             lx->i++;
@@ -209,7 +194,7 @@ static void parse_coord(lang_ctx *c, lang_lexer *lx)
         node *sinit = NULL;
         q->speed = lang_printf(c, "d%s", q->name);
         if (take_word(lx, "speed")) {
-            q->speed = read_word(lx, &spos, "expected the speed's name after 'speed'");
+            q->speed = lang_read_name(lx, &spos, "expected the speed's name after 'speed'");
             if (peek(lx) == '=') {
                 lx->i++;
                 sinit = angle_value(lx, "the speed's initial value");
@@ -304,8 +289,8 @@ static void parse_body(lang_ctx *c, lang_lexer *lx, int point, lpos kpos)
     mbs_model *mb = model_of(c);
     mbs_body b = {0};
     b.point = point;
-    b.name = read_word(lx, &b.pos, point ? "expected the point's name" : "expected the body's "
-                       "name");
+    b.name = lang_read_name(lx, &b.pos,
+                            point ? "expected the point's name" : "expected the body's name");
     new_body_name(c, b.name, b.pos);
     b.mass = -1;
     for (int k = 0; k < 6; k++)
@@ -315,7 +300,7 @@ static void parse_body(lang_ctx *c, lang_lexer *lx, int point, lpos kpos)
     int has_at = 0, has_inertia = 0;
     while (peek(lx)) {
         lpos wpos;
-        const char *w = read_word(lx, &wpos, "expected mass=, inertia=, at or rot");
+        const char *w = lang_read_name(lx, &wpos, "expected mass=, inertia=, at or rot");
         if (strcasecmp(w, "mass") == 0) {
             lang_expect_char(lx, '=', "expected '=' after mass");
             b.mass = input_expr(lx, "the mass");
@@ -334,7 +319,7 @@ static void parse_body(lang_ctx *c, lang_lexer *lx, int point, lpos kpos)
                         lx->i++;
                         if (lang_is_ident_start(peek(lx))) {
                             lpos p2;
-                            const char *nx = read_word(lx, &p2, "");
+                            const char *nx = lang_read_name(lx, &p2, "");
                             lx->i = save;
                             if (!strcasecmp(nx, "at") || !strcasecmp(nx, "rot") ||
                                 !strcasecmp(nx, "mass"))
@@ -357,7 +342,7 @@ static void parse_body(lang_ctx *c, lang_lexer *lx, int point, lpos kpos)
             while (lang_is_ident_start(peek(lx))) {
                 const int save = lx->i;
                 lpos apos;
-                const char *a = read_word(lx, &apos, "expected an axis x, y or z");
+                const char *a = lang_read_name(lx, &apos, "expected an axis x, y or z");
                 if (peek(lx) == ':' && strcasecmp(a, "quat") == 0) { /* Euler parameters */
                     lx->i++;
                     if (b.nrot || b.quat[0] >= 0)
@@ -414,7 +399,7 @@ static mbs_attach attachment(lang_ctx *c, lang_lexer *lx)
 {
     mbs_attach a;
     lpos pos;
-    const char *name = read_word(lx, &pos, "expected a body's name or ground");
+    const char *name = lang_read_name(lx, &pos, "expected a body's name or ground");
     a.body = find_body(c, name, pos, 1);
     a.p[0] = a.p[1] = a.p[2] = -1;
     if (peek(lx) == '(')
@@ -427,7 +412,7 @@ static void parse_spring(lang_ctx *c, lang_lexer *lx, lpos kpos)
 {
     mbs_model *mb = model_of(c);
     mbs_spring s = {0};
-    s.name = read_word(lx, &s.pos, "expected the spring's name");
+    s.name = lang_read_name(lx, &s.pos, "expected the spring's name");
     if (!take_word(lx, "between"))
         lang_fail(c, lang_here(lx), "expected 'between' A and B after the spring's name");
     s.a = attachment(c, lx);
@@ -437,7 +422,7 @@ static void parse_spring(lang_ctx *c, lang_lexer *lx, lpos kpos)
     s.k = s.l0 = s.c = -1;
     while (peek(lx)) {
         lpos wpos;
-        const char *w = read_word(lx, &wpos, "expected k=, l0= or c=");
+        const char *w = lang_read_name(lx, &wpos, "expected k=, l0= or c=");
         int *to = !strcasecmp(w, "k") ? &s.k : !strcasecmp(w, "l0") ? &s.l0
                                              : !strcasecmp(w, "c") ? &s.c : NULL;
         if (!to)
@@ -456,12 +441,12 @@ static void parse_load(lang_ctx *c, lang_lexer *lx, int torque)
     mbs_model *mb = model_of(c);
     mbs_load l = {0};
     l.torque = torque;
-    l.name = read_word(lx, &l.pos, torque ? "expected the torque's name"
-                                          : "expected the force's name");
+    l.name = lang_read_name(lx, &l.pos, torque ? "expected the torque's name"
+                                               : "expected the force's name");
     if (!take_word(lx, "on"))
         lang_fail(c, lang_here(lx), "expected 'on' BODY after the name");
     lpos bpos;
-    const char *b = read_word(lx, &bpos, "expected a body's name");
+    const char *b = lang_read_name(lx, &bpos, "expected a body's name");
     l.body = find_body(c, b, bpos, 0);
     l.at[0] = l.at[1] = l.at[2] = -1;
     if (!torque && take_word(lx, "at"))
@@ -470,7 +455,7 @@ static void parse_load(lang_ctx *c, lang_lexer *lx, int torque)
     tuple(lx, l.f, torque ? "the torque" : "the force");
     if (take_word(lx, "in")) {
         lpos fpos;
-        const char *f = read_word(lx, &fpos, "expected the frame N or B");
+        const char *f = lang_read_name(lx, &fpos, "expected the frame N or B");
         if (strcasecmp(f, "B") == 0)
             l.in_body = 1;
         else if (strcasecmp(f, "N") != 0)
@@ -500,7 +485,7 @@ static void parse_constraint(lang_ctx *c, lang_lexer *lx, int prescribe)
     mbs_model *mb = model_of(c);
     mbs_constraint k = {0};
     k.prescribed = -1;
-    k.name = read_word(lx, &k.pos, "expected the constraint's name (its force is named so)");
+    k.name = lang_read_name(lx, &k.pos, "expected the constraint's name (its force is named so)");
     lang_doc doc = {0};
     doc_of(lx, &doc);
     k.unit = doc.unit;
@@ -566,7 +551,7 @@ int mbs_statement(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos)
     else if (!strcasecmp(w, "input") || !strcasecmp(w, "inputs")) {
         do {
             mbs_named *in = lvec_push(c, &mb->input_names, sizeof *in);
-            in->name = read_word(lx, &in->pos, "expected a parameter's name");
+            in->name = lang_read_name(lx, &in->pos, "expected a parameter's name");
         } while (peek(lx) == ',' && (lx->i++, 1));
         lang_expect_end(lx, "the inputs");
     } else if (!strcasecmp(w, "stabilize")) {

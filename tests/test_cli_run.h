@@ -128,6 +128,16 @@ static inline int cli_setup(void **state)
     return cli_make_tmpdir("test");
 }
 
+/* The temporary directory (as cli_make_tmpdir) with a fresh model cache in it, set as
+ * DYNKIT_CACHE_DIR for every dynkit the test starts; the cache's path in cache (size). */
+static inline int cli_make_tmpdir_with_cache(const char *tag, char *cache, size_t size)
+{
+    if (cli_make_tmpdir(tag))
+        return -1;
+    snprintf(cache, size, "%s/cache", cli_tmpdir);
+    return setenv("DYNKIT_CACHE_DIR", cache, 1);
+}
+
 /* Write text into the file name of the temporary directory; 0, or -1 when it cannot. */
 static inline int cli_write_file(const char *name, const char *text)
 {

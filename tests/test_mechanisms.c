@@ -30,18 +30,7 @@ static char cache_dir[512];
 static int setup_all(void **state)
 {
     (void)state;
-    if (cli_make_tmpdir("mechanisms"))
-        return -1;
-    snprintf(cache_dir, sizeof cache_dir, "%s/cache", cli_tmpdir);
-    return setenv("DYNKIT_CACHE_DIR", cache_dir, 1);
-}
-
-static int teardown_all(void **state)
-{
-    (void)state;
-    char cmd[1024];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", cli_tmpdir);
-    return system(cmd) == 0 ? 0 : -1;
+    return cli_make_tmpdir_with_cache("mechanisms", cache_dir, sizeof cache_dir);
 }
 
 static double compare_runs(const char *a_args, const char *b_args, const char *const *names,
@@ -774,5 +763,5 @@ int main(void)
         cmocka_unit_test(test_animate_plays_the_ani_beside),
         cmocka_unit_test(test_errors_name_the_place),
     };
-    return cmocka_run_group_tests(tests, setup_all, teardown_all);
+    return cmocka_run_group_tests(tests, setup_all, cli_remove_tmpdir);
 }

@@ -24,19 +24,7 @@ static char cache_dir[512];
 static int setup_all(void **state)
 {
     (void)state;
-    if (cli_make_tmpdir("modelfiles"))
-        return -1;
-    /* a fresh cache for this test run, inherited by every dynkit started below */
-    snprintf(cache_dir, sizeof cache_dir, "%s/cache", cli_tmpdir);
-    return setenv("DYNKIT_CACHE_DIR", cache_dir, 1);
-}
-
-static int teardown_all(void **state)
-{
-    (void)state;
-    char cmd[1024];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", cli_tmpdir);
-    return system(cmd) == 0 ? 0 : -1;
+    return cli_make_tmpdir_with_cache("modelfiles", cache_dir, sizeof cache_dir);
 }
 
 /* The numbers of a CSV text (header skipped) into v (at most max); returns the count and
@@ -934,5 +922,5 @@ int main(void)
         cmocka_unit_test(test_ignored_options_noted),
         cmocka_unit_test(test_xppaut_leniency),
     };
-    return cmocka_run_group_tests(tests, setup_all, teardown_all);
+    return cmocka_run_group_tests(tests, setup_all, cli_remove_tmpdir);
 }

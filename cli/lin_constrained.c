@@ -15,12 +15,12 @@
 
 #include "dynkit/lang.h"
 #include "dynkit/mbs.h"
+#include "out_file.h"
 
 int cli_lin_constraints_open(const char *spec, const dyn_model *m, cli_lin_constraints *cc)
 {
     memset(cc, 0, sizeof *cc);
-    const size_t n = strlen(spec);
-    if (n < 5 || strcmp(spec + n - 5, ".mech") != 0)
+    if (!cli_has_extension(spec, ".mech")) /* as model_open.c: any case */
         return 0;
     size_t len = 0;
     char *text = cli_read_model_file(spec, &len);

@@ -19,6 +19,7 @@ import math
 import os
 import re
 import shlex
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -183,6 +184,15 @@ def main():
         check(len(ev) == k == len(pt["kept"]) and len(pt["A"]) > k
               and all(min(abs(full - v)) < 1e-6 * scale for v in ev),
               f"{name}: {k} eigenvalues of A_min among those of A ({ev}, {full})")
+
+    # the extension in capitals is a mechanism file too (as for run): reduced the same way
+    path = os.path.join(SOURCE, "examples", "mechanisms", "cartesian_pendulum.mech")
+    with tempfile.TemporaryDirectory() as tmp:
+        upper = os.path.join(tmp, "CP.MECH")
+        shutil.copy(path, upper)
+        ev, pt = eig(upper)
+        check(len(ev) == 2 == len(pt["kept"]),
+              f"CP.MECH: reduced to the 2 states of cartesian_pendulum.mech ({ev})")
 
     # a linear model file x' = A x against NumPy
     A = np.array([[-0.5, 2.0, 0.0, 1.0, 0.3],

@@ -845,6 +845,7 @@ void mbs_derive(lang_ctx *c, mbs_model *mb)
         LVEC_AT(m->auxs, lang_formula, mb->aux_potential).expr = V;
     if (mb->aux_energy >= 0)
         LVEC_AT(m->auxs, lang_formula, mb->aux_energy).expr = add(&d, T, V);
+    mbs_cse(c, mb, d.nfix0);
     m->fix_order = mb->order;
     describe(&d);
 }

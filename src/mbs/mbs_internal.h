@@ -105,6 +105,9 @@ void mbs_finish_parse(lang_ctx *c, mbs_model *mb);
 void mbs_resolve_inputs(lang_ctx *c, mbs_model *mb);
 /* the equations of motion, after lang_check (mbs_derive.c) */
 void mbs_derive(lang_ctx *c, mbs_model *mb);
+/* every subtree repeated among the derived quantities (fixed quantities from nfix0 on)
+ * made a fixed quantity of its own, computed once (mbs_cse.c) */
+void mbs_cse(lang_ctx *c, mbs_model *mb, int nfix0);
 /* the formulas of mb->symbolic as readable text, malloc'd (mbs_text.c) */
 char *mbs_text(lang_ctx *c, const mbs_model *mb);
 

@@ -23,6 +23,8 @@ typedef struct dctx {
     mbs_model *mb;
     int n;        /* coordinates */
     int *q, *u;   /* their state indices, and their speeds' */
+    node **qd;    /* the coordinates' rates: their speeds, or the formulas of `rate` lines */
+    node **W;     /* (n x n) dqd_k/du_j of declared speeds (row k), NULL: the rates */
     int nfix0;    /* fixed quantities before the derivation */
     int count;    /* fixed quantities written */
     mbs_initial ini; /* the initial state, for the checks */
@@ -164,24 +166,42 @@ static node *dt(dctx *d, node *e)
     return lang_subst(d->c, de, &t);
 }
 
-/* the time derivative along the motion: sum_k de/dq_k u_k + de/dt (u held) */
+/* the time derivative along the motion: sum_k de/dq_k qd_k + de/dt (u held) */
 static node *rate(dctx *d, node *e)
 {
     node *r = dt(d, e);
     for (int k = 0; k < d->n; k++)
-        r = add(d, r, mul(d, dq(d, e, d->q[k]), ref(d, N_STATE, d->u[k])));
+        r = add(d, r, mul(d, dq(d, e, d->q[k]), d->qd[k]));
     return r;
+}
+
+/* columns by coordinate (3 n) into columns by speed: J_u = J_q W */
+static void to_speeds(dctx *d, node **J)
+{
+    if (!d->W)
+        return;
+    const int n = d->n;
+    node **T = lang_alloc(d->c, 3 * (size_t)n * sizeof *T);
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < 3; i++) {
+            T[3 * j + i] = num(d, 0.0);
+            for (int k = 0; k < n; k++)
+                T[3 * j + i] = add(d, T[3 * j + i], mul(d, J[3 * k + i], d->W[k * n + j]));
+        }
+    memcpy(J, T, 3 * (size_t)n * sizeof *J);
 }
 
 /* Jacobian columns (3 n, symbolic) and velocity of a point r(q, t) */
 static void point_jacobian(dctx *d, node *const r[3], node **J, node *vel[3])
 {
+    for (int j = 0; j < 3; j++)
+        for (int k = 0; k < d->n; k++)
+            J[3 * k + j] = dq(d, r[j], d->q[k]);
+    to_speeds(d, J);
     for (int j = 0; j < 3; j++) {
         vel[j] = dt(d, r[j]);
-        for (int k = 0; k < d->n; k++) {
-            J[3 * k + j] = dq(d, r[j], d->q[k]);
+        for (int k = 0; k < d->n; k++)
             vel[j] = add(d, vel[j], mul(d, J[3 * k + j], ref(d, N_STATE, d->u[k])));
-        }
     }
 }
 
@@ -266,6 +286,7 @@ static void quaternion(dctx *d, mbs_body *b, node **Jw, node *w[3])
                 Jw[3 * k + j] = col[j];
         }
     }
+    to_speeds(d, Jw);
     for (int j = 0; j < 3; j++)
         for (int k = 0; k < d->n; k++)
             w[j] = add(d, w[j], mul(d, Jw[3 * k + j], ref(d, N_STATE, d->u[k])));
@@ -309,6 +330,7 @@ static void rotation(dctx *d, mbs_body *b, node **Jw, node *w[3])
                 Jw[3 * k + j] = add(d, Jw[3 * k + j], mul(d, col, dq(d, ang[i], d->q[k])));
         }
     }
+    to_speeds(d, Jw);
     for (int j = 0; j < 3; j++)
         for (int k = 0; k < d->n; k++)
             w[j] = add(d, w[j], mul(d, Jw[3 * k + j], ref(d, N_STATE, d->u[k])));
@@ -332,13 +354,59 @@ static void to_b(dctx *d, node *const R[9], node *const v[3], node *out[3])
         out[j] = dot(d, R + 3 * j, v);
 }
 
+/* a body placed by a joint (mbs_joint.c): R = R_joint R_P, w = R_joint w_P + w_joint (in
+ * B, each column of J_w likewise), x = x_P + R_P'(jp + shift) - R'(pivot) */
+static void joint_pose(dctx *d, mbs_body *b, node **Jw)
+{
+    const mbs_body *p = b->parent >= 0 ? &LVEC_AT(d->mb->bodies, mbs_body, b->parent) : NULL;
+    node *a[3], *r[3], *pv[3];
+    for (int j = 0; j < 3; j++) {
+        a[j] = add(d, input(d, b->jp[j]), input(d, b->shift[j]));
+        pv[j] = input(d, b->pivot[j]);
+    }
+    if (p && p->frame) {
+        node *Rj[9];
+        memcpy(Rj, b->R, sizeof Rj);
+        matmul(d, Rj, p->R, b->R);
+        for (int k = -1; k < d->n; k++) {
+            node *const *src = k < 0 ? p->ws : p->Jws + 3 * k;
+            node **dst = k < 0 ? b->w : Jw + 3 * k;
+            for (int j = 0; j < 3; j++)
+                dst[j] = add(d, dst[j], dot(d, Rj + 3 * j, src));
+        }
+        to_n(d, p->R, a, r);
+    } else {
+        memcpy(r, a, sizeof r);
+    }
+    node *off[3];
+    if (b->frame)
+        to_n(d, b->R, pv, off);
+    else
+        memcpy(off, pv, sizeof off);
+    for (int j = 0; j < 3; j++)
+        b->x[j] = sub(d, add(d, p ? p->x[j] : num(d, 0.0), r[j]), off[j]);
+}
+
 static void body_kinematics(dctx *d, mbs_body *b, int bi)
 {
     lang_ctx *c = d->c;
     const int n = d->n;
     node **Jv = lang_alloc(c, 3 * (size_t)n * sizeof *Jv);
-    for (int j = 0; j < 3; j++)
-        b->x[j] = input(d, b->at[j]);
+    node **Jw = NULL;
+    if (b->frame) {
+        Jw = lang_alloc(c, 3 * (size_t)n * sizeof *Jw);
+        rotation(d, b, Jw, b->w);
+    }
+    if (b->joint)
+        joint_pose(d, b, Jw);
+    else
+        for (int j = 0; j < 3; j++)
+            b->x[j] = input(d, b->at[j]);
+    if (b->frame) { /* the children's joints compose with these */
+        b->Jws = lang_alloc(c, 3 * (size_t)n * sizeof *b->Jws);
+        memcpy(b->Jws, Jw, 3 * (size_t)n * sizeof *Jw);
+        memcpy(b->ws, b->w, sizeof b->ws);
+    }
     point_jacobian(d, b->x, Jv, b->v);
     for (int j = 0; j < 3; j++)
         b->gv[j] = rate(d, b->v[j]);
@@ -349,10 +417,8 @@ static void body_kinematics(dctx *d, mbs_body *b, int bi)
     fix_vec(d, lang_printf(c, "b%d_Jv", bi), Jv, 3 * n);
     fix_vec(d, lang_printf(c, "b%d_v", bi), b->v, 3);
     fix_vec(d, lang_printf(c, "b%d_gv", bi), b->gv, 3);
-    if (b->point)
+    if (!b->frame)
         return;
-    node **Jw = lang_alloc(c, 3 * (size_t)n * sizeof *Jw);
-    rotation(d, b, Jw, b->w);
     for (int j = 0; j < 3; j++)
         b->gw[j] = rate(d, b->w[j]);
     b->Jw = Jw;
@@ -379,7 +445,7 @@ static void attach_position(dctx *d, const mbs_attach *a, node *r[3])
     const mbs_body *b = &LVEC_AT(d->mb->bodies, mbs_body, a->body);
     for (int j = 0; j < 3; j++) {
         r[j] = b->x[j];
-        if (b->point) /* a point mass has no frame: the offset is in N */
+        if (!b->frame) /* a point mass has no frame: the offset is in N */
             r[j] = add(d, r[j], p[j]);
         else
             for (int i = 0; i < 3; i++)
@@ -668,6 +734,34 @@ static node *loads(dctx *d, node **Q)
     return V;
 }
 
+/* the coordinates' rates: their speeds, or with declared speeds the formulas of the rate
+ * lines, qd = W(q, t) u + qd_t, which must be linear in the speeds */
+static void kinematic_equations(dctx *d)
+{
+    lang_ctx *c = d->c;
+    mbs_model *mb = d->mb;
+    const int n = d->n;
+    d->qd = lang_alloc(c, (size_t)n * sizeof *d->qd);
+    for (int k = 0; k < n; k++)
+        d->qd[k] = ref(d, N_STATE, d->u[k]);
+    if (!mb->speeds.n)
+        return;
+    d->W = lang_alloc(c, (size_t)n * n * sizeof *d->W);
+    for (int k = 0; k < n; k++) {
+        const mbs_coord *q = &LVEC_AT(mb->coords, mbs_coord, k);
+        d->qd[k] = input(d, q->kin);
+        for (int j = 0; j < n; j++) {
+            d->W[k * n + j] = dq(d, d->qd[k], d->u[j]);
+            for (int l = 0; l < n; l++)
+                if (!lang_is_num(dq(d, d->W[k * n + j], d->u[l]), 0.0))
+                    lang_fail(c, q->kin_pos, "the rate of '%s' is not linear in the speeds (its "
+                              "second derivative in %s and %s is not 0)", q->name,
+                              LVEC_AT(mb->coords, mbs_coord, j).speed,
+                              LVEC_AT(mb->coords, mbs_coord, l).speed);
+        }
+    }
+}
+
 static void describe(dctx *d)
 {
     lang_ctx *c = d->c;
@@ -700,7 +794,7 @@ static void describe(dctx *d)
 void mbs_derive(lang_ctx *c, mbs_model *mb)
 {
     lang_model *m = &c->m;
-    dctx d = {c, mb, mb->coords.n, NULL, NULL, m->fixes.n, 0, {NULL, NULL, 0}, NULL};
+    dctx d = {c, mb, mb->coords.n, NULL, NULL, NULL, NULL, m->fixes.n, 0, {NULL, NULL, 0}, NULL};
     const int n = d.n;
     mbs_initial_values(c, &d.ini);
     d.q = lang_alloc(c, (size_t)n * sizeof *d.q);
@@ -715,6 +809,7 @@ void mbs_derive(lang_ctx *c, mbs_model *mb)
     mb->order = lang_alloc(c, (size_t)mb->ordercap * sizeof *mb->order);
     memcpy(mb->order, m->fix_order, (size_t)m->fixes.n * sizeof *mb->order);
     mb->norder = m->fixes.n;
+    kinematic_equations(&d);
     for (int bi = 0; bi < mb->bodies.n; bi++)
         body_kinematics(&d, &LVEC_AT(mb->bodies, mbs_body, bi), bi);
     /* M and F */
@@ -834,7 +929,8 @@ void mbs_derive(lang_ctx *c, mbs_model *mb)
     else
         memcpy(qdd, a0, (size_t)n * sizeof *qdd);
     for (int i = 0; i < n; i++) {
-        LVEC_AT(m->states, lang_state, d.q[i]).rhs = ref(&d, N_STATE, d.u[i]);
+        LVEC_AT(m->states, lang_state, d.q[i]).rhs =
+            d.W ? input_ref(&d, LVEC_AT(mb->coords, mbs_coord, i).kin) : ref(&d, N_STATE, d.u[i]);
         LVEC_AT(m->states, lang_state, d.u[i]).rhs = qdd[i];
     }
     T = fix(&d, "T", mul(&d, num(&d, 0.5), T));

@@ -21,7 +21,20 @@ typedef struct mbs_coord {
     lpos speed_pos;
     node *speed_init;
     lang_doc speed_doc;
+    int kin;      /* input: q' as a formula of the speeds (`rate` line), -1: q' = its speed */
+    lpos kin_pos;
+    int jointed;  /* the body whose joint it moves, plus 1 (0: none) */
 } mbs_coord;
+
+/* A speed declared by `speeds` (a generalized speed other than a coordinate's rate) */
+typedef struct mbs_speed {
+    const char *name;
+    lpos pos;
+    node *init;
+    lang_doc doc;
+} mbs_speed;
+
+enum { MBS_NO_JOINT, MBS_REVOLUTE, MBS_PRISMATIC, MBS_SPHERICAL, MBS_FREE };
 
 typedef struct mbs_body {
     const char *name;
@@ -34,12 +47,21 @@ typedef struct mbs_body {
     int axis[MBS_MAX_ROT];  /* 0 x, 1 y, 2 z */
     int angle[MBS_MAX_ROT]; /* inputs */
     int quat[4];        /* inputs: Euler parameters (w, x, y, z) in place of rotations, or -1 */
+    /* a joint to a parent (mbs_joint.c): the rotations above are the joint's own, from the
+     * parent's frame to the body's; the mass centre is the parent's, plus the joint's
+     * point jp and the translation shift (in the parent's frame), minus the pivot (the
+     * joint's point in the body's frame) */
+    int joint;          /* MBS_NO_JOINT: placed by at (x, y, z) rot ... */
+    int parent;         /* -1: the ground */
+    int jp[3], shift[3], pivot[3]; /* inputs, -1: 0 */
+    int frame;          /* 1: it has a frame B (rigid bodies; points placed by a rotating joint) */
     /* derived (mbs_derive.c) */
     node *x[3], *R[9];  /* symbolic: position, N->B rotation */
     node *Rf[9];        /* R as fixed quantities */
     node **Jv, **Jw;    /* (3 n) fixed quantities: column k at 3 k */
     double *Jv0, *Jw0;  /* (3 n) their values at the initial state */
     node *v[3], *w[3], *gv[3], *gw[3];
+    node **Jws, *ws[3]; /* symbolic J_w and w (before they are fixed), for the children */
 } mbs_body;
 
 typedef struct mbs_attach {
@@ -85,6 +107,7 @@ typedef struct mbs_model {
     int aux_kinetic, aux_potential, aux_energy; /* output indices, -1: not written */
     int ninputs;
     lvec input_names; /* mbs_named: parameters a table of inputs overrides (`input`) */
+    lvec speeds;      /* mbs_speed: generalized speeds of a `speeds` line (none: the rates) */
     node **expanded; /* expanded inputs, by fixed quantity (mbs_derive.c) */
     int *order;      /* the order of the fixed quantities, growing */
     /* dynkit derive: the formulas themselves instead of fixed quantities, kept here */
@@ -101,6 +124,16 @@ typedef struct mbs_model {
 /* statements (mbs_parse.c): the hook of lang_parse_model, and the end of the file */
 int mbs_statement(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos);
 void mbs_finish_parse(lang_ctx *c, mbs_model *mb);
+/* helpers of the statements for mbs_joint.c: an expression kept as an input, a tuple of
+ * three, a body by name (-1: the ground), AXIS:ANGLE ... or quat:(w, x, y, z) into b */
+int mbs_input_expr(lang_lexer *lx, const char *what);
+void mbs_tuple(lang_lexer *lx, int *out, const char *what);
+int mbs_find_body(lang_ctx *c, const char *name, lpos pos, int ground_ok);
+void mbs_parse_rot(lang_ctx *c, lang_lexer *lx, mbs_body *b);
+/* joints (mbs_joint.c): the kind a word names (MBS_NO_JOINT: none), and a joint's words
+ * after it into b, the next body */
+int mbs_joint_kind(const char *word);
+void mbs_parse_joint(lang_ctx *c, lang_lexer *lx, mbs_body *b, int kind);
 /* the `input` parameters into the model's inputs, after lang_check */
 void mbs_resolve_inputs(lang_ctx *c, mbs_model *mb);
 /* the equations of motion, after lang_check (mbs_derive.c) */

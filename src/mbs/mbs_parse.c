@@ -178,6 +178,7 @@ static void parse_coord(lang_ctx *c, lang_lexer *lx)
     do {
         mbs_coord *q = lvec_push(c, &mb->coords, sizeof *q);
         q->name = lang_read_name(lx, &q->pos, "expected a coordinate's name");
+        q->kin = -1;
         node *init = NULL;
         if (peek(lx) == '=') {
             lx->i++;
@@ -207,6 +208,80 @@ static void parse_coord(lang_ctx *c, lang_lexer *lx)
         doc_of(lx, &q->speed_doc);
     } while (peek(lx) == ',' && (lx->i++, 1));
     lang_expect_end(lx, "the coordinates");
+}
+
+/* speeds NAME[=VALUE] [UNIT] "DESCRIPTION", ...: generalized speeds in place of the rates */
+static void parse_speeds(lang_ctx *c, lang_lexer *lx)
+{
+    mbs_model *mb = model_of(c);
+    do {
+        mbs_speed *u = lvec_push(c, &mb->speeds, sizeof *u);
+        u->name = lang_read_name(lx, &u->pos, "expected a speed's name");
+        if (peek(lx) == '=') {
+            lx->i++;
+            u->init = angle_value(lx, "the speed's initial value");
+        }
+        u->doc.description = "generalized speed";
+        doc_of(lx, &u->doc);
+    } while (peek(lx) == ',' && (lx->i++, 1));
+    lang_expect_end(lx, "the speeds");
+}
+
+/* rate q' = FORMULA, ...: the kinematic equations, linear in the speeds */
+static void parse_rates(lang_ctx *c, lang_lexer *lx)
+{
+    mbs_model *mb = model_of(c);
+    do {
+        lpos pos;
+        const char *name = lang_read_name(lx, &pos, "expected a coordinate's name: rate q' = "
+                                          "formula of the coordinates and speeds");
+        mbs_coord *q = NULL;
+        for (int i = 0; i < mb->coords.n && !q; i++)
+            if (strcasecmp(LVEC_AT(mb->coords, mbs_coord, i).name, name) == 0)
+                q = &LVEC_AT(mb->coords, mbs_coord, i);
+        if (!q)
+            lang_fail(c, pos, "'%s' is not a coordinate (declared by coord before its rate)",
+                      name);
+        if (q->kin >= 0)
+            lang_fail(c, pos, "the rate of '%s' is given twice", name);
+        lang_expect_char(lx, '\'', "expected q' = formula: the rate of the coordinate");
+        lang_expect_char(lx, '=', "expected '=' after q'");
+        q->kin = input_expr(lx, "the coordinate's rate");
+        q->kin_pos = pos;
+    } while (peek(lx) == ',' && (lx->i++, 1));
+    lang_expect_end(lx, "the rates");
+}
+
+/* The declared speeds take the places of the rates (as many, in order); each coordinate
+ * then needs its rate. */
+static void finish_speeds(lang_ctx *c, mbs_model *mb)
+{
+    const int ns = mb->speeds.n, n = mb->coords.n;
+    for (int i = 0; i < n && !ns; i++) {
+        const mbs_coord *q = &LVEC_AT(mb->coords, mbs_coord, i);
+        if (q->kin >= 0)
+            lang_fail(c, q->kin_pos, "a rate line needs the generalized speeds it uses, "
+                      "declared by speeds NAME, ...");
+    }
+    if (!ns)
+        return;
+    if (ns != n)
+        lang_fail(c, LVEC_AT(mb->speeds, mbs_speed, 0).pos, "%d speeds for %d coordinates: "
+                  "declare as many speeds as coordinates", ns, n);
+    for (int i = 0; i < n; i++) {
+        mbs_coord *q = &LVEC_AT(mb->coords, mbs_coord, i);
+        const mbs_speed *u = &LVEC_AT(mb->speeds, mbs_speed, i);
+        if (strcmp(q->speed, lang_printf(c, "d%s", q->name)) != 0 || q->speed_init)
+            lang_fail(c, q->speed_pos, "coordinate '%s' names its speed, but the speeds are "
+                      "declared by speeds: leave out 'speed' here", q->name);
+        if (q->kin < 0)
+            lang_fail(c, q->pos, "coordinate '%s' has no rate: with declared speeds, write "
+                      "rate %s' = formula of the coordinates and speeds", q->name, q->name);
+        q->speed = u->name;
+        q->speed_pos = u->pos;
+        q->speed_init = u->init;
+        q->speed_doc = u->doc;
+    }
 }
 
 /* par lines: [unit] and "description" after a value go to the name before them; they are
@@ -282,6 +357,48 @@ static void new_body_name(lang_ctx *c, const char *name, lpos pos)
             lang_fail(c, pos, "body '%s' is declared twice", name);
 }
 
+/* AXIS:ANGLE ... (elementary rotations) or quat:(w, x, y, z) into b */
+void mbs_parse_rot(lang_ctx *c, lang_lexer *lx, mbs_body *b)
+{
+    while (lang_is_ident_start(peek(lx))) {
+        const int save = lx->i;
+        lpos apos;
+        const char *a = lang_read_name(lx, &apos, "expected an axis x, y or z");
+        if (peek(lx) == ':' && strcasecmp(a, "quat") == 0) { /* Euler parameters */
+            lx->i++;
+            if (b->nrot || b->quat[0] >= 0)
+                lang_fail(c, apos, "quat:(w, x, y, z) is the whole orientation: no "
+                          "other rotation beside it");
+            lang_expect_char(lx, '(',
+                             "expected '(' before the Euler parameters (w, x, y, z)");
+            for (int k = 0; k < 4; k++) {
+                b->quat[k] = input_expr(lx, "an Euler parameter");
+                lang_expect_char(lx, k < 3 ? ',' : ')',
+                                 k < 3 ? "expected ',' between the Euler parameters "
+                                         "(w, x, y, z)"
+                                       : "expected ')' after the Euler parameters "
+                                         "(w, x, y, z)");
+            }
+            continue;
+        }
+        if (peek(lx) != ':' || strlen(a) != 1 || !strchr("xyzXYZ", a[0])) {
+            lx->i = save;
+            break;
+        }
+        if (b->quat[0] >= 0)
+            lang_fail(c, apos, "quat:(w, x, y, z) is the whole orientation: no other "
+                      "rotation beside it");
+        lx->i++;
+        if (b->nrot >= MBS_MAX_ROT)
+            lang_fail(c, apos, "more than %d elementary rotations", MBS_MAX_ROT);
+        b->axis[b->nrot] = tolower((unsigned char)a[0]) - 'x';
+        b->angle[b->nrot++] = add_input(c, angle_value(lx, "the rotation's angle"));
+    }
+    if (b->nrot == 0 && b->quat[0] < 0)
+        lang_fail(c, lang_here(lx), "expected elementary rotations AXIS:ANGLE after "
+                  "'rot' (e.g. rot z:psi y:theta x:phi), or quat:(w, x, y, z)");
+}
+
 /* point NAME mass=M at (x, y, z)
  * body NAME mass=M inertia=(Ixx, Iyy, Izz[, Ixy, Ixz, Iyz]) at (x, y, z) [rot AXIS:ANGLE ...] */
 static void parse_body(lang_ctx *c, lang_lexer *lx, int point, lpos kpos)
@@ -322,7 +439,7 @@ static void parse_body(lang_ctx *c, lang_lexer *lx, int point, lpos kpos)
                             const char *nx = lang_read_name(lx, &p2, "");
                             lx->i = save;
                             if (!strcasecmp(nx, "at") || !strcasecmp(nx, "rot") ||
-                                !strcasecmp(nx, "mass"))
+                                !strcasecmp(nx, "mass") || mbs_joint_kind(nx))
                                 break;
                         }
                         lx->i = save;
@@ -336,46 +453,21 @@ static void parse_body(lang_ctx *c, lang_lexer *lx, int point, lpos kpos)
                                  "Ixy, Ixz, Iyz])");
             has_inertia = 1;
         } else if (strcasecmp(w, "at") == 0) {
+            if (b.joint)
+                lang_fail(c, wpos, "the joint places '%s': no at (x, y, z) beside it", b.name);
             tuple(lx, b.at, "the mass centre");
             has_at = 1;
         } else if (strcasecmp(w, "rot") == 0 && !point) {
-            while (lang_is_ident_start(peek(lx))) {
-                const int save = lx->i;
-                lpos apos;
-                const char *a = lang_read_name(lx, &apos, "expected an axis x, y or z");
-                if (peek(lx) == ':' && strcasecmp(a, "quat") == 0) { /* Euler parameters */
-                    lx->i++;
-                    if (b.nrot || b.quat[0] >= 0)
-                        lang_fail(c, apos, "quat:(w, x, y, z) is the whole orientation: no "
-                                  "other rotation beside it");
-                    lang_expect_char(lx, '(',
-                                     "expected '(' before the Euler parameters (w, x, y, z)");
-                    for (int k = 0; k < 4; k++) {
-                        b.quat[k] = input_expr(lx, "an Euler parameter");
-                        lang_expect_char(lx, k < 3 ? ',' : ')',
-                                         k < 3 ? "expected ',' between the Euler parameters "
-                                                 "(w, x, y, z)"
-                                               : "expected ')' after the Euler parameters "
-                                                 "(w, x, y, z)");
-                    }
-                    continue;
-                }
-                if (b.quat[0] >= 0)
-                    lang_fail(c, apos, "quat:(w, x, y, z) is the whole orientation: no other "
-                              "rotation beside it");
-                if (peek(lx) != ':' || strlen(a) != 1 || !strchr("xyzXYZ", a[0])) {
-                    lx->i = save;
-                    break;
-                }
-                lx->i++;
-                if (b.nrot >= MBS_MAX_ROT)
-                    lang_fail(c, apos, "more than %d elementary rotations", MBS_MAX_ROT);
-                b.axis[b.nrot] = tolower((unsigned char)a[0]) - 'x';
-                b.angle[b.nrot++] = add_input(c, angle_value(lx, "the rotation's angle"));
-            }
-            if (b.nrot == 0 && b.quat[0] < 0)
-                lang_fail(c, lang_here(lx), "expected elementary rotations AXIS:ANGLE after "
-                          "'rot' (e.g. rot z:psi y:theta x:phi), or quat:(w, x, y, z)");
+            if (b.joint)
+                lang_fail(c, wpos, "the joint gives the orientation of '%s': no rot beside it",
+                          b.name);
+            mbs_parse_rot(c, lx, &b);
+        } else if (mbs_joint_kind(w) != MBS_NO_JOINT) {
+            if (has_at || b.nrot || b.quat[0] >= 0)
+                lang_fail(c, wpos, "a %s is placed either by a joint or by at (x, y, z) rot "
+                          "...: not both", point ? "point" : "body");
+            mbs_parse_joint(c, lx, &b, mbs_joint_kind(w));
+            has_at = 1;
         } else {
             lang_fail(c, wpos, "unknown word '%s' in a %s: expected mass=, %sat (x, y, z)%s",
                       w, point ? "point" : "body", point ? "" : "inertia=(Ixx, Iyy, Izz), ",
@@ -391,7 +483,17 @@ static void parse_body(lang_ctx *c, lang_lexer *lx, int point, lpos kpos)
     if (!has_at)
         lang_fail(c, kpos, "%s '%s' has no position: write at (x, y, z), its mass centre in N "
                   "as formulas of the coordinates", point ? "point" : "body", b.name);
+    b.frame = !point || (b.joint && (b.nrot || b.quat[0] >= 0 ||
+                                     (b.parent >= 0 &&
+                                      LVEC_AT(mb->bodies, mbs_body, b.parent).frame)));
     *(mbs_body *)lvec_push(c, &mb->bodies, sizeof b) = b;
+}
+
+int mbs_input_expr(lang_lexer *lx, const char *what) { return input_expr(lx, what); }
+void mbs_tuple(lang_lexer *lx, int *out, const char *what) { tuple(lx, out, what); }
+int mbs_find_body(lang_ctx *c, const char *name, lpos pos, int ground_ok)
+{
+    return find_body(c, name, pos, ground_ok);
 }
 
 /* BODY[(x, y, z)] */
@@ -546,6 +648,10 @@ int mbs_statement(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos)
         parse_spring(c, lx, wpos);
     else if (!strcasecmp(w, "force") || !strcasecmp(w, "torque"))
         parse_load(c, lx, !strcasecmp(w, "torque"));
+    else if (!strcasecmp(w, "speeds"))
+        parse_speeds(c, lx);
+    else if (!strcasecmp(w, "rate") || !strcasecmp(w, "rates"))
+        parse_rates(c, lx);
     else if (!strcasecmp(w, "constraint") || !strcasecmp(w, "prescribe"))
         parse_constraint(c, lx, !strcasecmp(w, "prescribe"));
     else if (!strcasecmp(w, "input") || !strcasecmp(w, "inputs")) {
@@ -563,7 +669,7 @@ int mbs_statement(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos)
     } else {
         static const char *const words[] = {"coord", "gravity", "point", "body", "spring",
                                             "force", "torque", "constraint", "prescribe",
-                                            "stabilize", "input"};
+                                            "stabilize", "input", "speeds", "rate"};
         const char *near = lang_is_statement_keyword(w)
                                ? NULL
                                : dyn_lang_nearest(w, words, (int)(sizeof words / sizeof *words));
@@ -585,6 +691,7 @@ void mbs_finish_parse(lang_ctx *c, mbs_model *mb)
         if (s->key && strncmp(s->key, "mbs_", 4) == 0)
             lang_fail(c, s->pos, "names beginning with mbs_ are dynkit's own");
     }
+    finish_speeds(c, mb);
     for (int i = 0; i < mb->coords.n; i++) { /* the speeds after the coordinates */
         mbs_coord *q = &LVEC_AT(mb->coords, mbs_coord, i);
         q->u = add_state(c, q->speed, q->speed_pos, q->speed_init);

@@ -736,6 +736,7 @@ static node *loads(dctx *d, node **Q)
 
 /* the coordinates' rates: their speeds, or with declared speeds the formulas of the rate
  * lines, qd = W(q, t) u + qd_t, which must be linear in the speeds */
+#define MBS_MAX_SPEEDS_CHECK 256 /* speeds set to 0 for the check of the rates */
 static void kinematic_equations(dctx *d)
 {
     lang_ctx *c = d->c;
@@ -750,6 +751,18 @@ static void kinematic_equations(dctx *d)
     for (int k = 0; k < n; k++) {
         const mbs_coord *q = &LVEC_AT(mb->coords, mbs_coord, k);
         d->qd[k] = input(d, q->kin);
+        double *args = d->ini.args, save[MBS_MAX_SPEEDS_CHECK];
+        for (int j = 0; j < n && j < MBS_MAX_SPEEDS_CHECK; j++) {
+            save[j] = args[d->u[j]];
+            args[d->u[j]] = 0.0;
+        }
+        const double rest = mbs_value(c, &d->ini, d->qd[k]);
+        for (int j = 0; j < n && j < MBS_MAX_SPEEDS_CHECK; j++)
+            args[d->u[j]] = save[j];
+        if (n <= MBS_MAX_SPEEDS_CHECK && rest != 0.0 && !isnan(rest))
+            lang_fail(c, q->kin_pos, "the rate of '%s' is %.17g with all speeds 0 at the "
+                      "initial state: a rate is W(q) u, a sum of the speeds times formulas of "
+                      "the coordinates", q->name, rest);
         for (int j = 0; j < n; j++) {
             d->W[k * n + j] = dq(d, d->qd[k], d->u[j]);
             for (int l = 0; l < n; l++)
@@ -770,6 +783,12 @@ static void describe(dctx *d)
     for (int i = 0; i < mb->coords.n; i++) {
         const mbs_coord *q = &LVEC_AT(mb->coords, mbs_coord, i);
         s = lang_printf(c, "%s %s (speed %s)%s", s, q->name, q->speed,
+                        i + 1 < mb->coords.n ? "," : ";");
+    }
+    for (int i = 0; i < mb->coords.n && mb->speeds.n; i++) {
+        const mbs_coord *q = &LVEC_AT(mb->coords, mbs_coord, i);
+        s = lang_printf(c, "%s%s %s' = %s%s", s, i ? "" : " kinematic equations", q->name,
+                        mbs_formula_text(c, LVEC_AT(c->m.fixes, lang_formula, q->kin).expr),
                         i + 1 < mb->coords.n ? "," : ";");
     }
     s = lang_printf(c, "%s bodies", s);

@@ -143,5 +143,7 @@ void mbs_derive(lang_ctx *c, mbs_model *mb);
 void mbs_cse(lang_ctx *c, mbs_model *mb, int nfix0);
 /* the formulas of mb->symbolic as readable text, malloc'd (mbs_text.c) */
 char *mbs_text(lang_ctx *c, const mbs_model *mb);
+/* one formula as text in the file's names (in the context's arena) */
+const char *mbs_formula_text(lang_ctx *c, const node *e);
 
 #endif /* DYNKIT_MBS_INTERNAL_H */

@@ -38,6 +38,8 @@ static void joint_coordinate(lang_ctx *c, const mbs_body *b, int k, const char *
             q->jointed = mb->bodies.n + 1;
             return;
         }
+    while (e->kind == N_BIN) /* the formula's start */
+        e = e->args[0];
     lang_fail(c, e->pos, "%s of the %s joint of '%s' is a coordinate's name (declared by coord "
               "before the joint); for a formula, place the body by at (x, y, z) rot ...", what,
               kinds[b->joint], b->name);

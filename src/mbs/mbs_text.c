@@ -131,13 +131,36 @@ static void line(tbuf *b, const char *label, const node *e)
     put(b, "\n");
 }
 
+const char *mbs_formula_text(lang_ctx *c, const node *e)
+{
+    tbuf b = {c, NULL, 0, 0};
+    text(&b, e);
+    return b.s;
+}
+
+/* the kinematic equations of declared speeds, a line each */
+static void rates(tbuf *b, const mbs_model *mb)
+{
+    for (int i = 0; i < mb->coords.n && mb->speeds.n; i++) {
+        const mbs_coord *q = &LVEC_AT(mb->coords, mbs_coord, i);
+        put(b, lang_printf(b->c, "%s'", q->name));
+        put(b, " = ");
+        text(b, LVEC_AT(b->c->m.fixes, lang_formula, q->kin).expr);
+        put(b, "\n");
+    }
+}
+
 char *mbs_text(lang_ctx *c, const mbs_model *mb)
 {
     tbuf b = {c, NULL, 0, 0};
     lang_model *m = &c->m;
     const int n = mb->coords.n, nc = mb->cons.n;
-    put(&b, lang_printf(c, "%s: equations of motion by TMT, M q'' = F + D' lambda%s\n", m->name,
-                        nc ? ", D q'' + c = 0" : ""));
+    /* with declared speeds u the rows and columns are the speeds' */
+    const int by_u = mb->speeds.n > 0;
+    const char *acc = by_u ? "u'" : "q''";
+    put(&b, lang_printf(c, "%s: equations of motion by TMT, M %s = F + D' lambda%s%s\n", m->name,
+                        acc, nc ? (by_u ? ", D u' + c = 0" : ", D q'' + c = 0") : "",
+                        by_u ? ", q' = W(q) u" : ""));
     put(&b, "coordinates q:");
     for (int i = 0; i < n; i++)
         put(&b, lang_printf(c, " %s", LVEC_AT(mb->coords, mbs_coord, i).name));
@@ -145,22 +168,26 @@ char *mbs_text(lang_ctx *c, const mbs_model *mb)
     for (int i = 0; i < n; i++)
         put(&b, lang_printf(c, " %s", LVEC_AT(mb->coords, mbs_coord, i).speed));
     put(&b, "\n\n");
+    if (by_u) {
+        put(&b, "kinematic equations:\n");
+        rates(&b, mb);
+        put(&b, "\n");
+    }
+#define NAME(i) (by_u ? LVEC_AT(mb->coords, mbs_coord, i).speed : LVEC_AT(mb->coords, mbs_coord, i).name)
     for (int i = 0; i < n; i++)
         for (int k = 0; k <= i; k++)
-            line(&b, lang_printf(c, "M[%s,%s]", LVEC_AT(mb->coords, mbs_coord, i).name,
-                                 LVEC_AT(mb->coords, mbs_coord, k).name),
-                 mb->M[i * n + k]);
+            line(&b, lang_printf(c, "M[%s,%s]", NAME(i), NAME(k)), mb->M[i * n + k]);
     for (int i = 0; i < n; i++)
-        line(&b, lang_printf(c, "F[%s]", LVEC_AT(mb->coords, mbs_coord, i).name), mb->F[i]);
+        line(&b, lang_printf(c, "F[%s]", NAME(i)), mb->F[i]);
     for (int r = 0; r < nc; r++) {
         const mbs_constraint *k = &LVEC_AT(mb->cons, mbs_constraint, r);
         put(&b, lang_printf(c, "\nconstraint %s (%s)\n", k->name,
                             mb->con_speeds[r] ? "on the speeds" : "of the positions"));
         for (int j = 0; j < n; j++)
-            line(&b, lang_printf(c, "D[%s,%s]", k->name, LVEC_AT(mb->coords, mbs_coord, j).name),
-                 mb->con_D[r * n + j]);
+            line(&b, lang_printf(c, "D[%s,%s]", k->name, NAME(j)), mb->con_D[r * n + j]);
         line(&b, lang_printf(c, "c[%s]", k->name), mb->con_c[r]);
     }
+#undef NAME
     int header = 0;
     for (int i = 0; i < m->fixes.n; i++) {
         const lang_formula *f = &LVEC_AT(m->fixes, lang_formula, i);

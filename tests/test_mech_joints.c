@@ -1,0 +1,277 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* test_mech_joints.c — joints and declared generalized speeds of mechanism files (src/mbs,
+ * docs/mechanisms.md "Joints", "Generalized speeds") against independent answers: the double
+ * pendulum by revolute joints against the one by formulas (1e-10 over 10 s); a slider on a
+ * spring with a pendulum (prismatic and revolute joints) against the closed form of its two
+ * small-oscillation frequencies; the heavy top with its body-frame angular velocities as
+ * speeds against the top by its angles' rates, its axial spin constant (Euler's equations);
+ * a free body in zero gravity keeping its angular momentum vector and energy, the
+ * torque-free symmetric body's closed-form motion, and the growth rate of the spin about
+ * the intermediate axis; and the errors of joints and speeds at FILE:LINE:COL. */
+#define _POSIX_C_SOURCE 200809L
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+#include <math.h>
+
+#include "test_cli_run.h"
+#include "test_util.h"
+
+#define MECH DYNKIT_SOURCE_DIR "/examples/mechanisms/"
+#define TIGHT "--method dop853 --rtol 1e-12 --atol 1e-12"
+#define MAXROWS 4096
+
+static char cache_dir[512];
+
+static int setup_all(void **state)
+{
+    (void)state;
+    return cli_make_tmpdir_with_cache("mech_joints", cache_dir, sizeof cache_dir);
+}
+
+/* The column NAME of a CSV text into out (at most MAXROWS rows); returns the rows. */
+static long column(const char *csv, const char *name, double *out)
+{
+    const size_t len = strlen(name);
+    int want = -1, col = 0;
+    for (const char *h = csv; *h && *h != '\n'; col++) {
+        if (!strncmp(h, name, len) && (h[len] == ',' || h[len] == '\n'))
+            want = col;
+        h += strcspn(h, ",\n");
+        if (*h == ',')
+            h++;
+    }
+    CHECK(want >= 0, "no column %s", name);
+    long rows = 0;
+    for (const char *p = strchr(csv, '\n'); p && p[1] && rows < MAXROWS; p = strchr(p + 1, '\n')) {
+        const char *f = p + 1;
+        for (int k = 0; k < want; k++)
+            f = strchr(f, ',') + 1;
+        out[rows++] = strtod(f, NULL);
+    }
+    return rows;
+}
+
+static cli_result run_ok(const char *fmt, const char *file, const char *extra)
+{
+    cli_result r = cli(fmt, file, extra);
+    CHECK(r.status == 0, "%s", r.err);
+    return r;
+}
+
+/* The same chaotic double pendulum, its lower angle measured from the upper rod (phi2) in
+ * place of the vertical: phi1 and phi1 + phi2 follow double_pendulum.mech's phi1, phi2. */
+static void test_double_pendulum_by_revolute_joints(void **state_)
+{
+    (void)state_;
+    static double a1[MAXROWS], a2[MAXROWS], b1[MAXROWS], b2[MAXROWS];
+    const char *fmt = "run %s %s --tspan 0:10 --step 0.1";
+    cli_result ra = run_ok(fmt, MECH "double_pendulum_joints.mech", TIGHT);
+    cli_result rb = run_ok(fmt, MECH "double_pendulum.mech", TIGHT);
+    const long n = column(ra.out, "phi1", a1);
+    CHECK(n == 101 && column(ra.out, "phi2", a2) == n && column(rb.out, "phi1", b1) == n &&
+          column(rb.out, "phi2", b2) == n, "rows %ld", n);
+    double worst = 0.0, swing = 0.0;
+    for (long i = 0; i < n; i++) {
+        worst = fmax(worst, fmax(fabs(a1[i] - b1[i]), fabs(a1[i] + a2[i] - b2[i])));
+        swing = fmax(swing, fabs(b2[i]));
+    }
+    CHECK(worst < 1e-10 && swing > 1.0, "largest difference %.3g rad (swing %.3g)", worst,
+          swing);
+    cli_free(&ra);
+    cli_free(&rb);
+}
+
+/* Slider (mass M, spring k along x) with a pendulum (m, l): small oscillations
+ * [M+m, m l; m l, m l^2] x'' + [k, 0; 0, m g l] x = 0 give
+ * M l w^4 - (k l + (M + m) g) w^2 + k g = 0. */
+static void test_slider_pendulum_frequencies(void **state_)
+{
+    (void)state_;
+    const double M = 2, m = 0.5, l = 0.8, k = 30, g = 9.81;
+    const double b = k * l + (M + m) * g, disc = sqrt(b * b - 4 * M * l * k * g);
+    const double w[2] = {sqrt((b + disc) / (2 * M * l)), sqrt((b - disc) / (2 * M * l))};
+    cli_result r = cli("linearize %s --init s=0 -o %s", MECH "slider_pendulum.mech",
+                       cli_path("eig.csv"));
+    CHECK(r.status == 0, "%s", r.err);
+    cli_free(&r);
+    char *csv = cli_read_file(cli_path("eig.csv"), NULL);
+    static double re[16], im[16];
+    const long n = column(csv, "re", re);
+    CHECK(n == 4 && column(csv, "im", im) == 4, "%ld eigenvalues", n);
+    free(csv);
+    int matched = 0;
+    for (long i = 0; i < n; i++)
+        for (int j = 0; j < 2; j++)
+            matched += fabs(re[i]) < 1e-9 && fabs(fabs(im[i]) - w[j]) < 1e-9 * w[j];
+    CHECK(matched == 4, "%d of 4 eigenvalues at +-i %.17g, +-i %.17g", matched, w[0], w[1]);
+}
+
+/* The top with w = (w1, w2, w3) in its own frame as speeds: the angles of top.mech, whose
+ * speeds are the angles' rates, and w3 constant (C w3' = (A - A) w1 w2 + 0: gravity acts
+ * about a transverse axis). */
+static void test_top_by_body_angular_velocities(void **state_)
+{
+    (void)state_;
+    static double a[MAXROWS], b[MAXROWS];
+    static const char *const names[] = {"psi", "theta", "phi", "energy"};
+    const char *fmt = "run %s %s --tspan 0:5 --step 0.05 --outputs";
+    cli_result ra = run_ok(fmt, MECH "top_euler.mech", TIGHT);
+    cli_result rb = run_ok(fmt, MECH "top.mech", TIGHT);
+    double worst = 0.0;
+    for (int k = 0; k < 4; k++) {
+        const long n = column(ra.out, names[k], a);
+        CHECK(n == 101 && column(rb.out, names[k], b) == n, "rows %ld", n);
+        for (long i = 0; i < n; i++)
+            worst = fmax(worst, fabs(a[i] - b[i]));
+    }
+    CHECK(worst < 1e-10, "largest difference %.3g", worst);
+    const long n = column(ra.out, "w3", a);
+    for (long i = 0; i < n; i++)
+        CHECK(fabs(a[i] - 100) < 1e-9, "w3 = %.17g at row %ld", a[i], i);
+    column(ra.out, "theta", a);
+    CHECK(fabs(a[n / 2] - a[0]) > 1e-3, "the top nods");
+    cli_free(&ra);
+    cli_free(&rb);
+}
+
+/* N-components of the angular momentum R' I w, R = Rz(phi) Rx(theta) Rz(psi) (passive) */
+static void momentum(double psi, double th, double phi, const double Iw[3], double H[3])
+{
+    const double c1 = cos(psi), s1 = sin(psi), c2 = cos(th), s2 = sin(th), c3 = cos(phi),
+                 s3 = sin(phi);
+    const double R[9] = {c3 * c1 - s3 * c2 * s1, c3 * s1 + s3 * c2 * c1, s3 * s2,
+                         -s3 * c1 - c3 * c2 * s1, -s3 * s1 + c3 * c2 * c1, c3 * s2,
+                         s2 * s1, -s2 * c1, c2};
+    for (int j = 0; j < 3; j++)
+        H[j] = R[j] * Iw[0] + R[3 + j] * Iw[1] + R[6 + j] * Iw[2];
+}
+
+static void test_free_body_keeps_momentum_and_energy(void **state_)
+{
+    (void)state_;
+    static double v[9][MAXROWS];
+    static const char *const names[] = {"t", "psi", "theta", "phi", "w1", "w2", "w3", "energy",
+                                        "x"};
+    /* asymmetric, I = (1, 2, 3): H = (0, 0, 1) and the energy stay */
+    cli_result r = run_ok("run %s %s --tspan 0:40 --step 0.5 --outputs",
+                          MECH "free_body.mech", TIGHT);
+    long n = 0;
+    for (int k = 0; k < 9; k++)
+        n = column(r.out, names[k], v[k]);
+    CHECK(n == 81, "rows %ld", n);
+    double dH = 0.0, dE = 0.0, dx = 0.0, wobble = 0.0;
+    for (long i = 0; i < n; i++) {
+        const double Iw[3] = {v[4][i], 2 * v[5][i], 3 * v[6][i]};
+        double H[3];
+        momentum(v[1][i], v[2][i], v[3][i], Iw, H);
+        dH = fmax(dH, fmax(fmax(fabs(H[0]), fabs(H[1])), fabs(H[2] - 1)));
+        dE = fmax(dE, fabs(v[7][i] - v[7][0]));
+        dx = fmax(dx, fabs(v[8][i] - 0.1 * v[0][i]));
+        wobble = fmax(wobble, fabs(v[2][i] - 0.5));
+    }
+    CHECK(dH < 1e-10 && dE < 1e-12 && dx < 1e-12 && wobble > 0.1,
+          "angular momentum off by %.3g, energy by %.3g, x by %.3g (nutation %.3g)", dH, dE,
+          dx, wobble);
+    cli_free(&r);
+    /* symmetric, A = I1 = I2 = 1, C = I3 = 3, H along z: theta stays, psi' = H/A,
+     * phi' = H cos(theta) (1/C - 1/A) (Goldstein, Classical Mechanics, 5.6) */
+    r = run_ok("run %s %s --tspan 0:40 --step 0.5 --set I2=1", MECH "free_body.mech", TIGHT);
+    for (int k = 0; k < 7; k++)
+        n = column(r.out, names[k], v[k]);
+    double worst = 0.0;
+    for (long i = 0; i < n; i++) {
+        const double t = v[0][i], phi = cos(0.5) * (1.0 / 3 - 1) * t;
+        worst = fmax(worst, fabs(v[1][i] - t));
+        worst = fmax(worst, fabs(v[2][i] - 0.5));
+        worst = fmax(worst, fabs(v[3][i] - phi));
+        worst = fmax(worst, fabs(v[4][i] - sin(0.5) * sin(phi)));
+        worst = fmax(worst, fabs(v[5][i] - sin(0.5) * cos(phi)));
+    }
+    CHECK(worst < 1e-10, "largest difference from the closed form %.3g", worst);
+    cli_free(&r);
+}
+
+/* Spin W about the intermediate axis (I1 < I2 < I3) grows as exp(lambda t),
+ * lambda = W sqrt((I2 - I1)(I3 - I2) / (I1 I3)): linearized Euler's equations. */
+static void test_intermediate_axis_is_unstable(void **state_)
+{
+    (void)state_;
+    const double W = 1.5, lam = W * sqrt(1.0 * 1.0 / 3.0);
+    cli_result r = cli("linearize %s --init w1=0 --init w2=%g --init w3=0 -o %s",
+                       MECH "free_body.mech", W, cli_path("eig.csv"));
+    CHECK(r.status == 0, "%s", r.err);
+    cli_free(&r);
+    char *csv = cli_read_file(cli_path("eig.csv"), NULL);
+    static double re[64], im[64];
+    const long n = column(csv, "re", re);
+    column(csv, "im", im);
+    free(csv);
+    int up = 0, down = 0;
+    for (long i = 0; i < n; i++) {
+        up += fabs(im[i]) < 1e-9 && fabs(re[i] - lam) < 1e-8 * lam;
+        down += fabs(im[i]) < 1e-9 && fabs(re[i] + lam) < 1e-8 * lam;
+    }
+    CHECK(n == 12 && up == 1 && down == 1, "%ld eigenvalues, %d at %.17g, %d at its negative",
+          n, up, lam, down);
+}
+
+static void expect_error(const char *text, const char *where, const char *what)
+{
+    const char *path = cli_path("bad.mech");
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    fclose(f);
+    cli_result r = cli("run %s", path);
+    CHECK(r.status == 2, "status %d for:\n%s", r.status, text);
+    CHECK(strstr(r.err, where) && strstr(r.err, what), "expected '%s' and '%s' in:\n%s", where,
+          what, r.err);
+    cli_free(&r);
+}
+
+static void test_joint_and_speed_errors(void **state_)
+{
+    (void)state_;
+    const char *head = "coord a=0.1 [rad], b=0 [rad]\n";
+    char buf[1024];
+    snprintf(buf, sizeof buf, "%spoint p mass=1 revolute arm z:a pivot (0, 1, 0)\n", head);
+    expect_error(buf, "bad.mech:2:25:", "unknown body 'arm'");
+    snprintf(buf, sizeof buf, "%spoint p mass=1 revolute p z:a\n", head);
+    expect_error(buf, "bad.mech:2:25:", "'p' cannot be its own parent");
+    snprintf(buf, sizeof buf, "%spoint p mass=1 revolute ground z:a pivot (0, 1, 0)\n"
+             "point q mass=1 revolute p z:a pivot (0, 1, 0)\n", head);
+    expect_error(buf, "bad.mech:3:29:", "coordinate 'a' already moves the joint of 'p'");
+    snprintf(buf, sizeof buf, "%spoint p mass=1 revolute ground z:2*a\n", head);
+    expect_error(buf, "bad.mech:2:34:", "each angle of the revolute joint of 'p' is a "
+                 "coordinate's name");
+    snprintf(buf, sizeof buf, "%spoint p mass=1 revolute ground z:a x:b\n", head);
+    expect_error(buf, "bad.mech:2:32:", "a revolute joint has one axis and one coordinate");
+    snprintf(buf, sizeof buf, "%spoint p mass=1 at (a, b, 0) revolute ground z:a\n", head);
+    expect_error(buf, "bad.mech:2:29:", "placed either by a joint or by at (x, y, z)");
+    snprintf(buf, sizeof buf, "%sspeeds u\nrate a' = u\npoint p mass=1 at (a, b, 0)\n", head);
+    expect_error(buf, "bad.mech:2:8:", "1 speeds for 2 coordinates");
+    snprintf(buf, sizeof buf, "%sspeeds u, v\nrate a' = u\npoint p mass=1 at (a, b, 0)\n", head);
+    expect_error(buf, "bad.mech:1:20:", "coordinate 'b' has no rate");
+    snprintf(buf, sizeof buf, "%sspeeds u, v\nrate a' = u*v, b' = v\npoint p mass=1 at (a, b, 0)\n",
+             head);
+    expect_error(buf, "bad.mech:3:6:", "the rate of 'a' is not linear in the speeds");
+    snprintf(buf, sizeof buf, "%srate a' = da\npoint p mass=1 at (a, b, 0)\n", head);
+    expect_error(buf, "bad.mech:2:6:", "a rate line needs the generalized speeds");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_double_pendulum_by_revolute_joints),
+        cmocka_unit_test(test_slider_pendulum_frequencies),
+        cmocka_unit_test(test_top_by_body_angular_velocities),
+        cmocka_unit_test(test_free_body_keeps_momentum_and_energy),
+        cmocka_unit_test(test_intermediate_axis_is_unstable),
+        cmocka_unit_test(test_joint_and_speed_errors),
+    };
+    return cmocka_run_group_tests(tests, setup_all, NULL);
+}

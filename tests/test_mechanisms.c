@@ -5,9 +5,9 @@
  * plane (centre of mass and Euler angles within 1e-8 over 5 s at rtol = atol = 1e-12); the
  * heavy symmetric top's steady precession at the closed-form rates, and its sleeping
  * stability limit and eigenvalues by linearization; the rolling disk's critical speed and
- * eigenvalues, and its energy; the four-bar loop kept
- * closed over 100 s with its energy; the cart against the built-in cart; a prescribed motion's
- * driving torque by hand; and errors at FILE:LINE:COL. */
+ * eigenvalues, and its energy; the wheel statement on a disk with a free centre against it;
+ * the four-bar loop kept closed over 100 s with its energy; the cart against the built-in
+ * cart; a prescribed motion's driving torque by hand; and errors at FILE:LINE:COL. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -437,6 +437,51 @@ static void test_rolling_disk_keeps_a_steady_turn(void **state_)
     }
 }
 
+/* The wheel statement on a disk whose centre is free (tests/mbs/rolling_disk_centre.mech):
+ * it adds the contact's height to the rolling constraints, and the disk in a steady turn
+ * moves as the disk of rolling_disk.mech, whose coordinates keep it on the ground (the
+ * contact point x = xc - r sin(theta) sin(psi), y = yc + r sin(theta) cos(psi), and the
+ * forces of rolling, within 1e-9), while its normal force roll_z carries the weight m g
+ * (the centre does not rise or fall). */
+static void test_wheel_on_a_free_disk_carries_its_weight(void **state_)
+{
+    (void)state_;
+    const double m = 1, r = 0.3, g = 9.81, A = m * r * r / 4, C = m * r * r / 2;
+    const double th = 0.3, Om = 2;
+    const double w3 = (A * Om * Om * sin(th) * cos(th) - m * g * r * sin(th)) /
+                      ((C + m * r * r) * Om * cos(th));
+    const double dphi = w3 - Om * sin(th);
+    static double a[1 << 14], b[1 << 14];
+    cli_result ra = cli("run %srolling_disk.mech --init theta=%.17g --init dpsi=%.17g "
+                        "--init dphi=%.17g --init dx=%.17g --init dy=0 --outputs --method dop853 "
+                        "--rtol 1e-12 --atol 1e-12 --tspan 0:10 --step 0.5",
+                        MECH, th, Om, dphi, r * dphi);
+    cli_result rb = cli("run " DYNKIT_SOURCE_DIR "/tests/mbs/rolling_disk_centre.mech "
+                        "--init theta=%.17g --init zc=%.17g --init yc=%.17g --init dpsi=%.17g "
+                        "--init dphi=%.17g --init dxc=%.17g --outputs --method dop853 "
+                        "--rtol 1e-12 --atol 1e-12 --tspan 0:10 --step 0.5",
+                        th, r * cos(th), -r * sin(th), Om, dphi, r * dphi + r * sin(th) * Om);
+    CHECK(ra.status == 0 && rb.status == 0, "%s\n%s", ra.err, rb.err);
+    int ca, cb;
+    const long na = csv_table(ra.out, a, 1 << 14, &ca), nb = csv_table(rb.out, b, 1 << 14, &cb);
+    cli_free(&ra);
+    cli_free(&rb);
+    CHECK(na == 21 && nb == 21 && ca == 16 && cb == 19, "rows %ld %ld, columns %d %d", na, nb,
+          ca, cb);
+    double dx = 0, dforce = 0, dweight = 0;
+    for (long i = 0; i < na; i++) {
+        const double *p = a + i * ca, *q = b + i * cb;
+        const double psi = q[4], lean = q[5];
+        dx = fmax(dx, fabs(q[1] - r * sin(lean) * sin(psi) - p[1]));
+        dx = fmax(dx, fabs(q[2] + r * sin(lean) * cos(psi) - p[2]));
+        dforce = fmax(dforce, fmax(fabs(q[13] - p[11]), fabs(q[14] - p[12])));
+        dweight = fmax(dweight, fabs(q[18] - m * g));
+    }
+    CHECK(dx < 1e-9 && dforce < 1e-9 && dweight < 1e-9,
+          "contact point %.3g m, rolling forces %.3g N, normal force - m g %.3g N apart", dx,
+          dforce, dweight);
+}
+
 /* A pendulum on a freely rolling cart: about phi = 0 it swings at sqrt(g (mc + mb) / (mc l))
  * (the cart's and the bob's motions opposite), the cart's position and speed give two zeros;
  * the common centre of mass stays where it is (no horizontal force). */
@@ -739,6 +784,15 @@ static void test_errors_name_the_place(void **state_)
                  "constraint c2: 2*x-2 = 0\n", "bad.mech:4:12:",
                  "constraint 'c2' is redundant at the initial state: its row depends on those "
                  "of c1");
+    const char *disk = "coord x=0 [m], y=0 [m], z=1 [m], a=0 [rad]\n"
+                       "body d mass=1 inertia=(1,2,1) at (x, y, z) rot z:a\n";
+    snprintf(buf, sizeof buf, "%swheel w on d axis=(0, 1, 0)\n", disk);
+    expect_error(buf, "bad.mech:3:1:", "wheel 'w' needs radius=R and axis=(x, y, z)");
+    snprintf(buf, sizeof buf, "%swheel w on d radius=1 axle=(0, 1, 0)\n", disk);
+    expect_error(buf, "bad.mech:3:23:", "unknown word 'axle' in a wheel");
+    snprintf(buf, sizeof buf, "%swheel w on d radius=2 axis=(0, 1, 0)\n", disk);
+    expect_error(buf, "bad.mech:3:7:", "constraint 'w_z' does not hold at the initial state: "
+                 "its value is -1");
 }
 
 int main(void)
@@ -752,6 +806,7 @@ int main(void)
         cmocka_unit_test(test_sleeping_top_is_stable_above_the_closed_form_spin),
         cmocka_unit_test(test_rolling_disk_is_stable_above_the_closed_form_speed),
         cmocka_unit_test(test_rolling_disk_critical_speed_by_root_finding),
+        cmocka_unit_test(test_wheel_on_a_free_disk_carries_its_weight),
         cmocka_unit_test(test_rolling_disk_keeps_a_steady_turn),
         cmocka_unit_test(test_cart_pendulum_frequency_and_centre_of_mass),
         cmocka_unit_test(test_constrained_linearization_keeps_minimal_states),

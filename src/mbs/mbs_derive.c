@@ -410,6 +410,7 @@ static void body_kinematics(dctx *d, mbs_body *b, int bi)
     point_jacobian(d, b->x, Jv, b->v);
     for (int j = 0; j < 3; j++)
         b->gv[j] = rate(d, b->v[j]);
+    memcpy(b->vs, b->v, sizeof b->vs);
     b->Jv = Jv;
     b->Jv0 = lang_alloc(c, 3 * (size_t)n * sizeof *b->Jv0);
     for (int i = 0; i < 3 * n; i++)
@@ -543,7 +544,7 @@ static void constraint_rows(dctx *d, node **D, node **btot)
     }
     for (int r = 0; r < m; r++) {
         mbs_constraint *k = &LVEC_AT(mb->cons, mbs_constraint, r);
-        node *f = input(d, k->expr);
+        node *f = k->sym ? k->sym : input(d, k->expr);
         int on_speeds = 0;
         for (int j = 0; j < n; j++)
             on_speeds |= uses(f, N_STATE, d->u[j]);
@@ -612,6 +613,47 @@ static void constraint_rows(dctx *d, node **D, node **btot)
         if (!out->doc.description)
             out->doc.description = lang_printf(c, "force of the constraint %s (%s)", k->name,
                                                on_speeds ? "on the speeds" : "holonomic");
+    }
+}
+
+/* 1 when f(q, t) is 0 at the initial state and at three other states (the coordinates keep
+ * a wheel on the ground by themselves) */
+static int vanishes(dctx *d, node *f, double scale)
+{
+    mbs_initial at = d->ini;
+    at.args = lang_alloc(d->c, ((size_t)at.nstates + 1) * sizeof *at.args);
+    for (int trial = 0; trial < 4; trial++) {
+        memcpy(at.args, d->ini.args, ((size_t)at.nstates + 1) * sizeof *at.args);
+        for (int k = 0; k < d->n && trial; k++)
+            at.args[d->q[k]] += 0.05 * trial + 0.013 * (k + 1) * trial;
+        if (!(fabs(mbs_value(d->c, &at, f)) <= 1e-12 * scale))
+            return 0;
+    }
+    return 1;
+}
+
+/* each wheel's constraints: the velocity of its contact point along x and y, and the height
+ * of its lowest point unless the coordinates keep it on the ground */
+static void wheels(dctx *d)
+{
+    mbs_model *mb = d->mb;
+    for (int wi = 0; wi < mb->wheels.n; wi++) {
+        const mbs_wheel *wh = &LVEC_AT(mb->wheels, mbs_wheel, wi);
+        const mbs_body *b = &LVEC_AT(mb->bodies, mbs_body, wh->body);
+        node *a[3], *o[3], *height, *slip[2];
+        for (int j = 0; j < 3; j++) {
+            a[j] = input(d, wh->axis[j]);
+            o[j] = input(d, wh->at[j]);
+        }
+        node *r = input(d, wh->radius);
+        mbs_wheel_contact(d->c, b->x, b->R, b->vs, b->ws, r, a, o, &height, slip);
+        for (int k = 0; k < mb->cons.n; k++) {
+            mbs_constraint *con = &LVEC_AT(mb->cons, mbs_constraint, k);
+            if (con->wheel == wi && con->part < 2)
+                con->sym = slip[con->part];
+        }
+        if (!vanishes(d, height, fmax(1.0, fabs(mbs_value(d->c, &d->ini, r)))))
+            mbs_wheel_normal(d->c, mb, wi, height);
     }
 }
 
@@ -831,6 +873,7 @@ void mbs_derive(lang_ctx *c, mbs_model *mb)
     kinematic_equations(&d);
     for (int bi = 0; bi < mb->bodies.n; bi++)
         body_kinematics(&d, &LVEC_AT(mb->bodies, mbs_body, bi), bi);
+    wheels(&d);
     /* M and F */
     node **M = lang_alloc(c, (size_t)n * n * sizeof *M);
     node **F = lang_alloc(c, (size_t)n * sizeof *F);

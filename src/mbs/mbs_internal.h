@@ -62,6 +62,7 @@ typedef struct mbs_body {
     double *Jv0, *Jw0;  /* (3 n) their values at the initial state */
     node *v[3], *w[3], *gv[3], *gw[3];
     node **Jws, *ws[3]; /* symbolic J_w and w (before they are fixed), for the children */
+    node *vs[3];        /* v as formulas of the states (before it is fixed), for wheels */
 } mbs_body;
 
 typedef struct mbs_attach {
@@ -89,7 +90,18 @@ typedef struct mbs_constraint {
     int expr;       /* input: expression = 0 */
     int prescribed; /* coordinate index (prescribe), or -1 */
     int aux;        /* index of its multiplier among the outputs */
+    int wheel, part; /* a wheel's contact (mbs_wheel.c): its index and 0 x, 1 y, 2 z; or -1 */
+    node *sym;      /* its expression when derived (a wheel's), else NULL: the input */
 } mbs_constraint;
+
+/* wheel NAME on BODY radius=R axis=(x, y, z) [at (x, y, z)]: a thin disk rolling without
+ * slip on the ground z = 0 (mbs_wheel.c) */
+typedef struct mbs_wheel {
+    const char *name;
+    lpos pos;
+    int body;
+    int radius, axis[3], at[3]; /* inputs; the axis and the centre in the body's frame */
+} mbs_wheel;
 
 typedef struct mbs_named {
     const char *name;
@@ -102,6 +114,7 @@ typedef struct mbs_model {
     lvec springs; /* mbs_spring */
     lvec loads;   /* mbs_load */
     lvec cons;    /* mbs_constraint */
+    lvec wheels;  /* mbs_wheel */
     int gravity[3];
     double alpha; /* Baumgarte's rate [1/s] of the holonomic constraints */
     int aux_kinetic, aux_potential, aux_energy; /* output indices, -1: not written */
@@ -141,6 +154,16 @@ void mbs_derive(lang_ctx *c, mbs_model *mb);
 /* every subtree repeated among the derived quantities (fixed quantities from nfix0 on)
  * made a fixed quantity of its own, computed once (mbs_cse.c) */
 void mbs_cse(lang_ctx *c, mbs_model *mb, int nfix0);
+/* a wheel's contact with the ground (mbs_wheel.c), from the body's mass centre G, rotation
+ * R (N->B), velocity vG and angular velocity wB (in B) as formulas of the states, and the
+ * wheel's radius r, axis a and centre o (in B): the height of its lowest point P and the
+ * velocity (x, y) of the body's point at P */
+void mbs_wheel_contact(lang_ctx *c, node *const G[3], node *const R[9], node *const vG[3],
+                       node *const wB[3], node *r, node *const a[3], node *const o[3],
+                       node **height, node *slip[2]);
+/* a wheel's contact with the ground as a constraint height = 0 named NAME_z, with its
+ * output (mbs_parse.c; when the coordinates do not keep the wheel on the ground) */
+void mbs_wheel_normal(lang_ctx *c, mbs_model *mb, int wheel, node *height);
 /* the formulas of mb->symbolic as readable text, malloc'd (mbs_text.c) */
 char *mbs_text(lang_ctx *c, const mbs_model *mb);
 /* one formula as text in the file's names (in the context's arena) */

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* Statements of a mechanism file (docs/mechanisms.md): coord, gravity, point, body, spring,
- * force, torque, constraint, prescribe, stabilize, and units and descriptions in par lines;
+ * force, torque, constraint, prescribe, stabilize, wheel, and units and descriptions in par lines;
  * every other line is an .ode statement (par, number, !derived, name=formula, f(x)=...,
  * aux, table, global, @ options), read by src/lang as in an .ode file. Expressions are
  * src/lang's; each is kept as an unnamed fixed quantity of the model (an input) so that
@@ -587,6 +587,7 @@ static void parse_constraint(lang_ctx *c, lang_lexer *lx, int prescribe)
     mbs_model *mb = model_of(c);
     mbs_constraint k = {0};
     k.prescribed = -1;
+    k.wheel = -1;
     k.name = lang_read_name(lx, &k.pos, "expected the constraint's name (its force is named so)");
     lang_doc doc = {0};
     doc_of(lx, &doc);
@@ -624,6 +625,69 @@ static void parse_constraint(lang_ctx *c, lang_lexer *lx, int prescribe)
     *(mbs_constraint *)lvec_push(c, &mb->cons, sizeof k) = k;
 }
 
+static void wheel_constraint(lang_ctx *c, mbs_model *mb, int wheel, int part, node *sym)
+{
+    const mbs_wheel *wh = &LVEC_AT(mb->wheels, mbs_wheel, wheel);
+    static const char *const what[3] = {"along x", "along y", "normal"};
+    mbs_constraint k = {0};
+    k.name = lang_printf(c, "%s_%c", wh->name, "xyz"[part]);
+    k.pos = wh->pos;
+    k.unit = part < 2 ? "m/s" : "m";
+    k.expr = -1;
+    k.prescribed = -1;
+    k.wheel = wheel;
+    k.part = part;
+    k.sym = sym;
+    declare_output(c, k.name, k.pos, &k.aux);
+    LVEC_AT(c->m.auxs, lang_formula, k.aux).doc.description =
+        lang_printf(c, "the ground's %s force on the wheel %s", what[part], wh->name);
+    *(mbs_constraint *)lvec_push(c, &mb->cons, sizeof k) = k;
+}
+
+void mbs_wheel_normal(lang_ctx *c, mbs_model *mb, int wheel, node *height)
+{
+    wheel_constraint(c, mb, wheel, 2, height);
+}
+
+/* wheel NAME on BODY radius=R axis=(x, y, z) [at (x, y, z)] */
+static void parse_wheel(lang_ctx *c, lang_lexer *lx, lpos kpos)
+{
+    mbs_model *mb = model_of(c);
+    mbs_wheel wh = {0};
+    wh.name = lang_read_name(lx, &wh.pos, "expected the wheel's name");
+    if (!take_word(lx, "on"))
+        lang_fail(c, lang_here(lx), "expected 'on' BODY after the wheel's name");
+    lpos bpos;
+    const char *b = lang_read_name(lx, &bpos, "expected a body's name");
+    wh.body = find_body(c, b, bpos, 0);
+    if (LVEC_AT(mb->bodies, mbs_body, wh.body).point)
+        lang_fail(c, bpos, "'%s' is a point mass: a wheel needs a body with a frame", b);
+    wh.radius = wh.axis[0] = -1;
+    wh.at[0] = wh.at[1] = wh.at[2] = -1;
+    while (peek(lx)) {
+        lpos wpos;
+        const char *w = lang_read_name(lx, &wpos, "expected radius=, axis= or at");
+        if (strcasecmp(w, "radius") == 0) {
+            lang_expect_char(lx, '=', "expected '=' after radius");
+            wh.radius = input_expr(lx, "the wheel's radius");
+        } else if (strcasecmp(w, "axis") == 0) {
+            lang_expect_char(lx, '=', "expected '=' after axis");
+            tuple(lx, wh.axis, "the wheel's axis in the body's frame");
+        } else if (strcasecmp(w, "at") == 0) {
+            tuple(lx, wh.at, "the wheel's centre in the body's frame");
+        } else {
+            lang_fail(c, wpos, "unknown word '%s' in a wheel: expected radius=R, axis=(x, y, "
+                      "z) or at (x, y, z)", w);
+        }
+    }
+    if (wh.radius < 0 || wh.axis[0] < 0)
+        lang_fail(c, kpos, "wheel '%s' needs radius=R and axis=(x, y, z), its axle's "
+                  "direction in the frame of %s", wh.name, b);
+    *(mbs_wheel *)lvec_push(c, &mb->wheels, sizeof wh) = wh;
+    for (int part = 0; part < 2; part++)
+        wheel_constraint(c, mb, mb->wheels.n - 1, part, NULL);
+}
+
 int mbs_statement(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos)
 {
     mbs_model *mb = model_of(c);
@@ -654,6 +718,8 @@ int mbs_statement(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos)
         parse_rates(c, lx);
     else if (!strcasecmp(w, "constraint") || !strcasecmp(w, "prescribe"))
         parse_constraint(c, lx, !strcasecmp(w, "prescribe"));
+    else if (!strcasecmp(w, "wheel"))
+        parse_wheel(c, lx, wpos);
     else if (!strcasecmp(w, "input") || !strcasecmp(w, "inputs")) {
         do {
             mbs_named *in = lvec_push(c, &mb->input_names, sizeof *in);
@@ -669,7 +735,7 @@ int mbs_statement(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos)
     } else {
         static const char *const words[] = {"coord", "gravity", "point", "body", "spring",
                                             "force", "torque", "constraint", "prescribe",
-                                            "stabilize", "input", "speeds", "rate"};
+                                            "stabilize", "input", "speeds", "rate", "wheel"};
         const char *near = lang_is_statement_keyword(w)
                                ? NULL
                                : dyn_lang_nearest(w, words, (int)(sizeof words / sizeof *words));

@@ -130,6 +130,8 @@ typedef struct cli_run {
     dyn_event *events;    /* (n_events), owned */
     int n_events;
     const char *events_path; /* --events-output FILE, or NULL */
+    /* models with noise (dynkit/sde.h): --seed, and the run's stream (a sweep's run) */
+    uint64_t seed, stream;
 } cli_run;
 
 /* Parse "MODEL [options]" of run-like commands into run; unknown options are errors.
@@ -153,6 +155,10 @@ int cli_run_at_steps(const cli_run *run);
 /* The cvode descriptor (name, title; adaptive and stiff) or NULL when not built. */
 const dyn_tableau *cli_cvode_method(void);
 int cli_method_is_cvode(const dyn_tableau *m);
+/* rkmil, the adaptive method for models with noise (dyn_sde_solve; not in the core
+ * registry of deterministic methods): its descriptor, and whether m is it. */
+const dyn_tableau *cli_rkmil_method(void);
+int cli_method_is_rkmil(const dyn_tableau *m);
 /* Method by name or alias, cvode included when built; NULL if not available. */
 const dyn_tableau *cli_method_find(const char *name);
 /* Accepted method names, comma-separated, into buf; returns buf. */

@@ -56,6 +56,22 @@ static const dyn_tableau cvode_method = {
 };
 #endif
 
+/* A descriptor for the tool only (dyn_sde_solve runs it): kind embedded, so that
+ * dyn_method_is_adaptive says yes; no coefficients. */
+static const dyn_tableau rkmil_method = {
+    .name = "rkmil",
+    .title = "Runge-Kutta Milstein for models with noise: strong order 1, adaptive steps by "
+             "step doubling on one Brownian path",
+    .reference = "Kloeden and Platen, Numerical Solution of SDEs (1992), eq. 11.1.5; "
+                 "dynkit/sde.h",
+    .kind = DYN_KIND_EMBEDDED_RK,
+    .order = 1,
+};
+
+const dyn_tableau *cli_rkmil_method(void) { return &rkmil_method; }
+
+int cli_method_is_rkmil(const dyn_tableau *m) { return m == &rkmil_method; }
+
 const dyn_tableau *cli_cvode_method(void)
 {
 #ifdef DYNKIT_HAVE_CVODE
@@ -79,6 +95,8 @@ const dyn_tableau *cli_method_find(const char *name)
     const dyn_tableau *m = dyn_method_find(name);
     if (!m && strcmp(name, "cvode") == 0)
         m = cli_cvode_method();
+    if (!m && strcmp(name, "rkmil") == 0)
+        m = &rkmil_method;
     return m;
 }
 
@@ -87,7 +105,9 @@ char *cli_method_names(char *buf, size_t size)
     dyn_method_names(buf, size);
     size_t used = strlen(buf);
     if (cli_cvode_method() && used < size)
-        snprintf(buf + used, size - used, ", cvode");
+        used += (size_t)snprintf(buf + used, size - used, ", cvode");
+    if (used < size)
+        snprintf(buf + used, size - used, ", rkmil");
     return buf;
 }
 
@@ -109,6 +129,7 @@ int cli_method_error(const char *command, const char *what, const char *name)
     }
     if (cli_cvode_method())
         known[n++] = "cvode";
+    known[n++] = "rkmil";
     const char *near = name ? dyn_lang_nearest(name, known, n) : NULL;
     if (near)
         return cli_usage_error(command, "%s: unknown method '%s' (did you mean '%s'? accepted: %s)",

@@ -3,6 +3,7 @@
  * initial state and output choices (the command-line contract of the design): the help
  * text, the option loop and the checks across options. Option values are parsed in
  * run_values.c, --forces tables read in run_input.c. */
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -68,7 +69,12 @@ static void run_options_common(FILE *out)
           "                       MODEL' lists them); the run ends at it when the model\n"
           "                       declares it terminal, or with :stop (:continue: never).\n"
           "                       Events that reset the state (XPPAUT's global) take part in\n"
-          "                       every run; --event NAME reports them too\n",
+          "                       every run; --event NAME reports them too\n"
+          "Noise (models with wiener, normal or ran; docs/solvers.md, \"Noise\"):\n"
+          "  --seed S             the noise of the run, a whole number 0..2^64-1 (default 0):\n"
+          "                       the same seed gives the same noise on any machine\n"
+          "                       --method euler is Euler-Maruyama (fixed --step), rkmil\n"
+          "                       Runge-Kutta Milstein (strong order 1, --rtol/--atol)\n",
           out);
 }
 
@@ -110,7 +116,7 @@ static int unknown_option(const char *command, const char *arg)
         "--forces", "--interp", "--output", "--header",      "--every",        "--trace",
         "--rtol",   "--atol",  "--times",  "--max-step",     "--initial-step", "--max-steps",
         "--event",  "--events-output",     "--stats",        "--final",        "--outputs",
-        "--quiet",  "--compare", "--table"};
+        "--quiet",  "--compare", "--table", "--seed"};
     char word[64];
     snprintf(word, sizeof word, "%s%.*s", strncmp(arg, "--", 2) == 0 ? "" : "--",
              (int)strcspn(arg, "="), arg);
@@ -253,6 +259,16 @@ static int parse_option(const char *command, int argc, char **argv, int *i, cli_
         run->stats = 1;
     } else if (cli_flag(arg, "final")) {
         run->final_only = 1;
+    } else if (OPT("seed")) {
+        if (r < 0)
+            return CLI_USAGE;
+        char *end = NULL;
+        errno = 0;
+        const unsigned long long sd = strtoull(v, &end, 10);
+        if (end == v || *end || errno || v[0] == '-')
+            return cli_usage_error(command, "--seed '%s': give a whole number 0..2^64-1", v);
+        run->seed = (uint64_t)sd;
+        *given |= GIVEN_SEED;
     } else if (cli_flag(arg, "outputs")) {
         run->with_outputs = 1;
     } else if (cli_flag(arg, "quiet")) {
@@ -261,6 +277,40 @@ static int parse_option(const char *command, int argc, char **argv, int *i, cli_
         return unknown_option(command, arg);
     }
 #undef OPT
+    return CLI_OK;
+}
+
+/* A model with noise takes euler (Euler–Maruyama) or rkmil, a seed, no events and no
+ * output times; rkmil and --seed need noise. */
+static int check_noise_options(const char *command, cli_run *run, unsigned given)
+{
+    const dyn_model *m = run->model;
+    const int rkmil = cli_method_is_rkmil(run->method);
+    if (m->n_noise == 0) {
+        if (rkmil)
+            return cli_usage_error(command, "--method rkmil integrates models with noise "
+                                   "(wiener, normal, ran), and %s has none: use dp45 (or "
+                                   "another method of 'dynkit methods')", m->name);
+        if (given & GIVEN_SEED)
+            return cli_usage_error(command, "--seed chooses the noise of a model with noise "
+                                   "(wiener, normal, ran), and %s has none", m->name);
+        return CLI_OK;
+    }
+    if (!rkmil && strcmp(run->method->name, "euler") != 0)
+        return cli_usage_error(command, "model %s has noise (wiener, normal or ran), which "
+                               "--method %s cannot integrate: use euler (Euler-Maruyama, "
+                               "fixed --step) or rkmil (Runge-Kutta Milstein, strong order 1, "
+                               "adaptive)", m->name, run->method->name);
+    if (rkmil && m->noise_class == DYN_NOISE_GENERAL)
+        return cli_usage_error(command, "--method rkmil needs noise that enters the equations "
+                               "as c*w with Wiener noise w, additive or one noise per state "
+                               "(no normal() or ran()); model %s has other noise: use euler "
+                               "(Euler-Maruyama)", m->name);
+    if (run->n_events > 0)
+        return cli_usage_error(command, "--event: the methods for noise do not locate events");
+    if (run->times)
+        return cli_usage_error(command, "--times: a model with noise writes the grid of --step "
+                               "(euler: every step; rkmil: steps land on it)");
     return CLI_OK;
 }
 
@@ -532,7 +582,9 @@ int cli_run_parse_with(const char *command, int argc, char **argv, int other_ada
     if (!run->method)
         return cli_method_error(command, "--method", method_name);
     run->step_given = (given & GIVEN_STEP) || run->forces_path;
-    rc = check_method_options(command, run, given, other_adaptive);
+    rc = check_noise_options(command, run, given);
+    if (rc == CLI_OK)
+        rc = check_method_options(command, run, given, other_adaptive);
     if (rc == CLI_OK)
         tolerance_defaults(run, given);
     return rc;

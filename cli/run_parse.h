@@ -17,7 +17,8 @@ enum {
     GIVEN_MAX_STEP = 32,
     GIVEN_INITIAL_STEP = 64,
     GIVEN_MAX_STEPS = 128,
-    GIVEN_METHOD = 256
+    GIVEN_METHOD = 256,
+    GIVEN_SEED = 512
 };
 
 /* The limit on the steps of an adaptive run without --max-steps: a run that needs more is

@@ -202,12 +202,49 @@ int cli_run_solve(const cli_run *run, long every, dyn_output_fn output, void *ou
     return rc;
 }
 
+/* A model with noise (dynkit/sde.h): Euler–Maruyama (euler) on the grid of the step, or
+ * rkmil with its samples on the grid (or at every accepted step); the noise of run
+ * run->stream under run->seed. */
+static int solve_noise(const cli_run *run, long every, dyn_output_fn output, void *output_ctx,
+                       dyn_progress_fn progress, void *progress_ctx, double *y, dyn_result *res)
+{
+    const dyn_model *m = run->model;
+    const int n = m->n_states;
+    dyn_sde sde = {{m->rhs, n, run->par}, m->n_noise, m->noise_kinds,
+                   (double *)((char *)run->par + m->noise_offset), m->noise_class};
+    dyn_sde_opts o = {0};
+    const int rkmil = cli_method_is_rkmil(run->method);
+    o.h = rkmil ? run->initial_step : run->step;
+    o.rtol = run->rtol;
+    o.atol = run->atol;
+    o.max_step = run->max_step;
+    o.max_steps = run->max_steps;
+    o.out_step = rkmil && !cli_run_at_steps(run) ? run->step : 0.0;
+    o.end = run->end;
+    o.every = every;
+    o.seed = run->seed;
+    o.stream = run->stream;
+    o.output = output;
+    o.output_ctx = output_ctx;
+    o.progress = progress;
+    o.progress_ctx = progress_ctx;
+    double *work = malloc(dyn_sde_work_size(n, m->n_noise) * sizeof *work);
+    if (!work)
+        return -1;
+    const int rc = dyn_sde_solve(rkmil ? DYN_SDE_RKMIL : DYN_SDE_EM, &sde, run->t0, run->t1,
+                                 run->y0, y, work, &o, res);
+    free(work);
+    return rc;
+}
+
 static int solve_run(const cli_run *run, long every, dyn_output_fn output, void *output_ctx,
                      dyn_event_fn on_event, void *event_ctx, dyn_progress_fn progress,
                      void *progress_ctx, double *y, dyn_result *res)
 {
     const dyn_model *m = run->model;
     const int n = m->n_states;
+    if (m->n_noise > 0)
+        return solve_noise(run, every, output, output_ctx, progress, progress_ctx, y, res);
     dyn_system sys = {m->rhs, n, run->par};
     const int adaptive = dyn_method_is_adaptive(run->method);
     if (cli_method_is_cvode(run->method)) {

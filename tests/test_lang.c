@@ -73,7 +73,6 @@ static void test_refused_features_name_line_and_feature(void **state)
         const char *what;
     } cases[] = {
         {"x'=1\nmarkov z 2\n{0} {a}\n{b} {0}\n", 2, 1, "Markov chains ('markov')"},
-        {"x'=1\nwiener w\n", 2, 1, "random processes ('wiener')"},
         {"x'=-delay(x,1)\n", 1, 5, "delay-differential equations ('delay')"},
         {"x'=-x+int{exp(-t)#x}\n", 1, 7, "Volterra integrals ('int{...}')"},
         {"x'=-x+int[.5]{exp(-t)#x}\n", 1, 7, "Volterra integrals ('int{...}')"},
@@ -82,8 +81,6 @@ static void test_refused_features_name_line_and_feature(void **state)
         {"x'=1\nspecial k=fsparse(51,5,w,ind,u0,v0,f)\n", 2, 1,
          "network sums ('special' with fsparse)"},
         {"x'=1\nexport {x} {y}\n", 2, 1, "'export'"},
-        {"x'=ran(1)\n", 1, 4, "random numbers ('ran')"},
-        {"x'=normal(0,1)\n", 1, 4, "random numbers ('normal')"},
         {"x'=ishift(x,1)\n", 1, 4, "indirect addressing ('ishift')"},
         {"x'=besselj(0,x)\n", 1, 4, "Bessel functions ('besselj')"},
         {"x'=1\noptions my.opt\n", 2, 1, "option files"},

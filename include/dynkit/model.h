@@ -18,6 +18,7 @@
 #include <stddef.h>
 
 #include "dynkit/ode.h"
+#include "dynkit/sde.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -144,13 +145,22 @@ typedef struct dyn_model {
     /* The window of the phase plane, xlo, xhi, ylo, yhi (XPPAUT's @ xlo, xhi, ylo, yhi):
      * an axis whose lo < hi is drawn over it, else over the data (zeros). */
     double phase_window[4];
+    /* Noise (a model file's wiener, normal(), ran(); dynkit/sde.h): n_noise slots, doubles
+     * at byte noise_offset of the parameter struct that rhs reads and the solver writes
+     * before each evaluation (0 outside a solve); noise_kinds[j] the dyn_noise_kind of slot
+     * j, noise_class the dyn_noise_class of rhs (which methods can integrate it).
+     * n_noise == 0: a deterministic model. */
+    int n_noise;
+    const int *noise_kinds;
+    size_t noise_offset;
+    int noise_class;
 } dyn_model;
 
 /* Version of the layout of dyn_model, dyn_var, dyn_param and dyn_event. A model compiled
  * into a shared object records the version it was built with (the symbol
  * dynkit_model_abi, added when dynkit compiles a model), and dynkit refuses a model built
  * for another version instead of misreading it. Raised whenever a layout changes. */
-#define DYN_MODEL_ABI 3
+#define DYN_MODEL_ABI 4
 
 /* The entry point of a model in a C file or a shared object: `dynkit run mymodel.c`
  * compiles the file and calls it. Define it in your file:

@@ -29,6 +29,7 @@
 #include <stdint.h>
 
 #include "dynkit/model.h"
+#include "dynkit/sde.h"
 #include "dynkit/solve.h"
 
 #ifdef __cplusplus
@@ -178,13 +179,7 @@ double dyn_linspace_at(double a, double b, long n, long k);
 long dyn_sweep_grid(int n_axes, const double *const *axes, const long *counts, double *values,
                     long max_rows);
 
-/* Philox4x32 (Salmon et al., SC'11; Random123's philox4x32_R): rounds rounds (10 is the
- * standard) of the counter ctr under key, into out. A counter-based generator: out depends
- * on (ctr, key) alone, so any number can be computed directly, in any order, on any
- * thread or machine. Checked against Random123's known-answer vectors (tests/kat_vectors
- * of Random123). */
-void dyn_philox4x32(const uint32_t ctr[4], const uint32_t key[2], int rounds,
-                    uint32_t out[4]);
+/* dyn_philox4x32, the generator: dynkit/sde.h (part of the core). */
 
 /* Distributions of random run tables. */
 typedef enum dyn_dist_kind {

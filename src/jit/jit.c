@@ -229,7 +229,24 @@ int jit_check_model(const dyn_model *m, const char *where, char *err, size_t err
                         "%s: the model '%s' declares a band of its Jacobian with jac_lower = %d, "
                         "jac_upper = %d (accepted: 0 to n_states - 1 = %d)",
                         where, m->name, m->jac_lower, m->jac_upper, m->n_states - 1);
-    if (m->method && !dyn_method_find(m->method))
+    if (m->n_noise < 0 || (m->n_noise > 0 && !m->noise_kinds) ||
+        (m->n_noise > 0 && (m->noise_offset % sizeof(double) != 0 ||
+                            m->noise_offset > m->par_size ||
+                            (m->par_size - m->noise_offset) / sizeof(double) <
+                                (size_t)m->n_noise)) ||
+        m->noise_class < DYN_NOISE_GENERAL || m->noise_class > DYN_NOISE_COMMUTATIVE)
+        return jit_fail(err, errlen,
+                        "%s: the model '%s' declares %d noise slots that do not fit its parameter "
+                        "struct (noise_offset %zu, par_size %zu, noise_kinds %s, noise_class %d)",
+                        where, m->name, m->n_noise, m->noise_offset, m->par_size,
+                        m->noise_kinds ? "given" : "NULL", m->noise_class);
+    for (int i = 0; i < m->n_noise; i++)
+        if (m->noise_kinds[i] < DYN_NOISE_WIENER || m->noise_kinds[i] > DYN_NOISE_UNIFORM)
+            return jit_fail(err, errlen, "%s: noise slot %d of the model '%s' has kind %d "
+                            "(accepted: 0 wiener, 1 normal, 2 uniform)", where, i, m->name,
+                            m->noise_kinds[i]);
+    const int sde_method = m->method && m->n_noise > 0 && strcmp(m->method, "rkmil") == 0;
+    if (m->method && !sde_method && !dyn_method_find(m->method))
         return jit_fail(err, errlen,
                         "%s: the model '%s' names an unknown default method (dyn_model.method = "
                         "\"%s\"; e.g. \"dp45\" or \"rk4\", or NULL for " DYN_MODEL_METHOD ")",

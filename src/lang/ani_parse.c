@@ -22,6 +22,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "lang/ani_internal.h"
 
@@ -224,6 +225,10 @@ static void resolve(dyn_ani *a, node *e, int depth)
         lang_fail(c, e->pos, "not supported in an animation's formula: it takes numbers, "
                   "names, t, operators and functions");
     }
+    if (e->kind == N_FUN && e->name &&
+        (strcasecmp(e->name, "ran") == 0 || strcasecmp(e->name, "normal") == 0))
+        lang_fail(c, e->pos, "random numbers ('%s') are not supported in an animation",
+                  e->name);
     if (e->kind == N_FUN && !lang_resolve_call(c, e))
         unknown(c, e, 1);
 }

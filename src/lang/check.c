@@ -12,6 +12,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "dynkit/sde.h"
 #include "lang/lang_internal.h"
 
 void lang_fold(char *dst, const char *src, size_t size)
@@ -65,6 +66,7 @@ const char *lang_sym_kind_name(sym_kind k)
     case SYM_TABLE: return "a table";
     case SYM_SPECIAL: return "a network sum";
     case SYM_ALG: return "an algebraic variable";
+    case SYM_NOISE: return "a noise (wiener)";
     default: return "a name";
     }
 }
@@ -165,6 +167,49 @@ static _Noreturn void unknown(lang_ctx *c, const node *e, const rctx *r, int fun
     lang_fail(c, e->pos, "unknown %s '%s'", funcs ? "function" : "name", e->name);
 }
 
+/* normal(m, s) and ran(x) (XPPAUT's random numbers, a new one at each step): each call a
+ * noise slot of its own, the call rewritten as m + s*slot or x*slot. 1 when e was one. */
+static int random_call(lang_ctx *c, node *e, const rctx *r)
+{
+    const int is_normal = same_name(e->name, "normal"), is_ran = same_name(e->name, "ran");
+    if (!is_normal && !is_ran)
+        return 0;
+    const int want = is_normal ? 2 : 1;
+    if (e->nargs != want)
+        lang_fail(c, e->pos, "%s takes %d argument%s (%s), not %d", is_normal ? "normal" : "ran",
+                  want, want > 1 ? "s" : "", is_normal ? "mean, standard deviation" : "the "
+                  "upper end of [0, x)", e->nargs);
+    if (r->kind >= CTX_PARAMS)
+        lang_fail(c, e->pos, "%s cannot use random numbers ('%s'): they change at every step of "
+                  "a run", r->what, is_normal ? "normal" : "ran");
+    lang_noise *nz = lvec_push(c, &c->m.noises, sizeof *nz);
+    nz->name = is_normal ? "normal" : "ran";
+    nz->pos = e->pos;
+    nz->kind = is_normal ? DYN_NOISE_NORMAL : DYN_NOISE_UNIFORM;
+    node *slot = lang_node(c, N_NOISE, e->pos);
+    slot->index = c->m.noises.n - 1;
+    node **a = e->args;
+    node *prod = lang_node(c, N_BIN, e->pos);
+    prod->op = OP_MUL;
+    prod->nargs = 2;
+    prod->args = lang_alloc(c, 2 * sizeof *prod->args);
+    prod->args[0] = is_normal ? a[1] : a[0];
+    prod->args[1] = slot;
+    if (is_ran) {
+        *e = *prod;
+        return 1;
+    }
+    node *mean = a[0];
+    e->kind = N_BIN;
+    e->op = OP_ADD;
+    e->name = NULL;
+    e->args = lang_alloc(c, 2 * sizeof *e->args);
+    e->args[0] = mean;
+    e->args[1] = prod;
+    prod->paren = 1;
+    return 1;
+}
+
 static void resolve(lang_ctx *c, node *e, const rctx *r)
 {
     if (++c->depth > 4 * LANG_MAX_DEPTH)
@@ -233,6 +278,13 @@ static void resolve(lang_ctx *c, node *e, const rctx *r)
             e->kind = N_ALG;
             e->index = s->index;
             return;
+        case SYM_NOISE:
+            if (r->kind >= CTX_PARAMS)
+                lang_fail(c, e->pos, "%s cannot depend on the noise '%s' (it changes at every "
+                          "step of a run)", r->what, e->name);
+            e->kind = N_NOISE;
+            e->index = s->index;
+            return;
         case SYM_AUX:
             lang_fail(c, e->pos, "'%s' is an aux output, which XPPAUT does not know inside "
                       "formulas: define it as a fixed quantity '%s_=...' and write 'aux "
@@ -248,6 +300,8 @@ static void resolve(lang_ctx *c, node *e, const rctx *r)
             unknown(c, e, r, 0);
         }
     }
+    if (e->kind == N_FUN && random_call(c, e, r))
+        return;
     if (e->kind == N_FUN && !lang_resolve_call(c, e))
         unknown(c, e, r, 1);
     if (e->kind == N_FUN && e->op == F_TABLE) {
@@ -1086,6 +1140,7 @@ void lang_check(lang_ctx *c)
     }
     m->fix_order = order(c, &m->fixes, N_FIX, 0, "fixed quantities");
     m->derived_order = order(c, &m->derived, N_PARAM, m->params.n, "derived parameters");
+    lang_noise_classify(c);
     /* documentation lines */
     for (int i = 0; i < m->docs.n; i++) {
         const lang_docline *d = &LVEC_AT(m->docs, lang_docline, i);

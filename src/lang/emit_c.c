@@ -39,6 +39,8 @@ static void line_dir(lang_ctx *c, lpos p)
     LANG_C_CODE(c, "\n");
 }
 
+static int noise_offset(const lang_model *m);
+
 /* The literal ident when cond holds, else NULL */
 #define CODE_OR_NULL(c, cond, ident) \
     ((cond) ? LANG_C_CODE((c), ident) : LANG_C_CODE((c), "NULL"))
@@ -150,6 +152,7 @@ static void expr(lang_ctx *c, const node *e, const ectx *x)
         break;
     case N_FIX: LANG_C_CODEF(c, "v_%d", e->index); break;
     case N_ALG: LANG_C_CODEF(c, "w[%d]", e->index); break;
+    case N_NOISE: LANG_C_CODEF(c, "p[%d]", noise_offset(m) + e->index); break;
     case N_DFIX:
         LANG_C_CODEF(c, "dv%d_%d", e->op, e->index);
         break;
@@ -747,10 +750,13 @@ static int input_offset(const lang_model *m)
 
 #define LANG_INPUT_DOUBLES 8 /* room for a dyn_input_table */
 
-static int par_doubles(const lang_model *m)
+/* the noise slots (dynkit/sde.h) come last */
+static int noise_offset(const lang_model *m)
 {
     return input_offset(m) + (m->n_inputs ? LANG_INPUT_DOUBLES : 0);
 }
+
+static int par_doubles(const lang_model *m) { return noise_offset(m) + m->noises.n; }
 
 /* The inputs: reading one (dk_input), attaching a table (dk_set_input), their names. */
 static void emit_inputs(lang_ctx *c)
@@ -1616,9 +1622,19 @@ char *lang_emit_c(lang_ctx *c)
         }
         LANG_C_CODE(c, "};\n");
     }
+    if (m->noises.n) {
+        LANG_C_CODE(c, "static const int dk_noise_kinds[] = {");
+        for (int i = 0; i < m->noises.n; i++) {
+            if (i)
+                LANG_C_CODE(c, ", ");
+            LANG_C_CODEF(c, "%d", LVEC_AT(m->noises, lang_noise, i).kind);
+        }
+        LANG_C_CODE(c, "};\n");
+    }
     /* 0 and NULL when the file names none: DYN_MODEL_RTOL, DYN_MODEL_ATOL, DYN_MODEL_METHOD */
-    const double rtol = m->rtol > 0 ? m->rtol : 0.0;
-    const double atol = m->atol > 0 ? m->atol : 0.0;
+    /* a model with noise: rkmil's own defaults (a strong order 1 cannot reach 1e-6 cheaply) */
+    const double rtol = m->rtol > 0 ? m->rtol : m->noises.n ? 1e-3 : 0.0;
+    const double atol = m->atol > 0 ? m->atol : m->noises.n ? 1e-6 : 0.0;
     LANG_C_CODE(c, "\nstatic const dyn_model dk_model = {\n    .name = ");
     lang_c_str(c, m->name);
     LANG_C_CODE(c, ",\n    .title = ");
@@ -1643,7 +1659,9 @@ char *lang_emit_c(lang_ctx *c)
     LANG_C_CODE(c, ",\n    .step = ");
     lang_c_num(c, m->dt);
     LANG_C_CODE(c, ",\n    .method = ");
-    if (m->method)
+    if (m->noises.n)
+        lang_c_str(c, lang_noise_method(c));
+    else if (m->method)
         lang_c_str(c, m->method);
     else
         LANG_C_CODE(c, "NULL");
@@ -1696,6 +1714,10 @@ char *lang_emit_c(lang_ctx *c)
                      m->band_lo, m->band_up);
         CODE_OR_NULL(c, with_jac, "dk_jacobian_band");
     }
+    if (m->noises.n)
+        LANG_C_CODEF(c, ",\n    .n_noise = %d,\n    .noise_kinds = dk_noise_kinds,\n"
+                        "    .noise_offset = %d * sizeof(double),\n    .noise_class = %d",
+                     m->noises.n, noise_offset(m), m->noise_class);
     LANG_C_CODE(c, ",\n};\n\nconst dyn_model *dynkit_model(void) { return &dk_model; }\n");
     /* the functions the text calls, then what comes before it all */
     const lang_ctext main_text = lang_c_take(c);

@@ -72,8 +72,6 @@ static const struct {
 } unsupported[] = {
     {"delay", "delay-differential equations ('delay')"},
     {"del_shft", "delay-differential equations ('del_shft')"},
-    {"ran", "random numbers ('ran')"},
-    {"normal", "random numbers ('normal')"},
     {"poisson", "random numbers ('poisson')"},
     {"besselj", "Bessel functions ('besselj')"},
     {"bessely", "Bessel functions ('bessely')"},
@@ -98,7 +96,7 @@ int lang_is_reserved(const char *name)
     const size_t n = strlen(name);
     int arity;
     static const char *const words[] = {"t", "pi", "if", "then", "else", "not", "sum", "of",
-                                        "shift"};
+                                        "shift", "ran", "normal"};
     for (size_t i = 0; i < sizeof words / sizeof words[0]; i++)
         if (ieq(name, n, words[i]))
             return 1;

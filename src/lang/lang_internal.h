@@ -65,7 +65,8 @@ typedef enum node_kind {
     N_UFUN_D, /* partial derivative op (argument) of user function index, of args */
     N_SUM,    /* sum(a,b)of(c): unrolled by check.c before names are resolved */
     N_SUMIDX, /* i', the index of a sum */
-    N_ALG     /* algebraic variable index (solved from the 0= equations) */
+    N_ALG,    /* algebraic variable index (solved from the 0= equations) */
+    N_NOISE   /* noise slot index (lang_noise): held over a step, written by the solver */
 } node_kind;
 
 typedef enum bin_op {
@@ -205,6 +206,15 @@ typedef struct lang_special {
     int index_table;
 } lang_special;
 
+/* A noise slot (dynkit/sde.h): a `wiener NAME` (kind DYN_NOISE_WIENER), or one call of
+ * normal(m, s) (DYN_NOISE_NORMAL, read as m + s*slot) or ran(x) (DYN_NOISE_UNIFORM,
+ * x*slot). Their values follow the rest of the parameter array. */
+typedef struct lang_noise {
+    const char *name; /* the wiener's name, or "normal" / "ran" */
+    lpos pos;
+    int kind;
+} lang_noise;
+
 /* A pending `init name=...` or `name(0)=...`, resolved once every state is known. */
 typedef struct lang_init {
     const char *name;
@@ -231,6 +241,7 @@ typedef enum sym_kind {
     SYM_TABLE,
     SYM_SPECIAL,
     SYM_ALG,
+    SYM_NOISE,
     SYM_RESERVED
 } sym_kind;
 
@@ -258,6 +269,8 @@ typedef struct lang_model {
     lvec algs;     /* lang_formula */
     lvec algeqs;   /* lang_formula (name: NULL) */
     lvec inits;    /* lang_init */
+    lvec noises;   /* lang_noise */
+    int noise_class; /* dyn_noise_class of the right-hand side (noise.c) */
     lvec docs;     /* lang_docline */
     /* symbol table: open addressing on the case-folded name */
     lang_sym *syms;
@@ -419,6 +432,13 @@ int lang_is_ident_char(int ch);
 void lang_parse_model(lang_ctx *c);
 /* 1 when w is a keyword of an .ode statement (par, aux, table, ...), case folded */
 int lang_is_statement_keyword(const char *w);
+
+/* noise (noise.c): what the right-hand side does with its Wiener slots, into
+ * c->m.noise_class (dyn_noise_class, dynkit/sde.h) */
+void lang_noise_classify(lang_ctx *c);
+/* The default method of a model with noise: the file's meth=euler (Euler–Maruyama), else
+ * rkmil when noise_class allows it, else euler; a note when the file's meth is another. */
+const char *lang_noise_method(lang_ctx *c);
 
 /* derivatives and simplification (deriv.c) */
 typedef struct lang_dvar {

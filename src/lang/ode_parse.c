@@ -15,6 +15,7 @@
 #include <strings.h>
 
 #include "dynkit/ode.h" /* DYN_EVENT_JUMPS */
+#include "dynkit/sde.h"
 #include "lang/lang_internal.h"
 
 typedef struct pstate {
@@ -252,6 +253,34 @@ static void name_value_list(lang_ctx *c, lang_lexer *lx, int kind, const char *k
             continue;
         lang_fail(c, lang_here(lx), "unexpected '%c' in the %s list (name=value, ...)", ch,
                   keyword);
+    }
+}
+
+/* wiener NAME, NAME ...: Wiener noises (dynkit/sde.h: dW/dt over a step, XPPAUT's meaning) */
+static void parse_wiener(lang_ctx *c, lang_lexer *lx)
+{
+    int count = 0;
+    for (;;) {
+        lpos pos;
+        const char *name = lang_read_name(lx, &pos, count ? "expected a name"
+                                                          : "expected a name after 'wiener'");
+        check_new_name(c, name, pos);
+        lang_declare(c, name, pos, SYM_NOISE, c->m.noises.n);
+        lang_noise *nz = lvec_push(c, &c->m.noises, sizeof *nz);
+        nz->name = name;
+        nz->pos = pos;
+        nz->kind = DYN_NOISE_WIENER;
+        count++;
+        int ch = lang_skip_blanks(lx);
+        if (ch == ',' || ch == ';') {
+            lx->i++;
+            ch = lang_skip_blanks(lx);
+        }
+        if (!ch)
+            return;
+        if (!lang_is_ident_start(ch))
+            lang_fail(c, lang_here(lx), "unexpected '%c' in the wiener list (names separated "
+                      "by commas or blanks)", ch);
     }
 }
 
@@ -983,7 +1012,7 @@ static int keyword_statement(lang_ctx *c, lang_lexer *lx, pstate *ps, const char
     else if (KW(w, n, "markov", "m"))
         lang_fail(c, wpos, "Markov chains ('markov') are not supported");
     else if (KW(w, n, "wiener", "w"))
-        lang_fail(c, wpos, "random processes ('wiener') are not supported");
+        parse_wiener(c, lx);
     else if (KW(w, n, "table", "tab"))
         parse_table(c, lx);
     else if (KW(w, n, "bdry", "bndry", "b", "boundary"))

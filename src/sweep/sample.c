@@ -1,11 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* Run tables of a sweep (dynkit/sweep.h): evenly spaced values with exact ends, full grids
- * (the last axis fastest), and random samples from Philox4x32-10, the counter-based
- * generator of Salmon, Moraes, Dror and Shaw, "Parallel random numbers: as easy as 1, 2, 3"
- * (SC'11), written here from the paper's description (the S-box of two 32x32 -> 64-bit
- * multiplications by 0xD2511F53 and 0xCD9E8D57, the key schedule of the Weyl sequence
- * 0x9E3779B9, 0xBB67AE85 added before each round after the first) and checked against
- * Random123's known-answer vectors; normal values by the Box–Muller transform. */
+ * (the last axis fastest), and random samples from Philox4x32-10 (the core's
+ * dyn_philox4x32, src/ode/philox.c); normal values by the Box–Muller transform. */
 #include <math.h>
 
 #include "dynkit/sweep.h"
@@ -40,50 +36,16 @@ long dyn_sweep_grid(int n_axes, const double *const *axes, const long *counts, d
     return rows;
 }
 
-void dyn_philox4x32(const uint32_t ctr[4], const uint32_t key[2], int rounds,
-                    uint32_t out[4])
-{
-    uint32_t x0 = ctr[0], x1 = ctr[1], x2 = ctr[2], x3 = ctr[3];
-    uint32_t k0 = key[0], k1 = key[1];
-    for (int r = 0; r < rounds; r++) {
-        if (r > 0) {
-            k0 += 0x9E3779B9u;
-            k1 += 0xBB67AE85u;
-        }
-        const uint64_t p0 = (uint64_t)0xD2511F53u * x0;
-        const uint64_t p1 = (uint64_t)0xCD9E8D57u * x2;
-        const uint32_t y0 = (uint32_t)(p1 >> 32) ^ x1 ^ k0;
-        const uint32_t y1 = (uint32_t)p1;
-        const uint32_t y2 = (uint32_t)(p0 >> 32) ^ x3 ^ k1;
-        const uint32_t y3 = (uint32_t)p0;
-        x0 = y0;
-        x1 = y1;
-        x2 = y2;
-        x3 = y3;
-    }
-    out[0] = x0;
-    out[1] = x1;
-    out[2] = x2;
-    out[3] = x3;
-}
-
-/* A uniform number in (0, 1) from two words: 53 random bits plus one half. */
-static double unit(uint32_t hi, uint32_t lo)
-{
-    const uint64_t x = (((uint64_t)hi << 32) | lo) >> 11;
-    return ((double)x + 0.5) * 0x1p-53;
-}
-
 double dyn_dist_value(const dyn_dist *d, uint64_t seed, uint64_t run, uint32_t column)
 {
     const uint32_t ctr[4] = {(uint32_t)run, (uint32_t)(run >> 32), column, 0};
     const uint32_t key[2] = {(uint32_t)seed, (uint32_t)(seed >> 32)};
     uint32_t w[4];
     dyn_philox4x32(ctr, key, 10, w);
-    const double u1 = unit(w[0], w[1]);
+    const double u1 = dyn_philox_unit(w[0], w[1]);
     if (d->kind == DYN_DIST_UNIFORM)
         return d->a + (d->b - d->a) * u1;
-    const double u2 = unit(w[2], w[3]);
+    const double u2 = dyn_philox_unit(w[2], w[3]);
     const double z = sqrt(-2.0 * log(u1)) * cos(2.0 * DYN_PI * u2);
     const double x = d->a + d->b * z;
     return d->kind == DYN_DIST_LOGNORMAL ? exp(x) : x;

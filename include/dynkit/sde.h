@@ -1,0 +1,138 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* dynkit/sde.h — noise: counter-based random numbers and stochastic differential equations.
+ *
+ * Random numbers come from Philox4x32-10 (Salmon, Moraes, Dror, Shaw, "Parallel random
+ * numbers: as easy as 1, 2, 3", SC'11), a counter-based generator: each number is a
+ * function of (seed, stream, counter) alone, so a run's noise is fixed by the seed and the
+ * run's index (its stream) and is the same on any number of threads or MPI ranks.
+ *
+ * A model with noise (a model file's `wiener`, `normal(m, s)`, `ran(x)`) reads the current
+ * values of its noise slots from its parameter struct; the solver writes them before each
+ * evaluation. A Wiener slot holds dW/dt (a standard normal number divided by sqrt(dt) over
+ * a step dt: XPPAUT's meaning, so `x' = f + s*w` with Euler is Euler–Maruyama), a normal
+ * slot a standard normal number, a uniform slot a number uniform on [0, 1). The model's
+ * formulas scale them (m + s*z, x*u).
+ *
+ * Methods (docs/solvers.md, "Noise"):
+ *   DYN_SDE_EM    Euler–Maruyama with a fixed step: every slot drawn once per step (strong
+ *                 order 1/2, weak order 1; strong order 1 for additive noise);
+ *   DYN_SDE_RKMIL the derivative-free Runge–Kutta Milstein scheme of Kloeden and Platen
+ *                 (Numerical Solution of SDEs, 1992, eq. 11.1.5) for right-hand sides
+ *                 affine in the Wiener slots with additive, scalar or diagonal (commuting)
+ *                 noise: strong order 1, with adaptive steps by step doubling on one
+ *                 Brownian path: every value of W drawn is kept, and a point between two
+ *                 known ones comes from the Brownian bridge, so a rejected step changes
+ *                 nothing of the path (Rackauckas and Nie, "Adaptive methods for stochastic
+ *                 differential equations via natural embeddings and rejection sampling
+ *                 with memory", 2017, with every point kept rather than a stack).
+ */
+#ifndef DYNKIT_SDE_H
+#define DYNKIT_SDE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "dynkit/ode.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Philox4x32 (Salmon et al., SC'11; Random123's philox4x32_R): rounds rounds (10 is the
+ * standard) of the counter ctr under key, into out. out depends on (ctr, key) alone, so
+ * any number can be computed directly, in any order, on any thread or machine. Checked
+ * against Random123's known-answer vectors. */
+void dyn_philox4x32(const uint32_t ctr[4], const uint32_t key[2], int rounds,
+                    uint32_t out[4]);
+
+/* A uniform number in (0, 1) from two words of a block: 53 random bits plus one half,
+ * (((hi << 32 | lo) >> 11) + 1/2) 2^-53. */
+double dyn_philox_unit(uint32_t hi, uint32_t lo);
+
+/* The random numbers of one run: Philox4x32-10 with key (seed low, seed high) and counter
+ * (block low, block high, stream low, 2^31 | stream high), block = 0, 1, 2, ... in the order
+ * the numbers are asked for. The top bit of the last word keeps these counters apart from
+ * those of a sweep's random run tables (dynkit/sweep.h), whose last word is 0. Each block
+ * gives two standard normal numbers (Box–Muller, cos then sin) or two uniform ones. */
+typedef struct dyn_rng {
+    uint32_t key[2];
+    uint32_t stream[2];
+    uint64_t block;
+    double spare;   /* the second normal of the last block */
+    int has_spare;
+} dyn_rng;
+
+void dyn_rng_init(dyn_rng *r, uint64_t seed, uint64_t stream);
+double dyn_rng_normal(dyn_rng *r);
+double dyn_rng_uniform(dyn_rng *r); /* in [0, 1) */
+
+/* Kinds of noise slot. */
+typedef enum dyn_noise_kind {
+    DYN_NOISE_WIENER = 0,  /* dW/dt over the step: z / sqrt(dt) */
+    DYN_NOISE_NORMAL = 1,  /* standard normal z, drawn once per step */
+    DYN_NOISE_UNIFORM = 2  /* uniform on [0, 1), drawn once per step */
+} dyn_noise_kind;
+
+/* What the right-hand side does with its noise, as the translator proves it from the
+ * formulas (dyn_model.noise_class): which methods can integrate it. */
+typedef enum dyn_noise_class {
+    DYN_NOISE_GENERAL = 0,     /* only Euler–Maruyama: a right-hand side not affine in the
+                                * Wiener slots, or normal()/ran() slots */
+    DYN_NOISE_ADDITIVE = 1,    /* affine in the Wiener slots with coefficients that do not
+                                * depend on the state */
+    DYN_NOISE_COMMUTATIVE = 2  /* affine, and no Wiener slot's coefficient depends on a state
+                                * that another Wiener slot moves (scalar or diagonal noise):
+                                * Milstein's correction needs no Lévy areas */
+} dyn_noise_class;
+
+/* A system with noise: sys.f reads the n_noise slots at noise (inside sys.par), which the
+ * solver writes before each evaluation; kinds[j] is the dyn_noise_kind of slot j. */
+typedef struct dyn_sde {
+    dyn_system sys;
+    int n_noise;
+    const int *kinds;
+    double *noise;
+    dyn_noise_class noise_class;
+} dyn_sde;
+
+typedef enum dyn_sde_method {
+    DYN_SDE_EM = 0,
+    DYN_SDE_RKMIL = 1
+} dyn_sde_method;
+
+typedef struct dyn_sde_opts {
+    double h;              /* EM and fixed rkmil: the step; adaptive rkmil: the first step
+                            * (0: 1e-3 of the span) */
+    int fixed;             /* rkmil: 1 takes fixed steps h (no error control) */
+    double rtol, atol;     /* adaptive rkmil (0: 1e-3 and 1e-6) */
+    double max_step;       /* adaptive rkmil: 0 = the span */
+    long max_steps;        /* adaptive rkmil: 0 = 10^7 */
+    double out_step;       /* adaptive rkmil: samples at t0 + k out_step (steps land on
+                            * them); 0 = a sample at every accepted step */
+    dyn_end_policy end;    /* fixed steps: as dyn_fixed_solve */
+    long every;            /* fixed steps: keep every K-th sample (and the last) */
+    uint64_t seed, stream; /* the noise: dyn_rng_init(seed, stream) */
+    dyn_output_fn output;
+    void *output_ctx;
+    dyn_progress_fn progress;
+    void *progress_ctx;
+} dyn_sde_opts;
+
+/* Points of the Brownian path an adaptive run keeps ahead of its time at most; a run that
+ * needs more stops with DYN_ERR_CAPACITY. */
+#define DYN_SDE_MAX_POINTS 256
+
+/* Doubles of workspace dyn_sde_solve needs for n states and n_noise slots. */
+size_t dyn_sde_work_size(int n, int n_noise);
+
+/* Integrate sde from (t0, y0) to t1 with method; y (n) receives the last good state. Samples
+ * stream through opts->output (sample 0 at t0). Never allocates. Returns res->status:
+ * DYN_ERR_ARG (with the reason) when the method cannot integrate this noise. */
+int dyn_sde_solve(dyn_sde_method method, const dyn_sde *sde, double t0, double t1,
+                  const double *y0, double *y, double *work, const dyn_sde_opts *opts,
+                  dyn_result *res);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* DYNKIT_SDE_H */

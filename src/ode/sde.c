@@ -1,0 +1,413 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* Stochastic differential equations (dynkit/sde.h): Euler–Maruyama with fixed steps, and
+ * the derivative-free Runge–Kutta Milstein scheme of Kloeden and Platen (Numerical
+ * Solution of Stochastic Differential Equations, 1992, eq. 11.1.5, strong order 1),
+ *   Y+ = Y + a h + sum_j b_j dW_j + sum_j (b_j(t, K_j) - b_j(t, Y)) (dW_j^2 - h) / (2 sqrt h),
+ *   K_j = Y + a h + b_j sqrt h,
+ * applied noise by noise, which is Milstein's scheme when no b_j depends on a state that
+ * another noise moves (additive, scalar or diagonal noise: dyn_noise_class); for additive
+ * noise the correction vanishes and is not computed. The drift a and the columns b_j come
+ * from the model's right-hand side, affine in its Wiener slots: a = f(w = 0),
+ * b_j = f(w = e_j) - a.
+ *
+ * Adaptive steps by step doubling: a step of h and two of h/2 on the same Brownian path,
+ * their difference measured as the embedded pairs' error norm. The path is kept: every
+ * value of W drawn at a time ahead stays in a sorted list until the run passes it, and a
+ * value between two known ones comes from the Brownian bridge
+ *   W(s) = W(a) + (s - a)/(b - a) (W(b) - W(a)) + sqrt((s - a)(b - s)/(b - a)) z,
+ * so a rejected step leaves the path a sample of Brownian motion (Rackauckas and Nie 2017,
+ * rejection sampling with memory). Steps land on the output times. */
+#include <math.h>
+#include <string.h>
+
+#include "dynkit/io.h"
+#include "dynkit/sde.h"
+#include "result_fail.h"
+
+size_t dyn_sde_work_size(int n, int n_noise)
+{
+    const size_t N = (size_t)(n > 0 ? n : 0), M = (size_t)(n_noise > 0 ? n_noise : 0);
+    return 12 * N + (M + 1) * N + 6 * M + (size_t)DYN_SDE_MAX_POINTS * (1 + M) + 16;
+}
+
+typedef struct sde_run {
+    const dyn_sde *sde;
+    int n, m;
+    dyn_rng rng;
+    dyn_result *res;
+    int rhs_status;
+    /* workspace */
+    double *a, *b, *kk, *c0, *c1, *ymid, *ybig, *ysmall, *dw, *dw1, *dw2, *wend, *wmid;
+    /* the Brownian path: W at tc is wc; np points ahead at tq (increasing), values wq */
+    double tc, *wc, *tq, *wq;
+    int np;
+} sde_run;
+
+static int first_nonfinite(const double *y, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (!isfinite(y[i]))
+            return i;
+    return -1;
+}
+
+/* f(t, y) with the noise slots at w (NULL: all zero; unit >= 0: slot unit 1, others 0). */
+static int eval(sde_run *r, double t, const double *y, const double *w, int unit, double *out)
+{
+    const dyn_sde *s = r->sde;
+    for (int j = 0; j < r->m; j++)
+        s->noise[j] = w ? w[j] : (j == unit ? 1.0 : 0.0);
+    r->res->stats.rhs_calls++;
+    const int st = s->sys.f(t, y, out, s->sys.par);
+    if (st) {
+        r->rhs_status = st;
+        r->res->fail_t = t;
+    }
+    return st;
+}
+
+/* The drift a and the columns b (m x n) at (t, y). */
+static int drift_diffusion(sde_run *r, double t, const double *y)
+{
+    const int n = r->n;
+    if (eval(r, t, y, NULL, -1, r->a))
+        return 1;
+    for (int j = 0; j < r->m; j++) {
+        double *bj = r->b + (size_t)j * (size_t)n;
+        if (eval(r, t, y, NULL, j, bj))
+            return 1;
+        for (int i = 0; i < n; i++)
+            bj[i] -= r->a[i];
+    }
+    return 0;
+}
+
+/* One step of the Runge–Kutta Milstein scheme from (t, y) over h with increments dw, the
+ * drift and diffusion at (t, y) already in r->a, r->b; the result into out (not y). */
+static int rkmil_step(sde_run *r, double t, const double *y, double h, const double *dw,
+                      double *out)
+{
+    const int n = r->n, m = r->m;
+    for (int i = 0; i < n; i++)
+        out[i] = y[i] + h * r->a[i];
+    for (int j = 0; j < m; j++) {
+        const double *bj = r->b + (size_t)j * (size_t)n;
+        for (int i = 0; i < n; i++)
+            out[i] += bj[i] * dw[j];
+    }
+    if (r->sde->noise_class == DYN_NOISE_ADDITIVE)
+        return 0;
+    const double sq = sqrt(h);
+    for (int j = 0; j < m; j++) {
+        const double *bj = r->b + (size_t)j * (size_t)n;
+        for (int i = 0; i < n; i++)
+            r->kk[i] = y[i] + h * r->a[i] + bj[i] * sq;
+        if (eval(r, t, r->kk, NULL, j, r->c1) || eval(r, t, r->kk, NULL, -1, r->c0))
+            return 1;
+        const double g = (dw[j] * dw[j] - h) / (2.0 * sq);
+        for (int i = 0; i < n; i++)
+            out[i] += (r->c1[i] - r->c0[i] - bj[i]) * g;
+    }
+    return 0;
+}
+
+/* W at time s > tc into out (m values): a point already drawn, a bridge between the known
+ * neighbours, or a new increment beyond the last one; the point is kept. */
+static int path_at(sde_run *r, double s, double *out)
+{
+    const int m = r->m;
+    int i = 0;
+    while (i < r->np && r->tq[i] < s)
+        i++;
+    if (i < r->np && r->tq[i] == s) {
+        memcpy(out, r->wq + (size_t)i * (size_t)m, (size_t)m * sizeof *out);
+        return 0;
+    }
+    if (r->np == DYN_SDE_MAX_POINTS)
+        return 1;
+    const double tl = i == 0 ? r->tc : r->tq[i - 1];
+    const double *wl = i == 0 ? r->wc : r->wq + (size_t)(i - 1) * (size_t)m;
+    if (i == r->np) {
+        const double sd = sqrt(s - tl);
+        for (int j = 0; j < m; j++)
+            out[j] = wl[j] + sd * dyn_rng_normal(&r->rng);
+    } else {
+        const double tr = r->tq[i];
+        const double *wr = r->wq + (size_t)i * (size_t)m;
+        const double f = (s - tl) / (tr - tl), sd = sqrt((s - tl) * (tr - s) / (tr - tl));
+        for (int j = 0; j < m; j++)
+            out[j] = wl[j] + f * (wr[j] - wl[j]) + sd * dyn_rng_normal(&r->rng);
+    }
+    memmove(r->tq + i + 1, r->tq + i, (size_t)(r->np - i) * sizeof *r->tq);
+    memmove(r->wq + (size_t)(i + 1) * (size_t)m, r->wq + (size_t)i * (size_t)m,
+            (size_t)(r->np - i) * (size_t)m * sizeof *r->wq);
+    r->tq[i] = s;
+    memcpy(r->wq + (size_t)i * (size_t)m, out, (size_t)m * sizeof *out);
+    r->np++;
+    return 0;
+}
+
+/* The run reached t (a point of the path): W there becomes the current value. */
+static void path_advance(sde_run *r, double t)
+{
+    const int m = r->m;
+    int i = 0;
+    while (i < r->np && r->tq[i] <= t)
+        i++;
+    if (i > 0)
+        memcpy(r->wc, r->wq + (size_t)(i - 1) * (size_t)m, (size_t)m * sizeof *r->wc);
+    memmove(r->tq, r->tq + i, (size_t)(r->np - i) * sizeof *r->tq);
+    memmove(r->wq, r->wq + (size_t)i * (size_t)m, (size_t)(r->np - i) * (size_t)m * sizeof *r->wq);
+    r->np -= i;
+    r->tc = t;
+}
+
+static int rhs_fail(sde_run *r)
+{
+    r->res->rhs_status = r->rhs_status;
+    return dyn_result_fail(r->res, DYN_ERR_RHS, "the right-hand side returned %d at t = %s",
+                           r->rhs_status, dyn_shortest(r->res->fail_t).s);
+}
+
+static int nonfinite_fail(sde_run *r, double t, int bad)
+{
+    r->res->fail_t = t;
+    r->res->fail_index = bad;
+    return dyn_result_fail(r->res, DYN_ERR_NONFINITE, "state %d became not finite at t = %s",
+                           bad, dyn_shortest(t).s);
+}
+
+/* Fixed steps on the grid of h: Euler–Maruyama (every slot drawn once per step) or the
+ * Runge–Kutta Milstein scheme (Wiener increments sqrt(dt) z). */
+static int solve_fixed(sde_run *r, dyn_sde_method method, double t0, double t1,
+                       const dyn_sde_opts *o, double *y)
+{
+    dyn_result *res = r->res;
+    dyn_grid grid;
+    if (dyn_grid_plan(t0, t1, o->h, o->end, &grid, res->message, sizeof res->message))
+        return res->status = DYN_ERR_ARG;
+    const int n = r->n, m = r->m;
+    const dyn_sde *s = r->sde;
+    const long steps = grid.samples - 1, every = o->every > 1 ? o->every : 1;
+    long countdown = every, progress_countdown = 65536;
+    double t = t0;
+    for (long k = 0; k < steps; k++) {
+        const double tn = dyn_grid_time(&grid, k + 1), h = tn - t;
+        if (method == DYN_SDE_EM) {
+            for (int j = 0; j < m; j++) {
+                const int kind = s->kinds ? s->kinds[j] : DYN_NOISE_WIENER;
+                r->dw[j] = kind == DYN_NOISE_UNIFORM  ? dyn_rng_uniform(&r->rng)
+                           : kind == DYN_NOISE_NORMAL ? dyn_rng_normal(&r->rng)
+                                                      : dyn_rng_normal(&r->rng) / sqrt(h);
+            }
+            if (eval(r, t, y, r->dw, -1, r->a))
+                return rhs_fail(r);
+            for (int i = 0; i < n; i++)
+                r->ysmall[i] = y[i] + h * r->a[i];
+        } else {
+            const double sq = sqrt(h);
+            for (int j = 0; j < m; j++)
+                r->dw[j] = sq * dyn_rng_normal(&r->rng);
+            if (drift_diffusion(r, t, y) || rkmil_step(r, t, y, h, r->dw, r->ysmall))
+                return rhs_fail(r);
+        }
+        res->stats.steps++;
+        res->stats.accepted++;
+        const int bad = first_nonfinite(r->ysmall, n);
+        if (bad >= 0)
+            return nonfinite_fail(r, tn, bad);
+        memcpy(y, r->ysmall, (size_t)n * sizeof *y);
+        t = tn;
+        res->t = t;
+        if (o->output && (--countdown == 0 || k + 1 == steps)) {
+            countdown = every;
+            res->stats.samples++;
+            if (o->output(k + 1, t, y, o->output_ctx))
+                return dyn_result_fail(res, DYN_STOPPED, "output stopped the run at t = %g", t);
+        }
+        if (o->progress && --progress_countdown == 0) {
+            progress_countdown = 65536;
+            if (o->progress(t, (double)(k + 1) / (double)steps, o->progress_ctx))
+                return dyn_result_fail(res, DYN_CANCELLED, "cancelled at t = %g", t);
+        }
+    }
+    return DYN_OK;
+}
+
+/* The error norm of the step-doubling difference (Hairer's RMS norm). */
+static double error_norm(const sde_run *r, const double *y, const dyn_sde_opts *o)
+{
+    const double rtol = o->rtol > 0 ? o->rtol : 1e-3, atol = o->atol > 0 ? o->atol : 1e-6;
+    double sum = 0.0;
+    for (int i = 0; i < r->n; i++) {
+        const double sc = atol + rtol * fmax(fabs(y[i]), fabs(r->ysmall[i]));
+        const double e = (r->ysmall[i] - r->ybig[i]) / sc;
+        sum += e * e;
+    }
+    return sqrt(sum / (r->n > 0 ? r->n : 1));
+}
+
+static int solve_adaptive(sde_run *r, double t0, double t1, const dyn_sde_opts *o, double *y)
+{
+    dyn_result *res = r->res;
+    const int n = r->n, m = r->m;
+    const double span = t1 - t0;
+    const double hmax = o->max_step > 0 ? fmin(o->max_step, span) : span;
+    const long max_steps = o->max_steps > 0 ? o->max_steps : 10000000L;
+    double h = o->h > 0 ? fmin(o->h, hmax) : 1e-3 * span;
+    long k_out = 1, sample = 0, progress_countdown = 4096;
+    double t = t0;
+    while (t < t1) {
+        double limit = t1;
+        if (o->out_step > 0) {
+            const double tk = t0 + (double)k_out * o->out_step;
+            if (tk < t1 && t1 - tk > 1e-10 * o->out_step)
+                limit = tk;
+        }
+        const int clipped = t + h >= limit || limit - (t + h) < 1e-10 * h;
+        const double tn = clipped ? limit : t + h, hh = tn - t;
+        if (hh <= 16.0 * 2.220446049250313e-16 * fmax(fabs(t), fabs(tn))) {
+            res->fail_t = t;
+            return dyn_result_fail(res, DYN_ERR_STEP_SIZE,
+                                   "the step size fell to %g at t = %s (the noise or the "
+                                   "tolerances ask too much)",
+                                   hh, dyn_shortest(t).s);
+        }
+        if (res->stats.steps >= max_steps)
+            return dyn_result_fail(res, DYN_ERR_MAX_STEPS,
+                                   "%ld steps reached at t = %s (raise the step limit or the "
+                                   "tolerances)",
+                                   max_steps, dyn_shortest(t).s);
+        const double tm = t + 0.5 * hh;
+        if (path_at(r, tn, r->wend) || path_at(r, tm, r->wmid))
+            return dyn_result_fail(res, DYN_ERR_CAPACITY,
+                                   "more than %d points of the Brownian path ahead of t = %s "
+                                   "(too many rejected steps)",
+                                   DYN_SDE_MAX_POINTS, dyn_shortest(t).s);
+        for (int j = 0; j < m; j++) {
+            r->dw[j] = r->wend[j] - r->wc[j];
+            r->dw1[j] = r->wmid[j] - r->wc[j];
+            r->dw2[j] = r->wend[j] - r->wmid[j];
+        }
+        res->stats.steps++;
+        if (drift_diffusion(r, t, y) || rkmil_step(r, t, y, hh, r->dw, r->ybig) ||
+            rkmil_step(r, t, y, 0.5 * hh, r->dw1, r->ymid) || drift_diffusion(r, tm, r->ymid) ||
+            rkmil_step(r, tm, r->ymid, 0.5 * hh, r->dw2, r->ysmall))
+            return rhs_fail(r);
+        double err = error_norm(r, y, o);
+        if (!isfinite(err))
+            err = 1e10;
+        const double fac = err > 0 ? 0.9 * pow(err, -0.5) : 5.0;
+        if (err > 1.0) {
+            res->stats.rejected++;
+            h = hh * fmax(0.2, fmin(0.9, fac));
+            continue;
+        }
+        res->stats.accepted++;
+        const int bad = first_nonfinite(r->ysmall, n);
+        if (bad >= 0)
+            return nonfinite_fail(r, tn, bad);
+        memcpy(y, r->ysmall, (size_t)n * sizeof *y);
+        path_advance(r, tn);
+        t = tn;
+        res->t = t;
+        res->h_last = hh;
+        /* a step shortened to land on a sample does not hold the next one back */
+        h = fmin(hmax, fmax(clipped ? h : hh * fmin(5.0, fac), hh * fmin(5.0, fac)));
+        if (o->output && (o->out_step <= 0 || t == limit)) {
+            if (t == limit && o->out_step > 0)
+                k_out++;
+            res->stats.samples++;
+            if (o->output(++sample, t, y, o->output_ctx))
+                return dyn_result_fail(res, DYN_STOPPED, "output stopped the run at t = %g", t);
+        } else if (t == limit && o->out_step > 0) {
+            k_out++;
+        }
+        if (o->progress && --progress_countdown == 0) {
+            progress_countdown = 4096;
+            if (o->progress(t, (t - t0) / span, o->progress_ctx))
+                return dyn_result_fail(res, DYN_CANCELLED, "cancelled at t = %g", t);
+        }
+    }
+    return DYN_OK;
+}
+
+int dyn_sde_solve(dyn_sde_method method, const dyn_sde *sde, double t0, double t1,
+                  const double *y0, double *y, double *work, const dyn_sde_opts *opts,
+                  dyn_result *res)
+{
+    memset(res, 0, sizeof *res);
+    res->t = t0;
+    res->fail_index = -1;
+    const dyn_sde_opts zero = {0};
+    const dyn_sde_opts *o = opts ? opts : &zero;
+    const int n = sde->sys.n, m = sde->n_noise;
+    if (n < 1 || m < 0 || !(t1 > t0) || !isfinite(t0) || !isfinite(t1) || (m > 0 && !sde->noise))
+        return dyn_result_fail(res, DYN_ERR_ARG,
+                               "a system with noise needs n >= 1 states, noise slots when "
+                               "n_noise > 0, and a span t0 < t1 (got n = %d, n_noise = %d, "
+                               "%g:%g)",
+                               n, m, t0, t1);
+    const int fixed = method == DYN_SDE_EM || o->fixed;
+    if (fixed && !(o->h > 0))
+        return dyn_result_fail(res, DYN_ERR_ARG,
+                               "%s takes fixed steps: give the step h > 0 (got %g)",
+                               method == DYN_SDE_EM ? "Euler-Maruyama" : "rkmil", o->h);
+    if (method == DYN_SDE_RKMIL && sde->noise_class == DYN_NOISE_GENERAL)
+        return dyn_result_fail(res, DYN_ERR_ARG,
+                               "rkmil needs a right-hand side affine in Wiener noise that is "
+                               "additive, scalar or diagonal (no normal() or ran(), no noise "
+                               "coefficient that depends on a state another noise moves): "
+                               "use Euler-Maruyama (method euler)");
+    sde_run r = {0};
+    r.sde = sde;
+    r.n = n;
+    r.m = m;
+    r.res = res;
+    dyn_rng_init(&r.rng, o->seed, o->stream);
+    const size_t N = (size_t)n, M = (size_t)m;
+    double *p = work;
+    r.a = p, p += N;
+    r.kk = p, p += N;
+    r.c0 = p, p += N;
+    r.c1 = p, p += N;
+    r.ymid = p, p += N;
+    r.ybig = p, p += N;
+    r.ysmall = p, p += N;
+    double *state = p;
+    p += N;
+    r.b = p, p += M * N;
+    r.dw = p, p += M + 1;
+    r.dw1 = p, p += M + 1;
+    r.dw2 = p, p += M + 1;
+    r.wend = p, p += M + 1;
+    r.wmid = p, p += M + 1;
+    r.wc = p, p += M + 1;
+    r.tq = p, p += DYN_SDE_MAX_POINTS;
+    r.wq = p;
+    r.tc = t0;
+    for (int j = 0; j < m; j++)
+        r.wc[j] = 0.0;
+    memcpy(state, y0, N * sizeof *state);
+    const int bad = first_nonfinite(state, n);
+    if (bad >= 0) {
+        res->fail_index = bad;
+        return dyn_result_fail(res, DYN_ERR_NONFINITE, "initial state %d is not finite (%g)",
+                               bad, state[bad]);
+    }
+    int status = DYN_OK;
+    if (o->output) {
+        res->stats.samples++;
+        if (o->output(0, t0, state, o->output_ctx))
+            status = dyn_result_fail(res, DYN_STOPPED, "output stopped the run at t = %g", t0);
+    }
+    if (status == DYN_OK)
+        status = fixed ? solve_fixed(&r, method, t0, t1, o, state)
+                       : solve_adaptive(&r, t0, t1, o, state);
+    for (int j = 0; j < m; j++)
+        sde->noise[j] = 0.0;
+    if (y)
+        memcpy(y, state, N * sizeof *y);
+    res->status = status;
+    return status;
+}

@@ -21,6 +21,7 @@
 #include "dynkit/io.h"
 #include "dynkit/sweep.h"
 #include "out_file.h"
+#include "sweep_bands.h"
 #include "sweep_table.h"
 #include "table_formats.h"
 #ifdef DYNKIT_HAVE_MPI
@@ -766,7 +767,7 @@ static int sweep_command(int argc, char **argv, int rank, int ranks)
     }
     int n_pass = 0, n_vary_opt = 0, n_sample_opt = 0, rc = CLI_OK, init_given = 0;
     const char *reduce = "final", *threads_text = NULL, *output = NULL, *resume = NULL;
-    const char *runs_text = NULL, *seed_text = NULL, *from = NULL;
+    const char *runs_text = NULL, *seed_text = NULL, *from = NULL, *bands = NULL;
     pass[n_pass++] = argv[0];
     for (int i = 1; i < argc && rc == CLI_OK; i++) {
         const char *v = NULL;
@@ -788,6 +789,7 @@ static int sweep_command(int argc, char **argv, int rank, int ranks)
         SOPT("threads", threads_text = v)
         SOPT("output", output = v)
         SOPT("resume", resume = v)
+        SOPT("bands", bands = v)
 #undef SOPT
         rc = refused_option(argv[i]);
         init_given |= strncmp(argv[i], "--init", 6) == 0;
@@ -802,7 +804,9 @@ static int sweep_command(int argc, char **argv, int rank, int ranks)
         rc = cli_run_parse("sweep", n_pass, pass, &run);
     const dyn_model *m = run.model;
     const int sources = (n_vary_opt > 0) + (n_sample_opt > 0) + (from != NULL);
-    if (rc == CLI_OK && sources != 1)
+    /* a model with noise: --runs N alone are N realisations of its noise */
+    const int noise_runs = rc == CLI_OK && m->n_noise > 0 && sources == 0 && runs_text;
+    if (rc == CLI_OK && sources != 1 && !noise_runs)
         rc = cli_usage_error("sweep", sources == 0
                                           ? "give the runs: --vary NAME=A:B:N, --sample "
                                             "NAME=uniform(A,B) --runs N, or --from FILE.csv"
@@ -817,8 +821,21 @@ static int sweep_command(int argc, char **argv, int rank, int ranks)
         rc = parse_sample(m, &sp, sample[k]);
     if (rc == CLI_OK && n_sample_opt > 0 && !runs_text)
         rc = cli_usage_error("sweep", "--sample needs --runs N (how many random runs)");
-    if (rc == CLI_OK && (runs_text || seed_text) && n_sample_opt == 0)
-        rc = cli_usage_error("sweep", "--runs and --seed go with --sample");
+    if (rc == CLI_OK && (runs_text || seed_text) && n_sample_opt == 0 && m->n_noise == 0)
+        rc = cli_usage_error("sweep", "--runs and --seed go with --sample (or with a model "
+                                      "with noise: wiener, normal, ran)");
+    if (rc == CLI_OK && runs_text && m->n_noise > 0 && n_sample_opt == 0 && sources > 0)
+        rc = cli_usage_error("sweep", "--runs N with --vary or --from: each run of the table "
+                                      "already has its own noise (stream = its run number)");
+    if (rc == CLI_OK && bands && resume)
+        rc = cli_usage_error("sweep", "--bands with --resume: the resumed runs' time series "
+                                      "are not in the table; run the sweep again");
+    if (rc == CLI_OK && bands && ranks > 1)
+        rc = cli_usage_error("sweep", "--bands runs in one process (the ranks do not share "
+                                      "the time series)");
+    if (rc == CLI_OK && bands && dyn_method_is_adaptive(run.method) && cli_run_at_steps(&run))
+        rc = cli_usage_error("sweep", "--bands needs the runs on one grid of times: give "
+                                      "--step");
     if (rc == CLI_OK && runs_text &&
         (cli_parse_count(runs_text, 1, &sp.runs) || sp.runs > SWEEP_MAX_ROWS))
         rc = cli_usage_error("sweep", "--runs '%s': give a whole number from 1 to %ld",
@@ -841,6 +858,8 @@ static int sweep_command(int argc, char **argv, int rank, int ranks)
         sp.from = from;
         rc = read_from(m, &sp);
     }
+    if (rc == CLI_OK && noise_runs)
+        sp.n_runs = sp.runs;
     if (rc == CLI_OK)
         rc = build_table(&sp);
     dyn_reduce red[SWEEP_MAX_REDUCE];
@@ -944,6 +963,14 @@ static int sweep_command(int argc, char **argv, int rank, int ranks)
     s.stop = stop;
     s.skip = skip;
     s.threads = (int)threads;
+    s.seed = sp.seed;
+    s.noise_method = cli_method_is_rkmil(run.method) ? DYN_SDE_RKMIL : DYN_SDE_EM;
+    sweep_bands bd = {0};
+    if (rc == CLI_OK && bands && (rc = sweep_bands_plan(&run, n_runs, &bd)) == CLI_OK) {
+        s.series = bd.series;
+        s.n_series = bd.n_times;
+        s.series_every = bd.every;
+    }
     if (rc == CLI_OK && kept > 0)
         rc = check_resumed(&s, &o, skip, resume);
     sweep_progress prog = {0};
@@ -990,7 +1017,10 @@ static int sweep_command(int argc, char **argv, int rank, int ranks)
     if (rc == CLI_OK) {
         /* a file is written beside its name and renamed when complete (out_file.h) */
         cli_out outf;
-        if (cli_out_open(&outf, "--output", out_path) != CLI_OK) {
+        if (bands && sweep_bands_write(bands, &bd, &run, o.status, n_runs) != CLI_OK)
+            rc = CLI_FAILED;
+        if (rc != CLI_OK) {
+        } else if (cli_out_open(&outf, "--output", out_path) != CLI_OK) {
             rc = CLI_FAILED;
         } else {
             const int bad = format == CLI_FORMAT_CSV
@@ -1037,6 +1067,7 @@ static int sweep_command(int argc, char **argv, int rank, int ranks)
     free(o.results);
     free(o.status);
     free(skip);
+    sweep_bands_free(&bd);
     spec_free(&sp);
     cli_run_free(&run);
     return rc;

@@ -155,6 +155,19 @@ typedef struct dyn_sweep {
     dyn_sweep_cancel_fn cancel;     /* may be NULL */
     void *cancel_ctx;
     long progress_steps;      /* steps between polls of cancel within a run; 0: 65536 */
+    /* A model with noise (model->n_noise > 0, dynkit/sde.h): each run integrated by
+     * dyn_sde_solve with noise_method (a dyn_sde_method; method then only names it), its
+     * noise that of stream = the run's index under seed, so a run's noise is the same on
+     * any number of threads or ranks. */
+    uint64_t seed;
+    int noise_method;
+    /* Time series of every run (for bands over runs), or NULL: series is
+     * (n_runs x n_series x n_states), row-major, caller-owned; run i's state at sample
+     * k * series_every (k < n_series; sample k of a fixed step at t0 + k step, of an
+     * adaptive method on the grid of step, which must then be > 0) goes to
+     * series[(i n_series + k) n_states ..]; what a run does not reach is left alone. */
+    double *series;
+    long n_series, series_every;
 } dyn_sweep;
 
 /* Run the sweep: results is (n_runs x n_reduce) doubles, row-major, status (n_runs) ints;

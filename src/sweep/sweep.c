@@ -29,6 +29,7 @@ typedef struct plan {
     const dyn_model *m;
     const void *par;         /* base parameters */
     int use_solve;           /* dyn_solve (adaptive, or events) rather than dyn_fixed_solve */
+    int noise;               /* dyn_sde_solve: the model has noise */
     int need_samples;        /* a reduction over the samples, or the model's bound */
     int samples_outputs;     /* a reduction over the samples reads an output */
     int final_outputs;       /* a final reduction reads an output */
@@ -49,6 +50,7 @@ typedef struct worker {
     int *iwork;
     double *acc, *aux;       /* (n_reduce) accumulators: value, and time or previous value */
     long samples;
+    long run;           /* the run being integrated */
     int outputs_failed; /* the sample callback stopped the run: compute_outputs failed */
     double t_first, t_prev;
     char err[256];
@@ -99,7 +101,11 @@ static int on_sample(long k, double t, const double *y, void *ctx)
     worker *w = ctx;
     const plan *p = w->p;
     const dyn_model *m = p->m;
-    (void)k;
+    const dyn_sweep *sw = p->s;
+    if (sw->series && k % sw->series_every == 0 && k / sw->series_every < sw->n_series)
+        memcpy(sw->series + ((size_t)w->run * (size_t)sw->n_series +
+                             (size_t)(k / sw->series_every)) * (size_t)m->n_states,
+               y, (size_t)m->n_states * sizeof *y);
     if (m->bound > 0)
         for (int i = 0; i < m->n_states; i++)
             if (fabs(y[i]) > m->bound)
@@ -208,7 +214,29 @@ static int run_one(worker *w, long i, double *row)
     const dyn_system sys = {m->rhs, n, w->par};
     dyn_result res;
     int st;
-    if (p->use_solve) {
+    w->run = i;
+    if (p->noise) {
+        const dyn_sde sde = {{m->rhs, n, w->par}, m->n_noise, m->noise_kinds,
+                             (double *)((char *)w->par + m->noise_offset),
+                             (dyn_noise_class)m->noise_class};
+        dyn_sde_opts o = {0};
+        const int em = s->noise_method == DYN_SDE_EM;
+        o.h = em ? s->step : s->initial_step;
+        o.rtol = s->rtol;
+        o.atol = s->atol;
+        o.max_step = s->max_step;
+        o.max_steps = s->max_steps;
+        o.out_step = em ? 0.0 : s->step;
+        o.end = s->end;
+        o.seed = s->seed;
+        o.stream = (uint64_t)i;
+        o.output = p->need_samples ? on_sample : NULL;
+        o.output_ctx = w;
+        o.progress = run_progress;
+        o.progress_ctx = w;
+        st = dyn_sde_solve(em ? DYN_SDE_EM : DYN_SDE_RKMIL, &sde, s->t0, s->t1, w->y0, w->y,
+                           w->work, &o, &res);
+    } else if (p->use_solve) {
         dyn_solve_opts o = p->solve;
         o.output_ctx = w;
         o.event_ctx = w;
@@ -260,6 +288,18 @@ static int run_one(worker *w, long i, double *row)
         }
     }
     return DYN_OK;
+}
+
+/* Whether the runs would locate events (reductions of events, stop events, resets). */
+static int p_events_needed(const dyn_sweep *s)
+{
+    for (int r = 0; r < s->n_reduce; r++)
+        if (s->reduce[r].source == DYN_SOURCE_EVENT)
+            return 1;
+    for (int e = 0; e < s->model->n_events; e++)
+        if (s->model->events[e].reset)
+            return 1;
+    return s->n_stop > 0;
 }
 
 static int check(const dyn_sweep *s, char *err, size_t errlen)
@@ -317,6 +357,21 @@ static int check(const dyn_sweep *s, char *err, size_t errlen)
             snprintf(err, errlen, "stop event %d is not an event of %s", s->stop[k], m->name);
             return -1;
         }
+    if (s->series && (s->n_series < 1 || s->series_every < 1 ||
+                      (dyn_method_is_adaptive(s->method) && !(s->step > 0)))) {
+        snprintf(err, errlen, "time series of the runs need n_series >= 1, series_every >= 1 "
+                              "and, with an adaptive method, a sample step > 0");
+        return -1;
+    }
+    if (m->n_noise > 0 && (s->noise_method != DYN_SDE_EM && s->noise_method != DYN_SDE_RKMIL)) {
+        snprintf(err, errlen, "model %s has noise: noise_method must be DYN_SDE_EM or "
+                              "DYN_SDE_RKMIL", m->name);
+        return -1;
+    }
+    if (m->n_noise > 0 && p_events_needed(s)) {
+        snprintf(err, errlen, "model %s has noise: its runs cannot locate events", m->name);
+        return -1;
+    }
     if (!dyn_method_is_adaptive(s->method)) {
         dyn_grid g;
         if (dyn_grid_plan(s->t0, s->t1, s->step, s->end, &g, err, errlen))
@@ -370,9 +425,14 @@ static int plan_make(plan *p, const dyn_sweep *s)
             p->final_outputs |= rd->source == DYN_SOURCE_OUTPUT;
         }
     }
-    p->need_samples |= m->bound > 0;
+    p->need_samples |= m->bound > 0 || s->series != NULL;
     if (plan_events(p))
         return -1;
+    if (m->n_noise > 0) {
+        p->noise = 1;
+        p->work_size = dyn_sde_work_size(m->n_states, m->n_noise);
+        return 0;
+    }
     const int adaptive = dyn_method_is_adaptive(s->method);
     p->use_solve = adaptive || p->n_events > 0;
     const long every = s->progress_steps > 0 ? s->progress_steps : 65536;

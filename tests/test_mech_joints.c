@@ -7,7 +7,8 @@
  * speeds against the top by its angles' rates, its axial spin constant (Euler's equations);
  * a free body in zero gravity keeping its angular momentum vector and energy, the
  * torque-free symmetric body's closed-form motion, and the growth rate of the spin about
- * the intermediate axis; and the errors of joints and speeds at FILE:LINE:COL. */
+ * the intermediate axis; joints along tilted axes (a pendulum's frequency, a sled on an
+ * incline); a free joint with Euler parameters against plane_quat.mech; and the errors of joints and speeds at FILE:LINE:COL. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -219,13 +220,79 @@ static void test_intermediate_axis_is_unstable(void **state_)
           n, up, lam, down);
 }
 
-static void expect_error(const char *text, const char *where, const char *what)
+static void write_file(const char *path, const char *text)
 {
-    const char *path = cli_path("bad.mech");
     FILE *f = fopen(path, "w");
     assert_non_null(f);
     fputs(text, f);
     fclose(f);
+}
+
+/* Joints along axes (ax, ay, az): a pendulum about an axis tilted by beta from the
+ * horizontal, its rod square to the axis, swings at sqrt(g cos(beta) / l); a sled on an
+ * incline at alpha slides as s = -g sin(alpha) t^2 / 2. */
+static void test_tilted_axes(void **state_)
+{
+    (void)state_;
+    char path[512];
+    snprintf(path, sizeof path, "%s", cli_path("tilted.mech"));
+    write_file(path, "coord phi=0 [rad], s=0 [m]\n"
+                     "par l=0.5 [m], beta=0.3, alpha=0.4, g=9.81 [m/s^2]\n"
+                     "gravity 0, -g, 0\n"
+                     "point bob mass=1 revolute ground (0, sin(beta), cos(beta)):phi "
+                     "pivot (0, l*cos(beta), -l*sin(beta))\n"
+                     "point sled mass=2 prismatic ground(0, 0, 1) (2*cos(alpha), "
+                     "2*sin(alpha), 0):s\n");
+    cli_result r = cli("linearize %s -o %s", path, cli_path("eig.csv"));
+    CHECK(r.status == 0, "%s", r.err);
+    cli_free(&r);
+    char *csv = cli_read_file(cli_path("eig.csv"), NULL);
+    static double re[16], im[16];
+    const long n = column(csv, "re", re);
+    column(csv, "im", im);
+    free(csv);
+    const double w = sqrt(9.81 * cos(0.3) / 0.5);
+    int matched = 0;
+    for (long i = 0; i < n; i++)
+        matched += fabs(re[i]) < 1e-9 && fabs(fabs(im[i]) - w) < 1e-9 * w;
+    CHECK(n == 4 && matched == 2, "%ld eigenvalues, %d at +-i %.17g", n, matched, w);
+    static double t[MAXROWS], sv[MAXROWS];
+    r = run_ok("run %s %s --tspan 0:2 --step 0.5", path, TIGHT);
+    const long rows = column(r.out, "t", t);
+    column(r.out, "s", sv);
+    double worst = 0.0;
+    for (long i = 0; i < rows; i++)
+        worst = fmax(worst, fabs(sv[i] + 0.5 * 9.81 * sin(0.4) * t[i] * t[i]));
+    CHECK(rows == 5 && worst < 1e-12, "sled off by %.3g m", worst);
+    cli_free(&r);
+}
+
+/* The plane of plane_quat.mech placed by a free joint with Euler parameters: the same run
+ * to the last digit (the same formulas). */
+static void test_free_joint_with_euler_parameters(void **state_)
+{
+    (void)state_;
+    char path[512];
+    snprintf(path, sizeof path, "%s", cli_path("plane_free.mech"));
+    char *text = cli_read_file(MECH "plane_quat.mech", NULL);
+    const char *from = "at (sX, sY, sZ) rot quat:", *to = "free ground (sX, sY, sZ) quat:";
+    char *at = strstr(text, from);
+    CHECK(at != NULL, "plane_quat.mech places its body by %s", from);
+    char buf[4096];
+    snprintf(buf, sizeof buf, "%.*s%s%s", (int)(at - text), text, to, at + strlen(from));
+    free(text);
+    write_file(path, buf);
+    cli_result ra = run_ok("run %s %s --tspan 0:5 --step 0.25", path, TIGHT);
+    cli_result rb = run_ok("run %s %s --tspan 0:5 --step 0.25", MECH "plane_quat.mech", TIGHT);
+    CHECK(strcmp(ra.out, rb.out) == 0, "the runs differ:\n%.300s\n%.300s", ra.out, rb.out);
+    cli_free(&ra);
+    cli_free(&rb);
+}
+
+static void expect_error(const char *text, const char *where, const char *what)
+{
+    const char *path = cli_path("bad.mech");
+    write_file(path, text);
     cli_result r = cli("run %s", path);
     CHECK(r.status == 2, "status %d for:\n%s", r.status, text);
     CHECK(strstr(r.err, where) && strstr(r.err, what), "expected '%s' and '%s' in:\n%s", where,
@@ -271,6 +338,8 @@ int main(void)
         cmocka_unit_test(test_top_by_body_angular_velocities),
         cmocka_unit_test(test_free_body_keeps_momentum_and_energy),
         cmocka_unit_test(test_intermediate_axis_is_unstable),
+        cmocka_unit_test(test_tilted_axes),
+        cmocka_unit_test(test_free_joint_with_euler_parameters),
         cmocka_unit_test(test_joint_and_speed_errors),
     };
     return cmocka_run_group_tests(tests, setup_all, NULL);

@@ -293,6 +293,41 @@ static void quaternion(dctx *d, mbs_body *b, node **Jw, node *w[3])
 }
 
 /* R, and J_w (3 n symbolic) with the angular velocity in B */
+/* a joint's axis (ax, ay, az) divided by its length */
+static void unit_axis(dctx *d, const mbs_body *b, node *n[3])
+{
+    node *v[3];
+    for (int j = 0; j < 3; j++)
+        v[j] = input(d, b->axisv[j]);
+    node *len = lang_fun1(d->c, F_SQRT, dot(d, v, v));
+    for (int j = 0; j < 3; j++)
+        n[j] = lang_div(d->c, v[j], len);
+}
+
+/* rotation i of b: elementary, or about a joint's axis n (axis 3), passive:
+ * E = cos(a) I + (1 - cos(a)) n n' - sin(a) [n x] */
+static void factor(dctx *d, const mbs_body *b, int i, node *angle, node *E[9])
+{
+    if (b->axis[i] < 3) {
+        elementary(d, b->axis[i], angle, E);
+        return;
+    }
+    node *n[3], *cs = lang_fun1(d->c, F_COS, angle), *sn = lang_fun1(d->c, F_SIN, angle);
+    unit_axis(d, b, n);
+    node *vc = sub(d, num(d, 1.0), cs);
+    for (int r = 0; r < 3; r++)
+        for (int k = 0; k < 3; k++) {
+            node *e = mul(d, vc, mul(d, n[r], n[k]));
+            if (r == k)
+                e = add(d, cs, e);
+            else if ((k - r + 3) % 3 == 1) /* [n x][r][k] = -n[3-r-k] (r, k cyclic) */
+                e = add(d, e, mul(d, sn, n[3 - r - k]));
+            else
+                e = sub(d, e, mul(d, sn, n[3 - r - k]));
+            E[3 * r + k] = e;
+        }
+}
+
 static void rotation(dctx *d, mbs_body *b, node **Jw, node *w[3])
 {
     if (b->quat[0] >= 0) {
@@ -304,7 +339,7 @@ static void rotation(dctx *d, mbs_body *b, node **Jw, node *w[3])
     for (int i = 0; i < b->nrot; i++) {
         node *E[9];
         ang[i] = input(d, b->angle[i]);
-        elementary(d, b->axis[i], ang[i], E);
+        factor(d, b, i, ang[i], E);
         matmul(d, E, b->R, b->R);
     }
     node *Pr[9];
@@ -312,7 +347,7 @@ static void rotation(dctx *d, mbs_body *b, node **Jw, node *w[3])
     for (int i = b->nrot - 1; i >= 0; i--) { /* P_i = E_last ... E_(i+1) */
         memcpy(P[i], Pr, sizeof Pr);
         node *E[9];
-        elementary(d, b->axis[i], ang[i], E);
+        factor(d, b, i, ang[i], E);
         matmul(d, Pr, E, Pr);
     }
     for (int j = 0; j < 3; j++) {
@@ -322,9 +357,11 @@ static void rotation(dctx *d, mbs_body *b, node **Jw, node *w[3])
     }
     for (int i = 0; i < b->nrot; i++) {
         const int a = b->axis[i];
-        node *dth_t = dt(d, ang[i]);
+        node *dth_t = dt(d, ang[i]), *n[3];
+        if (a == 3)
+            unit_axis(d, b, n);
         for (int j = 0; j < 3; j++) {
-            node *col = P[i][3 * j + a];
+            node *col = a < 3 ? P[i][3 * j + a] : dot(d, P[i] + 3 * j, n);
             w[j] = add(d, w[j], mul(d, col, dth_t));
             for (int k = 0; k < d->n; k++)
                 Jw[3 * k + j] = add(d, Jw[3 * k + j], mul(d, col, dq(d, ang[i], d->q[k])));
@@ -360,8 +397,15 @@ static void joint_pose(dctx *d, mbs_body *b, node **Jw)
 {
     const mbs_body *p = b->parent >= 0 ? &LVEC_AT(d->mb->bodies, mbs_body, b->parent) : NULL;
     node *a[3], *r[3], *pv[3];
+    node *n[3] = {num(d, 0.0), num(d, 0.0), num(d, 0.0)};
+    if (b->slide >= 0 && b->slide_axis == 3)
+        unit_axis(d, b, n);
+    else if (b->slide >= 0)
+        n[b->slide_axis] = num(d, 1.0);
     for (int j = 0; j < 3; j++) {
         a[j] = add(d, input(d, b->jp[j]), input(d, b->shift[j]));
+        if (b->slide >= 0)
+            a[j] = add(d, a[j], mul(d, n[j], input(d, b->slide)));
         pv[j] = input(d, b->pivot[j]);
     }
     if (p && p->frame) {

@@ -44,7 +44,7 @@ typedef struct mbs_body {
     int inertia[6];     /* inputs: Ixx, Iyy, Izz, Ixy, Ixz, Iyz about the mass centre in B */
     int at[3];          /* inputs: the mass centre in N */
     int nrot;
-    int axis[MBS_MAX_ROT];  /* 0 x, 1 y, 2 z */
+    int axis[MBS_MAX_ROT];  /* 0 x, 1 y, 2 z, 3 a joint's axis axisv */
     int angle[MBS_MAX_ROT]; /* inputs */
     int quat[4];        /* inputs: Euler parameters (w, x, y, z) in place of rotations, or -1 */
     /* a joint to a parent (mbs_joint.c): the rotations above are the joint's own, from the
@@ -54,6 +54,8 @@ typedef struct mbs_body {
     int joint;          /* MBS_NO_JOINT: placed by at (x, y, z) rot ... */
     int parent;         /* -1: the ground */
     int jp[3], shift[3], pivot[3]; /* inputs, -1: 0 */
+    int axisv[3];       /* inputs: the axis (ax, ay, az) of a rotation with axis 3 */
+    int slide, slide_axis; /* a prismatic joint's displacement (input) and axis (0-3) */
     int frame;          /* 1: it has a frame B (rigid bodies; points placed by a rotating joint) */
     /* derived (mbs_derive.c) */
     node *x[3], *R[9];  /* symbolic: position, N->B rotation */

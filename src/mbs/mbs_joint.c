@@ -45,7 +45,8 @@ static void joint_coordinate(lang_ctx *c, const mbs_body *b, int k, const char *
               kinds[b->joint], b->name);
 }
 
-/* revolute PARENT[(x, y, z)] AXIS:q     prismatic PARENT[(x, y, z)] AXIS:q
+/* revolute PARENT[(x, y, z)] AXIS:q     prismatic PARENT[(x, y, z)] AXIS:q, AXIS x, y, z or
+ * (ax, ay, az) in the parent's frame
  * spherical PARENT[(x, y, z)] AXIS:q AXIS:q ... | quat:(qw, qx, qy, qz)
  * free PARENT (x, y, z) AXIS:q ... | quat:(...),   each then [pivot (x, y, z)] */
 void mbs_parse_joint(lang_ctx *c, lang_lexer *lx, mbs_body *b, int kind)
@@ -61,27 +62,44 @@ void mbs_parse_joint(lang_ctx *c, lang_lexer *lx, mbs_body *b, int kind)
         lang_fail(c, ppos, "'%s' cannot be its own parent: a joint joins a body to one "
                   "declared before it, or to the ground", b->name);
     b->parent = mbs_find_body(c, parent, ppos, 1);
-    if (lang_skip_blanks(lx) == '(')
+    const int axis_first = kind == MBS_REVOLUTE || kind == MBS_PRISMATIC;
+    int axis_read = 0;
+    if (lang_skip_blanks(lx) == '(') {
         mbs_tuple(lx, kind == MBS_FREE ? b->shift : b->jp,
                   kind == MBS_FREE ? "the free joint's translations" : "the joint's point");
-    else if (kind == MBS_FREE)
+        if (axis_first && lang_skip_blanks(lx) == ':') { /* PARENT (ax, ay, az):q */
+            memcpy(b->axisv, b->jp, sizeof b->axisv);
+            b->jp[0] = b->jp[1] = b->jp[2] = -1;
+            axis_read = 1;
+        }
+    } else if (kind == MBS_FREE)
         lang_fail(c, lang_here(lx), "expected the free joint's translations (x, y, z), three "
                   "coordinates along the parent's axes, after its parent");
     if (kind == MBS_FREE)
         for (int k = 0; k < 3; k++)
             joint_coordinate(c, b, b->shift[k], "each translation");
     const lpos rpos = lang_here(lx);
-    mbs_parse_rot(c, lx, b);
+    if (axis_first && (axis_read || lang_skip_blanks(lx) == '(')) {
+        if (!axis_read)
+            mbs_tuple(lx, b->axisv, "the joint's axis");
+        lang_expect_char(lx, ':', "expected ':' and the joint's coordinate after its axis");
+        b->axis[0] = 3;
+        b->angle[b->nrot++] = mbs_input_expr(lx, "the joint's coordinate");
+    } else {
+        mbs_parse_rot(c, lx, b);
+    }
     if ((kind == MBS_REVOLUTE || kind == MBS_PRISMATIC) && (b->nrot != 1 || b->quat[0] >= 0))
-        lang_fail(c, rpos, "a %s joint has one axis and one coordinate: AXIS:q with AXIS x, y "
-                  "or z of the parent's frame", kinds[kind]);
+        lang_fail(c, rpos, "a %s joint has one axis and one coordinate: AXIS:q with AXIS x, y, "
+                  "z or (ax, ay, az) of the parent's frame", kinds[kind]);
     for (int i = 0; i < b->nrot; i++)
         joint_coordinate(c, b, b->angle[i], kind == MBS_PRISMATIC ? "the displacement"
                                                                   : "each angle");
     for (int k = 0; k < 4 && b->quat[0] >= 0; k++)
         joint_coordinate(c, b, b->quat[k], "each Euler parameter");
+    b->slide = -1;
     if (kind == MBS_PRISMATIC) { /* a translation along the axis, no rotation */
-        b->shift[b->axis[0]] = b->angle[0];
+        b->slide = b->angle[0];
+        b->slide_axis = b->axis[0];
         b->nrot = 0;
     }
     if (lang_is_ident_start(lang_skip_blanks(lx))) {

@@ -62,6 +62,11 @@ int cli_is_help(const char *arg);
 /* The model MODEL names (model_open.c): a built-in name, or a model file. Returns CLI_OK
  * with *model, or a usage error (message printed, with the nearest known name). */
 int cli_model_open(const char *command, const char *spec, const dyn_model **model);
+/* For the mechanism files read next: on, their constraints need not hold at the file's
+ * initial state (the run projects it, --project-init); lines (NULL: none) are read after
+ * each file's own (dynkit inverse --prescribe). */
+void cli_model_set_unchecked(int on);
+void cli_model_set_mech_extra(const char *lines);
 /* The options --table NAME=FILE among argv[1..argc) (the command's other options are left
  * to it), for the model file that cli_model_open opens next: its `table NAME FILE` is read
  * from FILE (dynkit/lang.h, dyn_ode_to_c_tables). CLI_OK or a usage error (printed). */
@@ -110,6 +115,7 @@ typedef struct cli_run {
     int final_only;
     int with_outputs;
     int quiet;
+    int project_init;     /* --project-init: a mechanism's state moved onto its constraints */
     long every;
     long trace_steps;
     /* --forces FILE: a time table of the model's inputs, columns t and dyn_model.inputs */

@@ -25,6 +25,13 @@ static int n_loaded;
  * run: the C text defines the solver's constants */
 static unsigned char loaded_algebraic[MAX_LOADED];
 static int verbose;
+/* for the mechanism file opened next: the constraints need not hold at its initial state
+ * (--project-init), and lines to read after the file's own (dynkit inverse --prescribe) */
+static int mech_unchecked;
+static const char *mech_extra;
+
+void cli_model_set_unchecked(int on) { mech_unchecked = on; }
+void cli_model_set_mech_extra(const char *lines) { mech_extra = lines; }
 
 void cli_set_verbose(int on) { verbose = on; }
 int cli_verbose(void) { return verbose; }
@@ -101,6 +108,20 @@ char *cli_read_model_file(const char *path, size_t *len)
         return NULL;
     }
     buf[n] = '\0';
+    if (mech_extra && ends_with(path, ".mech")) {
+        const size_t ne = strlen(mech_extra);
+        char *all = realloc(buf, n + ne + 2);
+        if (!all) {
+            free(buf);
+            fprintf(stderr, "dynkit: error: out of memory\n");
+            return NULL;
+        }
+        buf = all;
+        if (n && buf[n - 1] != '\n')
+            buf[n++] = '\n';
+        memcpy(buf + n, mech_extra, ne + 1);
+        n += ne;
+    }
     *len = n;
     return buf;
 }
@@ -207,8 +228,9 @@ static int open_model_file(const char *spec, const dyn_model **model)
         char *c_source = NULL;
         dyn_lang_diag diag;
         rc = ends_with(spec, ".mech")
-                 ? dyn_mech_to_c(spec, text, len, table_files, n_table_files, &c_source,
-                                 &diag, print_note, NULL)
+                 ? dyn_mech_to_c_flags(spec, text, len, table_files, n_table_files,
+                                       mech_unchecked ? DYN_MECH_UNCHECKED_INIT : 0u,
+                                       &c_source, &diag, print_note, NULL)
                  : dyn_ode_to_c_tables(spec, text, len, table_files, n_table_files, &c_source,
                                        &diag, print_note, NULL);
         free(text);

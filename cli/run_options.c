@@ -10,6 +10,8 @@
 
 #include "cli.h"
 #include "dynkit/lang.h"
+#include "mech_init.h"
+#include "out_file.h"
 #include "run_parse.h"
 #include "table_formats.h"
 
@@ -26,6 +28,9 @@ static void run_options_common(FILE *out)
           "                       T0 + k*H <= T1 like MATLAB's T0:H:T1\n"
           "  --set NAME=VALUE     set a parameter (repeatable; see 'dynkit info MODEL')\n"
           "  --init NAME=VALUE    set an initial state (repeatable)\n"
+          "  --project-init       mechanism files: move the initial state onto the\n"
+          "                       constraints (least change) and print what changed;\n"
+          "                       without it a state that violates one is refused\n"
           "  --table NAME=FILE    a model file's 'table NAME FILE' read from FILE instead\n"
           "                       (repeatable; without it the table's file must be a regular\n"
           "                       file beside the model file, named without a folder)\n"
@@ -116,7 +121,7 @@ static int unknown_option(const char *command, const char *arg)
         "--forces", "--interp", "--output", "--header",      "--every",        "--trace",
         "--rtol",   "--atol",  "--times",  "--max-step",     "--initial-step", "--max-steps",
         "--event",  "--events-output",     "--stats",        "--final",        "--outputs",
-        "--quiet",  "--compare", "--table", "--seed"};
+        "--quiet",  "--compare", "--table", "--seed", "--project-init"};
     char word[64];
     snprintf(word, sizeof word, "%s%.*s", strncmp(arg, "--", 2) == 0 ? "" : "--",
              (int)strcspn(arg, "="), arg);
@@ -273,6 +278,8 @@ static int parse_option(const char *command, int argc, char **argv, int *i, cli_
         run->with_outputs = 1;
     } else if (cli_flag(arg, "quiet")) {
         run->quiet = 1;
+    } else if (cli_flag(arg, "project-init")) {
+        run->project_init = 1;
     } else {
         return unknown_option(command, arg);
     }
@@ -535,8 +542,16 @@ int cli_run_parse_with(const char *command, int argc, char **argv, int other_ada
         return cli_usage_error(command, "missing MODEL (accepted: %s)",
                                dyn_model_names(names, sizeof names));
     int open_rc = cli_model_table_options(command, argc, argv);
+    int project = 0;
+    for (int i = 1; i < argc; i++)
+        project |= cli_flag(argv[i], "project-init");
+    if (project && !cli_has_extension(argv[0], ".mech"))
+        return cli_usage_error(command, "--project-init needs a mechanism file (NAME.mech): "
+                               "only a mechanism's constraints are known");
+    cli_model_set_unchecked(project); /* the state is projected before the run */
     if (open_rc == CLI_OK)
         open_rc = cli_model_open(command, argv[0], &run->model);
+    cli_model_set_unchecked(0);
     if (open_rc != CLI_OK)
         return open_rc;
     const dyn_model *m = run->model;
@@ -572,6 +587,10 @@ int cli_run_parse_with(const char *command, int argc, char **argv, int other_ada
     free(as);
     if (rc == CLI_OK)
         rc = check_initial_state(command, run);
+    /* a mechanism's constraints at the state the options made (the file's own initial
+     * state was checked when it was read) */
+    if (rc == CLI_OK && cli_has_extension(argv[0], ".mech") && (run->project_init || n_as > 0))
+        rc = cli_mech_initial(command, argv[0], run, run->project_init);
     if (rc != CLI_OK)
         return rc;
     if ((given & GIVEN_INTERP) && !run->forces_path)

@@ -141,6 +141,29 @@ const char *dyn_stability_name(dyn_stability s);
  * into *wn and the damping ratio -re/|lambda| into *zeta. */
 void dyn_eig_mode(double re, double im, double *wn, double *zeta);
 
+/* Constraints of a mechanism given as a model's outputs (dyn_mech_constraints_to_c,
+ * dynkit/mbs.h): the states are n coordinates q then their n speeds u; an output with the
+ * unit "holonomic" or "speeds" is a constraint's value on the speeds h = D(q, t) u + h_t,
+ * and one with the unit "position" or "prescribed" the value f(q, t) of a holonomic
+ * constraint, in the order of the holonomic ones among the first. dyn_project_constraints
+ * moves y onto them by minimal-norm corrections (docs/mechanisms.md, "Initial values"):
+ * Gauss-Newton on the coordinates, q <- q - G' (G G')^-1 f with G = df/dq = dh/du, until f
+ * stops decreasing; then the speeds, u <- u - D' (D D')^-1 h (linear: one step and one to
+ * clean up rounding). D comes from central differences of h in u (exact but for rounding, h
+ * being linear in u). Returns 0 with y projected, DYN_ERR_ARG when the rows are dependent
+ * (*bad the first dependent constraint's index among the h outputs) or the coordinates do
+ * not converge (*bad -1), with a message in err. The largest |f| and |h| left go to
+ * residual[0], residual[1] (may be NULL). */
+int dyn_project_constraints(const dyn_model *cm, const void *par, double t, double *y,
+                            double residual[2], int *bad, char *err, size_t errlen);
+
+/* The constraints' values at (t, y) as dyn_project_constraints reads them: h (the outputs
+ * "holonomic" and "speeds", m of them) and f (one per holonomic constraint, in h's order;
+ * f[r] is 0 for a constraint on the speeds), m returned (or -1 when the outputs fail).
+ * h and f hold cm->n_outputs values each. */
+int dyn_constraint_values(const dyn_model *cm, const void *par, double t, const double *y,
+                          double *h, double *f, int *holonomic);
+
 #ifdef __cplusplus
 }
 #endif

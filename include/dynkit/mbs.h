@@ -26,6 +26,15 @@ int dyn_mech_to_c(const char *path, const char *text, size_t len,
                   const dyn_lang_table_file *tables, int n_tables, char **c_source,
                   dyn_lang_diag *diag, dyn_lang_note_fn note, void *note_ctx);
 
+/* dyn_mech_to_c with flags: DYN_MECH_UNCHECKED_INIT leaves out the check that the
+ * constraints hold at the file's initial state (the caller projects the state onto them
+ * before a run; the checks of the mass matrix and the constraints' rows stay). */
+#define DYN_MECH_UNCHECKED_INIT 1u
+int dyn_mech_to_c_flags(const char *path, const char *text, size_t len,
+                        const dyn_lang_table_file *tables, int n_tables, unsigned flags,
+                        char **c_source, dyn_lang_diag *diag, dyn_lang_note_fn note,
+                        void *note_ctx);
+
 /* What was derived, as readable formulas in the file's names (dynkit derive): the mass
  * matrix M (lower triangle), the forces F, and each constraint's row D and convective term
  * c, with M q'' = F + D' lambda and D q'' + c = 0; then the fixed quantities they use.
@@ -37,7 +46,9 @@ int dyn_mech_derive_text(const char *path, const char *text, size_t len, char **
  * speeds, h = D(q, t) u + h_t(q, t) (for a holonomic constraint f(q, t) = 0, h = df/dt),
  * instead of its multiplier, with the unit "holonomic" or "speeds" saying which kind it
  * is; the other outputs, the states and the parameters (their struct) are those of
- * dyn_mech_to_c's model. The admissible directions of the linearization come from it:
+ * dyn_mech_to_c's model. After them, one output for each holonomic constraint: its value
+ * f(q, t), named NAME:f, with the unit "position" ("prescribed" for a `prescribe`). The
+ * constraints need not hold at the file's initial state. The admissible directions of the linearization come from it:
  * dh/du for the positions of holonomic ones, (dh/dq, dh/du) for all (docs/analysis.md). */
 int dyn_mech_constraints_to_c(const char *path, const char *text, size_t len,
                               const dyn_lang_table_file *tables, int n_tables, char **c_source,

@@ -14,7 +14,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "analysis/cholesky.h"
+#include "ode/cholesky.h"
 #include "dynkit/analysis.h"
 
 #define LM_LAMBDA_START 0.1 /* a cautious first step: the equilibrium near the guess */

@@ -7,7 +7,7 @@
  * A on that subspace. */
 #include <stddef.h>
 
-#include "analysis/cholesky.h"
+#include "ode/cholesky.h"
 #include "dynkit/analysis.h"
 
 /* out (a x b) = X^T Y for X (r x a) and Y (r x b), all row-major. */

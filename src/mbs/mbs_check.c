@@ -4,11 +4,12 @@
  * definite (else the coordinates that move no mass of their own are named) and the
  * constraints' rows D are independent (D M^-1 D' positive definite; else the redundant
  * constraints are named). Values come from src/lang's evaluation of the symbolic formulas
- * with the states and t as arguments. */
+ * with the states and t as arguments; the factorization of src/ode/cholesky.h. */
 #include <math.h>
 #include <string.h>
 
 #include "mbs/mbs_check.h"
+#include "ode/cholesky.h"
 
 static node *as_args(lang_ctx *c, const node *e, int nstates)
 {
@@ -53,42 +54,8 @@ double mbs_value(lang_ctx *c, const mbs_initial *ini, const node *e)
 }
 
 /* Cholesky in place (lower triangle of A, n x n); returns the first column whose pivot is
- * not clearly positive, or -1. */
-static int cholesky(double *A, int n)
-{
-    double big = 0.0;
-    for (int j = 0; j < n; j++)
-        big = fmax(big, fabs(A[j * n + j]));
-    for (int j = 0; j < n; j++) {
-        double s = A[j * n + j];
-        for (int k = 0; k < j; k++)
-            s -= A[j * n + k] * A[j * n + k];
-        if (!(s > 1e-12 * big))
-            return j;
-        A[j * n + j] = sqrt(s);
-        for (int i = j + 1; i < n; i++) {
-            double t = A[i * n + j];
-            for (int k = 0; k < j; k++)
-                t -= A[i * n + k] * A[j * n + k];
-            A[i * n + j] = t / A[j * n + j];
-        }
-    }
-    return -1;
-}
-
-static void solve(const double *L, int n, double *x)
-{
-    for (int i = 0; i < n; i++) {
-        for (int k = 0; k < i; k++)
-            x[i] -= L[i * n + k] * x[k];
-        x[i] /= L[i * n + i];
-    }
-    for (int i = n - 1; i >= 0; i--) {
-        for (int k = i + 1; k < n; k++)
-            x[i] -= L[k * n + i] * x[k];
-        x[i] /= L[i * n + i];
-    }
-}
+ * not above 1e-12 of the largest diagonal entry, or -1. */
+static int cholesky(double *A, int n) { return dyn_cholesky_factor_tol(n, A, 1e-12, 1) - 1; }
 
 int mbs_positive_definite(lang_ctx *c, const double *M, int n)
 {
@@ -138,7 +105,7 @@ void mbs_check_initial(lang_ctx *c, const mbs_model *mb, double *M, const double
     double *A = lang_alloc(c, (size_t)m * m * sizeof *A);
     memcpy(X, D, (size_t)m * n * sizeof *X);
     for (int r = 0; r < m; r++)
-        solve(L, n, X + r * n);
+        dyn_cholesky_solve(n, L, X + r * n);
     for (int r = 0; r < m; r++)
         for (int s = 0; s < m; s++) {
             double v = 0.0;

@@ -611,13 +611,13 @@ static void constraint_rows(dctx *d, node **D, node **btot)
         double scale = 1.0;
         for (int j = 0; j < n; j++)
             scale = fmax(scale, fabs(d->ini.args[on_speeds ? d->u[j] : d->q[j]]));
-        if (!on_speeds && fabs(f0) > 1e-9 * scale)
+        if (!mb->unchecked && !on_speeds && fabs(f0) > 1e-9 * scale)
             lang_fail(c, k->pos, "constraint '%s' does not hold at the initial state: its "
                       "value is %.17g, not 0 (change the initial values)", k->name, f0);
         scale = 1.0;
         for (int j = 0; j < n; j++)
             scale = fmax(scale, fabs(d->ini.args[d->u[j]]));
-        if (fabs(h0) > 1e-9 * scale)
+        if (!mb->unchecked && fabs(h0) > 1e-9 * scale)
             lang_fail(c, k->pos, "constraint '%s' does not hold at the initial state: %s %.17g, "
                       "not 0 (change the initial speeds)", k->name,
                       on_speeds ? "its value is" : "its rate is", h0);
@@ -654,6 +654,15 @@ static void constraint_rows(dctx *d, node **D, node **btot)
         out->doc.unit = mb->values ? (on_speeds ? "speeds" : "holonomic") : cu;
         if (mb->values)
             out->expr = h;
+        if (mb->values && !on_speeds) { /* its value f too, for a projection onto f = 0 */
+            lang_formula *pf = lvec_push(c, &c->m.auxs, sizeof *pf);
+            memset(pf, 0, sizeof *pf);
+            pf->name = lang_printf(c, "%s:f", k->name);
+            pf->pos = k->pos;
+            pf->expr = f;
+            pf->doc.unit = k->prescribed >= 0 ? "prescribed" : "position";
+            out = &LVEC_AT(c->m.auxs, lang_formula, k->aux); /* the push may move it */
+        }
         if (!out->doc.description)
             out->doc.description = lang_printf(c, "force of the constraint %s (%s)", k->name,
                                                on_speeds ? "on the speeds" : "holonomic");

@@ -134,6 +134,7 @@ typedef struct mbs_model {
     /* dyn_mech_constraints_to_c: each constraint's output is its value on the speeds h
      * (D u + h_t) instead of its multiplier, its unit "holonomic" or "speeds" */
     int values;
+    int unchecked; /* the constraints need not hold at the initial state */
 } mbs_model;
 
 /* statements (mbs_parse.c): the hook of lang_parse_model, and the end of the file */

@@ -7,7 +7,7 @@
 
 #include "mbs/mbs_internal.h"
 
-static void front(lang_ctx *c, int symbolic, int values)
+static void front(lang_ctx *c, int symbolic, int values, int unchecked)
 {
     mbs_model *mb = lang_alloc(c, sizeof *mb);
     memset(mb, 0, sizeof *mb);
@@ -15,6 +15,7 @@ static void front(lang_ctx *c, int symbolic, int values)
     mb->gravity[0] = mb->gravity[1] = mb->gravity[2] = -1; /* none: 0 */
     mb->symbolic = symbolic;
     mb->values = values;
+    mb->unchecked = unchecked;
     c->m.name = lang_base_name(c, c->path, ".mech");
     c->stmt_hook = mbs_statement;
     c->hook_ctx = mb;
@@ -29,9 +30,10 @@ static void front(lang_ctx *c, int symbolic, int values)
     mbs_derive(c, mb);
 }
 
-static void mech_front(lang_ctx *c) { front(c, 0, 0); }
-static void values_front(lang_ctx *c) { front(c, 0, 1); }
-static void derive_front(lang_ctx *c) { front(c, 1, 0); }
+static void mech_front(lang_ctx *c) { front(c, 0, 0, 0); }
+static void unchecked_front(lang_ctx *c) { front(c, 0, 0, 1); }
+static void values_front(lang_ctx *c) { front(c, 0, 1, 1); }
+static void derive_front(lang_ctx *c) { front(c, 1, 0, 0); }
 static char *derive_back(lang_ctx *c) { return mbs_text(c, c->hook_ctx); }
 
 int dyn_mech_to_c(const char *path, const char *text, size_t len,
@@ -40,6 +42,16 @@ int dyn_mech_to_c(const char *path, const char *text, size_t len,
 {
     return lang_translate(path, text, len, tables, n_tables, c_source, diag, note, note_ctx,
                           mech_front, NULL);
+}
+
+int dyn_mech_to_c_flags(const char *path, const char *text, size_t len,
+                        const dyn_lang_table_file *tables, int n_tables, unsigned flags,
+                        char **c_source, dyn_lang_diag *diag, dyn_lang_note_fn note,
+                        void *note_ctx)
+{
+    return lang_translate(path, text, len, tables, n_tables, c_source, diag, note, note_ctx,
+                          (flags & DYN_MECH_UNCHECKED_INIT) ? unchecked_front : mech_front,
+                          NULL);
 }
 
 int dyn_mech_derive_text(const char *path, const char *text, size_t len, char **out,

@@ -1,0 +1,214 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* project.c — an initial state moved onto a mechanism's constraints by minimal-norm
+ * corrections (dynkit/analysis.h, dyn_project_constraints): Gauss-Newton for the
+ * underdetermined system f(q) = 0 (the step q <- q - G^+ f with the pseudo-inverse
+ * G^+ = G' (G G')^-1 of the full-rank Jacobian; Nocedal & Wright, Numerical Optimization,
+ * 2nd ed., sec. 10.3 and 11.2), then the speeds' linear system D u + h_t = 0 by the same
+ * minimal-norm solution. The normal equations are solved by src/ode/cholesky.h. */
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dynkit/analysis.h"
+#include "dynkit/ode.h"
+#include "ode/cholesky.h"
+
+static int unit_is(const dyn_var *v, const char *u) { return v->unit && strcmp(v->unit, u) == 0; }
+
+int dyn_constraint_values(const dyn_model *cm, const void *par, double t, const double *y,
+                          double *h, double *f, int *holonomic)
+{
+    double *out = malloc((size_t)(cm->n_outputs + 1) * sizeof *out);
+    if (!out || !cm->compute_outputs || cm->compute_outputs(t, y, par, out)) {
+        free(out);
+        return -1;
+    }
+    int m = 0, nf = 0;
+    for (int i = 0; i < cm->n_outputs; i++) {
+        const dyn_var *v = &cm->outputs[i];
+        if (unit_is(v, "holonomic") || unit_is(v, "speeds")) {
+            holonomic[m] = unit_is(v, "holonomic");
+            f[m] = 0.0;
+            h[m++] = out[i];
+        }
+    }
+    for (int i = 0; i < cm->n_outputs; i++) {
+        const dyn_var *v = &cm->outputs[i];
+        if (unit_is(v, "position") || unit_is(v, "prescribed")) {
+            while (nf < m && !holonomic[nf])
+                nf++;
+            if (nf < m)
+                f[nf++] = out[i];
+        }
+    }
+    free(out);
+    return m;
+}
+
+typedef struct pctx {
+    const dyn_model *cm;
+    const void *par;
+    double t;
+    int n, m;
+    double *h, *f, *hp, *fp, *D, *A, *w, *yy;
+    int *hol;
+} pctx;
+
+/* h, f at y and D = dh/du (m x n) by central differences of unit steps in u */
+static int rows(pctx *p, const double *y)
+{
+    const int n = p->n, m = p->m;
+    if (dyn_constraint_values(p->cm, p->par, p->t, y, p->h, p->f, p->hol) != m)
+        return -1;
+    memcpy(p->yy, y, (size_t)(2 * n) * sizeof *p->yy);
+    for (int k = 0; k < n; k++) {
+        const double s = fmax(1.0, fabs(y[n + k]));
+        p->yy[n + k] = y[n + k] + s;
+        if (dyn_constraint_values(p->cm, p->par, p->t, p->yy, p->hp, p->fp, p->hol) != m)
+            return -1;
+        for (int r = 0; r < m; r++)
+            p->D[r * n + k] = p->hp[r];
+        p->yy[n + k] = y[n + k] - s;
+        if (dyn_constraint_values(p->cm, p->par, p->t, p->yy, p->hp, p->fp, p->hol) != m)
+            return -1;
+        for (int r = 0; r < m; r++)
+            p->D[r * n + k] = (p->D[r * n + k] - p->hp[r]) / (2.0 * s);
+        p->yy[n + k] = y[n + k];
+    }
+    return 0;
+}
+
+/* x (n) -= R' (R R')^-1 v for the rows of D picked by sel (all when NULL); the index of
+ * the first dependent row, or -1 */
+static int min_norm_step(pctx *p, const int *sel, const double *v, double *x)
+{
+    const int n = p->n;
+    int k = 0, idx[512];
+    for (int r = 0; r < p->m && k < 512; r++)
+        if (!sel || sel[r])
+            idx[k++] = r;
+    if (k == 0)
+        return -1;
+    for (int a = 0; a < k; a++) {
+        for (int b = 0; b <= a; b++) {
+            double s = 0.0;
+            for (int j = 0; j < n; j++)
+                s += p->D[idx[a] * n + j] * p->D[idx[b] * n + j];
+            p->A[a * k + b] = p->A[b * k + a] = s;
+        }
+        p->w[a] = v[idx[a]];
+    }
+    const int bad = dyn_cholesky_factor_tol(k, p->A, 1e-12, 1);
+    if (bad)
+        return idx[bad - 1];
+    dyn_cholesky_solve(k, p->A, p->w);
+    for (int a = 0; a < k; a++)
+        for (int j = 0; j < n; j++)
+            x[j] -= p->D[idx[a] * n + j] * p->w[a];
+    return -1;
+}
+
+static double largest(const double *v, const int *sel, int want, int m)
+{
+    double big = 0.0;
+    for (int r = 0; r < m; r++)
+        if (!sel || sel[r] == want)
+            big = fmax(big, fabs(v[r]));
+    return big;
+}
+
+int dyn_project_constraints(const dyn_model *cm, const void *par, double t, double *y,
+                            double residual[2], int *bad, char *err, size_t errlen)
+{
+    const int N = cm->n_states, n = N / 2;
+    int mo = cm->n_outputs + 1;
+    *bad = -1;
+    if (N % 2 || mo > 512) {
+        snprintf(err, errlen, "not a mechanism's constraints (%d states, %d outputs)", N,
+                 cm->n_outputs);
+        return DYN_ERR_ARG;
+    }
+    pctx p = {cm, par, t, n, 0, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL};
+    double *buf = malloc(((size_t)mo * (4 + (size_t)n + (size_t)mo + 1) + (size_t)N) *
+                         sizeof *buf);
+    p.hol = malloc((size_t)mo * sizeof *p.hol);
+    if (!buf || !p.hol) {
+        free(buf);
+        free(p.hol);
+        snprintf(err, errlen, "out of memory");
+        return DYN_ERR_ARG;
+    }
+    p.h = buf;
+    p.f = p.h + mo;
+    p.hp = p.f + mo;
+    p.fp = p.hp + mo;
+    p.D = p.fp + mo;
+    p.A = p.D + (size_t)mo * n;
+    p.w = p.A + (size_t)mo * mo;
+    p.yy = p.w + mo;
+    int rc = 0;
+    p.m = dyn_constraint_values(cm, par, t, y, p.h, p.f, p.hol);
+    if (p.m < 0) {
+        snprintf(err, errlen, "the constraints' values failed at the initial state");
+        rc = DYN_ERR_ARG;
+    }
+    /* the coordinates: Gauss-Newton until |f| stops decreasing */
+    double prev = INFINITY;
+    for (int it = 0; it < 60 && !rc && p.m > 0; it++) {
+        if ((rc = rows(&p, y)) != 0) {
+            snprintf(err, errlen, "the constraints' values failed while projecting");
+            rc = DYN_ERR_ARG;
+            break;
+        }
+        const double now = largest(p.f, p.hol, 1, p.m);
+        double scale = 1.0;
+        for (int j = 0; j < n; j++)
+            scale = fmax(scale, fabs(y[j]));
+        if (now == 0.0 || (now <= 4.0 * DBL_EPSILON * scale && it > 0) || !(now < prev))
+            break;
+        prev = now;
+        int any = 0;
+        for (int r = 0; r < p.m; r++)
+            any |= p.hol[r];
+        if (!any)
+            break;
+        const int dep = min_norm_step(&p, p.hol, p.f, y);
+        if (dep >= 0) {
+            *bad = dep;
+            snprintf(err, errlen, "the holonomic constraints' rows are dependent");
+            rc = DYN_ERR_ARG;
+        }
+        if (it == 59) {
+            snprintf(err, errlen, "the coordinates did not converge onto the constraints");
+            rc = DYN_ERR_ARG;
+        }
+    }
+    /* the speeds: linear, one step and one for rounding */
+    for (int it = 0; it < 2 && !rc && p.m > 0; it++) {
+        if (rows(&p, y) != 0) {
+            snprintf(err, errlen, "the constraints' values failed while projecting");
+            rc = DYN_ERR_ARG;
+            break;
+        }
+        const int dep = min_norm_step(&p, NULL, p.h, y + n);
+        if (dep >= 0) {
+            *bad = dep;
+            snprintf(err, errlen, "the constraints' rows are dependent");
+            rc = DYN_ERR_ARG;
+        }
+    }
+    if (!rc && residual) {
+        if (dyn_constraint_values(cm, par, t, y, p.h, p.f, p.hol) != p.m) {
+            snprintf(err, errlen, "the constraints' values failed at the projected state");
+            rc = DYN_ERR_ARG;
+        } else {
+            residual[0] = largest(p.f, p.hol, 1, p.m);
+            residual[1] = largest(p.h, NULL, 0, p.m);
+        }
+    }
+    free(buf);
+    free(p.hol);
+    return rc;
+}

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* dynkit inverse cart: the inverse dynamics of homework problem 4a/4b. Writes the force
+/* dynkit inverse cart (FILE.mech: inverse_mech.c): the inverse dynamics of homework problem 4a/4b. Writes the force
  * table t,Fx,Fy of the prescribed backward motion sX = -v0 t, theta = (pi/8) sin(2 pi f t)
  * (dyn_cart_force_table) and prints on stderr the initial state that goes with it, as
  * options for 'dynkit run cart --forces', and the final forces.
@@ -10,13 +10,30 @@
 #include <string.h>
 
 #include "cli.h"
+#include "inverse_mech.h"
 #include "out_file.h"
 #include "table_formats.h"
 
 static void inverse_help(void)
 {
     puts("Usage: dynkit inverse cart [options]\n"
+         "       dynkit inverse FILE.mech [--prescribe COORD=FORMULA]... [--inputs A,B,...]\n"
+         "                                [run options]\n"
          "\n"
+         "FILE.mech: the forces of the mechanism's prescribed motions (its 'prescribe' lines and\n"
+         "each --prescribe COORD=FORMULA, a formula of t, read as 'prescribe Q_COORD: COORD =\n"
+         "FORMULA'). The mechanism runs from its initial state moved onto the constraints (the\n"
+         "changes are printed, as 'run --project-init' does) with the run options (--method,\n"
+         "--tspan, --step, --rtol, --atol, --set, --init, -o FILE, --quiet); the table has t, the\n"
+         "generalized forces that drive the prescribed coordinates, then the other constraints'\n"
+         "forces. --inputs A,B,...: instead of those generalized forces, the values of these\n"
+         "parameters (one per prescribed motion, e.g. the inputs of the file) that drive the\n"
+         "motion, found at each sample; 'dynkit run FILE.mech --forces' reads that table.\n"
+         "Example (problem 4a with examples/mechanisms/cart.mech):\n"
+         "  dynkit inverse examples/mechanisms/cart.mech --prescribe sX=-20*t \\\n"
+         "      --prescribe 'theta=pi/8*sin(4*pi*t)' --inputs Fx,Fy --tspan 0:4.99 --step 0.01\n"
+         "\n"
+         "cart:\n"
          "Inverse dynamics of the cart (homework problem 4a, 4b): the body-frame forces Fx, Fy\n"
          "at the front wheel that make the cart follow sX = -v0 t, theta = (pi/8) sin(2 pi f t)\n"
          "(sY follows from the no-slip constraint of the rear axle, with sY(0) = 0), at the N\n"
@@ -66,10 +83,13 @@ int cli_cmd_inverse(int argc, char **argv)
             return CLI_OK;
         }
     if (argc < 1 || argv[0][0] == '-')
-        return cli_usage_error("inverse", "missing MODEL (accepted: cart)");
+        return cli_usage_error("inverse", "missing MODEL (accepted: cart, or a mechanism file "
+                               "NAME.mech)");
+    if (cli_has_extension(argv[0], ".mech"))
+        return cli_inverse_mech(argc, argv);
     if (strcmp(argv[0], "cart") != 0)
-        return cli_usage_error("inverse", "no inverse dynamics for model '%s' (accepted: cart)",
-                               argv[0]);
+        return cli_usage_error("inverse", "no inverse dynamics for model '%s' (accepted: cart, "
+                               "or a mechanism file NAME.mech)", argv[0]);
     dyn_cart_par par;
     dyn_model_default_params(m, &par, err, sizeof err);
     double v0 = 20.0, f = 2.0, Ts = 0.01, N_value = 500.0;

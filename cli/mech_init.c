@@ -88,7 +88,7 @@ static int project(const char *command, const dyn_model *cm, cli_run *run)
                 changed = 1;
             }
         if (changed)
-            fprintf(stderr, " (constraints left at %s, rates at %s)\n", CLI_NUM(res[0]),
+            fprintf(stderr, " (the constraints hold within %s, their rates within %s)\n", CLI_NUM(res[0]),
                     CLI_NUM(res[1]));
         else
             fprintf(stderr, "dynkit: --project-init: the initial state holds the "
@@ -107,6 +107,9 @@ int cli_mech_initial(const char *command, const char *spec, cli_run *run, int pr
         return rc;
     if (cc.loaded && cc.m > 0)
         rc = projected ? project(command, cc.jm.model, run) : check(command, cc.jm.model, run);
+    else if (cc.loaded && projected && !run->quiet)
+        fprintf(stderr, "dynkit: --project-init: %s has no constraints; nothing changed\n",
+                spec);
     cli_lin_constraints_close(&cc);
     return rc;
 }

@@ -29,6 +29,7 @@ static int verbose;
  * (--project-init), and lines to read after the file's own (dynkit inverse --prescribe) */
 static int mech_unchecked;
 static const char *mech_extra;
+static int mech_extra_line; /* the first line of mech_extra in the text read, 0: none */
 
 void cli_model_set_unchecked(int on) { mech_unchecked = on; }
 void cli_model_set_mech_extra(const char *lines) { mech_extra = lines; }
@@ -119,6 +120,9 @@ char *cli_read_model_file(const char *path, size_t *len)
         buf = all;
         if (n && buf[n - 1] != '\n')
             buf[n++] = '\n';
+        mech_extra_line = 1;
+        for (size_t i = 0; i < n; i++)
+            mech_extra_line += buf[i] == '\n';
         memcpy(buf + n, mech_extra, ne + 1);
         n += ne;
     }
@@ -236,6 +240,11 @@ static int open_model_file(const char *spec, const dyn_model **model)
         free(text);
         if (rc != 0) {
             char shown[2048];
+            if (mech_extra && mech_extra_line > 0 && diag.line >= mech_extra_line) {
+                /* a line of the command's (--prescribe), not of the file */
+                snprintf(diag.path, sizeof diag.path, "--prescribe");
+                diag.line -= mech_extra_line - 1;
+            }
             fputs(dyn_lang_diag_format(&diag, shown, sizeof shown), stderr);
             return rc == 1 ? CLI_FAILED : CLI_USAGE;
         }

@@ -164,6 +164,18 @@ int dyn_project_constraints(const dyn_model *cm, const void *par, double t, doub
 int dyn_constraint_values(const dyn_model *cm, const void *par, double t, const double *y,
                           double *h, double *f, int *holonomic);
 
+/* The values of k parameters (indices params into m->params) that make k outputs (indices
+ * outs) zero at (t, y): the inputs that give the forces of prescribed motions (dynkit
+ * inverse --inputs). Newton's method from the parameters' values in par, the Jacobian by
+ * forward differences of steps max(1, |p|) (exact but for rounding when the outputs are
+ * affine in the parameters), until the outputs stop decreasing; the model's prepare is
+ * called after each change. The solution is left in par and the largest |output| left in
+ * *residual. Returns 0, or DYN_ERR_ARG with a message in err: the outputs are not finite,
+ * or the parameters do not move them independently (*bad the column found dependent). */
+int dyn_zero_outputs(const dyn_model *m, void *par, double t, const double *y, int k,
+                     const int *params, const int *outs, double *residual, int *bad,
+                     char *err, size_t errlen);
+
 #ifdef __cplusplus
 }
 #endif

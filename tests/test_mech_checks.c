@@ -1,0 +1,200 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* test_mech_checks.c — a mechanism's inverse dynamics, its initial state against its
+ * constraints, and the checks of bad input (docs/mechanisms.md, docs/reliability.md):
+ * `dynkit inverse cart.mech` with problem 4a's prescribed motion against the hand-derived
+ * `dynkit inverse cart` (1e-8 of the forces); a prescribed pendulum angle's torque
+ * m l^2 phi'' + m g l sin(phi) by hand; --project-init's minimal-norm speeds in closed form
+ * and a four-bar closed to rounding; states that violate a constraint refused by name. */
+#define _POSIX_C_SOURCE 200809L
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+#include <math.h>
+
+#include "test_cli_run.h"
+#include "test_util.h"
+
+#define MECH DYNKIT_SOURCE_DIR "/examples/mechanisms/"
+
+static char cache_dir[512];
+
+static int setup_all(void **state)
+{
+    (void)state;
+    return cli_make_tmpdir_with_cache("mech_checks", cache_dir, sizeof cache_dir);
+}
+
+/* the numbers of a CSV text after its header row into v (row-major); rows, *cols set */
+static long numbers(const char *text, double *v, long max, int *cols)
+{
+    const char *line = strchr(text, '\n');
+    *cols = 1;
+    for (const char *h = text; line && h < line; h++)
+        *cols += *h == ',';
+    long k = 0;
+    for (const char *p = line; p && *p && k < max;) {
+        char *end;
+        const double x = strtod(p + 1, &end);
+        if (end == p + 1)
+            break;
+        v[k++] = x;
+        p = end;
+    }
+    return k / *cols;
+}
+
+/* Problem 4a's prescribed motion sX = -20 t, theta = pi/8 sin(4 pi t) of the cart: the
+ * forces Fx, Fy found by `dynkit inverse cart.mech --inputs Fx,Fy` (equations by TMT, the
+ * motion integrated by dop853) equal the closed form of `dynkit inverse cart`. */
+static void test_inverse_cart_mech_matches_inverse_cart(void **state_)
+{
+    (void)state_;
+    static double a[1 << 14], b[1 << 14];
+    cli_result ra = cli("inverse cart --quiet");
+    CHECK(ra.status == 0, "%s", ra.err);
+    cli_result rb = cli("inverse %scart.mech --prescribe sX=-20*t --prescribe "
+                        "'theta=pi/8*sin(4*pi*t)' --inputs Fx,Fy --tspan 0:4.99 --step 0.01 "
+                        "--method dop853 --rtol 1e-12 --atol 1e-12", MECH);
+    CHECK(rb.status == 0, "%s", rb.err);
+    CHECK(strncmp(rb.out, "t,Fx,Fy,lambda\n", 15) == 0, "header: %.40s", rb.out);
+    CHECK(strstr(rb.err, "dsX 2 -> -20") && strstr(rb.err, "omega 2 -> 4.934802200544679"),
+          "the initial state is moved onto the prescribed motion:\n%s", rb.err);
+    int ca, cb;
+    const long na = numbers(ra.out, a, 1 << 14, &ca), nb = numbers(rb.out, b, 1 << 14, &cb);
+    CHECK(na == 500 && nb == 500 && ca == 3 && cb == 4, "rows %ld %ld cols %d %d", na, nb, ca,
+          cb);
+    double worst = 0.0, big = 0.0;
+    for (long k = 0; k < na; k++) {
+        CHECK(a[k * ca] == b[k * cb], "sample times differ at row %ld", k);
+        for (int j = 1; j < 3; j++) {
+            worst = fmax(worst, fabs(a[k * ca + j] - b[k * cb + j]));
+            big = fmax(big, fabs(a[k * ca + j]));
+        }
+    }
+    CHECK(big > 500 && worst < 1e-8 * big, "forces differ by %.3g N (largest %.3g N)", worst,
+          big);
+    cli_free(&ra);
+    cli_free(&rb);
+    /* the table in the other formats too */
+    rb = cli("inverse %scart.mech --prescribe sX=-20*t --prescribe 'theta=pi/8*sin(4*pi*t)' "
+             "--inputs Fx,Fy --tspan 0:0.1 --step 0.05 --quiet -o %s", MECH,
+             cli_path("forces.json"));
+    CHECK(rb.status == 0, "%s", rb.err);
+    char *json = cli_read_file(cli_path("forces.json"), NULL);
+    CHECK(strstr(json, "\"columns\": [\"t\", \"Fx\", \"Fy\", \"lambda\"]") ||
+              strstr(json, "\"columns\":[\"t\",\"Fx\",\"Fy\",\"lambda\"]"),
+          "%s", json);
+    free(json);
+    cli_free(&rb);
+}
+
+/* Without --inputs the drives are the generalized forces: the prescribed pendulum angle
+ * phi = A sin(w t) takes m l^2 phi'' + m g l sin(phi). */
+static void test_inverse_gives_the_generalized_driving_force(void **state_)
+{
+    (void)state_;
+    static double v[1 << 14];
+    cli_result r = cli("inverse %sdriven_pendulum.mech --tspan 0:5 --step 0.01 --rtol 1e-11 "
+                       "--atol 1e-12", MECH);
+    CHECK(r.status == 0, "%s", r.err);
+    CHECK(strncmp(r.out, "t,drive\n", 8) == 0, "header: %.40s", r.out);
+    int cols;
+    const long rows = numbers(r.out, v, 1 << 14, &cols);
+    CHECK(rows == 501 && cols == 2, "rows %ld cols %d", rows, cols);
+    const double m = 2, l = 0.5, g = 9.81, A = 0.3, w = 2;
+    double worst = 0.0;
+    for (long k = 0; k < rows; k++) {
+        const double t = v[2 * k], phi = A * sin(w * t);
+        const double torque = m * l * l * (-A * w * w * sin(w * t)) + m * g * l * sin(phi);
+        worst = fmax(worst, fabs(v[2 * k + 1] - torque));
+    }
+    CHECK(worst < 1e-8, "driving torque off by %.3g N m", worst);
+    cli_free(&r);
+}
+
+/* What inverse refuses: no prescribed motion, a bad --prescribe (named as such), inputs
+ * that act on a coordinate left free. */
+static void test_inverse_refuses_what_it_cannot_do(void **state_)
+{
+    (void)state_;
+    cli_result r = cli("inverse %scart.mech", MECH);
+    CHECK(r.status == 2 && strstr(r.err, "prescribes no motion"), "%d %s", r.status, r.err);
+    cli_free(&r);
+    r = cli("inverse %scart.mech --prescribe 'sX=v0*t'", MECH);
+    CHECK(r.status == 2 && strstr(r.err, "--prescribe:1:22: error: unknown name 'v0'"), "%s",
+          r.err);
+    cli_free(&r);
+    r = cli("inverse %scart.mech --prescribe sX=-20*t --inputs Fx --tspan 0:1 --step 0.1",
+            MECH);
+    CHECK(r.status == 1 && strstr(r.err, "not prescribed"), "%d %s", r.status, r.err);
+    cli_free(&r);
+    r = cli("inverse %scart.mech --prescribe sX=-20*t --inputs Fx,Fy", MECH);
+    CHECK(r.status == 2 && strstr(r.err, "give one for each"), "%d %s", r.status, r.err);
+    cli_free(&r);
+}
+
+/* The cart's rear axle at theta = 0 says dsY = (length_cart/2) omega = omega: from
+ * dsY = 0, omega = 2 the nearest admissible speeds (least squares) are dsY = omega = 1, and
+ * dsX, on which the constraint does not depend at theta = 0, stays. Without --project-init
+ * the state is refused with the constraint's name and value. */
+static void test_project_init_takes_the_nearest_speeds(void **state_)
+{
+    (void)state_;
+    cli_result r = cli("run %scart.mech --init dsY=0 --tspan 0:0.1 --step 0.1", MECH);
+    CHECK(r.status == 2 && strstr(r.err, "does not hold constraint 'lambda': its value is -2"),
+          "%d %s", r.status, r.err);
+    cli_free(&r);
+    r = cli("run %scart.mech --init dsY=0 --project-init --tspan 0:0.1 --step 0.1", MECH);
+    CHECK(r.status == 0, "%s", r.err);
+    CHECK(strstr(r.err, "dsY 0 -> ") && strstr(r.err, "omega 2 -> ") && !strstr(r.err, "dsX"),
+          "%s", r.err);
+    double v[64];
+    int cols;
+    CHECK(numbers(r.out, v, 64, &cols) == 2 && cols == 7, "%s", r.out);
+    CHECK(fabs(v[5] - 1) < 1e-15 && fabs(v[6] - 1) < 1e-15 && v[4] == 2, "dsX %g dsY %.17g "
+          "omega %.17g", v[4], v[5], v[6]);
+    cli_free(&r);
+    r = cli("run %sdouble_pendulum.mech --project-init --tspan 0:0.1", MECH);
+    CHECK(r.status == 0 && strstr(r.err, "has no constraints; nothing changed"), "%s", r.err);
+    cli_free(&r);
+}
+
+/* The four-bar from a crank angle off its loop: refused naming loop_x with its value, and
+ * with --project-init closed to rounding, the speeds too (the gap output and the loop's
+ * rate at t0). */
+static void test_project_init_closes_the_fourbar(void **state_)
+{
+    (void)state_;
+    cli_result r = cli("run %sfourbar.mech --init q1=1.1 --tspan 0:0.1", MECH);
+    CHECK(r.status == 2 && strstr(r.err, "constraint 'loop_x': its value is -0.0867"), "%s",
+          r.err);
+    cli_free(&r);
+    r = cli("run %sfourbar.mech --init q1=1.1 --init dq1=1 --project-init --outputs "
+            "--tspan 0:0.1 --step 0.1", MECH);
+    CHECK(r.status == 0, "%s", r.err);
+    CHECK(strstr(r.err, "q1 1.1 -> ") && strstr(r.err, "dq1 1 -> "), "%s", r.err);
+    double v[64];
+    int cols; /* t q1 q2 q3 dq1 dq2 dq3 loop_x loop_y gap kinetic potential energy */
+    CHECK(numbers(r.out, v, 64, &cols) == 2 && cols == 13, "%s", r.out);
+    const double a = 1, b = 2.5, c = 2;
+    const double rate_x = -a * sin(v[1]) * v[4] - b * sin(v[2]) * v[5] + c * sin(v[3]) * v[6];
+    const double rate_y = a * cos(v[1]) * v[4] + b * cos(v[2]) * v[5] - c * cos(v[3]) * v[6];
+    CHECK(v[9] < 1e-14 && fabs(rate_x) < 1e-14 && fabs(rate_y) < 1e-14,
+          "gap %.3g, rates %.3g %.3g", v[9], rate_x, rate_y);
+    cli_free(&r);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_inverse_cart_mech_matches_inverse_cart),
+        cmocka_unit_test(test_inverse_gives_the_generalized_driving_force),
+        cmocka_unit_test(test_inverse_refuses_what_it_cannot_do),
+        cmocka_unit_test(test_project_init_takes_the_nearest_speeds),
+        cmocka_unit_test(test_project_init_closes_the_fourbar),
+    };
+    return cmocka_run_group_tests(tests, setup_all, NULL);
+}

@@ -8,7 +8,8 @@
  * a free body in zero gravity keeping its angular momentum vector and energy, the
  * torque-free symmetric body's closed-form motion, and the growth rate of the spin about
  * the intermediate axis; joints along tilted axes (a pendulum's frequency, a sled on an
- * incline); a free joint with Euler parameters against plane_quat.mech; and the errors of joints and speeds at FILE:LINE:COL. */
+ * incline); a free joint with Euler parameters against plane_quat.mech; a holonomic
+ * constraint with declared speeds against cartesian_pendulum.mech; and the errors of joints and speeds at FILE:LINE:COL. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -63,6 +64,19 @@ static cli_result run_ok(const char *fmt, const char *file, const char *extra)
     return r;
 }
 
+/* `dynkit linearize ARGS`: its eigenvalues' real and imaginary parts (at most 64) */
+static long eigenvalues(const char *args, double *re, double *im)
+{
+    cli_result r = cli("linearize %s -o %s", args, cli_path("eig.csv"));
+    CHECK(r.status == 0, "%s", r.err);
+    cli_free(&r);
+    char *csv = cli_read_file(cli_path("eig.csv"), NULL);
+    const long n = column(csv, "re", re);
+    CHECK(n <= 64 && column(csv, "im", im) == n, "%ld eigenvalues", n);
+    free(csv);
+    return n;
+}
+
 /* The same chaotic double pendulum, its lower angle measured from the upper rod (phi2) in
  * place of the vertical: phi1 and phi1 + phi2 follow double_pendulum.mech's phi1, phi2. */
 static void test_double_pendulum_by_revolute_joints(void **state_)
@@ -95,15 +109,9 @@ static void test_slider_pendulum_frequencies(void **state_)
     const double M = 2, m = 0.5, l = 0.8, k = 30, g = 9.81;
     const double b = k * l + (M + m) * g, disc = sqrt(b * b - 4 * M * l * k * g);
     const double w[2] = {sqrt((b + disc) / (2 * M * l)), sqrt((b - disc) / (2 * M * l))};
-    cli_result r = cli("linearize %s --init s=0 -o %s", MECH "slider_pendulum.mech",
-                       cli_path("eig.csv"));
-    CHECK(r.status == 0, "%s", r.err);
-    cli_free(&r);
-    char *csv = cli_read_file(cli_path("eig.csv"), NULL);
-    static double re[16], im[16];
-    const long n = column(csv, "re", re);
-    CHECK(n == 4 && column(csv, "im", im) == 4, "%ld eigenvalues", n);
-    free(csv);
+    static double re[MAXROWS], im[MAXROWS];
+    const long n = eigenvalues(MECH "slider_pendulum.mech --init s=0", re, im);
+    CHECK(n == 4, "%ld eigenvalues", n);
     int matched = 0;
     for (long i = 0; i < n; i++)
         for (int j = 0; j < 2; j++)
@@ -202,15 +210,11 @@ static void test_intermediate_axis_is_unstable(void **state_)
 {
     (void)state_;
     const double W = 1.5, lam = W * sqrt(1.0 * 1.0 / 3.0);
-    cli_result r = cli("linearize %s --init w1=0 --init w2=%g --init w3=0 -o %s",
-                       MECH "free_body.mech", W, cli_path("eig.csv"));
-    CHECK(r.status == 0, "%s", r.err);
-    cli_free(&r);
-    char *csv = cli_read_file(cli_path("eig.csv"), NULL);
-    static double re[64], im[64];
-    const long n = column(csv, "re", re);
-    column(csv, "im", im);
-    free(csv);
+    char args[512];
+    snprintf(args, sizeof args, "%s --init w1=0 --init w2=%.17g --init w3=0",
+             MECH "free_body.mech", W);
+    static double re[MAXROWS], im[MAXROWS];
+    const long n = eigenvalues(args, re, im);
     int up = 0, down = 0;
     for (long i = 0; i < n; i++) {
         up += fabs(im[i]) < 1e-9 && fabs(re[i] - lam) < 1e-8 * lam;
@@ -243,21 +247,15 @@ static void test_tilted_axes(void **state_)
                      "pivot (0, l*cos(beta), -l*sin(beta))\n"
                      "point sled mass=2 prismatic ground(0, 0, 1) (2*cos(alpha), "
                      "2*sin(alpha), 0):s\n");
-    cli_result r = cli("linearize %s -o %s", path, cli_path("eig.csv"));
-    CHECK(r.status == 0, "%s", r.err);
-    cli_free(&r);
-    char *csv = cli_read_file(cli_path("eig.csv"), NULL);
-    static double re[16], im[16];
-    const long n = column(csv, "re", re);
-    column(csv, "im", im);
-    free(csv);
+    static double re[MAXROWS], im[MAXROWS];
+    const long n = eigenvalues(path, re, im);
     const double w = sqrt(9.81 * cos(0.3) / 0.5);
     int matched = 0;
     for (long i = 0; i < n; i++)
         matched += fabs(re[i]) < 1e-9 && fabs(fabs(im[i]) - w) < 1e-9 * w;
     CHECK(n == 4 && matched == 2, "%ld eigenvalues, %d at +-i %.17g", n, matched, w);
     static double t[MAXROWS], sv[MAXROWS];
-    r = run_ok("run %s %s --tspan 0:2 --step 0.5", path, TIGHT);
+    cli_result r = run_ok("run %s %s --tspan 0:2 --step 0.5", path, TIGHT);
     const long rows = column(r.out, "t", t);
     column(r.out, "s", sv);
     double worst = 0.0;
@@ -285,6 +283,44 @@ static void test_free_joint_with_euler_parameters(void **state_)
     cli_result ra = run_ok("run %s %s --tspan 0:5 --step 0.25", path, TIGHT);
     cli_result rb = run_ok("run %s %s --tspan 0:5 --step 0.25", MECH "plane_quat.mech", TIGHT);
     CHECK(strcmp(ra.out, rb.out) == 0, "the runs differ:\n%.300s\n%.300s", ra.out, rb.out);
+    cli_free(&ra);
+    cli_free(&rb);
+}
+
+/* The pendulum of cartesian_pendulum.mech (x, y held on the rod by a holonomic constraint)
+ * with the velocity's radial and tangential components ur, ut as speeds: the same motion
+ * and the same rod force (the multiplier of the same constraint), ur kept at 0. */
+static void test_constraint_with_declared_speeds(void **state_)
+{
+    (void)state_;
+    char path[512];
+    snprintf(path, sizeof path, "%s", cli_path("polar_speeds.mech"));
+    write_file(path, "par m=1 [kg], l=2 [m], g=9.81 [m/s^2]\n"
+                     "coord x=0 [m], y=-l [m]\n"
+                     "speeds ur [m/s], ut=1 [m/s]\n"
+                     "rate x' = (ur*x - ut*y)/l, y' = (ur*y + ut*x)/l\n"
+                     "gravity 0, -g, 0\n"
+                     "point bob mass=m at (x, y, 0)\n"
+                     "constraint rod [m]: sqrt(x^2 + y^2) - l = 0\n");
+    const char *opts = TIGHT " --tspan 0:10 --step 0.1 --outputs --init dx=1";
+    cli_result ra = run_ok("run %s %s", path, TIGHT " --tspan 0:10 --step 0.1 --outputs");
+    cli_result rb = run_ok("run %s %s", MECH "cartesian_pendulum.mech", opts);
+    static double a[MAXROWS], b[MAXROWS];
+    static const char *const names[] = {"x", "y", "rod"};
+    double worst[3] = {0, 0, 0};
+    for (int k = 0; k < 3; k++) {
+        const long n = column(ra.out, names[k], a);
+        CHECK(n == 101 && column(rb.out, names[k], b) == n, "rows %ld", n);
+        for (long i = 0; i < n; i++)
+            worst[k] = fmax(worst[k], fabs(a[i] - b[i]));
+    }
+    const long n = column(ra.out, "ur", a);
+    double ur = 0.0;
+    for (long i = 0; i < n; i++)
+        ur = fmax(ur, fabs(a[i]));
+    CHECK(worst[0] < 1e-10 && worst[1] < 1e-10 && worst[2] < 1e-9 && ur < 1e-10,
+          "x off by %.3g m, y by %.3g m, the rod's force by %.3g N; ur up to %.3g m/s",
+          worst[0], worst[1], worst[2], ur);
     cli_free(&ra);
     cli_free(&rb);
 }
@@ -340,6 +376,7 @@ int main(void)
         cmocka_unit_test(test_intermediate_axis_is_unstable),
         cmocka_unit_test(test_tilted_axes),
         cmocka_unit_test(test_free_joint_with_euler_parameters),
+        cmocka_unit_test(test_constraint_with_declared_speeds),
         cmocka_unit_test(test_joint_and_speed_errors),
     };
     return cmocka_run_group_tests(tests, setup_all, NULL);

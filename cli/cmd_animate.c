@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "dynkit/cart.h"
+#include "dynkit/mbs.h"
 #include "out_file.h"
 #include "pages.h"
 
@@ -49,6 +50,7 @@ static void animate_help(void)
 typedef struct animate_page {
     const cli_view *v;
     const cli_ani *ani;
+    const dyn_mech_scene *mech;
 } animate_page;
 
 /* What the run shows when the model has inputs and no --forces table was given: the inputs
@@ -106,6 +108,10 @@ static int page_data(cli_json *j, void *ctx)
         cli_json_key(j, "ani");
         bad = cli_json_ani(j, pg->ani, v);
     }
+    if (pg->mech && !bad) {
+        cli_json_key(j, "mech");
+        bad = cli_json_mech(j, pg->mech, v);
+    }
     cli_json_end_object(j);
     return bad || j->bad;
 }
@@ -162,6 +168,9 @@ int cli_cmd_animate(int argc, char **argv)
     /* the animation is read before the runs: an error in it writes nothing */
     if (rc == CLI_OK && !no_ani)
         rc = cli_ani_open("animate", args[0], extra_values[0], v.run.model, &ani);
+    dyn_mech_scene *mech = NULL;
+    if (rc == CLI_OK)
+        rc = cli_mech_scene_open(args[0], v.run.model, &mech);
     free(args);
     static const char *const html[] = {".html", ".htm", NULL};
     if (rc == CLI_OK)
@@ -187,7 +196,7 @@ int cli_cmd_animate(int argc, char **argv)
     if (rc == CLI_OK) {
         char title[160];
         snprintf(title, sizeof title, "dynkit animate %s", v.run.model->name);
-        animate_page pg = {&v, &ani};
+        animate_page pg = {&v, &ani, mech};
         rc = cli_html_page_write(out, title, "animate.html", page_data, &pg);
         if (path) {
             /* the page of a run that failed part-way is kept: it shows what was computed */
@@ -209,6 +218,7 @@ int cli_cmd_animate(int argc, char **argv)
                         "--output - writes to standard output)\n",
                 default_path);
     cli_ani_free(&ani);
+    dyn_mech_scene_free(mech);
     cli_view_free(&v);
     return rc;
 }

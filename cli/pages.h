@@ -171,6 +171,16 @@ void cli_ani_free(cli_ani *a);
  * non-zero (out of memory, write error). */
 int cli_json_ani(cli_json *j, const cli_ani *a, const cli_view *v);
 
+/* ---- the picture of a mechanism file (mech_page.c) ---- */
+
+typedef struct dyn_mech_scene dyn_mech_scene;
+/* The geometry of MODEL_SPEC when it is a mechanism file NAME.mech (m loaded from it):
+ * CLI_OK with *out (NULL for another model), or CLI_USAGE with the diagnostic printed. */
+int cli_mech_scene_open(const char *model_spec, const dyn_model *m, dyn_mech_scene **out);
+/* The bodies' poses and the shapes' numbers at every sample of every run of v, as the
+ * page's JSON; 0 or non-zero (out of memory, write error). */
+int cli_json_mech(cli_json *j, const dyn_mech_scene *sc, const cli_view *v);
+
 /* Subcommands. */
 int cli_cmd_animate(int argc, char **argv);
 int cli_cmd_plot(int argc, char **argv);

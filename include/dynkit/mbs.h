@@ -54,6 +54,70 @@ int dyn_mech_constraints_to_c(const char *path, const char *text, size_t len,
                               const dyn_lang_table_file *tables, int n_tables, char **c_source,
                               dyn_lang_diag *diag);
 
+/* ---- the picture of a mechanism (docs/mechanisms.md, "Geometry to draw") ----
+ * The geometry statements of the file (box, cylinder, disk, sphere, rod, frame, ground,
+ * trace, arrow), or a default drawing when it has none (a sphere per point mass, the axes
+ * and a sphere per rigid body), and the springs, evaluated for the frames of a recorded run:
+ * the bodies' poses and every shape's numbers in N. */
+
+typedef enum dyn_mech_shape_kind {
+    DYN_MECH_BOX,      /* centre (3), half sizes along the body's axes (3) */
+    DYN_MECH_CYLINDER, /* centre (3), radius, half length (along axis; 0: a disk) */
+    DYN_MECH_SPHERE,   /* centre (3), radius (NaN: the page's size) */
+    DYN_MECH_ROD,      /* end a (3), end b (3) */
+    DYN_MECH_SPRING,   /* end a (3), end b (3) */
+    DYN_MECH_FRAME,    /* origin (3), length of the axes (NaN: the page's size) */
+    DYN_MECH_GROUND,   /* a point (3), the normal (3), half size (NaN: the page's size) */
+    DYN_MECH_TRACE,    /* the point (3) whose path is drawn */
+    DYN_MECH_ARROW,    /* the point (3), the unit direction (3) of a constraint's force */
+    DYN_MECH_SHAPE_COUNT
+} dyn_mech_shape_kind;
+
+typedef struct dyn_mech_shape {
+    dyn_mech_shape_kind kind;
+    const char *name;  /* the statement's name, or the body's or spring's */
+    int line, col;     /* where it is written (0: a default shape) */
+    int body;          /* its body (the pose's orientation), -1: the ground */
+    int axis;          /* a cylinder's axis in the body frame: 0 x, 1 y, 2 z */
+    const char *color; /* "#rrggbb", or NULL: the run's colour */
+    int constraint;    /* an arrow's constraint (index of dyn_mech_scene_constraint) */
+    int offset;        /* its numbers in a frame: values[offset .. offset + n_values) */
+    int n_values;
+} dyn_mech_shape;
+
+typedef struct dyn_mech_scene dyn_mech_scene;
+
+/* Read the mechanism text as dyn_mech_to_c does (the same errors at FILE:LINE:COL), without
+ * deriving its equations: 0 and *scene (release with dyn_mech_scene_free), or 2 (error in
+ * the file, *diag filled) or 1 (out of memory). */
+int dyn_mech_scene_read(const char *path, const char *text, size_t len,
+                        const dyn_lang_table_file *tables, int n_tables,
+                        dyn_mech_scene **scene, dyn_lang_diag *diag);
+void dyn_mech_scene_free(dyn_mech_scene *scene);
+
+int dyn_mech_scene_n_bodies(const dyn_mech_scene *s);
+const char *dyn_mech_scene_body_name(const dyn_mech_scene *s, int body);
+/* 1 for a point mass without a frame of its own (its offsets are in N) */
+int dyn_mech_scene_body_is_point(const dyn_mech_scene *s, int body);
+int dyn_mech_scene_n_shapes(const dyn_mech_scene *s);
+const dyn_mech_shape *dyn_mech_scene_shape(const dyn_mech_scene *s, int i);
+int dyn_mech_scene_n_values(const dyn_mech_scene *s); /* shapes' numbers of one frame */
+int dyn_mech_scene_n_constraints(const dyn_mech_scene *s);
+/* a constraint's name (its multiplier's output) */
+const char *dyn_mech_scene_constraint(const dyn_mech_scene *s, int k);
+/* the parameters the frames take: the model's, in its order (then derived ones follow) */
+int dyn_mech_scene_n_params(const dyn_mech_scene *s);
+/* gravity at the default parameters, (0, 0, 0) when none */
+void dyn_mech_scene_gravity(const dyn_mech_scene *s, double g[3]);
+
+/* One frame: t, the states y (the model's: coordinates, then speeds) and the parameters
+ * (dyn_mech_scene_n_params values, the model's order). Into pose (12 per body: the mass
+ * centre in N, then R row-major, R mapping N-coordinates to B-coordinates; the identity for
+ * a point mass without a frame) and values (dyn_mech_scene_n_values). Returns 0, or 1 when out of memory.
+ * Re-entrant. */
+int dyn_mech_scene_eval(const dyn_mech_scene *s, double t, const double *y,
+                        const double *params, double *pose, double *values);
+
 #ifdef __cplusplus
 }
 #endif

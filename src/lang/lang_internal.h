@@ -461,6 +461,18 @@ node *lang_fun1(lang_ctx *c, int f, node *a);
 int lang_is_num(const node *e, double v);
 void lang_func_uses(lang_ctx *c, const node *e, int *state, int *time);
 double lang_eval(lang_ctx *c, const node *e, const double *args, const double *pvals);
+/* One frame of a model for lang_eval_frame (frame_eval.c): N_STATE reads y, N_PARAM params
+ * (parameters, then derived parameters), N_FIX fix, N_TIME t, and N_ARG outside a function's
+ * body the outputs; a missing array reads NaN. */
+typedef struct lang_frame {
+    const lang_model *m;
+    double t;
+    const double *y, *outputs, *params, *fix;
+    int depth;
+} lang_frame;
+/* args: the arguments of the function whose body e belongs to, or NULL in a formula of the
+ * model (then N_ARG k is the k-th output). Never fails: too deep a formula gives NaN. */
+double lang_eval_frame(lang_frame *f, const node *e, const double *args);
 /* XPPAUT's binary operator op (bin_op) and built-in function op (fun_id; b is the second
  * argument or 0) applied to numbers, as the C text gives them (eval_ops.c). */
 double lang_apply_bin(int op, double a, double b);
@@ -478,6 +490,9 @@ int lang_translate(const char *path, const char *text, size_t len,
                    void (*front)(lang_ctx *c), char *(*back)(lang_ctx *c));
 /* The default name of a model from its path: the file name without the extension ext. */
 const char *lang_base_name(lang_ctx *c, const char *path, const char *ext);
+/* The lines of c->text (c->path) indexed, then front(c), then the model's title and
+ * description completed (translate.c); fails through c->fail as every pass. */
+void lang_run_front(lang_ctx *c, void (*front)(lang_ctx *c));
 const char *lang_alg_solver_text(void);
 
 /* The C text's only writer (emit_out.c, where the rule is written): bytes from outside only

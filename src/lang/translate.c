@@ -29,7 +29,7 @@ static void ode_front(lang_ctx *c)
     lang_check(c);
 }
 
-static void translate(lang_ctx *c, void (*front)(lang_ctx *c))
+void lang_run_front(lang_ctx *c, void (*front)(lang_ctx *c))
 {
     if (c->len > LANG_MAX_TEXT)
         lang_fail(c, (lpos){0, 0}, "file too large (%zu bytes; at most %u)", c->len,
@@ -121,7 +121,7 @@ int lang_translate(const char *path, const char *text, size_t len,
     }
     c->table_file_used = lang_alloc(c, (size_t)n_tables + 1);
     memset(c->table_file_used, 0, (size_t)n_tables + 1);
-    translate(c, front);
+    lang_run_front(c, front);
     char *out = back ? back(c) : lang_emit_c(c);
     lang_free_all(c);
     free(c);

@@ -105,6 +105,19 @@ typedef struct mbs_wheel {
     int radius, axis[3], at[3]; /* inputs; the axis and the centre in the body's frame */
 } mbs_wheel;
 
+/* A shape to draw (mbs_geom.c): kind a dyn_mech_shape_kind */
+typedef struct mbs_shape {
+    int kind;
+    const char *name, *color; /* color: "#rrggbb" or NULL */
+    lpos pos;
+    mbs_attach a, b; /* a: its body and point (at); b: a rod's other end */
+    int v[3];        /* inputs (-1: none): sizes, or an arrow's direction, or a normal */
+    int size;        /* input (-1: none): a frame's or the ground's size */
+    int axis;        /* a cylinder's axis 0..2 */
+    int in_body;     /* an arrow's direction in the body's frame */
+    int con;         /* an arrow's constraint */
+} mbs_shape;
+
 typedef struct mbs_named {
     const char *name;
     lpos pos;
@@ -123,6 +136,7 @@ typedef struct mbs_model {
     int ninputs;
     lvec input_names; /* mbs_named: parameters a table of inputs overrides (`input`) */
     lvec speeds;      /* mbs_speed: generalized speeds of a `speeds` line (none: the rates) */
+    lvec shapes;      /* mbs_shape: geometry to draw (mbs_geom.c) */
     node **expanded; /* expanded inputs, by fixed quantity (mbs_derive.c) */
     int *order;      /* the order of the fixed quantities, growing */
     /* dynkit derive: the formulas themselves instead of fixed quantities, kept here */
@@ -137,19 +151,26 @@ typedef struct mbs_model {
     int unchecked; /* the constraints need not hold at the initial state */
 } mbs_model;
 
+/* the file read and checked, its names resolved, nothing derived (mbs_translate.c) */
+mbs_model *mbs_read(lang_ctx *c);
 /* statements (mbs_parse.c): the hook of lang_parse_model, and the end of the file */
 int mbs_statement(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos);
 void mbs_finish_parse(lang_ctx *c, mbs_model *mb);
-/* helpers of the statements for mbs_joint.c: an expression kept as an input, a tuple of
- * three, a body by name (-1: the ground), AXIS:ANGLE ... or quat:(w, x, y, z) into b */
+/* helpers of the statements for mbs_joint.c and mbs_geom.c: an expression kept as an input,
+ * a tuple of three, a body by name (-1: the ground), AXIS:ANGLE ... or quat:(w, x, y, z)
+ * into b, the next word if it is w (consumed), BODY[(x, y, z)] */
 int mbs_input_expr(lang_lexer *lx, const char *what);
 void mbs_tuple(lang_lexer *lx, int *out, const char *what);
 int mbs_find_body(lang_ctx *c, const char *name, lpos pos, int ground_ok);
 void mbs_parse_rot(lang_ctx *c, lang_lexer *lx, mbs_body *b);
+int mbs_take_word(lang_lexer *lx, const char *w);
+mbs_attach mbs_attachment(lang_ctx *c, lang_lexer *lx);
 /* joints (mbs_joint.c): the kind a word names (MBS_NO_JOINT: none), and a joint's words
  * after it into b, the next body */
 int mbs_joint_kind(const char *word);
 void mbs_parse_joint(lang_ctx *c, lang_lexer *lx, mbs_body *b, int kind);
+/* the geometry statements (mbs_geom.c): 0 when w is one (the line is read), else -1 */
+int mbs_geom_statement(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos);
 /* the `input` parameters into the model's inputs, after lang_check */
 void mbs_resolve_inputs(lang_ctx *c, mbs_model *mb);
 /* the equations of motion, after lang_check (mbs_derive.c) */

@@ -732,6 +732,8 @@ int mbs_statement(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos)
             lang_fail(c, e->pos, "stabilize takes a number >= 0 (Baumgarte's rate, 1/s)");
         mb->alpha = e->num;
         lang_expect_end(lx, "stabilize");
+    } else if (mbs_geom_statement(c, lx, w, wpos) == 0) {
+        return 0;
     } else {
         static const char *const words[] = {"coord", "gravity", "point", "body", "spring",
                                             "force", "torque", "constraint", "prescribe",
@@ -802,3 +804,7 @@ void mbs_resolve_inputs(lang_ctx *c, mbs_model *mb)
         m->input_param[k] = s->index;
     }
 }
+
+/* for the geometry statements (mbs_geom.c) */
+int mbs_take_word(lang_lexer *lx, const char *w) { return take_word(lx, w); }
+mbs_attach mbs_attachment(lang_ctx *c, lang_lexer *lx) { return attachment(c, lx); }

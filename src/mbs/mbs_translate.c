@@ -7,15 +7,12 @@
 
 #include "mbs/mbs_internal.h"
 
-static void front(lang_ctx *c, int symbolic, int values, int unchecked)
+mbs_model *mbs_read(lang_ctx *c)
 {
     mbs_model *mb = lang_alloc(c, sizeof *mb);
     memset(mb, 0, sizeof *mb);
     mb->alpha = MBS_DEFAULT_ALPHA;
     mb->gravity[0] = mb->gravity[1] = mb->gravity[2] = -1; /* none: 0 */
-    mb->symbolic = symbolic;
-    mb->values = values;
-    mb->unchecked = unchecked;
     c->m.name = lang_base_name(c, c->path, ".mech");
     c->stmt_hook = mbs_statement;
     c->hook_ctx = mb;
@@ -27,6 +24,15 @@ static void front(lang_ctx *c, int symbolic, int values, int unchecked)
     lang_check(c);
     mbs_resolve_inputs(c, mb);
     c->m.no_jacobian = 1;
+    return mb;
+}
+
+static void front(lang_ctx *c, int symbolic, int values, int unchecked)
+{
+    mbs_model *mb = mbs_read(c);
+    mb->symbolic = symbolic;
+    mb->values = values;
+    mb->unchecked = unchecked;
     mbs_derive(c, mb);
 }
 

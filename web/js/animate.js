@@ -41,7 +41,7 @@
     const rate = unit === 's' && t1 - t0 <= 60 ? 1 : (t1 - t0) / 20;
     const player = new DK.Player(document.getElementById('player'), { t0, t1, times: runs[0].t, label: model.name, watch: document.querySelector('.stage'), unit, rate });
     const view = document.getElementById('view');
-    const kind = pictureOf(model, params);
+    const kind = data.mech ? 'mech' : pictureOf(model, params);
     /* an XPPAUT animation of the model file (NAME.ani): first, beside the model's other
      * picture on a wide screen, above it on a narrow one */
     const hasAni = !!(data.ani && data.ani.prims.length);
@@ -57,7 +57,8 @@
       }
       DK.AniView(box, runs, data.ani, player);
     }
-    if (kind === 'plane') DK.PlaneView(view, runs, params, player);
+    if (kind === 'mech') DK.MechView(view, runs, data.mech, player);
+    else if (kind === 'plane') DK.PlaneView(view, runs, params, player);
     else if (kind === 'cart') DK.CartView(view, runs, params, player);
     else if (kind === 'pendulum') DK.PendulumView(view, runs, params.l, player);
     else if (kind === 'phase') {

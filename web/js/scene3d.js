@@ -105,6 +105,12 @@
       if (q[2] > 0.05) this.items.push({ kind: 'point', ps: [q], depth: q[2] + (style.bias || 0), style });
     }
 
+    /* A ball of radius r (world units) at p, drawn as a disc of its projected size. */
+    ball(p, r, style) {
+      const q = this.project(p);
+      if (q[2] > 0.05) this.items.push({ kind: 'point', ps: [q], depth: q[2] + (style.bias || 0), style: Object.assign({}, style, { radius: Math.max(1.5, r * this.focal / q[2]) }) });
+    }
+
     text(p, text, style) {
       const q = this.project(p);
       if (q[2] > 0.05) this.items.push({ kind: 'text', ps: [q], depth: -1e9, text, style });
@@ -142,4 +148,88 @@
     }
   }
   DK.Scene3D = Scene3D;
+
+  /* A 3D view of runs that follows a player: the legend of the runs above it, a canvas with
+   * an orbiting camera (drag to turn, wheel to zoom, shift+drag to move, double-click to
+   * reset) that first shows every key point (o.keys, display coordinates with z up), the
+   * time at the bottom left and a scale bar at the bottom right: a round length (1, 2 or 5
+   * times a power of ten metres, about 100 px) as long as it looks at the depth of
+   * o.scaleAt(t), across the line of sight, following the zoom. o.world(scene, t) adds what
+   * the runs show at time t; o.home: the camera's azimuth and elevation. */
+  DK.SceneView = function (container, runs, player, o) {
+    const canvas = DK.el('canvas', { class: 'scene-canvas' });
+    const wrap = DK.el('div', { class: 'dk-scene' }, [canvas]);
+    container.appendChild(DK.el('div', { class: 'dk-legend' }, runs.map(r => DK.el('span', {}, [DK.el('i', { style: 'background:' + r.color }), r.label]))));
+    container.appendChild(wrap);
+    container.appendChild(DK.el('p', { class: 'hint', text: 'drag: rotate · wheel: zoom · shift+drag: move · double-click: reset view' }));
+    const keys = o.keys;
+    const lo = [0, 1, 2].map(i => Math.min(...keys.map(p => p[i]))), hi = [0, 1, 2].map(i => Math.max(...keys.map(p => p[i])));
+    const centre = [0, 1, 2].map(i => (lo[i] + hi[i]) / 2);
+    const state = { t: player.t };
+    const scene = new Scene3D(canvas, Object.assign({ target: centre, distance: 10 }, o.home), () => draw());
+    let w = 0, h = 0, dpr = 1;
+    /* the camera's distance: the nearest at which every key point is inside the picture */
+    function fit() {
+      const inside = d => {
+        scene.distance = d;
+        scene.begin(w, h);
+        return keys.every(p => { const q = scene.project(p); return q[2] > 0.1 && q[0] > 0.04 * w && q[0] < 0.96 * w && q[1] > 0.06 * h && q[1] < 0.94 * h; });
+      };
+      let a = 0.2, b = 400;
+      for (let i = 0; i < 40; i++) { const m = Math.sqrt(a * b); if (inside(m)) b = m; else a = m; }
+      scene.home.distance = b;
+      scene.reset();
+    }
+    function size() {
+      const nw = Math.max(240, Math.floor(wrap.clientWidth || 600));
+      const nh = Math.floor(o.height || DK.clamp(nw * (nw < 600 ? 0.9 : 0.62), 280, 640)); /* taller on a phone */
+      if (nw === w && nh === h) return;
+      w = nw; h = nh; dpr = window.devicePixelRatio || 1;
+      canvas.width = Math.round(w * dpr); canvas.height = Math.round(h * dpr);
+      canvas.style.width = w + 'px'; canvas.style.height = h + 'px';
+    }
+    function scaleBar(ctx, s) {
+      const q = scene.project(s);
+      if (!(q[2] > 0.05) || !s.every(isFinite)) return;
+      const ppm = scene.focal / q[2], L = DK.niceStep(100 / ppm, 1), len = L * ppm;
+      const x1 = w - 16, x0 = x1 - len, y = h - 14;
+      ctx.strokeStyle = '#222'; ctx.lineWidth = 2; ctx.lineCap = 'butt';
+      ctx.beginPath();
+      ctx.moveTo(x0, y - 5); ctx.lineTo(x0, y); ctx.lineTo(x1, y); ctx.lineTo(x1, y - 5);
+      ctx.moveTo((x0 + x1) / 2, y); ctx.lineTo((x0 + x1) / 2, y - 3);
+      ctx.stroke();
+      ctx.fillStyle = '#222'; ctx.textAlign = 'center'; ctx.textBaseline = 'alphabetic';
+      const label = DK.fmt(L, 3) + ' m';
+      ctx.fillText(label, (x0 + x1) / 2, y - 8);
+      ctx.fillStyle = '#666'; ctx.textAlign = 'right';
+      ctx.fillText(o.scaleNote || '', x0 - 8, y + 1);
+      ctx.textAlign = 'left';
+      canvas.dataset.scaleLabel = label;
+      canvas.dataset.scaleM = L;
+      canvas.dataset.scalePx = len;
+      if (o.afterScale) o.afterScale(ctx, { ppm, L, w, h });
+    }
+    function draw() {
+      size();
+      const ctx = canvas.getContext('2d'), t = state.t;
+      ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
+      const g = ctx.createLinearGradient(0, 0, 0, h);
+      g.addColorStop(0, '#f4f7fb'); g.addColorStop(1, '#ffffff');
+      ctx.fillStyle = g; ctx.fillRect(0, 0, w, h);
+      scene.begin(w, h);
+      o.world(scene, t);
+      scene.flush(ctx);
+      ctx.font = '12px system-ui, sans-serif';
+      ctx.textBaseline = 'middle';
+      ctx.textAlign = 'left';
+      ctx.fillStyle = '#555';
+      ctx.fillText('t = ' + t.toFixed(3) + ' s', 10, h - 14);
+      scaleBar(ctx, o.scaleAt(t));
+    }
+    size();
+    fit();
+    if (window.ResizeObserver) new ResizeObserver(() => draw()).observe(wrap);
+    player.onTime(t => { state.t = t; draw(); });
+    return { canvas, scene, draw };
+  };
 })(window.DK);

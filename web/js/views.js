@@ -127,7 +127,7 @@
   /* N (Z down) to the display frame (z up): a half turn about X. */
   const D = p => [p[0], -p[1], -p[2]];
 
-  function helix(a, b, turns, radius) {
+  DK.helix = function (a, b, turns, radius) {
     const d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]], len = Math.hypot(d[0], d[1], d[2]) || 1;
     const e = d.map(v => v / len);
     const other = Math.abs(e[2]) < 0.9 ? [0, 0, 1] : [1, 0, 0];
@@ -141,18 +141,11 @@
       pts.push([0, 1, 2].map(i => a[i] + d[i] * along + rad * (Math.cos(ang) * u[i] + Math.sin(ang) * v[i])));
     }
     return [a].concat(pts, [b]);
-  }
+  };
 
   DK.PlaneView = function (container, runs, par, player, o) {
     o = o || {};
-    const canvas = DK.el('canvas', { class: 'scene-canvas' });
-    const wrap = DK.el('div', { class: 'dk-scene' }, [canvas]);
-    /* the legend above the picture, where it covers nothing */
-    container.appendChild(DK.el('div', { class: 'dk-legend' }, runs.map(r => DK.el('span', {}, [DK.el('i', { style: 'background:' + r.color }), r.label]))));
-    container.appendChild(wrap);
-    container.appendChild(DK.el('p', { class: 'hint', text: 'drag: rotate · wheel: zoom · shift+drag: move · double-click: reset view' }));
     const shape = planeShape(par);
-    /* look at the middle between A and the motion, from the side and a little above */
     const mean = ['sX', 'sY', 'sZ'].map(k => runs[0].cols[k].reduce((a, v) => a + v, 0) / runs[0].cols[k].length);
     /* what must be seen: A and the centre of mass with the plane's reach around it */
     const reach = 0.5 * Math.max(par.wingspan, par.length_plane);
@@ -162,40 +155,8 @@
       if (!c.every(isFinite)) continue;
       for (let i = 0; i < 3; i++) for (const sgn of [-1, 1]) { const p = c.slice(); p[i] += sgn * reach; keys.push(D(p)); }
     }
-    const lo = [0, 1, 2].map(i => Math.min(...keys.map(p => p[i]))), hi = [0, 1, 2].map(i => Math.max(...keys.map(p => p[i])));
-    const centre = [0, 1, 2].map(i => (lo[i] + hi[i]) / 2);
-    const state = { t: player.t };
-    const scene = new DK.Scene3D(canvas, { target: centre, distance: 10, azimuth: -1.05, elevation: 0.32 }, () => draw());
-    /* the camera's distance: the nearest at which every key point is inside the picture */
-    function fit() {
-      const inside = d => {
-        scene.distance = d;
-        scene.begin(w, h);
-        return keys.every(p => { const q = scene.project(p); return q[2] > 0.1 && q[0] > 0.04 * w && q[0] < 0.96 * w && q[1] > 0.06 * h && q[1] < 0.94 * h; });
-      };
-      let a = 0.2, b = 400;
-      for (let i = 0; i < 40; i++) { const m = Math.sqrt(a * b); if (inside(m)) b = m; else a = m; }
-      scene.home.distance = b;
-      scene.reset();
-    }
     const trails = runs.map(r => r.t.map((_, k) => D([r.cols.sX[k], r.cols.sY[k], r.cols.sZ[k]])));
-    let w = 0, h = 0, dpr = 1;
-    function size() {
-      const nw = Math.max(240, Math.floor(wrap.clientWidth || 600));
-      const nh = Math.floor(o.height || DK.clamp(nw * (nw < 600 ? 0.9 : 0.62), 280, 640)); /* taller on a phone */
-      if (nw === w && nh === h) return;
-      w = nw; h = nh; dpr = window.devicePixelRatio || 1;
-      canvas.width = Math.round(w * dpr); canvas.height = Math.round(h * dpr);
-      canvas.style.width = w + 'px'; canvas.style.height = h + 'px';
-    }
-    function draw() {
-      size();
-      const ctx = canvas.getContext('2d'), t = state.t;
-      ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
-      const g = ctx.createLinearGradient(0, 0, 0, h);
-      g.addColorStop(0, '#f4f7fb'); g.addColorStop(1, '#ffffff');
-      ctx.fillStyle = g; ctx.fillRect(0, 0, w, h);
-      scene.begin(w, h);
+    function world(scene, t) {
       /* the ceiling (Z = 0) around A, and the axes of N at A */
       const C = Math.max(1, Math.ceil(2 * (Math.hypot(mean[0], mean[1]) + 0.4 * par.wingspan)) / 2);
       scene.poly([[-C, -C, 0], [C, -C, 0], [C, C, 0], [-C, C, 0]].map(p => D(p)), { fill: '#d9dee6', alpha: 0.35, bias: 1e3 });
@@ -203,14 +164,7 @@
         scene.line([D([k, -C, 0]), D([k, C, 0])], { color: '#b9c1cc', width: 0.8 }, 4);
         scene.line([D([-C, k, 0]), D([C, k, 0])], { color: '#b9c1cc', width: 0.8 }, 4);
       }
-      const ax = 0.4;
-      scene.line([D([0, 0, 0]), D([ax, 0, 0])], { color: '#c0392b', width: 2 });
-      scene.line([D([0, 0, 0]), D([0, ax, 0])], { color: '#27ae60', width: 2 });
-      scene.line([D([0, 0, 0]), D([0, 0, ax])], { color: '#2c6fbb', width: 2 });
-      scene.text(D([ax, 0, 0]), 'X', { color: '#c0392b' });
-      scene.text(D([0, ax, 0]), 'Y', { color: '#27ae60' });
-      scene.text(D([0, 0, ax]), 'Z (down)', { color: '#2c6fbb' });
-      scene.point(D([0, 0, 0]), { color: '#222', radius: 4 });
+      DK.axesN(scene, D, 0.4, 'Z (down)');
       scene.text(D([0, 0, -0.08]), 'A', { color: '#222', font: '600 13px system-ui, sans-serif' });
       runs.forEach((r, i) => {
         const st = planeAt(r, t);
@@ -219,7 +173,7 @@
         const upto = trails[i].slice(0, st.pos.i + 1).concat([D(st.s)]);
         if (upto.length > 1) scene.line(upto, { color: r.color, width: 1.3, alpha: 0.55 }, 12);
         const P = B(shape.P);
-        scene.line(helix([0, 0, 0], P, 14, 0.035), { color: '#555', width: 1.3 }, 10);
+        scene.line(DK.helix([0, 0, 0], P, 14, 0.035), { color: '#555', width: 1.3 }, 10);
         scene.point(P, { color: '#111', radius: 2.5 });
         scene.poly(shape.wing.map(B), { fill: r.color, alpha: 0.55, color: r.color, width: 1.2 });
         scene.poly(shape.fin.map(B), { fill: r.color, alpha: 0.75, color: r.color, width: 1.2 });
@@ -228,42 +182,19 @@
         scene.line([B(shape.nose), B(shape.tail)], { color: r.color, width: 3 });
         scene.point(D(st.s), { color: r.color, radius: 3, ring: '#fff' });
       });
-      scene.flush(ctx);
-      ctx.font = '12px system-ui, sans-serif';
-      ctx.textBaseline = 'middle';
-      ctx.textAlign = 'left';
-      ctx.fillStyle = '#555';
-      ctx.fillText('t = ' + t.toFixed(3) + ' s', 10, h - 14);
-      scaleBar(ctx, planeAt(runs[0], t).s);
     }
-    /* A scale bar at the bottom right: a round length (1, 2 or 5 times a power of ten metres,
-     * about 100 px long) as long as it looks at the depth of the first run's centre of mass,
-     * across the line of sight; it follows the zoom. */
-    function scaleBar(ctx, s) {
-      const q = scene.project(D(s));
-      if (!(q[2] > 0.05) || !s.every(isFinite)) return;
-      const ppm = scene.focal / q[2], L = DK.niceStep(100 / ppm, 1), len = L * ppm;
-      const x1 = w - 16, x0 = x1 - len, y = h - 14;
-      ctx.strokeStyle = '#222'; ctx.lineWidth = 2; ctx.lineCap = 'butt';
-      ctx.beginPath();
-      ctx.moveTo(x0, y - 5); ctx.lineTo(x0, y); ctx.lineTo(x1, y); ctx.lineTo(x1, y - 5);
-      ctx.moveTo((x0 + x1) / 2, y); ctx.lineTo((x0 + x1) / 2, y - 3);
-      ctx.stroke();
-      ctx.fillStyle = '#222'; ctx.textAlign = 'center'; ctx.textBaseline = 'alphabetic';
-      const label = DK.fmt(L, 3) + ' m';
-      ctx.fillText(label, (x0 + x1) / 2, y - 8);
-      ctx.fillStyle = '#666'; ctx.textAlign = 'right';
-      ctx.fillText('at the plane', x0 - 8, y + 1);
-      ctx.textAlign = 'left';
-      canvas.dataset.scaleLabel = label;
-      canvas.dataset.scaleM = L;
-      canvas.dataset.scalePx = len;
-    }
-    size();
-    fit();
-    if (window.ResizeObserver) new ResizeObserver(() => draw()).observe(wrap);
-    player.onTime(t => { state.t = t; draw(); });
-    return { canvas, scene, draw };
+    return DK.SceneView(container, runs, player, { keys, world, home: { azimuth: -1.05, elevation: 0.32 }, height: o.height, scaleNote: 'at the plane', scaleAt: t => D(planeAt(runs[0], t).s) });
+  };
+
+  /* The axes of N at the origin (display frame by D), X, Y, Z labelled; zlabel for Z. */
+  DK.axesN = function (scene, D, ax, zlabel) {
+    scene.line([D([0, 0, 0]), D([ax, 0, 0])], { color: '#c0392b', width: 2 });
+    scene.line([D([0, 0, 0]), D([0, ax, 0])], { color: '#27ae60', width: 2 });
+    scene.line([D([0, 0, 0]), D([0, 0, ax])], { color: '#2c6fbb', width: 2 });
+    scene.text(D([ax, 0, 0]), 'X', { color: '#c0392b' });
+    scene.text(D([0, ax, 0]), 'Y', { color: '#27ae60' });
+    scene.text(D([0, 0, ax]), zlabel || 'Z', { color: '#2c6fbb' });
+    scene.point(D([0, 0, 0]), { color: '#222', radius: 4 });
   };
 
   /* ---- the cart from above (the homework's cartanimation) ---- */

@@ -242,7 +242,7 @@ void dyn_mech_scene_gravity(const dyn_mech_scene *s, double g[3])
 
 typedef struct frame {
     const double *fix;
-    const double *pose;
+    double *pose;
     double g[3]; /* gravity */
 } frame;
 

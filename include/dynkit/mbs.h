@@ -57,12 +57,13 @@ int dyn_mech_constraints_to_c(const char *path, const char *text, size_t len,
 /* ---- the picture of a mechanism (docs/mechanisms.md, "Geometry to draw") ----
  * The geometry statements of the file (box, cylinder, disk, sphere, rod, frame, ground,
  * trace, arrow), or a default drawing when it has none (a sphere per point mass, the axes
- * and a sphere per rigid body), and the springs, evaluated for the frames of a recorded run:
+ * and a sphere per rigid body), and the springs, and the wheels (a disk, and the forces of
+ * their rolling constraints at the contact point), evaluated for the frames of a recorded run:
  * the bodies' poses and every shape's numbers in N. */
 
 typedef enum dyn_mech_shape_kind {
     DYN_MECH_BOX,      /* centre (3), half sizes along the body's axes (3) */
-    DYN_MECH_CYLINDER, /* centre (3), radius, half length (along axis; 0: a disk) */
+    DYN_MECH_CYLINDER, /* centre (3), radius, half length (0: a disk), unit axis in N (3) */
     DYN_MECH_SPHERE,   /* centre (3), radius (NaN: the page's size) */
     DYN_MECH_ROD,      /* end a (3), end b (3) */
     DYN_MECH_SPRING,   /* end a (3), end b (3) */
@@ -78,7 +79,7 @@ typedef struct dyn_mech_shape {
     const char *name;  /* the statement's name, or the body's or spring's */
     int line, col;     /* where it is written (0: a default shape) */
     int body;          /* its body (the pose's orientation), -1: the ground */
-    int axis;          /* a cylinder's axis in the body frame: 0 x, 1 y, 2 z */
+    int axis;          /* a cylinder's axis in the body frame: 0 x, 1 y, 2 z (-1: a wheel's) */
     const char *color; /* "#rrggbb", or NULL: the run's colour */
     int constraint;    /* an arrow's constraint (index of dyn_mech_scene_constraint) */
     int offset;        /* its numbers in a frame: values[offset .. offset + n_values) */

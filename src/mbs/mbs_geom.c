@@ -151,6 +151,8 @@ int mbs_geom_statement(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos)
     s.axis = 2;
     s.con = -1;
     s.size = -1;
+    s.avec[0] = s.avec[1] = s.avec[2] = -1;
+    s.wheel = -1;
     lpos npos = wpos;
     const char *what = words[k];
     switch (s.kind) {

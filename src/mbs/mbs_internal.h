@@ -116,6 +116,8 @@ typedef struct mbs_shape {
     int axis;        /* a cylinder's axis 0..2 */
     int in_body;     /* an arrow's direction in the body's frame */
     int con;         /* an arrow's constraint */
+    int avec[3];     /* inputs (-1: none): a cylinder's axis as a vector of the body's frame */
+    int wheel;       /* a wheel's disk, or an arrow at its contact point (-1: none) */
 } mbs_shape;
 
 typedef struct mbs_named {

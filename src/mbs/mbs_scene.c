@@ -31,7 +31,7 @@ struct dyn_mech_scene {
 };
 
 static const int n_values_of[DYN_MECH_SHAPE_COUNT] = {
-    [DYN_MECH_BOX] = 6,    [DYN_MECH_CYLINDER] = 5, [DYN_MECH_SPHERE] = 4,
+    [DYN_MECH_BOX] = 6,    [DYN_MECH_CYLINDER] = 8, [DYN_MECH_SPHERE] = 4,
     [DYN_MECH_ROD] = 6,    [DYN_MECH_SPRING] = 6,   [DYN_MECH_FRAME] = 4,
     [DYN_MECH_GROUND] = 7, [DYN_MECH_TRACE] = 3,    [DYN_MECH_ARROW] = 6,
 };
@@ -48,6 +48,8 @@ static mbs_shape plain(int kind, int body, const char *name)
     s.axis = 2;
     s.con = -1;
     s.size = -1;
+    s.avec[0] = s.avec[1] = s.avec[2] = -1;
+    s.wheel = -1;
     return s;
 }
 
@@ -93,6 +95,33 @@ static void build(dyn_mech_scene *sc)
         s.b = sp->b;
         s.pos = sp->pos;
         add_item(sc, &v, s);
+    }
+    int ground = 0;
+    for (int i = 0; i < mb->shapes.n; i++)
+        ground |= LVEC_AT(mb->shapes, mbs_shape, i).kind == DYN_MECH_GROUND;
+    if (mb->wheels.n && !ground) /* the wheels roll on it */
+        add_item(sc, &v, plain(DYN_MECH_GROUND, -1, "ground"));
+    for (int w = 0; w < mb->wheels.n; w++) { /* the disk, and its rolling forces */
+        const mbs_wheel *wh = &LVEC_AT(mb->wheels, mbs_wheel, w);
+        mbs_shape s = plain(DYN_MECH_CYLINDER, wh->body, wh->name);
+        s.pos = wh->pos;
+        s.wheel = w;
+        s.axis = -1;
+        s.v[0] = wh->radius;
+        memcpy(s.a.p, wh->at, sizeof s.a.p);
+        memcpy(s.avec, wh->axis, sizeof s.avec);
+        add_item(sc, &v, s);
+        for (int k = 0; k < mb->cons.n; k++) {
+            const mbs_constraint *con = &LVEC_AT(mb->cons, mbs_constraint, k);
+            if (con->wheel != w || con->part > 1)
+                continue;
+            mbs_shape ar = plain(DYN_MECH_ARROW, wh->body, con->name);
+            ar.pos = wh->pos;
+            ar.wheel = w;
+            ar.con = k;
+            ar.axis = con->part; /* along x or y of N */
+            add_item(sc, &v, ar);
+        }
     }
     sc->items = v.data;
     sc->n_items = v.n;
@@ -241,6 +270,7 @@ void dyn_mech_scene_gravity(const dyn_mech_scene *s, double g[3])
 /* ---- one frame ---- */
 
 typedef struct frame {
+    const mbs_model *mb;
     const double *fix;
     double *pose;
     double g[3]; /* gravity */
@@ -329,6 +359,42 @@ static void point_of(const frame *f, const mbs_attach *a, double out[3])
         out[k] = x[k] + R[k] * p[0] + R[3 + k] * p[1] + R[6 + k] * p[2];
 }
 
+/* a cylinder's unit axis in N: R' of the wheel's vector or of the body's axis */
+static void axis_n(const frame *f, const mbs_shape *s, const double *pose, double out[3])
+{
+    double a[3] = {0, 0, 0}, len = 0.0;
+    if (s->avec[0] >= 0)
+        for (int k = 0; k < 3; k++)
+            a[k] = in(f, s->avec[k], 0.0);
+    else
+        a[s->axis] = 1.0;
+    for (int k = 0; k < 3; k++) {
+        out[k] = pose ? pose[3 + k] * a[0] + pose[6 + k] * a[1] + pose[9 + k] * a[2] : a[k];
+        len += out[k] * out[k];
+    }
+    len = sqrt(len);
+    for (int k = 0; k < 3; k++)
+        out[k] = len > 0.0 ? out[k] / len : NAN;
+}
+
+/* a wheel's lowest point P = C - r k, k = (e_z - a_z a) / |e_z - a_z a| (mbs_wheel.c) */
+static void contact(const frame *f, const mbs_wheel *wh, double out[3])
+{
+    mbs_shape s;
+    memset(&s, 0, sizeof s);
+    s.a.body = wh->body;
+    memcpy(s.a.p, wh->at, sizeof s.a.p);
+    memcpy(s.avec, wh->axis, sizeof s.avec);
+    double c[3], a[3];
+    point_of(f, &s.a, c);
+    axis_n(f, &s, f->pose + 12 * wh->body, a);
+    const double r = in(f, wh->radius, 0.0);
+    double k[3] = {-a[2] * a[0], -a[2] * a[1], 1.0 - a[2] * a[2]};
+    const double n = sqrt(k[0] * k[0] + k[1] * k[1] + k[2] * k[2]);
+    for (int j = 0; j < 3; j++)
+        out[j] = c[j] - (n > 0.0 ? r * k[j] / n : NAN);
+}
+
 static void shape_values(const frame *f, const item *it, double *v)
 {
     const mbs_shape *s = &it->s;
@@ -343,6 +409,7 @@ static void shape_values(const frame *f, const item *it, double *v)
         point_of(f, &s->a, v);
         v[3] = in(f, s->v[0], NAN);
         v[4] = 0.5 * in(f, s->v[1], 0.0);
+        axis_n(f, s, pose, v + 5);
         break;
     case DYN_MECH_SPHERE:
         point_of(f, &s->a, v);
@@ -374,6 +441,12 @@ static void shape_values(const frame *f, const item *it, double *v)
     }
     case DYN_MECH_TRACE: point_of(f, &s->a, v); break;
     case DYN_MECH_ARROW: {
+        if (s->wheel >= 0) { /* at the wheel's contact, along x or y of N */
+            contact(f, &LVEC_AT(f->mb->wheels, mbs_wheel, s->wheel), v);
+            for (int k = 0; k < 3; k++)
+                v[3 + k] = k == s->axis;
+            break;
+        }
         point_of(f, &s->a, v);
         double d[3], len = 0.0;
         for (int k = 0; k < 3; k++)
@@ -432,7 +505,7 @@ static int evaluate(const dyn_mech_scene *s, double t, const double *y, const do
         const int k = m->fix_order[i];
         fix[k] = lang_eval_frame(&x, LVEC_AT(m->fixes, lang_formula, k).expr, NULL);
     }
-    frame f = {fix, pose, {0, 0, 0}};
+    frame f = {s->mb, fix, pose, {0, 0, 0}};
     const mbs_model *mb = s->mb;
     for (int k = 0; k < 3; k++)
         f.g[k] = g[k] = in(&f, mb->gravity[k], 0.0);

@@ -78,8 +78,10 @@
       const q = [[-hx, -hy, -hz], [hx, -hy, -hz], [hx, hy, -hz], [-hx, hy, -hz], [-hx, -hy, hz], [hx, -hy, hz], [hx, hy, hz], [-hx, hy, hz]].map(a => P(a[0], a[1], a[2]));
       return { points: q, faces: [[0, 1, 2, 3], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]].map(f => f.map(i => q[i])) };
     }
-    const a = s.axis, i = (a + 1) % 3, j = (a + 2) % 3, r = v[3], hl = v[4], n = 20;
-    const rim = z => Array.from({ length: n }, (_, m) => { const l = [0, 0, 0], an = 2 * Math.PI * m / n; l[i] = r * Math.cos(an); l[j] = r * Math.sin(an); l[a] = z; return P(l[0], l[1], l[2]); });
+    /* a cylinder: its unit axis in N (v[5..7]) and two directions across it */
+    const ax = [v[5], v[6], v[7]], e = Math.abs(ax[0]) < 0.9 ? [1, 0, 0] : [0, 1, 0];
+    const u = unit(cross(ax, e)), w = cross(ax, u), r = v[3], hl = v[4], n = 20;
+    const rim = z => Array.from({ length: n }, (_, m) => { const an = 2 * Math.PI * m / n; return add(add(add(c, u, r * Math.cos(an)), w, r * Math.sin(an)), ax, z); });
     const top = rim(hl), bot = rim(-hl);
     const faces = [top];
     if (hl > 0) { faces.push(bot); for (let m = 0; m < n; m++) faces.push([top[m], top[(m + 1) % n], bot[(m + 1) % n], bot[m]]); }
@@ -154,7 +156,7 @@
         const fill = s.color || color;
         switch (s.kind) {
           case 'box': case 'cylinder': {
-            if (!v.slice(0, 5).every(isFinite)) break;
+            if (!v.slice(0, s.kind === 'box' ? 6 : 8).every(isFinite)) break;
             const so = solid(s, v, R);
             out.push({ kind: 'solid', points: so.points, faces: so.faces, fill, edge: color });
             break;

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit animate MODEL: a run (and --compare runs) as a self-contained HTML page that plays
- * the motion (plane, cart, pendulum, van der Pol) and the time series of every state.
+ * the motion (plane, cart, pendulum, van der Pol, a mechanism file from its geometry:
+ * mech_page.c) and the time series of every state.
  * Without --output the page goes to MODEL.html in the current directory (MODEL-2.html, ...
  * when that exists: a file is never replaced unasked), and the tool says where. */
 #include <ctype.h>
@@ -21,8 +22,9 @@ static void animate_help(void)
          "Run MODEL and write one self-contained HTML page (no network, everything inline) that\n"
          "plays the run in real time: the plane in 3D\n"
          "(drag to rotate, wheel to zoom), the cart from above with the track of its wheels,\n"
-         "the pendulum, the phase plane of van der Pol, and for every model the time series\n"
-         "of its states and outputs with a moving cursor.\n"
+         "the pendulum, the phase plane of van der Pol, a mechanism file NAME.mech from its\n"
+         "geometry (in 3D, or in 2D when it moves in a plane), and for every model the time\n"
+         "series of its states and outputs with a moving cursor.\n"
          "\n"
          "  --compare M[:H]      overlay a run with method M (and step H; default the run's\n"
          "                       step), repeatable: --compare euler --compare rk4:0.001\n"
@@ -43,7 +45,8 @@ static void animate_help(void)
          "  dynkit animate plane --compare euler --output plane.html\n"
          "  dynkit animate cart --output cart.html\n"
          "  dynkit animate vanderpol --compare euler:0.05 --compare heun --output vdp.html\n"
-         "  dynkit animate examples/models/double_pendulum.ode --output dp.html   # + .ani\n");
+         "  dynkit animate examples/models/double_pendulum.ode --output dp.html   # + .ani\n"
+         "  dynkit animate examples/mechanisms/top.mech --output top.html\n");
     cli_view_options_help(stdout);
 }
 

@@ -1,13 +1,13 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* wp_svg.c — work-precision diagrams as SVG (wp_svg.h): error on a logarithmic x axis,
  * cost (time or right-hand-side calls) on a logarithmic y axis, one polyline with circle
- * markers per solver. Sizes, fonts, frame, grid and palette are those of cli/svg_plot.c so
+ * markers per solver. Sizes, fonts, frame, grid and palette are those of cli/pages/svg_plot.c so
  * that the pictures in docs/ look like the command line's plots; the axes are drawn by the
- * same code (cli/svg_axes.c).
+ * same code (cli/pages/svg_axes.c).
  */
 #include "wp_svg.h"
-#include "escape.h"
-#include "svg_axes.h"
+#include "util/escape.h"
+#include "pages/svg_axes.h"
 
 #include <math.h>
 #include <string.h>

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* wp_svg.h — work-precision diagrams as standalone SVG: log-log axes with ticks at the powers
  * of ten, one line with markers per solver, in the look of the command line's plots
- * (cli/svg_plot.c: same size, fonts, frame, grid and line colours).
+ * (cli/pages/svg_plot.c: same size, fonts, frame, grid and line colours).
  */
 #ifndef DYNKIT_BENCH_WP_SVG_H
 #define DYNKIT_BENCH_WP_SVG_H

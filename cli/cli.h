@@ -95,7 +95,7 @@ int cli_verbose(void);
  * ("the model's", "@ rtol in ml.ode", "dynkit's default ..."), in buf or a constant. */
 typedef enum { CLI_DEFAULT_METHOD, CLI_DEFAULT_RTOL, CLI_DEFAULT_ATOL } cli_default_field;
 const char *cli_model_method(const dyn_model *m);
-/* The unit of the model's time: dyn_model.time_unit, else "s" (run_record.c). */
+/* The unit of the model's time: dyn_model.time_unit, else "s" (model_defaults.c). */
 const char *cli_time_unit(const dyn_model *m);
 double cli_model_rtol(const dyn_model *m);
 double cli_model_atol(const dyn_model *m);

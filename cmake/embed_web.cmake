@@ -4,10 +4,10 @@
 #   cmake -DBASE=<dir of the files> -DFILES=<names separated by ','> -DOUTPUT=<file.c>
 #         -P embed_web.cmake
 # Each file becomes `static const unsigned char` data with a terminating NUL (not counted
-# in its size) and one entry of cli_web_assets[] (cli/web_assets.h), in the order given.
+# in its size) and one entry of cli_web_assets[] (cli/pages/web_assets.h), in the order given.
 string(REPLACE "," ";" files "${FILES}")
 set(body "/* Generated from web/ by cmake/embed_web.cmake at build time: do not edit. */\n")
-string(APPEND body "#include \"web_assets.h\"\n\n")
+string(APPEND body "#include \"pages/web_assets.h\"\n\n")
 set(table "")
 set(index 0)
 foreach(name IN LISTS files)

@@ -1,6 +1,6 @@
-/* libFuzzer harness of the command line's number parsers (cli/args.c: cli_parse_number with
+/* libFuzzer harness of the command line's number parsers (cli/util/args.c: cli_parse_number with
  * pi, degrees and a divisor, cli_parse_count) and of the option values built on them
- * (cli/run_values.c: --tspan, --rtol lists, --times lists and the @FILE reader). An input
+ * (cli/run/run_values.c: --tspan, --rtol lists, --times lists and the @FILE reader). An input
  * that starts with '@' is the content of a --times file; any other is one argument. Accepted
  * values must be finite and ordered as promised; nothing may crash, leak or read out of
  * bounds (built with -fsanitize=fuzzer,address,undefined; see fuzz/CMakeLists.txt).
@@ -13,7 +13,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "run_parse.h"
+#include "run/run_parse.h"
 
 /* run_values.c's --set/--init and --event need a model; none is reached from here */
 int dyn_model_param_index(const dyn_model *m, const char *name)

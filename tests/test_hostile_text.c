@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* Text from outside never becomes markup. A sweep table's column names, a model file's
  * title, units and descriptions, its file name, an animation file's text and a --title are
- * written into SVG and HTML only through cli/escape.c, so:
+ * written into SVG and HTML only through cli/util/escape.c, so:
  *
  * - the escaping functions give XML 1.0's and RFC 8259's forms exactly (entities, \u
  *   escapes), nothing that ends a <script> element ("</script", "<!--"), and U+FFFD for
@@ -26,7 +26,7 @@
 
 #include <cmocka.h>
 
-#include "escape.h"
+#include "util/escape.h"
 #include "test_cli_run.h"
 #include "test_util.h"
 

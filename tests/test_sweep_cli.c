@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* dynkit sweep through the command line (cli/cmd_sweep.c):
+/* dynkit sweep through the command line (cli/commands/cmd_sweep.c):
  * - `dynkit sweep pendulum --vary dphi=0.1:1.9:50 --reduce event:turn` (dop853 at rtol =
  *   atol = 1e-12 over 0:5) gives the period curve: each first turn at K(k)/w with
  *   k = dphi0/(2w), K by the arithmetic-geometric mean, to 1e-10 s; the varied values end

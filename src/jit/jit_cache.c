@@ -2,8 +2,7 @@
 /* The jit layer's cache directory: where it is ($DYNKIT_CACHE_DIR, $XDG_CACHE_HOME/dynkit,
  * ~/.cache/dynkit), the embedded public headers written into it once per version and header
  * set (checked before each use, jit_trust.c), unique temporary names for concurrent
- * compilations, and small helpers (messages, notes, the text given to the compilers, a
- * monotonic clock). */
+ * compilations, and the text given to the compilers. */
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
 #include <errno.h>
@@ -18,24 +17,6 @@
 #include <unistd.h>
 
 #include "jit_internal.h"
-
-int jit_fail(char *err, size_t errlen, const char *fmt, ...)
-{
-    if (err && errlen > 0) {
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(err, errlen, fmt, ap);
-        va_end(ap);
-    }
-    return 1;
-}
-
-double jit_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* mkdir -p: each missing component created for this user alone (0700) */
 static int make_dirs(const char *path, char *err, size_t errlen)
@@ -85,15 +66,6 @@ int jit_cache_dir(const dyn_jit_opts *opts, char *dir, size_t size, char *err, s
     if (make_dirs(given, err, errlen) != 0)
         return 1;
     return jit_trust_cache_dir(given, dir, size, err, errlen);
-}
-
-void jit_note(char *note, size_t size, const char *text)
-{
-    if (!note || size == 0)
-        return;
-    size_t used = strlen(note);
-    if (used + 1 < size)
-        snprintf(note + used, size - used, "%s%s", used ? "; " : "", text);
 }
 
 void jit_unique_path(const char *dir, const char *prefix, const char *suffix, char *out,

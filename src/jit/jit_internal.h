@@ -89,15 +89,18 @@ char *jit_source_with_line(const char *source, size_t len, const char *source_na
 /* Seconds of a monotonic clock. */
 double jit_now(void);
 
-/* Check a model returned by dynkit_model(): 0, or non-zero with a message naming `where`. */
+/* Check a model returned by dynkit_model() (jit_check.c): 0, or non-zero with a message
+ * naming `where`. */
 int jit_check_model(const dyn_model *m, const char *where, char *err, size_t errlen);
 
-/* dlopen a shared object, check its ABI stamp and its model; `where` names it in messages
+/* (jit_so.c) dlopen a shared object, check its ABI stamp and its model; `where` names it in messages
  * (the user's source for a compiled one). fd >= 0: load that file (/proc/self/fd/fd), which
  * stays open while the model is loaded (and is closed on failure); path is what so_path
  * reports. */
 int jit_load_so(const char *path, int fd, const char *where, dyn_jit_model *out, char *err,
                 size_t errlen);
+/* Unload what jit_load_so loaded (dyn_jit_model.handle of DYN_JIT_CC). */
+void jit_so_unload(void *handle);
 
 /* Sizes of generated C (bytes) above which the system compiler gets -O1, then -O0, when no
  * flags were given, and above which DYN_JIT_AUTO compiles with libtcc (docs/model-files.md,

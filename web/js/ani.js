@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit page: an XPPAUT animation (.ani) of a model file, drawn on a canvas in the file's
  * coordinates — [0,1]x[0,1] unless `dimension` says otherwise, y up, equal scales — at the
- * player's time. The numbers come from the tool (cli/ani_page.c: every primitive evaluated
+ * player's time. The numbers come from the tool (cli/pages/ani_page.c: every primitive evaluated
  * in C at every sample); here they are interpolated between samples, and drawn as XPPAUT's
  * animator draws them (its aniparse.c): primitives in the file's order, widths and comet
  * dots in pixels, rline from the end of the last line, text in the current colour (the last

@@ -2,7 +2,7 @@
 /* dynkit page: a heat map of a value over a grid of two parameters (a sweep's runs), on the
  * axes of DK.Plot: a cell per grid point whose edges lie halfway between neighbouring
  * values (uneven grids drawn true), matplotlib's viridis colours (van der Walt and Smith,
- * 2015; the nine stops of cli/sweep_plot.c), linear or logarithmic, NaN in grey, lines on
+ * 2015; the nine stops of cli/pages/sweep_plot.c), linear or logarithmic, NaN in grey, lines on
  * top (e.g. a boundary), and a colour bar with ticks under the picture. */
 'use strict';
 (function (DK) {

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit page: 'dynkit plot TABLE.csv|TABLE.json --html' — a sweep's table (dynkit sweep) as the picture
- * the SVG of cli/sweep_plot.c draws: lines of the reduced columns against the varied name
+ * the SVG of cli/pages/sweep_plot.c draws: lines of the reduced columns against the varied name
  * (one line per value of a second varied name, with --x), or a heat map of one reduced
  * column over the grid of two varied names (web/js/heatmap.js), or a point per run when
  * their values were sampled rather than a grid, failed runs in grey. */
@@ -25,7 +25,7 @@
     fig.appendChild(body);
     if (data.picture === 'heat' && sorted(C[data.x]).length * sorted(C[data.other]).length > 2 * data.rows) {
       /* values sampled at random (--sample), not a grid: a point per run, its colour the
-       * reduced value's eighth of the range (the SVG of cli/sweep_plot.c colours them
+       * reduced value's eighth of the range (the SVG of cli/pages/sweep_plot.c colours them
        * continuously, with a colour bar) */
       const z = C[data.y[0]], zs = z.filter(v => v !== null && isFinite(v));
       const lo = zs.reduce((a, b) => Math.min(a, b), Infinity), hi = zs.reduce((a, b) => Math.max(a, b), -Infinity);

@@ -4,7 +4,7 @@
 'use strict';
 window.DK = window.DK || {};
 (function (DK) {
-  /* The line colours; cli/svg_plot.c uses the same. */
+  /* The line colours; cli/pages/svg_plot.c uses the same. */
   DK.colors = ['#1f77b4', '#d62728', '#2ca02c', '#ff7f0e', '#9467bd', '#8c564b', '#e377c2',
     '#17becf'];
 
@@ -38,7 +38,7 @@ window.DK = window.DK || {};
 
   /* Tick values inside [lo, hi] and their labels. A tiny range on large values (a conserved
    * energy, 237.453059026 .. 237.453059031) is labelled relative to an offset, out.offset
-   * (the ticks' common leading digits, as cli/svg_axes.c does), which the plot shows. */
+   * (the ticks' common leading digits, as cli/pages/svg_axes.c does), which the plot shows. */
   DK.ticks = function (lo, hi, target) {
     const step = DK.niceStep(hi - lo, target), out = [];
     const digits = Math.max(0, Math.ceil(-Math.log10(step) - 1e-9));

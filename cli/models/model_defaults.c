@@ -1,0 +1,58 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* The method and tolerances of a model's default run, and where each comes from: the
+ * model's own (a built-in model's, dyn_model.method or .rtol in a C model, @ meth or
+ * @ rtol in a model file), or the one rule for models that name none (DYN_MODEL_METHOD,
+ * DYN_MODEL_RTOL, DYN_MODEL_ATOL of model.h). For run --verbose and info. */
+#include <stdio.h>
+#include <string.h>
+
+#include "cli.h"
+
+const char *cli_model_method(const dyn_model *m)
+{
+    return m->method ? m->method : DYN_MODEL_METHOD;
+}
+
+double cli_model_rtol(const dyn_model *m)
+{
+    return m->rtol > 0.0 ? m->rtol : DYN_MODEL_RTOL;
+}
+
+double cli_model_atol(const dyn_model *m)
+{
+    return m->atol > 0.0 ? m->atol : DYN_MODEL_ATOL;
+}
+
+static int has_ext(const char *path, const char *ext)
+{
+    size_t n = strlen(path), e = strlen(ext);
+    return n > e && strcmp(path + n - e, ext) == 0;
+}
+
+const char *cli_model_default_source(const dyn_model *m, cli_default_field field, char *buf,
+                                     size_t size)
+{
+    static const char *const c_names[] = {"method", "rtol", "atol"};
+    static const char *const ode_names[] = {"meth", "rtol", "atol"};
+    const int own = field == CLI_DEFAULT_METHOD ? m->method != NULL
+                    : field == CLI_DEFAULT_RTOL ? m->rtol > 0.0
+                                                : m->atol > 0.0;
+    if (!own)
+        return "dynkit's default for models that name none";
+    if (!m->source)
+        return "the model's";
+    const char *slash = strrchr(m->source, '/');
+    const char *base = slash ? slash + 1 : m->source;
+    if (has_ext(base, ".c"))
+        snprintf(buf, size, "dyn_model.%s in %s", c_names[field], base);
+    else if (has_ext(base, ".ode"))
+        snprintf(buf, size, "@ %s in %s", ode_names[field], base);
+    else
+        snprintf(buf, size, "set in %s", base);
+    return buf;
+}
+
+const char *cli_time_unit(const dyn_model *m)
+{
+    return m->time_unit && *m->time_unit ? m->time_unit : "s";
+}

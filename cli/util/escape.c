@@ -1,0 +1,145 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* Escaping of outside text for XML (SVG, HTML), for JSON inside HTML's <script> and for a
+ * terminal (escape.h): W3C XML 1.0 sec. 2.2 (Char) and 2.4, RFC 8259 sec. 7, RFC 3629
+ * (UTF-8), HTML's script data state (WHATWG HTML, 13.2.5.4), ECMA-48's C0 and C1 control
+ * functions. */
+#include <string.h>
+
+#include "util/escape.h"
+
+#define REPLACEMENT 0xFFFDL
+
+/* The character that starts at *p, p moved past it; REPLACEMENT for a byte that does not
+ * start a well-formed UTF-8 sequence (that byte alone is consumed). */
+static long next_char(const unsigned char **p)
+{
+    const unsigned char *s = *p;
+    const unsigned c = s[0];
+    int len;
+    long v, min;
+    if (c < 0x80) {
+        *p = s + 1;
+        return (long)c;
+    }
+    if (c >= 0xC2 && c <= 0xDF)
+        len = 2, v = c & 0x1F, min = 0x80;
+    else if (c >= 0xE0 && c <= 0xEF)
+        len = 3, v = c & 0x0F, min = 0x800;
+    else if (c >= 0xF0 && c <= 0xF4)
+        len = 4, v = c & 0x07, min = 0x10000;
+    else {
+        *p = s + 1;
+        return REPLACEMENT;
+    }
+    for (int k = 1; k < len; k++) {
+        if ((s[k] & 0xC0) != 0x80) { /* also stops at the terminating NUL */
+            *p = s + 1;
+            return REPLACEMENT;
+        }
+        v = (v << 6) | (s[k] & 0x3F);
+    }
+    if (v < min || v > 0x10FFFF || (v >= 0xD800 && v <= 0xDFFF)) {
+        *p = s + 1;
+        return REPLACEMENT;
+    }
+    *p = s + len;
+    return v;
+}
+
+/* Character v in UTF-8. */
+static int put_utf8(FILE *out, long v)
+{
+    unsigned char b[4];
+    int n;
+    if (v < 0x80)
+        b[0] = (unsigned char)v, n = 1;
+    else if (v < 0x800)
+        b[0] = (unsigned char)(0xC0 | (v >> 6)), b[1] = (unsigned char)(0x80 | (v & 0x3F)), n = 2;
+    else if (v < 0x10000)
+        b[0] = (unsigned char)(0xE0 | (v >> 12)), b[1] = (unsigned char)(0x80 | ((v >> 6) & 0x3F)),
+        b[2] = (unsigned char)(0x80 | (v & 0x3F)), n = 3;
+    else
+        b[0] = (unsigned char)(0xF0 | (v >> 18)), b[1] = (unsigned char)(0x80 | ((v >> 12) & 0x3F)),
+        b[2] = (unsigned char)(0x80 | ((v >> 6) & 0x3F)), b[3] = (unsigned char)(0x80 | (v & 0x3F)),
+        n = 4;
+    return fwrite(b, 1, (size_t)n, out) != (size_t)n;
+}
+
+int cli_xml_escaped(FILE *out, const char *s)
+{
+    int bad = 0;
+    const unsigned char *p = (const unsigned char *)s;
+    while (p && *p && !bad) {
+        long v = next_char(&p);
+        switch (v) {
+        case '<': bad = fputs("&lt;", out) < 0; break;
+        case '>': bad = fputs("&gt;", out) < 0; break;
+        case '&': bad = fputs("&amp;", out) < 0; break;
+        case '"': bad = fputs("&quot;", out) < 0; break;
+        case '\'': bad = fputs("&#39;", out) < 0; break;
+        case '\t':
+        case '\n':
+        case '\r': bad = fprintf(out, "&#%ld;", v) < 0; break;
+        default:
+            /* XML 1.0's Char: no other control character, no U+FFFE or U+FFFF */
+            if (v < 0x20 || v == 0x7F || v == 0xFFFE || v == 0xFFFF)
+                v = REPLACEMENT;
+            bad = put_utf8(out, v);
+        }
+    }
+    return bad;
+}
+
+int cli_json_escaped(FILE *out, const char *s)
+{
+    int bad = fputc('"', out) == EOF;
+    const unsigned char *p = (const unsigned char *)(s ? s : "");
+    while (*p && !bad) {
+        const long v = next_char(&p);
+        switch (v) {
+        case '"': bad = fputs("\\\"", out) < 0; break;
+        case '\\': bad = fputs("\\\\", out) < 0; break;
+        case '\n': bad = fputs("\\n", out) < 0; break;
+        case '\t': bad = fputs("\\t", out) < 0; break;
+        case '\r': bad = fputs("\\r", out) < 0; break;
+        default:
+            if (v < 0x20 || v == '<' || v == '>' || v == '&' || v == 0x2028 || v == 0x2029 ||
+                v == REPLACEMENT)
+                bad = fprintf(out, "\\u%04lx", v) < 0;
+            else
+                bad = put_utf8(out, v);
+        }
+    }
+    return bad | (fputc('"', out) == EOF);
+}
+
+const char *cli_terminal_text(const char *s, int lines, char *buf, size_t size)
+{
+    size_t used = 0, cut = 0; /* cut: where "..." fits after the text kept */
+    const unsigned char *p = (const unsigned char *)(s ? s : "");
+    while (*p) {
+        if (used + 4 <= size)
+            cut = used;
+        const unsigned char *start = p;
+        const long v = next_char(&p);
+        const size_t len = (size_t)(p - start);
+        /* kept: printable characters, and tab and line feed when asked */
+        const int keep = (v >= 0x20 && v != 0x7F && !(v >= 0x80 && v <= 0x9F) &&
+                          !(v == REPLACEMENT && len == 1)) ||
+                         (lines && (v == '\t' || v == '\n'));
+        const size_t need = keep ? len : 4 * len;
+        if (used + need + 1 > size) { /* no room for it and the NUL */
+            memcpy(buf + cut, "...", 4);
+            return buf;
+        }
+        if (keep) {
+            memcpy(buf + used, start, len);
+            used += len;
+        } else {
+            for (size_t k = 0; k < len; k++)
+                used += (size_t)snprintf(buf + used, size - used, "\\x%02X", start[k]);
+        }
+    }
+    buf[used] = '\0';
+    return buf;
+}

@@ -4,7 +4,8 @@
  * `dynkit inverse cart.mech` with problem 4a's prescribed motion against the hand-derived
  * `dynkit inverse cart` (1e-8 of the forces); a prescribed pendulum angle's torque
  * m l^2 phi'' + m g l sin(phi) by hand; --project-init's minimal-norm speeds in closed form
- * and a four-bar closed to rounding; states that violate a constraint refused by name. */
+ * and a four-bar closed to rounding; states that violate a constraint refused by name;
+ * units that do not add up named at their place. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -187,6 +188,61 @@ static void test_project_init_closes_the_fourbar(void **state_)
     cli_free(&r);
 }
 
+/* text as bad.mech, run: exit 2 with where and what in the message */
+static void refused(const char *text, const char *where, const char *what)
+{
+    FILE *f = fopen(cli_path("bad.mech"), "w");
+    assert_non_null(f);
+    fputs(text, f);
+    fclose(f);
+    cli_result r = cli("run %s", cli_path("bad.mech"));
+    CHECK(r.status == 2 && strstr(r.err, where) && strstr(r.err, what),
+          "status %d, expected '%s' and '%s' in:\n%s\nfor:\n%s", r.status, where, what, r.err,
+          text);
+    cli_free(&r);
+}
+
+/* Units that do not add up, at their place with both units: a sum of m and 1/s, sin of a
+ * length, a force in kg/s, a mass in kg m, the two sides of a constraint, a constraint
+ * against its declared unit, a prescribed motion against its coordinate's. Undeclared
+ * units and numbers written in a formula are not checked (l/2 is m). */
+static void test_units_that_do_not_add_up_are_named(void **state_)
+{
+    (void)state_;
+    const char *head = "coord x=1 [m], phi=0 [rad]\npar m=1 [kg], l=1 [m], w=2 [1/s], F=1 [N], "
+                       "k=3\n";
+    char buf[1024];
+    snprintf(buf, sizeof buf, "%spoint p mass=m at (x + w, 0, 0)\n", head);
+    refused(buf, "bad.mech:3:22:", "the units do not add up: the terms are in m and in 1/s");
+    snprintf(buf, sizeof buf, "%spoint p mass=m at (x, sin(x), 0)\n", head);
+    refused(buf, "bad.mech:3:27:", "sin of a quantity in m");
+    snprintf(buf, sizeof buf, "%spoint p mass=m at (x, 0, 0)\nforce f on p = (F, m*w, 0)\n",
+             head);
+    refused(buf, "bad.mech:4:20:", "force 'f' is in kg/s, not in N");
+    snprintf(buf, sizeof buf, "%sbody b mass=m*l inertia=(1, 1, 1) at (x, 0, 0) rot z:phi\n",
+             head);
+    refused(buf, "bad.mech:3:13:", "the mass of 'b' is in kg m, not in kg");
+    snprintf(buf, sizeof buf, "%spoint p mass=m at (x, l*phi, 0)\nconstraint c [m]: x = dx\n",
+             head);
+    refused(buf, "bad.mech:4:23:", "the sides of constraint 'c' are in m and in m/s");
+    snprintf(buf, sizeof buf, "%spoint p mass=m at (x, l*phi, 0)\nconstraint c [m/s]: x = l\n",
+             head);
+    refused(buf, "bad.mech:4:21:", "constraint 'c' is in m, not in m/s");
+    snprintf(buf, sizeof buf, "%spoint p mass=m at (x, l*phi, 0)\nprescribe d: x = w*t\n",
+             head);
+    refused(buf, "bad.mech:4:18:", "the sides of prescribe 'd' are in m and in 1");
+    /* lenient: k has no unit, numbers take the unit they need */
+    snprintf(buf, sizeof buf, "%spoint p mass=m at (x + k + 1, l/2*sin(phi) + 0.5, 0)\n"
+             "init x=1\n", head);
+    FILE *f = fopen(cli_path("good.mech"), "w");
+    assert_non_null(f);
+    fputs(buf, f);
+    fclose(f);
+    cli_result r = cli("run %s --tspan 0:0.1", cli_path("good.mech"));
+    CHECK(r.status == 0, "%s", r.err);
+    cli_free(&r);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -195,6 +251,7 @@ int main(void)
         cmocka_unit_test(test_inverse_refuses_what_it_cannot_do),
         cmocka_unit_test(test_project_init_takes_the_nearest_speeds),
         cmocka_unit_test(test_project_init_closes_the_fourbar),
+        cmocka_unit_test(test_units_that_do_not_add_up_are_named),
     };
     return cmocka_run_group_tests(tests, setup_all, NULL);
 }

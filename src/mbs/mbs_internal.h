@@ -175,6 +175,8 @@ void mbs_parse_joint(lang_ctx *c, lang_lexer *lx, mbs_body *b, int kind);
 int mbs_geom_statement(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos);
 /* the `input` parameters into the model's inputs, after lang_check */
 void mbs_resolve_inputs(lang_ctx *c, mbs_model *mb);
+/* the units of the formulas against the declared ones, after lang_check (mbs_units.c) */
+void mbs_check_units(lang_ctx *c, mbs_model *mb);
 /* the equations of motion, after lang_check (mbs_derive.c) */
 void mbs_derive(lang_ctx *c, mbs_model *mb);
 /* every subtree repeated among the derived quantities (fixed quantities from nfix0 on)

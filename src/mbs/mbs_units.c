@@ -357,7 +357,8 @@ static void expect(uctx *x, int k, const char *want, const char *what)
     if (k < 0)
         return;
     const unit u = of_input(x, k), w = declared(want);
-    if (u.kind == U_KNOWN && w.kind == U_KNOWN && !same(u, w))
+    /* a formula in 1 or rad (unitless coordinates of a sketch) is taken anywhere */
+    if (u.kind == U_KNOWN && w.kind == U_KNOWN && !same(u, w) && !same(u, number))
         lang_fail(x->c, start_of(LVEC_AT(x->c->m.fixes, lang_formula, k).expr),
                   "the units do not add up: %s is in %s, not in %s", what, show(x->c, u),
                   show(x->c, w));

@@ -9,7 +9,8 @@
  * torque-free symmetric body's closed-form motion, and the growth rate of the spin about
  * the intermediate axis; joints along tilted axes (a pendulum's frequency, a sled on an
  * incline); a free joint with Euler parameters against plane_quat.mech; a holonomic
- * constraint with declared speeds against cartesian_pendulum.mech; and the errors of joints and speeds at FILE:LINE:COL. */
+ * constraint with declared speeds against cartesian_pendulum.mech; a chain of 8 revolute
+ * joints against its formulas; and the errors of joints and speeds at FILE:LINE:COL. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -287,6 +288,59 @@ static void test_free_joint_with_euler_parameters(void **state_)
     cli_free(&rb);
 }
 
+/* A pendulum of 8 links by revolute joints, each angle from the link before, against the
+ * same pendulum by formulas (each link's absolute angle the sum of the joints' angles):
+ * the same motion within 1e-10 rad over 2 s. */
+static void test_chain_of_joints_matches_the_formulas(void **state_)
+{
+    (void)state_;
+    enum { LINKS = 8 };
+    static char joints[16384], formulas[16384];
+    char *j = joints, *f = formulas;
+    const char *head = "par g=9.81 [m/s^2], l=0.5 [m]\ngravity 0, -g, 0\ncoord q0=0.3";
+    j += sprintf(j, "%s", head);
+    f += sprintf(f, "%s", head);
+    for (int i = 1; i < LINKS; i++) {
+        j += sprintf(j, ", q%d=%.2f", i, 0.1 * (i % 5) - 0.2);
+        f += sprintf(f, ", q%d=%.2f", i, 0.1 * (i % 5) - 0.2);
+    }
+    j += sprintf(j, "\n");
+    f += sprintf(f, "\n");
+    char sum[1024] = "", x[8192] = "", y[8192] = "";
+    for (int i = 0; i < LINKS; i++) {
+        char parent[16] = "ground";
+        if (i)
+            snprintf(parent, sizeof parent, "b%d", i - 1);
+        j += sprintf(j, "point b%d mass=1 revolute %s z:q%d pivot (0, l, 0)\n", i, parent, i);
+        snprintf(sum + strlen(sum), sizeof sum - strlen(sum), "%sq%d", i ? "+" : "", i);
+        snprintf(x + strlen(x), sizeof x - strlen(x), "+l*sin(%s)", sum);
+        snprintf(y + strlen(y), sizeof y - strlen(y), "-l*cos(%s)", sum);
+        f += sprintf(f, "point b%d mass=1 at (%s, %s, 0)\n", i, x, y);
+    }
+    CHECK(strstr(joints, "revolute b0 z:q1") && strstr(joints, "revolute ground z:q0"), "%s",
+          joints);
+    char pj[512], pf[512];
+    snprintf(pj, sizeof pj, "%s", cli_path("chain_joints.mech"));
+    snprintf(pf, sizeof pf, "%s", cli_path("chain_formulas.mech"));
+    write_file(pj, joints);
+    write_file(pf, formulas);
+    cli_result ra = run_ok("run %s %s --tspan 0:2 --step 0.1", pj, TIGHT);
+    cli_result rb = run_ok("run %s %s --tspan 0:2 --step 0.1", pf, TIGHT);
+    static double a[MAXROWS], b[MAXROWS];
+    double worst = 0.0;
+    for (int i = 0; i < LINKS; i++) {
+        char name[16];
+        snprintf(name, sizeof name, "q%d", i);
+        const long n = column(ra.out, name, a);
+        CHECK(n == 21 && column(rb.out, name, b) == n, "rows %ld", n);
+        for (long k = 0; k < n; k++)
+            worst = fmax(worst, fabs(a[k] - b[k]));
+    }
+    CHECK(worst < 1e-10, "largest difference %.3g rad", worst);
+    cli_free(&ra);
+    cli_free(&rb);
+}
+
 /* The pendulum of cartesian_pendulum.mech (x, y held on the rod by a holonomic constraint)
  * with the velocity's radial and tangential components ur, ut as speeds: the same motion
  * and the same rod force (the multiplier of the same constraint), ur kept at 0. */
@@ -376,6 +430,7 @@ int main(void)
         cmocka_unit_test(test_intermediate_axis_is_unstable),
         cmocka_unit_test(test_tilted_axes),
         cmocka_unit_test(test_free_joint_with_euler_parameters),
+        cmocka_unit_test(test_chain_of_joints_matches_the_formulas),
         cmocka_unit_test(test_constraint_with_declared_speeds),
         cmocka_unit_test(test_joint_and_speed_errors),
     };

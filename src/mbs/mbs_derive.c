@@ -306,10 +306,10 @@ static void unit_axis(dctx *d, const mbs_body *b, node *n[3])
 
 /* rotation i of b: elementary, or about a joint's axis n (axis 3), passive:
  * E = cos(a) I + (1 - cos(a)) n n' - sin(a) [n x] */
-static void factor(dctx *d, const mbs_body *b, int i, node *angle, node *E[9])
+static void factor(dctx *d, const mbs_body *b, int axis, node *angle, node *E[9])
 {
-    if (b->axis[i] < 3) {
-        elementary(d, b->axis[i], angle, E);
+    if (axis < 3) {
+        elementary(d, axis, angle, E);
         return;
     }
     node *n[3], *cs = lang_fun1(d->c, F_COS, angle), *sn = lang_fun1(d->c, F_SIN, angle);
@@ -328,26 +328,58 @@ static void factor(dctx *d, const mbs_body *b, int i, node *angle, node *E[9])
         }
 }
 
+/* b's rotations: its own, after those of its parent's chain when both are elementary (a
+ * joint's rotation about the same axis as the last one adds to its angle), so that a chain
+ * of joints gives R = E_k ... E_1 as a body placed by rot; into b->caxis, b->cangle */
+static int rotation_chain(dctx *d, mbs_body *b)
+{
+    const mbs_body *p = b->joint && b->parent >= 0
+                            ? &LVEC_AT(d->mb->bodies, mbs_body, b->parent) : NULL;
+    int n = 0, elementary_only = b->quat[0] < 0;
+    b->chained = p && p->frame && p->cn >= 0 && elementary_only && p->cn + b->nrot <= MBS_MAX_CHAIN;
+    for (int i = 0; i < b->nrot; i++)
+        elementary_only &= b->axis[i] < 3;
+    b->chained &= elementary_only;
+    if (b->chained) {
+        n = p->cn;
+        memcpy(b->caxis, p->caxis, (size_t)n * sizeof *b->caxis);
+        memcpy(b->cangle, p->cangle, (size_t)n * sizeof *b->cangle);
+    }
+    for (int i = 0; i < b->nrot; i++) {
+        node *a = input(d, b->angle[i]);
+        if (b->chained && i == 0 && n > 0 && b->caxis[n - 1] == b->axis[0]) {
+            b->cangle[n - 1] = add(d, b->cangle[n - 1], a);
+            continue;
+        }
+        b->caxis[n] = b->axis[i];
+        b->cangle[n++] = a;
+    }
+    b->cn = elementary_only ? n : -1;
+    return n;
+}
+
 static void rotation(dctx *d, mbs_body *b, node **Jw, node *w[3])
 {
+    b->cn = -1;
     if (b->quat[0] >= 0) {
         quaternion(d, b, Jw, w);
         return;
     }
-    node *ang[MBS_MAX_ROT], *P[MBS_MAX_ROT][9];
+    const int nr = rotation_chain(d, b);
+    const int *axes = b->caxis;
+    node **ang = b->cangle, *P[MBS_MAX_CHAIN][9];
     identity(d, b->R);
-    for (int i = 0; i < b->nrot; i++) {
+    for (int i = 0; i < nr; i++) {
         node *E[9];
-        ang[i] = input(d, b->angle[i]);
-        factor(d, b, i, ang[i], E);
+        factor(d, b, axes[i], ang[i], E);
         matmul(d, E, b->R, b->R);
     }
     node *Pr[9];
     identity(d, Pr);
-    for (int i = b->nrot - 1; i >= 0; i--) { /* P_i = E_last ... E_(i+1) */
+    for (int i = nr - 1; i >= 0; i--) { /* P_i = E_last ... E_(i+1) */
         memcpy(P[i], Pr, sizeof Pr);
         node *E[9];
-        factor(d, b, i, ang[i], E);
+        factor(d, b, axes[i], ang[i], E);
         matmul(d, Pr, E, Pr);
     }
     for (int j = 0; j < 3; j++) {
@@ -355,8 +387,8 @@ static void rotation(dctx *d, mbs_body *b, node **Jw, node *w[3])
         for (int k = 0; k < d->n; k++)
             Jw[3 * k + j] = num(d, 0.0);
     }
-    for (int i = 0; i < b->nrot; i++) {
-        const int a = b->axis[i];
+    for (int i = 0; i < nr; i++) {
+        const int a = axes[i];
         node *dth_t = dt(d, ang[i]), *n[3];
         if (a == 3)
             unit_axis(d, b, n);
@@ -408,7 +440,7 @@ static void joint_pose(dctx *d, mbs_body *b, node **Jw)
             a[j] = add(d, a[j], mul(d, n[j], input(d, b->slide)));
         pv[j] = input(d, b->pivot[j]);
     }
-    if (p && p->frame) {
+    if (p && p->frame && !b->chained) {
         node *Rj[9];
         memcpy(Rj, b->R, sizeof Rj);
         matmul(d, Rj, p->R, b->R);
@@ -418,6 +450,8 @@ static void joint_pose(dctx *d, mbs_body *b, node **Jw)
             for (int j = 0; j < 3; j++)
                 dst[j] = add(d, dst[j], dot(d, Rj + 3 * j, src));
         }
+        to_n(d, p->R, a, r);
+    } else if (p && p->frame) {
         to_n(d, p->R, a, r);
     } else {
         memcpy(r, a, sizeof r);

@@ -10,6 +10,7 @@
 #include "lang/lang_internal.h"
 
 #define MBS_MAX_ROT 12 /* elementary rotations of one body */
+#define MBS_MAX_CHAIN 24 /* elementary rotations of a body and its parents' joints */
 #define MBS_DEFAULT_ALPHA 10.0 /* Baumgarte's rate [1/s] unless `stabilize` says */
 
 /* An input is an expression of the file, kept as a fixed quantity of the model (not a
@@ -64,6 +65,12 @@ typedef struct mbs_body {
     double *Jv0, *Jw0;  /* (3 n) their values at the initial state */
     node *v[3], *w[3], *gv[3], *gw[3];
     node **Jws, *ws[3]; /* symbolic J_w and w (before they are fixed), for the children */
+    /* the elementary rotations from N to B, the parent's chain and the joint's (-1: not
+     * elementary rotations only), so that a child's R is a product of elementary
+     * rotations rather than of the parent's matrix; chained: the parent's are among them */
+    int cn, chained;
+    int caxis[MBS_MAX_CHAIN];
+    node *cangle[MBS_MAX_CHAIN];
     node *vs[3];        /* v as formulas of the states (before it is fixed), for wheels */
 } mbs_body;
 

@@ -6,6 +6,7 @@
 # over families of problems, stiff, `dynkit report`, then the table of targets), its
 # fixed-step section again from a tree
 # built at -O2 (build-bench-O2), bench_jit (models compiled at run time; not with --only),
+# bench_mech and bench_mech_sympy.py (mechanisms, against sympy.physics.mechanics),
 # bench_sweep, bench_band (large stiff systems), bench_step (one step of the adaptive pairs)
 # and bench_output (numbers as text, every
 # sample written; none of them with --only) and, when hyperfine is installed, times
@@ -23,7 +24,7 @@ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DDYNKIT_BUILD_BENCH=ON \
   -DDYNKIT_BUILD_TESTS=OFF >/dev/null
 cmake --build "$build" -j"$(nproc)" --target bench_suite bench_fixed bench_sweep bench_band \
   bench_output bench_step dynkit_cli >/dev/null
-cmake --build "$build" -j"$(nproc)" --target bench_jit >/dev/null 2>&1 || true # needs src/jit
+cmake --build "$build" -j"$(nproc)" --target bench_jit bench_mech >/dev/null 2>&1 || true # needs src/jit
 "$build/bench/bench_suite" "$@"
 
 # the fixed-step section again from a tree built at -O2 (the default of most builds and
@@ -58,6 +59,21 @@ done
 if [ "$only" -eq 0 ] && [ -x "$build/bench/bench_jit" ]; then
   echo
   if [ "$quick" -eq 1 ]; then "$build/bench/bench_jit" --quick; else "$build/bench/bench_jit"; fi
+fi
+# mechanisms (bench_mech, then against sympy.physics.mechanics): with every run that is not
+# limited by --only
+if [ "$only" -eq 0 ] && [ -x "$build/bench/bench_mech" ]; then
+  echo
+  if [ "$quick" -eq 1 ]; then
+    "$build/bench/bench_mech" --quick
+  else
+    "$build/bench/bench_mech"
+    echo
+    rc=0
+    /usr/bin/python3 bench/bench_mech_sympy.py "$build/bench/bench_mech" "$build/dynkit" || rc=$?
+    if [ "$rc" -eq 77 ]; then echo "(SymPy, NumPy or SciPy is missing: no comparison with sympy.physics.mechanics)"
+    elif [ "$rc" -ne 0 ]; then exit "$rc"; fi
+  fi
 fi
 # sweeps (bench_sweep): with every run that is not limited by --only
 if [ "$only" -eq 0 ]; then

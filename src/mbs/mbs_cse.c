@@ -95,6 +95,12 @@ static int same(const cse_ent *a, const node *e, const int *kids)
 /* the number of e (its children numbered first) */
 static int number(cse *s, const node *e)
 {
+    while (e->kind == N_FIX) { /* a quantity that only names another value is that value */
+        const node *x = LVEC_AT(s->c->m.fixes, lang_formula, e->index).expr;
+        if (x->nargs)
+            break;
+        e = x;
+    }
     unsigned ph = ptr_hash(e) & (unsigned)(s->pcap - 1);
     while (s->pkey[ph]) {
         if (s->pkey[ph] == e)

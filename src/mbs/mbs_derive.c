@@ -8,7 +8,7 @@
  *   d(J qd + v_t)/dt, and for each constraint its row D = dh/dqd of its velocity form h
  *   with its convective term;
  *   numeric, per evaluation: M = sum m J_v'J_v + J_w' I J_w, F = sum J_v'(m g_N - m g_v) +
- *   J_w'(-I g_w - w x I w) + the loads' J'f, qdd = M^-1 F by Cholesky, then the
+ *   J_w'(-I g_w - w x I w) + the loads' J'f, qdd = M^-1 F by L D L', then the
  *   multipliers from the Schur complement (D M^-1 D') lambda = -(D M^-1 F + conv + stab)
  *   and qdd += M^-1 D' lambda (Baumgarte's stab = 2 a h + a^2 f for f(q,t) = 0; none for
  *   a constraint on the speeds, which has no position to drift from). */
@@ -547,27 +547,30 @@ static void point_fixes(dctx *d, const char *role, node *r[3], node **J, node *v
     fix_vec(d, lang_printf(d->c, "%s_v", role), vel, 3);
 }
 
-/* ---- dense Cholesky in fixed quantities ---- */
+/* ---- dense L D L' factorization in fixed quantities ---- */
 
+/* A = L D L' (L unit lower triangular, below the diagonal in L; dinv = 1/D): one division
+ * per column and no square root (Golub and Van Loan, "Matrix Computations", 4.1.2) */
 static void cholesky(dctx *d, const char *tag, node **A, int n, node **L, node **dinv)
 {
+    node **T = lang_alloc(d->c, (size_t)n * n * sizeof *T); /* T_ij = L_ij D_j */
     for (int j = 0; j < n; j++) {
         node *s = A[j * n + j];
         for (int k = 0; k < j; k++)
-            s = sub(d, s, mul(d, L[j * n + k], L[j * n + k]));
-        L[j * n + j] = fix(d, lang_printf(d->c, "%s_L%d_%d", tag, j, j),
-                           lang_fun1(d->c, F_SQRT, s));
-        dinv[j] = fix(d, lang_printf(d->c, "%s_inv%d", tag, j),
-                      lang_div(d->c, num(d, 1.0), L[j * n + j]));
+            s = sub(d, s, mul(d, T[j * n + k], L[j * n + k]));
+        dinv[j] = fix(d, lang_printf(d->c, "%s_inv%d", tag, j), lang_div(d->c, num(d, 1.0), s));
         for (int i = j + 1; i < n; i++) {
             node *t = A[i * n + j];
             for (int k = 0; k < j; k++)
-                t = sub(d, t, mul(d, L[i * n + k], L[j * n + k]));
-            L[i * n + j] = fix(d, lang_printf(d->c, "%s_L%d_%d", tag, i, j), mul(d, t, dinv[j]));
+                t = sub(d, t, mul(d, T[i * n + k], L[j * n + k]));
+            T[i * n + j] = fix(d, lang_printf(d->c, "%s_T%d_%d", tag, i, j), t);
+            L[i * n + j] = fix(d, lang_printf(d->c, "%s_L%d_%d", tag, i, j),
+                               mul(d, T[i * n + j], dinv[j]));
         }
     }
 }
 
+/* x = A^-1 b with A's factors */
 static void chol_solve(dctx *d, const char *tag, node **L, node **dinv, int n, node *const *b,
                        node **x)
 {
@@ -576,13 +579,13 @@ static void chol_solve(dctx *d, const char *tag, node **L, node **dinv, int n, n
         node *s = b[i];
         for (int k = 0; k < i; k++)
             s = sub(d, s, mul(d, L[i * n + k], y[k]));
-        y[i] = fix(d, lang_printf(d->c, "%s_y%d", tag, i), mul(d, s, dinv[i]));
+        y[i] = fix(d, lang_printf(d->c, "%s_y%d", tag, i), s);
     }
     for (int i = n - 1; i >= 0; i--) {
-        node *s = y[i];
+        node *s = mul(d, y[i], dinv[i]);
         for (int k = i + 1; k < n; k++)
             s = sub(d, s, mul(d, L[k * n + i], x[k]));
-        x[i] = fix(d, lang_printf(d->c, "%s_x%d", tag, i), mul(d, s, dinv[i]));
+        x[i] = fix(d, lang_printf(d->c, "%s_x%d", tag, i), s);
     }
 }
 

@@ -10,6 +10,7 @@
  *   and each run it asks for is in the page or the plot, adaptive methods too (sampled on
  *   the grid of STEP). */
 #define _POSIX_C_SOURCE 200809L
+#include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -25,6 +26,29 @@
 
 /* A file of the temporary directory (malloc'd). */
 static char *file_in_tmp(const char *name) { return cli_read_file(cli_path(name), NULL); }
+
+/* The last value of column col (0 = t) of the page's series labelled label, or NaN. */
+static double last_series_value(const char *html, const char *label, int col)
+{
+    char want[160];
+    snprintf(want, sizeof want, "\"label\":\"%s\"", label);
+    const char *p = strstr(html, want);
+    p = p ? strstr(p, "\"data\":[[") : NULL;
+    if (!p)
+        return NAN;
+    p += strlen("\"data\":[");
+    for (int c = 0; c < col && p; c++) {
+        p = strchr(p, ']');
+        p = p ? p + 2 : NULL; /* "],[" */
+    }
+    const char *end = p ? strchr(p, ']') : NULL;
+    if (!end)
+        return NAN;
+    const char *q = end;
+    while (q > p && q[-1] != ',' && q[-1] != '[')
+        q--;
+    return strtod(q, NULL);
+}
 
 static int count(const char *text, const char *what)
 {
@@ -337,13 +361,33 @@ static void test_animate_pages(void **state)
     html = file_in_tmp("cart.html");
     check_self_contained(html, "cart");
     CHECK(strstr(html, "\"length_cart\":3") != NULL, "--set is not in the page");
-    /* without --forces the cart's forces are its constant parameters, not the homework's
-     * table: the page says so and names the homework's run */
+    /* --set chooses another run: the cart's forces are then its constant parameters, not
+     * the homework's table; the page says so and how to get the homework's run */
     CHECK(strstr(html, "\"shows\":\"Shown: a run with the inputs held constant") &&
               strstr(html, "Fx = -50 N, Fy = ") &&
-              strstr(html, "dynkit inverse cart -o forces.csv, then dynkit animate cart "
-                           "--forces forces.csv --method heun"),
+              strstr(html, "dynkit animate cart without run options plays the homework's run"),
           "the cart's page does not say what it shows");
+    free(html);
+    /* without run options: the homework's run (problem 4), whose final sX is the report's
+     * 4c answer, beside the prescribed path, which ends at -v0 te = -99.8 m */
+    r = cli("animate cart --output '%s/cart-default.html'", cli_tmpdir);
+    CHECK(r.status == 0, "animate cart exit %d: %s", r.status, r.err);
+    cli_free(&r);
+    html = file_in_tmp("cart-default.html");
+    CHECK(strstr(html, "\"shows\":\"Shown: the homework's run (problem 4)") != NULL,
+          "the cart's default page does not say it is the homework's run");
+    r = cli("report --json");
+    const char *key = r.status == 0 ? strstr(r.out, "\"cart.forward_sX_m\":") : NULL;
+    CHECK(key != NULL, "report --json has no cart.forward_sX_m");
+    const double report_sX = strtod(key + strlen("\"cart.forward_sX_m\":"), NULL);
+    cli_free(&r);
+    const double fw_sX = last_series_value(html, "forward run (4c): heun, h = 0.01 s, forces held", 1);
+    const double pr_sX = last_series_value(html, "prescribed path (4a)", 1);
+    CHECK(fabs(fw_sX - report_sX) <= 1e-5 * fabs(report_sX),
+          "the page's forward run ends at sX = %.9g m, the report's 4c at %.9g m", fw_sX,
+          report_sX);
+    CHECK(fabs(pr_sX - (-20.0 * 4.99)) <= 1e-9,
+          "the page's prescribed path ends at sX = %.17g m, not -v0 te = -99.8 m", pr_sX);
     free(html);
     /* the homework's run that the page names: nothing to explain */
     r = cli_in_tmpdir("inverse cart -o forces.csv --quiet");

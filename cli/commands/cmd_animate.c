@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "dynkit/cart.h"
+#include "commands/animate_homework.h"
 #include "dynkit/mbs.h"
 #include "util/out_file.h"
 #include "pages/pages.h"
@@ -24,7 +25,9 @@ static void animate_help(void)
          "(drag to rotate, wheel to zoom), the cart from above with the track of its wheels,\n"
          "the pendulum, the phase plane of van der Pol, a mechanism file NAME.mech from its\n"
          "geometry (in 3D, or in 2D when it moves in a plane), and for every model the time\n"
-         "series of its states and outputs with a moving cursor.\n"
+         "series of its states and outputs with a moving cursor. The cart without run options\n"
+         "plays the homework's run (problem 4: the forward run on the force table of the\n"
+         "prescribed path, and that path).\n"
          "\n"
          "  --compare M[:H]      overlay a run with method M (and step H; default the run's\n"
          "                       step), repeatable: --compare euler --compare rk4:0.001\n"
@@ -54,17 +57,24 @@ typedef struct animate_page {
     const cli_view *v;
     const cli_ani *ani;
     const dyn_mech_scene *mech;
+    int homework; /* the homework's run (animate_homework.c) */
 } animate_page;
 
 /* What the run shows when the model has inputs and no --forces table was given: the inputs
  * held at the parameters of their names (the cart's Fx = -50 N), which is not a homework's
  * run; said on the page, with the command of the homework's run for the cart. */
-static void write_shows(cli_json *j, const cli_run *run)
+static void write_shows(cli_json *j, const cli_run *run, int homework)
 {
     const dyn_model *m = run->model;
+    char text[768];
+    if (homework) {
+        cli_animate_homework_shows(text, sizeof text);
+        cli_json_key(j, "shows");
+        cli_json_string(j, text);
+        return;
+    }
     if (m->n_inputs <= 0 || run->forces_path)
         return;
-    char text[768];
     size_t n = (size_t)snprintf(text, sizeof text,
                                 "Shown: a run with the inputs held constant, as no --forces "
                                 "table was given");
@@ -79,9 +89,8 @@ static void write_shows(cli_json *j, const cli_run *run)
     }
     if (n < sizeof text && m == &dyn_model_cart)
         snprintf(text + n, sizeof text - n,
-                 ". The homework's run (problem 4) drives the cart with the forces of its "
-                 "prescribed path: dynkit inverse cart -o forces.csv, then dynkit animate cart "
-                 "--forces forces.csv --method heun with the --init options it prints.");
+                 ". dynkit animate cart without run options plays the homework's run "
+                 "(problem 4).");
     else if (n < sizeof text)
         snprintf(text + n, sizeof text - n, ".");
     cli_json_key(j, "shows");
@@ -97,7 +106,7 @@ static int page_data(cli_json *j, void *ctx)
     cli_json_string(j, "animate");
     cli_json_key(j, "model");
     cli_json_model(j, v->run.model, v->run.par);
-    write_shows(j, &v->run);
+    write_shows(j, &v->run, pg->homework);
     cli_json_key(j, "span");
     const double span[2] = {v->run.t0, v->run.t1};
     cli_json_numbers(j, span, 2, 1);
@@ -166,6 +175,7 @@ int cli_cmd_animate(int argc, char **argv)
     cli_ani ani;
     memset(&ani, 0, sizeof ani);
     int rc = cli_view_parse("animate", n_args, args, extra, extra_values, &v);
+    const int homework = rc == CLI_OK && cli_animate_homework_applies(&v, n_args, args);
     if (rc == CLI_OK && no_ani && extra_values[0])
         rc = cli_usage_error("animate", "--ani and --no-ani contradict each other");
     /* the animation is read before the runs: an error in it writes nothing */
@@ -178,7 +188,11 @@ int cli_cmd_animate(int argc, char **argv)
     static const char *const html[] = {".html", ".htm", NULL};
     if (rc == CLI_OK)
         rc = cli_out_check_extension("animate", "--output", v.run.output_path, html);
+    if (homework)
+        rc = cli_animate_homework_setup(&v);
     int run_rc = rc == CLI_OK ? cli_view_record(&v) : rc;
+    if (homework && run_rc != CLI_USAGE && cli_animate_homework_finish(&v) != CLI_OK)
+        rc = CLI_FAILED;
     if (rc == CLI_OK && (run_rc == CLI_USAGE || v.n_series == 0))
         rc = run_rc;
     FILE *out = stdout;
@@ -199,7 +213,7 @@ int cli_cmd_animate(int argc, char **argv)
     if (rc == CLI_OK) {
         char title[160];
         snprintf(title, sizeof title, "dynkit animate %s", v.run.model->name);
-        animate_page pg = {&v, &ani, mech};
+        animate_page pg = {&v, &ani, mech, homework};
         rc = cli_html_page_write(out, title, "animate.html", page_data, &pg);
         if (path) {
             /* the page of a run that failed part-way is kept: it shows what was computed */

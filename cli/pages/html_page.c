@@ -160,11 +160,12 @@ void cli_json_series(cli_json *j, const dyn_model *m, const cli_series *s)
     cli_json_key(j, "label");
     cli_json_string(j, s->label);
     cli_json_key(j, "method");
-    cli_json_string(j, s->method->name);
+    /* no method: a series given by a formula (the cart's prescribed path) */
+    cli_json_string(j, s->method ? s->method->name : "");
     cli_json_key(j, "method_title");
-    cli_json_string(j, s->method->title);
+    cli_json_string(j, s->method ? s->method->title : "");
     cli_json_key(j, "map"); /* a discrete map: its iterates are drawn as dots */
-    cli_json_bool(j, dyn_method_is_map(s->method));
+    cli_json_bool(j, s->method && dyn_method_is_map(s->method));
     const int digits = j->digits;
     j->digits = 17; /* exactly */
     cli_json_key(j, "step");

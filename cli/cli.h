@@ -83,6 +83,23 @@ int cli_param_is_size(const dyn_model *m, const char *name);
 /* The band solver of stiff runs (band_solver.c): LAPACK's when built with it, else NULL
  * (the library's own). */
 const dyn_band_solver *cli_band_solver(void);
+/* The matrices of a stiff run of model m (band_solver.c): dense, band (the model's band,
+ * declared or found in its exact pattern) or sparse (a pattern that is not banded, with KLU),
+ * and why in words. */
+typedef enum cli_linear_kind {
+    CLI_LINEAR_DENSE = 0,
+    CLI_LINEAR_BAND = 1,
+    CLI_LINEAR_SPARSE = 2
+} cli_linear_kind;
+typedef struct cli_linear {
+    cli_linear_kind kind;
+    int lower, upper, nnz; /* the band (of the pattern, when there is one); entries */
+    char why[256];
+} cli_linear;
+void cli_linear_choose(const dyn_model *m, cli_linear *lin);
+/* The sparse LU of stiff runs: KLU's (0), or none (1: built without it). Close releases it. */
+int cli_sparse_solver_open(dyn_sparse_solver *s);
+void cli_sparse_solver_close(dyn_sparse_solver *s);
 /* The eigenvalue solver of linearize (band_solver.c): LAPACK's dgeev when built with it,
  * else NULL (the core has none). */
 const struct dyn_eig_solver *cli_eig_solver(void);

@@ -44,11 +44,13 @@ static const char *const emit_check_idents[] = {
     "events", "samples", "initial_state", "rtol", "atol", "phase_x", "phase_y", "source",
     "t_trans", "every", "bound", "jac_banded", "jac_lower", "jac_upper", "jacobian_band",
     "time_unit", "phase_window", "n_noise", "noise_kinds", "noise_offset", "noise_class",
+    "jac_pattern", "jacobian_sparse",
     /* the translator's own names */
     "t", "y", "p", "par", "dydt", "out", "J", "err", "errlen", "names", "k", "i", "j", "s",
     "x", "u", "n", "m", "q", "v", "z", "type", "period", "w", "r", "rb", "lo", "dx", "dk_model",
     "dk_rhs", "dk_outputs", "dk_prepare", "dk_jacobian", "dk_jacobian_band",
     "dk_initial_state", "dk_noise_kinds", "dk_states", "dk_y0", "dk_params", "dk_outputs_vars", "dk_events",
+    "dk_jacobian_sparse", "dk_jac_colptr", "dk_jac_rowind",
     "dk_heav", "dk_sign", "dk_mod", "dk_max", "dk_min", "dk_not", "dk_sq", "dk_pow",
     "dk_conv", "dk_conv_at", "dk_table", "dk_table_at", "dk_table_slope", "dk_alg_solve",
     "dk_alg_keep", "dk_alg_residual", "dk_alg_jacobian", "DK_ALG_M", "DK_ALG_N", "DK_ALG_W",

@@ -14,6 +14,7 @@ packages=(build-essential cmake pkg-config libcmocka-dev clang chromium)
 packages+=(libgsl-dev libboost-dev libsundials-dev) # bench/ peers
 packages+=(libtcc-dev tcc) # src/jit: models compiled in process by libtcc (optional)
 packages+=(liblapack-dev) # backends/lapack: LAPACK's band LU for the stiff methods (optional)
+packages+=(libsuitesparse-dev) # backends/klu: KLU, the sparse LU of the stiff methods (optional)
 packages+=(libopenmpi-dev openmpi-bin) # backends/mpi: sweeps over MPI ranks (optional)
 # .mat output with matio (optional); the data-file tests load every format with NumPy, SciPy
 # and Octave (tests/test_formats.c; octave installs in about 30 s); SymPy checks the derived

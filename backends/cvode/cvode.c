@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* cvode.c — the SUNDIALS CVODE backend (dynkit/cvode.h): a dyn_system solved by CVODE's
  * variable-order BDF (or Adams) method with Newton iteration and the dense direct linear
- * solver (the band matrix and solver when the Jacobian is banded), the model's Jacobian when
+ * solver (the band matrix and solver when the Jacobian is banded, the sparse matrix and
+ * SUNDIALS' KLU solver for a sparse pattern when built with them), the model's Jacobian when
  * it has one, its columns with an entry that is not finite formed by differences
  * (dyn_jacobian_mend) (Hindmarsh et al., ACM TOMS 31 (2005);
  * CVODE user guide v6). Works with SUNDIALS 6 and 7 (the context and error-handler calls
@@ -20,6 +21,11 @@
 #include <sunmatrix/sunmatrix_band.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
+#ifdef DYNKIT_CVODE_KLU
+#include <sunlinsol/sunlinsol_klu.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+#endif
+
 #include "dynkit/io.h" /* dyn_shortest: numbers in messages */
 #include "dynkit/cvode.h"
 
@@ -36,6 +42,7 @@ typedef struct cv_user {
     double *jbuf;      /* (n x n) row-major Jacobian from the user's function, or its band */
     double *jwork;     /* (2 n) for the columns mended by differences (dyn_jacobian_mend) */
     int lower, upper;  /* the band, when jbuf holds one */
+    const dyn_sparse_pattern *pattern; /* sparse: jbuf holds the pattern's values */
     long jac_rhs_calls; /* calls of f for those columns (CVODE does not count them) */
     long jac_fd_columns; /* columns mended */
     const double *rtolv, *atolv; /* per-state tolerances (cv_ewt), or NULL */
@@ -65,7 +72,10 @@ static int jac_into_buffer(cv_user *u, sunrealtype t, N_Vector y, N_Vector fy, i
 {
     const double *yv = N_VGetArrayPointer(y), *f0 = N_VGetArrayPointer(fy);
     int rc = u->jac(t, yv, u->jbuf, u->sys->par);
-    if (!rc && banded)
+    if (!rc && u->pattern)
+        rc = dyn_jacobian_sparse_mend(u->sys, t, yv, f0, NULL, u->pattern, u->jbuf, u->jwork,
+                                      &u->jac_rhs_calls, &u->jac_fd_columns);
+    else if (!rc && banded)
         rc = dyn_jacobian_band_mend(u->sys, t, yv, f0, NULL, u->lower, u->upper, u->jbuf,
                                     u->jwork, &u->jac_rhs_calls, &u->jac_fd_columns);
     else if (!rc)
@@ -116,6 +126,42 @@ static int cv_jac_band(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void
     }
     return 0;
 }
+
+int dyn_cvode_has_klu(void)
+{
+#ifdef DYNKIT_CVODE_KLU
+    return 1;
+#else
+    return 0;
+#endif
+}
+
+#ifdef DYNKIT_CVODE_KLU
+/* The sparse Jacobian into CVODE's compressed-column matrix: the pattern (CVODE's KLU
+ * solver forms I - gamma J in place, which keeps it, since it holds the diagonal) and the
+ * values in its order. */
+static int cv_jac_sparse(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void *user_data,
+                         N_Vector tmp1, N_Vector tmp2, N_Vector tmp3)
+{
+    cv_user *u = user_data;
+    (void)tmp1;
+    (void)tmp2;
+    (void)tmp3;
+    const dyn_sparse_pattern *p = u->pattern;
+    if (jac_into_buffer(u, t, y, fy, 0))
+        return -1;
+    sunindextype *colptr = SUNSparseMatrix_IndexPointers(J);
+    sunindextype *rowind = SUNSparseMatrix_IndexValues(J);
+    sunrealtype *data = SUNSparseMatrix_Data(J);
+    for (int j = 0; j <= p->n; j++)
+        colptr[j] = (sunindextype)p->colptr[j];
+    for (int k = 0; k < p->nnz; k++) {
+        rowind[k] = (sunindextype)p->rowind[k];
+        data[k] = u->jbuf[k];
+    }
+    return 0;
+}
+#endif
 
 #if SUNDIALS_VERSION_MAJOR >= 7
 static void cv_err(int line, const char *func, const char *file, const char *msg,
@@ -204,8 +250,16 @@ static int cv_open(cv_solver *cs, const dyn_system *sys, double t0, const double
                    opts->jac_upper >= n))
         return fail(res, DYN_ERR_ARG, "the band of the Jacobian must have 0 <= lower, upper < n",
                     NULL);
-    const dyn_jac_fn jac = banded ? opts->jacobian_band : opts->jacobian;
+    const int sparse = !banded && dyn_cvode_has_klu() && opts->jac_sparse.nnz > 0 &&
+                       opts->jacobian_sparse;
+    char why[160];
+    if (sparse && dyn_sparse_pattern_check(&opts->jac_sparse, n, why, sizeof why))
+        return fail(res, DYN_ERR_ARG, why, NULL);
+    const dyn_jac_fn jac = sparse   ? opts->jacobian_sparse
+                           : banded ? opts->jacobian_band
+                                    : opts->jacobian;
     cs->u.jac = jac;
+    cs->u.pattern = sparse ? &opts->jac_sparse : NULL;
     cs->u.lower = banded ? opts->jac_lower : 0;
     cs->u.upper = banded ? opts->jac_upper : 0;
     cs->u.rtolv = opts->rtolv;
@@ -213,7 +267,9 @@ static int cv_open(cv_solver *cs, const dyn_system *sys, double t0, const double
     cs->u.atol = atol;
     cs->ycur = malloc(N * sizeof *cs->ycur);
     if (jac) {
-        cs->u.jbuf = malloc((banded ? N * (size_t)(cs->u.lower + cs->u.upper + 1) : N * N) *
+        cs->u.jbuf = malloc((sparse   ? (size_t)opts->jac_sparse.nnz
+                             : banded ? N * (size_t)(cs->u.lower + cs->u.upper + 1)
+                                      : N * N) *
                             sizeof *cs->u.jbuf);
         cs->u.jwork = malloc(2 * N * sizeof *cs->u.jwork);
     }
@@ -257,7 +313,13 @@ static int cv_open(cv_solver *cs, const dyn_system *sys, double t0, const double
         }
     }
     if (flag == CV_SUCCESS) {
-        if (banded) {
+        if (sparse) {
+#ifdef DYNKIT_CVODE_KLU
+            cs->A = SUNSparseMatrix((sunindextype)n, (sunindextype)n,
+                                    (sunindextype)opts->jac_sparse.nnz, CSC_MAT, cs->sctx);
+            cs->LS = cs->A ? SUNLinSol_KLU(cs->yv, cs->A, cs->sctx) : NULL;
+#endif
+        } else if (banded) {
             cs->A = SUNBandMatrix((sunindextype)n, (sunindextype)cs->u.upper,
                                   (sunindextype)cs->u.lower, cs->sctx);
             cs->LS = cs->A ? SUNLinSol_Band(cs->yv, cs->A, cs->sctx) : NULL;
@@ -268,7 +330,11 @@ static int cv_open(cv_solver *cs, const dyn_system *sys, double t0, const double
         flag = cs->LS ? CVodeSetLinearSolver(mem, cs->LS, cs->A) : -1;
     }
     if (flag == CV_SUCCESS && jac)
+#ifdef DYNKIT_CVODE_KLU
+        flag = CVodeSetJacFn(mem, sparse ? cv_jac_sparse : banded ? cv_jac_band : cv_jac);
+#else
         flag = CVodeSetJacFn(mem, banded ? cv_jac_band : cv_jac);
+#endif
     if (flag == CV_SUCCESS)
         flag = CVodeSetMaxNumSteps(mem, opts->max_steps > 0 ? opts->max_steps : 100000L);
     if (flag == CV_SUCCESS && opts->max_order > 0)

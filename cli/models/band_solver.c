@@ -1,10 +1,19 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* The solver of band matrices the tool's stiff runs use: LAPACK's dgbtrf/dgbtrs when the
- * tool is built with the backend dynkit_lapack (backends/lapack), else the library's own
- * (NULL: dyn_band_solver_builtin). docs/stiff.md says why both exist. And the eigenvalue
- * solver of linearize: LAPACK's dgeev, or none (docs/analysis.md). */
+/* The linear algebra of the tool's stiff runs: dense, band or sparse matrices for a model
+ * (cli_linear_choose, from its declared band or the pattern of its exact Jacobian); the
+ * solver of band matrices, LAPACK's dgbtrf/dgbtrs when the tool is built with the backend
+ * dynkit_lapack (backends/lapack), else the library's own (NULL: dyn_band_solver_builtin);
+ * the sparse LU, KLU when built with dynkit_klu (backends/klu). docs/stiff.md, "Large
+ * systems", says why. And the eigenvalue solver of linearize: LAPACK's dgeev, or none
+ * (docs/analysis.md). */
+#include <stdio.h>
+
 #include "cli.h"
 #include "dynkit/analysis.h"
+
+#ifdef DYNKIT_HAVE_KLU
+#include "dynkit/klu.h"
+#endif
 
 #ifdef DYNKIT_HAVE_LAPACK
 #include "dynkit/lapack.h"
@@ -25,5 +34,72 @@ const dyn_eig_solver *cli_eig_solver(void)
     return &dyn_eig_solver_lapack;
 #else
     return NULL;
+#endif
+}
+
+/* A sparse LU pays against the dense one from this many states on, and for a pattern with at
+ * most a quarter of the entries (the band of a model file is found when it is narrow, at
+ * least as many states: src/lang/emit_c.c). */
+#define CLI_SPARSE_MIN_STATES 32
+
+void cli_linear_choose(const dyn_model *m, cli_linear *lin)
+{
+    const int n = m->n_states, nnz = m->jac_pattern.nnz;
+    lin->kind = CLI_LINEAR_DENSE;
+    lin->lower = m->jac_lower;
+    lin->upper = m->jac_upper;
+    lin->nnz = nnz;
+    if (m->jac_banded) {
+        lin->kind = CLI_LINEAR_BAND;
+        snprintf(lin->why, sizeof lin->why,
+                 "band matrices: the Jacobian is banded, %d below and %d above the diagonal "
+                 "(of %d states)%s",
+                 m->jac_lower, m->jac_upper, n,
+                 nnz > 0 ? ", as its exact pattern shows" : ", as the model declares");
+        return;
+    }
+    if (nnz <= 0 || !m->jacobian_sparse) {
+        snprintf(lin->why, sizeof lin->why,
+                 "dense matrices: the model gives no sparse pattern of its Jacobian");
+        return;
+    }
+    dyn_sparse_pattern_band(&m->jac_pattern, &lin->lower, &lin->upper);
+    if (n < CLI_SPARSE_MIN_STATES || 4.0 * nnz > (double)n * n) {
+        snprintf(lin->why, sizeof lin->why,
+                 "dense matrices: %d states and %d of %d entries of the Jacobian (a sparse "
+                 "LU pays from %d states and a quarter of the entries)",
+                 n, nnz, n * n, CLI_SPARSE_MIN_STATES);
+        return;
+    }
+#ifdef DYNKIT_HAVE_KLU
+    lin->kind = CLI_LINEAR_SPARSE;
+    snprintf(lin->why, sizeof lin->why,
+             "sparse matrices (KLU): the exact Jacobian has %d of %d entries and is not "
+             "banded (%d below, %d above the diagonal)",
+             nnz, n * n, lin->lower, lin->upper);
+#else
+    snprintf(lin->why, sizeof lin->why,
+             "dense matrices: the exact Jacobian has %d of %d entries and is not banded, but "
+             "dynkit was built without KLU (libsuitesparse-dev), its sparse LU",
+             nnz, n * n);
+#endif
+}
+
+int cli_sparse_solver_open(dyn_sparse_solver *s)
+{
+#ifdef DYNKIT_HAVE_KLU
+    return dyn_klu_init(s);
+#else
+    (void)s;
+    return 1;
+#endif
+}
+
+void cli_sparse_solver_close(dyn_sparse_solver *s)
+{
+#ifdef DYNKIT_HAVE_KLU
+    dyn_klu_release(s);
+#else
+    (void)s;
 #endif
 }

@@ -460,6 +460,11 @@ static void note_method(const cli_run *run, unsigned given)
     else
         fprintf(stderr, ", step %s", CLI_NUM(run->step));
     fputc('\n', stderr);
+    if (dyn_method_is_stiff(run->method)) {
+        cli_linear lin;
+        cli_linear_choose(m, &lin);
+        fprintf(stderr, "dynkit: note: %s\n", lin.why);
+    }
 }
 
 /* The model's tolerances when --rtol/--atol are not given (every method, cvode too: its own,

@@ -30,6 +30,12 @@ static int solve_cvode(const cli_run *run, const dyn_system *sys, dyn_output_fn 
     o.jac_lower = run->model->jac_lower;
     o.jac_upper = run->model->jac_upper;
     o.jacobian_band = run->model->jacobian_band;
+    cli_linear lin;
+    cli_linear_choose(run->model, &lin);
+    if (lin.kind == CLI_LINEAR_SPARSE) {
+        o.jac_sparse = run->model->jac_pattern;
+        o.jacobian_sparse = run->model->jacobian_sparse;
+    }
     o.max_steps = run->max_steps;
     o.initial_step = run->initial_step;
     o.max_step = run->max_step;
@@ -307,6 +313,16 @@ static int solve_run(const cli_run *run, long every, dyn_output_fn output, void 
     opts.jac_upper = m->jac_upper;
     opts.jacobian_band = m->jacobian_band;
     opts.band_solver = cli_band_solver();
+    cli_linear lin;
+    dyn_sparse_solver sparse = {0};
+    if (dyn_method_is_stiff(run->method)) {
+        cli_linear_choose(m, &lin);
+        if (lin.kind == CLI_LINEAR_SPARSE && !cli_sparse_solver_open(&sparse)) {
+            opts.jac_sparse = m->jac_pattern;
+            opts.jacobian_sparse = m->jacobian_sparse;
+            opts.sparse_solver = &sparse;
+        }
+    }
     opts.trace = run->trace_steps > 0 ? cli_print_trace : NULL;
     opts.trace_ctx = (void *)run;
     opts.trace_steps = run->trace_steps;
@@ -321,12 +337,14 @@ static int solve_run(const cli_run *run, long every, dyn_output_fn output, void 
         free(iwork);
         free(events);
         free(asked);
+        cli_sparse_solver_close(&sparse);
         return -1;
     }
     opts.iwork = iwork;
     int rc = dyn_solve(run->method, &sys, run->t0, run->t1, run->y0, y, work, &opts, res);
     if (res->stopped_by_event && res->event_index >= 0)
         res->event_index = asked[res->event_index];
+    cli_sparse_solver_close(&sparse);
     free(work);
     free(iwork);
     free(events);
@@ -343,6 +361,18 @@ char *cli_stats_line(const cli_run *run, const dyn_result *res, char *buf, size_
         w += snprintf(buf + w, size - (size_t)w, " jac=%ld", s->jac_calls);
     /* columns of the exact Jacobian that could not be evaluated (an entry not finite) */
     if (s->jac_fd_columns > 0 && w >= 0 && (size_t)w < size)
-        snprintf(buf + w, size - (size_t)w, " jac_fd_columns=%ld", s->jac_fd_columns);
+        w += snprintf(buf + w, size - (size_t)w, " jac_fd_columns=%ld", s->jac_fd_columns);
+    /* the matrices of the linear systems (cli_linear_choose; --verbose says why) */
+    if (dyn_method_is_stiff(run->method) && w >= 0 && (size_t)w < size) {
+        cli_linear lin;
+        cli_linear_choose(run->model, &lin);
+        if (lin.kind == CLI_LINEAR_BAND)
+            snprintf(buf + w, size - (size_t)w, " linear=band lower=%d upper=%d", lin.lower,
+                     lin.upper);
+        else if (lin.kind == CLI_LINEAR_SPARSE)
+            snprintf(buf + w, size - (size_t)w, " linear=sparse nnz=%d", lin.nnz);
+        else
+            snprintf(buf + w, size - (size_t)w, " linear=dense");
+    }
     return buf;
 }

@@ -154,13 +154,20 @@ typedef struct dyn_model {
     const int *noise_kinds;
     size_t noise_offset;
     int noise_class;
+    /* Optional sparsity pattern of the Jacobian (jac_pattern.nnz > 0; CSC, dyn_sparse_pattern
+     * in ode.h, every diagonal entry in it) and jacobian_sparse (may be NULL), which writes
+     * its nnz values: a model file's exact Jacobian carries both. The tool's stiff runs use
+     * it for a model without a declared band: a band when the pattern is narrow, else a
+     * sparse LU (docs/stiff.md, "Large systems"). */
+    dyn_sparse_pattern jac_pattern;
+    dyn_jac_fn jacobian_sparse;
 } dyn_model;
 
 /* Version of the layout of dyn_model, dyn_var, dyn_param and dyn_event. A model compiled
  * into a shared object records the version it was built with (the symbol
  * dynkit_model_abi, added when dynkit compiles a model), and dynkit refuses a model built
  * for another version instead of misreading it. Raised whenever a layout changes. */
-#define DYN_MODEL_ABI 4
+#define DYN_MODEL_ABI 5
 
 /* The entry point of a model in a C file or a shared object: `dynkit run mymodel.c`
  * compiles the file and calls it. Define it in your file:

@@ -50,6 +50,40 @@ typedef struct dyn_band_solver {
 } dyn_band_solver;
 extern const dyn_band_solver dyn_band_solver_builtin;
 
+/* A sparse Jacobian in compressed sparse columns (CSC, as KLU and SUNDIALS' SUNSparseMatrix
+ * keep it): the entries of column j are in rows rowind[colptr[j] .. colptr[j + 1] - 1],
+ * increasing, nnz = colptr[n] in all; a sparse Jacobian function (dyn_jac_fn in the
+ * jacobian_sparse fields) writes the nnz values in that order. A pattern that the stiff
+ * methods use holds every diagonal entry (zero or not), so I/(h gamma) - J has the same
+ * pattern as J. */
+typedef struct dyn_sparse_pattern {
+    int n, nnz;
+    const int *colptr;       /* (n + 1), colptr[0] = 0 */
+    const int *rowind;       /* (nnz) */
+} dyn_sparse_pattern;
+
+/* 0 when p is a valid pattern of an n x n matrix (colptr non-decreasing from 0 to nnz, rows
+ * increasing within a column and in [0, n)) that holds every diagonal entry; else 1 with the
+ * reason in err. */
+int dyn_sparse_pattern_check(const dyn_sparse_pattern *p, int n, char *err, size_t errlen);
+/* The bandwidths of a pattern: the largest i - j (lower) and j - i (upper) of its entries
+ * (0 for a diagonal pattern). */
+void dyn_sparse_pattern_band(const dyn_sparse_pattern *p, int *lower, int *upper);
+
+/* A sparse linear solver (a general sparse LU, e.g. SuiteSparse's KLU in the optional
+ * backend dynkit_klu). Unlike the band solvers it keeps state (the ordering, the symbolic
+ * analysis and the factors, which it allocates itself) in ctx. factor: factor the n x n
+ * matrix with pattern p and values ax (p->nnz, in the pattern's order); every call of one
+ * solve passes the same pattern, so the analysis of the first call can be kept. Returns 0,
+ * > 0 when the matrix is singular (to working precision), < 0 when the solver failed
+ * otherwise (out of memory). solve: b (n) := A^-1 b from the last factors. */
+typedef struct dyn_sparse_solver {
+    const char *name;
+    void *ctx;
+    int (*factor)(void *ctx, const dyn_sparse_pattern *p, const double *ax);
+    void (*solve)(void *ctx, int n, double *b);
+} dyn_sparse_solver;
+
 /* An event: a sign change of g(t, y; par), located on the solution (dyn_solve).
  * An event happens where g changes sign: from < 0 to > 0 (rising) or > 0 to < 0 (falling),
  * passing through or jumping over zero. A zero at the start time and a touch of zero
@@ -324,6 +358,11 @@ int dyn_jacobian_mend(const dyn_system *sys, double t, const double *y, const do
 int dyn_jacobian_band_mend(const dyn_system *sys, double t, const double *y, const double *f0,
                            const double *typ, int lower, int upper, double *J, double *work,
                            long *rhs_calls, long *columns);
+
+/* The same for a sparse Jacobian (values J in the order of the pattern p). */
+int dyn_jacobian_sparse_mend(const dyn_system *sys, double t, const double *y, const double *f0,
+                             const double *typ, const dyn_sparse_pattern *p, double *J,
+                             double *work, long *rhs_calls, long *columns);
 
 /* The homework's [tout, yout] = Integrate_X(odefun, tspan, Ts, y0, par), into caller arrays:
  * tout has grid->samples entries and yout is (samples x n) row-major, where the grid is

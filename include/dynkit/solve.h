@@ -193,6 +193,14 @@ typedef struct dyn_solve_opts {
     int jac_lower, jac_upper;
     dyn_jac_fn jacobian_band;
     const dyn_band_solver *band_solver;
+    /* A sparse Jacobian (jac_sparse.nnz > 0 and sparse_solver not NULL; jac_banded 0): J from
+     * jacobian_sparse (the values in the order of the pattern, which must hold every
+     * diagonal entry), the iteration matrix I/(h gamma) - J factored by sparse_solver.
+     * `jacobian` is then unused. Without sparse_solver or jacobian_sparse the pattern is
+     * not used (dense matrices). */
+    dyn_sparse_pattern jac_sparse;
+    dyn_jac_fn jacobian_sparse;
+    const dyn_sparse_solver *sparse_solver;
     /* diagnostics */
     dyn_trace_fn trace;    /* stages of the first trace_steps attempted steps */
     void *trace_ctx;

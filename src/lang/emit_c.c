@@ -577,7 +577,54 @@ typedef struct jac_plan {
     lang_ctext before;    /* the main text, while the Jacobian's is written */
     int writing;          /* 1 while the Jacobian's text is written */
     int band_bad_i, band_bad_j; /* an entry outside the declared band (-1: none) */
+    int nnz;              /* the sparse pattern (CSC, every diagonal entry in it) */
+    int *colptr, *rowind;
 } jac_plan;
+
+/* A band is taken from the exact Jacobian's pattern (no declaration needed) when it is
+ * narrow: at least LANG_BAND_MIN_STATES states and a band of at most a quarter of them. A
+ * band LU then costs about 2 n lower (lower + upper) operations against n^3/3 dense, and
+ * the smaller models keep their dense matrices (docs/stiff.md, "Large systems"). */
+#define LANG_BAND_MIN_STATES 32
+
+/* The pattern of the columns' entries with every diagonal entry, into j (CSC). */
+static void sparse_pattern(lang_ctx *c, jac_plan *j, node ***entry, int n)
+{
+    int nnz = 0;
+    for (int jj = 0; jj < n; jj++)
+        for (int i = 0; i < n; i++)
+            nnz += entry[jj][i] || i == jj;
+    j->nnz = nnz;
+    j->colptr = lang_alloc(c, ((size_t)n + 1) * sizeof *j->colptr);
+    j->rowind = lang_alloc(c, (size_t)nnz * sizeof *j->rowind);
+    int k = 0;
+    for (int jj = 0; jj < n; jj++) {
+        j->colptr[jj] = k;
+        for (int i = 0; i < n; i++)
+            if (entry[jj][i] || i == jj)
+                j->rowind[k++] = i;
+    }
+    j->colptr[n] = k;
+}
+
+/* Without a declared band: the pattern's band when it is narrow (LANG_BAND_MIN_STATES). */
+static void find_band(lang_model *m, const jac_plan *j, int n)
+{
+    if (m->has_band || n < LANG_BAND_MIN_STATES)
+        return;
+    int lo = 0, up = 0;
+    for (int jj = 0; jj < n; jj++)
+        for (int k = j->colptr[jj]; k < j->colptr[jj + 1]; k++) {
+            const int d = j->rowind[k] - jj;
+            lo = d > lo ? d : lo;
+            up = -d > up ? -d : up;
+        }
+    if (4 * (lo + up + 1) > n)
+        return;
+    m->has_band = m->band_found = 1;
+    m->band_lo = lo;
+    m->band_up = up;
+}
 
 static void plan_partials(lang_ctx *c, jac_plan *j)
 {
@@ -1014,6 +1061,13 @@ static void emit_jacobian(lang_ctx *c, jac_plan *j)
             if (cols[jj].fixd[k])
                 need(c, cols[jj].fixd[k], jneed);
     }
+    {
+        node ***entries = lang_alloc(c, (size_t)n * sizeof *entries);
+        for (int jj = 0; jj < n; jj++)
+            entries[jj] = cols[jj].entry;
+        sparse_pattern(c, j, entries, n);
+        find_band(m, j, n);
+    }
     /* entries outside a declared band: the declaration is wrong (reported by the caller,
      * as an error, not as a Jacobian that could not be formed) */
     j->band_bad_i = j->band_bad_j = -1;
@@ -1027,16 +1081,29 @@ static void emit_jacobian(lang_ctx *c, jac_plan *j)
     /* dk_jacobian (dense, row-major) and, with a declared band, dk_jacobian_band (the band
      * in DYN_BAND_AT storage): the same entries */
     const int ld = m->band_lo + m->band_up + 1;
-    for (int band = 0; band <= (m->has_band && j->band_bad_i < 0); band++) {
+    /* kind 0: dense; 1: sparse (the pattern's values in order); 2: band */
+    for (int kind = 0; kind <= 1 + (m->has_band && j->band_bad_i < 0); kind++) {
+        const int band = kind == 2;
         if (band)
             LANG_C_CODE(c, "static int dk_jacobian_band");
+        else if (kind == 1)
+            LANG_C_CODE(c, "static int dk_jacobian_sparse");
         else
             LANG_C_CODE(c, "static int dk_jacobian");
         LANG_C_CODE(c, "(double t, const double *y, double *J, void *par)\n{\n"
                        "    const double *p = (const double *)par;\n    (void)t;\n    (void)y;\n"
                        "    (void)p;\n");
         emit_fixes(c, jneed);
-        LANG_C_CODEF(c, "    for (int k = 0; k < %d; k++)\n        J[k] = 0.0;\n", band ? n * ld : n * n);
+        if (kind == 1) { /* a diagonal entry that is zero: the pattern holds it anyway */
+            for (int jj = 0; jj < n; jj++)
+                if (!cols[jj].entry[jj])
+                    for (int k = j->colptr[jj]; k < j->colptr[jj + 1]; k++)
+                        if (j->rowind[k] == jj)
+                            LANG_C_CODEF(c, "    J[%d] = 0.0;\n", k);
+        } else {
+            LANG_C_CODEF(c, "    for (int k = 0; k < %d; k++)\n        J[k] = 0.0;\n",
+                         band ? n * ld : n * n);
+        }
         const ectx x = {NULL, 1};
         for (int jj = 0; jj < n; jj++) {
             int any = 0;
@@ -1057,11 +1124,17 @@ static void emit_jacobian(lang_ctx *c, jac_plan *j)
                 LANG_C_CODE(c, ";\n");
                 LANG_C_CODEF(c, "        (void)dv%d_%d;\n", jj, k);
             }
+            int k = j->colptr[jj];
             for (int i = 0; i < n; i++) {
-                if (!cols[jj].entry[i])
+                if (!cols[jj].entry[i]) {
+                    k += i == jj;
                     continue;
+                }
                 line_dir(c, LVEC_AT(m->states, lang_state, i).pos);
-                LANG_C_CODEF(c, "        J[%d] = ", band ? jj * ld + m->band_up + i - jj : i * n + jj);
+                LANG_C_CODEF(c, "        J[%d] = ", band ? jj * ld + m->band_up + i - jj
+                                                   : kind == 1 ? k
+                                                               : i * n + jj);
+                k++;
                 expr(c, cols[jj].entry[i], &x);
                 LANG_C_CODE(c, ";\n");
             }
@@ -1198,6 +1271,8 @@ static int alg_jacobian_entries(lang_ctx *c, jac_plan *jp, const unsigned char *
     }
     c->fail = outer;
     c->work = work;
+    if (c->m.band_found) /* the band found in a pattern that is not kept */
+        c->m.has_band = c->m.band_found = 0;
     derivative_failed(c, jp, "the algebraic equations' Jacobian by differences: ", "");
     return 0;
 }
@@ -1503,6 +1578,8 @@ static int try_jacobian(lang_ctx *c, jac_plan *jp)
     }
     c->fail = outer;
     c->work = work;
+    if (c->m.band_found) /* the band found in a pattern that is not kept */
+        c->m.has_band = c->m.band_found = 0;
     derivative_failed(c, jp,
                       "no analytic Jacobian: ", "; the stiff methods use finite differences");
     if (jp->writing) { /* failed while writing: back to the main text */
@@ -1602,6 +1679,23 @@ char *lang_emit_c(lang_ctx *c)
     }
     if (m->auxs.n)
         vars(c, &m->auxs, 0);
+    if (with_jac) { /* the exact Jacobian's sparse pattern, compressed columns */
+        LANG_C_CODE(c, "static const int dk_jac_colptr[] = {");
+        for (int k = 0; k <= n; k++)
+        {
+            LANG_C_CODEF(c, "%d, ", jp.colptr[k]);
+            if (k % 16 == 15)
+                LANG_C_CODE(c, "\n");
+        }
+        LANG_C_CODE(c, "};\nstatic const int dk_jac_rowind[] = {");
+        for (int k = 0; k < jp.nnz; k++)
+        {
+            LANG_C_CODEF(c, "%d, ", jp.rowind[k]);
+            if (k % 16 == 15)
+                LANG_C_CODE(c, "\n");
+        }
+        LANG_C_CODE(c, "};\n");
+    }
     emit_input_vars(c);
     if (m->events.n) {
         LANG_C_CODE(c, "static const dyn_event dk_events[] = {\n");
@@ -1708,6 +1802,11 @@ char *lang_emit_c(lang_ctx *c)
     lang_c_num(c, m->trans);
     LANG_C_CODEF(c, ",\n    .every = %ld,\n    .bound = ", m->nout);
     lang_c_num(c, m->bound);
+    if (with_jac) {
+        LANG_C_CODEF(c, ",\n    .jac_pattern = {%d, %d, dk_jac_colptr, dk_jac_rowind},\n"
+                        "    .jacobian_sparse = dk_jacobian_sparse",
+                     n, jp.nnz);
+    }
     if (m->has_band) {
         LANG_C_CODEF(c, ",\n    .jac_banded = 1,\n    .jac_lower = %d,\n    .jac_upper = %d,\n"
                         "    .jacobian_band = ",

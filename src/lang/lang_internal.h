@@ -296,6 +296,8 @@ typedef struct lang_model {
     /* the band of the Jacobian (XPPAUT's @ bandlo, bandup): has_band when either is given */
     int has_band, band_lo, band_up;
     lpos band_pos;
+    /* the band was found in the exact Jacobian's pattern, not declared (emit_c.c) */
+    int band_found;
     /* a discrete map: an x(t+1)= equation (map_eq) or meth=discrete (map_meth), at map_pos;
      * dt_pos: where dt was given (a map steps by 1, as XPPAUT's do) */
     int map_eq, map_meth;

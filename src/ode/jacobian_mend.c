@@ -6,7 +6,7 @@
  * (1/(1 + k (1 + 1/p)) at p = 0 is 0), while its derivative multiplies that infinity by
  * zero (NaN). Forward differences with the increments of jacobian.c (SUNDIALS CVODE's
  * cvLsDenseDQJac, Hairer & Wanner's RODAS), backward when the forward column is not
- * finite either (a formula defined on one side only). */
+ * finite either (a formula defined on one side only). Dense, band and sparse storage. */
 #include <float.h>
 #include <math.h>
 #include <string.h>
@@ -102,6 +102,33 @@ int dyn_jacobian_band_mend(const dyn_system *sys, double t, const double *y, con
         rc = difference_column(sys, t, y, f0, typ, j, yp, col, &calls);
         for (int i = i0; i <= i1 && !rc; i++)
             DYN_BAND_AT(J, lower, upper, i, j) = col[i];
+        mended += !rc;
+    }
+    if (rhs_calls)
+        *rhs_calls += calls;
+    if (columns)
+        *columns += mended;
+    return rc;
+}
+
+int dyn_jacobian_sparse_mend(const dyn_system *sys, double t, const double *y, const double *f0,
+                             const double *typ, const dyn_sparse_pattern *p, double *J,
+                             double *work, long *rhs_calls, long *columns)
+{
+    const int n = sys->n;
+    if (!all_finite(f0, n))
+        return 0;
+    double *yp = work, *col = work + (size_t)n;
+    memcpy(yp, y, (size_t)n * sizeof *yp);
+    long calls = 0, mended = 0;
+    int rc = 0;
+    for (int j = 0; j < n && !rc; j++) {
+        const int k0 = p->colptr[j], k1 = p->colptr[j + 1];
+        if (all_finite(J + k0, k1 - k0))
+            continue;
+        rc = difference_column(sys, t, y, f0, typ, j, yp, col, &calls);
+        for (int k = k0; k < k1 && !rc; k++)
+            J[k] = col[p->rowind[k]];
         mended += !rc;
     }
     if (rhs_calls)

@@ -3,7 +3,9 @@
  * of Hairer & Wanner, "Solving ODEs II", sec. IV.7, eq. (7.4') (their code RODAS), with an
  * analytic (mended by differences where an entry is not finite) or forward-difference
  * Jacobian and a forward-difference df/dt; the dense output
- * of RODAS (CONTRO), with dense or band matrices (band_lu.c, jacobian_band.c); and a simple adaptive loop with RODAS's step-size control (sec. IV.8,
+ * of RODAS (CONTRO), with dense, band (band_lu.c, jacobian_band.c) or sparse matrices (a
+ * dyn_sparse_solver: KLU in the backend dynkit_klu); and a simple adaptive loop with RODAS's
+ * step-size control (sec. IV.8,
  * with Gustafsson's predictive controller) for tests and reference computations.
  */
 #include <float.h>
@@ -48,6 +50,33 @@ void dyn_ros_ws_init(dyn_ros_ws *ws, const dyn_ros_method *m, int n, double *wor
     dyn_ros_ws_init_band(ws, m, n, 0, 0, 0, work, piv);
 }
 
+size_t dyn_ros_work_size_sparse(const dyn_ros_method *m, int n, int nnz)
+{
+    if (!m || n <= 0 || nnz < n)
+        return 0;
+    return 2 * (size_t)nnz + ((size_t)m->stages + 6) * (size_t)n;
+}
+
+void dyn_ros_ws_init_sparse(dyn_ros_ws *ws, const dyn_ros_method *m, int n,
+                            const dyn_sparse_pattern *p, double *work, int *piv)
+{
+    const size_t N = (size_t)n, nnz = (size_t)p->nnz;
+    memset(ws, 0, sizeof *ws);
+    ws->n = n;
+    ws->s = m->stages;
+    ws->pattern = p;
+    ws->f0 = work;
+    ws->J = ws->f0 + N;
+    ws->ft = ws->J + nnz;
+    ws->W = ws->ft + N;
+    ws->u = ws->W + nnz;
+    ws->Y = ws->u + (size_t)m->stages * N;
+    ws->fy = ws->Y + N;
+    ws->scratch = ws->fy + N;
+    ws->piv = piv;
+    ws->h_lu = 0.0;
+}
+
 void dyn_ros_ws_init_band(dyn_ros_ws *ws, const dyn_ros_method *m, int n, int banded,
                           int lower, int upper, double *work, int *piv)
 {
@@ -85,7 +114,15 @@ int dyn_ros_linearize(const dyn_ros_problem *p, double t, double h, const double
         return DYN_ROS_RHS_FAIL;
     }
     st->jac_evals++;
-    if (ws->banded && p->jac_band) {
+    if (ws->pattern) {
+        rc = p->jac_sparse(t, y, ws->J, sys->par);
+        if (rc) {
+            ws->rhs_status = rc;
+            return DYN_ROS_JAC_FAIL;
+        }
+        rc = dyn_jacobian_sparse_mend(sys, t, y, ws->f0, p->typ, ws->pattern, ws->J,
+                                      ws->scratch, &calls, &st->jac_fd_columns);
+    } else if (ws->banded && p->jac_band) {
         rc = p->jac_band(t, y, ws->J, sys->par);
         if (rc) {
             ws->rhs_status = rc;
@@ -152,6 +189,26 @@ static int factor_band(const dyn_ros_method *m, const dyn_ros_problem *p, double
     return DYN_ROS_OK;
 }
 
+/* W = I/(h gamma) - J with J's sparse pattern (which holds the diagonal), factorised by the
+ * sparse solver. A solver that fails otherwise than on a singular matrix (memory) is taken
+ * as singular too: the driver shrinks the step until it gives up. */
+static int factor_sparse(const dyn_ros_method *m, const dyn_ros_problem *p, double h,
+                         dyn_ros_ws *ws, dyn_ros_stats *st)
+{
+    const dyn_sparse_pattern *pat = ws->pattern;
+    const double fac = 1.0 / (h * m->gamma);
+    for (int j = 0; j < ws->n; j++)
+        for (int k = pat->colptr[j]; k < pat->colptr[j + 1]; k++)
+            ws->W[k] = pat->rowind[k] == j ? fac - ws->J[k] : -ws->J[k];
+    st->lu_decomps++;
+    if (p->sparse_solver->factor(p->sparse_solver->ctx, pat, ws->W)) {
+        ws->h_lu = 0.0;
+        return DYN_ROS_SINGULAR;
+    }
+    ws->h_lu = h;
+    return DYN_ROS_OK;
+}
+
 /* W = I/(h gamma) - J, factorised. */
 static int factor(const dyn_ros_method *m, double h, dyn_ros_ws *ws, dyn_ros_stats *st)
 {
@@ -179,7 +236,9 @@ int dyn_ros_step(const dyn_ros_method *m, const dyn_ros_problem *p, double t, do
     const int n = sys->n, s = m->stages;
     const size_t N = (size_t)n;
     if (ws->h_lu != h) {
-        int rc = ws->banded ? factor_band(m, p, h, ws, st) : factor(m, h, ws, st);
+        int rc = ws->pattern ? factor_sparse(m, p, h, ws, st)
+                 : ws->banded ? factor_band(m, p, h, ws, st)
+                              : factor(m, h, ws, st);
         if (rc)
             return rc;
     }
@@ -226,7 +285,9 @@ int dyn_ros_step(const dyn_ros_method *m, const dyn_ros_problem *p, double t, do
             for (int k = 0; k < n; k++)
                 ui[k] += g * ws->ft[k];
         }
-        if (ws->banded)
+        if (ws->pattern)
+            p->sparse_solver->solve(p->sparse_solver->ctx, n, ui);
+        else if (ws->banded)
             band_solver(p)->solve(n, ws->lower, ws->upper, ws->W, ws->ldab, ws->piv, ui);
         else
             dyn_lu_solve(n, ws->W, ws->piv, ui);

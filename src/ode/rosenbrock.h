@@ -79,6 +79,10 @@ typedef struct dyn_ros_problem {
     int banded;
     dyn_jac_fn jac_band;
     const dyn_band_solver *band_solver;
+    /* sparse Jacobian (with a workspace laid out by dyn_ros_ws_init_sparse): J from
+     * jac_sparse (the values of the workspace's pattern), W factored by sparse_solver. */
+    dyn_jac_fn jac_sparse;
+    const dyn_sparse_solver *sparse_solver;
 } dyn_ros_problem;
 
 /* Counters, added to by the functions below (zero-initialise). */
@@ -107,6 +111,8 @@ typedef struct dyn_ros_ws {
     int banded, lower, upper; /* band matrices: J in DYN_BAND_AT storage (n (lower + upper
                               * + 1)), W in LAPACK's factor storage (n ldab) */
     int ldab;                /* 2 lower + upper + 1 when banded */
+    const dyn_sparse_pattern *pattern; /* sparse matrices (or NULL): J and W hold the
+                              * pattern's nnz values each */
     double *f0;              /* (n) f(t, y0) */
     double *J;               /* (n x n) df/dy at (t, y0), or its band */
     double *ft;              /* (n) df/dt at (t, y0); zero when autonomous */
@@ -131,6 +137,12 @@ void dyn_ros_ws_init(dyn_ros_ws *ws, const dyn_ros_method *m, int n, double *wor
 size_t dyn_ros_work_size_band(const dyn_ros_method *m, int n, int banded, int lower, int upper);
 void dyn_ros_ws_init_band(dyn_ros_ws *ws, const dyn_ros_method *m, int n, int banded,
                           int lower, int upper, double *work, int *piv);
+
+/* The same for sparse matrices with pattern p (every diagonal entry in it; kept by the
+ * caller while the workspace is used): 2 nnz + (s + 6) n doubles. */
+size_t dyn_ros_work_size_sparse(const dyn_ros_method *m, int n, int nnz);
+void dyn_ros_ws_init_sparse(dyn_ros_ws *ws, const dyn_ros_method *m, int n,
+                            const dyn_sparse_pattern *p, double *work, int *piv);
 
 /* Evaluate f0 = f(t, y), J = df/dy (analytic or forward differences) and df/dt (forward
  * difference with time scale |h|; zero when autonomous) into ws. Invalidates the

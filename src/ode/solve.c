@@ -86,6 +86,15 @@ static int samples_of(const dyn_solve_opts *o)
     return m < 2 ? 2 : m > MAX_SAMPLES ? MAX_SAMPLES : m;
 }
 
+/* The sparse pattern the options ask the stiff methods to use, or NULL (dense or band). */
+static const dyn_sparse_pattern *sparse_of(const dyn_solve_opts *o)
+{
+    return o && !o->jac_banded && o->jac_sparse.nnz > 0 && o->sparse_solver &&
+                   o->jacobian_sparse
+               ? &o->jac_sparse
+               : NULL;
+}
+
 size_t dyn_solve_work_size(const dyn_tableau *m, int n, const dyn_solve_opts *opts)
 {
     const dyn_stepper_ops *ops = dyn_stepper_ops_for(m);
@@ -95,7 +104,7 @@ size_t dyn_solve_work_size(const dyn_tableau *m, int n, const dyn_solve_opts *op
     const int q = ops->dense_degree(m);
     const int ne = opts && opts->events ? opts->n_events : 0;
     const dyn_jac_shape shape = {opts && opts->jac_banded, opts ? opts->jac_lower : 0,
-                                 opts ? opts->jac_upper : 0};
+                                 opts ? opts->jac_upper : 0, sparse_of(opts)};
     size_t size = ops->work_size(m, n, &shape);
     if (size == 0)
         return 0;
@@ -305,6 +314,9 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
             "the band of the Jacobian (lower %d, upper %d) must have 0 <= lower, upper < "
             "n = %d",
             opts->jac_lower, opts->jac_upper, n);
+    char why[160];
+    if (sparse_of(opts) && dyn_sparse_pattern_check(&opts->jac_sparse, n, why, sizeof why))
+        return dyn_result_fail(res, DYN_ERR_ARG, "%s", why);
     if (dyn_solve_iwork_size(m, n) > 0 && !opts->iwork)
         return dyn_result_fail(res, DYN_ERR_ARG, "method %s needs integer workspace (opts.iwork)",
                                m->name);
@@ -339,6 +351,9 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
     st.shape.upper = opts->jac_upper;
     st.jac_band = opts->jacobian_band;
     st.band_solver = opts->band_solver;
+    st.shape.sparse = sparse_of(opts);
+    st.jac_sparse = opts->jacobian_sparse;
+    st.sparse_solver = opts->sparse_solver;
     st.tend = t1;
     st.tol = tol;
     st.work = w;

@@ -4,7 +4,9 @@
  * control, dense output and events.
  * - A new point (retry = 0) is linearised once: f, J (the model's analytic Jacobian, else
  *   forward differences; with a declared band, band matrices throughout: the analytic band,
- *   else differences in lower + upper + 1 groups of columns, and a band LU) and df/dt (forward difference, backward near the end of the span
+ *   else differences in lower + upper + 1 groups of columns, and a band LU; with a sparse
+ *   pattern, the analytic sparse Jacobian and a sparse LU, dyn_sparse_solver) and df/dt
+ *   (forward difference, backward near the end of the span
  *   so f is never evaluated past t1). A rejected step retries from the same point with the
  *   same J and df/dt and only refactorises I/(h gamma) - J (as RODAS does).
  * - Error norm: Hairer's, of the estimate y1 - y1_embedded (the last stage u6 for RODAS).
@@ -34,8 +36,12 @@ static const dyn_ros_method *method_of(const dyn_tableau *m)
 
 static size_t ros_work_size(const dyn_tableau *m, int n, const dyn_jac_shape *shape)
 {
-    const dyn_jac_shape dense = {0, 0, 0};
+    const dyn_jac_shape dense = {0, 0, 0, NULL};
     const dyn_jac_shape *sh = shape ? shape : &dense;
+    if (sh->sparse) {
+        const size_t ros = dyn_ros_work_size_sparse(method_of(m), n, sh->sparse->nnz);
+        return ros ? ros + 2 * (size_t)n + 1 : 0;
+    }
     const size_t ros = dyn_ros_work_size_band(method_of(m), n, sh->banded, sh->lower, sh->upper);
     return ros ? ros + 2 * (size_t)n + 1 : 0;
 }
@@ -64,10 +70,15 @@ static void view(dyn_stepper *st, ros_view *v)
     const int n = st->n;
     v->rm = method_of(st->m);
     const dyn_jac_shape *sh = &st->shape;
-    dyn_ros_ws_init_band(&v->ws, v->rm, n, sh->banded, sh->lower, sh->upper, st->work,
-                         st->iwork);
-    double *rest =
-        st->work + dyn_ros_work_size_band(v->rm, n, sh->banded, sh->lower, sh->upper);
+    double *rest;
+    if (sh->sparse) {
+        dyn_ros_ws_init_sparse(&v->ws, v->rm, n, sh->sparse, st->work, st->iwork);
+        rest = st->work + dyn_ros_work_size_sparse(v->rm, n, sh->sparse->nnz);
+    } else {
+        dyn_ros_ws_init_band(&v->ws, v->rm, n, sh->banded, sh->lower, sh->upper, st->work,
+                             st->iwork);
+        rest = st->work + dyn_ros_work_size_band(v->rm, n, sh->banded, sh->lower, sh->upper);
+    }
     v->err = rest;
     v->typ = rest + n;
     v->h_lu = rest + 2 * (size_t)n;
@@ -109,7 +120,7 @@ static int ros_attempt(dyn_stepper *st, double t, double h, const double *y, dou
     view(st, &v);
     const int n = st->n;
     dyn_ros_problem p = {{st->f, n, st->par}, st->jac, 0, v.typ, st->shape.banded,
-                         st->jac_band, st->band_solver};
+                         st->jac_band, st->band_solver, st->jac_sparse, st->sparse_solver};
     dyn_ros_stats rs = {0};
     int rc = DYN_ROS_OK;
     v.ws.h_lu = retry ? *v.h_lu : 0.0;

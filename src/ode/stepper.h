@@ -57,10 +57,11 @@ double dyn_err_norm(const dyn_tol *tol, int n, const double *y, const double *yn
 
 typedef struct dyn_stepper dyn_stepper;
 
-/* The shape of the Jacobian of stiff kinds: dense, or banded with the given bandwidths
- * (dyn_solve_opts.jac_banded). */
+/* The shape of the Jacobian of stiff kinds: dense, banded with the given bandwidths
+ * (dyn_solve_opts.jac_banded) or sparse (dyn_solve_opts.jac_sparse). */
 typedef struct dyn_jac_shape {
     int banded, lower, upper;
+    const dyn_sparse_pattern *sparse; /* sparse matrices with this pattern, or NULL */
 } dyn_jac_shape;
 
 typedef struct dyn_stepper_ops {
@@ -108,6 +109,8 @@ struct dyn_stepper {
     dyn_jac_shape shape;           /* stiff kinds: dense or banded */
     dyn_jac_fn jac_band;           /* banded: analytic band or NULL */
     const dyn_band_solver *band_solver; /* banded: NULL for the built-in */
+    dyn_jac_fn jac_sparse;         /* sparse: the values of the pattern */
+    const dyn_sparse_solver *sparse_solver;
     double tend;        /* stage times are clamped to it (dyn_rk_stage_time) */
     dyn_tol tol;
     double *work;       /* ops->work_size doubles */

@@ -47,7 +47,16 @@ typedef struct dyn_cvode_opts {
      * quotients (cvLsBandDQJac); `jacobian` is then unused. */
     int jac_banded, jac_lower, jac_upper;
     dyn_jac_fn jacobian_band;
+    /* A sparse Jacobian (jac_sparse.nnz > 0 and jacobian_sparse, jac_banded 0; the pattern
+     * holds every diagonal entry, ode.h): CVODE's compressed-column matrix and SUNDIALS' KLU
+     * solver (SUNSparseMatrix, SUNLinSol_KLU) when the backend was built with them
+     * (dyn_cvode_has_klu), else the dense matrix with `jacobian`. */
+    dyn_sparse_pattern jac_sparse;
+    dyn_jac_fn jacobian_sparse;
 } dyn_cvode_opts;
+
+/* 1 when the backend was built with SUNDIALS' KLU solver (sunlinsol_klu), else 0. */
+int dyn_cvode_has_klu(void);
 
 /* Integrate sys from (t0, y0) and report the state at each output time tout[0..n_out)
  * (increasing, in [t0, ...), the first may equal t0) through output (k = 0, 1, ...; may be

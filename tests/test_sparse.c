@@ -1,0 +1,381 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* test_sparse.c — sparse Jacobians of the stiff methods (docs/stiff.md, "Large systems"):
+ * the pattern a model file's exact Jacobian carries is the known structure of its equations
+ * (a ring of 40 sites: three entries a row, the ring closing at the corners; a chain with
+ * fixed ends: tridiagonal, found as a band without a declaration); its values equal the
+ * dense Jacobian's; rodas4 with sparse matrices (a sparse solver of this file over the dense
+ * LU, and KLU when built) ends where it ends with dense or band matrices, on the banded
+ * chain and on the ring that is not banded; cvode with SUNDIALS' KLU likewise; and without
+ * a sparse solver the pattern is not used (the dense run, bit for bit), while a pattern
+ * without its diagonal is refused with a message. The tool says which matrices it took
+ * (--stats) and why (--verbose), and its runs agree whichever they are. */
+#define _POSIX_C_SOURCE 200809L
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dynkit/dynkit.h"
+#include "dynkit/jit.h"
+#include "dynkit/lang.h"
+#include "ode/linalg.h"
+#include "test_cli_run.h"
+#include "test_util.h"
+
+#ifdef DYNKIT_HAVE_KLU
+#include "dynkit/klu.h"
+#endif
+#ifdef DYNKIT_HAVE_CVODE
+#include "dynkit/cvode.h"
+#endif
+
+#define N 40
+
+/* u' = d (second difference) - u^3 on a ring of N sites: row i reads i - 1, i, i + 1 mod N */
+static const char ring_ode[] = "par d=50\n"
+                               "u0'=d*(u1-2*u0+u39)-u0^3\n"
+                               "u[1..38]'=d*(u[j+1]-2*u[j]+u[j-1])-u[j]^3\n"
+                               "u39'=d*(u0-2*u39+u38)-u39^3\n"
+                               "init u[0..39]=sin(2*pi*[j]/40)+0.5\n"
+                               "@ total=1\n"
+                               "done\n";
+/* the same with fixed ends (u_-1 = u_40 = 0): tridiagonal */
+static const char chain_ode[] = "par d=50\n"
+                                "u0'=d*(u1-2*u0)-u0^3\n"
+                                "u[1..38]'=d*(u[j+1]-2*u[j]+u[j-1])-u[j]^3\n"
+                                "u39'=d*(-2*u39+u38)-u39^3\n"
+                                "init u[0..39]=sin(2*pi*[j]/40)+0.5\n"
+                                "@ total=1\n"
+                                "done\n";
+
+typedef struct loaded {
+    dyn_jit_model jm;
+    const dyn_model *m;
+    double par[8];
+} loaded;
+
+static void load(const char *text, loaded *L)
+{
+    char *c_src = NULL;
+    dyn_lang_diag d;
+    char buf[4096];
+    const int rc = dyn_ode_to_c("m.ode", text, strlen(text), &c_src, &d, NULL, NULL);
+    CHECK(rc == 0, "%s", dyn_lang_diag_format(&d, buf, sizeof buf));
+    dyn_jit_opts opts = {0};
+    opts.cache_dir = "sparse-jit-cache";
+    char err[4096];
+    const int jrc = dyn_jit_load_source(c_src, strlen(c_src), "m.ode", &opts, &L->jm, err,
+                                        sizeof err);
+    CHECK(jrc == 0, "%s", err);
+    free(c_src);
+    L->m = L->jm.model;
+    assert_true(L->m->par_size <= sizeof L->par);
+    memset(L->par, 0, sizeof L->par);
+    assert_int_equal(dyn_model_default_params(L->m, L->par, buf, sizeof buf), 0);
+}
+
+/* A sparse solver over the library's dense LU: the plumbing of the sparse path checked
+ * without KLU. */
+typedef struct dense_ctx {
+    double A[N * N];
+    int piv[N];
+} dense_ctx;
+
+static int dense_factor(void *ctx, const dyn_sparse_pattern *p, const double *ax)
+{
+    dense_ctx *d = ctx;
+    memset(d->A, 0, sizeof d->A);
+    for (int j = 0; j < p->n; j++)
+        for (int k = p->colptr[j]; k < p->colptr[j + 1]; k++)
+            d->A[p->rowind[k] * p->n + j] = ax[k];
+    return dyn_lu_factor(p->n, d->A, d->piv) ? 1 : 0;
+}
+
+static void dense_solve(void *ctx, int n, double *b)
+{
+    dense_ctx *d = ctx;
+    dyn_lu_solve(n, d->A, d->piv, b);
+}
+
+/* Which matrices a rodas4 run uses. */
+enum { DENSE, BAND, SPARSE_OWN, SPARSE_KLU, SPARSE_NO_SOLVER };
+
+/* rodas4 from 0 to 1 at rtol 1e-8 with the matrices of `kind`; the final state into y and
+ * the result into res. */
+static int rodas(const loaded *L, int kind, double *y, dyn_result *res)
+{
+    const dyn_model *m = L->m;
+    double y0[N];
+    dyn_model_initial_state(m, L->par, y0);
+    dyn_system sys = {m->rhs, N, (void *)L->par};
+    dyn_solve_opts o = {0};
+    o.rtol = 1e-8;
+    o.atol = 1e-10;
+    o.jacobian = m->jacobian;
+    dense_ctx dc;
+    dyn_sparse_solver own = {"dense", &dc, dense_factor, dense_solve};
+    dyn_sparse_solver klu = {0};
+    if (kind == BAND) {
+        o.jac_banded = 1;
+        o.jac_lower = m->jac_lower;
+        o.jac_upper = m->jac_upper;
+        o.jacobian_band = m->jacobian_band;
+    } else if (kind != DENSE) {
+        o.jac_sparse = m->jac_pattern;
+        o.jacobian_sparse = m->jacobian_sparse;
+        o.sparse_solver = kind == SPARSE_OWN ? &own : kind == SPARSE_KLU ? &klu : NULL;
+    }
+#ifdef DYNKIT_HAVE_KLU
+    if (kind == SPARSE_KLU)
+        assert_int_equal(dyn_klu_init(&klu), 0);
+#endif
+    const dyn_tableau *meth = dyn_method_find("rodas4");
+    const size_t size = dyn_solve_work_size(meth, N, &o);
+    double *work = malloc(size * sizeof *work);
+    int iwork[N];
+    o.iwork = iwork;
+    assert_non_null(work);
+    const int rc = dyn_solve(meth, &sys, 0.0, 1.0, y0, y, work, &o, res);
+#ifdef DYNKIT_HAVE_KLU
+    if (kind == SPARSE_KLU)
+        dyn_klu_release(&klu);
+#endif
+    free(work);
+    return rc;
+}
+
+static double max_diff(const double *a, const double *b)
+{
+    double d = 0.0;
+    for (int i = 0; i < N; i++)
+        d = fmax(d, fabs(a[i] - b[i]));
+    return d;
+}
+
+/* The ring's pattern is the known one: column j holds rows j - 1, j, j + 1 mod N (sorted),
+ * 3N entries; no band is found (the corners); the sparse values equal the dense
+ * Jacobian's, including the diagonal's. */
+static void test_ring_pattern_is_the_known_one(void **state)
+{
+    (void)state;
+    loaded L;
+    load(ring_ode, &L);
+    const dyn_sparse_pattern *p = &L.m->jac_pattern;
+    assert_int_equal(p->n, N);
+    assert_int_equal(p->nnz, 3 * N);
+    assert_int_equal(L.m->jac_banded, 0);
+    assert_non_null(L.m->jacobian_sparse);
+    for (int j = 0; j < N; j++) {
+        int want[3] = {(j + N - 1) % N, j, (j + 1) % N}, k0 = p->colptr[j];
+        /* sorted */
+        for (int a = 0; a < 3; a++)
+            for (int b = a + 1; b < 3; b++)
+                if (want[b] < want[a]) {
+                    const int t = want[a];
+                    want[a] = want[b];
+                    want[b] = t;
+                }
+        assert_int_equal(p->colptr[j + 1] - k0, 3);
+        for (int a = 0; a < 3; a++)
+            CHECK(p->rowind[k0 + a] == want[a], "column %d entry %d: row %d, want %d", j, a,
+                  p->rowind[k0 + a], want[a]);
+    }
+    char err[160];
+    assert_int_equal(dyn_sparse_pattern_check(p, N, err, sizeof err), 0);
+    int lo, up;
+    dyn_sparse_pattern_band(p, &lo, &up);
+    assert_int_equal(lo, N - 1);
+    assert_int_equal(up, N - 1);
+    double y[N], J[N * N], v[3 * N];
+    dyn_model_initial_state(L.m, L.par, y);
+    assert_int_equal(L.m->jacobian(0.0, y, J, L.par), 0);
+    assert_int_equal(L.m->jacobian_sparse(0.0, y, v, L.par), 0);
+    int nonzero = 0;
+    for (int j = 0; j < N; j++)
+        for (int k = p->colptr[j]; k < p->colptr[j + 1]; k++)
+            assert_true(v[k] == J[p->rowind[k] * N + j]);
+    for (int i = 0; i < N * N; i++)
+        nonzero += J[i] != 0.0;
+    assert_int_equal(nonzero, 3 * N); /* every entry outside the pattern is zero */
+    dyn_jit_unload(&L.jm);
+}
+
+/* The chain with fixed ends is tridiagonal: its band (1, 1) is found without @ bandlo,
+ * bandup, and its analytic band equals the dense Jacobian's. */
+static void test_chain_band_is_found(void **state)
+{
+    (void)state;
+    loaded L;
+    load(chain_ode, &L);
+    assert_int_equal(L.m->jac_banded, 1);
+    assert_int_equal(L.m->jac_lower, 1);
+    assert_int_equal(L.m->jac_upper, 1);
+    assert_int_equal(L.m->jac_pattern.nnz, 3 * N - 2);
+    double y[N], J[N * N], B[N * 3];
+    dyn_model_initial_state(L.m, L.par, y);
+    assert_int_equal(L.m->jacobian(0.0, y, J, L.par), 0);
+    assert_int_equal(L.m->jacobian_band(0.0, y, B, L.par), 0);
+    for (int i = 0; i < N; i++)
+        for (int j = i > 0 ? i - 1 : 0; j <= i + 1 && j < N; j++)
+            assert_true(DYN_BAND_AT(B, 1, 1, i, j) == J[i * N + j]);
+    dyn_jit_unload(&L.jm);
+}
+
+/* rodas4 ends at the same state with dense, band and sparse matrices (the pivots differ, so
+ * rounding does: within 1e-12 of states of size 1, far below the tolerance). */
+static void test_rodas4_sparse_equals_dense(void **state)
+{
+    (void)state;
+    const char *texts[2] = {chain_ode, ring_ode};
+    for (int t = 0; t < 2; t++) {
+        loaded L;
+        load(texts[t], &L);
+        double yd[N], ys[N];
+        dyn_result rd, rs;
+        assert_int_equal(rodas(&L, DENSE, yd, &rd), DYN_OK);
+        int kinds[3] = {SPARSE_OWN, L.m->jac_banded ? BAND : SPARSE_OWN, SPARSE_OWN};
+#ifdef DYNKIT_HAVE_KLU
+        kinds[2] = SPARSE_KLU;
+#endif
+        for (int k = 0; k < 3; k++) {
+            assert_int_equal(rodas(&L, kinds[k], ys, &rs), DYN_OK);
+            CHECK(max_diff(yd, ys) < 1e-12, "%s, kind %d: differs by %g", t ? "ring" : "chain",
+                  kinds[k], max_diff(yd, ys));
+            assert_int_equal(rs.stats.accepted, rd.stats.accepted);
+            assert_int_equal(rs.stats.jac_calls, rd.stats.jac_calls);
+        }
+        dyn_jit_unload(&L.jm);
+    }
+}
+
+/* Without a sparse solver the pattern is not used: the dense run, bit for bit. A pattern
+ * without a diagonal entry is refused, naming the column. */
+static void test_without_a_solver_dense(void **state)
+{
+    (void)state;
+    loaded L;
+    load(ring_ode, &L);
+    double yd[N], ys[N];
+    dyn_result rd, rs;
+    assert_int_equal(rodas(&L, DENSE, yd, &rd), DYN_OK);
+    assert_int_equal(rodas(&L, SPARSE_NO_SOLVER, ys, &rs), DYN_OK);
+    assert_memory_equal(yd, ys, sizeof yd);
+    /* column 0 without its diagonal */
+    const int colptr[3] = {0, 1, 3}, rowind[3] = {1, 0, 1};
+    const dyn_sparse_pattern bad = {2, 3, colptr, rowind};
+    char err[160];
+    assert_int_equal(dyn_sparse_pattern_check(&bad, 2, err, sizeof err), 1);
+    CHECK(strstr(err, "diagonal entry of column 0") != NULL, "%s", err);
+    dyn_jit_unload(&L.jm);
+}
+
+/* cvode with SUNDIALS' KLU ends where cvode with dense matrices ends (to a few times the
+ * tolerance: CVODE's Newton iteration stops at a fraction of it, differently with other
+ * rounding), and both near rodas4. */
+static void test_cvode_sparse(void **state)
+{
+    (void)state;
+#if defined(DYNKIT_HAVE_CVODE)
+    if (!dyn_cvode_has_klu())
+        skip();
+    loaded L;
+    load(ring_ode, &L);
+    double y0[N], yd[N], ys[N], yr[N];
+    dyn_model_initial_state(L.m, L.par, y0);
+    dyn_system sys = {L.m->rhs, N, L.par};
+    dyn_cvode_opts o = {0};
+    o.rtol = 1e-10;
+    o.atol = 1e-12;
+    o.jacobian = L.m->jacobian;
+    const double tout[2] = {0.0, 1.0};
+    dyn_result rd, rs, rr;
+    assert_int_equal(dyn_cvode_solve(&sys, 0.0, y0, tout, 2, &o, NULL, NULL, yd, &rd), DYN_OK);
+    o.jac_sparse = L.m->jac_pattern;
+    o.jacobian_sparse = L.m->jacobian_sparse;
+    assert_int_equal(dyn_cvode_solve(&sys, 0.0, y0, tout, 2, &o, NULL, NULL, ys, &rs), DYN_OK);
+    assert_int_equal(rodas(&L, DENSE, yr, &rr), DYN_OK);
+    CHECK(max_diff(yd, ys) < 1e-9, "cvode dense and sparse differ by %g", max_diff(yd, ys));
+    CHECK(max_diff(yr, ys) < 1e-6, "cvode and rodas4 differ by %g", max_diff(yr, ys));
+    dyn_jit_unload(&L.jm);
+#else
+    skip();
+#endif
+}
+
+/* The last value of the first row after the header of CSV text (the final state's last
+ * column). */
+static double last_value(const char *out)
+{
+    const char *row = strchr(out, '\n');
+    assert_non_null(row);
+    const char *end = strchr(row + 1, '\n');
+    const char *p = end ? end : row + strlen(row);
+    while (p > row && p[-1] != ',')
+        p--;
+    return strtod(p, NULL);
+}
+
+/* dynkit run: the ring with rodas4 and cvode, sparse matrices when built with KLU (else
+ * dense, saying why), the chain with the band found in its pattern; u39(1) agrees across
+ * them within a few times the tolerance. */
+static void test_cli_says_which_matrices(void **state)
+{
+    (void)state;
+    assert_int_equal(cli_write_file("ring.ode", ring_ode), 0);
+    assert_int_equal(cli_write_file("chain.ode", chain_ode), 0);
+    const int cvode = cli_has_cvode();
+    double ref = NAN;
+    for (int k = 0; k < 2 + cvode; k++) {
+        const char *file = k == 1 ? "chain.ode" : "ring.ode";
+        cli_result r = cli("run %s --method %s --final --stats --verbose --rtol 1e-9 "
+                           "--atol 1e-12",
+                           cli_path(file), k == 2 ? "cvode" : "rodas4");
+        CHECK(r.status == 0, "%s: %s", file, r.err);
+        if (k == 1) {
+            CHECK(strstr(r.err, " linear=band lower=1 upper=1") &&
+                      strstr(r.err, "the Jacobian is banded, 1 below and 1 above"),
+                  "%s", r.err);
+        } else {
+#ifdef DYNKIT_HAVE_KLU
+            CHECK(strstr(r.err, " linear=sparse nnz=120") &&
+                      strstr(r.err, "sparse matrices (KLU): the exact Jacobian has 120 of 1600"),
+                  "%s", r.err);
+#else
+            CHECK(strstr(r.err, " linear=dense") && strstr(r.err, "built without KLU"), "%s",
+                  r.err);
+#endif
+            const double u = last_value(r.out);
+            if (k == 0)
+                ref = u;
+            else
+                CHECK(fabs(u - ref) < 1e-8, "cvode %.17g, rodas4 %.17g", u, ref);
+        }
+        cli_free(&r);
+    }
+    /* a small model keeps dense matrices: 2 states */
+    assert_int_equal(cli_write_file("two.ode", "x'=-x+y\ny'=-1000*y\ninit x=1,y=1\ndone\n"), 0);
+    cli_result r = cli("run %s --method rodas4 --final --stats --verbose", cli_path("two.ode"));
+    CHECK(r.status == 0 && strstr(r.err, " linear=dense") &&
+              strstr(r.err, "dense matrices: 2 states"),
+          "%s", r.err);
+    cli_free(&r);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_ring_pattern_is_the_known_one),
+        cmocka_unit_test(test_chain_band_is_found),
+        cmocka_unit_test(test_rodas4_sparse_equals_dense),
+        cmocka_unit_test(test_without_a_solver_dense),
+        cmocka_unit_test(test_cvode_sparse),
+        cmocka_unit_test(test_cli_says_which_matrices),
+    };
+    return cmocka_run_group_tests(tests, cli_setup, cli_remove_tmpdir);
+}

@@ -60,7 +60,10 @@ void cli_linear_choose(const dyn_model *m, cli_linear *lin)
     }
     if (nnz <= 0 || !m->jacobian_sparse) {
         snprintf(lin->why, sizeof lin->why,
-                 "dense matrices: the model gives no sparse pattern of its Jacobian");
+                 "dense matrices: %d states, and the model gives no sparse pattern of its "
+                 "Jacobian (a model file's exact one has it from %d states on, with at most a "
+                 "quarter of the entries)",
+                 n, CLI_SPARSE_MIN_STATES);
         return;
     }
     dyn_sparse_pattern_band(&m->jac_pattern, &lin->lower, &lin->upper);

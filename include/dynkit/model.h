@@ -156,9 +156,10 @@ typedef struct dyn_model {
     int noise_class;
     /* Optional sparsity pattern of the Jacobian (jac_pattern.nnz > 0; CSC, dyn_sparse_pattern
      * in ode.h, every diagonal entry in it) and jacobian_sparse (may be NULL), which writes
-     * its nnz values: a model file's exact Jacobian carries both. The tool's stiff runs use
-     * it for a model without a declared band: a band when the pattern is narrow, else a
-     * sparse LU (docs/stiff.md, "Large systems"). */
+     * its nnz values: a model file's exact Jacobian carries the pattern when it is sparse
+     * (at least 32 states, at most a quarter of the entries), and jacobian_sparse too when
+     * it is not banded. The tool's stiff runs then use a sparse LU (docs/stiff.md, "Sparse
+     * Jacobians"). */
     dyn_sparse_pattern jac_pattern;
     dyn_jac_fn jacobian_sparse;
 } dyn_model;

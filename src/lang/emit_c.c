@@ -607,6 +607,15 @@ static void sparse_pattern(lang_ctx *c, jac_plan *j, node ***entry, int n)
     j->colptr[n] = k;
 }
 
+/* Whether the pattern is written with the model: at least LANG_BAND_MIN_STATES states and at
+ * most a quarter of the entries (the rule by which the tool takes sparse matrices,
+ * cli_linear_choose); a smaller or denser Jacobian stays dense, and the text of its
+ * entries is not written a second time. */
+static int pattern_kept(const jac_plan *j, int n)
+{
+    return n >= LANG_BAND_MIN_STATES && 4.0 * j->nnz <= (double)n * n;
+}
+
 /* Without a declared band: the pattern's band when it is narrow (LANG_BAND_MIN_STATES). */
 static void find_band(lang_model *m, const jac_plan *j, int n)
 {
@@ -1078,12 +1087,15 @@ static void emit_jacobian(lang_ctx *c, jac_plan *j)
                 j->band_bad_j = jj;
                 break;
             }
-    /* dk_jacobian (dense, row-major) and, with a declared band, dk_jacobian_band (the band
-     * in DYN_BAND_AT storage): the same entries */
+    /* dk_jacobian (dense, row-major), for a sparse pattern without a band dk_jacobian_sparse
+     * (the pattern's values), and with a band dk_jacobian_band (the band in DYN_BAND_AT
+     * storage): the same entries */
     const int ld = m->band_lo + m->band_up + 1;
     /* kind 0: dense; 1: sparse (the pattern's values in order); 2: band */
     for (int kind = 0; kind <= 1 + (m->has_band && j->band_bad_i < 0); kind++) {
         const int band = kind == 2;
+        if (kind == 1 && (m->has_band || !pattern_kept(j, n)))
+            continue; /* the band's function, or the dense one, serves */
         if (band)
             LANG_C_CODE(c, "static int dk_jacobian_band");
         else if (kind == 1)
@@ -1679,7 +1691,7 @@ char *lang_emit_c(lang_ctx *c)
     }
     if (m->auxs.n)
         vars(c, &m->auxs, 0);
-    if (with_jac) { /* the exact Jacobian's sparse pattern, compressed columns */
+    if (with_jac && pattern_kept(&jp, n)) { /* the exact Jacobian's pattern, CSC */
         LANG_C_CODE(c, "static const int dk_jac_colptr[] = {");
         for (int k = 0; k <= n; k++)
         {
@@ -1802,10 +1814,11 @@ char *lang_emit_c(lang_ctx *c)
     lang_c_num(c, m->trans);
     LANG_C_CODEF(c, ",\n    .every = %ld,\n    .bound = ", m->nout);
     lang_c_num(c, m->bound);
-    if (with_jac) {
-        LANG_C_CODEF(c, ",\n    .jac_pattern = {%d, %d, dk_jac_colptr, dk_jac_rowind},\n"
-                        "    .jacobian_sparse = dk_jacobian_sparse",
-                     n, jp.nnz);
+    if (with_jac && pattern_kept(&jp, n)) {
+        LANG_C_CODEF(c, ",\n    .jac_pattern = {%d, %d, dk_jac_colptr, dk_jac_rowind}", n,
+                     jp.nnz);
+        if (!m->has_band)
+            LANG_C_CODE(c, ",\n    .jacobian_sparse = dk_jacobian_sparse");
     }
     if (m->has_band) {
         LANG_C_CODEF(c, ",\n    .jac_banded = 1,\n    .jac_lower = %d,\n    .jac_upper = %d,\n"

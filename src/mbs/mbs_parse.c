@@ -628,7 +628,9 @@ static void parse_constraint(lang_ctx *c, lang_lexer *lx, int prescribe)
 static void wheel_constraint(lang_ctx *c, mbs_model *mb, int wheel, int part, node *sym)
 {
     const mbs_wheel *wh = &LVEC_AT(mb->wheels, mbs_wheel, wheel);
-    static const char *const what[3] = {"along x", "along y", "normal"};
+    static const char *const what[3] = {"force on the wheel %s along x",
+                                        "force on the wheel %s along y",
+                                        "normal force on the wheel %s"};
     mbs_constraint k = {0};
     k.name = lang_printf(c, "%s_%c", wh->name, "xyz"[part]);
     k.pos = wh->pos;
@@ -640,7 +642,7 @@ static void wheel_constraint(lang_ctx *c, mbs_model *mb, int wheel, int part, no
     k.sym = sym;
     declare_output(c, k.name, k.pos, &k.aux);
     LVEC_AT(c->m.auxs, lang_formula, k.aux).doc.description =
-        lang_printf(c, "the ground's %s force on the wheel %s", what[part], wh->name);
+        lang_printf(c, "the ground's %s", lang_printf(c, what[part], wh->name));
     *(mbs_constraint *)lvec_push(c, &mb->cons, sizeof k) = k;
 }
 

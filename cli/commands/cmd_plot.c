@@ -206,7 +206,7 @@ int cli_cmd_plot(int argc, char **argv)
                                  cli_series_column_name(m, cols[i]), s->label);
                     p->lines[p->n_lines++] =
                         (cli_svg_line){label, s->data + xcol, s->data + cols[i], s->rows, s->cols,
-                                       dyn_method_is_map(s->method)};
+                                       dyn_method_is_map(s->method), NULL, NULL};
                 }
             order[n_panels] = p;
             n_panels++;

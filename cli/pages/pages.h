@@ -136,6 +136,8 @@ typedef struct cli_svg_line {
     const double *x, *y;
     long n, stride;
     int points; /* 1: a dot per point, unjoined (the iterates of a discrete map) */
+    const double *lo, *hi; /* a band shaded between lo and hi at each x (same stride), e.g.
+                            * percentiles over runs; NULL: none */
 } cli_svg_line;
 
 typedef struct cli_svg_plot {

@@ -75,6 +75,14 @@ static void data_range(const cli_svg_plot *p, int use_x, double *lo, double *hi)
                 *lo = fmin(*lo, x);
                 *hi = fmax(*hi, x);
             }
+            if (!use_x && l->lo && isfinite(l->x[k * l->stride]))
+                for (int e = 0; e < 2; e++) {
+                    const double b = (e ? l->hi : l->lo)[k * l->stride];
+                    if (isfinite(b)) {
+                        *lo = fmin(*lo, b);
+                        *hi = fmax(*hi, b);
+                    }
+                }
         }
     }
 }
@@ -132,6 +140,26 @@ static int dots(FILE *out, const cli_svg_line *l, const char *color, const axis 
         if (isfinite(x) && isfinite(y))
             bad |= fprintf(out, "M%.2f,%.2fh0", to_px_x(ax, x), to_px_y(ay, y)) < 0;
     }
+    bad |= fputs("\"/>\n", out) < 0;
+    return bad;
+}
+
+/* A line's band: one polygon along hi and back along lo through the points where x, lo and
+ * hi are finite, in the line's colour, light. */
+static int band(FILE *out, const cli_svg_line *l, const char *color, const axis *ax,
+                const axis *ay)
+{
+    int bad = fprintf(out, "<polygon fill=\"%s\" fill-opacity=\"0.18\" stroke=\"none\" "
+                           "points=\"",
+                      color) < 0;
+    for (int e = 1; e >= 0; e--)
+        for (long j = 0; j < l->n; j++) {
+            const long k = e ? j : l->n - 1 - j;
+            const double x = l->x[k * l->stride], b = (e ? l->hi : l->lo)[k * l->stride];
+            const double o = (e ? l->lo : l->hi)[k * l->stride];
+            if (isfinite(x) && isfinite(b) && isfinite(o))
+                bad |= fprintf(out, "%.2f,%.2f ", to_px_x(ax, x), to_px_y(ay, b)) < 0;
+        }
     bad |= fputs("\"/>\n", out) < 0;
     return bad;
 }
@@ -237,6 +265,9 @@ static int panel(FILE *out, const cli_svg_plot *p, int first_color)
     const int n_colors = (int)(sizeof palette / sizeof *palette);
     int bad = axes(out, p, &ax, &ay);
     bad |= fputs("<g class=\"lines\">\n", out) < 0;
+    for (int i = 0; i < p->n_lines; i++)
+        if (p->lines[i].lo && p->lines[i].hi)
+            bad |= band(out, &p->lines[i], palette[(first_color + i) % n_colors], &ax, &ay);
     for (int i = 0; i < p->n_lines; i++)
         bad |= line(out, &p->lines[i], palette[(first_color + i) % n_colors], &ax, &ay);
     bad |= fputs("</g>\n", out) < 0;

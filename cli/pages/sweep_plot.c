@@ -368,7 +368,7 @@ static int lines_of(FILE *out, const sweep_table *t, int xc, const int *ycols, i
         for (int k = 0; k < n_y; k++)
             p.lines[p.n_lines++] =
                 (cli_svg_line){t->names[ycols[k]], t->data + xc, t->data + ycols[k], t->rows,
-                               t->cols, 0};
+                               t->cols, 0, NULL, NULL};
         return cli_svg_write(out, &p);
     }
     double *vals = malloc((size_t)t->rows * sizeof *vals);
@@ -394,7 +394,7 @@ static int lines_of(FILE *out, const sweep_table *t, int xc, const int *ycols, i
         used += n;
         const int k = p.n_lines++;
         snprintf(labels[k], sizeof labels[0], "%s = %.6g", t->names[other], vals[v]);
-        p.lines[k] = (cli_svg_line){labels[k], line_xy, line_xy + 1, n, 2, 0};
+        p.lines[k] = (cli_svg_line){labels[k], line_xy, line_xy + 1, n, 2, 0, NULL, NULL};
     }
     const int rc = cli_svg_write(out, &p);
     free(vals);
@@ -473,6 +473,54 @@ static int page_data(cli_json *j, void *ctx)
     return j->bad;
 }
 
+/* A band table (dynkit sweep --bands): for each state X (those of ys, comma-separated, or
+ * all), its mean over the runs against t with the band from p5_X to p95_X shaded, and its
+ * median. */
+static int band_plot(FILE *out, const sweep_table *t, const char *ys, const char *title)
+{
+    cli_svg_plot p;
+    memset(&p, 0, sizeof p);
+    static char labels[CLI_SVG_MAX_LINES][160];
+    char xl[320], names[1024] = "";
+    p.title = title;
+    p.xlabel = col_label(t, 0, xl, sizeof xl);
+    p.ylabel = "";
+    for (int c = 1; c < t->cols; c++) {
+        if (strncmp(t->names[c], "mean_", 5) != 0)
+            continue;
+        const char *x = t->names[c] + 5;
+        char want[160];
+        snprintf(want, sizeof want, ",%s,", x);
+        char list[1100];
+        snprintf(list, sizeof list, ",%s,", ys ? ys : "");
+        const size_t used = strlen(names);
+        snprintf(names + used, sizeof names - used, "%s%s", used ? ", " : "", x);
+        if (ys && !strstr(list, want))
+            continue;
+        char lo[170], hi[170], med[170];
+        snprintf(lo, sizeof lo, "p5_%s", x);
+        snprintf(hi, sizeof hi, "p95_%s", x);
+        snprintf(med, sizeof med, "p50_%s", x);
+        const int clo = find_col(t, lo), chi = find_col(t, hi), cmed = find_col(t, med);
+        if (clo < 0 || chi < 0 || p.n_lines + 2 > CLI_SVG_MAX_LINES)
+            continue;
+        int k = p.n_lines++;
+        snprintf(labels[k], sizeof labels[0], "mean %s (shaded: 5%% to 95%% of the runs)", x);
+        p.lines[k] = (cli_svg_line){labels[k], t->data, t->data + c, t->rows, t->cols, 0,
+                                    t->data + clo, t->data + chi};
+        if (cmed >= 0) {
+            k = p.n_lines++;
+            snprintf(labels[k], sizeof labels[0], "median %s", x);
+            p.lines[k] = (cli_svg_line){labels[k], t->data, t->data + cmed, t->rows, t->cols, 0,
+                                        NULL, NULL};
+        }
+    }
+    if (p.n_lines == 0)
+        return cli_usage_error("plot", "--y %s: no band of that name (accepted: %s)",
+                               ys ? ys : "", names);
+    return cli_svg_write(out, &p);
+}
+
 int cli_plot_sweep_table(int argc, char **argv)
 {
     const char *x = NULL, *y = NULL, *title = NULL, *output = NULL, *html = NULL;
@@ -502,6 +550,28 @@ int cli_plot_sweep_table(int argc, char **argv)
     if (sweep_table_read(argv[0], &t, err, sizeof err)) {
         sweep_table_free(&t);
         return cli_usage_error("plot", "%s", err);
+    }
+    if (t.bands) {
+        int rc = CLI_OK;
+        if (x || html || (output && !cli_has_extension(output, ".svg")))
+            rc = cli_usage_error("plot", "a band table (dynkit sweep --bands) is drawn against "
+                                         "t as SVG: it takes --y NAME[,NAME...], --title TEXT "
+                                         "and --output FILE.svg");
+        cli_out outf = {0};
+        if (rc == CLI_OK)
+            rc = cli_out_open(&outf, "--output", output);
+        if (rc == CLI_OK) {
+            const char *base = strrchr(argv[0], '/');
+            char auto_title[512];
+            snprintf(auto_title, sizeof auto_title, "%s: over the runs",
+                     base ? base + 1 : argv[0]);
+            rc = band_plot(outf.f, &t, y, title ? title : auto_title);
+            const int close_rc = cli_out_close(&outf, rc == CLI_OK);
+            if (rc == CLI_OK)
+                rc = close_rc;
+        }
+        sweep_table_free(&t);
+        return rc;
     }
     int rc = CLI_OK, varied[2], n_varied = 0, ycols[CLI_SVG_MAX_LINES], n_y = 0;
     for (int c = 1; c < t.cols; c++)

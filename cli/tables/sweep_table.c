@@ -38,10 +38,15 @@ static int grow(sweep_table *t, long *capacity)
     return 0;
 }
 
-static int is_sweep(const sweep_table *t, const char *path, char *err, size_t errlen)
+static int is_sweep(sweep_table *t, const char *path, char *err, size_t errlen)
 {
     if (t->cols >= 2 && strcmp(t->names[0], "run") == 0)
         return 0;
+    for (int c = 1; c < t->cols && strcmp(t->names[0], "t") == 0; c++)
+        if (strncmp(t->names[c], "p5_", 3) == 0) {
+            t->bands = 1;
+            return 0;
+        }
     snprintf(err, errlen,
              "%s is not a sweep's table (its first column should be run, as dynkit sweep "
              "writes it)",

@@ -15,10 +15,11 @@ typedef struct sweep_table {
     long rows;
     double *data;   /* (rows x cols); text fields (a CSV's status) and null are NaN */
     int status_col; /* -1 if none */
+    int bands;      /* a band table (dynkit sweep --bands): t, mean_X, p5_X, p50_X, p95_X */
 } sweep_table;
 
 /* Read the table at path: JSON when its name ends in .json, CSV otherwise; the first column
- * must be run. Returns 0, or -1 with a message in err; call sweep_table_free either way. */
+ * must be run (or t in a band table, which has a column p5_X). Returns 0, or -1 with a message in err; call sweep_table_free either way. */
 int sweep_table_read(const char *path, sweep_table *t, char *err, size_t errlen);
 void sweep_table_free(sweep_table *t);
 

@@ -309,7 +309,6 @@ static void test_noise_refused(void **state)
     expect_refused("par a=normal(0,1)\nx'=a\n", 1, "'normal' is not a built-in function");
     expect_refused("x'=1\ninit x=ran(1)\n", 2, "random numbers");
     expect_refused("wiener w\npar k=1\n!d=w\nx'=d\n", 3, "cannot depend on the noise");
-    expect_refused("wiener w\nx(t+1)=x+w\n", 1, "discrete map");
     expect_refused("wiener w\nx'=w\nglobal 1 x-1 {x=0}\n", 1, "events");
     expect_refused("x'=normal(1)\n", 1, "normal takes 2 arguments");
 }

@@ -303,6 +303,8 @@ static int check_noise_options(const char *command, cli_run *run, unsigned given
                                    "(wiener, normal, ran), and %s has none", m->name);
         return CLI_OK;
     }
+    if (dyn_method_is_map(run->method))
+        return CLI_OK; /* a discrete map draws its noise once per step */
     if (!rkmil && strcmp(run->method->name, "euler") != 0)
         return cli_usage_error(command, "model %s has noise (wiener, normal or ran), which "
                                "--method %s cannot integrate: use euler (Euler-Maruyama, "

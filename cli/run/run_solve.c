@@ -229,8 +229,10 @@ static int solve_noise(const cli_run *run, long every, dyn_output_fn output, voi
     double *work = malloc(dyn_sde_work_size(n, m->n_noise) * sizeof *work);
     if (!work)
         return -1;
-    const int rc = dyn_sde_solve(rkmil ? DYN_SDE_RKMIL : DYN_SDE_EM, &sde, run->t0, run->t1,
-                                 run->y0, y, work, &o, res);
+    const dyn_sde_method method = rkmil                             ? DYN_SDE_RKMIL
+                                  : dyn_method_is_map(run->method) ? DYN_SDE_MAP
+                                                                   : DYN_SDE_EM;
+    const int rc = dyn_sde_solve(method, &sde, run->t0, run->t1, run->y0, y, work, &o, res);
     free(work);
     return rc;
 }

@@ -16,6 +16,7 @@
  * Methods (docs/solvers.md, "Noise"):
  *   DYN_SDE_EM    Euler–Maruyama with a fixed step: every slot drawn once per step (strong
  *                 order 1/2, weak order 1; strong order 1 for additive noise);
+ *   DYN_SDE_MAP   a discrete map whose formulas draw noise (XPPAUT's meth=discrete);
  *   DYN_SDE_RKMIL the derivative-free Runge–Kutta Milstein scheme of Kloeden and Platen
  *                 (Numerical Solution of SDEs, 1992, eq. 11.1.5) for right-hand sides
  *                 affine in the Wiener slots with additive, scalar or diagonal (commuting)
@@ -97,7 +98,10 @@ typedef struct dyn_sde {
 
 typedef enum dyn_sde_method {
     DYN_SDE_EM = 0,
-    DYN_SDE_RKMIL = 1
+    DYN_SDE_RKMIL = 1,
+    DYN_SDE_MAP = 2   /* a discrete map with noise: every slot drawn once per step, then
+                       * y_{k+1} = f(t_k, y_k) (XPPAUT's meth=discrete; a Wiener slot is z /
+                       * sqrt(h), z for the map's step 1) */
 } dyn_sde_method;
 
 typedef struct dyn_sde_opts {

@@ -143,9 +143,6 @@ void lang_noise_classify(lang_ctx *c)
     if (!m->noises.n)
         return;
     const lpos first = LVEC_AT(m->noises, lang_noise, 0).pos;
-    if (m->method && strcmp(m->method, "discrete") == 0)
-        lang_fail(c, first, "noise ('wiener', 'normal', 'ran') in a discrete map is not "
-                  "supported: only differential equations take noise");
     if (m->events.n)
         lang_fail(c, first, "noise ('wiener', 'normal', 'ran') together with events or globals "
                   "(line %d) is not supported: the methods for noise do not locate events",
@@ -192,8 +189,8 @@ void lang_noise_classify(lang_ctx *c)
 const char *lang_noise_method(lang_ctx *c)
 {
     const lang_model *m = &c->m;
-    if (m->method && strcmp(m->method, "euler") == 0)
-        return "euler";
+    if (m->method && (strcmp(m->method, "euler") == 0 || strcmp(m->method, "discrete") == 0))
+        return m->method;
     const char *use = m->noise_class == DYN_NOISE_GENERAL ? "euler" : "rkmil";
     if (m->method && m->has_meth)
         lang_note(c, (lpos){0, 0},

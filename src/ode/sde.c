@@ -193,7 +193,7 @@ static int solve_fixed(sde_run *r, dyn_sde_method method, double t0, double t1,
     double t = t0;
     for (long k = 0; k < steps; k++) {
         const double tn = dyn_grid_time(&grid, k + 1), h = tn - t;
-        if (method == DYN_SDE_EM) {
+        if (method == DYN_SDE_EM || method == DYN_SDE_MAP) {
             for (int j = 0; j < m; j++) {
                 const int kind = s->kinds ? s->kinds[j] : DYN_NOISE_WIENER;
                 r->dw[j] = kind == DYN_NOISE_UNIFORM  ? dyn_rng_uniform(&r->rng)
@@ -203,7 +203,7 @@ static int solve_fixed(sde_run *r, dyn_sde_method method, double t0, double t1,
             if (eval(r, t, y, r->dw, -1, r->a))
                 return rhs_fail(r);
             for (int i = 0; i < n; i++)
-                r->ysmall[i] = y[i] + h * r->a[i];
+                r->ysmall[i] = method == DYN_SDE_MAP ? r->a[i] : y[i] + h * r->a[i];
         } else {
             const double sq = sqrt(h);
             for (int j = 0; j < m; j++)
@@ -348,11 +348,14 @@ int dyn_sde_solve(dyn_sde_method method, const dyn_sde *sde, double t0, double t
                                "n_noise > 0, and a span t0 < t1 (got n = %d, n_noise = %d, "
                                "%g:%g)",
                                n, m, t0, t1);
-    const int fixed = method == DYN_SDE_EM || o->fixed;
+    const int fixed = method != DYN_SDE_RKMIL || o->fixed;
     if (fixed && !(o->h > 0))
         return dyn_result_fail(res, DYN_ERR_ARG,
                                "%s takes fixed steps: give the step h > 0 (got %g)",
-                               method == DYN_SDE_EM ? "Euler-Maruyama" : "rkmil", o->h);
+                               method == DYN_SDE_EM    ? "Euler-Maruyama"
+                               : method == DYN_SDE_MAP ? "a discrete map"
+                                                       : "rkmil",
+                               o->h);
     if (method == DYN_SDE_RKMIL && sde->noise_class == DYN_NOISE_GENERAL)
         return dyn_result_fail(res, DYN_ERR_ARG,
                                "rkmil needs a right-hand side affine in Wiener noise that is "

@@ -220,7 +220,7 @@ static int run_one(worker *w, long i, double *row)
                              (double *)((char *)w->par + m->noise_offset),
                              (dyn_noise_class)m->noise_class};
         dyn_sde_opts o = {0};
-        const int em = s->noise_method == DYN_SDE_EM;
+        const int em = s->noise_method != DYN_SDE_RKMIL;
         o.h = em ? s->step : s->initial_step;
         o.rtol = s->rtol;
         o.atol = s->atol;
@@ -234,7 +234,7 @@ static int run_one(worker *w, long i, double *row)
         o.output_ctx = w;
         o.progress = run_progress;
         o.progress_ctx = w;
-        st = dyn_sde_solve(em ? DYN_SDE_EM : DYN_SDE_RKMIL, &sde, s->t0, s->t1, w->y0, w->y,
+        st = dyn_sde_solve((dyn_sde_method)s->noise_method, &sde, s->t0, s->t1, w->y0, w->y,
                            w->work, &o, &res);
     } else if (p->use_solve) {
         dyn_solve_opts o = p->solve;
@@ -363,9 +363,9 @@ static int check(const dyn_sweep *s, char *err, size_t errlen)
                               "and, with an adaptive method, a sample step > 0");
         return -1;
     }
-    if (m->n_noise > 0 && (s->noise_method != DYN_SDE_EM && s->noise_method != DYN_SDE_RKMIL)) {
-        snprintf(err, errlen, "model %s has noise: noise_method must be DYN_SDE_EM or "
-                              "DYN_SDE_RKMIL", m->name);
+    if (m->n_noise > 0 && (s->noise_method < DYN_SDE_EM || s->noise_method > DYN_SDE_MAP)) {
+        snprintf(err, errlen, "model %s has noise: noise_method must be DYN_SDE_EM, "
+                              "DYN_SDE_RKMIL or DYN_SDE_MAP", m->name);
         return -1;
     }
     if (m->n_noise > 0 && p_events_needed(s)) {

@@ -634,7 +634,7 @@ static void test_debian_examples(void **state)
         {"jcoaster1.ani", "jcoaster1.ode", NULL, 205},
         {"lorenz.ani", "lorenz2.ode", NULL, 11},
         {"nc.ani", "pend.ode", "nullclines in animations ('xnull', 'ynull') are not supported", 0},
-        {"osc.ani", "osc.ode", NULL, -1}, /* its model uses wiener */
+        {"osc.ani", "osc.ode", NULL, -1}, /* its model has noise (wiener) */
         {"osc1.ani", "osc.ode", NULL, -1},
         {"pend.ani", "pend.ode", NULL, 2},
         {"pend2.ani", "pend.ode", NULL, 9},

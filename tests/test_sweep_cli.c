@@ -309,13 +309,16 @@ static void test_help_examples(void **state)
     assert_int_equal(h.status, 0);
     static const char *const options[] = {"--vary", "--sample", "--runs", "--seed", "--from",
                                           "--reduce", "--threads", "--output", "--resume",
-                                          "--quiet"};
+                                          "--bands", "--quiet"};
     for (size_t k = 0; k < sizeof options / sizeof options[0]; k++)
         assert_non_null(strstr(h.out, options[k]));
     FILE *f = fopen(cli_path("runs.csv"), "w");
     assert_non_null(f);
     fputs("l,dphi\n2,0.5\n5,1\n", f);
     fclose(f);
+    /* the examples' model files, as from the source tree */
+    unlink(cli_path("examples"));
+    assert_int_equal(symlink(DYNKIT_SOURCE_DIR "/examples", cli_path("examples")), 0);
     int examples = 0;
     for (const char *p = strstr(h.out, "\n  dynkit sweep "); p;
          p = strstr(p + 1, "\n  dynkit sweep ")) {
@@ -335,8 +338,65 @@ static void test_help_examples(void **state)
     char *mc = cli_read_file(cli_path("mc.csv"), NULL);
     assert_int_equal(csv_rows(mc), 1000);
     free(mc);
+    /* 1000 runs of the noise: the band table has the grid's 501 times */
+    char *bands = cli_read_file(cli_path("ou_bands.csv"), NULL);
+    assert_non_null(bands);
+    assert_int_equal(csv_rows(bands), 501);
+    free(bands);
     cli_free(&h);
     unlink(cli_path("mc.csv"));
+    unlink(cli_path("ou_bands.csv"));
+    unlink(cli_path("ou_runs.csv"));
+    unlink(cli_path("examples"));
+}
+
+/* Runs over the noise of the Ornstein-Uhlenbeck example: the band table's mean and
+ * percentiles at t = 5 against the closed form (mean 0.5 + 1.5 e^-5, standard deviation
+ * 0.3 sqrt((1 - e^-10)/2)), and the same bytes on 1 and 3 threads. */
+static void test_noise_bands(void **state)
+{
+    (void)state;
+    const char *ou = DYNKIT_SOURCE_DIR "/examples/models/ornstein_uhlenbeck.ode";
+    cli_result a = cli_in_tmpdir("sweep %s --runs 800 --seed 4 --threads 1 --bands b1.csv "
+                                 "--quiet", ou);
+    cli_result b = cli_in_tmpdir("sweep %s --runs 800 --seed 4 --threads 3 --bands b3.json "
+                                 "--quiet", ou);
+    cli_result c = cli_in_tmpdir("sweep %s --runs 800 --seed 4 --threads 3 --bands b3.csv "
+                                 "--quiet", ou);
+    assert_int_equal(a.status, 0);
+    assert_int_equal(b.status, 0);
+    assert_int_equal(c.status, 0);
+    assert_string_equal(a.out, c.out); /* the run table */
+    char *t1 = cli_read_file(cli_path("b1.csv"), NULL), *t3 = cli_read_file(cli_path("b3.csv"), NULL);
+    assert_non_null(t1);
+    assert_non_null(t3);
+    assert_string_equal(t1, t3);
+    const char *last = t1 + strlen(t1) - 2;
+    while (last > t1 && *last != '\n')
+        last--;
+    double t, mean, p5, p50, p95;
+    assert_int_equal(sscanf(last + 1, "%lf,%lf,%lf,%lf,%lf", &t, &mean, &p5, &p50, &p95), 5);
+    const double m = 0.5 + 1.5 * exp(-5.0), sd = 0.3 * sqrt((1 - exp(-10.0)) / 2);
+    assert_true(t == 5.0);
+    assert_true(fabs(mean - m) < 5 * sd / sqrt(800.0));
+    assert_true(fabs(p50 - m) < 0.04);
+    assert_true(fabs(p5 - (m - 1.6449 * sd)) < 0.06 && fabs(p95 - (m + 1.6449 * sd)) < 0.06);
+    free(t1);
+    free(t3);
+    cli_free(&a);
+    cli_free(&b);
+    cli_free(&c);
+    cli_result p = cli_in_tmpdir("plot b1.csv --output b1.svg");
+    assert_int_equal(p.status, 0);
+    char *svg = cli_read_file(cli_path("b1.svg"), NULL);
+    assert_non_null(svg);
+    assert_non_null(strstr(svg, "<polygon"));
+    assert_non_null(strstr(svg, "mean x (shaded: 5% to 95% of the runs)"));
+    free(svg);
+    cli_free(&p);
+    static const char *const files[] = {"b1.csv", "b3.csv", "b3.json", "b1.svg"};
+    for (size_t k = 0; k < sizeof files / sizeof *files; k++)
+        unlink(cli_path(files[k]));
 }
 
 static void test_errors(void **state)
@@ -358,6 +418,11 @@ static void test_errors(void **state)
         {"sweep pendulum --vary l=1,2 --reduce event:top", "events: turn, bottom"},
         {"sweep pendulum --vary l=1,2 --threads 0", "--threads '0'"},
         {"sweep pendulum --vary l=1,2 --runs 5", "--runs and --seed go with --sample"},
+        {"sweep " DYNKIT_SOURCE_DIR "/examples/models/ornstein_uhlenbeck.ode --runs 5 --method "
+         "rk4", "cannot integrate: use euler"},
+        {"sweep " DYNKIT_SOURCE_DIR "/examples/models/ornstein_uhlenbeck.ode --runs 5 --bands "
+         "b.csv --resume r.csv", "--bands with --resume"},
+        {"sweep pendulum --runs 5", "give the runs"},
         {"sweep pendulum --vary l=1,l=2", "'l=2' is not a number"},
         {"sweep pendulum --vary l=1,2 --vary l=3", "varied twice"},
         {"sweep pendulum --vary l=1,2 --output t.txt", "unknown file extension '.txt'"},
@@ -663,7 +728,8 @@ int main(void)
         cmocka_unit_test(test_period_curve), cmocka_unit_test(test_threads_same_bytes),
         cmocka_unit_test(test_from),         cmocka_unit_test(test_failed_run),
         cmocka_unit_test(test_resume),       cmocka_unit_test(test_interrupt),
-        cmocka_unit_test(test_help_examples), cmocka_unit_test(test_errors),
+        cmocka_unit_test(test_help_examples),
+        cmocka_unit_test(test_noise_bands), cmocka_unit_test(test_errors),
         cmocka_unit_test(test_plot_table),    cmocka_unit_test(test_model_file),
         cmocka_unit_test(test_doc_pictures),
     };

@@ -209,7 +209,18 @@ static void print_default_run(const dyn_model *m)
            shortest(m->t1, c, sizeof c), cli_time_unit(m));
     printf("Method: %s (%s)\n", method,
            cli_model_default_source(m, CLI_DEFAULT_METHOD, from[0], sizeof from[0]));
-    if (!dyn_method_is_map(dyn_method_find(method)))
+    if (m->n_noise > 0) {
+        int w = 0;
+        for (int j = 0; j < m->n_noise; j++)
+            w += m->noise_kinds[j] == DYN_NOISE_WIENER;
+        printf("Noise: %d Wiener process%s, %d normal() or ran() draw%s per step; %s "
+               "(docs/solvers.md, \"Noise\")\n",
+               w, w == 1 ? "" : "es", m->n_noise - w, m->n_noise - w == 1 ? "" : "s",
+               m->noise_class == DYN_NOISE_ADDITIVE      ? "additive: euler or rkmil"
+               : m->noise_class == DYN_NOISE_COMMUTATIVE ? "scalar or diagonal: euler or rkmil"
+                                                         : "euler (Euler-Maruyama) only");
+    }
+    if (!dyn_method_is_map(cli_method_find(method)))
         printf("Tolerances of adaptive methods: --rtol %s (%s) --atol %s (%s)\n",
                shortest(cli_model_rtol(m), a, sizeof a),
                cli_model_default_source(m, CLI_DEFAULT_RTOL, from[1], sizeof from[1]),

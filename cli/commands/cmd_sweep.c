@@ -56,7 +56,9 @@ static void sweep_help(void)
          "                       last --vary varying fastest (as the innermost loop)\n"
          "  --sample NAME=DIST   random values: uniform(A,B), normal(MEAN,SD), lognormal(M,S)\n"
          "                       (exp of normal(M,S)); repeatable, one column each\n"
-         "  --runs N             the number of random runs (with --sample)\n"
+         "  --runs N             the number of random runs (with --sample); alone, for a model\n"
+         "                       with noise (wiener, normal, ran): N runs of its noise, run i\n"
+         "                       with the noise of (S, i)\n"
          "  --seed S             the seed, a whole number 0..2^64-1 (default 1); run i's\n"
          "                       values depend on (S, i, column) alone: Philox4x32-10, normal\n"
          "                       values by the Box-Muller transform\n"
@@ -89,6 +91,10 @@ static void sweep_help(void)
          "  --resume FILE        keep the finished runs of FILE (a table an interrupted sweep\n"
          "                       with the same options wrote), run the others, and write the\n"
          "                       whole table to --output (default: FILE itself)\n"
+         "  --bands FILE         also write, at each time of the --step grid, the mean and the\n"
+         "                       5th, 50th and 95th percentiles of every state over the runs\n"
+         "                       (t, mean_X, p5_X, p50_X, p95_X; format by the extension);\n"
+         "                       'dynkit plot FILE' draws them as bands\n"
          "  --quiet              no progress bar (shown on a terminal only: runs, rate, ETA)\n"
          "Ctrl-C stops the sweep: the finished runs are written and the command to resume is\n"
          "printed (exit status 130). Failed runs do not change the exit status (0).\n"
@@ -113,7 +119,9 @@ static void sweep_help(void)
          "  dynkit sweep vanderpol --method dp45 --tspan 0:10 --sample 'mu=uniform(0.5,2)' "
          "--sample 'y1=normal(2,0.1)' --runs 1000 --seed 7 --reduce final --resume mc.csv\n"
          "  dynkit sweep pendulum --method rk4 --step 0.01 --tspan 0:10 --from runs.csv "
-         "--reduce final,max:energy --threads 2");
+         "--reduce final,max:energy --threads 2\n"
+         "  dynkit sweep examples/models/ornstein_uhlenbeck.ode --runs 1000 --seed 2 "
+         "--bands ou_bands.csv --output ou_runs.csv");
 }
 
 /* ---- the run table ---- */

@@ -13,14 +13,19 @@ const char *cli_model_method(const dyn_model *m)
     return m->method ? m->method : DYN_MODEL_METHOD;
 }
 
+/* A model with noise that names no tolerances: rkmil's (strong order 1: 1e-6 would take
+ * millions of steps where 1e-3 takes hundreds; docs/solvers.md, "Noise") */
+#define CLI_NOISE_RTOL 1e-3
+#define CLI_NOISE_ATOL 1e-6
+
 double cli_model_rtol(const dyn_model *m)
 {
-    return m->rtol > 0.0 ? m->rtol : DYN_MODEL_RTOL;
+    return m->rtol > 0.0 ? m->rtol : m->n_noise > 0 ? CLI_NOISE_RTOL : DYN_MODEL_RTOL;
 }
 
 double cli_model_atol(const dyn_model *m)
 {
-    return m->atol > 0.0 ? m->atol : DYN_MODEL_ATOL;
+    return m->atol > 0.0 ? m->atol : m->n_noise > 0 ? CLI_NOISE_ATOL : DYN_MODEL_ATOL;
 }
 
 static int has_ext(const char *path, const char *ext)
@@ -37,8 +42,13 @@ const char *cli_model_default_source(const dyn_model *m, cli_default_field field
     const int own = field == CLI_DEFAULT_METHOD ? m->method != NULL
                     : field == CLI_DEFAULT_RTOL ? m->rtol > 0.0
                                                 : m->atol > 0.0;
+    if (!own && m->n_noise > 0)
+        return "dynkit's default for models with noise that name none";
     if (!own)
         return "dynkit's default for models that name none";
+    if (field == CLI_DEFAULT_METHOD && m->n_noise > 0 && m->source &&
+        (strcmp(m->method, "rkmil") == 0 || strcmp(m->method, "euler") == 0))
+        return "the method for its noise, or its @ meth=euler";
     if (!m->source)
         return "the model's";
     const char *slash = strrchr(m->source, '/');

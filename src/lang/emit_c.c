@@ -1738,9 +1738,8 @@ char *lang_emit_c(lang_ctx *c)
         LANG_C_CODE(c, "};\n");
     }
     /* 0 and NULL when the file names none: DYN_MODEL_RTOL, DYN_MODEL_ATOL, DYN_MODEL_METHOD */
-    /* a model with noise: rkmil's own defaults (a strong order 1 cannot reach 1e-6 cheaply) */
-    const double rtol = m->rtol > 0 ? m->rtol : m->noises.n ? 1e-3 : 0.0;
-    const double atol = m->atol > 0 ? m->atol : m->noises.n ? 1e-6 : 0.0;
+    const double rtol = m->rtol > 0 ? m->rtol : 0.0;
+    const double atol = m->atol > 0 ? m->atol : 0.0;
     LANG_C_CODE(c, "\nstatic const dyn_model dk_model = {\n    .name = ");
     lang_c_str(c, m->name);
     LANG_C_CODE(c, ",\n    .title = ");

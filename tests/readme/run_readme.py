@@ -11,7 +11,9 @@
   error followed by it, as a terminal shows a trace) must be exactly the lines shown after
   it (up to the next `$`), and a `$ cat FILE` shows a file written by the command before.
 
-Usage: run_readme.py DYNKIT README.md [PROJECT_ROOT]
+Usage: run_readme.py DYNKIT README.md [PROJECT_ROOT [SECTION]]
+With SECTION, only the text under the headings that contain SECTION (each up to the next
+heading of its level or above) is read.
 """
 import os
 import re
@@ -68,12 +70,35 @@ def console_steps(block):
     return steps
 
 
+def sections(text, title):
+    """The text under the headings that contain title, each to the next heading of its level
+    or above (fenced blocks are not headings)."""
+    out, level, fence = [], 0, False
+    for line in text.splitlines(keepends=True):
+        if line.startswith("```"):
+            fence = not fence
+        m = None if fence else re.match(r"(#+) ", line)
+        if m:
+            if level and len(m.group(1)) <= level:
+                level = 0
+            if not level and title in line:
+                level = len(m.group(1))
+        if level:
+            out.append(line)
+    return "".join(out)
+
+
 def main():
     dynkit, readme = os.path.abspath(sys.argv[1]), sys.argv[2]
     # the folder whose examples/ the commands read: the README's, or a third argument
     root = sys.argv[3] if len(sys.argv) > 3 else os.path.dirname(os.path.abspath(readme))
     with open(readme) as f:
         text = f.read()
+    if len(sys.argv) > 4:
+        text = sections(text, sys.argv[4])
+        if "```" not in text:
+            print("no commands under a heading with '%s' in %s" % (sys.argv[4], readme))
+            return 1
     failures = 0
     with tempfile.TemporaryDirectory() as work:
         bindir = os.path.join(work, "bin")

@@ -159,6 +159,11 @@ def has_global(text):
     return re.search(r"(?im)^\s*global\b", text) is not None
 
 
+def has_noise(text):
+    """wiener, normal() or ran(): the two runs draw other random numbers."""
+    return re.search(r"(?im)^\s*wiener\b|\b(ran|normal)\s*\(", text) is not None
+
+
 def compare(xpp, dyn, t0, rtol=2e-6, scaled=False):
     """(agreement, first time of disagreement or None, max relative difference); runs that
     share no sample after the start t0 (the initial state alone) are not compared."""
@@ -213,6 +218,8 @@ def main():
             meth = file_method(text)
             own_steps = meth is not None and meth not in FIXED_STEP and not is_map(text, meth)
             method = None if is_map(text, meth) else "rk4" if meth is None or own_steps else None
+            if has_noise(text):  # the model's method for noise (euler, rkmil, a map)
+                own_steps, method = False, None
             r = {"file": base}
             dyn, msg, rc = run_dynkit(args.dynkit, path, method, args.timeout, env)
             if dyn is None and rc == 2:
@@ -259,6 +266,8 @@ def main():
                     t_xpp, t_dyn = float(xpp[-1, 0]), float(dyn[-1, 0])
                     if t_xpp < t_dyn - 1e-5 * (1 + abs(t_dyn)):
                         r["xppaut_stops"] = t_xpp
+                    if verdict == "separate" and has_noise(text):
+                        verdict = "noise: other random numbers than XPPAUT's"
                     r["compare"] = verdict
                     r["t_separate"] = t_sep
                     r["max_rel_diff"] = rel

@@ -60,6 +60,17 @@ static void run(dyn_sde_method method, dyn_rhs_fn f, void *par, double *noise,
     assert_int_equal(dyn_sde_solve(method, &sde, 0.0, T, y0, y, work, o, res), DYN_OK);
 }
 
+/* One path of GBM dX = mu X dt + sigma X dW from X = 1 to t = 1 (options o: step, seed;
+ * the stream is set here): X(1) and W(1) into y. */
+static void gbm_path(dyn_sde_method method, double mu, double sigma, dyn_sde_opts o,
+                     uint64_t stream, double *y, dyn_result *res)
+{
+    gbm_par par = {mu, sigma, 0.0};
+    const double y0[2] = {1.0, 0.0};
+    o.stream = stream;
+    run(method, gbm_rhs, &par, &par.w, DYN_NOISE_COMMUTATIVE, 1.0, y0, &o, y, res);
+}
+
 /* Least-squares slope of log err against log h. */
 static double slope(const double *h, const double *err, int n)
 {
@@ -79,21 +90,15 @@ static double slope(const double *h, const double *err, int n)
 static double strong_order(dyn_sde_method method, int paths)
 {
     double h[5], err[5];
-    const double T = 1.0, y0[2] = {1.0, 0.0};
     for (int k = 0; k < 5; k++) {
         h[k] = ldexp(1.0, -(k + 3));
         double sum = 0.0;
+        const dyn_sde_opts o = {.h = h[k], .fixed = 1, .seed = 11};
         for (int p = 0; p < paths; p++) {
-            gbm_par par = {1.5, 1.0, 0.0};
-            dyn_sde_opts o = {0};
-            o.h = h[k];
-            o.fixed = 1;
-            o.seed = 11;
-            o.stream = (uint64_t)p;
             double y[2];
             dyn_result res;
-            run(method, gbm_rhs, &par, &par.w, DYN_NOISE_COMMUTATIVE, T, y0, &o, y, &res);
-            sum += fabs(y[0] - exp((1.5 - 0.5) * T + y[1]));
+            gbm_path(method, 1.5, 1.0, o, (uint64_t)p, y, &res);
+            sum += fabs(y[0] - exp(1.0 + y[1]));
         }
         err[k] = sum / paths;
     }
@@ -123,20 +128,15 @@ static void test_weak_order_em(void **state)
 {
     (void)state;
     double h[4], err[4];
-    const double y0[2] = {1.0, 0.0};
     const int paths = 200000;
     for (int k = 0; k < 4; k++) {
         h[k] = ldexp(1.0, -(k + 2));
         double sum = 0.0;
+        const dyn_sde_opts o = {.h = h[k], .seed = 5};
         for (int p = 0; p < paths; p++) {
-            gbm_par par = {1.0, 0.5, 0.0};
-            dyn_sde_opts o = {0};
-            o.h = h[k];
-            o.seed = 5;
-            o.stream = (uint64_t)p;
             double y[2];
             dyn_result res;
-            run(DYN_SDE_EM, gbm_rhs, &par, &par.w, DYN_NOISE_COMMUTATIVE, 1.0, y0, &o, y, &res);
+            gbm_path(DYN_SDE_EM, 1.0, 0.5, o, (uint64_t)p, y, &res);
             sum += y[0];
         }
         err[k] = fabs(sum / paths - exp(1.0));
@@ -203,23 +203,17 @@ static void test_ou_moments(void **state)
 static void test_rkmil_tolerance(void **state)
 {
     (void)state;
-    const double y0[2] = {1.0, 0.0};
     double err[2];
     long steps[2];
     for (int k = 0; k < 2; k++) {
         double sum = 0;
         steps[k] = 0;
+        const double tol = k ? 1e-4 : 1e-2;
+        const dyn_sde_opts o = {.rtol = tol, .atol = tol, .seed = 3};
         for (int p = 0; p < 200; p++) {
-            gbm_par par = {1.5, 1.0, 0.0};
-            dyn_sde_opts o = {0};
-            o.rtol = k ? 1e-4 : 1e-2;
-            o.atol = o.rtol;
-            o.seed = 3;
-            o.stream = (uint64_t)p;
             double y[2];
             dyn_result res;
-            run(DYN_SDE_RKMIL, gbm_rhs, &par, &par.w, DYN_NOISE_COMMUTATIVE, 1.0, y0, &o, y,
-                &res);
+            gbm_path(DYN_SDE_RKMIL, 1.5, 1.0, o, (uint64_t)p, y, &res);
             sum += fabs(y[0] - exp(1.0 + y[1]));
             steps[k] += res.stats.accepted;
         }

@@ -379,6 +379,23 @@ static void test_constraint_with_declared_speeds(void **state_)
     cli_free(&rb);
 }
 
+/* info and derive state the kinematic equations of declared speeds; derive's M and F are
+ * by speed (Euler's equations: the top's axial M[w3,w3] = C) */
+static void test_info_and_derive_show_the_rates(void **state_)
+{
+    (void)state_;
+    const char *rate = "theta' = w1*cos(phi)-w2*sin(phi)";
+    cli_result r = run_ok("info %s%s", MECH "top_euler.mech", "");
+    CHECK(strstr(r.out, "speeds w1, w2, w3; kinematic equations psi' = ") && strstr(r.out, rate),
+          "%s", r.out);
+    cli_free(&r);
+    r = run_ok("derive %s%s", MECH "top_euler.mech", "");
+    CHECK(strstr(r.out, "M u' = F + D' lambda, q' = W(q) u\n") &&
+          strstr(r.out, "\nkinematic equations:\n") && strstr(r.out, rate) &&
+          strstr(r.out, "\nM[w3,w3] = C\n") && strstr(r.out, "\nF[w3] = "), "%s", r.out);
+    cli_free(&r);
+}
+
 static void expect_error(const char *text, const char *where, const char *what)
 {
     const char *path = cli_path("bad.mech");
@@ -432,6 +449,7 @@ int main(void)
         cmocka_unit_test(test_free_joint_with_euler_parameters),
         cmocka_unit_test(test_chain_of_joints_matches_the_formulas),
         cmocka_unit_test(test_constraint_with_declared_speeds),
+        cmocka_unit_test(test_info_and_derive_show_the_rates),
         cmocka_unit_test(test_joint_and_speed_errors),
     };
     return cmocka_run_group_tests(tests, setup_all, NULL);

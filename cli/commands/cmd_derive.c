@@ -16,7 +16,9 @@ static void derive_help(void)
          "formulas of the coordinates q, their speeds, t and the parameters: each entry\n"
          "M[a,b] of the mass matrix's lower triangle, each force F[a], and for each\n"
          "constraint its row D[name,a] and convective term c[name]; then the file's fixed\n"
-         "quantities they use. The formulas are in the file's operators (^ is a power).\n\n"
+         "quantities they use. The formulas are in the file's operators (^ is a power).\n"
+         "With speeds u declared by a speeds line, the kinematic equations q' = W(q) u\n"
+         "come first and M u' = F + D' lambda is written for the speeds.\n\n"
          "Options:\n"
          "  --c FILE.c           write the model as C instead (the text dynkit compiles): a\n"
          "                       model of its own, 'dynkit run FILE.c' runs it");

@@ -914,9 +914,14 @@ static void describe(dctx *d)
     const char *s = "Mechanism (equations of motion by TMT): coordinates";
     for (int i = 0; i < mb->coords.n; i++) {
         const mbs_coord *q = &LVEC_AT(mb->coords, mbs_coord, i);
-        s = lang_printf(c, "%s %s (speed %s)%s", s, q->name, q->speed,
-                        i + 1 < mb->coords.n ? "," : ";");
+        s = mb->speeds.n ? lang_printf(c, "%s %s%s", s, q->name,
+                                       i + 1 < mb->coords.n ? "," : "; speeds")
+                         : lang_printf(c, "%s %s (speed %s)%s", s, q->name, q->speed,
+                                       i + 1 < mb->coords.n ? "," : ";");
     }
+    for (int i = 0; i < mb->speeds.n; i++)
+        s = lang_printf(c, "%s %s%s", s, LVEC_AT(mb->speeds, mbs_speed, i).name,
+                        i + 1 < mb->speeds.n ? "," : ";");
     for (int i = 0; i < mb->coords.n && mb->speeds.n; i++) {
         const mbs_coord *q = &LVEC_AT(mb->coords, mbs_coord, i);
         s = lang_printf(c, "%s%s %s' = %s%s", s, i ? "" : " kinematic equations", q->name,

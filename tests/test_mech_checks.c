@@ -243,6 +243,20 @@ static void test_units_that_do_not_add_up_are_named(void **state_)
     cli_free(&r);
 }
 
+/* The directions that move no mass and the combination of dependent constraints, with
+ * their coefficients: p at (x + 2 z, y) does not move when dz = 1, dx = -2; c2's row
+ * (2, 3) is 2 (1, 0) + 3 (0, 1), the rows of c1 and c3. */
+static void test_singular_and_redundant_name_the_combination(void **state_)
+{
+    (void)state_;
+    refused("coord x=1, y=0, z=0\npoint p mass=1 at (x+2*z, y, 0)\n", "bad.mech:1:17:",
+            "z moves no mass that the coordinates before it do not (the rates dz = 1, dx = -2 "
+            "together move no mass");
+    refused("coord x=1, y=0\npoint p mass=1 at (x, y, 0)\nconstraint c1: x-1 = 0\n"
+            "constraint c3: y = 0\nconstraint c2: 2*x-2 + 3*y = 0\n", "bad.mech:5:12:",
+            "its row depends on those of c1, c3 (D[c2] = 2 D[c1] + 3 D[c3]");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -252,6 +266,7 @@ int main(void)
         cmocka_unit_test(test_project_init_takes_the_nearest_speeds),
         cmocka_unit_test(test_project_init_closes_the_fourbar),
         cmocka_unit_test(test_units_that_do_not_add_up_are_named),
+        cmocka_unit_test(test_singular_and_redundant_name_the_combination),
     };
     return cmocka_run_group_tests(tests, setup_all, NULL);
 }

@@ -57,6 +57,55 @@ double mbs_value(lang_ctx *c, const mbs_initial *ini, const node *e)
  * not above 1e-12 of the largest diagonal entry, or -1. */
 static int cholesky(double *A, int n) { return dyn_cholesky_factor_tol(n, A, 1e-12, 1) - 1; }
 
+/* After cholesky(L) failed at column j of the n x n matrix A: the combination that makes
+ * column j, x (j) with A11 x = A[0..j-1, j] (A11 = the factor's leading j x j block),
+ * so that v = (-x, 1) has A v = 0 to the tolerance */
+static void dependence(const double *L, const double *A, int n, int j, double *x)
+{
+    for (int i = 0; i < j; i++) {
+        double t = A[i * n + j];
+        for (int k = 0; k < i; k++)
+            t -= L[i * n + k] * x[k];
+        x[i] = t / L[i * n + i];
+    }
+    for (int i = j - 1; i >= 0; i--) {
+        double t = x[i];
+        for (int k = i + 1; k < j; k++)
+            t -= L[k * n + i] * x[k];
+        x[i] = t / L[i * n + i];
+    }
+}
+
+/* "a, b" for the entries of x (j) that count, and "LHS = 2 a - 1 b" into *formula */
+static const char *involved(lang_ctx *c, const double *x, int j,
+                            const char *(*name)(const void *, int), const void *of,
+                            const char *lhs, const char **formula)
+{
+    double big = 0.0;
+    for (int i = 0; i < j; i++)
+        big = fmax(big, fabs(x[i]));
+    const char *names = "", *f = lhs;
+    for (int i = 0; i < j; i++) {
+        if (!(fabs(x[i]) > 1e-9 * big))
+            continue;
+        names = lang_printf(c, "%s%s%s", names, *names ? ", " : "", name(of, i));
+        f = lang_printf(c, "%s %s %.6g D[%s]", f, f == lhs ? "=" : x[i] < 0 ? "-" : "+",
+                        f == lhs ? x[i] : fabs(x[i]), name(of, i));
+    }
+    *formula = f;
+    return names;
+}
+
+static const char *coord_name(const void *mb, int i)
+{
+    return LVEC_AT(((const mbs_model *)mb)->coords, mbs_coord, i).name;
+}
+
+static const char *cons_name(const void *mb, int i)
+{
+    return LVEC_AT(((const mbs_model *)mb)->cons, mbs_constraint, i).name;
+}
+
 int mbs_positive_definite(lang_ctx *c, const double *M, int n)
 {
     for (int i = 0; i < n * n; i++)
@@ -91,10 +140,20 @@ void mbs_check_initial(lang_ctx *c, const mbs_model *mb, double *M, const double
             lang_fail(c, q->pos, "the mass matrix is singular at the initial state: no mass or "
                       "inertia moves with %s (give the bodies that move with it a mass, or "
                       "their rotation an inertia)", names);
+        double *x = lang_alloc(c, ((size_t)j + 1) * sizeof *x);
+        dependence(L, M, n, j, x);
+        double most = 0.0;
+        for (int i = 0; i < j; i++)
+            most = fmax(most, fabs(x[i]));
+        /* the direction v = (-x, 1) with M v = 0: the rates that move no mass */
+        const char *dir = lang_printf(c, "d%s = 1", coord_name(mb, j));
+        for (int i = 0; i < j; i++)
+            if (fabs(x[i]) > 1e-9 * most)
+                dir = lang_printf(c, "%s, d%s = %.6g", dir, coord_name(mb, i), -x[i]);
         lang_fail(c, LVEC_AT(mb->coords, mbs_coord, j).pos, "the mass matrix is singular at the "
-                  "initial state: %s moves no mass that the coordinates before it do not "
-                  "(choose independent coordinates, or give the bodies inertia)",
-                  LVEC_AT(mb->coords, mbs_coord, j).name);
+                  "initial state: %s moves no mass that the coordinates before it do not (the "
+                  "rates %s together move no mass; choose independent coordinates, or give "
+                  "the bodies inertia)", coord_name(mb, j), dir);
     }
     if (m == 0)
         return;
@@ -116,12 +175,27 @@ void mbs_check_initial(lang_ctx *c, const mbs_model *mb, double *M, const double
     const int bad = cholesky(A, m);
     if (bad >= 0) {
         const mbs_constraint *k = &LVEC_AT(mb->cons, mbs_constraint, bad);
-        const char *before = "";
-        for (int r = 0; r < bad; r++)
-            before = lang_printf(c, "%s%s%s", before, r ? ", " : "",
-                                 LVEC_AT(mb->cons, mbs_constraint, r).name);
+        double *x = lang_alloc(c, ((size_t)bad + 1) * sizeof *x);
+        double *LA = lang_alloc(c, (size_t)m * m * sizeof *LA);
+        memcpy(LA, A, (size_t)m * m * sizeof *LA);
+        /* A holds the partial factor; its Gram matrix again for the coefficients */
+        for (int r = 0; r < m; r++)
+            for (int s2 = 0; s2 < m; s2++) {
+                double v = 0.0;
+                for (int q = 0; q < n; q++)
+                    v += D[r * n + q] * X[s2 * n + q];
+                A[r * m + s2] = v;
+            }
+        dependence(LA, A, m, bad, x);
+        const char *formula;
+        const char *before = involved(c, x, bad, cons_name, mb,
+                                      lang_printf(c, "D[%s]", k->name), &formula);
+        if (*before)
+            lang_fail(c, k->pos, "constraint '%s' is redundant at the initial state: its row "
+                      "depends on those of %s (%s, D the rows on the coordinates' rates; remove "
+                      "one, or start away from this configuration)", k->name, before, formula);
         lang_fail(c, k->pos, "constraint '%s' is redundant at the initial state: its row "
-                  "depends on %s%s (remove one, or start away from this configuration)", k->name,
-                  *before ? "those of " : "no coordinate", before);
+                  "is zero: it depends on no coordinate there (remove it, or start away from "
+                  "this configuration)", k->name);
     }
 }

@@ -172,21 +172,13 @@ void mbs_check_initial(lang_ctx *c, const mbs_model *mb, double *M, const double
                 v += D[r * n + k] * X[s * n + k];
             A[r * m + s] = v;
         }
+    double *G = lang_alloc(c, (size_t)m * m * sizeof *G); /* A before its factorization */
+    memcpy(G, A, (size_t)m * m * sizeof *G);
     const int bad = cholesky(A, m);
     if (bad >= 0) {
         const mbs_constraint *k = &LVEC_AT(mb->cons, mbs_constraint, bad);
         double *x = lang_alloc(c, ((size_t)bad + 1) * sizeof *x);
-        double *LA = lang_alloc(c, (size_t)m * m * sizeof *LA);
-        memcpy(LA, A, (size_t)m * m * sizeof *LA);
-        /* A holds the partial factor; its Gram matrix again for the coefficients */
-        for (int r = 0; r < m; r++)
-            for (int s2 = 0; s2 < m; s2++) {
-                double v = 0.0;
-                for (int q = 0; q < n; q++)
-                    v += D[r * n + q] * X[s2 * n + q];
-                A[r * m + s2] = v;
-            }
-        dependence(LA, A, m, bad, x);
+        dependence(A, G, m, bad, x);
         const char *formula;
         const char *before = involved(c, x, bad, cons_name, mb,
                                       lang_printf(c, "D[%s]", k->name), &formula);

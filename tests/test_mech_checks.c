@@ -186,6 +186,13 @@ static void test_project_init_closes_the_fourbar(void **state_)
     CHECK(v[9] < 1e-14 && fabs(rate_x) < 1e-14 && fabs(rate_y) < 1e-14,
           "gap %.3g, rates %.3g %.3g", v[9], rate_x, rate_y);
     cli_free(&r);
+    /* linearize takes the same state: refused, then projected (the q1 of the run above) */
+    r = cli("linearize %sfourbar.mech --init q1=1.1", MECH);
+    CHECK(r.status == 2 && strstr(r.err, "constraint 'loop_x'"), "%d %s", r.status, r.err);
+    cli_free(&r);
+    r = cli("linearize %sfourbar.mech --init q1=1.1 --project-init", MECH);
+    CHECK(r.status == 0 && strstr(r.out, "q1    = 1.08723940281"), "%s%s", r.out, r.err);
+    cli_free(&r);
 }
 
 /* text as bad.mech, run: exit 2 with where and what in the message */

@@ -38,6 +38,8 @@ static void linearize_help(void)
          "\n"
          "Options:\n"
          "  --init NAME=VALUE    a state's value (repeatable; as in dynkit run)\n"
+         "  --project-init       a mechanism file: that state moved onto its constraints\n"
+         "                       first (as in dynkit run)\n"
          "  --set NAME=VALUE     a parameter's value (repeatable)\n"
          "  --forces FILE        the model's input table (as in dynkit run), read at T\n"
          "  --t T                the time (default: the model's start time)\n"
@@ -362,7 +364,8 @@ static int parse_args(int argc, char **argv, char **pass, int *n_pass, lin_opts 
 {
     static const char *const options[] = {"--init", "--set",      "--forces",     "--interp",
                                           "--t",    "--vary",     "--output",     "--matrix",
-                                          "--json", "--jacobian", "--equilibrium"};
+                                          "--json", "--jacobian", "--equilibrium",
+                                          "--project-init"};
     pass[(*n_pass)++] = argv[0];
     for (int i = 1; i < argc; i++) {
         const char *v = NULL;
@@ -404,8 +407,10 @@ static int parse_args(int argc, char **argv, char **pass, int *n_pass, lin_opts 
             o->json = 1;
         else if (cli_flag(argv[i], "equilibrium"))
             o->equilibrium = 1;
+        else if (cli_flag(argv[i], "project-init"))
+            pass[(*n_pass)++] = (char *)options[11];
         else
-            return cli_unknown_option("linearize", argv[i], options, 11);
+            return cli_unknown_option("linearize", argv[i], options, 12);
     }
     if (o->scheme_text && parse_scheme(o->scheme_text, &o->scheme) != CLI_OK)
         return CLI_USAGE;

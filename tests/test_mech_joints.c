@@ -10,7 +10,8 @@
  * the intermediate axis; joints along tilted axes (a pendulum's frequency, a sled on an
  * incline); a free joint with Euler parameters against plane_quat.mech; a holonomic
  * constraint with declared speeds against cartesian_pendulum.mech; a chain of 8 revolute
- * joints against its formulas; and the errors of joints and speeds at FILE:LINE:COL. */
+ * joints against its formulas; a spatial chain by its rotations and by its matrices; and
+ * the errors of joints and speeds at FILE:LINE:COL. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -341,6 +342,49 @@ static void test_chain_of_joints_matches_the_formulas(void **state_)
     cli_free(&rb);
 }
 
+/* A spatial chain (revolute, spherical with two angles, revolute) whose first axis is
+ * written z or (0, 0, 1): the first continues the chain of elementary rotations, the
+ * second composes each child with its parent's matrix; the same motion within 1e-10 and
+ * the energy kept within 1e-10 J over 3 s. */
+static void test_spatial_chain_two_ways(void **state_)
+{
+    (void)state_;
+    const char *text = "par g=9.81 [m/s^2]\n"
+                       "coord a=0.3 [rad], b=0.2 [rad], c=-0.4 [rad], e=0.5 [rad]\n"
+                       "init da=1, de=2\n"
+                       "gravity 0, 0, -g\n"
+                       "body l1 mass=1 inertia=(0.1, 0.2, 0.3) revolute ground %s:a "
+                       "pivot (0.2, 0, 0)\n"
+                       "body l2 mass=1 inertia=(0.05, 0.06, 0.01) spherical l1(0.2, 0, 0) "
+                       "x:b y:c pivot (0, 0, 0.3)\n"
+                       "point tip mass=0.5 revolute l2(0, 0, -0.3) z:e pivot (0, 0.2, 0)\n";
+    char buf[1024], pa[512], pb[512];
+    snprintf(pa, sizeof pa, "%s", cli_path("chain_z.mech"));
+    snprintf(pb, sizeof pb, "%s", cli_path("chain_axis.mech"));
+    snprintf(buf, sizeof buf, text, "z");
+    write_file(pa, buf);
+    snprintf(buf, sizeof buf, text, "(0, 0, 1)");
+    write_file(pb, buf);
+    const char *opts = TIGHT " --tspan 0:3 --step 0.1 --outputs";
+    cli_result ra = run_ok("run %s %s", pa, opts), rb = run_ok("run %s %s", pb, opts);
+    static const char *const names[] = {"a", "b", "c", "e", "energy"};
+    static double x[MAXROWS], y[MAXROWS];
+    double worst = 0.0, energy = 0.0;
+    for (int k = 0; k < 5; k++) {
+        const long n = column(ra.out, names[k], x);
+        CHECK(n == 31 && column(rb.out, names[k], y) == n, "rows %ld", n);
+        for (long i = 0; i < n; i++) {
+            worst = fmax(worst, fabs(x[i] - y[i]));
+            if (k == 4)
+                energy = fmax(energy, fabs(x[i] - x[0]));
+        }
+    }
+    CHECK(worst < 1e-10 && energy < 1e-10, "largest difference %.3g, energy changed by %.3g J",
+          worst, energy);
+    cli_free(&ra);
+    cli_free(&rb);
+}
+
 /* The pendulum of cartesian_pendulum.mech (x, y held on the rod by a holonomic constraint)
  * with the velocity's radial and tangential components ur, ut as speeds: the same motion
  * and the same rod force (the multiplier of the same constraint), ur kept at 0. */
@@ -448,6 +492,7 @@ int main(void)
         cmocka_unit_test(test_tilted_axes),
         cmocka_unit_test(test_free_joint_with_euler_parameters),
         cmocka_unit_test(test_chain_of_joints_matches_the_formulas),
+        cmocka_unit_test(test_spatial_chain_two_ways),
         cmocka_unit_test(test_constraint_with_declared_speeds),
         cmocka_unit_test(test_info_and_derive_show_the_rates),
         cmocka_unit_test(test_joint_and_speed_errors),

@@ -354,7 +354,8 @@ static int rotation_chain(dctx *d, mbs_body *b)
         b->caxis[n] = b->axis[i];
         b->cangle[n++] = a;
     }
-    b->cn = elementary_only ? n : -1;
+    /* composed with a parent's matrix (below, joint_pose): no chain to continue */
+    b->cn = elementary_only && !(p && p->frame && !b->chained) ? n : -1;
     return n;
 }
 

@@ -83,6 +83,10 @@ const pages = [
   { name: 'double-pendulum-file', args: ['animate', path.join(here, '..', '..', 'examples', 'models', 'double_pendulum.ode')], ani: { ratio: 1, comet: true } },
   { name: 'double-pendulum-no-ani', args: ['animate', path.join(here, '..', '..', 'examples', 'models', 'double_pendulum.ode'), '--no-ani'], ani: false },
   { name: 'pendulum-file-ani', args: ['animate', path.join(here, '..', '..', 'examples', 'models', 'pendulum.ode'), '--compare', 'euler:0.05'], ani: { ratio: 1 } },
+  // mechanism files drawn from their geometry: the top in 3D (the scale bar, the orbit), the
+  // four-bar in its plane on equal scales, with its constraint forces as arrows
+  { name: 'mech-top', args: ['animate', path.join(here, '..', '..', 'examples', 'mechanisms', 'top.mech')], scene: true, mech: '3d' },
+  { name: 'mech-fourbar', args: ['animate', path.join(here, '..', '..', 'examples', 'mechanisms', 'fourbar.mech'), '--tspan', '0:3'], mech: '2d' },
   // a model in milliseconds with an XPPAUT window, mV against a unitless gate
   { name: 'morris-lecar', args: ['animate', path.join(here, 'morris_lecar.ode')] },
 ];
@@ -355,6 +359,11 @@ async function checkPage(spec, vp) {
 
   if (spec.generic) {
     check(await page.evaluate(() => document.body.classList.contains('no-picture')), 'a model without a picture gets the time series only');
+  }
+  if (spec.mech) {
+    const m = await page.evaluate(() => { const v = document.getElementById('view'); return { view: v && v.dataset.mechView, read: (document.querySelector('.mech-readouts') || {}).textContent || '' }; });
+    check(m.view === spec.mech, `the mechanism is drawn in ${spec.mech} (${m.view})`);
+    if (spec.mech === '2d') check(/loop_x = -?[0-9]/.test(m.read) && / N/.test(m.read), `the constraint forces are read out with their unit ('${m.read}')`);
   }
 
   // controls of the first player: button, slider, keys, speed

@@ -74,6 +74,21 @@ int dyn_ode_to_c_tables(const char *path, const char *text, size_t len,
                           ode_front, NULL);
 }
 
+lang_ctx *lang_ctx_new(const char *path, const char *text, size_t len,
+                       const dyn_lang_table_file *tables, int n_tables, dyn_lang_diag *diag)
+{
+    lang_ctx *c = calloc(1, sizeof *c);
+    if (!c)
+        return NULL;
+    c->path = path;
+    c->text = text ? text : "";
+    c->len = len;
+    c->diag = diag;
+    c->table_files = tables;
+    c->n_table_files = n_tables;
+    return c;
+}
+
 int lang_translate(const char *path, const char *text, size_t len,
                    const dyn_lang_table_file *tables, int n_tables, char **c_source,
                    dyn_lang_diag *diag, dyn_lang_note_fn note, void *note_ctx,
@@ -97,19 +112,13 @@ int lang_translate(const char *path, const char *text, size_t len,
             strcpy(diag->message, "a table file without a name or a path (a NULL argument)");
             return 2;
         }
-    lang_ctx *c = calloc(1, sizeof *c);
+    lang_ctx *c = lang_ctx_new(path, text, len, tables, n_tables, diag);
     if (!c) {
         strcpy(diag->message, "out of memory while translating the model");
         return 1;
     }
-    c->path = path;
-    c->text = text ? text : "";
-    c->len = len;
-    c->diag = diag;
     c->note = note;
     c->note_ctx = note_ctx;
-    c->table_files = tables;
-    c->n_table_files = n_tables;
     jmp_buf fail;
     c->fail = &fail;
     if (setjmp(fail)) {

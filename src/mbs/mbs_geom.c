@@ -127,6 +127,21 @@ static void on_body(lang_ctx *c, lang_lexer *lx, mbs_shape *s)
     s->a.body = mbs_find_body(c, b, bpos, 1);
 }
 
+mbs_shape mbs_shape_init(int kind)
+{
+    mbs_shape s;
+    memset(&s, 0, sizeof s);
+    s.kind = kind;
+    s.a.body = s.b.body = -1;
+    for (int j = 0; j < 3; j++)
+        s.a.p[j] = s.b.p[j] = s.v[j] = s.avec[j] = -1;
+    s.axis = 2;
+    s.con = -1;
+    s.size = -1;
+    s.wheel = -1;
+    return s;
+}
+
 int mbs_geom_statement(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos)
 {
     static const char *const words[] = {"box", "cylinder", "disk", "sphere", "rod",
@@ -141,18 +156,8 @@ int mbs_geom_statement(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos)
     if (k < 0)
         return -1;
     mbs_model *mb = c->hook_ctx;
-    mbs_shape s;
-    memset(&s, 0, sizeof s);
-    s.kind = kinds[k];
+    mbs_shape s = mbs_shape_init(kinds[k]);
     s.pos = wpos;
-    s.a.body = s.b.body = -1;
-    for (int j = 0; j < 3; j++)
-        s.a.p[j] = s.b.p[j] = s.v[j] = -1;
-    s.axis = 2;
-    s.con = -1;
-    s.size = -1;
-    s.avec[0] = s.avec[1] = s.avec[2] = -1;
-    s.wheel = -1;
     lpos npos = wpos;
     const char *what = words[k];
     switch (s.kind) {

@@ -178,7 +178,9 @@ mbs_attach mbs_attachment(lang_ctx *c, lang_lexer *lx);
  * after it into b, the next body */
 int mbs_joint_kind(const char *word);
 void mbs_parse_joint(lang_ctx *c, lang_lexer *lx, mbs_body *b, int kind);
-/* the geometry statements (mbs_geom.c): 0 when w is one (the line is read), else -1 */
+/* the geometry statements (mbs_geom.c): 0 when w is one (the line is read), else -1; and
+ * a shape of a kind with nothing given (-1 everywhere: none, or the ground) */
+mbs_shape mbs_shape_init(int kind);
 int mbs_geom_statement(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos);
 /* the `input` parameters into the model's inputs, after lang_check */
 void mbs_resolve_inputs(lang_ctx *c, mbs_model *mb);

@@ -38,18 +38,9 @@ static const int n_values_of[DYN_MECH_SHAPE_COUNT] = {
 
 static mbs_shape plain(int kind, int body, const char *name)
 {
-    mbs_shape s;
-    memset(&s, 0, sizeof s);
-    s.kind = kind;
+    mbs_shape s = mbs_shape_init(kind);
     s.name = name;
     s.a.body = s.b.body = body;
-    for (int j = 0; j < 3; j++)
-        s.a.p[j] = s.b.p[j] = s.v[j] = -1;
-    s.axis = 2;
-    s.con = -1;
-    s.size = -1;
-    s.avec[0] = s.avec[1] = s.avec[2] = -1;
-    s.wheel = -1;
     return s;
 }
 
@@ -167,19 +158,13 @@ int dyn_mech_scene_read(const char *path, const char *text, size_t len,
         return 2;
     }
     dyn_mech_scene *sc = calloc(1, sizeof *sc);
-    lang_ctx *c = sc ? calloc(1, sizeof *c) : NULL;
+    lang_ctx *c = sc ? lang_ctx_new(p, text, len, tables, n_tables, d) : NULL;
     if (!c) {
         free(sc);
         strcpy(d->message, "out of memory while reading the mechanism");
         return 1;
     }
     sc->c = c;
-    c->path = p;
-    c->text = text ? text : "";
-    c->len = len;
-    c->diag = d;
-    c->table_files = tables;
-    c->n_table_files = n_tables;
     const int status = read_guarded(sc, d);
     if (status) {
         lang_free_all(c);

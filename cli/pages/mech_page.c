@@ -74,8 +74,12 @@ static void write_run(cli_json *j, const dyn_mech_scene *sc, const cli_series *s
     cli_json_begin_array(j);
     for (int b = 0; b < nb; b++) {
         cli_json_begin_array(j);
-        for (int k = 0; k < 12; k++)
+        const int digits = j->digits;
+        for (int k = 0; k < 12; k++) {
+            j->digits = k < 3 ? digits : 6; /* the rotation only turns the drawing */
             column(j, pose + 12 * b + k, s->rows, 12L * nb);
+        }
+        j->digits = digits;
         cli_json_end_array(j);
     }
     cli_json_end_array(j);

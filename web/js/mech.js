@@ -22,33 +22,24 @@
   /* The axis k of body frame B in N: row k of R (R maps N to B). */
   const axisN = (R, k) => [R[3 * k], R[3 * k + 1], R[3 * k + 2]];
 
-  /* The N axis that every point keeps and every rotation turns about, or -1. */
+  /* The N axis that every point keeps and every rotation turns about, or -1: a planar
+   * mechanism (arrows across that axis, too). */
   function planarAxis(mech, runs) {
-    for (let k = 0; k < 3; k++) {
-      let ok = true;
-      for (const mr of mech.runs) {
-        const n = runs[0].t.length;
-        const coords = [];
-        mr.poses.forEach(p => coords.push(p[k]));
-        mech.shapes.forEach((s, i) => {
-          const v = mr.values[i];
-          if (s.kind === 'ground' || s.kind === 'frame' || s.kind === 'arrow') { if (s.kind !== 'ground') coords.push(v[k]); }
-          else { coords.push(v[k]); if (s.kind === 'rod' || s.kind === 'spring') coords.push(v[3 + k]); }
-          if (s.kind === 'arrow') coords.push(v[3 + k]);
-        });
-        let lo = Infinity, hi = -Infinity;
-        for (const c of coords) for (const x of samples(c, n)) if (isFinite(x)) { lo = Math.min(lo, x); hi = Math.max(hi, x); }
-        const arrowsIn = mech.shapes.every((s, i) => s.kind !== 'arrow' || samples(mr.values[i][3 + k], n).every(x => !(Math.abs(x) > 1e-9)));
-        if (!(hi - lo <= 1e-9 * (1 + Math.abs(hi))) || !arrowsIn) { ok = false; break; }
-        /* rotations about axis k: R e_k = e_k */
-        for (let b = 0; b < mech.bodies.length && ok; b++) {
-          const d = samples(mr.poses[b][3 + 4 * k], n);
-          if (!d.every(x => Math.abs(x - 1) < 1e-9)) ok = false;
-        }
-        if (!ok) break;
-      }
-      if (ok) return k;
-    }
+    const flat = k => mech.runs.every((mr, r) => {
+      const n = runs[r].t.length, coords = mr.poses.map(p => p[k]);
+      mech.shapes.forEach((s, i) => {
+        const v = mr.values[i];
+        if (s.kind !== 'ground') coords.push(v[k]);
+        if (s.kind === 'rod' || s.kind === 'spring') coords.push(v[3 + k]);
+      });
+      let lo = Infinity, hi = -Infinity;
+      for (const c of coords) for (const x of samples(c, n)) if (isFinite(x)) { lo = Math.min(lo, x); hi = Math.max(hi, x); }
+      const across = mech.shapes.every((s, i) => s.kind !== 'arrow' || samples(mr.values[i][3 + k], n).every(x => !(Math.abs(x) > 1e-9)));
+      /* rotations about axis k: R e_k = e_k */
+      const about = mr.poses.every(p => samples(p[3 + 4 * k], n).every(x => Math.abs(x - 1) < 1e-9));
+      return hi - lo <= 1e-9 * (1 + Math.abs(hi)) && across && about;
+    });
+    for (let k = 0; k < 3; k++) if (flat(k)) return k;
     return -1;
   }
 

@@ -7,7 +7,7 @@
 # fixed-step section again from a tree
 # built at -O2 (build-bench-O2), bench_jit (models compiled at run time; not with --only),
 # bench_mech and bench_mech_sympy.py (mechanisms, against sympy.physics.mechanics),
-# bench_sweep, bench_band (large stiff systems), bench_step (one step of the adaptive pairs)
+# bench_sweep, bench_band and bench_sparse (large stiff systems), bench_step (one step of the adaptive pairs)
 # and bench_output (numbers as text, every
 # sample written; none of them with --only) and, when hyperfine is installed, times
 # `dynkit report` with it too. Arguments
@@ -23,7 +23,7 @@ build="${DYNKIT_BENCH_BUILD:-build-bench}"
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DDYNKIT_BUILD_BENCH=ON \
   -DDYNKIT_BUILD_TESTS=OFF >/dev/null
 cmake --build "$build" -j"$(nproc)" --target bench_suite bench_fixed bench_sweep bench_band \
-  bench_output bench_step dynkit_cli >/dev/null
+  bench_sparse bench_output bench_step dynkit_cli >/dev/null
 cmake --build "$build" -j"$(nproc)" --target bench_jit bench_mech >/dev/null 2>&1 || true # needs src/jit
 "$build/bench/bench_suite" "$@"
 
@@ -89,6 +89,8 @@ if [ "$only" -eq 0 ]; then
     if [ "${!i}" = "--svg" ]; then j=$((i + 1)); svg=(--svg "${!j}"); fi
   done
   if [ "$quick" -eq 1 ]; then "$build/bench/bench_band" --quick; else "$build/bench/bench_band" "${svg[@]}"; fi
+  echo
+  if [ "$quick" -eq 1 ]; then "$build/bench/bench_sparse" --quick; else "$build/bench/bench_sparse"; fi
 fi
 # writing numbers as text (bench_output): with every run that is not limited by --only
 if [ "$only" -eq 0 ]; then

@@ -213,6 +213,11 @@ static void test_sums_and_shifts_are_checked(void **state)
     expect_error("x'=shift(x,x)\n", 1, 12, "the offset of shift must be a whole number");
     expect_error("x'=sum(1,10)(i')\n", 1, 13, "expected 'of'");
     expect_error("x'=sum(1,1000000)of(i')\n", 1, 4, "too long");
+    /* a bound that is not whole is refused, not truncated as XPPAUT does */
+    expect_error("x'=sum(0,1.5)of(1)\n", 1, 10,
+                 "the last bound of sum must be a whole number, not 1.5");
+    expect_error("x'=sum(0,3/2)of(1)\n", 1, 11,
+                 "the last bound of sum must be a whole number, not 1.5");
 }
 
 static void test_circular_definitions_name_the_cycle(void **state)

@@ -276,6 +276,20 @@ static void test_sums_and_shifts(void **state)
     unload(&L);
 }
 
+/* The longest sum the manual allows (100000 terms, docs/model-files.md) is unrolled and
+ * kept shallow: sum(0,99999)of(i') = 99999 * 100000 / 2, exact in doubles; a sum of 300
+ * terms (past one left-to-right chunk) gives Gauss's n(n+1)/2 as well. */
+static void test_the_longest_sum_is_read(void **state)
+{
+    (void)state;
+    loaded L;
+    load("x'=-x\naux big=sum(0,99999)of(i')\naux mid=sum(1,300)of(i')\n", &L);
+    const double y[1] = {1};
+    assert_true(output(&L, "big", 0, y) == 4999950000.0);
+    assert_true(output(&L, "mid", 0, y) == 45150.0);
+    unload(&L);
+}
+
 /* XPPAUT applies a global's assignments in sequence (xppaut 6.11: x=0;y=x+10;z=y gives
  * y = z = 10); the solver restarts from the reset state. */
 static void test_globals_reset_in_sequence(void **state)
@@ -596,6 +610,7 @@ int main(void)
         cmocka_unit_test(test_temporaries_derived_and_functions),
         cmocka_unit_test(test_arrays_expand_like_xppaut),
         cmocka_unit_test(test_sums_and_shifts),
+        cmocka_unit_test(test_the_longest_sum_is_read),
         cmocka_unit_test(test_globals_reset_in_sequence),
         cmocka_unit_test(test_extensions_and_options_fill_the_model),
         cmocka_unit_test(test_nout_is_ignored_with_an_adaptive_meth),

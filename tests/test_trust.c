@@ -624,6 +624,18 @@ static void test_numbers_states_and_results_checked(void **state)
         CHECK(r.status == 2, "--init phi=%s: exit %d", refused[i], r.status);
         cli_free(&r);
     }
+    /* numbers are decimal (docs/cli.md): strtod's hexadecimal form is refused, as model
+     * files refuse it, in values, spans, sweeps' values and counts alike */
+    static const char *const hex[] = {
+        "run pendulum --set m=0x10 --final", "run pendulum --tspan 0:0x1 --final",
+        "run pendulum --init phi=-0X1p-2 --final", "sweep pendulum --vary dphi=0x1:2:2",
+        "sweep pendulum --sample 'dphi=uniform(0,1)' --runs 0x10"};
+    for (size_t i = 0; i < sizeof hex / sizeof hex[0]; i++) {
+        cli_result h = cli("%s", hex[i]);
+        CHECK(h.status == 2 && strstr(h.err, "0"), "%s: exit %d (hexadecimal accepted)", hex[i],
+              h.status);
+        cli_free(&h);
+    }
     /* subnormal numbers are finite numbers > 0: accepted */
     cli_result r = cli("run pendulum --init phi=1e-310 --method rk4 --step 0.1 --tspan 0:0.1");
     CHECK(r.status == 0 && strstr(r.out, "\n0,1e-310,"), "subnormal: %d %s %s",

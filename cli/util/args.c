@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* Command-line parsing helpers: numbers (with multiples of pi, or angles in degrees), counts,
  * options (-o and -m are --output and --method). */
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -64,11 +65,24 @@ static int take_pi(const char **p)
     return 0;
 }
 
-/* One decimal number at p (strtod's syntax): 0 and *v, *end past it; -1 when there is none,
+/* 1 for a hexadecimal number at p ("0x10", "-0X1p3"), which strtod reads and the command
+ * line does not: its numbers are decimal (docs/cli.md, "Numbers"). */
+static int is_hex(const char *p)
+{
+    while (isspace((unsigned char)*p))
+        p++;
+    if (*p == '-' || *p == '+')
+        p++;
+    return p[0] == '0' && (p[1] == 'x' || p[1] == 'X');
+}
+
+/* One decimal number at p (strtod's syntax without its hexadecimal form): 0 and *v, *end past it; -1 when there is none,
  * when it is not finite (inf, nan), or when it is out of the range of doubles (1e400, and
  * 1e-400, which would round to 0). Subnormal numbers (1e-310) are accepted. */
 static int read_double(const char *p, char **end, double *v)
 {
+    if (is_hex(p))
+        return -1;
     errno = 0;
     *v = strtod(p, end);
     if (*end == p || !isfinite(*v))
@@ -126,7 +140,7 @@ int cli_parse_count(const char *text, long min, long *out)
 {
     double v;
     char *end;
-    if (!text || !*text)
+    if (!text || !*text || is_hex(text))
         return -1;
     errno = 0;
     v = strtod(text, &end);

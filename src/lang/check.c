@@ -357,7 +357,9 @@ static long const_int(lang_ctx *c, const node *e, const char *what)
     }
     if (!(v > -1e7 && v < 1e7))
         lang_fail(c, e->pos, "%s is too large", what);
-    return (long)v; /* XPPAUT takes the integer part */
+    if (v != (double)(long)v)
+        lang_fail(c, e->pos, "%s must be a whole number, not %.17g (XPPAUT would take its integer part silently)", what, v);
+    return (long)v;
 }
 
 /* A copy of e with i' = k. */
@@ -381,6 +383,19 @@ static node *with_index(lang_ctx *c, node *e, long k)
     return n;
 }
 
+#define SUM_CHUNK 256 /* terms of a sum added left to right before a tree takes over */
+
+static node *sum_node(lang_ctx *c, lpos pos, node *left, node *right)
+{
+    node *s = lang_node(c, N_BIN, pos);
+    s->op = OP_ADD;
+    s->nargs = 2;
+    s->args = lang_alloc(c, 2 * sizeof *s->args);
+    s->args[0] = left;
+    s->args[1] = right;
+    return s;
+}
+
 /* sum(j1,j2)of(f(i')) unrolled to f(j1)+...+f(j2); shift(name,k) is the name declared k
  * places after name among the names of its kind (XPPAUT's shift addresses the variable k
  * places on, and arrays are declared in a row). */
@@ -398,21 +413,26 @@ static node *unroll(lang_ctx *c, node *e, int in_sum)
         if (b - a >= LANG_MAX_RANGE)
             lang_fail(c, e->pos, "sum(%ld,%ld) too long (at most %d terms)", a, b,
                       LANG_MAX_RANGE);
+        /* left to right in chunks of SUM_CHUNK terms (as XPPAUT adds), the chunks' sums
+         * added as a balanced tree: the expression stays shallow for the longest sum */
+        const long n = b >= a ? b - a + 1 : 0;
+        node **chunk = n > 0 ? lang_alloc(c, (size_t)((n + SUM_CHUNK - 1) / SUM_CHUNK) *
+                                                 sizeof *chunk)
+                             : NULL;
+        long n_chunks = 0;
         node *total = NULL;
         for (long k = a; k <= b; k++) {
             node *term = unroll(c, with_index(c, e->args[2], k), 1);
-            if (!total) {
-                total = term;
+            if ((k - a) % SUM_CHUNK == 0) {
+                chunk[n_chunks++] = term;
                 continue;
             }
-            node *s = lang_node(c, N_BIN, e->pos);
-            s->op = OP_ADD;
-            s->nargs = 2;
-            s->args = lang_alloc(c, 2 * sizeof *s->args);
-            s->args[0] = total;
-            s->args[1] = term;
-            total = s;
+            chunk[n_chunks - 1] = sum_node(c, e->pos, chunk[n_chunks - 1], term);
         }
+        for (long width = 1; width < n_chunks; width *= 2)
+            for (long i = 0; i + width < n_chunks; i += 2 * width)
+                chunk[i] = sum_node(c, e->pos, chunk[i], chunk[i + width]);
+        total = n_chunks > 0 ? chunk[0] : NULL;
         c->depth--;
         if (!total) { /* an empty sum */
             node *z = lang_node(c, N_NUM, e->pos);

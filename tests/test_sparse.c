@@ -8,7 +8,7 @@
  * chain and on the ring that is not banded; cvode with SUNDIALS' KLU likewise; and without
  * a sparse solver the pattern is not used (the dense run, bit for bit), while a pattern
  * without its diagonal is refused with a message. The tool says which matrices it took
- * (--stats) and why (--verbose), and its runs agree whichever they are. */
+ * (--stats, info) and why (--verbose), and its runs agree whichever they are. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -358,6 +358,10 @@ static void test_cli_says_which_matrices(void **state)
         }
         cli_free(&r);
     }
+    cli_result info = cli("info %s", cli_path("ring.ode"));
+    CHECK(info.status == 0 && strstr(info.out, "Jacobian: sparse, 120 of 1600 entries"), "%s%s",
+          info.out, info.err);
+    cli_free(&info);
     /* a small model keeps dense matrices: 2 states */
     assert_int_equal(cli_write_file("two.ode", "x'=-x+y\ny'=-1000*y\ninit x=1,y=1\ndone\n"), 0);
     cli_result r = cli("run %s --method rodas4 --final --stats --verbose", cli_path("two.ode"));

@@ -231,6 +231,10 @@ static void print_default_run(const dyn_model *m)
                "use band matrices\n",
                m->jac_lower, m->jac_upper,
                m->jacobian_band ? "analytic" : "by banded differences");
+    else if (m->jac_pattern.nnz > 0 && m->jacobian_sparse)
+        printf("Jacobian: sparse, %d of %d entries (the exact Jacobian's pattern); rodas4 and "
+               "cvode use sparse matrices when dynkit is built with KLU\n",
+               m->jac_pattern.nnz, m->n_states * m->n_states);
     if (m->samples == DYN_SAMPLES_STEPS)
         printf("Adaptive methods without --step or --times write a sample at every accepted "
                "step;\n"

@@ -368,6 +368,11 @@ char *cli_stats_line(const cli_run *run, const dyn_result *res, char *buf, size_
     if (dyn_method_is_stiff(run->method) && w >= 0 && (size_t)w < size) {
         cli_linear lin;
         cli_linear_choose(run->model, &lin);
+#ifdef DYNKIT_HAVE_CVODE
+        if (lin.kind == CLI_LINEAR_SPARSE && cli_method_is_cvode(run->method) &&
+            !dyn_cvode_has_klu())
+            lin.kind = CLI_LINEAR_DENSE; /* the backend was built without SUNLinSol_KLU */
+#endif
         if (lin.kind == CLI_LINEAR_BAND)
             snprintf(buf + w, size - (size_t)w, " linear=band lower=%d upper=%d", lin.lower,
                      lin.upper);

@@ -4,7 +4,7 @@
  * refused at FILE:LINE:COL with what is accepted; the bodies' poses and the shapes' points
  * against the formulas by hand — a pendulum's tip at (L sin q, -L cos q), the top's axis at
  * (sin th sin psi, -sin th cos psi, cos th) of its ZXZ angles, a double pendulum by joints
- * at the sums of its relative angles, the rolling disk's contact point under its centre;
+ * at the sums of its relative angles, joints about and along tilted axes, the rolling disk's contact point under its centre;
  * and the page of `dynkit animate` carrying the double pendulum's poses at every sample,
  * equal to the formulas evaluated at the page's own samples of the coordinates. */
 #define _POSIX_C_SOURCE 200809L
@@ -250,6 +250,35 @@ static void test_joint_poses_compose(void **state_)
     dyn_mech_scene_free(sc);
 }
 
+/* joints about and along axis vectors: a pendulum about n = (0, sin b, cos b) with its
+ * pivot (0, l cos b, -l sin b) square to n swings on (l sin p, -l cos p cos b, l cos p sin b)
+ * (Rodrigues: R' pivot = cos p pivot + sin p n x pivot); a sled from (0, 0, 1) along
+ * (cos a, sin a, 0) is at (s cos a, s sin a, 1) */
+static void test_joint_axis_vectors(void **state_)
+{
+    (void)state_;
+    dyn_mech_scene *sc = read_text("coord phi=0 [rad], s=0 [m]\n"
+                                   "par l=0.5 [m], beta=0.3, alpha=0.4, g=9.81 [m/s^2]\n"
+                                   "gravity 0, -g, 0\n"
+                                   "point bob mass=1 revolute ground (0, sin(beta), cos(beta)):phi "
+                                   "pivot (0, l*cos(beta), -l*sin(beta))\n"
+                                   "point sled mass=2 prismatic ground(0, 0, 1) (2*cos(alpha), "
+                                   "2*sin(alpha), 0):s\n");
+    const double l = 0.5, b = 0.3, a = 0.4, par[4] = {l, b, a, 9.81};
+    double worst = 0;
+    for (int k = 0; k < 50; k++) {
+        const double p = -3 + 0.12 * k, sl = 0.7 * k - 10, y[4] = {p, sl, 0, 0};
+        double pose[24], v[64];
+        assert_int_equal(dyn_mech_scene_eval(sc, 0, y, par, pose, v), 0);
+        const double bob[3] = {l * sin(p), -l * cos(p) * cos(b), l * cos(p) * sin(b)};
+        const double sled[3] = {sl * cos(a), sl * sin(a), 1};
+        for (int j = 0; j < 3; j++)
+            worst = fmax(worst, fmax(fabs(pose[j] - bob[j]), fabs(pose[12 + j] - sled[j])));
+    }
+    CHECK(worst < 1e-14, "largest difference %.3g m", worst);
+    dyn_mech_scene_free(sc);
+}
+
 /* the rolling disk's wheel: its disk along the axle, the rolling forces at (x, y, 0) */
 static void test_wheel_contact_under_the_disk(void **state_)
 {
@@ -363,6 +392,7 @@ int main(void)
         cmocka_unit_test(test_errors_name_the_place),
         cmocka_unit_test(test_rigid_body_points_follow_the_rotation),
         cmocka_unit_test(test_joint_poses_compose),
+        cmocka_unit_test(test_joint_axis_vectors),
         cmocka_unit_test(test_wheel_contact_under_the_disk),
         cmocka_unit_test(test_page_carries_the_poses),
     };

@@ -266,20 +266,46 @@ static double in(const frame *f, int input, double none)
     return input >= 0 ? f->fix[input] : none;
 }
 
-/* R = E R for the passive elementary rotation E about axis by angle a */
-static void turn(double R[9], int axis, double a)
+/* the unit axis of a joint's rotation or slide about (ax, ay, az) */
+static void unit_axis(const frame *f, const mbs_body *b, double n[3])
+{
+    double len = 0.0;
+    for (int k = 0; k < 3; k++) {
+        n[k] = in(f, b->axisv[k], 0.0);
+        len += n[k] * n[k];
+    }
+    len = sqrt(len);
+    for (int k = 0; k < 3; k++)
+        n[k] /= len;
+}
+
+/* R = E R for the passive rotation E by angle a about axis 0..2 (elementary, dyn_rot_z's
+ * [c s; -s c] on the other two axes) or 3 (the joint's axis n: E = cos a I + (1 - cos a)
+ * n n' - sin a [n x], as mbs_derive.c) */
+static void turn(const frame *f, const mbs_body *b, double R[9], int axis, double a)
 {
     const double co = cos(a), si = sin(a);
-    const int i = (axis + 1) % 3, j = (axis + 2) % 3; /* E rows i, j: [c s; -s c] on (i, j) */
-    for (int col = 0; col < 3; col++) {
-        const double ri = R[3 * i + col], rj = R[3 * j + col];
-        R[3 * i + col] = co * ri + si * rj;
-        R[3 * j + col] = -si * ri + co * rj;
-    }
+    double E[9] = {0}, n[3] = {0, 0, 0};
+    if (axis < 3)
+        n[axis] = 1.0;
+    else
+        unit_axis(f, b, n);
+    for (int r = 0; r < 3; r++)
+        for (int k = 0; k < 3; k++) {
+            E[3 * r + k] = (1.0 - co) * n[r] * n[k] + (r == k ? co : 0.0);
+            if (r != k)
+                E[3 * r + k] += ((k - r + 3) % 3 == 1 ? si : -si) * n[3 - r - k];
+        }
+    double T[9];
+    for (int r = 0; r < 3; r++)
+        for (int k = 0; k < 3; k++)
+            T[3 * r + k] = E[3 * r] * R[k] + E[3 * r + 1] * R[3 + k] + E[3 * r + 2] * R[6 + k];
+    memcpy(R, T, sizeof T);
 }
 
 /* the pose of body b into f->pose (its parent's first): R = E_k ... E_1 or R(q), composed
- * with the parent's for a joint, x = x_P + R_P'(jp + shift) - R'(pivot) (mbs_derive.c) */
+ * with the parent's for a joint, x = x_P + R_P'(jp + shift + n s) - R'(pivot) with a
+ * prismatic joint's slide s along n (mbs_derive.c) */
 static void body_pose(const frame *f, const mbs_model *mb, int bi)
 {
     const mbs_body *b = &LVEC_AT(mb->bodies, mbs_body, bi);
@@ -298,7 +324,7 @@ static void body_pose(const frame *f, const mbs_model *mb, int bi)
                                   2.0 * w * sk[3 * r + col]) / n2;
     } else if (b->frame) {
         for (int k = 0; k < b->nrot; k++)
-            turn(R, b->axis[k], in(f, b->angle[k], 0.0));
+            turn(f, b, R, b->axis[k], in(f, b->angle[k], 0.0));
     }
     if (!b->joint) {
         for (int k = 0; k < 3; k++)
@@ -308,8 +334,14 @@ static void body_pose(const frame *f, const mbs_model *mb, int bi)
     const mbs_body *p = b->parent >= 0 ? &LVEC_AT(mb->bodies, mbs_body, b->parent) : NULL;
     const double *xp = p ? f->pose + 12 * b->parent : NULL, *Rp = p ? xp + 3 : NULL;
     double a[3], r[3], pv[3], off[3];
+    double n[3] = {0, 0, 0}; /* a prismatic joint's axis */
+    if (b->slide >= 0 && b->slide_axis == 3)
+        unit_axis(f, b, n);
+    else if (b->slide >= 0)
+        n[b->slide_axis] = 1.0;
+    const double slide = in(f, b->slide, 0.0);
     for (int k = 0; k < 3; k++) {
-        a[k] = in(f, b->jp[k], 0.0) + in(f, b->shift[k], 0.0);
+        a[k] = in(f, b->jp[k], 0.0) + in(f, b->shift[k], 0.0) + n[k] * slide;
         pv[k] = in(f, b->pivot[k], 0.0);
     }
     memcpy(r, a, sizeof r);

@@ -10,8 +10,8 @@
  * the intermediate axis; joints along tilted axes (a pendulum's frequency, a sled on an
  * incline); a free joint with Euler parameters against plane_quat.mech; a holonomic
  * constraint with declared speeds against cartesian_pendulum.mech; a chain of 8 revolute
- * joints against its formulas; a spatial chain by its rotations and by its matrices; and
- * the errors of joints and speeds at FILE:LINE:COL. */
+ * joints against its formulas; a spatial chain by its rotations and by its matrices; the
+ * picture's poses of prismatic and revolute joints; and the errors of joints and speeds at FILE:LINE:COL. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -21,6 +21,8 @@
 #include <cmocka.h>
 #include <math.h>
 
+#include "dynkit/lang.h"
+#include "dynkit/mbs.h"
 #include "test_cli_run.h"
 #include "test_util.h"
 
@@ -440,6 +442,47 @@ static void test_info_and_derive_show_the_rates(void **state_)
     cli_free(&r);
 }
 
+static dyn_mech_scene *scene_of(const char *text)
+{
+    dyn_mech_scene *sc = NULL;
+    dyn_lang_diag d;
+    char buf[2048];
+    const int rc = dyn_mech_scene_read("t.mech", text, strlen(text), NULL, 0, &sc, &d);
+    CHECK(rc == 0, "%s", dyn_lang_diag_format(&d, buf, sizeof buf));
+    return sc;
+}
+
+/* The picture's poses (dyn_mech_scene_eval) of joints: a slider at (s, 0, 0) by its
+ * prismatic joint, along x or along the vector (3, 0, 0), the bob below it at
+ * (s + l sin(phi), -l cos(phi), 0) by a revolute joint about z or about (0, 0, 2). */
+static void test_picture_follows_the_joints(void **state_)
+{
+    (void)state_;
+    static const char *const axes[2][2] = {{"x", "z"}, {"(3, 0, 0)", "(0, 0, 2)"}};
+    const double l = 0.8, par[2] = {l, 9.81};
+    double worst = 0.0;
+    for (int v = 0; v < 2; v++) {
+        char text[1024];
+        snprintf(text, sizeof text, "coord s [m], phi [rad]\npar l=0.8 [m], g=9.81 [m/s^2]\n"
+                 "gravity 0, -g, 0\npoint slider mass=2 prismatic ground %s:s\n"
+                 "point bob mass=1 revolute slider %s:phi pivot (0, l, 0)\n", axes[v][0],
+                 axes[v][1]);
+        dyn_mech_scene *sc = scene_of(text);
+        CHECK(dyn_mech_scene_n_params(sc) == 2, "%d parameters", dyn_mech_scene_n_params(sc));
+        for (int k = 0; k < 20; k++) {
+            const double sv = 0.3 * k - 2, phi = 0.37 * k - 3;
+            const double y[4] = {sv, phi, 0, 0};
+            double pose[24], vals[256];
+            assert_int_equal(dyn_mech_scene_eval(sc, 0, y, par, pose, vals), 0);
+            worst = fmax(worst, fabs(pose[0] - sv) + fabs(pose[1]) + fabs(pose[2]));
+            worst = fmax(worst, fabs(pose[12] - sv - l * sin(phi)) +
+                                    fabs(pose[13] + l * cos(phi)) + fabs(pose[14]));
+        }
+        dyn_mech_scene_free(sc);
+    }
+    CHECK(worst < 1e-14, "largest difference %.3g m", worst);
+}
+
 static void expect_error(const char *text, const char *where, const char *what)
 {
     const char *path = cli_path("bad.mech");
@@ -495,6 +538,7 @@ int main(void)
         cmocka_unit_test(test_spatial_chain_two_ways),
         cmocka_unit_test(test_constraint_with_declared_speeds),
         cmocka_unit_test(test_info_and_derive_show_the_rates),
+        cmocka_unit_test(test_picture_follows_the_joints),
         cmocka_unit_test(test_joint_and_speed_errors),
     };
     return cmocka_run_group_tests(tests, setup_all, NULL);

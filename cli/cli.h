@@ -173,6 +173,21 @@ int cli_run_parse_with(const char *command, int argc, char **argv, int other_ada
 #define CLI_MAX_GRID_SAMPLES 1000000L
 int cli_run_at_steps(const cli_run *run);
 
+/* ---- a run of a delay model (run_delay.c) ---- */
+struct dyn_history;
+typedef struct cli_delay {
+    struct dyn_history *history; /* owned, attached to the run's parameters; NULL: none */
+    double *breaks;              /* the breaking points the steps land on (owned) */
+    long n_breaks;
+} cli_delay;
+/* For a model with delays (run->model->delay): attach a history to run->par and set the
+ * step callback and stops of opts; nothing for other models. 0, or 1 with the reason in
+ * err (cvode, a lag that is not a number >= 0). */
+int cli_delay_start(const cli_run *run, cli_delay *cd, dyn_solve_opts *opts, char *err,
+                    size_t errlen);
+/* Detach and free; a run stopped by a refused lag gets its message in res. */
+void cli_delay_finish(const cli_run *run, cli_delay *cd, dyn_result *res);
+
 /* ---- methods of the tool (methods.c): the library's registry plus, when dynkit is built
  * with SUNDIALS, "cvode" (the CVODE backend, not in the core registry) ---- */
 /* The cvode descriptor (name, title; adaptive and stiff) or NULL when not built. */

@@ -45,6 +45,11 @@ static const char *const emit_check_idents[] = {
     "t_trans", "every", "bound", "jac_banded", "jac_lower", "jac_upper", "jacobian_band",
     "time_unit", "phase_window", "n_noise", "noise_kinds", "noise_offset", "noise_class",
     "jac_pattern", "jacobian_sparse",
+    "delay",
+    /* delay models (dynkit/delay.h, src/lang/emit_delay.c) */
+    "dyn_history", "dyn_history_value", "dyn_delay_model", "max_delay", "attach", "history",
+    "n_lags", "lags", "lag", "dk_hist", "dk_delay", "dk_attach", "dk_history", "dk_lags",
+    "dk_delay_model",
     /* the translator's own names */
     "t", "y", "p", "par", "dydt", "out", "J", "err", "errlen", "names", "k", "i", "j", "s",
     "x", "u", "n", "m", "q", "v", "z", "type", "period", "w", "r", "rb", "lo", "dx", "dk_model",
@@ -78,7 +83,7 @@ static const char *const emit_check_comments[] = {
 
 static const char *const emit_check_headers[] = {"<math.h>", "<stddef.h>", "<stdio.h>",
                                                  "<string.h>", "<dynkit/model.h>",
-                                                 "<dynkit/input.h>"};
+                                                 "<dynkit/input.h>", "<dynkit/delay.h>"};
 
 /* name is prefix digits [suffix digits]: v_3, ud1_2, dk_event0 */
 static int emit_check_made(const char *s, size_t n)

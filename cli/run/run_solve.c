@@ -247,7 +247,7 @@ static int solve_run(const cli_run *run, long every, dyn_output_fn output, void 
         return solve_noise(run, every, output, output_ctx, progress, progress_ctx, y, res);
     dyn_system sys = {m->rhs, n, run->par};
     const int adaptive = dyn_method_is_adaptive(run->method);
-    if (cli_method_is_cvode(run->method)) {
+    if (cli_method_is_cvode(run->method) && !m->delay) {
 #ifdef DYNKIT_HAVE_CVODE
         return solve_cvode(run, &sys, output, output_ctx, y, res);
 #else
@@ -257,7 +257,7 @@ static int solve_run(const cli_run *run, long every, dyn_output_fn output, void 
         return DYN_ERR_ARG;
 #endif
     }
-    if (!adaptive && run->n_events == 0 && cli_run_resets(run) == 0) {
+    if (!adaptive && run->n_events == 0 && cli_run_resets(run) == 0 && !m->delay) {
         size_t size = dyn_fixed_work_size(run->method, n);
         double *work = malloc(size * sizeof *work);
         if (!work)
@@ -295,7 +295,7 @@ static int solve_run(const cli_run *run, long every, dyn_output_fn output, void 
         } /* else neither: a sample at every accepted step */
     } else {
         opts.h = run->step; /* samples at every step, as the fixed-step driver gives them */
-        if (cli_run_resets(run) > 0)
+        if (cli_run_resets(run) > 0 || m->delay)
             opts.out_step = run->step; /* the same grid, without a row at each reset */
     }
     opts.output = output;
@@ -330,6 +330,20 @@ static int solve_run(const cli_run *run, long every, dyn_output_fn output, void 
     opts.trace_steps = run->trace_steps;
     opts.progress = progress;
     opts.progress_ctx = progress_ctx;
+    cli_delay cd;
+    if (cli_delay_start(run, &cd, &opts, res->message, sizeof res->message)) {
+        const char *why = res->message[0] ? res->message : "out of memory";
+        char msg[sizeof res->message];
+        snprintf(msg, sizeof msg, "%s", why);
+        cli_delay_finish(run, &cd, res);
+        memset(res, 0, sizeof *res);
+        res->status = DYN_ERR_ARG;
+        snprintf(res->message, sizeof res->message, "%s", msg);
+        cli_sparse_solver_close(&sparse);
+        free(events);
+        free(asked);
+        return DYN_ERR_ARG;
+    }
     const size_t size = dyn_solve_work_size(run->method, n, &opts);
     const size_t isize = dyn_solve_iwork_size(run->method, n);
     double *work = malloc(size * sizeof *work);
@@ -340,10 +354,12 @@ static int solve_run(const cli_run *run, long every, dyn_output_fn output, void 
         free(events);
         free(asked);
         cli_sparse_solver_close(&sparse);
+        cli_delay_finish(run, &cd, res);
         return -1;
     }
     opts.iwork = iwork;
     int rc = dyn_solve(run->method, &sys, run->t0, run->t1, run->y0, y, work, &opts, res);
+    cli_delay_finish(run, &cd, res);
     if (res->stopped_by_event && res->event_index >= 0)
         res->event_index = asked[res->event_index];
     cli_sparse_solver_close(&sparse);

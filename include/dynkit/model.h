@@ -162,13 +162,35 @@ typedef struct dyn_model {
      * Jacobians"). */
     dyn_sparse_pattern jac_pattern;
     dyn_jac_fn jacobian_sparse;
+    /* Delay equations (XPPAUT's delay(x, tau)): NULL for a model without them. */
+    const struct dyn_delay_model *delay;
 } dyn_model;
+
+/* A model whose right-hand side reads its own past (dynkit/delay.h): its parameter struct
+ * holds a pointer to the run's dyn_history, which the runner attaches before the solve and
+ * feeds with the accepted steps. rhs, compute_outputs and the events read the past through
+ * it; with none attached they return non-zero (DYN_DELAY_NO_HISTORY). */
+#define DYN_DELAY_NO_HISTORY 77
+struct dyn_history;
+typedef struct dyn_delay_model {
+    double max_delay;   /* the longest lag allowed (XPPAUT's @ delay=); 0: not given */
+    /* store h (a struct dyn_history *, NULL detaches) in the parameter struct par */
+    void (*attach)(void *par, struct dyn_history *h);
+    /* state i before t0 (XPPAUT: x(0)= a formula of t; y0[i] for a state without one), or
+     * NULL: the initial state y0 */
+    double (*history)(int i, double t, const void *par, const double *y0);
+    /* the lags that are constants (numbers and parameters): n_lags values into lags, for
+     * the breaking points t0 + k tau where the steps land; lags that depend on the state or
+     * t are not listed */
+    int n_lags;
+    void (*lags)(const void *par, double *lags);
+} dyn_delay_model;
 
 /* Version of the layout of dyn_model, dyn_var, dyn_param and dyn_event. A model compiled
  * into a shared object records the version it was built with (the symbol
  * dynkit_model_abi, added when dynkit compiles a model), and dynkit refuses a model built
  * for another version instead of misreading it. Raised whenever a layout changes. */
-#define DYN_MODEL_ABI 5
+#define DYN_MODEL_ABI 6
 
 /* The entry point of a model in a C file or a shared object: `dynkit run mymodel.c`
  * compiles the file and calls it. Define it in your file:

@@ -155,6 +155,11 @@ typedef struct dyn_solve_opts {
     dyn_end_policy end;    /* fixed-step grid and output grid: see dyn_grid_plan */
     double initial_step;   /* adaptive: first step; 0: chosen automatically (HNW I II.4) */
     double max_step;       /* adaptive: largest step; 0: t1 - t0 */
+    /* adaptive: times the steps land on (a step that would pass one ends there), sorted;
+     * e.g. the breaking points of a delay equation (dynkit/delay.h). Fixed-step tables
+     * keep their grid. */
+    const double *stops;   /* (n_stops) or NULL */
+    long n_stops;
     long max_steps;        /* attempted steps at most; 0: no limit (DYN_ERR_MAX_STEPS) */
     /* step-size controller (0: the defaults below) */
     double safety;         /* the pair's own: 0.8 for bs23 and dp45 (MATLAB's ode23 and

@@ -739,7 +739,7 @@ DYN_SINL int dyn_sinl_try(const dyn_tableau *m, const dyn_system *sys, double t0
                 rtol >= DYN_MIN_RTOL && isfinite(rtol) && atol >= 0.0 && isfinite(atol) &&
                 !o->rtolv && !o->atolv && o->max_step >= 0.0 && o->initial_step >= 0.0 &&
                 !(o->events && o->n_events) && o->n_events >= 0 && !o->step && !o->record &&
-                !o->trace && !o->jac_banded;
+                !o->trace && !o->jac_banded && !(o->stops && o->n_stops > 0);
     if (!plain)
         return DYN_SINL_DECLINED;
     const int P = dyn_sinl_pair_of(m);

@@ -122,9 +122,10 @@ void lang_declare(lang_ctx *c, const char *name, lpos pos, sym_kind kind, int in
 
 /* ---- resolution ---- */
 
-/* CTX_PARAMS and CTX_TABLE: formulas of the parameters only (CTX_TABLE: and of the table's
- * abscissa t) */
-enum { CTX_RHS, CTX_FUNC, CTX_PARAMS, CTX_TABLE };
+/* CTX_PARAMS, CTX_TABLE and CTX_HISTORY: formulas of the parameters only (CTX_TABLE: and
+ * of the table's abscissa t; CTX_HISTORY: and of t, a delay model's initial value, its
+ * history before t0) */
+enum { CTX_RHS, CTX_FUNC, CTX_PARAMS, CTX_TABLE, CTX_HISTORY };
 
 typedef struct rctx {
     int kind;
@@ -302,6 +303,18 @@ static void resolve(lang_ctx *c, node *e, const rctx *r)
     }
     if (e->kind == N_FUN && random_call(c, e, r))
         return;
+    if (e->kind == N_DELAY) {
+        if (r->kind != CTX_RHS)
+            lang_fail(c, e->pos, "%s cannot use delay(%s, ...): write it in an equation, a "
+                      "fixed quantity, an aux output or an event", r->what, e->name);
+        const lang_sym *s = lang_lookup(c, e->name);
+        if (!s || s->kind != SYM_STATE)
+            lang_fail(c, e->pos, "delay(%s, ...): '%s' is %s; delay(x, tau) reads the past of "
+                      "a state x", e->name, e->name,
+                      s ? lang_sym_kind_name(s->kind) : "not declared");
+        e->index = s->index;
+        return;
+    }
     if (e->kind == N_FUN && !lang_resolve_call(c, e))
         unknown(c, e, r, 1);
     if (e->kind == N_FUN && e->op == F_TABLE) {
@@ -326,6 +339,25 @@ static void resolve(lang_ctx *c, node *e, const rctx *r)
                       sp->name, j->kind == N_NUM ? "; here it is " : "",
                       j->kind == N_NUM ? j->num : 0.0);
     }
+}
+
+/* A copy of e with the time t replaced by the number t0 (a history's value at t0). */
+static node *at_time(lang_ctx *c, const node *e, double t0)
+{
+    node *r = lang_node(c, e->kind, e->pos);
+    *r = *e;
+    if (e->kind == N_TIME) {
+        r->kind = N_NUM;
+        r->num = t0;
+        r->nargs = 0;
+        return r;
+    }
+    if (e->nargs) {
+        r->args = lang_alloc(c, (size_t)e->nargs * sizeof *r->args);
+        for (int i = 0; i < e->nargs; i++)
+            r->args[i] = at_time(c, e->args[i], t0);
+    }
+    return r;
 }
 
 /* ---- sums and shifts, unrolled before names are resolved ---- */
@@ -1123,10 +1155,19 @@ void lang_check(lang_ctx *c)
             e.pos = in->pos;
             unknown(c, &e, &rhs, 0);
         }
-        rctx r = {CTX_PARAMS, NULL, "an initial value", -1};
+        rctx r = {m->n_delays ? CTX_HISTORY : CTX_PARAMS, NULL, "an initial value", -1};
         resolve(c, in->value, &r);
         check_param_calls(c, in->value, "an initial value");
         lang_state *st = &LVEC_AT(m->states, lang_state, s->index);
+        st->history = NULL;
+        if (m->n_delays) { /* a formula of t: the history, and its value at t0 */
+            int us = 0, ut = 0;
+            lang_func_uses(c, in->value, &us, &ut);
+            if (ut) {
+                st->history = in->value;
+                in->value = at_time(c, in->value, m->t0);
+            }
+        }
         if (st->init) /* XPPAUT takes the last one too, without a word */
             lang_note(c, in->pos,
                       "the initial value of %s is given again (before, on line %d): the "

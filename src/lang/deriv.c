@@ -372,6 +372,8 @@ void lang_func_uses(lang_ctx *c, const node *e, int *state, int *time)
         *state = 1;
     else if (e->kind == N_TIME)
         *time = 1;
+    else if (e->kind == N_DELAY)
+        *state = *time = 1;
     else if (e->kind == N_UFUN) {
         const lang_func *f = &LVEC_AT(c->m.funcs, lang_func, e->index);
         *state |= f->uses_state;

@@ -269,6 +269,11 @@ static void expr(lang_ctx *c, const node *e, const ectx *x)
         }
         LANG_C_CODE(c, ")");
         break;
+    case N_DELAY:
+        LANG_C_CODEF(c, "dk_delay(p, %d, t, ", e->index);
+        expr(c, e->args[0], x);
+        LANG_C_CODE(c, ")");
+        break;
     case N_UFUN:
         mark_func(c, e->index, 0);
         LANG_C_CODEF(c, "u_%d(", e->index);
@@ -719,6 +724,8 @@ static void emit_rhs(lang_ctx *c)
     LANG_C_CODE(c, "static int dk_rhs(double t, const double *y, double *dydt, void *par)\n{\n"
              "    const double *p = (const double *)par;\n    (void)t;\n    (void)y;\n"
              "    (void)p;\n");
+    if (m->n_delays)
+        lang_emit_delay_guard(c);
     if (m->algs.n) /* also when no derivative reads them: the branch is tracked here */
         emit_alg_solve(c, ALG_FAIL_RHS);
     emit_fixes(c, needed);
@@ -745,6 +752,8 @@ static void emit_outputs(lang_ctx *c)
     LANG_C_CODE(c, "static int dk_outputs(double t, const double *y, const void *par, double *out)\n"
              "{\n    const double *p = (const double *)par;\n    (void)t;\n    (void)y;\n"
              "    (void)p;\n");
+    if (m->n_delays)
+        lang_emit_delay_guard(c);
     if (needs_alg(c, roots, m->auxs.n, needed))
         emit_alg_solve(c, ALG_FAIL_STATUS);
     emit_fixes(c, needed);
@@ -812,7 +821,16 @@ static int noise_offset(const lang_model *m)
     return input_offset(m) + (m->n_inputs ? LANG_INPUT_DOUBLES : 0);
 }
 
-static int par_doubles(const lang_model *m) { return noise_offset(m) + m->noises.n; }
+/* Index in p of a delay model's history pointer (one slot, after the noise slots). */
+static int delay_offset(const lang_model *m) { return noise_offset(m) + m->noises.n; }
+
+static int par_doubles(const lang_model *m) { return delay_offset(m) + (m->n_delays ? 1 : 0); }
+
+static void history_expr(lang_ctx *c, const node *e)
+{
+    const ectx x = {NULL, 0};
+    expr(c, e, &x);
+}
 
 /* The inputs: reading one (dk_input), attaching a table (dk_set_input), their names. */
 static void emit_inputs(lang_ctx *c)
@@ -1628,7 +1646,11 @@ char *lang_emit_c(lang_ctx *c)
                   "bandlo=%d, bandup=%d: a bandwidth of the Jacobian must be below the number "
                   "of states, %d",
                   m->band_lo, m->band_up, n);
-    int with_jac = n <= LANG_MAX_JAC_STATES && m->algs.n == 0 && !m->no_jacobian;
+    if (m->n_delays && m->algs.n)
+        lang_fail(c, LVEC_AT(m->algs, lang_formula, 0).pos,
+                  "algebraic equations in a model with delay(): not supported together");
+    int with_jac = n <= LANG_MAX_JAC_STATES && m->algs.n == 0 && !m->no_jacobian &&
+                   !m->n_delays;
     if (m->algs.n)
         lang_note(c, LVEC_AT(m->algs, lang_formula, 0).pos,
                   "no analytic Jacobian: the algebraic variables are solved for numerically; "
@@ -1662,6 +1684,8 @@ char *lang_emit_c(lang_ctx *c)
     const int has_init = emit_initial(c, y0);
     lang_c_splice(c, jp.text);
     emit_events(c);
+    if (m->n_delays)
+        lang_emit_delay_model(c, delay_offset(m), history_expr);
 
     /* data */
     LANG_C_CODE(c, "#line 1 \"<dynkit: the model's tables>\"\n");
@@ -1829,6 +1853,8 @@ char *lang_emit_c(lang_ctx *c)
         LANG_C_CODEF(c, ",\n    .n_noise = %d,\n    .noise_kinds = dk_noise_kinds,\n"
                         "    .noise_offset = %d * sizeof(double),\n    .noise_class = %d",
                      m->noises.n, noise_offset(m), m->noise_class);
+    if (m->n_delays)
+        LANG_C_CODE(c, ",\n    .delay = &dk_delay_model");
     LANG_C_CODE(c, ",\n};\n\nconst dyn_model *dynkit_model(void) { return &dk_model; }\n");
     /* the functions the text calls, then what comes before it all */
     const lang_ctext main_text = lang_c_take(c);
@@ -1840,9 +1866,11 @@ char *lang_emit_c(lang_ctx *c)
                    "see \"The .ode\n * format\" in docs/model-files.md). Edit the model file, "
                    "not this text. */\n"
                    "#include <math.h>\n#include <stddef.h>\n#include <stdio.h>\n");
-    if (table_files(m) || m->n_inputs)
+    if (table_files(m) || m->n_inputs || m->n_delays)
         LANG_C_CODE(c, "#include <string.h>\n");
     LANG_C_CODE(c, "\n#include <dynkit/model.h>\n");
+    if (m->n_delays)
+        LANG_C_CODE(c, "#include <dynkit/delay.h>\n");
     if (m->n_inputs)
         LANG_C_CODE(c, "#include <dynkit/input.h>\n\n");
     else
@@ -1850,6 +1878,8 @@ char *lang_emit_c(lang_ctx *c)
     if (m->algs.n)
         emit_alg_constants(c);
     helpers(c);
+    if (m->n_delays)
+        lang_emit_delay_helper(c, delay_offset(m));
     emit_function_protos(c);
     lang_c_splice(c, defs);
     if (defs.len)

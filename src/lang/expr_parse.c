@@ -70,7 +70,6 @@ const char *lang_fun_name(int f) { return f >= 0 && f < F_COUNT ? funs[f].name :
 static const struct {
     const char *word, *feature;
 } unsupported[] = {
-    {"delay", "delay-differential equations ('delay')"},
     {"del_shft", "delay-differential equations ('del_shft')"},
     {"poisson", "random numbers ('poisson')"},
     {"besselj", "Bessel functions ('besselj')"},
@@ -96,7 +95,7 @@ int lang_is_reserved(const char *name)
     const size_t n = strlen(name);
     int arity;
     static const char *const words[] = {"t", "pi", "if", "then", "else", "not", "sum", "of",
-                                        "shift", "ran", "normal"};
+                                        "shift", "ran", "normal", "delay"};
     for (size_t i = 0; i < sizeof words / sizeof words[0]; i++)
         if (ieq(name, n, words[i]))
             return 1;
@@ -367,6 +366,22 @@ static node *parse_primary(lang_lexer *lx)
     if (feature)
         lang_fail(lx->c, p, "%s %s not supported", feature,
                   strstr(feature, "s (") || strstr(feature, "ions") ? "are" : "is");
+    if (ieq(s, n, "delay")) { /* delay(state, lag): the state's value lag ago */
+        node *e = lang_node(lx->c, N_DELAY, p);
+        expect(lx, T_LP, "expected '(' after 'delay': delay(x, tau)");
+        tok v = take(lx);
+        if (v.kind != T_NAME)
+            unexpected(lx, &v, "expected the name of a state in delay(x, tau)");
+        e->name = lang_strndup(lx->c, lx->line->text + v.start, (size_t)(v.end - v.start));
+        e->pos = pos_at(lx, v.start);
+        expect(lx, T_COMMA, "expected ',' after the state in delay(x, tau)");
+        e->nargs = 1;
+        e->args = lang_alloc(lx->c, sizeof *e->args);
+        e->args[0] = parse_binary(lx, 0);
+        expect(lx, T_RP, "expected ')' after the lag in delay(x, tau)");
+        lx->c->m.n_delays++;
+        return e;
+    }
     if (ieq(s, n, "if")) {
         node *e = lang_node(lx->c, N_IF, p);
         e->nargs = 3;

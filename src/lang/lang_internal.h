@@ -66,7 +66,8 @@ typedef enum node_kind {
     N_SUM,    /* sum(a,b)of(c): unrolled by check.c before names are resolved */
     N_SUMIDX, /* i', the index of a sum */
     N_ALG,    /* algebraic variable index (solved from the 0= equations) */
-    N_NOISE   /* noise slot index (lang_noise): held over a step, written by the solver */
+    N_NOISE,  /* noise slot index (lang_noise): held over a step, written by the solver */
+    N_DELAY   /* delay(x, lag): state index (name: as written) at t - args[0] */
 } node_kind;
 
 typedef enum bin_op {
@@ -109,6 +110,7 @@ typedef struct lang_state {
     node *rhs;
     node *init;  /* NULL: 0 */
     lpos init_pos;
+    node *history; /* a delay model's x(0)= formula of t: the state before t0, or NULL */
     lang_doc doc;
 } lang_state;
 
@@ -310,6 +312,10 @@ typedef struct lang_model {
      * param_input[i] the input of parameter i or -1 (NULL when there are none) */
     int n_inputs;
     int *input_param, *param_input;
+    /* delay equations: delay(x, lag) calls read (n_delays), @ delay= (max_delay, 0: not
+     * given) */
+    int n_delays;
+    double max_delay;
 } lang_model;
 
 /* ---- one logical line: text and where each character came from ---- */
@@ -520,5 +526,12 @@ lang_ctext lang_c_take(lang_ctx *c);
 void lang_c_discard(lang_ctx *c); /* the text written so far is dropped */
 void lang_c_splice(lang_ctx *c, lang_ctext t);
 void lang_c_solver(lang_ctx *c);
+
+/* delay models (emit_delay.c): the helpers dk_hist and dk_delay (history pointer in p at
+ * offset), the guard at the start of a function that returns a status (no history
+ * attached), and the dyn_delay_model dk_delay_model (expr writes a formula of t and p) */
+void lang_emit_delay_helper(lang_ctx *c, int offset);
+void lang_emit_delay_guard(lang_ctx *c);
+void lang_emit_delay_model(lang_ctx *c, int offset, void (*expr)(lang_ctx *, const node *));
 
 #endif /* DYNKIT_LANG_INTERNAL_H */

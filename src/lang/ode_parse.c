@@ -582,6 +582,10 @@ static void parse_options(lang_ctx *c, lang_lexer *lx)
                       "equations by Newton's method until it converges, with its own "
                       "difference step",
                       name);
+        } else if (ieqn(name, n, "delay")) {
+            m->max_delay = option_number(c, name, v, vpos);
+            if (!(m->max_delay >= 0) || !isfinite(m->max_delay))
+                lang_fail(c, vpos, "delay (the maximal delay) must be a finite number >= 0");
         } else if (ieqn(name, n, "maxstor")) {
             lang_note(c, pos, "option 'maxstor' is accepted and ignored (dynkit streams its "
                       "samples; nothing to store)");

@@ -439,6 +439,7 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
     int stiff_count = 0, nonstiff_count = 0;
     int rejected_before = 0, retry = 0;
     long step = 0; /* fixed: index of the step */
+    long stop_i = 0; /* adaptive: the next of opts->stops */
     /* resets: the first event that reset at this step's time, resets in a row close in time
      * (Zeno), whether the step starts at a restart */
     int reset_idx = -1, zeno = 0, restarted = 0;
@@ -460,7 +461,13 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
             if (t != tn)
                 hn = tnext - t; /* after a reset inside the step: on to the grid point */
         } else {
-            if (t + 1.01 * h >= t_end) {
+            while (stop_i < opts->n_stops && !(opts->stops[stop_i] > t))
+                stop_i++;
+            if (stop_i < opts->n_stops && opts->stops[stop_i] < t_end &&
+                t + 1.01 * h >= opts->stops[stop_i]) {
+                hn = opts->stops[stop_i] - t; /* onto the stop (a breaking point) */
+                tnext = opts->stops[stop_i];
+            } else if (t + 1.01 * h >= t_end) {
                 hn = t_end - t;
                 tnext = t_end;
                 last = 1;

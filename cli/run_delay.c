@@ -1,0 +1,112 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* A run of a delay model (dyn_model.delay, dynkit/delay.h): the history is attached to the
+ * run's parameters, fed by dyn_solve's step callback with every accepted step's dense
+ * output, and the adaptive steps land on the breaking points of the constant lags. The
+ * store grows here (the library never allocates); with the model's maximal delay only the
+ * steps within it are kept. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "dynkit/delay.h"
+
+/* breaking points at most (they come from at most DYN_DELAY_MAX_LAGS lags and the order) */
+#define DELAY_MAX_BREAKS 4096
+
+static int grow(dyn_history *h, void *ctx)
+{
+    (void)ctx;
+    const long cap = h->capacity ? 2 * h->capacity : 256;
+    const size_t block = dyn_dense_record_block(h->n, h->degree);
+    double *d = realloc(h->data, (size_t)cap * block * sizeof *d);
+    if (!d)
+        return 1;
+    h->data = d;
+    h->capacity = cap;
+    return 0;
+}
+
+int cli_delay_start(const cli_run *run, cli_delay *cd, dyn_solve_opts *opts, char *err,
+                    size_t errlen)
+{
+    const dyn_model *m = run->model;
+    const dyn_delay_model *dm = m->delay;
+    memset(cd, 0, sizeof *cd);
+    if (!dm)
+        return 0;
+    if (cli_method_is_cvode(run->method)) {
+        snprintf(err, errlen,
+                 "model %s has delays (delay(x, tau)), which the cvode backend cannot read: use "
+                 "dp45, dop853, rk4 or rodas4",
+                 m->name);
+        return 1;
+    }
+    cd->history = calloc(1, sizeof *cd->history);
+    if (!cd->history) {
+        snprintf(err, errlen, "out of memory");
+        return 1;
+    }
+    cd->history->grow = grow;
+    dyn_history_init(cd->history, m->n_states, dyn_method_dense_degree(run->method), run->t0,
+                     run->y0, dm->history, run->par, dm->max_delay, NULL, 0);
+    dm->attach(run->par, cd->history);
+    opts->step = dyn_history_push;
+    opts->step_ctx = cd->history;
+    if (dm->n_lags > 0 && dm->lags && dyn_method_is_adaptive(run->method)) {
+        double lags[DYN_DELAY_MAX_LAGS * 4];
+        const int nl = dm->n_lags < (int)(sizeof lags / sizeof *lags)
+                           ? dm->n_lags
+                           : (int)(sizeof lags / sizeof *lags);
+        double *all = malloc((size_t)dm->n_lags * sizeof *all);
+        cd->breaks = malloc(DELAY_MAX_BREAKS * sizeof *cd->breaks);
+        if (!all || !cd->breaks) {
+            free(all);
+            snprintf(err, errlen, "out of memory");
+            return 1;
+        }
+        dm->lags(run->par, all);
+        memcpy(lags, all, (size_t)nl * sizeof *lags);
+        free(all);
+        for (int k = 0; k < nl; k++)
+            if (!(lags[k] >= 0.0) || !isfinite(lags[k])) {
+                snprintf(err, errlen,
+                         "a lag of delay(x, tau) is %g with these parameters: a lag must be a "
+                         "finite number >= 0",
+                         lags[k]);
+                return 1;
+            }
+        /* a lag of 0 breaks nothing: the others only */
+        int np = 0;
+        for (int k = 0; k < nl; k++)
+            if (lags[k] > 0.0)
+                lags[np++] = lags[k];
+        cd->n_breaks = dyn_delay_breaks(run->t0, run->t1, lags, np, run->method->order + 1,
+                                        cd->breaks, DELAY_MAX_BREAKS);
+        opts->stops = cd->breaks;
+        opts->n_stops = cd->n_breaks;
+    }
+    return 0;
+}
+
+void cli_delay_finish(const cli_run *run, cli_delay *cd, dyn_result *res)
+{
+    if (!cd->history)
+        return;
+    const dyn_model *m = run->model;
+    if (cd->history->failed && res->status != DYN_OK) {
+        /* the run stopped on the NaN of a refused lag: say why */
+        const char **names = malloc((size_t)m->n_states * sizeof *names);
+        for (int i = 0; names && i < m->n_states; i++)
+            names[i] = m->states[i].name;
+        dyn_history_message(cd->history, names, res->message, sizeof res->message);
+        free(names);
+        res->fail_t = cd->history->fail_t;
+    }
+    m->delay->attach(run->par, NULL);
+    free(cd->history->data);
+    free(cd->history);
+    free(cd->breaks);
+    memset(cd, 0, sizeof *cd);
+}

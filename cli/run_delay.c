@@ -77,6 +77,14 @@ int cli_delay_start(const cli_run *run, cli_delay *cd, dyn_solve_opts *opts, cha
                          lags[k]);
                 return 1;
             }
+        for (int k = 0; k < nl; k++)
+            if (dm->max_delay > 0.0 && lags[k] > dm->max_delay) {
+                snprintf(err, errlen,
+                         "a lag of delay(x, tau) is %g with these parameters, longer than the "
+                         "maximal delay %g (the model's @ delay=): raise it in the file",
+                         lags[k], dm->max_delay);
+                return 1;
+            }
         /* a lag of 0 breaks nothing: the others only */
         int np = 0;
         for (int k = 0; k < nl; k++)
@@ -103,6 +111,7 @@ void cli_delay_finish(const cli_run *run, cli_delay *cd, dyn_result *res)
         dyn_history_message(cd->history, names, res->message, sizeof res->message);
         free(names);
         res->fail_t = cd->history->fail_t;
+        res->fail_index = -1; /* the message says it all */
     }
     m->delay->attach(run->par, NULL);
     free(cd->history->data);

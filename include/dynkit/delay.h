@@ -52,7 +52,8 @@ struct dyn_history {
     long capacity, first, count;
     dyn_history_grow_fn grow; /* may be NULL */
     void *grow_ctx;
-    /* the first lag that was refused (stops the run: dyn_history_value gives NaN) */
+    /* the latest lag that was refused (dyn_history_value gave NaN, which stops the run
+     * unless a smaller step avoids it) */
     int failed;             /* 0, or 1: lag > max_delay, 2: negative lag */
     double fail_t, fail_lag;
     int fail_state;

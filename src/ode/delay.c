@@ -89,7 +89,7 @@ static double eval_block(const dyn_history *h, const double *b, int i, double t)
 
 static double refuse(dyn_history *h, int code, int i, double now, double lag)
 {
-    if (!h->failed) {
+    { /* the latest: a run that fails, fails on it */
         h->failed = code;
         h->fail_t = now;
         h->fail_lag = lag;
@@ -135,7 +135,7 @@ char *dyn_history_message(const dyn_history *h, const char *const *names, char *
         snprintf(name, sizeof name, "y%d", h->fail_state);
     if (h->failed == 1)
         snprintf(buf, size,
-                 "delay(%s, ...) at t = %.17g asks for a lag of %g, longer than the maximal "
+                 "delay(%s, ...) at t = %.17g asks for a lag of %.17g, longer than the maximal "
                  "delay %g (the model's @ delay=): raise it",
                  name, h->fail_t, h->fail_lag, h->max_delay);
     else if (h->failed == 2)

@@ -54,7 +54,7 @@ int cli_delay_start(const cli_run *run, cli_delay *cd, dyn_solve_opts *opts, cha
     dm->attach(run->par, cd->history);
     opts->step = dyn_history_push;
     opts->step_ctx = cd->history;
-    if (dm->n_lags > 0 && dm->lags && dyn_method_is_adaptive(run->method)) {
+    if (dm->n_lags > 0 && dm->lags) {
         double lags[DYN_DELAY_MAX_LAGS * 4];
         const int nl = dm->n_lags < (int)(sizeof lags / sizeof *lags)
                            ? dm->n_lags

@@ -31,6 +31,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "dynkit/delay.h"
 #include "dynkit/jit.h"
 #include "dynkit/lang.h"
 #include "dynkit/mech.h"
@@ -106,6 +107,26 @@ static void rk4_run(const dyn_model *m, const char *set_name, double set_value, 
     dyn_model_initial_state(m, par, y0);
     dyn_system sys = {m->rhs, m->n_states, par};
     dyn_result res;
+    if (m->delay) { /* delay(x, tau): RK4 by dyn_solve, its steps kept in a history */
+        const dyn_tableau *rk4 = dyn_method_find("rk4");
+        const long steps = (long)ceil(t1 / h) + 2;
+        double *store = malloc((size_t)steps * dyn_dense_record_block(m->n_states, 3) *
+                               sizeof *store);
+        assert_non_null(store);
+        dyn_history hist = {0};
+        dyn_history_init(&hist, m->n_states, dyn_method_dense_degree(rk4), 0.0, y0,
+                         m->delay->history, par, m->delay->max_delay, store, steps);
+        m->delay->attach(par, &hist);
+        dyn_solve_opts o = {0};
+        o.h = h;
+        o.step = dyn_history_push;
+        o.step_ctx = &hist;
+        assert_true(dyn_solve_work_size(rk4, m->n_states, &o) <= TEST_WORK);
+        assert_int_equal(dyn_solve(rk4, &sys, 0.0, t1, y0, y, work, &o, &res), DYN_OK);
+        m->delay->attach(par, NULL);
+        free(store);
+        return;
+    }
     const dyn_tableau *own = dyn_method_find(m->method);
     const dyn_tableau *method = dyn_method_is_map(own) ? own : dyn_method_find("rk4");
     assert_int_equal(dyn_fixed_solve(method, &sys, 0.0, t1, h, y0, y, work, NULL, &res), DYN_OK);

@@ -73,7 +73,7 @@ static void test_refused_features_name_line_and_feature(void **state)
         const char *what;
     } cases[] = {
         {"x'=1\nmarkov z 2\n{0} {a}\n{b} {0}\n", 2, 1, "Markov chains ('markov')"},
-        {"x'=-delay(x,1)\n", 1, 5, "delay-differential equations ('delay')"},
+        {"x'=-del_shft(x,0,1)\n", 1, 5, "delay-differential equations ('del_shft')"},
         {"x'=-x+int{exp(-t)#x}\n", 1, 7, "Volterra integrals ('int{...}')"},
         {"x'=-x+int[.5]{exp(-t)#x}\n", 1, 7, "Volterra integrals ('int{...}')"},
         {"x'=1\nvolt u=exp(-t)\n", 2, 1, "Volterra integral equations ('volt')"},

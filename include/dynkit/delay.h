@@ -50,6 +50,7 @@ struct dyn_history {
     /* the steps: blocks of dyn_dense_record_block(n, degree) doubles, first..first+count */
     double *data;
     long capacity, first, count;
+    double t_last;          /* the end of the last step (t0 before the first) */
     dyn_history_grow_fn grow; /* may be NULL */
     void *grow_ctx;
     /* the latest lag that was refused (dyn_history_value gave NaN, which stops the run

@@ -156,8 +156,10 @@ typedef struct dyn_solve_opts {
     double initial_step;   /* adaptive: first step; 0: chosen automatically (HNW I II.4) */
     double max_step;       /* adaptive: largest step; 0: t1 - t0 */
     /* adaptive: times the steps land on (a step that would pass one ends there), sorted;
-     * e.g. the breaking points of a delay equation (dynkit/delay.h). Fixed-step tables
-     * keep their grid. */
+     * e.g. the breaking points of a delay equation (dynkit/delay.h). The step after a stop
+     * evaluates f anew (no FSAL stage carried over: f may jump there). Fixed-step tables
+     * keep their grid: a stop on it (within 1e-12 relative) is such a restart, others are
+     * stepped over. */
     const double *stops;   /* (n_stops) or NULL */
     long n_stops;
     long max_steps;        /* attempted steps at most; 0: no limit (DYN_ERR_MAX_STEPS) */

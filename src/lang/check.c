@@ -1155,18 +1155,17 @@ void lang_check(lang_ctx *c)
             e.pos = in->pos;
             unknown(c, &e, &rhs, 0);
         }
-        rctx r = {m->n_delays ? CTX_HISTORY : CTX_PARAMS, NULL, "an initial value", -1};
+        rctx r = {m->n_delays && in->x0 ? CTX_HISTORY : CTX_PARAMS, NULL, "an initial value",
+                  -1};
         resolve(c, in->value, &r);
         check_param_calls(c, in->value, "an initial value");
         lang_state *st = &LVEC_AT(m->states, lang_state, s->index);
-        st->history = NULL;
-        if (m->n_delays) { /* a formula of t: the history, and its value at t0 */
+        if (m->n_delays && in->x0) { /* XPPAUT: x(0)= is the history too, a formula of t */
+            st->history = in->value;
             int us = 0, ut = 0;
             lang_func_uses(c, in->value, &us, &ut);
-            if (ut) {
-                st->history = in->value;
+            if (ut)
                 in->value = at_time(c, in->value, m->t0);
-            }
         }
         if (st->init) /* XPPAUT takes the last one too, without a word */
             lang_note(c, in->pos,

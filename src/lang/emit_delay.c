@@ -23,33 +23,48 @@ static int is_constant(const node *e)
     return 1;
 }
 
-/* The constant lags of delay calls in e into lags (at most LAGS_MAX). */
-#define LAGS_MAX 8
-static void collect(const node *e, const node **lags, int *n)
+/* Every formula that may read delay(): equations, fixed quantities, aux outputs, events. */
+typedef void (*visit_fn)(const node *e, void *ctx);
+static void each_formula(const lang_model *m, visit_fn fn, void *ctx)
 {
-    if (e->kind == N_DELAY && is_constant(e->args[0]) && *n < LAGS_MAX)
-        lags[(*n)++] = e->args[0];
-    for (int i = 0; i < e->nargs; i++)
-        collect(e->args[i], lags, n);
-}
-
-static int constant_lags(lang_ctx *c, const node **lags)
-{
-    const lang_model *m = &c->m;
-    int n = 0;
     for (int i = 0; i < m->states.n; i++)
-        collect(LVEC_AT(m->states, lang_state, i).rhs, lags, &n);
+        fn(LVEC_AT(m->states, lang_state, i).rhs, ctx);
     for (int i = 0; i < m->fixes.n; i++)
-        collect(LVEC_AT(m->fixes, lang_formula, i).expr, lags, &n);
+        fn(LVEC_AT(m->fixes, lang_formula, i).expr, ctx);
     for (int i = 0; i < m->auxs.n; i++)
-        collect(LVEC_AT(m->auxs, lang_formula, i).expr, lags, &n);
+        fn(LVEC_AT(m->auxs, lang_formula, i).expr, ctx);
     for (int i = 0; i < m->events.n; i++) {
         const lang_event *ev = &LVEC_AT(m->events, lang_event, i);
-        collect(ev->cond, lags, &n);
+        fn(ev->cond, ctx);
         for (int k = 0; k < ev->nassign; k++)
-            collect(ev->assign[k].value, lags, &n);
+            fn(ev->assign[k].value, ctx);
     }
-    return n;
+}
+
+/* The constant lags of delay calls (at most LAGS_MAX). */
+#define LAGS_MAX 8
+typedef struct lag_list {
+    const node *lag[LAGS_MAX];
+    int n;
+} lag_list;
+
+static void collect(const node *e, void *ctx)
+{
+    lag_list *l = ctx;
+    if (e->kind == N_DELAY && is_constant(e->args[0]) && l->n < LAGS_MAX)
+        l->lag[l->n++] = e->args[0];
+    for (int i = 0; i < e->nargs; i++)
+        collect(e->args[i], ctx);
+}
+
+/* The states that delay() reads (one flag each). */
+static void mark_delayed(const node *e, void *ctx)
+{
+    unsigned char *delayed = ctx;
+    if (e->kind == N_DELAY)
+        delayed[e->index] = 1;
+    for (int i = 0; i < e->nargs; i++)
+        mark_delayed(e->args[i], ctx);
 }
 
 void lang_emit_delay_helper(lang_ctx *c, int offset)
@@ -75,42 +90,47 @@ void lang_emit_delay_model(lang_ctx *c, int offset, void (*expr)(lang_ctx *, con
     LANG_C_CODEF(c, "static void dk_attach(void *par, dyn_history *h)\n{\n"
                     "    memcpy((double *)par + %d, &h, sizeof h);\n}\n\n",
                  offset);
-    int any = 0;
-    for (int i = 0; i < m->states.n; i++)
-        any |= LVEC_AT(m->states, lang_state, i).history != NULL;
-    if (any) {
-        LANG_C_CODE(c, "static double dk_history(int i, double t, const void *par, "
-                       "const double *y0)\n{\n    const double *p = (const double *)par;\n"
-                       "    (void)p;\n    (void)t;\n    switch (i) {\n");
-        for (int i = 0; i < m->states.n; i++) {
-            const lang_state *s = &LVEC_AT(m->states, lang_state, i);
-            if (!s->history)
-                continue;
-            LANG_C_CODEF(c, "    case %d:\n        return ", i);
-            expr(c, s->history);
-            LANG_C_CODE(c, ";\n");
-        }
-        LANG_C_CODE(c, "    default:\n        return y0[i];\n    }\n}\n\n");
+    /* the history: x(0)='s formula, else 0 as XPPAUT 6.11 reads it (measured: `init x=1`
+     * alone gives x = 0 before t0; docs/model-files.md, "Delay equations") */
+    unsigned char *delayed = lang_alloc(c, (size_t)m->states.n + 1);
+    each_formula(m, mark_delayed, delayed);
+    for (int i = 0; i < m->states.n; i++) {
+        const lang_state *s = &LVEC_AT(m->states, lang_state, i);
+        if (delayed[i] && !s->history)
+            lang_warn(c, s->pos,
+                      "%s is read by delay() and only 'init' gives its value: before "
+                      "t0 it is 0, as in XPPAUT; write %s(0)=VALUE (or a formula of t) to give "
+                      "its history",
+                      s->name, s->name);
     }
-    const node *lags[LAGS_MAX];
-    const int n = constant_lags(c, lags);
+    LANG_C_CODE(c, "static double dk_history(int i, double t, const void *par, "
+                   "const double *y0)\n{\n    const double *p = (const double *)par;\n"
+                   "    (void)p;\n    (void)t;\n    (void)y0;\n    switch (i) {\n");
+    for (int i = 0; i < m->states.n; i++) {
+        const lang_state *s = &LVEC_AT(m->states, lang_state, i);
+        if (!s->history)
+            continue;
+        LANG_C_CODEF(c, "    case %d:\n        return ", i);
+        expr(c, s->history);
+        LANG_C_CODE(c, ";\n");
+    }
+    LANG_C_CODE(c, "    default:\n        return 0.0;\n    }\n}\n\n");
+    lag_list lags = {{0}, 0};
+    each_formula(m, collect, &lags);
+    const int n = lags.n;
     if (n) {
         LANG_C_CODE(c, "static void dk_lags(const void *par, double *lags)\n{\n"
                        "    const double *p = (const double *)par;\n    (void)p;\n");
         for (int k = 0; k < n; k++) {
             LANG_C_CODEF(c, "    lags[%d] = ", k);
-            expr(c, lags[k]);
+            expr(c, lags.lag[k]);
             LANG_C_CODE(c, ";\n");
         }
         LANG_C_CODE(c, "}\n\n");
     }
     LANG_C_CODE(c, "static const dyn_delay_model dk_delay_model = {\n    .max_delay = ");
     lang_c_num(c, m->max_delay);
-    LANG_C_CODE(c, ",\n    .attach = dk_attach,\n    .history = ");
-    if (any)
-        LANG_C_CODE(c, "dk_history");
-    else
-        LANG_C_CODE(c, "NULL");
+    LANG_C_CODE(c, ",\n    .attach = dk_attach,\n    .history = dk_history");
     LANG_C_CODEF(c, ",\n    .n_lags = %d,\n    .lags = ", n);
     if (n)
         LANG_C_CODE(c, "dk_lags");

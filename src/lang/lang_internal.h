@@ -110,7 +110,8 @@ typedef struct lang_state {
     node *rhs;
     node *init;  /* NULL: 0 */
     lpos init_pos;
-    node *history; /* a delay model's x(0)= formula of t: the state before t0, or NULL */
+    node *history; /* a delay model's x(0)= formula (of t): the state before t0; NULL: 0
+                    * (XPPAUT 6.11 reads 0 before t0 when only `init` gives a value) */
     lang_doc doc;
 } lang_state;
 
@@ -222,6 +223,7 @@ typedef struct lang_init {
     const char *name;
     lpos pos;
     node *value;
+    int x0; /* written x(0)= (a delay model's history too), not init */
 } lang_init;
 
 /* A pending `#: NAME [UNIT] text` line. */

@@ -175,13 +175,14 @@ static void add_formula(lang_ctx *c, lvec *v, sym_kind kind, const char *name, l
     f->expr = e;
 }
 
-static void add_init(lang_ctx *c, const char *name, lpos pos, node *value)
+static void add_init(lang_ctx *c, const char *name, lpos pos, node *value, int x0)
 {
     check_constant_value(c, value, "the initial value", name);
     lang_init *in = lvec_push(c, &c->m.inits, sizeof *in);
     in->name = name;
     in->pos = pos;
     in->value = value;
+    in->x0 = x0;
 }
 
 /* par / number / init / solv: name=value lists, separated by commas or blanks. */
@@ -226,7 +227,7 @@ static void name_value_list(lang_ctx *c, lang_lexer *lx, int kind, const char *k
             check_constant_value(c, e, "the initial guess", name);
             add_formula(c, &c->m.algs, SYM_ALG, name, pos, e);
         } else {
-            add_init(c, name, pos, e);
+            add_init(c, name, pos, e, 0);
         }
         count++;
         int ch = lang_skip_blanks(lx);
@@ -1182,7 +1183,7 @@ static void statement(lang_ctx *c, lang_lexer *lx, pstate *ps, int *done)
             const int from = (lang_skip_blanks(lx), lx->i);
             node *e = expr_to_end(lx, "the initial value");
             note_formula_value(c, lx, from, e, w);
-            add_init(c, w, wpos, e);
+            add_init(c, w, wpos, e, 1);
             return;
         }
         lpos apos;

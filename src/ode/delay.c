@@ -26,6 +26,7 @@ void dyn_history_init(dyn_history *h, int n, int degree, double t0, const double
     h->max_delay = max_delay > 0.0 ? max_delay : 0.0;
     h->data = data;
     h->capacity = data ? capacity : 0;
+    h->t_last = t0;
     h->grow = grow;
     h->grow_ctx = ctx;
     h->fail_state = -1;
@@ -70,6 +71,7 @@ int dyn_history_push(const dyn_dense *step, void *ctx)
     double *b = at(h, h->count);
     b[0] = step->t0;
     b[1] = step->h;
+    h->t_last = end;
     memcpy(b + 2, step->coef, ((size_t)h->degree + 1) * (size_t)h->n * sizeof *b);
     h->count++;
     return 0;
@@ -107,7 +109,10 @@ double dyn_history_value(dyn_history *h, int i, double now, double t)
         return refuse(h, 2, i, now, lag);
     if (h->max_delay > 0.0 && lag > h->max_delay * (1.0 + 1e-12))
         return refuse(h, 1, i, now, lag);
-    if (t < h->t0)
+    /* before t0 the history; at t0 itself the history's left limit for a stage inside or
+     * at the end of a step (the step that ends on the breaking point t0 + lag), the initial
+     * state for a step that starts there (they differ when the history jumps at t0) */
+    if (t < h->t0 || (t == h->t0 && now > h->t_last))
         return h->before ? h->before(i, t, h->par, h->y0) : h->y0[i];
     if (h->count == 0)
         return h->y0[i]; /* the first step reads its own start */

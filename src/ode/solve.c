@@ -449,7 +449,7 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
 
     while (t < t_end) {
         double hn, tnext;
-        int last = 0;
+        int last = 0, at_stop = 0;
         if (fixed) {
             if (step >= steps.samples - 1)
                 break;
@@ -460,6 +460,14 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
                         : t0 + (double)(step + 1) * opts->h;
             if (t != tn)
                 hn = tnext - t; /* after a reset inside the step: on to the grid point */
+            while (stop_i < opts->n_stops && opts->stops[stop_i] < tnext &&
+                   !(fabs(opts->stops[stop_i] - tnext) <= 1e-12 * fabs(tnext)))
+                stop_i++;
+            if (stop_i < opts->n_stops &&
+                fabs(opts->stops[stop_i] - tnext) <= 1e-12 * fabs(tnext)) {
+                at_stop = 1; /* a stop on the grid: f anew after it */
+                stop_i++;
+            }
         } else {
             while (stop_i < opts->n_stops && !(opts->stops[stop_i] > t))
                 stop_i++;
@@ -467,6 +475,7 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
                 t + 1.01 * h >= opts->stops[stop_i]) {
                 hn = opts->stops[stop_i] - t; /* onto the stop (a breaking point) */
                 tnext = opts->stops[stop_i];
+                at_stop = 1;
             } else if (t + 1.01 * h >= t_end) {
                 hn = t_end - t;
                 tnext = t_end;
@@ -746,6 +755,11 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
         t = tnext;
         res->h_last = hn;
         step++;
+        if (at_stop) { /* f anew past the stop: the right-hand side may jump there */
+            rc = ops->start(&st, t, ycur);
+            if (rc)
+                goto rhs_failed;
+        }
         if (out.mode == 0 && output) {
             res->stats.samples++;
             if (output(out.k++, t, ycur, opts->output_ctx)) {

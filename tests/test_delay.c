@@ -18,6 +18,7 @@
 #include <stdint.h>
 
 #include <cmocka.h>
+#include <ctype.h>
 #include <math.h>
 
 #include "dynkit/delay.h"
@@ -30,7 +31,10 @@ static char cache_dir[512];
 static int setup_all(void **state)
 {
     (void)state;
-    return cli_make_tmpdir_with_cache("delay", cache_dir, sizeof cache_dir);
+    if (cli_make_tmpdir_with_cache("delay", cache_dir, sizeof cache_dir))
+        return -1;
+    /* the documentation's commands name examples/... from the source tree's root */
+    return symlink(DYNKIT_SOURCE_DIR "/examples", cli_path("examples"));
 }
 
 /* ---- the closed form of y' = -y(t - 1), y = 1 before 0 ----
@@ -364,6 +368,77 @@ static void test_history_as_xppaut(void **state)
     CHECK(fabs(r2 - 10.0 / 3.0) < 1e-14, "rk4: x(2) = %.17g", r2);
 }
 
+/* Whether the line printed matches the line shown: the same text, numbers within 1e-9
+ * relative. */
+static int same_line(const char *got, size_t gn, const char *want, size_t wn)
+{
+    size_t i = 0, j = 0;
+    while (i < gn && j < wn) {
+        char *ge, *we;
+        if ((isdigit((unsigned char)want[j]) || want[j] == '-') &&
+            (isdigit((unsigned char)got[i]) || got[i] == '-')) {
+            const double a = strtod(got + i, &ge), b = strtod(want + j, &we);
+            if (ge > got + i && we > want + j) {
+                if (fabs(a - b) > 1e-9 * fmax(fabs(b), 1e-300))
+                    return 0;
+                i = (size_t)(ge - got);
+                j = (size_t)(we - want);
+                continue;
+            }
+        }
+        if (got[i++] != want[j++])
+            return 0;
+    }
+    return i == gn && j == wn;
+}
+
+/* The commands of "Delay equations" in docs/model-files.md print what it shows (standard
+ * error, then standard output, as a terminal shows them). */
+static void test_doc_commands(void **state)
+{
+    (void)state;
+    char *doc = cli_read_file(DYNKIT_SOURCE_DIR "/docs/model-files.md", NULL);
+    const char *sec = strstr(doc, "### Delay equations");
+    CHECK(sec != NULL, "no section");
+    const char *blk = strstr(sec, "```console\n"), *end = blk ? strstr(blk + 11, "```") : NULL;
+    CHECK(blk && end, "no console block");
+    const char *p = blk + 11;
+    int commands = 0;
+    while (p < end) {
+        CHECK(strncmp(p, "$ dynkit ", 9) == 0, "not a command: %.40s", p);
+        const char *eol = strchr(p, '\n');
+        char args[512];
+        snprintf(args, sizeof args, "%.*s", (int)(eol - p - 9), p + 9);
+        cli_result r = cli_in_tmpdir("%s", args);
+        /* the lines shown, up to the next command */
+        const char *lines = eol + 1;
+        const char *next = lines;
+        while (next < end && strncmp(next, "$ ", 2) != 0)
+            next = strchr(next, '\n') + 1;
+        size_t elen = strlen(r.err), olen = strlen(r.out);
+        char *shown = malloc(elen + olen + 1);
+        memcpy(shown, r.err, elen);
+        memcpy(shown + elen, r.out, olen + 1);
+        const char *g = shown;
+        for (const char *w = lines; w < next;) {
+            const char *we = strchr(w, '\n'), *ge = strchr(g, '\n');
+            CHECK(ge && same_line(g, (size_t)(ge - g), w, (size_t)(we - w)),
+                  "%s: printed\n%s\nshown\n%.*s", args, shown, (int)(next - lines), lines);
+            g = ge + 1;
+            w = we + 1;
+        }
+        CHECK(*g == '\0', "%s printed more: %s", args, g);
+        CHECK(r.status == (strstr(lines, "error:") && strstr(lines, "error:") < next ? 2 : 0),
+              "%s: exit %d", args, r.status);
+        free(shown);
+        cli_free(&r);
+        commands++;
+        p = next;
+    }
+    assert_int_equal(commands, 3);
+    free(doc);
+}
+
 /* What is refused, and where. */
 static void test_refusals(void **state)
 {
@@ -376,8 +451,8 @@ static void test_refusals(void **state)
           "%d %s", r.status, r.err);
     cli_free(&r);
     r = cli("run " DYNKIT_SOURCE_DIR "/examples/models/mackey_glass.ode --set tau=20 --final");
-    CHECK(r.status == 2 && strstr(r.err, "is 20 with these parameters, longer than the maximal "
-                                         "delay 17"),
+    CHECK(r.status == 2 && strstr(r.err, "delay(x, ...) on line 11: the lag is 20 with these "
+                                         "parameters") && r.out[0] == '\0',
           "%d %s", r.status, r.err);
     cli_free(&r);
     assert_int_equal(cli_write_file("notstate.ode", "par a=1\ny'=-delay(a,1)\n"), 0);
@@ -409,6 +484,7 @@ int main(void)
         cmocka_unit_test(test_mackey_glass_independent),
         cmocka_unit_test(test_state_dependent_lag),
         cmocka_unit_test(test_history_as_xppaut),
+        cmocka_unit_test(test_doc_commands),
         cmocka_unit_test(test_refusals),
     };
     return cmocka_run_group_tests(tests, setup_all, cli_remove_tmpdir);

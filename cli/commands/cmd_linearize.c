@@ -126,18 +126,18 @@ static int linearize_point(const dyn_model *m, double t, void *par, const lin_op
     const int n = m->n_states;
     p->k = n;
     const dyn_linearize_opts lo = {o->scheme, NULL};
-    int rc = m->rhs(t, p->y, p->f, par);
+    int rc = dyn_linearize(m, t, p->y, par, &lo, p->A, work, &p->info);
+    if (rc) {
+        fprintf(stderr, "dynkit: error: linearize: %s\n", p->info.message);
+        return rc == DYN_ERR_ARG ? CLI_USAGE : CLI_FAILED;
+    }
+    rc = m->rhs(t, p->y, p->f, par);
     if (rc) {
         fprintf(stderr,
                 "dynkit: error: the right-hand side of %s failed at the state "
                 "(status %d)\n",
                 m->name, rc);
         return CLI_FAILED;
-    }
-    rc = dyn_linearize(m, t, p->y, par, &lo, p->A, work, &p->info);
-    if (rc) {
-        fprintf(stderr, "dynkit: error: linearize: %s\n", p->info.message);
-        return rc == DYN_ERR_ARG ? CLI_USAGE : CLI_FAILED;
     }
     p->tol = dyn_stability_tol(n, p->A, 0.0);
     if (!solver || o->matrix) /* --matrix: A alone, no eigenvalues to compute */

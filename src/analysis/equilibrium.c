@@ -69,6 +69,12 @@ int dyn_equilibrium(const dyn_model *m, double t, double *y, void *par,
     if (!info)
         info = &local;
     memset(info, 0, sizeof *info);
+    if (m->delay) {
+        snprintf(info->message, sizeof info->message,
+                 "%s is a delay equation (delay(x, tau)): equilibria of delay equations are not "
+                 "supported", m->name);
+        return DYN_ERR_ARG;
+    }
     long calls = 0;
     if (eval(m, t, y, par, f, &calls)) {
         snprintf(info->message, sizeof info->message,

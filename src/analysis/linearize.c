@@ -216,6 +216,13 @@ int dyn_linearize(const dyn_model *m, double t, const double *y, void *par,
     if (!info)
         info = &local;
     memset(info, 0, sizeof *info);
+    if (m->delay) {
+        snprintf(info->message, sizeof info->message,
+                 "%s is a delay equation (delay(x, tau)): its linearization is not a matrix "
+                 "A (the delayed states enter with their lags), not supported",
+                 m->name);
+        return DYN_ERR_ARG;
+    }
     if (s == DYN_JAC_AUTO)
         s = m->jacobian ? DYN_JAC_ANALYTIC : DYN_JAC_RICHARDSON;
     info->scheme = s;

@@ -978,6 +978,8 @@ static void emit_prepare(lang_ctx *c)
     emit_table_values(c);
     emit_sparse_checks(c);
     emit_alg_guesses(c);
+    if (m->n_delays)
+        lang_emit_delay_prepare(c, history_expr);
     LANG_C_CODE(c, "    (void)err;\n    (void)errlen;\n    return 0;\n}\n\n");
 }
 

@@ -5,6 +5,7 @@
  * (dk_history), the lags that are constants of the parameters (dk_lags, for the breaking
  * points), and the dyn_delay_model that names them. Written through emit_out.c only, as the
  * rest of the model's text (emit_c.c states the rule). */
+#include <math.h>
 #include <string.h>
 
 #include "dynkit/model.h"
@@ -44,7 +45,7 @@ static void each_formula(const lang_model *m, visit_fn fn, void *ctx)
 /* The constant lags of delay calls (at most LAGS_MAX). */
 #define LAGS_MAX 8
 typedef struct lag_list {
-    const node *lag[LAGS_MAX];
+    const node *call[LAGS_MAX]; /* the delay() calls */
     int n;
 } lag_list;
 
@@ -52,7 +53,7 @@ static void collect(const node *e, void *ctx)
 {
     lag_list *l = ctx;
     if (e->kind == N_DELAY && is_constant(e->args[0]) && l->n < LAGS_MAX)
-        l->lag[l->n++] = e->args[0];
+        l->call[l->n++] = e;
     for (int i = 0; i < e->nargs; i++)
         collect(e->args[i], ctx);
 }
@@ -65,6 +66,31 @@ static void mark_delayed(const node *e, void *ctx)
         delayed[e->index] = 1;
     for (int i = 0; i < e->nargs; i++)
         mark_delayed(e->args[i], ctx);
+}
+
+void lang_emit_delay_prepare(lang_ctx *c, void (*expr)(lang_ctx *, const node *))
+{
+    const lang_model *m = &c->m;
+    lag_list lags = {{0}, 0};
+    each_formula(m, collect, &lags);
+    for (int k = 0; k < lags.n; k++) {
+        const node *d = lags.call[k];
+        LANG_C_CODE(c, "    {\n        const double lag = ");
+        expr(c, d->args[0]);
+        LANG_C_CODE(c, ";\n        if (!(lag >= 0.0)");
+        if (m->max_delay > 0) {
+            LANG_C_CODE(c, " || lag > ");
+            lang_c_num(c, m->max_delay);
+        }
+        LANG_C_CODEF(c, ") {\n            snprintf(err, errlen, \"delay(%%s, ...) on line %d: "
+                        "the lag is %%g with these parameters; it must be a number from 0 "
+                        "to the maximal delay %%g (the file's @ delay=)\", ",
+                     d->pos.line);
+        lang_c_str(c, d->name);
+        LANG_C_CODE(c, ", lag, ");
+        lang_c_num(c, m->max_delay > 0 ? m->max_delay : HUGE_VAL);
+        LANG_C_CODE(c, ");\n            return 1;\n        }\n    }\n");
+    }
 }
 
 void lang_emit_delay_helper(lang_ctx *c, int offset)
@@ -123,7 +149,7 @@ void lang_emit_delay_model(lang_ctx *c, int offset, void (*expr)(lang_ctx *, con
                        "    const double *p = (const double *)par;\n    (void)p;\n");
         for (int k = 0; k < n; k++) {
             LANG_C_CODEF(c, "    lags[%d] = ", k);
-            expr(c, lags.lag[k]);
+            expr(c, lags.call[k]->args[0]);
             LANG_C_CODE(c, ";\n");
         }
         LANG_C_CODE(c, "}\n\n");

@@ -531,9 +531,11 @@ void lang_c_solver(lang_ctx *c);
 
 /* delay models (emit_delay.c): the helpers dk_hist and dk_delay (history pointer in p at
  * offset), the guard at the start of a function that returns a status (no history
- * attached), and the dyn_delay_model dk_delay_model (expr writes a formula of t and p) */
+ * attached), prepare's check of the constant lags against @ delay=, and the
+ * dyn_delay_model dk_delay_model (expr writes a formula of t and p) */
 void lang_emit_delay_helper(lang_ctx *c, int offset);
 void lang_emit_delay_guard(lang_ctx *c);
+void lang_emit_delay_prepare(lang_ctx *c, void (*expr)(lang_ctx *, const node *));
 void lang_emit_delay_model(lang_ctx *c, int offset, void (*expr)(lang_ctx *, const node *));
 
 #endif /* DYNKIT_LANG_INTERNAL_H */

@@ -66,6 +66,10 @@ int cli_model_open(const char *command, const char *spec, const dyn_model **mode
  * initial state (the run projects it, --project-init); lines (NULL: none) are read after
  * each file's own (dynkit inverse --prescribe). */
 void cli_model_set_unchecked(int on);
+/* The compiler options for a mechanism's generated C of source_len bytes: libtcc above 64 KiB
+ * unless DYNKIT_JIT names a backend (model_open.c), else NULL (the default choice). */
+struct dyn_jit_opts;
+const struct dyn_jit_opts *cli_mech_jit_opts(size_t source_len);
 void cli_model_set_mech_extra(const char *lines);
 /* The options --table NAME=FILE among argv[1..argc) (the command's other options are left
  * to it), for the model file that cli_model_open opens next: its `table NAME FILE` is read

@@ -721,6 +721,25 @@ static void test_info_lists_the_mechanism(void **state_)
     cli_free(&r);
 }
 
+/* A mechanism's C above 64 KiB (the bicycle's is about 158 kB) is compiled by libtcc when
+ * DYNKIT_JIT is unset (docs/mechanisms.md, "Speed"); a small one (the four-bar) by cc. */
+static void test_large_mechanism_compiles_with_libtcc(void **state_)
+{
+    (void)state_;
+    if (!dyn_jit_backend_available(DYN_JIT_TCC))
+        skip();
+    unsetenv("DYNKIT_JIT");
+    cli_result r = cli("info %sbicycle.mech --verbose", MECH);
+    CHECK(r.status == 0, "%s", r.err);
+    CHECK(strstr(r.err, "(libtcc, in memory)"), "the bicycle was not compiled by libtcc:\n%s",
+          r.err);
+    cli_free(&r);
+    r = cli("info %sfourbar.mech --verbose", MECH);
+    CHECK(r.status == 0, "%s", r.err);
+    CHECK(!strstr(r.err, "libtcc"), "the four-bar was compiled by libtcc:\n%s", r.err);
+    cli_free(&r);
+}
+
 /* animate plays NAME.ani beside NAME.mech (its formulas in the mechanism's names) */
 static void test_animate_plays_the_ani_beside(void **state_)
 {
@@ -815,6 +834,7 @@ int main(void)
         cmocka_unit_test(test_prescribed_motion_gives_the_driving_torque),
         cmocka_unit_test(test_fourbar_drive_torque_by_virtual_power),
         cmocka_unit_test(test_info_lists_the_mechanism),
+        cmocka_unit_test(test_large_mechanism_compiles_with_libtcc),
         cmocka_unit_test(test_animate_plays_the_ani_beside),
         cmocka_unit_test(test_errors_name_the_place),
     };

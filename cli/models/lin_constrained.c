@@ -36,7 +36,9 @@ int cli_lin_constraints_open(const char *spec, const dyn_model *m, cli_lin_const
         return rc == 1 ? CLI_FAILED : CLI_USAGE;
     }
     char err[1024] = "";
-    rc = dyn_jit_load_source(c_source, strlen(c_source), spec, NULL, &cc->jm, err, sizeof err);
+    const size_t c_len = strlen(c_source);
+    rc = dyn_jit_load_source(c_source, c_len, spec, cli_mech_jit_opts(c_len), &cc->jm, err,
+                             sizeof err);
     free(c_source);
     if (rc != 0) {
         fprintf(stderr, "dynkit: error: compiling the constraints of %s: %s\n", spec, err);

@@ -151,6 +151,23 @@ static int compile_failed(const char *what, const char *path, const char *err)
     return CLI_USAGE;
 }
 
+/* A mechanism's generated C is straight-line arithmetic: above MECH_CC_MAX_SOURCE the system
+ * compiler takes seconds (the bicycle's 158 kB: 3.9 s of CPU time at -O2) where libtcc takes
+ * 0.01 s, and libtcc's code is only about 1.3 times slower there (1.57 against 1.24 us per
+ * right-hand side; docs/mechanisms.md, "Speed"). So with DYNKIT_JIT unset (or auto) such a
+ * source goes to libtcc when it is built in; DYNKIT_JIT=cc keeps the system compiler. */
+enum { MECH_CC_MAX_SOURCE = 64 * 1024 };
+
+const dyn_jit_opts *cli_mech_jit_opts(size_t source_len)
+{
+    static const dyn_jit_opts tcc = {.backend = DYN_JIT_TCC};
+    const char *env = getenv("DYNKIT_JIT");
+    if (source_len <= MECH_CC_MAX_SOURCE || (env && env[0] && strcmp(env, "auto") != 0) ||
+        !dyn_jit_backend_available(DYN_JIT_TCC))
+        return NULL;
+    return &tcc;
+}
+
 static int keep_loaded(const dyn_jit_model *jm, int algebraic, const char *path,
                        const dyn_model **model)
 {
@@ -249,7 +266,10 @@ static int open_model_file(const char *spec, const dyn_model **model)
             return rc == 1 ? CLI_FAILED : CLI_USAGE;
         }
         algebraic = strstr(c_source, "#define DK_ALG_M ") != NULL;
-        rc = dyn_jit_load_source(c_source, strlen(c_source), spec, NULL, &jm, err, sizeof err);
+        const size_t c_len = strlen(c_source);
+        rc = dyn_jit_load_source(c_source, c_len,
+                                 spec, ends_with(spec, ".mech") ? cli_mech_jit_opts(c_len) : NULL,
+                                 &jm, err, sizeof err);
         free(c_source);
     }
     if (rc != 0)

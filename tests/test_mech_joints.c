@@ -11,7 +11,8 @@
  * incline); a free joint with Euler parameters against plane_quat.mech; a holonomic
  * constraint with declared speeds against cartesian_pendulum.mech; a chain of 8 revolute
  * joints against its formulas; a spatial chain by its rotations and by its matrices; the
- * picture's poses of prismatic and revolute joints; and the errors of joints and speeds at FILE:LINE:COL. */
+ * picture's poses of prismatic and revolute joints; and the errors of joints and speeds at
+ * FILE:LINE:COL. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -92,14 +93,14 @@ static void test_double_pendulum_by_revolute_joints(void **state_)
     cli_result rb = run_ok(fmt, MECH "double_pendulum.mech", TIGHT);
     const long n = column(ra.out, "phi1", a1);
     CHECK(n == 101 && column(ra.out, "phi2", a2) == n && column(rb.out, "phi1", b1) == n &&
-          column(rb.out, "phi2", b2) == n, "rows %ld", n);
+              column(rb.out, "phi2", b2) == n,
+          "rows %ld", n);
     double worst = 0.0, swing = 0.0;
     for (long i = 0; i < n; i++) {
         worst = fmax(worst, fmax(fabs(a1[i] - b1[i]), fabs(a1[i] + a2[i] - b2[i])));
         swing = fmax(swing, fabs(b2[i]));
     }
-    CHECK(worst < 1e-10 && swing > 1.0, "largest difference %.3g rad (swing %.3g)", worst,
-          swing);
+    CHECK(worst < 1e-10 && swing > 1.0, "largest difference %.3g rad (swing %.3g)", worst, swing);
     cli_free(&ra);
     cli_free(&rb);
 }
@@ -156,9 +157,15 @@ static void momentum(double psi, double th, double phi, const double Iw[3], doub
 {
     const double c1 = cos(psi), s1 = sin(psi), c2 = cos(th), s2 = sin(th), c3 = cos(phi),
                  s3 = sin(phi);
-    const double R[9] = {c3 * c1 - s3 * c2 * s1, c3 * s1 + s3 * c2 * c1, s3 * s2,
-                         -s3 * c1 - c3 * c2 * s1, -s3 * s1 + c3 * c2 * c1, c3 * s2,
-                         s2 * s1, -s2 * c1, c2};
+    const double R[9] = {c3 * c1 - s3 * c2 * s1,
+                         c3 * s1 + s3 * c2 * c1,
+                         s3 * s2,
+                         -s3 * c1 - c3 * c2 * s1,
+                         -s3 * s1 + c3 * c2 * c1,
+                         c3 * s2,
+                         s2 * s1,
+                         -s2 * c1,
+                         c2};
     for (int j = 0; j < 3; j++)
         H[j] = R[j] * Iw[0] + R[3 + j] * Iw[1] + R[6 + j] * Iw[2];
 }
@@ -167,11 +174,11 @@ static void test_free_body_keeps_momentum_and_energy(void **state_)
 {
     (void)state_;
     static double v[9][MAXROWS];
-    static const char *const names[] = {"t", "psi", "theta", "phi", "w1", "w2", "w3", "energy",
-                                        "x"};
+    static const char *const names[] = {"t",  "psi", "theta",  "phi", "w1",
+                                        "w2", "w3",  "energy", "x"};
     /* asymmetric, I = (1, 2, 3): H = (0, 0, 1) and the energy stay */
-    cli_result r = run_ok("run %s %s --tspan 0:40 --step 0.5 --outputs",
-                          MECH "free_body.mech", TIGHT);
+    cli_result r =
+        run_ok("run %s %s --tspan 0:40 --step 0.5 --outputs", MECH "free_body.mech", TIGHT);
     long n = 0;
     for (int k = 0; k < 9; k++)
         n = column(r.out, names[k], v[k]);
@@ -187,8 +194,8 @@ static void test_free_body_keeps_momentum_and_energy(void **state_)
         wobble = fmax(wobble, fabs(v[2][i] - 0.5));
     }
     CHECK(dH < 1e-10 && dE < 1e-12 && dx < 1e-12 && wobble > 0.1,
-          "angular momentum off by %.3g, energy by %.3g, x by %.3g (nutation %.3g)", dH, dE,
-          dx, wobble);
+          "angular momentum off by %.3g, energy by %.3g, x by %.3g (nutation %.3g)", dH, dE, dx,
+          wobble);
     cli_free(&r);
     /* symmetric, A = I1 = I2 = 1, C = I3 = 3, H along z: theta stays, psi' = H/A,
      * phi' = H cos(theta) (1/C - 1/A) (Goldstein, Classical Mechanics, 5.6) */
@@ -215,8 +222,8 @@ static void test_intermediate_axis_is_unstable(void **state_)
     (void)state_;
     const double W = 1.5, lam = W * sqrt(1.0 * 1.0 / 3.0);
     char args[512];
-    snprintf(args, sizeof args, "%s --init w1=0 --init w2=%.17g --init w3=0",
-             MECH "free_body.mech", W);
+    snprintf(args, sizeof args, "%s --init w1=0 --init w2=%.17g --init w3=0", MECH "free_body.mech",
+             W);
     static double re[MAXROWS], im[MAXROWS];
     const long n = eigenvalues(args, re, im);
     int up = 0, down = 0;
@@ -224,8 +231,8 @@ static void test_intermediate_axis_is_unstable(void **state_)
         up += fabs(im[i]) < 1e-9 && fabs(re[i] - lam) < 1e-8 * lam;
         down += fabs(im[i]) < 1e-9 && fabs(re[i] + lam) < 1e-8 * lam;
     }
-    CHECK(n == 12 && up == 1 && down == 1, "%ld eigenvalues, %d at %.17g, %d at its negative",
-          n, up, lam, down);
+    CHECK(n == 12 && up == 1 && down == 1, "%ld eigenvalues, %d at %.17g, %d at its negative", n,
+          up, lam, down);
 }
 
 static void write_file(const char *path, const char *text)
@@ -419,8 +426,8 @@ static void test_constraint_with_declared_speeds(void **state_)
     for (long i = 0; i < n; i++)
         ur = fmax(ur, fabs(a[i]));
     CHECK(worst[0] < 1e-10 && worst[1] < 1e-10 && worst[2] < 1e-9 && ur < 1e-10,
-          "x off by %.3g m, y by %.3g m, the rod's force by %.3g N; ur up to %.3g m/s",
-          worst[0], worst[1], worst[2], ur);
+          "x off by %.3g m, y by %.3g m, the rod's force by %.3g N; ur up to %.3g m/s", worst[0],
+          worst[1], worst[2], ur);
     cli_free(&ra);
     cli_free(&rb);
 }
@@ -437,8 +444,9 @@ static void test_info_and_derive_show_the_rates(void **state_)
     cli_free(&r);
     r = run_ok("derive %s%s", MECH "top_euler.mech", "");
     CHECK(strstr(r.out, "M u' = F + D' lambda, q' = W(q) u\n") &&
-          strstr(r.out, "\nkinematic equations:\n") && strstr(r.out, rate) &&
-          strstr(r.out, "\nM[w3,w3] = C\n") && strstr(r.out, "\nF[w3] = "), "%s", r.out);
+              strstr(r.out, "\nkinematic equations:\n") && strstr(r.out, rate) &&
+              strstr(r.out, "\nM[w3,w3] = C\n") && strstr(r.out, "\nF[w3] = "),
+          "%s", r.out);
     cli_free(&r);
 }
 
@@ -463,10 +471,11 @@ static void test_picture_follows_the_joints(void **state_)
     double worst = 0.0;
     for (int v = 0; v < 2; v++) {
         char text[1024];
-        snprintf(text, sizeof text, "coord s [m], phi [rad]\npar l=0.8 [m], g=9.81 [m/s^2]\n"
+        snprintf(text, sizeof text,
+                 "coord s [m], phi [rad]\npar l=0.8 [m], g=9.81 [m/s^2]\n"
                  "gravity 0, -g, 0\npoint slider mass=2 prismatic ground %s:s\n"
-                 "point bob mass=1 revolute slider %s:phi pivot (0, l, 0)\n", axes[v][0],
-                 axes[v][1]);
+                 "point bob mass=1 revolute slider %s:phi pivot (0, l, 0)\n",
+                 axes[v][0], axes[v][1]);
         dyn_mech_scene *sc = scene_of(text);
         CHECK(dyn_mech_scene_n_params(sc) == 2, "%d parameters", dyn_mech_scene_n_params(sc));
         for (int k = 0; k < 20; k++) {
@@ -475,8 +484,8 @@ static void test_picture_follows_the_joints(void **state_)
             double pose[24], vals[256];
             assert_int_equal(dyn_mech_scene_eval(sc, 0, y, par, pose, vals), 0);
             worst = fmax(worst, fabs(pose[0] - sv) + fabs(pose[1]) + fabs(pose[2]));
-            worst = fmax(worst, fabs(pose[12] - sv - l * sin(phi)) +
-                                    fabs(pose[13] + l * cos(phi)) + fabs(pose[14]));
+            worst = fmax(worst, fabs(pose[12] - sv - l * sin(phi)) + fabs(pose[13] + l * cos(phi)) +
+                                    fabs(pose[14]));
         }
         dyn_mech_scene_free(sc);
     }
@@ -503,11 +512,14 @@ static void test_joint_and_speed_errors(void **state_)
     expect_error(buf, "bad.mech:2:25:", "unknown body 'arm'");
     snprintf(buf, sizeof buf, "%spoint p mass=1 revolute p z:a\n", head);
     expect_error(buf, "bad.mech:2:25:", "'p' cannot be its own parent");
-    snprintf(buf, sizeof buf, "%spoint p mass=1 revolute ground z:a pivot (0, 1, 0)\n"
-             "point q mass=1 revolute p z:a pivot (0, 1, 0)\n", head);
+    snprintf(buf, sizeof buf,
+             "%spoint p mass=1 revolute ground z:a pivot (0, 1, 0)\n"
+             "point q mass=1 revolute p z:a pivot (0, 1, 0)\n",
+             head);
     expect_error(buf, "bad.mech:3:29:", "coordinate 'a' already moves the joint of 'p'");
     snprintf(buf, sizeof buf, "%spoint p mass=1 revolute ground z:2*a\n", head);
-    expect_error(buf, "bad.mech:2:34:", "each angle of the revolute joint of 'p' is a "
+    expect_error(buf, "bad.mech:2:34:",
+                 "each angle of the revolute joint of 'p' is a "
                  "coordinate's name");
     snprintf(buf, sizeof buf, "%spoint p mass=1 revolute ground z:a x:b\n", head);
     expect_error(buf, "bad.mech:2:32:", "a revolute joint has one axis and one coordinate");
@@ -520,6 +532,9 @@ static void test_joint_and_speed_errors(void **state_)
     snprintf(buf, sizeof buf, "%sspeeds u, v\nrate a' = u*v, b' = v\npoint p mass=1 at (a, b, 0)\n",
              head);
     expect_error(buf, "bad.mech:3:6:", "the rate of 'a' is not linear in the speeds");
+    snprintf(buf, sizeof buf,
+             "%sspeeds u, v\nrate a' = u + 1, b' = v\npoint p mass=1 at (a, b, 0)\n", head);
+    expect_error(buf, "bad.mech:3:6:", "the rate of 'a' is 1 with all speeds 0");
     snprintf(buf, sizeof buf, "%srate a' = da\npoint p mass=1 at (a, b, 0)\n", head);
     expect_error(buf, "bad.mech:2:6:", "a rate line needs the generalized speeds");
 }

@@ -32,17 +32,19 @@ static void joint_coordinate(lang_ctx *c, const mbs_body *b, int k, const char *
             if (strcasecmp(q->name, e->name) != 0)
                 continue;
             if (q->jointed)
-                lang_fail(c, e->pos, "coordinate '%s' already moves the joint of '%s': each "
-                          "joint has coordinates of its own", q->name,
-                          LVEC_AT(mb->bodies, mbs_body, q->jointed - 1).name);
+                lang_fail(c, e->pos,
+                          "coordinate '%s' already moves the joint of '%s': each "
+                          "joint has coordinates of its own",
+                          q->name, LVEC_AT(mb->bodies, mbs_body, q->jointed - 1).name);
             q->jointed = mb->bodies.n + 1;
             return;
         }
     while (e->kind == N_BIN) /* the formula's start */
         e = e->args[0];
-    lang_fail(c, e->pos, "%s of the %s joint of '%s' is a coordinate's name (declared by coord "
-              "before the joint); for a formula, place the body by at (x, y, z) rot ...", what,
-              kinds[b->joint], b->name);
+    lang_fail(c, e->pos,
+              "%s of the %s joint of '%s' is a coordinate's name (declared by coord "
+              "before the joint); for a formula, place the body by at (x, y, z) rot ...",
+              what, kinds[b->joint], b->name);
 }
 
 /* revolute PARENT[(x, y, z)] AXIS:q     prismatic PARENT[(x, y, z)] AXIS:q, AXIS x, y, z or
@@ -56,11 +58,13 @@ void mbs_parse_joint(lang_ctx *c, lang_lexer *lx, mbs_body *b, int kind)
         b->jp[k] = b->shift[k] = b->pivot[k] = -1;
     lpos ppos;
     const char *parent = lang_read_name(
-        lx, &ppos, lang_printf(c, "expected the parent body's name or ground after '%s'",
-                               kinds[kind]));
+        lx, &ppos,
+        lang_printf(c, "expected the parent body's name or ground after '%s'", kinds[kind]));
     if (strcasecmp(parent, b->name) == 0)
-        lang_fail(c, ppos, "'%s' cannot be its own parent: a joint joins a body to one "
-                  "declared before it, or to the ground", b->name);
+        lang_fail(c, ppos,
+                  "'%s' cannot be its own parent: a joint joins a body to one "
+                  "declared before it, or to the ground",
+                  b->name);
     b->parent = mbs_find_body(c, parent, ppos, 1);
     const int axis_first = kind == MBS_REVOLUTE || kind == MBS_PRISMATIC;
     int axis_read = 0;
@@ -73,7 +77,8 @@ void mbs_parse_joint(lang_ctx *c, lang_lexer *lx, mbs_body *b, int kind)
             axis_read = 1;
         }
     } else if (kind == MBS_FREE)
-        lang_fail(c, lang_here(lx), "expected the free joint's translations (x, y, z), three "
+        lang_fail(c, lang_here(lx),
+                  "expected the free joint's translations (x, y, z), three "
                   "coordinates along the parent's axes, after its parent");
     if (kind == MBS_FREE)
         for (int k = 0; k < 3; k++)
@@ -89,11 +94,13 @@ void mbs_parse_joint(lang_ctx *c, lang_lexer *lx, mbs_body *b, int kind)
         mbs_parse_rot(c, lx, b);
     }
     if ((kind == MBS_REVOLUTE || kind == MBS_PRISMATIC) && (b->nrot != 1 || b->quat[0] >= 0))
-        lang_fail(c, rpos, "a %s joint has one axis and one coordinate: AXIS:q with AXIS x, y, "
-                  "z or (ax, ay, az) of the parent's frame", kinds[kind]);
+        lang_fail(c, rpos,
+                  "a %s joint has one axis and one coordinate: AXIS:q with AXIS x, y, "
+                  "z or (ax, ay, az) of the parent's frame",
+                  kinds[kind]);
     for (int i = 0; i < b->nrot; i++)
-        joint_coordinate(c, b, b->angle[i], kind == MBS_PRISMATIC ? "the displacement"
-                                                                  : "each angle");
+        joint_coordinate(c, b, b->angle[i],
+                         kind == MBS_PRISMATIC ? "the displacement" : "each angle");
     for (int k = 0; k < 4 && b->quat[0] >= 0; k++)
         joint_coordinate(c, b, b->quat[k], "each Euler parameter");
     b->slide = -1;

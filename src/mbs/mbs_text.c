@@ -173,7 +173,8 @@ char *mbs_text(lang_ctx *c, const mbs_model *mb)
         rates(&b, mb);
         put(&b, "\n");
     }
-#define NAME(i) (by_u ? LVEC_AT(mb->coords, mbs_coord, i).speed : LVEC_AT(mb->coords, mbs_coord, i).name)
+#define NAME(i)                                                                                    \
+    (by_u ? LVEC_AT(mb->coords, mbs_coord, i).speed : LVEC_AT(mb->coords, mbs_coord, i).name)
     for (int i = 0; i < n; i++)
         for (int k = 0; k <= i; k++)
             line(&b, lang_printf(c, "M[%s,%s]", NAME(i), NAME(k)), mb->M[i * n + k]);

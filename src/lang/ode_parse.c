@@ -501,6 +501,15 @@ static void parse_options(lang_ctx *c, lang_lexer *lx)
         }
         lpos pos;
         const char *name = lang_read_name(lx, &pos, "expected an option name=value");
+        if (lang_skip_blanks(lx) != '=') {
+            /* "@ done": XPPAUT 8 skips a word without '=' on an @ line */
+            const int nx = lang_skip_blanks(lx);
+            if (nx && nx != ',' && !lang_is_ident_start(nx))
+                lang_expect_char(lx, '=', "expected '=' after the option's name");
+            lang_warn(c, pos, "option '%s' has no '=value': the word is ignored, as XPPAUT "
+                      "does", name);
+            continue;
+        }
         lang_expect_char(lx, '=', "expected '=' after the option's name");
         lang_skip_blanks(lx);
         const lpos vpos = lang_here(lx);

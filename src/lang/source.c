@@ -347,6 +347,13 @@ static void logical_line(lang_ctx *c, lines_state *s, const lang_line *l)
     if (ch == '%') {
         int open, close;
         long j1, j2;
+        int k = at + 1;
+        while (k < l->len && (l->text[k] == ' ' || l->text[k] == '\t'))
+            k++;
+        if (k >= l->len || l->text[k] != '[') {
+            /* "% text": XPPAUT reads a '%' line that opens no block as a comment */
+            return;
+        }
         if (!find_range(c, l, &open, &close, &j1, &j2))
             lang_fail(c, l->pos[at], "'%%' starts an array block: %%[j1..j2]");
         s->in_block = 1;

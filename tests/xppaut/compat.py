@@ -194,6 +194,88 @@ def compare(xpp, dyn, t0, rtol=2e-6, scaled=False):
     return "separate", first, rel
 
 
+def verdict_text(r):
+    """One line for a result of check_file."""
+    return (r.get("reason") or r.get("compare", "")
+            + ("" if r.get("t_separate") is None
+               else " at t=%g of %g" % (r["t_separate"], r["t_end"]))
+            + ("" if r.get("xppaut_stops") is None
+               else " (xppaut stops at t=%g)" % r["xppaut_stops"]))
+
+
+def check_file(dynkit, path, timeout, env, work, xppaut_refused=False):
+    """Run one file in both programs; a dict: status accepted/refused/failed, and for an
+    accepted file the comparison (agree, separate with the time, or why not compared).
+    With xppaut_refused, a file dynkit refuses is run by XPPAUT too ("xppaut": whether
+    it integrates it)."""
+    base = os.path.basename(path)
+    with open(path, errors="replace") as f:
+        text = f.read()
+    meth = file_method(text)
+    own_steps = meth is not None and meth not in FIXED_STEP and not is_map(text, meth)
+    method = None if is_map(text, meth) else "rk4" if meth is None or own_steps else None
+    if has_noise(text):  # the model's method for noise (euler, rkmil, a map)
+        own_steps, method = False, None
+    r = {"file": base}
+    dyn, msg, rc = run_dynkit(dynkit, path, method, timeout, env)
+    if dyn is None and rc == 2:
+        r["status"] = "refused"
+        r["reason"] = refused_feature(msg)
+        if xppaut_refused:
+            xdir = os.path.join(work, "x-" + base)
+            os.makedirs(xdir, exist_ok=True)
+            xpp, why = run_xppaut(path, xdir, timeout)
+            r["xppaut"] = "integrates (%d rows)" % len(xpp) if xpp is not None else why
+    elif dyn is None:
+        r["status"] = "failed"
+        r["reason"] = (msg or "").splitlines()[0] if msg else "no output"
+    else:
+        r["status"] = "accepted"
+        if msg:
+            r["note"] = msg.splitlines()[0]
+        xdir = os.path.join(work, "x-" + base)
+        os.makedirs(xdir, exist_ok=True)
+        if own_steps:
+            r["method"] = "rk4 in both (the file asks for meth=%s)" % meth
+        xpp, why = run_xppaut(path, xdir, timeout,
+                              rk4_everywhere(text) if own_steps else None)
+        if xpp is None:
+            r["compare"] = why
+        else:
+            # XPPAUT places a global event by linear interpolation inside the
+            # step (an error of order dt^2 in the event's time), dynkit on the
+            # step's dense output: after an event the two differ by that much
+            rtol, scaled = 2e-6, False
+            if has_global(text):
+                rtol, scaled = max(rtol, 10 * file_dt(text) ** 2), True
+                r["tolerance"] = "10 dt^2 of the column's scale (global events)"
+            if has_algebraic(text):
+                # XPPAUT solves 0= equations to its Newton tolerance only: against
+                # SciPy its values are off by up to 1e-3 (dae_check.py)
+                rtol, scaled = max(rtol, 2e-3), True
+                r["tolerance"] = "2e-3 of the column's scale (XPPAUT's algebraic " \
+                                 "values are good to 1e-3: dae_check.py)"
+            ns = state_count(dynkit, path, method, timeout, env) \
+                if has_special(text) else None
+            if ns is not None:
+                xpp, dyn = xpp[:, :1 + ns], dyn[:, :1 + ns]
+                r["columns"] = "states only (aux outputs of network sums differ by " \
+                               "XPPAUT's evaluation inside the step)"
+            verdict, t_sep, rel = compare(xpp, dyn, file_t0(text), rtol, scaled)
+            # XPPAUT may end a run early (its default bound 100): the runs are
+            # compared as far as it goes, and the line says so
+            t_xpp, t_dyn = float(xpp[-1, 0]), float(dyn[-1, 0])
+            if t_xpp < t_dyn - 1e-5 * (1 + abs(t_dyn)):
+                r["xppaut_stops"] = t_xpp
+            if verdict == "separate" and has_noise(text):
+                verdict = "noise: other random numbers than XPPAUT's"
+            r["compare"] = verdict
+            r["t_separate"] = t_sep
+            r["max_rel_diff"] = rel
+            r["t_end"] = float(xpp[-1, 0])
+    return r
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("dynkit", help="the dynkit binary")
@@ -212,74 +294,9 @@ def main():
     with tempfile.TemporaryDirectory() as work:
         env.setdefault("DYNKIT_CACHE_DIR", os.path.join(work, "cache"))
         for path in files:
-            base = os.path.basename(path)
-            with open(path, errors="replace") as f:
-                text = f.read()
-            meth = file_method(text)
-            own_steps = meth is not None and meth not in FIXED_STEP and not is_map(text, meth)
-            method = None if is_map(text, meth) else "rk4" if meth is None or own_steps else None
-            if has_noise(text):  # the model's method for noise (euler, rkmil, a map)
-                own_steps, method = False, None
-            r = {"file": base}
-            dyn, msg, rc = run_dynkit(args.dynkit, path, method, args.timeout, env)
-            if dyn is None and rc == 2:
-                r["status"] = "refused"
-                r["reason"] = refused_feature(msg)
-            elif dyn is None:
-                r["status"] = "failed"
-                r["reason"] = (msg or "").splitlines()[0] if msg else "no output"
-            else:
-                r["status"] = "accepted"
-                if msg:
-                    r["note"] = msg.splitlines()[0]
-                xdir = os.path.join(work, "x-" + base)
-                os.makedirs(xdir, exist_ok=True)
-                if own_steps:
-                    r["method"] = "rk4 in both (the file asks for meth=%s)" % meth
-                xpp, why = run_xppaut(path, xdir, args.timeout,
-                                      rk4_everywhere(text) if own_steps else None)
-                if xpp is None:
-                    r["compare"] = why
-                else:
-                    # XPPAUT places a global event by linear interpolation inside the
-                    # step (an error of order dt^2 in the event's time), dynkit on the
-                    # step's dense output: after an event the two differ by that much
-                    rtol, scaled = 2e-6, False
-                    if has_global(text):
-                        rtol, scaled = max(rtol, 10 * file_dt(text) ** 2), True
-                        r["tolerance"] = "10 dt^2 of the column's scale (global events)"
-                    if has_algebraic(text):
-                        # XPPAUT solves 0= equations to its Newton tolerance only: against
-                        # SciPy its values are off by up to 1e-3 (dae_check.py)
-                        rtol, scaled = max(rtol, 2e-3), True
-                        r["tolerance"] = "2e-3 of the column's scale (XPPAUT's algebraic " \
-                                         "values are good to 1e-3: dae_check.py)"
-                    ns = state_count(args.dynkit, path, method, args.timeout, env) \
-                        if has_special(text) else None
-                    if ns is not None:
-                        xpp, dyn = xpp[:, :1 + ns], dyn[:, :1 + ns]
-                        r["columns"] = "states only (aux outputs of network sums differ by " \
-                                       "XPPAUT's evaluation inside the step)"
-                    verdict, t_sep, rel = compare(xpp, dyn, file_t0(text), rtol, scaled)
-                    # XPPAUT may end a run early (its default bound 100): the runs are
-                    # compared as far as it goes, and the line says so
-                    t_xpp, t_dyn = float(xpp[-1, 0]), float(dyn[-1, 0])
-                    if t_xpp < t_dyn - 1e-5 * (1 + abs(t_dyn)):
-                        r["xppaut_stops"] = t_xpp
-                    if verdict == "separate" and has_noise(text):
-                        verdict = "noise: other random numbers than XPPAUT's"
-                    r["compare"] = verdict
-                    r["t_separate"] = t_sep
-                    r["max_rel_diff"] = rel
-                    r["t_end"] = float(xpp[-1, 0])
+            r = check_file(args.dynkit, path, args.timeout, env, work)
             results.append(r)
-            print("%-22s %-9s %s" % (base, r["status"],
-                                     r.get("reason") or r.get("compare", "")
-                                     + ("" if r.get("t_separate") is None
-                                        else " at t=%g of %g" % (r["t_separate"], r["t_end"]))
-                                     + ("" if r.get("xppaut_stops") is None
-                                        else " (xppaut stops at t=%g)" % r["xppaut_stops"])),
-                  flush=True)
+            print("%-22s %-9s %s" % (r["file"], r["status"], verdict_text(r)), flush=True)
     n = len(results)
     acc = [r for r in results if r["status"] == "accepted"]
     agree = [r for r in acc if r.get("compare") == "agree"]

@@ -17,6 +17,10 @@ static inline const char *cli_num(double v, char *buf)
     return buf;
 }
 
+/* 1 when path names standard output under another name (/dev/stdout, /dev/fd/1,
+ * /proc/self/fd/1): written as "-" is, to the stream the shell gave (out_file.c). */
+int cli_is_stdout_name(const char *path);
+
 /* Exit statuses of the contract. */
 enum { CLI_OK = 0, CLI_FAILED = 1, CLI_USAGE = 2 };
 

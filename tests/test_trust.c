@@ -186,6 +186,17 @@ static void test_bad_output_paths_name_the_file(void **state)
               r.status, r.err);
         cli_free(&r);
     }
+    /* a device is written directly, as CSV whatever its name (docs/data-files.md):
+     * -o /dev/stdout gives the same bytes as no --output, for a run and a sweep */
+    static const char *const dev[] = {"run pendulum --tspan 0:0.05 --step 0.01",
+                                      "sweep pendulum --tspan 0:1 --vary dphi=1,2"};
+    for (size_t i = 0; i < sizeof dev / sizeof dev[0]; i++) {
+        cli_result a = cli("%s", dev[i]), b = cli("%s -o /dev/stdout", dev[i]);
+        CHECK(a.status == 0 && b.status == 0 && strcmp(a.out, b.out) == 0,
+              "%s -o /dev/stdout: exit %d, %s", dev[i], b.status, b.err);
+        cli_free(&a);
+        cli_free(&b);
+    }
 }
 
 static void test_stdout_failures_are_reported(void **state)

@@ -552,8 +552,21 @@ static int read_resume(const char *path, sweep_out *o, unsigned char *skip, long
     while (line && rc == CLI_OK && fgets(line, (int)cap, f)) {
         lineno++;
         size_t len = strlen(line);
+        const int complete = len > 0 && line[len - 1] == '\n';
         while (len > 0 && (line[len - 1] == '\n' || line[len - 1] == '\r'))
             line[--len] = '\0';
+        if (lineno == 1 && strncmp(line, "\xEF\xBB\xBF", 3) == 0) { /* a UTF-8 BOM */
+            memmove(line, line + 3, len - 2);
+            len -= 3;
+        }
+        if (!complete && lineno > 1 && len > 0 && feof(f)) {
+            /* the last row cut mid-line, as a crash or a full disk leaves it: its run is
+             * made again */
+            fprintf(stderr, "dynkit: note: --resume: %s:%ld: the last row is cut off (no line "
+                            "end); its run is made again\n",
+                    path, lineno);
+            break;
+        }
         if (lineno == 1) {
             with_status = strcmp(line, head_status) == 0 || strcmp(line, old_status) == 0;
             if (!with_status && strcmp(line, head) != 0 && strcmp(line, old) != 0) {
@@ -684,6 +697,16 @@ static void on_signal(int sig)
 {
     sweep_signal = sig;
     signal(sig, SIG_DFL); /* a second one ends the program */
+}
+
+/* Catch sig with sa, unless it was ignored when dynkit started (nohup, a background job of
+ * a shell without job control): that stays ignored, as for the other commands. The handler
+ * before into old, to be put back. */
+static void catch_unless_ignored(int sig, const struct sigaction *sa, struct sigaction *old)
+{
+    sigaction(sig, NULL, old);
+    if (old->sa_handler != SIG_IGN)
+        sigaction(sig, sa, NULL);
 }
 
 static int sweep_cancelled(void *ctx)
@@ -997,8 +1020,8 @@ static int sweep_command(int argc, char **argv, int rank, int ranks)
     sweep_signal = 0;
     int src = DYN_OK;
     if (rc == CLI_OK) {
-        sigaction(SIGINT, &sa, &old_int);
-        sigaction(SIGTERM, &sa, &old_term);
+        catch_unless_ignored(SIGINT, &sa, &old_int);
+        catch_unless_ignored(SIGTERM, &sa, &old_term);
 #ifdef DYNKIT_HAVE_MPI
         if (ranks > 0)
             src = dyn_sweep_mpi_run(&s, o.results, o.status, err, sizeof err);

@@ -85,7 +85,7 @@ static int is_stream(const char *path)
 int cli_format_of_path(const char *path, cli_format *format, char *err, size_t errlen)
 {
     *format = CLI_FORMAT_CSV;
-    if (strcmp(path, "-") == 0)
+    if (strcmp(path, "-") == 0 || cli_is_stdout_name(path))
         return 0;
     const char *slash = strrchr(path, '/');
     const char *base = slash ? slash + 1 : path;

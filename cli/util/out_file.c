@@ -29,12 +29,18 @@ static void dir_of(const char *path, char *buf, size_t size)
         snprintf(buf, size, "%.*s", (int)(slash - path), path);
 }
 
+int cli_is_stdout_name(const char *path)
+{
+    return path && (strcmp(path, "/dev/stdout") == 0 || strcmp(path, "/dev/fd/1") == 0 ||
+                    strcmp(path, "/proc/self/fd/1") == 0);
+}
+
 int cli_out_open(cli_out *o, const char *what, const char *path)
 {
     memset(o, 0, sizeof *o);
     o->what = what;
     o->path = path;
-    if (!path || strcmp(path, "-") == 0) {
+    if (!path || strcmp(path, "-") == 0 || cli_is_stdout_name(path)) {
         o->f = stdout;
         o->path = NULL;
         return CLI_OK;
@@ -171,8 +177,9 @@ int cli_out_check_extension(const char *command, const char *option, const char 
                  i ? (exts[i + 1] ? ", " : " or ") : "", exts[i]);
     }
     struct stat st;
-    if (stat(path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode))
-        return CLI_OK; /* a device or a pipe */
+    if (cli_is_stdout_name(path) ||
+        (stat(path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode)))
+        return CLI_OK; /* standard output, a device or a pipe */
     return cli_usage_error(command, "%s '%s': %s writes %s ('-' is standard output)", option,
                            path, command, accepted);
 }

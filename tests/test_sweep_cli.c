@@ -445,6 +445,11 @@ static void test_noise_bands(void **state)
     assert_non_null(strstr(svg, "mean x (shaded: 5% to 95% of the runs)"));
     free(svg);
     cli_free(&p);
+    /* a picture's --compare runs take the methods for noise only */
+    cli_result r = cli_in_tmpdir("plot %s --y x --compare rk4 --output c.svg", ou);
+    assert_int_equal(r.status, 2);
+    assert_non_null(strstr(r.err, "only euler (Euler-Maruyama) and rkmil integrate"));
+    cli_free(&r);
     static const char *const files[] = {"b1.csv", "b3.csv", "b3.json", "b1.svg"};
     for (size_t k = 0; k < sizeof files / sizeof *files; k++)
         unlink(cli_path(files[k]));

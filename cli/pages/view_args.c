@@ -106,6 +106,15 @@ int cli_view_parse(const char *command, int argc, char **argv, const char *const
         else if (cli_method_is_cvode(v->compare[k].method) && v->run.n_events > 0)
             rc = cli_usage_error(command, "--compare cvode: the CVODE backend runs without "
                                           "events here; leave out --event");
+        else if (v->run.model->n_noise > 0 && !dyn_method_is_map(v->run.method) &&
+                 !cli_method_is_rkmil(v->compare[k].method) &&
+                 strcmp(v->compare[k].method->name, "euler") != 0)
+            rc = cli_usage_error(command, "--compare %s: model %s has noise (wiener, normal or "
+                                 "ran), which only euler (Euler-Maruyama) and rkmil integrate",
+                                 v->compare[k].method->name, v->run.model->name);
+        else if (v->run.model->n_noise == 0 && cli_method_is_rkmil(v->compare[k].method))
+            rc = cli_usage_error(command, "--compare rkmil: rkmil integrates models with noise, "
+                                 "and %s has none", v->run.model->name);
     return rc;
 }
 

@@ -131,8 +131,8 @@ int dyn_project_constraints(const dyn_model *cm, const void *par, double t, doub
         return DYN_ERR_ARG;
     }
     pctx p = {cm, par, t, n, 0, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL};
-    double *buf = malloc(((size_t)mo * (4 + (size_t)n + (size_t)mo + 1) + (size_t)N) *
-                         sizeof *buf);
+    double *buf = malloc(((size_t)mo * (4 + (size_t)n + (size_t)mo + 1) + (size_t)N +
+                          (size_t)n + 1) * sizeof *buf);
     p.hol = malloc((size_t)mo * sizeof *p.hol);
     if (!buf || !p.hol) {
         free(buf);
@@ -148,6 +148,8 @@ int dyn_project_constraints(const dyn_model *cm, const void *par, double t, doub
     p.A = p.D + (size_t)mo * n;
     p.w = p.A + (size_t)mo * mo;
     p.yy = p.w + mo;
+    double *best = p.yy + N; /* the coordinates with the smallest |f| so far */
+    memcpy(best, y, (size_t)n * sizeof *best);
     int rc = 0;
     p.m = dyn_constraint_values(cm, par, t, y, p.h, p.f, p.hol);
     if (p.m < 0) {
@@ -166,7 +168,12 @@ int dyn_project_constraints(const dyn_model *cm, const void *par, double t, doub
         double scale = 1.0;
         for (int j = 0; j < n; j++)
             scale = fmax(scale, fabs(y[j]));
-        if (now == 0.0 || (now <= 4.0 * DBL_EPSILON * scale && it > 0) || !(now < prev))
+        if (!(now < prev)) { /* no progress: back to the best */
+            memcpy(y, best, (size_t)n * sizeof *y);
+            break;
+        }
+        memcpy(best, y, (size_t)n * sizeof *best);
+        if (now == 0.0 || (now <= 4.0 * DBL_EPSILON * scale && it > 0))
             break;
         prev = now;
         int any = 0;

@@ -269,6 +269,27 @@ static int dynkit_writes_mat(void)
     return ok;
 }
 
+/* Units beyond ASCII (a model file's `[°]`, `[µm/s²]`) come back as the same characters
+ * from the .mat file through loader. */
+static void check_mat_units_beyond_ascii(const char *loader)
+{
+    CHECK(cli_write_file("units.ode", "#: x [\u00b0]\n#: y [\u00b5m/s\u00b2]\nx'=1\ny'=0\n"
+                                      "init x=0, y=0\ndone\n") == 0,
+          "cannot write units.ode");
+    cli_result r = cli_in_tmpdir("run units.ode --method rk4 --step 0.5 --tspan 0:1 -o u.mat");
+    CHECK(r.status == 0, "run units.ode -o u.mat: exit %d: %s", r.status, r.err);
+    cli_free(&r);
+    char cmd[1024];
+    snprintf(cmd, sizeof cmd, "cd '%s' && %s u.mat 2>/dev/null", cli_tmpdir, loader);
+    int status;
+    char *out = cli_capture(cmd, &status);
+    CHECK(status == 0 && strstr(out, "units s \u00b0 \u00b5m/s\u00b2\n"),
+          "the units beyond ASCII do not come back from u.mat through %s:\n%.400s", loader, out);
+    free(out);
+    unlink(cli_path("u.mat"));
+    unlink(cli_path("units.ode"));
+}
+
 static void test_mat_scipy(void **state)
 {
     (void)state;
@@ -280,6 +301,7 @@ static void test_mat_scipy(void **state)
     python_loader(loader, sizeof loader, "scipy.io", "mat");
     check_format("mat", loader);
     check_sweep_format("mat", loader);
+    check_mat_units_beyond_ascii(loader);
 }
 
 static void test_mat_octave(void **state)
@@ -300,6 +322,7 @@ static void test_mat_octave(void **state)
              DYNKIT_SOURCE_DIR);
     check_format("mat", loader);
     check_sweep_format("mat", loader);
+    check_mat_units_beyond_ascii(loader);
 }
 
 /* A table that its file cannot hold: refused before the run when the row count is known

@@ -651,13 +651,15 @@ static void constraint_rows(dctx *d, node **D, node **btot)
             scale = fmax(scale, fabs(d->ini.args[on_speeds ? d->u[j] : d->q[j]]));
         if (!mb->unchecked && !on_speeds && fabs(f0) > 1e-9 * scale)
             lang_fail(c, k->pos, "constraint '%s' does not hold at the initial state: its "
-                      "value is %.17g, not 0 (change the initial values)", k->name, f0);
+                      "value is %.17g, not 0 (change the initial values, or give "
+                      "--project-init to move them onto the constraints)", k->name, f0);
         scale = 1.0;
         for (int j = 0; j < n; j++)
             scale = fmax(scale, fabs(d->ini.args[d->u[j]]));
         if (!mb->unchecked && fabs(h0) > 1e-9 * scale)
             lang_fail(c, k->pos, "constraint '%s' does not hold at the initial state: %s %.17g, "
-                      "not 0 (change the initial speeds)", k->name,
+                      "not 0 (change the initial speeds, or give --project-init to "
+                      "move them onto the constraints)", k->name,
                       on_speeds ? "its value is" : "its rate is", h0);
         int first = -1;
         for (int j = 0; j < n; j++) {

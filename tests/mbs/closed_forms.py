@@ -1,0 +1,94 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
+"""Mechanisms with closed-form answers, written from docs/mechanisms.md alone (tests/mbs/closed):
+
+- physical_pendulum: a uniform rod about one end, `linearize` gives +-i sqrt(m g d / I_O),
+  d = L/2, I_O = m L^2/3;
+- hoop_bead: a bead on a hoop of radius R turning at W about the vertical, at rest relative
+  to the hoop at cos(th) = g/(W^2 R) (f = 0) with small swings at W sin(th); below the
+  critical W^2 = g/R the bottom is stable, swinging at sqrt(g/R - W^2);
+- incline_cylinder: a solid cylinder rolling down an incline, a = g sin(al)/(1 + 1/2), the
+  normal force m g cos(al) and the friction m g sin(al)/3 as the constraints' multipliers;
+- slider_crank: the crank driven at th = w t, the piston at
+  r cos(th) + sqrt(l^2 - r^2 sin(th)^2); the driving torque's work equals the energy's change.
+
+Usage: closed_forms.py DYNKIT DIR
+"""
+import csv
+import io
+import math
+import re
+import subprocess
+import sys
+
+DYN, DIR = sys.argv[1], sys.argv[2]
+fails = []
+
+
+def check(what, got, want, tol):
+    ok = abs(got - want) <= tol
+    print(f"{'ok  ' if ok else 'FAIL'} {what}: {got!r} against {want!r} (tol {tol})")
+    if not ok:
+        fails.append(what)
+
+
+def dyn(*args):
+    return subprocess.run([DYN, *args], check=True, capture_output=True, text=True).stdout
+
+
+def eig_im(out):
+    ims = []
+    lines = out.splitlines()
+    k = next(i for i, s in enumerate(lines) if s.startswith("eigenvalues:"))
+    for s in lines[k + 2:]:
+        parts = s.split()
+        if len(parts) < 2 or not re.match(r"^-?[0-9]", parts[0]):
+            break
+        ims.append(float(parts[1]))
+    return sorted(ims)
+
+
+def table(out):
+    return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(io.StringIO(out))]
+
+
+g = 9.81
+# physical pendulum
+m, L = 2.0, 1.5
+w = math.sqrt(m * g * (L / 2) / (m * L * L / 3))
+check("physical pendulum frequency", eig_im(dyn("linearize", f"{DIR}/physical_pendulum.mech",
+                                               "--init", "th=0"))[-1], w, 1e-9 * w)
+
+# bead on a turning hoop
+R, W = 0.5, 10.0
+th = math.acos(g / (W * W * R))
+out = dyn("linearize", f"{DIR}/hoop_bead.mech", "--init", f"th={th!r}")
+check("hoop bead: relative rest", float(re.search(r"dth +=.*f = (\S+)", out).group(1)), 0, 1e-9)
+check("hoop bead: swing about the rest", eig_im(out)[-1], W * math.sin(th), 1e-8)
+out = dyn("linearize", f"{DIR}/hoop_bead.mech", "--init", "th=0", "--set", "W=3")
+check("hoop bead: swing at the bottom below the critical speed", eig_im(out)[-1],
+      math.sqrt(g / R - 9), 1e-8)
+
+# cylinder rolling down an incline
+m, al = 2.0, 0.5
+rows = table(dyn("run", f"{DIR}/incline_cylinder.mech", "--outputs", "--tspan", "0:1",
+                 "--step", "0.5", "--method", "dop853", "--rtol", "1e-12", "--atol", "1e-12"))
+a = g * math.sin(al) / 1.5
+check("incline: distance in 1 s", rows[-1]["x"], a / 2, 1e-10)
+check("incline: normal force", rows[-1]["normal"], m * g * math.cos(al), 1e-9)
+check("incline: friction force", abs(rows[-1]["roll"]), m * g * math.sin(al) / 3, 1e-9)
+
+# slider-crank
+r, l, wc = 0.1, 0.3, 2.0
+rows = table(dyn("run", f"{DIR}/slider_crank.mech", "--outputs", "--project-init",
+                 "--tspan", "0:3", "--step", "0.001", "--method", "dop853",
+                 "--rtol", "1e-12", "--atol", "1e-12"))
+err = max(abs(row["s"] - r * math.cos(row["th"]) - math.sqrt(l * l - (r * math.sin(row["th"])) ** 2))
+          for row in rows)
+check("slider-crank: piston against the closed form", err, 0, 1e-10)
+work = sum((rows[i]["drive"] + rows[i + 1]["drive"]) / 2 * wc * (rows[i + 1]["t"] - rows[i]["t"])
+           for i in range(len(rows) - 1))
+check("slider-crank: the drive's work is the energy's change", work,
+      rows[-1]["energy"] - rows[0]["energy"], 1e-7)
+
+sys.exit(1 if fails else 0)

@@ -86,7 +86,7 @@ const pages = [
   // mechanism files drawn from their geometry: the top in 3D (the scale bar, the orbit), the
   // four-bar in its plane on equal scales, with its constraint forces as arrows
   { name: 'mech-top', args: ['animate', path.join(here, '..', '..', 'examples', 'mechanisms', 'top.mech')], scene: true, mech: '3d' },
-  { name: 'mech-fourbar', args: ['animate', path.join(here, '..', '..', 'examples', 'mechanisms', 'fourbar.mech'), '--tspan', '0:3'], mech: '2d' },
+  { name: 'mech-fourbar', args: ['animate', path.join(here, '..', '..', 'examples', 'mechanisms', 'fourbar.mech')], mech: '2d' },
   // a model in milliseconds with an XPPAUT window, mV against a unitless gate
   { name: 'morris-lecar', args: ['animate', path.join(here, 'morris_lecar.ode')] },
 ];

@@ -6,10 +6,14 @@
  * ball's impacts follow the closed form, the C spring-mass model swings with period
  * 2 pi sqrt(m/k) — and errors in a file are reported at its line and column. */
 #define _POSIX_C_SOURCE 200809L
+#define _DEFAULT_SOURCE /* wait4: the peak memory of one child */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <cmocka.h>
 #include <math.h>
@@ -900,9 +904,51 @@ static void test_xppaut_leniency(void **state)
     unlink(cli_path("plotv.ode"));
 }
 
+/* Peak resident memory (KiB) of `dynkit ARGS` run in the temporary directory with its output
+ * to /dev/null: wait4's ru_maxrss, which also covers the processes it waited for (the
+ * system C compiler when a model is compiled). */
+static long peak_kib(const char *args)
+{
+    char cmd[1024];
+    snprintf(cmd, sizeof cmd, "cd '%s' && exec '%s' %s >/dev/null 2>&1", cli_tmpdir, DYNKIT_CLI,
+             args);
+    pid_t pid = fork();
+    if (pid == 0) {
+        execl("/bin/sh", "sh", "-c", cmd, (char *)NULL);
+        _exit(127);
+    }
+    int w = 0;
+    struct rusage ru;
+    if (pid < 0 || wait4(pid, &w, 0, &ru) != pid || !WIFEXITED(w) || WEXITSTATUS(w) != 0)
+        return -1;
+    return ru.ru_maxrss;
+}
+
+/* A streamed run of a model file holds what a built-in model's holds: the rows are written
+ * as they come, and the model is a loaded object. The larger peak of a first run (32 MB where
+ * a built-in model's run holds 6 MB) is the system C compiler compiling the model, a process
+ * of its own that ends before the run starts. */
+static void test_streamed_model_file_holds_what_a_builtin_holds(void **state)
+{
+    (void)state;
+    assert_int_equal(cli_write_file("stream.ode", "x'=v\nv'=-x\ninit x=1, v=0\ndone\n"), 0);
+    const long first = peak_kib("run stream.ode --method rk4 --step 0.01 --tspan 0:1");
+    const long file = peak_kib("run stream.ode --method rk4 --step 0.0001 --tspan 0:200");
+    const long builtin = peak_kib("run vanderpol --method rk4 --step 0.0001 --tspan 0:200");
+    print_message("peak resident memory: first run (compiling) %ld KiB, 2e6 rows of the model "
+                  "file %ld KiB, of vanderpol %ld KiB\n",
+                  first, file, builtin);
+    assert_true(first > 0 && file > 0 && builtin > 0);
+    CHECK(file <= builtin + 2048, "a streamed run of a model file holds %ld KiB, a built-in "
+                                  "model's %ld KiB",
+          file, builtin);
+    unlink(cli_path("stream.ode"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_streamed_model_file_holds_what_a_builtin_holds),
         cmocka_unit_test(test_network_sums),
         cmocka_unit_test(test_algebraic_equations),
         cmocka_unit_test(test_lookup_tables_in_a_run),

@@ -10,7 +10,12 @@
 - incline_cylinder: a solid cylinder rolling down an incline, a = g sin(al)/(1 + 1/2), the
   normal force m g cos(al) and the friction m g sin(al)/3 as the constraints' multipliers;
 - slider_crank: the crank driven at th = w t, the piston at
-  r cos(th) + sqrt(l^2 - r^2 sin(th)^2); the driving torque's work equals the energy's change.
+  r cos(th) + sqrt(l^2 - r^2 sin(th)^2); the driving torque's work equals the energy's change;
+- spherical_pendulum: conical motion at psi' = sqrt(g/(L cos(theta))), theta kept;
+- bead_on_rod: a bead free on a rod turned at W (prismatic joint on a revolute one), at
+  s0 cosh(W t), the drive's torque (rod's inertia constant) 2 m W s s';
+- cart_double_pendulum: a cart on a rail with two uniform links: the horizontal momentum
+  kept, and `linearize` at rest gives the frequencies of M q'' + K q = 0 formed by hand.
 
 Usage: closed_forms.py DYNKIT DIR
 """
@@ -90,5 +95,51 @@ work = sum((rows[i]["drive"] + rows[i + 1]["drive"]) / 2 * wc * (rows[i + 1]["t"
            for i in range(len(rows) - 1))
 check("slider-crank: the drive's work is the energy's change", work,
       rows[-1]["energy"] - rows[0]["energy"], 1e-7)
+
+# spherical pendulum, conical motion
+L, th = 1.0, 0.6
+Om = math.sqrt(g / (L * math.cos(th)))
+rows = table(dyn("run", f"{DIR}/spherical_pendulum.mech", "--init", f"dpsi={Om!r}",
+                 "--tspan", "0:5", "--step", "0.5", "--method", "dop853", "--rtol", "1e-12",
+                 "--atol", "1e-12"))
+check("spherical pendulum: cone angle kept", max(abs(row["theta"] - th) for row in rows), 0,
+      1e-10)
+
+# bead on a turning rod
+m, W, s0 = 0.2, 3.0, 0.1
+rows = table(dyn("run", f"{DIR}/bead_on_rod.mech", "--outputs", "--project-init",
+                 "--tspan", "0:1", "--step", "0.25", "--method", "dop853",
+                 "--rtol", "1e-12", "--atol", "1e-12"))
+for row in rows[1:]:
+    t = row["t"]
+    s, ds = s0 * math.cosh(W * t), s0 * W * math.sinh(W * t)
+    check(f"bead on rod: s at t={t}", row["s"], s, 1e-10 * s)
+    check(f"bead on rod: torque at t={t}", row["turn"], 2 * m * W * s * ds, 1e-9 * s * ds)
+
+# double pendulum on a cart
+mc, m1, m2, l1, l2 = 2.0, 1.0, 0.5, 0.8, 0.6
+rows = table(dyn("run", f"{DIR}/cart_double_pendulum.mech", "--outputs", "--tspan", "0:10",
+                 "--step", "0.5", "--method", "dop853", "--rtol", "1e-12", "--atol", "1e-12"))
+p = max(abs((mc + m1 + m2) * r["dx"] + m1 * l1 / 2 * math.cos(r["a1"]) * r["da1"]
+            + m2 * (l1 * math.cos(r["a1"]) * r["da1"]
+                    + l2 / 2 * math.cos(r["a1"] + r["a2"]) * (r["da1"] + r["da2"])))
+        for r in rows)
+check("cart double pendulum: horizontal momentum kept", p, 0, 1e-10)
+try:
+    import numpy as np
+    c = l1 + l2 / 2
+    M = np.array([[mc + m1 + m2, m1 * l1 / 2 + m2 * c, m2 * l2 / 2],
+                  [m1 * l1 / 2 + m2 * c, m1 * l1 ** 2 / 3 + m2 * c * c + m2 * l2 ** 2 / 12,
+                   m2 * c * l2 / 2 + m2 * l2 ** 2 / 12],
+                  [m2 * l2 / 2, m2 * c * l2 / 2 + m2 * l2 ** 2 / 12, m2 * l2 ** 2 / 3]])
+    K = g * np.array([[0, 0, 0], [0, m1 * l1 / 2 + m2 * c, m2 * l2 / 2],
+                      [0, m2 * l2 / 2, m2 * l2 / 2]])
+    w = sorted(np.sqrt(np.abs(np.linalg.eigvals(np.linalg.solve(M, K)).real)))
+    ims = eig_im(dyn("linearize", f"{DIR}/cart_double_pendulum.mech", "--init", "a1=0",
+                     "--init", "a2=0"))
+    check("cart double pendulum: slow swing", ims[-2], w[1], 1e-8)
+    check("cart double pendulum: fast swing", ims[-1], w[2], 1e-8)
+except ImportError:
+    print("NumPy missing: the cart double pendulum's frequencies are not checked")
 
 sys.exit(1 if fails else 0)

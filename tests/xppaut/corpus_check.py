@@ -1,0 +1,153 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
+"""Published .ode files from public repositories against XPPAUT (tests/xppaut/corpus/).
+
+The files are not part of dynkit: tests/xppaut/corpus/manifest.tsv names each one (the
+repository, the path and the commit it was taken from, its SHA-256 and size, the features
+it uses, and the outcome measured). Given a directory holding them as
+DIR/OWNER/REPO/PATH (by default $DYNKIT_ODE_CORPUS), every file is checked against its
+SHA-256, run by `xppaut FILE -silent` and by `dynkit run FILE` with the same method and
+step (compat.py's rules: the classical Runge-Kutta method where the file asks for a method
+that chooses its own steps; a tolerance of the column's scale after global events), and
+compared at XPPAUT's output times. A chaotic run agrees up to a time and then separates:
+the time is printed. A file dynkit refuses is run by XPPAUT too, to say whether XPPAUT
+integrates it.
+
+Prints a table (one line a file) and a summary. Exit status: 77 (skipped) without the
+directory, 1 when a file is missing or differs from its SHA-256 or when an outcome is
+not the manifest's `expect` (agree, separate, noise: other random numbers;
+refused while XPPAUT integrates the file; xppaut-fails: both refuse or XPPAUT writes
+nothing; not-compared: dynkit runs it, XPPAUT's run shares no sample after the start), else 0.
+"""
+import argparse
+import hashlib
+import os
+import re
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import compat  # noqa: E402  (same directory)
+
+MANIFEST = os.path.join(os.path.dirname(os.path.abspath(__file__)), "corpus", "manifest.tsv")
+COLUMNS = ("repo", "path", "commit", "sha256", "size", "features", "expect")
+
+# what a file uses, by the statements and functions XPPAUT reads (the manifest's column)
+FEATURES = (
+    ("global", r"(?im)^\s*g[a-z0-9]*\s+[-+]?[01]\s"),
+    ("aux", r"(?im)^\s*aux\s"),
+    ("fun", r"(?im)^\s*[a-z_][a-z0-9_]*\s*\([a-z_][a-z0-9_,\s]*\)\s*=(?!=)"),
+    ("fixed", r"(?im)^\s*[a-z_][a-z0-9_]*\s*=(?!=)"),
+    ("table", r"(?im)^\s*tab(le)?\s"),
+    ("array", r"\[[0-9]+\s*\.\.\s*[0-9]+\]"),
+    ("noise", r"(?im)^\s*wiener\b|\b(ran|normal)\s*\("),
+    ("delay", r"(?i)\bdelay\s*\("),
+    ("markov", r"(?im)^\s*markov\b"),
+    ("volterra", r"(?i)\bint\s*(\[[^\]]*\])?\s*\{"),
+    ("special", r"(?im)^\s*sp(ecial)?\s"),
+    ("dae", r"(?im)^\s*0\s*="),
+    ("map", r"(?im)^\s*[a-z_][a-z0-9_]*\s*\(\s*t\s*\+\s*1\s*\)\s*="),
+    ("heav", r"(?i)\bheav\s*\("),
+    ("numbered-par", r"(?im)^\s*par(am)?[0-9]+-[0-9]+\s"),
+    ("set", r"(?im)^\s*set\s"),
+    ("old-format", r"\A\s*[0-9]+\s*\n"),
+)
+
+
+def features(text):
+    """The manifest's feature list of a file: the method it asks for, then FEATURES."""
+    text = "\n".join(l for l in text.splitlines() if not l.lstrip().startswith("#"))
+    out = []
+    meth = compat.file_method(text)
+    if meth:
+        out.append("meth=" + meth)
+    out += [name for name, rx in FEATURES if re.search(rx, text)]
+    return ",".join(out) or "-"
+
+
+def read_manifest(path):
+    rows = []
+    with open(path) as f:
+        for line in f:
+            if line.startswith("#") or not line.strip():
+                continue
+            cells = line.rstrip("\n").split("\t")
+            if cells[0] == "repo":
+                continue
+            rows.append(dict(zip(COLUMNS, cells)))
+    return rows
+
+
+def outcome(r):
+    """The measured outcome in the manifest's words."""
+    if r["status"] == "refused":
+        return "refused" if r.get("xppaut", "").startswith("integrates") else "xppaut-fails"
+    if r["status"] != "accepted":
+        return "failed"
+    c = r.get("compare", "")
+    if c == "agree":
+        return "agree"
+    if c == "separate":
+        return "separate"
+    if c.startswith("noise"):
+        return "noise"
+    if c.startswith("xppaut"):  # wrote no output, timed out
+        return "xppaut-fails"
+    return "not-compared"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("dynkit", help="the dynkit binary")
+    ap.add_argument("--dir", default=os.environ.get("DYNKIT_ODE_CORPUS"),
+                    help="the directory of the files (default: $DYNKIT_ODE_CORPUS)")
+    ap.add_argument("--manifest", default=MANIFEST)
+    ap.add_argument("--timeout", type=float, default=60)
+    args = ap.parse_args()
+    if not args.dir or not os.path.isdir(args.dir):
+        print("SKIP: DYNKIT_ODE_CORPUS is not a directory; fetch the files named in %s "
+              "(repository, path, commit) into DIR/OWNER/REPO/PATH and set "
+              "DYNKIT_ODE_CORPUS=DIR" % os.path.relpath(args.manifest))
+        return 77
+    rows = read_manifest(args.manifest)
+    env = dict(os.environ)
+    bad, counts = [], {}
+    with tempfile.TemporaryDirectory() as work:
+        env.setdefault("DYNKIT_CACHE_DIR", os.path.join(work, "cache"))
+        for i, row in enumerate(rows):
+            name = "%s/%s" % (row["repo"], row["path"])
+            path = os.path.join(args.dir, row["repo"], row["path"])
+            if not os.path.isfile(path):
+                print("%-58s missing" % name)
+                bad.append(name)
+                continue
+            with open(path, "rb") as f:
+                if hashlib.sha256(f.read()).hexdigest() != row["sha256"]:
+                    print("%-58s differs from its sha256" % name)
+                    bad.append(name)
+                    continue
+            # each file in its own directory: XPPAUT reads companion files beside it
+            wdir = os.path.join(work, "f%d" % i)
+            os.makedirs(wdir)
+            r = compat.check_file(args.dynkit, path, args.timeout, env, wdir,
+                                  xppaut_refused=True)
+            got = outcome(r)
+            counts[got] = counts.get(got, 0) + 1
+            mark = "" if got == row["expect"] else "  (expected %s)" % row["expect"]
+            if mark:
+                bad.append(name)
+            text = compat.verdict_text(r)
+            if r["status"] == "refused":
+                text += "; xppaut: " + r.get("xppaut", "")
+            print("%-58s %-12s %s%s" % (name, got, text, mark), flush=True)
+    print("\n%d files from %d repositories: %s" % (
+        len(rows), len({r["repo"] for r in rows}),
+        ", ".join("%d %s" % (n, k) for k, n in sorted(counts.items(), key=lambda kv: -kv[1]))))
+    if bad:
+        print("not as the manifest says: " + ", ".join(bad))
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

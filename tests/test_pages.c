@@ -463,7 +463,17 @@ static void test_time_unit_and_phase_window(void **state)
     CHECK(r.status == 0, "%s", r.err);
     cli_free(&r);
     char *svg = file_in_tmp("ml.svg");
-    CHECK(strstr(svg, ">t [ms]<") && !strstr(svg, "[]"), "axis labels of ml.svg");
+    CHECK(strstr(svg, ">t [ms]<") && !strstr(svg, "[]") && !strstr(svg, "clipPath"),
+          "axis labels of ml.svg");
+    free(svg);
+    /* plot's phase plane xp, yp in the same window: w's axis reaches 0.6 (the cycle's w
+     * stays below 0.5), the lines clipped to it */
+    r = cli_in_tmpdir("plot ml.ode --x v --y w --output mlw.svg");
+    CHECK(r.status == 0, "%s", r.err);
+    cli_free(&r);
+    svg = file_in_tmp("mlw.svg");
+    CHECK(strstr(svg, ">0.6<") && strstr(svg, "clip-path=\"url(#window0)\""),
+          "plot's phase plane is not in the window @ ylo=0, yhi=0.6");
     free(svg);
     /* unitless states share a panel only when their ranges are within a factor of 10:
      * Morris-Lecar's v (-60 .. 35) and w (0 .. 0.5) without units get one each, Lorenz's x

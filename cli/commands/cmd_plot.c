@@ -208,6 +208,12 @@ int cli_cmd_plot(int argc, char **argv)
                         (cli_svg_line){label, s->data + xcol, s->data + cols[i], s->rows, s->cols,
                                        dyn_method_is_map(s->method), NULL, NULL};
                 }
+            /* the model's phase plane (xp, yp) in XPPAUT's window @ xlo, xhi, ylo, yhi */
+            if (n_y == 1 && m->phase_x && m->phase_y && xcol == cli_series_column(m, m->phase_x) &&
+                cols[0] == cli_series_column(m, m->phase_y)) {
+                memcpy(p->xwin, m->phase_window, sizeof p->xwin);
+                memcpy(p->ywin, m->phase_window + 2, sizeof p->ywin);
+            }
             order[n_panels] = p;
             n_panels++;
         }

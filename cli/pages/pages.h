@@ -145,6 +145,9 @@ typedef struct cli_svg_plot {
     const char *xlabel, *ylabel; /* with their units, e.g. "t [s]" */
     int n_lines;
     cli_svg_line lines[CLI_SVG_MAX_LINES];
+    /* a fixed window of an axis when lo < hi (XPPAUT's @ xlo, xhi, ylo, yhi), the lines
+     * clipped to it; else (zeros) the axis spans the data */
+    double xwin[2], ywin[2];
 } cli_svg_plot;
 
 /* Write the plot as a standalone SVG document: axes with ticks and numbers, the axis labels,

@@ -45,6 +45,14 @@ static axis make_axis(double lo, double hi, int target)
     return a;
 }
 
+/* The axis over a fixed window [lo, hi] when lo < hi, else over the data (make_axis). */
+static axis window_or_data(const double win[2], double lo, double hi, int target)
+{
+    if (!(win[0] < win[1]))
+        return make_axis(lo, hi, target);
+    return (axis){win[0], win[1], svg_nice_step(win[1] - win[0], target)};
+}
+
 static double to_px_x(const axis *a, double v)
 {
     return LEFT + (v - a->lo) / (a->hi - a->lo) * (W - LEFT - RIGHT);
@@ -259,12 +267,20 @@ static int panel(FILE *out, const cli_svg_plot *p, int first_color)
 {
     double lo, hi;
     data_range(p, 1, &lo, &hi);
-    const axis ax = make_axis(lo, hi, 8);
+    const axis ax = window_or_data(p->xwin, lo, hi, 8);
     data_range(p, 0, &lo, &hi);
-    const axis ay = make_axis(lo, hi, 6);
+    const axis ay = window_or_data(p->ywin, lo, hi, 6);
     const int n_colors = (int)(sizeof palette / sizeof *palette);
     int bad = axes(out, p, &ax, &ay);
-    bad |= fputs("<g class=\"lines\">\n", out) < 0;
+    if (p->xwin[0] < p->xwin[1] || p->ywin[0] < p->ywin[1]) /* lines outside stay out */
+        bad |= fprintf(out,
+                       "<clipPath id=\"window%d\"><rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" "
+                       "height=\"%.2f\"/></clipPath>\n<g class=\"lines\" "
+                       "clip-path=\"url(#window%d)\">\n",
+                       first_color, LEFT, TOP, W - LEFT - RIGHT, H - TOP - BOTTOM,
+                       first_color) < 0;
+    else
+        bad |= fputs("<g class=\"lines\">\n", out) < 0;
     for (int i = 0; i < p->n_lines; i++)
         if (p->lines[i].lo && p->lines[i].hi)
             bad |= band(out, &p->lines[i], palette[(first_color + i) % n_colors], &ax, &ay);

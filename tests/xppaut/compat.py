@@ -156,7 +156,8 @@ def file_dt(text):
 
 
 def has_global(text):
-    return re.search(r"(?im)^\s*global\b", text) is not None
+    """A global event: XPPAUT reads the statement by its first letter ("globa1 1 ...")."""
+    return re.search(r"(?im)^\s*g[a-z0-9]*\s+[-+]?[01]\s", text) is not None
 
 
 def has_noise(text):

@@ -457,7 +457,7 @@ static void test_refusals(void **state)
     cli_free(&r);
     assert_int_equal(cli_write_file("notstate.ode", "par a=1\ny'=-delay(a,1)\n"), 0);
     r = cli("run %s --final", cli_path("notstate.ode"));
-    CHECK(r.status == 2 && strstr(r.err, "notstate.ode:2:11: error: delay(a, ...): 'a' is a "
+    CHECK(r.status == 2 && strstr(r.err, "notstate.ode:2:5: error: delay(a, ...): 'a' is a "
                                          "parameter"),
           "%d %s", r.status, r.err);
     cli_free(&r);

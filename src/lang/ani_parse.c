@@ -219,6 +219,9 @@ static void resolve(dyn_ani *a, node *e, int depth)
     switch (e->kind) {
     case N_NUM: case N_TIME: case N_NEG: case N_NOT: case N_BIN: case N_IF: case N_FUN:
     case N_NAME: break;
+    case N_DELAY:
+        lang_fail(c, e->pos, "delay-differential equations ('delay') are not supported in an "
+                  "animation's formula: name a fixed quantity of the model that reads it");
     default:
         /* what the evaluator does not know (the translator's own forms, which it expands
          * in a model's formulas): refused rather than computed wrongly */

@@ -373,7 +373,6 @@ static node *parse_primary(lang_lexer *lx)
         if (v.kind != T_NAME)
             unexpected(lx, &v, "expected the name of a state in delay(x, tau)");
         e->name = lang_strndup(lx->c, lx->line->text + v.start, (size_t)(v.end - v.start));
-        e->pos = pos_at(lx, v.start);
         expect(lx, T_COMMA, "expected ',' after the state in delay(x, tau)");
         e->nargs = 1;
         e->args = lang_alloc(lx->c, sizeof *e->args);

@@ -38,6 +38,8 @@ int dyn_mech_to_c_flags(const char *path, const char *text, size_t len,
 /* What was derived, as readable formulas in the file's names (dynkit derive): the mass
  * matrix M (lower triangle), the forces F, and each constraint's row D and convective term
  * c, with M q'' = F + D' lambda and D q'' + c = 0; then the fixed quantities they use.
+ * The constraints need not hold at the file's initial state (the formulas do not depend on
+ * it); the mass matrix and the constraints' rows are checked there as dyn_mech_to_c does.
  * 0 and *out (malloc'd), or non-zero with *diag filled as dyn_mech_to_c. */
 int dyn_mech_derive_text(const char *path, const char *text, size_t len, char **out,
                          dyn_lang_diag *diag);

@@ -40,7 +40,7 @@ static void front(lang_ctx *c, int symbolic, int values, int unchecked)
 static void mech_front(lang_ctx *c) { front(c, 0, 0, 0); }
 static void unchecked_front(lang_ctx *c) { front(c, 0, 0, 1); }
 static void values_front(lang_ctx *c) { front(c, 0, 1, 1); }
-static void derive_front(lang_ctx *c) { front(c, 1, 0, 0); }
+static void derive_front(lang_ctx *c) { front(c, 1, 0, 1); }
 static char *derive_back(lang_ctx *c) { return mbs_text(c, c->hook_ctx); }
 
 int dyn_mech_to_c(const char *path, const char *text, size_t len,

@@ -58,9 +58,14 @@
       const phi = r.cols.phi;
       return { label: r.label, color: r.color, t: r.t, x: phi.map(p => l * Math.sin(p)), y: phi.map(p => -l * Math.cos(p)), trail: true, width: 1.2 };
     });
-    const R = 1.18 * l;
+    /* the view fits what is drawn: the pivot and the paths of the masses, with room for the
+     * mass (drawn 10 px) and the pivot's hatching; at least a quarter of l either side */
+    const xs = [0], ys = [0];
+    for (const s of series) for (let k = 0; k < s.x.length; k++) if (isFinite(s.x[k]) && isFinite(s.y[k])) { xs.push(s.x[k]); ys.push(s.y[k]); }
+    const m = 0.15 * l, half = Math.max(0.25 * l, ...xs.map(Math.abs)) + m;
+    const xr = [-half, half], yr = [Math.min(...ys) - m, Math.max(...ys) + 0.1 * l];
     const plot = new DK.Plot(container, Object.assign({
-      title: 'pendulum', xlabel: 'x [m]', ylabel: 'y [m]', equal: true, xrange: [-R, R], yrange: [-R, R * 0.9],
+      title: 'pendulum', xlabel: 'x [m]', ylabel: 'y [m]', equal: true, fitData: true, xrange: xr, yrange: yr,
       series, cursor: 'none', legend: 'tr', legendValues: false, aspect: 0.8, keepClear: [[0, 0]],
       overlay: (ctx, p, t) => {
         const ox = p.px(0), oy = p.py(0);

@@ -523,6 +523,11 @@ static void test_joint_and_speed_errors(void **state_)
                  "coordinate's name");
     snprintf(buf, sizeof buf, "%spoint p mass=1 revolute ground z:a x:b\n", head);
     expect_error(buf, "bad.mech:2:32:", "a revolute joint has one axis and one coordinate");
+    /* a misspelt axis names the joint's own form, not that of 'rot' */
+    snprintf(buf, sizeof buf, "%spoint p mass=1 revolute ground w:a\n", head);
+    expect_error(buf, "bad.mech:2:32:", "expected the revolute joint's AXIS:q after its parent");
+    snprintf(buf, sizeof buf, "%spoint p mass=1 prismatic ground\n", head);
+    expect_error(buf, "bad.mech:2:32:", "expected the prismatic joint's AXIS:q after its parent");
     snprintf(buf, sizeof buf, "%spoint p mass=1 at (a, b, 0) revolute ground z:a\n", head);
     expect_error(buf, "bad.mech:2:29:", "placed either by a joint or by at (x, y, z)");
     snprintf(buf, sizeof buf, "%sspeeds u\nrate a' = u\npoint p mass=1 at (a, b, 0)\n", head);

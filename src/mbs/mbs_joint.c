@@ -91,6 +91,21 @@ void mbs_parse_joint(lang_ctx *c, lang_lexer *lx, mbs_body *b, int kind)
         b->axis[0] = 3;
         b->angle[b->nrot++] = mbs_input_expr(lx, "the joint's coordinate");
     } else {
+        if (axis_first) { /* name the joint's own syntax, not that of 'rot' */
+            const int save = lx->i;
+            lpos apos;
+            const char *a = lang_is_ident_start(lang_skip_blanks(lx))
+                                ? lang_read_name(lx, &apos, "expected an axis")
+                                : "";
+            const int ok = strlen(a) == 1 && strchr("xyzXYZ", a[0]) &&
+                           lang_skip_blanks(lx) == ':';
+            lx->i = save;
+            if (!ok)
+                lang_fail(c, rpos,
+                          "expected the %s joint's AXIS:q after its parent, AXIS x, y, z "
+                          "or (ax, ay, az) of the parent's frame (e.g. %s ground z:q)",
+                          kinds[kind], kinds[kind]);
+        }
         mbs_parse_rot(c, lx, b);
     }
     if ((kind == MBS_REVOLUTE || kind == MBS_PRISMATIC) && (b->nrot != 1 || b->quat[0] >= 0))

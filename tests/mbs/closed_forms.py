@@ -3,7 +3,7 @@
 """Mechanisms with closed-form answers, written from docs/mechanisms.md alone (tests/mbs/closed):
 
 - physical_pendulum: a uniform rod about one end, `linearize` gives +-i sqrt(m g d / I_O),
-  d = L/2, I_O = m L^2/3;
+  d = L/2, I_O = m L^2/3; `inverse --prescribe` its torque I_O th'' + m g d sin(th);
 - hoop_bead: a bead on a hoop of radius R turning at W about the vertical, at rest relative
   to the hoop at cos(th) = g/(W^2 R) (f = 0) with small swings at W sin(th); below the
   critical W^2 = g/R the bottom is stable, swinging at sqrt(g/R - W^2);
@@ -63,6 +63,15 @@ m, L = 2.0, 1.5
 w = math.sqrt(m * g * (L / 2) / (m * L * L / 3))
 check("physical pendulum frequency", eig_im(dyn("linearize", f"{DIR}/physical_pendulum.mech",
                                                "--init", "th=0"))[-1], w, 1e-9 * w)
+
+# its inverse dynamics: the torque that drives th = 0.5 sin(2 t) is I_O th'' + m g d sin(th)
+rows = table(dyn("inverse", f"{DIR}/physical_pendulum.mech", "--prescribe", "th=0.5*sin(2*t)",
+                 "--tspan", "0:2", "--step", "0.25", "--method", "dop853", "--rtol", "1e-12",
+                 "--atol", "1e-12", "--quiet"))
+err = max(abs(row["Q_th"] - (m * L * L / 3 * -2 * math.sin(2 * row["t"])
+                             + m * g * L / 2 * math.sin(0.5 * math.sin(2 * row["t"]))))
+          for row in rows)
+check("physical pendulum: inverse dynamics' torque", err, 0, 1e-9)
 
 # bead on a turning hoop
 R, W = 0.5, 10.0

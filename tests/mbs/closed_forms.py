@@ -15,7 +15,11 @@
 - bead_on_rod: a bead free on a rod turned at W (prismatic joint on a revolute one), at
   s0 cosh(W t), the drive's torque (rod's inertia constant) 2 m W s s';
 - cart_double_pendulum: a cart on a rail with two uniform links: the horizontal momentum
-  kept, and `linearize` at rest gives the frequencies of M q'' + K q = 0 formed by hand.
+  kept, and `linearize` at rest gives the frequencies of M q'' + K q = 0 formed by hand;
+- torque_free_quat: a free asymmetric body by Euler parameters, started turning about its
+  intermediate axis with a small disturbance: the energy and |I w| (w = 2 vec(conj(q) q'))
+  kept, the norm kept, and the spin about that axis reverses (the intermediate-axis
+  instability).
 
 Usage: closed_forms.py DYNKIT DIR
 """
@@ -164,5 +168,31 @@ try:
     check("cart double pendulum: fast swing", ims[-1], w[2], 1e-8)
 except ImportError:
     print("NumPy missing: the cart double pendulum's frequencies are not checked")
+
+# torque-free asymmetric body by Euler parameters
+try:
+    import numpy as np
+    rows = table(dyn("run", f"{DIR}/torque_free_quat.mech", "--outputs", "--tspan", "0:30",
+                     "--step", "0.5", "--method", "dop853", "--rtol", "1e-12", "--atol", "1e-12"))
+    In = np.array([1.0, 2.0, 3.0])
+    Hs, w2 = [], []
+    for row in rows:
+        w, x, y, z = (row[k] for k in ("qw", "qx", "qy", "qz"))
+        dw, dx_, dy_, dz = (row["d" + k] for k in ("qw", "qx", "qy", "qz"))
+        # body-frame angular velocity: 2 vec(conj(q) * q')
+        wb = 2 * np.array([w * dx_ - x * dw - y * dz + z * dy_,
+                           w * dy_ + x * dz - y * dw - z * dx_,
+                           w * dz - x * dy_ + y * dx_ - z * dw])
+        Hs.append(np.linalg.norm(In * wb))
+        w2.append(wb[1])
+    check("torque-free body: |H| kept", max(Hs) - min(Hs), 0, 1e-10)
+    check("torque-free body: energy kept",
+          max(r["energy"] for r in rows) - min(r["energy"] for r in rows), 0, 1e-10)
+    check("torque-free body: norm kept", max(abs(r["qw"] ** 2 + r["qx"] ** 2 + r["qy"] ** 2
+                                                 + r["qz"] ** 2 - 1) for r in rows), 0, 1e-10)
+    check("torque-free body: the intermediate axis flips (least w2 below -0.9)",
+          float(min(w2) < -0.9), 1.0, 0)
+except ImportError:
+    print("NumPy missing: the torque-free body is not checked")
 
 sys.exit(1 if fails else 0)

@@ -9,7 +9,8 @@
  * torque-free symmetric body's closed-form motion, and the growth rate of the spin about
  * the intermediate axis; joints along tilted axes (a pendulum's frequency, a sled on an
  * incline); a free joint with Euler parameters against plane_quat.mech; a holonomic
- * constraint with declared speeds against cartesian_pendulum.mech; a chain of 8 revolute
+ * constraint with declared speeds against cartesian_pendulum.mech, run and linearized
+ * (+-i sqrt(g/l) hanging, +-sqrt(g/l) upright); a chain of 8 revolute
  * joints against its formulas; a spatial chain by its rotations and by its matrices; the
  * picture's poses of prismatic and revolute joints; and the errors of joints and speeds at
  * FILE:LINE:COL. */
@@ -432,6 +433,45 @@ static void test_constraint_with_declared_speeds(void **state_)
     cli_free(&rb);
 }
 
+/* The same pendulum linearized (l = 2 m, g = 9.81 m/s^2): hanging, +-i sqrt(g/l); upright,
+ * +-sqrt(g/l); the eigenvalues of cartesian_pendulum.mech's (speeds the rates) at both. The
+ * rod's admissible positions are those of f = sqrt(x^2 + y^2) - l, whose gradient in (x, y)
+ * is not its rate's row in (ur, ut) (that is df/dq W, with q' = W u). */
+static void test_linearize_constraint_with_declared_speeds(void **state_)
+{
+    (void)state_;
+    char path[512];
+    snprintf(path, sizeof path, "%s", cli_path("polar_lin.mech"));
+    write_file(path, "par m=1 [kg], l=2 [m], g=9.81 [m/s^2]\n"
+                     "coord x=0 [m], y=-l [m]\n"
+                     "speeds ur [m/s], ut [m/s]\n"
+                     "rate x' = (ur*x - ut*y)/l, y' = (ur*y + ut*x)/l\n"
+                     "gravity 0, -g, 0\n"
+                     "point bob mass=m at (x, y, 0)\n"
+                     "constraint rod [m]: sqrt(x^2 + y^2) - l = 0\n");
+    const double w = sqrt(9.81 / 2.0);
+    static const char *const at[2] = {"", " --init y=2"};
+    for (int up = 0; up < 2; up++) {
+        char args[1024];
+        double re[64], im[64], rc[64], ic[64];
+        snprintf(args, sizeof args, "%s%s", path, at[up]);
+        const long n = eigenvalues(args, re, im);
+        snprintf(args, sizeof args, "%s%s", MECH "cartesian_pendulum.mech", at[up]);
+        const long nc = eigenvalues(args, rc, ic);
+        CHECK(n == 2 && nc == 2, "%ld and %ld eigenvalues", n, nc);
+        double worst = 0.0, apart = 0.0;
+        for (long i = 0; i < n; i++) {
+            const double s = i == 0 ? -w : w; /* sorted by real, then imaginary part */
+            worst = fmax(worst, up ? fabs(re[i] - s) + fabs(im[i]) : fabs(re[i]) + fabs(im[i] - s));
+            apart = fmax(apart, fabs(re[i] - rc[i]) + fabs(im[i] - ic[i]));
+        }
+        CHECK(worst < 1e-8 * w && apart < 1e-8 * w,
+              "%s: %.17g%+.17gi, %.17g%+.17gi; off sqrt(g/l) = %.17g by %.3g, off the "
+              "rates' by %.3g",
+              up ? "upright" : "hanging", re[0], im[0], re[1], im[1], w, worst, apart);
+    }
+}
+
 /* info and derive state the kinematic equations of declared speeds; derive's M and F are
  * by speed (Euler's equations: the top's axial M[w3,w3] = C) */
 static void test_info_and_derive_show_the_rates(void **state_)
@@ -557,6 +597,7 @@ int main(void)
         cmocka_unit_test(test_chain_of_joints_matches_the_formulas),
         cmocka_unit_test(test_spatial_chain_two_ways),
         cmocka_unit_test(test_constraint_with_declared_speeds),
+        cmocka_unit_test(test_linearize_constraint_with_declared_speeds),
         cmocka_unit_test(test_info_and_derive_show_the_rates),
         cmocka_unit_test(test_picture_follows_the_joints),
         cmocka_unit_test(test_joint_and_speed_errors),

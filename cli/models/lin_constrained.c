@@ -1,9 +1,10 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* The admissible directions of a mechanism's linearization (docs/analysis.md, "Mechanisms
  * with constraints"): the constraints' values on the speeds h(t, q, u) from
- * dyn_mech_constraints_to_c, their derivatives G by central differences, and a basis P of
- * the directions (dq, du) with dh/du dq = 0 for each holonomic constraint and
- * dh/dq dq + dh/du du = 0 for every constraint — its null space by Gauss-Jordan
+ * dyn_mech_constraints_to_c and the holonomic ones' values f(t, q), their derivatives G by
+ * central differences, and a basis P of the directions (dq, du) with df/dq dq = 0 for each
+ * holonomic constraint and dh/dq dq + dh/du du = 0 for every constraint (df/dq, not dh/du:
+ * with declared speeds q' = W(q) u, dh/du = df/dq W) — its null space by Gauss-Jordan
  * elimination with complete pivoting among the speeds first, then the coordinates; the
  * pivots' states are the dependent ones. */
 #include "models/lin_constrained.h"
@@ -65,14 +66,16 @@ void cli_lin_constraints_close(cli_lin_constraints *cc)
     cc->loaded = 0;
 }
 
-/* the constraints' values at (t, y) into h (cc->m), the holonomic ones flagged in hol */
+/* the constraints' values on the speeds at (t, y) into h[0..cc->m), the holonomic ones
+ * flagged in hol, and those ones' values f(t, q) after them, in the same order (their
+ * outputs NAME:f, "position" or "prescribed"); the count of f into *n_f */
 static int values(const cli_lin_constraints *cc, double t, const double *y, const void *par,
-                  double *out, double *h, int *hol)
+                  double *out, double *h, int *hol, int *n_f)
 {
     const dyn_model *cm = cc->jm.model;
     if (cm->compute_outputs(t, y, par, out))
         return -1;
-    int r = 0;
+    int r = 0, s = 0;
     for (int i = 0; i < cm->n_outputs; i++) {
         const char *u = cm->outputs[i].unit;
         const int is_hol = u && strcmp(u, "holonomic") == 0;
@@ -80,8 +83,13 @@ static int values(const cli_lin_constraints *cc, double t, const double *y, cons
             if (hol)
                 hol[r] = is_hol;
             h[r++] = out[i];
+        } else if (u && (strcmp(u, "position") == 0 || strcmp(u, "prescribed") == 0) &&
+                   s < cc->m) {
+            h[cc->m + s++] = out[i];
         }
     }
+    if (n_f)
+        *n_f = s;
     return 0;
 }
 
@@ -91,17 +99,26 @@ int cli_lin_basis(const cli_lin_constraints *cc, double t, const double *y, cons
     const dyn_model *cm = cc->jm.model;
     const int N = cm->n_states, n = N / 2, m = cc->m;
     double *out = malloc((size_t)(cm->n_outputs + 1) * sizeof *out);
-    double *hp = malloc((size_t)(2 * m + 1) * sizeof *hp), *hm = hp + m;
+    /* h then f: 2 m values at each side */
+    double *hp = malloc((size_t)(4 * m + 1) * sizeof *hp), *hm = hp + 2 * m;
     int *hol = malloc((size_t)(m + 1) * sizeof *hol);
     double *yy = malloc((size_t)N * sizeof *yy);
-    double *dh = malloc((size_t)(m * N + 1) * sizeof *dh); /* dh_r/dy_j */
+    double *dh = malloc((size_t)(2 * m * N + 1) * sizeof *dh); /* dh_r/dy_j, then df_s/dy_j */
+    int n_hol = 0, n_f = 0;
     double *G = malloc((size_t)(2 * m * N + 1) * sizeof *G);
     int *piv = malloc((size_t)(N + 1) * sizeof *piv);
     int rc = !out || !hp || !hol || !yy || !dh || !G || !piv;
     if (rc)
         snprintf(err, errlen, "out of memory");
     if (!rc)
-        rc = values(cc, t, y, par, out, hp, hol);
+        rc = values(cc, t, y, par, out, hp, hol, &n_f);
+    for (int r = 0; r < m && !rc; r++)
+        n_hol += hol[r];
+    if (!rc && n_f != n_hol) {
+        snprintf(err, errlen, "%d holonomic constraints but %d values of their positions",
+                 n_hol, n_f);
+        rc = -1;
+    }
     memcpy(yy, y, (size_t)N * sizeof *yy);
     for (int j = 0; j < N && !rc; j++) {
         /* a power of two near eps^(1/3) of the state's scale: h is linear in the speeds
@@ -109,25 +126,22 @@ int cli_lin_basis(const cli_lin_constraints *cc, double t, const double *y, cons
         const double step = ldexp(1.0, (int)floor(log2(6e-6 * fmax(1.0, fabs(y[j])))));
         yy[j] = y[j] + step;
         const double up = yy[j] - y[j];
-        rc = values(cc, t, yy, par, out, hp, NULL);
+        rc = values(cc, t, yy, par, out, hp, NULL, NULL);
         yy[j] = y[j] - step;
         const double down = y[j] - yy[j];
         if (!rc)
-            rc = values(cc, t, yy, par, out, hm, NULL);
+            rc = values(cc, t, yy, par, out, hm, NULL, NULL);
         yy[j] = y[j];
-        for (int r = 0; r < m && !rc; r++)
+        for (int r = 0; r < m + n_hol && !rc; r++)
             dh[r * N + j] = (hp[r] - hm[r]) / (up + down);
     }
     if (rc && err[0] == '\0')
         snprintf(err, errlen, "the constraints' values failed at the state");
-    /* G: rows dh/du on the coordinates' columns for the holonomic constraints, then dh/dy */
+    /* G: rows df/dq on the coordinates' columns for the holonomic constraints, then dh/dy */
     int rows = 0;
-    for (int r = 0; r < m && !rc; r++)
-        if (hol[r]) {
-            for (int j = 0; j < N; j++)
-                G[rows * N + j] = j < n ? dh[r * N + n + j] : 0.0;
-            rows++;
-        }
+    for (int r = 0; r < n_hol && !rc; r++, rows++)
+        for (int j = 0; j < N; j++)
+            G[rows * N + j] = j < n ? dh[(m + r) * N + j] : 0.0;
     for (int r = 0; r < m && !rc; r++, rows++)
         memcpy(G + rows * N, dh + r * N, (size_t)N * sizeof *G);
     /* Gauss-Jordan with complete pivoting: each pivot's column is a dependent state */

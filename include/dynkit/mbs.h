@@ -51,7 +51,7 @@ int dyn_mech_derive_text(const char *path, const char *text, size_t len, char **
  * dyn_mech_to_c's model. After them, one output for each holonomic constraint: its value
  * f(q, t), named NAME:f, with the unit "position" ("prescribed" for a `prescribe`). The
  * constraints need not hold at the file's initial state. The admissible directions of the linearization come from it:
- * dh/du for the positions of holonomic ones, (dh/dq, dh/du) for all (docs/analysis.md). */
+ * df/dq for the positions of holonomic ones, (dh/dq, dh/du) for all (docs/analysis.md). */
 int dyn_mech_constraints_to_c(const char *path, const char *text, size_t len,
                               const dyn_lang_table_file *tables, int n_tables, char **c_source,
                               dyn_lang_diag *diag);

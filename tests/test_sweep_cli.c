@@ -549,6 +549,20 @@ static void test_plot_table(void **state)
     CHECK(strstr(svg, ">dphi [rad/s]</text>") && strstr(svg, ">max_height [m]</text>"),
           "the axes of a JSON table's plot are not labelled with units:\n%.2000s", svg);
     free(svg);
+    /* a height in m and a time in s are not drawn on one axis: a panel each, as the plots
+     * of a model's run */
+    r = cli_in_tmpdir("plot p.json --y max_height,event_turn --output pu.svg");
+    assert_int_equal(r.status, 0);
+    cli_free(&r);
+    svg = cli_read_file(cli_path("pu.svg"), NULL);
+    int frames = 0;
+    for (const char *q = svg; (q = strstr(q, "<rect class=\"frame\"")) != NULL; q++)
+        frames++;
+    CHECK(frames == 2 && strstr(svg, ">max_height [m]</text>") &&
+              strstr(svg, ">event_turn [s]</text>"),
+          "m and s on one axis (%d panels):\n%.2000s", frames, svg);
+    free(svg);
+    unlink(cli_path("pu.svg"));
     r = cli_in_tmpdir("sweep pendulum --method rk4 --step 0.01 --tspan 0:5 --vary l=1,2 "
                       "--vary dphi=0.5:1.5:5 --reduce max:height,event:turn --output pg.json");
     assert_int_equal(r.status, 0);

@@ -91,12 +91,6 @@ static void axis_label(const dyn_model *m, const int *cols, int n, char *buf, si
     }
 }
 
-/* No unit, or the unit 1: quantities whose sizes say nothing about each other. */
-static int unitless(const char *unit)
-{
-    return !unit || !*unit || strcmp(unit, "1") == 0;
-}
-
 /* The range max - min of column c over every run's samples (0 when constant). */
 static double column_span(const cli_view *v, int c)
 {
@@ -112,15 +106,6 @@ static double column_span(const cli_view *v, int c)
         }
     }
     return hi >= lo ? hi - lo : 0.0;
-}
-
-/* Two unitless quantities share an axis when their ranges are within a factor of 10 (a
- * gate variable within 0..1 beside a potential over 100 would be a flat line). */
-static int spans_agree(double a, double b)
-{
-    if (a == 0.0 || b == 0.0)
-        return a == b;
-    return fmax(a, b) <= 10.0 * fmin(a, b);
 }
 
 int cli_cmd_plot(int argc, char **argv)
@@ -183,7 +168,7 @@ int cli_cmd_plot(int argc, char **argv)
             int cols[MAX_Y], n_cols = 0;
             for (int i = first; i < n_y; i++)
                 if (!done[i] && strcmp(cli_series_column_unit(m, ycols[i]), unit) == 0 &&
-                    (!unitless(unit) || spans_agree(span, column_span(&v, ycols[i])))) {
+                    cli_svg_share_axis(unit, span, column_span(&v, ycols[i]))) {
                     cols[n_cols++] = ycols[i];
                     done[i] = 1;
                 }

@@ -157,6 +157,11 @@ int cli_svg_write(FILE *out, const cli_svg_plot *p);
 /* n plots stacked top to bottom in one document (e.g. one per unit of the y axis), the
  * lines' colours continuing from panel to panel. */
 int cli_svg_write_panels(FILE *out, const cli_svg_plot *const *plots, int n);
+/* 1 when two quantities of the same unit, whose ranges (max - min) are span_a and span_b,
+ * share a panel: always with a unit; without one (or the unit 1) only when their ranges
+ * are within a factor of 10 (a gate within 0..1 beside a potential over 100 would be a
+ * flat line). */
+int cli_svg_share_axis(const char *unit, double span_a, double span_b);
 
 /* ---- an XPPAUT animation file on the animate page (ani_page.c) ---- */
 

@@ -293,6 +293,15 @@ static int panel(FILE *out, const cli_svg_plot *p, int first_color)
 
 int cli_svg_write(FILE *out, const cli_svg_plot *p) { return cli_svg_write_panels(out, &p, 1); }
 
+int cli_svg_share_axis(const char *unit, double span_a, double span_b)
+{
+    if (unit && *unit && strcmp(unit, "1") != 0)
+        return 1;
+    if (span_a == 0.0 || span_b == 0.0)
+        return span_a == span_b;
+    return fmax(span_a, span_b) <= 10.0 * fmin(span_a, span_b);
+}
+
 int cli_svg_write_panels(FILE *out, const cli_svg_plot *const *plots, int n)
 {
     int bad = fprintf(out,

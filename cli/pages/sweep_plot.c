@@ -348,6 +348,62 @@ static double *rows_by(const sweep_table *t, int c)
     return data;
 }
 
+/* The range max - min of column c (0 when constant or without finite values). */
+static double col_span(const sweep_table *t, int c)
+{
+    double lo = INFINITY, hi = -INFINITY;
+    for (long r = 0; r < t->rows; r++) {
+        const double v = t->data[r * t->cols + c];
+        if (isfinite(v)) {
+            lo = fmin(lo, v);
+            hi = fmax(hi, v);
+        }
+    }
+    return hi >= lo ? hi - lo : 0.0;
+}
+
+/* The columns ycols against xc in panels stacked one under the other, one per unit in the
+ * order the units first appear (unitless columns together only when their ranges are within
+ * a factor of 10: cli_svg_share_axis); first is the first panel, with the title and xlabel. */
+static int panels_of(FILE *out, const sweep_table *t, int xc, const int *ycols, int n_y,
+                     const cli_svg_plot *first)
+{
+    static cli_svg_plot panels[CLI_SVG_MAX_LINES];
+    static char ylabels[CLI_SVG_MAX_LINES][320];
+    const cli_svg_plot *order[CLI_SVG_MAX_LINES];
+    int done[CLI_SVG_MAX_LINES] = {0}, n = 0;
+    n_y = n_y < CLI_SVG_MAX_LINES ? n_y : CLI_SVG_MAX_LINES;
+    for (int a = 0; a < n_y; a++) {
+        if (done[a])
+            continue;
+        const char *unit = t->units[ycols[a]] ? t->units[ycols[a]] : "";
+        cli_svg_plot *p = &panels[n];
+        *p = *first;
+        p->title = n > 0 ? "" : first->title;
+        for (int b = a; b < n_y; b++) {
+            const char *ub = t->units[ycols[b]] ? t->units[ycols[b]] : "";
+            if (!done[b] && strcmp(ub, unit) == 0 &&
+                cli_svg_share_axis(unit, col_span(t, ycols[a]), col_span(t, ycols[b]))) {
+                done[b] = 1;
+                p->lines[p->n_lines++] =
+                    (cli_svg_line){t->names[ycols[b]], t->data + xc, t->data + ycols[b],
+                                   t->rows, t->cols, 0, NULL, NULL};
+            }
+        }
+        /* the panel's names and their unit: "max_v, final_v [mV]" */
+        char *yl = ylabels[n];
+        yl[0] = '\0';
+        for (int k = 0; k < p->n_lines; k++)
+            snprintf(yl + strlen(yl), sizeof ylabels[0] - strlen(yl), "%s%s", k ? ", " : "",
+                     p->lines[k].label);
+        if (*unit)
+            snprintf(yl + strlen(yl), sizeof ylabels[0] - strlen(yl), " [%s]", unit);
+        p->ylabel = yl;
+        order[n++] = p;
+    }
+    return cli_svg_write_panels(out, order, n);
+}
+
 /* Lines of the columns ycols against column xc (rows in the order of xc); when the table
  * has another varied name, one line per value of it (of the first column of ycols; at
  * most CLI_SVG_MAX_LINES). */
@@ -364,13 +420,8 @@ static int lines_of(FILE *out, const sweep_table *t, int xc, const int *ycols, i
     for (int c = 1; c < t->cols; c++)
         if (c != xc && is_varied(t, c) && other < 0)
             other = c;
-    if (other < 0) {
-        for (int k = 0; k < n_y; k++)
-            p.lines[p.n_lines++] =
-                (cli_svg_line){t->names[ycols[k]], t->data + xc, t->data + ycols[k], t->rows,
-                               t->cols, 0, NULL, NULL};
-        return cli_svg_write(out, &p);
-    }
+    if (other < 0) /* one panel per unit, as dynkit plot MODEL draws them */
+        return panels_of(out, t, xc, ycols, n_y, &p);
     double *vals = malloc((size_t)t->rows * sizeof *vals);
     double *xy = malloc((size_t)t->rows * 2 * sizeof *xy);
     static char labels[CLI_SVG_MAX_LINES][160];

@@ -11,7 +11,8 @@ step (compat.py's rules: the classical Runge-Kutta method where the file asks fo
 that chooses its own steps; a tolerance of the column's scale after global events), and
 compared at XPPAUT's output times. A chaotic run agrees up to a time and then separates:
 the time is printed. A file dynkit refuses is run by XPPAUT too, to say whether XPPAUT
-integrates it.
+integrates it. A file with `set` lines, for which `xppaut -silent` writes each set's run
+into SET.dat and no output.dat, is compared set by set with `dynkit run --set ...`.
 
 Prints a table (one line a file) and a summary. Exit status: 77 (skipped) without the
 directory, 1 when a file is missing or differs from its SHA-256 or when an outcome is
@@ -63,6 +64,45 @@ def features(text):
         out.append("meth=" + meth)
     out += [name for name, rx in FEATURES if re.search(rx, text)]
     return ",".join(out) or "-"
+
+
+SET_LINE = re.compile(r"(?im)^\s*set\s+([a-z_][a-z0-9_]*)\s*\{([^}]*)\}")
+
+
+def check_sets(dynkit, path, work, timeout, env):
+    """A file with `set` lines: `xppaut -silent` runs each set into SET.dat instead of the
+    default run into output.dat. Each set's table against `dynkit run --set NAME=VALUE ...`
+    with the set's values (the classical Runge-Kutta method at dt, XPPAUT's default): the
+    worst verdict, or None when the file has no sets or XPPAUT wrote no set's table."""
+    with open(path, errors="replace") as f:
+        text = f.read()
+    sets = SET_LINE.findall(text)
+    if not sets or compat.file_method(text) is not None:
+        return None
+    xdir = os.path.join(work, "sets")
+    os.makedirs(xdir, exist_ok=True)
+    compat.run_xppaut(path, xdir, timeout)
+    verdicts = []
+    for name, body in sets:
+        table = os.path.join(xdir, name + ".dat")
+        if not os.path.exists(table):
+            return None
+        xpp = compat.np.loadtxt(table, ndmin=2)
+        cmd = [dynkit, "run", path, "--outputs", "--quiet", "--method", "rk4"]
+        for a in body.split(","):
+            cmd += ["--set", a.strip()]
+        p = compat.subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env)
+        rows = [r for r in p.stdout.splitlines()[1:] if r.strip()]
+        if p.returncode or not rows:
+            return "set %s: dynkit: %s" % (name, p.stderr.strip().splitlines()[:1])
+        dyn = compat.np.array([[float(v) for v in r.split(",")] for r in rows])
+        verdict, t_sep, _ = compat.compare(xpp, dyn, compat.file_t0(text))
+        verdicts.append((verdict, t_sep, name))
+    bad = [v for v in verdicts if v[0] != "agree"]
+    if not bad:
+        return "agree"
+    v = bad[0]
+    return "%s (set %s%s)" % (v[0], v[2], "" if v[1] is None else " at t=%g" % v[1])
 
 
 def read_manifest(path):
@@ -131,12 +171,19 @@ def main():
             os.makedirs(wdir)
             r = compat.check_file(args.dynkit, path, args.timeout, env, wdir,
                                   xppaut_refused=True)
+            if r.get("compare") == "xppaut wrote no output":
+                sets = check_sets(args.dynkit, path, wdir, args.timeout, env)
+                if sets is not None:
+                    r["compare"] = sets.split(" (")[0]
+                    r["sets"] = sets
             got = outcome(r)
             counts[got] = counts.get(got, 0) + 1
             mark = "" if got == row["expect"] else "  (expected %s)" % row["expect"]
             if mark:
                 bad.append(name)
             text = compat.verdict_text(r)
+            if r.get("sets"):
+                text = "each set's SET.dat (xppaut -silent runs the sets): " + r["sets"]
             if r["status"] == "refused":
                 text += "; xppaut: " + r.get("xppaut", "")
             print("%-58s %-12s %s%s" % (name, got, text, mark), flush=True)

@@ -259,8 +259,13 @@ int cli_cmd_info(int argc, char **argv)
     }
     const dyn_model *m;
     int open_rc = cli_model_table_options("info", argc, argv);
-    if (open_rc == CLI_OK)
+    if (open_rc == CLI_OK) {
+        /* a description, not a run: a mechanism whose file's initial state does not hold
+         * its constraints is described too (run says so and offers --project-init) */
+        cli_model_set_unchecked(1);
         open_rc = cli_model_open("info", argv[0], &m);
+        cli_model_set_unchecked(0);
+    }
     if (open_rc != CLI_OK)
         return open_rc;
     /* the default initial state of the default parameters (it may depend on them) */

@@ -123,6 +123,12 @@ want = {("loop_x", "th"): -r * math.sin(0.7), ("loop_x", "ph"): -l * math.sin(0.
 for key, val in want.items():
     check(f"derive: D[{key[0]},{key[1]}]", eval(rowsD[key].replace("^", "**"), env), val, 1e-15)
 
+# dynkit info describes it too (a description, not a run): the drive of an angle is a torque
+info = dyn("info", f"{DIR}/slider_crank.mech")
+check("info: the drive's multiplier is a torque in N m",
+      float(re.search(r"^  drive +N m +force of the constraint drive", info, re.M) is not None),
+      1.0, 0)
+
 # spherical pendulum, conical motion
 L, th = 1.0, 0.6
 Om = math.sqrt(g / (L * math.cos(th)))

@@ -85,6 +85,9 @@ int cli_model_is_file(const char *spec);
 char *cli_read_model_file(const char *path, size_t *len);
 /* 1 for a model loaded from a model file with algebraic equations (0=...). */
 int cli_model_has_algebraic(const dyn_model *m);
+/* The file m was defined in (dyn_model.source, else the file cli_model_open loaded it
+ * from, e.g. a C model that names no source), or NULL for a built-in model. */
+const char *cli_model_path(const dyn_model *m);
 /* 1 when parameter `name` of m is its size (the Brusselator's N), which --set and sweeps
  * must not change: the size is chosen with the model (brusselator:N). */
 int cli_param_is_size(const dyn_model *m, const char *name);

@@ -424,6 +424,11 @@ static void test_model_defaults_one_rule(void **state)
           "%s %s", r.out, r.err);
     cli_free(&r);
     unlink(cli_path("decay.ode"));
+    /* a C model's own method and tolerances are named by their field and file */
+    r = cli("info " MODELS "spring_mass.c");
+    CHECK(r.status == 0 && strstr(r.out, "Method: rk4 (dyn_model.method in spring_mass.c)"),
+          "%s %s", r.out, r.err);
+    cli_free(&r);
     r = cli("info " MODELS "lorenz.ode"); /* docs/model-files.md */
     CHECK(r.status == 0 &&
               strstr(r.out, "Method: dp45 (dynkit's default for models that name none)\n"

@@ -49,10 +49,11 @@ const char *cli_model_default_source(const dyn_model *m, cli_default_field field
     if (field == CLI_DEFAULT_METHOD && m->n_noise > 0 && m->source &&
         (strcmp(m->method, "rkmil") == 0 || strcmp(m->method, "euler") == 0))
         return "the method for its noise, or its @ meth=euler";
-    if (!m->source)
+    const char *path = cli_model_path(m);
+    if (!path)
         return "the model's";
-    const char *slash = strrchr(m->source, '/');
-    const char *base = slash ? slash + 1 : m->source;
+    const char *slash = strrchr(path, '/');
+    const char *base = slash ? slash + 1 : path;
     if (has_ext(base, ".c"))
         snprintf(buf, size, "dyn_model.%s in %s", c_names[field], base);
     else if (has_ext(base, ".ode"))

@@ -24,6 +24,7 @@ static int n_loaded;
 /* loaded from a model file with algebraic equations (0=...), for the messages of a failed
  * run: the C text defines the solver's constants */
 static unsigned char loaded_algebraic[MAX_LOADED];
+static char loaded_path[MAX_LOADED][1024]; /* the file each was loaded from */
 static int verbose;
 /* for the mechanism file opened next: the constraints need not hold at its initial state
  * (--project-init), and lines to read after the file's own (dynkit inverse --prescribe) */
@@ -174,6 +175,7 @@ static int keep_loaded(const dyn_jit_model *jm, int algebraic, const char *path,
     if (n_loaded == 0)
         atexit(unload_all);
     loaded_algebraic[n_loaded] = (unsigned char)algebraic;
+    snprintf(loaded_path[n_loaded], sizeof loaded_path[0], "%s", path);
     loaded[n_loaded++] = *jm;
     *model = jm->model;
     if (jm->note[0]) /* libtcc instead of the compiler, a damaged cache entry replaced */
@@ -283,6 +285,16 @@ int cli_model_has_algebraic(const dyn_model *m)
         if (loaded[i].model == m)
             return loaded_algebraic[i];
     return 0;
+}
+
+const char *cli_model_path(const dyn_model *m)
+{
+    if (m->source)
+        return m->source;
+    for (int i = 0; i < n_loaded; i++)
+        if (loaded[i].model == m)
+            return loaded_path[i];
+    return NULL;
 }
 
 int cli_model_is_file(const char *spec)

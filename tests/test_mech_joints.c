@@ -8,7 +8,8 @@
  * a free body in zero gravity keeping its angular momentum vector and energy, the
  * torque-free symmetric body's closed-form motion, and the growth rate of the spin about
  * the intermediate axis; joints along tilted axes (a pendulum's frequency, a sled on an
- * incline); a free joint with Euler parameters against plane_quat.mech; a holonomic
+ * incline); a free joint with Euler parameters against plane_quat.mech, and derive's
+ * note that M + D'D is solved there; a holonomic
  * constraint with declared speeds against cartesian_pendulum.mech, run and linearized
  * (+-i sqrt(g/l) hanging, +-sqrt(g/l) upright); a chain of 8 revolute
  * joints against its formulas; a spatial chain by its rotations and by its matrices; the
@@ -490,6 +491,23 @@ static void test_info_and_derive_show_the_rates(void **state_)
     cli_free(&r);
 }
 
+/* Euler parameters move no mass along q itself (a rotation depends on q / |q| only), so M
+ * is singular there and the norm constraint's row 2 q is that direction: derive prints M
+ * and D and says that M + D'D is solved, as run does; the four-bar's M is regular. */
+static void test_derive_says_when_m_plus_dtd_is_solved(void **state_)
+{
+    (void)state_;
+    const char *note = "M below is singular at the initial state";
+    cli_result r = run_ok("derive %s%s", MECH "plane_quat.mech", "");
+    CHECK(strstr(r.out, note) && strstr(r.out, "(M + D'D) q'' = F + D' (lambda - b)") &&
+              strstr(r.out, "\nD[norm,qw] = 2*qw\n") && strstr(r.out, "\nM[qw,qw] = "),
+          "%s", r.out);
+    cli_free(&r);
+    r = run_ok("derive %s%s", MECH "fourbar.mech", "");
+    CHECK(!strstr(r.out, note), "%s", r.out);
+    cli_free(&r);
+}
+
 static dyn_mech_scene *scene_of(const char *text)
 {
     dyn_mech_scene *sc = NULL;
@@ -599,6 +617,7 @@ int main(void)
         cmocka_unit_test(test_constraint_with_declared_speeds),
         cmocka_unit_test(test_linearize_constraint_with_declared_speeds),
         cmocka_unit_test(test_info_and_derive_show_the_rates),
+        cmocka_unit_test(test_derive_says_when_m_plus_dtd_is_solved),
         cmocka_unit_test(test_picture_follows_the_joints),
         cmocka_unit_test(test_joint_and_speed_errors),
     };

@@ -1056,28 +1056,29 @@ void mbs_derive(lang_ctx *c, mbs_model *mb)
     d.D0 = lang_alloc(c, ((size_t)nc * n + 1) * sizeof *d.D0);
     if (nc)
         constraint_rows(&d, D, btot);
-    if (symbolic(&d)) { /* dynkit derive: the formulas of M, F and the constraints */
-        mb->M = M;
-        mb->F = F;
-        mbs_check_initial(c, mb, M0, d.D0);
-        return;
-    }
     /* M singular where the constraints fix the motion (the radial direction of Euler
-     * parameters): M + D'D instead, positive definite when [M; D] has full rank */
+     * parameters): M + D'D instead, positive definite when [M; D] has full rank; derive
+     * prints M and D and says so (mbs_text.c) */
     const int regularized = nc && !mbs_positive_definite(c, M0, n);
-    if (regularized) {
-        for (int i = 0; i < n; i++)
-            for (int k = 0; k <= i; k++) {
+    for (int i = 0; i < n && regularized; i++)
+        for (int k = 0; k <= i; k++) {
+            if (!symbolic(&d)) {
                 node *s = M[i * n + k];
                 for (int r = 0; r < nc; r++)
                     s = add(&d, s, mul(&d, D[r * n + i], D[r * n + k]));
                 M[i * n + k] = M[k * n + i] = fix(&d, lang_printf(c, "Mr%d_%d", i, k), s);
-                for (int r = 0; r < nc; r++)
-                    M0[i * n + k] += d.D0[r * n + i] * d.D0[r * n + k];
-                M0[k * n + i] = M0[i * n + k];
             }
-    }
+            for (int r = 0; r < nc; r++)
+                M0[i * n + k] += d.D0[r * n + i] * d.D0[r * n + k];
+            M0[k * n + i] = M0[i * n + k];
+        }
     mbs_check_initial(c, mb, M0, d.D0);
+    if (symbolic(&d)) { /* dynkit derive: the formulas of M, F and the constraints */
+        mb->M = M;
+        mb->F = F;
+        mb->regularized = regularized;
+        return;
+    }
     node **L = lang_alloc(c, (size_t)n * n * sizeof *L);
     node **dinv = lang_alloc(c, (size_t)n * sizeof *dinv);
     node **a0 = lang_alloc(c, (size_t)n * sizeof *a0);

@@ -153,6 +153,7 @@ typedef struct mbs_model {
     node **M, **F;    /* (n x n), (n) */
     node **con_D, **con_c; /* (m x n) rows, (m) convective terms: D q'' + c = 0 */
     int *con_speeds;  /* (m) 1: a constraint on the speeds */
+    int regularized;  /* 1: M is singular at the initial state, M + D'D is solved */
     int norder, ordercap;
     /* dyn_mech_constraints_to_c: each constraint's output is its value on the speeds h
      * (D u + h_t) instead of its multiplier, its unit "holonomic" or "speeds" */

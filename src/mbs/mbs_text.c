@@ -161,6 +161,13 @@ char *mbs_text(lang_ctx *c, const mbs_model *mb)
     put(&b, lang_printf(c, "%s: equations of motion by TMT, M %s = F + D' lambda%s%s\n", m->name,
                         acc, nc ? (by_u ? ", D u' + c = 0" : ", D q'' + c = 0") : "",
                         by_u ? ", q' = W(q) u" : ""));
+    if (mb->regularized)
+        put(&b, lang_printf(c, "M below is singular at the initial state (it moves no mass in "
+                               "a direction the constraints fix): the model solves (M + D'D) "
+                               "%s = F + D' (lambda - b) in its place, with b = c + 2 a h + "
+                               "a^2 f (Baumgarte's rate a, h and f for holonomic constraints "
+                               "only; docs/mechanisms.md, \"The method\")\n",
+                            acc));
     put(&b, "coordinates q:");
     for (int i = 0; i < n; i++)
         put(&b, lang_printf(c, " %s", LVEC_AT(mb->coords, mbs_coord, i).name));

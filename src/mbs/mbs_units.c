@@ -428,9 +428,19 @@ void mbs_check_units(lang_ctx *c, mbs_model *mb)
             expect3(&x, l->at, "m", lang_printf(c, "the point of force '%s'", l->name));
     }
     for (int i = 0; i < mb->cons.n; i++) {
-        const mbs_constraint *k = &LVEC_AT(mb->cons, mbs_constraint, i);
+        mbs_constraint *k = &LVEC_AT(mb->cons, mbs_constraint, i);
         if (k->expr < 0 || k->sym)
             continue; /* a wheel's, derived */
+        if (!k->unit && k->prescribed < 0) {
+            /* no declared unit: the one its formula has, when that is known (a loop in m
+             * gives its multiplier in N), also through numbers without a unit (r*sin(th));
+             * an angle or a number keeps the rule of the first coordinate (mbs_derive.c,
+             * force_unit) */
+            const unit u = infer(&x, LVEC_AT(m->fixes, lang_formula, k->expr).expr);
+            if ((u.kind == U_KNOWN || u.kind == U_SCALED) && !same(u, number))
+                k->unit = show(c, u);
+            continue;
+        }
         if (k->prescribed >= 0)
             expect(&x, k->expr,
                    LVEC_AT(mb->coords, mbs_coord, k->prescribed).unit,

@@ -129,6 +129,11 @@ check("info: the drive's multiplier is a torque in N m",
       float(re.search(r"^  drive +N m +force of the constraint drive", info, re.M) is not None),
       1.0, 0)
 
+# a loop without a declared unit takes its formula's: r*sin(th) = l*sin(ph) is in m, so N
+check("info: the loop's multiplier without a declared unit is a force in N",
+      float(re.search(r"^  loop_y +N +force of the constraint loop_y", info, re.M) is not None),
+      1.0, 0)
+
 # spherical pendulum, conical motion
 L, th = 1.0, 0.6
 Om = math.sqrt(g / (L * math.cos(th)))

@@ -5,7 +5,8 @@
  * `dynkit inverse cart` (1e-8 of the forces); a prescribed pendulum angle's torque
  * m l^2 phi'' + m g l sin(phi) by hand; --project-init's minimal-norm speeds in closed form
  * and a four-bar closed to rounding; states that violate a constraint refused by name;
- * units that do not add up named at their place. */
+ * units that do not add up named at their place; a spring's law= that is not a function of
+ * two arguments, or with k=/c= beside it, refused at its place. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -264,6 +265,28 @@ static void test_singular_and_redundant_name_the_combination(void **state_)
             "its row depends on those of c1, c3 (D[c2] = 2 D[c1] + 3 D[c3]");
 }
 
+/* A spring's law= names a function F(x, v) of the file; energy= a function G(x). */
+static void test_spring_laws_are_checked(void **state_)
+{
+    (void)state_;
+    const char *head = "par k=3\nF(x, v)=k*x + x^3\nG(x)=k*x^2/2 + x^4/4\ncoord s=1\n"
+                       "point p mass=1 at (s, 0, 0)\n";
+    char buf[1024];
+    snprintf(buf, sizeof buf, "%sspring h between ground and p law=H\n", head);
+    refused(buf, "bad.mech:6:35:", "the law 'H' is not a function of the file: write "
+            "H(x, v)=formula");
+    snprintf(buf, sizeof buf, "%sspring h between ground and p law=G\n", head);
+    refused(buf, "bad.mech:6:35:", "the law 'G' has 1 argument; it takes 2: the stretch");
+    snprintf(buf, sizeof buf, "%sspring h between ground and p law=k\n", head);
+    refused(buf, "bad.mech:6:35:", "the law 'k' is a parameter");
+    snprintf(buf, sizeof buf, "%sspring h between ground and p law=F energy=F\n", head);
+    refused(buf, "bad.mech:6:44:", "the energy 'F' has 2 arguments; it takes 1");
+    snprintf(buf, sizeof buf, "%sspring h between ground and p law=F c=1\n", head);
+    refused(buf, "bad.mech:6:37:", "spring 'h' has a law=: its tension is the law's alone");
+    snprintf(buf, sizeof buf, "%sspring h between ground and p k=k energy=G\n", head);
+    refused(buf, "bad.mech:6:42:", "energy= of spring 'h' goes with a law=");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -274,6 +297,7 @@ int main(void)
         cmocka_unit_test(test_project_init_closes_the_fourbar),
         cmocka_unit_test(test_units_that_do_not_add_up_are_named),
         cmocka_unit_test(test_singular_and_redundant_name_the_combination),
+        cmocka_unit_test(test_spring_laws_are_checked),
     };
     return cmocka_run_group_tests(tests, setup_all, NULL);
 }

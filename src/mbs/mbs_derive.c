@@ -795,6 +795,24 @@ static void multipliers(dctx *d, node **D, node **btot, node **a0, node **L, nod
 
 /* ---- loads: gravity, springs, forces and torques ---- */
 
+/* the function fi of the file at args: the call as written (to print), else its formula
+ * with the file's inputs and functions inlined */
+static node *call(dctx *d, int fi, node **args, int nargs)
+{
+    lang_ctx *c = d->c;
+    const lang_func *fn = &LVEC_AT(c->m.funcs, lang_func, fi);
+    if (symbolic(d)) {
+        node *e = lang_node(c, N_UFUN, (lpos){0, 0});
+        e->index = fi;
+        e->name = fn->name;
+        e->nargs = nargs;
+        e->args = lang_alloc(c, (size_t)nargs * sizeof *e->args);
+        memcpy(e->args, args, (size_t)nargs * sizeof *args);
+        return e;
+    }
+    return lang_subst(c, expand(d, fn->body), args);
+}
+
 static node *loads(dctx *d, node **Q)
 {
     lang_ctx *c = d->c;
@@ -825,11 +843,19 @@ static node *loads(dctx *d, node **Q)
         node *l = fix(d, lang_printf(c, "s%d_l", si), lang_fun1(c, F_SQRT, dot(d, dd, dd)));
         node *stretch = sub(d, l, input_ref(d, sp->l0));
         node *fm = sp->k >= 0 ? mul(d, input_ref(d, sp->k), stretch) : num(d, 0.0);
-        if (sp->c >= 0) {
+        node *rate = NULL; /* dl/dt = d.(vb - va) / l */
+        if (sp->c >= 0 || sp->law >= 0) {
             node *dv[3];
             for (int j = 0; j < 3; j++)
                 dv[j] = sub(d, vb[j], va[j]);
-            fm = add(d, fm, mul(d, input_ref(d, sp->c), lang_div(c, dot(d, dd, dv), l)));
+            rate = lang_div(c, dot(d, dd, dv), l);
+        }
+        if (sp->c >= 0)
+            fm = add(d, fm, mul(d, input_ref(d, sp->c), rate));
+        if (sp->law >= 0) {
+            stretch = fix(d, lang_printf(c, "s%d_x", si), stretch);
+            node *args[2] = {stretch, fix(d, lang_printf(c, "s%d_v", si), rate)};
+            fm = call(d, sp->law, args, 2);
         }
         fm = fix(d, lang_printf(c, "s%d_f", si), lang_div(c, fm, l));
         for (int j = 0; j < 3; j++) {
@@ -840,6 +866,8 @@ static node *loads(dctx *d, node **Q)
         point_force(d, Q, Jb, fb);
         if (sp->k >= 0)
             V = add(d, V, mul(d, mul(d, num(d, 0.5), input_ref(d, sp->k)), mul(d, stretch, stretch)));
+        if (sp->energy >= 0)
+            V = add(d, V, call(d, sp->energy, &stretch, 1));
     }
     for (int li = 0; li < mb->loads.n; li++) {
         const mbs_load *ld = &LVEC_AT(mb->loads, mbs_load, li);

@@ -84,6 +84,12 @@ typedef struct mbs_spring {
     lpos pos;
     mbs_attach a, b;
     int k, l0, c; /* inputs */
+    /* law=F: the tension F(x, v) of the stretch x = l - l0 and its rate v, a function of the
+     * file; energy=G: its integral G(x), added to the potential. Names as written, then the
+     * functions' indices (-1: none) */
+    const char *law_name, *energy_name;
+    lpos law_pos, energy_pos;
+    int law, energy;
 } mbs_spring;
 
 typedef struct mbs_load {
@@ -184,6 +190,7 @@ void mbs_parse_joint(lang_ctx *c, lang_lexer *lx, mbs_body *b, int kind);
 mbs_shape mbs_shape_init(int kind);
 int mbs_geom_statement(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos);
 /* the `input` parameters into the model's inputs, after lang_check */
+void mbs_resolve_laws(lang_ctx *c, mbs_model *mb);
 void mbs_resolve_inputs(lang_ctx *c, mbs_model *mb);
 /* the units of the formulas against the declared ones, after lang_check (mbs_units.c) */
 void mbs_check_units(lang_ctx *c, mbs_model *mb);

@@ -509,7 +509,8 @@ static mbs_attach attachment(lang_ctx *c, lang_lexer *lx)
     return a;
 }
 
-/* spring NAME between A[(x,y,z)] and B[(x,y,z)] k=K [l0=L0] [c=C] */
+/* spring NAME between A[(x,y,z)] and B[(x,y,z)] k=K [l0=L0] [c=C]
+ *                                              | law=F [energy=G] [l0=L0] */
 static void parse_spring(lang_ctx *c, lang_lexer *lx, lpos kpos)
 {
     mbs_model *mb = model_of(c);
@@ -521,19 +522,38 @@ static void parse_spring(lang_ctx *c, lang_lexer *lx, lpos kpos)
     if (!take_word(lx, "and"))
         lang_fail(c, lang_here(lx), "expected 'and' between the spring's two ends");
     s.b = attachment(c, lx);
-    s.k = s.l0 = s.c = -1;
+    s.k = s.l0 = s.c = s.law = s.energy = -1;
+    lpos kcpos = {0, 0};
     while (peek(lx)) {
         lpos wpos;
-        const char *w = lang_read_name(lx, &wpos, "expected k=, l0= or c=");
+        const char *w = lang_read_name(lx, &wpos, "expected k=, l0=, c=, law= or energy=");
+        const int law = !strcasecmp(w, "law"), energy = !strcasecmp(w, "energy");
         int *to = !strcasecmp(w, "k") ? &s.k : !strcasecmp(w, "l0") ? &s.l0
                                              : !strcasecmp(w, "c") ? &s.c : NULL;
-        if (!to)
-            lang_fail(c, wpos, "unknown word '%s' in a spring: expected k=, l0= or c=", w);
+        if (!to && !law && !energy)
+            lang_fail(c, wpos, "unknown word '%s' in a spring: expected k=, l0=, c=, law= or "
+                      "energy=", w);
         lang_expect_char(lx, '=', "expected '='");
-        *to = input_expr(lx, w);
+        if (law)
+            s.law_name = lang_read_name(lx, &s.law_pos, "expected the name of a function "
+                                        "F(x, v) of the file (the tension in N)");
+        else if (energy)
+            s.energy_name = lang_read_name(lx, &s.energy_pos, "expected the name of a function "
+                                           "G(x) of the file (the law's integral in J)");
+        else
+            *to = input_expr(lx, w);
+        if (to && to != &s.l0 && !kcpos.line)
+            kcpos = wpos;
     }
-    if (s.k < 0 && s.c < 0)
-        lang_fail(c, kpos, "spring '%s' has neither a stiffness k= nor a damping c=", s.name);
+    if (s.law_name && kcpos.line)
+        lang_fail(c, kcpos, "spring '%s' has a law=: its tension is the law's alone, no k= or c= "
+                  "beside it (add k x + c v to the law)", s.name);
+    if (s.energy_name && !s.law_name)
+        lang_fail(c, s.energy_pos, "energy= of spring '%s' goes with a law= (a spring with k= "
+                  "has its energy k x^2/2 already)", s.name);
+    if (s.k < 0 && s.c < 0 && !s.law_name)
+        lang_fail(c, kpos, "spring '%s' has neither a stiffness k=, a damping c= nor a law=",
+                  s.name);
     *(mbs_spring *)lvec_push(c, &mb->springs, sizeof s) = s;
 }
 
@@ -771,7 +791,8 @@ void mbs_finish_parse(lang_ctx *c, mbs_model *mb)
     int *idx[3] = {&mb->aux_kinetic, &mb->aux_potential, &mb->aux_energy};
     static const char *const desc[3] = {
         "kinetic energy, 1/2 sum m v.v + omega.I omega",
-        "potential energy of gravity and the springs (0 at the origin and rest lengths)",
+        "potential energy of gravity and the springs (0 at the origin and rest lengths; a "
+        "spring with a law= only with its energy=)",
         "kinetic + potential energy"};
     for (int k = 0; k < 3; k++) {
         *idx[k] = -1;
@@ -779,6 +800,34 @@ void mbs_finish_parse(lang_ctx *c, mbs_model *mb)
             continue; /* the name is the file's own */
         declare_output(c, names[k], (lpos){0, 0}, idx[k]);
         add_doc(c, names[k], (lpos){0, 0}, (lang_doc){"J", desc[k]});
+    }
+}
+
+/* a spring's law= or energy= names a function of the file with nargs arguments */
+static int law_function(lang_ctx *c, const char *name, lpos pos, int nargs, const char *role)
+{
+    const lang_sym *s = lang_lookup(c, name);
+    if (!s || s->kind != SYM_FUNC)
+        lang_fail(c, pos, "%s '%s' is %s: write %s(%s)=formula in the file", role, name,
+                  s ? lang_sym_kind_name(s->kind) : "not a function of the file", name,
+                  nargs == 2 ? "x, v" : "x");
+    const lang_func *fn = &LVEC_AT(c->m.funcs, lang_func, s->index);
+    if (fn->nargs != nargs)
+        lang_fail(c, pos, "%s '%s' has %d argument%s; it takes %d: %s", role, name, fn->nargs,
+                  fn->nargs == 1 ? "" : "s", nargs,
+                  nargs == 2 ? "the stretch x = l - l0 [m] and its rate v = dl/dt [m/s]"
+                             : "the stretch x = l - l0 [m]");
+    return s->index;
+}
+
+void mbs_resolve_laws(lang_ctx *c, mbs_model *mb)
+{
+    for (int i = 0; i < mb->springs.n; i++) {
+        mbs_spring *s = &LVEC_AT(mb->springs, mbs_spring, i);
+        if (s->law_name)
+            s->law = law_function(c, s->law_name, s->law_pos, 2, "the law");
+        if (s->energy_name)
+            s->energy = law_function(c, s->energy_name, s->energy_pos, 1, "the energy");
     }
 }
 

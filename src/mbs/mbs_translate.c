@@ -23,6 +23,7 @@ mbs_model *mbs_read(lang_ctx *c)
     c->stmt_hook = NULL;
     lang_check(c);
     mbs_resolve_inputs(c, mb);
+    mbs_resolve_laws(c, mb);
     mbs_check_units(c, mb);
     c->m.no_jacobian = 1;
     return mb;

@@ -206,4 +206,33 @@ try:
 except ImportError:
     print("NumPy missing: the torque-free body is not checked")
 
+# a mass on a hardening spring law F(x, v) = k x + k3 x^3 (Duffing), no gravity
+m, k, k3, L, A = 2.0, 3.0, 5.0, 1.0, 0.8
+acc = ["--method", "dop853", "--rtol", "1e-12", "--atol", "1e-12", "--quiet"]
+rows = table(dyn("run", f"{DIR}/duffing_spring.mech", "--outputs", "--tspan", "0:10",
+                 "--step", "0.1", *acc))
+err = max(abs(r["energy"] - (m * r["ds"] ** 2 / 2 + k * (r["s"] - L) ** 2 / 2
+                             + k3 * (r["s"] - L) ** 4 / 4)) for r in rows)
+check("Duffing spring: energy is m v^2/2 + k x^2/2 + k3 x^4/4", err, 0, 1e-12)
+check("Duffing spring: energy kept", max(r["energy"] for r in rows)
+      - min(r["energy"] for r in rows), 0, 1e-10)
+force = table(dyn("run", f"{DIR}/duffing_force.mech", "--tspan", "0:10", "--step", "0.1", *acc))
+check("Duffing spring: the law as an applied force", max(
+    abs(a[q] - b[q]) for a, b in zip(rows, force) for q in ("s", "ds")), 0, 1e-10)
+lin = [table(dyn("run", f"{DIR}/{f}.mech", *sets, "--tspan", "0:10", "--step", "0.1", *acc))
+       for f, sets in (("duffing_spring", ("--set", "k3=0")), ("duffing_linear", ()))]
+check("Duffing spring: k3 = 0 as a linear spring", max(
+    abs(a[q] - b[q]) for a, b in zip(*lin) for q in ("s", "ds")), 0, 1e-10)
+# the period from rest at amplitude A: with x = A sin(th), V(A) - V(x) = cos(th)^2 (k A^2/2
+# + k3 A^4 (1 + sin(th)^2)/4), T = 4 int_0^pi/2 A dth / sqrt(2/m (...)); the midpoint rule
+# converges geometrically for this smooth even periodic integrand
+nq = 400
+T = 4 * sum(A / math.sqrt(2 / m * (k * A ** 2 / 2 + k3 * A ** 4
+                                   * (1 + math.sin((j + 0.5) * math.pi / 2 / nq) ** 2) / 4))
+            for j in range(nq)) * math.pi / 2 / nq
+quarter = table(dyn("run", f"{DIR}/duffing_spring.mech", "--tspan", f"0:{T!r}", "--step",
+                    repr(T / 4), *acc))
+for j, want in ((1, L), (2, L - A), (4, L + A)):
+    check(f"Duffing spring: s at {j}/4 of the period {T:.12g} s", quarter[j]["s"], want, 1e-9)
+
 sys.exit(1 if fails else 0)

@@ -26,6 +26,7 @@ Usage: closed_forms.py DYNKIT DIR
 import csv
 import io
 import math
+import os
 import re
 import subprocess
 import sys
@@ -208,8 +209,9 @@ except ImportError:
 
 # a mass on a hardening spring law F(x, v) = k x + k3 x^3 (Duffing), no gravity
 m, k, k3, L, A = 2.0, 3.0, 5.0, 1.0, 0.8
+DUF = os.path.join(DIR, "..", "..", "..", "examples", "mechanisms", "duffing_spring.mech")
 acc = ["--method", "dop853", "--rtol", "1e-12", "--atol", "1e-12", "--quiet"]
-rows = table(dyn("run", f"{DIR}/duffing_spring.mech", "--outputs", "--tspan", "0:10",
+rows = table(dyn("run", DUF, "--outputs", "--tspan", "0:10",
                  "--step", "0.1", *acc))
 err = max(abs(r["energy"] - (m * r["ds"] ** 2 / 2 + k * (r["s"] - L) ** 2 / 2
                              + k3 * (r["s"] - L) ** 4 / 4)) for r in rows)
@@ -219,8 +221,8 @@ check("Duffing spring: energy kept", max(r["energy"] for r in rows)
 force = table(dyn("run", f"{DIR}/duffing_force.mech", "--tspan", "0:10", "--step", "0.1", *acc))
 check("Duffing spring: the law as an applied force", max(
     abs(a[q] - b[q]) for a, b in zip(rows, force) for q in ("s", "ds")), 0, 1e-10)
-lin = [table(dyn("run", f"{DIR}/{f}.mech", *sets, "--tspan", "0:10", "--step", "0.1", *acc))
-       for f, sets in (("duffing_spring", ("--set", "k3=0")), ("duffing_linear", ()))]
+lin = [table(dyn("run", f, *sets, "--tspan", "0:10", "--step", "0.1", *acc))
+       for f, sets in ((DUF, ("--set", "k3=0")), (f"{DIR}/duffing_linear.mech", ()))]
 check("Duffing spring: k3 = 0 as a linear spring", max(
     abs(a[q] - b[q]) for a, b in zip(*lin) for q in ("s", "ds")), 0, 1e-10)
 # the period from rest at amplitude A: with x = A sin(th), V(A) - V(x) = cos(th)^2 (k A^2/2
@@ -230,7 +232,7 @@ nq = 400
 T = 4 * sum(A / math.sqrt(2 / m * (k * A ** 2 / 2 + k3 * A ** 4
                                    * (1 + math.sin((j + 0.5) * math.pi / 2 / nq) ** 2) / 4))
             for j in range(nq)) * math.pi / 2 / nq
-quarter = table(dyn("run", f"{DIR}/duffing_spring.mech", "--tspan", f"0:{T!r}", "--step",
+quarter = table(dyn("run", DUF, "--tspan", f"0:{T!r}", "--step",
                     repr(T / 4), *acc))
 for j, want in ((1, L), (2, L - A), (4, L + A)):
     check(f"Duffing spring: s at {j}/4 of the period {T:.12g} s", quarter[j]["s"], want, 1e-9)

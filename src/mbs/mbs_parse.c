@@ -791,8 +791,8 @@ void mbs_finish_parse(lang_ctx *c, mbs_model *mb)
     int *idx[3] = {&mb->aux_kinetic, &mb->aux_potential, &mb->aux_energy};
     static const char *const desc[3] = {
         "kinetic energy, 1/2 sum m v.v + omega.I omega",
-        "potential energy of gravity and the springs (0 at the origin and rest lengths; a "
-        "spring with a law= only with its energy=)",
+        ("potential energy of gravity and the springs (0 at the origin and rest lengths; a "
+         "spring with a law= only with its energy=)"),
         "kinetic + potential energy"};
     for (int k = 0; k < 3; k++) {
         *idx[k] = -1;

@@ -269,22 +269,22 @@ static void test_singular_and_redundant_name_the_combination(void **state_)
 static void test_spring_laws_are_checked(void **state_)
 {
     (void)state_;
-    const char *head = "par k=3\nF(x, v)=k*x + x^3\nG(x)=k*x^2/2 + x^4/4\ncoord s=1\n"
-                       "point p mass=1 at (s, 0, 0)\n";
-    char buf[1024];
-    snprintf(buf, sizeof buf, "%sspring h between ground and p law=H\n", head);
-    refused(buf, "bad.mech:6:35:", "the law 'H' is not a function of the file: write "
-            "H(x, v)=formula");
-    snprintf(buf, sizeof buf, "%sspring h between ground and p law=G\n", head);
-    refused(buf, "bad.mech:6:35:", "the law 'G' has 1 argument; it takes 2: the stretch");
-    snprintf(buf, sizeof buf, "%sspring h between ground and p law=k\n", head);
-    refused(buf, "bad.mech:6:35:", "the law 'k' is a parameter");
-    snprintf(buf, sizeof buf, "%sspring h between ground and p law=F energy=F\n", head);
-    refused(buf, "bad.mech:6:44:", "the energy 'F' has 2 arguments; it takes 1");
-    snprintf(buf, sizeof buf, "%sspring h between ground and p law=F c=1\n", head);
-    refused(buf, "bad.mech:6:37:", "spring 'h' has a law=: its tension is the law's alone");
-    snprintf(buf, sizeof buf, "%sspring h between ground and p k=k energy=G\n", head);
-    refused(buf, "bad.mech:6:42:", "energy= of spring 'h' goes with a law=");
+    static const char *const cases[][3] = {
+        {"law=H", "bad.mech:6:35:", "the law 'H' is not a function of the file: write "
+                                     "H(x, v)=formula"},
+        {"law=G", "bad.mech:6:35:", "the law 'G' has 1 argument; it takes 2: the stretch"},
+        {"law=k", "bad.mech:6:35:", "the law 'k' is a parameter"},
+        {"law=F energy=F", "bad.mech:6:44:", "the energy 'F' has 2 arguments; it takes 1"},
+        {"law=F c=1", "bad.mech:6:37:", "spring 'h' has a law=: its tension is the law's alone"},
+        {"k=k energy=G", "bad.mech:6:42:", "energy= of spring 'h' goes with a law="},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        char buf[512];
+        snprintf(buf, sizeof buf, "par k=3\nF(x, v)=k*x + x^3\nG(x)=k*x^2/2 + x^4/4\n"
+                 "coord s=1\npoint p mass=1 at (s, 0, 0)\nspring h between ground and p %s\n",
+                 cases[i][0]);
+        refused(buf, cases[i][1], cases[i][2]);
+    }
 }
 
 int main(void)

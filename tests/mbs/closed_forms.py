@@ -225,6 +225,17 @@ lin = [table(dyn("run", f, *sets, "--tspan", "0:10", "--step", "0.1", *acc))
        for f, sets in ((DUF, ("--set", "k3=0")), (f"{DIR}/duffing_linear.mech", ()))]
 check("Duffing spring: k3 = 0 as a linear spring", max(
     abs(a[q] - b[q]) for a, b in zip(*lin) for q in ("s", "ds")), 0, 1e-10)
+lin = [table(dyn("run", f, *sets, "--set", "c=0.7", "--tspan", "0:10", "--step", "0.1", *acc))
+       for f, sets in ((DUF, ("--set", "k3=0")), (f"{DIR}/duffing_linear.mech", ()))]
+check("Duffing spring: k3 = 0, c = 0.7 as a linear spring and damper", max(
+    abs(a[q] - b[q]) for a, b in zip(*lin) for q in ("s", "ds")), 0, 1e-10)
+# the damped linear oscillator from rest: x = A e^(-g t) (cos(wd t) + g/wd sin(wd t))
+gam = 0.7 / (2 * m)
+wd = math.sqrt(k / m - gam ** 2)
+check("Duffing spring: k3 = 0, c = 0.7 against the damped oscillator's closed form", max(
+    abs(r["s"] - L - A * math.exp(-gam * r["t"]) * (math.cos(wd * r["t"])
+                                                   + gam / wd * math.sin(wd * r["t"])))
+    for r in lin[0]), 0, 1e-9)
 # the period from rest at amplitude A: with x = A sin(th), V(A) - V(x) = cos(th)^2 (k A^2/2
 # + k3 A^4 (1 + sin(th)^2)/4), T = 4 int_0^pi/2 A dth / sqrt(2/m (...)); the midpoint rule
 # converges geometrically for this smooth even periodic integrand

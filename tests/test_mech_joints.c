@@ -10,8 +10,9 @@
  * the intermediate axis; joints along tilted axes (a pendulum's frequency, a sled on an
  * incline); a free joint with Euler parameters against plane_quat.mech, and derive's
  * note that M + D'D is solved there; a holonomic
- * constraint with declared speeds against cartesian_pendulum.mech, run and linearized
- * (+-i sqrt(g/l) hanging, +-sqrt(g/l) upright); a chain of 8 revolute
+ * constraint with declared speeds against cartesian_pendulum.mech, run, linearized
+ * (+-i sqrt(g/l) hanging, +-sqrt(g/l) upright) and projected by --project-init (the
+ * closest point of the circle, 1e-10); a chain of 8 revolute
  * joints against its formulas; a spatial chain by its rotations and by its matrices; the
  * picture's poses of prismatic and revolute joints; and the errors of joints and speeds at
  * FILE:LINE:COL. */
@@ -434,6 +435,19 @@ static void test_constraint_with_declared_speeds(void **state_)
     cli_free(&rb);
 }
 
+/* cartesian_pendulum.mech with radial and tangential speeds (ur, ut) into path */
+static void polar_pendulum(char *path, size_t size)
+{
+    snprintf(path, size, "%s", cli_path("polar_lin.mech"));
+    write_file(path, "par m=1 [kg], l=2 [m], g=9.81 [m/s^2]\n"
+                     "coord x=0 [m], y=-l [m]\n"
+                     "speeds ur [m/s], ut [m/s]\n"
+                     "rate x' = (ur*x - ut*y)/l, y' = (ur*y + ut*x)/l\n"
+                     "gravity 0, -g, 0\n"
+                     "point bob mass=m at (x, y, 0)\n"
+                     "constraint rod [m]: sqrt(x^2 + y^2) - l = 0\n");
+}
+
 /* The same pendulum linearized (l = 2 m, g = 9.81 m/s^2): hanging, +-i sqrt(g/l); upright,
  * +-sqrt(g/l); the eigenvalues of cartesian_pendulum.mech's (speeds the rates) at both. The
  * rod's admissible positions are those of f = sqrt(x^2 + y^2) - l, whose gradient in (x, y)
@@ -442,14 +456,7 @@ static void test_linearize_constraint_with_declared_speeds(void **state_)
 {
     (void)state_;
     char path[512];
-    snprintf(path, sizeof path, "%s", cli_path("polar_lin.mech"));
-    write_file(path, "par m=1 [kg], l=2 [m], g=9.81 [m/s^2]\n"
-                     "coord x=0 [m], y=-l [m]\n"
-                     "speeds ur [m/s], ut [m/s]\n"
-                     "rate x' = (ur*x - ut*y)/l, y' = (ur*y + ut*x)/l\n"
-                     "gravity 0, -g, 0\n"
-                     "point bob mass=m at (x, y, 0)\n"
-                     "constraint rod [m]: sqrt(x^2 + y^2) - l = 0\n");
+    polar_pendulum(path, sizeof path);
     const double w = sqrt(9.81 / 2.0);
     static const char *const at[2] = {"", " --init y=2"};
     for (int up = 0; up < 2; up++) {
@@ -471,6 +478,32 @@ static void test_linearize_constraint_with_declared_speeds(void **state_)
               "rates' by %.3g",
               up ? "upright" : "hanging", re[0], im[0], re[1], im[1], w, worst, apart);
     }
+}
+
+/* --project-init moves the coordinates by the minimal-norm step in q whatever the speeds:
+ * the pendulum with radial/tangential speeds started off its rod lands, as the Cartesian
+ * one does, on the closest point of the circle, (x, y) l / |(x, y)|. */
+static void test_project_init_with_declared_speeds(void **state_)
+{
+    (void)state_;
+    static double x[MAXROWS], y[MAXROWS], xc[MAXROWS], yc[MAXROWS];
+    char path[512];
+    polar_pendulum(path, sizeof path);
+    const char *fmt = "run %s%s --init x=1.3 --init y=-0.7 --project-init --tspan 0:0.1 "
+                      "--step 0.1";
+    cli_result r = run_ok(fmt, path, "");
+    cli_result rc = run_ok(fmt, MECH "cartesian_pendulum.mech", "");
+    CHECK(column(r.out, "x", x) == 2 && column(r.out, "y", y) == 2 &&
+              column(rc.out, "x", xc) == 2 && column(rc.out, "y", yc) == 2,
+          "%s%s", r.out, rc.out);
+    const double s = 2.0 / hypot(1.3, -0.7);
+    const double off = fmax(fabs(x[0] - 1.3 * s), fabs(y[0] + 0.7 * s));
+    const double apart = fmax(fabs(x[0] - xc[0]), fabs(y[0] - yc[0]));
+    CHECK(off < 1e-10 && apart < 1e-10,
+          "(%.17g, %.17g) and Cartesian (%.17g, %.17g): off the closest point by %.3g, "
+          "apart by %.3g", x[0], y[0], xc[0], yc[0], off, apart);
+    cli_free(&r);
+    cli_free(&rc);
 }
 
 /* info and derive state the kinematic equations of declared speeds; derive's M and F are
@@ -616,6 +649,7 @@ int main(void)
         cmocka_unit_test(test_spatial_chain_two_ways),
         cmocka_unit_test(test_constraint_with_declared_speeds),
         cmocka_unit_test(test_linearize_constraint_with_declared_speeds),
+        cmocka_unit_test(test_project_init_with_declared_speeds),
         cmocka_unit_test(test_info_and_derive_show_the_rates),
         cmocka_unit_test(test_derive_says_when_m_plus_dtd_is_solved),
         cmocka_unit_test(test_picture_follows_the_joints),

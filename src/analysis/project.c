@@ -2,9 +2,11 @@
 /* project.c — an initial state moved onto a mechanism's constraints by minimal-norm
  * corrections (dynkit/analysis.h, dyn_project_constraints): Gauss-Newton for the
  * underdetermined system f(q) = 0 (the step q <- q - G^+ f with the pseudo-inverse
- * G^+ = G' (G G')^-1 of the full-rank Jacobian; Nocedal & Wright, Numerical Optimization,
- * 2nd ed., sec. 10.3 and 11.2), then the speeds' linear system D u + h_t = 0 by the same
- * minimal-norm solution. The normal equations are solved by src/ode/cholesky.h. */
+ * G^+ = G' (G G')^-1 of the full-rank Jacobian G = df/dq, by central differences in q of
+ * the values f(t, q) — not dh/du, which is df/dq W with declared speeds q' = W(q) u;
+ * Nocedal & Wright, Numerical Optimization, 2nd ed., sec. 10.3 and 11.2), then the speeds'
+ * linear system D u + h_t = 0 (D = dh/du) by the same minimal-norm solution. The normal
+ * equations are solved by src/ode/cholesky.h. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -52,9 +54,34 @@ typedef struct pctx {
     const void *par;
     double t;
     int n, m;
-    double *h, *f, *hp, *fp, *D, *A, *w, *yy;
+    double *h, *f, *hp, *fp, *D, *F, *A, *w, *yy;
     int *hol;
 } pctx;
+
+/* F = df/dq (m x n, zero on the rows that are not holonomic) at y by central differences:
+ * a power of two near eps^(1/3) of each coordinate's scale (an error of about 1e-11) */
+static int coordinate_rows(pctx *p, const double *y)
+{
+    const int n = p->n, m = p->m;
+    memcpy(p->yy, y, (size_t)(2 * n) * sizeof *p->yy);
+    for (int k = 0; k < n; k++) {
+        const double step = ldexp(1.0, (int)floor(log2(6e-6 * fmax(1.0, fabs(y[k])))));
+        p->yy[k] = y[k] + step;
+        const double up = p->yy[k] - y[k];
+        if (dyn_constraint_values(p->cm, p->par, p->t, p->yy, p->hp, p->fp, p->hol) != m)
+            return -1;
+        for (int r = 0; r < m; r++)
+            p->F[r * n + k] = p->fp[r];
+        p->yy[k] = y[k] - step;
+        const double down = y[k] - p->yy[k];
+        if (dyn_constraint_values(p->cm, p->par, p->t, p->yy, p->hp, p->fp, p->hol) != m)
+            return -1;
+        for (int r = 0; r < m; r++)
+            p->F[r * n + k] = (p->F[r * n + k] - p->fp[r]) / (up + down);
+        p->yy[k] = y[k];
+    }
+    return 0;
+}
 
 /* h, f at y and D = dh/du (m x n) by central differences of unit steps in u */
 static int rows(pctx *p, const double *y)
@@ -80,9 +107,9 @@ static int rows(pctx *p, const double *y)
     return 0;
 }
 
-/* x (n) -= R' (R R')^-1 v for the rows of D picked by sel (all when NULL); the index of
- * the first dependent row, or -1 */
-static int min_norm_step(pctx *p, const int *sel, const double *v, double *x)
+/* x (n) -= R' (R R')^-1 v for the rows of J (D or F) picked by sel (all when NULL); the
+ * index of the first dependent row, or -1 */
+static int min_norm_step(pctx *p, const double *J, const int *sel, const double *v, double *x)
 {
     const int n = p->n;
     int k = 0, idx[512];
@@ -95,7 +122,7 @@ static int min_norm_step(pctx *p, const int *sel, const double *v, double *x)
         for (int b = 0; b <= a; b++) {
             double s = 0.0;
             for (int j = 0; j < n; j++)
-                s += p->D[idx[a] * n + j] * p->D[idx[b] * n + j];
+                s += J[idx[a] * n + j] * J[idx[b] * n + j];
             p->A[a * k + b] = p->A[b * k + a] = s;
         }
         p->w[a] = v[idx[a]];
@@ -106,7 +133,7 @@ static int min_norm_step(pctx *p, const int *sel, const double *v, double *x)
     dyn_cholesky_solve(k, p->A, p->w);
     for (int a = 0; a < k; a++)
         for (int j = 0; j < n; j++)
-            x[j] -= p->D[idx[a] * n + j] * p->w[a];
+            x[j] -= J[idx[a] * n + j] * p->w[a];
     return -1;
 }
 
@@ -130,8 +157,8 @@ int dyn_project_constraints(const dyn_model *cm, const void *par, double t, doub
                  cm->n_outputs);
         return DYN_ERR_ARG;
     }
-    pctx p = {cm, par, t, n, 0, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL};
-    double *buf = malloc(((size_t)mo * (4 + (size_t)n + (size_t)mo + 1) + (size_t)N +
+    pctx p = {cm, par, t, n, 0, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL};
+    double *buf = malloc(((size_t)mo * (4 + 2 * (size_t)n + (size_t)mo + 1) + (size_t)N +
                           (size_t)n + 1) * sizeof *buf);
     p.hol = malloc((size_t)mo * sizeof *p.hol);
     if (!buf || !p.hol) {
@@ -145,7 +172,8 @@ int dyn_project_constraints(const dyn_model *cm, const void *par, double t, doub
     p.hp = p.f + mo;
     p.fp = p.hp + mo;
     p.D = p.fp + mo;
-    p.A = p.D + (size_t)mo * n;
+    p.F = p.D + (size_t)mo * n;
+    p.A = p.F + (size_t)mo * n;
     p.w = p.A + (size_t)mo * mo;
     p.yy = p.w + mo;
     double *best = p.yy + N; /* the coordinates with the smallest |f| so far */
@@ -159,7 +187,7 @@ int dyn_project_constraints(const dyn_model *cm, const void *par, double t, doub
     /* the coordinates: Gauss-Newton until |f| stops decreasing */
     double prev = INFINITY;
     for (int it = 0; it < 60 && !rc && p.m > 0; it++) {
-        if ((rc = rows(&p, y)) != 0) {
+        if ((rc = rows(&p, y)) != 0 || (rc = coordinate_rows(&p, y)) != 0) {
             snprintf(err, errlen, "the constraints' values failed while projecting");
             rc = DYN_ERR_ARG;
             break;
@@ -181,7 +209,7 @@ int dyn_project_constraints(const dyn_model *cm, const void *par, double t, doub
             any |= p.hol[r];
         if (!any)
             break;
-        const int dep = min_norm_step(&p, p.hol, p.f, y);
+        const int dep = min_norm_step(&p, p.F, p.hol, p.f, y);
         if (dep >= 0) {
             *bad = dep;
             snprintf(err, errlen, "the holonomic constraints' rows are dependent");
@@ -199,7 +227,7 @@ int dyn_project_constraints(const dyn_model *cm, const void *par, double t, doub
             rc = DYN_ERR_ARG;
             break;
         }
-        const int dep = min_norm_step(&p, NULL, p.h, y + n);
+        const int dep = min_norm_step(&p, p.D, NULL, p.h, y + n);
         if (dep >= 0) {
             *bad = dep;
             snprintf(err, errlen, "the constraints' rows are dependent");

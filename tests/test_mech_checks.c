@@ -6,7 +6,8 @@
  * m l^2 phi'' + m g l sin(phi) by hand; --project-init's minimal-norm speeds in closed form
  * and a four-bar closed to rounding; states that violate a constraint refused by name;
  * units that do not add up named at their place; a spring's law= that is not a function of
- * two arguments, or with k=/c= beside it, refused at its place. */
+ * two arguments, or with k=/c= beside it, or whose energy= is not its integral (dG/dx
+ * against F(x, 0)), refused at its place. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -265,7 +266,9 @@ static void test_singular_and_redundant_name_the_combination(void **state_)
             "its row depends on those of c1, c3 (D[c2] = 2 D[c1] + 3 D[c3]");
 }
 
-/* A spring's law= names a function F(x, v) of the file; energy= a function G(x). */
+/* A spring's law= names a function F(x, v) of the file; energy= a function G(x), F's
+ * integral at v = 0 up to a constant: E = 3 x^2/2 + x^4/2 is refused at the stretch x = 1
+ * (ground to s = 1, l0 = 0) with E'(1) = 5 against F(1, 0) = 4; G and G + 7 are taken. */
 static void test_spring_laws_are_checked(void **state_)
 {
     (void)state_;
@@ -277,13 +280,27 @@ static void test_spring_laws_are_checked(void **state_)
         {"law=F energy=F", "bad.mech:6:44:", "the energy 'F' has 2 arguments; it takes 1"},
         {"law=F c=1", "bad.mech:6:37:", "spring 'h' has a law=: its tension is the law's alone"},
         {"k=k energy=G", "bad.mech:6:42:", "energy= of spring 'h' goes with a law="},
+        {"law=F energy=E", "bad.mech:6:8:", "spring 'h': energy=E is not the integral of "
+                                            "law=F: at the stretch x = 1 m, dE/dx = 5 N but "
+                                            "F(x, 0) = 4 N"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
         char buf[512];
         snprintf(buf, sizeof buf, "par k=3\nF(x, v)=k*x + x^3\nG(x)=k*x^2/2 + x^4/4\n"
-                 "coord s=1\npoint p mass=1 at (s, 0, 0)\nspring h between ground and p %s\n",
-                 cases[i][0]);
+                 "coord s=1\npoint p mass=1 at (s, 0, 0)\nspring h between ground and p %s\n"
+                 "E(x)=k*x^2/2 + x^4/2\n", cases[i][0]);
         refused(buf, cases[i][1], cases[i][2]);
+    }
+    for (int shift = 0; shift < 2; shift++) {
+        FILE *f = fopen(cli_path("good.mech"), "w");
+        assert_non_null(f);
+        fprintf(f, "par k=3\nF(x, v)=k*x + x^3\nG(x)=k*x^2/2 + x^4/4 + %d\ncoord s=1\n"
+                "point p mass=1 at (s, 0, 0)\nspring h between ground and p law=F energy=G\n",
+                7 * shift);
+        fclose(f);
+        cli_result r = cli("run %s --tspan 0:0.1", cli_path("good.mech"));
+        CHECK(r.status == 0, "G + %d: %s", 7 * shift, r.err);
+        cli_free(&r);
     }
 }
 

@@ -813,6 +813,65 @@ static node *call(dctx *d, int fi, node **args, int nargs)
     return lang_subst(c, expand(d, fn->body), args);
 }
 
+/* e with the derivation's own fixed quantities replaced by their values at the initial
+ * state (each evaluated once, into val; NULL: not yet) and the file's inlined, for
+ * mbs_value */
+static node *at_initial(dctx *d, node *e, node **val)
+{
+    if (e->kind == N_FIX && e->index >= d->nfix0) {
+        if (!val[e->index]) {
+            node *x = at_initial(d, LVEC_AT(d->c->m.fixes, lang_formula, e->index).expr, val);
+            val[e->index] = num(d, mbs_value(d->c, &d->ini, x));
+        }
+        return val[e->index];
+    }
+    if (e->nargs == 0)
+        return expand(d, e);
+    node *r = lang_node(d->c, e->kind, e->pos);
+    *r = *e;
+    r->args = lang_alloc(d->c, (size_t)e->nargs * sizeof *r->args);
+    for (int i = 0; i < e->nargs; i++)
+        r->args[i] = at_initial(d, e->args[i], val);
+    return r->kind == N_UFUN ? expand(d, r) : r;
+}
+
+/* G(x) or F(x, 0) of the file's function fi at the number x, at the initial parameters */
+static double law_at(dctx *d, int fi, int nargs, double x)
+{
+    node *args[2] = {num(d, x), num(d, 0.0)};
+    return mbs_value(d->c, &d->ini, call(d, fi, args, nargs));
+}
+
+/* A spring's energy=G is the integral of its law=F at v = 0: dG/dx by central differences
+ * (a step 1e-5 of the length's scale: an error near 1e-10 of it) against F(x, 0) at the
+ * initial stretch x0 and at x0 -+ a tenth of the scale, within 1e-6 of the largest of them;
+ * else refused at the spring, both values named. l: its length's formula. */
+static void check_energy(dctx *d, const mbs_spring *sp, node *l, node *stretch)
+{
+    node **val = lang_alloc(d->c, ((size_t)d->c->m.fixes.n + 1) * sizeof *val);
+    memset(val, 0, ((size_t)d->c->m.fixes.n + 1) * sizeof *val);
+    const double len = mbs_value(d->c, &d->ini, at_initial(d, l, val));
+    const double x0 = mbs_value(d->c, &d->ini, at_initial(d, stretch, val));
+    const double scale = fmax(fmax(fabs(len), fabs(len - x0)), 1e-3);
+    const double h = 1e-5 * scale;
+    double dg[3], f[3], big = 0.0;
+    for (int i = 0; i < 3; i++) {
+        const double x = x0 + (i - 1) * 0.1 * scale;
+        dg[i] = (law_at(d, sp->energy, 1, x + h) - law_at(d, sp->energy, 1, x - h)) / (2 * h);
+        f[i] = law_at(d, sp->law, 2, x);
+        big = fmax(big, fmax(fabs(dg[i]), fabs(f[i])));
+    }
+    for (int k = 0; k < 3; k++) {
+        const int i = (k + 1) % 3; /* the initial stretch first */
+        if (!(fabs(dg[i] - f[i]) <= 1e-6 * big))
+            lang_fail(d->c, sp->pos, "spring '%s': energy=%s is not the integral of law=%s: "
+                      "at the stretch x = %.10g m, d%s/dx = %.10g N but %s(x, 0) = %.10g N "
+                      "(the energy is G(x) with G' = F(x, 0))", sp->name, sp->energy_name,
+                      sp->law_name, x0 + (i - 1) * 0.1 * scale, sp->energy_name, dg[i],
+                      sp->law_name, f[i]);
+    }
+}
+
 static node *loads(dctx *d, node **Q)
 {
     lang_ctx *c = d->c;
@@ -852,6 +911,8 @@ static node *loads(dctx *d, node **Q)
         }
         if (sp->c >= 0)
             fm = add(d, fm, mul(d, input_ref(d, sp->c), rate));
+        if (sp->law >= 0 && sp->energy >= 0 && !mb->unchecked)
+            check_energy(d, sp, l, stretch);
         if (sp->law >= 0) {
             stretch = fix(d, lang_printf(c, "s%d_x", si), stretch);
             node *args[2] = {stretch, fix(d, lang_printf(c, "s%d_v", si), rate)};

@@ -114,6 +114,17 @@ static int prepare(subject *s)
     return 0;
 }
 
+/* what prepare allocated, and the compiled model when there is one */
+static void release(subject *s)
+{
+    free(s->par);
+    free(s->y);
+    free(s->dy);
+    s->par = s->y = s->dy = NULL;
+    if (s->jm.model)
+        dyn_jit_unload(&s->jm);
+}
+
 /* ns of CPU time per evaluation, of calls evaluations (CPU time: a busy machine's waits
  * for a core are not counted) */
 static double time_rhs(subject *s, long calls)
@@ -206,8 +217,11 @@ static int derive_and_compile(const char *path, int quick)
     int fail = compile(path, c_src, DYN_JIT_CC, &cc, &tc);
     fail |= compile(path, c_src, DYN_JIT_TCC, &tcc, &tt);
     free(c_src);
-    if (fail)
+    if (fail) {
+        release(&cc);
+        release(&tcc);
         return 1;
+    }
     double best_cc = 1e300, best_tcc = 1e300;
     const int reps = quick ? 1 : 7;
     const long calls_cc = quick ? 10 : calibrate(&cc), calls_tcc = quick ? 10 : calibrate(&tcc);
@@ -222,8 +236,8 @@ static int derive_and_compile(const char *path, int quick)
            path, td, tc, tt, bytes, best_cc, best_tcc);
     if (!same)
         fprintf(stderr, "bench_mech: %s: the two compilers' right-hand sides differ\n", path);
-    dyn_jit_unload(&cc.jm);
-    dyn_jit_unload(&tcc.jm);
+    release(&cc);
+    release(&tcc);
     return !same;
 }
 
@@ -295,8 +309,9 @@ int main(int argc, char **argv)
     for (int k = 0; k < 2; k++) {
         const double b = median(S[2 * k].ns, reps), d = median(S[2 * k + 1].ns, reps);
         printf("| %s | %.1f | %.1f | %.2f |\n", pairs[k][0], b, d, d / b);
-        dyn_jit_unload(&S[2 * k + 1].jm);
     }
+    for (int k = 0; k < 4; k++)
+        release(&S[k]);
     char bicycle[1024];
     snprintf(bicycle, sizeof bicycle, "%s/examples/mechanisms/bicycle.mech", src);
     printf("\n");

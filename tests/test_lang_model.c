@@ -22,34 +22,9 @@
 #include "dynkit/lang.h"
 #include "dynkit/models.h"
 #include "test_util.h"
+#include "test_ode_load.h"
 
-/* A loaded model and its default parameters. */
-typedef struct loaded {
-    dyn_jit_model jm;
-    const dyn_model *m;
-    double par[64];
-} loaded;
-
-static void load(const char *text, loaded *L)
-{
-    char *c_src = NULL;
-    dyn_lang_diag d;
-    char buf[4096];
-    const int rc = dyn_ode_to_c("m.ode", text, strlen(text), &c_src, &d, NULL, NULL);
-    CHECK(rc == 0, "%s", dyn_lang_diag_format(&d, buf, sizeof buf));
-    dyn_jit_opts opts = {0};
-    opts.cache_dir = "lang-jit-cache";
-    char err[4096];
-    const int jrc = dyn_jit_load_source(c_src, strlen(c_src), "m.ode", &opts, &L->jm, err,
-                                        sizeof err);
-    CHECK(jrc == 0, "%s\n%s", err, c_src);
-    free(c_src);
-    L->m = L->jm.model;
-    assert_true(L->m->par_size <= sizeof L->par);
-    memset(L->par, 0, sizeof L->par);
-    char perr[256];
-    CHECK(dyn_model_default_params(L->m, L->par, perr, sizeof perr) == 0, "%s", perr);
-}
+static void load(const char *text, loaded *L) { test_ode_load(text, "lang-jit-cache", L); }
 
 static void unload(loaded *L) { dyn_jit_unload(&L->jm); }
 

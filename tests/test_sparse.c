@@ -27,6 +27,7 @@
 #include "ode/linalg.h"
 #include "test_cli_run.h"
 #include "test_util.h"
+#include "test_ode_load.h"
 
 #ifdef DYNKIT_HAVE_KLU
 #include "dynkit/klu.h"
@@ -54,31 +55,7 @@ static const char chain_ode[] = "par d=50\n"
                                 "@ total=1\n"
                                 "done\n";
 
-typedef struct loaded {
-    dyn_jit_model jm;
-    const dyn_model *m;
-    double par[8];
-} loaded;
-
-static void load(const char *text, loaded *L)
-{
-    char *c_src = NULL;
-    dyn_lang_diag d;
-    char buf[4096];
-    const int rc = dyn_ode_to_c("m.ode", text, strlen(text), &c_src, &d, NULL, NULL);
-    CHECK(rc == 0, "%s", dyn_lang_diag_format(&d, buf, sizeof buf));
-    dyn_jit_opts opts = {0};
-    opts.cache_dir = "sparse-jit-cache";
-    char err[4096];
-    const int jrc = dyn_jit_load_source(c_src, strlen(c_src), "m.ode", &opts, &L->jm, err,
-                                        sizeof err);
-    CHECK(jrc == 0, "%s", err);
-    free(c_src);
-    L->m = L->jm.model;
-    assert_true(L->m->par_size <= sizeof L->par);
-    memset(L->par, 0, sizeof L->par);
-    assert_int_equal(dyn_model_default_params(L->m, L->par, buf, sizeof buf), 0);
-}
+static void load(const char *text, loaded *L) { test_ode_load(text, "sparse-jit-cache", L); }
 
 /* A sparse solver over the library's dense LU: the plumbing of the sparse path checked
  * without KLU. */

@@ -6,7 +6,8 @@
  * sqrt(1 - mu^2/4)), the stability classes and their tolerance, the reduction P^+ A P to
  * an invariant subspace, equilibria (Lorenz's C+, the pendulum's bottom and top, an
  * ignorable coordinate left alone, none where there is none), the column of a coordinate
- * that f does not depend on exactly zero, and bad input named. Eigenvalues need
+ * that f does not depend on exactly zero, a constraint's gradient df/dq and rows dh/dy by
+ * dyn_holonomic_gradient against their closed forms, and bad input named. Eigenvalues need
  * the LAPACK backend; those tests are skipped without it. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -409,6 +410,49 @@ static void test_vanderpol_origin(void **state)
 }
 #endif
 
+/* A point on a rod of length 2 about the origin, f = (x^2 + y^2 - 4)/2 = 0 (its rate
+ * h = x dx + y dy), and a constraint on the speeds dx - 3 y dy = 0, as the outputs of
+ * dyn_mech_constraints_to_c's model: the gradient df/dq is (x, y), and dh/dy is
+ * (dx, dy, x, y) and (0, -3 dy, 1, -3 y): exact for these quadratics but for the rounding
+ * of f and h over the step (within 1e-10 of the row's size); without Dh, the same G. */
+static const dyn_var rod_states[] = {{"x", "m", ""}, {"y", "m", ""}, {"dx", "m/s", ""},
+                                     {"dy", "m/s", ""}};
+static const dyn_var rod_outputs[] = {{"rod", "holonomic", ""}, {"slip", "speeds", ""},
+                                      {"rod:f", "position", ""}};
+static int rod_values(double t, const double *y, const void *par, double *out)
+{
+    (void)t;
+    (void)par;
+    out[0] = y[0] * y[2] + y[1] * y[3];
+    out[1] = y[2] - 3.0 * y[1] * y[3];
+    out[2] = (y[0] * y[0] + y[1] * y[1] - 4.0) / 2.0;
+    return 0;
+}
+static const dyn_model rod_model = {.name = "rod", .n_states = 4, .states = rod_states,
+                                    .n_outputs = 3, .outputs = rod_outputs,
+                                    .compute_outputs = rod_values};
+
+static void test_holonomic_gradient(void **state)
+{
+    (void)state;
+    const double ys[2][4] = {{1.2, -1.6, 0.8, 0.6}, {-0.3, 1.977, -25.0, 7.0}};
+    for (int s = 0; s < 2; s++) {
+        const double *y = ys[s];
+        double G[3 * 2], Dh[3 * 4];
+        assert_int_equal(dyn_holonomic_gradient(&rod_model, NULL, 0.0, y, G, Dh), 2);
+        const double want_G[4] = {y[0], y[1], 0.0, 0.0};
+        const double want_Dh[8] = {y[2], y[3], y[0], y[1], 0.0, -3.0 * y[3], 1.0, -3.0 * y[1]};
+        for (int i = 0; i < 4; i++)
+            assert_close(G[i], want_G[i], 1e-10 * 2.0);
+        for (int i = 0; i < 8; i++)
+            assert_close(Dh[i], want_Dh[i], 1e-10 * 25.0);
+        double G2[3 * 2];
+        assert_int_equal(dyn_holonomic_gradient(&rod_model, NULL, 0.0, y, G2, NULL), 2);
+        for (int i = 0; i < 4; i++)
+            assert_true(G2[i] == G[i]);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -418,6 +462,7 @@ int main(void)
         cmocka_unit_test(test_reduction_to_invariant_subspace),
         cmocka_unit_test(test_equilibria),
         cmocka_unit_test(test_ignorable_column_is_zero),
+        cmocka_unit_test(test_holonomic_gradient),
 #ifdef DYNKIT_HAVE_LAPACK
         cmocka_unit_test(test_pendulum_eigenvalues),
         cmocka_unit_test(test_vanderpol_origin),

@@ -2,7 +2,7 @@
 /* The admissible directions of a mechanism's linearization (docs/analysis.md, "Mechanisms
  * with constraints"): the constraints' values on the speeds h(t, q, u) from
  * dyn_mech_constraints_to_c and the holonomic ones' values f(t, q), their derivatives G by
- * central differences, and a basis P of the directions (dq, du) with df/dq dq = 0 for each
+ * central differences (dyn_holonomic_gradient, dynkit/analysis.h), and a basis P of the directions (dq, du) with df/dq dq = 0 for each
  * holonomic constraint and dh/dq dq + dh/du du = 0 for every constraint (df/dq, not dh/du:
  * with declared speeds q' = W(q) u, dh/du = df/dq W) — its null space by Gauss-Jordan
  * elimination with complete pivoting among the speeds first, then the coordinates; the
@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "dynkit/analysis.h"
 #include "dynkit/lang.h"
 #include "dynkit/mbs.h"
 #include "util/out_file.h"
@@ -66,82 +67,34 @@ void cli_lin_constraints_close(cli_lin_constraints *cc)
     cc->loaded = 0;
 }
 
-/* the constraints' values on the speeds at (t, y) into h[0..cc->m), the holonomic ones
- * flagged in hol, and those ones' values f(t, q) after them, in the same order (their
- * outputs NAME:f, "position" or "prescribed"); the count of f into *n_f */
-static int values(const cli_lin_constraints *cc, double t, const double *y, const void *par,
-                  double *out, double *h, int *hol, int *n_f)
-{
-    const dyn_model *cm = cc->jm.model;
-    if (cm->compute_outputs(t, y, par, out))
-        return -1;
-    int r = 0, s = 0;
-    for (int i = 0; i < cm->n_outputs; i++) {
-        const char *u = cm->outputs[i].unit;
-        const int is_hol = u && strcmp(u, "holonomic") == 0;
-        if (is_hol || (u && strcmp(u, "speeds") == 0)) {
-            if (hol)
-                hol[r] = is_hol;
-            h[r++] = out[i];
-        } else if (u && (strcmp(u, "position") == 0 || strcmp(u, "prescribed") == 0) &&
-                   s < cc->m) {
-            h[cc->m + s++] = out[i];
-        }
-    }
-    if (n_f)
-        *n_f = s;
-    return 0;
-}
-
 int cli_lin_basis(const cli_lin_constraints *cc, double t, const double *y, const void *par,
                   double *P, int *kept, int *k_out, char *err, size_t errlen)
 {
     const dyn_model *cm = cc->jm.model;
     const int N = cm->n_states, n = N / 2, m = cc->m;
-    double *out = malloc((size_t)(cm->n_outputs + 1) * sizeof *out);
-    /* h then f: 2 m values at each side */
-    double *hp = malloc((size_t)(4 * m + 1) * sizeof *hp), *hm = hp + 2 * m;
-    int *hol = malloc((size_t)(m + 1) * sizeof *hol);
-    double *yy = malloc((size_t)N * sizeof *yy);
-    double *dh = malloc((size_t)(2 * m * N + 1) * sizeof *dh); /* dh_r/dy_j, then df_s/dy_j */
-    int n_hol = 0, n_f = 0;
+    const size_t mo = (size_t)cm->n_outputs + 1;
+    double *hf = malloc(2 * mo * sizeof *hf); /* h, then f */
+    int *hol = malloc(mo * sizeof *hol);
+    double *dh = malloc(mo * (size_t)N * sizeof *dh); /* dh_r/dy_j */
+    double *df = malloc(mo * (size_t)n * sizeof *df); /* df_r/dq_k, 0 on the speeds' rows */
     double *G = malloc((size_t)(2 * m * N + 1) * sizeof *G);
     int *piv = malloc((size_t)(N + 1) * sizeof *piv);
-    int rc = !out || !hp || !hol || !yy || !dh || !G || !piv;
+    int rc = !hf || !hol || !dh || !df || !G || !piv;
     if (rc)
         snprintf(err, errlen, "out of memory");
-    if (!rc)
-        rc = values(cc, t, y, par, out, hp, hol, &n_f);
-    for (int r = 0; r < m && !rc; r++)
-        n_hol += hol[r];
-    if (!rc && n_f != n_hol) {
-        snprintf(err, errlen, "%d holonomic constraints but %d values of their positions",
-                 n_hol, n_f);
+    if (!rc && (dyn_constraint_values(cm, par, t, y, hf, hf + mo, hol) != m ||
+                dyn_holonomic_gradient(cm, par, t, y, df, dh) != m)) {
+        snprintf(err, errlen, "the constraints' values failed at the state");
         rc = -1;
     }
-    memcpy(yy, y, (size_t)N * sizeof *yy);
-    for (int j = 0; j < N && !rc; j++) {
-        /* a power of two near eps^(1/3) of the state's scale: h is linear in the speeds
-         * (exact there) and smooth in the coordinates (an error of about 1e-11) */
-        const double step = ldexp(1.0, (int)floor(log2(6e-6 * fmax(1.0, fabs(y[j])))));
-        yy[j] = y[j] + step;
-        const double up = yy[j] - y[j];
-        rc = values(cc, t, yy, par, out, hp, NULL, NULL);
-        yy[j] = y[j] - step;
-        const double down = y[j] - yy[j];
-        if (!rc)
-            rc = values(cc, t, yy, par, out, hm, NULL, NULL);
-        yy[j] = y[j];
-        for (int r = 0; r < m + n_hol && !rc; r++)
-            dh[r * N + j] = (hp[r] - hm[r]) / (up + down);
-    }
-    if (rc && err[0] == '\0')
-        snprintf(err, errlen, "the constraints' values failed at the state");
     /* G: rows df/dq on the coordinates' columns for the holonomic constraints, then dh/dy */
     int rows = 0;
-    for (int r = 0; r < n_hol && !rc; r++, rows++)
-        for (int j = 0; j < N; j++)
-            G[rows * N + j] = j < n ? dh[(m + r) * N + j] : 0.0;
+    for (int r = 0; r < m && !rc; r++)
+        if (hol[r]) {
+            for (int j = 0; j < N; j++)
+                G[rows * N + j] = j < n ? df[r * n + j] : 0.0;
+            rows++;
+        }
     for (int r = 0; r < m && !rc; r++, rows++)
         memcpy(G + rows * N, dh + r * N, (size_t)N * sizeof *G);
     /* Gauss-Jordan with complete pivoting: each pivot's column is a dependent state */
@@ -192,11 +145,10 @@ int cli_lin_basis(const cli_lin_constraints *cc, double t, const double *y, cons
         kept[k++] = j;
     }
     *k_out = k;
-    free(out);
-    free(hp);
+    free(hf);
     free(hol);
-    free(yy);
     free(dh);
+    free(df);
     free(G);
     free(piv);
     return rc;

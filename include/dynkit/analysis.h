@@ -147,8 +147,9 @@ void dyn_eig_mode(double re, double im, double *wn, double *zeta);
  * and one with the unit "position" or "prescribed" the value f(q, t) of a holonomic
  * constraint, in the order of the holonomic ones among the first. dyn_project_constraints
  * moves y onto them by minimal-norm corrections (docs/mechanisms.md, "Initial values"):
- * Gauss-Newton on the coordinates, q <- q - G' (G G')^-1 f with G = df/dq = dh/du, until f
- * stops decreasing; then the speeds, u <- u - D' (D D')^-1 h (linear: one step and one to
+ * Gauss-Newton on the coordinates, q <- q - G' (G G')^-1 f with G = df/dq
+ * (dyn_holonomic_gradient; with declared speeds dh/du = G W, not G), until f stops
+ * decreasing; then the speeds, u <- u - D' (D D')^-1 h (linear: one step and one to
  * clean up rounding). D comes from central differences of h in u (exact but for rounding, h
  * being linear in u). Returns 0 with y projected, DYN_ERR_ARG when the rows are dependent
  * (*bad the first dependent constraint's index among the h outputs) or the coordinates do
@@ -163,6 +164,18 @@ int dyn_project_constraints(const dyn_model *cm, const void *par, double t, doub
  * h and f hold cm->n_outputs values each. */
 int dyn_constraint_values(const dyn_model *cm, const void *par, double t, const double *y,
                           double *h, double *f, int *holonomic);
+
+/* The gradient of the holonomic constraints with respect to the coordinates at (t, y):
+ * G (m x n, row-major, n = cm->n_states / 2) with G[r][k] = df_r/dq_k for each holonomic
+ * constraint r (rows in dyn_constraint_values' order; zero for a constraint on the
+ * speeds), by central differences of f: steps a power of two near 6e-6 of each
+ * coordinate's scale max(1, |q_k|), divided by the increments actually taken (an error of
+ * about 1e-11). When Dh is not NULL it also gets dh_r/dy_j (m x 2n) for every constraint
+ * and every state by the same steps (no truncation error in the speeds, where h is
+ * linear). G and Dh hold cm->n_outputs rows. Returns m, or -1 when the outputs fail. Used
+ * by dyn_project_constraints and dynkit linearize's admissible directions. */
+int dyn_holonomic_gradient(const dyn_model *cm, const void *par, double t, const double *y,
+                           double *G, double *Dh);
 
 /* The values of k parameters (indices params into m->params) that make k outputs (indices
  * outs) zero at (t, y): the inputs that give the forces of prescribed motions (dynkit

@@ -2,8 +2,9 @@
 /* project.c — an initial state moved onto a mechanism's constraints by minimal-norm
  * corrections (dynkit/analysis.h, dyn_project_constraints): Gauss-Newton for the
  * underdetermined system f(q) = 0 (the step q <- q - G^+ f with the pseudo-inverse
- * G^+ = G' (G G')^-1 of the full-rank Jacobian G = df/dq, by central differences in q of
- * the values f(t, q) — not dh/du, which is df/dq W with declared speeds q' = W(q) u;
+ * G^+ = G' (G G')^-1 of the full-rank Jacobian G = df/dq (dyn_holonomic_gradient, central
+ * differences in q of the values f(t, q) — not dh/du, which is df/dq W with declared speeds
+ * q' = W(q) u);
  * Nocedal & Wright, Numerical Optimization, 2nd ed., sec. 10.3 and 11.2), then the speeds'
  * linear system D u + h_t = 0 (D = dh/du) by the same minimal-norm solution. The normal
  * equations are solved by src/ode/cholesky.h. */
@@ -17,38 +18,6 @@
 #include "dynkit/ode.h"
 #include "ode/cholesky.h"
 
-static int unit_is(const dyn_var *v, const char *u) { return v->unit && strcmp(v->unit, u) == 0; }
-
-int dyn_constraint_values(const dyn_model *cm, const void *par, double t, const double *y,
-                          double *h, double *f, int *holonomic)
-{
-    double *out = malloc((size_t)(cm->n_outputs + 1) * sizeof *out);
-    if (!out || !cm->compute_outputs || cm->compute_outputs(t, y, par, out)) {
-        free(out);
-        return -1;
-    }
-    int m = 0, nf = 0;
-    for (int i = 0; i < cm->n_outputs; i++) {
-        const dyn_var *v = &cm->outputs[i];
-        if (unit_is(v, "holonomic") || unit_is(v, "speeds")) {
-            holonomic[m] = unit_is(v, "holonomic");
-            f[m] = 0.0;
-            h[m++] = out[i];
-        }
-    }
-    for (int i = 0; i < cm->n_outputs; i++) {
-        const dyn_var *v = &cm->outputs[i];
-        if (unit_is(v, "position") || unit_is(v, "prescribed")) {
-            while (nf < m && !holonomic[nf])
-                nf++;
-            if (nf < m)
-                f[nf++] = out[i];
-        }
-    }
-    free(out);
-    return m;
-}
-
 typedef struct pctx {
     const dyn_model *cm;
     const void *par;
@@ -58,29 +27,10 @@ typedef struct pctx {
     int *hol;
 } pctx;
 
-/* F = df/dq (m x n, zero on the rows that are not holonomic) at y by central differences:
- * a power of two near eps^(1/3) of each coordinate's scale (an error of about 1e-11) */
+/* F = df/dq (m x n, zero on the rows that are not holonomic) at y */
 static int coordinate_rows(pctx *p, const double *y)
 {
-    const int n = p->n, m = p->m;
-    memcpy(p->yy, y, (size_t)(2 * n) * sizeof *p->yy);
-    for (int k = 0; k < n; k++) {
-        const double step = ldexp(1.0, (int)floor(log2(6e-6 * fmax(1.0, fabs(y[k])))));
-        p->yy[k] = y[k] + step;
-        const double up = p->yy[k] - y[k];
-        if (dyn_constraint_values(p->cm, p->par, p->t, p->yy, p->hp, p->fp, p->hol) != m)
-            return -1;
-        for (int r = 0; r < m; r++)
-            p->F[r * n + k] = p->fp[r];
-        p->yy[k] = y[k] - step;
-        const double down = y[k] - p->yy[k];
-        if (dyn_constraint_values(p->cm, p->par, p->t, p->yy, p->hp, p->fp, p->hol) != m)
-            return -1;
-        for (int r = 0; r < m; r++)
-            p->F[r * n + k] = (p->F[r * n + k] - p->fp[r]) / (up + down);
-        p->yy[k] = y[k];
-    }
-    return 0;
+    return dyn_holonomic_gradient(p->cm, p->par, p->t, y, p->F, NULL) == p->m ? 0 : -1;
 }
 
 /* h, f at y and D = dh/du (m x n) by central differences of unit steps in u */

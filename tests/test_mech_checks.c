@@ -7,7 +7,7 @@
  * and a four-bar closed to rounding; states that violate a constraint refused by name;
  * units that do not add up named at their place; a spring's law= that is not a function of
  * two arguments, or with k=/c= beside it, or whose energy= is not its integral (dG/dx
- * against F(x, 0)), refused at its place. */
+ * against F(x, 0)), or whose law is not in N or energy not in J, refused at its place. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -304,6 +304,50 @@ static void test_spring_laws_are_checked(void **state_)
     }
 }
 
+/* A spring's law F(x, v) is a force and its energy G(x) an energy, with the stretch x in m
+ * and its rate v in m/s: with k [N], k x is in N m; with k [N/m], an energy k x is in N;
+ * each refused at its formula's start with both units, and a sum inside a law whose terms
+ * differ (k x + c x with c [N s/m]; k x^3 + k x^2 with k [N/m^2]) at its operator. A law
+ * of x, v and numbers alone in a file without units is taken, and F = k x + c v with its
+ * energy k x^2 / 2 in N/m and N s/m. */
+static void test_spring_law_units(void **state_)
+{
+    (void)state_;
+    static const char *const cases[][4] = {
+        {"k=3 [N]", "F(x, v)=k*x", "bad.mech:4:9:",
+         "the law F(x, v) of spring 'h' is in N m, not in N (x in m, v in m/s)"},
+        {"k=3 [N/m]", "F(x, v)=k*x + c*x", "bad.mech:4:13:",
+         "the terms are in N and in kg m/s"},
+        {"k=3 [N/m]", "F(x, v)=k*x + c*v\nG(x)=k*x", "bad.mech:5:6:",
+         "the energy G(x) of spring 'h' is in N, not in J (x in m, v in m/s)"},
+        {"k=3 [N/m^2]", "F(x, v)=k*x^2\nG(x)=k*x^3 + k*x^2", "bad.mech:5:12:",
+         "the terms are in N m and in N"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        char buf[512];
+        snprintf(buf, sizeof buf, "par m=2 [kg], %s, c=0.5 [N s/m], L=1 [m]\ncoord s=1.8 [m]\n"
+                 "point p mass=m at (s, 0, 0)\n%s\nspring h between ground and p law=F%s l0=L\n",
+                 cases[i][0], cases[i][1], strstr(cases[i][1], "G(x)") ? " energy=G" : "");
+        refused(buf, cases[i][2], cases[i][3]);
+    }
+    static const char *const good[] = {
+        "par m=2\ncoord s=1.8\npoint p mass=m at (s, 0, 0)\nF(x, v)=3*x + x^3 + v\n"
+        "G(x)=3*x^2/2 + x^4/4\nspring h between ground and p law=F energy=G l0=1\n",
+        "par m=2 [kg], k=3 [N/m], c=0.5 [N s/m]\ncoord s=1.8 [m]\n"
+        "point p mass=m at (s, 0, 0)\nF(x, v)=k*x + c*v\nG(x)=k*x^2/2\n"
+        "spring h between ground and p law=F energy=G l0=1\n",
+    };
+    for (size_t i = 0; i < sizeof good / sizeof *good; i++) {
+        FILE *f = fopen(cli_path("good.mech"), "w");
+        assert_non_null(f);
+        fputs(good[i], f);
+        fclose(f);
+        cli_result r = cli("run %s --tspan 0:0.1", cli_path("good.mech"));
+        CHECK(r.status == 0, "%s", r.err);
+        cli_free(&r);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -315,6 +359,7 @@ int main(void)
         cmocka_unit_test(test_units_that_do_not_add_up_are_named),
         cmocka_unit_test(test_singular_and_redundant_name_the_combination),
         cmocka_unit_test(test_spring_laws_are_checked),
+        cmocka_unit_test(test_spring_law_units),
     };
     return cmocka_run_group_tests(tests, setup_all, NULL);
 }

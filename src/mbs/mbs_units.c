@@ -175,6 +175,8 @@ typedef struct uctx {
     mbs_model *mb;
     unit *fix, *par;            /* memo of the fixed quantities and derived parameters */
     unsigned char *fix_state, *par_state; /* 0 not seen, 1 in progress, 2 done */
+    const unit *arg;            /* the units of a function's arguments (N_ARG), or NULL */
+    int nargs;
 } uctx;
 
 static int same(unit a, unit b) { return !memcmp(a.e, b.e, sizeof a.e); }
@@ -320,6 +322,8 @@ static unit infer(uctx *x, const node *e)
             return declared(f->doc.unit);
         return memo(x, &x->fix[e->index], &x->fix_state[e->index], f->expr);
     }
+    case N_ARG:
+        return x->arg && e->index < x->nargs ? x->arg[e->index] : unknown;
     case N_NEG:
         return infer(x, e->args[0]);
     case N_BIN:
@@ -364,6 +368,45 @@ static void expect(uctx *x, int k, const char *want, const char *what)
                   show(x->c, w));
 }
 
+/* whether e reads a parameter, coordinate, speed, derived parameter or fixed quantity
+ * whose unit is known (all of them are inferred by then) */
+static int reads_a_unit(uctx *x, const node *e)
+{
+    const lang_model *m = &x->c->m;
+    unit u = unknown;
+    if (e->kind == N_STATE)
+        u = declared(LVEC_AT(m->states, lang_state, e->index).doc.unit);
+    else if (e->kind == N_PARAM || e->kind == N_FIX)
+        u = infer(x, e);
+    if (u.kind == U_KNOWN)
+        return 1;
+    for (int i = 0; i < e->nargs; i++)
+        if (e->args[i] && reads_a_unit(x, e->args[i]))
+            return 1;
+    return 0;
+}
+
+/* a spring's law F(x, v) in N or its energy G(x) in J, with x in m and v in m/s: the
+ * function's formula, at its start, when it reads a name with a unit (a law of x, v and
+ * numbers alone, in a file without units, is not checked) */
+static void expect_law(uctx *x, int fi, const char *want, const char *what)
+{
+    if (fi < 0)
+        return;
+    const lang_func *fn = &LVEC_AT(x->c->m.funcs, lang_func, fi);
+    if (!fn->body || !reads_a_unit(x, fn->body))
+        return;
+    static const unit args[2] = {{U_KNOWN, {0, 1}}, {U_KNOWN, {0, 1, -1}}};
+    x->arg = args;
+    x->nargs = fn->nargs < 2 ? fn->nargs : 2;
+    const unit u = infer(x, fn->body), w = declared(want);
+    x->arg = NULL;
+    x->nargs = 0;
+    if (u.kind == U_KNOWN && !same(u, w) && !same(u, number))
+        lang_fail(x->c, start_of(fn->body), "the units do not add up: %s is in %s, not in %s "
+                  "(x in m, v in m/s)", what, show(x->c, u), want);
+}
+
 static void expect3(uctx *x, const int k[3], const char *want, const char *what)
 {
     for (int i = 0; i < 3; i++)
@@ -373,7 +416,7 @@ static void expect3(uctx *x, const int k[3], const char *want, const char *what)
 void mbs_check_units(lang_ctx *c, mbs_model *mb)
 {
     lang_model *m = &c->m;
-    uctx x = {c, mb, NULL, NULL, NULL, NULL};
+    uctx x = {c, mb, NULL, NULL, NULL, NULL, NULL, 0};
     const size_t nf = (size_t)m->fixes.n + 1, nd = (size_t)m->derived.n + 1;
     x.fix = lang_alloc(c, nf * sizeof *x.fix);
     x.par = lang_alloc(c, nd * sizeof *x.par);
@@ -419,6 +462,9 @@ void mbs_check_units(lang_ctx *c, mbs_model *mb)
         expect(&x, s->c, "N s/m", lang_printf(c, "the damping c %s", of));
         expect3(&x, s->a.p, "m", lang_printf(c, "an end %s", of));
         expect3(&x, s->b.p, "m", lang_printf(c, "an end %s", of));
+        expect_law(&x, s->law, "N", lang_printf(c, "the law %s(x, v) %s", s->law_name, of));
+        expect_law(&x, s->energy, "J", lang_printf(c, "the energy %s(x) %s", s->energy_name,
+                                                   of));
     }
     for (int i = 0; i < mb->loads.n; i++) {
         const mbs_load *l = &LVEC_AT(mb->loads, mbs_load, i);

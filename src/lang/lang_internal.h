@@ -412,6 +412,10 @@ void lang_alg_uses(lang_ctx *c, const node *e, unsigned char *used, unsigned cha
  * expanded; calls fn for each line in order (stops when fn returns non-zero). */
 typedef int (*lang_line_fn)(lang_ctx *c, const lang_line *line, void *ctx);
 void lang_lines(lang_ctx *c, lang_line_fn fn, void *ctx);
+/* XPPAUT's first format (ode_old.c): when the first line is a positive number, the file's
+ * lines rewritten as statements of the current format, each given to fn; returns 1, or 0
+ * (nothing read) when the file is in the current format. */
+int lang_old_format(lang_ctx *c, lang_line_fn fn, void *ctx);
 
 /* expressions (expr_parse.c) */
 typedef struct lang_lexer {

@@ -1317,7 +1317,8 @@ void lang_parse_model(lang_ctx *c)
     m->dt = 0.05;
     m->nout = 1;
     pstate ps = {0};
-    lang_lines(c, on_line, &ps);
+    if (c->stmt_hook || !lang_old_format(c, on_line, &ps))
+        lang_lines(c, on_line, &ps);
     if (ps.global_name_line)
         lang_fail(c, (lpos){ps.global_name_line, 1},
                   "'#: event %s' without '=' names the global on the next line, but there is "

@@ -11,15 +11,20 @@
  *   the process's CPU time (the machine is shared: CPU time does not count the waits for
  *   a core), each run with its allocations and KLU's analysis. Times at equal error are read
  *   off each curve as in bench_band.c (wp_curve.h), at 1e-4 ... 1e-8.
+ * - A sweep (dyn_sweep_run, as `dynkit sweep` runs it): 8 runs over b = -0.7 ... -0.3, rodas4
+ *   dense and with KLU (one solver a thread, its analysis shared by the thread's runs) at
+ *   equal error against the KLU sweep at 1e-12; then the same bits on 1 and 2 threads.
  * Usage: bench_sparse [--quick] [--reps K] [--sites N] [--verbose: every point on stderr]
  */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "dynkit/solve.h"
+#include "dynkit/sweep.h"
 #include "bench_clock.h"
 #include "wp_curve.h"
 #ifdef DYNKIT_HAVE_CVODE
@@ -233,6 +238,161 @@ static int available(solver_id s)
     return 1;
 }
 
+/* ---- a sweep of the ring over b: dyn_sweep_run as `dynkit sweep` runs it ---- */
+
+enum { SWEEP_RUNS = 8, SWEEP_TOLS = 6 };
+typedef enum { SW_DENSE, SW_KLU, N_SWEEPS } sweep_id;
+static const char *const sweep_names[N_SWEEPS] = {"sweep rodas4 dense", "sweep rodas4 KLU"};
+
+/* SWEEP_RUNS runs of rodas4 to t = 10, b from -0.7 to -0.3, every final state into out
+ * (SWEEP_RUNS x n), on `threads` threads, dense matrices or KLU (one solver a thread).
+ * 0, or 1 with a message. */
+static int sweep_ring(cgl *c, sweep_id s, double tol, const double *y0, int threads,
+                      double *out)
+{
+    const int n = 2 * c->N;
+    static const dyn_param params[] = {{"a", "1", "linear dispersion", offsetof(cgl, a), 1.0},
+                                       {"b", "1", "nonlinear dispersion", offsetof(cgl, b), -0.5},
+                                       {"d", "1", "1/dx^2", offsetof(cgl, d), 64.0}};
+    dyn_var *states = calloc((size_t)n, sizeof *states);
+    dyn_reduce *red = malloc((size_t)n * sizeof *red);
+    int status[SWEEP_RUNS], rc = 1;
+    if (!states || !red)
+        goto done;
+    for (int i = 0; i < n; i++) {
+        states[i] = (dyn_var){"y", "1", ""};
+        red[i] = (dyn_reduce){DYN_REDUCE_FINAL, DYN_SOURCE_STATE, i};
+    }
+    dyn_model m = {0};
+    m.name = "cgl";
+    m.n_states = n;
+    m.states = states;
+    m.n_params = 3;
+    m.params = params;
+    m.par_size = sizeof *c;
+    m.rhs = cgl_rhs;
+    m.jacobian = cgl_jac;
+    m.jac_pattern = c->pat;
+    m.jacobian_sparse = cgl_jac_sparse;
+    double values[SWEEP_RUNS];
+    for (int k = 0; k < SWEEP_RUNS; k++)
+        values[k] = dyn_linspace_at(-0.7, -0.3, SWEEP_RUNS, k);
+    const dyn_sweep_var var = {DYN_SWEEP_PARAM, 1};
+    dyn_sweep sw = {0};
+    sw.model = &m;
+    sw.par = c;
+    sw.y0 = y0;
+    sw.n_vars = 1;
+    sw.vars = &var;
+    sw.n_runs = SWEEP_RUNS;
+    sw.values = values;
+    sw.method = dyn_method_find("rodas4");
+    sw.t1 = 10.0;
+    sw.rtol = sw.atol = tol;
+    sw.n_reduce = n;
+    sw.reduce = red;
+    sw.threads = threads;
+#ifdef DYNKIT_HAVE_KLU
+    if (s == SW_KLU) {
+        sw.sparse_open = dyn_klu_init;
+        sw.sparse_close = dyn_klu_release;
+    }
+#endif
+    char err[256];
+    if (dyn_sweep_run(&sw, out, status, err, sizeof err) != DYN_OK) {
+        fprintf(stderr, "bench_sparse: %s tol %g: %s\n", sweep_names[s], tol, err);
+        goto done;
+    }
+    rc = 0;
+    for (int k = 0; k < SWEEP_RUNS; k++)
+        if (status[k] != DYN_OK) {
+            fprintf(stderr, "bench_sparse: %s tol %g: run %d failed (status %d)\n",
+                    sweep_names[s], tol, k, status[k]);
+            rc = 1;
+        }
+done:
+    free(states);
+    free(red);
+    return rc;
+}
+
+/* The sweep on one thread at tolerances 1e-3 ... 1e-8 (the error: max over runs and states
+ * against ref), dense and with KLU, at equal error; then the same bits on 1 and 2 threads,
+ * and KLU against dense at one tolerance. 0, or 1 when a run failed or a check did not hold. */
+static int sweep_case(cgl *c, const double *y0, int reps, int quick)
+{
+    const int n = 2 * c->N;
+    const size_t size = (size_t)SWEEP_RUNS * (size_t)n;
+    double *ref = malloc(size * sizeof *ref), *y = malloc(size * sizeof *y);
+    double *y2 = malloc(size * sizeof *y2);
+    int failed = !ref || !y || !y2;
+    const int have_klu = available(ROD_SPARSE);
+    const sweep_id ref_id = have_klu ? SW_KLU : SW_DENSE;
+    failed = failed || sweep_ring(c, ref_id, 1e-12, y0, 1, ref);
+    curve cv[N_SWEEPS];
+    for (int s = 0; s < N_SWEEPS && !failed; s++) {
+        cv[s].k = 0;
+        for (int t = 0; t < SWEEP_TOLS && !failed && (s == SW_DENSE || have_klu); t++) {
+            double best = INFINITY;
+            for (int r = 0; r < reps && !failed; r++) {
+                const double t0 = bench_process_cpu_seconds();
+                failed = sweep_ring(c, (sweep_id)s, tols[t], y0, 1, y);
+                best = fmin(best, bench_process_cpu_seconds() - t0);
+            }
+            cv[s].err[cv[s].k] = max_err(y, ref, (int)size);
+            cv[s].time[cv[s].k] = best;
+            cv[s].steps[cv[s].k++] = 0;
+        }
+    }
+    if (failed) {
+        free(ref);
+        free(y);
+        free(y2);
+        return 1;
+    }
+    printf("\n## The same ring in a sweep: %d runs over b = -0.7 ... -0.3 (dyn_sweep_run, 1 "
+           "thread)\n\n",
+           SWEEP_RUNS);
+    printf("error: max over the runs' final states against the %s sweep at 1e-12; time: CPU "
+           "seconds of the whole sweep, min of %d\n\n",
+           have_klu ? "KLU" : "dense", reps);
+    printf("| error | sweep rodas4 dense s | sweep rodas4 KLU s | dense / KLU |\n");
+    printf("|---:|---:|---:|---:|\n");
+    for (int l = 0; l < N_LEVELS; l++) {
+        const double td = time_at(&cv[SW_DENSE], levels[l]);
+        const double tk = cv[SW_KLU].k ? time_at(&cv[SW_KLU], levels[l]) : NAN;
+        printf("| %.0e | %.3g | %.3g | %.1f |\n", levels[l], td, tk, td / tk);
+    }
+    /* 1 and 2 threads: the same bits; KLU against dense at 1e-6 */
+    const double tol = 1e-6;
+    for (int s = 0; s < N_SWEEPS; s++) {
+        if (s == SW_KLU && !have_klu)
+            continue;
+        failed |= sweep_ring(c, (sweep_id)s, tol, y0, 1, y);
+        failed |= sweep_ring(c, (sweep_id)s, tol, y0, 2, y2);
+        const int same = !failed && memcmp(y, y2, size * sizeof *y) == 0;
+        printf("\n%s at tol %g: 1 and 2 threads (%d used) give %s", sweep_names[s], tol,
+               dyn_sweep_threads(2), same ? "the same bits" : "DIFFERENT results");
+        failed |= !same;
+        if (s == SW_KLU && !failed) {
+            failed |= sweep_ring(c, SW_DENSE, tol, y0, 1, y2);
+            const double d = max_err(y, y2, (int)size);
+            printf("; KLU against dense: %.2g (the error at this tolerance: %.2g)", d,
+                   max_err(y2, ref, (int)size));
+            if (quick && !(d < 1e-3 * max_err(y2, ref, (int)size) + 1e-12)) {
+                fprintf(stderr, "bench_sparse: the KLU sweep differs from the dense one by %g\n",
+                        d);
+                failed = 1;
+            }
+        }
+    }
+    printf("\n");
+    free(ref);
+    free(y);
+    free(y2);
+    return failed;
+}
+
 static int measure(cgl *c, solver_id s, const double *y0, const double *ref, int reps,
                    int n_tol, curve *cv)
 {
@@ -356,6 +516,7 @@ int main(int argc, char **argv)
             failed = 1;
         }
     }
+    failed |= sweep_case(&c, y0, reps, quick);
     free(y0);
     free(ref);
     free(chk);

@@ -8,7 +8,9 @@
  * chain and on the ring that is not banded; cvode with SUNDIALS' KLU likewise; and without
  * a sparse solver the pattern is not used (the dense run, bit for bit), while a pattern
  * without its diagonal is refused with a message. The tool says which matrices it took
- * (--stats, info) and why (--verbose), and its runs agree whichever they are. */
+ * (--stats, info) and why (--verbose), and its runs agree whichever they are. A sweep takes
+ * the same matrices, one sparse solver per thread, with the same results on 1 and 2
+ * threads. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -24,6 +26,7 @@
 #include "dynkit/dynkit.h"
 #include "dynkit/jit.h"
 #include "dynkit/lang.h"
+#include "dynkit/sweep.h"
 #include "ode/linalg.h"
 #include "test_cli_run.h"
 #include "test_util.h"
@@ -96,7 +99,7 @@ static int rodas(const loaded *L, int kind, double *y, dyn_result *res)
     o.atol = 1e-10;
     o.jacobian = m->jacobian;
     dense_ctx dc;
-    dyn_sparse_solver own = {"dense", &dc, dense_factor, dense_solve};
+    dyn_sparse_solver own = {"dense", &dc, dense_factor, dense_solve, NULL};
     dyn_sparse_solver klu = {0};
     if (kind == BAND) {
         o.jac_banded = 1;
@@ -285,6 +288,109 @@ static void test_cvode_sparse(void **state)
 #endif
 }
 
+/* A sweep's sparse solvers (dynkit/sweep.h): the dense-LU solver of this file, one per
+ * thread, counting the threads' solvers and the solves that start (forget). */
+typedef struct counted {
+    dense_ctx d;
+    int forgets;
+} counted;
+static int opened, closed, forgotten;
+
+static void counted_forget(void *ctx) { ((counted *)ctx)->forgets++; }
+
+static int counted_open(dyn_sparse_solver *s)
+{
+    counted *c = calloc(1, sizeof *c);
+    *s = (dyn_sparse_solver){"counted", c, dense_factor, dense_solve, counted_forget};
+    opened++; /* the workers are made on the calling thread, one after the other */
+    return c ? 0 : 1;
+}
+
+static void counted_close(dyn_sparse_solver *s)
+{
+    counted *c = s->ctx;
+    forgotten += c->forgets;
+    closed++;
+    free(c);
+}
+
+enum { SWEEP_RUNS = 6, SWEEP_COLS = N };
+
+/* rodas4 over d = 30 ... 80 (6 runs) on the ring, every final state, with `threads`
+ * threads and the sparse solvers of open/close (NULL: dense matrices). */
+static void ring_sweep(const loaded *L, int threads, int (*open)(dyn_sparse_solver *),
+                       void (*close)(dyn_sparse_solver *), double *results)
+{
+    dyn_sweep s = {0};
+    const dyn_sweep_var var = {DYN_SWEEP_PARAM, dyn_model_param_index(L->m, "d")};
+    double values[SWEEP_RUNS];
+    for (int i = 0; i < SWEEP_RUNS; i++)
+        values[i] = 30.0 + 10.0 * i;
+    dyn_reduce red[SWEEP_COLS];
+    int n_red = 0, status[SWEEP_RUNS];
+    char err[256];
+    assert_int_equal(dyn_reduce_parse(L->m, "final", red, SWEEP_COLS, &n_red, err, sizeof err),
+                     0);
+    assert_int_equal(n_red, SWEEP_COLS);
+    s.model = L->m;
+    s.n_vars = 1;
+    s.vars = &var;
+    s.n_runs = SWEEP_RUNS;
+    s.values = values;
+    s.method = dyn_method_find("rodas4");
+    s.t0 = 0.0;
+    s.t1 = 1.0;
+    s.rtol = 1e-8;
+    s.atol = 1e-10;
+    s.n_reduce = n_red;
+    s.reduce = red;
+    s.threads = threads;
+    s.sparse_open = open;
+    s.sparse_close = close;
+    assert_int_equal(dyn_sweep_run(&s, results, status, err, sizeof err), DYN_OK);
+    for (int i = 0; i < SWEEP_RUNS; i++)
+        assert_int_equal(status[i], DYN_OK);
+}
+
+/* A sweep takes the sparse matrices of a single run: one solver per thread (opened once,
+ * closed once, a new solve started in it per run), every run ending within 1e-12 of the
+ * dense sweep's, and the same bits on 1 and 2 threads, with this file's solver and with
+ * KLU (whose analysis one thread's runs share while each run pivots anew). */
+static void test_sweep_sparse(void **state)
+{
+    (void)state;
+    loaded L;
+    load(ring_ode, &L);
+    const size_t size = (size_t)SWEEP_RUNS * SWEEP_COLS;
+    double dense[SWEEP_RUNS * SWEEP_COLS], one[SWEEP_RUNS * SWEEP_COLS];
+    double two[SWEEP_RUNS * SWEEP_COLS];
+    ring_sweep(&L, 1, NULL, NULL, dense);
+    const int threads = dyn_sweep_threads(2); /* 1 without OpenMP */
+    for (int t = 1; t <= threads; t++) {
+        opened = closed = forgotten = 0;
+        ring_sweep(&L, t, counted_open, counted_close, t == 1 ? one : two);
+        assert_int_equal(opened, t);
+        assert_int_equal(closed, t);
+        assert_int_equal(forgotten, SWEEP_RUNS);
+    }
+    double worst = 0.0;
+    for (size_t k = 0; k < size; k++)
+        worst = fmax(worst, fabs(one[k] - dense[k]));
+    CHECK(worst < 1e-12, "sparse sweep differs from the dense one by %g", worst);
+    if (threads > 1)
+        assert_memory_equal(one, two, sizeof one);
+#ifdef DYNKIT_HAVE_KLU
+    ring_sweep(&L, 1, dyn_klu_init, dyn_klu_release, one);
+    ring_sweep(&L, threads, dyn_klu_init, dyn_klu_release, two);
+    worst = 0.0;
+    for (size_t k = 0; k < size; k++)
+        worst = fmax(worst, fabs(one[k] - dense[k]));
+    CHECK(worst < 1e-12, "KLU sweep differs from the dense one by %g", worst);
+    assert_memory_equal(one, two, sizeof one);
+#endif
+    dyn_jit_unload(&L.jm);
+}
+
 /* The last value of the first row after the header of CSV text (the final state's last
  * column). */
 static double last_value(const char *out)
@@ -335,6 +441,19 @@ static void test_cli_says_which_matrices(void **state)
         }
         cli_free(&r);
     }
+    /* a sweep's run is the single run with the same matrices: the same bits */
+    cli_result sw = cli("sweep %s --method rodas4 --vary d=40,60 --reduce final:u39 "
+                        "--threads 2 --rtol 1e-9 --atol 1e-12 --quiet",
+                        cli_path("ring.ode"));
+    cli_result one = cli("run %s --method rodas4 --set d=60 --final --rtol 1e-9 --atol 1e-12",
+                         cli_path("ring.ode"));
+    CHECK(sw.status == 0 && one.status == 0, "%s%s", sw.err, one.err);
+    const char *last = strrchr(sw.out, ',');
+    assert_non_null(last);
+    CHECK(strtod(last + 1, NULL) == last_value(one.out), "sweep %s, run %.17g", last + 1,
+          last_value(one.out));
+    cli_free(&sw);
+    cli_free(&one);
     cli_result info = cli("info %s", cli_path("ring.ode"));
     CHECK(info.status == 0 && strstr(info.out, "Jacobian: sparse, 120 of 1600 entries"), "%s%s",
           info.out, info.err);
@@ -356,6 +475,7 @@ int main(void)
         cmocka_unit_test(test_rodas4_sparse_equals_dense),
         cmocka_unit_test(test_without_a_solver_dense),
         cmocka_unit_test(test_cvode_sparse),
+        cmocka_unit_test(test_sweep_sparse),
         cmocka_unit_test(test_cli_says_which_matrices),
     };
     return cmocka_run_group_tests(tests, cli_setup, cli_remove_tmpdir);

@@ -3,7 +3,8 @@
  * per pattern (AMD ordering, block triangular form), klu_factor the first time and whenever
  * the pivots of the last factorisation have become poor, klu_refactor otherwise (the
  * numeric factorisation with the same pivot order, cheaper), klu_solve for each right-hand
- * side. The rule for refactoring follows SUNDIALS' sunlinsol_klu.c: klu_rcond below
+ * side; dyn_klu_forget drops the numeric factors at the start of a solve and keeps the
+ * analysis, which then serves every solve of one pattern. The rule for refactoring follows SUNDIALS' sunlinsol_klu.c: klu_rcond below
  * eps^(2/3) means a new factorisation with pivoting. */
 #include <float.h>
 #include <math.h>
@@ -60,6 +61,13 @@ static void dyn_klu_solve(void *ctx, int n, double *b)
     klu_solve(k->symbolic, k->numeric, n, 1, b, &k->common);
 }
 
+/* A new solve: its first factorisation pivots anew; the analysis of the pattern stays. */
+static void dyn_klu_forget(void *ctx)
+{
+    klu_ctx *k = ctx;
+    klu_free_numeric(&k->numeric, &k->common);
+}
+
 int dyn_klu_init(dyn_sparse_solver *s)
 {
     klu_ctx *k = calloc(1, sizeof *k);
@@ -67,6 +75,7 @@ int dyn_klu_init(dyn_sparse_solver *s)
     s->ctx = k;
     s->factor = dyn_klu_factor;
     s->solve = dyn_klu_solve;
+    s->forget = dyn_klu_forget;
     if (!k)
         return 1;
     klu_defaults(&k->common);

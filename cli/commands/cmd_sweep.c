@@ -995,6 +995,17 @@ static int sweep_command(int argc, char **argv, int rank, int ranks)
     s.skip = skip;
     s.threads = (int)threads;
     s.seed = sp.seed;
+    /* the matrices of a stiff method, those of dynkit run (cli_linear_choose): the band with
+     * LAPACK's LU when built with it, else sparse matrices with KLU, one solver a thread */
+    s.band_solver = cli_band_solver();
+    if (dyn_method_is_stiff(run.method)) {
+        cli_linear lin;
+        cli_linear_choose(m, &lin);
+        if (lin.kind == CLI_LINEAR_SPARSE) {
+            s.sparse_open = cli_sparse_solver_open;
+            s.sparse_close = cli_sparse_solver_close;
+        }
+    }
     s.noise_method = cli_method_is_rkmil(run.method)    ? DYN_SDE_RKMIL
                      : dyn_method_is_map(run.method) ? DYN_SDE_MAP
                                                      : DYN_SDE_EM;

@@ -76,12 +76,17 @@ void dyn_sparse_pattern_band(const dyn_sparse_pattern *p, int *lower, int *upper
  * matrix with pattern p and values ax (p->nnz, in the pattern's order); every call of one
  * solve passes the same pattern, so the analysis of the first call can be kept. Returns 0,
  * > 0 when the matrix is singular (to working precision), < 0 when the solver failed
- * otherwise (out of memory). solve: b (n) := A^-1 b from the last factors. */
+ * otherwise (out of memory). solve: b (n) := A^-1 b from the last factors. forget (may be
+ * NULL): drop the numeric factors and keep the analysis of the pattern, so that the next
+ * factor chooses its pivots anew; dyn_solve calls it when it starts, so a solve's numbers
+ * do not depend on the solves before it with the same solver (a sweep's runs on one thread
+ * share one solver and its analysis, dynkit/sweep.h). */
 typedef struct dyn_sparse_solver {
     const char *name;
     void *ctx;
     int (*factor)(void *ctx, const dyn_sparse_pattern *p, const double *ax);
     void (*solve)(void *ctx, int n, double *b);
+    void (*forget)(void *ctx);
 } dyn_sparse_solver;
 
 /* An event: a sign change of g(t, y; par), located on the solution (dyn_solve).

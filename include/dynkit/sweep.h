@@ -168,6 +168,18 @@ typedef struct dyn_sweep {
      * series[(i n_series + k) n_states ..]; what a run does not reach is left alone. */
     double *series;
     long n_series, series_every;
+    /* The linear algebra of a stiff method (rodas4), as a single run takes it
+     * (dyn_solve_opts): the model's band (model->jac_banded) is always used, factored by
+     * band_solver (NULL: dyn_band_solver_builtin). With sparse_open, a model with a sparse
+     * pattern and its values (model->jac_pattern, jacobian_sparse) and no band runs with
+     * sparse matrices: each thread has a dyn_sparse_solver of its own, filled by sparse_open
+     * (e.g. dyn_klu_init, dynkit/klu.h) before its first run and given back to sparse_close
+     * after its last, so one analysis of the pattern serves all of the thread's runs (each
+     * run pivots anew: dyn_sparse_solver.forget, and the results stay those of any number
+     * of threads). NULL: dense matrices. */
+    const dyn_band_solver *band_solver;
+    int (*sparse_open)(dyn_sparse_solver *solver);
+    void (*sparse_close)(dyn_sparse_solver *solver);
 } dyn_sweep;
 
 /* Run the sweep: results is (n_runs x n_reduce) doubles, row-major, status (n_runs) ints;

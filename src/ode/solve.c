@@ -354,6 +354,8 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
     st.shape.sparse = sparse_of(opts);
     st.jac_sparse = opts->jacobian_sparse;
     st.sparse_solver = opts->sparse_solver;
+    if (st.shape.sparse && st.sparse_solver->forget)
+        st.sparse_solver->forget(st.sparse_solver->ctx); /* pivots of this solve's own */
     st.tend = t1;
     st.tol = tol;
     st.work = w;

@@ -4,7 +4,9 @@
  * locate, the solver's options, the workspace sizes) is made once; each thread's workspace
  * is allocated once before the runs; a run copies the base parameters, sets its row, runs
  * the fixed-step driver (dyn_fixed_solve: fixed-step methods without events) or the general
- * driver (dyn_solve, ode.h / solve.h), and writes its own row and status only. */
+ * driver (dyn_solve, ode.h / solve.h), and writes its own row and status only. A stiff
+ * method takes the model's band or, with dyn_sweep.sparse_open, its sparse pattern, with one
+ * sparse solver per thread kept across that thread's runs. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -37,6 +39,7 @@ typedef struct plan {
     dyn_event *events;       /* (n_events) the events located, owned */
     int *event_model;        /* (n_events) their index in model->events, owned */
     dyn_solve_opts solve;    /* template of dyn_solve's options (contexts set per run) */
+    int sparse;              /* sparse matrices: each worker's solver (dyn_sweep.sparse_open) */
     dyn_fixed_opts fixed;    /* template of dyn_fixed_solve's options */
     size_t work_size, iwork_size;
     int stop;                /* the sweep is cancelled (read and written atomically) */
@@ -48,6 +51,8 @@ typedef struct worker {
     void *par;
     double *y0, *y, *out, *work;
     int *iwork;
+    dyn_sparse_solver sparse; /* the thread's sparse LU and its analysis (plan.sparse) */
+    int sparse_open;
     double *acc, *aux;       /* (n_reduce) accumulators: value, and time or previous value */
     long samples;
     long run;           /* the run being integrated */
@@ -242,6 +247,8 @@ static int run_one(worker *w, long i, double *row)
         o.event_ctx = w;
         o.progress_ctx = w;
         o.iwork = w->iwork;
+        if (p->sparse)
+            o.sparse_solver = &w->sparse;
         st = dyn_solve(s->method, &sys, s->t0, s->t1, w->y0, w->y, w->work, &o, &res);
     } else {
         dyn_fixed_opts o = p->fixed;
@@ -472,9 +479,20 @@ static int plan_make(plan *p, const dyn_sweep *s)
         o->jac_lower = m->jac_lower;
         o->jac_upper = m->jac_upper;
         o->jacobian_band = m->jacobian_band;
+        o->band_solver = s->band_solver;
+        /* sparse matrices as dyn_solve takes them; the solver is each worker's */
+        p->sparse = dyn_method_is_stiff(s->method) && s->sparse_open && !m->jac_banded &&
+                    m->jac_pattern.nnz > 0 && m->jacobian_sparse;
+        const dyn_sparse_solver sized = {0};
+        if (p->sparse) {
+            o->jac_sparse = m->jac_pattern;
+            o->jacobian_sparse = m->jacobian_sparse;
+            o->sparse_solver = &sized;
+        }
         o->progress = run_progress;
         o->progress_steps = every;
         p->work_size = dyn_solve_work_size(s->method, m->n_states, o);
+        o->sparse_solver = NULL;
         p->iwork_size = dyn_solve_iwork_size(s->method, m->n_states);
     } else {
         dyn_fixed_opts *o = &p->fixed;
@@ -495,6 +513,8 @@ static void worker_free(worker *w)
     free(w->out);
     free(w->work);
     free(w->iwork);
+    if (w->sparse_open && w->p->s->sparse_close)
+        w->p->s->sparse_close(&w->sparse);
     free(w->acc);
     free(w->aux);
 }
@@ -516,6 +536,11 @@ static int worker_make(worker *w, const plan *p)
     if (!w->par || !w->y0 || !w->y || !w->out || !w->work || (p->iwork_size && !w->iwork) ||
         !w->acc || !w->aux)
         return -1;
+    if (p->sparse) {
+        if (p->s->sparse_open(&w->sparse))
+            return -1;
+        w->sparse_open = 1;
+    }
     return 0;
 }
 

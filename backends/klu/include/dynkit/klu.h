@@ -14,11 +14,13 @@
 extern "C" {
 #endif
 
-/* Fill s with KLU's factor and solve and a new context of its own (ordering by AMD, the
- * symbolic analysis made at the first factorisation and kept; later ones refactor with the
- * same pivots while KLU's condition estimate stays above eps^(2/3), else factor anew, as
- * SUNDIALS' SUNLinSol_KLU does). 0, or 1 when memory runs out. One solver serves one solve
- * at a time; give it back with dyn_klu_release. */
+/* Fill s with KLU's factor, solve and forget and a new context of its own (ordering by
+ * AMD, the symbolic analysis made at the first factorisation and kept while the pattern is
+ * the same, across solves too; later factorisations of a solve refactor with the same
+ * pivots while KLU's condition estimate stays above eps^(2/3), else factor anew, as
+ * SUNDIALS' SUNLinSol_KLU does; each solve starts with a factorisation that pivots anew).
+ * 0, or 1 when memory runs out. One solver serves one solve at a time, and solve after
+ * solve (a sweep's thread); give it back with dyn_klu_release. */
 int dyn_klu_init(dyn_sparse_solver *s);
 /* Free what dyn_klu_init and the factorisations allocated; s may be zeroed or released. */
 void dyn_klu_release(dyn_sparse_solver *s);

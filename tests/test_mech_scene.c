@@ -94,6 +94,14 @@ static void test_statements_read(void **state_)
     double g[3];
     dyn_mech_scene_gravity(sc, g);
     CHECK(g[0] == 0 && g[1] == -9.81 && g[2] == 0, "gravity %g %g %g", g[0], g[1], g[2]);
+    /* the mass of all bodies at the default parameters (the page's weight m g, below 1e-9
+     * of which a force is not drawn): 1.5 kg and 2 x 0.25 kg */
+    CHECK(dyn_mech_scene_mass(sc) == 1.0, "the pendulum's mass %g", dyn_mech_scene_mass(sc));
+    dyn_mech_scene *two = read_text("par m1=1.5 [kg], m2=0.25 [kg]\ncoord a=0.2 [m]\n"
+                                    "point p mass=m1 at (a, 0, 0)\n"
+                                    "body b mass=2*m2 inertia=(1, 1, 1) at (0, a, 0)\n");
+    CHECK(dyn_mech_scene_mass(two) == 2.0, "two bodies' mass %g", dyn_mech_scene_mass(two));
+    dyn_mech_scene_free(two);
     /* at q = 1.1: the tip of the pendulum, the shapes' numbers */
     const double L = 0.7, q = 1.1, y[2] = {q, 0.0}, par[3] = {1, L, 9.81};
     CHECK(dyn_mech_scene_n_params(sc) == 3, "params");

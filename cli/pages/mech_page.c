@@ -116,6 +116,8 @@ int cli_json_mech(cli_json *j, const dyn_mech_scene *sc, const cli_view *v)
     dyn_mech_scene_gravity(sc, g);
     cli_json_key(j, "gravity");
     cli_json_numbers(j, g, 3, 1);
+    cli_json_key(j, "mass");
+    cli_json_number(j, dyn_mech_scene_mass(sc));
     cli_json_key(j, "constraints");
     cli_json_begin_array(j);
     for (int k = 0; k < dyn_mech_scene_n_constraints(sc); k++)

@@ -112,6 +112,9 @@ const char *dyn_mech_scene_constraint(const dyn_mech_scene *s, int k);
 int dyn_mech_scene_n_params(const dyn_mech_scene *s);
 /* gravity at the default parameters, (0, 0, 0) when none */
 void dyn_mech_scene_gravity(const dyn_mech_scene *s, double g[3]);
+/* the mass of all bodies and point masses at the default parameters and initial state (kg;
+ * the scale m |g| below which the page draws no constraint force) */
+double dyn_mech_scene_mass(const dyn_mech_scene *s);
 
 /* One frame: t, the states y (the model's: coordinates, then speeds) and the parameters
  * (dyn_mech_scene_n_params values, the model's order). Into pose (12 per body: the mass

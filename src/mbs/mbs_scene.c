@@ -28,6 +28,7 @@ struct dyn_mech_scene {
     item *items;
     int n_items, n_values;
     double gravity[3];
+    double mass; /* of all bodies and point masses */
 };
 
 static const int n_values_of[DYN_MECH_SHAPE_COUNT] = {
@@ -121,7 +122,7 @@ static void build(dyn_mech_scene *sc)
 static void scene_front(lang_ctx *c) { c->hook_ctx = mbs_read(c); }
 
 static int evaluate(const dyn_mech_scene *s, double t, const double *y, const double *params,
-                    double *pose, double *values, double g[3]);
+                    double *pose, double *values, double g[3], double *mass);
 
 static int read_guarded(dyn_mech_scene *sc, dyn_lang_diag *diag)
 {
@@ -177,7 +178,8 @@ int dyn_mech_scene_read(const char *path, const char *text, size_t len,
     c->len = 0;
     c->table_files = NULL;
     c->n_table_files = 0;
-    /* gravity at the default parameters, for the page's "up" */
+    /* gravity and the mass at the default parameters, for the page's "up" and the
+     * arrows' weight m g */
     const int np = dyn_mech_scene_n_params(sc);
     double *par = calloc((size_t)np + 1, sizeof *par);
     double *pose = calloc((size_t)12 * (size_t)sc->mb->bodies.n + 1, sizeof *pose);
@@ -192,7 +194,7 @@ int dyn_mech_scene_read(const char *path, const char *text, size_t len,
     }
     for (int i = 0; i < np; i++)
         par[i] = LVEC_AT(c->m.params, lang_param, i).value;
-    const int bad = evaluate(sc, c->m.t0, NULL, par, pose, vals, sc->gravity);
+    const int bad = evaluate(sc, c->m.t0, NULL, par, pose, vals, sc->gravity, &sc->mass);
     free(par);
     free(pose);
     free(vals);
@@ -245,6 +247,8 @@ const char *dyn_mech_scene_constraint(const dyn_mech_scene *s, int k)
 }
 
 int dyn_mech_scene_n_params(const dyn_mech_scene *s) { return s ? s->c->m.params.n : 0; }
+
+double dyn_mech_scene_mass(const dyn_mech_scene *s) { return s ? s->mass : 0.0; }
 
 void dyn_mech_scene_gravity(const dyn_mech_scene *s, double g[3])
 {
@@ -485,9 +489,10 @@ static void shape_values(const frame *f, const item *it, double *v)
     }
 }
 
-/* one frame (y NULL: the default initial state), gravity into g */
+/* one frame (y NULL: the default initial state), gravity into g and the total mass into
+ * *mass */
 static int evaluate(const dyn_mech_scene *s, double t, const double *y, const double *params,
-                    double *pose, double *values, double g[3])
+                    double *pose, double *values, double g[3], double *mass)
 {
     const lang_model *m = &s->c->m;
     const int np = m->params.n, nd = m->derived.n, nfix = m->fixes.n;
@@ -526,8 +531,11 @@ static int evaluate(const dyn_mech_scene *s, double t, const double *y, const do
     const mbs_model *mb = s->mb;
     for (int k = 0; k < 3; k++)
         f.g[k] = g[k] = in(&f, mb->gravity[k], 0.0);
-    for (int b = 0; b < mb->bodies.n; b++)
+    *mass = 0.0;
+    for (int b = 0; b < mb->bodies.n; b++) {
         body_pose(&f, mb, b);
+        *mass += in(&f, LVEC_AT(mb->bodies, mbs_body, b).mass, 0.0);
+    }
     for (int i = 0; i < s->n_items; i++)
         shape_values(&f, &s->items[i], values + s->items[i].pub.offset);
     if (pv != pv_stack)
@@ -541,8 +549,8 @@ static int evaluate(const dyn_mech_scene *s, double t, const double *y, const do
 int dyn_mech_scene_eval(const dyn_mech_scene *s, double t, const double *y,
                         const double *params, double *pose, double *values)
 {
-    double g[3];
+    double g[3], mass;
     if (!s || !y || !params || !pose || !values)
         return 0;
-    return evaluate(s, t, y, params, pose, values, g);
+    return evaluate(s, t, y, params, pose, values, g, &mass);
 }

@@ -86,7 +86,9 @@ const pages = [
   // mechanism files drawn from their geometry: the top in 3D (the scale bar, the orbit), the
   // four-bar in its plane on equal scales, with its constraint forces as arrows
   { name: 'mech-top', args: ['animate', path.join(here, '..', '..', 'examples', 'mechanisms', 'top.mech')], scene: true, mech: '3d' },
-  { name: 'mech-fourbar', args: ['animate', path.join(here, '..', '..', 'examples', 'mechanisms', 'fourbar.mech')], mech: '2d' },
+  { name: 'mech-fourbar', args: ['animate', path.join(here, '..', '..', 'examples', 'mechanisms', 'fourbar.mech')], mech: '2d', read: /loop_x = -?[0-9]/, arrows: /^arrows: 1 m = [0-9.]+ N, none below [0-9.e+-]+ N$/ },
+  // a bead on a rail along gravity: the rail's force is rounding (1e-10 N), not drawn
+  { name: 'mech-rail', args: ['animate', path.join(here, 'rail.mech')], mech: '2d', read: /rail = -?[0-9]/, arrows: /^arrows: none, all below 9\.8e-9 N \(1e-9 m g\)$/ },
   // a model in milliseconds with an XPPAUT window, mV against a unitless gate
   { name: 'morris-lecar', args: ['animate', path.join(here, 'morris_lecar.ode')] },
 ];
@@ -361,9 +363,10 @@ async function checkPage(spec, vp) {
     check(await page.evaluate(() => document.body.classList.contains('no-picture')), 'a model without a picture gets the time series only');
   }
   if (spec.mech) {
-    const m = await page.evaluate(() => { const v = document.getElementById('view'); return { view: v && v.dataset.mechView, read: (document.querySelector('.mech-readouts') || {}).textContent || '' }; });
+    const m = await page.evaluate(() => { const v = document.getElementById('view'); return { view: v && v.dataset.mechView, arrows: v && v.dataset.mechArrows, read: (document.querySelector('.mech-readouts') || {}).textContent || '' }; });
     check(m.view === spec.mech, `the mechanism is drawn in ${spec.mech} (${m.view})`);
-    if (spec.mech === '2d') check(/loop_x = -?[0-9]/.test(m.read) && / N/.test(m.read), `the constraint forces are read out with their unit ('${m.read}')`);
+    if (spec.arrows) check(spec.arrows.test(m.arrows || ''), `the arrows' legend says which forces are drawn ('${m.arrows}')`);
+    if (spec.read) check(spec.read.test(m.read) && / N/.test(m.read), `the constraint forces are read out with their unit ('${m.read}')`);
   }
 
   // controls of the first player: button, slider, keys, speed

@@ -4,7 +4,8 @@
  * rotation R, N to B, and each shape's numbers in N): boxes, cylinders and disks turned with
  * their body (points at x + R' p), spheres, rods, springs, the axes of a body, the ground as
  * a grid, the paths of traced points, and the constraint forces as arrows (a multiplier
- * times its direction) scaled by a legend, with every multiplier's value below the picture.
+ * times its direction) scaled by a legend (a force below 1e-9 of the weight m g, or below
+ * 1e-3 of the largest force, is not drawn), with every multiplier's value below the picture.
  * In 3D (DK.SceneView, the plane's view, with gravity pointing down) or, when everything
  * moves in one plane of N (every point keeps one coordinate and every rotation is about
  * that axis), in 2D on equal scales. */
@@ -120,10 +121,16 @@
     /* the followed point: the first body's mass centre in the first run */
     const centreAt = t => pose(mr0, 0, DK.locate(runs[0].t, t)).x;
     const auto = { sphere: 0.04 * L, frame: 0.2 * L, ground: 0.7 * L };
-    /* the arrows: |lambda| at most a quarter of the size, at a round scale */
+    /* the arrows: |lambda| at most a quarter of the size, at a round scale. A force below
+     * ARROW_WEIGHT of the weight m |g| (rounding left of a zero force) or below
+     * ARROW_FRACTION of the largest force drawn (shorter than a pixel) is not drawn */
+    const ARROW_WEIGHT = 1e-9, ARROW_FRACTION = 1e-3;
     const forces = [...new Set(mech.shapes.filter(s => s.kind === 'arrow').map(s => s.force))];
     let fmax = 0;
     for (const r of runs) for (const f of forces) for (const x of r.cols[f] || []) if (isFinite(x)) fmax = Math.max(fmax, Math.abs(x));
+    const weight = (mech.mass || 0) * Math.hypot(...(mech.gravity || [0, 0, 0]));
+    if (fmax < ARROW_WEIGHT * weight) fmax = 0;
+    const fmin = Math.max(ARROW_FRACTION * fmax, ARROW_WEIGHT * weight); /* drawn from it on */
     const perM = fmax > 0 ? DK.niceStep(fmax / (0.25 * L), 1) : 1; /* force units per metre of arrow */
     const funit = forces.length ? DK.unit(runs[0].raw, forces[0]) : '';
     const axis = planarAxis(mech, runs);
@@ -182,7 +189,7 @@
           }
           case 'arrow': {
             const f = r.cols[s.force] ? DK.at(r.cols[s.force], pos) : NaN;
-            if (!isFinite(f) || f === 0) break;
+            if (!isFinite(f) || f === 0 || Math.abs(f) < fmin) break;
             const a = v.slice(0, 3), b = add(a, v.slice(3, 6), f / perM);
             out.push({ kind: 'arrow', a, b, color: s.color || '#c2185b', label: s.force });
             break;
@@ -190,7 +197,10 @@
         }
       });
     }
-    const legendText = forces.length ? 'arrows: 1 m = ' + DK.fmt(perM, 3) + (funit ? ' ' + funit : '') : '';
+    const fu = funit ? ' ' + funit : '';
+    const legendText = !forces.length ? ''
+      : fmax > 0 ? 'arrows: 1 m = ' + DK.fmt(perM, 3) + fu + (fmin > 0 ? ', none below ' + DK.fmt(fmin, 2) + fu : '')
+      : 'arrows: none, all below ' + DK.fmt(fmin, 2) + fu + ' (1e-9 m g)';
     let view;
     if (axis >= 0) view = view2d(container, runs, mech, player, axis, prims, { lo, hi, L, legendText });
     else view = view3d(container, runs, mech, player, prims, { lo, hi, L, mid, legendText, follow, centreAt });
@@ -198,6 +208,7 @@
     readouts(player.t);
     player.onTime(readouts);
     container.dataset.mechView = axis >= 0 ? '2d' : '3d';
+    container.dataset.mechArrows = legendText;
     return view;
   };
 

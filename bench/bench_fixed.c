@@ -33,6 +33,7 @@
 #include <dynkit/ode_inline.h>
 
 #include "bench_systems.h"
+#include "bench_util.h"
 #include "hand_loops.h"
 
 #define MAX_N 12
@@ -201,18 +202,6 @@ static double time_variant(const bench_case *bc, int v, const dyn_tableau *m, lo
     return elapsed;
 }
 
-static int cmp_double(const void *pa, const void *pb)
-{
-    double a = *(const double *)pa, b = *(const double *)pb;
-    return (a > b) - (a < b);
-}
-
-static double median(double *v, int count)
-{
-    qsort(v, (size_t)count, sizeof *v, cmp_double);
-    return count % 2 ? v[count / 2] : 0.5 * (v[count / 2 - 1] + v[count / 2]);
-}
-
 static double rel_diff(const double *a, const double *b, int n)
 {
     double diff = 0.0, scale = 0.0;
@@ -257,7 +246,7 @@ static int run_case(const bench_case *bc, const dyn_tableau *m, int reps, int qu
     }
     double med[NVARIANT], min[NVARIANT];
     for (int v = 0; v < NVARIANT; v++) {
-        med[v] = median(samples + v * reps, reps); /* sorts, so [0] is then the minimum */
+        med[v] = bench_median(samples + v * reps, reps); /* sorts, so [0] is then the minimum */
         min[v] = samples[v * reps];
     }
     free(samples);

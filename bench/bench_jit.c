@@ -44,6 +44,7 @@
 #include <dynkit/models.h>
 #include <dynkit/ode.h>
 #include "bench_clock.h"
+#include "bench_util.h"
 
 #define MAX_REPS 101
 
@@ -60,18 +61,12 @@ static double cpu_now(void)
            1e-6 * (double)ru.ru_stime.tv_usec;
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
+/* the median of v, left in its order */
 static double median(const double *v, int n)
 {
     double s[MAX_REPS];
     memcpy(s, v, (size_t)n * sizeof *s);
-    qsort(s, (size_t)n, sizeof *s, cmp_double);
-    return n % 2 ? s[n / 2] : 0.5 * (s[n / 2 - 1] + s[n / 2]);
+    return bench_median(s, n);
 }
 
 static double minimum(const double *v, int n)

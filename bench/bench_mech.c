@@ -36,6 +36,7 @@
 #include <dynkit/mbs.h>
 #include <dynkit/model.h>
 #include "bench_clock.h"
+#include "bench_util.h"
 
 #define MAX_REPS 101
 
@@ -57,27 +58,6 @@ static int remove_one(const char *path, const struct stat *sb, int flag, struct 
     (void)flag;
     (void)ftw;
     return remove(path);
-}
-
-static char *read_text(const char *path, size_t *len)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    const long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *s = malloc((size_t)n + 1);
-    if (s && fread(s, 1, (size_t)n, f) != (size_t)n) {
-        free(s);
-        s = NULL;
-    }
-    fclose(f);
-    if (s) {
-        s[n] = '\0';
-        *len = (size_t)n;
-    }
-    return s;
 }
 
 /* a model and its parameters and default state */
@@ -148,7 +128,7 @@ static long calibrate(subject *s)
 static char *derive(const char *path, double *t, size_t *bytes)
 {
     size_t len;
-    char *text = read_text(path, &len);
+    char *text = bench_read_text(path, &len);
     if (!text) {
         fprintf(stderr, "bench_mech: cannot read %s\n", path);
         return NULL;
@@ -191,18 +171,6 @@ static int compile(const char *path, const char *c_src, dyn_jit_backend b, subje
     s->m = s->jm.model;
     s->name = path;
     return prepare(s);
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    const double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 /* section 2 for one file */
@@ -307,7 +275,7 @@ int main(int argc, char **argv)
     printf("| model | hand-written built-in [ns] | derived from .mech [ns] | ratio |\n"
            "|---|---|---|---|\n");
     for (int k = 0; k < 2; k++) {
-        const double b = median(S[2 * k].ns, reps), d = median(S[2 * k + 1].ns, reps);
+        const double b = bench_median(S[2 * k].ns, reps), d = bench_median(S[2 * k + 1].ns, reps);
         printf("| %s | %.1f | %.1f | %.2f |\n", pairs[k][0], b, d, d / b);
     }
     for (int k = 0; k < 4; k++)

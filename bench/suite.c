@@ -64,6 +64,7 @@
 #include "family.h"
 #include "hand_loops.h"
 #include "suite.h"
+#include "bench_util.h"
 #include "wp_front.h"
 #include "wp_svg.h"
 
@@ -719,18 +720,6 @@ static double now_ns(void)
     return (double)ts.tv_sec * 1e9 + (double)ts.tv_nsec;
 }
 
-static int cmp_double(const void *pa, const void *pb)
-{
-    const double a = *(const double *)pa, b = *(const double *)pb;
-    return (a > b) - (a < b);
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 typedef struct meas {
     int ok;            /* every run succeeded */
     int deterministic; /* two runs gave the same bits */
@@ -815,7 +804,7 @@ static void measure(item *it, int count, int n, int reps, double target_ns, cons
         }
     for (int i = 0; i < count && reps > 0; i++)
         if (it[i].m->ok) {
-            it[i].m->med = median(samples + i * reps, reps);
+            it[i].m->med = bench_median(samples + i * reps, reps);
             it[i].m->min = samples[i * reps];
             if (use_min)
                 it[i].m->med = it[i].m->min; /* every table and target then uses it */
@@ -1320,8 +1309,8 @@ static int time_report(const char *cli, char *const *extra, int runs, double *me
         posix_spawn_file_actions_destroy(&fa);
     }
     if (ok) {
-        *med = median(t, runs) / 1e6;
-        *min = t[0] / 1e6; /* median() sorts */
+        *med = bench_median(t, runs) / 1e6;
+        *min = t[0] / 1e6; /* bench_median() sorts */
     }
     free(t);
     return ok ? 0 : -1;

@@ -19,6 +19,7 @@
 
 #include "test_cli_run.h"
 #include "test_util.h"
+#include "test_mech_util.h"
 
 #define MECH DYNKIT_SOURCE_DIR "/examples/mechanisms/"
 
@@ -197,20 +198,6 @@ static void test_project_init_closes_the_fourbar(void **state_)
     cli_free(&r);
 }
 
-/* text as bad.mech, run: exit 2 with where and what in the message */
-static void refused(const char *text, const char *where, const char *what)
-{
-    FILE *f = fopen(cli_path("bad.mech"), "w");
-    assert_non_null(f);
-    fputs(text, f);
-    fclose(f);
-    cli_result r = cli("run %s", cli_path("bad.mech"));
-    CHECK(r.status == 2 && strstr(r.err, where) && strstr(r.err, what),
-          "status %d, expected '%s' and '%s' in:\n%s\nfor:\n%s", r.status, where, what, r.err,
-          text);
-    cli_free(&r);
-}
-
 /* Units that do not add up, at their place with both units: a sum of m and 1/s, sin of a
  * length, a force in kg/s, a mass in kg m, the two sides of a constraint, a constraint
  * against its declared unit, a prescribed motion against its coordinate's. Undeclared
@@ -222,24 +209,24 @@ static void test_units_that_do_not_add_up_are_named(void **state_)
                        "k=3\n";
     char buf[1024];
     snprintf(buf, sizeof buf, "%spoint p mass=m at (x + w, 0, 0)\n", head);
-    refused(buf, "bad.mech:3:22:", "the units do not add up: the terms are in m and in 1/s");
+    mech_refused(buf, "bad.mech:3:22:", "the units do not add up: the terms are in m and in 1/s");
     snprintf(buf, sizeof buf, "%spoint p mass=m at (x, sin(x), 0)\n", head);
-    refused(buf, "bad.mech:3:27:", "sin of a quantity in m");
+    mech_refused(buf, "bad.mech:3:27:", "sin of a quantity in m");
     snprintf(buf, sizeof buf, "%spoint p mass=m at (x, 0, 0)\nforce f on p = (F, m*w, 0)\n",
              head);
-    refused(buf, "bad.mech:4:20:", "force 'f' is in kg/s, not in N");
+    mech_refused(buf, "bad.mech:4:20:", "force 'f' is in kg/s, not in N");
     snprintf(buf, sizeof buf, "%sbody b mass=m*l inertia=(1, 1, 1) at (x, 0, 0) rot z:phi\n",
              head);
-    refused(buf, "bad.mech:3:13:", "the mass of 'b' is in kg m, not in kg");
+    mech_refused(buf, "bad.mech:3:13:", "the mass of 'b' is in kg m, not in kg");
     snprintf(buf, sizeof buf, "%spoint p mass=m at (x, l*phi, 0)\nconstraint c [m]: x = dx\n",
              head);
-    refused(buf, "bad.mech:4:23:", "the sides of constraint 'c' are in m and in m/s");
+    mech_refused(buf, "bad.mech:4:23:", "the sides of constraint 'c' are in m and in m/s");
     snprintf(buf, sizeof buf, "%spoint p mass=m at (x, l*phi, 0)\nconstraint c [m/s]: x = l\n",
              head);
-    refused(buf, "bad.mech:4:21:", "constraint 'c' is in m, not in m/s");
+    mech_refused(buf, "bad.mech:4:21:", "constraint 'c' is in m, not in m/s");
     snprintf(buf, sizeof buf, "%spoint p mass=m at (x, l*phi, 0)\nprescribe d: x = w*t\n",
              head);
-    refused(buf, "bad.mech:4:18:", "the sides of prescribe 'd' are in m and in 1");
+    mech_refused(buf, "bad.mech:4:18:", "the sides of prescribe 'd' are in m and in 1");
     /* lenient: k has no unit, numbers take the unit they need */
     snprintf(buf, sizeof buf, "%spoint p mass=m at (x + k + 1, l/2*sin(phi) + 0.5, 0)\n"
              "init x=1\n", head);
@@ -258,10 +245,10 @@ static void test_units_that_do_not_add_up_are_named(void **state_)
 static void test_singular_and_redundant_name_the_combination(void **state_)
 {
     (void)state_;
-    refused("coord x=1, y=0, z=0\npoint p mass=1 at (x+2*z, y, 0)\n", "bad.mech:1:17:",
+    mech_refused("coord x=1, y=0, z=0\npoint p mass=1 at (x+2*z, y, 0)\n", "bad.mech:1:17:",
             "z moves no mass that the coordinates before it do not (the rates dz = 1, dx = -2 "
             "together move no mass");
-    refused("coord x=1, y=0\npoint p mass=1 at (x, y, 0)\nconstraint c1: x-1 = 0\n"
+    mech_refused("coord x=1, y=0\npoint p mass=1 at (x, y, 0)\nconstraint c1: x-1 = 0\n"
             "constraint c3: y = 0\nconstraint c2: 2*x-2 + 3*y = 0\n", "bad.mech:5:12:",
             "its row depends on those of c1, c3 (D[c2] = 2 D[c1] + 3 D[c3]");
 }
@@ -289,7 +276,7 @@ static void test_spring_laws_are_checked(void **state_)
         snprintf(buf, sizeof buf, "par k=3\nF(x, v)=k*x + x^3\nG(x)=k*x^2/2 + x^4/4\n"
                  "coord s=1\npoint p mass=1 at (s, 0, 0)\nspring h between ground and p %s\n"
                  "E(x)=k*x^2/2 + x^4/2\n", cases[i][0]);
-        refused(buf, cases[i][1], cases[i][2]);
+        mech_refused(buf, cases[i][1], cases[i][2]);
     }
     for (int shift = 0; shift < 2; shift++) {
         FILE *f = fopen(cli_path("good.mech"), "w");
@@ -328,7 +315,7 @@ static void test_spring_law_units(void **state_)
         snprintf(buf, sizeof buf, "par m=2 [kg], %s, c=0.5 [N s/m], L=1 [m]\ncoord s=1.8 [m]\n"
                  "point p mass=m at (s, 0, 0)\n%s\nspring h between ground and p law=F%s l0=L\n",
                  cases[i][0], cases[i][1], strstr(cases[i][1], "G(x)") ? " energy=G" : "");
-        refused(buf, cases[i][2], cases[i][3]);
+        mech_refused(buf, cases[i][2], cases[i][3]);
     }
     static const char *const good[] = {
         "par m=2\ncoord s=1.8\npoint p mass=m at (s, 0, 0)\nF(x, v)=3*x + x^3 + v\n"

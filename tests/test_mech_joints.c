@@ -29,6 +29,7 @@
 #include "dynkit/mbs.h"
 #include "test_cli_run.h"
 #include "test_util.h"
+#include "test_mech_util.h"
 
 #define MECH DYNKIT_SOURCE_DIR "/examples/mechanisms/"
 #define TIGHT "--method dop853 --rtol 1e-12 --atol 1e-12"
@@ -541,16 +542,6 @@ static void test_derive_says_when_m_plus_dtd_is_solved(void **state_)
     cli_free(&r);
 }
 
-static dyn_mech_scene *scene_of(const char *text)
-{
-    dyn_mech_scene *sc = NULL;
-    dyn_lang_diag d;
-    char buf[2048];
-    const int rc = dyn_mech_scene_read("t.mech", text, strlen(text), NULL, 0, &sc, &d);
-    CHECK(rc == 0, "%s", dyn_lang_diag_format(&d, buf, sizeof buf));
-    return sc;
-}
-
 /* The picture's poses (dyn_mech_scene_eval) of joints: a slider at (s, 0, 0) by its
  * prismatic joint, along x or along the vector (3, 0, 0), the bob below it at
  * (s + l sin(phi), -l cos(phi), 0) by a revolute joint about z or about (0, 0, 2). */
@@ -567,7 +558,7 @@ static void test_picture_follows_the_joints(void **state_)
                  "gravity 0, -g, 0\npoint slider mass=2 prismatic ground %s:s\n"
                  "point bob mass=1 revolute slider %s:phi pivot (0, l, 0)\n",
                  axes[v][0], axes[v][1]);
-        dyn_mech_scene *sc = scene_of(text);
+        dyn_mech_scene *sc = mech_scene_of(text);
         CHECK(dyn_mech_scene_n_params(sc) == 2, "%d parameters", dyn_mech_scene_n_params(sc));
         for (int k = 0; k < 20; k++) {
             const double sv = 0.3 * k - 2, phi = 0.37 * k - 3;
@@ -583,56 +574,45 @@ static void test_picture_follows_the_joints(void **state_)
     CHECK(worst < 1e-14, "largest difference %.3g m", worst);
 }
 
-static void expect_error(const char *text, const char *where, const char *what)
-{
-    const char *path = cli_path("bad.mech");
-    write_file(path, text);
-    cli_result r = cli("run %s", path);
-    CHECK(r.status == 2, "status %d for:\n%s", r.status, text);
-    CHECK(strstr(r.err, where) && strstr(r.err, what), "expected '%s' and '%s' in:\n%s", where,
-          what, r.err);
-    cli_free(&r);
-}
-
 static void test_joint_and_speed_errors(void **state_)
 {
     (void)state_;
     const char *head = "coord a=0.1 [rad], b=0 [rad]\n";
     char buf[1024];
     snprintf(buf, sizeof buf, "%spoint p mass=1 revolute arm z:a pivot (0, 1, 0)\n", head);
-    expect_error(buf, "bad.mech:2:25:", "unknown body 'arm'");
+    mech_refused(buf, "bad.mech:2:25:", "unknown body 'arm'");
     snprintf(buf, sizeof buf, "%spoint p mass=1 revolute p z:a\n", head);
-    expect_error(buf, "bad.mech:2:25:", "'p' cannot be its own parent");
+    mech_refused(buf, "bad.mech:2:25:", "'p' cannot be its own parent");
     snprintf(buf, sizeof buf,
              "%spoint p mass=1 revolute ground z:a pivot (0, 1, 0)\n"
              "point q mass=1 revolute p z:a pivot (0, 1, 0)\n",
              head);
-    expect_error(buf, "bad.mech:3:29:", "coordinate 'a' already moves the joint of 'p'");
+    mech_refused(buf, "bad.mech:3:29:", "coordinate 'a' already moves the joint of 'p'");
     snprintf(buf, sizeof buf, "%spoint p mass=1 revolute ground z:2*a\n", head);
-    expect_error(buf, "bad.mech:2:34:",
+    mech_refused(buf, "bad.mech:2:34:",
                  "each angle of the revolute joint of 'p' is a "
                  "coordinate's name");
     snprintf(buf, sizeof buf, "%spoint p mass=1 revolute ground z:a x:b\n", head);
-    expect_error(buf, "bad.mech:2:32:", "a revolute joint has one axis and one coordinate");
+    mech_refused(buf, "bad.mech:2:32:", "a revolute joint has one axis and one coordinate");
     /* a misspelt axis names the joint's own form, not that of 'rot' */
     snprintf(buf, sizeof buf, "%spoint p mass=1 revolute ground w:a\n", head);
-    expect_error(buf, "bad.mech:2:32:", "expected the revolute joint's AXIS:q after its parent");
+    mech_refused(buf, "bad.mech:2:32:", "expected the revolute joint's AXIS:q after its parent");
     snprintf(buf, sizeof buf, "%spoint p mass=1 prismatic ground\n", head);
-    expect_error(buf, "bad.mech:2:32:", "expected the prismatic joint's AXIS:q after its parent");
+    mech_refused(buf, "bad.mech:2:32:", "expected the prismatic joint's AXIS:q after its parent");
     snprintf(buf, sizeof buf, "%spoint p mass=1 at (a, b, 0) revolute ground z:a\n", head);
-    expect_error(buf, "bad.mech:2:29:", "placed either by a joint or by at (x, y, z)");
+    mech_refused(buf, "bad.mech:2:29:", "placed either by a joint or by at (x, y, z)");
     snprintf(buf, sizeof buf, "%sspeeds u\nrate a' = u\npoint p mass=1 at (a, b, 0)\n", head);
-    expect_error(buf, "bad.mech:2:8:", "1 speeds for 2 coordinates");
+    mech_refused(buf, "bad.mech:2:8:", "1 speeds for 2 coordinates");
     snprintf(buf, sizeof buf, "%sspeeds u, v\nrate a' = u\npoint p mass=1 at (a, b, 0)\n", head);
-    expect_error(buf, "bad.mech:1:20:", "coordinate 'b' has no rate");
+    mech_refused(buf, "bad.mech:1:20:", "coordinate 'b' has no rate");
     snprintf(buf, sizeof buf, "%sspeeds u, v\nrate a' = u*v, b' = v\npoint p mass=1 at (a, b, 0)\n",
              head);
-    expect_error(buf, "bad.mech:3:6:", "the rate of 'a' is not linear in the speeds");
+    mech_refused(buf, "bad.mech:3:6:", "the rate of 'a' is not linear in the speeds");
     snprintf(buf, sizeof buf,
              "%sspeeds u, v\nrate a' = u + 1, b' = v\npoint p mass=1 at (a, b, 0)\n", head);
-    expect_error(buf, "bad.mech:3:6:", "the rate of 'a' is 1 with all speeds 0");
+    mech_refused(buf, "bad.mech:3:6:", "the rate of 'a' is 1 with all speeds 0");
     snprintf(buf, sizeof buf, "%srate a' = da\npoint p mass=1 at (a, b, 0)\n", head);
-    expect_error(buf, "bad.mech:2:6:", "a rate line needs the generalized speeds");
+    mech_refused(buf, "bad.mech:2:6:", "a rate line needs the generalized speeds");
 }
 
 int main(void)

@@ -20,6 +20,7 @@
 #include "dynkit/mbs.h"
 #include "test_cli_run.h"
 #include "test_util.h"
+#include "test_mech_util.h"
 
 #define MECH DYNKIT_SOURCE_DIR "/examples/mechanisms/"
 
@@ -29,29 +30,6 @@ static int setup_all(void **state)
 {
     (void)state;
     return cli_make_tmpdir_with_cache("mech-scene", cache_dir, sizeof cache_dir);
-}
-
-static dyn_mech_scene *read_text(const char *text)
-{
-    dyn_mech_scene *sc = NULL;
-    dyn_lang_diag d;
-    char buf[2048];
-    const int rc = dyn_mech_scene_read("t.mech", text, strlen(text), NULL, 0, &sc, &d);
-    CHECK(rc == 0, "%s", dyn_lang_diag_format(&d, buf, sizeof buf));
-    return sc;
-}
-
-static dyn_mech_scene *read_path(const char *path)
-{
-    size_t len;
-    char *text = cli_read_file(path, &len);
-    dyn_mech_scene *sc = NULL;
-    dyn_lang_diag d;
-    char buf[2048];
-    const int rc = dyn_mech_scene_read(path, text, len, NULL, 0, &sc, &d);
-    free(text);
-    CHECK(rc == 0, "%s", dyn_lang_diag_format(&d, buf, sizeof buf));
-    return sc;
 }
 
 static const char *pendulum =
@@ -74,7 +52,7 @@ static const char *pendulum =
 static void test_statements_read(void **state_)
 {
     (void)state_;
-    dyn_mech_scene *sc = read_text(pendulum);
+    dyn_mech_scene *sc = mech_scene_of(pendulum);
     static const dyn_mech_shape_kind kinds[] = {
         DYN_MECH_ROD,      DYN_MECH_SPHERE, DYN_MECH_BOX,    DYN_MECH_CYLINDER, DYN_MECH_CYLINDER,
         DYN_MECH_FRAME,    DYN_MECH_GROUND, DYN_MECH_TRACE,  DYN_MECH_ARROW};
@@ -97,7 +75,7 @@ static void test_statements_read(void **state_)
     /* the mass of all bodies at the default parameters (the page's weight m g, below 1e-9
      * of which a force is not drawn): 1.5 kg and 2 x 0.25 kg */
     CHECK(dyn_mech_scene_mass(sc) == 1.0, "the pendulum's mass %g", dyn_mech_scene_mass(sc));
-    dyn_mech_scene *two = read_text("par m1=1.5 [kg], m2=0.25 [kg]\ncoord a=0.2 [m]\n"
+    dyn_mech_scene *two = mech_scene_of("par m1=1.5 [kg], m2=0.25 [kg]\ncoord a=0.2 [m]\n"
                                     "point p mass=m1 at (a, 0, 0)\n"
                                     "body b mass=2*m2 inertia=(1, 1, 1) at (0, a, 0)\n");
     CHECK(dyn_mech_scene_mass(two) == 2.0, "two bodies' mass %g", dyn_mech_scene_mass(two));
@@ -140,7 +118,7 @@ static void test_statements_read(void **state_)
 static void test_default_drawing(void **state_)
 {
     (void)state_;
-    dyn_mech_scene *sc = read_path(MECH "plane_quat.mech");
+    dyn_mech_scene *sc = mech_scene_of_file(MECH "plane_quat.mech");
     int spheres = 0, frames = 0, springs = 0;
     for (int i = 0; i < dyn_mech_scene_n_shapes(sc); i++) {
         const dyn_mech_shape *s = dyn_mech_scene_shape(sc, i);
@@ -208,7 +186,7 @@ static void test_errors_name_the_place(void **state_)
 static void test_rigid_body_points_follow_the_rotation(void **state_)
 {
     (void)state_;
-    dyn_mech_scene *sc = read_path(MECH "top.mech");
+    dyn_mech_scene *sc = mech_scene_of_file(MECH "top.mech");
     int tr = -1;
     for (int i = 0; i < dyn_mech_scene_n_shapes(sc); i++)
         if (dyn_mech_scene_shape(sc, i)->kind == DYN_MECH_TRACE)
@@ -240,7 +218,7 @@ static void test_rigid_body_points_follow_the_rotation(void **state_)
 static void test_joint_poses_compose(void **state_)
 {
     (void)state_;
-    dyn_mech_scene *sc = read_path(MECH "double_pendulum_joints.mech");
+    dyn_mech_scene *sc = mech_scene_of_file(MECH "double_pendulum_joints.mech");
     CHECK(dyn_mech_scene_n_bodies(sc) == 2, "two bodies");
     const double par[5] = {1, 1, 1, 1, 9.81}; /* m1, m2, l1, l2, g */
     double worst = 0;
@@ -265,7 +243,7 @@ static void test_joint_poses_compose(void **state_)
 static void test_joint_axis_vectors(void **state_)
 {
     (void)state_;
-    dyn_mech_scene *sc = read_text("coord phi=0 [rad], s=0 [m]\n"
+    dyn_mech_scene *sc = mech_scene_of("coord phi=0 [rad], s=0 [m]\n"
                                    "par l=0.5 [m], beta=0.3, alpha=0.4, g=9.81 [m/s^2]\n"
                                    "gravity 0, -g, 0\n"
                                    "point bob mass=1 revolute ground (0, sin(beta), cos(beta)):phi "
@@ -291,7 +269,7 @@ static void test_joint_axis_vectors(void **state_)
 static void test_wheel_contact_under_the_disk(void **state_)
 {
     (void)state_;
-    dyn_mech_scene *sc = read_path(MECH "rolling_disk.mech");
+    dyn_mech_scene *sc = mech_scene_of_file(MECH "rolling_disk.mech");
     const double par[4] = {1, 0.3, 9.81, 10};
     const double y[10] = {0.4, -0.2, 0.7, 0.25, 1.3, 0, 0, 0, 0, 0}; /* x y psi theta phi */
     double pose[12], v[256];

@@ -22,6 +22,7 @@
 #include "dynkit/mbs.h"
 #include "test_cli_run.h"
 #include "test_util.h"
+#include "test_mech_util.h"
 
 #define MECH DYNKIT_SOURCE_DIR "/examples/mechanisms/"
 
@@ -754,63 +755,49 @@ static void test_animate_plays_the_ani_beside(void **state_)
     free(html);
 }
 
-static void expect_error(const char *text, const char *where, const char *what)
-{
-    const char *path = cli_path("bad.mech");
-    FILE *f = fopen(path, "w");
-    assert_non_null(f);
-    fputs(text, f);
-    fclose(f);
-    cli_result r = cli("run %s", path);
-    CHECK(r.status == 2, "status %d for:\n%s", r.status, text);
-    CHECK(strstr(r.err, where) && strstr(r.err, what), "expected '%s' and '%s' in:\n%s", where,
-          what, r.err);
-    cli_free(&r);
-}
-
 static void test_errors_name_the_place(void **state_)
 {
     (void)state_;
     const char *head = "coord x=1 [m], y=0 [m]\npar m=1 [kg]\n";
     char buf[1024];
     snprintf(buf, sizeof buf, "%spoint p mass=m at (x, yy, 0)\n", head);
-    expect_error(buf, "bad.mech:3:23:", "unknown name 'yy' (did you mean 'y'?)");
+    mech_refused(buf, "bad.mech:3:23:", "unknown name 'yy' (did you mean 'y'?)");
     snprintf(buf, sizeof buf, "%sbody b mass=m at (x, y, 0)\n", head);
-    expect_error(buf, "bad.mech:3:1:", "body 'b' has no inertia");
+    mech_refused(buf, "bad.mech:3:1:", "body 'b' has no inertia");
     snprintf(buf, sizeof buf, "%sbody b inertia=(1,1,1) at (x, y, 0)\n", head);
-    expect_error(buf, "bad.mech:3:1:", "body 'b' has no mass");
+    mech_refused(buf, "bad.mech:3:1:", "body 'b' has no mass");
     snprintf(buf, sizeof buf, "%spoint p mass=m at (x, y, 0)\nconstraint roll: dx*dy = 0\n",
              head);
-    expect_error(buf, "bad.mech:4:12:", "not linear in the speeds");
+    mech_refused(buf, "bad.mech:4:12:", "not linear in the speeds");
     snprintf(buf, sizeof buf, "%spoint p mass=m at (x, y, 0)\nspring s between p and wall k=1\n",
              head);
-    expect_error(buf, "bad.mech:4:24:", "unknown body 'wall'");
+    mech_refused(buf, "bad.mech:4:24:", "unknown body 'wall'");
     snprintf(buf, sizeof buf, "%spoint p mass=m at (x, y, 0)\nforce f on p = (1, 2)\n", head);
-    expect_error(buf, "bad.mech:4:21:", "expected ',' in the force");
-    expect_error("par m=1\npoint p mass=m at (0, 0, 0)\n", "bad.mech", "no coordinates");
+    mech_refused(buf, "bad.mech:4:21:", "expected ',' in the force");
+    mech_refused("par m=1\npoint p mass=m at (0, 0, 0)\n", "bad.mech", "no coordinates");
     snprintf(buf, sizeof buf, "%sbdy b mass=m inertia=(1,1,1) at (x, y, 0)\n", head);
-    expect_error(buf, "bad.mech:3:1:", "unknown statement 'bdy' (did you mean 'body'?)");
-    expect_error("coord x=1 [m], y=0 [m], z=0 [m]\npoint p mass=1 at (x, y, 0)\n",
+    mech_refused(buf, "bad.mech:3:1:", "unknown statement 'bdy' (did you mean 'body'?)");
+    mech_refused("coord x=1 [m], y=0 [m], z=0 [m]\npoint p mass=1 at (x, y, 0)\n",
                  "bad.mech:1:25:", "no mass or inertia moves with z");
-    expect_error("coord x=1, y=0\npoint p mass=1 at (x+y, x+y, 0)\n", "bad.mech:1:12:",
+    mech_refused("coord x=1, y=0\npoint p mass=1 at (x+y, x+y, 0)\n", "bad.mech:1:12:",
                  "y moves no mass that the coordinates before it do not");
-    expect_error("coord x=1, y=0\npoint p mass=1 at (x, y, 0)\nconstraint c1: x^2+y^2-2 = 0\n",
+    mech_refused("coord x=1, y=0\npoint p mass=1 at (x, y, 0)\nconstraint c1: x^2+y^2-2 = 0\n",
                  "bad.mech:3:12:", "constraint 'c1' does not hold at the initial state: its "
                  "value is -1");
-    expect_error("coord x=1, y=0\ninit dx=1\npoint p mass=1 at (x, y, 0)\n"
+    mech_refused("coord x=1, y=0\ninit dx=1\npoint p mass=1 at (x, y, 0)\n"
                  "constraint c1: x^2+y^2-1 = 0\n", "bad.mech:4:12:", "its rate is 2");
-    expect_error("coord x=1, y=0\npoint p mass=1 at (x, y, 0)\nconstraint c1: x-1 = 0\n"
+    mech_refused("coord x=1, y=0\npoint p mass=1 at (x, y, 0)\nconstraint c1: x-1 = 0\n"
                  "constraint c2: 2*x-2 = 0\n", "bad.mech:4:12:",
                  "constraint 'c2' is redundant at the initial state: its row depends on those "
                  "of c1");
     const char *disk = "coord x=0 [m], y=0 [m], z=1 [m], a=0 [rad]\n"
                        "body d mass=1 inertia=(1,2,1) at (x, y, z) rot z:a\n";
     snprintf(buf, sizeof buf, "%swheel w on d axis=(0, 1, 0)\n", disk);
-    expect_error(buf, "bad.mech:3:1:", "wheel 'w' needs radius=R and axis=(x, y, z)");
+    mech_refused(buf, "bad.mech:3:1:", "wheel 'w' needs radius=R and axis=(x, y, z)");
     snprintf(buf, sizeof buf, "%swheel w on d radius=1 axle=(0, 1, 0)\n", disk);
-    expect_error(buf, "bad.mech:3:23:", "unknown word 'axle' in a wheel");
+    mech_refused(buf, "bad.mech:3:23:", "unknown word 'axle' in a wheel");
     snprintf(buf, sizeof buf, "%swheel w on d radius=2 axis=(0, 1, 0)\n", disk);
-    expect_error(buf, "bad.mech:3:7:", "constraint 'w_z' does not hold at the initial state: "
+    mech_refused(buf, "bad.mech:3:7:", "constraint 'w_z' does not hold at the initial state: "
                  "its value is -1");
 }
 

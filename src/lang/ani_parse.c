@@ -750,9 +750,7 @@ int dyn_ani_parse(const char *path, const char *text, size_t len, const dyn_ani_
     c->note_ctx = note_ctx;
     const int status = parse_guarded(a, p, text, len, model, d);
     if (status) {
-        lang_free_all(c);
-        free(c);
-        free(a);
+        lang_ctx_free(c, a);
         return status;
     }
     c->diag = NULL;
@@ -766,11 +764,8 @@ int dyn_ani_parse(const char *path, const char *text, size_t len, const dyn_ani_
 
 void dyn_ani_free(dyn_ani *ani)
 {
-    if (!ani)
-        return;
-    lang_free_all(ani->c);
-    free(ani->c);
-    free(ani);
+    if (ani)
+        lang_ctx_free(ani->c, ani);
 }
 
 int dyn_ani_count(const dyn_ani *ani) { return ani ? ani->n_items : 0; }

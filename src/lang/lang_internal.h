@@ -505,9 +505,11 @@ int lang_translate(const char *path, const char *text, size_t len,
 /* The default name of a model from its path: the file name without the extension ext. */
 const char *lang_base_name(lang_ctx *c, const char *path, const char *ext);
 /* A context for the text of a file (calloc'd; NULL when out of memory): release with
- * lang_free_all and free (translate.c) */
+ * lang_ctx_free (translate.c) */
 lang_ctx *lang_ctx_new(const char *path, const char *text, size_t len,
                        const dyn_lang_table_file *tables, int n_tables, dyn_lang_diag *diag);
+/* c's arena, c and the object that holds it (owner, may be NULL) freed; c may be NULL */
+void lang_ctx_free(lang_ctx *c, void *owner);
 /* The lines of c->text (c->path) indexed, then front(c), then the model's title and
  * description completed (translate.c); fails through c->fail as every pass. */
 void lang_run_front(lang_ctx *c, void (*front)(lang_ctx *c));

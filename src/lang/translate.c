@@ -89,6 +89,14 @@ lang_ctx *lang_ctx_new(const char *path, const char *text, size_t len,
     return c;
 }
 
+void lang_ctx_free(lang_ctx *c, void *owner)
+{
+    if (c)
+        lang_free_all(c);
+    free(c);
+    free(owner);
+}
+
 int lang_translate(const char *path, const char *text, size_t len,
                    const dyn_lang_table_file *tables, int n_tables, char **c_source,
                    dyn_lang_diag *diag, dyn_lang_note_fn note, void *note_ctx,
@@ -124,16 +132,14 @@ int lang_translate(const char *path, const char *text, size_t len,
     if (setjmp(fail)) {
         const int status = c->status ? c->status : 2;
         free(c->out);
-        lang_free_all(c);
-        free(c);
+        lang_ctx_free(c, NULL);
         return status;
     }
     c->table_file_used = lang_alloc(c, (size_t)n_tables + 1);
     memset(c->table_file_used, 0, (size_t)n_tables + 1);
     lang_run_front(c, front);
     char *out = back ? back(c) : lang_emit_c(c);
-    lang_free_all(c);
-    free(c);
+    lang_ctx_free(c, NULL);
     *c_source = out;
     return 0;
 }

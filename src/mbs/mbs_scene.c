@@ -168,9 +168,7 @@ int dyn_mech_scene_read(const char *path, const char *text, size_t len,
     sc->c = c;
     const int status = read_guarded(sc, d);
     if (status) {
-        lang_free_all(c);
-        free(c);
-        free(sc);
+        lang_ctx_free(c, sc);
         return status;
     }
     c->diag = NULL;
@@ -209,11 +207,8 @@ int dyn_mech_scene_read(const char *path, const char *text, size_t len,
 
 void dyn_mech_scene_free(dyn_mech_scene *scene)
 {
-    if (!scene)
-        return;
-    lang_free_all(scene->c);
-    free(scene->c);
-    free(scene);
+    if (scene)
+        lang_ctx_free(scene->c, scene);
 }
 
 int dyn_mech_scene_n_bodies(const dyn_mech_scene *s) { return s ? s->mb->bodies.n : 0; }

@@ -55,7 +55,7 @@ static void run(dyn_sde_method method, dyn_rhs_fn f, void *par, double *noise,
                 double *y, dyn_result *res)
 {
     static double work[4096];
-    assert_true(dyn_sde_work_size(2, 1) <= 4096);
+    assert_true(dyn_sde_work_size(2, 1, 0) <= 4096);
     dyn_sde sde = {{f, 2, par}, 1, wiener_kind, noise, cls};
     assert_int_equal(dyn_sde_solve(method, &sde, 0.0, T, y0, y, work, o, res), DYN_OK);
 }
@@ -331,7 +331,6 @@ static void test_noise_refused(void **state)
     expect_refused("par a=normal(0,1)\nx'=a\n", 1, "'normal' is not a built-in function");
     expect_refused("x'=1\ninit x=ran(1)\n", 2, "random numbers");
     expect_refused("wiener w\npar k=1\n!d=w\nx'=d\n", 3, "cannot depend on the noise");
-    expect_refused("wiener w\nx'=w\nglobal 1 x-1 {x=0}\n", 1, "events");
     expect_refused("x'=normal(1)\n", 1, "normal takes 2 arguments");
 }
 

@@ -455,6 +455,41 @@ static void test_noise_bands(void **state)
         unlink(cli_path(files[k]));
 }
 
+/* Runs of a noisy integrate-and-fire neuron with a global reset: the same table on 1 and 3
+ * threads (the seed and the run's number fix each run's noise, events and all), and its
+ * mean spike count over 100 s that of a renewal process of inverse Gaussian intervals
+ * (mean 1, variance 0.09): 100 + (0.09 - 1)/2, standard deviation sqrt(100 * 0.09). */
+static void test_noise_events(void **state)
+{
+    (void)state;
+    const char *f = DYNKIT_SOURCE_DIR "/tests/xppaut/noise/noisy_if.ode";
+    cli_result a = cli_in_tmpdir("sweep %s --runs 24 --seed 4 --threads 1 "
+                                 "--reduce count:spike,event:spike,final --quiet", f);
+    cli_result b = cli_in_tmpdir("sweep %s --runs 24 --seed 4 --threads 3 "
+                                 "--reduce count:spike,event:spike,final --quiet", f);
+    assert_int_equal(a.status, 0);
+    assert_int_equal(b.status, 0);
+    assert_string_equal(a.out, b.out);
+    assert_int_equal(csv_rows(a.out), 24);
+    double sum = 0.0;
+    int runs = 0;
+    for (const char *p = strchr(a.out, '\n'); p && p[1]; p = strchr(p + 1, '\n')) {
+        int run;
+        double count;
+        if (sscanf(p + 1, "%d,%lf", &run, &count) == 2) {
+            sum += count;
+            runs++;
+        }
+    }
+    assert_int_equal(runs, 24);
+    const double mean = sum / runs, want = 100.0 + (0.09 - 1.0) / 2.0;
+    if (!(fabs(mean - want) < 5.0 * 3.0 / sqrt(24.0)))
+        fprintf(stderr, "mean spike count %g, renewal theory %g\n", mean, want);
+    assert_true(fabs(mean - want) < 5.0 * 3.0 / sqrt(24.0));
+    cli_free(&a);
+    cli_free(&b);
+}
+
 static void test_errors(void **state)
 {
     (void)state;
@@ -800,7 +835,8 @@ int main(void)
         cmocka_unit_test(test_resume),       cmocka_unit_test(test_interrupt),
         cmocka_unit_test(test_ignored_interrupt_stays_ignored),
         cmocka_unit_test(test_help_examples),
-        cmocka_unit_test(test_noise_bands), cmocka_unit_test(test_errors),
+        cmocka_unit_test(test_noise_bands), cmocka_unit_test(test_noise_events),
+        cmocka_unit_test(test_errors),
         cmocka_unit_test(test_plot_table),    cmocka_unit_test(test_model_file),
         cmocka_unit_test(test_doc_pictures),
     };

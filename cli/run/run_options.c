@@ -287,8 +287,8 @@ static int parse_option(const char *command, int argc, char **argv, int *i, cli_
     return CLI_OK;
 }
 
-/* A model with noise takes euler (Euler–Maruyama) or rkmil, a seed, no events and no
- * output times; rkmil and --seed need noise. */
+/* A model with noise takes euler (Euler–Maruyama) or rkmil, a seed, no output times;
+ * rkmil and --seed need noise. */
 static int check_noise_options(const char *command, cli_run *run, unsigned given)
 {
     const dyn_model *m = run->model;
@@ -304,7 +304,7 @@ static int check_noise_options(const char *command, cli_run *run, unsigned given
         return CLI_OK;
     }
     if (dyn_method_is_map(run->method))
-        return CLI_OK; /* a discrete map draws its noise once per step */
+        return CLI_OK; /* a discrete map draws its noise once per step (and has no events) */
     if (!rkmil && strcmp(run->method->name, "euler") != 0)
         return cli_usage_error(command, "model %s has noise (wiener, normal or ran), which "
                                "--method %s cannot integrate: use euler (Euler-Maruyama, "
@@ -315,8 +315,6 @@ static int check_noise_options(const char *command, cli_run *run, unsigned given
                                "as c*w with Wiener noise w, additive or one noise per state "
                                "(no normal() or ran()); model %s has other noise: use euler "
                                "(Euler-Maruyama)", m->name);
-    if (run->n_events > 0)
-        return cli_usage_error(command, "--event: the methods for noise do not locate events");
     if (run->times)
         return cli_usage_error(command, "--times: a model with noise writes the grid of --step "
                                "(euler: every step; rkmil: steps land on it)");

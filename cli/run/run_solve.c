@@ -204,7 +204,8 @@ int cli_run_solve(const cli_run *run, long every, dyn_output_fn output, void *ou
  * rkmil with its samples on the grid (or at every accepted step); the noise of run
  * run->stream under run->seed. */
 static int solve_noise(const cli_run *run, long every, dyn_output_fn output, void *output_ctx,
-                       dyn_progress_fn progress, void *progress_ctx, double *y, dyn_result *res)
+                       dyn_event_fn on_event, void *event_ctx, dyn_progress_fn progress,
+                       void *progress_ctx, double *y, dyn_result *res)
 {
     const dyn_model *m = run->model;
     const int n = m->n_states;
@@ -226,14 +227,28 @@ static int solve_noise(const cli_run *run, long every, dyn_output_fn output, voi
     o.output_ctx = output_ctx;
     o.progress = progress;
     o.progress_ctx = progress_ctx;
-    double *work = malloc(dyn_sde_work_size(n, m->n_noise) * sizeof *work);
-    if (!work)
+    int n_events = 0, *asked = NULL;
+    dyn_event *events = all_events(run, &n_events, &asked);
+    if (!events)
         return -1;
+    run_events re = {run, on_event, event_ctx, asked};
+    o.events = events;
+    o.n_events = n_events;
+    o.on_event = forward_event;
+    o.event_ctx = &re;
+    double *work = malloc(dyn_sde_work_size(n, m->n_noise, n_events) * sizeof *work);
+    if (!work) {
+        free(events);
+        free(asked);
+        return -1;
+    }
     const dyn_sde_method method = rkmil                             ? DYN_SDE_RKMIL
                                   : dyn_method_is_map(run->method) ? DYN_SDE_MAP
                                                                    : DYN_SDE_EM;
     const int rc = dyn_sde_solve(method, &sde, run->t0, run->t1, run->y0, y, work, &o, res);
     free(work);
+    free(events);
+    free(asked);
     return rc;
 }
 
@@ -244,7 +259,8 @@ static int solve_run(const cli_run *run, long every, dyn_output_fn output, void 
     const dyn_model *m = run->model;
     const int n = m->n_states;
     if (m->n_noise > 0)
-        return solve_noise(run, every, output, output_ctx, progress, progress_ctx, y, res);
+        return solve_noise(run, every, output, output_ctx, on_event, event_ctx, progress,
+                           progress_ctx, y, res);
     dyn_system sys = {m->rhs, n, run->par};
     const int adaptive = dyn_method_is_adaptive(run->method);
     if (cli_method_is_cvode(run->method) && !m->delay) {

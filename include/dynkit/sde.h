@@ -26,6 +26,18 @@
  *                 nothing of the path (Rackauckas and Nie, "Adaptive methods for stochastic
  *                 differential equations via natural embeddings and rejection sampling
  *                 with memory", 2017, with every point kept rather than a stack).
+ *
+ * Events (dyn_sde_opts.events; a model file's `global`): found and fired as dyn_solve does
+ * (solve.h: sign changes of g, resets, XPPAUT's cascades, terminal events, Zeno runs), on
+ * the scheme's own interpolant: the straight line between the states at the ends of a
+ * fixed step (for Euler–Maruyama, the step with the Brownian increment at its mean given
+ * the two ends), the broken line through the states at t, t + h/2 and t + h of an
+ * adaptive step (its two half steps). The crossing is located on it (Brent's method); the
+ * state there is the interpolant's. After a reset inside a step, the rest of the step
+ * runs from the event on the same Brownian path: W at the event comes from the Brownian
+ * bridge between the step's ends (a fixed step) or the path's known points (adaptive), so
+ * the path stays a sample of Brownian motion and the seed still fixes the run; a normal or
+ * uniform slot keeps its step's value.
  */
 #ifndef DYNKIT_SDE_H
 #define DYNKIT_SDE_H
@@ -34,6 +46,7 @@
 #include <stdint.h>
 
 #include "dynkit/ode.h"
+#include "dynkit/solve.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -116,6 +129,12 @@ typedef struct dyn_sde_opts {
     dyn_end_policy end;    /* fixed steps: as dyn_fixed_solve */
     long every;            /* fixed steps: keep every K-th sample (and the last) */
     uint64_t seed, stream; /* the noise: dyn_rng_init(seed, stream) */
+    /* events (dyn_event, ode.h) as dyn_solve fires them (solve.h: reports, resets,
+     * cascades, terminal events, Zeno runs): see "Events" above; not for DYN_SDE_MAP */
+    const dyn_event *events;
+    int n_events;
+    dyn_event_fn on_event; /* may be NULL */
+    void *event_ctx;
     dyn_output_fn output;
     void *output_ctx;
     dyn_progress_fn progress;
@@ -126,8 +145,9 @@ typedef struct dyn_sde_opts {
  * needs more stops with DYN_ERR_CAPACITY. */
 #define DYN_SDE_MAX_POINTS 256
 
-/* Doubles of workspace dyn_sde_solve needs for n states and n_noise slots. */
-size_t dyn_sde_work_size(int n, int n_noise);
+/* Doubles of workspace dyn_sde_solve needs for n states, n_noise slots and n_events
+ * events. */
+size_t dyn_sde_work_size(int n, int n_noise, int n_events);
 
 /* Integrate sde from (t0, y0) to t1 with method; y (n) receives the last good state. Samples
  * stream through opts->output (sample 0 at t0). Never allocates. Returns res->status:

@@ -142,11 +142,6 @@ void lang_noise_classify(lang_ctx *c)
     m->noise_class = DYN_NOISE_ADDITIVE;
     if (!m->noises.n)
         return;
-    const lpos first = LVEC_AT(m->noises, lang_noise, 0).pos;
-    if (m->events.n)
-        lang_fail(c, first, "noise ('wiener', 'normal', 'ran') together with events or globals "
-                  "(line %d) is not supported: the methods for noise do not locate events",
-                  LVEC_AT(m->events, lang_event, 0).pos.line);
     const int n = m->states.n;
     nz_ctx x = {0};
     x.c = c;

@@ -65,6 +65,63 @@ int dyn_events_cascade(const dyn_event *ev, int ne, void *par, double t, const d
     return count;
 }
 
+int dyn_events_report(int index, double t, const double *y, int direction, void *ctx)
+{
+    const dyn_event_sink *sink = ctx;
+    dyn_result *res = sink->res;
+    res->events++;
+    int terminal = sink->events[index].terminal;
+    if (sink->on_event && sink->on_event(index, t, y, direction, sink->event_ctx))
+        terminal = 1;
+    if (terminal) {
+        res->stopped_by_event = 1;
+        res->event_index = index;
+    }
+    return terminal;
+}
+
+int dyn_events_cascades(const dyn_event *ev, int ne, void *par, double t,
+                        const double *y_before, double *y, const double *hits, int nh,
+                        double *casc, dyn_events_report_fn report, void *ctx, long *count,
+                        int *which, int *status)
+{
+    double *g0 = casc, *fired = casc + ne;
+    for (int i = 0; i < ne; i++) {
+        g0[i] = ev[i].g(t, y_before, par);
+        fired[i] = 0.0;
+    }
+    for (int k = 0; k < nh && DYN_HIT_T(hits, k) <= t; k++)
+        if (DYN_HIT_T(hits, k) == t)
+            fired[DYN_HIT_INDEX(hits, k)] = 1.0;
+    for (int cycle = 2; dyn_events_cascade(ev, ne, par, t, y, g0, fired, cycle); cycle++)
+        for (int i = 0; i < ne; i++) {
+            if (fabs(fired[i]) != (double)cycle)
+                continue;
+            (*count)++;
+            if (report(i, t, y, fired[i] > 0 ? 1 : -1, ctx)) {
+                *which = i;
+                return DYN_CASCADES_STOPPED;
+            }
+            if (ev[i].reset && (*status = ev[i].reset(t, y, par)) != 0) {
+                *which = i;
+                return DYN_CASCADES_RESET_FAILED;
+            }
+        }
+    return DYN_CASCADES_DONE;
+}
+
+void dyn_events_restart(const dyn_event *ev, int ne, void *par, double t,
+                        const double *y_before, const double *y, const double *hits, int nh,
+                        double *memo)
+{
+    dyn_events_start(ev, ne, par, t, y, memo);
+    for (int k = 0; k < nh && DYN_HIT_T(hits, k) <= t; k++) {
+        const int i = DYN_HIT_INDEX(hits, k);
+        if (DYN_HIT_T(hits, k) == t && ev[i].g(t, y_before, par) == memo[i])
+            memo[i] = memo[ne + i] = 0.0;
+    }
+}
+
 void dyn_events_start(const dyn_event *ev, int ne, void *par, double t0, const double *y0,
                       double *memo)
 {

@@ -45,4 +45,45 @@ int dyn_events_step(const dyn_event *ev, int ne, void *par, const dyn_dense *d, 
 int dyn_events_cascade(const dyn_event *ev, int ne, void *par, double t, const double *y,
                        const double *g0, double *fired, int cycle);
 
+/* An event handed to the driver (index, time, state, direction); 1 stops the run. */
+typedef int (*dyn_events_report_fn)(int index, double t, const double *y, int direction,
+                                     void *ctx);
+
+/* Where the drivers' events go: counted in res, handed to on_event. */
+typedef struct dyn_event_sink {
+    const dyn_event *events;
+    dyn_event_fn on_event; /* may be NULL */
+    void *event_ctx;
+    dyn_result *res;
+} dyn_event_sink;
+
+/* A dyn_events_report_fn on a dyn_event_sink (ctx): the event counted and handed to
+ * on_event; 1 when it ends the run (terminal, or on_event asked to stop), with
+ * res->stopped_by_event and res->event_index set. */
+int dyn_events_report(int index, double t, const double *y, int direction, void *ctx);
+
+/* What dyn_events_cascades ended with. */
+enum { DYN_CASCADES_DONE = 0, DYN_CASCADES_STOPPED = 1, DYN_CASCADES_RESET_FAILED = 2 };
+
+/* The cascades of the instant t (solve.h, "Cascades"), after the resets of the step's hits
+ * at t (hits sorted, nh of them): y_before is the state before the instant's resets, y the
+ * state after them, which the cascades' resets change in place. Cycles of
+ * dyn_events_cascade, each event reported and reset in index order, until none fires.
+ * casc has 2 ne doubles; *count counts the events fired. Returns DYN_CASCADES_STOPPED
+ * when report asked to stop (*which: the event), DYN_CASCADES_RESET_FAILED when a reset
+ * returned *status != 0 (*which: the event), else DYN_CASCADES_DONE. */
+int dyn_events_cascades(const dyn_event *ev, int ne, void *par, double t,
+                        const double *y_before, double *y, const double *hits, int nh,
+                        double *casc, dyn_events_report_fn report, void *ctx, long *count,
+                        int *which, int *status);
+
+/* Restart after the resets at t, from y (y_before: the state before them) as from a new
+ * initial value: memo from g at y; an event that fired at t and whose g the resets left
+ * unchanged sits on its own zero (a ball's velocity reversed at y = 0, a counter raised at
+ * a crossing): like a zero at the start it is no event, and the side the solution leaves
+ * to decides its sign. */
+void dyn_events_restart(const dyn_event *ev, int ne, void *par, double t,
+                        const double *y_before, const double *y, const double *hits, int nh,
+                        double *memo);
+
 #endif /* DYN_ODE_EVENTS_H */

@@ -16,18 +16,39 @@
  * value between two known ones comes from the Brownian bridge
  *   W(s) = W(a) + (s - a)/(b - a) (W(b) - W(a)) + sqrt((s - a)(b - s)/(b - a)) z,
  * so a rejected step leaves the path a sample of Brownian motion (Rackauckas and Nie 2017,
- * rejection sampling with memory). Steps land on the output times. */
+ * rejection sampling with memory). Steps land on the output times.
+ *
+ * Events (sde.h, "Events") with the library's event location and XPPAUT's cascade rules
+ * (ode/events.c), on the straight line between a fixed step's ends or the broken line
+ * through an adaptive step's three states; after a reset inside a fixed step, W at the
+ * event comes from the Brownian bridge between the step's ends and the step's rest takes
+ * the remaining increment. */
 #include <math.h>
 #include <string.h>
 
 #include "dynkit/io.h"
 #include "dynkit/sde.h"
+#include "ode/events.h"
 #include "result_fail.h"
 
-size_t dyn_sde_work_size(int n, int n_noise)
+/* g sampled at EVENT_SAMPLES + 1 points of the interpolant of a step (or half step) */
+#define EVENT_SAMPLES 4
+
+static size_t event_work_size(int n, int ne)
+{
+    if (ne <= 0)
+        return 0;
+    /* memo, cascades (2 ne each), locator's scratch, hits, the interpolant (2 n), the
+     * states before and after the resets (2 n) */
+    return 4 * (size_t)ne + dyn_events_work(n, ne, EVENT_SAMPLES) +
+           3 * (size_t)dyn_events_max_hits(ne, EVENT_SAMPLES) + 4 * (size_t)n;
+}
+
+size_t dyn_sde_work_size(int n, int n_noise, int n_events)
 {
     const size_t N = (size_t)(n > 0 ? n : 0), M = (size_t)(n_noise > 0 ? n_noise : 0);
-    return 12 * N + (M + 1) * N + 6 * M + (size_t)DYN_SDE_MAX_POINTS * (1 + M) + 16;
+    return 12 * N + (M + 1) * N + 6 * M + (size_t)DYN_SDE_MAX_POINTS * (1 + M) + 16 +
+           event_work_size(n, n_events);
 }
 
 typedef struct sde_run {
@@ -41,7 +62,19 @@ typedef struct sde_run {
     /* the Brownian path: W at tc is wc; np points ahead at tq (increasing), values wq */
     double tc, *wc, *tq, *wq;
     int np;
+    /* events: the run's span (Zeno's window), memory between steps, the interpolant, the
+     * states before (ybefore) and after (yafter) the resets of an instant at t_ev */
+    double t0, t1;
+    const dyn_event *ev;
+    int ne, restarted, zeno, reset_idx;
+    long n_resets;
+    double t_last_reset, t_ev;
+    double *memo, *casc, *ev_work, *hits, *coef, *ybefore, *yafter;
+    dyn_event_sink sink;
 } sde_run;
+
+/* What the events of a piece of a step did. */
+enum { SEG_NONE, SEG_RESET, SEG_STOP, SEG_FAIL };
 
 static int first_nonfinite(const double *y, int n)
 {
@@ -177,6 +210,140 @@ static int nonfinite_fail(sde_run *r, double t, int bad)
                            bad, dyn_shortest(t).s);
 }
 
+static int reset_fail(sde_run *r, int idx, double t, int status)
+{
+    r->res->rhs_status = status;
+    r->res->fail_t = t;
+    return dyn_result_fail(r->res, DYN_ERR_RHS,
+                           "the reset of event %d (%s) failed at t = %s (status %d)", idx,
+                           r->ev[idx].name ? r->ev[idx].name : "unnamed", dyn_shortest(t).s,
+                           status);
+}
+
+/* The events of the piece of a step from (ta, ya) to (tb, yb), the state between on the
+ * straight line: SEG_NONE (the memory moved to tb), SEG_RESET (the run restarts at t_ev
+ * from yafter), SEG_STOP (a terminal event: t_ev and yafter are the last state), SEG_FAIL
+ * (res says why). The instant's rules are dyn_solve's (solve.h, "Resets", "Cascades"). */
+static int segment_events(sde_run *r, double ta, const double *ya, double tb, const double *yb)
+{
+    const int n = r->n, ne = r->ne;
+    void *par = r->sde->sys.par;
+    for (int i = 0; i < n; i++) {
+        r->coef[i] = ya[i];
+        r->coef[n + i] = yb[i] - ya[i];
+    }
+    const dyn_dense d = {ta, tb - ta, n, 1, r->coef};
+    const int nh = dyn_events_step(r->ev, ne, par, &d, tb, yb, EVENT_SAMPLES, r->memo,
+                                   r->ev_work, r->hits, NULL, r->restarted);
+    r->restarted = 0;
+    int reset = 0;
+    double t_reset = tb;
+    for (int k = 0; k < nh; k++) {
+        const double te = DYN_HIT_T(r->hits, k);
+        const int idx = DYN_HIT_INDEX(r->hits, k), dir = DYN_HIT_DIR(r->hits, k);
+        if (reset && te != t_reset)
+            break; /* after a reset: the rest of the step is the old trajectory's */
+        if (!reset) {
+            /* ybefore: the state at the event (events at the time of a reset see it) */
+            if (te == tb)
+                memcpy(r->ybefore, yb, (size_t)n * sizeof *yb);
+            else
+                dyn_dense_eval(&d, te, r->ybefore);
+        }
+        if (dyn_events_report(idx, te, r->ybefore, dir, &r->sink)) {
+            r->t_ev = te;
+            memcpy(r->yafter, r->ybefore, (size_t)n * sizeof *r->yafter);
+            return SEG_STOP;
+        }
+        if (r->ev[idx].reset) {
+            if (!reset) {
+                memcpy(r->yafter, r->ybefore, (size_t)n * sizeof *r->yafter);
+                reset = 1;
+                t_reset = te;
+                r->reset_idx = idx;
+            }
+            const int st = r->ev[idx].reset(te, r->yafter, par);
+            if (st) {
+                reset_fail(r, idx, te, st);
+                return SEG_FAIL;
+            }
+        }
+    }
+    if (!reset)
+        return SEG_NONE;
+    int which = -1, st = 0;
+    const int how = dyn_events_cascades(r->ev, ne, par, t_reset, r->ybefore, r->yafter, r->hits,
+                                        nh, r->casc, dyn_events_report, &r->sink,
+                                        &r->res->cascades, &which, &st);
+    r->t_ev = t_reset;
+    if (how == DYN_CASCADES_STOPPED)
+        return SEG_STOP;
+    if (how == DYN_CASCADES_RESET_FAILED) {
+        reset_fail(r, which, t_reset, st);
+        return SEG_FAIL;
+    }
+    const int bad = first_nonfinite(r->yafter, n);
+    if (bad >= 0) {
+        r->res->fail_t = t_reset;
+        r->res->fail_index = bad;
+        dyn_result_fail(r->res, DYN_ERR_NONFINITE,
+                        "the reset of event %d made state %d not finite at t = %s",
+                        r->reset_idx, bad, dyn_shortest(t_reset).s);
+        return SEG_FAIL;
+    }
+    /* Zeno: resets that follow each other without time advancing */
+    const double window = DYN_ZENO_WINDOW * fmax(fabs(t_reset), r->t1 - r->t0);
+    r->zeno = r->n_resets > 0 && t_reset - r->t_last_reset <= window ? r->zeno + 1 : 0;
+    if (r->zeno >= DYN_ZENO_RESETS) {
+        r->res->fail_t = t_reset;
+        dyn_result_fail(r->res, DYN_ERR_ZENO,
+                        "Zeno behaviour: %d resets in a row, each less than %.3g s after the "
+                        "one before, up to t = %s (event %d (%s) last): the resets accumulate "
+                        "here",
+                        r->zeno, window, dyn_shortest(t_reset).s, r->reset_idx,
+                        r->ev[r->reset_idx].name ? r->ev[r->reset_idx].name : "unnamed");
+        return SEG_FAIL;
+    }
+    r->n_resets++;
+    r->t_last_reset = t_reset;
+    dyn_events_restart(r->ev, ne, par, t_reset, r->ybefore, r->yafter, r->hits, nh, r->memo);
+    r->restarted = 1;
+    return SEG_RESET;
+}
+
+/* A fixed step from ts to tn split at te by a reset: its Wiener slots' increments over
+ * [ts, tn] (dw, or dw (tn - ts) for Euler–Maruyama's values dW/dt) become those over
+ * [te, tn], W(te) drawn from the Brownian bridge; normal and uniform slots keep their
+ * values. */
+static void split_increments(sde_run *r, int em, double ts, double te, double tn)
+{
+    const dyn_sde *s = r->sde;
+    const double hs = tn - ts, h1 = te - ts, h2 = tn - te;
+    const double sd = sqrt(h1 * h2 / hs);
+    for (int j = 0; j < r->m; j++) {
+        if (s->kinds && s->kinds[j] != DYN_NOISE_WIENER)
+            continue;
+        const double whole = em ? r->dw[j] * hs : r->dw[j];
+        const double rest = whole - (h1 / hs * whole + sd * dyn_rng_normal(&r->rng));
+        r->dw[j] = em ? rest / h2 : rest;
+    }
+}
+
+/* The state of a terminal event is the run's last sample. */
+static int stop_sample(sde_run *r, const dyn_sde_opts *o, long k, double *y, double *t)
+{
+    *t = r->t_ev;
+    r->res->t = *t;
+    memcpy(y, r->yafter, (size_t)r->n * sizeof *y);
+    if (o->output) {
+        r->res->stats.samples++;
+        if (o->output(k, *t, y, o->output_ctx))
+            return dyn_result_fail(r->res, DYN_STOPPED, "output stopped the run at t = %g",
+                                   *t);
+    }
+    return DYN_OK;
+}
+
 /* Fixed steps on the grid of h: Euler–Maruyama (every slot drawn once per step) or the
  * Runge–Kutta Milstein scheme (Wiener increments sqrt(dt) z). */
 static int solve_fixed(sde_run *r, dyn_sde_method method, double t0, double t1,
@@ -193,29 +360,48 @@ static int solve_fixed(sde_run *r, dyn_sde_method method, double t0, double t1,
     double t = t0;
     for (long k = 0; k < steps; k++) {
         const double tn = dyn_grid_time(&grid, k + 1), h = tn - t;
-        if (method == DYN_SDE_EM || method == DYN_SDE_MAP) {
+        const int em = method == DYN_SDE_EM || method == DYN_SDE_MAP;
+        if (em) {
             for (int j = 0; j < m; j++) {
                 const int kind = s->kinds ? s->kinds[j] : DYN_NOISE_WIENER;
                 r->dw[j] = kind == DYN_NOISE_UNIFORM  ? dyn_rng_uniform(&r->rng)
                            : kind == DYN_NOISE_NORMAL ? dyn_rng_normal(&r->rng)
                                                       : dyn_rng_normal(&r->rng) / sqrt(h);
             }
-            if (eval(r, t, y, r->dw, -1, r->a))
-                return rhs_fail(r);
-            for (int i = 0; i < n; i++)
-                r->ysmall[i] = method == DYN_SDE_MAP ? r->a[i] : y[i] + h * r->a[i];
         } else {
             const double sq = sqrt(h);
             for (int j = 0; j < m; j++)
                 r->dw[j] = sq * dyn_rng_normal(&r->rng);
-            if (drift_diffusion(r, t, y) || rkmil_step(r, t, y, h, r->dw, r->ysmall))
-                return rhs_fail(r);
         }
-        res->stats.steps++;
-        res->stats.accepted++;
-        const int bad = first_nonfinite(r->ysmall, n);
-        if (bad >= 0)
-            return nonfinite_fail(r, tn, bad);
+        for (;;) { /* the step, or its rest after a reset inside it */
+            if (em) {
+                if (eval(r, t, y, r->dw, -1, r->a))
+                    return rhs_fail(r);
+                for (int i = 0; i < n; i++)
+                    r->ysmall[i] = method == DYN_SDE_MAP ? r->a[i] : y[i] + (tn - t) * r->a[i];
+            } else if (drift_diffusion(r, t, y) || rkmil_step(r, t, y, tn - t, r->dw, r->ysmall)) {
+                return rhs_fail(r);
+            }
+            res->stats.steps++;
+            res->stats.accepted++;
+            const int bad = first_nonfinite(r->ysmall, n);
+            if (bad >= 0)
+                return nonfinite_fail(r, tn, bad);
+            const int seg = r->ne > 0 ? segment_events(r, t, y, tn, r->ysmall) : SEG_NONE;
+            if (seg == SEG_NONE)
+                break;
+            if (seg == SEG_FAIL)
+                return res->status;
+            if (seg == SEG_STOP)
+                return stop_sample(r, o, k + 1, y, &res->t);
+            if (r->t_ev == tn) { /* reset at the grid point: the step ends there */
+                memcpy(r->ysmall, r->yafter, (size_t)n * sizeof *y);
+                break;
+            }
+            split_increments(r, em, t, r->t_ev, tn);
+            t = r->t_ev;
+            memcpy(y, r->yafter, (size_t)n * sizeof *y);
+        }
         memcpy(y, r->ysmall, (size_t)n * sizeof *y);
         t = tn;
         res->t = t;
@@ -307,6 +493,34 @@ static int solve_adaptive(sde_run *r, double t0, double t1, const dyn_sde_opts *
         const int bad = first_nonfinite(r->ysmall, n);
         if (bad >= 0)
             return nonfinite_fail(r, tn, bad);
+        int seg = r->ne > 0 ? segment_events(r, t, y, tm, r->ymid) : SEG_NONE;
+        if (seg == SEG_NONE && r->ne > 0)
+            seg = segment_events(r, tm, r->ymid, tn, r->ysmall);
+        if (seg == SEG_FAIL)
+            return res->status;
+        if (seg == SEG_STOP)
+            return stop_sample(r, o, sample + 1, y, &t);
+        if (seg == SEG_RESET) {
+            /* on from the event: W there joins the path (a bridge between known points) */
+            if (r->t_ev < tn && path_at(r, r->t_ev, r->wmid))
+                return dyn_result_fail(res, DYN_ERR_CAPACITY,
+                                       "more than %d points of the Brownian path ahead of t = %s",
+                                       DYN_SDE_MAX_POINTS, dyn_shortest(t).s);
+            path_advance(r, r->t_ev);
+            t = r->t_ev;
+            res->t = t;
+            res->h_last = r->t_ev - t;
+            memcpy(y, r->yafter, (size_t)n * sizeof *y);
+            if (o->output && o->out_step <= 0) {
+                res->stats.samples++;
+                if (o->output(++sample, t, y, o->output_ctx))
+                    return dyn_result_fail(res, DYN_STOPPED, "output stopped the run at t = %g",
+                                           t);
+            }
+            if (t == limit && o->out_step > 0)
+                k_out++;
+            continue;
+        }
         memcpy(y, r->ysmall, (size_t)n * sizeof *y);
         path_advance(r, tn);
         t = tn;
@@ -356,6 +570,15 @@ int dyn_sde_solve(dyn_sde_method method, const dyn_sde *sde, double t0, double t
                                : method == DYN_SDE_MAP ? "a discrete map"
                                                        : "rkmil",
                                o->h);
+    const int ne = o->events ? o->n_events : 0;
+    if (ne < 0 || (ne > 0 && method == DYN_SDE_MAP))
+        return dyn_result_fail(res, DYN_ERR_ARG,
+                               "events with noise are located by Euler-Maruyama and rkmil, not "
+                               "on a discrete map (got %d events)",
+                               ne);
+    for (int i = 0; i < ne; i++)
+        if (!o->events[i].g)
+            return dyn_result_fail(res, DYN_ERR_ARG, "event %d has no function g", i);
     if (method == DYN_SDE_RKMIL && sde->noise_class == DYN_NOISE_GENERAL)
         return dyn_result_fail(res, DYN_ERR_ARG,
                                "rkmil needs a right-hand side affine in Wiener noise that is "
@@ -389,6 +612,23 @@ int dyn_sde_solve(dyn_sde_method method, const dyn_sde *sde, double t0, double t
     r.tq = p, p += DYN_SDE_MAX_POINTS;
     r.wq = p;
     r.tc = t0;
+    r.t0 = t0;
+    r.t1 = t1;
+    r.ev = o->events;
+    r.ne = ne;
+    r.sink = (dyn_event_sink){o->events, o->on_event, o->event_ctx, res};
+    r.reset_idx = -1;
+    if (ne > 0) {
+        p += (size_t)DYN_SDE_MAX_POINTS * M;
+        r.memo = p, p += 2 * (size_t)ne;
+        r.casc = p, p += 2 * (size_t)ne;
+        r.hits = p, p += 3 * (size_t)dyn_events_max_hits(ne, EVENT_SAMPLES);
+        r.coef = p, p += 2 * N;
+        r.ybefore = p, p += N;
+        r.yafter = p, p += N;
+        r.ev_work = p;
+    }
+    res->event_index = -1;
     for (int j = 0; j < m; j++)
         r.wc[j] = 0.0;
     memcpy(state, y0, N * sizeof *state);
@@ -398,6 +638,8 @@ int dyn_sde_solve(dyn_sde_method method, const dyn_sde *sde, double t0, double t
         return dyn_result_fail(res, DYN_ERR_NONFINITE, "initial state %d is not finite (%g)",
                                bad, state[bad]);
     }
+    if (ne > 0)
+        dyn_events_start(o->events, ne, sde->sys.par, t0, state, r.memo);
     int status = DYN_OK;
     if (o->output) {
         res->stats.samples++;

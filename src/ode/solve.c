@@ -54,22 +54,6 @@ static int first_nonfinite(const double *y, int n)
     return -1;
 }
 
-/* Event idx at te (state ye, direction dir) counted and handed to on_event; 1 when it ends
- * the solve (terminal, or on_event asked to stop). */
-static int report_event(const dyn_solve_opts *opts, dyn_result *res, int idx, double te,
-                        const double *ye, int dir)
-{
-    res->events++;
-    int terminal = opts->events[idx].terminal;
-    if (opts->on_event && opts->on_event(idx, te, ye, dir, opts->event_ctx))
-        terminal = 1;
-    if (terminal) {
-        res->stopped_by_event = 1;
-        res->event_index = idx;
-    }
-    return terminal;
-}
-
 /* A reset returned rc != 0 at te. */
 static void reset_failed(dyn_result *res, const dyn_solve_opts *opts, int idx, double te, int rc)
 {
@@ -448,6 +432,7 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
     long n_resets = 0;
     double t_last_reset = t0;
     dyn_dense d = {0.0, 0.0, n, q, coef};
+    dyn_event_sink sink = {opts->events, opts->on_event, opts->event_ctx, res};
 
     while (t < t_end) {
         double hn, tnext;
@@ -606,7 +591,7 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
                 goto finish;
             /* events at the time of a reset see the state before the resets */
             const double *ye = reset ? ycur : state_at(te, tnext, ynew, &d, ytmp);
-            if (report_event(opts, res, idx, te, ye, dir)) {
+            if (dyn_events_report(idx, te, ye, dir, &sink)) {
                 stop = 1;
                 t_stop = te;
                 if (ye != ycur)
@@ -632,35 +617,18 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
         if (reset && !stop) {
             /* cascades: events whose g the resets carried onto or across zero fire at the
              * same instant, each once, in cycles (index order within one) */
-            double *g0 = casc, *fired = casc + ne;
-            for (int i = 0; i < ne; i++) {
-                g0[i] = opts->events[i].g(t_reset, ycur, sys->par);
-                fired[i] = 0.0;
-            }
-            for (int k = 0; k < nh && DYN_HIT_T(hits, k) <= t_reset; k++)
-                if (DYN_HIT_T(hits, k) == t_reset)
-                    fired[DYN_HIT_INDEX(hits, k)] = 1.0;
-            for (int cycle = 2; !stop; cycle++) {
-                if (!dyn_events_cascade(opts->events, ne, sys->par, t_reset, ytmp, g0, fired,
-                                        cycle))
-                    break;
-                for (int i = 0; i < ne && !stop; i++) {
-                    if (fabs(fired[i]) != (double)cycle)
-                        continue;
-                    res->cascades++;
-                    if (report_event(opts, res, i, t_reset, ytmp, fired[i] > 0 ? 1 : -1)) {
-                        stop = 1;
-                        t_stop = t_reset;
-                        memcpy(ycur, ytmp, N * sizeof *ycur);
-                    } else if (opts->events[i].reset) {
-                        rc = opts->events[i].reset(t_reset, ytmp, sys->par);
-                        if (rc) {
-                            t = t_reset;
-                            reset_failed(res, opts, i, t_reset, rc);
-                            goto finish;
-                        }
-                    }
-                }
+            int which = -1;
+            const int how =
+                dyn_events_cascades(opts->events, ne, sys->par, t_reset, ycur, ytmp, hits, nh,
+                                    casc, dyn_events_report, &sink, &res->cascades, &which, &rc);
+            if (how == DYN_CASCADES_STOPPED) {
+                stop = 1;
+                t_stop = t_reset;
+                memcpy(ycur, ytmp, N * sizeof *ycur);
+            } else if (how == DYN_CASCADES_RESET_FAILED) {
+                t = t_reset;
+                reset_failed(res, opts, which, t_reset, rc);
+                goto finish;
             }
         }
         if (reset && !stop) {
@@ -689,16 +657,7 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
             }
             n_resets++;
             t_last_reset = t;
-            /* g at the new state; an event that fired here and whose value the resets left
-             * unchanged sits on its own zero (a ball's velocity reversed at y = 0, a
-             * counter raised at a crossing): like a zero at the start, it is no event, and
-             * the side the solution leaves to decides its sign */
-            dyn_events_start(opts->events, ne, sys->par, t, ytmp, memo);
-            for (int k = 0; k < nh && DYN_HIT_T(hits, k) <= t; k++) {
-                const int i = DYN_HIT_INDEX(hits, k);
-                if (DYN_HIT_T(hits, k) == t && opts->events[i].g(t, ycur, sys->par) == memo[i])
-                    memo[i] = memo[ne + i] = 0.0;
-            }
+            dyn_events_restart(opts->events, ne, sys->par, t, ycur, ytmp, hits, nh, memo);
             restarted = 1;
             memcpy(ycur, ytmp, N * sizeof *ycur);
             res->h_last = hn;

@@ -239,6 +239,10 @@ static int run_one(worker *w, long i, double *row)
         o.output_ctx = w;
         o.progress = run_progress;
         o.progress_ctx = w;
+        o.events = p->events;
+        o.n_events = p->n_events;
+        o.on_event = p->n_events > 0 ? on_event : NULL;
+        o.event_ctx = w;
         st = dyn_sde_solve((dyn_sde_method)s->noise_method, &sde, s->t0, s->t1, w->y0, w->y,
                            w->work, &o, &res);
     } else if (p->use_solve) {
@@ -295,18 +299,6 @@ static int run_one(worker *w, long i, double *row)
         }
     }
     return DYN_OK;
-}
-
-/* Whether the runs would locate events (reductions of events, stop events, resets). */
-static int p_events_needed(const dyn_sweep *s)
-{
-    for (int r = 0; r < s->n_reduce; r++)
-        if (s->reduce[r].source == DYN_SOURCE_EVENT)
-            return 1;
-    for (int e = 0; e < s->model->n_events; e++)
-        if (s->model->events[e].reset)
-            return 1;
-    return s->n_stop > 0;
 }
 
 static int check(const dyn_sweep *s, char *err, size_t errlen)
@@ -381,10 +373,6 @@ static int check(const dyn_sweep *s, char *err, size_t errlen)
                               "DYN_SDE_RKMIL or DYN_SDE_MAP", m->name);
         return -1;
     }
-    if (m->n_noise > 0 && p_events_needed(s)) {
-        snprintf(err, errlen, "model %s has noise: its runs cannot locate events", m->name);
-        return -1;
-    }
     if (!dyn_method_is_adaptive(s->method)) {
         dyn_grid g;
         if (dyn_grid_plan(s->t0, s->t1, s->step, s->end, &g, err, errlen))
@@ -443,7 +431,7 @@ static int plan_make(plan *p, const dyn_sweep *s)
         return -1;
     if (m->n_noise > 0) {
         p->noise = 1;
-        p->work_size = dyn_sde_work_size(m->n_states, m->n_noise);
+        p->work_size = dyn_sde_work_size(m->n_states, m->n_noise, p->n_events);
         return 0;
     }
     const int adaptive = dyn_method_is_adaptive(s->method);

@@ -16,7 +16,9 @@ into SET.dat and no output.dat, is compared set by set with `dynkit run --set ..
 
 Prints a table (one line a file) and a summary. Exit status: 77 (skipped) without the
 directory, 1 when a file is missing or differs from its SHA-256 or when an outcome is
-not the manifest's `expect` (agree, separate, noise: other random numbers;
+not the manifest's `expect` (agree, separate, noise: other random numbers, and each
+column's time mean over the second half of XPPAUT's run within 4 standard deviations of
+dynkit's runs with 8 seeds (noise-differs when not);
 refused while XPPAUT integrates the file; xppaut-fails: both refuse or XPPAUT writes
 nothing; not-compared: dynkit runs it, XPPAUT's run shares no sample after the start), else 0.
 """
@@ -24,8 +26,11 @@ import argparse
 import hashlib
 import os
 import re
+import subprocess
 import sys
 import tempfile
+
+import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import compat  # noqa: E402  (same directory)
@@ -105,6 +110,44 @@ def check_sets(dynkit, path, work, timeout, env):
     return "%s (set %s%s)" % (v[0], v[2], "" if v[1] is None else " at t=%g" % v[1])
 
 
+SEEDS = 8
+
+
+def noise_statistics(dynkit, path, work, timeout, env):
+    """A file with noise (the two programs draw other random numbers) compared by
+    statistics: each column's time mean over the second half of XPPAUT's run, against the
+    same mean in dynkit's runs with seeds 1..SEEDS. XPPAUT's must lie within 4 standard
+    deviations of dynkit's runs (sd sqrt(1 + 1/SEEDS), a prediction interval; at least
+    1e-6 of the column's scale). Returns (agrees, text)."""
+    xdir = os.path.join(work, "stats")
+    os.makedirs(xdir, exist_ok=True)
+    xpp, why = compat.run_xppaut(path, xdir, timeout)
+    if xpp is None:
+        return False, why
+    t_end = float(xpp[-1, 0])
+    t_lo = float(xpp[0, 0]) + 0.5 * (t_end - float(xpp[0, 0]))
+    xsel = xpp[:, 0] >= t_lo
+    means = []
+    for seed in range(1, SEEDS + 1):
+        p = subprocess.run([dynkit, "run", path, "--outputs", "--quiet", "--seed", str(seed)],
+                           capture_output=True, text=True, timeout=timeout, env=env)
+        rows = [r for r in p.stdout.splitlines()[1:] if r.strip()]
+        d = np.array([[float(v) for v in r.split(",")] for r in rows])
+        if d.shape[1] != xpp.shape[1]:
+            return False, "columns differ (xppaut %d, dynkit %d)" % (xpp.shape[1], d.shape[1])
+        sel = (d[:, 0] >= t_lo - 1e-9) & (d[:, 0] <= t_end + 1e-9)
+        means.append(d[sel, 1:].mean(axis=0))
+    means = np.array(means)
+    mu, sd = means.mean(axis=0), means.std(axis=0, ddof=1)
+    scale = np.maximum(np.max(np.abs(xpp[:, 1:]), axis=0), 1e-12)
+    bound = 4 * np.maximum(sd * np.sqrt(1 + 1.0 / SEEDS), 1e-6 * scale)
+    z = np.abs(xpp[xsel, 1:].mean(axis=0) - mu) / bound
+    worst = int(np.argmax(z))
+    return bool(np.all(z <= 1)), (
+        "time means over t in [%g, %g] within 4 sd of %d seeds' (largest |difference| / "
+        "bound %.2f, column %d)" % (t_lo, t_end, SEEDS, z[worst], worst + 1))
+
+
 def read_manifest(path):
     rows = []
     with open(path) as f:
@@ -177,6 +220,12 @@ def main():
                     r["compare"] = sets.split(" (")[0]
                     r["sets"] = sets
             got = outcome(r)
+            if got == "noise":
+                agrees, stats = noise_statistics(args.dynkit, path, wdir, args.timeout, env)
+                r["compare"] = "noise: " + stats
+                r["t_separate"] = None
+                if not agrees:
+                    got = "noise-differs"
             counts[got] = counts.get(got, 0) + 1
             mark = "" if got == row["expect"] else "  (expected %s)" % row["expect"]
             if mark:

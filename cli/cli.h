@@ -184,6 +184,11 @@ int cli_run_parse_with(const char *command, int argc, char **argv, int other_ada
 #define CLI_MAX_GRID_SAMPLES 1000000L
 int cli_run_at_steps(const cli_run *run);
 
+/* ---- a run of a model with Volterra integrals (run_volterra.c): the grid of run->step,
+ * the model's delays read from the grid points ---- */
+int cli_solve_volterra(const cli_run *run, long every, dyn_output_fn output, void *output_ctx,
+                       dyn_progress_fn progress, void *progress_ctx, double *y, dyn_result *res);
+
 /* ---- a run of a delay model (run_delay.c) ---- */
 struct dyn_history;
 typedef struct cli_delay {
@@ -208,6 +213,8 @@ int cli_method_is_cvode(const dyn_tableau *m);
  * registry of deterministic methods): its descriptor, and whether m is it. */
 const dyn_tableau *cli_rkmil_method(void);
 int cli_method_is_rkmil(const dyn_tableau *m);
+/* volterra, the method for models with Volterra integrals (dyn_volterra_solve), likewise */
+int cli_method_is_volterra(const dyn_tableau *m);
 /* Method by name or alias, cvode included when built; NULL if not available. */
 const dyn_tableau *cli_method_find(const char *name);
 /* Accepted method names, comma-separated, into buf; returns buf. */

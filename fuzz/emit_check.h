@@ -50,6 +50,10 @@ static const char *const emit_check_idents[] = {
     "dyn_history", "dyn_history_value", "dyn_delay_model", "max_delay", "attach", "history",
     "n_lags", "lags", "lag", "dk_hist", "dk_delay", "dk_attach", "dk_history", "dk_lags",
     "dk_delay_model",
+    /* Volterra integrals (dynkit/volterra.h, src/lang/integrals.c) */
+    "volterra", "dyn_volterra_model", "n_int", "mu", "conv", "is_int", "ints_offset",
+    "max_points", "integrand", "kernel", "dk_volt_integrand", "dk_volt_kernel", "dk_volt_mu",
+    "dk_volt_conv", "dk_volt_is_int", "dk_volterra_model", "t_now", "ip", "g", "kv", "pw",
     /* the translator's own names */
     "t", "y", "p", "par", "dydt", "out", "J", "err", "errlen", "names", "k", "i", "j", "s",
     "x", "u", "n", "m", "q", "v", "z", "type", "period", "w", "r", "rb", "lo", "dx", "dk_model",
@@ -83,7 +87,8 @@ static const char *const emit_check_comments[] = {
 
 static const char *const emit_check_headers[] = {"<math.h>", "<stddef.h>", "<stdio.h>",
                                                  "<string.h>", "<dynkit/model.h>",
-                                                 "<dynkit/input.h>", "<dynkit/delay.h>"};
+                                                 "<dynkit/input.h>", "<dynkit/delay.h>",
+                                                 "<dynkit/volterra.h>"};
 
 /* name is prefix digits [suffix digits]: v_3, ud1_2, dk_event0 */
 static int emit_check_made(const char *s, size_t n)

@@ -68,6 +68,20 @@ static const dyn_tableau rkmil_method = {
     .order = 1,
 };
 
+/* A descriptor for the tool only (dyn_volterra_solve runs it): kind explicit RK, so that
+ * it counts as a fixed-step method on the grid of --step; no coefficients. */
+static const dyn_tableau volterra_method = {
+    .name = "volterra",
+    .title = "XPPAUT's method for Volterra integrals: product trapezoid rule on the grid, "
+             "implicit, Newton's method at each step",
+    .reference = "Linz, Analytical and Numerical Methods for Volterra Equations (1985), "
+                 "ch. 7-8; dynkit/volterra.h",
+    .kind = DYN_KIND_EXPLICIT_RK,
+    .order = 2,
+};
+
+int cli_method_is_volterra(const dyn_tableau *m) { return m == &volterra_method; }
+
 const dyn_tableau *cli_rkmil_method(void) { return &rkmil_method; }
 
 int cli_method_is_rkmil(const dyn_tableau *m) { return m == &rkmil_method; }
@@ -97,6 +111,8 @@ const dyn_tableau *cli_method_find(const char *name)
         m = cli_cvode_method();
     if (!m && strcmp(name, "rkmil") == 0)
         m = &rkmil_method;
+    if (!m && strcmp(name, "volterra") == 0)
+        m = &volterra_method;
     return m;
 }
 
@@ -107,7 +123,7 @@ char *cli_method_names(char *buf, size_t size)
     if (cli_cvode_method() && used < size)
         used += (size_t)snprintf(buf + used, size - used, ", cvode");
     if (used < size)
-        snprintf(buf + used, size - used, ", rkmil");
+        snprintf(buf + used, size - used, ", rkmil, volterra");
     return buf;
 }
 
@@ -130,6 +146,7 @@ int cli_method_error(const char *command, const char *what, const char *name)
     if (cli_cvode_method())
         known[n++] = "cvode";
     known[n++] = "rkmil";
+    known[n++] = "volterra";
     const char *near = name ? dyn_lang_nearest(name, known, n) : NULL;
     if (near)
         return cli_usage_error(command, "%s: unknown method '%s' (did you mean '%s'? accepted: %s)",

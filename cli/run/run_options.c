@@ -321,6 +321,33 @@ static int check_noise_options(const char *command, cli_run *run, unsigned given
     return CLI_OK;
 }
 
+/* A model with Volterra integrals runs with the volterra method only (XPPAUT's), on the
+ * grid of --step, without events or output times; the method needs such a model. */
+static int check_volterra_options(const char *command, cli_run *run)
+{
+    const dyn_model *m = run->model;
+    const int volterra = cli_method_is_volterra(run->method);
+    if (!m->volterra) {
+        if (volterra)
+            return cli_usage_error(command, "--method volterra integrates models with Volterra "
+                                   "integrals (int{...}, volt), and %s has none: use dp45 (or "
+                                   "another method of 'dynkit methods')", m->name);
+        return CLI_OK;
+    }
+    if (!volterra)
+        return cli_usage_error(command, "model %s has Volterra integrals (int{...}) or integral "
+                               "equations (volt), which --method %s cannot integrate: use "
+                               "volterra (XPPAUT's implicit method on the grid of --step)",
+                               m->name, run->method->name);
+    if (run->n_events > 0 || cli_run_resets(run) > 0)
+        return cli_usage_error(command, "--event and globals: the volterra method does not "
+                               "locate events");
+    if (run->times)
+        return cli_usage_error(command, "--times: a model with Volterra integrals writes the "
+                               "grid of --step");
+    return CLI_OK;
+}
+
 /* Options that only make sense with some methods, and --times against the span.
  * other_adaptive: another run of the command (--compare) is adaptive. */
 static int check_method_options(const char *command, cli_run *run, unsigned given,
@@ -596,6 +623,8 @@ int cli_run_parse_with(const char *command, int argc, char **argv, int other_ada
         return cli_method_error(command, "--method", method_name);
     run->step_given = (given & GIVEN_STEP) || run->forces_path;
     rc = check_noise_options(command, run, given);
+    if (rc == CLI_OK)
+        rc = check_volterra_options(command, run);
     if (rc == CLI_OK)
         rc = check_method_options(command, run, given, other_adaptive);
     if (rc == CLI_OK)

@@ -261,6 +261,9 @@ static int solve_run(const cli_run *run, long every, dyn_output_fn output, void 
     if (m->n_noise > 0)
         return solve_noise(run, every, output, output_ctx, on_event, event_ctx, progress,
                            progress_ctx, y, res);
+    if (m->volterra)
+        return cli_solve_volterra(run, every, output, output_ctx, progress, progress_ctx, y,
+                                  res);
     dyn_system sys = {m->rhs, n, run->par};
     const int adaptive = dyn_method_is_adaptive(run->method);
     if (cli_method_is_cvode(run->method) && !m->delay) {

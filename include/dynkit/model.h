@@ -164,6 +164,9 @@ typedef struct dyn_model {
     dyn_jac_fn jacobian_sparse;
     /* Delay equations (XPPAUT's delay(x, tau)): NULL for a model without them. */
     const struct dyn_delay_model *delay;
+    /* Volterra integrals (XPPAUT's int{...}, volt; dynkit/volterra.h): NULL for a model
+     * without them. */
+    const struct dyn_volterra_model *volterra;
 } dyn_model;
 
 /* A model whose right-hand side reads its own past (dynkit/delay.h): its parameter struct
@@ -190,7 +193,7 @@ typedef struct dyn_delay_model {
  * into a shared object records the version it was built with (the symbol
  * dynkit_model_abi, added when dynkit compiles a model), and dynkit refuses a model built
  * for another version instead of misreading it. Raised whenever a layout changes. */
-#define DYN_MODEL_ABI 6
+#define DYN_MODEL_ABI 7
 
 /* The entry point of a model in a C file or a shared object: `dynkit run mymodel.c`
  * compiles the file and calls it. Define it in your file:

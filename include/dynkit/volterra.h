@@ -75,6 +75,20 @@ typedef struct dyn_volterra_result {
     double forgot; /* first time the integrals no longer reached back to t0, or NaN */
 } dyn_volterra_result;
 
+/* A model file's Volterra integrals (dyn_model.volterra): the integrals' values are n_int
+ * doubles at byte ints_offset of the parameter struct, which rhs and compute_outputs read
+ * and the solver writes (followed by one double the integrand uses for its time t). */
+typedef struct dyn_volterra_model {
+    int n_int;
+    const double *mu;
+    const unsigned char *conv;
+    const unsigned char *is_int; /* one flag per state */
+    size_t ints_offset;
+    long max_points;             /* @ vmaxpts; 0: not given */
+    dyn_volterra_integrand_fn integrand;
+    dyn_volterra_kernel_fn kernel;
+} dyn_volterra_model;
+
 size_t dyn_volterra_work_size(int n, int n_int, long max_points);
 
 /* The integral states' values at t0 from y0 (their F with every integral 0), into y0i

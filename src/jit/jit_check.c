@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "dynkit/volterra.h"
 #include "jit_internal.h"
 
 static int check_vars(const dyn_var *v, int n, const char *what, const char *where, char *err,
@@ -98,7 +99,17 @@ int jit_check_model(const dyn_model *m, const char *where, char *err, size_t err
                             "(accepted: 0 wiener, 1 normal, 2 uniform)", where, i, m->name,
                             m->noise_kinds[i]);
     const int sde_method = m->method && m->n_noise > 0 && strcmp(m->method, "rkmil") == 0;
-    if (m->method && !sde_method && !dyn_method_find(m->method))
+    const int volt_method = m->method && m->volterra && strcmp(m->method, "volterra") == 0;
+    if (m->volterra &&
+        (m->volterra->n_int < 0 || !m->volterra->is_int || !m->volterra->integrand ||
+         m->volterra->ints_offset + ((size_t)m->volterra->n_int + 1) * sizeof(double) >
+             m->par_size))
+        return jit_fail(err, errlen,
+                        "%s: the model '%s' declares Volterra integrals that do not fit its "
+                        "parameter struct (ints_offset %zu, n_int %d, par_size %zu)",
+                        where, m->name, m->volterra->ints_offset, m->volterra->n_int,
+                        m->par_size);
+    if (m->method && !sde_method && !volt_method && !dyn_method_find(m->method))
         return jit_fail(err, errlen,
                         "%s: the model '%s' names an unknown default method (dyn_model.method = "
                         "\"%s\"; e.g. \"dp45\" or \"rk4\", or NULL for " DYN_MODEL_METHOD ")",

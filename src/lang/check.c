@@ -67,6 +67,7 @@ const char *lang_sym_kind_name(sym_kind k)
     case SYM_SPECIAL: return "a network sum";
     case SYM_ALG: return "an algebraic variable";
     case SYM_NOISE: return "a noise (wiener)";
+    case SYM_VOLT: return "an integral";
     default: return "a name";
     }
 }
@@ -284,6 +285,12 @@ static void resolve(lang_ctx *c, node *e, const rctx *r)
                 lang_fail(c, e->pos, "%s cannot depend on the noise '%s' (it changes at every "
                           "step of a run)", r->what, e->name);
             e->kind = N_NOISE;
+            e->index = s->index;
+            return;
+        case SYM_VOLT:
+            if (r->kind >= CTX_PARAMS)
+                lang_fail(c, e->pos, "%s cannot depend on an integral int{...}", r->what);
+            e->kind = N_VOLT;
             e->index = s->index;
             return;
         case SYM_AUX:
@@ -801,6 +808,13 @@ static int special_table(lang_ctx *c, const lang_special *sp, const char *name, 
 }
 
 /* A network sum's tables, the blocks it sums over and fconv's function. */
+/* An integrand of int{...}, or the kernel K of int{K#u} (integrals.c) */
+static void resolve_volt(lang_ctx *c, node *e, int kernel)
+{
+    const rctx r = {CTX_RHS, NULL, kernel ? "the kernel of int{K#u}" : "an integrand", -1};
+    resolve(c, e, &r);
+}
+
 static void resolve_special(lang_ctx *c, lang_special *sp)
 {
     const long mn = (long)sp->m * sp->n;
@@ -1115,6 +1129,7 @@ void lang_check(lang_ctx *c)
     }
     for (int i = 0; i < m->states.n; i++)
         resolve(c, LVEC_AT(m->states, lang_state, i).rhs, &rhs);
+    lang_volt_resolve(c, resolve_volt);
     for (int i = 0; i < m->auxs.n; i++)
         resolve(c, LVEC_AT(m->auxs, lang_formula, i).expr, &rhs);
     check_algebraic(c, &rhs);
@@ -1187,6 +1202,10 @@ void lang_check(lang_ctx *c)
     for (int i = 0; i < m->auxs.n; i++) {
         lang_formula *f = &LVEC_AT(m->auxs, lang_formula, i);
         f->expr = fix_calls_of(c, f->expr, sets);
+    }
+    for (int i = 0; i < m->volts.n; i++) {
+        lang_volt *v = &LVEC_AT(m->volts, lang_volt, i);
+        v->integrand = fix_calls_of(c, v->integrand, sets);
     }
     for (int i = 0; i < m->algeqs.n; i++) {
         lang_formula *f = &LVEC_AT(m->algeqs, lang_formula, i);

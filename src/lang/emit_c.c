@@ -40,6 +40,7 @@ static void line_dir(lang_ctx *c, lpos p)
 }
 
 static int noise_offset(const lang_model *m);
+static int volt_offset(const lang_model *m);
 
 /* The literal ident when cond holds, else NULL */
 #define CODE_OR_NULL(c, cond, ident) \
@@ -153,6 +154,9 @@ static void expr(lang_ctx *c, const node *e, const ectx *x)
     case N_FIX: LANG_C_CODEF(c, "v_%d", e->index); break;
     case N_ALG: LANG_C_CODEF(c, "w[%d]", e->index); break;
     case N_NOISE: LANG_C_CODEF(c, "p[%d]", noise_offset(m) + e->index); break;
+    case N_VOLT: /* index -1: the time of the integral, in the slot after the integrals */
+        LANG_C_CODEF(c, "p[%d]", volt_offset(m) + (e->index < 0 ? m->volts.n : e->index));
+        break;
     case N_DFIX:
         LANG_C_CODEF(c, "dv%d_%d", e->op, e->index);
         break;
@@ -824,7 +828,24 @@ static int noise_offset(const lang_model *m)
 /* Index in p of a delay model's history pointer (one slot, after the noise slots). */
 static int delay_offset(const lang_model *m) { return noise_offset(m) + m->noises.n; }
 
-static int par_doubles(const lang_model *m) { return delay_offset(m) + (m->n_delays ? 1 : 0); }
+/* Index in p of the Volterra integrals' values (integrals.c), after the delay's slot. */
+static int volt_offset(const lang_model *m) { return delay_offset(m) + (m->n_delays ? 1 : 0); }
+
+static int par_doubles(const lang_model *m)
+{
+    return volt_offset(m) + (lang_volt_model(m) ? m->volts.n + 1 : 0);
+}
+
+static void state_expr(lang_ctx *c, const node *e)
+{
+    const ectx x = {NULL, 1};
+    expr(c, e, &x);
+}
+
+static void fixes_for(lang_ctx *c, node *const *roots, int n)
+{
+    emit_fixes(c, needed_by(c, roots, n));
+}
 
 static void history_expr(lang_ctx *c, const node *e)
 {
@@ -1688,6 +1709,8 @@ char *lang_emit_c(lang_ctx *c)
     emit_events(c);
     if (m->n_delays)
         lang_emit_delay_model(c, delay_offset(m), history_expr);
+    if (lang_volt_model(m))
+        lang_emit_volterra(c, volt_offset(m), state_expr, fixes_for);
 
     /* data */
     LANG_C_CODE(c, "#line 1 \"<dynkit: the model's tables>\"\n");
@@ -1857,6 +1880,8 @@ char *lang_emit_c(lang_ctx *c)
                      m->noises.n, noise_offset(m), m->noise_class);
     if (m->n_delays)
         LANG_C_CODE(c, ",\n    .delay = &dk_delay_model");
+    if (lang_volt_model(m))
+        LANG_C_CODE(c, ",\n    .volterra = &dk_volterra_model");
     LANG_C_CODE(c, ",\n};\n\nconst dyn_model *dynkit_model(void) { return &dk_model; }\n");
     /* the functions the text calls, then what comes before it all */
     const lang_ctext main_text = lang_c_take(c);
@@ -1873,6 +1898,8 @@ char *lang_emit_c(lang_ctx *c)
     LANG_C_CODE(c, "\n#include <dynkit/model.h>\n");
     if (m->n_delays)
         LANG_C_CODE(c, "#include <dynkit/delay.h>\n");
+    if (lang_volt_model(m))
+        LANG_C_CODE(c, "#include <dynkit/volterra.h>\n");
     if (m->n_inputs)
         LANG_C_CODE(c, "#include <dynkit/input.h>\n\n");
     else

@@ -78,7 +78,6 @@ static const struct {
     {"lgamma", "the log-gamma function ('lgamma')"},
     {"ishift", "indirect addressing ('ishift')"},
     {"hom_bcs", "boundary-value problems ('hom_bcs')"},
-    {"int", "Volterra integrals ('int{...}')"},
 };
 
 /* The feature's name when name is a reserved word of XPPAUT that is not supported. */
@@ -95,7 +94,7 @@ int lang_is_reserved(const char *name)
     const size_t n = strlen(name);
     int arity;
     static const char *const words[] = {"t", "pi", "if", "then", "else", "not", "sum", "of",
-                                        "shift", "ran", "normal", "delay"};
+                                        "shift", "ran", "normal", "delay", "int"};
     for (size_t i = 0; i < sizeof words / sizeof words[0]; i++)
         if (ieq(name, n, words[i]))
             return 1;
@@ -366,6 +365,9 @@ static node *parse_primary(lang_lexer *lx)
     if (feature)
         lang_fail(lx->c, p, "%s %s not supported", feature,
                   strstr(feature, "s (") || strstr(feature, "ions") ? "are" : "is");
+    if (ieq(s, n, "int")) /* integrals were read by src/lang/integrals.c */
+        lang_fail(lx->c, p, "'int' begins a Volterra integral: int{u}, int{K#u} or "
+                            "int[m]{K#u}");
     if (ieq(s, n, "delay")) { /* delay(state, lag): the state's value lag ago */
         node *e = lang_node(lx->c, N_DELAY, p);
         expect(lx, T_LP, "expected '(' after 'delay': delay(x, tau)");

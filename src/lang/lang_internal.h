@@ -67,7 +67,9 @@ typedef enum node_kind {
     N_SUMIDX, /* i', the index of a sum */
     N_ALG,    /* algebraic variable index (solved from the 0= equations) */
     N_NOISE,  /* noise slot index (lang_noise): held over a step, written by the solver */
-    N_DELAY   /* delay(x, lag): state index (name: as written) at t - args[0] */
+    N_DELAY,  /* delay(x, lag): state index (name: as written) at t - args[0] */
+    N_VOLT    /* the value of Volterra integral index (lang_volt), written by the solver;
+               * index -1 inside an integrand: the time t of the integral (t' is N_TIME) */
 } node_kind;
 
 typedef enum bin_op {
@@ -112,6 +114,7 @@ typedef struct lang_state {
     lpos init_pos;
     node *history; /* a delay model's x(0)= formula (of t): the state before t0; NULL: 0
                     * (XPPAUT 6.11 reads 0 before t0 when only `init` gives a value) */
+    int is_int;    /* an integral equation x(t) = rhs (volt, integrals.c), not x' = rhs */
     lang_doc doc;
 } lang_state;
 
@@ -212,6 +215,16 @@ typedef struct lang_special {
 /* A noise slot (dynkit/sde.h): a `wiener NAME` (kind DYN_NOISE_WIENER), or one call of
  * normal(m, s) (DYN_NOISE_NORMAL, read as m + s*slot) or ran(x) (DYN_NOISE_UNIFORM,
  * x*slot). Their values follow the rest of the parameter array. */
+/* A Volterra integral (XPPAUT's int{...}, int[mu]{K#u}; integrals.c): its value at t is
+ * int_t0^t (t-t')^-mu K(t-t') g(t, t') dt', K = 1 without '#'. In g, t' is N_TIME and t is
+ * N_VOLT -1; states and fixed quantities are read at t'. */
+typedef struct lang_volt {
+    lpos pos;
+    double mu;
+    node *kernel;    /* K, a formula of the lag t and the parameters, or NULL */
+    node *integrand; /* g */
+} lang_volt;
+
 typedef struct lang_noise {
     const char *name; /* the wiener's name, or "normal" / "ran" */
     lpos pos;
@@ -246,6 +259,7 @@ typedef enum sym_kind {
     SYM_SPECIAL,
     SYM_ALG,
     SYM_NOISE,
+    SYM_VOLT,
     SYM_RESERVED
 } sym_kind;
 
@@ -318,6 +332,9 @@ typedef struct lang_model {
      * given) */
     int n_delays;
     double max_delay;
+    /* Volterra integrals (integrals.c): lang_volt, and @ vmaxpts (0: not given) */
+    lvec volts;
+    long vmaxpts;
 } lang_model;
 
 /* ---- one logical line: text and where each character came from ---- */
@@ -539,6 +556,17 @@ void lang_c_solver(lang_ctx *c);
  * offset), the guard at the start of a function that returns a status (no history
  * attached), prepare's check of the constant lags against @ delay=, and the
  * dyn_delay_model dk_delay_model (expr writes a formula of t and p) */
+/* Volterra integrals (integrals.c): the integrals of a logical line read into c->m.volts and
+ * replaced in its text by names of their own; the integrands' names resolved (check.c);
+ * the C of the integrands, the kernels and the dyn_volterra_model (emit_c.c), whose slots
+ * in p start at offset (one per integral, then the integrands' time t). */
+void lang_volt_line(lang_ctx *c, const lang_line *l);
+int lang_volt_is_int_formula(lang_ctx *c, const lang_line *l, int from);
+int lang_volt_model(const lang_model *m); /* has integrals or integral equations */
+void lang_volt_finish(lang_ctx *c);       /* after the statements: the method */
+void lang_volt_resolve(lang_ctx *c, void (*resolve)(lang_ctx *, node *, int kernel));
+void lang_emit_volterra(lang_ctx *c, int offset, void (*expr)(lang_ctx *, const node *),
+                        void (*fixes)(lang_ctx *, node *const *, int));
 void lang_emit_delay_helper(lang_ctx *c, int offset);
 void lang_emit_delay_guard(lang_ctx *c);
 void lang_emit_delay_prepare(lang_ctx *c, void (*expr)(lang_ctx *, const node *));

@@ -148,6 +148,17 @@ static int add_state(lang_ctx *c, const char *name, lpos pos, node *rhs)
     return idx;
 }
 
+/* volt NAME=formula (or NAME(t)= a formula with an integral): an integral equation
+ * NAME(t) = formula (src/lang/integrals.c) */
+static void parse_volt(lang_ctx *c, lang_lexer *lx)
+{
+    lpos pos;
+    const char *name = lang_read_name(lx, &pos, "expected the name after 'volt'");
+    lang_expect_char(lx, '=', "expected '=' after the name of an integral equation");
+    const int i = add_state(c, name, pos, expr_to_end(lx, "the integral equation"));
+    LVEC_AT(c->m.states, lang_state, i).is_int = 1;
+}
+
 /* x(t+1)=expr, the lexer after "x(t": a difference equation (XPPAUT's manual,
  * "Difference equations"), which makes the whole file a discrete map. */
 static void parse_map_equation(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos)
@@ -596,6 +607,12 @@ static void parse_options(lang_ctx *c, lang_lexer *lx)
             m->max_delay = option_number(c, name, v, vpos);
             if (!(m->max_delay >= 0) || !isfinite(m->max_delay))
                 lang_fail(c, vpos, "delay (the maximal delay) must be a finite number >= 0");
+        } else if (ieqn(name, n, "vmaxpts")) {
+            const double k = option_number(c, name, v, vpos);
+            if (!(k >= 1.0 && k <= 1e7) || k != floor(k))
+                lang_fail(c, vpos, "vmaxpts (the grid points the Volterra integrals keep) must "
+                                   "be a whole number from 1 to 10000000");
+            m->vmaxpts = (long)k;
         } else if (ieqn(name, n, "maxstor")) {
             lang_note(c, pos, "option 'maxstor' is accepted and ignored (dynkit streams its "
                       "samples; nothing to store)");
@@ -1032,7 +1049,7 @@ static int keyword_statement(lang_ctx *c, lang_lexer *lx, pstate *ps, const char
     else if (KW(w, n, "bdry", "bndry", "b", "boundary"))
         lang_fail(c, wpos, "boundary-value problems ('bdry') are not supported");
     else if (KW(w, n, "volt", "volterra", "v"))
-        lang_fail(c, wpos, "Volterra integral equations ('volt') are not supported");
+        parse_volt(c, lx);
     else if (KW(w, n, "special", "sp"))
         parse_special(c, lx, wpos);
     else if (KW(w, n, "solv", "solve"))
@@ -1204,6 +1221,20 @@ static void statement(lang_ctx *c, lang_lexer *lx, pstate *ps, int *done)
                 parse_map_equation(c, lx, w, wpos);
                 return;
             }
+            /* x(t)= a formula with an integral: XPPAUT's integral equation; without
+             * one, a function of t */
+            if (is_t && args.n == 0 && lang_skip_blanks(lx) == ')') {
+                const int at = lx->i;
+                lx->i++;
+                if (lang_skip_blanks(lx) == '=' &&
+                    lang_volt_is_int_formula(c, lx->line, lx->i + 1)) {
+                    lx->i++; /* '=' */
+                    const int i = add_state(c, w, wpos, expr_to_end(lx, "the integral equation"));
+                    LVEC_AT(c->m.states, lang_state, i).is_int = 1;
+                    return;
+                }
+                lx->i = at;
+            }
             if (is_t && lang_skip_blanks(lx) != ')' && lang_skip_blanks(lx) != ',')
                 lang_fail(c, wpos, "expected x(t+1)= (a difference equation) or a function "
                                    "definition f(t,...)= after '%s('", w);
@@ -1347,6 +1378,7 @@ void lang_parse_model(lang_ctx *c)
                   "in the file");
     if (m->map_eq || m->map_meth)
         finish_map(c);
+    lang_volt_finish(c);
     if (m->meth_every_dt && m->nout > 1) {
         lang_note(c, m->nout_pos,
                   "nout=%ld is ignored with meth=%s: as in XPPAUT, an adaptive method writes a "

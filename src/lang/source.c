@@ -288,29 +288,12 @@ static void emit(lang_ctx *c, lines_state *s, const lang_line *l)
         s->stop = 1;
 }
 
-/* Volterra's int{...} and int[m]{...} are refused before [m] could be read as an index. */
-static void refuse_volterra(lang_ctx *c, const lang_line *l)
-{
-    for (int i = 0; i + 3 < l->len; i++) {
-        if ((i > 0 && lang_is_ident_char((unsigned char)l->text[i - 1])) ||
-            (l->text[i] != 'i' && l->text[i] != 'I') ||
-            (l->text[i + 1] != 'n' && l->text[i + 1] != 'N') ||
-            (l->text[i + 2] != 't' && l->text[i + 2] != 'T'))
-            continue;
-        int k = i + 3;
-        while (k < l->len && (l->text[k] == ' ' || l->text[k] == '\t'))
-            k++;
-        if (k < l->len && (l->text[k] == '{' || l->text[k] == '['))
-            lang_fail(c, l->pos[i], "Volterra integrals ('int{...}') are not supported");
-    }
-}
-
 static void logical_line(lang_ctx *c, lines_state *s, const lang_line *l)
 {
     int at;
     const int ch = first_char(l, &at);
-    if (ch != '#' && ch != '"')
-        refuse_volterra(c, l);
+    if (ch != '#' && ch != '"') /* before [m] of int[m]{...} could be read as an index */
+        lang_volt_line(c, l);
     if (c->no_arrays) { /* [ ] holds units (src/mbs) */
         emit(c, s, l);
         return;

@@ -286,6 +286,7 @@ int dyn_volterra_solve(const dyn_volterra *v, double t0, double h, long nsteps,
         double *pN = L.hist + (size_t)(N % M) * stride;
         memcpy(pN, L.yg, (size_t)n * sizeof *pN);
         memcpy(pN + n, L.ig, (size_t)m * sizeof *pN);
+        memcpy(v->ints, L.ig, (size_t)m * sizeof *L.ig); /* for the outputs read at t */
         st->steps++;
         st->accepted++;
         res->r.t = t;

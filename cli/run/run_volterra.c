@@ -1,0 +1,125 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* A run of a model with Volterra integrals (dyn_model.volterra, dynkit/volterra.h): XPPAUT's
+ * volterra method on the grid of --step, the workspace for the points kept (@ vmaxpts,
+ * default 4000) allocated here, a warning when the integrals stop reaching back to t0, and
+ * for a model that also reads delay() a history fed with each step (linear between the grid
+ * points). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "dynkit/delay.h"
+#include "dynkit/volterra.h"
+
+typedef struct volt_delay {
+    dyn_history *h;
+    double *coef; /* 2 n */
+    double t_last;
+    double *y_last; /* n */
+    int n, have;
+} volt_delay;
+
+static int grow(dyn_history *h, void *ctx)
+{
+    (void)ctx;
+    const long cap = h->capacity ? 2 * h->capacity : 256;
+    const size_t block = dyn_dense_record_block(h->n, h->degree);
+    double *d = realloc(h->data, (size_t)cap * block * sizeof *d);
+    if (!d)
+        return 1;
+    h->data = d;
+    h->capacity = cap;
+    return 0;
+}
+
+/* each grid step as a line from the last point to this one */
+static int push_step(double t, const double *y, void *ctx)
+{
+    volt_delay *vd = ctx;
+    const int n = vd->n;
+    if (vd->have) {
+        for (int i = 0; i < n; i++) {
+            vd->coef[i] = vd->y_last[i];
+            vd->coef[n + i] = y[i] - vd->y_last[i];
+        }
+        const dyn_dense d = {vd->t_last, t - vd->t_last, n, 1, vd->coef};
+        if (dyn_history_push(&d, vd->h))
+            return 1;
+    }
+    memcpy(vd->y_last, y, (size_t)n * sizeof *y);
+    vd->t_last = t;
+    vd->have = 1;
+    return 0;
+}
+
+int cli_solve_volterra(const cli_run *run, long every, dyn_output_fn output, void *output_ctx,
+                       dyn_progress_fn progress, void *progress_ctx, double *y, dyn_result *res)
+{
+    const dyn_model *m = run->model;
+    const dyn_volterra_model *vm = m->volterra;
+    const int n = m->n_states;
+    memset(res, 0, sizeof *res);
+    const double h = run->step, span = run->t1 - run->t0;
+    const double r = span / h;
+    const long steps = lround(r);
+    if (!(h > 0.0) || !(r >= 0.5) || fabs(r - (double)steps) > 1e-9 * fmax(1.0, r)) {
+        res->status = DYN_ERR_ARG;
+        snprintf(res->message, sizeof res->message,
+                 "the volterra method steps by --step %g over %g:%g, which is not a whole "
+                 "number of steps: give a span that is",
+                 h, run->t0, run->t1);
+        return DYN_ERR_ARG;
+    }
+    const long M = vm->max_points > 0 ? vm->max_points : DYN_VOLTERRA_MAX_POINTS_DEFAULT;
+    double *ints = (double *)((char *)run->par + vm->ints_offset);
+    const dyn_volterra v = {n,      vm->is_int,   vm->n_int, vm->mu, vm->conv,
+                            m->rhs, vm->integrand, vm->kernel, ints,  run->par};
+    double *work = malloc(dyn_volterra_work_size(n, vm->n_int, M) * sizeof *work);
+    volt_delay vd = {0};
+    if (!work)
+        return -1;
+    dyn_volterra_opts o = {0};
+    o.max_points = M;
+    o.every = every;
+    o.output = output;
+    o.output_ctx = output_ctx;
+    o.progress = progress;
+    o.progress_ctx = progress_ctx;
+    if (m->delay) {
+        vd.n = n;
+        vd.h = calloc(1, sizeof *vd.h);
+        vd.coef = malloc(3 * (size_t)n * sizeof *vd.coef);
+        if (!vd.h || !vd.coef) {
+            free(vd.h);
+            free(vd.coef);
+            free(work);
+            return -1;
+        }
+        vd.y_last = vd.coef + 2 * n;
+        vd.h->grow = grow;
+        dyn_history_init(vd.h, n, 1, run->t0, run->y0, m->delay->history, run->par,
+                         m->delay->max_delay, NULL, 0);
+        m->delay->attach(run->par, vd.h);
+        o.step = push_step;
+        o.step_ctx = &vd;
+    }
+    dyn_volterra_result vr;
+    const int rc = dyn_volterra_solve(&v, run->t0, h, steps, run->y0, y, work, &o, &vr);
+    *res = vr.r;
+    if (m->delay) {
+        m->delay->attach(run->par, NULL);
+        free(vd.h->data);
+        free(vd.h);
+        free(vd.coef);
+    }
+    free(work);
+    if (!isnan(vr.forgot))
+        fprintf(stderr,
+                "dynkit: warning: the Volterra integrals keep the last %ld grid points "
+                "(@ vmaxpts): from t = %g on they cover the last %g time units only, not "
+                "[t0, t], as XPPAUT's do; raise vmaxpts in the file for the whole past\n",
+                M, vr.forgot, (double)M * h);
+    return rc;
+}

@@ -278,6 +278,22 @@ static void test_file_orders(void **state)
         print_message("dp45 h = %g: error %.3g tracked, %.3g not\n", h, tracked, blind);
         CHECK(tracked * 100 < blind, "h = %g: tracked %g, not %g", h, tracked, blind);
     }
+    /* rk4 at steps 0.3, 0.15, 0.075 that do not divide the lag: a partial step onto each
+     * breaking point between grid points keeps the order 4 (stepping over them gave errors
+     * 1.2e-6, 1.5e-8, 1.0e-8 at t = 20, orders 6.3 and 0.5) and y(2) = -1/2 exact (it is a
+     * polynomial of degree 2 on [1, 2]; stepping over 1 gave -0.500025) */
+    double e[3];
+    for (int k = 0; k < 3; k++) {
+        char args[128];
+        snprintf(args, sizeof args, "--method rk4 --step %g", 0.3 / (1 << k));
+        e[k] = fabs(final_value("lag1.ode", args) - exact);
+    }
+    print_message("rk4 h = 0.3, 0.15, 0.075: errors %.3g %.3g %.3g, orders %.2f %.2f\n", e[0],
+                  e[1], e[2], log2(e[0] / e[1]), log2(e[1] / e[2]));
+    for (int k = 0; k < 2; k++)
+        CHECK(fabs(log2(e[k] / e[k + 1]) - 4.0) < 0.3, "rk4 errors %g %g %g", e[0], e[1], e[2]);
+    const double y2 = final_value("lag1.ode", "--method rk4 --step 0.3 --tspan 0:2");
+    CHECK(fabs(y2 + 0.5) < 1e-14, "rk4 h = 0.3: y(2) = %.17g", y2);
 }
 
 /* Mackey-Glass (examples/models/mackey_glass.ode: beta 0.2, gamma 0.1, n 10, tau 17) by

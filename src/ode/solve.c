@@ -436,7 +436,7 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
 
     while (t < t_end) {
         double hn, tnext;
-        int last = 0, at_stop = 0;
+        int last = 0, at_stop = 0, off_grid = 0;
         if (fixed) {
             if (step >= steps.samples - 1)
                 break;
@@ -446,14 +446,19 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
                         ? t1
                         : t0 + (double)(step + 1) * opts->h;
             if (t != tn)
-                hn = tnext - t; /* after a reset inside the step: on to the grid point */
-            while (stop_i < opts->n_stops && opts->stops[stop_i] < tnext &&
-                   !(fabs(opts->stops[stop_i] - tnext) <= 1e-12 * fabs(tnext)))
+                hn = tnext - t; /* after a reset or a stop inside the step: on to the grid */
+            while (stop_i < opts->n_stops && !(opts->stops[stop_i] > t + 1e-12 * fabs(t)))
                 stop_i++;
             if (stop_i < opts->n_stops &&
                 fabs(opts->stops[stop_i] - tnext) <= 1e-12 * fabs(tnext)) {
                 at_stop = 1; /* a stop on the grid: f anew after it */
                 stop_i++;
+            } else if (stop_i < opts->n_stops && opts->stops[stop_i] < tnext) {
+                /* a stop inside the step (a breaking point between grid points): a partial
+                 * step onto it keeps the order, the grid goes on after it */
+                tnext = opts->stops[stop_i++];
+                hn = tnext - t;
+                at_stop = off_grid = 1;
             }
         } else {
             while (stop_i < opts->n_stops && !(opts->stops[stop_i] > t))
@@ -674,7 +679,7 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
                 goto rhs_failed;
             retry = 0;
             if (fixed) {
-                if (t == tnext)
+                if (t == tnext && !off_grid)
                     step++; /* the reset is at a grid point: whole steps go on from it */
             } else {
                 dyn_sinl_ctl_init(&ctl, m->error_order, dyn_sinl_ctl_safety(m, opts->safety),
@@ -715,7 +720,8 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
         memcpy(ycur, ynew, N * sizeof *ycur);
         t = tnext;
         res->h_last = hn;
-        step++;
+        if (!off_grid)
+            step++;
         if (at_stop) { /* f anew past the stop: the right-hand side may jump there */
             rc = ops->start(&st, t, ycur);
             if (rc)

@@ -203,6 +203,28 @@ static double final_value(const char *file, const char *args)
     return v;
 }
 
+/* dynkit info says a model has delays, with its constant lags and the maximal delay, and
+ * that a lag of the state is not tracked. */
+static void test_info_delays(void **state)
+{
+    (void)state;
+    assert_int_equal(cli_write_file("lag1.ode", lag1_ode), 0);
+    assert_int_equal(cli_write_file("lag1u.ode", lag1_untracked_ode), 0);
+    cli_result r = cli("info %s", cli_path("lag1.ode"));
+    CHECK(r.status == 0 && strstr(r.out, "Delays: delay(x, tau) reads the past; constant lags: 1 "
+                                         "(the steps land on t0 + k*lag)") &&
+              strstr(r.out, "maximal delay 2 (@ delay=)"),
+          "%s", r.out);
+    cli_free(&r);
+    r = cli("info %s", cli_path("lag1u.ode"));
+    CHECK(r.status == 0 && strstr(r.out, "lags of the states or t only (not tracked)"), "%s",
+          r.out);
+    cli_free(&r);
+    r = cli("info pendulum");
+    CHECK(r.status == 0 && !strstr(r.out, "Delays:"), "%s", r.out);
+    cli_free(&r);
+}
+
 /* Every sample of an adaptive run on [0, 20] follows the closed form: exact values at the
  * breaking points 1 and 2, the piecewise polynomials between. */
 static void test_file_closed_form(void **state)
@@ -495,6 +517,7 @@ int main(void)
         cmocka_unit_test(test_closed_form_values),
         cmocka_unit_test(test_library_history),
         cmocka_unit_test(test_breaking_points),
+        cmocka_unit_test(test_info_delays),
         cmocka_unit_test(test_file_closed_form),
         cmocka_unit_test(test_file_orders),
         cmocka_unit_test(test_mackey_glass_independent),

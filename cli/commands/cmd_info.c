@@ -200,6 +200,38 @@ static void print_events(const dyn_model *m)
     }
 }
 
+/* A delay model: its constant lags with the default parameters (each value once), the
+ * maximal delay. */
+static void print_delays(const dyn_model *m, const void *par)
+{
+    const dyn_delay_model *dm = m->delay;
+    if (!dm)
+        return;
+    char a[32];
+    printf("\nDelays: delay(x, tau) reads the past; ");
+    double *lags = dm->n_lags > 0 && dm->lags ? malloc((size_t)dm->n_lags * sizeof *lags) : NULL;
+    if (lags) {
+        dm->lags(par, lags);
+        printf("constant lags:");
+        for (int k = 0, shown = 0; k < dm->n_lags; k++) {
+            int seen = 0;
+            for (int j = 0; j < k; j++)
+                seen |= lags[j] == lags[k];
+            if (!seen)
+                printf("%s %s", shown++ ? "," : "", shortest(lags[k], a, sizeof a));
+        }
+        printf(" (the steps land on t0 + k*lag)");
+        free(lags);
+    } else {
+        printf("lags of the states or t only (not tracked)");
+    }
+    printf(";\n  ");
+    if (dm->max_delay > 0.0)
+        printf("maximal delay %s (@ delay=), a longer lag stops the run; ",
+               shortest(dm->max_delay, a, sizeof a));
+    printf("every method but cvode\n  (docs/model-files.md, \"Delay equations\")\n");
+}
+
 static void print_default_run(const dyn_model *m)
 {
     char a[32], b[32], c[32], from[3][96];
@@ -294,6 +326,7 @@ int cli_cmd_info(int argc, char **argv)
     print_params(m);
     print_outputs(m);
     print_events(m);
+    print_delays(m, par);
     print_default_run(m);
     free(par);
     free(y0);

@@ -155,9 +155,18 @@ def file_dt(text):
     return file_option(text, "dt", 0.05)
 
 
+def is_old_format(text):
+    """XPPAUT's first format: the first line is a positive number (its `v` lines declare
+    the variables, not integral equations)."""
+    m = re.match(r"[ \t]*\+?([0-9]+)", text)
+    return m is not None and int(m.group(1)) > 0
+
+
 def has_volterra(text):
     """Volterra integrals (int{...}, int[m]{...}) or integral equations (volt, x(t)=): XPPAUT
     runs them with its volterra method whatever meth says, and dynkit with the same one."""
+    if is_old_format(text):
+        return re.search(r"(?i)\bint\s*[\[{]", text) is not None
     return re.search(r"(?i)\bint\s*[\[{]|^\s*v(olt(erra)?)?\s+[a-z]", text, re.M) is not None
 
 

@@ -10,14 +10,15 @@
  *   u NAME N FORMULA   a function of N arguments, named arg1 ... argN in FORMULA
  *   o FORMULA          one right-hand side: the k-th `o` line belongs to the k-th of the
  *                      variables, then the fixed quantities, then the auxiliary quantities
+ *   i FORMULA          an `o` line whose variable is given by an integral equation,
+ *                      x(t) = FORMULA (`volt` of the current format)
  *   a NAME,...         names of the auxiliary quantities (else AUX1, AUX2, ...)
  *   g / t / w          global, table, wiener: as in the current format
  *   @ (first column)   options           x  a named set (ignored, as `set` is)
  *   s, h               XPPAUT's own help (nothing to read)     d  the end of the file
  * Lines of any other first character are ignored, as XPPAUT ignores them (comments). An
- * `o` line beyond the count ends the reading, as in XPPAUT. Markov states (m, r), kernels
- * and integral equations (k, i), boundary conditions (b) and option files (c) are refused
- * by name, as their current-format statements are.
+ * `o` line beyond the count ends the reading, as in XPPAUT. Markov states (m, r), named
+ * kernels (k), boundary conditions (b) and option files (c) are refused by letter.
  *
  * Each line is rewritten as the statements of the current format with every character
  * keeping its place in the file, and read by the current format's parser (ode_parse.c), so
@@ -54,8 +55,9 @@ typedef struct oldf {
     int stop; /* the file's text ends here */
     long neq;
     lvec vars, fixes, auxnames; /* span (the names) */
-    lvec rhs;                   /* span (the formula), then its first word's place */
-    lvec rhs_word;              /* lpos */
+    lvec rhs;                   /* span (the formula) of each `o` or `i` line */
+    lvec rhs_word;              /* lpos: the place of its first word */
+    lvec rhs_int;               /* int: 1 for an `i` line (an integral equation) */
 } oldf;
 
 static lpos at(const pline *p, int k)
@@ -128,6 +130,7 @@ static void flush(oldf *o, obuf *b, lpos end)
     b->len--;
     b->pos[b->len] = end;
     lang_line l = {b->text, b->len, b->pos};
+    lang_volt_line(c, &l); /* its integrals int{...}, as source.c reads a line's */
     (void)o->fn(c, &l, o->ctx); /* never a `done`: the translation writes none */
     b->len = 0;
 }
@@ -269,7 +272,11 @@ static void equations(oldf *o)
     for (int k = 0; k < no; k++) {
         const span f = LVEC_AT(o->rhs, span, k);
         const lpos w = LVEC_AT(o->rhs_word, lpos, k);
-        if (k < nv) {
+        if (k < nv && LVEC_AT(o->rhs_int, int, k)) {
+            put_word(c, &b, "volt ", w);
+            put_span(c, &b, LVEC_AT(o->vars, span, k));
+            put(c, &b, '=', w);
+        } else if (k < nv) {
             put_span(c, &b, LVEC_AT(o->vars, span, k));
             put_word(c, &b, "'=", w);
         } else if (k < nv + nf) {
@@ -348,6 +355,7 @@ static void old_line(oldf *o, const pline *p)
         }
         return;
     }
+    case 'i':
     case 'o': {
         if (o->rhs.n >= o->neq + o->fixes.n) {
             lang_warn(c, wpos, "an 'o' line beyond the first line's count (%ld equation%s, "
@@ -365,6 +373,7 @@ static void old_line(oldf *o, const pline *p)
                       p->s + w0);
         *(span *)lvec_push(c, &o->rhs, sizeof(span)) = (span){p->ln, f, end};
         *(lpos *)lvec_push(c, &o->rhs_word, sizeof(lpos)) = wpos;
+        *(int *)lvec_push(c, &o->rhs_int, sizeof(int)) = kind == 'i';
         return;
     }
     case 'x':
@@ -376,8 +385,8 @@ static void old_line(oldf *o, const pline *p)
         refuse(c, wpos, (char)kind, "Markov states");
         break;
     case 'k':
-    case 'i':
-        refuse(c, wpos, (char)kind, "kernels of Volterra integral equations");
+        refuse(c, wpos, 'k', "named kernels; write the integral in its formula, "
+               "int{K#u} or int[m]{K#u}");
         break;
     case 'b':
         refuse(c, wpos, 'b', "boundary conditions of a boundary-value problem");

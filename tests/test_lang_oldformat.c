@@ -119,6 +119,9 @@ static void test_errors_point_at_the_file(void **state)
     expect_error("1\nv x=1\no\nd\n", 3, 2, "expected a right-hand side after 'o'");
     /* inside an integral of an integral equation ('i' line) */
     expect_error("1\nv u=1\ni 1-int{exp(-t)#uu}\nd\n", 3, 17, "unknown name 'uu'");
+    /* inside a kernel's formula, where a right-hand side names the kernel */
+    expect_error("1\nv u=1\nk kk 0 exp(-t)#uu\ni 1-kk\nd\n", 3, 16, "unknown name 'uu'");
+    expect_error("1\nv u=1\nk kk 0\ni 1-kk\nd\n", 3, 7, "expected 'k NAME MU FORMULA'");
     expect_error("1\nv x=1\na e=2\no -x\nd\n", 3, 4, "an 'a' line names the auxiliary");
 }
 
@@ -148,7 +151,6 @@ static void test_line_kinds_refused_or_ignored(void **state)
         const char *what;
     } refused[] = {
         {"markov z 0 2", "'m' lines of XPPAUT's first format (Markov states)"},
-        {"kernel k 0 exp(-t)", "'k' lines of XPPAUT's first format (named kernels"},
         {"bndry x-1", "'b' lines of XPPAUT's first format (boundary conditions"},
         {"change my.opt", "'c' lines of XPPAUT's first format (an option file"},
     };

@@ -12,13 +12,14 @@
  *                      variables, then the fixed quantities, then the auxiliary quantities
  *   i FORMULA          an `o` line whose variable is given by an integral equation,
  *                      x(t) = FORMULA (`volt` of the current format)
+ *   k NAME MU FORMULA  a kernel: NAME in an `o` or `i` line is int[MU]{FORMULA}
  *   a NAME,...         names of the auxiliary quantities (else AUX1, AUX2, ...)
  *   g / t / w          global, table, wiener: as in the current format
  *   @ (first column)   options           x  a named set (ignored, as `set` is)
  *   s, h               XPPAUT's own help (nothing to read)     d  the end of the file
  * Lines of any other first character are ignored, as XPPAUT ignores them (comments). An
- * `o` line beyond the count ends the reading, as in XPPAUT. Markov states (m, r), named
- * kernels (k), boundary conditions (b) and option files (c) are refused by letter.
+ * `o` line beyond the count ends the reading, as in XPPAUT. Markov states (m, r), boundary
+ * conditions (b) and option files (c) are refused by letter.
  *
  * Each line is rewritten as the statements of the current format with every character
  * keeping its place in the file, and read by the current format's parser (ode_parse.c), so
@@ -27,6 +28,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "lang/lang_internal.h"
 
@@ -48,6 +50,11 @@ typedef struct span {
     int ln, from, to;
 } span;
 
+/* k NAME MU FORMULA: NAME in a right-hand side is the integral int[MU]{FORMULA} */
+typedef struct kernel {
+    span name, mu, formula;
+} kernel;
+
 typedef struct oldf {
     lang_ctx *c;
     lang_line_fn fn;
@@ -58,6 +65,7 @@ typedef struct oldf {
     lvec rhs;                   /* span (the formula) of each `o` or `i` line */
     lvec rhs_word;              /* lpos: the place of its first word */
     lvec rhs_int;               /* int: 1 for an `i` line (an integral equation) */
+    lvec kernels;               /* kernel: the `k` lines */
 } oldf;
 
 static lpos at(const pline *p, int k)
@@ -120,6 +128,43 @@ static void put_span(lang_ctx *c, obuf *b, span sp)
     const pline p = physical(c, sp.ln);
     for (int k = sp.from; k < sp.to; k++)
         put(c, b, p.s[k] == '\r' ? ' ' : p.s[k], at(&p, k));
+}
+
+/* A right-hand side: the names of kernels (`k` lines) written as their integrals. */
+static void put_formula(oldf *o, obuf *b, span sp)
+{
+    lang_ctx *c = o->c;
+    const pline p = physical(c, sp.ln);
+    int k = sp.from;
+    while (k < sp.to) {
+        if (!lang_is_ident_start((unsigned char)p.s[k]) ||
+            (k > sp.from && lang_is_ident_char((unsigned char)p.s[k - 1]))) {
+            put_span(c, b, (span){sp.ln, k, k + 1});
+            k++;
+            continue;
+        }
+        int e = k + 1;
+        while (e < sp.to && lang_is_ident_char((unsigned char)p.s[e]))
+            e++;
+        const kernel *kn = NULL;
+        for (int i = 0; i < o->kernels.n && !kn; i++) {
+            const kernel *q = &LVEC_AT(o->kernels, kernel, i);
+            const pline qp = physical(c, q->name.ln);
+            if (q->name.to - q->name.from == e - k &&
+                strncasecmp(qp.s + q->name.from, p.s + k, (size_t)(e - k)) == 0)
+                kn = q;
+        }
+        if (!kn) {
+            put_span(c, b, (span){sp.ln, k, e});
+        } else {
+            put_word(c, b, "int[", at(&p, k));
+            put_span(c, b, kn->mu);
+            put_word(c, b, "]{", at(&p, k));
+            put_span(c, b, kn->formula);
+            put(c, b, '}', at(&p, e - 1));
+        }
+        k = e;
+    }
 }
 
 /* hand the statement written in b to the current format's parser; end: its end's place */
@@ -243,6 +288,34 @@ static void function(oldf *o, const pline *p, int from)
     flush(o, &b, at(p, f1));
 }
 
+/* k NAME MU FORMULA (the formula up to a '$' or the end) */
+static void kernel_line(oldf *o, const pline *p, int from)
+{
+    const int end = line_end(p);
+    span w[2];
+    int i = from;
+    for (int n = 0; n < 2; n++) {
+        while (i < end && blank(p->s[i]))
+            i++;
+        w[n] = (span){p->ln, i, i};
+        while (i < end && !blank(p->s[i]))
+            i++;
+        w[n].to = i;
+    }
+    int f0 = i, f1;
+    while (f0 < end && (blank(p->s[f0]) || p->s[f0] == '$'))
+        f0++;
+    for (f1 = f0; f1 < end && p->s[f1] != '$'; f1++)
+        ;
+    if (w[0].from == w[0].to || w[1].from == w[1].to || f0 == f1)
+        lang_fail(o->c, at(p, f0), "expected 'k NAME MU FORMULA' (a kernel: NAME in a "
+                  "formula is the integral int[MU]{FORMULA})");
+    kernel *k = lvec_push(o->c, &o->kernels, sizeof *k);
+    k->name = w[0];
+    k->mu = w[1];
+    k->formula = (span){p->ln, f0, f1};
+}
+
 /* g / t: the same statement as in the current format, under its current keyword */
 static void same_statement(oldf *o, const pline *p, int from, const char *keyword, lpos kpos)
 {
@@ -291,7 +364,7 @@ static void equations(oldf *o)
                 put_word(c, &b, lang_printf(c, "AUX%d", a + 1), w);
             put(c, &b, '=', w);
         }
-        put_span(c, &b, f);
+        put_formula(o, &b, f);
         flush(o, &b, (lpos){f.ln + 1, f.to + 1});
     }
 }
@@ -385,9 +458,8 @@ static void old_line(oldf *o, const pline *p)
         refuse(c, wpos, (char)kind, "Markov states");
         break;
     case 'k':
-        refuse(c, wpos, 'k', "named kernels; write the integral in its formula, "
-               "int{K#u} or int[m]{K#u}");
-        break;
+        kernel_line(o, p, after);
+        return;
     case 'b':
         refuse(c, wpos, 'b', "boundary conditions of a boundary-value problem");
         break;

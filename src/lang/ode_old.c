@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* XPPAUT's first .ode format, which XPPAUT still reads when the file's first line is a
- * positive number (XPPAUT's form_ode.c, the "old style" compiler; XPPAUT's manual keeps it
- * for the files written before the current format). The first line gives the count of
+ * positive number (XPPAUT's form_ode.c, its "old style" compiler; each rule checked against
+ * xppaut 6.11 -silent in tests/xppaut/oldformat/). The first line gives the count of
  * equations: the variables' and the auxiliary quantities'. Each line is then known by the
  * first letter of its first word (case-insensitive; the rest of the word is not read):
  *   v NAME=VALUE,...   variables and their initial values (values default to 0)

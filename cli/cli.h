@@ -166,7 +166,18 @@ typedef struct cli_run {
     const char *events_path; /* --events-output FILE, or NULL */
     /* models with noise (dynkit/sde.h): --seed, and the run's stream (a sweep's run) */
     uint64_t seed, stream;
+    /* --jac-pattern model|probe|none (NULL: model); for probe and none the run's model is
+     * own_model, a copy with the pattern probed (owned with it) or none */
+    const char *jac_pattern;
+    dyn_model *own_model;
+    dyn_sparse_pattern probed;
 } cli_run;
+
+/* The same for a run's method: cvode takes sparse matrices only with the model's exact
+ * sparse values and SUNDIALS' KLU (else dense, saying why). */
+void cli_linear_for_run(const cli_run *run, cli_linear *lin);
+/* --jac-pattern of run (run_pattern.c): the model's pattern, a probed one, or none. */
+int cli_run_jac_pattern(const char *command, cli_run *run);
 
 /* Parse "MODEL [options]" of run-like commands into run; unknown options are errors.
  * Returns CLI_OK or CLI_USAGE (message printed). Free with cli_run_free. */

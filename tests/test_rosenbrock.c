@@ -323,7 +323,7 @@ static void test_order_linear_stiff(void **state)
     (void)state;
     lin_prob lp;
     lin_init(&lp, -1.0, -2.5, -1e3, 0);
-    dyn_ros_problem p = {{lin_f, 3, &lp}, lin_jac, 1, NULL, 0, NULL, NULL, NULL, NULL};
+    dyn_ros_problem p = {{lin_f, 3, &lp}, lin_jac, 1, NULL, 0, NULL, NULL, NULL, NULL, NULL, 0};
     const double y0[3] = {1.0, -0.5, 2.0};
     double yex[3];
     lin_exact(&lp, y0, 2.0, yex);
@@ -348,7 +348,7 @@ static void test_order_nonlinear_kaps(void **state)
     const double y0[2] = {1.0, 1.0}, t1 = 1.0;
     const double yex[2] = {exp(-2.0 * t1), exp(-t1)};
     double eps = 1.0;
-    dyn_ros_problem p = {{kaps_f, 2, &eps}, kaps_jac, 1, NULL, 0, NULL, NULL, NULL, NULL};
+    dyn_ros_problem p = {{kaps_f, 2, &eps}, kaps_jac, 1, NULL, 0, NULL, NULL, NULL, NULL, NULL, 0};
     check_order("Kaps eps = 1", &p, y0, yex, t1, 5, 3.9, 4.2);
     eps = 1e-9;
     check_order("Kaps eps = 1e-9", &p, y0, yex, t1, 4, 3.9, 4.4);
@@ -364,7 +364,7 @@ static void test_local_error_and_dense_output(void **state)
 {
     (void)state;
     double eps = 1.0;
-    dyn_ros_problem p = {{kaps_f, 2, &eps}, kaps_jac, 1, NULL, 0, NULL, NULL, NULL, NULL};
+    dyn_ros_problem p = {{kaps_f, 2, &eps}, kaps_jac, 1, NULL, 0, NULL, NULL, NULL, NULL, NULL, 0};
     double work[64], y1[2], err[2], cont[8], yd[2];
     int piv[2];
     dyn_ros_ws ws;
@@ -444,7 +444,7 @@ static double stability_function(double x, double w, double *re)
 {
     double l[2] = {x, w}, work[64], y[2] = {1.0, 0.0}, y1[2];
     int piv[2];
-    dyn_ros_problem p = {{rot_f, 2, l}, NULL, 1, NULL, 0, NULL, NULL, NULL, NULL};
+    dyn_ros_problem p = {{rot_f, 2, l}, NULL, 1, NULL, 0, NULL, NULL, NULL, NULL, NULL, 0};
     dyn_ros_ws ws;
     dyn_ros_stats st = {0};
     dyn_ros_ws_init(&ws, M, 2, work, piv);
@@ -474,7 +474,7 @@ static void test_l_stability(void **state)
     /* y' = -1e6 (y - cos t) with h = 0.1 (h lambda = -1e5), analytic and difference
      * Jacobian, difference df/dt */
     for (int use_jac = 0; use_jac < 2; use_jac++) {
-        dyn_ros_problem p = {{pr_f, 1, NULL}, use_jac ? pr_jac : NULL, 0, NULL, 0, NULL, NULL, NULL, NULL};
+        dyn_ros_problem p = {{pr_f, 1, NULL}, use_jac ? pr_jac : NULL, 0, NULL, 0, NULL, NULL, NULL, NULL, NULL, 0};
         double work[32], y1[1];
         int piv[1];
         dyn_ros_ws ws;
@@ -518,7 +518,7 @@ static void test_counters_and_factorisation_reuse(void **state)
     dyn_ros_ws_init(&ws, M, 2, work, piv);
     const double y0[2] = {1.0, 1.0};
     /* analytic Jacobian, autonomous: 1 call for f0, 5 more in the stages */
-    dyn_ros_problem p = {{kaps_f, 2, &eps}, kaps_jac, 1, NULL, 0, NULL, NULL, NULL, NULL};
+    dyn_ros_problem p = {{kaps_f, 2, &eps}, kaps_jac, 1, NULL, 0, NULL, NULL, NULL, NULL, NULL, 0};
     dyn_ros_stats st = {0};
     assert_int_equal(dyn_ros_linearize(&p, 0.0, 0.1, y0, &ws, &st), 0);
     assert_int_equal(dyn_ros_step(M, &p, 0.0, 0.1, y0, &ws, y1, NULL, NULL, &st), 0);
@@ -537,7 +537,7 @@ static void test_counters_and_factorisation_reuse(void **state)
     assert_int_equal(st.lu_decomps, 2);
     assert_int_equal(st.jac_evals, 1);
     /* difference Jacobian, non-autonomous: n calls for J and 1 for df/dt */
-    dyn_ros_problem q = {{kaps_f, 2, &eps}, NULL, 0, NULL, 0, NULL, NULL, NULL, NULL};
+    dyn_ros_problem q = {{kaps_f, 2, &eps}, NULL, 0, NULL, 0, NULL, NULL, NULL, NULL, NULL, 0};
     dyn_ros_stats sq = {0};
     assert_int_equal(dyn_ros_linearize(&q, 0.0, 0.1, y0, &ws, &sq), 0);
     assert_int_equal(dyn_ros_step(M, &q, 0.0, 0.1, y0, &ws, y1b, NULL, NULL, &sq), 0);
@@ -568,7 +568,7 @@ static void test_singular_and_failures(void **state)
 {
     (void)state;
     double lam = 40.0; /* h gamma = 0.1 * 0.25 = 1/40 */
-    dyn_ros_problem p = {{lam_f, 1, &lam}, NULL, 1, NULL, 0, NULL, NULL, NULL, NULL};
+    dyn_ros_problem p = {{lam_f, 1, &lam}, NULL, 1, NULL, 0, NULL, NULL, NULL, NULL, NULL, 0};
     double work[32], y = 1.0, y1[1];
     int piv[1];
     dyn_ros_ws ws;
@@ -581,7 +581,7 @@ static void test_singular_and_failures(void **state)
     assert_int_equal(dyn_ros_step(M, &p, 0.0, 0.05, &y, &ws, y1, NULL, NULL, &st), 0);
 
     int count = 0;
-    dyn_ros_problem q = {{fail_f, 1, &count}, NULL, 1, NULL, 0, NULL, NULL, NULL, NULL};
+    dyn_ros_problem q = {{fail_f, 1, &count}, NULL, 1, NULL, 0, NULL, NULL, NULL, NULL, NULL, 0};
     assert_int_equal(dyn_ros_linearize(&q, 0.0, 0.1, &y, &ws, &st), 0); /* calls 1, 2 */
     assert_int_equal(dyn_ros_step(M, &q, 0.0, 0.1, &y, &ws, y1, NULL, NULL, &st),
                      DYN_ROS_RHS_FAIL);
@@ -612,7 +612,7 @@ static void test_adaptive_loop(void **state)
 {
     (void)state;
     double eps = 1e-6;
-    dyn_ros_problem p = {{kaps_f, 2, &eps}, kaps_jac, 1, NULL, 0, NULL, NULL, NULL, NULL};
+    dyn_ros_problem p = {{kaps_f, 2, &eps}, kaps_jac, 1, NULL, 0, NULL, NULL, NULL, NULL, NULL, 0};
     double work[64], y1[2], e[2], cont[8];
     int piv[2];
     dyn_ros_ws ws;

@@ -130,6 +130,33 @@ static int rodas(const loaded *L, int kind, double *y, dyn_result *res)
     return rc;
 }
 
+/* rodas4 as rodas() does with SPARSE_OWN, the Jacobian by differences in groups. */
+static int rodas_grouped(const loaded *L, const dyn_sparse_pattern *p, const int *group,
+                         int groups, double *y, dyn_result *res)
+{
+    const dyn_model *m = L->m;
+    double y0[N];
+    dyn_model_initial_state(m, L->par, y0);
+    dyn_system sys = {m->rhs, N, (void *)L->par};
+    dyn_solve_opts o = {0};
+    o.rtol = 1e-8;
+    o.atol = 1e-10;
+    dense_ctx dc;
+    dyn_sparse_solver own = {"dense", &dc, dense_factor, dense_solve, NULL};
+    o.jac_sparse = *p;
+    o.jac_groups = group;
+    o.jac_n_groups = groups;
+    o.sparse_solver = &own;
+    const dyn_tableau *meth = dyn_method_find("rodas4");
+    double *work = malloc(dyn_solve_work_size(meth, N, &o) * sizeof *work);
+    int iwork[N];
+    o.iwork = iwork;
+    assert_non_null(work);
+    const int rc = dyn_solve(meth, &sys, 0.0, 1.0, y0, y, work, &o, res);
+    free(work);
+    return rc;
+}
+
 static double max_diff(const double *a, const double *b)
 {
     double d = 0.0;
@@ -286,6 +313,68 @@ static void test_cvode_sparse(void **state)
 #else
     skip();
 #endif
+}
+
+/* Two columns of one group share no row: the groups give a Jacobian in one call of f
+ * each. */
+static void check_groups(const dyn_sparse_pattern *p, const int *group, int groups)
+{
+    int owner[N];
+    for (int i = 0; i < N; i++)
+        owner[i] = -1;
+    for (int g = 0; g < groups; g++)
+        for (int j = 0; j < p->n; j++)
+            if (group[j] == g)
+                for (int k = p->colptr[j]; k < p->colptr[j + 1]; k++) {
+                    CHECK(owner[p->rowind[k]] != g, "columns %d and another of group %d "
+                          "share row %d", j, g, p->rowind[k]);
+                    owner[p->rowind[k]] = g;
+                }
+}
+
+/* Grouped columns (Curtis, Powell & Reid): a tridiagonal pattern takes 3 groups, the ring
+ * 4 (its graph of columns sharing a row is a cycle of 40 with the second neighbours joined,
+ * which 3 groups cannot colour since 40 is not a multiple of 3); no two columns of a group
+ * share a row. Probing the ring's right-hand side finds the exact pattern, and rodas4 with
+ * its Jacobian by differences in those 4 groups (4 calls of f a Jacobian instead of 40)
+ * ends within 1e-7 of the exact sparse run. */
+static void test_groups_and_probe(void **state)
+{
+    (void)state;
+    const char *texts[2] = {chain_ode, ring_ode};
+    const int expect[2] = {3, 4};
+    for (int t = 0; t < 2; t++) {
+        loaded L;
+        load(texts[t], &L);
+        int group[N];
+        const int groups = dyn_sparse_groups(&L.m->jac_pattern, group);
+        assert_int_equal(groups, expect[t]);
+        check_groups(&L.m->jac_pattern, group, groups);
+        double y0[N];
+        dyn_model_initial_state(L.m, L.par, y0);
+        const dyn_system sys = {L.m->rhs, N, L.par};
+        dyn_sparse_pattern probed;
+        char err[200];
+        assert_int_equal(dyn_sparse_probe(&sys, 0.0, y0, 3, 1, &probed, err, sizeof err), 0);
+        assert_int_equal(probed.nnz, L.m->jac_pattern.nnz);
+        assert_memory_equal(probed.colptr, L.m->jac_pattern.colptr, (N + 1) * sizeof(int));
+        assert_memory_equal(probed.rowind, L.m->jac_pattern.rowind,
+                            (size_t)probed.nnz * sizeof(int));
+        if (t == 1) {
+            double ye[N], yg[N];
+            dyn_result re, rg;
+            assert_int_equal(rodas(&L, SPARSE_OWN, ye, &re), DYN_OK);
+            assert_int_equal(rodas_grouped(&L, &probed, group, groups, yg, &rg), DYN_OK);
+            CHECK(max_diff(ye, yg) < 1e-7, "grouped differences: %g", max_diff(ye, yg));
+            /* rodas4: 7 calls a step from a new point, 5 after a rejection, 2 more; and
+             * one call per group a Jacobian */
+            assert_int_equal(rg.stats.rhs_calls, 7 * rg.stats.accepted +
+                                                      5 * rg.stats.rejected + 2 +
+                                                      groups * rg.stats.jac_calls);
+        }
+        dyn_sparse_pattern_free(&probed);
+        dyn_jit_unload(&L.jm);
+    }
 }
 
 /* A sweep's sparse solvers (dynkit/sweep.h): the dense-LU solver of this file, one per
@@ -467,6 +556,104 @@ static void test_cli_says_which_matrices(void **state)
     cli_free(&r);
 }
 
+/* The ring as a C model without a Jacobian (40 states; `declared` adds its pattern,
+ * dyn_model.jac_pattern, without values). */
+static const char ring_c[] =
+    "#include <stddef.h>\n"
+    "#include <stdio.h>\n"
+    "#include <dynkit/model.h>\n"
+    "typedef struct par { double d; } par;\n"
+    "static int rhs(double t, const double *u, double *f, void *vp) {\n"
+    "    const double d = ((const par *)vp)->d; (void)t;\n"
+    "    for (int j = 0; j < 40; j++)\n"
+    "        f[j] = d * (u[(j + 1) % 40] - 2 * u[j] + u[(j + 39) % 40]) - u[j] * u[j] * u[j];\n"
+    "    return 0; }\n"
+    "static char names[40][4]; static dyn_var states[40]; static double init[40];\n"
+    "static const dyn_param params[] = {{\"d\", \"1\", \"coupling\", offsetof(par, d), 50}};\n"
+    "static int colptr[41], rowind[120];\n"
+    "static dyn_model model = {.name = \"ring\", .n_states = 40, .states = states, .y0 = init,\n"
+    "    .n_params = 1, .params = params, .par_size = sizeof(par), .rhs = rhs, .t1 = 1,\n"
+    "    .step = 0.1};\n"
+    "const dyn_model *dynkit_model(void) {\n"
+    "    for (int j = 0; j < 40; j++) {\n"
+    "        snprintf(names[j], 4, \"u%d\", j);\n"
+    "        states[j] = (dyn_var){names[j], \"1\", \"\"};\n"
+    "        init[j] = __builtin_sin(2 * 3.14159265358979323846 * j / 40) + 0.5;\n"
+    "        int r[3] = {(j + 39) % 40, j, (j + 1) % 40}, k = 3 * j;\n"
+    "        if (j == 0) r[0] = 0, r[1] = 1, r[2] = 39;\n"
+    "        if (j == 39) r[0] = 0, r[1] = 38, r[2] = 39;\n"
+    "        colptr[j] = k; rowind[k] = r[0]; rowind[k + 1] = r[1]; rowind[k + 2] = r[2]; }\n"
+    "    colptr[40] = 120;\n"
+    "    if (DECLARED) model.jac_pattern = (dyn_sparse_pattern){40, 120, colptr, rowind};\n"
+    "    return &model; }\n";
+
+/* --jac-pattern: a C model without a Jacobian runs with dense differences (40 calls of f a
+ * Jacobian), with a probed pattern or its declared one in 4 groups (4 calls) and KLU, all
+ * ending where the model file's exact run ends (within 1e-7); a sweep with the probed
+ * pattern writes the single run's numbers; a model with its own pattern refuses probe, none
+ * gives dense matrices, and a word outside model|probe|none is refused. */
+static void test_cli_jac_pattern(void **state)
+{
+    (void)state;
+    char text[sizeof ring_c + 64];
+    for (int declared = 0; declared < 2; declared++) {
+        snprintf(text, sizeof text, "#define DECLARED %d\n%s", declared, ring_c);
+        assert_int_equal(cli_write_file(declared ? "ring_declared.c" : "ring_probe.c", text),
+                         0);
+    }
+    assert_int_equal(cli_write_file("ring.ode", ring_ode), 0);
+    const char *tol = "--method rodas4 --final --stats --verbose --rtol 1e-9 --atol 1e-12";
+    cli_result exact = cli("run %s %s", cli_path("ring.ode"), tol);
+    CHECK(exact.status == 0, "%s", exact.err);
+    const double ref = last_value(exact.out);
+    cli_free(&exact);
+    struct {
+        const char *file, *how, *linear, *note;
+    } runs[] = {
+        {"ring_probe.c", "model", " linear=dense", "gives no sparse pattern"},
+        {"ring_probe.c", "probe", " linear=sparse nnz=120", "120 of 1600 entries of the "
+                                                           "Jacobian are not zero at 3 points"},
+        {"ring_declared.c", "model", " linear=sparse nnz=120", "differences in 4 groups of "
+                                                               "columns, 4 calls of f"},
+        {"ring_declared.c", "none", " linear=dense", "gives no sparse pattern"},
+    };
+    for (size_t k = 0; k < sizeof runs / sizeof *runs; k++) {
+        cli_result r = cli("run %s %s --jac-pattern %s", cli_path(runs[k].file), tol,
+                           runs[k].how);
+        CHECK(r.status == 0, "%s %s: %s", runs[k].file, runs[k].how, r.err);
+#ifdef DYNKIT_HAVE_KLU
+        CHECK(strstr(r.err, runs[k].linear) && strstr(r.err, runs[k].note), "%s %s: %s",
+              runs[k].file, runs[k].how, r.err);
+#endif
+        CHECK(fabs(last_value(r.out) - ref) < 1e-7, "%s %s: u39 %.17g, exact %.17g",
+              runs[k].file, runs[k].how, last_value(r.out), ref);
+        cli_free(&r);
+    }
+    /* a sweep takes the probed pattern too: the single run's numbers */
+    cli_result sw = cli("sweep %s --method rodas4 --vary d=40,60 --reduce final:u39 --threads 2 "
+                        "--rtol 1e-9 --atol 1e-12 --quiet --jac-pattern probe",
+                        cli_path("ring_probe.c"));
+    cli_result one = cli("run %s --method rodas4 --set d=60 --final --rtol 1e-9 --atol 1e-12 "
+                         "--jac-pattern probe",
+                         cli_path("ring_probe.c"));
+    CHECK(sw.status == 0 && one.status == 0, "%s%s", sw.err, one.err);
+    const char *last = strrchr(sw.out, ',');
+    assert_non_null(last);
+    CHECK(strtod(last + 1, NULL) == last_value(one.out), "sweep %s, run %.17g", last + 1,
+          last_value(one.out));
+    cli_free(&sw);
+    cli_free(&one);
+    cli_result own = cli("run %s --method rodas4 --jac-pattern probe", cli_path("ring.ode"));
+    CHECK(own.status == 2 && strstr(own.err, "has its own pattern"), "%s", own.err);
+    cli_free(&own);
+    cli_result none = cli("run %s %s --jac-pattern none", cli_path("ring.ode"), tol);
+    CHECK(none.status == 0 && strstr(none.err, " linear=dense"), "%s", none.err);
+    cli_free(&none);
+    cli_result bad = cli("run %s --jac-pattern guess", cli_path("ring.ode"));
+    CHECK(bad.status == 2 && strstr(bad.err, "accepted: model"), "%s", bad.err);
+    cli_free(&bad);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -476,6 +663,8 @@ int main(void)
         cmocka_unit_test(test_without_a_solver_dense),
         cmocka_unit_test(test_cvode_sparse),
         cmocka_unit_test(test_sweep_sparse),
+        cmocka_unit_test(test_groups_and_probe),
+        cmocka_unit_test(test_cli_jac_pattern),
         cmocka_unit_test(test_cli_says_which_matrices),
     };
     return cmocka_run_group_tests(tests, cli_setup, cli_remove_tmpdir);

@@ -7,6 +7,7 @@
  * systems", says why. And the eigenvalue solver of linearize: LAPACK's dgeev, or none
  * (docs/analysis.md). */
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "cli.h"
 #include "dynkit/analysis.h"
@@ -17,6 +18,10 @@
 
 #ifdef DYNKIT_HAVE_LAPACK
 #include "dynkit/lapack.h"
+#endif
+
+#ifdef DYNKIT_HAVE_CVODE
+#include "dynkit/cvode.h"
 #endif
 
 const dyn_band_solver *cli_band_solver(void)
@@ -58,7 +63,7 @@ void cli_linear_choose(const dyn_model *m, cli_linear *lin)
                  nnz > 0 ? ", as its exact pattern shows" : ", as the model declares");
         return;
     }
-    if (nnz <= 0 || !m->jacobian_sparse) {
+    if (nnz <= 0) {
         snprintf(lin->why, sizeof lin->why,
                  "dense matrices: %d states, and the model gives no sparse pattern of its "
                  "Jacobian (a model file's exact one has it from %d states on, with at most a "
@@ -76,16 +81,49 @@ void cli_linear_choose(const dyn_model *m, cli_linear *lin)
     }
 #ifdef DYNKIT_HAVE_KLU
     lin->kind = CLI_LINEAR_SPARSE;
+    if (m->jacobian_sparse) {
+        snprintf(lin->why, sizeof lin->why,
+                 "sparse matrices (KLU): the exact Jacobian has %d of %d entries and is not "
+                 "banded (%d below, %d above the diagonal)",
+                 nnz, n * n, lin->lower, lin->upper);
+        return;
+    }
+    /* differences in groups of columns: as many calls of f as groups */
+    int *group = malloc((size_t)n * sizeof *group);
+    const int groups = group ? dyn_sparse_groups(&m->jac_pattern, group) : -1;
+    free(group);
     snprintf(lin->why, sizeof lin->why,
-             "sparse matrices (KLU): the exact Jacobian has %d of %d entries and is not "
-             "banded (%d below, %d above the diagonal)",
-             nnz, n * n, lin->lower, lin->upper);
+             "sparse matrices (KLU): the Jacobian's pattern has %d of %d entries and is not "
+             "banded (%d below, %d above the diagonal); its values by differences in %d "
+             "groups of columns, %d calls of f instead of %d",
+             nnz, n * n, lin->lower, lin->upper, groups, groups, n);
 #else
     snprintf(lin->why, sizeof lin->why,
-             "dense matrices: the exact Jacobian has %d of %d entries and is not banded, but "
+             "dense matrices: the Jacobian has %d of %d entries and is not banded, but "
              "dynkit was built without KLU (libsuitesparse-dev), its sparse LU",
              nnz, n * n);
 #endif
+}
+
+void cli_linear_for_run(const cli_run *run, cli_linear *lin)
+{
+    cli_linear_choose(run->model, lin);
+    if (lin->kind != CLI_LINEAR_SPARSE || !cli_method_is_cvode(run->method))
+        return;
+#ifdef DYNKIT_HAVE_CVODE
+    const int klu = dyn_cvode_has_klu();
+#else
+    const int klu = 0;
+#endif
+    if (klu && run->model->jacobian_sparse)
+        return;
+    lin->kind = CLI_LINEAR_DENSE;
+    snprintf(lin->why, sizeof lin->why,
+             "dense matrices: cvode takes sparse matrices with the model's exact sparse "
+             "Jacobian and SUNDIALS' KLU, and %s",
+             klu ? "this model gives its pattern without the values (rodas4 forms them by "
+                   "differences)"
+                 : "dynkit's CVODE backend was built without SUNLinSol_KLU");
 }
 
 int cli_sparse_solver_open(dyn_sparse_solver *s)

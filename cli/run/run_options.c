@@ -66,6 +66,14 @@ static void run_options_common(FILE *out)
           "  --max-steps N        stop after N steps (default: 1e7 steps; cvode: CVODE's limit\n"
           "                       between two samples, default 100000; when cvode samples\n"
           "                       every step, a limit on the whole run)\n"
+          "  --jac-pattern model|probe|none\n"
+          "                       the entries of the Jacobian that stiff methods factor:\n"
+          "                       model (default): the model's own (a model file's exact\n"
+          "                       pattern, a C model's jac_pattern); probe: those not zero\n"
+          "                       at 3 points near the initial state, for a model without\n"
+          "                       one, the Jacobian then by differences in groups of\n"
+          "                       columns (an entry zero at all 3 points is missed: see\n"
+          "                       docs/stiff.md); none: dense matrices\n"
           "  with animate and plot these options are accepted when the main run or a\n"
           "  --compare run is adaptive; fixed-step runs ignore them\n"
           "Events (any method but cvode):\n"
@@ -121,7 +129,7 @@ static int unknown_option(const char *command, const char *arg)
         "--forces", "--interp", "--output", "--header",      "--every",        "--trace",
         "--rtol",   "--atol",  "--times",  "--max-step",     "--initial-step", "--max-steps",
         "--event",  "--events-output",     "--stats",        "--final",        "--outputs",
-        "--quiet",  "--compare", "--table", "--seed", "--project-init"};
+        "--quiet",  "--compare", "--table", "--seed", "--project-init", "--jac-pattern"};
     char word[64];
     snprintf(word, sizeof word, "%s%.*s", strncmp(arg, "--", 2) == 0 ? "" : "--",
              (int)strcspn(arg, "="), arg);
@@ -260,6 +268,10 @@ static int parse_option(const char *command, int argc, char **argv, int *i, cli_
         if (r < 0)
             return CLI_USAGE;
         run->events_path = v;
+    } else if (OPT("jac-pattern")) {
+        if (r < 0)
+            return CLI_USAGE;
+        run->jac_pattern = v; /* checked and applied once the method is known */
     } else if (cli_flag(arg, "stats")) {
         run->stats = 1;
     } else if (cli_flag(arg, "final")) {
@@ -489,7 +501,7 @@ static void note_method(const cli_run *run, unsigned given)
     fputc('\n', stderr);
     if (dyn_method_is_stiff(run->method)) {
         cli_linear lin;
-        cli_linear_choose(m, &lin);
+        cli_linear_for_run(run, &lin);
         fprintf(stderr, "dynkit: note: %s\n", lin.why);
     }
 }
@@ -622,7 +634,9 @@ int cli_run_parse_with(const char *command, int argc, char **argv, int other_ada
     if (!run->method)
         return cli_method_error(command, "--method", method_name);
     run->step_given = (given & GIVEN_STEP) || run->forces_path;
-    rc = check_noise_options(command, run, given);
+    rc = cli_run_jac_pattern(command, run);
+    if (rc == CLI_OK)
+        rc = check_noise_options(command, run, given);
     if (rc == CLI_OK)
         rc = check_volterra_options(command, run);
     if (rc == CLI_OK)
@@ -641,6 +655,9 @@ void cli_run_free(cli_run *run)
     free(run->atolv);
     free(run->times);
     free(run->events);
+    free(run->own_model);
+    dyn_sparse_pattern_free(&run->probed);
+    run->own_model = NULL;
     run->par = NULL;
     run->y0 = NULL;
     run->input = NULL;

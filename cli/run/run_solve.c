@@ -31,7 +31,7 @@ static int solve_cvode(const cli_run *run, const dyn_system *sys, dyn_output_fn 
     o.jac_upper = run->model->jac_upper;
     o.jacobian_band = run->model->jacobian_band;
     cli_linear lin;
-    cli_linear_choose(run->model, &lin);
+    cli_linear_for_run(run, &lin);
     if (lin.kind == CLI_LINEAR_SPARSE) {
         o.jac_sparse = run->model->jac_pattern;
         o.jacobian_sparse = run->model->jacobian_sparse;
@@ -336,11 +336,17 @@ static int solve_run(const cli_run *run, long every, dyn_output_fn output, void 
     opts.band_solver = cli_band_solver();
     cli_linear lin;
     dyn_sparse_solver sparse = {0};
+    int *groups = NULL; /* a pattern without values: differences in groups of columns */
     if (dyn_method_is_stiff(run->method)) {
         cli_linear_choose(m, &lin);
-        if (lin.kind == CLI_LINEAR_SPARSE && !cli_sparse_solver_open(&sparse)) {
+        if (lin.kind == CLI_LINEAR_SPARSE && !m->jacobian_sparse &&
+            (groups = malloc((size_t)n * sizeof *groups)) != NULL)
+            opts.jac_n_groups = dyn_sparse_groups(&m->jac_pattern, groups);
+        if (lin.kind == CLI_LINEAR_SPARSE && (m->jacobian_sparse || opts.jac_n_groups > 0) &&
+            !cli_sparse_solver_open(&sparse)) {
             opts.jac_sparse = m->jac_pattern;
             opts.jacobian_sparse = m->jacobian_sparse;
+            opts.jac_groups = groups;
             opts.sparse_solver = &sparse;
         }
     }
@@ -359,6 +365,7 @@ static int solve_run(const cli_run *run, long every, dyn_output_fn output, void 
         res->status = DYN_ERR_ARG;
         snprintf(res->message, sizeof res->message, "%s", msg);
         cli_sparse_solver_close(&sparse);
+        free(groups);
         free(events);
         free(asked);
         return DYN_ERR_ARG;
@@ -373,6 +380,7 @@ static int solve_run(const cli_run *run, long every, dyn_output_fn output, void 
         free(events);
         free(asked);
         cli_sparse_solver_close(&sparse);
+        free(groups);
         cli_delay_finish(run, &cd, res);
         return -1;
     }
@@ -382,6 +390,7 @@ static int solve_run(const cli_run *run, long every, dyn_output_fn output, void 
     if (res->stopped_by_event && res->event_index >= 0)
         res->event_index = asked[res->event_index];
     cli_sparse_solver_close(&sparse);
+    free(groups);
     free(work);
     free(iwork);
     free(events);
@@ -402,12 +411,7 @@ char *cli_stats_line(const cli_run *run, const dyn_result *res, char *buf, size_
     /* the matrices of the linear systems (cli_linear_choose; --verbose says why) */
     if (dyn_method_is_stiff(run->method) && w >= 0 && (size_t)w < size) {
         cli_linear lin;
-        cli_linear_choose(run->model, &lin);
-#ifdef DYNKIT_HAVE_CVODE
-        if (lin.kind == CLI_LINEAR_SPARSE && cli_method_is_cvode(run->method) &&
-            !dyn_cvode_has_klu())
-            lin.kind = CLI_LINEAR_DENSE; /* the backend was built without SUNLinSol_KLU */
-#endif
+        cli_linear_for_run(run, &lin);
         if (lin.kind == CLI_LINEAR_BAND)
             snprintf(buf + w, size - (size_t)w, " linear=band lower=%d upper=%d", lin.lower,
                      lin.upper);

@@ -16,6 +16,7 @@
 #define DYNKIT_ODE_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #ifdef __cplusplus
 extern "C" {
@@ -69,6 +70,13 @@ int dyn_sparse_pattern_check(const dyn_sparse_pattern *p, int n, char *err, size
 /* The bandwidths of a pattern: the largest i - j (lower) and j - i (upper) of its entries
  * (0 for a diagonal pattern). */
 void dyn_sparse_pattern_band(const dyn_sparse_pattern *p, int *lower, int *upper);
+/* Groups of the columns of p for a difference Jacobian (Curtis, Powell & Reid 1974): two
+ * columns that share a row are in different groups, so the columns of a group are perturbed
+ * in one call of f. group (n) receives each column's group, 0 .. groups - 1, assigned
+ * greedily in the columns' order (the smallest group none of the earlier columns sharing a
+ * row has). Returns the number of groups (3 for a tridiagonal pattern, at most the largest
+ * number of entries in a row times the largest in a column), or -1 when memory runs out. */
+int dyn_sparse_groups(const dyn_sparse_pattern *p, int *group);
 
 /* A sparse linear solver (a general sparse LU, e.g. SuiteSparse's KLU in the optional
  * backend dynkit_klu). Unlike the band solvers it keeps state (the ordering, the symbolic
@@ -118,6 +126,19 @@ typedef struct dyn_system {
     int n;
     void *par;
 } dyn_system;
+
+/* A pattern of df/dy found by evaluating f: at `points` points near y (y_j plus a uniform
+ * offset of up to 0.1 max(|y_j|, 1), Philox4x32-10 numbers of seed, point and j), each state
+ * perturbed in turn, an entry is in the pattern where its difference is not zero at one of
+ * them; every diagonal entry is. points (n + 1) calls of f. The pattern is allocated (give it
+ * back with dyn_sparse_pattern_free). An entry that is zero at every point probed (a
+ * coupling through a factor that vanishes there, a branch not taken) is missed, and the
+ * Jacobian formed on the pattern is then wrong without a message: a declared or exact
+ * pattern is safer (docs/stiff.md, "Sparse Jacobians"). 0, or -1 with a message (f failed,
+ * out of memory). */
+int dyn_sparse_probe(const dyn_system *sys, double t, const double *y, int points,
+                     uint64_t seed, dyn_sparse_pattern *out, char *err, size_t errlen);
+void dyn_sparse_pattern_free(dyn_sparse_pattern *p);
 
 /* Status of a solve. 0 is success; the others say why a solve stopped. */
 typedef enum dyn_status {

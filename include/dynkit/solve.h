@@ -203,11 +203,16 @@ typedef struct dyn_solve_opts {
     /* A sparse Jacobian (jac_sparse.nnz > 0 and sparse_solver not NULL; jac_banded 0): J from
      * jacobian_sparse (the values in the order of the pattern, which must hold every
      * diagonal entry), the iteration matrix I/(h gamma) - J factored by sparse_solver.
-     * `jacobian` is then unused. Without sparse_solver or jacobian_sparse the pattern is
-     * not used (dense matrices). */
+     * `jacobian` is then unused. Without jacobian_sparse, J comes from forward differences
+     * with the pattern's columns in jac_n_groups groups (jac_groups, n entries: see
+     * dyn_sparse_groups), jac_n_groups calls of f a Jacobian. Without sparse_solver, or
+     * without both jacobian_sparse and jac_groups, the pattern is not used (dense
+     * matrices). */
     dyn_sparse_pattern jac_sparse;
     dyn_jac_fn jacobian_sparse;
     const dyn_sparse_solver *sparse_solver;
+    const int *jac_groups;
+    int jac_n_groups;
     /* diagnostics */
     dyn_trace_fn trace;    /* stages of the first trace_steps attempted steps */
     void *trace_ctx;

@@ -171,8 +171,8 @@ typedef struct dyn_sweep {
     /* The linear algebra of a stiff method (rodas4), as a single run takes it
      * (dyn_solve_opts): the model's band (model->jac_banded) is always used, factored by
      * band_solver (NULL: dyn_band_solver_builtin). With sparse_open, a model with a sparse
-     * pattern and its values (model->jac_pattern, jacobian_sparse) and no band runs with
-     * sparse matrices: each thread has a dyn_sparse_solver of its own, filled by sparse_open
+     * pattern (model->jac_pattern; its values from jacobian_sparse, or by differences in
+     * groups of columns, dyn_sparse_groups) and no band runs with sparse matrices: each thread has a dyn_sparse_solver of its own, filled by sparse_open
      * (e.g. dyn_klu_init, dynkit/klu.h) before its first run and given back to sparse_close
      * after its last, so one analysis of the pattern serves all of the thread's runs (each
      * run pivots anew: dyn_sparse_solver.forget, and the results stay those of any number

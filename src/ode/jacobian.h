@@ -40,6 +40,12 @@ int dyn_fd_jacobian(const dyn_system *sys, double t, const double *y, const doub
  * storage (n (lower + upper + 1) doubles; the entries outside the matrix are left alone),
  * with the columns in groups: lower + upper + 1 calls of f instead of n
  * (jacobian_band.c). work as above. */
+/* The Jacobian in the storage of pattern p (J: p->nnz values) by forward differences with
+ * the columns of each of the n_groups groups (group: dyn_sparse_groups) perturbed together:
+ * n_groups calls of f. work: 2n doubles. Returns 0 or the non-zero value f returned. */
+int dyn_fd_jacobian_sparse(const dyn_system *sys, double t, const double *y, const double *f0,
+                           const double *typ, const dyn_sparse_pattern *p, const int *group,
+                           int n_groups, double *J, double *work, long *rhs_calls);
 int dyn_fd_jacobian_band(const dyn_system *sys, double t, const double *y, const double *f0,
                          const double *typ, int lower, int upper, double *J, double *work,
                          long *rhs_calls);

@@ -4,7 +4,8 @@
  * analytic (mended by differences where an entry is not finite) or forward-difference
  * Jacobian and a forward-difference df/dt; the dense output
  * of RODAS (CONTRO), with dense, band (band_lu.c, jacobian_band.c) or sparse matrices (a
- * dyn_sparse_solver: KLU in the backend dynkit_klu); and a simple adaptive loop with RODAS's
+ * dyn_sparse_solver: KLU in the backend dynkit_klu; their Jacobian exact or by differences in
+ * groups of columns, jacobian_sparse_fd.c); and a simple adaptive loop with RODAS's
  * step-size control (sec. IV.8,
  * with Gustafsson's predictive controller) for tests and reference computations.
  */
@@ -114,7 +115,10 @@ int dyn_ros_linearize(const dyn_ros_problem *p, double t, double h, const double
         return DYN_ROS_RHS_FAIL;
     }
     st->jac_evals++;
-    if (ws->pattern) {
+    if (ws->pattern && !p->jac_sparse) {
+        rc = dyn_fd_jacobian_sparse(sys, t, y, ws->f0, p->typ, ws->pattern, p->groups,
+                                    p->n_groups, ws->J, ws->scratch, &calls);
+    } else if (ws->pattern) {
         rc = p->jac_sparse(t, y, ws->J, sys->par);
         if (rc) {
             ws->rhs_status = rc;

@@ -83,6 +83,10 @@ typedef struct dyn_ros_problem {
      * jac_sparse (the values of the workspace's pattern), W factored by sparse_solver. */
     dyn_jac_fn jac_sparse;
     const dyn_sparse_solver *sparse_solver;
+    /* sparse without jac_sparse: differences with the columns in n_groups groups (group:
+     * each column's, dyn_sparse_groups), n_groups calls of f a Jacobian */
+    const int *groups;
+    int n_groups;
 } dyn_ros_problem;
 
 /* Counters, added to by the functions below (zero-initialise). */

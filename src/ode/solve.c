@@ -74,7 +74,7 @@ static int samples_of(const dyn_solve_opts *o)
 static const dyn_sparse_pattern *sparse_of(const dyn_solve_opts *o)
 {
     return o && !o->jac_banded && o->jac_sparse.nnz > 0 && o->sparse_solver &&
-                   o->jacobian_sparse
+                   (o->jacobian_sparse || (o->jac_groups && o->jac_n_groups > 0))
                ? &o->jac_sparse
                : NULL;
 }
@@ -338,6 +338,8 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
     st.shape.sparse = sparse_of(opts);
     st.jac_sparse = opts->jacobian_sparse;
     st.sparse_solver = opts->sparse_solver;
+    st.jac_groups = opts->jacobian_sparse ? NULL : opts->jac_groups;
+    st.jac_n_groups = opts->jac_n_groups;
     if (st.shape.sparse && st.sparse_solver->forget)
         st.sparse_solver->forget(st.sparse_solver->ctx); /* pivots of this solve's own */
     st.tend = t1;

@@ -120,7 +120,8 @@ static int ros_attempt(dyn_stepper *st, double t, double h, const double *y, dou
     view(st, &v);
     const int n = st->n;
     dyn_ros_problem p = {{st->f, n, st->par}, st->jac, 0, v.typ, st->shape.banded,
-                         st->jac_band, st->band_solver, st->jac_sparse, st->sparse_solver};
+                         st->jac_band, st->band_solver, st->jac_sparse, st->sparse_solver,
+                         st->jac_groups, st->jac_n_groups};
     dyn_ros_stats rs = {0};
     int rc = DYN_ROS_OK;
     v.ws.h_lu = retry ? *v.h_lu : 0.0;

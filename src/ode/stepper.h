@@ -111,6 +111,8 @@ struct dyn_stepper {
     const dyn_band_solver *band_solver; /* banded: NULL for the built-in */
     dyn_jac_fn jac_sparse;         /* sparse: the values of the pattern */
     const dyn_sparse_solver *sparse_solver;
+    const int *jac_groups;         /* sparse without jac_sparse: differences in groups */
+    int jac_n_groups;
     double tend;        /* stage times are clamped to it (dyn_rk_stage_time) */
     dyn_tol tol;
     double *work;       /* ops->work_size doubles */

@@ -40,6 +40,7 @@ typedef struct plan {
     int *event_model;        /* (n_events) their index in model->events, owned */
     dyn_solve_opts solve;    /* template of dyn_solve's options (contexts set per run) */
     int sparse;              /* sparse matrices: each worker's solver (dyn_sweep.sparse_open) */
+    int *groups;             /* (n) a pattern without values: its columns' groups, owned */
     dyn_fixed_opts fixed;    /* template of dyn_fixed_solve's options */
     size_t work_size, iwork_size;
     int stop;                /* the sweep is cancelled (read and written atomically) */
@@ -470,7 +471,14 @@ static int plan_make(plan *p, const dyn_sweep *s)
         o->band_solver = s->band_solver;
         /* sparse matrices as dyn_solve takes them; the solver is each worker's */
         p->sparse = dyn_method_is_stiff(s->method) && s->sparse_open && !m->jac_banded &&
-                    m->jac_pattern.nnz > 0 && m->jacobian_sparse;
+                    m->jac_pattern.nnz > 0;
+        if (p->sparse && !m->jacobian_sparse) { /* differences in groups of columns */
+            p->groups = malloc((size_t)m->n_states * sizeof *p->groups);
+            if (!p->groups || (o->jac_n_groups = dyn_sparse_groups(&m->jac_pattern,
+                                                                   p->groups)) < 1)
+                return -1;
+            o->jac_groups = p->groups;
+        }
         const dyn_sparse_solver sized = {0};
         if (p->sparse) {
             o->jac_sparse = m->jac_pattern;
@@ -627,6 +635,7 @@ int dyn_sweep_run(const dyn_sweep *s, double *results, int *status, char *err, s
     free(ws);
     free(p.events);
     free(p.event_model);
+    free(p.groups);
     free(base);
     return rc;
 }

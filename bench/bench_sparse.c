@@ -11,6 +11,9 @@
  *   the process's CPU time (the machine is shared: CPU time does not count the waits for
  *   a core), each run with its allocations and KLU's analysis. Times at equal error are read
  *   off each curve as in bench_band.c (wp_curve.h), at 1e-4 ... 1e-8.
+ * - Without the exact Jacobian (as a C model runs): rodas4 with dense differences (n calls
+ *   of f a Jacobian) against differences in the pattern's groups of columns (Curtis, Powell
+ *   & Reid: dyn_sparse_groups) factored by KLU, at equal error, with the calls of f.
  * - A sweep (dyn_sweep_run, as `dynkit sweep` runs it): 8 runs over b = -0.7 ... -0.3, rodas4
  *   dense and with KLU (one solver a thread, its analysis shared by the thread's runs) at
  *   equal error against the KLU sweep at 1e-12; then the same bits on 1 and 2 threads.
@@ -159,9 +162,22 @@ static void cgl_y0(const cgl *c, double *y0)
     }
 }
 
-typedef enum { ROD_DENSE, ROD_SPARSE, CV_DENSE, CV_SPARSE, N_SOLVERS } solver_id;
-static const char *const solver_names[N_SOLVERS] = {"rodas4 dense", "rodas4 KLU",
-                                                    "CVODE dense", "CVODE KLU"};
+typedef enum {
+    ROD_DENSE,
+    ROD_SPARSE,
+    CV_DENSE,
+    CV_SPARSE,
+    N_SOLVERS,
+    ROD_FD_DENSE = N_SOLVERS, /* without the exact Jacobian: n calls of f a Jacobian */
+    ROD_FD_GROUPS,            /* the pattern without values: a call a group, and KLU */
+    N_ALL
+} solver_id;
+static const char *const solver_names[N_ALL] = {
+    "rodas4 dense",           "rodas4 KLU", "CVODE dense", "CVODE KLU",
+    "rodas4 dense differences", "rodas4 grouped differences KLU"};
+static long last_rhs; /* the calls of f of the last run */
+static int n_groups;  /* the groups of the ring's pattern (dyn_sparse_groups) */
+static int *groups;
 
 /* One run to t = 10 into y; the steps, or -1. */
 static long run(cgl *c, solver_id s, double tol, const double *y0, double *y)
@@ -194,14 +210,16 @@ static long run(cgl *c, solver_id s, double tol, const double *y0, double *y)
     dyn_solve_opts o = {0};
     o.rtol = tol;
     o.atol = tol;
-    o.jacobian = cgl_jac;
+    o.jacobian = s == ROD_FD_DENSE || s == ROD_FD_GROUPS ? NULL : cgl_jac;
     dyn_sparse_solver klu = {0};
 #ifdef DYNKIT_HAVE_KLU
-    if (s == ROD_SPARSE) {
+    if (s == ROD_SPARSE || s == ROD_FD_GROUPS) {
         if (dyn_klu_init(&klu))
             return -1;
         o.jac_sparse = c->pat;
-        o.jacobian_sparse = cgl_jac_sparse;
+        o.jacobian_sparse = s == ROD_SPARSE ? cgl_jac_sparse : NULL;
+        o.jac_groups = groups;
+        o.jac_n_groups = n_groups;
         o.sparse_solver = &klu;
     }
 #endif
@@ -219,6 +237,7 @@ static long run(cgl *c, solver_id s, double tol, const double *y0, double *y)
                 rc == -1 ? "out of memory" : res.message);
         return -1;
     }
+    last_rhs = res.stats.rhs_calls;
     return res.stats.accepted + res.stats.rejected;
 }
 
@@ -232,7 +251,7 @@ static int available(solver_id s)
         return 0;
 #endif
 #ifndef DYNKIT_HAVE_KLU
-    if (s == ROD_SPARSE)
+    if (s == ROD_SPARSE || s == ROD_FD_GROUPS)
         return 0;
 #endif
     return 1;
@@ -400,7 +419,7 @@ static int measure(cgl *c, solver_id s, const double *y0, const double *ref, int
     double *y = malloc((size_t)n * sizeof *y);
     cv->k = 0;
     for (int t = 0; t < n_tol && y; t++) {
-        if ((s == ROD_DENSE || s == ROD_SPARSE) && tols[t] < ROD_TOL_MIN)
+        if ((s == ROD_DENSE || s == ROD_SPARSE || s >= N_SOLVERS) && tols[t] < ROD_TOL_MIN)
             break;
         double best = INFINITY;
         long steps = 0;
@@ -415,11 +434,56 @@ static int measure(cgl *c, solver_id s, const double *y0, const double *ref, int
         }
         cv->err[cv->k] = max_err(y, ref, n);
         cv->time[cv->k] = best;
-        cv->steps[cv->k] = steps;
+        cv->steps[cv->k] = s >= N_SOLVERS ? last_rhs : steps; /* differences: calls of f */
         cv->k++;
     }
     free(y);
     return y ? 0 : 1;
+}
+
+/* Without the exact Jacobian (a C model): rodas4 with dense differences (n calls of f a
+ * Jacobian, dense LU) against the pattern's differences in groups (a call a group) and KLU,
+ * at equal error; the calls of f at each tolerance. 0, or 1 when a run failed. */
+static int differences_case(cgl *c, const double *y0, const double *ref, int reps, int n_tol,
+                            int verbose)
+{
+    const int n = 2 * c->N;
+    groups = malloc((size_t)n * sizeof *groups);
+    if (!groups || (n_groups = dyn_sparse_groups(&c->pat, groups)) < 1)
+        return 1;
+    curve cv[2];
+    int failed = 0;
+    for (int k = 0; k < 2; k++) {
+        const solver_id s = k ? ROD_FD_GROUPS : ROD_FD_DENSE;
+        cv[k].k = 0;
+        if (available(s))
+            failed |= measure(c, s, y0, ref, reps, n_tol, &cv[k]);
+        if (verbose)
+            for (int i = 0; i < cv[k].k; i++)
+                fprintf(stderr, "%-30s tol %.0e err %.3e time %.4g rhs %ld\n", solver_names[s],
+                        tols[i], cv[k].err[i], cv[k].time[i], cv[k].steps[i]);
+    }
+    printf("\n## Without the exact Jacobian: differences, dense or in %d groups of columns\n\n",
+           n_groups);
+    printf("rodas4 with dense differences (%d calls of f a Jacobian, dense LU) and with the "
+           "pattern's differences in %d groups (%d calls, KLU); error and time as above; calls "
+           "of f at each tolerance\n\n",
+           n, n_groups, n_groups);
+    printf("| tol | calls dense | calls groups | error dense | error groups |\n");
+    printf("|---:|---:|---:|---:|---:|\n");
+    for (int i = 0; i < cv[0].k && i < cv[1].k; i++)
+        printf("| %.0e | %ld | %ld | %.2g | %.2g |\n", tols[i], cv[0].steps[i], cv[1].steps[i],
+               cv[0].err[i], cv[1].err[i]);
+    printf("\n| error | dense differences s | grouped differences KLU s | dense / groups |\n");
+    printf("|---:|---:|---:|---:|\n");
+    for (int l = 0; l < N_LEVELS; l++) {
+        const double td = cv[0].k ? time_at(&cv[0], levels[l]) : NAN;
+        const double tg = cv[1].k ? time_at(&cv[1], levels[l]) : NAN;
+        printf("| %.0e | %.3g | %.3g | %.1f |\n", levels[l], td, tg, td / tg);
+    }
+    free(groups);
+    groups = NULL;
+    return failed;
 }
 
 int main(int argc, char **argv)
@@ -516,6 +580,7 @@ int main(int argc, char **argv)
             failed = 1;
         }
     }
+    failed |= differences_case(&c, y0, ref, reps, n_tol, verbose);
     failed |= sweep_case(&c, y0, reps, quick);
     free(y0);
     free(ref);

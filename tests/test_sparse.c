@@ -590,8 +590,9 @@ static const char ring_c[] =
 /* --jac-pattern: a C model without a Jacobian runs with dense differences (40 calls of f a
  * Jacobian), with a probed pattern or its declared one in 4 groups (4 calls) and KLU, all
  * ending where the model file's exact run ends (within 1e-7); a sweep with the probed
- * pattern writes the single run's numbers; a model with its own pattern refuses probe, none
- * gives dense matrices, and a word outside model|probe|none is refused. */
+ * pattern writes the single run's numbers; a declared pattern out of order is refused when
+ * the model is loaded; a model with its own pattern refuses probe, none gives dense
+ * matrices, and a word outside model|probe|none is refused. */
 static void test_cli_jac_pattern(void **state)
 {
     (void)state;
@@ -643,6 +644,28 @@ static void test_cli_jac_pattern(void **state)
           last_value(one.out));
     cli_free(&sw);
     cli_free(&one);
+    /* the command of docs/stiff.md: the 256-state ring as a C model, 10 groups */
+    cli_result big = cli("run %s/bench/cgl_ring.c --method rodas4 --final --stats "
+                         "--jac-pattern probe --verbose",
+                         DYNKIT_SOURCE_DIR);
+    CHECK(big.status == 0, "%s", big.err);
+#ifdef DYNKIT_HAVE_KLU
+    CHECK(strstr(big.err, "linear=sparse nnz=1536") && strstr(big.err, "in 10 groups"), "%s",
+          big.err);
+#endif
+    cli_free(&big);
+    /* a declared pattern the loader refuses: column 0's rows out of order */
+    snprintf(text, sizeof text, "#define DECLARED 1\n%s", ring_c);
+    char *swap = strstr(text, "r[0] = 0, r[1] = 1");
+    assert_non_null(swap);
+    swap[7] = '1';
+    swap[16] = '0';
+    assert_int_equal(cli_write_file("ring_bad.c", text), 0);
+    cli_result refused = cli("run %s --method rodas4", cli_path("ring_bad.c"));
+    CHECK(refused.status == 2 && strstr(refused.err, "declares a pattern of its Jacobian") &&
+              strstr(refused.err, "rows in column 0 must increase"),
+          "%s", refused.err);
+    cli_free(&refused);
     cli_result own = cli("run %s --method rodas4 --jac-pattern probe", cli_path("ring.ode"));
     CHECK(own.status == 2 && strstr(own.err, "has its own pattern"), "%s", own.err);
     cli_free(&own);

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* The check of the dyn_model a compiled model returns (dynkit_model()): names, counts,
- * arrays, parameter offsets inside par_size, default run; shared by both backends and
- * dyn_jit_check_model (model.h's contract). */
+ * arrays, parameter offsets inside par_size, a declared band or pattern, default run;
+ * shared by both backends and dyn_jit_check_model (model.h's contract). */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -82,6 +82,13 @@ int jit_check_model(const dyn_model *m, const char *where, char *err, size_t err
                         "%s: the model '%s' declares a band of its Jacobian with jac_lower = %d, "
                         "jac_upper = %d (accepted: 0 to n_states - 1 = %d)",
                         where, m->name, m->jac_lower, m->jac_upper, m->n_states - 1);
+    char why[160];
+    if (m->jac_pattern.nnz > 0 &&
+        dyn_sparse_pattern_check(&m->jac_pattern, m->n_states, why, sizeof why))
+        return jit_fail(err, errlen,
+                        "%s: the model '%s' declares a pattern of its Jacobian (jac_pattern) "
+                        "that is not accepted: %s",
+                        where, m->name, why);
     if (m->n_noise < 0 || (m->n_noise > 0 && !m->noise_kinds) ||
         (m->n_noise > 0 && (m->noise_offset % sizeof(double) != 0 ||
                             m->noise_offset > m->par_size ||

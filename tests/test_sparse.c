@@ -493,6 +493,24 @@ static double last_value(const char *out)
     return strtod(p, NULL);
 }
 
+/* rodas4 over d = 40, 60 in a sweep on 2 threads: its last run's u39(1) is that of the single
+ * run with d = 60, to the bit (the options `more` given to both). */
+static void sweep_is_run(const char *file, const char *more)
+{
+    cli_result sw = cli("sweep %s --method rodas4 --vary d=40,60 --reduce final:u39 --threads 2 "
+                        "--rtol 1e-9 --atol 1e-12 --quiet%s",
+                        cli_path(file), more);
+    cli_result one = cli("run %s --method rodas4 --set d=60 --final --rtol 1e-9 --atol 1e-12%s",
+                         cli_path(file), more);
+    CHECK(sw.status == 0 && one.status == 0, "%s%s", sw.err, one.err);
+    const char *last = strrchr(sw.out, ',');
+    assert_non_null(last);
+    CHECK(strtod(last + 1, NULL) == last_value(one.out), "%s: sweep %s, run %.17g", file,
+          last + 1, last_value(one.out));
+    cli_free(&sw);
+    cli_free(&one);
+}
+
 /* dynkit run: the ring with rodas4 and cvode, sparse matrices when built with KLU (else
  * dense, saying why), the chain with the band found in its pattern; u39(1) agrees across
  * them within a few times the tolerance. */
@@ -531,18 +549,7 @@ static void test_cli_says_which_matrices(void **state)
         cli_free(&r);
     }
     /* a sweep's run is the single run with the same matrices: the same bits */
-    cli_result sw = cli("sweep %s --method rodas4 --vary d=40,60 --reduce final:u39 "
-                        "--threads 2 --rtol 1e-9 --atol 1e-12 --quiet",
-                        cli_path("ring.ode"));
-    cli_result one = cli("run %s --method rodas4 --set d=60 --final --rtol 1e-9 --atol 1e-12",
-                         cli_path("ring.ode"));
-    CHECK(sw.status == 0 && one.status == 0, "%s%s", sw.err, one.err);
-    const char *last = strrchr(sw.out, ',');
-    assert_non_null(last);
-    CHECK(strtod(last + 1, NULL) == last_value(one.out), "sweep %s, run %.17g", last + 1,
-          last_value(one.out));
-    cli_free(&sw);
-    cli_free(&one);
+    sweep_is_run("ring.ode", "");
     cli_result info = cli("info %s", cli_path("ring.ode"));
     CHECK(info.status == 0 && strstr(info.out, "Jacobian: sparse, 120 of 1600 entries"), "%s%s",
           info.out, info.err);
@@ -631,19 +638,7 @@ static void test_cli_jac_pattern(void **state)
         cli_free(&r);
     }
     /* a sweep takes the probed pattern too: the single run's numbers */
-    cli_result sw = cli("sweep %s --method rodas4 --vary d=40,60 --reduce final:u39 --threads 2 "
-                        "--rtol 1e-9 --atol 1e-12 --quiet --jac-pattern probe",
-                        cli_path("ring_probe.c"));
-    cli_result one = cli("run %s --method rodas4 --set d=60 --final --rtol 1e-9 --atol 1e-12 "
-                         "--jac-pattern probe",
-                         cli_path("ring_probe.c"));
-    CHECK(sw.status == 0 && one.status == 0, "%s%s", sw.err, one.err);
-    const char *last = strrchr(sw.out, ',');
-    assert_non_null(last);
-    CHECK(strtod(last + 1, NULL) == last_value(one.out), "sweep %s, run %.17g", last + 1,
-          last_value(one.out));
-    cli_free(&sw);
-    cli_free(&one);
+    sweep_is_run("ring_probe.c", " --jac-pattern probe");
     /* the command of docs/stiff.md: the 256-state ring as a C model, 10 groups */
     cli_result big = cli("run %s/bench/cgl_ring.c --method rodas4 --final --stats "
                          "--jac-pattern probe --verbose",

@@ -216,7 +216,7 @@ static void test_robertson_conserves_mass(void **state)
 
     /* RODAS over the Test Set's interval [0, 1e11]: linear invariants are kept exactly by
      * Rosenbrock methods too, up to rounding (which grows with the number of steps) */
-    const dyn_ros_problem p = {{m->rhs, 3, &par}, m->jacobian, 1, NULL, 0, NULL, NULL, NULL, NULL};
+    const dyn_ros_problem p = {{m->rhs, 3, &par}, m->jacobian, 1, NULL, 0, NULL, NULL, NULL, NULL, NULL, 0};
     double rw[64], y1[3], e[3], cont[12];
     int piv[3];
     dyn_ros_ws ws;
@@ -264,7 +264,7 @@ static void test_rodas_reproduces_references(void **state)
         assert_int_equal(dyn_reference_setup(r, &par, y, msg, sizeof msg), 0);
         for (int i = 0; i < r->n; i++)
             atol[i] = (i == 1 && cases[c].atol2 > 0) ? cases[c].atol2 : cases[c].atol;
-        const dyn_ros_problem p = {{m->rhs, r->n, &par}, m->jacobian, 1, NULL, 0, NULL, NULL, NULL, NULL};
+        const dyn_ros_problem p = {{m->rhs, r->n, &par}, m->jacobian, 1, NULL, 0, NULL, NULL, NULL, NULL, NULL, 0};
         double rw[2 * NMAX * NMAX + 12 * NMAX];
         int piv[NMAX];
         dyn_ros_ws ws;

@@ -649,6 +649,25 @@ static void test_cli_jac_pattern(void **state)
           big.err);
 #endif
     cli_free(&big);
+    cli_result info = cli("info %s", cli_path("ring_declared.c"));
+    CHECK(info.status == 0 && strstr(info.out, "Jacobian: sparse, 120 of 1600 entries (the "
+                                               "pattern the model declares"),
+          "%s%s", info.out, info.err);
+    cli_free(&info);
+    /* a model file above 400 states has no exact Jacobian: the probe finds its band */
+    char chain[256];
+    snprintf(chain, sizeof chain,
+             "par d=50\nu0'=d*(u1-2*u0)-u0^3\nu[1..399]'=d*(u[j+1]-2*u[j]+u[j-1])-u[j]^3\n"
+             "u400'=d*(-2*u400+u399)-u400^3\ninit u[0..400]=0.5\n@ total=1\ndone\n");
+    assert_int_equal(cli_write_file("chain401.ode", chain), 0);
+    cli_result band = cli("run %s --method rodas4 --final --stats --verbose --jac-pattern probe",
+                          cli_path("chain401.ode"));
+    CHECK(band.status == 0 && strstr(band.err, " linear=band lower=1 upper=1") &&
+              strstr(band.err, "1201 of 160801 entries") &&
+              strstr(band.err, "1 below and 1 above the diagonal (of 401 states), as its "
+                               "pattern shows"),
+          "%s", band.err);
+    cli_free(&band);
     /* a declared pattern the loader refuses: column 0's rows out of order */
     snprintf(text, sizeof text, "#define DECLARED 1\n%s", ring_c);
     char *swap = strstr(text, "r[0] = 0, r[1] = 1");

@@ -267,6 +267,11 @@ static void print_default_run(const dyn_model *m)
         printf("Jacobian: sparse, %d of %d entries (the exact Jacobian's pattern); rodas4 and "
                "cvode use sparse matrices when dynkit is built with KLU\n",
                m->jac_pattern.nnz, m->n_states * m->n_states);
+    else if (m->jac_pattern.nnz > 0)
+        printf("Jacobian: sparse, %d of %d entries (the pattern the model declares; the values "
+               "by differences in groups of columns); rodas4 uses sparse matrices when dynkit "
+               "is built with KLU\n",
+               m->jac_pattern.nnz, m->n_states * m->n_states);
     if (m->samples == DYN_SAMPLES_STEPS)
         printf("Adaptive methods without --step or --times write a sample at every accepted "
                "step;\n"

@@ -60,7 +60,9 @@ void cli_linear_choose(const dyn_model *m, cli_linear *lin)
                  "band matrices: the Jacobian is banded, %d below and %d above the diagonal "
                  "(of %d states)%s",
                  m->jac_lower, m->jac_upper, n,
-                 nnz > 0 ? ", as its exact pattern shows" : ", as the model declares");
+                 nnz <= 0            ? ", as the model declares"
+                 : m->jacobian_band  ? ", as its exact pattern shows"
+                                     : ", as its pattern shows");
         return;
     }
     if (nnz <= 0) {

@@ -25,7 +25,14 @@
  *                 known ones comes from the Brownian bridge, so a rejected step changes
  *                 nothing of the path (Rackauckas and Nie, "Adaptive methods for stochastic
  *                 differential equations via natural embeddings and rejection sampling
- *                 with memory", 2017, with every point kept rather than a stack).
+ *                 with memory", 2017, with every point kept rather than a stack);
+ *   DYN_SDE_SRIW1 Rößler's stochastic Runge–Kutta method SRIW1 ("Runge–Kutta methods for the
+ *                 strong approximation of solutions of stochastic differential equations",
+ *                 SIAM J. Numer. Anal. 48, 2010) for the same noise as rkmil: strong order
+ *                 1.5, weak order 2, adaptive with the embedded error estimate of Rackauckas
+ *                 and Nie on the same kept Brownian path, which here also carries the time
+ *                 integral of W over each step (drawn with dW, split by the bridge of the
+ *                 pair when a step is rejected); no events.
  *
  * Events (dyn_sde_opts.events; a model file's `global`): found and fired as dyn_solve does
  * (solve.h: sign changes of g, resets, XPPAUT's cascades, terminal events, Zeno runs), on
@@ -112,25 +119,28 @@ typedef struct dyn_sde {
 typedef enum dyn_sde_method {
     DYN_SDE_EM = 0,
     DYN_SDE_RKMIL = 1,
-    DYN_SDE_MAP = 2   /* a discrete map with noise: every slot drawn once per step, then
+    DYN_SDE_MAP = 2,  /* a discrete map with noise: every slot drawn once per step, then
                        * y_{k+1} = f(t_k, y_k) (XPPAUT's meth=discrete; a Wiener slot is z /
                        * sqrt(h), z for the map's step 1) */
+    DYN_SDE_SRIW1 = 3 /* SRIW1: per step and noise two normals, z1 for dW = sqrt(h) z1 and z2
+                       * for the time integral I_(1,0) = (h dW + sqrt(h^3/3) z2) / 2 */
 } dyn_sde_method;
 
 typedef struct dyn_sde_opts {
-    double h;              /* EM and fixed rkmil: the step; adaptive rkmil: the first step
-                            * (0: 1e-3 of the span) */
-    int fixed;             /* rkmil: 1 takes fixed steps h (no error control) */
-    double rtol, atol;     /* adaptive rkmil (0: 1e-3 and 1e-6) */
-    double max_step;       /* adaptive rkmil: 0 = the span */
-    long max_steps;        /* adaptive rkmil: 0 = 10^7 */
-    double out_step;       /* adaptive rkmil: samples at t0 + k out_step (steps land on
+    double h;              /* EM and fixed rkmil/sriw1: the step; adaptive rkmil/sriw1: the
+                            * first step (0: 1e-3 of the span) */
+    int fixed;             /* rkmil, sriw1: 1 takes fixed steps h (no error control) */
+    double rtol, atol;     /* adaptive rkmil/sriw1 (0: 1e-3 and 1e-6) */
+    double max_step;       /* adaptive: 0 = the span */
+    long max_steps;        /* adaptive: 0 = 10^7 */
+    double out_step;       /* adaptive: samples at t0 + k out_step (steps land on
                             * them); 0 = a sample at every accepted step */
     dyn_end_policy end;    /* fixed steps: as dyn_fixed_solve */
     long every;            /* fixed steps: keep every K-th sample (and the last) */
     uint64_t seed, stream; /* the noise: dyn_rng_init(seed, stream) */
     /* events (dyn_event, ode.h) as dyn_solve fires them (solve.h: reports, resets,
-     * cascades, terminal events, Zeno runs): see "Events" above; not for DYN_SDE_MAP */
+     * cascades, terminal events, Zeno runs): see "Events" above; not for DYN_SDE_MAP or
+     * DYN_SDE_SRIW1 */
     const dyn_event *events;
     int n_events;
     dyn_event_fn on_event; /* may be NULL */

@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* Stochastic differential equations (dynkit/sde.h): Euler–Maruyama with fixed steps, and
- * the derivative-free Runge–Kutta Milstein scheme of Kloeden and Platen (Numerical
- * Solution of Stochastic Differential Equations, 1992, eq. 11.1.5, strong order 1),
+/* Stochastic differential equations (dynkit/sde.h): Euler–Maruyama with fixed steps, Rößler's
+ * SRIW1 (strong order 1.5: sde_sri.c) and the derivative-free Runge–Kutta Milstein scheme of
+ * Kloeden and Platen (Numerical Solution of Stochastic Differential Equations, 1992, eq.
+ * 11.1.5, strong order 1),
  *   Y+ = Y + a h + sum_j b_j dW_j + sum_j (b_j(t, K_j) - b_j(t, Y)) (dW_j^2 - h) / (2 sqrt h),
  *   K_j = Y + a h + b_j sqrt h,
  * applied noise by noise, which is Milstein's scheme when no b_j depends on a state that
@@ -10,13 +11,24 @@
  * from the model's right-hand side, affine in its Wiener slots: a = f(w = 0),
  * b_j = f(w = e_j) - a.
  *
- * Adaptive steps by step doubling: a step of h and two of h/2 on the same Brownian path,
- * their difference measured as the embedded pairs' error norm. The path is kept: every
- * value of W drawn at a time ahead stays in a sorted list until the run passes it, and a
- * value between two known ones comes from the Brownian bridge
+ * Adaptive steps: rkmil by step doubling (a step of h and two of h/2 on the same Brownian
+ * path, their difference measured as the embedded pairs' error norm), SRIW1 by its embedded
+ * estimate. The path is kept: every value of W drawn at a time ahead stays in a sorted list
+ * until the run passes it, and a value between two known ones comes from the Brownian bridge
  *   W(s) = W(a) + (s - a)/(b - a) (W(b) - W(a)) + sqrt((s - a)(b - s)/(b - a)) z,
  * so a rejected step leaves the path a sample of Brownian motion (Rackauckas and Nie 2017,
- * rejection sampling with memory). Steps land on the output times.
+ * rejection sampling with memory). SRIW1 also needs the time integral of W over a step:
+ * each segment between two kept points carries J = int (W(s) - W(left)) ds over it, drawn
+ * with the increment dW over a length H as J = (H dW + sqrt(H^3/3) xi)/2, xi a standard
+ * normal independent of dW (Var J = H^3/3, Cov(J, dW) = H^2/2, as the Gaussian pair requires),
+ * and split at a new point by the bridge of the pair (W, J): with theta the point's fraction
+ * of the segment, u = 1 - theta, and dW, J in units of sqrt(H) and H^(3/2),
+ *   dW1 = theta (3 theta - 2) dW + 6 theta u J + sqrt(theta u q) z1,          q = 1 - 3 theta u,
+ *   J1 = -theta^2 u dW + theta^2 (3 - 2 theta) J + theta^2 u^2 (1 - 2 theta)/(2 sqrt(theta u q)) z1
+ *        + sqrt(theta^3 u^3 / (12 q)) z2,
+ * the conditional law of the first part given the whole (the covariance of the pair over a
+ * length s is [[s, s^2/2], [s^2/2, s^3/3]]); the second part is dW - dW1 and
+ * J - J1 - dW1 (1 - theta). Steps land on the output times.
  *
  * Events (sde.h, "Events") with the library's event location and XPPAUT's cascade rules
  * (ode/events.c), on the straight line between a fixed step's ends or the broken line
@@ -30,6 +42,7 @@
 #include "dynkit/sde.h"
 #include "ode/events.h"
 #include "result_fail.h"
+#include "sde_sri.h"
 
 /* g sampled at EVENT_SAMPLES + 1 points of the interpolant of a step (or half step) */
 #define EVENT_SAMPLES 4
@@ -47,8 +60,8 @@ static size_t event_work_size(int n, int ne)
 size_t dyn_sde_work_size(int n, int n_noise, int n_events)
 {
     const size_t N = (size_t)(n > 0 ? n : 0), M = (size_t)(n_noise > 0 ? n_noise : 0);
-    return 12 * N + (M + 1) * N + 6 * M + (size_t)DYN_SDE_MAX_POINTS * (1 + M) + 16 +
-           event_work_size(n, n_events);
+    return 14 * N + (M + 1) * N + 8 * M + (size_t)DYN_SDE_MAX_POINTS * (1 + 2 * M) +
+           DYN_SRI_WORK(N, M) + 20 + event_work_size(n, n_events);
 }
 
 typedef struct sde_run {
@@ -59,9 +72,11 @@ typedef struct sde_run {
     int rhs_status;
     /* workspace */
     double *a, *b, *kk, *c0, *c1, *ymid, *ybig, *ysmall, *dw, *dw1, *dw2, *wend, *wmid;
-    /* the Brownian path: W at tc is wc; np points ahead at tq (increasing), values wq */
-    double tc, *wc, *tq, *wq;
-    int np;
+    double *i10, *e1, *e2, *anew, *sri_work;
+    /* the Brownian path: W at tc is wc; np points ahead at tq (increasing), values wq; with
+     * area, aq holds each segment's J (the time integral of W - W(left) up to the point) */
+    double tc, *wc, *tq, *wq, *aq;
+    int np, area;
     /* events: the run's span (Zeno's window), memory between steps, the interpolant, the
      * states before (ybefore) and after (yafter) the resets of an instant at t_ev */
     double t0, t1;
@@ -144,6 +159,33 @@ static int rkmil_step(sde_run *r, double t, const double *y, double h, const dou
     return 0;
 }
 
+/* A new segment of length H beyond the last point for noise j: its increment into *dw and,
+ * with area, its time integral J into *area (two normals, dW's first). */
+static void segment_draw(sde_run *r, double H, double *dw, double *area)
+{
+    const double z1 = dyn_rng_normal(&r->rng);
+    *dw = sqrt(H) * z1;
+    if (r->area)
+        *area = 0.5 * (H * *dw + sqrt(H * H * H / 3.0) * dyn_rng_normal(&r->rng));
+}
+
+/* The bridge of (W, J) over a segment of length H with increment dw and integral area: the
+ * part up to the fraction theta into *dw1, *area1 (the file's comment gives the law). */
+static void segment_split(sde_run *r, double H, double theta, double dw, double area,
+                          double *dw1, double *area1)
+{
+    const double u = 1.0 - theta, q = 1.0 - 3.0 * theta * u, sh = sqrt(H);
+    const double w = dw / sh, j = area / (H * sh);
+    const double s11 = sqrt(theta * u * q);
+    const double z1 = dyn_rng_normal(&r->rng), z2 = dyn_rng_normal(&r->rng);
+    const double w1 = theta * (3.0 * theta - 2.0) * w + 6.0 * theta * u * j + s11 * z1;
+    const double j1 = -theta * theta * u * w + theta * theta * (3.0 - 2.0 * theta) * j +
+                      theta * theta * u * u * (1.0 - 2.0 * theta) / (2.0 * s11) * z1 +
+                      sqrt(theta * theta * theta * u * u * u / (12.0 * q)) * z2;
+    *dw1 = sh * w1;
+    *area1 = H * sh * j1;
+}
+
 /* W at time s > tc into out (m values): a point already drawn, a bridge between the known
  * neighbours, or a new increment beyond the last one; the point is kept. */
 static int path_at(sde_run *r, double s, double *out)
@@ -160,24 +202,62 @@ static int path_at(sde_run *r, double s, double *out)
         return 1;
     const double tl = i == 0 ? r->tc : r->tq[i - 1];
     const double *wl = i == 0 ? r->wc : r->wq + (size_t)(i - 1) * (size_t)m;
+    double *al = r->anew; /* the new segment's J */
     if (i == r->np) {
-        const double sd = sqrt(s - tl);
-        for (int j = 0; j < m; j++)
-            out[j] = wl[j] + sd * dyn_rng_normal(&r->rng);
+        for (int j = 0; j < m; j++) {
+            double d;
+            segment_draw(r, s - tl, &d, &al[j]);
+            out[j] = wl[j] + d;
+        }
     } else {
         const double tr = r->tq[i];
         const double *wr = r->wq + (size_t)i * (size_t)m;
-        const double f = (s - tl) / (tr - tl), sd = sqrt((s - tl) * (tr - s) / (tr - tl));
-        for (int j = 0; j < m; j++)
-            out[j] = wl[j] + f * (wr[j] - wl[j]) + sd * dyn_rng_normal(&r->rng);
+        double *ar = r->aq + (size_t)i * (size_t)m;
+        const double f = (s - tl) / (tr - tl);
+        if (r->area) {
+            for (int j = 0; j < m; j++) {
+                double d1;
+                segment_split(r, tr - tl, f, wr[j] - wl[j], ar[j], &d1, &al[j]);
+                out[j] = wl[j] + d1;
+                ar[j] -= al[j] + d1 * (tr - s);
+            }
+        } else {
+            const double sd = sqrt((s - tl) * (tr - s) / (tr - tl));
+            for (int j = 0; j < m; j++)
+                out[j] = wl[j] + f * (wr[j] - wl[j]) + sd * dyn_rng_normal(&r->rng);
+        }
     }
-    memmove(r->tq + i + 1, r->tq + i, (size_t)(r->np - i) * sizeof *r->tq);
-    memmove(r->wq + (size_t)(i + 1) * (size_t)m, r->wq + (size_t)i * (size_t)m,
-            (size_t)(r->np - i) * (size_t)m * sizeof *r->wq);
+    const size_t M = (size_t)m, I = (size_t)i, rest = (size_t)(r->np - i);
+    memmove(r->tq + I + 1, r->tq + I, rest * sizeof *r->tq);
+    memmove(r->wq + (I + 1) * M, r->wq + I * M, rest * M * sizeof *r->wq);
     r->tq[i] = s;
-    memcpy(r->wq + (size_t)i * (size_t)m, out, (size_t)m * sizeof *out);
+    memcpy(r->wq + I * M, out, M * sizeof *out);
+    if (r->area) {
+        memmove(r->aq + (I + 1) * M, r->aq + I * M, rest * M * sizeof *r->aq);
+        memcpy(r->aq + I * M, al, M * sizeof *al);
+    }
     r->np++;
     return 0;
+}
+
+/* After path_at(s): the increments dW (into dw) and the time integrals of W - W(tc) (into
+ * i10) from tc to the point s. */
+static void path_increments(const sde_run *r, double s, double *dw, double *i10)
+{
+    const int m = r->m;
+    for (int j = 0; j < m; j++)
+        i10[j] = 0.0;
+    double tl = r->tc;
+    const double *wl = r->wc;
+    for (int i = 0; i < r->np && r->tq[i] <= s; i++) {
+        const double *wi = r->wq + (size_t)i * (size_t)m, *ai = r->aq + (size_t)i * (size_t)m;
+        for (int j = 0; j < m; j++) {
+            i10[j] += ai[j] + (wl[j] - r->wc[j]) * (r->tq[i] - tl);
+            dw[j] = wi[j] - r->wc[j];
+        }
+        tl = r->tq[i];
+        wl = wi;
+    }
 }
 
 /* The run reached t (a point of the path): W there becomes the current value. */
@@ -191,8 +271,38 @@ static void path_advance(sde_run *r, double t)
         memcpy(r->wc, r->wq + (size_t)(i - 1) * (size_t)m, (size_t)m * sizeof *r->wc);
     memmove(r->tq, r->tq + i, (size_t)(r->np - i) * sizeof *r->tq);
     memmove(r->wq, r->wq + (size_t)i * (size_t)m, (size_t)(r->np - i) * (size_t)m * sizeof *r->wq);
+    if (r->area)
+        memmove(r->aq, r->aq + (size_t)i * (size_t)m,
+                (size_t)(r->np - i) * (size_t)m * sizeof *r->aq);
     r->np -= i;
     r->tc = t;
+}
+
+/* dyn_sri_eval_fn: the drift, or a noise column as f(w = e_unit) - f(w = 0). */
+static int sri_eval(void *ctx, double t, const double *y, int unit, double *out)
+{
+    sde_run *r = ctx;
+    if (eval(r, t, y, NULL, unit, out))
+        return 1;
+    if (unit < 0)
+        return 0;
+    if (eval(r, t, y, NULL, -1, r->c0))
+        return 1;
+    for (int i = 0; i < r->n; i++)
+        out[i] -= r->c0[i];
+    return 0;
+}
+
+/* One SRIW1 step from (t, y) to the kept point t + h of the path: the new state into
+ * r->ysmall, the error estimate's parts into r->e1, r->e2. */
+static int sri_attempt(sde_run *r, double t, double h, const double *y)
+{
+    path_increments(r, t + h, r->dw, r->i10);
+    if (drift_diffusion(r, t, y))
+        return 1;
+    return dyn_sri_step(&dyn_sriw1, r->n, r->m, r->sde->noise_class == DYN_NOISE_ADDITIVE, t,
+                        h, y, r->dw, r->i10, r->a, r->b, sri_eval, r, r->sri_work, r->ysmall,
+                        r->e1, r->e2);
 }
 
 static int rhs_fail(sde_run *r)
@@ -344,8 +454,9 @@ static int stop_sample(sde_run *r, const dyn_sde_opts *o, long k, double *y, dou
     return DYN_OK;
 }
 
-/* Fixed steps on the grid of h: Euler–Maruyama (every slot drawn once per step) or the
- * Runge–Kutta Milstein scheme (Wiener increments sqrt(dt) z). */
+/* Fixed steps on the grid of h: Euler–Maruyama (every slot drawn once per step), SRIW1 (per
+ * step and noise, dW and then its time integral) or the Runge–Kutta Milstein scheme (Wiener
+ * increments sqrt(dt) z). */
 static int solve_fixed(sde_run *r, dyn_sde_method method, double t0, double t1,
                        const dyn_sde_opts *o, double *y)
 {
@@ -368,6 +479,8 @@ static int solve_fixed(sde_run *r, dyn_sde_method method, double t0, double t1,
                            : kind == DYN_NOISE_NORMAL ? dyn_rng_normal(&r->rng)
                                                       : dyn_rng_normal(&r->rng) / sqrt(h);
             }
+        } else if (method == DYN_SDE_SRIW1) {
+            path_at(r, tn, r->wend); /* the path is empty: a new point, dW then J per noise */
         } else {
             const double sq = sqrt(h);
             for (int j = 0; j < m; j++)
@@ -379,6 +492,9 @@ static int solve_fixed(sde_run *r, dyn_sde_method method, double t0, double t1,
                     return rhs_fail(r);
                 for (int i = 0; i < n; i++)
                     r->ysmall[i] = method == DYN_SDE_MAP ? r->a[i] : y[i] + (tn - t) * r->a[i];
+            } else if (method == DYN_SDE_SRIW1) {
+                if (sri_attempt(r, t, tn - t, y))
+                    return rhs_fail(r);
             } else if (drift_diffusion(r, t, y) || rkmil_step(r, t, y, tn - t, r->dw, r->ysmall)) {
                 return rhs_fail(r);
             }
@@ -402,6 +518,8 @@ static int solve_fixed(sde_run *r, dyn_sde_method method, double t0, double t1,
             t = r->t_ev;
             memcpy(y, r->yafter, (size_t)n * sizeof *y);
         }
+        if (method == DYN_SDE_SRIW1)
+            path_advance(r, tn);
         memcpy(y, r->ysmall, (size_t)n * sizeof *y);
         t = tn;
         res->t = t;
@@ -428,6 +546,20 @@ static double error_norm(const sde_run *r, const double *y, const dyn_sde_opts *
     for (int i = 0; i < r->n; i++) {
         const double sc = atol + rtol * fmax(fabs(y[i]), fabs(r->ysmall[i]));
         const double e = (r->ysmall[i] - r->ybig[i]) / sc;
+        sum += e * e;
+    }
+    return sqrt(sum / (r->n > 0 ? r->n : 1));
+}
+
+/* SRIW1's error norm: (delta E1 + E2) / (atol + rtol max(|y|, |y+|)) in the RMS norm, with
+ * the weight delta = 1/6 of the drift's part (Rackauckas and Nie 2017). */
+static double sri_error_norm(const sde_run *r, const double *y, const dyn_sde_opts *o)
+{
+    const double rtol = o->rtol > 0 ? o->rtol : 1e-3, atol = o->atol > 0 ? o->atol : 1e-6;
+    double sum = 0.0;
+    for (int i = 0; i < r->n; i++) {
+        const double sc = atol + rtol * fmax(fabs(y[i]), fabs(r->ysmall[i]));
+        const double e = (r->e1[i] / 6.0 + r->e2[i]) / sc;
         sum += e * e;
     }
     return sqrt(sum / (r->n > 0 ? r->n : 1));
@@ -465,22 +597,30 @@ static int solve_adaptive(sde_run *r, double t0, double t1, const dyn_sde_opts *
                                    "tolerances)",
                                    max_steps, dyn_shortest(t).s);
         const double tm = t + 0.5 * hh;
-        if (path_at(r, tn, r->wend) || path_at(r, tm, r->wmid))
+        if (path_at(r, tn, r->wend) || (!r->area && path_at(r, tm, r->wmid)))
             return dyn_result_fail(res, DYN_ERR_CAPACITY,
                                    "more than %d points of the Brownian path ahead of t = %s "
                                    "(too many rejected steps)",
                                    DYN_SDE_MAX_POINTS, dyn_shortest(t).s);
-        for (int j = 0; j < m; j++) {
-            r->dw[j] = r->wend[j] - r->wc[j];
-            r->dw1[j] = r->wmid[j] - r->wc[j];
-            r->dw2[j] = r->wend[j] - r->wmid[j];
-        }
         res->stats.steps++;
-        if (drift_diffusion(r, t, y) || rkmil_step(r, t, y, hh, r->dw, r->ybig) ||
-            rkmil_step(r, t, y, 0.5 * hh, r->dw1, r->ymid) || drift_diffusion(r, tm, r->ymid) ||
-            rkmil_step(r, tm, r->ymid, 0.5 * hh, r->dw2, r->ysmall))
-            return rhs_fail(r);
-        double err = error_norm(r, y, o);
+        double err;
+        if (r->area) {
+            if (sri_attempt(r, t, hh, y))
+                return rhs_fail(r);
+            err = sri_error_norm(r, y, o);
+        } else {
+            for (int j = 0; j < m; j++) {
+                r->dw[j] = r->wend[j] - r->wc[j];
+                r->dw1[j] = r->wmid[j] - r->wc[j];
+                r->dw2[j] = r->wend[j] - r->wmid[j];
+            }
+            if (drift_diffusion(r, t, y) || rkmil_step(r, t, y, hh, r->dw, r->ybig) ||
+                rkmil_step(r, t, y, 0.5 * hh, r->dw1, r->ymid) ||
+                drift_diffusion(r, tm, r->ymid) ||
+                rkmil_step(r, tm, r->ymid, 0.5 * hh, r->dw2, r->ysmall))
+                return rhs_fail(r);
+            err = error_norm(r, y, o);
+        }
         if (!isfinite(err))
             err = 1e10;
         const double fac = err > 0 ? 0.9 * pow(err, -0.5) : 5.0;
@@ -562,34 +702,38 @@ int dyn_sde_solve(dyn_sde_method method, const dyn_sde *sde, double t0, double t
                                "n_noise > 0, and a span t0 < t1 (got n = %d, n_noise = %d, "
                                "%g:%g)",
                                n, m, t0, t1);
-    const int fixed = method != DYN_SDE_RKMIL || o->fixed;
+    const int adaptive_method = method == DYN_SDE_RKMIL || method == DYN_SDE_SRIW1;
+    const int fixed = !adaptive_method || o->fixed;
     if (fixed && !(o->h > 0))
         return dyn_result_fail(res, DYN_ERR_ARG,
                                "%s takes fixed steps: give the step h > 0 (got %g)",
-                               method == DYN_SDE_EM    ? "Euler-Maruyama"
-                               : method == DYN_SDE_MAP ? "a discrete map"
-                                                       : "rkmil",
+                               method == DYN_SDE_EM      ? "Euler-Maruyama"
+                               : method == DYN_SDE_MAP   ? "a discrete map"
+                               : method == DYN_SDE_SRIW1 ? "sriw1"
+                                                         : "rkmil",
                                o->h);
     const int ne = o->events ? o->n_events : 0;
-    if (ne < 0 || (ne > 0 && method == DYN_SDE_MAP))
+    if (ne < 0 || (ne > 0 && (method == DYN_SDE_MAP || method == DYN_SDE_SRIW1)))
         return dyn_result_fail(res, DYN_ERR_ARG,
                                "events with noise are located by Euler-Maruyama and rkmil, not "
-                               "on a discrete map (got %d events)",
-                               ne);
+                               "by %s (got %d events)",
+                               method == DYN_SDE_MAP ? "a discrete map" : "sriw1", ne);
     for (int i = 0; i < ne; i++)
         if (!o->events[i].g)
             return dyn_result_fail(res, DYN_ERR_ARG, "event %d has no function g", i);
-    if (method == DYN_SDE_RKMIL && sde->noise_class == DYN_NOISE_GENERAL)
+    if (adaptive_method && sde->noise_class == DYN_NOISE_GENERAL)
         return dyn_result_fail(res, DYN_ERR_ARG,
-                               "rkmil needs a right-hand side affine in Wiener noise that is "
+                               "%s needs a right-hand side affine in Wiener noise that is "
                                "additive, scalar or diagonal (no normal() or ran(), no noise "
                                "coefficient that depends on a state another noise moves): "
-                               "use Euler-Maruyama (method euler)");
+                               "use Euler-Maruyama (method euler)",
+                               method == DYN_SDE_SRIW1 ? "sriw1" : "rkmil");
     sde_run r = {0};
     r.sde = sde;
     r.n = n;
     r.m = m;
     r.res = res;
+    r.area = method == DYN_SDE_SRIW1;
     dyn_rng_init(&r.rng, o->seed, o->stream);
     const size_t N = (size_t)n, M = (size_t)m;
     double *p = work;
@@ -600,6 +744,8 @@ int dyn_sde_solve(dyn_sde_method method, const dyn_sde *sde, double t0, double t
     r.ymid = p, p += N;
     r.ybig = p, p += N;
     r.ysmall = p, p += N;
+    r.e1 = p, p += N;
+    r.e2 = p, p += N;
     double *state = p;
     p += N;
     r.b = p, p += M * N;
@@ -609,8 +755,12 @@ int dyn_sde_solve(dyn_sde_method method, const dyn_sde *sde, double t0, double t
     r.wend = p, p += M + 1;
     r.wmid = p, p += M + 1;
     r.wc = p, p += M + 1;
+    r.i10 = p, p += M + 1;
+    r.anew = p, p += M + 1;
     r.tq = p, p += DYN_SDE_MAX_POINTS;
-    r.wq = p;
+    r.wq = p, p += (size_t)DYN_SDE_MAX_POINTS * M;
+    r.aq = p, p += (size_t)DYN_SDE_MAX_POINTS * M;
+    r.sri_work = p, p += DYN_SRI_WORK(N, M);
     r.tc = t0;
     r.t0 = t0;
     r.t1 = t1;
@@ -619,7 +769,6 @@ int dyn_sde_solve(dyn_sde_method method, const dyn_sde *sde, double t0, double t
     r.sink = (dyn_event_sink){o->events, o->on_event, o->event_ctx, res};
     r.reset_idx = -1;
     if (ne > 0) {
-        p += (size_t)DYN_SDE_MAX_POINTS * M;
         r.memo = p, p += 2 * (size_t)ne;
         r.casc = p, p += 2 * (size_t)ne;
         r.hits = p, p += 3 * (size_t)dyn_events_max_hits(ne, EVENT_SAMPLES);

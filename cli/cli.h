@@ -226,6 +226,13 @@ const dyn_tableau *cli_rkmil_method(void);
 int cli_method_is_rkmil(const dyn_tableau *m);
 /* volterra, the method for models with Volterra integrals (dyn_volterra_solve), likewise */
 int cli_method_is_volterra(const dyn_tableau *m);
+/* sriw1, Rößler's strong order 1.5 method for models with noise (dyn_sde_solve), and whether
+ * m is rkmil or sriw1: an adaptive method for noise. */
+const dyn_tableau *cli_sriw1_method(void);
+int cli_method_is_sde_adaptive(const dyn_tableau *m);
+/* The dyn_sde_method that runs m on a model with noise: rkmil, sriw1, a map's, else
+ * Euler–Maruyama. */
+int cli_sde_method(const dyn_tableau *m);
 /* Method by name or alias, cvode included when built; NULL if not available. */
 const dyn_tableau *cli_method_find(const char *name);
 /* Accepted method names, comma-separated, into buf; returns buf. */

@@ -401,6 +401,39 @@ static void test_help_examples(void **state)
     unlink(cli_path("examples"));
 }
 
+/* The same runs with sriw1 (Rößler's SRIW1, adaptive): the same run table and bands on 1 and
+ * 3 threads, and the mean at t = 5 within 5 standard errors of the closed form. */
+static void test_noise_bands_sriw1(void **state)
+{
+    (void)state;
+    const char *ou = DYNKIT_SOURCE_DIR "/examples/models/ornstein_uhlenbeck.ode";
+    cli_result a = cli_in_tmpdir("sweep %s --method sriw1 --runs 800 --seed 4 --threads 1 "
+                                 "--bands s1.csv --quiet", ou);
+    cli_result b = cli_in_tmpdir("sweep %s --method sriw1 --runs 800 --seed 4 --threads 3 "
+                                 "--bands s3.csv --quiet", ou);
+    assert_int_equal(a.status, 0);
+    assert_int_equal(b.status, 0);
+    assert_string_equal(a.out, b.out);
+    char *t1 = cli_read_file(cli_path("s1.csv"), NULL), *t3 = cli_read_file(cli_path("s3.csv"), NULL);
+    assert_non_null(t1);
+    assert_non_null(t3);
+    assert_string_equal(t1, t3);
+    const char *last = t1 + strlen(t1) - 2;
+    while (last > t1 && *last != '\n')
+        last--;
+    double t, mean, p5, p50, p95;
+    assert_int_equal(sscanf(last + 1, "%lf,%lf,%lf,%lf,%lf", &t, &mean, &p5, &p50, &p95), 5);
+    const double m = 0.5 + 1.5 * exp(-5.0), sd = 0.3 * sqrt((1 - exp(-10.0)) / 2);
+    assert_true(t == 5.0);
+    assert_true(fabs(mean - m) < 5 * sd / sqrt(800.0));
+    free(t1);
+    free(t3);
+    cli_free(&a);
+    cli_free(&b);
+    unlink(cli_path("s1.csv"));
+    unlink(cli_path("s3.csv"));
+}
+
 /* Runs over the noise of the Ornstein-Uhlenbeck example: the band table's mean and
  * percentiles at t = 5 against the closed form (mean 0.5 + 1.5 e^-5, standard deviation
  * 0.3 sqrt((1 - e^-10)/2)), and the same bytes on 1 and 3 threads. */
@@ -448,7 +481,7 @@ static void test_noise_bands(void **state)
     /* a picture's --compare runs take the methods for noise only */
     cli_result r = cli_in_tmpdir("plot %s --y x --compare rk4 --output c.svg", ou);
     assert_int_equal(r.status, 2);
-    assert_non_null(strstr(r.err, "only euler (Euler-Maruyama) and rkmil integrate"));
+    assert_non_null(strstr(r.err, "only euler (Euler-Maruyama), rkmil and sriw1"));
     cli_free(&r);
     static const char *const files[] = {"b1.csv", "b3.csv", "b3.json", "b1.svg"};
     for (size_t k = 0; k < sizeof files / sizeof *files; k++)
@@ -514,6 +547,12 @@ static void test_errors(void **state)
         {"sweep " DYNKIT_SOURCE_DIR "/examples/models/ornstein_uhlenbeck.ode --runs 5 --bands "
          "b.csv --resume r.csv", "--bands with --resume"},
         {"sweep pendulum --runs 5", "give the runs"},
+        {"sweep pendulum --vary l=1,2 --method sriw1", "--method sriw1 integrates models with "
+         "noise (wiener, normal, ran), and pendulum has none"},
+        {"sweep " DYNKIT_SOURCE_DIR "/tests/xppaut/noise/draws.ode --runs 2 --method sriw1",
+         "--method sriw1 needs noise that enters the equations as c*w"},
+        {"sweep " DYNKIT_SOURCE_DIR "/examples/models/ornstein_uhlenbeck.ode --runs 2 --method "
+         "srw1", "did you mean 'sriw1'?"},
         {"sweep pendulum --vary l=1,l=2", "'l=2' is not a number"},
         {"sweep pendulum --vary l=1,2 --vary l=3", "varied twice"},
         {"sweep pendulum --vary l=1,2 --output t.txt", "unknown file extension '.txt'"},
@@ -836,7 +875,7 @@ int main(void)
         cmocka_unit_test(test_ignored_interrupt_stays_ignored),
         cmocka_unit_test(test_help_examples),
         cmocka_unit_test(test_noise_bands), cmocka_unit_test(test_noise_events),
-        cmocka_unit_test(test_errors),
+        cmocka_unit_test(test_noise_bands_sriw1), cmocka_unit_test(test_errors),
         cmocka_unit_test(test_plot_table),    cmocka_unit_test(test_model_file),
         cmocka_unit_test(test_doc_pictures),
     };

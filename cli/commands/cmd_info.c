@@ -248,8 +248,8 @@ static void print_default_run(const dyn_model *m)
         printf("Noise: %d Wiener process%s, %d normal() or ran() draw%s per step; %s "
                "(docs/solvers.md, \"Noise\")\n",
                w, w == 1 ? "" : "es", m->n_noise - w, m->n_noise - w == 1 ? "" : "s",
-               m->noise_class == DYN_NOISE_ADDITIVE      ? "additive: euler or rkmil"
-               : m->noise_class == DYN_NOISE_COMMUTATIVE ? "scalar or diagonal: euler or rkmil"
+               m->noise_class == DYN_NOISE_ADDITIVE      ? "additive: euler, rkmil or sriw1"
+               : m->noise_class == DYN_NOISE_COMMUTATIVE ? "scalar or diagonal: euler, rkmil or sriw1"
                                                          : "euler (Euler-Maruyama) only");
     }
     if (!dyn_method_is_map(cli_method_find(method)))

@@ -1006,9 +1006,7 @@ static int sweep_command(int argc, char **argv, int rank, int ranks)
             s.sparse_close = cli_sparse_solver_close;
         }
     }
-    s.noise_method = cli_method_is_rkmil(run.method)    ? DYN_SDE_RKMIL
-                     : dyn_method_is_map(run.method) ? DYN_SDE_MAP
-                                                     : DYN_SDE_EM;
+    s.noise_method = cli_sde_method(run.method);
     sweep_bands bd = {0};
     if (rc == CLI_OK && bands && (rc = sweep_bands_plan(&run, n_runs, &bd)) == CLI_OK) {
         s.series = bd.series;

@@ -86,6 +86,31 @@ const dyn_tableau *cli_rkmil_method(void) { return &rkmil_method; }
 
 int cli_method_is_rkmil(const dyn_tableau *m) { return m == &rkmil_method; }
 
+static const dyn_tableau sriw1_method = {
+    .name = "sriw1",
+    .title = "Roessler's SRIW1 for models with noise: strong order 1.5, weak order 2, adaptive "
+             "steps by its embedded estimate on one Brownian path",
+    .reference = "Roessler, SIAM J. Numer. Anal. 48 (2010) 922-952; Rackauckas and Nie (2017); "
+                 "dynkit/sde.h",
+    .kind = DYN_KIND_EMBEDDED_RK,
+    .order = 1,
+};
+
+const dyn_tableau *cli_sriw1_method(void) { return &sriw1_method; }
+
+int cli_method_is_sde_adaptive(const dyn_tableau *m)
+{
+    return m == &rkmil_method || m == &sriw1_method;
+}
+
+int cli_sde_method(const dyn_tableau *m)
+{
+    return m == &rkmil_method         ? DYN_SDE_RKMIL
+           : m == &sriw1_method       ? DYN_SDE_SRIW1
+           : m && dyn_method_is_map(m) ? DYN_SDE_MAP
+                                       : DYN_SDE_EM;
+}
+
 const dyn_tableau *cli_cvode_method(void)
 {
 #ifdef DYNKIT_HAVE_CVODE
@@ -113,6 +138,8 @@ const dyn_tableau *cli_method_find(const char *name)
         m = &rkmil_method;
     if (!m && strcmp(name, "volterra") == 0)
         m = &volterra_method;
+    if (!m && strcmp(name, "sriw1") == 0)
+        m = &sriw1_method;
     return m;
 }
 
@@ -123,7 +150,7 @@ char *cli_method_names(char *buf, size_t size)
     if (cli_cvode_method() && used < size)
         used += (size_t)snprintf(buf + used, size - used, ", cvode");
     if (used < size)
-        snprintf(buf + used, size - used, ", rkmil, volterra");
+        snprintf(buf + used, size - used, ", rkmil, sriw1, volterra");
     return buf;
 }
 
@@ -147,6 +174,7 @@ int cli_method_error(const char *command, const char *what, const char *name)
         known[n++] = "cvode";
     known[n++] = "rkmil";
     known[n++] = "volterra";
+    known[n++] = "sriw1";
     const char *near = name ? dyn_lang_nearest(name, known, n) : NULL;
     if (near)
         return cli_usage_error(command, "%s: unknown method '%s' (did you mean '%s'? accepted: %s)",

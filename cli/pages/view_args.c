@@ -107,14 +107,16 @@ int cli_view_parse(const char *command, int argc, char **argv, const char *const
             rc = cli_usage_error(command, "--compare cvode: the CVODE backend runs without "
                                           "events here; leave out --event");
         else if (v->run.model->n_noise > 0 && !dyn_method_is_map(v->run.method) &&
-                 !cli_method_is_rkmil(v->compare[k].method) &&
+                 !cli_method_is_sde_adaptive(v->compare[k].method) &&
                  strcmp(v->compare[k].method->name, "euler") != 0)
             rc = cli_usage_error(command, "--compare %s: model %s has noise (wiener, normal or "
-                                 "ran), which only euler (Euler-Maruyama) and rkmil integrate",
+                                 "ran), which only euler (Euler-Maruyama), rkmil and sriw1 "
+                                 "integrate",
                                  v->compare[k].method->name, v->run.model->name);
-        else if (v->run.model->n_noise == 0 && cli_method_is_rkmil(v->compare[k].method))
-            rc = cli_usage_error(command, "--compare rkmil: rkmil integrates models with noise, "
-                                 "and %s has none", v->run.model->name);
+        else if (v->run.model->n_noise == 0 && cli_method_is_sde_adaptive(v->compare[k].method))
+            rc = cli_usage_error(command, "--compare %s: %s integrates models with noise, "
+                                 "and %s has none", v->compare[k].method->name,
+                                 v->compare[k].method->name, v->run.model->name);
     return rc;
 }
 

@@ -87,7 +87,8 @@ static void run_options_common(FILE *out)
           "  --seed S             the noise of the run, a whole number 0..2^64-1 (default 0):\n"
           "                       the same seed gives the same noise on any machine\n"
           "                       --method euler is Euler-Maruyama (fixed --step), rkmil\n"
-          "                       Runge-Kutta Milstein (strong order 1, --rtol/--atol)\n",
+          "                       Runge-Kutta Milstein (strong order 1, --rtol/--atol),\n"
+          "                       sriw1 Roessler's SRIW1 (strong order 1.5, --rtol/--atol)\n",
           out);
 }
 
@@ -299,17 +300,18 @@ static int parse_option(const char *command, int argc, char **argv, int *i, cli_
     return CLI_OK;
 }
 
-/* A model with noise takes euler (Euler–Maruyama) or rkmil, a seed, no output times;
- * rkmil and --seed need noise. */
+/* A model with noise takes euler (Euler–Maruyama), rkmil or sriw1, a seed, no output times;
+ * rkmil, sriw1 and --seed need noise; sriw1 locates no events. */
 static int check_noise_options(const char *command, cli_run *run, unsigned given)
 {
     const dyn_model *m = run->model;
-    const int rkmil = cli_method_is_rkmil(run->method);
+    const int adaptive = cli_method_is_sde_adaptive(run->method);
+    const char *name = run->method->name;
     if (m->n_noise == 0) {
-        if (rkmil)
-            return cli_usage_error(command, "--method rkmil integrates models with noise "
+        if (adaptive)
+            return cli_usage_error(command, "--method %s integrates models with noise "
                                    "(wiener, normal, ran), and %s has none: use dp45 (or "
-                                   "another method of 'dynkit methods')", m->name);
+                                   "another method of 'dynkit methods')", name, m->name);
         if (given & GIVEN_SEED)
             return cli_usage_error(command, "--seed chooses the noise of a model with noise "
                                    "(wiener, normal, ran), and %s has none", m->name);
@@ -317,19 +319,24 @@ static int check_noise_options(const char *command, cli_run *run, unsigned given
     }
     if (dyn_method_is_map(run->method))
         return CLI_OK; /* a discrete map draws its noise once per step (and has no events) */
-    if (!rkmil && strcmp(run->method->name, "euler") != 0)
+    if (!adaptive && strcmp(name, "euler") != 0)
         return cli_usage_error(command, "model %s has noise (wiener, normal or ran), which "
                                "--method %s cannot integrate: use euler (Euler-Maruyama, "
-                               "fixed --step) or rkmil (Runge-Kutta Milstein, strong order 1, "
-                               "adaptive)", m->name, run->method->name);
-    if (rkmil && m->noise_class == DYN_NOISE_GENERAL)
-        return cli_usage_error(command, "--method rkmil needs noise that enters the equations "
+                               "fixed --step), rkmil (Runge-Kutta Milstein, strong order 1, "
+                               "adaptive) or sriw1 (Roessler's SRIW1, strong order 1.5, "
+                               "adaptive)", m->name, name);
+    if (adaptive && m->noise_class == DYN_NOISE_GENERAL)
+        return cli_usage_error(command, "--method %s needs noise that enters the equations "
                                "as c*w with Wiener noise w, additive or one noise per state "
                                "(no normal() or ran()); model %s has other noise: use euler "
-                               "(Euler-Maruyama)", m->name);
+                               "(Euler-Maruyama)", name, m->name);
+    if (cli_sde_method(run->method) == DYN_SDE_SRIW1 && (run->n_events > 0 || m->n_events > 0))
+        return cli_usage_error(command, "--method sriw1 does not locate events, and model %s "
+                               "has events (global) or --event asks for them: use rkmil or "
+                               "euler", m->name);
     if (run->times)
         return cli_usage_error(command, "--times: a model with noise writes the grid of --step "
-                               "(euler: every step; rkmil: steps land on it)");
+                               "(euler: every step; rkmil, sriw1: steps land on it)");
     return CLI_OK;
 }
 

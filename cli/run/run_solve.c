@@ -201,7 +201,7 @@ int cli_run_solve(const cli_run *run, long every, dyn_output_fn output, void *ou
 }
 
 /* A model with noise (dynkit/sde.h): Euler–Maruyama (euler) on the grid of the step, or
- * rkmil with its samples on the grid (or at every accepted step); the noise of run
+ * rkmil or sriw1 with its samples on the grid (or at every accepted step); the noise of run
  * run->stream under run->seed. */
 static int solve_noise(const cli_run *run, long every, dyn_output_fn output, void *output_ctx,
                        dyn_event_fn on_event, void *event_ctx, dyn_progress_fn progress,
@@ -212,13 +212,14 @@ static int solve_noise(const cli_run *run, long every, dyn_output_fn output, voi
     dyn_sde sde = {{m->rhs, n, run->par}, m->n_noise, m->noise_kinds,
                    (double *)((char *)run->par + m->noise_offset), m->noise_class};
     dyn_sde_opts o = {0};
-    const int rkmil = cli_method_is_rkmil(run->method);
-    o.h = rkmil ? run->initial_step : run->step;
+    const dyn_sde_method method = cli_sde_method(run->method);
+    const int adaptive = method == DYN_SDE_RKMIL || method == DYN_SDE_SRIW1;
+    o.h = adaptive ? run->initial_step : run->step;
     o.rtol = run->rtol;
     o.atol = run->atol;
     o.max_step = run->max_step;
     o.max_steps = run->max_steps;
-    o.out_step = rkmil && !cli_run_at_steps(run) ? run->step : 0.0;
+    o.out_step = adaptive && !cli_run_at_steps(run) ? run->step : 0.0;
     o.end = run->end;
     o.every = every;
     o.seed = run->seed;
@@ -242,9 +243,6 @@ static int solve_noise(const cli_run *run, long every, dyn_output_fn output, voi
         free(asked);
         return -1;
     }
-    const dyn_sde_method method = rkmil                             ? DYN_SDE_RKMIL
-                                  : dyn_method_is_map(run->method) ? DYN_SDE_MAP
-                                                                   : DYN_SDE_EM;
     const int rc = dyn_sde_solve(method, &sde, run->t0, run->t1, run->y0, y, work, &o, res);
     free(work);
     free(events);

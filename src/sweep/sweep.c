@@ -226,7 +226,7 @@ static int run_one(worker *w, long i, double *row)
                              (double *)((char *)w->par + m->noise_offset),
                              (dyn_noise_class)m->noise_class};
         dyn_sde_opts o = {0};
-        const int em = s->noise_method != DYN_SDE_RKMIL;
+        const int em = s->noise_method != DYN_SDE_RKMIL && s->noise_method != DYN_SDE_SRIW1;
         o.h = em ? s->step : s->initial_step;
         o.rtol = s->rtol;
         o.atol = s->atol;
@@ -369,9 +369,9 @@ static int check(const dyn_sweep *s, char *err, size_t errlen)
                               "and, with an adaptive method, a sample step > 0");
         return -1;
     }
-    if (m->n_noise > 0 && (s->noise_method < DYN_SDE_EM || s->noise_method > DYN_SDE_MAP)) {
+    if (m->n_noise > 0 && (s->noise_method < DYN_SDE_EM || s->noise_method > DYN_SDE_SRIW1)) {
         snprintf(err, errlen, "model %s has noise: noise_method must be DYN_SDE_EM, "
-                              "DYN_SDE_RKMIL or DYN_SDE_MAP", m->name);
+                              "DYN_SDE_RKMIL, DYN_SDE_SRIW1 or DYN_SDE_MAP", m->name);
         return -1;
     }
     if (!dyn_method_is_adaptive(s->method)) {

@@ -115,9 +115,9 @@ static double strong_order(dyn_sde_method method, int paths)
 
 /* ---- SRIW1 ---------------------------------------------------------------------------- */
 
-/* Rößler (2010), Theorem 5.? / the conditions for strong order 1.5 of an SRI method with
- * scalar or diagonal noise, as DifferentialEquations.jl's checkSRIOrder lists them (e the
- * vector of ones), and the stage times c0 = A0 e, c1 = A1 e. */
+/* The 25 conditions for strong order 1.5 of an SRI method with scalar or diagonal noise
+ * (Rößler 2010, section 5), as DifferentialEquations.jl's checkSRIOrder lists them (e the
+ * vector of ones, squares taken entry by entry), and the stage times c0 = A0 e, c1 = A1 e. */
 static double dotv(const double *a, const double *b, int s)
 {
     double v = 0.0;

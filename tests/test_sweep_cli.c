@@ -553,6 +553,8 @@ static void test_errors(void **state)
          "--method sriw1 needs noise that enters the equations as c*w"},
         {"sweep " DYNKIT_SOURCE_DIR "/examples/models/ornstein_uhlenbeck.ode --runs 2 --method "
          "srw1", "did you mean 'sriw1'?"},
+        {"sweep " DYNKIT_SOURCE_DIR "/tests/xppaut/noise/noisy_if.ode --runs 2 --method sriw1",
+         "--method sriw1 does not locate events"},
         {"sweep pendulum --vary l=1,l=2", "'l=2' is not a number"},
         {"sweep pendulum --vary l=1,2 --vary l=3", "varied twice"},
         {"sweep pendulum --vary l=1,2 --output t.txt", "unknown file extension '.txt'"},

@@ -164,7 +164,7 @@ int cli_method_error(const char *command, const char *what, const char *name)
     /* the nearest name or alias, as a likely typo */
     const char *known[80];
     int n = 0;
-    for (int i = 0; i < dyn_method_count() && n + 2 < 80; i++) {
+    for (int i = 0; i < dyn_method_count() && n + 6 < 80; i++) {
         const dyn_tableau *m = dyn_method_at(i);
         known[n++] = m->name;
         if (m->alias)

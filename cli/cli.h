@@ -214,6 +214,8 @@ int cli_delay_start(const cli_run *run, cli_delay *cd, dyn_solve_opts *opts, cha
                     size_t errlen);
 /* Detach and free; a run stopped by a refused lag gets its message in res. */
 void cli_delay_finish(const cli_run *run, cli_delay *cd, dyn_result *res);
+/* The history's store doubled by realloc (dyn_history.grow); 0, or 1 out of memory. */
+int cli_delay_grow(struct dyn_history *h, void *ctx);
 
 /* ---- methods of the tool (methods.c): the library's registry plus, when dynkit is built
  * with SUNDIALS, "cvode" (the CVODE backend, not in the core registry) ---- */

@@ -15,7 +15,7 @@
 /* breaking points at most (they come from at most DYN_DELAY_MAX_LAGS lags and the order) */
 #define DELAY_MAX_BREAKS 4096
 
-static int grow(dyn_history *h, void *ctx)
+int cli_delay_grow(dyn_history *h, void *ctx)
 {
     (void)ctx;
     const long cap = h->capacity ? 2 * h->capacity : 256;
@@ -48,7 +48,7 @@ int cli_delay_start(const cli_run *run, cli_delay *cd, dyn_solve_opts *opts, cha
         snprintf(err, errlen, "out of memory");
         return 1;
     }
-    cd->history->grow = grow;
+    cd->history->grow = cli_delay_grow;
     dyn_history_init(cd->history, m->n_states, dyn_method_dense_degree(run->method), run->t0,
                      run->y0, dm->history, run->par, dm->max_delay, NULL, 0);
     dm->attach(run->par, cd->history);

@@ -21,19 +21,6 @@ typedef struct volt_delay {
     int n, have;
 } volt_delay;
 
-static int grow(dyn_history *h, void *ctx)
-{
-    (void)ctx;
-    const long cap = h->capacity ? 2 * h->capacity : 256;
-    const size_t block = dyn_dense_record_block(h->n, h->degree);
-    double *d = realloc(h->data, (size_t)cap * block * sizeof *d);
-    if (!d)
-        return 1;
-    h->data = d;
-    h->capacity = cap;
-    return 0;
-}
-
 /* each grid step as a line from the last point to this one */
 static int push_step(double t, const double *y, void *ctx)
 {
@@ -98,7 +85,7 @@ int cli_solve_volterra(const cli_run *run, long every, dyn_output_fn output, voi
             return -1;
         }
         vd.y_last = vd.coef + 2 * n;
-        vd.h->grow = grow;
+        vd.h->grow = cli_delay_grow;
         dyn_history_init(vd.h, n, 1, run->t0, run->y0, m->delay->history, run->par,
                          m->delay->max_delay, NULL, 0);
         m->delay->attach(run->par, vd.h);

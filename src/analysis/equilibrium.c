@@ -75,6 +75,12 @@ int dyn_equilibrium(const dyn_model *m, double t, double *y, void *par,
                  "supported", m->name);
         return DYN_ERR_ARG;
     }
+    if (m->volterra) {
+        snprintf(info->message, sizeof info->message,
+                 "%s has Volterra integrals (int{...}, volt): their equilibria are not "
+                 "supported", m->name);
+        return DYN_ERR_ARG;
+    }
     long calls = 0;
     if (eval(m, t, y, par, f, &calls)) {
         snprintf(info->message, sizeof info->message,

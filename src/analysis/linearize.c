@@ -223,6 +223,13 @@ int dyn_linearize(const dyn_model *m, double t, const double *y, void *par,
                  m->name);
         return DYN_ERR_ARG;
     }
+    if (m->volterra) {
+        snprintf(info->message, sizeof info->message,
+                 "%s has Volterra integrals (int{...}, volt): its right-hand side reads the "
+                 "whole past, so it has no Jacobian matrix A; not supported",
+                 m->name);
+        return DYN_ERR_ARG;
+    }
     if (s == DYN_JAC_AUTO)
         s = m->jacobian ? DYN_JAC_ANALYTIC : DYN_JAC_RICHARDSON;
     info->scheme = s;

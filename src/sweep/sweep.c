@@ -315,6 +315,12 @@ static int check(const dyn_sweep *s, char *err, size_t errlen)
                  m->name);
         return -1;
     }
+    if (m->volterra) {
+        snprintf(err, errlen, "model %s has Volterra integrals (int{...}, volt): sweeps run "
+                 "ordinary differential equations only (dynkit run runs it, one run a value)",
+                 m->name);
+        return -1;
+    }
     if (s->n_runs < 0 || s->n_vars < 0 || s->n_reduce < 0 || s->n_stop < 0 ||
         (s->n_vars > 0 && s->n_runs > 0 && (!s->vars || !s->values)) ||
         (s->n_reduce > 0 && !s->reduce) || (s->n_stop > 0 && !s->stop)) {

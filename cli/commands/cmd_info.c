@@ -10,6 +10,7 @@
 
 #include "cli.h"
 #include "dynkit/io.h"
+#include "dynkit/volterra.h"
 #include "util/escape.h"
 
 static void info_help(void)
@@ -232,6 +233,23 @@ static void print_delays(const dyn_model *m, const void *par)
     printf("every method but cvode\n  (docs/model-files.md, \"Delay equations\")\n");
 }
 
+/* A model with Volterra integrals: how many, its integral equations, the points kept. */
+static void print_volterra(const dyn_model *m)
+{
+    const dyn_volterra_model *vm = m->volterra;
+    if (!vm)
+        return;
+    printf("\nVolterra integrals: %d (int{...}); integral equations:", vm->n_int);
+    int k = 0;
+    for (int i = 0; i < m->n_states; i++)
+        if (vm->is_int[i])
+            printf("%s %s", k++ ? "," : "", m->states[i].name);
+    printf("%s;\n  --method volterra only, on the grid of --step; the integrals keep the last "
+           "%ld grid points%s\n  (docs/model-files.md, \"Volterra integrals\")\n",
+           k ? "" : " none", vm->max_points > 0 ? vm->max_points : DYN_VOLTERRA_MAX_POINTS_DEFAULT,
+           vm->max_points > 0 ? " (@ vmaxpts)" : "");
+}
+
 static void print_default_run(const dyn_model *m)
 {
     char a[32], b[32], c[32], from[3][96];
@@ -332,6 +350,7 @@ int cli_cmd_info(int argc, char **argv)
     print_outputs(m);
     print_events(m);
     print_delays(m, par);
+    print_volterra(m);
     print_default_run(m);
     free(par);
     free(y0);

@@ -78,6 +78,16 @@ def closed_forms(dynkit, work):
               % (name, errs[1], order, want))
 
 
+def info(dynkit, work):
+    """dynkit info names the integrals, the integral equations and the points kept."""
+    out = subprocess.run([dynkit, "info", os.path.join(HERE, "volterra", "abel.ode")],
+                         capture_output=True, text=True, cwd=work,
+                         env=dict(os.environ, DYNKIT_CACHE_DIR=os.path.join(work, "cache")))
+    check(out.returncode == 0 and "Volterra integrals: 1 (int{...}); integral equations: u;"
+          in out.stdout and "the last 4000 grid points" in out.stdout,
+          "dynkit info abel.ode names its integral, its integral equation, 4000 points")
+
+
 def fr_reference(t_end=1.5, h=1e-3):
     """fr.ode by the method of steps, RK4 at h, the past linear between steps and 0 before
     t0 (XPPAUT's history when only init gives a value): {t: (tau, x, v, fr, fi)}."""
@@ -174,6 +184,7 @@ def main():
     dynkit = sys.argv[1]
     with tempfile.TemporaryDirectory() as work:
         closed_forms(dynkit, work)
+        info(dynkit, work)
         debian(dynkit, work)
     if failures:
         print("%d check(s) failed" % len(failures))

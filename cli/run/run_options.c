@@ -88,7 +88,10 @@ static void run_options_common(FILE *out)
           "                       the same seed gives the same noise on any machine\n"
           "                       --method euler is Euler-Maruyama (fixed --step), rkmil\n"
           "                       Runge-Kutta Milstein (strong order 1, --rtol/--atol),\n"
-          "                       sriw1 Roessler's SRIW1 (strong order 1.5, --rtol/--atol)\n",
+          "                       sriw1 Roessler's SRIW1 (strong order 1.5, --rtol/--atol)\n"
+          "Volterra integrals (models with int{...} or volt; docs/model-files.md):\n"
+          "                       --method volterra, XPPAUT's implicit method on the grid\n"
+          "                       of --step, the only method such a model takes\n",
           out);
 }
 

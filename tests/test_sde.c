@@ -389,7 +389,8 @@ static void test_work_precision(void **state)
         for (int k = 0; k < 5; k++) {
             double e, c;
             wp_point(rows[r].method, rows[r].fixed, rows[r].v[k], &e, &c);
-            used += snprintf(line + used, sizeof line - (size_t)used, " | %g: %.3g in %.0f", rows[r].v[k], e, c);
+            used += snprintf(line + used, sizeof line - (size_t)used, " | %g: %.3g in %.0f",
+                             rows[r].v[k], e, c);
             if (c > 1000 && c < 3000)
                 at2k[r] = e;
         }

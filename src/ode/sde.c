@@ -13,22 +13,8 @@
  *
  * Adaptive steps: rkmil by step doubling (a step of h and two of h/2 on the same Brownian
  * path, their difference measured as the embedded pairs' error norm), SRIW1 by its embedded
- * estimate. The path is kept: every value of W drawn at a time ahead stays in a sorted list
- * until the run passes it, and a value between two known ones comes from the Brownian bridge
- *   W(s) = W(a) + (s - a)/(b - a) (W(b) - W(a)) + sqrt((s - a)(b - s)/(b - a)) z,
- * so a rejected step leaves the path a sample of Brownian motion (Rackauckas and Nie 2017,
- * rejection sampling with memory). SRIW1 also needs the time integral of W over a step:
- * each segment between two kept points carries J = int (W(s) - W(left)) ds over it, drawn
- * with the increment dW over a length H as J = (H dW + sqrt(H^3/3) xi)/2, xi a standard
- * normal independent of dW (Var J = H^3/3, Cov(J, dW) = H^2/2, as the Gaussian pair requires),
- * and split at a new point by the bridge of the pair (W, J): with theta the point's fraction
- * of the segment, u = 1 - theta, and dW, J in units of sqrt(H) and H^(3/2),
- *   dW1 = theta (3 theta - 2) dW + 6 theta u J + sqrt(theta u q) z1,          q = 1 - 3 theta u,
- *   J1 = -theta^2 u dW + theta^2 (3 - 2 theta) J + theta^2 u^2 (1 - 2 theta)/(2 sqrt(theta u q)) z1
- *        + sqrt(theta^3 u^3 / (12 q)) z2,
- * the conditional law of the first part given the whole (the covariance of the pair over a
- * length s is [[s, s^2/2], [s^2/2, s^3/3]]); the second part is dW - dW1 and
- * J - J1 - dW1 (1 - theta). Steps land on the output times.
+ * estimate, both on the kept Brownian path of sde_path.c (rejection sampling with memory,
+ * Rackauckas and Nie 2017). Steps land on the output times.
  *
  * Events (sde.h, "Events") with the library's event location and XPPAUT's cascade rules
  * (ode/events.c), on the straight line between a fixed step's ends or the broken line
@@ -42,6 +28,7 @@
 #include "dynkit/sde.h"
 #include "ode/events.h"
 #include "result_fail.h"
+#include "sde_path.h"
 #include "sde_sri.h"
 
 /* g sampled at EVENT_SAMPLES + 1 points of the interpolant of a step (or half step) */
@@ -72,11 +59,8 @@ typedef struct sde_run {
     int rhs_status;
     /* workspace */
     double *a, *b, *kk, *c0, *c1, *ymid, *ybig, *ysmall, *dw, *dw1, *dw2, *wend, *wmid;
-    double *i10, *e1, *e2, *anew, *sri_work;
-    /* the Brownian path: W at tc is wc; np points ahead at tq (increasing), values wq; with
-     * area, aq holds each segment's J (the time integral of W - W(left) up to the point) */
-    double tc, *wc, *tq, *wq, *aq;
-    int np, area;
+    double *i10, *e1, *e2, *sri_work;
+    dyn_bpath path; /* the Brownian path (sde_path.h) */
     /* events: the run's span (Zeno's window), memory between steps, the interpolant, the
      * states before (ybefore) and after (yafter) the resets of an instant at t_ev */
     double t0, t1;
@@ -159,125 +143,6 @@ static int rkmil_step(sde_run *r, double t, const double *y, double h, const dou
     return 0;
 }
 
-/* A new segment of length H beyond the last point for noise j: its increment into *dw and,
- * with area, its time integral J into *area (two normals, dW's first). */
-static void segment_draw(sde_run *r, double H, double *dw, double *area)
-{
-    const double z1 = dyn_rng_normal(&r->rng);
-    *dw = sqrt(H) * z1;
-    if (r->area)
-        *area = 0.5 * (H * *dw + sqrt(H * H * H / 3.0) * dyn_rng_normal(&r->rng));
-}
-
-/* The bridge of (W, J) over a segment of length H with increment dw and integral area: the
- * part up to the fraction theta into *dw1, *area1 (the file's comment gives the law). */
-static void segment_split(sde_run *r, double H, double theta, double dw, double area,
-                          double *dw1, double *area1)
-{
-    const double u = 1.0 - theta, q = 1.0 - 3.0 * theta * u, sh = sqrt(H);
-    const double w = dw / sh, j = area / (H * sh);
-    const double s11 = sqrt(theta * u * q);
-    const double z1 = dyn_rng_normal(&r->rng), z2 = dyn_rng_normal(&r->rng);
-    const double w1 = theta * (3.0 * theta - 2.0) * w + 6.0 * theta * u * j + s11 * z1;
-    const double j1 = -theta * theta * u * w + theta * theta * (3.0 - 2.0 * theta) * j +
-                      theta * theta * u * u * (1.0 - 2.0 * theta) / (2.0 * s11) * z1 +
-                      sqrt(theta * theta * theta * u * u * u / (12.0 * q)) * z2;
-    *dw1 = sh * w1;
-    *area1 = H * sh * j1;
-}
-
-/* W at time s > tc into out (m values): a point already drawn, a bridge between the known
- * neighbours, or a new increment beyond the last one; the point is kept. */
-static int path_at(sde_run *r, double s, double *out)
-{
-    const int m = r->m;
-    int i = 0;
-    while (i < r->np && r->tq[i] < s)
-        i++;
-    if (i < r->np && r->tq[i] == s) {
-        memcpy(out, r->wq + (size_t)i * (size_t)m, (size_t)m * sizeof *out);
-        return 0;
-    }
-    if (r->np == DYN_SDE_MAX_POINTS)
-        return 1;
-    const double tl = i == 0 ? r->tc : r->tq[i - 1];
-    const double *wl = i == 0 ? r->wc : r->wq + (size_t)(i - 1) * (size_t)m;
-    double *al = r->anew; /* the new segment's J */
-    if (i == r->np) {
-        for (int j = 0; j < m; j++) {
-            double d;
-            segment_draw(r, s - tl, &d, &al[j]);
-            out[j] = wl[j] + d;
-        }
-    } else {
-        const double tr = r->tq[i];
-        const double *wr = r->wq + (size_t)i * (size_t)m;
-        double *ar = r->aq + (size_t)i * (size_t)m;
-        const double f = (s - tl) / (tr - tl);
-        if (r->area) {
-            for (int j = 0; j < m; j++) {
-                double d1;
-                segment_split(r, tr - tl, f, wr[j] - wl[j], ar[j], &d1, &al[j]);
-                out[j] = wl[j] + d1;
-                ar[j] -= al[j] + d1 * (tr - s);
-            }
-        } else {
-            const double sd = sqrt((s - tl) * (tr - s) / (tr - tl));
-            for (int j = 0; j < m; j++)
-                out[j] = wl[j] + f * (wr[j] - wl[j]) + sd * dyn_rng_normal(&r->rng);
-        }
-    }
-    const size_t M = (size_t)m, I = (size_t)i, rest = (size_t)(r->np - i);
-    memmove(r->tq + I + 1, r->tq + I, rest * sizeof *r->tq);
-    memmove(r->wq + (I + 1) * M, r->wq + I * M, rest * M * sizeof *r->wq);
-    r->tq[i] = s;
-    memcpy(r->wq + I * M, out, M * sizeof *out);
-    if (r->area) {
-        memmove(r->aq + (I + 1) * M, r->aq + I * M, rest * M * sizeof *r->aq);
-        memcpy(r->aq + I * M, al, M * sizeof *al);
-    }
-    r->np++;
-    return 0;
-}
-
-/* After path_at(s): the increments dW (into dw) and the time integrals of W - W(tc) (into
- * i10) from tc to the point s. */
-static void path_increments(const sde_run *r, double s, double *dw, double *i10)
-{
-    const int m = r->m;
-    for (int j = 0; j < m; j++)
-        i10[j] = 0.0;
-    double tl = r->tc;
-    const double *wl = r->wc;
-    for (int i = 0; i < r->np && r->tq[i] <= s; i++) {
-        const double *wi = r->wq + (size_t)i * (size_t)m, *ai = r->aq + (size_t)i * (size_t)m;
-        for (int j = 0; j < m; j++) {
-            i10[j] += ai[j] + (wl[j] - r->wc[j]) * (r->tq[i] - tl);
-            dw[j] = wi[j] - r->wc[j];
-        }
-        tl = r->tq[i];
-        wl = wi;
-    }
-}
-
-/* The run reached t (a point of the path): W there becomes the current value. */
-static void path_advance(sde_run *r, double t)
-{
-    const int m = r->m;
-    int i = 0;
-    while (i < r->np && r->tq[i] <= t)
-        i++;
-    if (i > 0)
-        memcpy(r->wc, r->wq + (size_t)(i - 1) * (size_t)m, (size_t)m * sizeof *r->wc);
-    memmove(r->tq, r->tq + i, (size_t)(r->np - i) * sizeof *r->tq);
-    memmove(r->wq, r->wq + (size_t)i * (size_t)m, (size_t)(r->np - i) * (size_t)m * sizeof *r->wq);
-    if (r->area)
-        memmove(r->aq, r->aq + (size_t)i * (size_t)m,
-                (size_t)(r->np - i) * (size_t)m * sizeof *r->aq);
-    r->np -= i;
-    r->tc = t;
-}
-
 /* dyn_sri_eval_fn: the drift, or a noise column as f(w = e_unit) - f(w = 0). */
 static int sri_eval(void *ctx, double t, const double *y, int unit, double *out)
 {
@@ -297,7 +162,7 @@ static int sri_eval(void *ctx, double t, const double *y, int unit, double *out)
  * r->ysmall, the error estimate's parts into r->e1, r->e2. */
 static int sri_attempt(sde_run *r, double t, double h, const double *y)
 {
-    path_increments(r, t + h, r->dw, r->i10);
+    dyn_bpath_increments(&r->path, t + h, r->dw, r->i10);
     if (drift_diffusion(r, t, y))
         return 1;
     return dyn_sri_step(&dyn_sriw1, r->n, r->m, r->sde->noise_class == DYN_NOISE_ADDITIVE, t,
@@ -480,7 +345,8 @@ static int solve_fixed(sde_run *r, dyn_sde_method method, double t0, double t1,
                                                       : dyn_rng_normal(&r->rng) / sqrt(h);
             }
         } else if (method == DYN_SDE_SRIW1) {
-            path_at(r, tn, r->wend); /* the path is empty: a new point, dW then J per noise */
+            /* the path is empty: a new point, dW then J per noise */
+            dyn_bpath_at(&r->path, tn, r->wend);
         } else {
             const double sq = sqrt(h);
             for (int j = 0; j < m; j++)
@@ -519,7 +385,7 @@ static int solve_fixed(sde_run *r, dyn_sde_method method, double t0, double t1,
             memcpy(y, r->yafter, (size_t)n * sizeof *y);
         }
         if (method == DYN_SDE_SRIW1)
-            path_advance(r, tn);
+            dyn_bpath_advance(&r->path, tn);
         memcpy(y, r->ysmall, (size_t)n * sizeof *y);
         t = tn;
         res->t = t;
@@ -597,21 +463,22 @@ static int solve_adaptive(sde_run *r, double t0, double t1, const dyn_sde_opts *
                                    "tolerances)",
                                    max_steps, dyn_shortest(t).s);
         const double tm = t + 0.5 * hh;
-        if (path_at(r, tn, r->wend) || (!r->area && path_at(r, tm, r->wmid)))
+        if (dyn_bpath_at(&r->path, tn, r->wend) ||
+            (!r->path.area && dyn_bpath_at(&r->path, tm, r->wmid)))
             return dyn_result_fail(res, DYN_ERR_CAPACITY,
                                    "more than %d points of the Brownian path ahead of t = %s "
                                    "(too many rejected steps)",
                                    DYN_SDE_MAX_POINTS, dyn_shortest(t).s);
         res->stats.steps++;
         double err;
-        if (r->area) {
+        if (r->path.area) {
             if (sri_attempt(r, t, hh, y))
                 return rhs_fail(r);
             err = sri_error_norm(r, y, o);
         } else {
             for (int j = 0; j < m; j++) {
-                r->dw[j] = r->wend[j] - r->wc[j];
-                r->dw1[j] = r->wmid[j] - r->wc[j];
+                r->dw[j] = r->wend[j] - r->path.wc[j];
+                r->dw1[j] = r->wmid[j] - r->path.wc[j];
                 r->dw2[j] = r->wend[j] - r->wmid[j];
             }
             if (drift_diffusion(r, t, y) || rkmil_step(r, t, y, hh, r->dw, r->ybig) ||
@@ -642,11 +509,11 @@ static int solve_adaptive(sde_run *r, double t0, double t1, const dyn_sde_opts *
             return stop_sample(r, o, sample + 1, y, &t);
         if (seg == SEG_RESET) {
             /* on from the event: W there joins the path (a bridge between known points) */
-            if (r->t_ev < tn && path_at(r, r->t_ev, r->wmid))
+            if (r->t_ev < tn && dyn_bpath_at(&r->path, r->t_ev, r->wmid))
                 return dyn_result_fail(res, DYN_ERR_CAPACITY,
                                        "more than %d points of the Brownian path ahead of t = %s",
                                        DYN_SDE_MAX_POINTS, dyn_shortest(t).s);
-            path_advance(r, r->t_ev);
+            dyn_bpath_advance(&r->path, r->t_ev);
             t = r->t_ev;
             res->t = t;
             res->h_last = r->t_ev - t;
@@ -662,7 +529,7 @@ static int solve_adaptive(sde_run *r, double t0, double t1, const dyn_sde_opts *
             continue;
         }
         memcpy(y, r->ysmall, (size_t)n * sizeof *y);
-        path_advance(r, tn);
+        dyn_bpath_advance(&r->path, tn);
         t = tn;
         res->t = t;
         res->h_last = hh;
@@ -733,7 +600,9 @@ int dyn_sde_solve(dyn_sde_method method, const dyn_sde *sde, double t0, double t
     r.n = n;
     r.m = m;
     r.res = res;
-    r.area = method == DYN_SDE_SRIW1;
+    r.path.m = m;
+    r.path.area = method == DYN_SDE_SRIW1;
+    r.path.rng = &r.rng;
     dyn_rng_init(&r.rng, o->seed, o->stream);
     const size_t N = (size_t)n, M = (size_t)m;
     double *p = work;
@@ -754,14 +623,14 @@ int dyn_sde_solve(dyn_sde_method method, const dyn_sde *sde, double t0, double t
     r.dw2 = p, p += M + 1;
     r.wend = p, p += M + 1;
     r.wmid = p, p += M + 1;
-    r.wc = p, p += M + 1;
+    r.path.wc = p, p += M + 1;
     r.i10 = p, p += M + 1;
-    r.anew = p, p += M + 1;
-    r.tq = p, p += DYN_SDE_MAX_POINTS;
-    r.wq = p, p += (size_t)DYN_SDE_MAX_POINTS * M;
-    r.aq = p, p += (size_t)DYN_SDE_MAX_POINTS * M;
+    r.path.anew = p, p += M + 1;
+    r.path.tq = p, p += DYN_SDE_MAX_POINTS;
+    r.path.wq = p, p += (size_t)DYN_SDE_MAX_POINTS * M;
+    r.path.aq = p, p += (size_t)DYN_SDE_MAX_POINTS * M;
     r.sri_work = p, p += DYN_SRI_WORK(N, M);
-    r.tc = t0;
+    r.path.tc = t0;
     r.t0 = t0;
     r.t1 = t1;
     r.ev = o->events;
@@ -779,7 +648,7 @@ int dyn_sde_solve(dyn_sde_method method, const dyn_sde *sde, double t0, double t
     }
     res->event_index = -1;
     for (int j = 0; j < m; j++)
-        r.wc[j] = 0.0;
+        r.path.wc[j] = 0.0;
     memcpy(state, y0, N * sizeof *state);
     const int bad = first_nonfinite(state, n);
     if (bad >= 0) {

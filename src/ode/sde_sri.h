@@ -39,7 +39,8 @@ extern const dyn_sri_tableau dyn_sriw1;
 typedef int (*dyn_sri_eval_fn)(void *ctx, double t, const double *y, int unit, double *out);
 
 /* Doubles of workspace dyn_sri_step needs for n states and m noises. */
-#define DYN_SRI_WORK(n, m) ((size_t)(DYN_SRI_STAGES * (1 + (m)) + 1) * (size_t)(n) + 3 * (size_t)(m))
+#define DYN_SRI_WORK(n, m)                                                                   \
+    ((size_t)(DYN_SRI_STAGES * (1 + (m)) + 1) * (size_t)(n) + 3 * (size_t)(m))
 
 /* One step of tab from (t, y) over h with increments dw and time integrals i10 (m each), the
  * drift a0 and the columns b0 (m x n) at (t, y) given; additive: the columns do not depend

@@ -72,7 +72,6 @@ static void test_refused_features_name_line_and_feature(void **state)
         int line, col;
         const char *what;
     } cases[] = {
-        {"x'=1\nmarkov z 2\n{0} {a}\n{b} {0}\n", 2, 1, "Markov chains ('markov')"},
         {"x'=-del_shft(x,0,1)\n", 1, 5, "delay-differential equations ('del_shft')"},
         /* Volterra integrals that XPPAUT's manual does not define */
         {"x'=-x+int[1.5]{exp(-t)#x}\n", 1, 11, "0 <= m < 1"},
@@ -426,8 +425,8 @@ static void test_network_sums_translate(void **state)
     expect_error("table w % 3 -1 1 1\nspecial k=conv(odd,2,1,w,x0)\nx[0..1]'=k(0)\n", 2, 16,
                  "conv's type is even, periodic or 0");
     expect_error("special k=conv(even,2,1,v,x0)\nx[0..1]'=k(0)\n", 1, 25, "'v' is not declared");
-    expect_error("table w % 3 -1 1 1\nspecial k=gill(0,1,2)\nx[0..1]'=0\n", 2, 1,
-                 "'special' with gill");
+    expect_error("par a=1,b=2\nspecial k=gill(0,a,b)\nx[0..1]'=0\n", 2, 9,
+                 "draws one reaction per step of a discrete map");
     expect_error("table w % 3 -1 1 1\nspecial k=mmult(2,2,w,x0)\nx[0..1]'=0\n", 2, 21,
                  "mmult takes m n = 4 weights, and table 'w' has 3 points");
     expect_error("table w % 3 -1 1 1\nspecial a=conv(0,40000,1,w,x0)\n"

@@ -263,9 +263,10 @@ static void print_default_run(const dyn_model *m)
         int w = 0;
         for (int j = 0; j < m->n_noise; j++)
             w += m->noise_kinds[j] == DYN_NOISE_WIENER;
-        printf("Noise: %d Wiener process%s, %d normal() or ran() draw%s per step; %s "
-               "(docs/solvers.md, \"Noise\")\n",
+        printf("Noise: %d Wiener process%s, %d other random number%s per step (normal(), "
+               "ran(), %s); %s (docs/solvers.md, \"Noise\")\n",
                w, w == 1 ? "" : "es", m->n_noise - w, m->n_noise - w == 1 ? "" : "s",
+               m->jump ? "the Markov states' jumps at each step's start, gill" : "gill",
                m->noise_class == DYN_NOISE_ADDITIVE      ? "additive: euler, rkmil or sriw1"
                : m->noise_class == DYN_NOISE_COMMUTATIVE ? "scalar or diagonal: euler, rkmil or sriw1"
                                                          : "euler (Euler-Maruyama) only");

@@ -224,6 +224,7 @@ static int solve_noise(const cli_run *run, long every, dyn_output_fn output, voi
     o.every = every;
     o.seed = run->seed;
     o.stream = run->stream;
+    o.jump = m->jump;
     o.output = output;
     o.output_ctx = output_ctx;
     o.progress = progress;

@@ -167,6 +167,10 @@ typedef struct dyn_model {
     /* Volterra integrals (XPPAUT's int{...}, volt; dynkit/volterra.h): NULL for a model
      * without them. */
     const struct dyn_volterra_model *volterra;
+    /* Jumps at the start of each step (a model file's Markov states; dynkit/sde.h,
+     * dyn_jump_fn): read only by the methods for noise, so a model with jumps has noise
+     * slots (n_noise > 0) for their random numbers. NULL: none. */
+    dyn_jump_fn jump;
 } dyn_model;
 
 /* A model whose right-hand side reads its own past (dynkit/delay.h): its parameter struct
@@ -193,7 +197,7 @@ typedef struct dyn_delay_model {
  * into a shared object records the version it was built with (the symbol
  * dynkit_model_abi, added when dynkit compiles a model), and dynkit refuses a model built
  * for another version instead of misreading it. Raised whenever a layout changes. */
-#define DYN_MODEL_ABI 7
+#define DYN_MODEL_ABI 8
 
 /* The entry point of a model in a C file or a shared object: `dynkit run mymodel.c`
  * compiles the file and calls it. Define it in your file:

@@ -106,6 +106,12 @@ typedef enum dyn_noise_class {
                                 * Milstein's correction needs no Lévy areas */
 } dyn_noise_class;
 
+/* Jumps at the start of each step (a model file's Markov states, XPPAUT's `markov`): called
+ * by the fixed-step methods (EM, MAP) at (t, y) with the step's length h and its noise slots
+ * already written, before the step's evaluation; it may change states of y in place (the
+ * step then starts from the new values). 0, or non-zero to stop the run. */
+typedef int (*dyn_jump_fn)(double t, double h, double *y, void *par);
+
 /* A system with noise: sys.f reads the n_noise slots at noise (inside sys.par), which the
  * solver writes before each evaluation; kinds[j] is the dyn_noise_kind of slot j. */
 typedef struct dyn_sde {
@@ -115,6 +121,24 @@ typedef struct dyn_sde {
     double *noise;
     dyn_noise_class noise_class;
 } dyn_sde;
+
+/* One step of h of a Markov chain of n states (XPPAUT's `markov`, its transition rule): the
+ * chain's value *z is state i when |*z - i| < 1e-4 (i = 0 .. n-1; any other value is left
+ * as it is, as XPPAUT leaves it), rates is the n x n matrix of transition rates row by row
+ * (from i to j at rates[i n + j]; the diagonal is not read), u uniform on [0, 1). The chain
+ * goes to the first j != i, in order, with u < h * (the sum of row i's rates up to j), else
+ * stays: the probability of i -> j over the step is h * rate(i, j) (first order in h, as
+ * long as h times the row's sum stays below 1). Returns 0, or -1 when a rate of row i is
+ * negative or not finite (*z is then NaN). */
+int dyn_markov_step(double *z, int n, const double *rates, double h, double u);
+
+/* One reaction of Gillespie's direct method (XPPAUT's `special z=gill(0, r1, ..., rm)`):
+ * from the m reaction rates and two numbers u1, u2 uniform on [0, 1), out[0] is the waiting
+ * time -log(1 - u1)/R (R the rates' sum) and out[1 + k] is 1 for the reaction k whose share
+ * of R holds u2 R (the first k with u2 R < r_0 + ... + r_k), 0 for the others. All rates 0
+ * (an absorbing state): out[0] = 0 and no reaction. Returns 0, or -1 when a rate is negative
+ * or not finite (out all NaN). */
+int dyn_gillespie_step(double *out, int m, const double *rates, double u1, double u2);
 
 typedef enum dyn_sde_method {
     DYN_SDE_EM = 0,
@@ -145,6 +169,8 @@ typedef struct dyn_sde_opts {
     int n_events;
     dyn_event_fn on_event; /* may be NULL */
     void *event_ctx;
+    dyn_jump_fn jump;      /* the system's jumps (Markov states) at each fixed step's start,
+                            * with sys.par; NULL: none; not for rkmil */
     dyn_output_fn output;
     void *output_ctx;
     dyn_progress_fn progress;

@@ -105,6 +105,10 @@ int jit_check_model(const dyn_model *m, const char *where, char *err, size_t err
             return jit_fail(err, errlen, "%s: noise slot %d of the model '%s' has kind %d "
                             "(accepted: 0 wiener, 1 normal, 2 uniform)", where, i, m->name,
                             m->noise_kinds[i]);
+    if (m->jump && m->n_noise < 1)
+        return jit_fail(err, errlen, "%s: the model '%s' has jumps (dyn_model.jump) but no noise "
+                        "slots for their random numbers (n_noise = 0): only the methods for "
+                        "noise take jumps", where, m->name);
     const int sde_method = m->method && m->n_noise > 0 && strcmp(m->method, "rkmil") == 0;
     const int volt_method = m->method && m->volterra && strcmp(m->method, "volterra") == 0;
     if (m->volterra &&

@@ -1113,7 +1113,8 @@ void lang_check(lang_ctx *c)
     long sum_stack = 0;
     for (int i = 0; i < m->specials.n; i++) {
         lang_special *sp = &LVEC_AT(m->specials, lang_special, i);
-        resolve_special(c, sp);
+        if (sp->kind != LANG_SUM_GILL) /* its rates are fixed quantities (markov.c) */
+            resolve_special(c, sp);
         sum_stack += sp->n + (sp->root_kind == N_FIX ? sp->ulen : 0) +
                  (sp->kind == LANG_SUM_FCONV && sp->vroot_kind == N_FIX ? sp->n : 0);
         if (sum_stack > LANG_MAX_SUM_STACK)

@@ -355,11 +355,15 @@ static void emit_specials(lang_ctx *c, const unsigned char *needed)
         if (!needed[m->fixes.n + i])
             continue;
         const lang_special *sp = &LVEC_AT(m->specials, lang_special, i);
+        line_dir(c, sp->pos);
+        block_decl(c, i, 0, sp->root_kind, sp->root, sp->ulen);
+        if (sp->kind == LANG_SUM_GILL) {
+            lang_emit_gill(c, i, sp, noise_offset(m));
+            continue;
+        }
         const lang_table *tb = &LVEC_AT(m->tables, lang_table, sp->table);
         if (sp->kind == LANG_SUM_CONV || sp->kind == LANG_SUM_FCONV)
             c->helpers |= H_CONV;
-        line_dir(c, sp->pos);
-        block_decl(c, i, 0, sp->root_kind, sp->root, sp->ulen);
         LANG_C_CODEF(c, "    double sp_%d[%d];\n", i, sp->n);
         if (sp->kind == LANG_SUM_CONV) {
             LANG_C_CODEF(c, "    dk_conv(sp_%d, %d, %d, %d, p + %d, ", i, sp->n, sp->m, sp->type,
@@ -425,6 +429,11 @@ static unsigned char *needed_by(lang_ctx *c, node *const *roots, int n)
         if (roots[i])
             need(c, roots[i], needed);
     return needed;
+}
+
+void lang_emit_needed_fixes(lang_ctx *c, node *const *roots, int n)
+{
+    emit_fixes(c, needed_by(c, roots, n));
 }
 
 /* ---- differential-algebraic systems ----
@@ -1702,6 +1711,7 @@ char *lang_emit_c(lang_ctx *c)
     emit_alg_functions(c, &jp);
     emit_rhs(c);
     emit_outputs(c);
+    lang_emit_jump(c, noise_offset(m));
     emit_table_files(c);
     emit_prepare(c);
     const int has_init = emit_initial(c, y0);
@@ -1882,6 +1892,8 @@ char *lang_emit_c(lang_ctx *c)
         LANG_C_CODE(c, ",\n    .delay = &dk_delay_model");
     if (lang_volt_model(m))
         LANG_C_CODE(c, ",\n    .volterra = &dk_volterra_model");
+    if (m->markovs.n)
+        LANG_C_CODE(c, ",\n    .jump = dk_jump");
     LANG_C_CODE(c, ",\n};\n\nconst dyn_model *dynkit_model(void) { return &dk_model; }\n");
     /* the functions the text calls, then what comes before it all */
     const lang_ctext main_text = lang_c_take(c);

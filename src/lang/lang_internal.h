@@ -190,7 +190,7 @@ typedef struct lang_table {
  * table of indices into the states from u on. Computed after the fixed quantities of each
  * function that uses it. */
 enum { LANG_CONV_ZERO, LANG_CONV_EVEN, LANG_CONV_PERIODIC };
-enum { LANG_SUM_CONV, LANG_SUM_FCONV, LANG_SUM_MMULT, LANG_SUM_SPARSE };
+enum { LANG_SUM_CONV, LANG_SUM_FCONV, LANG_SUM_MMULT, LANG_SUM_SPARSE, LANG_SUM_GILL };
 typedef struct lang_special {
     const char *name;
     lpos pos;
@@ -210,7 +210,25 @@ typedef struct lang_special {
     const char *index_name;
     lpos index_pos;
     int index_table;
+    /* gill (markov.c): the m = ulen reaction rates are the fixed quantities from root on,
+     * NAME(0) the waiting time and NAME(1..m) the reaction that happened (n = m + 1), drawn
+     * from the uniform noise slots slot and slot + 1 */
+    int slot;
 } lang_special;
+
+/* A Markov state (XPPAUT's `markov NAME N`, then N rows of N {formula}; markov.c): a state
+ * whose value is one of 0 .. n-1, held over a step (derivative 0; a map keeps it), which
+ * jumps at the start of each step (dyn_model.jump) by the rates of its row. rate[i n + j]
+ * is the fixed quantity, without a name, of the rate from i to j (-1 on the diagonal). */
+typedef struct lang_markov {
+    const char *name;
+    lpos pos;
+    int n;
+    int *rate;
+    int rows;  /* rows read so far */
+    int state; /* its index among the states, and its uniform noise slot (lang_markov_finish) */
+    int slot;
+} lang_markov;
 
 /* A noise slot (dynkit/sde.h): a `wiener NAME` (kind DYN_NOISE_WIENER), or one call of
  * normal(m, s) (DYN_NOISE_NORMAL, read as m + s*slot) or ran(x) (DYN_NOISE_UNIFORM,
@@ -288,6 +306,7 @@ typedef struct lang_model {
     lvec algeqs;   /* lang_formula (name: NULL) */
     lvec inits;    /* lang_init */
     lvec noises;   /* lang_noise */
+    lvec markovs;  /* lang_markov */
     int noise_class; /* dyn_noise_class of the right-hand side (noise.c) */
     lvec docs;     /* lang_docline */
     /* symbol table: open addressing on the case-folded name */
@@ -470,6 +489,22 @@ void lang_noise_classify(lang_ctx *c);
 /* The default method of a model with noise: the file's meth=euler (Euler–Maruyama), else
  * rkmil when noise_class allows it, else euler; a note when the file's meth is another. */
 const char *lang_noise_method(lang_ctx *c);
+
+/* Markov states and Gillespie's method (markov.c): `markov NAME N` (the lexer after the
+ * keyword), then each of the N rows as the next lines come (lang_markov_row: 1 when it took
+ * the line as a row); lang_markov_finish, once the file is read, makes the chains states
+ * (after the equations', as XPPAUT orders them) with their noise slots; `special
+ * NAME=gill(0, r1, ..., rm)` (the lexer after '('); lang_emit_jump writes dk_jump (noise:
+ * the index in p of the first noise slot), lang_emit_gill the gill sum i into sp_I. */
+void lang_markov_parse(lang_ctx *c, lang_lexer *lx, lpos kpos);
+int lang_markov_row(lang_ctx *c, lang_lexer *lx);
+void lang_markov_finish(lang_ctx *c);
+void lang_gill_parse(lang_ctx *c, lang_lexer *lx, const char *name, lpos npos, lpos kpos);
+void lang_emit_jump(lang_ctx *c, int noise);
+void lang_emit_gill(lang_ctx *c, int i, const lang_special *sp, int noise);
+/* (emit_c.c) the fixed quantities and sums that the n roots need, as the locals v_K and
+ * sp_K of the function being written */
+void lang_emit_needed_fixes(lang_ctx *c, node *const *roots, int n);
 
 /* derivatives and simplification (deriv.c) */
 typedef struct lang_dvar {

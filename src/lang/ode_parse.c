@@ -774,6 +774,10 @@ static void parse_special(lang_ctx *c, lang_lexer *lx, lpos kpos)
     const char *name = lang_read_name(lx, &npos, "expected the network sum's name after 'special'");
     lang_expect_char(lx, '=', "expected '=' after the network sum's name");
     const char *fun = lang_read_name(lx, &fpos, "expected conv(...) after 'special NAME='");
+    if (strcasecmp(fun, "gill") == 0) {
+        lang_gill_parse(c, lx, name, npos, kpos);
+        return;
+    }
     static const struct {
         const char *name, *args;
         int nargs;
@@ -787,7 +791,7 @@ static void parse_special(lang_ctx *c, lang_lexer *lx, lpos kpos)
             kind = k;
     if (kind < 0)
         lang_fail(c, kpos, "network sums ('special' with %s) are not supported: conv, fconv, "
-                  "mmult and sparse are", fun);
+                  "mmult, sparse and gill are", fun);
     const int fconv = kind == LANG_SUM_FCONV, want = sums[kind].nargs;
     lang_expect_char(lx, '(', "expected '(' after conv");
     lpos apos[7];
@@ -1041,7 +1045,7 @@ static int keyword_statement(lang_ctx *c, lang_lexer *lx, pstate *ps, const char
     } else if (KW(w, n, "global", "g"))
         parse_global(c, lx, ps, wpos);
     else if (KW(w, n, "markov", "m"))
-        lang_fail(c, wpos, "Markov chains ('markov') are not supported");
+        lang_markov_parse(c, lx, wpos);
     else if (KW(w, n, "wiener", "w"))
         parse_wiener(c, lx);
     else if (KW(w, n, "table", "tab"))
@@ -1300,6 +1304,8 @@ static int on_line(lang_ctx *c, const lang_line *l, void *ctx)
             break;
         }
     ps->seen_statement = 1;
+    if (lang_markov_row(c, &lx))
+        return 0;
     int done = 0;
     const int named = ps->global_name_line;
     statement(c, &lx, ps, &done);
@@ -1350,6 +1356,7 @@ void lang_parse_model(lang_ctx *c)
     pstate ps = {0};
     if (c->stmt_hook || !lang_old_format(c, on_line, &ps))
         lang_lines(c, on_line, &ps);
+    lang_markov_finish(c);
     if (ps.global_name_line)
         lang_fail(c, (lpos){ps.global_name_line, 1},
                   "'#: event %s' without '=' names the global on the next line, but there is "

@@ -319,6 +319,24 @@ static int stop_sample(sde_run *r, const dyn_sde_opts *o, long k, double *y, dou
     return DYN_OK;
 }
 
+/* The jumps at the start of a step (Markov states): the step's slots written first. */
+static int jump(sde_run *r, dyn_jump_fn fn, double t, double h, double *y)
+{
+    const dyn_sde *s = r->sde;
+    for (int j = 0; j < r->m; j++)
+        s->noise[j] = r->dw[j];
+    const int st = fn(t, h, y, s->sys.par);
+    if (!st)
+        return 0;
+    r->res->rhs_status = st;
+    r->res->fail_t = t;
+    dyn_result_fail(r->res, DYN_ERR_RHS,
+                    "the jumps of the Markov states returned %d at t = %s (a transition rate "
+                    "there is negative or not finite)",
+                    st, dyn_shortest(t).s);
+    return 1;
+}
+
 /* Fixed steps on the grid of h: Euler–Maruyama (every slot drawn once per step), SRIW1 (per
  * step and noise, dW and then its time integral) or the Runge–Kutta Milstein scheme (Wiener
  * increments sqrt(dt) z). */
@@ -344,6 +362,8 @@ static int solve_fixed(sde_run *r, dyn_sde_method method, double t0, double t1,
                            : kind == DYN_NOISE_NORMAL ? dyn_rng_normal(&r->rng)
                                                       : dyn_rng_normal(&r->rng) / sqrt(h);
             }
+            if (o->jump && jump(r, o->jump, t, h, y))
+                return DYN_ERR_RHS;
         } else if (method == DYN_SDE_SRIW1) {
             /* the path is empty: a new point, dW then J per noise */
             dyn_bpath_at(&r->path, tn, r->wend);
@@ -588,6 +608,11 @@ int dyn_sde_solve(dyn_sde_method method, const dyn_sde *sde, double t0, double t
     for (int i = 0; i < ne; i++)
         if (!o->events[i].g)
             return dyn_result_fail(res, DYN_ERR_ARG, "event %d has no function g", i);
+    if (method != DYN_SDE_EM && method != DYN_SDE_MAP && o->jump)
+        return dyn_result_fail(res, DYN_ERR_ARG,
+                               "Markov states jump at the start of each step, with probability "
+                               "rate*h: %s cannot take them; use Euler-Maruyama (method euler)",
+                               method == DYN_SDE_SRIW1 ? "sriw1" : "rkmil");
     if (adaptive_method && sde->noise_class == DYN_NOISE_GENERAL)
         return dyn_result_fail(res, DYN_ERR_ARG,
                                "%s needs a right-hand side affine in Wiener noise that is "

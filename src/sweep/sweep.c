@@ -236,6 +236,7 @@ static int run_one(worker *w, long i, double *row)
         o.end = s->end;
         o.seed = s->seed;
         o.stream = (uint64_t)i;
+        o.jump = m->jump;
         o.output = p->need_samples ? on_sample : NULL;
         o.output_ctx = w;
         o.progress = run_progress;

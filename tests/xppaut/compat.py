@@ -176,8 +176,9 @@ def has_global(text):
 
 
 def has_noise(text):
-    """wiener, normal() or ran(): the two runs draw other random numbers."""
-    return re.search(r"(?im)^\s*wiener\b|\b(ran|normal)\s*\(", text) is not None
+    """wiener, normal(), ran(), Markov states or gill: the two runs draw other random
+    numbers."""
+    return re.search(r"(?im)^\s*(wiener|markov)\b|\b(ran|normal|gill)\s*\(", text) is not None
 
 
 def compare(xpp, dyn, t0, rtol=2e-6, scaled=False):

@@ -44,6 +44,8 @@ static const char *const emit_check_idents[] = {
     "events", "samples", "initial_state", "rtol", "atol", "phase_x", "phase_y", "source",
     "t_trans", "every", "bound", "jac_banded", "jac_lower", "jac_upper", "jacobian_band",
     "time_unit", "phase_window", "n_noise", "noise_kinds", "noise_offset", "noise_class",
+    /* tables of random numbers, drawn in prepare (dynkit/sde.h) */
+    "seed_offset", "dyn_table_random", "uint64_t",
     "jac_pattern", "jacobian_sparse",
     "delay",
     /* delay models (dynkit/delay.h, src/lang/emit_delay.c) */
@@ -88,7 +90,7 @@ static const char *const emit_check_comments[] = {
 static const char *const emit_check_headers[] = {"<math.h>", "<stddef.h>", "<stdio.h>",
                                                  "<string.h>", "<dynkit/model.h>",
                                                  "<dynkit/input.h>", "<dynkit/delay.h>",
-                                                 "<dynkit/volterra.h>"};
+                                                 "<dynkit/volterra.h>", "<dynkit/sde.h>"};
 
 /* name is prefix digits [suffix digits]: v_3, ud1_2, dk_event0 */
 static int emit_check_made(const char *s, size_t n)

@@ -304,7 +304,8 @@ static int parse_option(const char *command, int argc, char **argv, int *i, cli_
 }
 
 /* A model with noise takes euler (Euler–Maruyama), rkmil or sriw1, a seed, no output times;
- * rkmil, sriw1 and --seed need noise; sriw1 locates no events. */
+ * rkmil and sriw1 need noise, --seed noise or a table of random numbers; sriw1 locates no
+ * events. */
 static int check_noise_options(const char *command, cli_run *run, unsigned given)
 {
     const dyn_model *m = run->model;
@@ -315,9 +316,10 @@ static int check_noise_options(const char *command, cli_run *run, unsigned given
             return cli_usage_error(command, "--method %s integrates models with noise "
                                    "(wiener, normal, ran), and %s has none: use dp45 (or "
                                    "another method of 'dynkit methods')", name, m->name);
-        if (given & GIVEN_SEED)
+        if ((given & GIVEN_SEED) && !m->seed_offset)
             return cli_usage_error(command, "--seed chooses the noise of a model with noise "
-                                   "(wiener, normal, ran), and %s has none", m->name);
+                                   "(wiener, normal, ran) or its tables' random numbers, and "
+                                   "%s has none", m->name);
         return CLI_OK;
     }
     if (dyn_method_is_map(run->method))
@@ -620,6 +622,11 @@ int cli_run_parse_with(const char *command, int argc, char **argv, int other_ada
     for (int k = 0; k < n_as && rc == CLI_OK; k++)
         if (as[k].is_param)
             rc = cli_apply_assignment(command, run, &as[k]);
+    if (m->seed_offset) { /* the tables' random numbers: drawn in prepare */
+        double *sd = (double *)((char *)run->par + m->seed_offset);
+        sd[0] = (double)(uint32_t)run->seed;
+        sd[1] = (double)(uint32_t)(run->seed >> 32);
+    }
     if (rc == CLI_OK && m->prepare && m->prepare(run->par, err, sizeof err))
         rc = cli_usage_error(command, "%s", err);
     if (rc == CLI_OK)

@@ -154,6 +154,11 @@ typedef struct dyn_model {
     const int *noise_kinds;
     size_t noise_offset;
     int noise_class;
+    /* A model whose prepare draws random numbers (a model file's table of ran() or
+     * normal(), computed once: dyn_table_random): the byte offset of two doubles of the
+     * parameter struct that hold the seed's low and high 32 bits, which the caller sets
+     * before prepare (zero: seed 0); 0 for a model that draws nothing when prepared. */
+    size_t seed_offset;
     /* Optional sparsity pattern of the Jacobian (jac_pattern.nnz > 0; CSC, dyn_sparse_pattern
      * in ode.h, every diagonal entry in it) and jacobian_sparse (may be NULL), which writes
      * its nnz values: a model file's exact Jacobian carries the pattern when it is sparse

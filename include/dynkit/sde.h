@@ -87,6 +87,14 @@ void dyn_rng_init(dyn_rng *r, uint64_t seed, uint64_t stream);
 double dyn_rng_normal(dyn_rng *r);
 double dyn_rng_uniform(dyn_rng *r); /* in [0, 1) */
 
+/* A random number drawn once, when a model is prepared (a model file's table whose formula
+ * calls ran() or normal(): XPPAUT computes such a table once, when it reads the file): the
+ * kind-th (DYN_NOISE_UNIFORM: on [0, 1); DYN_NOISE_NORMAL: standard normal) number of
+ * call site `call` at point k, from the Philox4x32-10 block with key (seed low, seed high)
+ * and counter (k low, k high, call, 2^30), kept apart from the runs' counters (top bit
+ * set) and a sweep's random run tables (last word 0). Fixed by the seed alone. */
+double dyn_table_random(uint64_t seed, long call, long k, int kind);
+
 /* Kinds of noise slot. */
 typedef enum dyn_noise_kind {
     DYN_NOISE_WIENER = 0,  /* dW/dt over the step: z / sqrt(dt) */

@@ -181,15 +181,22 @@ static int random_call(lang_ctx *c, node *e, const rctx *r)
         lang_fail(c, e->pos, "%s takes %d argument%s (%s), not %d", is_normal ? "normal" : "ran",
                   want, want > 1 ? "s" : "", is_normal ? "mean, standard deviation" : "the "
                   "upper end of [0, x)", e->nargs);
-    if (r->kind >= CTX_PARAMS)
+    if (r->kind >= CTX_PARAMS && r->kind != CTX_TABLE)
         lang_fail(c, e->pos, "%s cannot use random numbers ('%s'): they change at every step of "
                   "a run", r->what, is_normal ? "normal" : "ran");
-    lang_noise *nz = lvec_push(c, &c->m.noises, sizeof *nz);
-    nz->name = is_normal ? "normal" : "ran";
-    nz->pos = e->pos;
-    nz->kind = is_normal ? DYN_NOISE_NORMAL : DYN_NOISE_UNIFORM;
     node *slot = lang_node(c, N_NOISE, e->pos);
-    slot->index = c->m.noises.n - 1;
+    slot->op = is_normal ? DYN_NOISE_NORMAL : DYN_NOISE_UNIFORM;
+    if (r->kind == CTX_TABLE) {
+        /* XPPAUT computes a table once: its numbers are drawn once, in prepare (index < 0:
+         * the call's number -1 - index, dyn_table_random) */
+        slot->index = -1 - c->m.n_table_draws++;
+    } else {
+        lang_noise *nz = lvec_push(c, &c->m.noises, sizeof *nz);
+        nz->name = is_normal ? "normal" : "ran";
+        nz->pos = e->pos;
+        nz->kind = slot->op;
+        slot->index = c->m.noises.n - 1;
+    }
     node **a = e->args;
     node *prod = lang_node(c, N_BIN, e->pos);
     prod->op = OP_MUL;

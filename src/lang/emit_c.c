@@ -41,6 +41,7 @@ static void line_dir(lang_ctx *c, lpos p)
 
 static int noise_offset(const lang_model *m);
 static int volt_offset(const lang_model *m);
+static int seed_offset(const lang_model *m);
 
 /* The literal ident when cond holds, else NULL */
 #define CODE_OR_NULL(c, cond, ident) \
@@ -153,7 +154,13 @@ static void expr(lang_ctx *c, const node *e, const ectx *x)
         break;
     case N_FIX: LANG_C_CODEF(c, "v_%d", e->index); break;
     case N_ALG: LANG_C_CODEF(c, "w[%d]", e->index); break;
-    case N_NOISE: LANG_C_CODEF(c, "p[%d]", noise_offset(m) + e->index); break;
+    case N_NOISE:
+        if (e->index < 0) /* a table's random number, at its point k (emit_table_values) */
+            LANG_C_CODEF(c, "dyn_table_random((uint64_t)p[%d] | (uint64_t)p[%d] << 32, %d, k, %d)",
+                         seed_offset(m), seed_offset(m) + 1, -1 - e->index, e->op);
+        else
+            LANG_C_CODEF(c, "p[%d]", noise_offset(m) + e->index);
+        break;
     case N_VOLT: /* index -1: the time of the integral, in the slot after the integrals */
         LANG_C_CODEF(c, "p[%d]", volt_offset(m) + (e->index < 0 ? m->volts.n : e->index));
         break;
@@ -840,10 +847,13 @@ static int delay_offset(const lang_model *m) { return noise_offset(m) + m->noise
 /* Index in p of the Volterra integrals' values (integrals.c), after the delay's slot. */
 static int volt_offset(const lang_model *m) { return delay_offset(m) + (m->n_delays ? 1 : 0); }
 
-static int par_doubles(const lang_model *m)
+/* the seed of the tables' random numbers: two doubles (its low and high 32 bits) */
+static int seed_offset(const lang_model *m)
 {
     return volt_offset(m) + (lang_volt_model(m) ? m->volts.n + 1 : 0);
 }
+
+static int par_doubles(const lang_model *m) { return seed_offset(m) + (m->n_table_draws ? 2 : 0); }
 
 static void state_expr(lang_ctx *c, const node *e)
 {
@@ -1894,6 +1904,8 @@ char *lang_emit_c(lang_ctx *c)
         LANG_C_CODE(c, ",\n    .volterra = &dk_volterra_model");
     if (m->markovs.n)
         LANG_C_CODE(c, ",\n    .jump = dk_jump");
+    if (m->n_table_draws)
+        LANG_C_CODEF(c, ",\n    .seed_offset = %d * sizeof(double)", seed_offset(m));
     LANG_C_CODE(c, ",\n};\n\nconst dyn_model *dynkit_model(void) { return &dk_model; }\n");
     /* the functions the text calls, then what comes before it all */
     const lang_ctext main_text = lang_c_take(c);
@@ -1912,6 +1924,8 @@ char *lang_emit_c(lang_ctx *c)
         LANG_C_CODE(c, "#include <dynkit/delay.h>\n");
     if (lang_volt_model(m))
         LANG_C_CODE(c, "#include <dynkit/volterra.h>\n");
+    if (m->n_table_draws)
+        LANG_C_CODE(c, "#include <dynkit/sde.h>\n");
     if (m->n_inputs)
         LANG_C_CODE(c, "#include <dynkit/input.h>\n\n");
     else

@@ -350,6 +350,8 @@ typedef struct lang_model {
     /* delay equations: delay(x, lag) calls read (n_delays), @ delay= (max_delay, 0: not
      * given) */
     int n_delays;
+    /* random numbers of the tables' formulas (ran(), normal()), drawn once in prepare */
+    int n_table_draws;
     double max_delay;
     /* Volterra integrals (integrals.c): lang_volt, and @ vmaxpts (0: not given) */
     lvec volts;

@@ -79,6 +79,19 @@ double dyn_rng_normal(dyn_rng *r)
     return rad * cos(2.0 * DYN_PI * u2);
 }
 
+double dyn_table_random(uint64_t seed, long call, long k, int kind)
+{
+    const uint32_t key[2] = {(uint32_t)seed, (uint32_t)(seed >> 32)};
+    const uint64_t kk = (uint64_t)k;
+    const uint32_t ctr[4] = {(uint32_t)kk, (uint32_t)(kk >> 32), (uint32_t)call, 0x40000000u};
+    uint32_t w[4];
+    dyn_philox4x32(ctr, key, 10, w);
+    if (kind != DYN_NOISE_NORMAL) /* uniform on [0, 1), as dyn_rng_uniform */
+        return (double)((((uint64_t)w[0] << 32) | w[1]) >> 11) * 0x1p-53;
+    const double u1 = dyn_philox_unit(w[0], w[1]), u2 = dyn_philox_unit(w[2], w[3]);
+    return sqrt(-2.0 * log(u1)) * cos(2.0 * DYN_PI * u2);
+}
+
 double dyn_rng_uniform(dyn_rng *r)
 {
     uint32_t w[4];

@@ -199,6 +199,11 @@ static int run_one(worker *w, long i, double *row)
     for (int v = 0; v < s->n_vars; v++)
         if (s->vars[v].kind == DYN_SWEEP_PARAM)
             dyn_model_set_param(m, w->par, s->vars[v].index, vals[v]);
+    if (m->seed_offset) { /* the tables' random numbers: the same in every run */
+        double *sd = (double *)((char *)w->par + m->seed_offset);
+        sd[0] = (double)(uint32_t)s->seed;
+        sd[1] = (double)(uint32_t)(s->seed >> 32);
+    }
     if (m->prepare && m->prepare(w->par, w->err, sizeof w->err)) {
         nan_row(row, s->n_reduce);
         return DYN_ERR_ARG;

@@ -6,7 +6,10 @@ statistics (the two programs draw other random numbers):
 
 - em_ou.ode: y' = w has increments of variance dt (w = z/sqrt(dt)), and x' = -x + 0.5 w by
   Euler (Euler-Maruyama) has the stationary variance of the scheme, s^2 / (2 th - th^2 dt);
-- draws.ode: normal(1, 2) has mean 1 and standard deviation 2, ran(3) is uniform on [0, 3).
+- draws.ode: normal(1, 2) has mean 1 and standard deviation 2, ran(3) is uniform on [0, 3);
+- tables.ode: tables of ran(3) and normal(1, 2), computed once (2001 points each, every one
+  a draw of its own), have the same statistics; in dynkit --seed fixes them (the same table
+  twice with one seed, another with another seed).
 
 Each statistic must be within 6 of its standard errors of the closed form, for dynkit and for
 XPPAUT. Usage: noise_check.py DYNKIT
@@ -22,10 +25,11 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
-def run_dynkit(dynkit, path, work):
+def run_dynkit(dynkit, path, work, seed=5):
     out = os.path.join(work, "dynkit.csv")
-    subprocess.run([dynkit, "run", path, "--seed", "5", "--quiet", "--output", out], check=True,
-                   cwd=work, env=dict(os.environ, DYNKIT_CACHE_DIR=os.path.join(work, "cache")))
+    subprocess.run([dynkit, "run", path, "--seed", str(seed), "--quiet", "--outputs",
+                    "--output", out], check=True, cwd=work,
+                   env=dict(os.environ, DYNKIT_CACHE_DIR=os.path.join(work, "cache")))
     return np.loadtxt(out, delimiter=",", skiprows=1)
 
 
@@ -71,16 +75,34 @@ def draws(d, who, failures):
         failures.append(who + ": ran(3) outside [0, 3)")
 
 
+def tables(d, who, failures):
+    """Columns t, x, u(t), z(t): one point of each table per row."""
+    u, z = d[:, 2], d[:, 3]
+    n = len(u)
+    check(who + ": mean of a table of ran(3)", u.mean(), 1.5, 3.0 / np.sqrt(12 * n), failures)
+    check(who + ": mean of a table of normal(1,2)", z.mean(), 1.0, 2.0 / np.sqrt(n), failures)
+    check(who + ": standard deviation of a table of normal(1,2)", z.std(), 2.0,
+          2.0 / np.sqrt(2 * n), failures)
+    if not (u.min() >= 0 and u.max() < 3 and len(set(u)) == n):
+        failures.append(who + ": a table of ran(3): not n distinct numbers in [0, 3)")
+
+
 def main():
     dynkit = os.path.abspath(sys.argv[1])
     failures = []
     have_xpp = shutil.which("xppaut") is not None
     with tempfile.TemporaryDirectory() as work:
-        for name, fn in (("em_ou.ode", em_ou), ("draws.ode", draws)):
+        for name, fn in (("em_ou.ode", em_ou), ("draws.ode", draws), ("tables.ode", tables)):
             path = os.path.join(HERE, "noise", name)
             fn(run_dynkit(dynkit, path, work), "dynkit " + name, failures)
             if have_xpp:
                 fn(run_xppaut(path, work), "xppaut " + name, failures)
+        path = os.path.join(HERE, "noise", "tables.ode")
+        a, b, c = (run_dynkit(dynkit, path, work, s) for s in (5, 5, 6))
+        if not np.array_equal(a, b) or np.array_equal(a[:, 2:], c[:, 2:]):
+            failures.append("dynkit tables.ode: the seed does not fix the tables")
+        else:
+            print("ok   dynkit tables.ode: the same tables with --seed 5 twice, others with 6")
     if not have_xpp:
         print("xppaut is not installed: dynkit against the closed forms only")
     print("%d failed" % len(failures))

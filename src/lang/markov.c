@@ -243,8 +243,7 @@ void lang_emit_jump(lang_ctx *c, int noise)
                 roots[nroots++] = r;
             }
     }
-    LANG_C_CODE(c, "/* the Markov states' jumps at the start of a step (dynkit/sde.h) */\n"
-                   "static int dk_jump(double t, double h, double *y, void *par)\n{\n"
+    LANG_C_CODE(c, "static int dk_jump(double t, double h, double *y, void *par)\n{\n"
                    "    const double *p = (const double *)par;\n    (void)t;\n    (void)p;\n");
     lang_emit_needed_fixes(c, roots, nroots);
     LANG_C_CODE(c, "    int bad = 0;\n");

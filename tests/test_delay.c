@@ -406,6 +406,34 @@ static void test_history_as_xppaut(void **state)
     CHECK(fabs(r2 - 10.0 / 3.0) < 1e-14, "rk4: x(2) = %.17g", r2);
 }
 
+/* Without `@ delay=` XPPAUT 6.11 reads delay(y, 1) as the current y (measured with xppaut
+ * -silent: y' = -delay(y,1), y(0)=1 gives y(2) = e^-2 = 0.1353353); dynkit keeps the lag,
+ * so y' = -y(t-1) with history 1 gives the closed form y(2) = -1/2, and says once that
+ * XPPAUT would differ. With `@ delay=2` the same file runs without that warning. */
+static void test_no_max_delay_keeps_the_lag(void **state)
+{
+    (void)state;
+    assert_int_equal(cli_write_file("nomax.ode", "y'=-delay(y,1)\ny(0)=1\ninit y=1\n"
+                                                 "@ total=2, dt=0.25\n"),
+                     0);
+    assert_int_equal(cli_write_file("withmax.ode", "y'=-delay(y,1)\ny(0)=1\ninit y=1\n"
+                                                   "@ delay=2, total=2, dt=0.25\n"),
+                     0);
+    cli_result r = cli("run %s --method dp45 --times 2", cli_path("nomax.ode"));
+    const char *w = strstr(r.err, "sets no '@ delay='");
+    const char *row = strstr(r.out, "\n2,");
+    CHECK(r.status == 0 && row && fabs(strtod(row + 3, NULL) + 0.5) < 1e-14 && w &&
+              !strstr(w + 1, "sets no '@ delay='"),
+          "%s %s", r.out, r.err);
+    cli_free(&r);
+    r = cli("run %s --method dp45 --times 2", cli_path("withmax.ode"));
+    row = strstr(r.out, "\n2,");
+    CHECK(r.status == 0 && row && fabs(strtod(row + 3, NULL) + 0.5) < 1e-14 &&
+              !strstr(r.err, "@ delay="),
+          "%s %s", r.out, r.err);
+    cli_free(&r);
+}
+
 /* Whether the line printed matches the line shown: the same text, numbers within 1e-9
  * relative. */
 static int same_line(const char *got, size_t gn, const char *want, size_t wn)
@@ -523,6 +551,7 @@ int main(void)
         cmocka_unit_test(test_mackey_glass_independent),
         cmocka_unit_test(test_state_dependent_lag),
         cmocka_unit_test(test_history_as_xppaut),
+        cmocka_unit_test(test_no_max_delay_keeps_the_lag),
         cmocka_unit_test(test_doc_commands),
         cmocka_unit_test(test_refusals),
     };

@@ -68,6 +68,20 @@ static void mark_delayed(const node *e, void *ctx)
         mark_delayed(e->args[i], ctx);
 }
 
+/* The first delay() call met (in each_formula's order), to place a note at. */
+static void first_call(const node *e, void *ctx)
+{
+    const node **first = ctx;
+    if (*first)
+        return;
+    if (e->kind == N_DELAY) {
+        *first = e;
+        return;
+    }
+    for (int i = 0; i < e->nargs; i++)
+        first_call(e->args[i], ctx);
+}
+
 void lang_emit_delay_prepare(lang_ctx *c, void (*expr)(lang_ctx *, const node *))
 {
     const lang_model *m = &c->m;
@@ -129,6 +143,16 @@ void lang_emit_delay_model(lang_ctx *c, int offset, void (*expr)(lang_ctx *, con
                       "its history",
                       s->name, s->name);
     }
+    /* XPPAUT allocates no history without `@ delay=` (its maximal delay, default 0), and its
+     * delay(x, lag) then returns the current x (measured with xppaut 6.11: y'=-delay(y,1),
+     * y(0)=1 gives y(2)=e^-2); dynkit keeps the history and uses the lag, and says so once */
+    const node *call = NULL;
+    each_formula(m, first_call, &call);
+    if (call && !(m->max_delay > 0))
+        lang_warn(c, call->pos,
+                  "the file sets no '@ delay=': XPPAUT then reads every delay(x, lag) as the "
+                  "current x; dynkit keeps the history and uses the lag (write '@ delay=M', "
+                  "the longest lag, to bound the history as XPPAUT does)");
     LANG_C_CODE(c, "static double dk_history(int i, double t, const void *par, "
                    "const double *y0)\n{\n    const double *p = (const double *)par;\n"
                    "    (void)p;\n    (void)t;\n    (void)y0;\n    switch (i) {\n");

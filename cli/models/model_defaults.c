@@ -49,6 +49,8 @@ const char *cli_model_default_source(const dyn_model *m, cli_default_field field
     if (field == CLI_DEFAULT_METHOD && m->n_noise > 0 && m->source &&
         (strcmp(m->method, "rkmil") == 0 || strcmp(m->method, "euler") == 0))
         return "the method for its noise, or its @ meth=euler";
+    if (field == CLI_DEFAULT_METHOD && m->volterra)
+        return "the only method for its integrals";
     const char *path = cli_model_path(m);
     if (!path)
         return "the model's";

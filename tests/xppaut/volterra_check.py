@@ -79,13 +79,16 @@ def closed_forms(dynkit, work):
 
 
 def info(dynkit, work):
-    """dynkit info names the integrals, the integral equations and the points kept."""
+    """dynkit info names the integrals, the integral equations, the points kept and where
+    the method comes from."""
     out = subprocess.run([dynkit, "info", os.path.join(HERE, "volterra", "abel.ode")],
                          capture_output=True, text=True, cwd=work,
                          env=dict(os.environ, DYNKIT_CACHE_DIR=os.path.join(work, "cache")))
     check(out.returncode == 0 and "Volterra integrals: 1 (int{...}); integral equations: u;"
-          in out.stdout and "the last 4000 grid points" in out.stdout,
-          "dynkit info abel.ode names its integral, its integral equation, 4000 points")
+          in out.stdout and "the last 4000 grid points" in out.stdout
+          and "Method: volterra (the only method for its integrals)" in out.stdout,
+          "dynkit info abel.ode names its integral, its integral equation, 4000 points, "
+          "and why its method is volterra")
 
 
 def fr_reference(t_end=1.5, h=1e-3):

@@ -450,6 +450,15 @@ void lang_alg_uses(lang_ctx *c, const node *e, unsigned char *used, unsigned cha
  * expanded; calls fn for each line in order (stops when fn returns non-zero). */
 typedef int (*lang_line_fn)(lang_ctx *c, const lang_line *line, void *ctx);
 void lang_lines(lang_ctx *c, lang_line_fn fn, void *ctx);
+/* A line being written character by character, each with the place it came from (arena
+ * memory; refused past 4 LANG_MAX_LINE): lang_lbuf_put appends one and keeps the text
+ * NUL-terminated with room for one more place (the line's end). {0} is empty. */
+typedef struct lang_lbuf {
+    char *text;
+    lpos *pos;
+    int len, cap;
+} lang_lbuf;
+void lang_lbuf_put(lang_ctx *c, lang_lbuf *b, char ch, lpos p);
 /* XPPAUT's first format (ode_old.c): when the first line is a positive number, the file's
  * lines rewritten as statements of the current format, each given to fn; returns 1, or 0
  * (nothing read) when the file is in the current format. */

@@ -38,13 +38,6 @@ typedef struct pline {
     int len, ln;
 } pline;
 
-/* a statement being written: text and the place of each character */
-typedef struct obuf {
-    char *text;
-    lpos *pos;
-    int len, cap;
-} obuf;
-
 /* a span [from, to) of a physical line */
 typedef struct span {
     int ln, from, to;
@@ -78,31 +71,11 @@ static int blank(int ch)
     return ch == ' ' || ch == '\t';
 }
 
-static void put(lang_ctx *c, obuf *b, char ch, lpos p)
-{
-    if (b->len + 2 > b->cap) {
-        const int cap = b->cap ? 2 * b->cap : 128;
-        if (cap > 4 * LANG_MAX_LINE + 16)
-            lang_fail(c, p, "line too long (more than %d characters)", LANG_MAX_LINE);
-        char *t = lang_alloc(c, (size_t)cap);
-        lpos *q = lang_alloc(c, (size_t)cap * sizeof *q);
-        if (b->len) {
-            memcpy(t, b->text, (size_t)b->len);
-            memcpy(q, b->pos, (size_t)b->len * sizeof *q);
-        }
-        b->text = t;
-        b->pos = q;
-        b->cap = cap;
-    }
-    b->text[b->len] = ch;
-    b->pos[b->len++] = p;
-}
-
 /* words the translation writes: every character at the place p */
-static void put_word(lang_ctx *c, obuf *b, const char *s, lpos p)
+static void put_word(lang_ctx *c, lang_lbuf *b, const char *s, lpos p)
 {
     while (*s)
-        put(c, b, *s++, p);
+        lang_lbuf_put(c, b, *s++, p);
 }
 
 static pline physical(lang_ctx *c, int ln)
@@ -123,15 +96,15 @@ static pline physical(lang_ctx *c, int ln)
     return p;
 }
 
-static void put_span(lang_ctx *c, obuf *b, span sp)
+static void put_span(lang_ctx *c, lang_lbuf *b, span sp)
 {
     const pline p = physical(c, sp.ln);
     for (int k = sp.from; k < sp.to; k++)
-        put(c, b, p.s[k] == '\r' ? ' ' : p.s[k], at(&p, k));
+        lang_lbuf_put(c, b, p.s[k] == '\r' ? ' ' : p.s[k], at(&p, k));
 }
 
 /* A right-hand side: the names of kernels (`k` lines) written as their integrals. */
-static void put_formula(oldf *o, obuf *b, span sp)
+static void put_formula(oldf *o, lang_lbuf *b, span sp)
 {
     lang_ctx *c = o->c;
     const pline p = physical(c, sp.ln);
@@ -161,17 +134,17 @@ static void put_formula(oldf *o, obuf *b, span sp)
             put_span(c, b, kn->mu);
             put_word(c, b, "]{", at(&p, k));
             put_span(c, b, kn->formula);
-            put(c, b, '}', at(&p, e - 1));
+            lang_lbuf_put(c, b, '}', at(&p, e - 1));
         }
         k = e;
     }
 }
 
 /* hand the statement written in b to the current format's parser; end: its end's place */
-static void flush(oldf *o, obuf *b, lpos end)
+static void flush(oldf *o, lang_lbuf *b, lpos end)
 {
     lang_ctx *c = o->c;
-    put(c, b, '\0', end);
+    lang_lbuf_put(c, b, '\0', end);
     b->len--;
     b->pos[b->len] = end;
     lang_line l = {b->text, b->len, b->pos};
@@ -224,7 +197,7 @@ static void declarations(oldf *o, const pline *p, int from, int kind, lpos kpos)
 {
     lang_ctx *c = o->c;
     const int end = line_end(p);
-    obuf b = {0};
+    lang_lbuf b = {0};
     span name, value;
     int eq, k = from;
     while (next_item(p, end, &k, &name, &value, &eq)) {
@@ -238,7 +211,7 @@ static void declarations(oldf *o, const pline *p, int from, int kind, lpos kpos)
                  kpos);
         put_span(c, &b, name);
         if (eq >= 0 && kind != 'w') {
-            put(c, &b, '=', at(p, eq));
+            lang_lbuf_put(c, &b, '=', at(p, eq));
             put_span(c, &b, value);
         }
         flush(o, &b, at(p, k));
@@ -278,9 +251,9 @@ static void function(oldf *o, const pline *p, int from)
     int f1 = a1;
     while (f1 < end && p->s[f1] != '$')
         f1++;
-    obuf b = {0};
+    lang_lbuf b = {0};
     put_span(c, &b, (span){p->ln, n0, n1});
-    put(c, &b, '(', at(p, a0));
+    lang_lbuf_put(c, &b, '(', at(p, a0));
     for (long k = 1; k <= narg; k++)
         put_word(c, &b, lang_printf(c, k > 1 ? ",arg%ld" : "arg%ld", k), at(p, a0));
     put_word(c, &b, ")=", at(p, a0));
@@ -319,9 +292,9 @@ static void kernel_line(oldf *o, const pline *p, int from)
 /* g / t: the same statement as in the current format, under its current keyword */
 static void same_statement(oldf *o, const pline *p, int from, const char *keyword, lpos kpos)
 {
-    obuf b = {0};
+    lang_lbuf b = {0};
     put_word(o->c, &b, keyword, kpos);
-    put(o->c, &b, ' ', kpos);
+    lang_lbuf_put(o->c, &b, ' ', kpos);
     const int end = line_end(p);
     put_span(o->c, &b, (span){p->ln, from, end});
     flush(o, &b, at(p, end));
@@ -341,20 +314,20 @@ static void equations(oldf *o)
         lang_fail(c, first, "the first line gives %ld equations (variables and auxiliary "
                   "quantities): with %d fixed quantit%s the file needs %ld 'o' lines, and has "
                   "%d", o->neq, nf, nf == 1 ? "y" : "ies", o->neq + nf, no);
-    obuf b = {0};
+    lang_lbuf b = {0};
     for (int k = 0; k < no; k++) {
         const span f = LVEC_AT(o->rhs, span, k);
         const lpos w = LVEC_AT(o->rhs_word, lpos, k);
         if (k < nv && LVEC_AT(o->rhs_int, int, k)) {
             put_word(c, &b, "volt ", w);
             put_span(c, &b, LVEC_AT(o->vars, span, k));
-            put(c, &b, '=', w);
+            lang_lbuf_put(c, &b, '=', w);
         } else if (k < nv) {
             put_span(c, &b, LVEC_AT(o->vars, span, k));
             put_word(c, &b, "'=", w);
         } else if (k < nv + nf) {
             put_span(c, &b, LVEC_AT(o->fixes, span, k - nv));
-            put(c, &b, '=', w);
+            lang_lbuf_put(c, &b, '=', w);
         } else {
             const int a = k - nv - nf;
             put_word(c, &b, "aux ", w);
@@ -362,7 +335,7 @@ static void equations(oldf *o)
                 put_span(c, &b, LVEC_AT(o->auxnames, span, a));
             else
                 put_word(c, &b, lang_printf(c, "AUX%d", a + 1), w);
-            put(c, &b, '=', w);
+            lang_lbuf_put(c, &b, '=', w);
         }
         put_formula(o, &b, f);
         flush(o, &b, (lpos){f.ln + 1, f.to + 1});

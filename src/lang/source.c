@@ -12,13 +12,7 @@
 
 #include "lang/lang_internal.h"
 
-typedef struct lbuf {
-    char *text;
-    lpos *pos;
-    int len, cap;
-} lbuf;
-
-static void lbuf_put(lang_ctx *c, lbuf *b, char ch, lpos p)
+void lang_lbuf_put(lang_ctx *c, lang_lbuf *b, char ch, lpos p)
 {
     if (b->len + 1 >= b->cap) {
         const int cap = b->cap ? 2 * b->cap : 128;
@@ -40,14 +34,14 @@ static void lbuf_put(lang_ctx *c, lbuf *b, char ch, lpos p)
     b->text[b->len] = '\0';
 }
 
-static lang_line lbuf_line(lang_ctx *c, lbuf *b, lpos end)
+static lang_line lbuf_line(lang_ctx *c, lang_lbuf *b, lpos end)
 {
     lang_line l;
     if (!b->text)
-        lbuf_put(c, b, ' ', end), b->len = 0, b->text[0] = '\0';
+        lang_lbuf_put(c, b, ' ', end), b->len = 0, b->text[0] = '\0';
     if (b->len > LANG_MAX_LINE)
         lang_fail(c, b->pos[0], "line too long (more than %d characters)", LANG_MAX_LINE);
-    b->pos[b->len] = end; /* lbuf_put keeps room for one more */
+    b->pos[b->len] = end; /* lang_lbuf_put keeps room for one more */
     b->text[b->len] = '\0';
     l.text = b->text;
     l.len = b->len;
@@ -208,16 +202,16 @@ static int find_range(lang_ctx *c, const lang_line *l, int *open, int *close, lo
 
 /* One copy of line l for the index j: the range (if any, at open..close) becomes j, and
  * every other [expr] its value. */
-static lang_line expand_one(lang_ctx *c, lbuf *scratch, const lang_line *l, long j, int open,
+static lang_line expand_one(lang_ctx *c, lang_lbuf *scratch, const lang_line *l, long j, int open,
                             int close, int with_j)
 {
-    lbuf b = *scratch; /* reused: a line is consumed before the next one is made */
+    lang_lbuf b = *scratch; /* reused: a line is consumed before the next one is made */
     b.len = 0;
     char num[32];
     for (int i = 0; i < l->len; i++) {
         const char ch = l->text[i];
         if (ch != '[') {
-            lbuf_put(c, &b, ch, l->pos[i]);
+            lang_lbuf_put(c, &b, ch, l->pos[i]);
             continue;
         }
         const int k = close_bracket(l, i);
@@ -244,7 +238,7 @@ static lang_line expand_one(lang_ctx *c, lbuf *scratch, const lang_line *l, long
             lang_fail(c, l->pos[i], "index %ld of a name is negative (j = %ld)", v, j);
         const int n = snprintf(num, sizeof num, v < 0 ? "(%ld)" : "%ld", v);
         for (int q = 0; q < n; q++)
-            lbuf_put(c, &b, num[q], l->pos[i]);
+            lang_lbuf_put(c, &b, num[q], l->pos[i]);
         i = k;
     }
     lang_line r = lbuf_line(c, &b, l->pos[l->len]);
@@ -264,7 +258,7 @@ typedef struct lines_state {
     long b1, b2;
     lpos block_pos;
     lvec block; /* lang_line */
-    lbuf scratch; /* the expanded line */
+    lang_lbuf scratch; /* the expanded line */
 } lines_state;
 
 static int first_char(const lang_line *l, int *at)
@@ -368,7 +362,7 @@ void lang_lines(lang_ctx *c, lang_line_fn fn, void *ctx)
     lines_state s = {0};
     s.fn = fn;
     s.ctx = ctx;
-    lbuf b = {0};
+    lang_lbuf b = {0};
     int continued = 0;
     for (int ln = 0; ln < c->nlines && !s.stop; ln++) {
         const size_t a = c->line_start[ln];
@@ -395,7 +389,7 @@ void lang_lines(lang_ctx *c, lang_line_fn fn, void *ctx)
                 ch = ' ';
             if (ln == 0 && k < 3 && c->len >= 3 && memcmp(c->text, "\xef\xbb\xbf", 3) == 0)
                 ch = ' '; /* a UTF-8 byte order mark */
-            lbuf_put(c, &b, ch, p);
+            lang_lbuf_put(c, &b, ch, p);
         }
         continued = cont;
         if (cont && ln + 1 < c->nlines)

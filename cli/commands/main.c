@@ -30,6 +30,8 @@ static void main_help(void)
          "                 finds one), its eigenvalues and the stability; --vary NAME=A:B:N\n"
          "                 gives one block per value\n"
          "  derive FILE.mech the equations of motion of a mechanism file as formulas\n"
+         "  equilibria MODEL every equilibrium in a box (a map's fixed points), each with\n"
+         "                 its eigenvalues and type (--box NAME=A:B,..., --json)\n"
          "  help [COMMAND] this text, or the help of COMMAND (as 'dynkit COMMAND --help')\n"
          "\n"
          "MODEL is a built-in model's name ('dynkit models'), an XPPAUT .ode file, a mechanism\n"
@@ -64,6 +66,8 @@ int main(int argc, char **argv)
         {"sweep", cli_cmd_sweep},
         {"linearize", cli_cmd_linearize},
         {"derive", cli_cmd_derive},
+        {"equilibria", cli_cmd_equilibria},
+        {"lyapunov", cli_cmd_lyapunov},
     };
     /* --verbose is accepted anywhere, by every command */
     int kept = 1;
@@ -107,7 +111,8 @@ int main(int argc, char **argv)
     const char *near = dyn_lang_nearest(argv[1], names, n);
     return cli_usage_error(NULL,
                            "unknown command '%s' (%s%s%saccepted: run, models, methods, info, "
-                           "inverse, report, animate, plot, verify, sweep, linearize, derive, help)",
+                           "inverse, report, animate, plot, verify, sweep, linearize, derive, "
+                           "equilibria, lyapunov, help)",
                            argv[1], near ? "did you mean '" : "", near ? near : "",
                            near ? "'? " : "");
 }

@@ -1,10 +1,10 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* test_mech.c — tests of the mechanics layer (dynkit/mech.h): vector and matrix algebra,
- * the Greenwood N->B rotation convention checked against hand-derived matrices, Euler-angle,
- * matrix and quaternion round trips (including gimbal lock), kinematics cross-checked by
- * finite differences, the principal angle near 0 and pi against analytic values, and the
- * torque-free rigid body integrated with RK4 (analytic precession, conserved energy and
- * angular momentum).
+/* test_rigid.c — tests of the rigid-body layer (src/rigid, dynkit/mech.h): vector and
+ * matrix algebra, the Greenwood N->B rotation convention checked against hand-derived
+ * matrices, Euler-angle, matrix and quaternion round trips (including gimbal lock),
+ * kinematics cross-checked by finite differences, the principal angle near 0 and pi against
+ * analytic values, and the torque-free rigid body integrated with RK4 (analytic precession,
+ * conserved energy and angular momentum).
  */
 #include <setjmp.h>
 #include <stdarg.h>

@@ -94,19 +94,16 @@ int cli_param_is_size(const dyn_model *m, const char *name);
 /* The band solver of stiff runs (band_solver.c): LAPACK's when built with it, else NULL
  * (the library's own). */
 const dyn_band_solver *cli_band_solver(void);
-/* The matrices of a stiff run of model m (band_solver.c): dense, band (the model's band,
- * declared or found in its exact pattern) or sparse (a pattern that is not banded, with KLU),
- * and why in words. */
-typedef enum cli_linear_kind {
-    CLI_LINEAR_DENSE = 0,
-    CLI_LINEAR_BAND = 1,
-    CLI_LINEAR_SPARSE = 2
-} cli_linear_kind;
-typedef struct cli_linear {
-    cli_linear_kind kind;
-    int lower, upper, nnz; /* the band (of the pattern, when there is one); entries */
-    char why[256];
-} cli_linear;
+/* The matrices of a stiff run of model m (band_solver.c): the library's choice
+ * (dyn_run_linear_choose) with the backends the tool is built with: dense, band (the model's
+ * band, declared or found in its exact pattern) or sparse (a pattern that is not banded,
+ * with KLU), and why in words. */
+typedef dyn_linear_choice cli_linear;
+#define CLI_LINEAR_DENSE DYN_LINEAR_DENSE
+#define CLI_LINEAR_BAND DYN_LINEAR_BAND
+#define CLI_LINEAR_SPARSE DYN_LINEAR_SPARSE
+/* The optional parts of the tool's runs (dyn_run): LAPACK's band LU, KLU, CVODE, as built. */
+const dyn_run_backends *cli_run_backends(void);
 void cli_linear_choose(const dyn_model *m, cli_linear *lin);
 /* The sparse LU of stiff runs: KLU's (0), or none (1: built without it). Close releases it. */
 int cli_sparse_solver_open(dyn_sparse_solver *s);
@@ -195,27 +192,6 @@ int cli_run_parse_with(const char *command, int argc, char **argv, int other_ada
 #define CLI_MAX_GRID_SAMPLES 1000000L
 int cli_run_at_steps(const cli_run *run);
 
-/* ---- a run of a model with Volterra integrals (run_volterra.c): the grid of run->step,
- * the model's delays read from the grid points ---- */
-int cli_solve_volterra(const cli_run *run, long every, dyn_output_fn output, void *output_ctx,
-                       dyn_progress_fn progress, void *progress_ctx, double *y, dyn_result *res);
-
-/* ---- a run of a delay model (run_delay.c) ---- */
-struct dyn_history;
-typedef struct cli_delay {
-    struct dyn_history *history; /* owned, attached to the run's parameters; NULL: none */
-    double *breaks;              /* the breaking points the steps land on (owned) */
-    long n_breaks;
-} cli_delay;
-/* For a model with delays (run->model->delay): attach a history to run->par and set the
- * step callback and stops of opts; nothing for other models. 0, or 1 with the reason in
- * err (cvode, a lag that is not a number >= 0). */
-int cli_delay_start(const cli_run *run, cli_delay *cd, dyn_solve_opts *opts, char *err,
-                    size_t errlen);
-/* Detach and free; a run stopped by a refused lag gets its message in res. */
-void cli_delay_finish(const cli_run *run, cli_delay *cd, dyn_result *res);
-/* The history's store doubled by realloc (dyn_history.grow); 0, or 1 out of memory. */
-int cli_delay_grow(struct dyn_history *h, void *ctx);
 
 /* ---- methods of the tool (methods.c): the library's registry plus, when dynkit is built
  * with SUNDIALS, "cvode" (the CVODE backend, not in the core registry) ---- */

@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* The methods the tool offers: the library's registry (dyn_method_find) and, when dynkit is
  * built with SUNDIALS, "cvode", the CVODE backend (dynkit/cvode.h), which is a library of
- * its own and not in the core registry. Its descriptor only names it for the tool (listing,
- * labels, adaptive/stiff tests); cli_run_solve sends runs with it to dyn_cvode_solve.
+ * its own; with the methods for noise and Volterra integrals, the descriptors of dyn_run
+ * (dynkit/run.h), which sends runs with them to their solver family.
  * Names are matched without regard to case, and MATLAB's solver names are understood: ode45
  * and ode23 are the library's aliases of dp45 and bs23, ode15s and ode23s select the stiff
  * method rodas4; ode113 and the other MATLAB solvers without a counterpart are refused with
@@ -43,78 +43,27 @@ static const char *lower(const char *name, char *buf, size_t size)
     return buf;
 }
 
-#ifdef DYNKIT_HAVE_CVODE
-/* A descriptor, never a table for the library's drivers: kind stiff, so that
- * dyn_method_is_adaptive and dyn_method_is_stiff say yes; no coefficients. */
-static const dyn_tableau cvode_method = {
-    .name = "cvode",
-    .title = "SUNDIALS CVODE: BDF, variable order 1-5 and step, Newton iteration with a dense "
-             "LU (optional backend)",
-    .reference = "Hindmarsh et al., ACM TOMS 31 (2005) 363-396; CVODE user guide",
-    .kind = DYN_KIND_ROSENBROCK,
-    .order = 5,
-};
-#endif
+/* The descriptors of the solver families that are not tables are the library's
+ * (dyn_run_method_find); cvode is offered only when the backend is built. */
+int cli_method_is_volterra(const dyn_tableau *m) { return m == dyn_run_method_volterra(); }
 
-/* A descriptor for the tool only (dyn_sde_solve runs it): kind embedded, so that
- * dyn_method_is_adaptive says yes; no coefficients. */
-static const dyn_tableau rkmil_method = {
-    .name = "rkmil",
-    .title = "Runge-Kutta Milstein for models with noise: strong order 1, adaptive steps by "
-             "step doubling on one Brownian path",
-    .reference = "Kloeden and Platen, Numerical Solution of SDEs (1992), eq. 11.1.5; "
-                 "dynkit/sde.h",
-    .kind = DYN_KIND_EMBEDDED_RK,
-    .order = 1,
-};
+const dyn_tableau *cli_rkmil_method(void) { return dyn_run_method_rkmil(); }
 
-/* A descriptor for the tool only (dyn_volterra_solve runs it): kind explicit RK, so that
- * it counts as a fixed-step method on the grid of --step; no coefficients. */
-static const dyn_tableau volterra_method = {
-    .name = "volterra",
-    .title = "XPPAUT's method for Volterra integrals: product trapezoid rule on the grid, "
-             "implicit, Newton's method at each step",
-    .reference = "Linz, Analytical and Numerical Methods for Volterra Equations (1985), "
-                 "ch. 7-8; dynkit/volterra.h",
-    .kind = DYN_KIND_EXPLICIT_RK,
-    .order = 2,
-};
+int cli_method_is_rkmil(const dyn_tableau *m) { return m == dyn_run_method_rkmil(); }
 
-int cli_method_is_volterra(const dyn_tableau *m) { return m == &volterra_method; }
-
-const dyn_tableau *cli_rkmil_method(void) { return &rkmil_method; }
-
-int cli_method_is_rkmil(const dyn_tableau *m) { return m == &rkmil_method; }
-
-static const dyn_tableau sriw1_method = {
-    .name = "sriw1",
-    .title = "Roessler's SRIW1 for models with noise: strong order 1.5, weak order 2, adaptive "
-             "steps by its embedded estimate on one Brownian path",
-    .reference = "Roessler, SIAM J. Numer. Anal. 48 (2010) 922-952; Rackauckas and Nie (2017); "
-                 "dynkit/sde.h",
-    .kind = DYN_KIND_EMBEDDED_RK,
-    .order = 1,
-};
-
-const dyn_tableau *cli_sriw1_method(void) { return &sriw1_method; }
+const dyn_tableau *cli_sriw1_method(void) { return dyn_run_method_sriw1(); }
 
 int cli_method_is_sde_adaptive(const dyn_tableau *m)
 {
-    return m == &rkmil_method || m == &sriw1_method;
+    return m == dyn_run_method_rkmil() || m == dyn_run_method_sriw1();
 }
 
-int cli_sde_method(const dyn_tableau *m)
-{
-    return m == &rkmil_method         ? DYN_SDE_RKMIL
-           : m == &sriw1_method       ? DYN_SDE_SRIW1
-           : m && dyn_method_is_map(m) ? DYN_SDE_MAP
-                                       : DYN_SDE_EM;
-}
+int cli_sde_method(const dyn_tableau *m) { return dyn_run_sde_method(m); }
 
 const dyn_tableau *cli_cvode_method(void)
 {
 #ifdef DYNKIT_HAVE_CVODE
-    return &cvode_method;
+    return dyn_run_method_cvode();
 #else
     return NULL;
 #endif
@@ -131,16 +80,8 @@ const dyn_tableau *cli_method_find(const char *name)
     for (size_t i = 0; i < sizeof matlab_solvers / sizeof matlab_solvers[0]; i++)
         if (strcmp(name, matlab_solvers[i].matlab) == 0)
             return matlab_solvers[i].method ? dyn_method_find(matlab_solvers[i].method) : NULL;
-    const dyn_tableau *m = dyn_method_find(name);
-    if (!m && strcmp(name, "cvode") == 0)
-        m = cli_cvode_method();
-    if (!m && strcmp(name, "rkmil") == 0)
-        m = &rkmil_method;
-    if (!m && strcmp(name, "volterra") == 0)
-        m = &volterra_method;
-    if (!m && strcmp(name, "sriw1") == 0)
-        m = &sriw1_method;
-    return m;
+    const dyn_tableau *m = dyn_run_method_find(name);
+    return m == dyn_run_method_cvode() ? cli_cvode_method() : m;
 }
 
 char *cli_method_names(char *buf, size_t size)

@@ -13,20 +13,11 @@ const char *cli_model_method(const dyn_model *m)
     return m->method ? m->method : DYN_MODEL_METHOD;
 }
 
-/* A model with noise that names no tolerances: rkmil's (strong order 1: 1e-6 would take
- * millions of steps where 1e-3 takes hundreds; docs/solvers.md, "Noise") */
-#define CLI_NOISE_RTOL 1e-3
-#define CLI_NOISE_ATOL 1e-6
+/* The library's rule (dyn_run_default_rtol): the model's own, else dynkit's default, or
+ * rkmil's 1e-3 and 1e-6 for a model with noise. */
+double cli_model_rtol(const dyn_model *m) { return dyn_run_default_rtol(m); }
 
-double cli_model_rtol(const dyn_model *m)
-{
-    return m->rtol > 0.0 ? m->rtol : m->n_noise > 0 ? CLI_NOISE_RTOL : DYN_MODEL_RTOL;
-}
-
-double cli_model_atol(const dyn_model *m)
-{
-    return m->atol > 0.0 ? m->atol : m->n_noise > 0 ? CLI_NOISE_ATOL : DYN_MODEL_ATOL;
-}
+double cli_model_atol(const dyn_model *m) { return dyn_run_default_atol(m); }
 
 static int has_ext(const char *path, const char *ext)
 {

@@ -16,10 +16,4 @@ int cli_run_at_steps(const cli_run *run)
     return !(samples <= (double)CLI_MAX_GRID_SAMPLES);
 }
 
-int cli_run_resets(const cli_run *run)
-{
-    int count = 0;
-    for (int i = 0; i < run->model->n_events; i++)
-        count += run->model->events[i].reset != NULL;
-    return count;
-}
+int cli_run_resets(const cli_run *run) { return dyn_run_resets(run->model); }

@@ -6,6 +6,7 @@
 #include "dynkit/ode.h"
 #include "dynkit/solve.h"
 #include "dynkit/ivp.h"
+#include "dynkit/run.h"
 #include "dynkit/model.h"
 #include "dynkit/models.h"
 #include "dynkit/cart.h"

@@ -21,6 +21,7 @@
 
 #include <stddef.h>
 
+#include "dynkit/model.h"
 #include "dynkit/ode.h"
 
 #ifdef __cplusplus
@@ -80,6 +81,12 @@ int dyn_cvode_solve(const dyn_system *sys, double t0, const double *y0, const do
 int dyn_cvode_solve_steps(const dyn_system *sys, double t0, double t1, const double *y0,
                           const dyn_cvode_opts *opts, dyn_output_fn output, void *ctx,
                           double *y, dyn_result *res);
+
+/* dyn_run's CVODE family (dynkit/run.h): the run of model m as dyn_run_opts ro asks, at
+ * its output times, its grid or every step; a dyn_run_cvode_fn for dyn_run_backends. */
+struct dyn_run_opts;
+int dyn_cvode_run(const dyn_model *m, void *par, const double *y0, const struct dyn_run_opts *ro,
+                  dyn_output_fn output, void *output_ctx, double *y, dyn_result *res);
 
 /* Version string of the SUNDIALS the backend was built with, e.g. "6.4.1". */
 const char *dyn_cvode_version(void);

@@ -2,20 +2,20 @@
 /* A run of a delay model (dyn_model.delay, dynkit/delay.h): the history is attached to the
  * run's parameters, fed by dyn_solve's step callback with every accepted step's dense
  * output, and the adaptive steps land on the breaking points of the constant lags. The
- * store grows here (the library never allocates); with the model's maximal delay only the
- * steps within it are kept. */
+ * store grows here, between steps (the drivers never allocate); with the model's maximal
+ * delay only the steps within it are kept. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
 #include "dynkit/delay.h"
+#include "run_internal.h"
 
 /* breaking points at most (they come from at most DYN_DELAY_MAX_LAGS lags and the order) */
 #define DELAY_MAX_BREAKS 4096
 
-int cli_delay_grow(dyn_history *h, void *ctx)
+int run_history_grow(dyn_history *h, void *ctx)
 {
     (void)ctx;
     const long cap = h->capacity ? 2 * h->capacity : 256;
@@ -28,30 +28,24 @@ int cli_delay_grow(dyn_history *h, void *ctx)
     return 0;
 }
 
-int cli_delay_start(const cli_run *run, cli_delay *cd, dyn_solve_opts *opts, char *err,
+int run_delay_start(const run_ctx *rc, run_delay *cd, dyn_solve_opts *opts, char *err,
                     size_t errlen)
 {
-    const dyn_model *m = run->model;
+    const dyn_model *m = rc->m;
+    const dyn_run_opts *o = rc->o;
     const dyn_delay_model *dm = m->delay;
     memset(cd, 0, sizeof *cd);
     if (!dm)
         return 0;
-    if (cli_method_is_cvode(run->method)) {
-        snprintf(err, errlen,
-                 "model %s has delays (delay(x, tau)), which the cvode backend cannot read: use "
-                 "dp45, dop853, rk4 or rodas4",
-                 m->name);
-        return 1;
-    }
     cd->history = calloc(1, sizeof *cd->history);
     if (!cd->history) {
         snprintf(err, errlen, "out of memory");
         return 1;
     }
-    cd->history->grow = cli_delay_grow;
-    dyn_history_init(cd->history, m->n_states, dyn_method_dense_degree(run->method), run->t0,
-                     run->y0, dm->history, run->par, dm->max_delay, NULL, 0);
-    dm->attach(run->par, cd->history);
+    cd->history->grow = run_history_grow;
+    dyn_history_init(cd->history, m->n_states, dyn_method_dense_degree(o->method), o->t0,
+                     rc->y0, dm->history, rc->par, dm->max_delay, NULL, 0);
+    dm->attach(rc->par, cd->history);
     opts->step = dyn_history_push;
     opts->step_ctx = cd->history;
     if (dm->n_lags > 0 && dm->lags) {
@@ -66,7 +60,7 @@ int cli_delay_start(const cli_run *run, cli_delay *cd, dyn_solve_opts *opts, cha
             snprintf(err, errlen, "out of memory");
             return 1;
         }
-        dm->lags(run->par, all);
+        dm->lags(rc->par, all);
         memcpy(lags, all, (size_t)nl * sizeof *lags);
         free(all);
         for (int k = 0; k < nl; k++)
@@ -90,7 +84,7 @@ int cli_delay_start(const cli_run *run, cli_delay *cd, dyn_solve_opts *opts, cha
         for (int k = 0; k < nl; k++)
             if (lags[k] > 0.0)
                 lags[np++] = lags[k];
-        cd->n_breaks = dyn_delay_breaks(run->t0, run->t1, lags, np, run->method->order + 1,
+        cd->n_breaks = dyn_delay_breaks(o->t0, o->t1, lags, np, o->method->order + 1,
                                         cd->breaks, DELAY_MAX_BREAKS);
         opts->stops = cd->breaks;
         opts->n_stops = cd->n_breaks;
@@ -98,11 +92,11 @@ int cli_delay_start(const cli_run *run, cli_delay *cd, dyn_solve_opts *opts, cha
     return 0;
 }
 
-void cli_delay_finish(const cli_run *run, cli_delay *cd, dyn_result *res)
+void run_delay_finish(const run_ctx *rc, run_delay *cd, dyn_result *res)
 {
     if (!cd->history)
         return;
-    const dyn_model *m = run->model;
+    const dyn_model *m = rc->m;
     if (cd->history->failed && res->status != DYN_OK) {
         /* the run stopped on the NaN of a refused lag: say why */
         const char **names = malloc((size_t)m->n_states * sizeof *names);
@@ -113,7 +107,7 @@ void cli_delay_finish(const cli_run *run, cli_delay *cd, dyn_result *res)
         res->fail_t = cd->history->fail_t;
         res->fail_index = -1; /* the message says it all */
     }
-    m->delay->attach(run->par, NULL);
+    m->delay->attach(rc->par, NULL);
     free(cd->history->data);
     free(cd->history);
     free(cd->breaks);

@@ -1,0 +1,143 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""dynkit.Model: a built-in model or a model file (.ode, .mech, .c), its description and
+its runs through the library's one entry (dyn_run), as `dynkit run` makes them."""
+from __future__ import annotations
+
+import json
+from typing import Any, Dict, List, Optional, Sequence
+
+import numpy as np
+
+from . import _core
+
+__all__ = ["Model", "Run", "models", "report"]
+
+
+def models() -> List[str]:
+    """The names of the built-in models (`dynkit models`)."""
+    return _core.models()
+
+
+def report() -> Dict[str, Any]:
+    """The homework's answers as `dynkit report --json` gives them, as a dict."""
+    return json.loads(_core.report_json())
+
+
+class Run:
+    """The samples of one run: t (n,), y (n, states), outputs (n, outputs) or None, names and
+    units of the columns, status, message, stats (steps, rhs_calls, ...), events (name, t).
+    run["NAME"] is a column by name; run.to_dataframe() a pandas DataFrame."""
+
+    def __init__(self, raw: Dict[str, Any], model: "Model"):
+        self.t: np.ndarray = raw["t"].ravel()
+        self.y: np.ndarray = raw["y"]
+        self.outputs: Optional[np.ndarray] = raw["outputs"]
+        self.status: int = raw["status"]
+        self.message: str = raw["message"]
+        self.stats: Dict[str, int] = raw["stats"]
+        self.events: List[tuple] = raw["events"]
+        self.names: List[str] = ["t"] + model.states
+        self.units: List[str] = [model.time_unit] + [u for _, u, _ in model.info["states"]]
+        if self.outputs is not None:
+            self.names += model.outputs
+            self.units += [u for _, u, _ in model.info["outputs"]]
+
+    @property
+    def success(self) -> bool:
+        return self.status == 0
+
+    def column(self, name: str) -> np.ndarray:
+        if name == "t":
+            return self.t
+        if name not in self.names:
+            raise KeyError(f"no column '{name}' (columns: {', '.join(self.names)})")
+        i = self.names.index(name) - 1
+        n = self.y.shape[1]
+        return self.y[:, i] if i < n else self.outputs[:, i - n]
+
+    __getitem__ = column
+
+    def table(self) -> np.ndarray:
+        """All columns side by side, in `dynkit run`'s order (t, states, outputs)."""
+        parts = [self.t[:, None], self.y] + ([self.outputs] if self.outputs is not None else [])
+        return np.hstack(parts)
+
+    def to_dataframe(self):
+        """A pandas DataFrame of the columns (pandas must be installed)."""
+        import pandas as pd  # optional
+        return pd.DataFrame(self.table(), columns=self.names)
+
+    def __repr__(self) -> str:
+        return (f"Run({len(self.t)} samples of {', '.join(self.names)}; "
+                f"status {self.status}{': ' + self.message if self.message else ''})")
+
+
+class Model:
+    """A model by name (`dynkit models`: pendulum, vanderpol, plane, cart, ...) or path (an
+    XPPAUT .ode file, a mechanism .mech, a C file defining dynkit_model()), compiled to
+    native code as `dynkit run` compiles it."""
+
+    def __init__(self, name_or_path: str):
+        self._core = _core.Model(str(name_or_path))
+        self.info: Dict[str, Any] = self._core.info()
+        self.name: str = self.info["name"]
+        self.states: List[str] = [n for n, _, _ in self.info["states"]]
+        self.parameters: Dict[str, float] = {n: v for n, _, _, v in self.info["parameters"]}
+        self.units: Dict[str, str] = {n: u for n, u, _ in self.info["states"]}
+        self.units.update({n: u for n, u, _, _ in self.info["parameters"]})
+        self.units.update({n: u for n, u, _ in self.info["outputs"]})
+        self.outputs: List[str] = [n for n, _, _ in self.info["outputs"]]
+        self.initial: Dict[str, float] = dict(zip(self.states, self.info["initial"]))
+        self.time_unit: str = self.info["time_unit"]
+
+    def __repr__(self) -> str:
+        return f"Model({self.name!r}: states {self.states}, parameters {list(self.parameters)})"
+
+    def run(self, method: Optional[str] = None, tspan: Optional[Sequence[float]] = None,
+            step: Optional[float] = None, init: Optional[Dict[str, float]] = None,
+            set: Optional[Dict[str, float]] = None, y0: Optional[Sequence[float]] = None,
+            rtol: float = 0.0, atol: float = 0.0, times: Optional[Sequence[float]] = None,
+            max_step: float = 0.0, first_step: float = 0.0, max_steps: Optional[int] = None,
+            every: int = 0, seed: int = 0, outputs: bool = False,
+            events: Optional[Sequence[str]] = None) -> Run:
+        """One run, with `dynkit run`'s options as keywords: method (default the model's),
+        tspan=(t0, t1), step, init={state: value} (over the model's initial state, which
+        may follow the parameters), set={parameter: value}, or y0 (every state), rtol, atol
+        (default the model's), times (output times), max_step, first_step, max_steps, every,
+        seed (noise), outputs (the model's extra outputs), events (names of the model's
+        events to report). Raises ValueError or KeyError naming a bad option."""
+        t0, t1 = (self.info["t0"], self.info["t1"]) if tspan is None else map(float, tspan)
+        params = dict(set or {})
+        for k in params:
+            if k not in self.parameters:
+                raise KeyError(f"model {self.name} has no parameter '{k}' "
+                               f"(parameters: {', '.join(self.parameters)})")
+        start = None
+        if y0 is not None:
+            start = np.asarray(y0, dtype=float)
+        elif init:
+            base = self._initial_for(params)
+            for k, v in init.items():
+                if k not in self.states:
+                    raise KeyError(f"model {self.name} has no state '{k}' "
+                                   f"(states: {', '.join(self.states)})")
+                base[self.states.index(k)] = float(v)
+            start = base
+        kw: Dict[str, Any] = dict(method=method, t0=float(t0), t1=float(t1), y0=start,
+                                  params=params, rtol=float(rtol), atol=float(atol),
+                                  times=None if times is None else np.asarray(times, float),
+                                  max_step=float(max_step), first_step=float(first_step),
+                                  max_steps=-1 if max_steps is None else int(max_steps),
+                                  every=int(every), seed=int(seed), outputs=bool(outputs),
+                                  events=list(events) if events else None)
+        if step is not None:
+            kw["step"] = float(step)
+        return Run(self._core.run(**kw), self)
+
+    def _initial_for(self, params: Dict[str, float]) -> np.ndarray:
+        """The model's initial state for these parameters (a run of no length asks it)."""
+        if not params:
+            return np.array(self.info["initial"], dtype=float)
+        probe = self._core.run(method="euler", t0=0.0, t1=1.0, step=1.0, params=params,
+                               max_steps=-1)
+        return probe["y"][0].copy()

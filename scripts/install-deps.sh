@@ -22,6 +22,7 @@ packages+=(libopenmpi-dev openmpi-bin) # backends/mpi: sweeps over MPI ranks (op
 packages+=(libmatio-dev python3-numpy python3-scipy python3-sympy octave)
 # the Python package (bindings/python) and its tests (tests/python, pytest)
 packages+=(python3-dev python3-pytest)
+packages+=(liboctave-dev) # mkoctfile: the MEX functions for Octave (bindings/matlab)
 packages+=(man-db) # tests/test_manpage.c renders docs/dynkit.1
 packages+=(xppaut) # tests/xppaut: .ode files run by XPPAUT itself and compared
 packages+=(libclang-rt-dev) # fuzz/: libFuzzer and the sanitizers' runtime for clang (CI)

@@ -134,6 +134,75 @@ class Model:
             kw["step"] = float(step)
         return Run(self._core.run(**kw), self)
 
+    def default_box(self, set: Optional[Dict[str, float]] = None,
+                    init: Optional[Dict[str, float]] = None) -> Dict[str, tuple]:
+        """`dynkit equilibria`'s default box: the range of each state over the model's default
+        run widened by half its width (at least 1) on each side; the file's @ xlo..yhi win
+        for the states of its phase plane."""
+        run = self.run(set=set, init=init)
+        lo, hi = run.y.min(axis=0), run.y.max(axis=0)
+        margin = np.maximum(0.5 * (hi - lo), 1.0)
+        box = {name: (float(lo[i] - margin[i]), float(hi[i] + margin[i]))
+               for i, name in enumerate(self.states)}
+        window = self.info["phase_window"]
+        for axis, name in enumerate((self.info["phase_x"], self.info["phase_y"])):
+            if name in box and window[2 * axis] < window[2 * axis + 1]:
+                box[name] = (window[2 * axis], window[2 * axis + 1])
+        return box
+
+    def equilibria(self, box: Optional[Dict[str, Sequence[float]]] = None,
+                   set: Optional[Dict[str, float]] = None,
+                   init: Optional[Dict[str, float]] = None, starts: int = 0) -> Dict[str, Any]:
+        """Every equilibrium in a box, as `dynkit equilibria --json`: {"equilibria":
+        [{"state": {NAME: value}, "eigenvalues": [[re, im], ...], "type": "...",
+        "residual": r, "manifolds": [stable, unstable, centre]}], ...}. box: {state: (lo,
+        hi)} for the states it names, the default box (default_box) for the others; the
+        initial state (with init) is a start too. A discrete map's fixed points and
+        multipliers. Eigenvalues need the LAPACK backend (else the types are
+        "unclassified")."""
+        full = self.default_box(set, init)
+        for k, v in (box or {}).items():
+            if k not in full:
+                raise KeyError(f"model {self.name} has no state '{k}'")
+            if len(v) != 2 or not v[0] <= v[1]:
+                raise ValueError(f"box of {k}: give (lo, hi) with lo <= hi")
+            full[k] = (float(v[0]), float(v[1]))
+        guess = self._initial_for(dict(set or {}))
+        for k, v in (init or {}).items():
+            guess[self.states.index(k)] = float(v)
+        return self._core.equilibria([full[s][0] for s in self.states],
+                                     [full[s][1] for s in self.states], params=set,
+                                     guess=guess, starts=int(starts))
+
+    def lyapunov(self, spectrum: bool = False, exponents: int = 1,
+                 tspan: Optional[Sequence[float]] = None, transient: Optional[float] = None,
+                 tau: Optional[float] = None, rtol: float = 0.0, atol: float = 0.0,
+                 set: Optional[Dict[str, float]] = None,
+                 init: Optional[Dict[str, float]] = None) -> Dict[str, Any]:
+        """The Lyapunov exponents along the trajectory from the initial state, as `dynkit
+        lyapunov --json`: {"exponents": [...] largest first, "errors": [...]} (Benettin's
+        method on the variational equations). spectrum: all of them; exponents: the k
+        largest. tspan (default the model's span; a map: iterations), transient (default a
+        tenth of it), tau (default min(10 step, the averaging time / 10); a map: 1)."""
+        t0, t1 = (self.info["t0"], self.info["t1"]) if tspan is None else map(float, tspan)
+        span = t1 - t0
+        trans = 0.1 * span if transient is None else float(transient)
+        if not 0 <= trans < span:
+            raise ValueError(f"transient {trans}: from 0 to below the span {span}")
+        avg = span - trans
+        if self.info["map"]:
+            tau_ = 1.0  # a map: every iteration, and its time steps by 1
+        else:
+            tau_ = min(10.0 * self.info["step"], avg / 10) if tau is None else float(tau)
+        y0 = self._initial_for(dict(set or {}))
+        for k, v in (init or {}).items():
+            if k not in self.states:
+                raise KeyError(f"model {self.name} has no state '{k}'")
+            y0[self.states.index(k)] = float(v)
+        k = len(self.states) if spectrum else int(exponents)
+        return self._core.lyapunov(k, float(t0), y0, trans, avg, tau_, float(rtol),
+                                   float(atol), params=set)
+
     def _initial_for(self, params: Dict[str, float]) -> np.ndarray:
         """The model's initial state for these parameters (a run of no length asks it)."""
         if not params:

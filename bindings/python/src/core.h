@@ -47,5 +47,7 @@ void dkpy_samples_free(dkpy_samples *s);
 /* The functions of the module (ivp.c, model.c, module.c). */
 PyObject *dkpy_solve_ivp(PyObject *self, PyObject *args, PyObject *kwargs);
 PyObject *dkpy_ivp_eval(PyObject *self, PyObject *args);
+PyObject *dkpy_model_equilibria(PyObject *self, PyObject *args, PyObject *kwargs);
+PyObject *dkpy_model_lyapunov(PyObject *self, PyObject *args, PyObject *kwargs);
 
 #endif /* DYNKIT_PY_CORE_H */

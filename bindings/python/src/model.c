@@ -81,12 +81,16 @@ static PyObject *model_info(dkpy_model *self, PyObject *noargs)
         PyList_SET_ITEM(events, i, PyUnicode_FromString(m->events[i].name));
     free(par);
     free(y0);
+    const dyn_tableau *method = dyn_run_method_find(m->method ? m->method : DYN_MODEL_METHOD);
+    const int map = method && dyn_method_is_map(method);
     const char *kind = m->n_noise > 0 ? "noise"
                        : m->delay     ? "delay"
                        : m->volterra  ? "volterra"
                                       : "ode";
     PyObject *info = Py_BuildValue(
-        "{s:s,s:s,s:s,s:N,s:N,s:N,s:N,s:N,s:N,s:d,s:d,s:d,s:s,s:d,s:d,s:s,s:s,s:s}", "name",
+        "{s:s,s:s,s:s,s:N,s:N,s:N,s:N,s:N,s:N,s:d,s:d,s:d,s:s,s:d,s:d,s:s,s:s,s:s,s:z,s:z,"
+        "s:[dddd],s:O}",
+        "name",
         m->name, "title", m->title ? m->title : "", "description",
         m->description ? m->description : "", "states", vars(m->states, m->n_states),
         "parameters", params, "outputs", vars(m->outputs, m->n_outputs), "initial", init,
@@ -94,7 +98,9 @@ static PyObject *model_info(dkpy_model *self, PyObject *noargs)
         "step", m->step, "method", m->method ? m->method : DYN_MODEL_METHOD, "rtol",
         dyn_run_default_rtol(m), "atol", dyn_run_default_atol(m), "time_unit",
         m->time_unit && m->time_unit[0] ? m->time_unit : "s", "kind", kind, "source",
-        self->opened.path);
+        self->opened.path, "phase_x", m->phase_x, "phase_y", m->phase_y, "phase_window",
+        m->phase_window[0], m->phase_window[1], m->phase_window[2], m->phase_window[3], "map",
+        map ? Py_True : Py_False);
     return info;
 }
 
@@ -346,6 +352,10 @@ static PyMethodDef model_methods[] = {
      "The model's name, states, parameters (with their values), outputs, units, defaults."},
     {"run", (PyCFunction)(void (*)(void))model_run, METH_VARARGS | METH_KEYWORDS,
      "One run through dyn_run, the library's entry for every kind of model."},
+    {"equilibria", (PyCFunction)(void (*)(void))dkpy_model_equilibria,
+     METH_VARARGS | METH_KEYWORDS, "Every equilibrium in the box lo..hi (analysis.c)."},
+    {"lyapunov", (PyCFunction)(void (*)(void))dkpy_model_lyapunov,
+     METH_VARARGS | METH_KEYWORDS, "The k largest Lyapunov exponents (analysis.c)."},
     {NULL, NULL, 0, NULL},
 };
 

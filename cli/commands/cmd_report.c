@@ -25,7 +25,11 @@ static void report_help(void)
          "  --html FILE   write the report as one self-contained HTML page (no network):\n"
          "                the answers beside the plots and animations that explain them\n"
          "                (FILE '-' is standard output); nothing else is printed unless\n"
-         "                --json is given too");
+         "                --json is given too\n"
+         "  --threads N   run the studies on N threads (default: every core); the numbers\n"
+         "                are the same bits for any N\n"
+         "  --no-studies  the answers only, without the three studies (their values are\n"
+         "                then absent from the text, the JSON and the page)");
 }
 
 /* What one writer of the library prints, as a NUL-terminated string (malloc'd) or NULL. */

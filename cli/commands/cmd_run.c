@@ -170,7 +170,7 @@ static void run_help(void)
          "(0.1, not 0.10000000000000001). Fixed-step methods (euler, heun,\n"
          "rk4, ...) take steps of --step; adaptive methods (bs23 = ode23, dp45 = ode45,\n"
          "dop853; for stiff problems rodas4, and cvode when built with SUNDIALS) choose their\n"
-         "steps to meet --rtol/--atol (defaults: the model's, else 1e-3 and 1e-6 like MATLAB)\n"
+         "steps to meet --rtol/--atol (defaults: the model's, else 1e-6 and 1e-9)\n"
          "and interpolate the samples on the --step grid or at --times (without either: the\n"
          "model's grid, or every accepted step when that grid exceeds 1e6 samples or the\n"
          "model asks for it). Without --method a model runs its default method ('dynkit info\n"

@@ -53,8 +53,7 @@ static void verify_help(void)
          "fired). cvode is included when dynkit is built with SUNDIALS.\n"
          "\n"
          "  --quick          a subset (rtol 1e-3 and 1e-6, two step sizes, 20000 steps at\n"
-         "                   most on stiff problems): every problem and method, in well\n"
-         "                   under a second\n"
+         "                   most on stiff problems): every problem and method\n"
          "  --json           one JSON object: {\"problems\": [...], \"rows\": [...], ...}\n"
          "  --problem NAME   only this problem\n"
          "  --method NAME    only this method\n"
@@ -64,7 +63,7 @@ static void verify_help(void)
          "accepted and rejected), MS (milliseconds), NOTE.\n"
          "Exit status: 0 when every run did what it should (explicit methods giving up on\n"
          "stiff problems included), 1 when a run failed unexpectedly, 2 for a bad command\n"
-         "line. The whole table takes a few seconds.");
+         "line.");
 }
 
 static double wall_seconds(void)

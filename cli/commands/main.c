@@ -18,7 +18,7 @@ static void main_help(void)
          "  models         list the built-in models\n"
          "  methods        list the integration methods\n"
          "  info MODEL     states, parameters, units and defaults of a model\n"
-         "  inverse cart   inverse dynamics of the cart: force table of a prescribed motion\n"
+         "  inverse cart|FILE.mech  inverse dynamics: the forces of a prescribed motion\n"
          "  report         every answer of the homework, computed now (--json, --html FILE)\n"
          "  animate MODEL  a run as an HTML page that plays the motion (--compare METHOD)\n"
          "  plot MODEL     a run as an SVG line plot (--y NAME,... [--x NAME])\n"
@@ -83,8 +83,10 @@ int main(int argc, char **argv)
         main_help();
         return CLI_USAGE;
     }
-    /* dynkit help [COMMAND]: the same as dynkit [COMMAND] --help */
+    /* dynkit help [COMMAND]: the same as dynkit [COMMAND] --help; 'help help' is this text */
     static char help_flag[] = "--help";
+    if (strcmp(argv[1], "help") == 0 && argc > 2 && strcmp(argv[2], "help") == 0)
+        argc = 2;
     if (strcmp(argv[1], "help") == 0) {
         argv[1] = argc > 2 ? argv[2] : help_flag;
         argv[2] = argc > 2 ? help_flag : NULL;

@@ -8,7 +8,9 @@
  * - "did you mean" for misspelt methods, options (run, verify, inverse), parameters and
  *   states; a state given to --set is named as one;
  * - angles in degrees (45deg is pi/4 exactly as the parser computes it);
- * - --output - is standard output (run, inverse, animate, plot). */
+ * - --output - is standard output (run, inverse, animate, plot);
+ * - run --help names each option once and gives the tolerances a model that names none runs
+ *   at (DYN_MODEL_RTOL, DYN_MODEL_ATOL of model.h), as info does. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -17,6 +19,8 @@
 
 #include <cmocka.h>
 
+#include "dynkit/io.h"
+#include "dynkit/model.h"
 #include "test_cli_run.h"
 #include "test_util.h"
 
@@ -35,6 +39,11 @@ static void test_help_command(void **state)
     cli_result a = cli("help"), b = cli("--help");
     CHECK(a.status == 0 && strcmp(a.out, b.out) == 0 && strstr(a.out, "help [COMMAND]"),
           "dynkit help: %s", a.out);
+    cli_free(&a);
+    /* the help of help is the overview */
+    a = cli("help help");
+    CHECK(a.status == 0 && strcmp(a.out, b.out) == 0, "dynkit help help (exit %d): %s%s",
+          a.status, a.out, a.err);
     cli_free(&a);
     cli_free(&b);
     a = cli("hlep");
@@ -147,6 +156,43 @@ static int teardown(void **state)
     return cli_teardown_files(NULL);
 }
 
+/* run --help: every option at the start of a line once, and the default tolerances those of
+ * model.h (what info prints for a model that names none) */
+static void test_run_help_says_what_is_so(void **state)
+{
+    (void)state;
+    cli_result h = cli("run --help");
+    CHECK(h.status == 0, "%s", h.err);
+    char *seen = calloc(1, h.out_len + 1);
+    size_t seen_len = 0;
+    for (const char *line = h.out; line && *line; line = strchr(line, '\n')) {
+        if (*line == '\n')
+            line++;
+        const char *p = line;
+        while (*p == ' ')
+            p++;
+        if (p - line != 2 || strncmp(p, "--", 2) != 0)
+            continue;
+        size_t n = strcspn(p, " \n");
+        char name[64];
+        snprintf(name, sizeof name, "|%.*s|", (int)n, p);
+        CHECK(!strstr(seen, name), "run --help lists %s twice", name);
+        memcpy(seen + seen_len, name, strlen(name));
+        seen_len += strlen(name);
+    }
+    free(seen);
+    char rtol[64], atol[64];
+    snprintf(rtol, sizeof rtol, "else %s", dyn_shortest(DYN_MODEL_RTOL).s);
+    snprintf(atol, sizeof atol, "else %s", dyn_shortest(DYN_MODEL_ATOL).s);
+    CHECK(strstr(h.out, rtol) && strstr(h.out, atol), "run --help does not say '%s' and '%s'",
+          rtol, atol);
+    cli_result info = cli("info %s/examples/models/lorenz.ode", DYNKIT_SOURCE_DIR);
+    snprintf(rtol, sizeof rtol, "--rtol %s (dynkit's default", dyn_shortest(DYN_MODEL_RTOL).s);
+    CHECK(info.status == 0 && strstr(info.out, rtol), "info: %s%s", info.out, info.err);
+    cli_free(&info);
+    cli_free(&h);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -155,6 +201,7 @@ int main(void)
         cmocka_unit_test(test_did_you_mean),
         cmocka_unit_test(test_degrees),
         cmocka_unit_test(test_output_dash_is_stdout),
+        cmocka_unit_test(test_run_help_says_what_is_so),
     };
     return cmocka_run_group_tests(tests, cli_setup, teardown);
 }

@@ -152,11 +152,18 @@ void dyn_eig_mode(double re, double im, double *wn, double *zeta);
  * decreasing; then the speeds, u <- u - D' (D D')^-1 h (linear: one step and one to
  * clean up rounding). D comes from central differences of h in u (exact but for rounding, h
  * being linear in u). Returns 0 with y projected, DYN_ERR_ARG when the rows are dependent
- * (*bad the first dependent constraint's index among the h outputs) or the coordinates do
- * not converge (*bad -1), with a message in err. The largest |f| and |h| left go to
- * residual[0], residual[1] (may be NULL). */
+ * (*bad the first dependent constraint's index among the h outputs) or when the coordinates
+ * do not reach the constraints, the largest |f| left above dyn_constraint_tolerance of the
+ * coordinates (*bad -1, y left at the coordinates with the smallest |f| found, that |f| in
+ * residual[0]), with a message in err. The largest |f| and |h| left go to residual[0],
+ * residual[1] (may be NULL). */
 int dyn_project_constraints(const dyn_model *cm, const void *par, double t, double *y,
                             double residual[2], int *bad, char *err, size_t errlen);
+
+/* The largest |value| of a constraint that holds at the n coordinates (or speeds) v:
+ * 1e-9 max(1, |v_j|), the scale capped at 1e6 (so 1e-3 at most: a coordinate of 1e16 rad
+ * does not make any value pass). */
+double dyn_constraint_tolerance(const double *v, int n);
 
 /* The constraints' values at (t, y) as dyn_project_constraints reads them: h (the outputs
  * "holonomic" and "speeds", m of them) and f (one per holonomic constraint, in h's order;

@@ -4,10 +4,12 @@
  * underdetermined system f(q) = 0 (the step q <- q - G^+ f with the pseudo-inverse
  * G^+ = G' (G G')^-1 of the full-rank Jacobian G = df/dq (dyn_holonomic_gradient, central
  * differences in q of the values f(t, q) — not dh/du, which is df/dq W with declared speeds
- * q' = W(q) u);
+ * q' = W(q) u), halved until |f|^2 decreases, and Levenberg-Marquardt's damped
+ * G' (G G' + mu I)^-1 where G G' is singular;
  * Nocedal & Wright, Numerical Optimization, 2nd ed., sec. 10.3 and 11.2), then the speeds'
- * linear system D u + h_t = 0 (D = dh/du) by the same minimal-norm solution. The normal
- * equations are solved by src/ode/cholesky.h. */
+ * linear system D u + h_t = 0 (D = dh/du) by the same minimal-norm solution. A projection
+ * that ends above dyn_constraint_tolerance is an error. The normal equations are solved by
+ * src/ode/cholesky.h. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -57,9 +59,10 @@ static int rows(pctx *p, const double *y)
     return 0;
 }
 
-/* x (n) -= R' (R R')^-1 v for the rows of J (D or F) picked by sel (all when NULL); the
- * index of the first dependent row, or -1 */
-static int min_norm_step(pctx *p, const double *J, const int *sel, const double *v, double *x)
+/* x (n) -= R' (R R' + mu I)^-1 v for the rows R of J (D or F) picked by sel (all when
+ * NULL); with mu = 0 the index of the first dependent row, or -1 */
+static int min_norm_step(pctx *p, const double *J, const int *sel, const double *v, double *x,
+                         double mu)
 {
     const int n = p->n;
     int k = 0, idx[512];
@@ -77,6 +80,11 @@ static int min_norm_step(pctx *p, const double *J, const int *sel, const double 
         }
         p->w[a] = v[idx[a]];
     }
+    double big = 0.0;
+    for (int a = 0; a < k; a++)
+        big = fmax(big, p->A[a * k + a]);
+    for (int a = 0; a < k; a++)
+        p->A[a * k + a] += mu * big;
     const int bad = dyn_cholesky_factor_tol(k, p->A, 1e-12, 1);
     if (bad)
         return idx[bad - 1];
@@ -96,6 +104,23 @@ static double largest(const double *v, const int *sel, int want, int m)
     return big;
 }
 
+static double squares(const double *v, const int *sel, int m)
+{
+    double s = 0.0;
+    for (int r = 0; r < m; r++)
+        if (sel[r])
+            s += v[r] * v[r];
+    return s;
+}
+
+double dyn_constraint_tolerance(const double *v, int n)
+{
+    double scale = 1.0;
+    for (int j = 0; j < n; j++)
+        scale = fmax(scale, fabs(v[j]));
+    return 1e-9 * fmin(scale, 1e6);
+}
+
 int dyn_project_constraints(const dyn_model *cm, const void *par, double t, double *y,
                             double residual[2], int *bad, char *err, size_t errlen)
 {
@@ -108,7 +133,7 @@ int dyn_project_constraints(const dyn_model *cm, const void *par, double t, doub
         return DYN_ERR_ARG;
     }
     pctx p = {cm, par, t, n, 0, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL};
-    double *buf = malloc(((size_t)mo * (4 + 2 * (size_t)n + (size_t)mo + 1) + (size_t)N +
+    double *buf = malloc(((size_t)mo * (4 + 2 * (size_t)n + (size_t)mo + 1) + 2 * (size_t)N +
                           (size_t)n + 1) * sizeof *buf);
     p.hol = malloc((size_t)mo * sizeof *p.hol);
     if (!buf || !p.hol) {
@@ -126,48 +151,67 @@ int dyn_project_constraints(const dyn_model *cm, const void *par, double t, doub
     p.A = p.F + (size_t)mo * n;
     p.w = p.A + (size_t)mo * mo;
     p.yy = p.w + mo;
-    double *best = p.yy + N; /* the coordinates with the smallest |f| so far */
-    memcpy(best, y, (size_t)n * sizeof *best);
+    double *step = p.yy + N, *trial = step + n; /* a step of the coordinates, a state */
     int rc = 0;
     p.m = dyn_constraint_values(cm, par, t, y, p.h, p.f, p.hol);
     if (p.m < 0) {
         snprintf(err, errlen, "the constraints' values failed at the initial state");
         rc = DYN_ERR_ARG;
     }
-    /* the coordinates: Gauss-Newton until |f| stops decreasing */
-    double prev = INFINITY;
-    for (int it = 0; it < 60 && !rc && p.m > 0; it++) {
+    /* the coordinates: Gauss-Newton until |f| stops decreasing, each step halved until
+     * the sum of the squares of f decreases (its direction is one of descent); at a state
+     * where the rows are dependent, Levenberg-Marquardt's damped step (R R' + mu I) */
+    for (int it = 0; it < 100 && !rc && p.m > 0; it++) {
         if ((rc = rows(&p, y)) != 0 || (rc = coordinate_rows(&p, y)) != 0) {
             snprintf(err, errlen, "the constraints' values failed while projecting");
             rc = DYN_ERR_ARG;
             break;
         }
-        const double now = largest(p.f, p.hol, 1, p.m);
+        const double now = largest(p.f, p.hol, 1, p.m), sq = squares(p.f, p.hol, p.m);
         double scale = 1.0;
         for (int j = 0; j < n; j++)
             scale = fmax(scale, fabs(y[j]));
-        if (!(now < prev)) { /* no progress: back to the best */
-            memcpy(y, best, (size_t)n * sizeof *y);
+        if (!isfinite(sq) || now == 0.0 || (now <= 4.0 * DBL_EPSILON * scale && it > 0))
             break;
-        }
-        memcpy(best, y, (size_t)n * sizeof *best);
-        if (now == 0.0 || (now <= 4.0 * DBL_EPSILON * scale && it > 0))
-            break;
-        prev = now;
         int any = 0;
         for (int r = 0; r < p.m; r++)
             any |= p.hol[r];
         if (!any)
             break;
-        const int dep = min_norm_step(&p, p.F, p.hol, p.f, y);
-        if (dep >= 0) {
-            *bad = dep;
-            snprintf(err, errlen, "the holonomic constraints' rows are dependent");
-            rc = DYN_ERR_ARG;
+        memset(step, 0, (size_t)n * sizeof *step);
+        if (min_norm_step(&p, p.F, p.hol, p.f, step, 0.0) >= 0) {
+            memset(step, 0, (size_t)n * sizeof *step);
+            min_norm_step(&p, p.F, p.hol, p.f, step, 1e-8);
         }
-        if (it == 59) {
-            snprintf(err, errlen, "the coordinates did not converge onto the constraints");
+        int taken = 0;
+        memcpy(trial, y, (size_t)N * sizeof *trial);
+        for (double alpha = 1.0; alpha > 1e-6 && !taken; alpha *= 0.5) {
+            for (int j = 0; j < n; j++)
+                trial[j] = y[j] + alpha * step[j];
+            if (dyn_constraint_values(cm, par, t, trial, p.hp, p.fp, p.hol) != p.m)
+                break;
+            taken = squares(p.fp, p.hol, p.m) < sq;
+        }
+        if (!taken)
+            break; /* no step decreases f: y is the best */
+        memcpy(y, trial, (size_t)n * sizeof *y);
+    }
+    /* the coordinates reached: within the tolerance, or the projection failed (y is left at
+     * the best coordinates found, for the caller to name what is left) */
+    if (!rc && p.m > 0) {
+        if (dyn_constraint_values(cm, par, t, y, p.h, p.f, p.hol) != p.m) {
+            snprintf(err, errlen, "the constraints' values failed while projecting");
             rc = DYN_ERR_ARG;
+        } else {
+            const double left = largest(p.f, p.hol, 1, p.m);
+            const double tol = dyn_constraint_tolerance(y, n);
+            if (!(left <= tol)) {
+                snprintf(err, errlen, "the coordinates did not reach the constraints: the "
+                         "largest value left is %.17g, the tolerance %.3g", left, tol);
+                if (residual)
+                    residual[0] = left;
+                rc = DYN_ERR_ARG;
+            }
         }
     }
     /* the speeds: linear, one step and one for rounding */
@@ -177,7 +221,7 @@ int dyn_project_constraints(const dyn_model *cm, const void *par, double t, doub
             rc = DYN_ERR_ARG;
             break;
         }
-        const int dep = min_norm_step(&p, p.D, NULL, p.h, y + n);
+        const int dep = min_norm_step(&p, p.D, NULL, p.h, y + n, 0.0);
         if (dep >= 0) {
             *bad = dep;
             snprintf(err, errlen, "the constraints' rows are dependent");
@@ -191,6 +235,11 @@ int dyn_project_constraints(const dyn_model *cm, const void *par, double t, doub
         } else {
             residual[0] = largest(p.f, p.hol, 1, p.m);
             residual[1] = largest(p.h, NULL, 0, p.m);
+            if (!(residual[1] <= dyn_constraint_tolerance(y + n, n))) {
+                snprintf(err, errlen, "the speeds did not reach the constraints: the largest "
+                         "value left is %.17g", residual[1]);
+                rc = DYN_ERR_ARG;
+            }
         }
     }
     free(buf);

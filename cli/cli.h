@@ -269,6 +269,7 @@ int cli_cmd_report(int argc, char **argv);
 int cli_cmd_verify(int argc, char **argv);
 int cli_cmd_sweep(int argc, char **argv);
 int cli_cmd_linearize(int argc, char **argv);
+int cli_cmd_continue(int argc, char **argv);
 int cli_cmd_derive(int argc, char **argv);
 int cli_cmd_equilibria(int argc, char **argv);
 int cli_cmd_lyapunov(int argc, char **argv);

@@ -29,6 +29,8 @@ static void main_help(void)
          "  linearize MODEL the Jacobian df/dy about a state (--init, --set; --equilibrium\n"
          "                 finds one), its eigenvalues and the stability; --vary NAME=A:B:N\n"
          "                 gives one block per value\n"
+         "  continue MODEL --par NAME  the bifurcation diagram: branches of equilibria,\n"
+         "                 folds, Hopf and branch points located (--output, --svg)\n"
          "  derive FILE.mech the equations of motion of a mechanism file as formulas\n"
          "  equilibria MODEL every equilibrium in a box (a map's fixed points), each with\n"
          "                 its eigenvalues and type (--box NAME=A:B,..., --json)\n"
@@ -65,6 +67,7 @@ int main(int argc, char **argv)
         {"verify", cli_cmd_verify},
         {"sweep", cli_cmd_sweep},
         {"linearize", cli_cmd_linearize},
+        {"continue", cli_cmd_continue},
         {"derive", cli_cmd_derive},
         {"equilibria", cli_cmd_equilibria},
         {"lyapunov", cli_cmd_lyapunov},
@@ -114,7 +117,7 @@ int main(int argc, char **argv)
     return cli_usage_error(NULL,
                            "unknown command '%s' (%s%s%saccepted: run, models, methods, info, "
                            "inverse, report, animate, plot, verify, sweep, linearize, derive, "
-                           "equilibria, lyapunov, help)",
+                           "equilibria, lyapunov, continue, help)",
                            argv[1], near ? "did you mean '" : "", near ? near : "",
                            near ? "'? " : "");
 }

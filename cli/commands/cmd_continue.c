@@ -1,0 +1,284 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* dynkit continue MODEL --par NAME [--par2 NAME] [--init/--set ...] [--at NAME=V1,...]
+ * [--opt NAME=VALUE] [--output FILE.csv] [--json] [--svg FILE]: the bifurcation diagram of a
+ * model (dyn_continue, dynkit/continuation.h) with XPPAUT's AUTO settings from the model
+ * file's @ lines, written as a summary of the special points, a CSV table of every point,
+ * JSON, and an SVG picture (cont_output.c). docs/analysis.md, "Continuation". */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "cont_output.h"
+#include "cont_settings.h"
+#include "util/out_file.h"
+
+#define CONT_MAX_AT 1000L
+
+static void continue_help(void)
+{
+    puts("Usage: dynkit continue MODEL --par NAME [--par2 NAME] [--init NAME=VALUE]...\n"
+         "                       [--set NAME=VALUE]... [--at NAME=V1,V2,...]\n"
+         "                       [--opt NAME=VALUE]... [--output FILE.csv|FILE.json]\n"
+         "                       [--json] [--svg FILE.svg] [--y NAME]\n"
+         "\n"
+         "Follows the equilibria f(x, p) = 0 of MODEL in the parameter NAME by pseudo-\n"
+         "arclength continuation from the model's initial state (with the --init values),\n"
+         "made an equilibrium by Newton's method first. Folds (LP), Hopf points (HB, with the\n"
+         "first Lyapunov coefficient l1: supercritical when l1 < 0, subcritical when l1 > 0),\n"
+         "branch points (BP; the other branch is followed both ways) are located to 1e-10\n"
+         "in the parameter; the branch's ends are EP, the values of --at are UZ. With --par2,\n"
+         "the curves of folds and of Hopf points through each LP and HB are followed in the\n"
+         "two parameters, with cusps (CP), Bogdanov-Takens (BT) and generalized Hopf (GH)\n"
+         "points located.\n"
+         "\n"
+         "Settings (XPPAUT's AUTO names): a model file's @ lines give them (ntst, ncol, nmax,\n"
+         "npr, ds, dsmin, dsmax, parmin, parmax, autoxmin, autoxmax, autoymin, autoymax),\n"
+         "--opt NAME=VALUE overrides them, and the rest are XPPAUT's defaults: ds=0.02\n"
+         "(its sign is the direction), dsmin=0.001, dsmax=0.5, nmax=200, parmin=0, parmax=2;\n"
+         "par2min, par2max bound the second parameter (default: none).\n"
+         "\n"
+         "Options:\n"
+         "  --par NAME           the parameter continued (required)\n"
+         "  --par2 NAME          a second parameter: curves of folds and Hopf points\n"
+         "  --init NAME=VALUE    a state of the starting guess (repeatable)\n"
+         "  --set NAME=VALUE     a parameter's value (repeatable); --par's is the start\n"
+         "  --at NAME=V1,V2,...  points computed at these values of the parameter (UZ);\n"
+         "                       NAME=A:B:N for N values from A to B\n"
+         "  --opt NAME=VALUE     an AUTO setting (repeatable), over the file's @ lines\n"
+         "  --jacobian SCHEME    df/dx: auto (default), analytic, central, richardson\n"
+         "  -o, --output FILE    .csv: one row per point: branch, kind, label, the\n"
+         "                       parameter(s), the states, min_ of each state (periodic\n"
+         "                       orbits: maxima in the state's column, minima in min_),\n"
+         "                       period, stable; .json: as --json; '-': CSV on stdout\n"
+         "  --json               everything as JSON on standard output, with the\n"
+         "                       eigenvalues (or Floquet multipliers) of each point\n"
+         "  --svg FILE           the diagram: the parameter against a state (--y NAME;\n"
+         "                       default the first state), stable solid, unstable dashed,\n"
+         "                       the special points labelled; with --par2 a second panel\n"
+         "                       shows the curves in the two parameters\n"
+         "\n"
+         "Examples:\n"
+         "  dynkit continue examples/models/lorenz.ode --par rho --init x=8.5 --init y=8.5 \\\n"
+         "      --init z=27 --set rho=28 --opt ds=-0.5 --opt parmin=1 --opt dsmax=1\n"
+         "  dynkit continue brusselator --par b --opt parmax=4 --output bru.csv");
+}
+
+typedef struct cont_args {
+    const char *par, *par2, *at, *output, *svg, *ynam, *scheme_text;
+    int json;
+    const char *opt[64];
+    int n_opt;
+} cont_args;
+
+static int parse_args(int argc, char **argv, char **pass, int *n_pass, cont_args *a)
+{
+    static const char *const options[] = {"--init", "--set",    "--par",    "--par2",
+                                          "--at",   "--output", "--svg",    "--y",
+                                          "--opt",  "--json",   "--jacobian"};
+    pass[(*n_pass)++] = argv[0];
+    for (int i = 1; i < argc; i++) {
+        const char *v = NULL;
+        int r = 0, done = 0;
+        const char *passed[] = {"init", "set"};
+        for (int k = 0; k < 2 && !done; k++)
+            if ((r = cli_option(argc, argv, &i, passed[k], &v)) != 0) {
+                if (r < 0)
+                    return cli_usage_error("continue", "option --%s needs a value", passed[k]);
+                pass[(*n_pass)++] = (char *)options[k];
+                pass[(*n_pass)++] = (char *)v;
+                done = 1;
+            }
+        const char *own[] = {"par", "par2", "at", "output", "svg", "y", "opt", "jacobian"};
+        const char **dest[] = {&a->par, &a->par2, &a->at, &a->output, &a->svg, &a->ynam, NULL,
+                               &a->scheme_text};
+        for (int k = 0; k < 8 && !done; k++)
+            if ((r = cli_option(argc, argv, &i, own[k], &v)) != 0) {
+                if (r < 0)
+                    return cli_usage_error("continue", "option --%s needs a value", own[k]);
+                if (k == 6) {
+                    if (a->n_opt == 64)
+                        return cli_usage_error("continue", "--opt: at most 64 of them");
+                    a->opt[a->n_opt++] = v;
+                } else {
+                    *dest[k] = v;
+                }
+                done = 1;
+            }
+        if (!done && strcmp(argv[i], "-o") == 0) {
+            if (i + 1 >= argc)
+                return cli_usage_error("continue", "option -o needs a value");
+            a->output = argv[++i];
+            done = 1;
+        }
+        if (done)
+            continue;
+        if (cli_flag(argv[i], "json"))
+            a->json = 1;
+        else
+            return cli_unknown_option("continue", argv[i], options, 11);
+    }
+    if (!a->par)
+        return cli_usage_error("continue", "missing --par NAME (the parameter to continue in)");
+    if (a->output && strcmp(a->output, "-") != 0) {
+        static const char *const exts[] = {".csv", ".json", NULL};
+        if (cli_out_check_extension("continue", "--output", a->output, exts) != CLI_OK)
+            return CLI_USAGE;
+    }
+    if (a->svg) {
+        static const char *const exts[] = {".svg", NULL};
+        if (cli_out_check_extension("continue", "--svg", a->svg, exts) != CLI_OK)
+            return CLI_USAGE;
+    }
+    return CLI_OK;
+}
+
+static int param_arg(const dyn_model *m, const char *opt, const char *name, int *ip)
+{
+    *ip = dyn_model_param_index(m, name);
+    if (*ip >= 0)
+        return CLI_OK;
+    char list[1024] = "";
+    size_t used = 0;
+    for (int k = 0; k < m->n_params && used + 2 < sizeof list; k++)
+        used += (size_t)snprintf(list + used, sizeof list - used, "%s%s", k ? ", " : "",
+                                 m->params[k].name);
+    return cli_usage_error("continue", "%s '%s': not a parameter of %s (accepted: %s)", opt,
+                           name, m->name, m->n_params ? list : "none: the model has none");
+}
+
+/* the settings: defaults, the file's @ lines, --opt */
+static int settings(const cont_args *a, const char *spec, const dyn_model *m, cont_settings *s)
+{
+    char err[512];
+    for (int k = 0; k < 4; k++)
+        s->window[k] = NAN;
+    const char *path = cli_model_path(m);
+    if (path && cli_has_extension(path, ".ode")) {
+        size_t len = 0;
+        char *text = cli_read_model_file(path, &len);
+        if (!text)
+            return CLI_USAGE;
+        const int bad = cont_settings_read_file(s, text, path, err, sizeof err);
+        free(text);
+        if (bad)
+            return cli_usage_error("continue", "%s", err);
+    }
+    (void)spec;
+    for (int k = 0; k < a->n_opt; k++) {
+        const char *eq = strchr(a->opt[k], '=');
+        if (!eq || eq == a->opt[k])
+            return cli_usage_error("continue", "--opt '%s': give NAME=VALUE", a->opt[k]);
+        char name[64];
+        snprintf(name, sizeof name, "%.*s", (int)(eq - a->opt[k]), a->opt[k]);
+        if (cont_settings_apply(s, name, eq + 1, "--opt", err, sizeof err))
+            return cli_usage_error("continue", "%s", err);
+    }
+    const dyn_cont_opts *o = &s->opts;
+    if (!(o->dsmin <= o->dsmax))
+        return cli_usage_error("continue", "dsmin = %g > dsmax = %g: give dsmin <= dsmax",
+                               o->dsmin, o->dsmax);
+    if (!(fabs(o->ds) >= o->dsmin && fabs(o->ds) <= o->dsmax))
+        return cli_usage_error("continue", "|ds| = %g is not within [dsmin, dsmax] = [%g, %g]",
+                               fabs(o->ds), o->dsmin, o->dsmax);
+    if (!(o->parmin < o->parmax))
+        return cli_usage_error("continue", "parmin = %g >= parmax = %g: give parmin < parmax",
+                               o->parmin, o->parmax);
+    return CLI_OK;
+}
+
+static int parse_scheme(const char *text, dyn_jac_scheme *s)
+{
+    static const char *const names[] = {"auto", "analytic", "central", "richardson"};
+    for (int k = 0; k < 4; k++)
+        if (strcmp(text, names[k]) == 0) {
+            *s = (dyn_jac_scheme)k;
+            return CLI_OK;
+        }
+    return cli_usage_error("continue",
+                           "--jacobian '%s': accepted: auto, analytic, central, richardson", text);
+}
+
+int cli_cmd_continue(int argc, char **argv)
+{
+    for (int i = 0; i < argc; i++)
+        if (cli_is_help(argv[i])) {
+            continue_help();
+            return CLI_OK;
+        }
+    if (argc < 1 || argv[0][0] == '-') {
+        char names[512];
+        return cli_usage_error("continue", "missing MODEL (accepted: %s, or a model file)",
+                               dyn_model_names(names, sizeof names));
+    }
+    char **pass = calloc((size_t)(2 * argc + 1), sizeof *pass);
+    if (!pass)
+        return CLI_FAILED;
+    int n_pass = 0;
+    cont_args a;
+    memset(&a, 0, sizeof a);
+    int rc = parse_args(argc, argv, pass, &n_pass, &a);
+    cli_run run;
+    memset(&run, 0, sizeof run);
+    if (rc == CLI_OK)
+        rc = cli_run_parse("continue", n_pass, pass, &run);
+    free(pass);
+    if (rc != CLI_OK) {
+        cli_run_free(&run);
+        return rc;
+    }
+    const dyn_model *m = run.model;
+    cont_settings s;
+    memset(&s, 0, sizeof s);
+    int ip = -1, ip2 = -1, iy = 0;
+    rc = param_arg(m, "--par", a.par, &ip);
+    if (rc == CLI_OK && a.par2)
+        rc = param_arg(m, "--par2", a.par2, &ip2);
+    if (rc == CLI_OK && ip2 == ip)
+        rc = cli_usage_error("continue", "--par2 %s: give another parameter than --par", a.par2);
+    if (rc == CLI_OK && (cli_param_is_size(m, a.par) || (a.par2 && cli_param_is_size(m, a.par2))))
+        rc = cli_usage_error("continue", "the size of %s cannot be continued in", m->name);
+    if (rc == CLI_OK && a.ynam && (iy = dyn_model_state_index(m, a.ynam)) < 0)
+        rc = cli_usage_error("continue", "--y '%s': not a state of %s", a.ynam, m->name);
+    if (rc == CLI_OK) {
+        dyn_cont_opts_default(&s.opts, ip);
+        s.opts.ip2 = ip2;
+        s.opts.t = run.t0;
+        rc = settings(&a, argv[0], m, &s);
+    }
+    if (rc == CLI_OK && a.scheme_text)
+        rc = parse_scheme(a.scheme_text, &s.opts.jac);
+    double *at = NULL;
+    long n_at = 0;
+    if (rc == CLI_OK && a.at) {
+        const char *eq = strchr(a.at, '=');
+        if (!eq || (size_t)(eq - a.at) != strlen(a.par) || strncmp(a.at, a.par, strlen(a.par)))
+            rc = cli_usage_error("continue", "--at '%s': give %s=V1,V2,... (the --par "
+                                 "parameter's values)", a.at, a.par);
+        else
+            rc = cli_parse_values("continue", a.at, eq + 1, CONT_MAX_AT, &at, &n_at);
+        s.opts.at = at;
+        s.opts.n_at = (int)n_at;
+    }
+    dyn_diagram d;
+    memset(&d, 0, sizeof d);
+    dyn_cont_info info;
+    memset(&info, 0, sizeof info);
+    if (rc == CLI_OK) {
+        const int st = dyn_continue(m, run.par, run.y0, &s.opts, &d, &info);
+        if (st) {
+            cli_error("continue: %s", info.message);
+            rc = CLI_FAILED;
+        } else if (info.message[0]) {
+            fprintf(stderr, "dynkit: note: %s\n", info.message);
+        }
+    }
+    if (rc == CLI_OK) {
+        const cont_view v = {m, run.par, &d, &s, iy};
+        rc = cont_write_outputs(&v, a.output, a.json, a.svg);
+    }
+    dyn_diagram_free(&d);
+    free(at);
+    cli_run_free(&run);
+    return rc;
+}

@@ -1,0 +1,255 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* cont_output.c — dynkit continue's tables (cont_output.h): a CSV row per point (branch,
+ * kind, label, the parameters, the states, their minima, period, stable), the same as JSON
+ * with each point's eigenvalues or Floquet multipliers, and a text summary of the branches
+ * and their special points. Numbers are the shortest decimals that read back exactly. */
+#include <math.h>
+#include <string.h>
+
+#include "cli.h"
+#include "cont_output.h"
+#include "pages/pages.h"
+#include "util/out_file.h"
+
+static double par_value(const cont_view *v, const dyn_branch *b, long k, int q)
+{
+    const double x = b->pts[k].par[q];
+    if (q == 1 && b->n_par == 1 && v->s->opts.ip2 >= 0)
+        return dyn_model_get_param(v->m, v->par, v->s->opts.ip2);
+    return x;
+}
+
+static void num(FILE *f, double x)
+{
+    if (isfinite(x))
+        fputs(CLI_NUM(x), f);
+}
+
+void cont_write_csv(FILE *f, const cont_view *v)
+{
+    const dyn_model *m = v->m;
+    const int two = v->s->opts.ip2 >= 0;
+    fprintf(f, "branch,kind,label,%s", m->params[v->s->opts.ip].name);
+    if (two)
+        fprintf(f, ",%s", m->params[v->s->opts.ip2].name);
+    for (int i = 0; i < m->n_states; i++)
+        fprintf(f, ",%s", m->states[i].name);
+    for (int i = 0; i < m->n_states; i++)
+        fprintf(f, ",min_%s", m->states[i].name);
+    fputs(",period,stable\n", f);
+    for (int bi = 0; bi < v->d->count; bi++) {
+        const dyn_branch *b = &v->d->branches[bi];
+        for (long k = 0; k < b->count; k++) {
+            const dyn_branch_point *p = &b->pts[k];
+            fprintf(f, "%d,%s,%s,", b->id, dyn_branch_kind_name(b->kind),
+                    dyn_cont_label_name(p->label));
+            num(f, par_value(v, b, k, 0));
+            if (two) {
+                fputc(',', f);
+                num(f, par_value(v, b, k, 1));
+            }
+            const double *x = b->x + (size_t)k * (size_t)b->n;
+            const double *xm = b->xmin ? b->xmin + (size_t)k * (size_t)b->n : x;
+            for (int i = 0; i < b->n; i++) {
+                fputc(',', f);
+                num(f, x[i]);
+            }
+            for (int i = 0; i < b->n; i++) {
+                fputc(',', f);
+                num(f, xm[i]);
+            }
+            fputc(',', f);
+            num(f, p->period);
+            fprintf(f, ",%s\n", p->stable < 0 ? "" : p->stable ? "1" : "0");
+        }
+    }
+}
+
+static void json_states(cli_json *j, const dyn_model *m, const double *x, int n)
+{
+    cli_json_begin_object(j);
+    for (int i = 0; i < n; i++) {
+        cli_json_key(j, m->states[i].name);
+        cli_json_number(j, x[i]);
+    }
+    cli_json_end_object(j);
+}
+
+void cont_write_json(FILE *f, const cont_view *v)
+{
+    const dyn_model *m = v->m;
+    const dyn_cont_opts *o = &v->s->opts;
+    cli_json j;
+    cli_json_init(&j, f, 17);
+    cli_json_begin_object(&j);
+    cli_json_key(&j, "model");
+    cli_json_string(&j, m->name);
+    cli_json_key(&j, "parameters");
+    cli_json_begin_array(&j);
+    cli_json_string(&j, m->params[o->ip].name);
+    if (o->ip2 >= 0)
+        cli_json_string(&j, m->params[o->ip2].name);
+    cli_json_end_array(&j);
+    cli_json_key(&j, "settings");
+    cli_json_begin_object(&j);
+    const char *names[] = {"ds", "dsmin", "dsmax", "parmin", "parmax"};
+    const double vals[] = {o->ds, o->dsmin, o->dsmax, o->parmin, o->parmax};
+    for (int k = 0; k < 5; k++) {
+        cli_json_key(&j, names[k]);
+        cli_json_number(&j, vals[k]);
+    }
+    cli_json_key(&j, "nmax");
+    cli_json_number(&j, (double)o->nmax);
+    cli_json_key(&j, "ntst");
+    cli_json_number(&j, o->ntst);
+    cli_json_key(&j, "ncol");
+    cli_json_number(&j, o->ncol);
+    cli_json_end_object(&j);
+    cli_json_key(&j, "branches");
+    cli_json_begin_array(&j);
+    for (int bi = 0; bi < v->d->count; bi++) {
+        const dyn_branch *b = &v->d->branches[bi];
+        cli_json_begin_object(&j);
+        cli_json_key(&j, "branch");
+        cli_json_number(&j, b->id);
+        cli_json_key(&j, "kind");
+        cli_json_string(&j, dyn_branch_kind_name(b->kind));
+        cli_json_key(&j, "parent");
+        if (b->parent > 0)
+            cli_json_number(&j, b->parent);
+        else
+            cli_json_null(&j);
+        cli_json_key(&j, "parent_point");
+        if (b->parent_point >= 0)
+            cli_json_number(&j, (double)b->parent_point);
+        else
+            cli_json_null(&j);
+        cli_json_key(&j, "stop");
+        cli_json_string(&j, b->stop);
+        cli_json_key(&j, "points");
+        cli_json_begin_array(&j);
+        for (long k = 0; k < b->count; k++) {
+            const dyn_branch_point *p = &b->pts[k];
+            cli_json_begin_object(&j);
+            cli_json_key(&j, "label");
+            cli_json_string(&j, dyn_cont_label_name(p->label));
+            for (int q = 0; q < (o->ip2 >= 0 ? 2 : 1); q++) {
+                cli_json_key(&j, m->params[q == 0 ? o->ip : o->ip2].name);
+                cli_json_number(&j, par_value(v, b, k, q));
+            }
+            const double *x = b->x + (size_t)k * (size_t)b->n;
+            if (b->xmin) {
+                cli_json_key(&j, "max");
+                json_states(&j, m, x, b->n);
+                cli_json_key(&j, "min");
+                json_states(&j, m, b->xmin + (size_t)k * (size_t)b->n, b->n);
+            } else {
+                cli_json_key(&j, "state");
+                json_states(&j, m, x, b->n);
+            }
+            cli_json_key(&j, "period");
+            cli_json_number(&j, p->period);
+            cli_json_key(&j, "stable");
+            if (p->stable < 0)
+                cli_json_null(&j);
+            else
+                cli_json_bool(&j, p->stable);
+            cli_json_key(&j, b->kind == DYN_BRANCH_PERIODIC ? "multipliers" : "eigenvalues");
+            cli_json_begin_array(&j);
+            const double *e = b->eig + (size_t)k * 2 * (size_t)b->n_eig;
+            for (int i = 0; i < b->n_eig; i++)
+                cli_json_numbers(&j, e + 2 * i, 2, 1);
+            cli_json_end_array(&j);
+            if (isfinite(p->l1)) {
+                cli_json_key(&j, "l1");
+                cli_json_number(&j, p->l1);
+            }
+            if (isfinite(p->omega)) {
+                cli_json_key(&j, b->kind == DYN_BRANCH_HOPF ? "omega2" : "omega");
+                cli_json_number(&j, p->omega);
+            }
+            cli_json_end_object(&j);
+        }
+        cli_json_end_array(&j);
+        cli_json_end_object(&j);
+    }
+    cli_json_end_array(&j);
+    cli_json_end_object(&j);
+    fputc('\n', f);
+}
+
+void cont_write_text(FILE *f, const cont_view *v)
+{
+    const dyn_model *m = v->m;
+    const dyn_cont_opts *o = &v->s->opts;
+    for (int bi = 0; bi < v->d->count; bi++) {
+        const dyn_branch *b = &v->d->branches[bi];
+        fprintf(f, "branch %d: %s", b->id, dyn_branch_kind_name(b->kind));
+        if (b->parent > 0)
+            fprintf(f, " from point %ld of branch %d", b->parent_point + 1, b->parent);
+        fprintf(f, ", %ld points; stopped: %s\n", b->count, b->stop);
+        for (long k = 0; k < b->count; k++) {
+            const dyn_branch_point *p = &b->pts[k];
+            if (p->label == DYN_LABEL_NONE)
+                continue;
+            fprintf(f, "  %-3s %s = %s", dyn_cont_label_name(p->label), m->params[o->ip].name,
+                    CLI_NUM(p->par[0]));
+            if (b->n_par == 2)
+                fprintf(f, ", %s = %s", m->params[o->ip2].name, CLI_NUM(p->par[1]));
+            const double *x = b->x + (size_t)k * (size_t)b->n;
+            for (int i = 0; i < b->n && i < 6; i++)
+                fprintf(f, "%s%s = %s", i ? ", " : "  ", m->states[i].name, CLI_NUM(x[i]));
+            if (b->n > 6)
+                fputs(", ...", f);
+            if (isfinite(p->period))
+                fprintf(f, "  period = %s", CLI_NUM(p->period));
+            if (p->label == DYN_LABEL_HB && b->kind == DYN_BRANCH_EQUILIBRIUM) {
+                fprintf(f, "  omega = %s", CLI_NUM(p->omega));
+                if (isfinite(p->l1))
+                    fprintf(f, ", l1 = %s (%s)", CLI_NUM(p->l1),
+                            p->l1 < 0.0 ? "supercritical" : "subcritical");
+            }
+            if (p->stable >= 0)
+                fprintf(f, "  %s", p->stable ? "stable" : "unstable");
+            fputc('\n', f);
+        }
+    }
+}
+
+static int write_to(const char *what, const char *path, const cont_view *v, int kind)
+{
+    cli_out out;
+    const int to_stdout = !path || strcmp(path, "-") == 0;
+    int rc = cli_out_open(&out, what, to_stdout ? NULL : path);
+    if (rc != CLI_OK)
+        return rc;
+    int bad = 0;
+    if (kind == 0)
+        cont_write_csv(out.f, v);
+    else if (kind == 1)
+        cont_write_json(out.f, v);
+    else
+        bad = cont_write_svg(out.f, v);
+    bad |= fflush(out.f) != 0 || ferror(out.f);
+    if (out.f != stdout)
+        return cli_out_close(&out, !bad);
+    return bad ? CLI_FAILED : CLI_OK;
+}
+
+int cont_write_outputs(const cont_view *v, const char *output, int json, const char *svg)
+{
+    int rc = CLI_OK;
+    const int out_stdout = output && strcmp(output, "-") == 0;
+    if (json)
+        rc = write_to("--json", NULL, v, 1);
+    else if (!out_stdout) {
+        cont_write_text(stdout, v);
+        if (fflush(stdout))
+            rc = CLI_FAILED;
+    }
+    if (rc == CLI_OK && output)
+        rc = write_to("--output", output, v, cli_has_extension(output, ".json") ? 1 : 0);
+    if (rc == CLI_OK && svg)
+        rc = write_to("--svg", svg, v, 2);
+    return rc;
+}

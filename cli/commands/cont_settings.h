@@ -1,0 +1,31 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* cont_settings.h — the settings of dynkit continue: XPPAUT's AUTO options read from a
+ * model file's @ lines (ntst, ncol, nmax, npr, ds, dsmin, dsmax, parmin, parmax, autoxmin,
+ * autoxmax, autoymin, autoymax), then --opt NAME=VALUE on the command line, over the
+ * defaults of dynkit/continuation.h (cont_settings.c). */
+#ifndef DYNKIT_CLI_CONT_SETTINGS_H
+#define DYNKIT_CLI_CONT_SETTINGS_H
+
+#include "dynkit/continuation.h"
+
+typedef struct cont_settings {
+    dyn_cont_opts opts;
+    double window[4];     /* autoxmin, autoxmax, autoymin, autoymax (NAN: not given) */
+    const char *from[16]; /* where each setting came from, by cont_settings_names' order */
+} cont_settings;
+
+/* The names accepted, NULL-terminated. */
+extern const char *const cont_settings_names[];
+
+/* Apply NAME=VALUE (text) to s; where: "FILE:LINE" or "--opt" for messages. Returns 0, or
+ * -1 with a message in err (unknown name, bad number). */
+int cont_settings_apply(cont_settings *s, const char *name, const char *value, const char *where,
+                        char *err, size_t errlen);
+
+/* Read the @ lines of the model file text (XPPAUT's options: NAME=VALUE separated by commas
+ * or blanks) and apply the AUTO ones; other options are left to the model reader. path
+ * names the file in messages. Returns 0, or -1 with "FILE:LINE: ..." in err. */
+int cont_settings_read_file(cont_settings *s, const char *text, const char *path, char *err,
+                            size_t errlen);
+
+#endif

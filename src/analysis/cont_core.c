@@ -1,0 +1,421 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* cont_core.c — pseudo-arclength continuation of G(z) = 0, G: R^(N+1) -> R^N (cont_core.h):
+ * Euler predictor along the unit tangent, Newton corrector on G(z) = 0 with the
+ * arclength condition t . (z - z0) = ds (Keller 1977), the tangent as the solution of
+ * [DG; t_old^T] t = e_(N+1), step control between dsmin and dsmax from Newton's iterations
+ * (Doedel, Keller & Kernevez 1991, sec. 2.2; AUTO-07p's manual, ch. 5), and special points
+ * located where a test function changes sign by the Illinois variant of the secant method
+ * on the arclength (Dowell & Jarratt 1971), each trial point corrected onto the branch.
+ * The sign of det [DG; t^T] changes at branch points (Keller): its value scaled by the rows'
+ * norms (|.| <= 1 by Hadamard's inequality) is the branch-point test. */
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cont_core.h"
+#include "ode/linalg.h"
+
+#define CONT_MAX_NEWTON 12
+
+int cont_work_init(cont_work *w, int N)
+{
+    memset(w, 0, sizeof *w);
+    w->N = N;
+    const size_t M = (size_t)N + 1;
+    w->A = malloc((M * M + 4 * M) * sizeof *w->A);
+    w->piv = malloc(M * sizeof *w->piv);
+    if (!w->A || !w->piv) {
+        cont_work_free(w);
+        return -1;
+    }
+    w->r = w->A + M * M;
+    w->dz = w->r + M;
+    w->g = w->dz + M;
+    w->zp = w->g + M;
+    return 0;
+}
+
+void cont_work_free(cont_work *w)
+{
+    free(w->A);
+    free(w->piv);
+    w->A = NULL;
+    w->piv = NULL;
+}
+
+static double norm_inf(const double *v, int n)
+{
+    double b = 0.0;
+    for (int i = 0; i < n; i++)
+        b = fmax(b, fabs(v[i]));
+    return b;
+}
+
+static double dot(const double *a, const double *b, int n)
+{
+    double s = 0.0;
+    for (int i = 0; i < n; i++)
+        s += a[i] * b[i];
+    return s;
+}
+
+/* A = [DG(z); c^T] in w->A */
+static int bordered(const cont_system *s, cont_work *w, const double *z, const double *c)
+{
+    const int M = s->N + 1;
+    if (s->jacobian(s->ctx, z, w->A))
+        return -1;
+    memcpy(w->A + (size_t)s->N * (size_t)M, c, (size_t)M * sizeof *c);
+    for (size_t k = 0; k < (size_t)M * (size_t)M; k++)
+        if (!isfinite(w->A[k]))
+            return -1;
+    return 0;
+}
+
+int cont_correct(const cont_system *s, cont_work *w, const double *z0, const double *t0,
+                 double ds, double *z, int *iters)
+{
+    const int N = s->N, M = N + 1;
+    for (int it = 0; it < CONT_MAX_NEWTON; it++) {
+        w->newton++;
+        if (s->residual(s->ctx, z, w->g) || bordered(s, w, z, t0))
+            return -1;
+        for (int i = 0; i < N; i++)
+            w->r[i] = -w->g[i];
+        double arc = -ds;
+        for (int i = 0; i < M; i++)
+            arc += t0[i] * (z[i] - z0[i]);
+        w->r[N] = -arc;
+        if (dyn_lu_factor(M, w->A, w->piv))
+            return -1;
+        dyn_lu_solve(M, w->A, w->piv, w->r);
+        for (int i = 0; i < M; i++)
+            z[i] += w->r[i];
+        if (!isfinite(norm_inf(z, M)))
+            return -1;
+        if (norm_inf(w->r, M) <= DYN_CONT_TOL * (1.0 + norm_inf(z, M))) {
+            if (iters)
+                *iters = it + 1;
+            return 0;
+        }
+    }
+    w->fails++;
+    return -1;
+}
+
+/* det of the LU factors in w->A (n x n) divided by the product of the rows' norms of the
+ * matrix before factoring (rownorm) */
+static double scaled_det(int n, const double *LU, const int *piv, const double *rownorm)
+{
+    double d = 1.0;
+    for (int i = 0; i < n; i++) {
+        d *= LU[(size_t)i * (size_t)n + (size_t)i] / (rownorm[i] > 0.0 ? rownorm[i] : 1.0);
+        if (piv[i] != i)
+            d = -d;
+    }
+    return d;
+}
+
+int cont_tangent(const cont_system *s, cont_work *w, const double *z, const double *t_old,
+                 double *t, double *det)
+{
+    const int M = s->N + 1;
+    if (bordered(s, w, z, t_old))
+        return -1;
+    for (int i = 0; i < M; i++)
+        w->dz[i] = sqrt(dot(w->A + (size_t)i * (size_t)M, w->A + (size_t)i * (size_t)M, M));
+    if (dyn_lu_factor(M, w->A, w->piv))
+        return -1;
+    if (det)
+        *det = scaled_det(M, w->A, w->piv, w->dz);
+    for (int i = 0; i < M; i++)
+        t[i] = i == s->N ? 1.0 : 0.0;
+    dyn_lu_solve(M, w->A, w->piv, t);
+    const double nt = sqrt(dot(t, t, M));
+    if (!(nt > 0.0) || !isfinite(nt))
+        return -1;
+    for (int i = 0; i < M; i++)
+        t[i] /= nt;
+    return 0;
+}
+
+int cont_null_direction(const cont_system *s, cont_work *w, const double *z, const double *t,
+                        double *v)
+{
+    const int M = s->N + 1;
+    if (bordered(s, w, z, t))
+        return -1;
+    if (dyn_lu_factor(M, w->A, w->piv)) {
+        /* exactly singular: 1e-14 of the largest entry on the diagonal (the null vector
+         * moves by as little) */
+        if (bordered(s, w, z, t))
+            return -1;
+        double big = 0.0;
+        for (size_t k = 0; k < (size_t)M * (size_t)M; k++)
+            big = fmax(big, fabs(w->A[k]));
+        for (int i = 0; i < M; i++)
+            w->A[(size_t)i * (size_t)M + (size_t)i] += 1e-14 * big * (1.0 + 0.1 * i);
+        if (dyn_lu_factor(M, w->A, w->piv))
+            return -1;
+    }
+    for (int i = 0; i < M; i++)
+        v[i] = 1.0 / (1.0 + i) * (i % 2 ? -1.0 : 1.0) + 0.1;
+    for (int it = 0; it < 4; it++) {
+        dyn_lu_solve(M, w->A, w->piv, v);
+        const double nv = sqrt(dot(v, v, M));
+        if (!(nv > 0.0) || !isfinite(nv))
+            return -1;
+        for (int i = 0; i < M; i++)
+            v[i] /= nv;
+    }
+    /* v orthogonal to t (it is, up to the location's error) */
+    const double c = dot(v, t, M);
+    for (int i = 0; i < M; i++)
+        v[i] -= c * t[i];
+    const double nv = sqrt(dot(v, v, M));
+    if (!(nv > 0.0))
+        return -1;
+    for (int i = 0; i < M; i++)
+        v[i] /= nv;
+    return 0;
+}
+
+/* ---- the loop ---- */
+
+typedef struct special {
+    double s;
+    dyn_cont_label label;
+    double *z, *t;
+} special;
+
+/* what a located function is: test k, or z[index] - target */
+typedef struct target {
+    int test;     /* >= 0: the test function's index */
+    int index;    /* else the component of z */
+    double value;
+} target;
+
+static int psi_at(const cont_system *s, cont_work *w, const target *g, const double *z,
+                  const double *t_old, double *t, double *psi)
+{
+    double det;
+    if (cont_tangent(s, w, z, t_old, t, &det))
+        return -1;
+    if (g->test < 0) {
+        *psi = z[g->index] - g->value;
+        return 0;
+    }
+    double all[CONT_MAX_TESTS];
+    int count[CONT_MAX_TESTS];
+    if (s->tests(s->ctx, z, t, det, all, count))
+        return -1;
+    *psi = all[g->test];
+    return 0;
+}
+
+/* Locate psi = 0 for s in (0, sb) along (za, ta) where psi(0) = fa and psi(sb) = fb have
+ * opposite signs: z, t the point found. 0 or non-zero. */
+static int locate(const cont_system *s, cont_work *w, const target *g, const double *za,
+                  const double *ta, double fa, double sb, double fb, const double *zb,
+                  double *z, double *t, double *s_found)
+{
+    const int M = s->N + 1;
+    double a = 0.0, b = sb;
+    double *zt = malloc(2 * (size_t)M * sizeof *zt);
+    if (!zt)
+        return -1;
+    double *tt = zt + M;
+    memcpy(z, zb, (size_t)M * sizeof *z);
+    double c = b, c_prev = a;
+    int ok = -1;
+    for (int it = 0; it < 80; it++) {
+        c = fb != fa ? (a * fb - b * fa) / (fb - fa) : 0.5 * (a + b);
+        /* keep inside the bracket, away from its ends by a sliver */
+        const double lo = fmin(a, b), hi = fmax(a, b);
+        if (!(c > lo && c < hi))
+            c = 0.5 * (a + b);
+        for (int i = 0; i < M; i++)
+            zt[i] = za[i] + c * ta[i];
+        double fc;
+        if (cont_correct(s, w, za, ta, c, zt, NULL) || psi_at(s, w, g, zt, ta, tt, &fc))
+            break;
+        memcpy(z, zt, (size_t)M * sizeof *z);
+        memcpy(t, tt, (size_t)M * sizeof *t);
+        *s_found = c;
+        if (fc == 0.0 || (it > 0 && fabs(c - c_prev) <= 1e-12 * fabs(sb))) {
+            ok = 0;
+            break;
+        }
+        c_prev = c;
+        if ((fc < 0.0) != (fb < 0.0)) {
+            a = b;
+            fa = fb;
+        } else {
+            fa *= 0.5;
+        }
+        b = c;
+        fb = fc;
+        if (fabs(b - a) <= 1e-14 * fabs(sb)) {
+            ok = 0;
+            break;
+        }
+    }
+    free(zt);
+    return ok;
+}
+
+static int cmp_special(const void *x, const void *y)
+{
+    const special *a = x, *b = y;
+    return (a->s > b->s) - (a->s < b->s);
+}
+
+int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const double *z_start,
+                const double *t_start, char *stop, size_t stoplen)
+{
+    const int M = s->N + 1;
+    const int n_spec = CONT_MAX_TESTS + 2 + L->n_at;
+    const size_t need = (size_t)M * (6 + 2 * (size_t)n_spec);
+    double *buf = malloc(need * sizeof *buf);
+    special *sp = malloc((size_t)n_spec * sizeof *sp);
+    if (!buf || !sp) {
+        free(buf);
+        free(sp);
+        snprintf(stop, stoplen, "out of memory");
+        return -1;
+    }
+    double *z = buf, *t = z + M, *z1 = t + M, *t1 = z1 + M, *tl = t1 + M;
+    for (int k = 0; k < n_spec; k++) {
+        sp[k].z = tl + M + 2 * (size_t)k * (size_t)M;
+        sp[k].t = sp[k].z + M;
+    }
+    memcpy(z, z_start, (size_t)M * sizeof *z);
+    memcpy(t, t_start, (size_t)M * sizeof *t);
+    double psi[CONT_MAX_TESTS], psi1[CONT_MAX_TESTS], det;
+    int cnt[CONT_MAX_TESTS], cnt1[CONT_MAX_TESTS];
+    int rc = 0;
+    /* at a branch point the tangent is not defined: the direction given is kept */
+    if (cont_tangent(s, w, z, t, t1, &det)) {
+        memcpy(t1, t, (size_t)M * sizeof *t);
+        det = 0.0;
+    }
+    if (s->tests(s->ctx, z, t1, det, psi, cnt)) {
+        snprintf(stop, stoplen, "f or its Jacobian failed at the first point");
+        free(buf);
+        free(sp);
+        return -2;
+    }
+    memcpy(t, t1, (size_t)M * sizeof *t);
+    if (s->store(s->ctx, z, t, L->start_label)) {
+        free(buf);
+        free(sp);
+        snprintf(stop, stoplen, "out of memory");
+        return -1;
+    }
+    const int at_start_special = L->start_label != DYN_LABEL_EP;
+    double ds = fmin(fabs(L->ds), L->dsmax);
+    long points = 1;
+    int pending = 0; /* z is computed but not stored yet */
+    snprintf(stop, stoplen, "nmax = %ld points", L->nmax);
+    while (points < L->nmax) {
+        int iters = 0;
+        for (int i = 0; i < M; i++)
+            z1[i] = z[i] + ds * t[i];
+        int bad = cont_correct(s, w, z, t, ds, z1, &iters);
+        if (!bad)
+            bad = cont_tangent(s, w, z1, t, t1, &det);
+        if (!bad && dot(t, t1, M) < 0.9 && ds > L->dsmin)
+            bad = 1; /* the tangent turned too far: a smaller step */
+        if (!bad)
+            bad = s->tests(s->ctx, z1, t1, det, psi1, cnt1);
+        if (bad) {
+            if (ds <= L->dsmin) {
+                snprintf(stop, stoplen, "no convergence with the smallest step dsmin = %g",
+                         L->dsmin);
+                break;
+            }
+            ds = fmax(0.5 * ds, L->dsmin);
+            continue;
+        }
+        /* special points between z and z1 */
+        int ns = 0, end_here = 0;
+        for (int k = 0; k < s->n_tests; k++) {
+            if (!((psi[k] < 0.0) != (psi1[k] < 0.0)) || psi[k] == 0.0)
+                continue;
+            if (cnt[k] >= 0 && cnt[k] == cnt1[k])
+                continue;
+            if (points == 1 && at_start_special && s->test_label[k] == L->start_label)
+                continue; /* the start itself */
+            const target g = {k, 0, 0.0};
+            if (locate(s, w, &g, z, t, psi[k], ds, psi1[k], z1, sp[ns].z, sp[ns].t,
+                       &sp[ns].s) == 0) {
+                sp[ns].label = s->test_label[k];
+                ns++;
+            }
+        }
+        for (int u = 0; u < L->n_at; u++) {
+            const double a = z[s->ip] - L->at[u], b = z1[s->ip] - L->at[u];
+            if ((a < 0.0) == (b < 0.0) || a == 0.0)
+                continue;
+            const target g = {-1, s->ip, L->at[u]};
+            if (locate(s, w, &g, z, t, a, ds, b, z1, sp[ns].z, sp[ns].t, &sp[ns].s) == 0) {
+                sp[ns].label = DYN_LABEL_UZ;
+                ns++;
+            }
+        }
+        /* the bounds of the parameters */
+        for (int q = 0; q < 2 && !end_here; q++) {
+            const int ix = q == 0 ? s->ip : s->ip2;
+            const double lo = q == 0 ? L->pmin : L->p2min, hi = q == 0 ? L->pmax : L->p2max;
+            if (ix < 0 || !(lo < hi))
+                continue;
+            const double bound = z1[ix] > hi ? hi : z1[ix] < lo ? lo : NAN;
+            if (isnan(bound))
+                continue;
+            const target g = {-1, ix, bound};
+            if (locate(s, w, &g, z, t, z[ix] - bound, ds, z1[ix] - bound, z1, sp[ns].z,
+                       sp[ns].t, &sp[ns].s) == 0) {
+                sp[ns].label = DYN_LABEL_EP;
+                ns++;
+            }
+            snprintf(stop, stoplen, "reached %s = %.17g", q == 0 ? (bound == hi ? "parmax" : "parmin")
+                                                              : (bound == hi ? "par2max" : "par2min"),
+                     bound);
+            end_here = 1;
+        }
+        qsort(sp, (size_t)ns, sizeof *sp, cmp_special);
+        if (pending && s->store(s->ctx, z, t, DYN_LABEL_NONE)) {
+            rc = -1;
+            break;
+        }
+        pending = 0;
+        int stored_end = 0;
+        for (int k = 0; k < ns && !stored_end; k++) {
+            if (s->store(s->ctx, sp[k].z, sp[k].t, sp[k].label)) {
+                rc = -1;
+                break;
+            }
+            points++;
+            stored_end = sp[k].label == DYN_LABEL_EP;
+        }
+        if (rc || end_here)
+            break;
+        memcpy(z, z1, (size_t)M * sizeof *z);
+        memcpy(t, t1, (size_t)M * sizeof *t);
+        memcpy(psi, psi1, sizeof psi);
+        memcpy(cnt, cnt1, sizeof cnt);
+        pending = 1;
+        points++;
+        if (iters <= 3)
+            ds = fmin(1.5 * ds, L->dsmax);
+        else if (iters >= 7)
+            ds = fmax(0.5 * ds, L->dsmin);
+    }
+    if (!rc && pending && s->store(s->ctx, z, t, DYN_LABEL_EP))
+        rc = -1;
+    free(buf);
+    free(sp);
+    return rc;
+}

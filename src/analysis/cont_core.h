@@ -1,0 +1,78 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* cont_core.h — the generic part of continuation (private to the library): a system
+ * G(z) = 0 of N equations in N + 1 unknowns z followed by pseudo-arclength continuation
+ * (Keller 1977; Doedel, Keller & Kernevez 1991, "Numerical analysis and control of
+ * bifurcation problems I", sec. 2), test functions whose sign changes mark special points,
+ * located by the secant method along the arclength. Equilibria (cont_equilibrium.c) and the
+ * curves of folds and Hopf points (cont_curves.c) are such systems. */
+#ifndef DYN_ANALYSIS_CONT_CORE_H
+#define DYN_ANALYSIS_CONT_CORE_H
+
+#include "dynkit/continuation.h"
+
+#define CONT_MAX_TESTS 4
+
+typedef struct cont_system {
+    int N;          /* equations; z has N + 1 unknowns */
+    int ip;         /* the index in z of the parameter that has bounds and UZ values */
+    int ip2;        /* the index of a second bounded parameter, or -1 */
+    void *ctx;
+    /* G(z) into g (N values): 0, or non-zero when f fails */
+    int (*residual)(void *ctx, const double *z, double *g);
+    /* DG(z) into J (N x (N + 1), row-major): 0 or non-zero */
+    int (*jacobian)(void *ctx, const double *z, double *J);
+    /* the test functions at a point (z, its unit tangent t, sign of det [DG; t^T]): psi
+     * (n_tests values) and for each an integer count that must change too for a sign
+     * change of psi to count (-1: any sign change counts); 0 or non-zero */
+    int n_tests;
+    dyn_cont_label test_label[CONT_MAX_TESTS];
+    int (*tests)(void *ctx, const double *z, const double *t, double det_sign, double *psi,
+                 int *count);
+    /* store a computed point (label DYN_LABEL_NONE for a regular one): 0, or non-zero
+     * when out of memory */
+    int (*store)(void *ctx, const double *z, const double *t, dyn_cont_label label);
+} cont_system;
+
+typedef struct cont_work {
+    int N;
+    double *A;   /* (N + 1) x (N + 1) */
+    double *r, *dz, *g, *zp; /* N + 1 each */
+    int *piv;
+    long newton, fails;
+} cont_work;
+
+int cont_work_init(cont_work *w, int N);
+void cont_work_free(cont_work *w);
+
+/* Newton's method on G(z) = 0, t0 . (z - z0) = s from z (a guess, overwritten): 0 when
+ * converged (*iters the iterations), non-zero when not. */
+int cont_correct(const cont_system *s, cont_work *w, const double *z0, const double *t0,
+                 double ds, double *z, int *iters);
+/* The unit tangent t at z: DG t = 0, t . t_old > 0 (t_old a unit vector); *det_sign the sign
+ * of det [DG; t_old^T] (+1 or -1). 0, or non-zero when the matrix is singular. */
+int cont_tangent(const cont_system *s, cont_work *w, const double *z, const double *t_old,
+                 double *t, double *det_sign);
+/* A unit null vector of [DG(z); t^T] by inverse iteration (at a branch point: the direction
+ * of the other branch). 0 or non-zero. */
+int cont_null_direction(const cont_system *s, cont_work *w, const double *z, const double *t,
+                        double *v);
+
+/* The settings of one run of the loop. */
+typedef struct cont_loop {
+    double ds, dsmin, dsmax;  /* ds > 0: the direction is the starting tangent's */
+    long nmax;
+    double pmin, pmax;        /* bounds of z[ip]; pmin >= pmax: none */
+    double p2min, p2max;      /* bounds of z[ip2]; p2min >= p2max: none */
+    const double *at;         /* UZ values of z[ip] */
+    int n_at;
+    dyn_cont_label start_label; /* the first point's label (EP, BP, LP, HB) */
+} cont_loop;
+
+/* Follow the branch from z (a point of it) along the unit tangent t for at most nmax
+ * points, storing each (the first with start_label, the last with EP) with the special
+ * points located between them. stop gets why it ended. Returns 0, -1 when storing
+ * failed (out of memory), -2 when f failed at the first point (nothing stored). */
+int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const double *z,
+                const double *t, char *stop, size_t stoplen);
+
+#endif /* DYN_ANALYSIS_CONT_CORE_H */

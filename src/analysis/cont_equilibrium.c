@@ -1,0 +1,367 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* cont_equilibrium.c — branches of equilibria f(x, p) = 0 in one parameter and the
+ * diagram they make (dynkit/continuation.h, dyn_continue). The unknowns are z = (x, p); the
+ * test functions are those of AUTO-07p (Doedel et al., AUTO-07p manual, ch. 5 and 12):
+ * the parameter's component of the unit tangent changes sign at a fold (LP); the scaled
+ * det [f_x f_p; t^T] at a branch point (BP); the real part of the complex eigenvalue nearest
+ * the imaginary axis at a Hopf point (HB), counted only when the number of complex
+ * eigenvalues in the right half-plane changes. At a BP the other branch leaves along the null
+ * vector of [f_x f_p; t^T] (the direction orthogonal to the branch in the two-dimensional
+ * null space of [f_x f_p]: Keller 1977, AUTO's default switching). */
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cont_equilibrium.h"
+
+
+typedef struct eq_ctx {
+    cont_model *cm;
+    dyn_diagram *d;
+    int bi;               /* the branch's index in d */
+    int store_failed;
+} eq_ctx;
+
+static int eq_residual(void *ctx, const double *z, double *g)
+{
+    cont_model *cm = ((eq_ctx *)ctx)->cm;
+    if (cont_model_set(cm, z[cm->n], NAN))
+        return -1;
+    return cont_model_f(cm, z, g);
+}
+
+static int eq_jacobian(void *ctx, const double *z, double *J)
+{
+    cont_model *cm = ((eq_ctx *)ctx)->cm;
+    const int n = cm->n;
+    if (cont_model_set(cm, z[n], NAN) || cont_model_jx(cm, z, J, n + 1))
+        return -1;
+    return cont_model_fp(cm, z, z[n], NAN, 0, J + n, n + 1);
+}
+
+/* the complex eigenvalue nearest the imaginary axis: its real part (+1 with none) and the
+ * number of complex eigenvalues with a positive real part */
+static double hopf_test(const cont_model *cm, int *unstable)
+{
+    double scale = 0.0;
+    for (int i = 0; i < cm->n; i++)
+        scale = fmax(scale, hypot(cm->re[i], cm->im[i]));
+    const double small = 1e-8 * fmax(scale, DBL_MIN);
+    double best = 1.0, best_abs = INFINITY;
+    *unstable = 0;
+    for (int i = 0; i < cm->n; i++) {
+        if (!(fabs(cm->im[i]) > small))
+            continue;
+        if (cm->re[i] > 0.0)
+            (*unstable)++;
+        if (fabs(cm->re[i]) < best_abs) {
+            best_abs = fabs(cm->re[i]);
+            best = cm->re[i];
+        }
+    }
+    return best;
+}
+
+static int eq_tests(void *ctx, const double *z, const double *t, double det, double *psi,
+                    int *count)
+{
+    cont_model *cm = ((eq_ctx *)ctx)->cm;
+    const int n = cm->n;
+    if (cont_model_set(cm, z[n], NAN) || cont_model_jx(cm, z, cm->J, n) ||
+        cont_model_eig(cm, cm->J))
+        return -1;
+    psi[0] = t[n];
+    count[0] = -1;
+    psi[1] = det;
+    count[1] = -1;
+    psi[2] = hopf_test(cm, &count[2]);
+    return 0;
+}
+
+/* omega of a Hopf point: the imaginary part of the complex pair nearest the axis */
+static double hopf_omega(const cont_model *cm)
+{
+    double best = NAN, best_abs = INFINITY;
+    for (int i = 0; i < cm->n; i++)
+        if (cm->im[i] > 0.0 && fabs(cm->re[i]) < best_abs) {
+            best_abs = fabs(cm->re[i]);
+            best = cm->im[i];
+        }
+    return best;
+}
+
+static int eq_store(void *ctx, const double *z, const double *t, dyn_cont_label label)
+{
+    (void)t;
+    eq_ctx *e = ctx;
+    cont_model *cm = e->cm;
+    const int n = cm->n;
+    if (cont_model_set(cm, z[n], NAN) || cont_model_jx(cm, z, cm->J, n) ||
+        cont_model_eig(cm, cm->J))
+        return -1;
+    double l1 = NAN, omega = NAN;
+    if (label == DYN_LABEL_HB) {
+        omega = hopf_omega(cm);
+        char err[256];
+        if (isfinite(omega) &&
+            dyn_first_lyapunov(cm->m, cm->t, z, cm->par, cm->jac, cm->J, omega, &l1, err,
+                               sizeof err))
+            l1 = NAN;
+        /* dyn_first_lyapunov leaves par as it was; the eigenvalues are still cm's */
+    }
+    if (cont_model_store(cm, &e->d->branches[e->bi], z, z[n], NAN, 1, label, l1, omega)) {
+        e->store_failed = 1;
+        return -1;
+    }
+    return 0;
+}
+
+static void eq_system(cont_system *s, eq_ctx *e)
+{
+    memset(s, 0, sizeof *s);
+    s->N = e->cm->n;
+    s->ip = e->cm->n;
+    s->ip2 = -1;
+    s->ctx = e;
+    s->residual = eq_residual;
+    s->jacobian = eq_jacobian;
+    s->n_tests = 3;
+    s->test_label[0] = DYN_LABEL_LP;
+    s->test_label[1] = DYN_LABEL_BP;
+    s->test_label[2] = DYN_LABEL_HB;
+    s->tests = eq_tests;
+    s->store = eq_store;
+}
+
+static void loop_settings(const dyn_cont_opts *o, cont_loop *L, dyn_cont_label start)
+{
+    memset(L, 0, sizeof *L);
+    L->ds = fabs(o->ds);
+    L->dsmin = o->dsmin;
+    L->dsmax = o->dsmax;
+    L->nmax = o->nmax;
+    L->pmin = o->parmin;
+    L->pmax = o->parmax;
+    L->p2min = L->p2max = 0.0;
+    L->at = o->at;
+    L->n_at = o->n_at;
+    L->start_label = start;
+}
+
+/* one branch from z along t into a new branch of d */
+static int follow_branch(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, const double *z,
+                         const double *t, dyn_cont_label start, int parent, long parent_point,
+                         cont_work *w)
+{
+    dyn_branch *b = dyn_diagram_add(d, DYN_BRANCH_EQUILIBRIUM, cm->n, cm->n, o->ip, -1);
+    if (!b)
+        return -1;
+    b->parent = parent;
+    b->parent_point = parent_point;
+    eq_ctx e = {cm, d, d->count - 1, 0};
+    cont_system s;
+    eq_system(&s, &e);
+    cont_loop L;
+    loop_settings(o, &L, start);
+    char stop[160];
+    const int rc = cont_follow(&s, w, &L, z, t, stop, sizeof stop);
+    snprintf(d->branches[e.bi].stop, sizeof d->branches[e.bi].stop, "%s", stop);
+    if (rc == -2 && d->branches[e.bi].count == 0) {
+        /* nothing to keep: the branch is dropped */
+        free(d->branches[e.bi].pts);
+        free(d->branches[e.bi].x);
+        free(d->branches[e.bi].xmin);
+        free(d->branches[e.bi].eig);
+        d->count--;
+        return parent ? 0 : -1;
+    }
+    return rc == -1 ? -1 : 0;
+}
+
+static double dist_inf(const double *a, const double *b, int n)
+{
+    double m = 0.0;
+    for (int i = 0; i < n; i++)
+        m = fmax(m, fabs(a[i] - b[i]) / (1.0 + fabs(a[i])));
+    return m;
+}
+
+/* Switch at the BP `k` of branch bi: both directions of the other branch. */
+static int switch_at(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int bi, long k,
+                     cont_work *w, double *seen, int *n_seen, int max_seen)
+{
+    const int n = cm->n, M = n + 1;
+    double *buf = malloc(4 * (size_t)M * sizeof *buf);
+    if (!buf)
+        return -1;
+    double *z = buf, *t = z + M, *v = t + M, *z2 = v + M;
+    const dyn_branch *b = &d->branches[bi];
+    memcpy(z, b->x + (size_t)k * (size_t)n, (size_t)n * sizeof *z);
+    z[n] = b->pts[k].par[0];
+    for (int j = 0; j < *n_seen; j++)
+        if (dist_inf(seen + (size_t)j * (size_t)M, z, M) < 1e-6) {
+            free(buf);
+            return 0;
+        }
+    if (*n_seen < max_seen)
+        memcpy(seen + (size_t)(*n_seen)++ * (size_t)M, z, (size_t)M * sizeof *z);
+    /* the branch's direction at the BP: the secant through its neighbours */
+    const long ka = k > 0 ? k - 1 : k, kb = k + 1 < b->count ? k + 1 : k;
+    double nt = 0.0;
+    for (int i = 0; i < M; i++) {
+        const double za = i < n ? b->x[(size_t)ka * (size_t)n + (size_t)i] : b->pts[ka].par[0];
+        const double zb = i < n ? b->x[(size_t)kb * (size_t)n + (size_t)i] : b->pts[kb].par[0];
+        t[i] = zb - za;
+        nt += t[i] * t[i];
+    }
+    nt = sqrt(nt);
+    if (!(nt > 0.0)) {
+        free(buf);
+        return 0;
+    }
+    for (int i = 0; i < M; i++)
+        t[i] /= nt;
+    eq_ctx e = {cm, d, bi, 0};
+    cont_system s;
+    eq_system(&s, &e);
+    if (cont_null_direction(&s, w, z, t, v)) {
+        free(buf);
+        return 0; /* no second direction: not switched */
+    }
+    int rc = 0;
+    const int parent = b->id;
+    for (int dir = 1; dir >= -1 && rc == 0 && d->count < o->max_branches; dir -= 2) {
+        for (int i = 0; i < M; i++)
+            z2[i] = dir * v[i];
+        rc = follow_branch(cm, o, d, z, z2, DYN_LABEL_BP, parent, k, w);
+    }
+    free(buf);
+    return rc;
+}
+
+static int fail(dyn_cont_info *info, int status, const char *fmt, const char *what)
+{
+    if (info)
+        snprintf(info->message, sizeof info->message, fmt, what);
+    return status;
+}
+
+int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dyn_cont_opts *o,
+                 dyn_diagram *d, dyn_cont_info *info)
+{
+    dyn_cont_info local;
+    if (!info)
+        info = &local;
+    memset(info, 0, sizeof *info);
+    if (!m || !par || !x0 || !o || !d)
+        return fail(info, DYN_ERR_ARG, "%s", "a NULL argument");
+    if (o->ip < 0 || o->ip >= m->n_params)
+        return fail(info, DYN_ERR_ARG, "%s", "the parameter's index is out of range");
+    if (o->ip2 >= m->n_params || o->ip2 == o->ip)
+        return fail(info, DYN_ERR_ARG, "%s", "the second parameter must be another one");
+    if (!(o->ds != 0.0) || !(o->dsmin > 0.0) || !(o->dsmax >= o->dsmin) ||
+        !(fabs(o->ds) >= o->dsmin) || !isfinite(o->dsmax))
+        return fail(info, DYN_ERR_ARG, "%s",
+                    "the steps must satisfy 0 < dsmin <= |ds| <= dsmax (finite)");
+    if (o->nmax < 2)
+        return fail(info, DYN_ERR_ARG, "%s", "nmax must be at least 2");
+    if (o->ip2 >= 0)
+        return fail(info, DYN_ERR_ARG, "%s", "curves in two parameters are not in this version");
+    if (m->n_states < 1)
+        return fail(info, DYN_ERR_ARG, "%s", "the model has no states");
+    cont_model cm;
+    if (cont_model_init(&cm, m, par, o))
+        return fail(info, DYN_ERR_ARG, "%s", "out of memory");
+    const int n = m->n_states, M = n + 1;
+    cont_work w;
+    double *z = malloc(3 * (size_t)M * sizeof *z);
+    const int max_seen = 64;
+    double *seen = malloc((size_t)max_seen * (size_t)M * sizeof *seen);
+    if (cont_work_init(&w, n) || !z || !seen) {
+        cont_model_free(&cm);
+        cont_work_free(&w);
+        free(z);
+        free(seen);
+        return fail(info, DYN_ERR_ARG, "%s", "out of memory");
+    }
+    double *t = z + M, *e = t + M;
+    memcpy(z, x0, (size_t)n * sizeof *z);
+    z[n] = cm.p_set[0];
+    int rc = 0;
+    eq_ctx ec = {&cm, d, -1, 0};
+    cont_system s;
+    eq_system(&s, &ec);
+    /* the start: Newton's method at the fixed parameter (the arclength row is e_p) */
+    for (int i = 0; i < M; i++)
+        e[i] = i == n ? 1.0 : 0.0;
+    /* Levenberg-Marquardt from the guess (dyn_equilibrium), then Newton's method */
+    dyn_equilibrium_info ei;
+    const dyn_equilibrium_opts eo = {{o->jac, NULL}, 0.0, 0};
+    double *ework = malloc(dyn_equilibrium_work_size(n) * sizeof *ework);
+    const int eq_rc = ework ? dyn_equilibrium(m, o->t, z, cm.par, &eo, ework, &ei) : -1;
+    free(ework);
+    if (eq_rc || cont_correct(&s, &w, z, e, 0.0, z, NULL)) {
+        snprintf(info->message, sizeof info->message,
+                 "no equilibrium found near the start at %.40s = %.17g: %.120s",
+                 m->params[o->ip].name, cm.p_set[0],
+                 eq_rc ? ei.message : cm.message[0] ? cm.message : "Newton's method diverged");
+        rc = DYN_ERR_ARG;
+    }
+    if (rc == 0 && !(z[n] >= o->parmin && z[n] <= o->parmax)) {
+        snprintf(info->message, sizeof info->message,
+                 "the start %.40s = %.17g is outside [parmin, parmax] = [%.17g, %.17g]",
+                 m->params[o->ip].name, z[n], o->parmin, o->parmax);
+        rc = DYN_ERR_ARG;
+    }
+    if (rc == 0) {
+        e[n] = o->ds > 0.0 ? 1.0 : -1.0;
+        double det;
+        if (cont_tangent(&s, &w, z, e, t, &det)) {
+            snprintf(info->message, sizeof info->message,
+                     "the start is singular (a fold or a branch point): start elsewhere");
+            rc = DYN_ERR_ARG;
+        }
+    }
+    if (rc == 0 && follow_branch(&cm, o, d, z, t, DYN_LABEL_EP, 0, -1, &w))
+        rc = DYN_ERR_ARG;
+    /* branch switching at the BPs, breadth first over the branches found */
+    int n_seen = 0;
+    for (int bi = 0; rc == 0 && !o->no_switch && bi < d->count; bi++) {
+        if (d->branches[bi].kind != DYN_BRANCH_EQUILIBRIUM)
+            continue;
+        for (long k = 0; rc == 0 && k < d->branches[bi].count; k++) {
+            if (d->branches[bi].pts[k].label != DYN_LABEL_BP || d->count >= o->max_branches)
+                continue;
+            if (switch_at(&cm, o, d, bi, k, &w, seen, &n_seen, max_seen))
+                rc = DYN_ERR_ARG;
+        }
+    }
+    /* periodic orbits from the Hopf points, then the curves in two parameters */
+    const int n_eq = d->count;
+    for (int bi = 0; rc == 0 && bi < n_eq; bi++)
+        for (long k = 0; rc == 0 && k < d->branches[bi].count; k++) {
+            const dyn_cont_label l = d->branches[bi].pts[k].label;
+            if (l == DYN_LABEL_HB && o->periodic) {
+                char err[256] = "";
+                if (o->periodic(m, par, o, d, d->branches[bi].id, k, o->periodic_ctx, err,
+                                sizeof err))
+                    snprintf(info->message, sizeof info->message,
+                             "periodic orbits from the Hopf point of branch %d: %s", bi + 1,
+                             err);
+            }
+        }
+    if (rc && !info->message[0])
+        snprintf(info->message, sizeof info->message, "%s",
+                 cm.message[0] ? cm.message : "out of memory");
+    for (int bi = 0; bi < d->count; bi++)
+        info->points += d->branches[bi].count;
+    info->newton_steps = w.newton;
+    info->rhs_calls = cm.rhs_calls;
+    cont_model_free(&cm);
+    cont_work_free(&w);
+    free(z);
+    free(seen);
+    return rc;
+}

@@ -1,0 +1,45 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* cont_equilibrium.h — a model's f(x, p) as the system of continuation (private): the
+ * parameter struct kept prepared for the parameter values last asked for, f and its
+ * Jacobian in x (dyn_linearize: exact for model files) and in the parameters (central
+ * differences), and the eigenvalues of a point. Used by equilibrium branches
+ * (cont_equilibrium.c) and by the curves of folds and Hopf points (cont_curves.c). */
+#ifndef DYN_ANALYSIS_CONT_EQUILIBRIUM_H
+#define DYN_ANALYSIS_CONT_EQUILIBRIUM_H
+
+#include "cont_core.h"
+
+typedef struct cont_model {
+    const dyn_model *m;
+    int n;
+    double t;
+    dyn_jac_scheme jac;
+    int ip, ip2;          /* the parameters (ip2 -1: one) */
+    void *par;            /* (par_size bytes) the working copy */
+    double p_set[2];      /* the values par is prepared for */
+    double p2_base;       /* ip2's value in the caller's par (NAN p2: this one) */
+    double *f, *fp, *fm, *J, *lin_work, *eig_a, *re, *im; /* workspace */
+    long rhs_calls;
+    char message[256];
+} cont_model;
+
+int cont_model_init(cont_model *cm, const dyn_model *m, const void *par, const dyn_cont_opts *o);
+void cont_model_free(cont_model *cm);
+/* par prepared for p (p2 ignored when ip2 < 0): 0 or non-zero (message set) */
+int cont_model_set(cont_model *cm, double p, double p2);
+/* f(x) at the prepared parameters into f: 0 or non-zero */
+int cont_model_f(cont_model *cm, const double *x, double *f);
+/* J = df/dx (n x n, row stride ld) at the prepared parameters: 0 or non-zero */
+int cont_model_jx(cont_model *cm, const double *x, double *J, int ld);
+/* df/dp of parameter q (0: ip, 1: ip2) into col (stride ld) at (x, p, p2): central
+ * differences; par is left prepared for (p, p2). 0 or non-zero */
+int cont_model_fp(cont_model *cm, const double *x, double p, double p2, int q, double *col,
+                  int ld);
+/* The eigenvalues of J (n x n) into cm->re, cm->im, sorted (dyn_eig_sort): 0 or non-zero */
+int cont_model_eig(cont_model *cm, const double *J);
+/* A point's record appended to branch b: x, the parameters, stability from cm->re (when
+ * eig is non-zero, after cont_model_eig), label, l1 and omega */
+int cont_model_store(cont_model *cm, dyn_branch *b, const double *x, double p, double p2,
+                     int eig, dyn_cont_label label, double l1, double omega);
+
+#endif /* DYN_ANALYSIS_CONT_EQUILIBRIUM_H */

@@ -1,0 +1,96 @@
+#!/usr/bin/env python3
+"""dynkit continue against closed forms (docs/analysis.md, "Continuation"): the normal forms
+of the fold (LP at p = 0), the transcritical and pitchfork bifurcations (BP at p = 0, the
+other branch x = p or x^2 = p followed), the Hopf bifurcation (HB at p = 0 with frequency w
+and first Lyapunov coefficient 2 s / w, Kuznetsov's formula with <q, q> = 1), the
+Brusselator (HB at b = 1 + a^2, omega = a) and Lorenz's system (HB at
+rho = sigma (sigma + beta + 3) / (sigma - beta - 1), subcritical). Usage:
+closed_forms.py DYNKIT MODELS_DIR LORENZ_ODE"""
+import json
+import subprocess
+import sys
+
+dynkit, models, lorenz = sys.argv[1:4]
+failures = []
+
+
+def run(path, *args):
+    cmd = [dynkit, "continue", path, "--json", *args]
+    out = subprocess.run(cmd, capture_output=True, text=True)
+    if out.returncode != 0:
+        failures.append(f"{' '.join(cmd)}: exit {out.returncode}: {out.stderr.strip()}")
+        return None
+    return json.loads(out.stdout)
+
+
+def points(d, label):
+    return [(b, p) for b in d["branches"] for p in b["points"] if p["label"] == label]
+
+
+def check(what, got, want, tol):
+    if not abs(got - want) <= tol * max(1.0, abs(want)):
+        failures.append(f"{what}: {got!r}, expected {want!r} (tolerance {tol:g} relative)")
+
+
+def only(d, label, what):
+    pts = points(d, label) if d else []
+    if len({round(p[1][d['parameters'][0]], 8) for p in pts}) != 1:
+        failures.append(f"{what}: expected one {label}, found {len(pts)}")
+        return None
+    return pts[0][1]
+
+
+d = run(f"{models}/fold.ode", "--par", "p")
+p = only(d, "LP", "fold")
+if p:
+    check("fold: p at LP", p["p"], 0.0, 1e-10)
+    check("fold: x at LP", p["state"]["x"], 0.0, 1e-6)
+
+for name, residual in (("transcritical", lambda x, p: x - p), ("pitchfork", lambda x, p: x * x - p)):
+    d = run(f"{models}/{name}.ode", "--par", "p")
+    p = only(d, "BP", name)
+    if p:
+        check(f"{name}: p at BP", p["p"], 0.0, 1e-10)
+        # the switched branches: every point on x = p (or x^2 = p), x != 0 somewhere
+        switched = [b for b in d["branches"] if b["parent"] is not None]
+        if len(switched) != 2:
+            failures.append(f"{name}: expected two switched branches, found {len(switched)}")
+        for b in switched:
+            for q in b["points"]:
+                x, pv = q["state"]["x"], q["p"]
+                if not abs(residual(x, pv)) <= 1e-8:
+                    failures.append(f"{name}: branch {b['branch']} point x = {x} at p = {pv}")
+                    break
+
+for s, w in ((-1.0, 2.0), (1.5, 2.0), (-0.25, 0.5)):
+    d = run(f"{models}/hopf.ode", "--par", "p", "--set", f"s={s}", "--set", f"w={w}")
+    p = only(d, "HB", f"hopf s={s}")
+    if p:
+        check(f"hopf s={s}: p at HB", p["p"], 0.0, 1e-10)
+        check(f"hopf s={s}: omega", p["omega"], w, 1e-10)
+        check(f"hopf s={s}: l1", p["l1"], 2 * s / w, 1e-6)
+
+for a in (1.0, 1.5, 0.5):
+    d = run(f"{models}/brusselator.ode", "--par", "b", "--set", f"a={a}", "--init", f"x={a}",
+            "--init", f"y={1 / a}", "--set", "b=1", "--opt", "parmax=5")
+    p = only(d, "HB", f"brusselator a={a}")
+    if p:
+        check(f"brusselator a={a}: b at HB", p["b"], 1 + a * a, 1e-10)
+        check(f"brusselator a={a}: omega", p["omega"], a, 1e-10)
+
+sigma, beta = 10.0, 8.0 / 3.0
+d = run(lorenz, "--par", "rho", "--init", "x=8.5", "--init", "y=8.5", "--init", "z=27",
+        "--set", "rho=28", "--set", f"beta={beta!r}", "--opt", "ds=-0.5", "--opt", "dsmax=1",
+        "--opt", "parmin=1", "--opt", "parmax=40")
+hb = points(d, "HB") if d else []
+if not hb:
+    failures.append("lorenz: no HB")
+for b, p in hb:
+    check("lorenz: rho at HB", p["rho"], sigma * (sigma + beta + 3) / (sigma - beta - 1), 1e-10)
+    if not p.get("l1", 0) > 0:
+        failures.append(f"lorenz: l1 = {p.get('l1')} at the Hopf point, expected > 0 (subcritical)")
+
+for f in failures:
+    print("FAIL:", f)
+print(f"closed forms: {len(failures)} failure(s)")
+sys.exit(1 if failures else 0)

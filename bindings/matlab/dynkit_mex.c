@@ -20,10 +20,12 @@
 
 #include "mex.h"
 
+#include "../common/event_slots.h"
 #include "../common/model_open.h"
+#include "../common/samples.h"
 #include "dynkit/dynkit.h"
 
-enum { MAX_EVENTS = 16 };
+enum { MAX_EVENTS = DKB_MAX_EVENTS };
 
 /* the Octave/MATLAB function and its state during a solve */
 typedef struct mfun {
@@ -120,27 +122,7 @@ static double event(int k, double t, const double *y, void *par)
     return f->ev_value[k];
 }
 
-#define EVENT_SLOT(k)                                                                         \
-    static double event_##k(double t, const double *y, void *par) { return event(k, t, y, par); }
-EVENT_SLOT(0)
-EVENT_SLOT(1)
-EVENT_SLOT(2)
-EVENT_SLOT(3)
-EVENT_SLOT(4)
-EVENT_SLOT(5)
-EVENT_SLOT(6)
-EVENT_SLOT(7)
-EVENT_SLOT(8)
-EVENT_SLOT(9)
-EVENT_SLOT(10)
-EVENT_SLOT(11)
-EVENT_SLOT(12)
-EVENT_SLOT(13)
-EVENT_SLOT(14)
-EVENT_SLOT(15)
-static double (*const event_slots[MAX_EVENTS])(double, const double *, void *) = {
-    event_0, event_1, event_2,  event_3,  event_4,  event_5,  event_6,  event_7,
-    event_8, event_9, event_10, event_11, event_12, event_13, event_14, event_15};
+DKB_EVENT_SLOTS(event)
 
 /* after a solve that odefun or events stopped: their error again, or what was wrong */
 static void raise_callback(mfun *f)
@@ -319,7 +301,7 @@ static void ivp(int nlhs, mxArray *plhs[], int nrhs, const mxArray *prhs[])
                                         "and direction of the same length (at most 16)");
         for (int k = 0; k < f.ev_count; k++) {
             const double dir = mxGetPr(out[2])[k];
-            ev[k] = (dyn_event){.name = "event", .g = event_slots[k],
+            ev[k] = (dyn_event){.name = "event", .g = dkb_event_slots[k],
                                 .direction = dir > 0 ? 1 : dir < 0 ? -1 : 0,
                                 .terminal = mxGetPr(out[1])[k] != 0.0};
         }
@@ -402,33 +384,16 @@ static void ivp(int nlhs, mxArray *plhs[], int nrhs, const mxArray *prhs[])
 
 /* ---- a model through dyn_run ---- */
 typedef struct run_out {
-    double *t, *y;
-    long count, cap;
-    int n, failed;
+    dkb_samples s;
+    int failed; /* out of memory */
 } run_out;
 
 static int on_sample(long k, double t, const double *y, void *ctx)
 {
     (void)k;
     run_out *r = ctx;
-    if (r->count == r->cap) {
-        const long cap = r->cap ? 2 * r->cap : 1024;
-        double *nt = realloc(r->t, (size_t)cap * sizeof *nt);
-        if (nt)
-            r->t = nt;
-        double *ny = realloc(r->y, (size_t)cap * (size_t)r->n * sizeof *ny + 1);
-        if (ny)
-            r->y = ny;
-        if (!nt || !ny) {
-            r->failed = 1;
-            return 1;
-        }
-        r->cap = cap;
-    }
-    r->t[r->count] = t;
-    memcpy(r->y + (size_t)r->count * (size_t)r->n, y, (size_t)r->n * sizeof *y);
-    r->count++;
-    return 0;
+    r->failed = dkb_samples_add(&r->s, t, y, NULL);
+    return r->failed;
 }
 
 static void set_values(const dyn_model *m, const mxArray *s, void *par, double *y0, int params)
@@ -512,34 +477,32 @@ static void run(int nlhs, mxArray *plhs[], int nrhs, const mxArray *prhs[])
     const mxArray *step = opts && mxIsStruct(opts) ? mxGetField(opts, 0, "step") : NULL;
     o.at_steps = dyn_method_is_adaptive(method) && (!step || mxIsEmpty(step)) &&
                  m->samples == DYN_SAMPLES_STEPS;
-    run_out r = {.n = m->n_states};
+    run_out out = {.s = {.n = m->n_states}};
+    dkb_samples *r = &out.s;
     o.output = on_sample;
-    o.output_ctx = &r;
+    o.output_ctx = &out;
     dyn_result res;
     const int status = dyn_run(m, par, y0, &o, y, &res);
     free(par);
-    if (status < 0 || r.failed) {
-        free(r.t);
-        free(r.y);
+    if (status < 0 || out.failed) {
+        dkb_samples_free(r);
         mexErrMsgIdAndTxt("dynkit:memory", "out of memory");
     }
     if (status == DYN_ERR_ARG) {
-        free(r.t);
-        free(r.y);
+        dkb_samples_free(r);
         mexErrMsgIdAndTxt("dynkit:option", "%s", res.message);
     }
     if (status != DYN_OK)
         mexWarnMsgIdAndTxt("dynkit:failed", "%s", res.message);
     const char *fields[] = {"t", "y", "names", "units", "status", "message"};
     mxArray *s = mxCreateStructMatrix(1, 1, 6, fields);
-    mxArray *T = mxCreateDoubleMatrix((mwSize)r.count, 1, mxREAL);
-    mxArray *Y = mxCreateDoubleMatrix((mwSize)r.count, (mwSize)r.n, mxREAL);
-    memcpy(mxGetPr(T), r.t, (size_t)r.count * sizeof(double));
-    for (long k = 0; k < r.count; k++)
-        for (int i = 0; i < r.n; i++)
-            mxGetPr(Y)[(size_t)i * (size_t)r.count + (size_t)k] = r.y[(size_t)k * (size_t)r.n + (size_t)i];
-    free(r.t);
-    free(r.y);
+    mxArray *T = mxCreateDoubleMatrix((mwSize)r->count, 1, mxREAL);
+    mxArray *Y = mxCreateDoubleMatrix((mwSize)r->count, (mwSize)r->n, mxREAL);
+    memcpy(mxGetPr(T), r->t, (size_t)r->count * sizeof(double));
+    for (long k = 0; k < r->count; k++)
+        for (int i = 0; i < r->n; i++)
+            mxGetPr(Y)[(size_t)i * (size_t)r->count + (size_t)k] = r->y[(size_t)k * (size_t)r->n + (size_t)i];
+    dkb_samples_free(r);
     mxSetField(s, 0, "t", T);
     mxSetField(s, 0, "y", Y);
     mxSetField(s, 0, "names", names_cell(m->states, m->n_states, 0, NULL));

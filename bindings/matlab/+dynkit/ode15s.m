@@ -17,12 +17,5 @@ function varargout = ode15s(odefun, tspan, y0, options)
   if nargin < 4
     options = [];
   end
-  [t, y, te, ye, ie, stats] = dynkit_mex('ivp', 'rodas4', odefun, tspan, y0, options);
-  if nargout == 1
-    varargout{1} = struct('solver', 'ode15s', 'x', t.', 'y', y.', 'xe', te.', 'ye', ye.', ...
-                          'ie', ie.', 'stats', stats);
-  else
-    out = {t, y, te, ye, ie, stats};
-    varargout = out(1:max(nargout, 1));
-  end
+  varargout = dynkit_ode('ode15s', 'rodas4', nargout, odefun, tspan, y0, options);
 end

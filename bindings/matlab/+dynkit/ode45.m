@@ -17,12 +17,5 @@ function varargout = ode45(odefun, tspan, y0, options)
   if nargin < 4
     options = [];
   end
-  [t, y, te, ye, ie, stats] = dynkit_mex('ivp', 'dp45', odefun, tspan, y0, options);
-  if nargout == 1
-    varargout{1} = struct('solver', 'ode45', 'x', t.', 'y', y.', 'xe', te.', 'ye', ye.', ...
-                          'ie', ie.', 'stats', stats);
-  else
-    out = {t, y, te, ye, ie, stats};
-    varargout = out(1:max(nargout, 1));
-  end
+  varargout = dynkit_ode('ode45', 'dp45', nargout, odefun, tspan, y0, options);
 end

@@ -15,8 +15,7 @@
 #include "dynkit/lapack.h"
 #endif
 
-/* the model's parameters with params set, prepared; NULL with an exception */
-static void *params_for(const dyn_model *m, PyObject *params)
+void *dkpy_model_params(const dyn_model *m, PyObject *params)
 {
     char err[512];
     void *par = dkb_model_params(m, err, sizeof err);
@@ -67,7 +66,7 @@ PyObject *dkpy_model_equilibria(PyObject *self, PyObject *args, PyObject *kwargs
     PyArrayObject *hi = lo ? dkpy_vector(hi_obj, "the box's upper corner", &n) : NULL;
     PyArrayObject *guess = hi && guess_obj != Py_None ? dkpy_vector(guess_obj, "guess", &ng)
                                                       : NULL;
-    void *par = hi && (guess || guess_obj == Py_None) ? params_for(m, params) : NULL;
+    void *par = hi && (guess || guess_obj == Py_None) ? dkpy_model_params(m, params) : NULL;
     PyObject *result = NULL;
     if (!par)
         goto done;
@@ -138,7 +137,7 @@ PyObject *dkpy_model_lyapunov(PyObject *self, PyObject *args, PyObject *kwargs)
     o.k = k;
     o.map = is_map(m);
     PyArrayObject *y0 = dkpy_vector(y0_obj, "y0", &n);
-    void *par = y0 ? params_for(m, params) : NULL;
+    void *par = y0 ? dkpy_model_params(m, params) : NULL;
     double *ex = par ? malloc(2 * (size_t)k * sizeof *ex) : NULL;
     PyObject *result = NULL;
     if (par && !ex)

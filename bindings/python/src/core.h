@@ -15,6 +15,7 @@
 #include <numpy/arrayobject.h>
 
 #include "../../common/model_open.h"
+#include "../../common/samples.h"
 #include "dynkit/dynkit.h"
 
 /* dynkit.DynkitError: every error with a message of dynkit's */
@@ -35,14 +36,10 @@ const dyn_tableau *dkpy_method(const char *name);
  * reference, or NULL with a ValueError/TypeError naming what. */
 PyArrayObject *dkpy_vector(PyObject *obj, const char *what, npy_intp *n);
 
-/* The samples of a run, growing by doubling between steps (run.c, ivp.c). */
-typedef struct dkpy_samples {
-    int n, n_out;       /* states, outputs per sample (0: none) */
-    long count, cap;
-    double *t, *y, *out;
-} dkpy_samples;
-int dkpy_samples_add(dkpy_samples *s, double t, const double *y, const double *out);
-void dkpy_samples_free(dkpy_samples *s);
+/* The parameter struct of model m with its defaults, params (a dict NAME: value, or None)
+ * set over them, and prepared (malloc'd); NULL with a KeyError, ValueError or DynkitError
+ * (analysis.c). */
+void *dkpy_model_params(const dyn_model *m, PyObject *params);
 
 /* The functions of the module (ivp.c, model.c, module.c). */
 PyObject *dkpy_solve_ivp(PyObject *self, PyObject *args, PyObject *kwargs);

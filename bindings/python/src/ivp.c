@@ -5,12 +5,13 @@
  * is Python); a Model's right-hand side runs native with the lock released. An exception
  * raised by fun, jac or an event stops the solve and is raised again, unchanged. */
 #include "core.h"
+#include "../../common/event_slots.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-enum { MAX_EVENTS = 16 };
+enum { MAX_EVENTS = DKB_MAX_EVENTS };
 
 typedef struct pyfun {
     PyObject *fun, *args, *jac;
@@ -102,27 +103,7 @@ static double event(int k, double t, const double *y, void *par)
 }
 
 /* dyn_event.g has no index: one function per event slot */
-#define EVENT_SLOT(k)                                                                         \
-    static double event_##k(double t, const double *y, void *par) { return event(k, t, y, par); }
-EVENT_SLOT(0)
-EVENT_SLOT(1)
-EVENT_SLOT(2)
-EVENT_SLOT(3)
-EVENT_SLOT(4)
-EVENT_SLOT(5)
-EVENT_SLOT(6)
-EVENT_SLOT(7)
-EVENT_SLOT(8)
-EVENT_SLOT(9)
-EVENT_SLOT(10)
-EVENT_SLOT(11)
-EVENT_SLOT(12)
-EVENT_SLOT(13)
-EVENT_SLOT(14)
-EVENT_SLOT(15)
-static double (*const event_slots[MAX_EVENTS])(double, const double *, void *) = {
-    event_0, event_1, event_2,  event_3,  event_4,  event_5,  event_6,  event_7,
-    event_8, event_9, event_10, event_11, event_12, event_13, event_14, event_15};
+DKB_EVENT_SLOTS(event)
 
 static PyObject *array_1d(const double *v, long n)
 {
@@ -253,37 +234,6 @@ static PyObject *result(dyn_ivp_solution *sol, const dyn_tableau *method, int n_
     return out;
 }
 
-/* the model's parameter struct with params (a dict NAME: value, or None) set and prepared */
-static void *model_params(const dyn_model *m, PyObject *params)
-{
-    char err[512];
-    void *par = dkb_model_params(m, err, sizeof err);
-    if (!par) {
-        PyErr_SetString(dkpy_error, err);
-        return NULL;
-    }
-    PyObject *key, *value;
-    Py_ssize_t pos = 0;
-    while (params && params != Py_None && PyDict_Next(params, &pos, &key, &value)) {
-        const char *name = PyUnicode_AsUTF8(key);
-        const int i = name ? dyn_model_param_index(m, name) : -1;
-        const double v = PyFloat_AsDouble(value);
-        if (i < 0 || PyErr_Occurred()) {
-            if (!PyErr_Occurred())
-                PyErr_Format(PyExc_KeyError, "model %s has no parameter '%s'", m->name, name);
-            free(par);
-            return NULL;
-        }
-        dyn_model_set_param(m, par, i, v);
-    }
-    if (m->prepare && m->prepare(par, err, sizeof err)) {
-        PyErr_SetString(dkpy_error, err);
-        free(par);
-        return NULL;
-    }
-    return par;
-}
-
 PyObject *dkpy_solve_ivp(PyObject *self, PyObject *args, PyObject *kwargs)
 {
     (void)self;
@@ -362,7 +312,7 @@ PyObject *dkpy_solve_ivp(PyObject *self, PyObject *args, PyObject *kwargs)
             PyErr_Clear();
             PyObject *dir = PyObject_GetAttrString(e, "direction");
             PyErr_Clear();
-            ev[k] = (dyn_event){.name = "event", .g = event_slots[k]};
+            ev[k] = (dyn_event){.name = "event", .g = dkb_event_slots[k]};
             ev[k].terminal = term ? PyObject_IsTrue(term) : 0;
             const double d = dir ? PyFloat_AsDouble(dir) : 0.0;
             PyErr_Clear();
@@ -384,7 +334,7 @@ PyObject *dkpy_solve_ivp(PyObject *self, PyObject *args, PyObject *kwargs)
                          m->delay ? "delays" : m->volterra ? "Volterra integrals" : "noise");
             goto done;
         }
-        void *par = model_params(m, params);
+        void *par = dkpy_model_params(m, params);
         if (!par)
             goto done;
         const double tspan[2] = {t0, t1};

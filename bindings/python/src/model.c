@@ -106,7 +106,7 @@ static PyObject *model_info(dkpy_model *self, PyObject *noargs)
 
 /* the samples of a run, with the model's outputs at each when asked */
 typedef struct run_sink {
-    dkpy_samples s;
+    dkb_samples s;
     const dyn_model *m;
     const void *par;
     double *out;
@@ -120,7 +120,7 @@ static int on_sample(long k, double t, const double *y, void *ctx)
     if (r->s.n_out && r->m->compute_outputs(t, y, r->par, r->out))
         for (int i = 0; i < r->s.n_out; i++)
             r->out[i] = NAN;
-    if (dkpy_samples_add(&r->s, t, y, r->out)) {
+    if (dkb_samples_add(&r->s, t, y, r->out)) {
         r->failed = 1;
         return 1;
     }
@@ -205,31 +205,14 @@ static PyObject *model_run(dkpy_model *self, PyObject *args, PyObject *kwargs)
                             "t0 < t1 and step > 0 are needed (got t0 = %g, t1 = %g, step = %g)",
                             a.t0, a.t1, a.step);
     /* the parameters, then the initial state that may follow them */
-    char err[512];
-    void *par = dkb_model_params(m, err, sizeof err);
+    void *par = dkpy_model_params(m, a.params);
     if (!par)
-        return PyErr_Format(dkpy_error, "%s", err);
-    PyObject *key, *value, *result = NULL;
-    Py_ssize_t pos = 0;
+        return NULL;
+    PyObject *result = NULL;
     PyArrayObject *y0 = NULL, *times = NULL;
     dyn_event *events = NULL;
     run_sink sink = {.m = m, .par = par};
     found_events found = {0};
-    while (a.params != Py_None && PyDict_Next(a.params, &pos, &key, &value)) {
-        const char *name = PyUnicode_AsUTF8(key);
-        const int i = name ? dyn_model_param_index(m, name) : -1;
-        const double v = PyFloat_AsDouble(value);
-        if (i < 0 || PyErr_Occurred()) {
-            if (!PyErr_Occurred())
-                PyErr_Format(PyExc_KeyError, "model %s has no parameter '%s'", m->name, name);
-            goto done;
-        }
-        dyn_model_set_param(m, par, i, v);
-    }
-    if (m->prepare && m->prepare(par, err, sizeof err)) {
-        PyErr_SetString(PyExc_ValueError, err);
-        goto done;
-    }
     npy_intp n = m->n_states;
     double *y = malloc((size_t)(2 * n + 1) * sizeof *y), *start = y + n;
     if (!y) {
@@ -336,7 +319,7 @@ static PyObject *model_run(dkpy_model *self, PyObject *args, PyObject *kwargs)
         res.stats.steps, "accepted", res.stats.accepted, "rejected", res.stats.rejected,
         "rhs_calls", res.stats.rhs_calls, "jac_calls", res.stats.jac_calls, "events", ev_t);
 done:
-    dkpy_samples_free(&sink.s);
+    dkb_samples_free(&sink.s);
     free(sink.out);
     free(found.index);
     free(found.t);

@@ -66,39 +66,6 @@ PyArrayObject *dkpy_vector(PyObject *obj, const char *what, npy_intp *n)
     return a;
 }
 
-int dkpy_samples_add(dkpy_samples *s, double t, const double *y, const double *out)
-{
-    if (s->count == s->cap) {
-        const long cap = s->cap ? 2 * s->cap : 256;
-        double *nt = realloc(s->t, (size_t)cap * sizeof *nt);
-        if (nt)
-            s->t = nt;
-        double *ny = realloc(s->y, (size_t)cap * (size_t)s->n * sizeof *ny + 1);
-        if (ny)
-            s->y = ny;
-        double *no = s->n_out ? realloc(s->out, (size_t)cap * (size_t)s->n_out * sizeof *no) : NULL;
-        if (no)
-            s->out = no;
-        if (!nt || !ny || (s->n_out && !no))
-            return 1;
-        s->cap = cap;
-    }
-    s->t[s->count] = t;
-    memcpy(s->y + (size_t)s->count * (size_t)s->n, y, (size_t)s->n * sizeof *y);
-    if (s->n_out)
-        memcpy(s->out + (size_t)s->count * (size_t)s->n_out, out, (size_t)s->n_out * sizeof *out);
-    s->count++;
-    return 0;
-}
-
-void dkpy_samples_free(dkpy_samples *s)
-{
-    free(s->t);
-    free(s->y);
-    free(s->out);
-    memset(s, 0, sizeof *s);
-}
-
 /* dynkit.report(): the homework's answers as dynkit report --json writes them */
 static PyObject *report_json(PyObject *self, PyObject *args)
 {

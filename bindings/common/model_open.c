@@ -24,7 +24,7 @@ static int ends_with(const char *s, const char *suffix)
     return ls > lx && strcasecmp(s + ls - lx, suffix) == 0;
 }
 
-static char *read_file(const char *path, size_t *len, char *err, size_t errlen)
+char *dkb_read_file(const char *path, size_t *len, char *err, size_t errlen)
 {
     struct stat st;
     if (stat(path, &st) != 0 || S_ISDIR(st.st_mode)) {
@@ -77,7 +77,7 @@ static int open_file(const char *spec, dkb_model *out, warn_ctx *w, char *err, s
     if (ends_with(spec, ".c"))
         return dyn_jit_load_c_file(spec, NULL, &out->jit, err, errlen);
     size_t len = 0;
-    char *text = read_file(spec, &len, err, errlen);
+    char *text = dkb_read_file(spec, &len, err, errlen);
     if (!text)
         return 1;
     char *c_source = NULL;

@@ -27,6 +27,10 @@ int dkb_model_open(const char *spec, dkb_model *out, dkb_warn_fn warn, void *war
                    char *err, size_t errlen);
 void dkb_model_close(dkb_model *m);
 
+/* A model file's text (malloc'd, NUL-terminated, *len bytes, at most 16 MiB), or NULL with
+ * the reason in err. */
+char *dkb_read_file(const char *path, size_t *len, char *err, size_t errlen);
+
 /* The parameter struct of m with its defaults and prepared (malloc'd, m->par_size bytes at
  * least one), or NULL with the reason in err. */
 void *dkb_model_params(const dyn_model *m, char *err, size_t errlen);

@@ -107,3 +107,17 @@ def test_report_is_the_homeworks():
     for key in common:
         if key not in ("compute_seconds", "studies", "timing"):
             assert rep[key] == cli[key], key
+
+
+def test_mechanism_derive_and_forces():
+    path = os.path.join(SOURCE, "examples", "mechanisms", "fourbar.mech")
+    mech = dynkit.Mechanism(path)
+    cli = subprocess.run([CLI, "derive", path], check=True, capture_output=True,
+                         text=True).stdout
+    assert mech.derive() == cli
+    assert mech.constraint_forces == {"loop_x": "N", "loop_y": "N"}
+    run = mech.run(outputs=True, tspan=(0, 0.5))
+    names, values = cli_final(path, "--tspan", "0:0.5", "--outputs")
+    assert run.names == names and list(run.table()[-1]) == values
+    with pytest.raises(ValueError, match="not a mechanism file"):
+        dynkit.Mechanism(os.path.join(SOURCE, "examples", "models", "lorenz.ode"))

@@ -13,7 +13,8 @@ reference.
 """
 from ._core import DynkitError
 from ._ivp import OdeResult, OdeSolution, solve_ivp
-from ._model import Model, Run, models, report
+from ._model import Mechanism, Model, Run, models, report
 
-__all__ = ["solve_ivp", "OdeResult", "OdeSolution", "Model", "Run", "models", "report",
+__all__ = ["solve_ivp", "OdeResult", "OdeSolution", "Model", "Mechanism", "Run", "models",
+           "report",
            "DynkitError"]

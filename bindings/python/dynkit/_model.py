@@ -10,7 +10,7 @@ import numpy as np
 
 from . import _core
 
-__all__ = ["Model", "Run", "models", "report"]
+__all__ = ["Model", "Mechanism", "Run", "models", "report"]
 
 
 def models() -> List[str]:
@@ -210,3 +210,25 @@ class Model:
         probe = self._core.run(method="euler", t0=0.0, t1=1.0, step=1.0, params=params,
                                max_steps=-1)
         return probe["y"][0].copy()
+
+
+class Mechanism(Model):
+    """A mechanism file (.mech, docs/mechanisms.md): a Model (run, equilibria, lyapunov, ...)
+    with the equations dynkit derives by TMT and its constraint forces named with units."""
+
+    def __init__(self, path: str):
+        if not str(path).endswith(".mech"):
+            raise ValueError(f"'{path}' is not a mechanism file NAME.mech")
+        super().__init__(path)
+        self.path = str(path)
+        # the constraints, as derive names them ("constraint NAME (of the positions)")
+        names = [line.split()[1] for line in self.derive().splitlines()
+                 if line.startswith("constraint ")]
+        units = {n: u for n, u, _ in self.info["outputs"]}
+        #: each constraint's force (its multiplier, an output of the runs), name -> unit
+        self.constraint_forces: Dict[str, str] = {n: units[n] for n in names if n in units}
+
+    def derive(self, c: bool = False) -> str:
+        """The equations of motion as `dynkit derive FILE.mech` prints them: M q'' = F + D' lambda
+        with the constraints, each term a formula SymPy parses; c=True: the generated C."""
+        return _core.mech_text(self.path, bool(c))

@@ -9,6 +9,9 @@
 #include "core.h"
 
 #include <dlfcn.h>
+
+#include "dynkit/lang.h"
+#include "dynkit/mbs.h"
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -95,6 +98,38 @@ static PyObject *report_json(PyObject *self, PyObject *args)
     return s;
 }
 
+/* the equations a mechanism file derives, as `dynkit derive FILE.mech` (or its C, c = 1) */
+static PyObject *mech_text(PyObject *self, PyObject *args)
+{
+    (void)self;
+    const char *path;
+    int c = 0;
+    if (!PyArg_ParseTuple(args, "s|p", &path, &c))
+        return NULL;
+    char err[2048];
+    size_t len = 0;
+    char *text = dkb_read_file(path, &len, err, sizeof err);
+    if (!text) {
+        PyErr_SetString(dkpy_error, err);
+        return NULL;
+    }
+    char *out = NULL;
+    dyn_lang_diag diag;
+    const int rc = c ? dyn_mech_to_c(path, text, len, NULL, 0, &out, &diag, NULL, NULL)
+                     : dyn_mech_derive_text(path, text, len, &out, &diag);
+    free(text);
+    if (rc != 0) {
+        if (rc == 1)
+            return PyErr_NoMemory();
+        dyn_lang_diag_format(&diag, err, sizeof err);
+        PyErr_SetString(dkpy_error, err);
+        return NULL;
+    }
+    PyObject *r = PyUnicode_FromString(out);
+    free(out);
+    return r;
+}
+
 static PyObject *models(PyObject *self, PyObject *args)
 {
     (void)self;
@@ -118,6 +153,8 @@ static PyMethodDef functions[] = {
     {"ivp_eval", dkpy_ivp_eval, METH_VARARGS, "The dense output of a solution at times t."},
     {"report_json", report_json, METH_NOARGS, "The homework's answers as JSON text."},
     {"models", models, METH_NOARGS, "The names of the built-in models."},
+    {"mech_text", mech_text, METH_VARARGS,
+     "A mechanism file's derived equations (or, c=True, its C), as dynkit derive."},
     {NULL, NULL, 0, NULL},
 };
 

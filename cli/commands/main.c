@@ -34,6 +34,10 @@ static void main_help(void)
          "  derive FILE.mech the equations of motion of a mechanism file as formulas\n"
          "  equilibria MODEL every equilibrium in a box (a map's fixed points), each with\n"
          "                 its eigenvalues and type (--box NAME=A:B,..., --json)\n"
+         "  lyapunov MODEL the largest Lyapunov exponent, or all (--spectrum), by\n"
+         "                 Benettin's method, with an error estimate\n"
+         "  steady MODEL   a steady motion: --unknown NAME,... solved so that the\n"
+         "                 non-cyclic states stay put; its eigenvalues\n"
          "  help [COMMAND] this text, or the help of COMMAND (as 'dynkit COMMAND --help')\n"
          "\n"
          "MODEL is a built-in model's name ('dynkit models'), an XPPAUT .ode file, a mechanism\n"
@@ -71,6 +75,7 @@ int main(int argc, char **argv)
         {"derive", cli_cmd_derive},
         {"equilibria", cli_cmd_equilibria},
         {"lyapunov", cli_cmd_lyapunov},
+        {"steady", cli_cmd_steady},
     };
     /* --verbose is accepted anywhere, by every command */
     int kept = 1;
@@ -117,7 +122,7 @@ int main(int argc, char **argv)
     return cli_usage_error(NULL,
                            "unknown command '%s' (%s%s%saccepted: run, models, methods, info, "
                            "inverse, report, animate, plot, verify, sweep, linearize, derive, "
-                           "equilibria, lyapunov, continue, help)",
+                           "equilibria, lyapunov, continue, steady, help)",
                            argv[1], near ? "did you mean '" : "", near ? near : "",
                            near ? "'? " : "");
 }

@@ -1,0 +1,77 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* dynkit/steady.h — steady motions (relative equilibria): states in which the derivatives
+ * of the non-cyclic states vanish while the cyclic ones (states that the right-hand side
+ * does not depend on, a mechanism's ignorable coordinates) move at constant rates. Named
+ * unknowns (states or parameters) are solved for by Gauss-Newton with Levenberg-Marquardt
+ * damping on the derivatives that must vanish, the state completed after each change by a
+ * caller's step (a mechanism's dependent states from its constraints:
+ * dyn_steady_dependent). C11 + libm. docs/analysis.md, "Steady motions". */
+#ifndef DYNKIT_STEADY_H
+#define DYNKIT_STEADY_H
+
+#include <stddef.h>
+
+#include "dynkit/model.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* An unknown: state index, or parameter index when is_param. */
+typedef struct dyn_steady_unknown {
+    int is_param;
+    int index;
+} dyn_steady_unknown;
+
+/* Complete the state y after unknowns changed (e.g. a mechanism's dependent speeds from its
+ * constraints); 0, or non-zero with a message in err. */
+typedef int (*dyn_steady_complete_fn)(void *ctx, double t, double *y, void *par, char *err,
+                                      size_t errlen);
+
+typedef struct dyn_steady_opts {
+    int n_unknowns;
+    const dyn_steady_unknown *unknowns;
+    int n_equations;
+    const int *equations;           /* the states whose derivatives must vanish */
+    dyn_steady_complete_fn complete; /* NULL: none */
+    void *complete_ctx;
+    double tol;   /* relative to max(||f||_inf, 1); 0: 1e-12 */
+    int max_iter; /* 0: 100 */
+} dyn_steady_opts;
+
+typedef struct dyn_steady_info {
+    int iterations;
+    double residual; /* the largest |f_i| of the equations at the solution */
+    double tol;      /* the absolute tolerance it was held to */
+    char message[256];
+} dyn_steady_info;
+
+/* Solve for the unknowns from their values in y and par (par prepared; the model's
+ * prepare is called after a parameter changes) so that f_i(t, y) = 0 for each equation i.
+ * y and par receive the solution (the last iterate on failure). Returns 0; DYN_ERR_STEP_SIZE
+ * (no step lowers the residual: no steady motion near, message with the residual),
+ * DYN_ERR_MAX_STEPS, DYN_ERR_ARG (more unknowns than equations, a prepare or completion
+ * that fails), DYN_ERR_RHS. */
+int dyn_steady_solve(const dyn_model *m, double t, double *y, void *par,
+                     const dyn_steady_opts *opts, dyn_steady_info *info);
+
+/* The cyclic states among the k kept ones (indices kept[0..k), all n states when kept is
+ * NULL and k = n) from AP (n x k, row-major): the linearization along the admissible
+ * directions, column j the derivative along kept state j. A kept state is cyclic when its
+ * column vanishes (|entry| <= rel times the largest |entry| considered) on the rows of the
+ * kept states not yet cyclic; repeated until no more become cyclic. cyclic[j] (k values) is
+ * set to 1 for those; returns how many. */
+int dyn_steady_cyclic(int n, int k, const int *kept, const double *AP, double rel, int *cyclic);
+
+/* The dependent states dep[0..nd) of a mechanism solved from its constraints, the others
+ * fixed: Newton's method on the values of cm's constraint outputs (dyn_constraint_values,
+ * dynkit/analysis.h: h of every constraint and f of the holonomic ones, nd of them in all),
+ * the Jacobian by central differences. Returns 0, or DYN_ERR_ARG with a message when the
+ * count does not match or they do not converge. */
+int dyn_steady_dependent(const dyn_model *cm, const void *par, double t, double *y, int nd,
+                         const int *dep, char *err, size_t errlen);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* DYNKIT_STEADY_H */

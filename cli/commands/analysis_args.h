@@ -17,12 +17,19 @@ typedef struct cli_aopt {
     size_t list_size;
 } cli_aopt;
 
-/* Split argv (MODEL first) into pass (for cli_run_parse: MODEL and the run options named
- * in run_opts, each "--name VALUE", and the flags in run_flags, both given as "--name" in
- * static storage) and the command's own options. pass holds 2 argc + 1 pointers. Returns CLI_OK or a usage error (printed). */
-int cli_analysis_args(const char *command, int argc, char **argv, const char *const *run_opts,
-                      int n_run_opts, const char *const *run_flags, int n_run_flags,
-                      const cli_aopt *own, int n_own, char **pass, int *n_pass);
+/* The start of an analysis command: with -h or --help anywhere, help() is printed and
+ * *done set; a missing MODEL is a usage error; else argv (MODEL first) is split into the
+ * run options named in run_opts ("--name" in static storage, each with a value), parsed
+ * into run by cli_run_parse, and the command's own options. Returns CLI_OK or a usage
+ * error (printed); run is to be freed with cli_run_free in every case. */
+int cli_analysis_parse(const char *command, int argc, char **argv, void (*help)(void),
+                       const char *const *run_opts, int n_run_opts, const cli_aopt *own,
+                       int n_own, cli_run *run, int *done);
+
+/* print(f, ctx) to output (NULL or "-": standard output; a file is kept only when every
+ * write succeeded). Returns CLI_OK or CLI_FAILED. */
+int cli_analysis_write(const char *output, void (*print)(FILE *, const void *),
+                       const void *ctx);
 
 /* "NAME=VALUE" split at '=' into name (size bytes); the value's start, or NULL. */
 const char *cli_analysis_name_value(const char *text, char *name, size_t size);

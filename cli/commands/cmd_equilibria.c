@@ -19,42 +19,46 @@
 
 static void equilibria_help(void)
 {
-    puts("Usage: dynkit equilibria MODEL [--box NAME=A:B,...] [--starts N] [--init NAME=VALUE]...\n"
-         "                         [--set NAME=VALUE]... [--t T] [--jacobian SCHEME]\n"
+    puts("Usage: dynkit equilibria MODEL [--box NAME=A:B,...] [--starts N]\n"
+         "                         [--init NAME=VALUE]... [--set NAME=VALUE]... [--t T]\n"
+         "                         [--jacobian SCHEME]\n"
          "                         [--json] [--output FILE.json|FILE.csv]\n"
          "\n"
-         "Finds the equilibria f(t, y) = 0 of MODEL in a box (of a discrete map, the fixed\n"
-         "points F(y) = y): Newton's method (Levenberg-Marquardt steps, the model's exact\n"
-         "Jacobian when it has one) from the box's centre, the model's initial state and\n"
-         "255 points of Halton's sequence; solutions that agree within 1e-6 of the box are\n"
-         "one. Each is given with its eigenvalues (a map: multipliers), its type (stable or\n"
-         "unstable node or focus, saddle, saddle-focus, centre, saddle-centre,\n"
-         "non-hyperbolic) and the dimensions of its stable, unstable and centre manifolds.\n"
+         "Finds the equilibria f(t, y) = 0 of MODEL in a box (of a discrete map, the\n"
+         "fixed points F(y) = y): Newton's method (Levenberg-Marquardt steps, the model's\n"
+         "exact Jacobian when it has one) from the box's centre, the model's initial\n"
+         "state and 255 points of Halton's sequence; solutions that agree within 1e-6 of\n"
+         "the box are one. Each is given with its eigenvalues (a map: multipliers), its\n"
+         "type (stable or unstable node or focus, saddle, saddle-focus, centre,\n"
+         "saddle-centre, non-hyperbolic) and the dimensions of its stable, unstable and\n"
+         "centre manifolds.\n"
          "A mechanism file with constraints is judged on its minimal coordinates and\n"
          "speeds, as by linearize.\n"
          "\n"
          "Options:\n"
          "  --box NAME=A:B,...   the box of a state (repeatable); states not named: the\n"
-         "                       file's @ xlo, xhi (ylo, yhi) when xp (yp) names the state,\n"
-         "                       else the range of the model's default run widened by\n"
-         "                       half its width, at least 1, on each side\n"
-         "  --starts N           starts from the box (default 256: its centre and 255 Halton\n"
-         "                       points), besides the initial state\n"
+         "                       file's @ xlo, xhi (ylo, yhi) when xp (yp) names the\n"
+         "                       state, else the range of the model's default run widened\n"
+         "                       by half its width, at least 1, on each side\n"
+         "  --starts N           starts from the box (default 256: its centre and 255\n"
+         "                       Halton points), besides the initial state\n"
          "  --init NAME=VALUE    a state of the initial state (the first start, and the\n"
          "                       default run's start)\n"
          "  --set NAME=VALUE     a parameter's value (repeatable)\n"
          "  --t T                the time (default: the model's start time)\n"
-         "  --jacobian SCHEME    auto (default), analytic, central, richardson (as linearize)\n"
+         "  --jacobian SCHEME    auto (default), analytic, central, richardson (as in\n"
+         "                       linearize)\n"
          "  --json               print {\"equilibria\": [{\"state\": {NAME: value},\n"
          "                       \"eigenvalues\": [[re, im], ...], \"type\": ...}, ...], ...}\n"
          "  -o, --output FILE    .json: as --json; .csv: one row per equilibrium (type,\n"
          "                       stable, unstable, centre, the states, residual)\n"
          "\n"
-         "Exit status 0 also when none is found (the text says so); eigenvalues need LAPACK.\n"
+         "Exit status 0 also when none is found (the text says so); eigenvalues need\n"
+         "LAPACK.\n"
          "\n"
          "Examples:\n"
          "  dynkit equilibria examples/models/lorenz.ode\n"
-         "  dynkit equilibria examples/models/duffing.ode --set gamma=0 --box x=-2:2,v=-1:1 --json\n"
+         "  dynkit equilibria examples/models/duffing.ode --set gamma=0 --json\n"
          "  dynkit equilibria examples/models/henon.ode --box x=-3:3,y=-3:3");
 }
 
@@ -142,11 +146,11 @@ static int parse_box(const dyn_model *m, const char *text, double *lo, double *h
         a[colon - v] = '\0';
         const int i = dyn_model_state_index(m, name);
         if (i < 0)
-            rc = cli_usage_error("equilibria", "--box %s: %s has no state '%s'", tok, m->name,
-                                 name);
+            rc =
+                cli_usage_error("equilibria", "--box %s: %s has no state '%s'", tok, m->name, name);
         else if (cli_parse_number(a, &A) || cli_parse_number(colon + 1, &B) || A > B)
-            rc = cli_usage_error("equilibria", "--box '%s': give NAME=A:B with numbers A <= B",
-                                 tok);
+            rc =
+                cli_usage_error("equilibria", "--box '%s': give NAME=A:B with numbers A <= B", tok);
         else {
             lo[i] = A;
             hi[i] = B;
@@ -190,7 +194,10 @@ static void print_text(FILE *f, const dyn_model *m, int map, const double *lo, c
                 : (e->count == 1 ? "equilibrium" : "equilibria"));
     for (int i = 0; i < n; i++)
         fprintf(f, "%s %s = [%.6g, %.6g]%s", i ? "," : "", m->states[i].name, lo[i] + 0.0,
-                hi[i] + 0.0, given[i] == 2 ? "" : given[i] ? " (@ window)" : " (default run)");
+                hi[i] + 0.0,
+                given[i] == 2 ? ""
+                : given[i]    ? " (@ window)"
+                              : " (default run)");
     fprintf(f, "\n(%d starts: %d converged, %d of them outside the box; %ld calls of f)\n",
             e->starts, e->converged, e->outside, e->rhs_calls);
     for (int c = 0; c < e->count; c++) {
@@ -290,24 +297,24 @@ static void print_csv(FILE *f, const dyn_model *m, const dyn_equilibria *e)
     }
 }
 
-static int write_result(const eq_args *a, const dyn_model *m, int map, const double *lo,
-                        const double *hi, const int *given, const dyn_equilibria *e)
+typedef struct eq_out {
+    const eq_args *a;
+    const dyn_model *m;
+    int map;
+    const double *lo, *hi;
+    const int *given;
+    const dyn_equilibria *e;
+} eq_out;
+
+static void print_result(FILE *f, const void *ctx)
 {
-    cli_out out;
-    const char *path = a->output && strcmp(a->output, "-") != 0 ? a->output : NULL;
-    int rc = cli_out_open(&out, "--output", path);
-    if (rc != CLI_OK)
-        return rc;
-    if (a->json)
-        print_json(out.f, m, map, lo, hi, e);
-    else if (a->output)
-        print_csv(out.f, m, e);
+    const eq_out *o = ctx;
+    if (o->a->json)
+        print_json(f, o->m, o->map, o->lo, o->hi, o->e);
+    else if (o->a->output)
+        print_csv(f, o->m, o->e);
     else
-        print_text(out.f, m, map, lo, hi, given, e);
-    const int bad = fflush(out.f) != 0 || ferror(out.f);
-    if (out.f != stdout)
-        return cli_out_close(&out, !bad);
-    return bad ? CLI_FAILED : CLI_OK;
+        print_text(f, o->m, o->map, o->lo, o->hi, o->given, o->e);
 }
 
 static int parse_scheme(const char *text, dyn_jac_scheme *s)
@@ -347,36 +354,21 @@ static int check_own(eq_args *a, dyn_equilibria_opts *eo, double *t, const cli_r
 
 int cli_cmd_equilibria(int argc, char **argv)
 {
-    for (int i = 0; i < argc; i++)
-        if (cli_is_help(argv[i])) {
-            equilibria_help();
-            return CLI_OK;
-        }
-    if (argc < 1 || argv[0][0] == '-') {
-        char names[512];
-        return cli_usage_error("equilibria", "missing MODEL (accepted: %s, or a model file)",
-                               dyn_model_names(names, sizeof names));
-    }
     eq_args a;
     memset(&a, 0, sizeof a);
-    const cli_aopt own[] = {{"box", NULL, NULL, a.box, sizeof a.box},
-                            {"starts", &a.starts_text, NULL, NULL, 0},
-                            {"t", &a.t_text, NULL, NULL, 0},
-                            {"jacobian", &a.scheme_text, NULL, NULL, 0},
-                            {"output", &a.output, NULL, NULL, 0},
-                            {"json", NULL, &a.json, NULL, 0}};
+    const cli_aopt own[] = {
+        {"box", NULL, NULL, a.box, sizeof a.box}, {"starts", &a.starts_text, NULL, NULL, 0},
+        {"t", &a.t_text, NULL, NULL, 0},          {"jacobian", &a.scheme_text, NULL, NULL, 0},
+        {"output", &a.output, NULL, NULL, 0},     {"json", NULL, &a.json, NULL, 0}};
     static const char *const run_opts[] = {"--init", "--set"};
-    char **pass = calloc((size_t)(2 * argc + 1), sizeof *pass);
-    if (!pass)
-        return CLI_FAILED;
-    int n_pass = 0;
-    int rc = cli_analysis_args("equilibria", argc, argv, run_opts, 2, NULL, 0, own, 6, pass,
-                               &n_pass);
     cli_run run;
-    memset(&run, 0, sizeof run);
-    if (rc == CLI_OK)
-        rc = cli_run_parse("equilibria", n_pass, pass, &run);
-    free(pass);
+    int done;
+    int rc = cli_analysis_parse("equilibria", argc, argv, equilibria_help, run_opts, 2, own, 6,
+                                &run, &done);
+    if (done) {
+        cli_run_free(&run);
+        return rc;
+    }
     dyn_equilibria_opts eo;
     memset(&eo, 0, sizeof eo);
     double t = 0.0;
@@ -420,8 +412,9 @@ int cli_cmd_equilibria(int argc, char **argv)
             rc = st == DYN_ERR_ARG ? CLI_USAGE : CLI_FAILED;
         }
     }
+    const eq_out out = {&a, m, map, lo, hi, given, &e};
     if (rc == CLI_OK)
-        rc = write_result(&a, m, map, lo, hi, given, &e);
+        rc = cli_analysis_write(a.output, print_result, &out);
     if (rc == CLI_OK && !eo.eig) {
         cli_error("equilibria: eigenvalues need LAPACK, and this dynkit was built without it "
                   "(install liblapack-dev and build again); the types are not given");

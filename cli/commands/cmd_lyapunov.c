@@ -21,22 +21,24 @@ static void lyapunov_help(void)
          "                       [--init NAME=VALUE]... [--set NAME=VALUE]... [--json]\n"
          "                       [--output FILE.json]\n"
          "\n"
-         "Computes the largest Lyapunov exponent of MODEL (or the K largest, or all of them)\n"
-         "along the trajectory from its initial state, by Benettin's method: the variational\n"
-         "equations Q' = J Q with the model's exact Jacobian (differences along Q when it has\n"
-         "none) integrated with the trajectory (dop853), Q orthonormalized by Gram-Schmidt\n"
-         "every tau and the logarithms of R's diagonal averaged after the transient. For a\n"
-         "discrete map Q <- dF/dy Q at each iteration, exponents per iteration. The error\n"
-         "estimate is the spread of the means over 10 equal blocks of the averaging time\n"
-         "(their standard deviation over sqrt(10)).\n"
+         "Computes the largest Lyapunov exponent of MODEL (or the K largest, or all of\n"
+         "them) along the trajectory from its initial state, by Benettin's method: the\n"
+         "variational equations Q' = J Q with the model's exact Jacobian (differences\n"
+         "along Q when it has none) integrated with the trajectory (dop853), Q\n"
+         "orthonormalized by Gram-Schmidt every tau and the logarithms of R's diagonal\n"
+         "averaged after the transient. For a discrete map Q <- dF/dy Q at each\n"
+         "iteration, exponents per iteration. The error estimate is the spread of the\n"
+         "means over 10 equal blocks of the averaging time (their standard deviation\n"
+         "over sqrt(10)).\n"
          "\n"
          "Options:\n"
          "  --spectrum           every exponent (as many as states)\n"
          "  --exponents K        the K largest (default 1)\n"
          "  --tspan T0:T1        the run (default: the model's span; a map: iterations)\n"
          "  --transient T        the time discarded first (default: a tenth of the span)\n"
-         "  --tau T              the interval between orthonormalizations (default: 10 times\n"
-         "                       the model's step, at most a tenth of the averaging time)\n"
+         "  --tau T              the interval between orthonormalizations (default: 10\n"
+         "                       times the model's step, at most a tenth of the averaging\n"
+         "                       time)\n"
          "  --rtol R, --atol A   the integrator's tolerances (default 1e-10, 1e-10)\n"
          "  --init NAME=VALUE    a state of the initial state (repeatable)\n"
          "  --set NAME=VALUE     a parameter's value (repeatable)\n"
@@ -78,8 +80,8 @@ static int check_own(ly_args *a, const cli_run *run, dyn_lyapunov_opts *lo)
     lo->t_trans = 0.1 * span;
     int rc = positive("--transient", a->transient_text, &lo->t_trans, 1);
     if (rc == CLI_OK && !(lo->t_trans < span))
-        rc = cli_usage_error("lyapunov", "--transient %.17g: less than the span %.17g",
-                             lo->t_trans, span);
+        rc = cli_usage_error("lyapunov", "--transient %.17g: less than the span %.17g", lo->t_trans,
+                             span);
     lo->t_avg = span - lo->t_trans;
     lo->tau = fmin(10.0 * run->step, lo->t_avg / DYN_LYAPUNOV_BLOCKS);
     if (rc == CLI_OK)
@@ -96,10 +98,22 @@ static int check_own(ly_args *a, const cli_run *run, dyn_lyapunov_opts *lo)
     return rc;
 }
 
-static void print_result(FILE *f, const ly_args *a, const cli_run *run,
-                         const dyn_lyapunov_opts *lo, const double *ex, const double *err,
-                         const dyn_lyapunov_info *info)
+typedef struct ly_out {
+    const ly_args *a;
+    const cli_run *run;
+    const dyn_lyapunov_opts *lo;
+    const double *ex, *err;
+    const dyn_lyapunov_info *info;
+} ly_out;
+
+static void print_result(FILE *f, const void *ctx)
 {
+    const ly_out *o = ctx;
+    const ly_args *a = o->a;
+    const cli_run *run = o->run;
+    const dyn_lyapunov_opts *lo = o->lo;
+    const double *ex = o->ex, *err = o->err;
+    const dyn_lyapunov_info *info = o->info;
     const dyn_model *m = run->model;
     double sum = 0.0;
     for (int j = 0; j < lo->k; j++)
@@ -133,8 +147,9 @@ static void print_result(FILE *f, const ly_args *a, const cli_run *run,
         fputc('\n', f);
         return;
     }
-    fprintf(f, "%s: Lyapunov exponents %s from %s = %.12g to %.12g (after a transient from "
-               "%.12g); %ld orthonormalizations",
+    fprintf(f,
+            "%s: Lyapunov exponents %s from %s = %.12g to %.12g (after a transient from "
+            "%.12g); %ld orthonormalizations",
             m->name, lo->map ? "per iteration" : "per unit of time", lo->map ? "step" : "t",
             t_start, info->t_end, run->t0, info->orthonormalizations);
     if (!lo->map)
@@ -148,16 +163,6 @@ static void print_result(FILE *f, const ly_args *a, const cli_run *run,
 
 int cli_cmd_lyapunov(int argc, char **argv)
 {
-    for (int i = 0; i < argc; i++)
-        if (cli_is_help(argv[i])) {
-            lyapunov_help();
-            return CLI_OK;
-        }
-    if (argc < 1 || argv[0][0] == '-') {
-        char names[512];
-        return cli_usage_error("lyapunov", "missing MODEL (accepted: %s, or a model file)",
-                               dyn_model_names(names, sizeof names));
-    }
     ly_args a;
     memset(&a, 0, sizeof a);
     const cli_aopt own[] = {{"exponents", &a.exponents_text, NULL, NULL, 0},
@@ -169,17 +174,14 @@ int cli_cmd_lyapunov(int argc, char **argv)
                             {"spectrum", NULL, &a.spectrum, NULL, 0},
                             {"json", NULL, &a.json, NULL, 0}};
     static const char *const run_opts[] = {"--init", "--set", "--tspan"};
-    char **pass = calloc((size_t)(2 * argc + 1), sizeof *pass);
-    if (!pass)
-        return CLI_FAILED;
-    int n_pass = 0;
-    int rc = cli_analysis_args("lyapunov", argc, argv, run_opts, 3, NULL, 0, own, 8, pass,
-                               &n_pass);
     cli_run run;
-    memset(&run, 0, sizeof run);
-    if (rc == CLI_OK)
-        rc = cli_run_parse("lyapunov", n_pass, pass, &run);
-    free(pass);
+    int done;
+    int rc =
+        cli_analysis_parse("lyapunov", argc, argv, lyapunov_help, run_opts, 3, own, 8, &run, &done);
+    if (done) {
+        cli_run_free(&run);
+        return rc;
+    }
     dyn_lyapunov_opts lo;
     memset(&lo, 0, sizeof lo);
     if (rc == CLI_OK) {
@@ -201,14 +203,8 @@ int cli_cmd_lyapunov(int argc, char **argv)
             cli_error("lyapunov: %s", info.message);
             rc = st == DYN_ERR_ARG ? CLI_USAGE : CLI_FAILED;
         } else {
-            cli_out out;
-            const char *path = a.output && strcmp(a.output, "-") != 0 ? a.output : NULL;
-            rc = cli_out_open(&out, "--output", path);
-            if (rc == CLI_OK) {
-                print_result(out.f, &a, &run, &lo, ex, err, &info);
-                const int bad = fflush(out.f) != 0 || ferror(out.f);
-                rc = out.f != stdout ? cli_out_close(&out, !bad) : bad ? CLI_FAILED : CLI_OK;
-            }
+            const ly_out out = {&a, &run, &lo, ex, err, &info};
+            rc = cli_analysis_write(a.output, print_result, &out);
         }
     }
     free(ex);

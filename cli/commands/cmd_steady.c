@@ -13,6 +13,7 @@
 #include "cli.h"
 #include "commands/analysis_args.h"
 #include "dynkit/analysis.h"
+#include "dynkit/equilibria.h"
 #include "dynkit/steady.h"
 #include "models/lin_constrained.h"
 #include "pages/pages.h"
@@ -24,13 +25,14 @@ static void steady_help(void)
          "                     [--init NAME=VALUE]... [--set NAME=VALUE]... [--t T]\n"
          "                     [--json] [--output FILE.json]\n"
          "\n"
-         "Finds a steady motion (a relative equilibrium) of MODEL: the unknowns, states or\n"
-         "parameters, are solved (Gauss-Newton, Levenberg-Marquardt damping) from their\n"
+         "Finds a steady motion (a relative equilibrium) of MODEL: the unknowns, states\n"
+         "or parameters, are solved (Gauss-Newton, Levenberg-Marquardt damping) from their\n"
          "values in the initial state so that the derivatives of the non-cyclic states\n"
-         "vanish, while the cyclic states - those the right-hand side does not depend on, a\n"
-         "mechanism's ignorable coordinates - keep moving at constant rates. A mechanism's\n"
-         "states that its constraints determine are solved from them at every step. Then it\n"
-         "linearizes there: the eigenvalues on the minimal coordinates and speeds, as\n"
+         "vanish, while the cyclic states - those the right-hand side does not depend\n"
+         "on, a mechanism's ignorable coordinates - keep moving at constant rates. A\n"
+         "mechanism's states that its constraints determine are solved from them at\n"
+         "every step. Then it linearizes there: the eigenvalues on the minimal\n"
+         "coordinates and speeds, as "
          "linearize gives them.\n"
          "\n"
          "Options:\n"
@@ -46,14 +48,14 @@ static void steady_help(void)
          "\n"
          "Examples:\n"
          "  dynkit steady examples/mechanisms/top.mech --unknown dpsi --init dpsi=1\n"
-         "  dynkit steady examples/mechanisms/spherical_pendulum.mech --unknown dpsi "
-         "--init dpsi=4\n"
-         "  dynkit steady examples/mechanisms/rolling_disk.mech --unknown dphi --init "
-         "theta=0.3 --init dpsi=2 --json");
+         "  dynkit steady examples/mechanisms/spherical_pendulum.mech --unknown dpsi \\\n"
+         "      --init dpsi=4\n"
+         "  dynkit steady examples/mechanisms/rolling_disk.mech --unknown dphi --init \\\n"
+         "      theta=0.3 --init dpsi=2 --json");
 }
 
 typedef struct st_args {
-    char unknown[1024], cyclic[1024];
+    char unknown[1024], cyclic[1024], init[4096];
     const char *t_text, *output;
     int json;
 } st_args;
@@ -66,8 +68,7 @@ typedef struct st_frame {
     double *P;
 } st_frame;
 
-static int complete_dependent(void *ctx, double t, double *y, void *par, char *err,
-                              size_t errlen)
+static int complete_dependent(void *ctx, double t, double *y, void *par, char *err, size_t errlen)
 {
     const st_frame *fr = ctx;
     return dyn_steady_dependent(fr->cc->jm.model, par, t, y, fr->nd, fr->dep, err, errlen);
@@ -142,9 +143,24 @@ typedef struct st_result {
     double tol;
 } st_result;
 
-static void print_result(FILE *f, const st_args *a, const dyn_model *m, const void *par,
-                         const double *y, const st_frame *fr, const st_result *r)
+typedef struct st_out {
+    const st_args *a;
+    const dyn_model *m;
+    const void *par;
+    const double *y;
+    const st_frame *fr;
+    const st_result *r;
+} st_out;
+
+static void print_result(FILE *f, const void *ctx)
 {
+    const st_out *o = ctx;
+    const st_args *a = o->a;
+    const dyn_model *m = o->m;
+    const void *par = o->par;
+    const double *y = o->y;
+    const st_frame *fr = o->fr;
+    const st_result *r = o->r;
     const int n = m->n_states;
     if (a->json) {
         cli_json j;
@@ -200,8 +216,8 @@ static void print_result(FILE *f, const st_args *a, const dyn_model *m, const vo
         fputc('\n', f);
         return;
     }
-    fprintf(f, "%s: a steady motion (%d iterations, residual %.3g)\n", m->name,
-            r->info.iterations, r->info.residual);
+    fprintf(f, "%s: a steady motion (%d iterations, residual %.3g)\n", m->name, r->info.iterations,
+            r->info.residual);
     fputs("cyclic (moving at constant rates):", f);
     for (int c = 0; c < fr->k; c++)
         if (r->cyclic[c])
@@ -262,9 +278,34 @@ static int eigenvalues(const dyn_model *m, double t, const double *y, void *par,
     return rc;
 }
 
+/* AP (n x k): the linearization along the admissible directions P of fr at (t, y). */
+static int linearize_along(const dyn_model *m, double t, const double *y, void *par,
+                           const st_frame *fr, double *AP)
+{
+    const size_t N = (size_t)m->n_states, K = (size_t)fr->k;
+    double *A = malloc(N * N * sizeof *A),
+           *w = malloc(dyn_linearize_work_size(m->n_states) * sizeof *w);
+    dyn_linearize_info li;
+    int rc = A && w ? CLI_OK : CLI_FAILED;
+    if (rc == CLI_OK && dyn_linearize(m, t, y, par, NULL, A, w, &li)) {
+        cli_error("steady: %s", li.message);
+        rc = CLI_FAILED;
+    }
+    for (size_t i = 0; i < N && rc == CLI_OK; i++)
+        for (size_t j = 0; j < K; j++) {
+            double s = 0.0;
+            for (size_t l = 0; l < N; l++)
+                s += A[i * N + l] * fr->P[l * K + j];
+            AP[i * K + j] = s;
+        }
+    free(A);
+    free(w);
+    return rc;
+}
+
 /* The cyclic states: --cyclic, or those dyn_steady_cyclic finds at the guess. */
-static int find_cyclic(const dyn_model *m, double t, const double *y, void *par,
-                       const st_frame *fr, char *given, int *cyclic)
+static int find_cyclic(const dyn_model *m, double t, const double *y, void *par, const st_frame *fr,
+                       char *given, int *cyclic)
 {
     const int n = m->n_states, k = fr->k;
     const size_t N = (size_t)n;
@@ -285,26 +326,42 @@ static int find_cyclic(const dyn_model *m, double t, const double *y, void *par,
         }
         return CLI_OK;
     }
-    double *A = malloc(N * N * sizeof *A), *AP = malloc(N * N * sizeof *AP),
-           *w = malloc(dyn_linearize_work_size(n) * sizeof *w);
-    dyn_linearize_info li;
-    int rc = A && AP && w ? CLI_OK : CLI_FAILED;
-    if (rc == CLI_OK && dyn_linearize(m, t, y, par, NULL, A, w, &li)) {
-        cli_error("steady: %s", li.message);
-        rc = CLI_FAILED;
-    }
-    for (size_t i = 0; i < N && rc == CLI_OK; i++)
-        for (size_t j = 0; j < (size_t)k; j++) {
-            double s = 0.0;
-            for (size_t l = 0; l < N; l++)
-                s += A[i * N + l] * fr->P[l * (size_t)k + j];
-            AP[i * (size_t)k + j] = s;
-        }
+    /* at the state and at a nearby one (each kept state moved by a tenth of max(|y|, 1)
+     * times a Halton number): a column that vanishes only at the state (a rate that is 0
+     * there) is not taken for a cyclic state's */
+    double *AP = malloc(N * N * sizeof *AP), *AP2 = malloc(N * N * sizeof *AP2),
+           *y2 = malloc(N * sizeof *y2);
+    st_frame fr2 = {fr->cc,
+                    n,
+                    n,
+                    0,
+                    malloc(N * sizeof(int)),
+                    malloc(N * sizeof(int)),
+                    malloc(N * N * sizeof(double))};
+    int rc = AP && AP2 && y2 && fr2.kept && fr2.dep && fr2.P ? CLI_OK : CLI_FAILED;
     if (rc == CLI_OK)
+        rc = linearize_along(m, t, y, par, fr, AP);
+    if (rc == CLI_OK) {
+        memcpy(y2, y, N * sizeof *y2);
+        for (int j = 0; j < k; j++) {
+            const int s = fr->kept[j];
+            y2[s] += 0.1 * fmax(fabs(y[s]), 1.0) * dyn_halton(1 + j, 0);
+        }
+        char err[256];
+        int same = !(fr->nd && complete_dependent((void *)fr, t, y2, par, err, sizeof err)) &&
+                   frame_at(&fr2, t, y2, par) == CLI_OK && fr2.k == k &&
+                   memcmp(fr2.kept, fr->kept, (size_t)k * sizeof *fr->kept) == 0 &&
+                   linearize_along(m, t, y2, par, &fr2, AP2) == CLI_OK;
+        for (size_t e = 0; same && e < N * (size_t)k; e++)
+            AP[e] = fmax(fabs(AP[e]), fabs(AP2[e]));
         dyn_steady_cyclic(n, k, fr->kept, AP, 1e-8, cyclic);
-    free(A);
+    }
     free(AP);
-    free(w);
+    free(AP2);
+    free(y2);
+    free(fr2.kept);
+    free(fr2.dep);
+    free(fr2.P);
     return rc;
 }
 
@@ -317,7 +374,12 @@ static int solve(const char *spec, st_args *a, cli_run *run, double t)
     int rc = cli_lin_constraints_open(spec, m, &cc);
     if (rc != CLI_OK)
         return rc;
-    st_frame fr = {&cc, n, n, 0, malloc(N * sizeof(int)), malloc(N * sizeof(int)),
+    st_frame fr = {&cc,
+                   n,
+                   n,
+                   0,
+                   malloc(N * sizeof(int)),
+                   malloc(N * sizeof(int)),
                    malloc(N * N * sizeof(double))};
     st_result r;
     memset(&r, 0, sizeof r);
@@ -359,8 +421,8 @@ static int solve(const char *spec, st_args *a, cli_run *run, double t)
         r.n_unknowns = u + 1;
     }
     if (rc == CLI_OK) {
-        const dyn_steady_opts so = {r.n_unknowns, r.unknowns, r.n_eq, eqs,
-                                    fr.nd ? complete_dependent : NULL, &fr, 0.0, 0};
+        const dyn_steady_opts so = {
+            r.n_unknowns, r.unknowns, r.n_eq, eqs, fr.nd ? complete_dependent : NULL, &fr, 0.0, 0};
         const int st = dyn_steady_solve(m, t, run->y0, run->par, &so, &r.info);
         if (st) {
             cli_error("steady: %s", r.info.message);
@@ -369,16 +431,9 @@ static int solve(const char *spec, st_args *a, cli_run *run, double t)
     }
     if (rc == CLI_OK)
         rc = eigenvalues(m, t, run->y0, run->par, &fr, &r);
-    if (rc == CLI_OK) {
-        cli_out out;
-        const char *path = a->output && strcmp(a->output, "-") != 0 ? a->output : NULL;
-        rc = cli_out_open(&out, "--output", path);
-        if (rc == CLI_OK) {
-            print_result(out.f, a, m, run->par, run->y0, &fr, &r);
-            const int bad = fflush(out.f) != 0 || ferror(out.f);
-            rc = out.f != stdout ? cli_out_close(&out, !bad) : bad ? CLI_FAILED : CLI_OK;
-        }
-    }
+    const st_out out = {a, m, run->par, run->y0, &fr, &r};
+    if (rc == CLI_OK)
+        rc = cli_analysis_write(a->output, print_result, &out);
     free(fr.kept);
     free(fr.dep);
     free(fr.P);
@@ -391,38 +446,55 @@ static int solve(const char *spec, st_args *a, cli_run *run, double t)
     return rc;
 }
 
+/* --init NAME=VALUE,... into y (states only: a parameter is given with --set). */
+static int apply_init(const dyn_model *m, char *list, double *y)
+{
+    char *items[256];
+    const int c = split_names(list, items, 256);
+    if (c < 0)
+        return cli_usage_error("steady", "--init: too many values");
+    for (int i = 0; i < c; i++) {
+        char name[128];
+        const char *v = cli_analysis_name_value(items[i], name, sizeof name);
+        const int s = v ? dyn_model_state_index(m, name) : -1;
+        double x;
+        if (!v)
+            return cli_usage_error("steady", "--init '%s': give NAME=VALUE", items[i]);
+        if (s < 0)
+            return cli_usage_error(
+                "steady", "--init %s: %s has no state '%s'%s", items[i], m->name, name,
+                dyn_model_param_index(m, name) >= 0 ? " (a parameter: give it with --set)" : "");
+        if (cli_parse_number(v, &x))
+            return cli_usage_error("steady", "--init %s: give a finite number", items[i]);
+        y[s] = x;
+    }
+    return CLI_OK;
+}
+
 int cli_cmd_steady(int argc, char **argv)
 {
-    for (int i = 0; i < argc; i++)
-        if (cli_is_help(argv[i])) {
-            steady_help();
-            return CLI_OK;
-        }
-    if (argc < 1 || argv[0][0] == '-') {
-        char names[512];
-        return cli_usage_error("steady", "missing MODEL (accepted: %s, or a model file)",
-                               dyn_model_names(names, sizeof names));
-    }
     st_args a;
     memset(&a, 0, sizeof a);
-    const cli_aopt own[] = {{"unknown", NULL, NULL, a.unknown, sizeof a.unknown},
+    const cli_aopt own[] = {{"init", NULL, NULL, a.init, sizeof a.init},
+                            {"unknown", NULL, NULL, a.unknown, sizeof a.unknown},
                             {"cyclic", NULL, NULL, a.cyclic, sizeof a.cyclic},
                             {"t", &a.t_text, NULL, NULL, 0},
                             {"output", &a.output, NULL, NULL, 0},
                             {"json", NULL, &a.json, NULL, 0}};
-    static const char *const run_opts[] = {"--init", "--set"};
-    char **pass = calloc((size_t)(2 * argc + 1), sizeof *pass);
-    if (!pass)
-        return CLI_FAILED;
-    int n_pass = 0;
-    int rc = cli_analysis_args("steady", argc, argv, run_opts, 2, NULL, 0, own, 5, pass,
-                               &n_pass);
+    /* --init is applied here, not by the run's parser: a mechanism's dependent states
+     * are solved from its constraints below, so the given state need not hold them */
+    static const char *const run_opts[] = {"--set"};
     cli_run run;
-    memset(&run, 0, sizeof run);
-    if (rc == CLI_OK)
-        rc = cli_run_parse("steady", n_pass, pass, &run);
-    free(pass);
+    int done;
+    int rc =
+        cli_analysis_parse("steady", argc, argv, steady_help, run_opts, 1, own, 6, &run, &done);
+    if (done) {
+        cli_run_free(&run);
+        return rc;
+    }
     double t = run.t0;
+    if (rc == CLI_OK && a.init[0])
+        rc = apply_init(run.model, a.init, run.y0);
     if (rc == CLI_OK && !a.unknown[0])
         rc = cli_usage_error("steady", "missing --unknown NAME[,NAME...] (states or parameters "
                                        "to solve for)");
@@ -434,8 +506,10 @@ int cli_cmd_steady(int argc, char **argv)
         a.json = 1;
     }
     if (rc == CLI_OK && dyn_method_is_map(run.method))
-        rc = cli_usage_error("steady", "%s is a discrete map: its fixed points are found by "
-                                       "dynkit equilibria", run.model->name);
+        rc = cli_usage_error("steady",
+                             "%s is a discrete map: its fixed points are found by "
+                             "dynkit equilibria",
+                             run.model->name);
     if (rc == CLI_OK)
         rc = solve(argv[0], &a, &run, t);
     cli_run_free(&run);

@@ -219,8 +219,8 @@ static int check_args(const dyn_model *m, const dyn_equilibria_opts *o, dyn_equi
             return DYN_ERR_ARG;
         }
     if (m->delay || m->volterra) {
-        snprintf(e->message, sizeof e->message,
-                 "%s has %s: its equilibria are not supported", m->name,
+        snprintf(e->message, sizeof e->message, "%s has %s: its equilibria are not supported",
+                 m->name,
                  m->delay ? "delays (delay(x, tau))" : "Volterra integrals (int{...}, volt)");
         return DYN_ERR_ARG;
     }
@@ -253,8 +253,8 @@ int dyn_equilibria_find(const dyn_model *m, double t, void *par, const dyn_equil
     }
     const int starts = o->starts > 0 ? o->starts : DYN_EQUILIBRIA_STARTS;
     const double merge = o->merge > 0.0 ? o->merge : DYN_EQUILIBRIA_MERGE;
-    double *work = malloc((dyn_equilibrium_work_size(n) + N + 2 * N * N + dyn_linearize_work_size(n)) *
-                          sizeof *work);
+    double *work = malloc(
+        (dyn_equilibrium_work_size(n) + N + 2 * N * N + dyn_linearize_work_size(n)) * sizeof *work);
     int cap = 8;
     if (!work || grow(e, cap)) {
         free(work);

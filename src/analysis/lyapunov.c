@@ -104,11 +104,12 @@ static int refuse(const dyn_model *m, const dyn_lyapunov_opts *o, int k, dyn_lya
                  "exponents wanted: %d; give 1 to %d (the states)", k, m->n_states);
         return DYN_ERR_ARG;
     }
-    if (!(o->t_avg > 0.0) || !isfinite(o->t_avg) || !(o->t_trans >= 0.0) ||
-        !isfinite(o->t_trans) || (!o->map && !(o->tau > 0.0 && isfinite(o->tau)))) {
+    if (!(o->t_avg > 0.0) || !isfinite(o->t_avg) || !(o->t_trans >= 0.0) || !isfinite(o->t_trans) ||
+        (!o->map && !(o->tau > 0.0 && isfinite(o->tau)))) {
         snprintf(info->message, sizeof info->message,
                  "the averaging time must be > 0, the transient >= 0 and the interval > 0 "
-                 "(got %.17g, %.17g, %.17g)", o->t_avg, o->t_trans, o->tau);
+                 "(got %.17g, %.17g, %.17g)",
+                 o->t_avg, o->t_trans, o->tau);
         return DYN_ERR_ARG;
     }
     if (o->scheme == DYN_JAC_ANALYTIC && !m->jacobian) {
@@ -130,7 +131,8 @@ static void finish(int k, int blocks, long M, double dt, const double *total, co
             mean += bsum[(size_t)b * (size_t)k + (size_t)j] / ((double)blen[b] * dt);
         mean /= blocks;
         for (int b = 0; b < blocks; b++) {
-            const double d = bsum[(size_t)b * (size_t)k + (size_t)j] / ((double)blen[b] * dt) - mean;
+            const double d =
+                bsum[(size_t)b * (size_t)k + (size_t)j] / ((double)blen[b] * dt) - mean;
             var += d * d;
         }
         if (err)
@@ -189,15 +191,16 @@ int dyn_lyapunov(const dyn_model *m, void *par, double t0, const double *y0,
     so.rtol = o->rtol > 0.0 ? o->rtol : 1e-10;
     so.atol = o->atol > 0.0 ? o->atol : 1e-10;
     const size_t sw = o->map ? 0 : dyn_solve_work_size(method, (int)NE, &so);
-    tangent_sys s = {m, par, n, k, m->jacobian && o->scheme <= DYN_JAC_ANALYTIC, NULL, NULL,
-                     NULL, NULL};
+    tangent_sys s = {m,    par,  n,    k,   m->jacobian && o->scheme <= DYN_JAC_ANALYTIC,
+                     NULL, NULL, NULL, NULL};
     info->exact_jacobian = s.exact;
     double *mem = malloc((N * N + 3 * N + 3 * NE + 3 * K + (size_t)blocks * K + sw) * sizeof *mem);
     long *blen = calloc((size_t)blocks, sizeof *blen);
     if (!mem || !blen || (!o->map && (!method || dyn_method_is_map(method)))) {
         free(mem);
         free(blen);
-        snprintf(info->message, sizeof info->message, mem && blen ? "no adaptive method" : "out of memory");
+        snprintf(info->message, sizeof info->message,
+                 mem && blen ? "no adaptive method" : "out of memory");
         return mem && blen ? DYN_ERR_ARG : DYN_ERR_CAPACITY;
     }
     s.J = mem;
@@ -254,7 +257,8 @@ int dyn_lyapunov(const dyn_model *m, void *par, double t0, const double *y0,
             rc = dyn_solve(method, &ext, t, t_next, Y, Y, work, &so, &res);
             info->rhs_calls += res.stats.rhs_calls;
             if (rc)
-                snprintf(info->message, sizeof info->message, "at t = %.17g: %.200s", t, res.message);
+                snprintf(info->message, sizeof info->message, "at t = %.17g: %.200s", t,
+                         res.message);
         }
         t = t_next;
         if (rc)
@@ -262,7 +266,8 @@ int dyn_lyapunov(const dyn_model *m, void *par, double t0, const double *y0,
         if (dyn_qr_log_diag(n, k, Q, logr)) {
             snprintf(info->message, sizeof info->message,
                      "the tangent vectors collapsed or overflowed at t = %.17g (a shorter "
-                     "interval between orthonormalizations helps)", t);
+                     "interval between orthonormalizations helps)",
+                     t);
             rc = DYN_ERR_NONFINITE;
             break;
         }

@@ -133,8 +133,8 @@ static int lm_step(int ne, int nu, const double *J, const double *r, double lamb
     return 0;
 }
 
-int dyn_steady_solve(const dyn_model *m, double t, double *y, void *par,
-                     const dyn_steady_opts *o, dyn_steady_info *info)
+int dyn_steady_solve(const dyn_model *m, double t, double *y, void *par, const dyn_steady_opts *o,
+                     dyn_steady_info *info)
 {
     dyn_steady_info local;
     if (!info)
@@ -144,7 +144,8 @@ int dyn_steady_solve(const dyn_model *m, double t, double *y, void *par,
     if (nu < 1 || ne < nu) {
         snprintf(info->message, sizeof info->message,
                  "%d unknowns and %d states that must stay steady: give at least one unknown "
-                 "and no more unknowns than such states", nu, ne);
+                 "and no more unknowns than such states",
+                 nu, ne);
         return DYN_ERR_ARG;
     }
     const size_t NU = (size_t)nu, NE = (size_t)ne;
@@ -221,7 +222,8 @@ int dyn_steady_solve(const dyn_model *m, double t, double *y, void *par,
             if (!rc) {
                 snprintf(info->message, sizeof info->message,
                          "no step lowers the residual (no steady motion near the guess): "
-                         "%.3g", norm_inf(ne, r));
+                         "%.3g",
+                         norm_inf(ne, r));
                 rc = DYN_ERR_STEP_SIZE;
             }
         }

@@ -27,24 +27,14 @@ except ImportError:
     print("SKIP: NumPy is missing (python3-numpy)")
     sys.exit(77)
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from analysis_common import Checks  # noqa: E402
+
 DYNKIT = sys.argv[1] if len(sys.argv) > 1 else "dynkit"
 SOURCE = sys.argv[2] if len(sys.argv) > 2 else "."
 EX = os.path.join(SOURCE, "examples")
-FAILED = []
-
-
-def run(*args, status=0):
-    p = subprocess.run([DYNKIT, "equilibria", *args], capture_output=True, text=True)
-    if p.returncode != status:
-        FAILED.append(f"equilibria {' '.join(args)}: exit {p.returncode}, expected {status}:"
-                      f" {p.stderr.strip()}")
-    return p
-
-
-def check(cond, what):
-    print(("ok    " if cond else "FAIL  ") + what)
-    if not cond:
-        FAILED.append(what)
+CHECKS = Checks(DYNKIT, "equilibria")
+run, check = CHECKS.run, CHECKS.check
 
 
 def found(*args):
@@ -165,9 +155,8 @@ def main():
         p = run(*args, status=2)
         check(word in p.stderr, f"refused: {' '.join(args)} ({p.stderr.strip()[:70]})")
 
-    for f in FAILED:
-        print("FAILED:", f)
-    return 1 if FAILED else 0
+    CHECKS.help_examples(SOURCE)
+    return CHECKS.finish()
 
 
 if __name__ == "__main__":

@@ -156,7 +156,7 @@ int cont_null_direction(const cont_system *s, cont_work *w, const double *z, con
         for (size_t k = 0; k < (size_t)M * (size_t)M; k++)
             big = fmax(big, fabs(w->A[k]));
         for (int i = 0; i < M; i++)
-            w->A[(size_t)i * (size_t)M + (size_t)i] += 1e-14 * big * (1.0 + 0.1 * i);
+            w->A[(size_t)i * (size_t)M + (size_t)i] += 1e-14 * (big > 0.0 ? big : 1.0) * (1.0 + 0.1 * i);
         if (dyn_lu_factor(M, w->A, w->piv))
             return -1;
     }
@@ -342,7 +342,8 @@ int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const do
         /* special points between z and z1 */
         int ns = 0, end_here = 0;
         for (int k = 0; k < s->n_tests; k++) {
-            if (!((psi[k] < 0.0) != (psi1[k] < 0.0)) || psi[k] == 0.0)
+            if (isnan(psi[k]) || isnan(psi1[k]) || !((psi[k] < 0.0) != (psi1[k] < 0.0)) ||
+                psi[k] == 0.0)
                 continue;
             if (cnt[k] >= 0 && cnt[k] == cnt1[k])
                 continue;
@@ -355,6 +356,16 @@ int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const do
                 ns++;
             }
         }
+        /* a fold located at a branch point is that branch point (the pitchfork's branch
+         * x^2 = p turns in p where it meets x = 0): AUTO-07p reports the BP alone */
+        for (int a = 0; a < ns; a++)
+            for (int b = 0; b < ns; b++)
+                if (sp[a].label == DYN_LABEL_LP && sp[b].label == DYN_LABEL_BP &&
+                    fabs(sp[a].s - sp[b].s) <= 1e-6 * ds) {
+                    sp[a] = sp[--ns];
+                    a = -1;
+                    break;
+                }
         for (int u = 0; u < L->n_at; u++) {
             const double a = z[s->ip] - L->at[u], b = z1[s->ip] - L->at[u];
             if ((a < 0.0) == (b < 0.0) || a == 0.0)

@@ -267,8 +267,6 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
                     "the steps must satisfy 0 < dsmin <= |ds| <= dsmax (finite)");
     if (o->nmax < 2)
         return fail(info, DYN_ERR_ARG, "%s", "nmax must be at least 2");
-    if (o->ip2 >= 0)
-        return fail(info, DYN_ERR_ARG, "%s", "curves in two parameters are not in this version");
     if (m->n_states < 1)
         return fail(info, DYN_ERR_ARG, "%s", "the model has no states");
     cont_model cm;
@@ -351,6 +349,9 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
                              "periodic orbits from the Hopf point of branch %d: %s", bi + 1,
                              err);
             }
+            if ((l == DYN_LABEL_HB || l == DYN_LABEL_LP) && o->ip2 >= 0 &&
+                cont_curves_from(&cm, o, d, bi, k, info))
+                rc = DYN_ERR_ARG;
         }
     if (rc && !info->message[0])
         snprintf(info->message, sizeof info->message, "%s",

@@ -87,7 +87,7 @@ static int null_vector(int N, double *K, double *copy, int *piv, double *v)
             big = fmax(big, fabs(copy[k]));
         memcpy(K, copy, NN * sizeof *K);
         for (int i = 0; i < N; i++)
-            K[(size_t)i * (size_t)N + (size_t)i] += 1e-14 * big * (1.0 + 0.1 * i);
+            K[(size_t)i * (size_t)N + (size_t)i] += 1e-14 * (big > 0.0 ? big : 1.0) * (1.0 + 0.1 * i);
         if (dyn_lu_factor(N, K, piv))
             return -1;
     }

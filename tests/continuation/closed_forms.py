@@ -4,13 +4,16 @@ of the fold (LP at p = 0), the transcritical and pitchfork bifurcations (BP at p
 other branch x = p or x^2 = p followed), the Hopf bifurcation (HB at p = 0 with frequency w
 and first Lyapunov coefficient 2 s / w, Kuznetsov's formula with <q, q> = 1), the
 Brusselator (HB at b = 1 + a^2, omega = a) and Lorenz's system (HB at
-rho = sigma (sigma + beta + 3) / (sigma - beta - 1), subcritical). Usage:
-closed_forms.py DYNKIT MODELS_DIR LORENZ_ODE"""
+rho = sigma (sigma + beta + 3) / (sigma - beta - 1), subcritical); in two parameters the
+normal forms of the cusp (folds on 27 a^2 = 4 b^3, CP at 0), of the Bogdanov-Takens point
+(folds on b1 = 0, Hopf points on b1 = -b2^2, BT at 0 on both) and of the generalized Hopf
+point (Hopf points on b1 = 0, GH at b2 = 0). Usage:
+closed_forms.py DYNKIT MODELS_DIR LORENZ_ODE BT_ODE"""
 import json
 import subprocess
 import sys
 
-dynkit, models, lorenz = sys.argv[1:4]
+dynkit, models, lorenz, bt_model = sys.argv[1:5]
 failures = []
 
 
@@ -89,6 +92,46 @@ for b, p in hb:
     check("lorenz: rho at HB", p["rho"], sigma * (sigma + beta + 3) / (sigma - beta - 1), 1e-10)
     if not p.get("l1", 0) > 0:
         failures.append(f"lorenz: l1 = {p.get('l1')} at the Hopf point, expected > 0 (subcritical)")
+
+# curves in two parameters
+d = run(f"{models}/cusp.ode", "--par", "a", "--par2", "b")
+cps = points(d, "CP") if d else []
+if not cps:
+    failures.append("cusp: no CP")
+for b, p in cps:
+    check("cusp: a at CP", p["a"], 0.0, 1e-10)
+    check("cusp: b at CP", p["b"], 0.0, 1e-10)
+for b in (d["branches"] if d else []):
+    if b["kind"] == "fold":
+        for p in b["points"]:
+            check("cusp: 27 a^2 - 4 b^3 on the fold curve", 27 * p["a"] ** 2 - 4 * p["b"] ** 3,
+                  0.0, 1e-9)
+
+d = run(bt_model, "--par", "b1", "--par2", "b2")
+for kind in ("fold", "hopf"):
+    bts = [p for b in (d["branches"] if d else []) if b["kind"] == kind
+           for p in b["points"] if p["label"] == "BT"]
+    if not bts:
+        failures.append(f"bogdanov-takens: no BT on a {kind} curve")
+    for p in bts:
+        check(f"bogdanov-takens: b1 at BT ({kind})", p["b1"], 0.0, 1e-10)
+        check(f"bogdanov-takens: b2 at BT ({kind})", p["b2"], 0.0, 1e-10)
+for b in (d["branches"] if d else []):
+    for p in b["points"]:
+        if b["kind"] == "fold":
+            check("bogdanov-takens: b1 on the fold curve", p["b1"], 0.0, 1e-10)
+        if b["kind"] == "hopf" and p["omega2"] > 0:
+            check("bogdanov-takens: b1 + b2^2 on the Hopf curve", p["b1"] + p["b2"] ** 2, 0.0,
+                  1e-9)
+
+d = run(f"{models}/bautin.ode", "--par", "b1", "--par2", "b2")
+ghs = points(d, "GH") if d else []
+if not ghs:
+    failures.append("bautin: no GH")
+for b, p in ghs:
+    check("bautin: b1 at GH", p["b1"], 0.0, 1e-10)
+    # l1 comes from second differences of the Jacobian (about 1e-8 accurate)
+    check("bautin: b2 at GH", p["b2"], 0.0, 1e-6)
 
 for f in failures:
     print("FAIL:", f)

@@ -1,0 +1,394 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* cont_curves.c — curves of folds and of Hopf points in two parameters (dynkit/
+ * continuation.h, dyn_continue with ip2 >= 0), by the standard extended systems (Govaerts,
+ * "Numerical Methods for Bifurcations of Dynamical Equilibria", 2000, ch. 4; Kuznetsov,
+ * "Elements", sec. 10.2):
+ *   folds:  f(x, p) = 0, J v = 0, c . v = 1                  (x, v, p1, p2)
+ *   Hopf:   f(x, p) = 0, (J^2 + kappa I) v = 0, c1 . v = 1, c2 . v = 0   (x, v, kappa, p1, p2)
+ * with kappa = omega^2, so that the Hopf curve goes on through a Bogdanov-Takens point
+ * (kappa = 0) as a curve of neutral saddles (kappa < 0). Their Jacobians are central
+ * differences of the residual (its f_x the model's exact Jacobian). Test functions: on a
+ * fold curve w . v (BT: the zero eigenvalue becomes double; w the left null vector from a
+ * bordered system) and w . B(v, v) (CP: the fold's quadratic coefficient vanishes); on a
+ * Hopf curve kappa (BT) and the first Lyapunov coefficient (GH). */
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cont_equilibrium.h"
+#include "ode/linalg.h"
+
+typedef struct curve_ctx {
+    cont_model *cm;
+    dyn_diagram *d;
+    int bi;
+    int hopf;        /* 0: folds, 1: Hopf points */
+    int N;           /* equations */
+    double *c1, *c2; /* the normalizations (n each) */
+    double *w_prev;  /* the left null vector's border (folds) */
+    double *g0, *g1, *zz, *M, *rhs, *J2, *Jv; /* workspace */
+    int *piv;
+} curve_ctx;
+
+/* indices in z: x 0..n-1, v n..2n-1, [kappa 2n,] p1, p2 */
+static int ip1(const curve_ctx *c)
+{
+    return 2 * c->cm->n + c->hopf;
+}
+
+static int curve_residual(void *ctx, const double *z, double *g)
+{
+    curve_ctx *c = ctx;
+    cont_model *cm = c->cm;
+    const int n = cm->n, k = ip1(c);
+    if (cont_model_set(cm, z[k], z[k + 1]) || cont_model_f(cm, z, g) ||
+        cont_model_jx(cm, z, cm->J, n))
+        return -1;
+    const double *v = z + n;
+    for (int i = 0; i < n; i++) {
+        double s = 0.0;
+        for (int j = 0; j < n; j++)
+            s += cm->J[(size_t)i * (size_t)n + (size_t)j] * v[j];
+        c->Jv[i] = s;
+    }
+    if (!c->hopf) {
+        memcpy(g + n, c->Jv, (size_t)n * sizeof *g);
+    } else {
+        for (int i = 0; i < n; i++) {
+            double s = 0.0;
+            for (int j = 0; j < n; j++)
+                s += cm->J[(size_t)i * (size_t)n + (size_t)j] * c->Jv[j];
+            g[n + i] = s + z[2 * n] * v[i];
+        }
+    }
+    double a = -1.0, b = 0.0;
+    for (int i = 0; i < n; i++) {
+        a += c->c1[i] * v[i];
+        if (c->hopf)
+            b += c->c2[i] * v[i];
+    }
+    g[2 * n] = a;
+    if (c->hopf)
+        g[2 * n + 1] = b;
+    return 0;
+}
+
+static int curve_jacobian(void *ctx, const double *z, double *Jout)
+{
+    curve_ctx *c = ctx;
+    const int N = c->N, M = N + 1;
+    memcpy(c->zz, z, (size_t)M * sizeof *z);
+    for (int j = 0; j < M; j++) {
+        const double h0 = cbrt(DBL_EPSILON) * fmax(1.0, fabs(z[j]));
+        const double zp = z[j] + h0, zm = z[j] - h0;
+        c->zz[j] = zp;
+        if (curve_residual(c, c->zz, c->g0))
+            return -1;
+        c->zz[j] = zm;
+        if (curve_residual(c, c->zz, c->g1))
+            return -1;
+        c->zz[j] = z[j];
+        for (int i = 0; i < N; i++)
+            Jout[(size_t)i * (size_t)M + (size_t)j] = (c->g0[i] - c->g1[i]) / (zp - zm);
+    }
+    return 0;
+}
+
+/* the left null vector w of J (cm->J) bordered by v and w_prev: [[J^T, v], [w_prev^T, 0]]
+ * [w; h] = [0; 1]. 0 or non-zero */
+static int left_null(curve_ctx *c, const double *v, double *w)
+{
+    const int n = c->cm->n, K = n + 1;
+    for (int i = 0; i < K; i++)
+        for (int j = 0; j < K; j++) {
+            double a;
+            if (i < n && j < n)
+                a = c->cm->J[(size_t)j * (size_t)n + (size_t)i];
+            else if (i < n)
+                a = v[i];
+            else if (j < n)
+                a = c->w_prev[j];
+            else
+                a = 0.0;
+            c->M[(size_t)i * (size_t)K + (size_t)j] = a;
+        }
+    if (dyn_lu_factor(K, c->M, c->piv))
+        return -1;
+    for (int i = 0; i < K; i++)
+        c->rhs[i] = i == n ? 1.0 : 0.0;
+    dyn_lu_solve(K, c->M, c->piv, c->rhs);
+    memcpy(w, c->rhs, (size_t)n * sizeof *w);
+    return 0;
+}
+
+static double norm2(const double *v, int n)
+{
+    double s = 0.0;
+    for (int i = 0; i < n; i++)
+        s += v[i] * v[i];
+    return sqrt(s);
+}
+
+static int curve_tests(void *ctx, const double *z, const double *t, double det, double *psi,
+                       int *count)
+{
+    (void)t;
+    (void)det;
+    curve_ctx *c = ctx;
+    cont_model *cm = c->cm;
+    const int n = cm->n, k = ip1(c);
+    if (cont_model_set(cm, z[k], z[k + 1]) || cont_model_jx(cm, z, cm->J, n))
+        return -1;
+    count[0] = count[1] = -1;
+    if (c->hopf) {
+        const double kappa = z[2 * n];
+        psi[0] = kappa;
+        psi[1] = NAN;
+        if (kappa > 0.0) {
+            double l1;
+            char err[128];
+            if (dyn_first_lyapunov(cm->m, cm->t, z, cm->par, cm->jac, cm->J, sqrt(kappa), &l1,
+                                   err, sizeof err) == 0)
+                psi[1] = l1;
+        }
+        return 0;
+    }
+    const double *v = z + n;
+    double *w = c->rhs + n + 1; /* room after the bordered system's right-hand side */
+    if (left_null(c, v, w))
+        return -1;
+    const double nw = norm2(w, n), nv = norm2(v, n);
+    psi[0] = 0.0;
+    for (int i = 0; i < n; i++)
+        psi[0] += w[i] * v[i];
+    psi[0] /= nw * nv;
+    /* w . B(v, v), B(v, v) = (J(x + h v) - J(x - h v)) v / (2 h) */
+    const double h = cbrt(DBL_EPSILON) * fmax(1.0, norm2(z, n)) / nv;
+    double *Jp = c->J2;
+    double wb = 0.0;
+    for (int sgn = 1; sgn >= -1; sgn -= 2) {
+        for (int i = 0; i < n; i++)
+            c->zz[i] = z[i] + sgn * h * v[i];
+        if (cont_model_jx(cm, c->zz, Jp, n))
+            return -1;
+        for (int i = 0; i < n; i++) {
+            double s = 0.0;
+            for (int j = 0; j < n; j++)
+                s += Jp[(size_t)i * (size_t)n + (size_t)j] * v[j];
+            wb += sgn * w[i] * s / (2.0 * h);
+        }
+    }
+    psi[1] = wb / (nw * nv * nv);
+    memcpy(c->w_prev, w, (size_t)n * sizeof *w);
+    const double nwp = norm2(c->w_prev, n);
+    for (int i = 0; i < n; i++)
+        c->w_prev[i] /= nwp * nwp; /* w_prev . w = 1 at this point */
+    return 0;
+}
+
+static int curve_store(void *ctx, const double *z, const double *t, dyn_cont_label label)
+{
+    (void)t;
+    curve_ctx *c = ctx;
+    cont_model *cm = c->cm;
+    const int n = cm->n, k = ip1(c);
+    if (cont_model_set(cm, z[k], z[k + 1]) || cont_model_jx(cm, z, cm->J, n) ||
+        cont_model_eig(cm, cm->J))
+        return -1;
+    double l1 = NAN, omega = NAN;
+    if (c->hopf) {
+        omega = z[2 * n];
+        char err[128];
+        if (omega > 0.0 && dyn_first_lyapunov(cm->m, cm->t, z, cm->par, cm->jac, cm->J,
+                                              sqrt(omega), &l1, err, sizeof err))
+            l1 = NAN;
+    }
+    dyn_branch_point pt = {label, {z[k], z[k + 1]}, NAN, -1, l1, omega};
+    return dyn_branch_append(&c->d->branches[c->bi], &pt, z, NULL, cm->re, cm->im) < 0;
+}
+
+/* A unit null vector of the n x n matrix A (copied) by inverse iteration: 0 or non-zero */
+static int null_of(int n, const double *A, double *work, int *piv, double *v)
+{
+    const size_t nn = (size_t)n * (size_t)n;
+    memcpy(work, A, nn * sizeof *A);
+    if (dyn_lu_factor(n, work, piv)) {
+        double big = 0.0;
+        for (size_t k = 0; k < nn; k++)
+            big = fmax(big, fabs(A[k]));
+        memcpy(work, A, nn * sizeof *A);
+        for (int i = 0; i < n; i++)
+            work[(size_t)i * (size_t)n + (size_t)i] += 1e-14 * (big > 0.0 ? big : 1.0) * (1.0 + 0.1 * i);
+        if (dyn_lu_factor(n, work, piv))
+            return -1;
+    }
+    for (int i = 0; i < n; i++)
+        v[i] = 1.0 + 0.37 * i - 0.01 * i * i;
+    for (int it = 0; it < 3; it++) {
+        dyn_lu_solve(n, work, piv, v);
+        const double nv = norm2(v, n);
+        if (!(nv > 0.0) || !isfinite(nv))
+            return -1;
+        for (int i = 0; i < n; i++)
+            v[i] /= nv;
+    }
+    return 0;
+}
+
+int cont_curves_from(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int branch,
+                     long point, dyn_cont_info *info)
+{
+    const int n = cm->n;
+    const dyn_branch *b = &d->branches[branch];
+    const int hopf = b->pts[point].label == DYN_LABEL_HB;
+    const double omega = b->pts[point].omega;
+    if (hopf && !(omega > 0.0))
+        return 0;
+    curve_ctx c;
+    memset(&c, 0, sizeof c);
+    c.cm = cm;
+    c.d = d;
+    c.hopf = hopf;
+    c.N = 2 * n + 1 + hopf;
+    const int N = c.N, M = N + 1;
+    const size_t nn = (size_t)n * (size_t)n;
+    double *buf = malloc((3 * (size_t)n + 4 * (size_t)M + 2 * (size_t)(n + 1) * (n + 1) +
+                          2 * nn + 4 * (size_t)M + 8 * (size_t)n + 16) * sizeof *buf);
+    c.piv = malloc((size_t)(2 * n + 2) * sizeof *c.piv);
+    cont_work w;
+    memset(&w, 0, sizeof w);
+    if (!buf || !c.piv || cont_work_init(&w, N)) {
+        free(buf);
+        free(c.piv);
+        cont_work_free(&w);
+        return -1;
+    }
+    c.c1 = buf;
+    c.c2 = c.c1 + n;
+    c.w_prev = c.c2 + n;
+    c.g0 = c.w_prev + n;
+    c.g1 = c.g0 + M;
+    c.zz = c.g1 + M;
+    c.M = c.zz + M;
+    c.rhs = c.M + (size_t)(n + 1) * (n + 1);
+    c.J2 = c.rhs + 2 * (size_t)(n + 1) + 2;
+    c.Jv = c.J2 + 2 * nn;
+    double *z = c.Jv + n + 1, *t = z + M, *e = t + M, *v = e + M;
+    /* the start: the point, its null vector(s) */
+    const double p1 = b->pts[point].par[0];
+    const double p2 = cm->p2_base;
+    memcpy(z, b->x + (size_t)point * (size_t)n, (size_t)n * sizeof *z);
+    int rc = 0;
+    if (cont_model_set(cm, p1, p2) || cont_model_jx(cm, z, cm->J, n))
+        rc = -1;
+    if (rc == 0 && !hopf) {
+        if (null_of(n, cm->J, c.J2, c.piv, v))
+            rc = -1;
+        if (rc == 0) {
+            memcpy(z + n, v, (size_t)n * sizeof *v);
+            memcpy(c.c1, v, (size_t)n * sizeof *v); /* c . v = 1, |v| = 1 */
+            /* the left null vector's first border */
+            for (int i = 0; i < n; i++)
+                for (int j = 0; j < n; j++)
+                    c.J2[(size_t)i * (size_t)n + (size_t)j] = cm->J[(size_t)j * (size_t)n + (size_t)i];
+            if (null_of(n, c.J2, c.J2 + nn, c.piv, c.w_prev))
+                rc = -1;
+        }
+    } else if (rc == 0) {
+        /* J^2 + omega^2 I: its null space is spanned by Re q and Im q */
+        for (int i = 0; i < n; i++)
+            for (int j = 0; j < n; j++) {
+                double s = i == j ? omega * omega : 0.0;
+                for (int k = 0; k < n; k++)
+                    s += cm->J[(size_t)i * (size_t)n + (size_t)k] * cm->J[(size_t)k * (size_t)n + (size_t)j];
+                c.J2[(size_t)i * (size_t)n + (size_t)j] = s;
+            }
+        if (null_of(n, c.J2, c.J2 + nn, c.piv, v))
+            rc = -1;
+        if (rc == 0) {
+            /* the other direction of the null space: J v / omega, made orthogonal to v */
+            double *u = c.c2;
+            for (int i = 0; i < n; i++) {
+                double s = 0.0;
+                for (int k = 0; k < n; k++)
+                    s += cm->J[(size_t)i * (size_t)n + (size_t)k] * v[k];
+                u[i] = s / omega;
+            }
+            double uv = 0.0;
+            for (int i = 0; i < n; i++)
+                uv += u[i] * v[i];
+            for (int i = 0; i < n; i++)
+                u[i] -= uv * v[i];
+            memcpy(c.c1, v, (size_t)n * sizeof *v);
+            memcpy(z + n, v, (size_t)n * sizeof *v);
+            z[2 * n] = omega * omega;
+        }
+    }
+    const int k1 = 2 * n + hopf;
+    z[k1] = p1;
+    z[k1 + 1] = p2;
+    cont_system s;
+    memset(&s, 0, sizeof s);
+    s.N = N;
+    s.ip = k1;
+    s.ip2 = k1 + 1;
+    s.ctx = &c;
+    s.residual = curve_residual;
+    s.jacobian = curve_jacobian;
+    s.n_tests = 2;
+    s.test_label[0] = DYN_LABEL_BT;
+    s.test_label[1] = hopf ? DYN_LABEL_GH : DYN_LABEL_CP;
+    s.tests = curve_tests;
+    s.store = curve_store;
+    /* Newton's method at the fixed second parameter, then both directions */
+    for (int i = 0; i < M; i++)
+        e[i] = i == k1 + 1 ? 1.0 : 0.0;
+    if (rc == 0 && cont_correct(&s, &w, z, e, 0.0, z, NULL))
+        rc = -2;
+    const int parent = b->id;
+    for (int dir = 1; rc == 0 && dir >= -1 && d->count < o->max_branches; dir -= 2) {
+        for (int i = 0; i < M; i++)
+            e[i] = i == k1 + 1 ? dir : 0.0;
+        double det;
+        if (cont_tangent(&s, &w, z, e, t, &det)) {
+            rc = -2;
+            break;
+        }
+        dyn_branch *nb = dyn_diagram_add(d, hopf ? DYN_BRANCH_HOPF : DYN_BRANCH_FOLD, n, n,
+                                         o->ip, o->ip2);
+        if (!nb) {
+            rc = -1;
+            break;
+        }
+        nb->parent = parent;
+        nb->parent_point = point;
+        c.bi = d->count - 1;
+        cont_loop L;
+        memset(&L, 0, sizeof L);
+        L.ds = fabs(o->ds);
+        L.dsmin = o->dsmin;
+        L.dsmax = o->dsmax;
+        L.nmax = o->nmax;
+        L.pmin = o->parmin;
+        L.pmax = o->parmax;
+        L.p2min = o->par2min;
+        L.p2max = o->par2max;
+        L.start_label = hopf ? DYN_LABEL_HB : DYN_LABEL_LP;
+        char stop[160];
+        const int st = cont_follow(&s, &w, &L, z, t, stop, sizeof stop);
+        snprintf(d->branches[c.bi].stop, sizeof d->branches[c.bi].stop, "%s", stop);
+        if (st == -1)
+            rc = -1;
+    }
+    if (rc == -2 && info && !info->message[0])
+        snprintf(info->message, sizeof info->message,
+                 "the %s curve through point %ld of branch %d could not be started",
+                 hopf ? "Hopf" : "fold", point + 1, parent);
+    info->newton_steps += w.newton;
+    cont_work_free(&w);
+    free(buf);
+    free(c.piv);
+    return rc == -1 ? -1 : 0;
+}

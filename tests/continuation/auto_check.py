@@ -12,10 +12,6 @@ import subprocess
 import sys
 import tempfile
 
-dynkit, artifacts = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
-if not shutil.which("auto-07p") or not shutil.which("gfortran"):
-    print("skipped: auto-07p or gfortran is not installed (scripts/install-deps.sh)")
-    sys.exit(77)
 
 # name: parameters (name, start value), states (name, start value), right-hand sides as
 # Fortran and as .ode formulas (the same text where the languages agree), the continued
@@ -96,57 +92,66 @@ for lab in ('HB', 'LP', 'BP'):
         print('LABEL', lab, repr(p['%s']))
 """
 
-failures = []
-for name, pb in PROBLEMS.items():
-    work = tempfile.mkdtemp(prefix=f"auto-{name}-")
-    for fname, text in (("pb.f90", fortran(pb)), ("c.pb", constants(pb)),
-                        ("run.auto", RUN_AUTO % pb["icp"]), (f"{name}.ode", ode(pb))):
-        with open(os.path.join(work, fname), "w") as f:
-            f.write(text)
-    problems = []
-    a = subprocess.run(["auto-07p", "run.auto"], cwd=work, capture_output=True, text=True,
-                       timeout=600)
-    with open(os.path.join(work, "auto.out"), "w") as f:
-        f.write(a.stdout + a.stderr)
-    auto = sorted((l.split()[1], float(l.split()[2])) for l in a.stdout.splitlines()
-                  if l.startswith("LABEL "))
-    d = subprocess.run([dynkit, "continue", f"{name}.ode", "--par", pb["icp"], "--json",
-                        "--output", "dynkit.csv"], cwd=work, capture_output=True, text=True)
-    with open(os.path.join(work, "dynkit.json"), "w") as f:
-        f.write(d.stdout + d.stderr)
-    if d.returncode != 0 or a.returncode != 0:
-        problems.append(f"exit statuses: dynkit {d.returncode}, auto-07p {a.returncode}")
-    else:
-        # AUTO follows one branch and does not switch here (MXBF=0): dynkit's first branch
-        first = json.loads(d.stdout)["branches"][0]
-        # where C+ of Lorenz's system meets the origin (a pitchfork seen from its side, the
-        # branch turning in rho there) AUTO-07p reports LP and dynkit BP: both hold, so BP
-        # and LP at the same value count as one label
-        ours = sorted((p["label"], p[pb["icp"]]) for p in first["points"]
-                      if p["label"] in ("HB", "LP", "BP"))
-        for i, (l, v) in enumerate(ours):
-            if l == "BP" and any(m == "LP" and abs(w - v) <= 1e-6 * max(1.0, abs(w))
-                                 for m, w in auto):
-                ours[i] = ("LP", v)
-        ours.sort()
-        if [l for l, _ in ours] != [l for l, _ in auto]:
-            problems.append(f"labels: dynkit {ours}, AUTO-07p {auto}")
+def main():
+    dynkit, artifacts = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
+    if not shutil.which("auto-07p") or not shutil.which("gfortran"):
+        print("skipped: auto-07p or gfortran is not installed (scripts/install-deps.sh)")
+        sys.exit(77)
+    failures = []
+    for name, pb in PROBLEMS.items():
+        work = tempfile.mkdtemp(prefix=f"auto-{name}-")
+        for fname, text in (("pb.f90", fortran(pb)), ("c.pb", constants(pb)),
+                            ("run.auto", RUN_AUTO % pb["icp"]), (f"{name}.ode", ode(pb))):
+            with open(os.path.join(work, fname), "w") as f:
+                f.write(text)
+        problems = []
+        a = subprocess.run(["auto-07p", "run.auto"], cwd=work, capture_output=True, text=True,
+                           timeout=600)
+        with open(os.path.join(work, "auto.out"), "w") as f:
+            f.write(a.stdout + a.stderr)
+        auto = sorted((l.split()[1], float(l.split()[2])) for l in a.stdout.splitlines()
+                      if l.startswith("LABEL "))
+        d = subprocess.run([dynkit, "continue", f"{name}.ode", "--par", pb["icp"], "--json",
+                            "--output", "dynkit.csv"], cwd=work, capture_output=True, text=True)
+        with open(os.path.join(work, "dynkit.json"), "w") as f:
+            f.write(d.stdout + d.stderr)
+        if d.returncode != 0 or a.returncode != 0:
+            problems.append(f"exit statuses: dynkit {d.returncode}, auto-07p {a.returncode}")
         else:
-            for (l, v), (_, w) in zip(ours, auto):
-                if not abs(v - w) <= 1e-6 * max(1.0, abs(w)):
-                    problems.append(f"{l}: dynkit {v!r}, AUTO-07p {w!r}")
-        if not auto:
-            problems.append("AUTO-07p found no special point: the comparison would be empty")
-    if problems:
-        dest = os.path.join(artifacts, f"continuation-auto-{name}")
-        shutil.rmtree(dest, ignore_errors=True)
-        os.makedirs(artifacts, exist_ok=True)
-        shutil.copytree(work, dest)
-        failures += [f"{name}: {p} (kept in {dest})" for p in problems]
-    else:
-        print(f"{name}: {auto} agree")
-    shutil.rmtree(work, ignore_errors=True)
+            # AUTO follows one branch and does not switch here (MXBF=0): dynkit's first branch
+            first = json.loads(d.stdout)["branches"][0]
+            # where C+ of Lorenz's system meets the origin (a pitchfork seen from its side, the
+            # branch turning in rho there) AUTO-07p reports LP and dynkit BP: both hold, so BP
+            # and LP at the same value count as one label
+            ours = sorted((p["label"], p[pb["icp"]]) for p in first["points"]
+                          if p["label"] in ("HB", "LP", "BP"))
+            for i, (l, v) in enumerate(ours):
+                if l == "BP" and any(m == "LP" and abs(w - v) <= 1e-6 * max(1.0, abs(w))
+                                     for m, w in auto):
+                    ours[i] = ("LP", v)
+            ours.sort()
+            if [l for l, _ in ours] != [l for l, _ in auto]:
+                problems.append(f"labels: dynkit {ours}, AUTO-07p {auto}")
+            else:
+                for (l, v), (_, w) in zip(ours, auto):
+                    if not abs(v - w) <= 1e-6 * max(1.0, abs(w)):
+                        problems.append(f"{l}: dynkit {v!r}, AUTO-07p {w!r}")
+            if not auto:
+                problems.append("AUTO-07p found no special point: the comparison would be empty")
+        if problems:
+            dest = os.path.join(artifacts, f"continuation-auto-{name}")
+            shutil.rmtree(dest, ignore_errors=True)
+            os.makedirs(artifacts, exist_ok=True)
+            shutil.copytree(work, dest)
+            failures += [f"{name}: {p} (kept in {dest})" for p in problems]
+        else:
+            print(f"{name}: {auto} agree")
+        shutil.rmtree(work, ignore_errors=True)
 
-for f in failures:
-    print("FAIL:", f)
-sys.exit(1 if failures else 0)
+    for f in failures:
+        print("FAIL:", f)
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == "__main__":
+    main()

@@ -346,7 +346,7 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
                 if (o->periodic(m, par, o, d, d->branches[bi].id, k, o->periodic_ctx, err,
                                 sizeof err))
                     snprintf(info->message, sizeof info->message,
-                             "periodic orbits from the Hopf point of branch %d: %s", bi + 1,
+                             "periodic orbits from the Hopf point of branch %d: %.180s", bi + 1,
                              err);
             }
             if ((l == DYN_LABEL_HB || l == DYN_LABEL_LP) && o->ip2 >= 0 &&

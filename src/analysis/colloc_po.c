@@ -1,0 +1,707 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* colloc_po.c — branches of periodic orbits by orthogonal collocation and pseudo-arclength
+ * continuation, as AUTO-07p computes them (Doedel, AUTO-07p manual, ch. 11 and 13; Doedel,
+ * Keller & Kernevez 1991): the orbit's time scaled to [0, 1], u' = T f(u, lambda), periodic
+ * boundary conditions, the integral phase condition against the previous orbit, the period
+ * T and the parameter lambda free. The start from a Hopf point steps along the critical
+ * eigenvector's oscillation; the start from a period doubling steps along the eigenfunction
+ * of the multiplier -1 on the orbit traversed twice (branch switching as at a branch point).
+ * Floquet multipliers are the eigenvalues of the collocation system's monodromy matrix
+ * (colloc_newton.c). Folds of cycles (LPC: d lambda/ds changes sign), period doublings (PD:
+ * prod (mu_i + 1) over the non-trivial multipliers changes sign) and torus bifurcations (TR:
+ * a complex pair crosses the unit circle, prod (mu_i mu_j - 1) changes sign) are located by
+ * secant steps in the arclength from the last point before the change. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "analysis/colloc_internal.h"
+#include "ode/linalg.h"
+
+typedef struct po_ctx {
+    const dyn_po_system *sys;
+    double *J; /* n x n */
+} po_ctx;
+
+static int po_f(double t, const double *u, const double *par, double *f, double *fu, void *ctx)
+{
+    (void)t;
+    po_ctx *c = ctx;
+    const int n = c->sys->n;
+    if (c->sys->f(u, par[1], f, fu ? c->J : NULL, c->sys->ctx))
+        return 1;
+    for (int i = 0; i < n; i++)
+        f[i] *= par[0];
+    if (fu)
+        for (int i = 0; i < n * n; i++)
+            fu[i] = par[0] * c->J[i];
+    return 0;
+}
+
+static int po_bc(const double *u0, const double *u1, const double *par, double *g, void *ctx)
+{
+    (void)par;
+    const po_ctx *c = ctx;
+    for (int i = 0; i < c->sys->n; i++)
+        g[i] = u0[i] - u1[i];
+    return 0;
+}
+
+void dyn_po_branch_free(dyn_po_branch *b)
+{
+    for (int k = 0; k < b->npoints; k++) {
+        free(b->pts[k].xmax);
+        dyn_colloc_sol_free(&b->pts[k].orbit);
+    }
+    free(b->pts);
+    memset(b, 0, sizeof *b);
+}
+
+/* multipliers of orbit x (sorted: the nearest to 1 first) */
+static int multipliers(dyn_colloc_problem *p, const dyn_colloc_sol *x, const dyn_eig_solver *eig,
+                       double *re, double *im)
+{
+    const int n = x->n;
+    double *M = malloc((size_t)n * n * sizeof(double));
+    if (!M)
+        return DYN_COLLOC_ERR_NOMEM;
+    int st = dyn_colloc_monodromy(p, x, M);
+    char err[128];
+    if (!st && eig->eigenvalues(n, M, re, im, err, sizeof err))
+        st = DYN_COLLOC_ERR_SINGULAR;
+    free(M);
+    if (st)
+        return st;
+    int k1 = 0;
+    for (int i = 1; i < n; i++)
+        if (hypot(re[i] - 1, im[i]) < hypot(re[k1] - 1, im[k1]))
+            k1 = i;
+    double r = re[k1], m = im[k1];
+    re[k1] = re[0];
+    im[k1] = im[0];
+    re[0] = r;
+    im[0] = m;
+    return 0;
+}
+
+int dyn_po_multipliers(const dyn_po_system *sys, const dyn_colloc_sol *orbit,
+                       const dyn_eig_solver *eig, double *re, double *im)
+{
+    double *J = malloc((size_t)sys->n * sys->n * sizeof(double));
+    if (!J)
+        return DYN_COLLOC_ERR_NOMEM;
+    po_ctx c = {sys, J};
+    dyn_colloc_problem p = {sys->n, 2, sys->n, 1, po_f, po_bc, &c};
+    int st = multipliers(&p, orbit, eig, re, im);
+    free(J);
+    return st;
+}
+
+/* the test functions of a point: LPC, PD, TR */
+typedef struct po_tests {
+    double lpc, pd, tr;
+    int tr_complex; /* the multiplier nearest the unit circle is complex */
+    int have_mult;
+} po_tests;
+
+static void tests_of(const double *re, const double *im, int n, double dlambda, int have,
+                     po_tests *t)
+{
+    t->lpc = dlambda;
+    t->have_mult = have;
+    t->pd = t->tr = 1.0;
+    t->tr_complex = 0;
+    if (!have)
+        return;
+    double pr = 1.0, pi = 0.0;
+    for (int i = 1; i < n; i++) { /* prod (mu + 1), complex */
+        const double a = re[i] + 1.0, b = im[i];
+        const double r2 = pr * a - pi * b, i2 = pr * b + pi * a;
+        pr = r2;
+        pi = i2;
+    }
+    t->pd = pr;
+    double tr = 1.0, best = INFINITY;
+    for (int i = 1; i < n; i++) {
+        for (int j = i + 1; j < n; j++) { /* Re(mu_i mu_j) - 1 for conjugates: |mu|^2 - 1 */
+            if (fabs(im[i] + im[j]) > 1e-12 * (1 + fabs(im[i])) || im[i] == 0.0)
+                continue;
+            if (fabs(re[i] - re[j]) > 1e-9 * (1 + fabs(re[i])))
+                continue;
+            tr *= re[i] * re[i] + im[i] * im[i] - 1.0;
+        }
+        const double d = fabs(hypot(re[i], im[i]) - 1.0);
+        if (d < best) {
+            best = d;
+            t->tr_complex = fabs(im[i]) > 1e-6;
+        }
+    }
+    t->tr = tr;
+}
+
+typedef struct po_run {
+    const dyn_po_system *sys;
+    const dyn_po_opts *o;
+    po_ctx c;
+    dyn_colloc_problem p;
+    dyn_colloc_opts nopts;
+    dyn_po_branch *b;
+    double *re, *im;
+} po_run;
+
+/* append x as a point; keep its orbit when keep */
+static int record(po_run *r, const dyn_colloc_sol *x, const double *re, const double *im,
+                  int have_mult, const char *label, int keep)
+{
+    dyn_po_branch *b = r->b;
+    const int n = r->sys->n;
+    if (b->npoints == b->cap) {
+        const int cap = b->cap ? 2 * b->cap : 64;
+        dyn_po_point *np = realloc(b->pts, (size_t)cap * sizeof *np);
+        if (!np)
+            return DYN_COLLOC_ERR_NOMEM;
+        b->pts = np;
+        b->cap = cap;
+    }
+    dyn_po_point *pt = &b->pts[b->npoints];
+    memset(pt, 0, sizeof *pt);
+    pt->xmax = malloc(4 * (size_t)n * sizeof(double));
+    if (!pt->xmax)
+        return DYN_COLLOC_ERR_NOMEM;
+    pt->xmin = pt->xmax + n;
+    pt->mult_re = pt->xmin + n;
+    pt->mult_im = pt->mult_re + n;
+    pt->period = x->par[0];
+    pt->par = x->par[1];
+    const long nodes = dyn_colloc_nodes(x);
+    for (int i = 0; i < n; i++) {
+        pt->xmax[i] = -INFINITY;
+        pt->xmin[i] = INFINITY;
+    }
+    for (long g = 0; g < nodes; g++)
+        for (int i = 0; i < n; i++) {
+            const double v = x->u[(size_t)g * n + i];
+            pt->xmax[i] = fmax(pt->xmax[i], v);
+            pt->xmin[i] = fmin(pt->xmin[i], v);
+        }
+    dyn_colloc_sol u = *x;
+    u.npar = 0;
+    pt->l2norm = sqrt(dyn_colloc_dot(&u, &u));
+    pt->stable = -1;
+    for (int i = 0; i < n; i++) {
+        pt->mult_re[i] = have_mult ? re[i] : NAN;
+        pt->mult_im[i] = have_mult ? im[i] : NAN;
+    }
+    if (have_mult) {
+        pt->stable = 1;
+        for (int i = 1; i < n; i++)
+            if (!(hypot(re[i], im[i]) < 1.0))
+                pt->stable = 0;
+    }
+    snprintf(pt->label, sizeof pt->label, "%s", label);
+    b->npoints++;
+    if (keep && dyn_colloc_sol_copy(&pt->orbit, x))
+        return DYN_COLLOC_ERR_NOMEM;
+    return 0;
+}
+
+/* a corrector step from x0 along t0 by ds into x (allocated), its tangent into t */
+static int step(po_run *r, const dyn_colloc_sol *x0, const dyn_colloc_sol *t0, double ds,
+                dyn_colloc_sol *x, dyn_colloc_sol *t, dyn_colloc_info *inf)
+{
+    int st = dyn_colloc_sol_copy(x, x0);
+    if (st)
+        return st;
+    const long N = dyn_colloc_nodes(x0) * x0->n;
+    for (long i = 0; i < N; i++)
+        x->u[i] += ds * t0->u[i];
+    for (int k = 0; k < x0->npar; k++)
+        x->par[k] += ds * t0->par[k];
+    dyn_colloc_sol ref;
+    st = dyn_colloc_sol_copy(&ref, x);
+    if (st) {
+        dyn_colloc_sol_free(x);
+        return st;
+    }
+    dyn_colloc_arc arc = {x0, t0, ds};
+    st = dyn_colloc_solve(&r->p, x, &ref, &arc, &r->nopts, inf);
+    dyn_colloc_sol_free(&ref);
+    if (!st && !(x->par[0] > 0))
+        st = DYN_COLLOC_ERR_NEWTON; /* a period that is not positive */
+    if (!st)
+        st = dyn_colloc_tangent(&r->p, x, x, t0, t);
+    if (st)
+        dyn_colloc_sol_free(x);
+    return st;
+}
+
+static int point_tests(po_run *r, const dyn_colloc_sol *x, const dyn_colloc_sol *t, po_tests *pt)
+{
+    int have = 0;
+    if (r->o->eig) {
+        int st = multipliers(&r->p, x, r->o->eig, r->re, r->im);
+        if (st)
+            return st;
+        have = 1;
+    }
+    tests_of(r->re, r->im, x->n, t->par[1], have, pt);
+    return 0;
+}
+
+/* the arclength in (0, ds) where test `which` (0 LPC, 1 PD, 2 TR) is zero, by the Illinois
+ * variant of regula falsi; the point and its tangent into x, t */
+static int locate(po_run *r, const dyn_colloc_sol *x0, const dyn_colloc_sol *t0, double ds,
+                  double psi0, double psi1, int which, dyn_colloc_sol *x, dyn_colloc_sol *t)
+{
+    double sa = 0.0, sb = ds, fa = psi0, fb = psi1;
+    int side = 0, st = DYN_COLLOC_ERR_NEWTON;
+    for (int it = 0; it < 16; it++) {
+        const double s = sb - fb * (sb - sa) / (fb - fa);
+        dyn_colloc_info inf;
+        dyn_colloc_sol xs, ts;
+        st = step(r, x0, t0, s, &xs, &ts, &inf);
+        if (st)
+            return st;
+        po_tests pt;
+        st = point_tests(r, &xs, &ts, &pt);
+        if (st) {
+            dyn_colloc_sol_free(&xs);
+            dyn_colloc_sol_free(&ts);
+            return st;
+        }
+        const double fs = which == 0 ? pt.lpc : which == 1 ? pt.pd : pt.tr;
+        if (x->u)
+            dyn_colloc_sol_free(x);
+        if (t->u)
+            dyn_colloc_sol_free(t);
+        *x = xs;
+        *t = ts;
+        if (fabs(sb - sa) < 1e-12 * fabs(ds) || fs == 0.0 ||
+            fabs(s - sa) < 1e-11 * fabs(ds) || fabs(s - sb) < 1e-11 * fabs(ds))
+            break;
+        if ((fs > 0) == (fb > 0)) {
+            sb = s;
+            fb = fs;
+            if (side == -1)
+                fa *= 0.5;
+            side = -1;
+        } else {
+            sa = s;
+            fa = fs;
+            if (side == 1)
+                fb *= 0.5;
+            side = 1;
+        }
+        if (fabs(fs) < 1e-13)
+            break;
+    }
+    return 0;
+}
+
+static int amplitude_small(const dyn_colloc_sol *x)
+{
+    const int n = x->n;
+    const long nodes = dyn_colloc_nodes(x);
+    double amp = 0.0, size = 0.0;
+    for (int i = 0; i < n; i++) {
+        double lo = INFINITY, hi = -INFINITY;
+        for (long g = 0; g < nodes; g++) {
+            lo = fmin(lo, x->u[(size_t)g * n + i]);
+            hi = fmax(hi, x->u[(size_t)g * n + i]);
+        }
+        amp = fmax(amp, hi - lo);
+        size = fmax(size, fmax(fabs(lo), fabs(hi)));
+    }
+    return amp < 1e-7 * (1.0 + size);
+}
+
+/* continue from x (a solution or the Hopf point) along t; x and t are consumed */
+static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
+{
+    const dyn_po_opts *o = r->o;
+    dyn_po_branch *b = r->b;
+    const double dsmax = o->dsmax > 0 ? o->dsmax : 0.5;
+    const double dsmin = o->dsmin > 0 ? o->dsmin : 1e-5;
+    double ds = o->ds != 0 ? o->ds : 0.01;
+    if (fabs(ds) > dsmax)
+        ds = copysign(dsmax, ds);
+    const int nmax = o->nmax > 0 ? o->nmax : 100;
+    const int adapt = o->adapt == 0 ? 3 : o->adapt;
+    const int ntst = x->ntst;
+    const int bounded = o->par_max > o->par_min;
+    po_tests prev_tests = {0, 0, 0, 0, 0};
+    int have_prev = 0, st = 0, since_adapt = 0;
+    snprintf(b->message, sizeof b->message, "%d points (nmax)", nmax);
+    while (b->npoints < nmax) {
+        dyn_colloc_sol xn, tn;
+        dyn_colloc_info inf;
+        st = step(r, x, t, ds, &xn, &tn, &inf);
+        if (st) {
+            if (st == DYN_COLLOC_ERR_NOMEM)
+                break;
+            ds *= 0.5;
+            if (fabs(ds) < dsmin) {
+                snprintf(b->message, sizeof b->message,
+                         "no convergence with the step at dsmin = %g at parameter %.10g, "
+                         "period %.10g", dsmin, x->par[1], x->par[0]);
+                break;
+            }
+            st = 0;
+            continue;
+        }
+        po_tests now;
+        st = point_tests(r, &xn, &tn, &now);
+        if (st) {
+            dyn_colloc_sol_free(&xn);
+            dyn_colloc_sol_free(&tn);
+            snprintf(b->message, sizeof b->message, "the Floquet multipliers failed");
+            break;
+        }
+        int which = -1;
+        if (have_prev) {
+            if ((now.lpc > 0) != (prev_tests.lpc > 0))
+                which = 0;
+            else if (now.have_mult && (now.pd > 0) != (prev_tests.pd > 0))
+                which = 1;
+            else if (now.have_mult && (now.tr > 0) != (prev_tests.tr > 0) && now.tr_complex)
+                which = 2;
+        }
+        if (which >= 0) {
+            const double p0 = which == 0 ? prev_tests.lpc : which == 1 ? prev_tests.pd
+                                                                       : prev_tests.tr;
+            const double p1 = which == 0 ? now.lpc : which == 1 ? now.pd : now.tr;
+            dyn_colloc_sol xl = {0}, tl = {0};
+            if (!locate(r, x, t, ds, p0, p1, which, &xl, &tl)) {
+                dyn_colloc_sol_free(&xn);
+                dyn_colloc_sol_free(&tn);
+                xn = xl;
+                tn = tl;
+                st = point_tests(r, &xn, &tn, &now);
+                if (st)
+                    break;
+                /* beyond the located point the test has the far side's sign */
+                if (which == 0)
+                    now.lpc = p1;
+                else if (which == 1)
+                    now.pd = p1;
+                else
+                    now.tr = p1;
+            } else {
+                which = -1;
+            }
+        }
+        const char *label = which == 0 ? "LPC" : which == 1 ? "PD" : which == 2 ? "TR" : "";
+        st = record(r, &xn, r->re, r->im, now.have_mult, label, which >= 0 || b->npoints == 0);
+        if (st)
+            break;
+        dyn_colloc_sol_free(x);
+        dyn_colloc_sol_free(t);
+        *x = xn;
+        *t = tn;
+        prev_tests = now;
+        have_prev = 1;
+        if (inf.iterations <= 3)
+            ds = copysign(fmin(1.5 * fabs(ds), dsmax), ds);
+        else if (inf.iterations >= 8)
+            ds *= 0.5;
+        if (adapt > 0 && ++since_adapt >= adapt) {
+            dyn_colloc_sol *ex[1] = {t};
+            since_adapt = 0;
+            if (dyn_colloc_adapt(x, ntst, 1, ex, 1) == 0) {
+                dyn_colloc_sol t2;
+                if (dyn_colloc_tangent(&r->p, x, x, t, &t2) == 0) {
+                    dyn_colloc_sol_free(t);
+                    *t = t2;
+                }
+            }
+        }
+        if (bounded && (x->par[1] < o->par_min || x->par[1] > o->par_max)) {
+            snprintf(b->message, sizeof b->message, "the parameter left [%g, %g]", o->par_min,
+                     o->par_max);
+            break;
+        }
+        if (o->period_max > 0 && x->par[0] > o->period_max) {
+            snprintf(b->message, sizeof b->message,
+                     "the period %.6g exceeds %g (a homoclinic orbit near?)", x->par[0],
+                     o->period_max);
+            break;
+        }
+        if (amplitude_small(x)) {
+            snprintf(b->message, sizeof b->message, "the orbit shrank to an equilibrium");
+            break;
+        }
+    }
+    if (b->npoints > 0) {
+        dyn_po_point *last = &b->pts[b->npoints - 1];
+        if (!last->label[0])
+            snprintf(last->label, sizeof last->label, "EP");
+        if (!last->orbit.u)
+            dyn_colloc_sol_copy(&last->orbit, x);
+    }
+    dyn_colloc_sol_free(x);
+    dyn_colloc_sol_free(t);
+    b->status = st;
+    return b->npoints > 0 ? 0 : (st ? st : DYN_COLLOC_ERR_NEWTON);
+}
+
+static int run_init(po_run *r, const dyn_po_system *sys, const dyn_po_opts *o, dyn_po_branch *b)
+{
+    memset(r, 0, sizeof *r);
+    memset(b, 0, sizeof *b);
+    b->n = sys->n;
+    r->sys = sys;
+    r->o = o;
+    r->c.sys = sys;
+    const size_t n = (size_t)sys->n;
+    r->c.J = malloc((n * n + 2 * n) * sizeof(double));
+    if (!r->c.J)
+        return DYN_COLLOC_ERR_NOMEM;
+    r->re = r->c.J + n * n;
+    r->im = r->re + n;
+    dyn_colloc_problem p = {sys->n, 2, sys->n, 1, po_f, po_bc, &r->c};
+    r->p = p;
+    r->nopts.tol = o->tol > 0 ? o->tol : 1e-9;
+    r->nopts.max_iter = 12;
+    r->b = b;
+    return 0;
+}
+
+/* a null vector of the real 2n x 2n matrix K (row-major) by inverse iteration */
+static int null_vector(int m, double *K, double *v)
+{
+    int *piv = malloc((size_t)m * sizeof(int));
+    if (!piv)
+        return DYN_COLLOC_ERR_NOMEM;
+    double scale = 0.0;
+    for (int i = 0; i < m * m; i++)
+        scale = fmax(scale, fabs(K[i]));
+    for (int i = 0; i < m; i++)
+        K[(size_t)i * m + i] += 1e-13 * (scale > 0 ? scale : 1.0);
+    int st = dyn_lu_factor(m, K, piv) ? DYN_COLLOC_ERR_SINGULAR : 0;
+    for (int i = 0; i < m; i++)
+        v[i] = 1.0 + 0.1 * i;
+    for (int it = 0; it < 4 && !st; it++) {
+        dyn_lu_solve(m, K, piv, v);
+        double nrm = 0.0;
+        for (int i = 0; i < m; i++)
+            nrm += v[i] * v[i];
+        nrm = sqrt(nrm);
+        if (!(nrm > 0) || !isfinite(nrm))
+            st = DYN_COLLOC_ERR_SINGULAR;
+        else
+            for (int i = 0; i < m; i++)
+                v[i] /= nrm;
+    }
+    free(piv);
+    return st;
+}
+
+static int default_ncol(const dyn_po_opts *o)
+{
+    return o->ncol >= 2 && o->ncol <= DYN_COLLOC_MAX_NCOL ? o->ncol : 4;
+}
+
+int dyn_po_from_hopf(const dyn_po_system *sys, const double *x0, double p0, double omega,
+                     const dyn_po_opts *o, dyn_po_branch *b)
+{
+    po_run r;
+    int st = run_init(&r, sys, o, b);
+    if (st)
+        return st;
+    const int n = sys->n;
+    const size_t m = 2 * (size_t)n;
+    double *K = calloc(m * m + m, sizeof(double));
+    dyn_colloc_sol x = {0}, t = {0};
+    if (!K || !(omega > 0) || n < 2) {
+        st = K ? DYN_COLLOC_ERR_ARG : DYN_COLLOC_ERR_NOMEM;
+        snprintf(b->message, sizeof b->message, "%s",
+                 K ? "a Hopf point needs omega > 0 and at least 2 states"
+                   : "out of memory");
+        goto done;
+    }
+    double *v = K + m * m;
+    if (sys->f(x0, p0, v, r.c.J, sys->ctx)) {
+        st = DYN_COLLOC_ERR_FN;
+        snprintf(b->message, sizeof b->message, "the right-hand side failed at the Hopf point");
+        goto done;
+    }
+    /* [J, w I; -w I, J] [qr; qi] = 0: J q = i w q for q = qr + i qi */
+    for (int i = 0; i < n; i++) {
+        for (int j = 0; j < n; j++) {
+            K[(size_t)i * m + j] = r.c.J[(size_t)i * n + j];
+            K[(size_t)(i + n) * m + j + n] = r.c.J[(size_t)i * n + j];
+        }
+        K[(size_t)i * m + i + n] = omega;
+        K[(size_t)(i + n) * m + i] = -omega;
+    }
+    st = null_vector((int)m, K, v);
+    if (st) {
+        snprintf(b->message, sizeof b->message, "no eigenvector for i omega at the Hopf point");
+        goto done;
+    }
+    const int ntst = o->ntst > 0 ? o->ntst : 20;
+    if ((st = dyn_colloc_sol_alloc(&x, n, ntst, default_ncol(o), 2)) ||
+        (st = dyn_colloc_sol_alloc(&t, n, ntst, default_ncol(o), 2)))
+        goto done;
+    const long nodes = dyn_colloc_nodes(&x);
+    for (long g = 0; g < nodes; g++) {
+        const double s = 2.0 * DYN_PI * dyn_colloc_node_time(&x, g);
+        for (int i = 0; i < n; i++) {
+            x.u[(size_t)g * n + i] = x0[i];
+            t.u[(size_t)g * n + i] = v[i] * cos(s) - v[i + n] * sin(s);
+        }
+    }
+    x.par[0] = 2.0 * DYN_PI / omega;
+    x.par[1] = p0;
+    const double nrm = sqrt(dyn_colloc_dot(&t, &t));
+    for (long i = 0; i < nodes * n; i++)
+        t.u[i] /= nrm;
+    free(K);
+    st = po_continue(&r, &x, &t);
+    free(r.c.J);
+    return st;
+done:
+    free(K);
+    dyn_colloc_sol_free(&x);
+    dyn_colloc_sol_free(&t);
+    free(r.c.J);
+    b->status = st;
+    return st;
+}
+
+/* the eigenfunction of a multiplier: phi' = T J(u(t)) phi from phi(0) = v */
+typedef struct eigf_ctx {
+    const dyn_po_system *sys;
+    const dyn_colloc_sol *orbit;
+    const double *v;
+    double *J, *u, *fx;
+} eigf_ctx;
+
+static int eigf_f(double t, const double *phi, const double *par, double *f, double *fu,
+                  void *ctx)
+{
+    (void)par;
+    eigf_ctx *c = ctx;
+    const int n = c->sys->n;
+    dyn_colloc_eval(c->orbit, t, c->u);
+    if (c->sys->f(c->u, c->orbit->par[1], c->fx, c->J, c->sys->ctx))
+        return 1;
+    const double T = c->orbit->par[0];
+    for (int i = 0; i < n; i++) {
+        double s = 0.0;
+        for (int j = 0; j < n; j++)
+            s += c->J[(size_t)i * n + j] * phi[j];
+        f[i] = T * s;
+    }
+    if (fu)
+        for (int i = 0; i < n * n; i++)
+            fu[i] = T * c->J[i];
+    return 0;
+}
+
+static int eigf_bc(const double *u0, const double *u1, const double *par, double *g, void *ctx)
+{
+    (void)u1;
+    (void)par;
+    const eigf_ctx *c = ctx;
+    for (int i = 0; i < c->sys->n; i++)
+        g[i] = u0[i] - c->v[i];
+    return 0;
+}
+
+int dyn_po_from_pd(const dyn_po_system *sys, const dyn_po_point *pd, const dyn_po_opts *o,
+                   dyn_po_branch *b)
+{
+    po_run r;
+    int st = run_init(&r, sys, o, b);
+    if (st)
+        return st;
+    const dyn_colloc_sol *orb = &pd->orbit;
+    const int n = sys->n;
+    const size_t nn = (size_t)n;
+    double *M = malloc((nn * nn + 4 * nn) * sizeof(double));
+    dyn_colloc_sol phi = {0}, x = {0}, t = {0};
+    if (!M || !orb->u || orb->n != n) {
+        st = M ? DYN_COLLOC_ERR_ARG : DYN_COLLOC_ERR_NOMEM;
+        snprintf(b->message, sizeof b->message, "%s",
+                 M ? "the PD point keeps no orbit" : "out of memory");
+        goto done;
+    }
+    double *v = M + nn * nn;
+    /* v: the null vector of M + I */
+    if ((st = dyn_colloc_monodromy(&r.p, orb, M)))
+        goto fail;
+    for (int i = 0; i < n; i++)
+        M[(size_t)i * nn + i] += 1.0;
+    {
+        double *K = malloc(nn * nn * sizeof(double));
+        if (!K) {
+            st = DYN_COLLOC_ERR_NOMEM;
+            goto fail;
+        }
+        memcpy(K, M, nn * nn * sizeof(double));
+        st = null_vector(n, K, v);
+        free(K);
+        if (st)
+            goto fail;
+    }
+    eigf_ctx ec = {sys, orb, v, r.c.J, v + nn, v + 2 * nn};
+    dyn_colloc_problem pe = {n, 0, n, 0, eigf_f, eigf_bc, &ec};
+    if ((st = dyn_colloc_sol_copy(&phi, orb)))
+        goto fail;
+    phi.npar = 0;
+    memset(phi.u, 0, (size_t)dyn_colloc_nodes(&phi) * nn * sizeof(double));
+    if ((st = dyn_colloc_solve(&pe, &phi, NULL, NULL, NULL, NULL)))
+        goto fail;
+    /* the orbit twice on [0, 1]: period 2T; the eigenfunction phi, then -phi */
+    const int N = orb->ntst, ncol = orb->ncol;
+    if ((st = dyn_colloc_sol_alloc(&x, n, 2 * N, ncol, 2)) ||
+        (st = dyn_colloc_sol_alloc(&t, n, 2 * N, ncol, 2)))
+        goto fail;
+    for (int j = 0; j <= N; j++) {
+        x.mesh[j] = 0.5 * orb->mesh[j];
+        x.mesh[N + j] = 0.5 + 0.5 * orb->mesh[j];
+    }
+    t.mesh[0] = 0.0;
+    memcpy(t.mesh, x.mesh, (2 * (size_t)N + 1) * sizeof(double));
+    const long half = dyn_colloc_nodes(orb) - 1;
+    for (long g = 0; g <= 2 * half; g++) {
+        const long k = g <= half ? g : g - half;
+        const double sgn = g <= half ? 1.0 : -1.0;
+        for (int i = 0; i < n; i++) {
+            x.u[(size_t)g * n + i] = orb->u[(size_t)k * n + i];
+            t.u[(size_t)g * n + i] = sgn * phi.u[(size_t)k * n + i];
+        }
+    }
+    x.par[0] = 2.0 * orb->par[0];
+    x.par[1] = orb->par[1];
+    const double nrm = sqrt(dyn_colloc_dot(&t, &t));
+    if (!(nrm > 0)) {
+        st = DYN_COLLOC_ERR_SINGULAR;
+        goto fail;
+    }
+    for (long i = 0; i < dyn_colloc_nodes(&t) * n; i++)
+        t.u[i] /= nrm;
+    {
+        dyn_colloc_sol *ex[1] = {&t};
+        const int ntst = o->ntst > 0 ? o->ntst : N;
+        if ((st = dyn_colloc_adapt(&x, ntst, 1, ex, 1)))
+            goto fail;
+    }
+    dyn_colloc_sol_free(&phi);
+    free(M);
+    st = po_continue(&r, &x, &t);
+    free(r.c.J);
+    return st;
+fail:
+    snprintf(b->message, sizeof b->message, "no eigenfunction of the multiplier -1 (%d)", st);
+done:
+    free(M);
+    dyn_colloc_sol_free(&phi);
+    dyn_colloc_sol_free(&x);
+    dyn_colloc_sol_free(&t);
+    free(r.c.J);
+    b->status = st;
+    return st;
+}

@@ -274,6 +274,7 @@ int cli_cmd_derive(int argc, char **argv);
 int cli_cmd_equilibria(int argc, char **argv);
 int cli_cmd_lyapunov(int argc, char **argv);
 int cli_cmd_steady(int argc, char **argv);
+int cli_cmd_bvp(int argc, char **argv);
 /* dynkit plot TABLE.csv: a sweep's table as lines or a heat map (sweep_plot.c). */
 int cli_plot_sweep_table(int argc, char **argv);
 

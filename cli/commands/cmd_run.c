@@ -381,6 +381,14 @@ int cli_cmd_run(int argc, char **argv)
                     m->events[i].name);
             break;
         }
+    if (m->n_bdry > 0 && !run.quiet) {
+        fprintf(stderr, "dynkit: note: %s's boundary conditions are not used by run, which "
+                        "integrates the initial-value problem from the initial state; "
+                        "'dynkit bvp' solves them. Ignored:", m->name);
+        for (int k = 0; k < m->n_bdry; k++)
+            fprintf(stderr, "%s line %s", k ? ";" : "", m->bdry_text[k]);
+        fputc('\n', stderr);
+    }
     cli_progress progress;
     cli_progress_start(&progress, run.quiet);
     sink.progress = progress.enabled ? &progress : NULL;

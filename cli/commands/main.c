@@ -38,6 +38,7 @@ static void main_help(void)
          "                 Benettin's method, with an error estimate\n"
          "  steady MODEL   a steady motion: --unknown NAME,... solved so that the\n"
          "                 non-cyclic states stay put; its eigenvalues\n"
+         "  bvp FILE       a model file's boundary-value problem (bdry lines) by collocation\n"
          "  help [COMMAND] this text, or the help of COMMAND (as 'dynkit COMMAND --help')\n"
          "\n"
          "MODEL is a built-in model's name ('dynkit models'), an XPPAUT .ode file, a mechanism\n"
@@ -76,6 +77,7 @@ int main(int argc, char **argv)
         {"equilibria", cli_cmd_equilibria},
         {"lyapunov", cli_cmd_lyapunov},
         {"steady", cli_cmd_steady},
+        {"bvp", cli_cmd_bvp},
     };
     /* --verbose is accepted anywhere, by every command */
     int kept = 1;
@@ -122,7 +124,7 @@ int main(int argc, char **argv)
     return cli_usage_error(NULL,
                            "unknown command '%s' (%s%s%saccepted: run, models, methods, info, "
                            "inverse, report, animate, plot, verify, sweep, linearize, derive, "
-                           "equilibria, lyapunov, continue, steady, help)",
+                           "equilibria, lyapunov, continue, steady, bvp, help)",
                            argv[1], near ? "did you mean '" : "", near ? near : "",
                            near ? "'? " : "");
 }

@@ -203,6 +203,33 @@ int dyn_po_model_init(dyn_po_model *pm, const dyn_model *m, const void *par, int
                       dyn_po_system *sys);
 void dyn_po_model_free(dyn_po_model *pm);
 
+/* ---- two-point boundary-value problems of a model (colloc_bvp.c) ---- */
+
+typedef struct dyn_bvp_opts {
+    int ntst, ncol; /* 0: 40 intervals, 4 Gauss points */
+    double tol;     /* Newton's tolerance (0: 1e-10) */
+} dyn_bvp_opts;
+
+typedef struct dyn_bvp_result {
+    dyn_colloc_sol sol;  /* on [0, 1]: t = t0 + (t1 - t0) s */
+    double t0, t1;
+    int iterations;      /* Newton's, on the final mesh */
+    double *residuals;   /* n_bdry: the conditions at the solution */
+    double err_est;      /* max over the mesh points of |u_ntst - u_2ntst|, the solution
+                          * against one on a mesh of twice as many intervals */
+    char message[256];
+} dyn_bvp_result;
+
+/* The model's boundary conditions (m->bdry, m->n_bdry == n_states) on [t0, t1] with the
+ * prepared parameters par: the initial-value problem from y0 (classical Runge-Kutta, 8
+ * steps per node) is the first guess, Newton's method on the collocation equations on a
+ * uniform mesh, then on a mesh adapted to that solution, and once more on twice as many
+ * intervals for the error estimate. Returns 0 or DYN_COLLOC_* (message says why); r is
+ * released with dyn_bvp_result_free either way. */
+int dyn_bvp_solve(const dyn_model *m, const void *par, const double *y0, double t0, double t1,
+                  const dyn_bvp_opts *o, dyn_bvp_result *r);
+void dyn_bvp_result_free(dyn_bvp_result *r);
+
 #ifdef __cplusplus
 }
 #endif

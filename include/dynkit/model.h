@@ -176,6 +176,14 @@ typedef struct dyn_model {
      * dyn_jump_fn): read only by the methods for noise, so a model with jumps has noise
      * slots (n_noise > 0) for their random numbers. NULL: none. */
     dyn_jump_fn jump;
+    /* Boundary conditions (a model file's bdry lines, XPPAUT's two-point boundary-value
+     * problem on [t0, t1]): n_bdry residuals g(y(t0), y(t1), par) written by bdry, which
+     * returns 0 or non-zero; bdry_text[k] the k-th condition as written, "LINE: text".
+     * 0 and NULL: none. A run integrates the initial-value problem; `dynkit bvp` solves
+     * them (dynkit/colloc.h). */
+    int n_bdry;
+    int (*bdry)(const double *yl, const double *yr, const void *par, double *g);
+    const char *const *bdry_text;
 } dyn_model;
 
 /* A model whose right-hand side reads its own past (dynkit/delay.h): its parameter struct

@@ -147,8 +147,42 @@ typedef struct po_run {
     dyn_colloc_problem p;
     dyn_colloc_opts nopts;
     dyn_po_branch *b;
-    double *re, *im;
+    double *re, *im, *scratch;
 } po_run;
+
+/* the extreme of state i near node g (sign 1: a maximum, -1: a minimum) of the orbit's
+ * piecewise polynomial, by golden-section search between the neighbouring nodes (periodic:
+ * the nodes wrap around); u: n doubles of scratch */
+static double refine_extreme(const dyn_colloc_sol *x, int i, long g, double sign, double *u)
+{
+    const long last = dyn_colloc_nodes(x) - 1;
+    const double tg = dyn_colloc_node_time(x, g);
+    double a = g > 0 ? dyn_colloc_node_time(x, g - 1) : dyn_colloc_node_time(x, last - 1) - 1;
+    double b = g < last ? dyn_colloc_node_time(x, g + 1) : 1 + dyn_colloc_node_time(x, 1);
+    double best = sign * x->u[(size_t)g * x->n + i];
+    (void)tg;
+    const double gr = 0.5 * (sqrt(5.0) - 1.0);
+#define AT(t) (dyn_colloc_eval(x, (t) - floor(t), u), sign * u[i])
+    double c = b - gr * (b - a), d = a + gr * (b - a), fc = AT(c), fd = AT(d);
+    for (int it = 0; it < 60; it++) {
+        if (fc > fd) {
+            b = d;
+            d = c;
+            fd = fc;
+            c = b - gr * (b - a);
+            fc = AT(c);
+        } else {
+            a = c;
+            c = d;
+            fc = fd;
+            d = a + gr * (b - a);
+            fd = AT(d);
+        }
+    }
+#undef AT
+    best = fmax(best, fmax(fc, fd));
+    return sign * best;
+}
 
 /* append x as a point; keep its orbit when keep */
 static int record(po_run *r, const dyn_colloc_sol *x, const double *re, const double *im,
@@ -179,12 +213,18 @@ static int record(po_run *r, const dyn_colloc_sol *x, const double *re, const do
         pt->xmax[i] = -INFINITY;
         pt->xmin[i] = INFINITY;
     }
-    for (long g = 0; g < nodes; g++)
-        for (int i = 0; i < n; i++) {
+    for (int i = 0; i < n; i++) {
+        long gmax = 0, gmin = 0;
+        for (long g = 1; g < nodes; g++) {
             const double v = x->u[(size_t)g * n + i];
-            pt->xmax[i] = fmax(pt->xmax[i], v);
-            pt->xmin[i] = fmin(pt->xmin[i], v);
+            if (v > x->u[(size_t)gmax * n + i])
+                gmax = g;
+            if (v < x->u[(size_t)gmin * n + i])
+                gmin = g;
         }
+        pt->xmax[i] = refine_extreme(x, i, gmax, 1.0, r->scratch);
+        pt->xmin[i] = refine_extreme(x, i, gmin, -1.0, r->scratch);
+    }
     dyn_colloc_sol u = *x;
     u.npar = 0;
     pt->l2norm = sqrt(dyn_colloc_dot(&u, &u));
@@ -454,11 +494,12 @@ static int run_init(po_run *r, const dyn_po_system *sys, const dyn_po_opts *o, d
     r->o = o;
     r->c.sys = sys;
     const size_t n = (size_t)sys->n;
-    r->c.J = malloc((n * n + 2 * n) * sizeof(double));
+    r->c.J = malloc((n * n + 3 * n) * sizeof(double));
     if (!r->c.J)
         return DYN_COLLOC_ERR_NOMEM;
     r->re = r->c.J + n * n;
     r->im = r->re + n;
+    r->scratch = r->im + n;
     dyn_colloc_problem p = {sys->n, 2, sys->n, 1, po_f, po_bc, &r->c};
     r->p = p;
     r->nopts.tol = o->tol > 0 ? o->tol : 1e-9;

@@ -1093,6 +1093,12 @@ void lang_check(lang_ctx *c)
             break;
     }
     rctx rhs = {CTX_RHS, NULL, "a formula", -1};
+    for (int i = 0; i < m->bdrys.n; i++) {
+        lang_formula *f = &LVEC_AT(m->bdrys, lang_formula, i);
+        f->expr = unroll(c, f->expr, 0);
+        resolve(c, f->expr, &rhs);
+        lang_bdry_resolved(c, f);
+    }
     for (int i = 0; i < m->derived.n; i++) {
         lang_formula *f = &LVEC_AT(m->derived, lang_formula, i);
         rctx r = {CTX_PARAMS, NULL, "a derived parameter", -1};

@@ -1727,6 +1727,8 @@ char *lang_emit_c(lang_ctx *c)
     const int has_init = emit_initial(c, y0);
     lang_c_splice(c, jp.text);
     emit_events(c);
+    if (m->bdrys.n)
+        lang_emit_bdry(c, state_expr);
     if (m->n_delays)
         lang_emit_delay_model(c, delay_offset(m), history_expr);
     if (lang_volt_model(m))
@@ -1904,6 +1906,9 @@ char *lang_emit_c(lang_ctx *c)
         LANG_C_CODE(c, ",\n    .volterra = &dk_volterra_model");
     if (m->markovs.n)
         LANG_C_CODE(c, ",\n    .jump = dk_jump");
+    if (m->bdrys.n)
+        LANG_C_CODEF(c, ",\n    .n_bdry = %d,\n    .bdry = dk_bdry,\n    .bdry_text = dk_bdry_text",
+                     m->bdrys.n);
     if (m->n_table_draws)
         LANG_C_CODEF(c, ",\n    .seed_offset = %d * sizeof(double)", seed_offset(m));
     LANG_C_CODE(c, ",\n};\n\nconst dyn_model *dynkit_model(void) { return &dk_model; }\n");

@@ -77,7 +77,9 @@ static const struct {
     {"besseli", "Bessel functions ('besseli')"},
     {"lgamma", "the log-gamma function ('lgamma')"},
     {"ishift", "indirect addressing ('ishift')"},
-    {"hom_bcs", "boundary-value problems ('hom_bcs')"},
+    {"hom_bcs", "homoclinic boundary conditions ('hom_bcs', XPPAUT's projections onto an "
+                "equilibrium's subspaces; dynkit bvp takes conditions on the states at the two "
+                "ends)"},
 };
 
 /* The feature's name when name is a reserved word of XPPAUT that is not supported. */
@@ -435,6 +437,10 @@ static node *parse_primary(lang_lexer *lx)
     if (peek(lx).kind != T_LP) {
         node *e = lang_node(lx->c, N_NAME, p);
         e->name = name;
+        if (lx->c->in_bdry && lx->i < lx->end && lx->line->text[lx->i] == '\'') {
+            lx->i++; /* NAME' in a bdry line: NAME at the right end (bdry.c) */
+            e->op = 1;
+        }
         return e;
     }
     /* a call: built-in or user function, resolved later */

@@ -356,6 +356,8 @@ typedef struct lang_model {
     /* Volterra integrals (integrals.c): lang_volt, and @ vmaxpts (0: not given) */
     lvec volts;
     long vmaxpts;
+    /* XPPAUT's boundary conditions (bdry.c): lang_formula, name the condition as written */
+    lvec bdrys;
 } lang_model;
 
 /* ---- one logical line: text and where each character came from ---- */
@@ -400,6 +402,7 @@ typedef struct lang_ctx {
     int (*stmt_hook)(struct lang_ctx *c, struct lang_lexer *lx, const char *w, lpos wpos);
     void *hook_ctx;
     int no_arrays; /* lines are not expanded as arrays: [ ] holds units (src/mbs) */
+    int in_bdry;   /* parsing a bdry line: NAME' is the state NAME at the right end */
 } lang_ctx;
 
 /* arena, errors, notes (diag.c) */
@@ -613,6 +616,12 @@ void lang_volt_finish(lang_ctx *c);       /* after the statements: the method */
 void lang_volt_resolve(lang_ctx *c, void (*resolve)(lang_ctx *, node *, int kernel));
 void lang_emit_volterra(lang_ctx *c, int offset, void (*expr)(lang_ctx *, const node *),
                         void (*fixes)(lang_ctx *, node *const *, int));
+/* boundary conditions (bdry.c): a bdry line read; after its names are resolved, the
+ * right end's states moved to indices n..2n-1 (checked); the C function dk_bdry and the
+ * conditions' texts dk_bdry_text */
+void lang_bdry_parse(lang_ctx *c, lang_lexer *lx, lpos wpos);
+void lang_bdry_resolved(lang_ctx *c, lang_formula *f);
+void lang_emit_bdry(lang_ctx *c, void (*expr)(lang_ctx *, const node *));
 void lang_emit_delay_helper(lang_ctx *c, int offset);
 void lang_emit_delay_guard(lang_ctx *c);
 void lang_emit_delay_prepare(lang_ctx *c, void (*expr)(lang_ctx *, const node *));

@@ -1051,7 +1051,7 @@ static int keyword_statement(lang_ctx *c, lang_lexer *lx, pstate *ps, const char
     else if (KW(w, n, "table", "tab"))
         parse_table(c, lx);
     else if (KW(w, n, "bdry", "bndry", "b", "boundary"))
-        lang_fail(c, wpos, "boundary-value problems ('bdry') are not supported");
+        lang_bdry_parse(c, lx, wpos);
     else if (KW(w, n, "volt", "volterra", "v"))
         parse_volt(c, lx);
     else if (KW(w, n, "special", "sp"))

@@ -1,0 +1,285 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* colloc_bvp.c — a model's two-point boundary-value problem (its bdry conditions, XPPAUT's
+ * bdry lines) by orthogonal collocation (colloc_newton.c): y' = f(t, y) on [t0, t1] scaled
+ * to [0, 1], the n conditions g(y(t0), y(t1)) = 0, no free scalars. The first guess is the
+ * initial-value problem's solution from the given state (the start of XPPAUT's shooting);
+ * when Newton's method fails from it, the conditions are reached by a homotopy from the
+ * initial-value problem's condition u(t0) = y0, (1 - h) (u(t0) - y0) + h g = 0, h from 0 to 1;
+ * the mesh is then adapted to the solution (colloc_mesh.c) and the error estimated against
+ * a solve on twice as many intervals. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dynkit/colloc.h"
+
+typedef struct bvp_ctx {
+    const dyn_model *m;
+    void *par;
+    double t0, len;
+    double *work; /* 3 n */
+    /* the homotopy from the initial-value problem: (1 - h) (u(0) - y0) + h g = 0 */
+    double h;
+    const double *y0;
+} bvp_ctx;
+
+static int bvp_f(double s, const double *u, const double *par, double *f, double *fu, void *ctx)
+{
+    (void)par;
+    bvp_ctx *c = ctx;
+    const dyn_model *m = c->m;
+    const int n = m->n_states;
+    const double t = c->t0 + c->len * s;
+    if (m->rhs(t, u, f, c->par))
+        return 1;
+    for (int i = 0; i < n; i++)
+        f[i] *= c->len;
+    if (!fu)
+        return 0;
+    if (m->jacobian) {
+        if (m->jacobian(t, u, fu, c->par))
+            return 1;
+    } else {
+        double *xp = c->work, *fp = xp + n, *fm = fp + n;
+        memcpy(xp, u, (size_t)n * sizeof(double));
+        for (int j = 0; j < n; j++) {
+            const double h = 6e-6 * fmax(fabs(u[j]), 1.0);
+            xp[j] = u[j] + h;
+            if (m->rhs(t, xp, fp, c->par))
+                return 1;
+            xp[j] = u[j] - h;
+            if (m->rhs(t, xp, fm, c->par))
+                return 1;
+            xp[j] = u[j];
+            for (int i = 0; i < n; i++)
+                fu[(size_t)i * n + j] = (fp[i] - fm[i]) / (2 * h);
+        }
+    }
+    for (int i = 0; i < n * n; i++)
+        fu[i] *= c->len;
+    return 0;
+}
+
+static int bvp_bc(const double *u0, const double *u1, const double *par, double *g, void *ctx)
+{
+    (void)par;
+    const bvp_ctx *c = ctx;
+    if (c->m->bdry(u0, u1, c->par, g))
+        return 1;
+    if (c->h < 1.0)
+        for (int i = 0; i < c->m->n_states; i++)
+            g[i] = (1.0 - c->h) * (u0[i] - c->y0[i]) + c->h * g[i];
+    return 0;
+}
+
+/* the initial-value problem from y0 at the nodes (RK4, 8 steps per node); where it stops
+ * being finite, the last finite state is kept */
+static void first_guess(bvp_ctx *c, const double *y0, dyn_colloc_sol *x)
+{
+    const int n = x->n;
+    const long nodes = dyn_colloc_nodes(x);
+    double *k = c->work, *y = malloc(6 * (size_t)n * sizeof(double));
+    if (!y) {
+        for (long g = 0; g < nodes; g++)
+            memcpy(x->u + (size_t)g * n, y0, (size_t)n * sizeof(double));
+        return;
+    }
+    double *k1 = y + n, *k2 = k1 + n, *k3 = k2 + n, *k4 = k3 + n, *tmp = k4 + n;
+    (void)k;
+    memcpy(y, y0, (size_t)n * sizeof(double));
+    memcpy(x->u, y, (size_t)n * sizeof(double));
+    int ok = 1;
+    for (long g = 1; g < nodes; g++) {
+        const double s0 = dyn_colloc_node_time(x, g - 1), s1 = dyn_colloc_node_time(x, g);
+        const double h = (s1 - s0) / 8;
+        for (int st = 0; st < 8 && ok; st++) {
+            const double s = s0 + st * h;
+            ok = !bvp_f(s, y, NULL, k1, NULL, c);
+            for (int i = 0; i < n; i++)
+                tmp[i] = y[i] + 0.5 * h * k1[i];
+            ok = ok && !bvp_f(s + 0.5 * h, tmp, NULL, k2, NULL, c);
+            for (int i = 0; i < n; i++)
+                tmp[i] = y[i] + 0.5 * h * k2[i];
+            ok = ok && !bvp_f(s + 0.5 * h, tmp, NULL, k3, NULL, c);
+            for (int i = 0; i < n; i++)
+                tmp[i] = y[i] + h * k3[i];
+            ok = ok && !bvp_f(s + h, tmp, NULL, k4, NULL, c);
+            for (int i = 0; i < n && ok; i++) {
+                const double v = y[i] + h / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
+                if (!isfinite(v) || fabs(v) > 1e8)
+                    ok = 0;
+                tmp[i] = v;
+            }
+            if (ok)
+                memcpy(y, tmp, (size_t)n * sizeof(double));
+        }
+        memcpy(x->u + (size_t)g * n, y, (size_t)n * sizeof(double));
+    }
+    free(y);
+}
+
+/* Newton from the guess x; when it fails, from the initial-value problem started again
+ * where x ends; then the homotopy from the initial-value problem (whose solution x is at
+ * h = 0) to the conditions (h = 1) in steps of h, halved on a failure (to 1e-4) and
+ * doubled after an easy one */
+static int solve_homotopy(const dyn_colloc_problem *p, bvp_ctx *c, dyn_colloc_sol *x,
+                          const dyn_colloc_opts *no, dyn_colloc_info *inf)
+{
+    dyn_colloc_sol keep;
+    int st = dyn_colloc_sol_copy(&keep, x);
+    if (st)
+        return st;
+    c->h = 1.0;
+    st = dyn_colloc_solve(p, x, NULL, NULL, no, inf);
+    if (st != DYN_COLLOC_ERR_NEWTON && st != DYN_COLLOC_ERR_SINGULAR &&
+        st != DYN_COLLOC_ERR_FN) {
+        dyn_colloc_sol_free(&keep);
+        return st;
+    }
+    const long N = dyn_colloc_nodes(x) * x->n;
+    /* a second guess: the initial-value problem again from where the first one ended (a
+     * transient left behind, for conditions an attractor satisfies) */
+    {
+        const double *end = keep.u + (size_t)(N - x->n);
+        double *y1 = malloc((size_t)x->n * sizeof(double));
+        if (!y1) {
+            dyn_colloc_sol_free(&keep);
+            return DYN_COLLOC_ERR_NOMEM;
+        }
+        memcpy(y1, end, (size_t)x->n * sizeof(double));
+        first_guess(c, y1, x);
+        free(y1);
+        st = dyn_colloc_solve(p, x, NULL, NULL, no, inf);
+        if (!st) {
+            dyn_colloc_sol_free(&keep);
+            return 0;
+        }
+    }
+    memcpy(x->u, keep.u, (size_t)N * sizeof(double));
+    double h = 0.0, dh = 0.125;
+    while (h < 1.0) {
+        const double next = fmin(1.0, h + dh);
+        c->h = next;
+        memcpy(keep.u, x->u, (size_t)N * sizeof(double));
+        st = dyn_colloc_solve(p, x, NULL, NULL, no, inf);
+        if (st == DYN_COLLOC_ERR_NOMEM)
+            break;
+        if (st) {
+            memcpy(x->u, keep.u, (size_t)N * sizeof(double));
+            dh *= 0.5;
+            if (dh < 1e-4)
+                break;
+            continue;
+        }
+        h = next;
+        if (inf->iterations <= 4)
+            dh = fmin(2 * dh, 0.5);
+    }
+    c->h = 1.0;
+    dyn_colloc_sol_free(&keep);
+    return st;
+}
+
+static const char *why(int st)
+{
+    switch (st) {
+    case DYN_COLLOC_ERR_SINGULAR:
+        return "Newton's matrix is singular: the conditions do not fix one solution (a "
+               "periodic condition leaves the phase free?) or they contradict each other";
+    case DYN_COLLOC_ERR_NEWTON:
+        return "Newton's method did not converge from the initial-value problem's solution "
+               "(change the initial state towards the solution, or the mesh with --ntst)";
+    case DYN_COLLOC_ERR_FN:
+        return "the right-hand side or a condition failed or gave NaN or Inf";
+    case DYN_COLLOC_ERR_NOMEM:
+        return "out of memory";
+    default:
+        return "bad sizes";
+    }
+}
+
+void dyn_bvp_result_free(dyn_bvp_result *r)
+{
+    dyn_colloc_sol_free(&r->sol);
+    free(r->residuals);
+    r->residuals = NULL;
+}
+
+int dyn_bvp_solve(const dyn_model *m, const void *par, const double *y0, double t0, double t1,
+                  const dyn_bvp_opts *o, dyn_bvp_result *r)
+{
+    memset(r, 0, sizeof *r);
+    r->t0 = t0;
+    r->t1 = t1;
+    const int n = m->n_states;
+    if (!m->bdry || m->n_bdry != n) {
+        snprintf(r->message, sizeof r->message,
+                 "%s has %d boundary conditions for %d states (one per state is needed)",
+                 m->name, m->n_bdry, n);
+        return DYN_COLLOC_ERR_ARG;
+    }
+    if (!(t1 > t0)) {
+        snprintf(r->message, sizeof r->message, "the interval [%g, %g] is empty", t0, t1);
+        return DYN_COLLOC_ERR_ARG;
+    }
+    const int ntst = o && o->ntst > 0 ? o->ntst : 40;
+    const int ncol = o && o->ncol > 0 ? o->ncol : 4;
+    bvp_ctx c = {m, malloc(m->par_size ? m->par_size : 1), t0, t1 - t0,
+                 malloc(3 * (size_t)n * sizeof(double)), 1.0, y0};
+    r->residuals = calloc((size_t)n, sizeof(double));
+    dyn_colloc_sol fine = {0};
+    int st = !c.par || !c.work || !r->residuals ? DYN_COLLOC_ERR_NOMEM : 0;
+    if (!st) {
+        memcpy(c.par, par, m->par_size);
+        st = dyn_colloc_sol_alloc(&r->sol, n, ntst, ncol, 0);
+    }
+    const dyn_colloc_problem p = {n, 0, n, 0, bvp_f, bvp_bc, &c};
+    const dyn_colloc_opts no = {o && o->tol > 0 ? o->tol : 1e-10, 40};
+    dyn_colloc_info inf = {0, 0, 0};
+    if (!st) {
+        first_guess(&c, y0, &r->sol);
+        st = solve_homotopy(&p, &c, &r->sol, &no, &inf);
+    }
+    if (!st) { /* a mesh adapted to the solution */
+        st = dyn_colloc_adapt(&r->sol, ntst, 0, NULL, 0);
+        if (!st)
+            st = dyn_colloc_solve(&p, &r->sol, NULL, NULL, &no, &inf);
+    }
+    r->iterations = inf.iterations;
+    if (!st && !(st = dyn_colloc_sol_copy(&fine, &r->sol))) {
+        double *mesh = malloc((2 * (size_t)ntst + 1) * sizeof(double));
+        if (!mesh) {
+            st = DYN_COLLOC_ERR_NOMEM;
+        } else {
+            for (int j = 0; j < ntst; j++) {
+                mesh[2 * j] = r->sol.mesh[j];
+                mesh[2 * j + 1] = 0.5 * (r->sol.mesh[j] + r->sol.mesh[j + 1]);
+            }
+            mesh[2 * ntst] = 1.0;
+            st = dyn_colloc_remesh(&fine, 2 * ntst, mesh);
+            free(mesh);
+        }
+        if (!st && dyn_colloc_solve(&p, &fine, NULL, NULL, &no, NULL)) {
+            r->err_est = NAN; /* no estimate; the solution stands */
+        } else if (!st) {
+            double e = 0.0;
+            for (int j = 0; j <= ntst; j++)
+                for (int i = 0; i < n; i++)
+                    e = fmax(e, fabs(r->sol.u[((size_t)j * ncol) * n + i] -
+                                     fine.u[((size_t)2 * j * ncol) * n + i]));
+            r->err_est = e;
+        }
+    }
+    if (!st) {
+        const double *ul = r->sol.u + (size_t)(dyn_colloc_nodes(&r->sol) - 1) * n;
+        if (m->bdry(r->sol.u, ul, c.par, r->residuals))
+            st = DYN_COLLOC_ERR_FN;
+    }
+    if (st)
+        snprintf(r->message, sizeof r->message, "%s", why(st));
+    dyn_colloc_sol_free(&fine);
+    free(c.par);
+    free(c.work);
+    return st;
+}

@@ -8,7 +8,7 @@
 # Installed by `cmake --install` into share/bash-completion/completions/dynkit; or
 # `source completions/dynkit.bash`.
 
-_dynkit_commands="run models methods info inverse report animate plot verify sweep linearize derive equilibria lyapunov steady help"
+_dynkit_commands="run models methods info inverse report animate plot verify sweep linearize derive equilibria lyapunov steady bvp help"
 
 # The options of a command, from its --help (cached per command for the shell's life).
 declare -gA _dynkit_options_cache 2>/dev/null || true
@@ -150,6 +150,14 @@ _dynkit() {
             compopt -o filenames 2>/dev/null
             COMPREPLY=()
             _dynkit_files "$cur" mech
+            return 0
+        fi
+        ;;
+    bvp)
+        if ((COMP_CWORD == i + 1)); then
+            compopt -o filenames 2>/dev/null
+            COMPREPLY=()
+            _dynkit_files "$cur" ode
             return 0
         fi
         ;;

@@ -58,6 +58,8 @@ static const char *const emit_check_idents[] = {
     "dk_volt_conv", "dk_volt_is_int", "dk_volterra_model", "t_now", "ip", "g", "kv", "pw",
     /* Markov states and gill (dynkit/sde.h, src/lang/markov.c) */
     "jump", "dk_jump", "dyn_markov_step", "dyn_gillespie_step", "bad", "h",
+    /* boundary conditions (src/lang/bdry.c) */
+    "n_bdry", "bdry", "bdry_text", "dk_bdry", "dk_bdry_text", "yl", "yr",
     /* the translator's own names */
     "t", "y", "p", "par", "dydt", "out", "J", "err", "errlen", "names", "k", "i", "j", "s",
     "x", "u", "n", "m", "q", "v", "z", "type", "period", "w", "r", "rb", "lo", "dx", "dk_model",

@@ -70,7 +70,8 @@ static void test_every_option_is_in_the_page(void **state)
     static const char *const commands[] = {"",        "run",    "models",  "methods",
                                            "info",    "inverse", "report", "animate",
                                            "plot",    "verify",  "sweep",  "linearize",
-                                           "derive",  "equilibria", "lyapunov", "steady"};
+                                           "derive",  "equilibria", "lyapunov", "steady",
+                                           "bvp"};
     char *page = cli_read_file(PAGE, NULL);
     CHECK(strlen(page) > 1000, "cannot read %s", PAGE);
     char missing[2048] = "";

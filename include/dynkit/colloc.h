@@ -215,8 +215,9 @@ typedef struct dyn_bvp_result {
     double t0, t1;
     int iterations;      /* Newton's, on the final mesh */
     double *residuals;   /* n_bdry: the conditions at the solution */
-    double err_est;      /* max over the mesh points of |u_ntst - u_2ntst|, the solution
-                          * against one on a mesh of twice as many intervals */
+    double err_est;      /* max over the nodes of |u_ntst - u_2ntst|, the solution against
+                          * one on a mesh of twice as many intervals (NAN: that solve
+                          * failed) */
     char message[256];
 } dyn_bvp_result;
 

@@ -262,12 +262,14 @@ int dyn_bvp_solve(const dyn_model *m, const void *par, const double *y0, double 
         }
         if (!st && dyn_colloc_solve(&p, &fine, NULL, NULL, &no, NULL)) {
             r->err_est = NAN; /* no estimate; the solution stands */
-        } else if (!st) {
-            double e = 0.0;
-            for (int j = 0; j <= ntst; j++)
+        } else if (!st) { /* at every node of the solution, not only the mesh points */
+            double e = 0.0, *uf = c.work;
+            const long nodes = dyn_colloc_nodes(&r->sol);
+            for (long g = 0; g < nodes; g++) {
+                dyn_colloc_eval(&fine, dyn_colloc_node_time(&r->sol, g), uf);
                 for (int i = 0; i < n; i++)
-                    e = fmax(e, fabs(r->sol.u[((size_t)j * ncol) * n + i] -
-                                     fine.u[((size_t)2 * j * ncol) * n + i]));
+                    e = fmax(e, fabs(r->sol.u[(size_t)g * n + i] - uf[i]));
+            }
             r->err_est = e;
         }
     }

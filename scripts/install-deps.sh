@@ -25,7 +25,7 @@ packages+=(python3-dev python3-pytest)
 packages+=(liboctave-dev) # mkoctfile: the MEX functions for Octave (bindings/matlab)
 packages+=(man-db) # tests/test_manpage.c renders docs/dynkit.1
 packages+=(xppaut) # tests/xppaut: .ode files run by XPPAUT itself and compared
-packages+=(auto-07p gfortran) # tests/continuation: the same diagrams computed by AUTO-07p
+packages+=(auto-07p gfortran) # tests/continuation, bench/colloc_auto.py: AUTO-07p as the oracle
 packages+=(libclang-rt-dev) # fuzz/: libFuzzer and the sanitizers' runtime for clang (CI)
 # node and npm may come from elsewhere (e.g. a newer nodejs that bundles npm): keep those
 command -v node >/dev/null 2>&1 || packages+=(nodejs)

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "dynkit/colloc.h"
 #include "cont_output.h"
 #include "cont_settings.h"
 #include "util/out_file.h"
@@ -260,6 +261,9 @@ int cli_cmd_continue(int argc, char **argv)
         s.opts.at = at;
         s.opts.n_at = (int)n_at;
     }
+    /* periodic orbits from the Hopf points, by collocation (dynkit/colloc.h) */
+    s.opts.periodic = dyn_po_continue_hopf;
+    s.opts.periodic_ctx = (void *)cli_eig_solver();
     dyn_diagram d;
     memset(&d, 0, sizeof d);
     dyn_cont_info info;

@@ -21,6 +21,7 @@
 #include <stddef.h>
 
 #include "dynkit/analysis.h"
+#include "dynkit/continuation.h"
 #include "dynkit/model.h"
 
 #ifdef __cplusplus
@@ -230,6 +231,18 @@ typedef struct dyn_bvp_result {
 int dyn_bvp_solve(const dyn_model *m, const void *par, const double *y0, double t0, double t1,
                   const dyn_bvp_opts *o, dyn_bvp_result *r);
 void dyn_bvp_result_free(dyn_bvp_result *r);
+
+/* ---- the periodic branches of a bifurcation diagram (colloc_cont.c) ---- */
+
+/* dyn_cont_periodic_fn (dynkit/continuation.h) for dyn_cont_opts.periodic: from the Hopf
+ * point `point` of branch `branch` of d, the periodic branch with o's ntst, ncol, ds, dsmin,
+ * dsmax, nmax, parmin, parmax (each state's maximum in x, minimum in xmin, the Floquet
+ * multipliers in eig, labels LPC, PD, TR, EP), then from its first period doubling the
+ * doubled branch, and so on while d has fewer than o->max_branches branches. ctx: a
+ * dyn_eig_solver for the multipliers, or NULL for dyn_eig_hqr. */
+int dyn_po_continue_hopf(const dyn_model *m, const void *par, const dyn_cont_opts *o,
+                         dyn_diagram *d, int branch, long point, void *ctx, char *err,
+                         size_t errlen);
 
 #ifdef __cplusplus
 }

@@ -148,6 +148,7 @@ typedef struct po_run {
     dyn_colloc_opts nopts;
     dyn_po_branch *b;
     double *re, *im, *scratch;
+    double bound; /* the parameter's bound crossed (locate's test 3) */
 } po_run;
 
 /* the extreme of state i near node g (sign 1: a maximum, -1: a minimum) of the orbit's
@@ -289,7 +290,8 @@ static int point_tests(po_run *r, const dyn_colloc_sol *x, const dyn_colloc_sol 
     return 0;
 }
 
-/* the arclength in (0, ds) where test `which` (0 LPC, 1 PD, 2 TR) is zero, by the Illinois
+/* the arclength in (0, ds) where test `which` (0 LPC, 1 PD, 2 TR, 3 the parameter minus
+ * r->bound) is zero, by the Illinois
  * variant of regula falsi; the point and its tangent into x, t */
 static int locate(po_run *r, const dyn_colloc_sol *x0, const dyn_colloc_sol *t0, double ds,
                   double psi0, double psi1, int which, dyn_colloc_sol *x, dyn_colloc_sol *t)
@@ -310,7 +312,10 @@ static int locate(po_run *r, const dyn_colloc_sol *x0, const dyn_colloc_sol *t0,
             dyn_colloc_sol_free(&ts);
             return st;
         }
-        const double fs = which == 0 ? pt.lpc : which == 1 ? pt.pd : pt.tr;
+        const double fs = which == 0   ? pt.lpc
+                          : which == 1 ? pt.pd
+                          : which == 2 ? pt.tr
+                                       : xs.par[1] - r->bound;
         if (x->u)
             dyn_colloc_sol_free(x);
         if (t->u)
@@ -431,7 +436,25 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
                 which = -1;
             }
         }
-        const char *label = which == 0 ? "LPC" : which == 1 ? "PD" : which == 2 ? "TR" : "";
+        /* past a bound of the parameter: the point on the bound ends the branch */
+        const double pn = xn.par[1];
+        int at_bound = 0;
+        if (which < 0 && bounded && (pn < o->par_min || pn > o->par_max)) {
+            r->bound = pn > o->par_max ? o->par_max : o->par_min;
+            dyn_colloc_sol xl = {0}, tl = {0};
+            if (!locate(r, x, t, ds, x->par[1] - r->bound, pn - r->bound, 3, &xl, &tl)) {
+                dyn_colloc_sol_free(&xn);
+                dyn_colloc_sol_free(&tn);
+                xn = xl;
+                tn = tl;
+                st = point_tests(r, &xn, &tn, &now);
+                if (st)
+                    break;
+                at_bound = 1;
+            }
+        }
+        const char *label = which == 0 ? "LPC" : which == 1 ? "PD" : which == 2 ? "TR"
+                            : at_bound ? "EP" : "";
         st = record(r, &xn, r->re, r->im, now.have_mult, label, which >= 0 || b->npoints == 0);
         if (st)
             break;
@@ -456,9 +479,10 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
                 }
             }
         }
-        if (bounded && (x->par[1] < o->par_min || x->par[1] > o->par_max)) {
-            snprintf(b->message, sizeof b->message, "the parameter left [%g, %g]", o->par_min,
-                     o->par_max);
+        if (at_bound || (bounded && (x->par[1] < o->par_min || x->par[1] > o->par_max))) {
+            snprintf(b->message, sizeof b->message, "reached %s = %g",
+                     x->par[1] >= 0.5 * (o->par_min + o->par_max) ? "parmax" : "parmin",
+                     x->par[1] >= 0.5 * (o->par_min + o->par_max) ? o->par_max : o->par_min);
             break;
         }
         if (o->period_max > 0 && x->par[0] > o->period_max) {

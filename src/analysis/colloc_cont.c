@@ -1,0 +1,130 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* colloc_cont.c — the periodic branches of a bifurcation diagram (dynkit/continuation.h's
+ * dyn_cont_periodic_fn): from a Hopf point of an equilibrium branch, the branch of periodic
+ * orbits by collocation (colloc_po.c) with the diagram's settings (ntst, ncol, ds, dsmin,
+ * dsmax, nmax, parmin, parmax), stored as a DYN_BRANCH_PERIODIC branch (each state's
+ * maximum and minimum over the orbit, the period, the Floquet multipliers, stability and
+ * the labels LPC, PD, TR, EP); then from each period doubling the period-doubled branch,
+ * and so on down the cascade while the diagram has room for branches. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dynkit/colloc.h"
+#include "dynkit/continuation.h"
+
+static dyn_cont_label label_of(const char *s)
+{
+    if (strcmp(s, "LPC") == 0)
+        return DYN_LABEL_LPC;
+    if (strcmp(s, "PD") == 0)
+        return DYN_LABEL_PD;
+    if (strcmp(s, "TR") == 0)
+        return DYN_LABEL_TR;
+    if (strcmp(s, "EP") == 0)
+        return DYN_LABEL_EP;
+    return DYN_LABEL_NONE;
+}
+
+/* pb appended to d as a periodic branch; its id, or -1 when out of memory */
+static int store(dyn_diagram *d, const dyn_po_branch *pb, int ip, int parent, long parent_point)
+{
+    dyn_branch *b = dyn_diagram_add(d, DYN_BRANCH_PERIODIC, pb->n, pb->n, ip, -1);
+    if (!b)
+        return -1;
+    b->parent = parent;
+    b->parent_point = parent_point;
+    for (int k = 0; k < pb->npoints; k++) {
+        const dyn_po_point *q = &pb->pts[k];
+        dyn_branch_point p;
+        memset(&p, 0, sizeof p);
+        p.label = k == 0 && !q->label[0] ? DYN_LABEL_EP : label_of(q->label);
+        p.par[0] = q->par;
+        p.par[1] = NAN;
+        p.period = q->period;
+        p.stable = q->stable;
+        p.l1 = NAN;
+        p.omega = NAN;
+        if (dyn_branch_append(b, &p, q->xmax, q->xmin, q->mult_re, q->mult_im) < 0)
+            return -1;
+    }
+    snprintf(b->stop, sizeof b->stop, "%.150s", pb->message);
+    return b->id;
+}
+
+static int hqr_eig(int n, double *a, double *re, double *im, char *err, size_t errlen)
+{
+    return dyn_eig_hqr(n, a, re, im, err, errlen);
+}
+
+int dyn_po_continue_hopf(const dyn_model *m, const void *par, const dyn_cont_opts *o,
+                         dyn_diagram *d, int branch, long point, void *ctx, char *err,
+                         size_t errlen)
+{
+    static const dyn_eig_solver hqr = {"hqr", hqr_eig};
+    const dyn_branch *eb = &d->branches[branch - 1];
+    const int n = m->n_states;
+    double *x0 = malloc((size_t)n * sizeof *x0);
+    if (!x0) {
+        snprintf(err, errlen, "out of memory");
+        return DYN_COLLOC_ERR_NOMEM;
+    }
+    memcpy(x0, eb->x + (size_t)point * (size_t)n, (size_t)n * sizeof *x0);
+    const double p0 = eb->pts[point].par[0], omega = eb->pts[point].omega;
+    dyn_po_model pm;
+    dyn_po_system sys;
+    int st = dyn_po_model_init(&pm, m, par, o->ip, &sys);
+    if (st) {
+        free(x0);
+        snprintf(err, errlen, "out of memory");
+        return st;
+    }
+    dyn_po_opts po;
+    memset(&po, 0, sizeof po);
+    po.ntst = o->ntst;
+    po.ncol = o->ncol;
+    po.ds = fabs(o->ds) > 0 ? fabs(o->ds) : DYN_CONT_DS;
+    po.dsmin = o->dsmin;
+    po.dsmax = o->dsmax;
+    po.nmax = (int)(o->nmax > 0 ? o->nmax : DYN_CONT_NMAX);
+    po.par_min = o->parmin;
+    po.par_max = o->parmax;
+    po.eig = ctx ? (const dyn_eig_solver *)ctx : &hqr;
+    dyn_po_branch pb;
+    st = dyn_po_from_hopf(&sys, x0, p0, omega, &po, &pb);
+    free(x0);
+    if (st) {
+        snprintf(err, errlen, "%s", pb.message);
+        dyn_po_branch_free(&pb);
+        dyn_po_model_free(&pm);
+        return st;
+    }
+    const int max_branches = o->max_branches > 0 ? o->max_branches : 16;
+    int id = store(d, &pb, o->ip, branch, point);
+    /* the cascade: each PD point's doubled branch, while there is room */
+    while (id > 0 && d->count < max_branches) {
+        int pd = -1;
+        for (int k = 0; k < pb.npoints && pd < 0; k++)
+            if (strcmp(pb.pts[k].label, "PD") == 0)
+                pd = k;
+        if (pd < 0)
+            break;
+        dyn_po_branch next;
+        if (dyn_po_from_pd(&sys, &pb.pts[pd], &po, &next)) {
+            dyn_po_branch_free(&next);
+            break;
+        }
+        const int parent = id;
+        id = store(d, &next, o->ip, parent, pd);
+        dyn_po_branch_free(&pb);
+        pb = next;
+    }
+    dyn_po_branch_free(&pb);
+    dyn_po_model_free(&pm);
+    if (id < 0) {
+        snprintf(err, errlen, "out of memory");
+        return DYN_COLLOC_ERR_NOMEM;
+    }
+    return 0;
+}

@@ -8,7 +8,7 @@
 # Installed by `cmake --install` into share/bash-completion/completions/dynkit; or
 # `source completions/dynkit.bash`.
 
-_dynkit_commands="run models methods info inverse report animate plot verify sweep linearize derive equilibria lyapunov steady bvp help"
+_dynkit_commands="run models methods info inverse report animate plot verify sweep linearize derive equilibria lyapunov steady continue bvp help"
 
 # The options of a command, from its --help (cached per command for the shell's life).
 declare -gA _dynkit_options_cache 2>/dev/null || true
@@ -133,7 +133,7 @@ _dynkit() {
             COMPREPLY=($(compgen -W "$_dynkit_commands" -- "$cur"))
         return 0
         ;;
-    run | info | animate | plot | sweep | linearize | equilibria | lyapunov | steady)
+    run | info | animate | plot | sweep | linearize | equilibria | lyapunov | steady | continue)
         if ((COMP_CWORD == i + 1)); then
             compopt -o filenames 2>/dev/null
             COMPREPLY=($(compgen -W "$(_dynkit_models "$prog")" -- "$cur"))

@@ -71,7 +71,7 @@ static void test_every_option_is_in_the_page(void **state)
                                            "info",    "inverse", "report", "animate",
                                            "plot",    "verify",  "sweep",  "linearize",
                                            "derive",  "equilibria", "lyapunov", "steady",
-                                           "bvp"};
+                                           "continue", "bvp"};
     char *page = cli_read_file(PAGE, NULL);
     CHECK(strlen(page) > 1000, "cannot read %s", PAGE);
     char missing[2048] = "";

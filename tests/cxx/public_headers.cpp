@@ -10,15 +10,21 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "dynkit/analysis.h"
 #include "dynkit/ani.h"
 #include "dynkit/brusselator.h"
 #include "dynkit/cart.h"
+#include "dynkit/continuation.h"
+#include "dynkit/delay.h"
 #include "dynkit/dynkit.h"
+#include "dynkit/equilibria.h"
 #include "dynkit/erk_kernels.h"
 #include "dynkit/io.h"
 #include "dynkit/ivp.h"
 #include "dynkit/jit.h"
 #include "dynkit/lang.h"
+#include "dynkit/lyapunov.h"
+#include "dynkit/mbs.h"
 #include "dynkit/mech.h"
 #include "dynkit/model.h"
 #include "dynkit/models.h"
@@ -28,10 +34,14 @@
 #include "dynkit/problems.h"
 #include "dynkit/report.h"
 #include "dynkit/report_studies.h"
+#include "dynkit/run.h"
+#include "dynkit/sde.h"
 #include "dynkit/solve.h"
 #include "dynkit/solve_inline.h"
+#include "dynkit/steady.h"
 #include "dynkit/sweep.h"
 #include "dynkit/verify.h"
+#include "dynkit/volterra.h"
 
 // the library's van der Pol arithmetic (src/models/vanderpol.c), inlined
 DYN_INLINE_RHS int vdp(double t, const double *y, double *dydt, void *par)

@@ -270,6 +270,48 @@ static void test_roessler_period_doubling(void **state)
 }
 #endif
 
+/* y'' = -y with y(0) = 0, y(pi/2) = 1: y = sin t, y' = cos t */
+static int harmonic(double t, const double *y, double *dydt, void *par)
+{
+    (void)t;
+    (void)par;
+    dydt[0] = y[1];
+    dydt[1] = -y[0];
+    return 0;
+}
+
+static int sine_ends(const double *yl, const double *yr, const void *par, double *g)
+{
+    (void)par;
+    g[0] = yl[0];
+    g[1] = yr[0] - 1.0;
+    return 0;
+}
+
+static void test_linear_bvp_closed_form(void **state)
+{
+    (void)state;
+    static const dyn_var states[] = {{"y", "1", ""}, {"dy", "1", ""}};
+    static const double y0[] = {0.0, 0.0};
+    const dyn_model m = {.name = "sine", .n_states = 2, .states = states, .y0 = y0,
+                         .rhs = harmonic, .n_bdry = 2, .bdry = sine_ends};
+    const double h = 0.5 * 3.14159265358979323846;
+    dyn_bvp_result r;
+    const dyn_bvp_opts o = {.ntst = 20, .ncol = 4};
+    assert_int_equal(dyn_bvp_solve(&m, NULL, y0, 0.0, h, &o, &r), 0);
+    double err = 0.0, u[2];
+    for (int k = 0; k <= 50; k++) {
+        const double s = k / 50.0;
+        dyn_colloc_eval(&r.sol, s, u);
+        err = fmax(err, fmax(fabs(u[0] - sin(h * s)), fabs(u[1] - cos(h * s))));
+    }
+    print_message("sin t on [0, pi/2] from its ends: max error %.2e, estimate %.2e\n", err,
+                  r.err_est);
+    assert_true(err < 1e-9);
+    assert_true(fabs(r.residuals[0]) < 1e-12 && fabs(r.residuals[1]) < 1e-12);
+    dyn_bvp_result_free(&r);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -277,6 +319,7 @@ int main(void)
         cmocka_unit_test(test_floquet_multipliers),
         cmocka_unit_test(test_branch_from_hopf_normal_form),
         cmocka_unit_test(test_brusselator_period_at_onset),
+        cmocka_unit_test(test_linear_bvp_closed_form),
 #ifdef DYNKIT_HAVE_LAPACK
         cmocka_unit_test(test_roessler_period_doubling),
 #endif

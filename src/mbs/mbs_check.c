@@ -3,7 +3,11 @@
  * "Errors"): the constraints hold (positions and speeds), the mass matrix M is positive
  * definite (else the coordinates that move no mass of their own are named) and the
  * constraints' rows D are independent (D M^-1 D' positive definite; else the redundant
- * constraints are named). Values come from src/lang's evaluation of the symbolic formulas
+ * constraints are named); each body's mass is not negative, and its inertia about the mass
+ * centre is one a rigid body has: principal moments (the eigenvalues, by Jacobi's rotations)
+ * not negative, none greater than the sum of the other two (the triangle inequality of
+ * the moments: I_1 + I_2 - I_3 = 2 integral of z^2 dm >= 0; Goldstein, Classical
+ * Mechanics, 3rd ed., sec. 5.4). Values come from src/lang's evaluation of the symbolic formulas
  * with the states and t as arguments; the factorization of src/ode/cholesky.h. */
 #include <math.h>
 #include <string.h>
@@ -51,6 +55,84 @@ void mbs_initial_values(lang_ctx *c, mbs_initial *ini)
 double mbs_value(lang_ctx *c, const mbs_initial *ini, const node *e)
 {
     return lang_eval(c, as_args(c, e, ini->nstates), ini->args, ini->pv);
+}
+
+/* where a formula begins (a binary operation's position is its operator's) */
+static lpos start_of(const node *e)
+{
+    while ((e->kind == N_BIN || e->kind == N_IF) && e->nargs > 0)
+        e = e->args[0];
+    return e->pos;
+}
+
+/* the eigenvalues of the symmetric 3 x 3 matrix S (row-major) into ev, ascending, by
+ * cyclic Jacobi rotations (Golub and Van Loan, Matrix Computations, sec. 8.5) */
+static void eigenvalues3(const double S[9], double ev[3])
+{
+    double a[9];
+    memcpy(a, S, sizeof a);
+    for (int sweep = 0; sweep < 50; sweep++) {
+        const double off = a[1] * a[1] + a[2] * a[2] + a[5] * a[5];
+        const double all = off + a[0] * a[0] + a[4] * a[4] + a[8] * a[8];
+        if (!(off > 1e-32 * all))
+            break;
+        for (int p = 0; p < 2; p++)
+            for (int q = p + 1; q < 3; q++) {
+                const double apq = a[3 * p + q];
+                if (apq == 0.0)
+                    continue;
+                const double theta = (a[3 * q + q] - a[3 * p + p]) / (2.0 * apq);
+                const double t = (theta >= 0 ? 1.0 : -1.0) /
+                                 (fabs(theta) + sqrt(theta * theta + 1.0));
+                const double cs = 1.0 / sqrt(t * t + 1.0), sn = t * cs;
+                for (int k = 0; k < 3; k++) { /* columns p, q */
+                    const double akp = a[3 * k + p], akq = a[3 * k + q];
+                    a[3 * k + p] = cs * akp - sn * akq;
+                    a[3 * k + q] = sn * akp + cs * akq;
+                }
+                for (int k = 0; k < 3; k++) { /* rows p, q */
+                    const double apk = a[3 * p + k], aqk = a[3 * q + k];
+                    a[3 * p + k] = cs * apk - sn * aqk;
+                    a[3 * q + k] = sn * apk + cs * aqk;
+                }
+            }
+    }
+    ev[0] = a[0], ev[1] = a[4], ev[2] = a[8];
+    for (int i = 1; i < 3; i++)
+        for (int j = i; j > 0 && ev[j - 1] > ev[j]; j--) {
+            const double t = ev[j];
+            ev[j] = ev[j - 1];
+            ev[j - 1] = t;
+        }
+}
+
+void mbs_check_body(lang_ctx *c, const mbs_body *b, double mass, const double *I)
+{
+    const lpos mpos = start_of(LVEC_AT(c->m.fixes, lang_formula, b->mass).expr);
+    if (mass < 0)
+        lang_fail(c, mpos, "the mass of '%s' is %.17g at the initial state: a mass is not "
+                  "negative", b->name, mass);
+    if (!I)
+        return;
+    double ev[3];
+    eigenvalues3(I, ev);
+    if (!isfinite(ev[0]) || !isfinite(ev[2]))
+        return; /* not known here (a table, an input) */
+    const double tol = 1e-9 * (fabs(ev[0]) + fabs(ev[1]) + fabs(ev[2]));
+    const lpos ipos = start_of(LVEC_AT(c->m.fixes, lang_formula, b->inertia[0]).expr);
+    const char *about = b->about[0] >= 0 ? " (moved to the mass centre from the point it is "
+                                           "given about)" : "";
+    if (ev[0] < -tol)
+        lang_fail(c, ipos, "the inertia of '%s' about its mass centre%s has a negative principal "
+                  "moment, %.17g (its principal moments %.6g, %.6g, %.6g): no rigid body has "
+                  "one (each is an integral of squared distances times dm)", b->name, about,
+                  ev[0], ev[0], ev[1], ev[2]);
+    if (ev[2] > ev[0] + ev[1] + tol)
+        lang_fail(c, ipos, "the inertia of '%s' about its mass centre%s has a principal moment "
+                  "greater than the sum of the other two, %.6g > %.6g + %.6g: no rigid body "
+                  "has one (the triangle inequality I1 <= I2 + I3; a thin rod along x has "
+                  "(0, I, I), a plate in the xy plane Izz = Ixx + Iyy)", b->name, about, ev[2],
+                  ev[0], ev[1]);
 }
 
 /* Cholesky in place (lower triangle of A, n x n); returns the first column whose pivot is

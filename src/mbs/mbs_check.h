@@ -16,6 +16,9 @@ void mbs_initial_values(lang_ctx *c, mbs_initial *ini);
 /* a symbolic formula of the states and t at the initial state (NaN where a table or an
  * input would be read) */
 double mbs_value(lang_ctx *c, const mbs_initial *ini, const node *e);
+/* a body's mass (not negative) and its inertia I (3 x 3 about its mass centre in B; NULL
+ * for a point mass) at the initial state: else fails at the formula, naming the rule */
+void mbs_check_body(lang_ctx *c, const mbs_body *b, double mass, const double *I);
 /* 1 when the n x n matrix M is positive definite (or not known: not finite), else 0 */
 int mbs_positive_definite(lang_ctx *c, const double *M, int n);
 /* M (n x n, the mass matrix; overwritten) positive definite and the rows D (m x n)

@@ -82,7 +82,9 @@ static node *input_ref(dctx *d, int k)
 
 /* ---- expansion of the inputs (fixed quantities and user functions inlined) ---- */
 
-static node *expand(dctx *d, node *e)
+static node *expand(dctx *d, node *e);
+
+static node *expand_node(dctx *d, node *e)
 {
     lang_ctx *c = d->c;
     switch (e->kind) {
@@ -119,6 +121,18 @@ static node *expand(dctx *d, node *e)
     r->args = lang_alloc(c, (size_t)e->nargs * sizeof *r->args);
     for (int i = 0; i < e->nargs; i++)
         r->args[i] = expand(d, e->args[i]);
+    return r;
+}
+
+/* e with the fixed quantities and user functions it reads inlined; as deep as the
+ * derivatives may go (8 LANG_MAX_DEPTH, a chain of fixed quantities included) */
+static node *expand(dctx *d, node *e)
+{
+    if (++d->c->depth > 8 * LANG_MAX_DEPTH)
+        lang_fail(d->c, e->pos, "formula nested too deeply through the fixed quantities it "
+                  "reads (more than %d levels)", 8 * LANG_MAX_DEPTH);
+    node *r = expand_node(d, e);
+    d->c->depth--;
     return r;
 }
 
@@ -725,6 +739,54 @@ static int vanishes(dctx *d, node *f, double scale)
     return 1;
 }
 
+/* where a formula begins (a binary operation's position is its operator's) */
+static lpos input_start(dctx *d, int k)
+{
+    const node *e = LVEC_AT(d->c->m.fixes, lang_formula, k).expr;
+    while ((e->kind == N_BIN || e->kind == N_IF) && e->nargs > 0)
+        e = e->args[0];
+    return e->pos;
+}
+
+/* the length at the initial state of the vector of inputs v (-1: 0) */
+static double length_at_start(dctx *d, const int v[3])
+{
+    double s = 0.0;
+    for (int j = 0; j < 3; j++) {
+        const double x = mbs_value(d->c, &d->ini, input(d, v[j]));
+        s += x * x;
+    }
+    return sqrt(s);
+}
+
+/* a joint's axis (ax, ay, az) has a direction: not of length 0 at the initial state */
+static void joint_axes(dctx *d)
+{
+    for (int bi = 0; bi < d->mb->bodies.n; bi++) {
+        const mbs_body *b = &LVEC_AT(d->mb->bodies, mbs_body, bi);
+        int given = b->joint != MBS_NO_JOINT && b->axisv[0] >= 0 &&
+                    (b->slide_axis == 3 || (b->nrot > 0 && b->axis[0] == 3));
+        if (given && !(length_at_start(d, b->axisv) > 0.0))
+            lang_fail(d->c, input_start(d, b->axisv[0]), "the axis of the joint of '%s' has "
+                      "length 0 at the initial state: give its direction (ax, ay, az), not "
+                      "of length 0 (or x, y, z)", b->name);
+    }
+}
+
+/* a wheel's radius is positive and its axis has a direction, at the initial state */
+static void wheel_sizes(dctx *d, const mbs_wheel *wh)
+{
+    const double r = mbs_value(d->c, &d->ini, input(d, wh->radius));
+    if (!(r > 0.0) && isfinite(r))
+        lang_fail(d->c, input_start(d, wh->radius), "wheel '%s' has radius %.17g at the initial "
+                  "state: a wheel's radius is positive", wh->name, r);
+    const double a = length_at_start(d, wh->axis);
+    if (!(a > 0.0) && isfinite(a))
+        lang_fail(d->c, input_start(d, wh->axis[0]), "wheel '%s' has an axis of length 0 at the "
+                  "initial state: give its axle's direction (x, y, z) in the frame of its body",
+                  wh->name);
+}
+
 /* each wheel's constraints: the velocity of its contact point along x and y, and the height
  * of its lowest point unless the coordinates keep it on the ground */
 static void wheels(dctx *d)
@@ -733,6 +795,7 @@ static void wheels(dctx *d)
     for (int wi = 0; wi < mb->wheels.n; wi++) {
         const mbs_wheel *wh = &LVEC_AT(mb->wheels, mbs_wheel, wi);
         const mbs_body *b = &LVEC_AT(mb->bodies, mbs_body, wh->body);
+        wheel_sizes(d, wh);
         node *a[3], *o[3], *height, *slip[2];
         for (int j = 0; j < 3; j++) {
             a[j] = input(d, wh->axis[j]);
@@ -870,6 +933,29 @@ static void check_energy(dctx *d, const mbs_spring *sp, node *l, node *stretch)
                       sp->law_name, x0 + (i - 1) * 0.1 * scale, sp->energy_name, dg[i],
                       sp->law_name, f[i]);
     }
+}
+
+/* A body's inertia tensor about its mass centre in B (row-major 3 x 3), its entries by
+ * in (input_ref or input): as written, or given about the point r of B (from the mass
+ * centre) and moved there by the parallel-axis theorem I_G = I_P - m (|r|^2 E - r r')
+ * (Goldstein, Classical Mechanics, 3rd ed., sec. 5.3). */
+static void centre_inertia(dctx *d, const mbs_body *b, node *(*in)(dctx *, int), node *I[9])
+{
+    static const int at[9] = {0, 3, 4, 3, 1, 5, 4, 5, 2}; /* Ixx Ixy Ixz; Ixy Iyy Iyz; ... */
+    for (int k = 0; k < 9; k++)
+        I[k] = in(d, b->inertia[at[k]]);
+    if (b->about[0] < 0)
+        return;
+    node *m = in(d, b->mass), *r[3];
+    for (int j = 0; j < 3; j++)
+        r[j] = in(d, b->about[j]);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            node *shift = i == j ? add(d, mul(d, r[(i + 1) % 3], r[(i + 1) % 3]),
+                                       mul(d, r[(i + 2) % 3], r[(i + 2) % 3]))
+                                 : lang_neg(d->c, mul(d, r[i], r[j]));
+            I[3 * i + j] = sub(d, I[3 * i + j], mul(d, m, shift));
+        }
 }
 
 static node *loads(dctx *d, node **Q)
@@ -1058,6 +1144,7 @@ void mbs_derive(lang_ctx *c, mbs_model *mb)
     memcpy(mb->order, m->fix_order, (size_t)m->fixes.n * sizeof *mb->order);
     mb->norder = m->fixes.n;
     kinematic_equations(&d);
+    joint_axes(&d);
     for (int bi = 0; bi < mb->bodies.n; bi++)
         body_kinematics(&d, &LVEC_AT(mb->bodies, mbs_body, bi), bi);
     wheels(&d);
@@ -1087,9 +1174,7 @@ void mbs_derive(lang_ctx *c, mbs_model *mb)
         }
         if (b->point)
             continue;
-        static const int at[9] = {0, 3, 4, 3, 1, 5, 4, 5, 2}; /* Ixx Ixy Ixz; Ixy Iyy Iyz; ... */
-        for (int k = 0; k < 9; k++)
-            I[k] = input_ref(&d, b->inertia[at[k]]);
+        centre_inertia(&d, b, input_ref, I);
         for (int j = 0; j < 3; j++) {
             Iw[j] = fix(&d, lang_printf(c, "b%d_Iw%d", bi, j), dot(&d, I + 3 * j, b->w));
             Igw[j] = dot(&d, I + 3 * j, b->gw);
@@ -1117,9 +1202,12 @@ void mbs_derive(lang_ctx *c, mbs_model *mb)
         const mbs_body *b = &LVEC_AT(mb->bodies, mbs_body, bi);
         const double ms = mbs_value(c, &d.ini, input(&d, b->mass));
         double I[9] = {0};
-        static const int at[9] = {0, 3, 4, 3, 1, 5, 4, 5, 2};
+        node *Ie[9];
+        if (!b->point)
+            centre_inertia(&d, b, input, Ie);
         for (int k = 0; k < 9 && !b->point; k++)
-            I[k] = mbs_value(c, &d.ini, input(&d, b->inertia[at[k]]));
+            I[k] = mbs_value(c, &d.ini, Ie[k]);
+        mbs_check_body(c, b, ms, b->point ? NULL : I);
         for (int i = 0; i < n; i++)
             for (int k = 0; k < n; k++) {
                 double v = 0.0;

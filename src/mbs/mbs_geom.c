@@ -16,6 +16,7 @@
 
 #include "dynkit/mbs.h"
 #include "mbs/mbs_internal.h"
+#include "mbs/mbs_syntax.h"
 
 /* the colours a file may name, as the page draws them */
 static const struct {

@@ -42,7 +42,12 @@ typedef struct mbs_body {
     lpos pos;
     int point;          /* a point mass: no inertia, no orientation */
     int mass;           /* input */
-    int inertia[6];     /* inputs: Ixx, Iyy, Izz, Ixy, Ixz, Iyz about the mass centre in B */
+    int inertia[6];     /* inputs: Ixx, Iyy, Izz, Ixy, Ixz, Iyz about the mass centre in B, or
+                         * about the point `about` */
+    int about[3];       /* inputs: the point of B (from the mass centre) the inertia is
+                         * given about (inertia=(...) about (x, y, z) | pivot), -1: the
+                         * mass centre */
+    lpos about_pos;
     int at[3];          /* inputs: the mass centre in N */
     int nrot;
     int axis[MBS_MAX_ROT];  /* 0 x, 1 y, 2 z, 3 a joint's axis axisv */
@@ -169,18 +174,10 @@ typedef struct mbs_model {
 
 /* the file read and checked, its names resolved, nothing derived (mbs_translate.c) */
 mbs_model *mbs_read(lang_ctx *c);
-/* statements (mbs_parse.c): the hook of lang_parse_model, and the end of the file */
+/* statements (mbs_parse.c, which calls mbs_joint.c and mbs_geom.c; the syntax they share
+ * is mbs_syntax.h): the hook of lang_parse_model, and the end of the file */
 int mbs_statement(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos);
 void mbs_finish_parse(lang_ctx *c, mbs_model *mb);
-/* helpers of the statements for mbs_joint.c and mbs_geom.c: an expression kept as an input,
- * a tuple of three, a body by name (-1: the ground), AXIS:ANGLE ... or quat:(w, x, y, z)
- * into b, the next word if it is w (consumed), BODY[(x, y, z)] */
-int mbs_input_expr(lang_lexer *lx, const char *what);
-void mbs_tuple(lang_lexer *lx, int *out, const char *what);
-int mbs_find_body(lang_ctx *c, const char *name, lpos pos, int ground_ok);
-void mbs_parse_rot(lang_ctx *c, lang_lexer *lx, mbs_body *b);
-int mbs_take_word(lang_lexer *lx, const char *w);
-mbs_attach mbs_attachment(lang_ctx *c, lang_lexer *lx);
 /* joints (mbs_joint.c): the kind a word names (MBS_NO_JOINT: none), and a joint's words
  * after it into b, the next body */
 int mbs_joint_kind(const char *word);
@@ -192,6 +189,13 @@ int mbs_geom_statement(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos);
 /* the `input` parameters into the model's inputs, after lang_check */
 void mbs_resolve_laws(lang_ctx *c, mbs_model *mb);
 void mbs_resolve_inputs(lang_ctx *c, mbs_model *mb);
+/* a declared unit that does not read (mbs_units.c): 1 with the offset in text of what is
+ * wrong and why (an unknown symbol with the nearest known one, nesting deeper than 200
+ * parentheses, ...), else 0 */
+int mbs_unit_error(lang_ctx *c, const char *text, int *offset, const char **why);
+#define MBS_UNIT_SYMBOLS                                                                     \
+    "units are products of the symbols kg, m, s, A, K, mol, cd, 1, rad, sr, deg, g, min, h, " \
+    "Hz, N, Pa, J, W, C, V, ohm, F, T, Wb, H, rpm, l, L with powers ^k (no prefixes)"
 /* the units of the formulas against the declared ones, after lang_check (mbs_units.c) */
 void mbs_check_units(lang_ctx *c, mbs_model *mb);
 /* the equations of motion, after lang_check (mbs_derive.c) */

@@ -10,6 +10,7 @@
 #include <strings.h>
 
 #include "mbs/mbs_internal.h"
+#include "mbs/mbs_syntax.h"
 
 static const char *const kinds[] = {"", "revolute", "prismatic", "spherical", "free"};
 

@@ -11,58 +11,28 @@
 #include <strings.h>
 
 #include "mbs/mbs_internal.h"
+#include "mbs/mbs_syntax.h"
 
 static mbs_model *model_of(lang_ctx *c) { return c->hook_ctx; }
 
 static int peek(lang_lexer *lx) { return lang_skip_blanks(lx); }
 
-/* The next word if it is w (case folded; then consumed). */
-static int take_word(lang_lexer *lx, const char *w)
-{
-    if (!lang_is_ident_start(peek(lx)))
-        return 0;
-    const size_t n = strlen(w);
-    const char *s = lx->line->text + lx->i;
-    if ((int)n > lx->end - lx->i || strncasecmp(s, w, n) != 0)
-        return 0;
-    if (lx->i + (int)n < lx->end && lang_is_ident_char((unsigned char)s[n]))
-        return 0;
-    lx->i += (int)n;
-    return 1;
-}
 
-/* An expression of the file kept as an input (an unnamed fixed quantity). */
-static int add_input(lang_ctx *c, node *e)
-{
-    mbs_model *mb = model_of(c);
-    lang_formula *f = lvec_push(c, &c->m.fixes, sizeof *f);
-    f->name = lang_printf(c, "mbs_in%d", mb->ninputs++);
-    f->pos = e->pos;
-    f->expr = e;
-    return c->m.fixes.n - 1;
-}
 
-static node *parse_value(lang_lexer *lx, const char *what)
-{
-    if (!peek(lx))
-        lang_fail(lx->c, lang_here(lx), "expected %s, found the end of the line", what);
-    return lang_parse_expr(lx);
-}
 
-static int input_expr(lang_lexer *lx, const char *what)
-{
-    return add_input(lx->c, parse_value(lx, what));
-}
 
-static void tuple(lang_lexer *lx, int *out, const char *what)
+
+/* a unit written at the line's offset a: refused at its place unless it reads */
+static void check_unit(lang_ctx *c, const lang_line *line, int a, const char *unit)
 {
-    lang_expect_char(lx, '(', lang_printf(lx->c, "expected '(' before %s (x, y, z)", what));
-    for (int k = 0; k < 3; k++) {
-        out[k] = input_expr(lx, what);
-        lang_expect_char(lx, k < 2 ? ',' : ')',
-                         lang_printf(lx->c, k < 2 ? "expected ',' in %s (x, y, z)"
-                                                  : "expected ')' after %s (x, y, z)", what));
-    }
+    int off = 0;
+    const char *why;
+    if (!mbs_unit_error(c, unit, &off, &why))
+        return;
+    const int len = (int)strlen(unit);
+    if (off >= len && len > 0)
+        off = len - 1;
+    lang_fail(c, line->pos[a + off], "%s in a unit: %s", why, MBS_UNIT_SYMBOLS);
 }
 
 /* [unit] and "description", each optional, in either order */
@@ -81,8 +51,10 @@ static void doc_of(lang_lexer *lx, lang_doc *doc)
             lang_fail(lx->c, at, "'%c' without its closing '%c'", ch, close);
         const char *s = lang_strndup(lx->c, lx->line->text + a, (size_t)(lx->i - a));
         lx->i++;
-        if (close == ']')
+        if (close == ']') {
+            check_unit(lx->c, lx->line, a, s);
             doc->unit = s;
+        }
         else
             doc->description = s;
     }
@@ -117,50 +89,6 @@ static int add_state(lang_ctx *c, const char *name, lpos pos, node *init)
     return idx;
 }
 
-/* a value, in degrees when it ends in deg (30deg, 30 deg, pi/6 deg) */
-static node *angle_value(lang_lexer *lx, const char *what)
-{
-    const char *t = lx->line->text;
-    int end = lx->i, depth = 0;
-    while (end < lx->end) {
-        const char ch = t[end];
-        if (ch == '(')
-            depth++;
-        else if (ch == ')')
-            depth--;
-        else if (depth == 0 && (ch == ',' || ch == '[' || ch == '"'))
-            break;
-        else if (depth == 0 && lang_is_ident_start((unsigned char)ch) &&
-                 (end == 0 || !lang_is_ident_char((unsigned char)t[end - 1]) ||
-                  isdigit((unsigned char)t[end - 1])) &&
-                 strncasecmp(t + end, "deg", 3) == 0 &&
-                 (end + 3 >= lx->end || !lang_is_ident_char((unsigned char)t[end + 3])))
-            break;
-        end++;
-    }
-    const int deg = end < lx->end && strncasecmp(t + end, "deg", 3) == 0;
-    const int save = lx->end;
-    if (deg)
-        lx->end = end;
-    node *e = parse_value(lx, what);
-    if (deg) {
-        if (peek(lx))
-            lang_fail(lx->c, lang_here(lx), "unexpected '%c' before deg", peek(lx));
-        lx->end = save;
-        lx->i = end + 3;
-        node *k = lang_node(lx->c, N_NUM, e->pos);
-        k->num = 3.14159265358979323846 / 180.0;
-        node *r = lang_node(lx->c, N_BIN, e->pos);
-        r->op = OP_MUL;
-        r->nargs = 2;
-        r->args = lang_alloc(lx->c, 2 * sizeof *r->args);
-        r->args[0] = e;
-        r->args[1] = k;
-        e->paren = 1;
-        e = r;
-    }
-    return e;
-}
 
 static const char *speed_unit(lang_ctx *c, const char *unit)
 {
@@ -170,6 +98,8 @@ static const char *speed_unit(lang_ctx *c, const char *unit)
         return "1/s";
     return lang_printf(c, "%s/s", unit);
 }
+
+static void unit_without_brackets(lang_ctx *c, const lang_line *line, int from, int i, int end);
 
 /* coord NAME=VALUE[deg] [UNIT] "DESCRIPTION" [speed NAME[=VALUE]], ... */
 static void parse_coord(lang_ctx *c, lang_lexer *lx)
@@ -182,10 +112,12 @@ static void parse_coord(lang_ctx *c, lang_lexer *lx)
         node *init = NULL;
         if (peek(lx) == '=') {
             lx->i++;
-            init = angle_value(lx, "the coordinate's initial value");
+            init = mbs_angle_value(lx, "the coordinate's initial value");
         } else {
             init = lang_num(c, 0.0);
         }
+        if (lang_is_ident_start(peek(lx)))
+            unit_without_brackets(c, lx->line, 0, lx->i, lx->end);
         lang_doc doc = {0};
         doc_of(lx, &doc);
         q->unit = doc.unit;
@@ -194,11 +126,11 @@ static void parse_coord(lang_ctx *c, lang_lexer *lx)
         lpos spos = q->pos;
         node *sinit = NULL;
         q->speed = lang_printf(c, "d%s", q->name);
-        if (take_word(lx, "speed")) {
+        if (mbs_take_word(lx, "speed")) {
             q->speed = lang_read_name(lx, &spos, "expected the speed's name after 'speed'");
             if (peek(lx) == '=') {
                 lx->i++;
-                sinit = angle_value(lx, "the speed's initial value");
+                sinit = mbs_angle_value(lx, "the speed's initial value");
             }
         }
         q->u = -1;
@@ -219,7 +151,7 @@ static void parse_speeds(lang_ctx *c, lang_lexer *lx)
         u->name = lang_read_name(lx, &u->pos, "expected a speed's name");
         if (peek(lx) == '=') {
             lx->i++;
-            u->init = angle_value(lx, "the speed's initial value");
+            u->init = mbs_angle_value(lx, "the speed's initial value");
         }
         u->doc.description = "generalized speed";
         doc_of(lx, &u->doc);
@@ -246,7 +178,7 @@ static void parse_rates(lang_ctx *c, lang_lexer *lx)
             lang_fail(c, pos, "the rate of '%s' is given twice", name);
         lang_expect_char(lx, '\'', "expected q' = formula: the rate of the coordinate");
         lang_expect_char(lx, '=', "expected '=' after q'");
-        q->kin = input_expr(lx, "the coordinate's rate");
+        q->kin = mbs_input_expr(lx, "the coordinate's rate");
         q->kin_pos = pos;
     } while (peek(lx) == ',' && (lx->i++, 1));
     lang_expect_end(lx, "the rates");
@@ -284,6 +216,29 @@ static void finish_speeds(lang_ctx *c, mbs_model *mb)
     }
 }
 
+/* a word at offset i of the line after a number (from offset from on), up to the next ','
+ * or the end, that reads as a unit: refused, saying that units go in brackets */
+static void unit_without_brackets(lang_ctx *c, const lang_line *line, int from, int i, int end)
+{
+    const char *t = line->text;
+    int b = i - 1;
+    while (b >= from && (t[b] == ' ' || t[b] == '\t'))
+        b--;
+    if (b < from || b == i - 1 || !(isdigit((unsigned char)t[b]) || t[b] == '.'))
+        return;
+    int e = i;
+    while (e < end && t[e] != ',' && t[e] != '[' && t[e] != '"')
+        e++;
+    while (e > i && (t[e - 1] == ' ' || t[e - 1] == '\t'))
+        e--;
+    const char *word = lang_strndup(c, t + i, (size_t)(e - i));
+    int off;
+    const char *why;
+    if (mbs_unit_error(c, word, &off, &why))
+        return;
+    lang_fail(c, line->pos[i], "a unit goes in brackets after the value: [%s]", word);
+}
+
 /* par lines: [unit] and "description" after a value go to the name before them; they are
  * blanked so that src/lang reads the rest as an .ode par line */
 static void par_docs(lang_ctx *c, lang_lexer *lx)
@@ -303,6 +258,8 @@ static void par_docs(lang_ctx *c, lang_lexer *lx)
             if (e < lx->end && t[e] == '=') {
                 name = lang_strndup(c, t + i, (size_t)(k - i));
                 npos = lx->line->pos[i];
+            } else {
+                unit_without_brackets(c, lx->line, lx->i, i, lx->end);
             }
             i = k - 1;
         } else if (t[i] == '[' || t[i] == '"') {
@@ -317,9 +274,10 @@ static void par_docs(lang_ctx *c, lang_lexer *lx)
                           "value: NAME=VALUE [UNIT] \"DESCRIPTION\"");
             lang_doc doc = {0};
             const char *s = lang_strndup(c, t + i + 1, (size_t)(k - i - 1));
-            if (close == ']')
+            if (close == ']') {
+                check_unit(c, lx->line, i + 1, s);
                 doc.unit = s;
-            else
+            } else
                 doc.description = s;
             add_doc(c, name, npos, doc);
             for (int j = i; j <= k; j++)
@@ -329,23 +287,6 @@ static void par_docs(lang_ctx *c, lang_lexer *lx)
     }
 }
 
-static int find_body(lang_ctx *c, const char *name, lpos pos, int ground_ok)
-{
-    mbs_model *mb = model_of(c);
-    if (ground_ok && strcasecmp(name, "ground") == 0)
-        return -1;
-    const char **names = lang_alloc(c, ((size_t)mb->bodies.n + 1) * sizeof *names);
-    for (int i = 0; i < mb->bodies.n; i++) {
-        names[i] = LVEC_AT(mb->bodies, mbs_body, i).name;
-        if (strcasecmp(names[i], name) == 0)
-            return i;
-    }
-    names[mb->bodies.n] = ground_ok ? "ground" : "";
-    const char *near = dyn_lang_nearest(name, names, mb->bodies.n + 1);
-    lang_fail(c, pos, "unknown body '%s'%s%s%s (bodies are declared before they are used%s)",
-              name, near ? " (did you mean '" : "", near ? near : "", near ? "'?)" : "",
-              ground_ok ? "; 'ground' is the fixed frame" : "");
-}
 
 static void new_body_name(lang_ctx *c, const char *name, lpos pos)
 {
@@ -357,47 +298,6 @@ static void new_body_name(lang_ctx *c, const char *name, lpos pos)
             lang_fail(c, pos, "body '%s' is declared twice", name);
 }
 
-/* AXIS:ANGLE ... (elementary rotations) or quat:(w, x, y, z) into b */
-void mbs_parse_rot(lang_ctx *c, lang_lexer *lx, mbs_body *b)
-{
-    while (lang_is_ident_start(peek(lx))) {
-        const int save = lx->i;
-        lpos apos;
-        const char *a = lang_read_name(lx, &apos, "expected an axis x, y or z");
-        if (peek(lx) == ':' && strcasecmp(a, "quat") == 0) { /* Euler parameters */
-            lx->i++;
-            if (b->nrot || b->quat[0] >= 0)
-                lang_fail(c, apos, "quat:(w, x, y, z) is the whole orientation: no "
-                          "other rotation beside it");
-            lang_expect_char(lx, '(',
-                             "expected '(' before the Euler parameters (w, x, y, z)");
-            for (int k = 0; k < 4; k++) {
-                b->quat[k] = input_expr(lx, "an Euler parameter");
-                lang_expect_char(lx, k < 3 ? ',' : ')',
-                                 k < 3 ? "expected ',' between the Euler parameters "
-                                         "(w, x, y, z)"
-                                       : "expected ')' after the Euler parameters "
-                                         "(w, x, y, z)");
-            }
-            continue;
-        }
-        if (peek(lx) != ':' || strlen(a) != 1 || !strchr("xyzXYZ", a[0])) {
-            lx->i = save;
-            break;
-        }
-        if (b->quat[0] >= 0)
-            lang_fail(c, apos, "quat:(w, x, y, z) is the whole orientation: no other "
-                      "rotation beside it");
-        lx->i++;
-        if (b->nrot >= MBS_MAX_ROT)
-            lang_fail(c, apos, "more than %d elementary rotations", MBS_MAX_ROT);
-        b->axis[b->nrot] = tolower((unsigned char)a[0]) - 'x';
-        b->angle[b->nrot++] = add_input(c, angle_value(lx, "the rotation's angle"));
-    }
-    if (b->nrot == 0 && b->quat[0] < 0)
-        lang_fail(c, lang_here(lx), "expected elementary rotations AXIS:ANGLE after "
-                  "'rot' (e.g. rot z:psi y:theta x:phi), or quat:(w, x, y, z)");
-}
 
 /* point NAME mass=M at (x, y, z)
  * body NAME mass=M inertia=(Ixx, Iyy, Izz[, Ixy, Ixz, Iyz]) at (x, y, z) [rot AXIS:ANGLE ...] */
@@ -414,20 +314,21 @@ static void parse_body(lang_ctx *c, lang_lexer *lx, int point, lpos kpos)
         b.inertia[k] = -1;
     for (int k = 0; k < 4; k++)
         b.quat[k] = -1;
-    int has_at = 0, has_inertia = 0;
+    b.about[0] = b.about[1] = b.about[2] = -1;
+    int has_at = 0, has_inertia = 0, about_pivot = 0;
     while (peek(lx)) {
         lpos wpos;
         const char *w = lang_read_name(lx, &wpos, "expected mass=, inertia=, at or rot");
         if (strcasecmp(w, "mass") == 0) {
             lang_expect_char(lx, '=', "expected '=' after mass");
-            b.mass = input_expr(lx, "the mass");
+            b.mass = mbs_input_expr(lx, "the mass");
         } else if (strcasecmp(w, "inertia") == 0 && !point) {
             lang_expect_char(lx, '=', "expected '=' after inertia");
             const int paren = peek(lx) == '(';
             if (paren)
                 lx->i++;
             for (int k = 0; k < 6; k++) {
-                b.inertia[k] = input_expr(lx, "a moment of inertia");
+                b.inertia[k] = mbs_input_expr(lx, "a moment of inertia");
                 if (k == 2 || k == 5) {
                     if (peek(lx) != ',' || k == 5)
                         break;
@@ -439,7 +340,8 @@ static void parse_body(lang_ctx *c, lang_lexer *lx, int point, lpos kpos)
                             const char *nx = lang_read_name(lx, &p2, "");
                             lx->i = save;
                             if (!strcasecmp(nx, "at") || !strcasecmp(nx, "rot") ||
-                                !strcasecmp(nx, "mass") || mbs_joint_kind(nx))
+                                !strcasecmp(nx, "mass") || !strcasecmp(nx, "about") ||
+                                mbs_joint_kind(nx))
                                 break;
                         }
                         lx->i = save;
@@ -452,10 +354,21 @@ static void parse_body(lang_ctx *c, lang_lexer *lx, int point, lpos kpos)
                                  "expected ')' after the moments of inertia (Ixx, Iyy, Izz[, "
                                  "Ixy, Ixz, Iyz])");
             has_inertia = 1;
+            if (mbs_take_word(lx, "about")) {
+                b.about_pos = lang_here(lx);
+                if (peek(lx) == '(')
+                    mbs_tuple(lx, b.about, "the point the inertia is about");
+                else if (!mbs_take_word(lx, "pivot"))
+                    lang_fail(c, b.about_pos, "expected the point the inertia is about after "
+                              "'about': (x, y, z) in the body's frame from its mass centre, or "
+                              "pivot (its joint's pivot)");
+                else
+                    about_pivot = 1;
+            }
         } else if (strcasecmp(w, "at") == 0) {
             if (b.joint)
                 lang_fail(c, wpos, "the joint places '%s': no at (x, y, z) beside it", b.name);
-            tuple(lx, b.at, "the mass centre");
+            mbs_tuple(lx, b.at, "the mass centre");
             has_at = 1;
         } else if (strcasecmp(w, "rot") == 0 && !point) {
             if (b.joint)
@@ -483,31 +396,19 @@ static void parse_body(lang_ctx *c, lang_lexer *lx, int point, lpos kpos)
     if (!has_at)
         lang_fail(c, kpos, "%s '%s' has no position: write at (x, y, z), its mass centre in N "
                   "as formulas of the coordinates", point ? "point" : "body", b.name);
+    if (about_pivot) {
+        if (!b.joint)
+            lang_fail(c, b.about_pos, "'about pivot' needs a joint with a pivot (x, y, z): "
+                      "'%s' is placed by at (x, y, z); give the point, about (x, y, z)", b.name);
+        memcpy(b.about, b.pivot, sizeof b.about); /* -1: the pivot is the mass centre */
+    }
     b.frame = !point || (b.joint && (b.nrot || b.quat[0] >= 0 ||
                                      (b.parent >= 0 &&
                                       LVEC_AT(mb->bodies, mbs_body, b.parent).frame)));
     *(mbs_body *)lvec_push(c, &mb->bodies, sizeof b) = b;
 }
 
-int mbs_input_expr(lang_lexer *lx, const char *what) { return input_expr(lx, what); }
-void mbs_tuple(lang_lexer *lx, int *out, const char *what) { tuple(lx, out, what); }
-int mbs_find_body(lang_ctx *c, const char *name, lpos pos, int ground_ok)
-{
-    return find_body(c, name, pos, ground_ok);
-}
 
-/* BODY[(x, y, z)] */
-static mbs_attach attachment(lang_ctx *c, lang_lexer *lx)
-{
-    mbs_attach a;
-    lpos pos;
-    const char *name = lang_read_name(lx, &pos, "expected a body's name or ground");
-    a.body = find_body(c, name, pos, 1);
-    a.p[0] = a.p[1] = a.p[2] = -1;
-    if (peek(lx) == '(')
-        tuple(lx, a.p, "the attachment point");
-    return a;
-}
 
 /* spring NAME between A[(x,y,z)] and B[(x,y,z)] k=K [l0=L0] [c=C]
  *                                              | law=F [energy=G] [l0=L0] */
@@ -516,12 +417,12 @@ static void parse_spring(lang_ctx *c, lang_lexer *lx, lpos kpos)
     mbs_model *mb = model_of(c);
     mbs_spring s = {0};
     s.name = lang_read_name(lx, &s.pos, "expected the spring's name");
-    if (!take_word(lx, "between"))
+    if (!mbs_take_word(lx, "between"))
         lang_fail(c, lang_here(lx), "expected 'between' A and B after the spring's name");
-    s.a = attachment(c, lx);
-    if (!take_word(lx, "and"))
+    s.a = mbs_attachment(c, lx);
+    if (!mbs_take_word(lx, "and"))
         lang_fail(c, lang_here(lx), "expected 'and' between the spring's two ends");
-    s.b = attachment(c, lx);
+    s.b = mbs_attachment(c, lx);
     s.k = s.l0 = s.c = s.law = s.energy = -1;
     lpos kcpos = {0, 0};
     while (peek(lx)) {
@@ -541,7 +442,7 @@ static void parse_spring(lang_ctx *c, lang_lexer *lx, lpos kpos)
             s.energy_name = lang_read_name(lx, &s.energy_pos, "expected the name of a function "
                                            "G(x) of the file (the law's integral in J)");
         else
-            *to = input_expr(lx, w);
+            *to = mbs_input_expr(lx, w);
         if (to && to != &s.l0 && !kcpos.line)
             kcpos = wpos;
     }
@@ -565,17 +466,17 @@ static void parse_load(lang_ctx *c, lang_lexer *lx, int torque)
     l.torque = torque;
     l.name = lang_read_name(lx, &l.pos, torque ? "expected the torque's name"
                                                : "expected the force's name");
-    if (!take_word(lx, "on"))
+    if (!mbs_take_word(lx, "on"))
         lang_fail(c, lang_here(lx), "expected 'on' BODY after the name");
     lpos bpos;
     const char *b = lang_read_name(lx, &bpos, "expected a body's name");
-    l.body = find_body(c, b, bpos, 0);
+    l.body = mbs_find_body(c, b, bpos, 0);
     l.at[0] = l.at[1] = l.at[2] = -1;
-    if (!torque && take_word(lx, "at"))
-        tuple(lx, l.at, "the point of application");
+    if (!torque && mbs_take_word(lx, "at"))
+        mbs_tuple(lx, l.at, "the point of application");
     lang_expect_char(lx, '=', torque ? "expected '= (mx, my, mz)'" : "expected '= (fx, fy, fz)'");
-    tuple(lx, l.f, torque ? "the torque" : "the force");
-    if (take_word(lx, "in")) {
+    mbs_tuple(lx, l.f, torque ? "the torque" : "the force");
+    if (mbs_take_word(lx, "in")) {
         lpos fpos;
         const char *f = lang_read_name(lx, &fpos, "expected the frame N or B");
         if (strcasecmp(f, "B") == 0)
@@ -613,7 +514,7 @@ static void parse_constraint(lang_ctx *c, lang_lexer *lx, int prescribe)
     doc_of(lx, &doc);
     k.unit = doc.unit;
     lang_expect_char(lx, ':', "expected ':' after the constraint's name");
-    node *lhs = parse_value(lx, "the constraint's expression");
+    node *lhs = mbs_parse_value(lx, "the constraint's expression");
     if (prescribe) {
         if (lhs->kind != N_NAME)
             lang_fail(c, lhs->pos, "prescribe NAME: COORDINATE = formula of t");
@@ -626,7 +527,7 @@ static void parse_constraint(lang_ctx *c, lang_lexer *lx, int prescribe)
     }
     if (peek(lx) == '=') {
         lx->i++;
-        node *rhs = parse_value(lx, "the right-hand side");
+        node *rhs = mbs_parse_value(lx, "the right-hand side");
         node *d = lang_node(c, N_BIN, lhs->pos);
         d->op = OP_SUB;
         d->nargs = 2;
@@ -639,7 +540,7 @@ static void parse_constraint(lang_ctx *c, lang_lexer *lx, int prescribe)
         lang_fail(c, lang_here(lx), "expected '= formula of t' after the coordinate");
     }
     lang_expect_end(lx, "the constraint");
-    k.expr = add_input(c, lhs);
+    k.expr = mbs_add_input(c, lhs);
     declare_output(c, k.name, k.pos, &k.aux);
     add_doc(c, k.name, k.pos, (lang_doc){NULL, doc.description});
     *(mbs_constraint *)lvec_push(c, &mb->cons, sizeof k) = k;
@@ -677,11 +578,11 @@ static void parse_wheel(lang_ctx *c, lang_lexer *lx, lpos kpos)
     mbs_model *mb = model_of(c);
     mbs_wheel wh = {0};
     wh.name = lang_read_name(lx, &wh.pos, "expected the wheel's name");
-    if (!take_word(lx, "on"))
+    if (!mbs_take_word(lx, "on"))
         lang_fail(c, lang_here(lx), "expected 'on' BODY after the wheel's name");
     lpos bpos;
     const char *b = lang_read_name(lx, &bpos, "expected a body's name");
-    wh.body = find_body(c, b, bpos, 0);
+    wh.body = mbs_find_body(c, b, bpos, 0);
     if (LVEC_AT(mb->bodies, mbs_body, wh.body).point)
         lang_fail(c, bpos, "'%s' is a point mass: a wheel needs a body with a frame", b);
     wh.radius = wh.axis[0] = -1;
@@ -691,12 +592,12 @@ static void parse_wheel(lang_ctx *c, lang_lexer *lx, lpos kpos)
         const char *w = lang_read_name(lx, &wpos, "expected radius=, axis= or at");
         if (strcasecmp(w, "radius") == 0) {
             lang_expect_char(lx, '=', "expected '=' after radius");
-            wh.radius = input_expr(lx, "the wheel's radius");
+            wh.radius = mbs_input_expr(lx, "the wheel's radius");
         } else if (strcasecmp(w, "axis") == 0) {
             lang_expect_char(lx, '=', "expected '=' after axis");
-            tuple(lx, wh.axis, "the wheel's axis in the body's frame");
+            mbs_tuple(lx, wh.axis, "the wheel's axis in the body's frame");
         } else if (strcasecmp(w, "at") == 0) {
-            tuple(lx, wh.at, "the wheel's centre in the body's frame");
+            mbs_tuple(lx, wh.at, "the wheel's centre in the body's frame");
         } else {
             lang_fail(c, wpos, "unknown word '%s' in a wheel: expected radius=R, axis=(x, y, "
                       "z) or at (x, y, z)", w);
@@ -723,7 +624,7 @@ int mbs_statement(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos)
         parse_coord(c, lx);
     else if (!strcasecmp(w, "gravity")) {
         for (int k = 0; k < 3; k++) {
-            mb->gravity[k] = input_expr(lx, "a component of gravity (gx, gy, gz)");
+            mb->gravity[k] = mbs_input_expr(lx, "a component of gravity (gx, gy, gz)");
             if (k < 2)
                 lang_expect_char(lx, ',', "expected ',' between the components gx, gy, gz");
         }
@@ -749,7 +650,7 @@ int mbs_statement(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos)
         } while (peek(lx) == ',' && (lx->i++, 1));
         lang_expect_end(lx, "the inputs");
     } else if (!strcasecmp(w, "stabilize")) {
-        node *e = parse_value(lx, "Baumgarte's rate [1/s]");
+        node *e = mbs_parse_value(lx, "Baumgarte's rate [1/s]");
         if (e->kind != N_NUM || !(e->num >= 0.0))
             lang_fail(c, e->pos, "stabilize takes a number >= 0 (Baumgarte's rate, 1/s)");
         mb->alpha = e->num;
@@ -770,6 +671,21 @@ int mbs_statement(lang_ctx *c, lang_lexer *lx, const char *w, lpos wpos)
     return 0;
 }
 
+/* a constraint's multiplier is an output column named after it: a coordinate, speed or
+ * other name that it shares would give two columns of one name (or lose one) */
+static void constraint_names(lang_ctx *c, const mbs_model *mb)
+{
+    for (int i = 0; i < mb->cons.n; i++) {
+        const mbs_constraint *k = &LVEC_AT(mb->cons, mbs_constraint, i);
+        const lang_sym *s = lang_lookup(c, k->name);
+        if (s && (s->kind != SYM_AUX || s->index != k->aux))
+            lang_fail(c, k->pos, "constraint '%s' shares its name with %s on line %d: its "
+                      "force is an output column named so; give it another name", k->name,
+                      s->kind == SYM_STATE ? "a coordinate or speed" : lang_sym_kind_name(s->kind),
+                      s->pos.line);
+    }
+}
+
 void mbs_finish_parse(lang_ctx *c, mbs_model *mb)
 {
     if (mb->coords.n == 0)
@@ -787,6 +703,7 @@ void mbs_finish_parse(lang_ctx *c, mbs_model *mb)
         q->u = add_state(c, q->speed, q->speed_pos, q->speed_init);
         add_doc(c, q->speed, q->speed_pos, q->speed_doc);
     }
+    constraint_names(c, mb);
     static const char *const names[3] = {"kinetic", "potential", "energy"};
     int *idx[3] = {&mb->aux_kinetic, &mb->aux_potential, &mb->aux_energy};
     static const char *const desc[3] = {
@@ -796,8 +713,15 @@ void mbs_finish_parse(lang_ctx *c, mbs_model *mb)
         "kinetic + potential energy"};
     for (int k = 0; k < 3; k++) {
         *idx[k] = -1;
-        if (lang_lookup(c, names[k]))
-            continue; /* the name is the file's own */
+        const lang_sym *own = lang_lookup(c, names[k]);
+        static const char *const what[3] = {"kinetic energy", "potential energy",
+                                            "kinetic + potential energy"};
+        if (own)
+            lang_fail(c, own->pos, "'%s' is an output of every mechanism (its %s): give %s "
+                      "another name", names[k], what[k],
+                      own->kind == SYM_STATE ? "the coordinate or speed"
+                      : own->kind == SYM_AUX ? "the constraint or aux"
+                                             : lang_sym_kind_name(own->kind));
         declare_output(c, names[k], (lpos){0, 0}, idx[k]);
         add_doc(c, names[k], (lpos){0, 0}, (lang_doc){"J", desc[k]});
     }
@@ -856,6 +780,4 @@ void mbs_resolve_inputs(lang_ctx *c, mbs_model *mb)
     }
 }
 
-/* for the geometry statements (mbs_geom.c) */
-int mbs_take_word(lang_lexer *lx, const char *w) { return take_word(lx, w); }
-mbs_attach mbs_attachment(lang_ctx *c, lang_lexer *lx) { return attachment(c, lx); }
+

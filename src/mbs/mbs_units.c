@@ -10,6 +10,7 @@
  * units are not declared: a name without a unit, a user function, a table make the unit
  * unknown and nothing is checked through it; a number takes the unit its sum needs. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -49,10 +50,23 @@ static const named_unit named[] = {
     {"H", {1, 2, -2, -2}}, {"rpm", {0, 0, -1}}, {"l", {0, 3}}, {"L", {0, 3}},
 };
 
+enum { UNIT_MAX_DEPTH = 200 }; /* parentheses, as expressions' nesting */
+
 typedef struct ureader {
-    const char *p;
-    int bad;
+    const char *p, *start;
+    int bad, depth;
+    const char *why, *at; /* the first error and where it is */
+    char near[16];        /* an unknown symbol's nearest known one */
 } ureader;
+
+static void fail_at(ureader *r, const char *at, const char *why)
+{
+    if (!r->bad) {
+        r->why = why;
+        r->at = at;
+    }
+    r->bad = 1;
+}
 
 static void skip_blanks(ureader *r)
 {
@@ -62,18 +76,36 @@ static void skip_blanks(ureader *r)
 
 static unit read_product(ureader *r);
 
+/* the known symbol nearest to the len letters at s (by dyn_lang_nearest), into near */
+static void nearest_symbol(ureader *r, const char *s, size_t len)
+{
+    const char *names[sizeof named / sizeof *named];
+    const int n = (int)(sizeof named / sizeof *named);
+    for (int i = 0; i < n; i++)
+        names[i] = named[i].sym;
+    char word[64];
+    snprintf(word, sizeof word, "%.*s", (int)(len < 63 ? len : 63), s);
+    const char *near = dyn_lang_nearest(word, names, n);
+    snprintf(r->near, sizeof r->near, "%s", near ? near : "");
+}
+
 static unit read_atom(ureader *r)
 {
     unit u = {U_KNOWN, {0}};
     skip_blanks(r);
     if (*r->p == '(') {
-        r->p++;
+        if (++r->depth > UNIT_MAX_DEPTH) {
+            fail_at(r, r->p, "parentheses nested deeper than 200 levels");
+            return u;
+        }
+        const char *open = r->p++;
         u = read_product(r);
+        r->depth--;
         skip_blanks(r);
         if (*r->p == ')')
             r->p++;
         else
-            r->bad = 1;
+            fail_at(r, r->bad ? r->p : open, "'(' without its ')'");
     } else {
         size_t len = 0;
         while ((r->p[len] >= 'a' && r->p[len] <= 'z') || (r->p[len] >= 'A' && r->p[len] <= 'Z'))
@@ -86,16 +118,21 @@ static unit read_atom(ureader *r)
                 memcpy(u.e, named[i].e, sizeof u.e);
                 found = 1;
             }
-        r->bad |= !found;
+        if (!len)
+            fail_at(r, r->p, "expected a unit's symbol, '1' or '('");
+        else if (!found) {
+            nearest_symbol(r, r->p, len);
+            fail_at(r, r->p, "unknown unit symbol");
+        }
         r->p += len;
     }
     skip_blanks(r);
-    if (*r->p == '^') {
+    if (*r->p == '^' && !r->bad) {
         char *end;
         r->p++;
         const double k = strtod(r->p, &end);
-        if (end == r->p)
-            r->bad = 1;
+        if (end == r->p || !isfinite(k) || fabs(k) > 1e6)
+            fail_at(r, r->p, "expected a power after '^' (a number such as 2, -1 or 0.5)");
         r->p = end;
         for (int i = 0; i < NBASE; i++)
             u.e[i] *= k;
@@ -123,14 +160,47 @@ static unit read_product(ureader *r)
     }
 }
 
-/* a declared unit's dimensions, or unknown (none declared, or a symbol not in the table) */
+static unit read_unit(ureader *r)
+{
+    skip_blanks(r);
+    if (!*r->p) {
+        fail_at(r, r->p, "an empty unit (write [1] for a number, or leave the brackets out)");
+        return unknown;
+    }
+    unit u = read_product(r);
+    if (!r->bad && *r->p)
+        fail_at(r, r->p, "')' without its '('");
+    return r->bad ? unknown : u;
+}
+
+int mbs_unit_error(lang_ctx *c, const char *text, int *offset, const char **why)
+{
+    ureader r = {text, text, 0, 0, NULL, NULL, ""};
+    read_unit(&r);
+    if (!r.bad)
+        return 0;
+    *offset = (int)(r.at - text);
+    if (r.near[0])
+        *why = lang_printf(c, "%s '%.*s' (did you mean '%s'?)", r.why,
+                           (int)strspn(r.at, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"),
+                           r.at, r.near);
+    else if (strcmp(r.why, "unknown unit symbol") == 0)
+        *why = lang_printf(c, "%s '%.*s'", r.why, (int)strspn(r.at, "abcdefghijklmnopqrstuvwxyz"
+                                                                   "ABCDEFGHIJKLMNOPQRSTUVWXYZ"),
+                           r.at);
+    else
+        *why = r.why;
+    return 1;
+}
+
+/* a declared unit's dimensions, or unknown (none declared; a unit that does not read was
+ * refused where it was written, mbs_unit_error) */
 static unit declared(const char *text)
 {
     if (!text)
         return unknown;
-    ureader r = {text, 0};
-    unit u = read_product(&r);
-    return r.bad || *r.p ? unknown : u;
+    ureader r = {text, text, 0, 0, NULL, NULL, ""};
+    return read_unit(&r);
 }
 
 /* ---- writing one ---- */
@@ -295,7 +365,20 @@ static unit memo(uctx *x, unit *at, unsigned char *state, const node *e)
     return *at;
 }
 
+static unit infer_node(uctx *x, const node *e);
+
+/* as deep as the derivatives may go (a chain of fixed quantities included) */
 static unit infer(uctx *x, const node *e)
+{
+    if (++x->c->depth > 8 * LANG_MAX_DEPTH)
+        lang_fail(x->c, e->pos, "formula nested too deeply through the quantities it reads "
+                  "(more than %d levels)", 8 * LANG_MAX_DEPTH);
+    const unit u = infer_node(x, e);
+    x->c->depth--;
+    return u;
+}
+
+static unit infer_node(uctx *x, const node *e)
 {
     lang_model *m = &x->c->m;
     switch (e->kind) {
@@ -361,8 +444,10 @@ static void expect(uctx *x, int k, const char *want, const char *what)
     if (k < 0)
         return;
     const unit u = of_input(x, k), w = declared(want);
-    /* a formula in 1 or rad (unitless coordinates of a sketch) is taken anywhere */
-    if (u.kind == U_KNOWN && w.kind == U_KNOWN && !same(u, w) && !same(u, number))
+    /* a formula in 1 or rad (unitless coordinates of a sketch) is taken anywhere; one that
+     * scales a quantity (l/2) has that quantity's unit */
+    if ((u.kind == U_KNOWN || u.kind == U_SCALED) && w.kind == U_KNOWN && !same(u, w) &&
+        !same(u, number))
         lang_fail(x->c, start_of(LVEC_AT(x->c->m.fixes, lang_formula, k).expr),
                   "the units do not add up: %s is in %s, not in %s", what, show(x->c, u),
                   show(x->c, w));
@@ -407,10 +492,28 @@ static void expect_law(uctx *x, int fi, const char *want, const char *what)
                   "(x in m, v in m/s)", what, show(x->c, u), want);
 }
 
+/* a vector (a position, a force, ...): each component in the unit, and none in 1 (a
+ * formula that reads a name with a unit) beside one in the unit */
 static void expect3(uctx *x, const int k[3], const char *want, const char *what)
 {
     for (int i = 0; i < 3; i++)
         expect(x, k[i], want, what);
+    const unit w = declared(want);
+    int in_unit = 0;
+    for (int i = 0; i < 3; i++) {
+        const unit u = of_input(x, k[i]);
+        in_unit |= (u.kind == U_KNOWN || u.kind == U_SCALED) && same(u, w) && !same(w, number);
+    }
+    for (int i = 0; i < 3 && in_unit; i++) {
+        if (k[i] < 0)
+            continue;
+        const unit u = of_input(x, k[i]);
+        const node *e = LVEC_AT(x->c->m.fixes, lang_formula, k[i]).expr;
+        if (u.kind != U_UNKNOWN && same(u, number) && reads_a_unit(x, e))
+            lang_fail(x->c, start_of(e), "the units do not add up: component %c of %s is in 1, "
+                      "beside components in %s: each component of it is in %s", "xyz"[i],
+                      what, show(x->c, w), show(x->c, w));
+    }
 }
 
 void mbs_check_units(lang_ctx *c, mbs_model *mb)
@@ -424,6 +527,15 @@ void mbs_check_units(lang_ctx *c, mbs_model *mb)
     x.par_state = lang_alloc(c, nd);
     memset(x.fix_state, 0, nf);
     memset(x.par_state, 0, nd);
+    /* every declared unit reads (those of doc lines #: NAME [UNIT] too; the others were
+     * refused where they were written) */
+    for (int i = 0; i < m->docs.n; i++) {
+        const lang_docline *d = &LVEC_AT(m->docs, lang_docline, i);
+        int off;
+        const char *why;
+        if (d->doc.unit && mbs_unit_error(c, d->doc.unit, &off, &why))
+            lang_fail(c, d->pos, "%s in the unit of '%s': %s", why, d->name, MBS_UNIT_SYMBOLS);
+    }
     /* the two sides of each constraint first: named so */
     for (int i = 0; i < mb->cons.n; i++) {
         const mbs_constraint *k = &LVEC_AT(mb->cons, mbs_constraint, i);
@@ -449,6 +561,9 @@ void mbs_check_units(lang_ctx *c, mbs_model *mb)
         expect(&x, b->mass, "kg", lang_printf(c, "the mass of '%s'", b->name));
         for (int j = 0; j < 6 && !b->point; j++)
             expect(&x, b->inertia[j], "kg m^2", lang_printf(c, "the inertia of '%s'", b->name));
+        if (!b->point && b->about[0] >= 0)
+            expect3(&x, b->about, "m", lang_printf(c, "the point the inertia of '%s' is about",
+                                                   b->name));
         if (b->joint == MBS_NO_JOINT)
             expect3(&x, b->at, "m", lang_printf(c, "the position of '%s'", b->name));
         for (int j = 0; j < b->nrot; j++)

@@ -227,6 +227,29 @@ static void test_arrays_expand_like_xppaut(void **state)
     unload(&L);
 }
 
+/* A list statement (init, par, number, wiener) reads a range per item: `init
+ * u[3..4]=1.05,v[3..4]=1.05` sets u3, u4, v3 and v4, each item over its own range with its
+ * own [j]; items without a range between them as usual. */
+static void test_list_ranges_per_item(void **state)
+{
+    (void)state;
+    loaded L;
+    load("u[1..4]'=-u[j]\nv[1..4]'=-v[j]\ninit u[3..4]=1.05,v[3..4]=[j]*10, u1=7\n"
+         "par a[1..2]=3, k=0.5, b[1..3]=[j]*2\nnumber n[1..2]=[j]+0.25, m=1\n"
+         "aux s=a1+a2+k+b1+b2+b3\naux sn=n1+n2+m\n",
+         &L);
+    assert_int_equal(L.m->n_states, 8);
+    const double y0[8] = {7, 0, 1.05, 1.05, 0, 0, 30, 40};
+    for (int i = 0; i < 8; i++)
+        CHECK(L.m->y0[i] == y0[i], "%s(0) = %g, expected %g", L.m->states[i].name, L.m->y0[i],
+              y0[i]);
+    assert_int_equal(L.m->n_params, 6);
+    const double y[8] = {0};
+    assert_true(output(&L, "s", 0, y) == 3 + 3 + 0.5 + 2 + 4 + 6);
+    assert_true(output(&L, "sn", 0, y) == 1.25 + 2.25 + 1);
+    unload(&L);
+}
+
 /* sum(j1,j2)of(...i'...) and shift(name,k), unrolled: XPPAUT's manual gives sum(1,10)of(i')
  * = 55 and shift(u0,2) = u2. */
 static void test_sums_and_shifts(void **state)
@@ -584,6 +607,7 @@ int main(void)
         cmocka_unit_test(test_exact_solution_and_default_run),
         cmocka_unit_test(test_temporaries_derived_and_functions),
         cmocka_unit_test(test_arrays_expand_like_xppaut),
+        cmocka_unit_test(test_list_ranges_per_item),
         cmocka_unit_test(test_sums_and_shifts),
         cmocka_unit_test(test_the_longest_sum_is_read),
         cmocka_unit_test(test_globals_reset_in_sequence),

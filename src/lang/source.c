@@ -246,6 +246,112 @@ static lang_line expand_one(lang_ctx *c, lang_lbuf *scratch, const lang_line *l,
     return r;
 }
 
+/* ---- lists with a range per item ---- */
+
+/* A statement that takes a list of items separated by commas (par, number, init, by their
+ * first letter as XPPAUT reads them, wiener, solv): the offset after its first word, else
+ * -1. */
+static int list_statement(const lang_line *l, int at)
+{
+    int k = at;
+    while (k < l->len && (isalnum((unsigned char)l->text[k]) || l->text[k] == '-' ||
+                          l->text[k] == '_'))
+        k++;
+    if (k == at || k == l->len || (l->text[k] != ' ' && l->text[k] != '\t'))
+        return -1;
+    int next = k;
+    while (next < l->len && (l->text[next] == ' ' || l->text[next] == '\t'))
+        next++;
+    if (next == l->len || l->text[next] == '=')
+        return -1;
+    const int a = tolower((unsigned char)l->text[at]);
+    const size_t n = (size_t)(k - at);
+    char w[8] = "";
+    if (n < sizeof w)
+        for (size_t q = 0; q < n; q++)
+            w[q] = (char)tolower((unsigned char)l->text[at + (int)q]);
+    if (a == 'p' || a == 'n' || a == 'i' || strcmp(w, "wiener") == 0 || strcmp(w, "w") == 0 ||
+        strcmp(w, "solv") == 0 || strcmp(w, "solve") == 0)
+        return k;
+    return -1;
+}
+
+/* The part [a, b) of line l as a line of its own. */
+static lang_line sub_line(const lang_line *l, int a, int b)
+{
+    lang_line r = {l->text + a, b - a, l->pos + a};
+    return r;
+}
+
+/* The end of the item of a list that starts at a (a comma outside brackets, or the end). */
+static int item_end(const lang_line *l, int a)
+{
+    int b = a, depth = 0;
+    for (; b < l->len && !(depth == 0 && l->text[b] == ','); b++)
+        depth += l->text[b] == '(' || l->text[b] == '[' ? 1
+                 : l->text[b] == ')' || l->text[b] == ']' ? -1 : 0;
+    return b;
+}
+
+/* Whether a list statement's items are expanded each over its own range: when more than one
+ * item holds a range, or one does and no other item has brackets (`par a[1..2]=3, k=1`
+ * declares k once); not when another item reads the range's j (`init u[1..3]=1,v[j]=2`). */
+static int list_per_item(lang_ctx *c, const lang_line *l, int items_from)
+{
+    if (!memchr(l->text, '.', (size_t)l->len))
+        return 0;
+    int ranges = 0, other_brackets = 0;
+    for (int a = items_from; a < l->len;) {
+        const int b = item_end(l, a);
+        const lang_line item = sub_line(l, a, b);
+        int open, close;
+        long j1, j2;
+        if (find_range(c, &item, &open, &close, &j1, &j2))
+            ranges++;
+        else
+            other_brackets |= memchr(item.text, '[', (size_t)item.len) != NULL;
+        a = b < l->len ? b + 1 : b;
+    }
+    return ranges > 1 || (ranges == 1 && !other_brackets);
+}
+
+/* A list statement with array ranges in several items (`init u[3..4]=1.05,v[3..4]=1.05`):
+ * each item expanded over its own range, the items joined into one line of the statement
+ * (list_per_item says when). */
+static void expand_list(lang_ctx *c, lang_lbuf *scratch, lang_lbuf *acc, const lang_line *l,
+                        int items_from, lang_line *out)
+{
+    acc->len = 0;
+    for (int i = 0; i < items_from; i++)
+        lang_lbuf_put(c, acc, l->text[i], l->pos[i]);
+    int ranges = 0, first_range = -1;
+    for (int a = items_from; a < l->len;) {
+        const int b = item_end(l, a);
+        const lang_line item = sub_line(l, a, b);
+        int open = -1, close = -1;
+        long j1 = 0, j2 = 0;
+        const int ranged = find_range(c, &item, &open, &close, &j1, &j2);
+        if (ranged && ranges++ == 0)
+            first_range = a;
+        const int brackets = memchr(item.text, '[', (size_t)item.len) != NULL;
+        for (long j = j1; j <= j2; j++) {
+            const lang_line e =
+                brackets ? expand_one(c, scratch, &item, j, open, close, ranged) : item;
+            if (acc->len > items_from)
+                lang_lbuf_put(c, acc, ',', e.pos[0]);
+            for (int k = 0; k < e.len; k++)
+                lang_lbuf_put(c, acc, e.text[k], e.pos[k]);
+        }
+        a = b < l->len ? b + 1 : b;
+    }
+    if (ranges > 1)
+        lang_warn(c, l->pos[first_range],
+                  "each item of this list is set over its whole array range; XPPAUT sets only "
+                  "the first element of each range but the last in such a line: give each "
+                  "range a line of its own for a file both programs read alike");
+    *out = lbuf_line(c, acc, l->pos[l->len]);
+}
+
 /* ---- driver ---- */
 
 typedef struct lines_state {
@@ -259,6 +365,7 @@ typedef struct lines_state {
     lpos block_pos;
     lvec block; /* lang_line */
     lang_lbuf scratch; /* the expanded line */
+    lang_lbuf list;    /* a list statement's items, each expanded over its range */
 } lines_state;
 
 static int first_char(const lang_line *l, int *at)
@@ -341,6 +448,13 @@ static void logical_line(lang_ctx *c, lines_state *s, const lang_line *l)
     }
     int open, close;
     long j1, j2;
+    const int items_from = list_statement(l, at);
+    if (items_from >= 0 && list_per_item(c, l, items_from)) {
+        lang_line e;
+        expand_list(c, &s->scratch, &s->list, l, items_from, &e);
+        emit(c, s, &e);
+        return;
+    }
     if (!find_range(c, l, &open, &close, &j1, &j2)) {
         if (memchr(l->text, '[', (size_t)l->len)) {
             /* b100'=-flux[100]: constant indices */

@@ -46,7 +46,7 @@ static const char *const emit_check_idents[] = {
     "time_unit", "phase_window", "n_noise", "noise_kinds", "noise_offset", "noise_class",
     /* tables of random numbers, drawn in prepare (dynkit/sde.h) */
     "seed_offset", "dyn_table_random", "uint64_t",
-    "jac_pattern", "jacobian_sparse",
+    "jac_pattern", "jacobian_sparse", "xppaut_globals",
     "delay",
     /* delay models (dynkit/delay.h, src/lang/emit_delay.c) */
     "dyn_history", "dyn_history_value", "dyn_delay_model", "max_delay", "attach", "history",

@@ -47,6 +47,7 @@ typedef struct dyn_ivp_opts {
      * a model and jac_banded is 0) */
     int jac_banded, jac_lower, jac_upper;
     dyn_jac_fn jacobian_band;
+    int xppaut_globals;      /* see dyn_solve_opts; a model's own when solving a model */
 } dyn_ivp_opts;
 
 /* The solution. On failure everything up to the failure is kept (status says why). */

@@ -184,6 +184,9 @@ typedef struct dyn_model {
     int n_bdry;
     int (*bdry)(const double *yl, const double *yr, const void *par, double *g);
     const char *const *bdry_text;
+    /* 1: the events are XPPAUT's globals (a model file's `global` lines), fired at XPPAUT's
+     * instants (dyn_solve_opts.xppaut_globals, solve.h); 0: located to rounding. */
+    int xppaut_globals;
 } dyn_model;
 
 /* A model whose right-hand side reads its own past (dynkit/delay.h): its parameter struct
@@ -210,7 +213,7 @@ typedef struct dyn_delay_model {
  * into a shared object records the version it was built with (the symbol
  * dynkit_model_abi, added when dynkit compiles a model), and dynkit refuses a model built
  * for another version instead of misreading it. Raised whenever a layout changes. */
-#define DYN_MODEL_ABI 8
+#define DYN_MODEL_ABI 9
 
 /* The entry point of a model in a C file or a shared object: `dynkit run mymodel.c`
  * compiles the file and calls it. Define it in your file:

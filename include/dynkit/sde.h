@@ -177,6 +177,7 @@ typedef struct dyn_sde_opts {
     int n_events;
     dyn_event_fn on_event; /* may be NULL */
     void *event_ctx;
+    int xppaut_globals;    /* 1: instants and cascades by XPPAUT's rules (solve.h) */
     dyn_jump_fn jump;      /* the system's jumps (Markov states) at each fixed step's start,
                             * with sys.par; NULL: none; not for rkmil */
     dyn_output_fn output;

@@ -31,11 +31,16 @@
  * tables: a partial step from the event to the next grid point t0 + k*h, then whole steps
  * again). Crossings found later in the step belong to the old trajectory and are dropped;
  * events at the same time are all reported (with the state before the resets) and their
- * resets applied in time-then-index order. Cascades (XPPAUT's globals): after those resets,
- * every event that has not fired at this instant and whose g the resets carried onto or
- * across zero in its direction (from <= 0 to >= 0 rising, from >= 0 to <= 0 falling, g
- * compared between the state before the instant's resets and after them; a
- * DYN_EVENT_JUMPS event onto or across zero, not off it) fires at the same instant: these
+ * resets applied in time-then-index order. XPPAUT's instants (xppaut_globals = 1): the
+ * instant of a reset is the crossing moved past it by a relative 1e-10 of the step's part
+ * before it (XPPAUT's STOL), so that g is already just past zero there, and every event
+ * crossing at or before that moved instant fires in it, with the state there. Cascades
+ * (XPPAUT's globals): after those resets, every event that has not fired at this instant
+ * and whose g the resets carried onto or across zero in its direction (from <= 0 to >= 0
+ * rising, from >= 0 to <= 0 falling, g compared between the state at the instant before any
+ * reset and after the resets so far; with xppaut_globals only a change of more than 1e-10;
+ * a DYN_EVENT_JUMPS event when the two have opposite signs or one is zero, unless its g is
+ * within 5e-16 of zero at the step's end) fires at the same instant: these
  * are reported (with the state after the resets so far), then their resets applied in
  * index order, and so on in cycles; each event fires at most once per instant
  * (dyn_result.cascades counts them; a terminal one stops the solve with the state after the
@@ -188,6 +193,10 @@ typedef struct dyn_solve_opts {
     dyn_event_fn on_event; /* may be NULL */
     void *event_ctx;
     int event_samples;     /* sub-intervals per step where g is sampled; 0: 8 */
+    /* 1: the events are XPPAUT's globals (dyn_model.xppaut_globals): a reset's instant is
+     * moved past its crossing and cascades ignore changes of 1e-10 or less ("XPPAUT's
+     * instants" above) */
+    int xppaut_globals;
     /* stiff methods (ignored by explicit ones) */
     dyn_jac_fn jacobian;   /* analytic df/dy or NULL (finite differences) */
     int *iwork;            /* dyn_solve_iwork_size ints, or NULL when that is 0 */

@@ -1909,6 +1909,8 @@ char *lang_emit_c(lang_ctx *c)
     if (m->bdrys.n)
         LANG_C_CODEF(c, ",\n    .n_bdry = %d,\n    .bdry = dk_bdry,\n    .bdry_text = dk_bdry_text",
                      m->bdrys.n);
+    if (m->events.n)
+        LANG_C_CODE(c, ",\n    .xppaut_globals = 1");
     if (m->n_table_draws)
         LANG_C_CODEF(c, ",\n    .seed_offset = %d * sizeof(double)", seed_offset(m));
     LANG_C_CODE(c, ",\n};\n\nconst dyn_model *dynkit_model(void) { return &dk_model; }\n");

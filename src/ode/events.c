@@ -15,10 +15,14 @@
  * 1973, ch. 4, zeroin) on t -> g(t, y(t)) with y(t) the interpolant, to a bracket of a few
  * ulps of t; the end of the final bracket on the side of the new sign is reported.
  * A zero at the start and a touch of zero without a sign change are not events.
- * Cascades (dyn_events_cascade): after the resets at an instant, an event whose g the resets
- * carried onto or across zero fires at the same instant, as XPPAUT 6.11's globals do
- * (flags.c, one_flag_step): each event at most once per instant, g compared between the
- * state before the instant's resets and the state after them.
+ * Instants (dyn_events_instant) and cascades (dyn_events_cascade) follow XPPAUT 6.11's
+ * globals (flags.c, one_flag_step): a reset's instant is the earliest crossing in the step
+ * moved past it by a relative DYN_EVENTS_STOL of the step's part before it, so that every
+ * event crossing within that moved instant fires in it, its condition already just past
+ * zero; after the resets at an instant, an event whose g the resets carried onto or across
+ * zero (by more than DYN_EVENTS_TOL) fires at the same instant, each event at most once per
+ * instant, g compared between the state at the instant before any reset and the state after
+ * the resets so far.
  */
 #include <float.h>
 #include <math.h>
@@ -42,8 +46,19 @@ int dyn_events_max_hits(int n_events, int samples)
 
 static int sign_of(double g) { return g > 0.0 ? 1 : g < 0.0 ? -1 : 0; }
 
+double dyn_events_instant(double ta, double te, double tb)
+{
+    const double h = tb - ta, frac = (te - ta) / h;
+    if (!(h > 0.0) || !(frac < 1.0))
+        return te;
+    const double moved = frac < DYN_EVENTS_STOL ? DYN_EVENTS_STOL : frac * (1.0 + DYN_EVENTS_STOL);
+    const double t = ta + h * moved;
+    return t < tb ? t : tb;
+}
+
 int dyn_events_cascade(const dyn_event *ev, int ne, void *par, double t, const double *y,
-                       const double *g0, double *fired, int cycle)
+                       const double *g0, const double *g_end, double tol, double *fired,
+                       int cycle)
 {
     int count = 0;
     for (int i = 0; i < ne; i++) {
@@ -51,12 +66,15 @@ int dyn_events_cascade(const dyn_event *ev, int ne, void *par, double t, const d
             continue;
         const double a = g0[i], b = ev[i].g(t, y, par);
         const int dir = ev[i].direction;
-        /* XPPAUT's test: rising when a <= 0 <= b, falling when a >= 0 >= b, g moved; a
-         * DYN_EVENT_JUMPS event fires onto or across zero, not leaving it (XPPAUT's sign 0
-         * sitting on zero is taken as hit at every step, so a reset moving it off is none) */
-        const int from = dir == DYN_EVENT_JUMPS ? a != 0.0 : 1;
-        const int up = from && a <= 0.0 && b >= 0.0 && b != a;
-        const int down = from && a >= 0.0 && b <= 0.0 && b != a;
+        /* XPPAUT's test: a change of more than tol; rising when a <= 0 <= b,
+         * falling when a >= 0 >= b; a DYN_EVENT_JUMPS event (sign 0) when a and b have
+         * opposite signs or one of them is zero, except when its g is zero at the step's end
+         * (XPPAUT takes sign 0 sitting on zero there as hit in that step) */
+        if (!(fabs(b - a) > tol))
+            continue;
+        if (dir == DYN_EVENT_JUMPS && g_end && fabs(g_end[i]) < DYN_EVENTS_ZERO)
+            continue;
+        const int up = a <= 0.0 && b >= 0.0, down = a >= 0.0 && b <= 0.0;
         if ((up && dir != -1) || (down && dir != 1)) {
             fired[i] = up ? cycle : -cycle;
             count++;
@@ -82,7 +100,7 @@ int dyn_events_report(int index, double t, const double *y, int direction, void 
 
 int dyn_events_cascades(const dyn_event *ev, int ne, void *par, double t,
                         const double *y_before, double *y, const double *hits, int nh,
-                        double *casc, dyn_events_report_fn report, void *ctx, long *count,
+                        const double *g_end, double tol, double *casc, dyn_events_report_fn report, void *ctx, long *count,
                         int *which, int *status)
 {
     double *g0 = casc, *fired = casc + ne;
@@ -91,9 +109,8 @@ int dyn_events_cascades(const dyn_event *ev, int ne, void *par, double t,
         fired[i] = 0.0;
     }
     for (int k = 0; k < nh && DYN_HIT_T(hits, k) <= t; k++)
-        if (DYN_HIT_T(hits, k) == t)
-            fired[DYN_HIT_INDEX(hits, k)] = 1.0;
-    for (int cycle = 2; dyn_events_cascade(ev, ne, par, t, y, g0, fired, cycle); cycle++)
+        fired[DYN_HIT_INDEX(hits, k)] = 1.0;
+    for (int cycle = 2; dyn_events_cascade(ev, ne, par, t, y, g0, g_end, tol, fired, cycle); cycle++)
         for (int i = 0; i < ne; i++) {
             if (fabs(fired[i]) != (double)cycle)
                 continue;
@@ -117,7 +134,7 @@ void dyn_events_restart(const dyn_event *ev, int ne, void *par, double t,
     dyn_events_start(ev, ne, par, t, y, memo);
     for (int k = 0; k < nh && DYN_HIT_T(hits, k) <= t; k++) {
         const int i = DYN_HIT_INDEX(hits, k);
-        if (DYN_HIT_T(hits, k) == t && ev[i].g(t, y_before, par) == memo[i])
+        if (ev[i].g(t, y_before, par) == memo[i])
             memo[i] = memo[ne + i] = 0.0;
     }
 }

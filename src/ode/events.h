@@ -38,12 +38,30 @@ int dyn_events_step(const dyn_event *ev, int ne, void *par, const dyn_dense *d, 
                     const double *y1, int samples, double *memo, double *work, double *hits,
                     long *g_calls, int restart);
 
+/* XPPAUT's numbers at an instant (flags.c): the move of an instant past the crossing, a
+ * relative 1e-10 of the step's part before it (its STOL); the least change of a condition
+ * that fires a global in a cascade (its tolmin); a sign 0 condition within DYN_EVENTS_ZERO
+ * of zero at the step's end counts as hit there, so that no reset fires it (its
+ * MY_DBL_EPS). */
+#define DYN_EVENTS_STOL 1e-10
+#define DYN_EVENTS_TOL 1e-10
+#define DYN_EVENTS_ZERO 5e-16
+
+/* The instant of a reset whose crossing is at te in the step from ta to tb: ta + h s with
+ * s = (te - ta)/h moved to s (1 + DYN_EVENTS_STOL), at least DYN_EVENTS_STOL, at most tb
+ * (te itself when te = tb). Every event crossing at or before it fires at it. */
+double dyn_events_instant(double ta, double te, double tb);
+
 /* One cycle of a cascade at time t (solve.h, "Cascades"): every event not yet fired at t
- * (fired[i] == 0) whose g went from g0[i] (before the instant's resets) onto or across zero
- * at the state y, in its direction (DYN_EVENT_JUMPS: either), gets fired[i] = cycle when
- * rising, -cycle when falling. Returns how many. */
+ * (fired[i] == 0) whose g went from g0[i] (at the instant before any reset) to g at the
+ * state y by more than tol (XPPAUT: DYN_EVENTS_TOL), onto or across zero, in its direction (rising: from
+ * <= 0 to >= 0, falling: from >= 0 to <= 0; DYN_EVENT_JUMPS: g0 and g of opposite signs
+ * or one of them zero, unless g_end[i], g at the step's end (may be NULL), is within
+ * DYN_EVENTS_ZERO of zero), gets fired[i] = cycle when rising, -cycle when falling.
+ * Returns how many. */
 int dyn_events_cascade(const dyn_event *ev, int ne, void *par, double t, const double *y,
-                       const double *g0, double *fired, int cycle);
+                       const double *g0, const double *g_end, double tol, double *fired,
+                       int cycle);
 
 /* An event handed to the driver (index, time, state, direction); 1 stops the run. */
 typedef int (*dyn_events_report_fn)(int index, double t, const double *y, int direction,
@@ -66,22 +84,26 @@ int dyn_events_report(int index, double t, const double *y, int direction, void 
 enum { DYN_CASCADES_DONE = 0, DYN_CASCADES_STOPPED = 1, DYN_CASCADES_RESET_FAILED = 2 };
 
 /* The cascades of the instant t (solve.h, "Cascades"), after the resets of the step's hits
- * at t (hits sorted, nh of them): y_before is the state before the instant's resets, y the
- * state after them, which the cascades' resets change in place. Cycles of
- * dyn_events_cascade, each event reported and reset in index order, until none fires.
- * casc has 2 ne doubles; *count counts the events fired. Returns DYN_CASCADES_STOPPED
- * when report asked to stop (*which: the event), DYN_CASCADES_RESET_FAILED when a reset
- * returned *status != 0 (*which: the event), else DYN_CASCADES_DONE. */
+ * at or before t (hits sorted, nh of them; t from dyn_events_instant): y_before is the
+ * state at the instant before its resets, y the state after them, which the cascades'
+ * resets change in place; g_end: g at the step's end (dyn_events_step's memo, may be NULL),
+ * tol: dyn_events_cascade's.
+ * Cycles of dyn_events_cascade, each event reported and reset in index order, until none
+ * fires. casc has 2 ne doubles; *count counts the events fired. Returns
+ * DYN_CASCADES_STOPPED when report asked to stop (*which: the event),
+ * DYN_CASCADES_RESET_FAILED when a reset returned *status != 0 (*which: the event), else
+ * DYN_CASCADES_DONE. */
 int dyn_events_cascades(const dyn_event *ev, int ne, void *par, double t,
                         const double *y_before, double *y, const double *hits, int nh,
-                        double *casc, dyn_events_report_fn report, void *ctx, long *count,
-                        int *which, int *status);
+                        const double *g_end, double tol, double *casc,
+                        dyn_events_report_fn report,
+                        void *ctx, long *count, int *which, int *status);
 
 /* Restart after the resets at t, from y (y_before: the state before them) as from a new
- * initial value: memo from g at y; an event that fired at t and whose g the resets left
- * unchanged sits on its own zero (a ball's velocity reversed at y = 0, a counter raised at
- * a crossing): like a zero at the start it is no event, and the side the solution leaves
- * to decides its sign. */
+ * initial value: memo from g at y; an event that fired at t (a hit at or before t) and whose
+ * g the resets left unchanged sits on its own zero (a ball's velocity reversed at y = 0, a
+ * counter raised at a crossing): like a zero at the start it is no event, and the side the
+ * solution leaves to decides its sign. */
 void dyn_events_restart(const dyn_event *ev, int ne, void *par, double t,
                         const double *y_before, const double *y, const double *hits, int nh,
                         double *memo);

@@ -145,6 +145,7 @@ static void run(dyn_ivp_solution *sol, const dyn_tableau *m, dyn_rhs_fn f, void 
     so.n_out_times = o->t_eval ? o->n_eval : 0;
     so.events = o->events;
     so.n_events = o->events ? o->n_events : 0;
+    so.xppaut_globals = o->xppaut_globals;
     so.jacobian = o->jacobian;
     so.jac_banded = o->jac_banded;
     so.jac_lower = o->jac_lower;
@@ -345,6 +346,7 @@ dyn_ivp_solution *dyn_ivp_solve_model(const dyn_model *model, const void *par,
         }
         mo.events = ne > 0 ? ev : NULL;
         mo.n_events = ne;
+        mo.xppaut_globals = mo.xppaut_globals || model->xppaut_globals;
         if (!check_args(sol, m, n, y0m, mo.h))
             run(sol, m, model->rhs, p, t0, t1, y0m, &mo);
     }

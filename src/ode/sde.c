@@ -65,7 +65,7 @@ typedef struct sde_run {
      * states before (ybefore) and after (yafter) the resets of an instant at t_ev */
     double t0, t1;
     const dyn_event *ev;
-    int ne, restarted, zeno, reset_idx;
+    int ne, restarted, zeno, reset_idx, xppaut_globals;
     long n_resets;
     double t_last_reset, t_ev;
     double *memo, *casc, *ev_work, *hits, *coef, *ybefore, *yafter;
@@ -214,10 +214,14 @@ static int segment_events(sde_run *r, double ta, const double *ya, double tb, co
     int reset = 0;
     double t_reset = tb;
     for (int k = 0; k < nh; k++) {
-        const double te = DYN_HIT_T(r->hits, k);
+        double te = DYN_HIT_T(r->hits, k);
         const int idx = DYN_HIT_INDEX(r->hits, k), dir = DYN_HIT_DIR(r->hits, k);
-        if (reset && te != t_reset)
+        if (reset && te > t_reset)
             break; /* after a reset: the rest of the step is the old trajectory's */
+        if (reset)
+            te = t_reset; /* a crossing within the instant fires in it */
+        else if (r->ev[idx].reset && r->xppaut_globals)
+            te = dyn_events_instant(ta, te, tb);
         if (!reset) {
             /* ybefore: the state at the event (events at the time of a reset see it) */
             if (te == tb)
@@ -248,7 +252,8 @@ static int segment_events(sde_run *r, double ta, const double *ya, double tb, co
         return SEG_NONE;
     int which = -1, st = 0;
     const int how = dyn_events_cascades(r->ev, ne, par, t_reset, r->ybefore, r->yafter, r->hits,
-                                        nh, r->casc, dyn_events_report, &r->sink,
+                                        nh, r->memo, r->xppaut_globals ? DYN_EVENTS_TOL : 0.0,
+                                        r->casc, dyn_events_report, &r->sink,
                                         &r->res->cascades, &which, &st);
     r->t_ev = t_reset;
     if (how == DYN_CASCADES_STOPPED)
@@ -659,6 +664,7 @@ int dyn_sde_solve(dyn_sde_method method, const dyn_sde *sde, double t0, double t
     r.t0 = t0;
     r.t1 = t1;
     r.ev = o->events;
+    r.xppaut_globals = o->xppaut_globals;
     r.ne = ne;
     r.sink = (dyn_event_sink){o->events, o->on_event, o->event_ctx, res};
     r.reset_idx = -1;

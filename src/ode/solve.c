@@ -590,10 +590,14 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
         int stop = 0, reset = 0;
         double t_stop = tnext, t_reset = tnext;
         for (int k = 0; k < nh && !stop; k++) {
-            const double te = DYN_HIT_T(hits, k);
+            double te = DYN_HIT_T(hits, k);
             const int idx = DYN_HIT_INDEX(hits, k), dir = DYN_HIT_DIR(hits, k);
-            if (reset && te != t_reset)
+            if (reset && te > t_reset)
                 break; /* after a reset: the rest of the step is the old trajectory's */
+            if (reset)
+                te = t_reset; /* a crossing within the instant fires in it */
+            else if (opts->events[idx].reset && opts->xppaut_globals)
+                te = dyn_events_instant(t, te, tnext);
             if (!reset && emit_until(&out, opts, te, 1, tnext, ynew, &d, yout, res))
                 goto finish;
             /* events at the time of a reset see the state before the resets */
@@ -627,7 +631,8 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
             int which = -1;
             const int how =
                 dyn_events_cascades(opts->events, ne, sys->par, t_reset, ycur, ytmp, hits, nh,
-                                    casc, dyn_events_report, &sink, &res->cascades, &which, &rc);
+                                    memo, opts->xppaut_globals ? DYN_EVENTS_TOL : 0.0, casc,
+                                    dyn_events_report, &sink, &res->cascades, &which, &rc);
             if (how == DYN_CASCADES_STOPPED) {
                 stop = 1;
                 t_stop = t_reset;

@@ -160,6 +160,7 @@ static int solve_noise(const run_ctx *rc, dyn_output_fn output, void *output_ctx
     run_events re = {ro->on_event, ro->event_ctx, asked};
     o.events = events;
     o.n_events = n_events;
+    o.xppaut_globals = m->xppaut_globals;
     o.on_event = forward_event;
     o.event_ctx = &re;
     double *work = malloc(dyn_sde_work_size(n, m->n_noise, n_events) * sizeof *work);
@@ -271,6 +272,7 @@ static int solve_general(const run_ctx *rc, dyn_output_fn output, void *output_c
     run_events re = {ro->on_event, ro->event_ctx, asked};
     opts.events = events;
     opts.n_events = n_events;
+    opts.xppaut_globals = m->xppaut_globals;
     opts.on_event = forward_event;
     opts.event_ctx = &re;
     dyn_sparse_solver sparse = {0};

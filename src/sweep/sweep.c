@@ -248,6 +248,7 @@ static int run_one(worker *w, long i, double *row)
         o.progress_ctx = w;
         o.events = p->events;
         o.n_events = p->n_events;
+        o.xppaut_globals = m->xppaut_globals;
         o.on_event = p->n_events > 0 ? on_event : NULL;
         o.event_ctx = w;
         st = dyn_sde_solve((dyn_sde_method)s->noise_method, &sde, s->t0, s->t1, w->y0, w->y,
@@ -474,6 +475,7 @@ static int plan_make(plan *p, const dyn_sweep *s)
         o->output = p->need_samples ? on_sample : NULL;
         o->events = p->events;
         o->n_events = p->n_events;
+        o->xppaut_globals = m->xppaut_globals;
         o->on_event = p->n_events > 0 ? on_event : NULL;
         o->jacobian = m->jacobian;
         o->jac_banded = m->jac_banded;

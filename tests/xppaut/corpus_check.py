@@ -26,6 +26,7 @@ import argparse
 import hashlib
 import os
 import re
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -194,7 +195,7 @@ def main():
         return 77
     rows = read_manifest(args.manifest)
     env = dict(os.environ)
-    bad, counts = [], {}
+    bad, counts, kept = [], {}, []
     with tempfile.TemporaryDirectory() as work:
         env.setdefault("DYNKIT_CACHE_DIR", os.path.join(work, "cache"))
         for i, row in enumerate(rows):
@@ -230,12 +231,17 @@ def main():
             mark = "" if got == row["expect"] else "  (expected %s)" % row["expect"]
             if mark:
                 bad.append(name)
+                shutil.copy(path, wdir)  # the input beside both programs' outputs
+                kept.append(wdir)
             text = compat.verdict_text(r)
             if r.get("sets"):
                 text = "each set's SET.dat (xppaut -silent runs the sets): " + r["sets"]
             if r["status"] == "refused":
                 text += "; xppaut: " + r.get("xppaut", "")
             print("%-58s %-12s %s%s" % (name, got, text, mark), flush=True)
+        if kept:
+            print("inputs and outputs kept in %s" % compat.keep_artifacts(
+                args.dynkit, "xppaut-corpus", kept))
     print("\n%d files from %d repositories: %s" % (
         len(rows), len({r["repo"] for r in rows}),
         ", ".join("%d %s" % (n, k) for k, n in sorted(counts.items(), key=lambda kv: -kv[1]))))

@@ -18,6 +18,9 @@ import tempfile
 
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import compat  # noqa: E402  (same directory: keep_artifacts)
+
 try:
     from scipy.integrate import solve_ivp
     from scipy.optimize import brentq
@@ -67,6 +70,8 @@ def main():
             sol = reference(case)
             out = subprocess.run([dynkit, "run", path, "--outputs"], capture_output=True,
                                  text=True, check=True).stdout
+            with open(os.path.join(tmp, name + ".dynkit.csv"), "w") as f:
+                f.write(out)
             dyn = np.loadtxt(out.splitlines()[1:], delimiter=",", ndmin=2)
             ex, ew = errors(dyn, case, sol)
             worst = max(worst, ex, ew)
@@ -81,6 +86,9 @@ def main():
             except (OSError, subprocess.TimeoutExpired):
                 pass
             print(line, flush=True)
+        if worst > 1e-6:
+            print("inputs and outputs kept in %s" % compat.keep_artifacts(
+                dynkit, "xppaut-dae", [tmp] + [os.path.join(EXAMPLES, n) for n in CASES]))
     if worst > 1e-6:
         print("dynkit is %.1e from the reference (at most 1e-6 expected)" % worst)
         return 1

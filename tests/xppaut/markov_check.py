@@ -34,6 +34,9 @@ import tempfile
 
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import compat  # noqa: E402  (same directory: keep_artifacts)
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 DEBIAN = "/usr/share/doc/xppaut/examples/ode"
 
@@ -44,7 +47,7 @@ def dynkit_cmd(dynkit, args, work):
 
 
 def run_dynkit(dynkit, path, work, seed):
-    out = os.path.join(work, "run.npy")
+    out = os.path.join(work, "run-%s-seed%d.npy" % (os.path.basename(path), seed))
     dynkit_cmd(dynkit, ["run", path, "--seed", str(seed), "--output", out], work)
     return np.load(out)
 
@@ -296,6 +299,9 @@ def main():
             kepler(dynkit, work, failures, have_xpp)
         else:
             print("Debian's XPPAUT examples are missing: gill_bruss and kepler not checked")
+        if failures:
+            print("inputs and outputs kept in %s" % compat.keep_artifacts(
+                dynkit, "xppaut-markov", [work, os.path.join(HERE, "markov")]))
     if not have_xpp:
         print("xppaut is not installed: dynkit against the closed forms and NumPy only")
     print("%d failed" % len(failures))

@@ -22,11 +22,14 @@ import tempfile
 
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import compat  # noqa: E402  (same directory: keep_artifacts)
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
 def run_dynkit(dynkit, path, work, seed=5):
-    out = os.path.join(work, "dynkit.csv")
+    out = os.path.join(work, "dynkit-%s-seed%d.csv" % (os.path.basename(path), seed))
     subprocess.run([dynkit, "run", path, "--seed", str(seed), "--quiet", "--outputs",
                     "--output", out], check=True, cwd=work,
                    env=dict(os.environ, DYNKIT_CACHE_DIR=os.path.join(work, "cache")))
@@ -34,7 +37,7 @@ def run_dynkit(dynkit, path, work, seed=5):
 
 
 def run_xppaut(path, work):
-    xdir = os.path.join(work, "x")
+    xdir = os.path.join(work, "x-" + os.path.basename(path))
     os.makedirs(xdir, exist_ok=True)
     shutil.copy(path, xdir)
     subprocess.run(["xppaut", os.path.basename(path), "-silent"], cwd=xdir, timeout=300,
@@ -103,6 +106,9 @@ def main():
             failures.append("dynkit tables.ode: the seed does not fix the tables")
         else:
             print("ok   dynkit tables.ode: the same tables with --seed 5 twice, others with 6")
+        if failures:
+            print("inputs and outputs kept in %s" % compat.keep_artifacts(
+                dynkit, "xppaut-noise", [work, os.path.join(HERE, "noise")]))
     if not have_xpp:
         print("xppaut is not installed: dynkit against the closed forms only")
     print("%d failed" % len(failures))

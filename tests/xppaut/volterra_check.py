@@ -189,6 +189,9 @@ def main():
         closed_forms(dynkit, work)
         info(dynkit, work)
         debian(dynkit, work)
+        if failures:
+            print("inputs and outputs kept in %s" % compat.keep_artifacts(
+                dynkit, "xppaut-volterra", [work, os.path.join(HERE, "volterra")]))
     if failures:
         print("%d check(s) failed" % len(failures))
         return 1

@@ -156,6 +156,16 @@ static void test_library_history(void **state)
     CHECK(h.failed == 1 && strstr(msg, "delay(y, ...)") && strstr(msg, "maximal delay 2"), "%s",
           msg);
     CHECK(isnan(dyn_history_value(&h, 0, 12.0, 12.5)) && h.failed == 2, "a negative lag");
+    dyn_history_message(&h, names, msg, sizeof msg);
+    CHECK(strstr(msg, "asks for a negative lag -0.5, the value at t = 12.5, after the present"),
+          "%s", msg);
+    /* a NaN lag that the NaN of the refused one made does not hide it; a NaN lag alone says
+     * so */
+    CHECK(isnan(dyn_history_value(&h, 0, 12.0, NAN)) && h.failed == 2, "%d", h.failed);
+    h.failed = 0;
+    CHECK(isnan(dyn_history_value(&h, 0, 12.0, NAN)) && h.failed == 3, "%d", h.failed);
+    dyn_history_message(&h, names, msg, sizeof msg);
+    CHECK(strstr(msg, "asks for a lag that is not a number (NaN)"), "%s", msg);
     CHECK(isnan(dyn_history_value(NULL, 0, 1.0, 0.5)), "no history");
     free(work);
     free(h.data);
@@ -431,6 +441,24 @@ static void test_no_max_delay_keeps_the_lag(void **state)
     CHECK(r.status == 0 && row && fabs(strtod(row + 3, NULL) + 0.5) < 1e-14 &&
               !strstr(r.err, "@ delay="),
           "%s %s", r.out, r.err);
+    cli_free(&r);
+    /* `@ delay=0` is XPPAUT's default written out: the same run, the warning names it; a
+     * state-dependent lag that turns negative is named with its value, not as NaN */
+    assert_int_equal(cli_write_file("zeromax.ode", "y'=-delay(y,1)\ny(0)=1\ninit y=1\n"
+                                                   "@ delay=0, total=2, dt=0.25\n"),
+                     0);
+    r = cli("run %s --method dp45 --times 2", cli_path("zeromax.ode"));
+    row = strstr(r.out, "\n2,");
+    CHECK(r.status == 0 && row && fabs(strtod(row + 3, NULL) + 0.5) < 1e-14 &&
+              strstr(r.err, "sets '@ delay=0', XPPAUT's default, which keeps no history"),
+          "%s %s", r.out, r.err);
+    cli_free(&r);
+    assert_int_equal(cli_write_file("neglag.ode", "x'=-delay(x,x-5)\nx(0)=1\ninit x=1\n"
+                                                  "@ delay=10, total=2\n"),
+                     0);
+    r = cli("run %s --final", cli_path("neglag.ode"));
+    CHECK(r.status != 0 && strstr(r.err, "asks for a negative lag -4") && !strstr(r.err, "nan"),
+          "%s", r.err);
     cli_free(&r);
 }
 

@@ -702,6 +702,16 @@ static void test_compiler_time_limit(void **state)
     assert_true((double)(t1.tv_sec - t0.tv_sec) < 20); /* stopped, not waited for */
     assert_non_null(strstr(err, "did not finish within 0.2 s and was stopped"));
     assert_non_null(strstr(err, "DYNKIT_CC_TIMEOUT"));
+    /* the variable is read in decimal seconds: 0x10 is refused, not read as 16 */
+    dyn_jit_opts env_opts = f->cc;
+    env_opts.cc_timeout = 0;
+    setenv("DYNKIT_CC_TIMEOUT", "0x10", 1);
+    const int hex_rc = dyn_jit_load_source(vdp_source, strlen(vdp_source), "vdp.c", &env_opts,
+                                           &jm, err, sizeof err);
+    unsetenv("DYNKIT_CC_TIMEOUT");
+    assert_int_not_equal(hex_rc, 0);
+    assert_non_null(strstr(err, "DYNKIT_CC_TIMEOUT=0x10 is not a number of seconds > 0 "
+                                "written in decimal"));
     if (!dyn_jit_backend_available(DYN_JIT_TCC))
         return;
     opts.backend = DYN_JIT_AUTO;

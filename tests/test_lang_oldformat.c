@@ -103,6 +103,11 @@ static void test_first_line_number_selects_the_old_format(void **state)
     out = expect_ok("# 2\nx'=-x\n", &n);
     CHECK(!strstr(n.text, "first format"), "%s", n.text);
     free(out);
+    /* a UTF-8 byte order mark before the first line (an editor's) is skipped */
+    out = expect_ok("\xef\xbb\xbf" "2\nv x=80,y=30\np a=.25\nox a*x\noy -y\nd\n", &n);
+    CHECK(strstr(n.text, "1: the first line is a number: the file is in XPPAUT's first "
+                         "format, with 2 equations"), "%s", n.text);
+    free(out);
 }
 
 static void test_errors_point_at_the_file(void **state)

@@ -55,7 +55,8 @@ struct dyn_history {
     void *grow_ctx;
     /* the latest lag that was refused (dyn_history_value gave NaN, which stops the run
      * unless a smaller step avoids it) */
-    int failed;             /* 0, or 1: lag > max_delay, 2: negative lag */
+    int failed;             /* 0, or 1: lag > max_delay, 2: negative lag, 3: a lag that is
+                             * not a number, 4: out of memory for the steps (push) */
     double fail_t, fail_lag;
     int fail_state;
 };

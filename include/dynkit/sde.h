@@ -137,7 +137,7 @@ typedef struct dyn_sde {
  * goes to the first j != i, in order, with u < h * (the sum of row i's rates up to j), else
  * stays: the probability of i -> j over the step is h * rate(i, j) (first order in h, as
  * long as h times the row's sum stays below 1). Returns 0, or -1 when a rate of row i is
- * negative or not finite (*z is then NaN). */
+ * negative or not finite (*z is then left as it was). */
 int dyn_markov_step(double *z, int n, const double *rates, double h, double u);
 
 /* One reaction of Gillespie's direct method (XPPAUT's `special z=gill(0, r1, ..., rm)`):

@@ -246,11 +246,14 @@ static int time_limit(const dyn_jit_opts *opts, double *limit, char *err, size_t
         return 0;
     char *end = NULL;
     errno = 0;
-    double v = strtod(env, &end);
-    if (end == env || *end != '\0' || errno || !isfinite(v) || v <= 0)
+    /* decimal only: strtod would also read hexadecimal (0x10 = 16), inf and nan */
+    const int decimal = strspn(env, "0123456789.eE+-") == strlen(env);
+    double v = decimal ? strtod(env, &end) : 0.0;
+    if (!decimal || end == env || *end != '\0' || errno || !isfinite(v) || v <= 0)
         return jit_fail(err, errlen,
-                        "DYNKIT_CC_TIMEOUT=%s is not a number of seconds > 0 (the time the C "
-                        "compiler may take for one model, %g s when unset)",
+                        "DYNKIT_CC_TIMEOUT=%s is not a number of seconds > 0 written in decimal "
+                        "(e.g. 30 or 2.5: the time the C compiler may take for one model, %g s "
+                        "when unset)",
                         env, DEFAULT_TIMEOUT);
     *limit = v;
     return 0;

@@ -347,11 +347,14 @@ static void resolve(lang_ctx *c, node *e, const rctx *r)
             lang_fail(c, e->pos, "%s cannot use the network sum '%s': use it in the equations, "
                       "aux outputs or events", r->what, sp->name);
         const node *j = e->args[0];
-        if (j->kind != N_NUM || j->num != floor(j->num) || j->num < 0 || j->num >= sp->n)
+        if (j->kind != N_NUM)
             lang_fail(c, j->pos, "the element of network sum '%s' must be a whole number from 0 "
-                      "to %d (write %s([j]) in an array line)%s%.15g", sp->name, sp->n - 1,
-                      sp->name, j->kind == N_NUM ? "; here it is " : "",
-                      j->kind == N_NUM ? j->num : 0.0);
+                      "to %d (write %s([j]) in an array line); here it is a formula",
+                      sp->name, sp->n - 1, sp->name);
+        if (j->num != floor(j->num) || j->num < 0 || j->num >= sp->n)
+            lang_fail(c, j->pos, "the element of network sum '%s' must be a whole number from 0 "
+                      "to %d (write %s([j]) in an array line); here it is %.15g", sp->name,
+                      sp->n - 1, sp->name, j->num);
     }
 }
 

@@ -96,13 +96,22 @@ void lang_emit_delay_prepare(lang_ctx *c, void (*expr)(lang_ctx *, const node *)
             LANG_C_CODE(c, " || lag > ");
             lang_c_num(c, m->max_delay);
         }
-        LANG_C_CODEF(c, ") {\n            snprintf(err, errlen, \"delay(%%s, ...) on line %d: "
-                        "the lag is %%g with these parameters; it must be a number from 0 "
-                        "to the maximal delay %%g (the file's @ delay=)\", ",
-                     d->pos.line);
-        lang_c_str(c, d->name);
-        LANG_C_CODE(c, ", lag, ");
-        lang_c_num(c, m->max_delay > 0 ? m->max_delay : HUGE_VAL);
+        if (m->max_delay > 0) {
+            LANG_C_CODEF(c, ") {\n            snprintf(err, errlen, \"delay(%%s, ...) on line %d: "
+                            "the lag is %%g with these parameters; it must be a number from 0 "
+                            "to the maximal delay %%g (the file's @ delay=)\", ",
+                         d->pos.line);
+            lang_c_str(c, d->name);
+            LANG_C_CODE(c, ", lag, ");
+            lang_c_num(c, m->max_delay);
+        } else {
+            LANG_C_CODEF(c, ") {\n            snprintf(err, errlen, \"delay(%%s, ...) on line %d: "
+                            "the lag is %%g with these parameters; it must be a number >= 0 "
+                            "(the file has no @ delay=, which would also bound it)\", ",
+                         d->pos.line);
+            lang_c_str(c, d->name);
+            LANG_C_CODE(c, ", lag");
+        }
         LANG_C_CODE(c, ");\n            return 1;\n        }\n    }\n");
     }
 }
@@ -150,9 +159,11 @@ void lang_emit_delay_model(lang_ctx *c, int offset, void (*expr)(lang_ctx *, con
     each_formula(m, first_call, &call);
     if (call && !(m->max_delay > 0))
         lang_warn(c, call->pos,
-                  "the file sets no '@ delay=': XPPAUT then reads every delay(x, lag) as the "
+                  "the file sets %s: XPPAUT then reads every delay(x, lag) as the "
                   "current x; dynkit keeps the history and uses the lag (write '@ delay=M', "
-                  "the longest lag, to bound the history as XPPAUT does)");
+                  "the longest lag, to bound the history as XPPAUT does)",
+                  m->max_delay_given ? "'@ delay=0', XPPAUT's default, which keeps no history"
+                                     : "no '@ delay='");
     LANG_C_CODE(c, "static double dk_history(int i, double t, const void *par, "
                    "const double *y0)\n{\n    const double *p = (const double *)par;\n"
                    "    (void)p;\n    (void)t;\n    (void)y0;\n    switch (i) {\n");

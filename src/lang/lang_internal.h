@@ -353,6 +353,7 @@ typedef struct lang_model {
     /* random numbers of the tables' formulas (ran(), normal()), drawn once in prepare */
     int n_table_draws;
     double max_delay;
+    int max_delay_given; /* an @ delay= line (delay=0 among them) */
     /* Volterra integrals (integrals.c): lang_volt, and @ vmaxpts (0: not given) */
     lvec volts;
     long vmaxpts;

@@ -456,6 +456,8 @@ int lang_old_format(lang_ctx *c, lang_line_fn fn, void *ctx)
         return 0;
     const pline first = physical(c, 0);
     int k = 0;
+    if (first.len >= 3 && memcmp(first.s, "\xef\xbb\xbf", 3) == 0)
+        k = 3; /* a UTF-8 byte order mark, as source.c skips it */
     while (k < first.len && isspace((unsigned char)first.s[k]))
         k++;
     if (k < first.len && first.s[k] == '+')

@@ -605,6 +605,7 @@ static void parse_options(lang_ctx *c, lang_lexer *lx)
                       name);
         } else if (ieqn(name, n, "delay")) {
             m->max_delay = option_number(c, name, v, vpos);
+            m->max_delay_given = 1;
             if (!(m->max_delay >= 0) || !isfinite(m->max_delay))
                 lang_fail(c, vpos, "delay (the maximal delay) must be a finite number >= 0");
         } else if (ieqn(name, n, "vmaxpts")) {

@@ -65,8 +65,11 @@ int dyn_history_push(const dyn_dense *step, void *ctx)
             h->first = 0;
         }
         if (h->count >= h->capacity && (!h->grow || h->grow(h, h->grow_ctx) ||
-                                        h->count >= h->capacity))
+                                        h->count >= h->capacity)) {
+            h->failed = 4;
+            h->fail_t = end;
             return DYN_ERR_CAPACITY;
+        }
     }
     double *b = at(h, h->count);
     b[0] = step->t0;
@@ -91,7 +94,9 @@ static double eval_block(const dyn_history *h, const double *b, int i, double t)
 
 static double refuse(dyn_history *h, int code, int i, double now, double lag)
 {
-    { /* the latest: a run that fails, fails on it */
+    /* the latest: a run that fails, fails on it; but a NaN lag that the NaN of a refused
+     * one made (the state it spoilt) does not hide that one */
+    if (!(isnan(lag) && (h->failed == 1 || h->failed == 2))) {
         h->failed = code;
         h->fail_t = now;
         h->fail_lag = lag;
@@ -105,6 +110,8 @@ double dyn_history_value(dyn_history *h, int i, double now, double t)
     if (!h)
         return NAN; /* no history attached: the model's functions return before this */
     const double lag = now - t;
+    if (isnan(lag))
+        return refuse(h, 3, i, now, lag);
     if (!(lag >= 0.0))
         return refuse(h, 2, i, now, lag);
     if (h->max_delay > 0.0 && lag > h->max_delay * (1.0 + 1e-12))
@@ -145,9 +152,20 @@ char *dyn_history_message(const dyn_history *h, const char *const *names, char *
                  name, h->fail_t, h->fail_lag, h->max_delay);
     else if (h->failed == 2)
         snprintf(buf, size,
-                 "delay(%s, ...) at t = %.17g asks for a negative lag %g (the future): a lag "
-                 "must be >= 0",
-                 name, h->fail_t, h->fail_lag);
+                 "delay(%s, ...) at t = %.17g asks for a negative lag %.17g, the value at "
+                 "t = %.17g, after the present (the future): a lag must be >= 0",
+                 name, h->fail_t, h->fail_lag, h->fail_t - h->fail_lag);
+    else if (h->failed == 3)
+        snprintf(buf, size,
+                 "delay(%s, ...) at t = %.17g asks for a lag that is not a number (NaN): the "
+                 "lag's formula gave NaN there",
+                 name, h->fail_t);
+    else if (h->failed == 4)
+        snprintf(buf, size,
+                 "out of memory for the delay history at t = %.17g: %ld steps kept (%.1f MB); "
+                 "a file's '@ delay=' (the longest lag) keeps only the steps within it",
+                 h->fail_t, h->count,
+                 (double)h->count * (double)block(h) * sizeof(double) / 1048576.0);
     else
         snprintf(buf, size, "no delay failed");
     return buf;

@@ -22,10 +22,8 @@ int dyn_markov_step(double *z, int n, const double *rates, double h, double u)
         return 0;
     const double *row = rates + (long)from * n;
     for (int j = 0; j < n; j++)
-        if (j != from && !(row[j] >= 0.0 && isfinite(row[j]))) {
-            *z = NAN;
-            return -1;
-        }
+        if (j != from && !(row[j] >= 0.0 && isfinite(row[j])))
+            return -1; /* *z as it was: the last good state shows it */
     double sum = 0.0;
     for (int j = 0; j < n; j++) {
         if (j == from)

@@ -336,9 +336,9 @@ static int jump(sde_run *r, dyn_jump_fn fn, double t, double h, double *y)
     r->res->rhs_status = st;
     r->res->fail_t = t;
     dyn_result_fail(r->res, DYN_ERR_RHS,
-                    "the jumps of the Markov states returned %d at t = %s (a transition rate "
-                    "there is negative or not finite)",
-                    st, dyn_shortest(t).s);
+                    "a transition rate of a Markov state is negative or not a number at t = %s "
+                    "(the jumps returned %d; the states are left as they were)",
+                    dyn_shortest(t).s, st);
     return 1;
 }
 

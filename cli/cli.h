@@ -168,7 +168,19 @@ typedef struct cli_run {
     const char *jac_pattern;
     dyn_model *own_model;
     dyn_sparse_pattern probed;
+    /* a Poincaré map (run_section.c): --section, else the model's @ poimap (kind
+     * DYN_POINCARE_NONE: none); section_var the state, n_states + the output, or -1 for t */
+    dyn_poincare section;
+    int section_var;
+    int section_given;    /* --section was given (none included) */
+    char *section_name;   /* owned copy of --section's variable */
 } cli_run;
+
+/* The event of run's section into ev (run_section.c): 1, 0 when the run has none, -1 out of
+ * memory. Its g reads the run (one section at a time per process). */
+int cli_section_event(const cli_run *run, dyn_event *ev);
+/* The time a crossing at t is written with: k*T for a section in t (as XPPAUT), else t. */
+double cli_section_time(const cli_run *run, double t);
 
 /* The same for a run's method: cvode takes sparse matrices only with the model's exact
  * sparse values and SUNDIALS' KLU (else dense, saying why). */

@@ -448,20 +448,28 @@ static void test_model_defaults_one_rule(void **state)
     cli_free(&r);
 }
 
-/* XPPAUT's options that do not concern a run are accepted; --verbose says so. */
+/* XPPAUT's options that a run does not use are accepted: AUTO's with a note (--verbose),
+ * the others with a warning shown always (XPPAUT's window, what dynkit does not do). */
 static void test_ignored_options_noted(void **state)
 {
     (void)state;
-    write_file("opts.ode", "x'=-x\ninit x=1\n@ axes=2, total=1\ndone\n");
+    write_file("opts.ode", "x'=-x\ninit x=1\n@ ntst=20, total=1\n@ axes=2, range=1\ndone\n");
     cli_result r = cli_in_tmpdir("run opts.ode --final --verbose");
     CHECK(r.status == 0, "%s", r.err);
-    CHECK(strstr(r.err, "opts.ode:3: option 'axes' is accepted and ignored") != NULL, "%s", r.err);
+    CHECK(strstr(r.err, "opts.ode:3: option 'ntst' is AUTO's: dynkit continue reads it") != NULL,
+          "%s", r.err);
+    CHECK(strstr(r.err, "warning: opts.ode:4: option 'axes' sets XPPAUT's window") != NULL,
+          "%s", r.err);
+    CHECK(strstr(r.err, "warning: opts.ode:4: option 'range' is read and ignored") != NULL,
+          "%s", r.err);
     double t = NAN, x = NAN;
     CHECK(sscanf(strchr(r.out, '\n') + 1, "%lf,%lf", &t, &x) == 2 && t == 1.0, "%s", r.out);
     CHECK(fabs(x - exp(-1.0)) < 1e-5, "x(1) = %.17g", x);
     cli_free(&r);
     r = cli_in_tmpdir("run opts.ode --final");
-    CHECK(r.status == 0 && strstr(r.err, "axes") == NULL, "notes only with --verbose: %s", r.err);
+    CHECK(r.status == 0 && strstr(r.err, "ntst") == NULL && strstr(r.err, "'axes'") &&
+              strstr(r.err, "'range'"),
+          "notes only with --verbose, warnings always: %s", r.err);
     cli_free(&r);
     unlink(cli_path("opts.ode"));
 }

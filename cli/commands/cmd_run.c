@@ -15,6 +15,7 @@
 
 /* Where samples go: CSV rows, or (with --final) only the latest sample kept in memory. */
 typedef struct csv_sink {
+    int section;              /* the rows are a Poincaré section's (on_event) */
     FILE *out;
     cli_table *table;    /* the rows, in the format of --output */
     const cli_run *run;
@@ -38,11 +39,15 @@ typedef struct csv_sink {
     long count;               /* samples seen */
 } csv_sink;
 
-/* Where events go: CSV rows (event,t,<states>) or lines on stderr. */
+/* Where events go: CSV rows (event,t,<states>) or lines on stderr; a Poincaré section's
+ * crossings are the rows of the table (sink). */
 typedef struct event_sink {
     FILE *out;
     const cli_run *run;
     int io_failed;
+    struct csv_sink *sink;
+    long crossings;      /* of the section so far */
+    double last_cross;   /* the time of the last one (poimap=period) */
 } event_sink;
 
 /* Warning w at time t, once per run (w is a constant string: compared by address). */
@@ -102,6 +107,7 @@ static long expected_samples(const cli_run *run, const dyn_grid *grid, int at_st
     if (run->final_only)
         return 1;
     if (run->n_events > 0 || cli_run_resets(run) > 0 || (at_steps && !run->times) ||
+        run->section.kind != DYN_POINCARE_NONE ||
         run->model->t_trans > run->t0)
         return -1;
     return run->times ? run->n_times : grid->samples;
@@ -117,6 +123,8 @@ static int on_sample(long k, double t, const double *y, void *ctx)
         const cli_run *run = sink->run;
         cli_progress_update(t, (t - run->t0) / (run->t1 - run->t0), sink->progress);
     }
+    if (sink->section)
+        return cli_stop_signal != 0; /* the rows are the section's crossings */
     if (sink->last_k < 0) { /* keep it in case it turns out to be the last one */
         memcpy(sink->pending_y, y, (size_t)n * sizeof *y);
         sink->pending_t = t;
@@ -130,11 +138,41 @@ static int on_sample(long k, double t, const double *y, void *ctx)
     return write_sample(sink, t, y);
 }
 
+/* A crossing of the Poincaré section: a row (t, the states) as XPPAUT writes it: t = k*T
+ * for a section in t, the time since the last crossing for poimap=period (none for the
+ * first); none before the model's transient. Every crossing is written (--every and
+ * @ nout thin samples). */
+static int on_crossing(event_sink *es, double t, const double *y)
+{
+    const cli_run *run = es->run;
+    csv_sink *sink = es->sink;
+    if (t < run->model->t_trans)
+        return 0;
+    const long k = es->crossings++;
+    double row_t = cli_section_time(run, t);
+    if (run->section.kind == DYN_POINCARE_PERIOD) {
+        const double since = t - es->last_cross;
+        es->last_cross = t;
+        if (k == 0)
+            return 0;
+        row_t = since;
+    }
+    if (run->final_only) { /* the last crossing is written after the solve */
+        memcpy(sink->pending_y, y, (size_t)run->model->n_states * sizeof *y);
+        sink->pending_t = row_t;
+        sink->pending = 1;
+        return 0;
+    }
+    return write_sample(sink, row_t, y);
+}
+
 static int on_event(int index, double t, const double *y, int direction, void *ctx)
 {
     event_sink *es = ctx;
     const cli_run *run = es->run;
     const dyn_model *m = run->model;
+    if (index == run->n_events)
+        return on_crossing(es, t, y);
     const char *name = run->events[index].name;
     if (es->out) {
         if (fprintf(es->out, "%s,", name) < 0 ||
@@ -265,8 +303,8 @@ int cli_cmd_run(int argc, char **argv)
     }
     const dyn_model *m = run.model;
     const int n = m->n_states;
-    const int general =
-        dyn_method_is_adaptive(run.method) || run.n_events > 0 || cli_run_resets(&run) > 0;
+    const int general = dyn_method_is_adaptive(run.method) || run.n_events > 0 ||
+                        cli_run_resets(&run) > 0 || run.section.kind != DYN_POINCARE_NONE;
     dyn_grid grid = {0};
     char why[256], line[160];
     const int at_steps = cli_run_at_steps(&run);
@@ -352,7 +390,8 @@ int cli_cmd_run(int argc, char **argv)
                      .extra = buffers + n,
                      .pending_y = buffers + n + m->n_outputs,
                      .last_t = -HUGE_VAL};
-    event_sink es = {.out = evout, .run = &run};
+    event_sink es = {.out = evout, .run = &run, .sink = &sink};
+    sink.section = run.section.kind != DYN_POINCARE_NONE;
     if (!(sink.table = table = cli_table_open_run(out, format, &run, run.header, ferr,
                                                   sizeof ferr))) {
         fprintf(stderr, "dynkit: error: --output: %s\n", ferr);
@@ -413,7 +452,10 @@ int cli_cmd_run(int argc, char **argv)
         rc = cli_usage_error("run", "%s", res.message);
         goto done;
     }
-    if (run.final_only) {
+    if (sink.section) {
+        if (sink.pending) /* --final: the last crossing */
+            write_sample(&sink, sink.pending_t, sink.pending_y);
+    } else if (run.final_only) {
         /* the last sample; after a failure, the last good state */
         if (general && res.status == DYN_OK && sink.pending)
             write_sample(&sink, sink.pending_t, sink.pending_y);
@@ -479,8 +521,10 @@ int cli_cmd_run(int argc, char **argv)
                 "dynkit: warning: %s; a method for stiff problems would need far fewer steps\n",
                 res.stiff_message);
     if (res.stopped_by_event && !run.quiet)
-        fprintf(stderr, "dynkit: the run stopped at event %s, t = %s\n",
-                run.events[res.event_index].name, CLI_NUM(res.t));
+        fprintf(stderr, "dynkit: the run stopped at %s%s, t = %s\n",
+                res.event_index < run.n_events ? "event " : "the section's first crossing",
+                res.event_index < run.n_events ? run.events[res.event_index].name : "",
+                CLI_NUM(res.t));
     if (run.stats)
         fprintf(stderr, "%s\n", cli_stats_line(&run, &res, line, sizeof line));
     if (cli_stop_signal) {

@@ -84,6 +84,15 @@ static void run_options_common(FILE *out)
           "                       declares it terminal, or with :stop (:continue: never).\n"
           "                       Events that reset the state (XPPAUT's global) take part in\n"
           "                       every run; --event NAME reports them too\n"
+          "Poincare maps (any method but cvode; docs/analysis.md, \"Poincare maps\"):\n"
+          "  --section SPEC       write the crossings of a section instead of the samples\n"
+          "                       (default: the model file's @ poimap): NAME=VALUE[:+|:-|:both]\n"
+          "                       a state or output crossing VALUE rising (default), falling\n"
+          "                       or both ways; t=T every T (a stroboscope); max:NAME,\n"
+          "                       min:NAME, extrema:NAME a state's maxima, minima or both;\n"
+          "                       period:NAME=VALUE[:+|:-] the time since the last crossing\n"
+          "                       in the column t; :stop ends the run at the first crossing;\n"
+          "                       none: the samples, whatever the model file asks\n"
           "Noise (models with wiener, normal or ran; docs/solvers.md, \"Noise\"):\n"
           "  --seed S             the noise of the run, a whole number 0..2^64-1 (default 0):\n"
           "                       the same seed gives the same noise on any machine\n"
@@ -135,7 +144,8 @@ static int unknown_option(const char *command, const char *arg)
         "--forces", "--interp", "--output", "--header",      "--every",        "--trace",
         "--rtol",   "--atol",  "--times",  "--max-step",     "--initial-step", "--max-steps",
         "--event",  "--events-output",     "--stats",        "--final",        "--outputs",
-        "--quiet",  "--compare", "--table", "--seed", "--project-init", "--jac-pattern"};
+        "--quiet",  "--compare", "--table", "--seed", "--project-init", "--jac-pattern",
+        "--section"};
     char word[64];
     snprintf(word, sizeof word, "%s%.*s", strncmp(arg, "--", 2) == 0 ? "" : "--",
              (int)strcspn(arg, "="), arg);
@@ -269,6 +279,9 @@ static int parse_option(const char *command, int argc, char **argv, int *i, cli_
         *given |= GIVEN_MAX_STEPS;
     } else if (OPT("event")) {
         if (r < 0 || cli_add_event(command, v, run))
+            return CLI_USAGE;
+    } else if (OPT("section")) {
+        if (r < 0 || cli_parse_section(command, v, run))
             return CLI_USAGE;
     } else if (OPT("events-output")) {
         if (r < 0)
@@ -493,6 +506,26 @@ static int check_method_options(const char *command, cli_run *run, unsigned give
     return CLI_OK;
 }
 
+/* A Poincaré section is an event of the run: the methods and models that locate events. */
+static int check_section_options(const char *command, cli_run *run)
+{
+    if (run->section.kind == DYN_POINCARE_NONE)
+        return CLI_OK;
+    const char *from = run->section_given ? "--section" : "the model's @ poimap";
+    if (cli_method_is_cvode(run->method))
+        return cli_usage_error(command, "%s: the section is located as an event, and cvode "
+                               "runs without events here: use rodas4 (stiff) or dp45", from);
+    if (dyn_method_is_map(run->method))
+        return cli_usage_error(command, "%s: a discrete map has no crossings between its "
+                               "steps to locate", from);
+    if (run->model->volterra)
+        return cli_usage_error(command, "%s: the volterra method does not locate events", from);
+    if (cli_sde_method(run->method) == DYN_SDE_SRIW1)
+        return cli_usage_error(command, "%s: --method sriw1 does not locate events: use rkmil",
+                               from);
+    return CLI_OK;
+}
+
 /* --verbose: the method and tolerances of the run and where each came from. */
 static void note_method(const cli_run *run, unsigned given)
 {
@@ -661,6 +694,10 @@ int cli_run_parse_with(const char *command, int argc, char **argv, int other_ada
     if (rc == CLI_OK)
         rc = check_method_options(command, run, given, other_adaptive);
     if (rc == CLI_OK)
+        rc = cli_section_from_model(command, run);
+    if (rc == CLI_OK)
+        rc = check_section_options(command, run);
+    if (rc == CLI_OK)
         tolerance_defaults(run, given);
     return rc;
 }
@@ -675,6 +712,7 @@ void cli_run_free(cli_run *run)
     free(run->times);
     free(run->events);
     free(run->own_model);
+    cli_section_free(run);
     dyn_sparse_pattern_free(&run->probed);
     run->own_model = NULL;
     run->par = NULL;

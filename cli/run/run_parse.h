@@ -44,6 +44,11 @@ int cli_parse_tolerance(const char *command, const char *opt, const char *text, 
 int cli_parse_times(const char *command, const char *text, cli_run *run);
 /* --event NAME[:stop] of the model into run. */
 int cli_add_event(const char *command, const char *text, cli_run *run);
+/* --section SPEC into run (run_section.c), and the model's @ poimap when --section was not
+ * given; cli_section_free releases what they keep. */
+int cli_parse_section(const char *command, const char *text, cli_run *run);
+int cli_section_from_model(const char *command, cli_run *run);
+void cli_section_free(cli_run *run);
 /* A finite number > 0 for option opt. */
 int cli_parse_positive(const char *command, const char *opt, const char *text, double *out);
 /* --forces: read the table, check its columns, attach it to the parameters, and take the

@@ -5,6 +5,7 @@
  * front door does; the tool adds its trace printer, its warnings on stderr and the backends
  * it is built with. And the counts of a run as one line. */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
@@ -35,8 +36,21 @@ int cli_run_solve(const cli_run *run, long every, dyn_output_fn output, void *ou
     o.max_step = run->max_step;
     o.initial_step = run->initial_step;
     o.max_steps = run->max_steps;
-    o.events = run->events;
-    o.n_events = run->n_events;
+    /* the Poincaré section after the asked events: reported with index run->n_events */
+    dyn_event *events = NULL;
+    const int n_events = run->n_events + (run->section.kind != DYN_POINCARE_NONE);
+    if (n_events > run->n_events) {
+        if (!(events = malloc((size_t)n_events * sizeof *events)))
+            return -1;
+        if (run->n_events)
+            memcpy(events, run->events, (size_t)run->n_events * sizeof *events);
+        if (cli_section_event(run, &events[run->n_events]) < 0) {
+            free(events);
+            return -1;
+        }
+    }
+    o.events = events ? events : run->events;
+    o.n_events = n_events;
     o.seed = run->seed;
     o.stream = run->stream;
     o.every = every;
@@ -51,7 +65,9 @@ int cli_run_solve(const cli_run *run, long every, dyn_output_fn output, void *ou
     o.trace_steps = run->trace_steps;
     o.warn = warn_stderr;
     o.backends = cli_run_backends();
-    return dyn_run(run->model, run->par, run->y0, &o, y, res);
+    const int rc = dyn_run(run->model, run->par, run->y0, &o, y, res);
+    free(events);
+    return rc;
 }
 
 char *cli_stats_line(const cli_run *run, const dyn_result *res, char *buf, size_t size)

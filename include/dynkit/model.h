@@ -79,6 +79,22 @@ typedef enum dyn_interp {
 typedef int (*dyn_set_input_fn)(void *par, const double *table, long rows, dyn_interp interp,
                                 char *err, size_t errlen);
 
+/* A Poincaré map asked for by the model (XPPAUT's @ poimap, poivar, poipln, poisgn,
+ * poistop): a run writes one row per crossing of the section instead of its samples. */
+typedef enum dyn_poincare_kind {
+    DYN_POINCARE_NONE = 0,
+    DYN_POINCARE_SECTION = 1, /* var crosses plane (var "t": t = k * plane, a stroboscope) */
+    DYN_POINCARE_EXTREMUM = 2, /* local maxima (sign 1), minima (-1) or both (0) of a state */
+    DYN_POINCARE_PERIOD = 3   /* as SECTION, t replaced by the time since the last crossing */
+} dyn_poincare_kind;
+typedef struct dyn_poincare {
+    int kind;          /* dyn_poincare_kind */
+    const char *var;   /* a state, an output, or "t" */
+    double plane;      /* the section's value (the period of a section in t) */
+    int sign;          /* +1 rising, -1 falling, 0 both (extrema: maxima, minima, both) */
+    int stop;          /* 1: the run stops at the first crossing */
+} dyn_poincare;
+
 typedef struct dyn_model {
     const char *name;          /* e.g. "pendulum" */
     const char *title;         /* one line */
@@ -187,6 +203,8 @@ typedef struct dyn_model {
     /* 1: the events are XPPAUT's globals (a model file's `global` lines), fired at XPPAUT's
      * instants (dyn_solve_opts.xppaut_globals, solve.h); 0: located to rounding. */
     int xppaut_globals;
+    /* The Poincaré map of a default run (kind DYN_POINCARE_NONE: none). */
+    dyn_poincare poincare;
 } dyn_model;
 
 /* A model whose right-hand side reads its own past (dynkit/delay.h): its parameter struct

@@ -12,6 +12,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "dynkit/model.h" /* DYN_POINCARE_* */
 #include "dynkit/sde.h"
 #include "lang/lang_internal.h"
 
@@ -960,6 +961,35 @@ static const char *display_name(lang_ctx *c, const char *name, lpos pos, const c
     return NULL;
 }
 
+/* The variable of @ poimap: poivar (a state, an aux output, or t for a section), else the
+ * first state, as XPPAUT takes it; a name that is none of them is an error (a section of
+ * another variable would be written without a word). */
+static void poincare_var(lang_ctx *c)
+{
+    lang_model *m = &c->m;
+    if (!m->poivar) {
+        if (m->states.n == 0)
+            lang_fail(c, m->poimap_pos, "poimap needs a state (the model has none)");
+        m->poivar = LVEC_AT(m->states, lang_state, 0).name;
+        return;
+    }
+    const lang_sym *s = lang_lookup(c, m->poivar);
+    if (same_name(m->poivar, "t")) {
+        if (m->poimap == DYN_POINCARE_EXTREMUM)
+            lang_fail(c, m->poivar_pos, "poivar=t: the extrema of poimap=max are a state's");
+        m->poivar = "t";
+    } else if (s && s->kind == SYM_STATE) {
+        m->poivar = LVEC_AT(m->states, lang_state, s->index).name;
+    } else if (s && s->kind == SYM_AUX && m->poimap != DYN_POINCARE_EXTREMUM) {
+        m->poivar = LVEC_AT(m->auxs, lang_formula, s->index).name;
+    } else {
+        const char *near = nearest_symbol(c, m->poivar, NULL, 0);
+        lang_fail(c, m->poivar_pos, "poivar=%s: name a state%s%s%s%s", m->poivar,
+                  m->poimap == DYN_POINCARE_EXTREMUM ? "" : ", an aux output or t",
+                  near ? " (did you mean '" : "", near ? near : "", near ? "'?)" : "");
+    }
+}
+
 void lang_alg_uses(lang_ctx *c, const node *e, unsigned char *used, unsigned char *fix_seen,
                    unsigned char *fun_seen)
 {
@@ -1266,6 +1296,8 @@ void lang_check(lang_ctx *c)
         m->xp = display_name(c, m->xp, m->xp_pos, "xp");
     if (m->yp)
         m->yp = display_name(c, m->yp, m->yp_pos, "yp");
+    if (m->poimap)
+        poincare_var(c);
 }
 
 int lang_resolve_call(lang_ctx *c, node *e)

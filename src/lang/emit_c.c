@@ -1878,6 +1878,13 @@ char *lang_emit_c(lang_ctx *c)
         lang_c_num(c, m->window[k]);
     }
     LANG_C_CODE(c, "}");
+    if (m->poimap) {
+        LANG_C_CODEF(c, ",\n    .poincare = {%d, ", m->poimap);
+        lang_c_str(c, m->poivar);
+        LANG_C_CODE(c, ", ");
+        lang_c_num(c, m->poipln);
+        LANG_C_CODEF(c, ", %d, %d}", m->poisgn, m->poistop);
+    }
     LANG_C_CODE(c, ",\n    .source = ");
     lang_c_str(c, c->path);
     LANG_C_CODE(c, ",\n    .t_trans = ");

@@ -327,6 +327,11 @@ typedef struct lang_model {
     const char *meth_name;   /* meth's value as written */
     const char *xp, *yp;
     lpos xp_pos, yp_pos;
+    /* XPPAUT's Poincaré map (@ poimap, poivar, poipln, poisgn, poistop; dyn_poincare) */
+    int poimap, poisgn, poistop;
+    const char *poivar;
+    lpos poivar_pos, poimap_pos;
+    double poipln;
     /* @ xlo, xhi, ylo, yhi (window: all four 0 when none given), and `#: t [UNIT]` */
     double window[4];
     const char *time_unit;

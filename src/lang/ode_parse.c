@@ -15,6 +15,7 @@
 #include <strings.h>
 
 #include "dynkit/ode.h" /* DYN_EVENT_JUMPS */
+#include "dynkit/model.h" /* DYN_POINCARE_* */
 #include "dynkit/sde.h"
 #include "lang/lang_internal.h"
 
@@ -500,6 +501,45 @@ static void set_method(lang_ctx *c, const char *v, lpos pos)
         lang_note(c, pos, "meth=%s runs as dynkit's %s", v, methods[found].method);
 }
 
+/* An @ option a run does not use (XPPAUT's manual, "Options"): AUTO's settings are read by
+ * `dynkit continue` (a note); the others get a warning, as nothing a file asks for is left
+ * out without a word: XPPAUT's window and its colours and fonts, which dynkit does not
+ * draw, and what dynkit does not do at all (range integrations, stochastic averages, a
+ * torus's folding, ...). */
+static void option_not_used(lang_ctx *c, lpos pos, const char *name)
+{
+    static const char *const auto_options[] = {
+        "ntst",     "nmax",     "npr",      "ncol",     "ds",     "dsmin",   "dsmax",
+        "parmin",   "parmax",   "normmin",  "normmax",  "epsl",   "epsu",    "epss",
+        "autoxmin", "autoxmax", "autoymin", "autoymax", "autovar"};
+    static const char *const window_options[] = {
+        "zp",       "zplot",  "xmin",      "xmax",   "ymin",     "ymax",    "zmin",
+        "zmax",     "axes",   "nplot",     "phi",    "theta",    "bell",    "back",
+        "smallfont", "bigfont", "smc",     "umc",    "lt",       "but",     "colormap",
+        "grads",    "xnc",    "ync",       "nmesh",  "ps_color", "ps_font", "ps_fsize",
+        "ps_lw",    "height", "width",     "plotfmt", "autoeval"};
+    const size_t n = strlen(name);
+    for (size_t i = 0; i < sizeof auto_options / sizeof auto_options[0]; i++)
+        if (ieqn(name, n, auto_options[i])) {
+            lang_note(c, pos, "option '%s' is AUTO's: dynkit continue reads it; a run does not "
+                      "use it", name);
+            return;
+        }
+    int window = 0;
+    for (size_t i = 0; i < sizeof window_options / sizeof window_options[0]; i++)
+        window |= ieqn(name, n, window_options[i]);
+    /* xp2..xp8, yp2.., zp2..: the curves of XPPAUT's other plots */
+    if (n >= 3 && strchr("xyzXYZ", name[0]) && tolower((unsigned char)name[1]) == 'p' &&
+        isdigit((unsigned char)name[2]))
+        window = 1;
+    if (window)
+        lang_warn(c, pos, "option '%s' sets XPPAUT's window, which dynkit does not draw "
+                  "(dynkit plot draws xp, yp in xlo..xhi, ylo..yhi): ignored", name);
+    else
+        lang_warn(c, pos, "option '%s' is read and ignored: dynkit does not do what it asks "
+                  "(docs/model-files.md, \"Options\")", name);
+}
+
 static void parse_options(lang_ctx *c, lang_lexer *lx)
 {
     for (;;) {
@@ -614,11 +654,33 @@ static void parse_options(lang_ctx *c, lang_lexer *lx)
                 lang_fail(c, vpos, "vmaxpts (the grid points the Volterra integrals keep) must "
                                    "be a whole number from 1 to 10000000");
             m->vmaxpts = (long)k;
+        } else if (ieqn(name, n, "poimap")) {
+            /* XPPAUT reads the first letter: section, maxmin (max), period */
+            const int k = tolower((unsigned char)v[0]);
+            m->poimap = k == 's' ? DYN_POINCARE_SECTION
+                        : k == 'm' ? DYN_POINCARE_EXTREMUM
+                        : k == 'p' ? DYN_POINCARE_PERIOD : -1;
+            if (m->poimap < 0)
+                lang_fail(c, vpos, "poimap=%s: give section, max (maxmin) or period", v);
+            m->poimap_pos = pos;
+        } else if (ieqn(name, n, "poivar")) {
+            m->poivar = v;
+            m->poivar_pos = vpos;
+        } else if (ieqn(name, n, "poipln")) {
+            m->poipln = option_number(c, name, v, vpos);
+            if (!isfinite(m->poipln))
+                lang_fail(c, vpos, "poipln must be a finite number");
+        } else if (ieqn(name, n, "poisgn") || ieqn(name, n, "poistop")) {
+            const double k = option_number(c, name, v, vpos);
+            if (ieqn(name, n, "poistop") ? !(k == 0 || k == 1) : !(k == -1 || k == 0 || k == 1))
+                lang_fail(c, vpos, "%s must be %s", name,
+                          ieqn(name, n, "poistop") ? "0 or 1" : "1, -1 or 0");
+            *(ieqn(name, n, "poistop") ? &m->poistop : &m->poisgn) = (int)k;
         } else if (ieqn(name, n, "maxstor")) {
             lang_note(c, pos, "option 'maxstor' is accepted and ignored (dynkit streams its "
                       "samples; nothing to store)");
         } else {
-            lang_note(c, pos, "option '%s' is accepted and ignored", name);
+            option_not_used(c, pos, name);
         }
     }
 }
@@ -1354,6 +1416,7 @@ void lang_parse_model(lang_ctx *c)
     m->total = 20.0;
     m->dt = 0.05;
     m->nout = 1;
+    m->poisgn = 1; /* XPPAUT's default: crossings upwards, maxima */
     pstate ps = {0};
     if (c->stmt_hook || !lang_old_format(c, on_line, &ps))
         lang_lines(c, on_line, &ps);

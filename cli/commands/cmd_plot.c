@@ -115,6 +115,9 @@ int cli_cmd_plot(int argc, char **argv)
             plot_help();
             return CLI_OK;
         }
+    for (int i = 1; i < argc; i++)
+        if (cli_flag(argv[i], "phase-plane"))
+            return cli_plot_phase_plane(argc, argv);
     /* a sweep's table (dynkit sweep --output FILE.csv) rather than a model */
     const char *dot = argc > 0 ? strrchr(argv[0], '.') : NULL;
     if (dot && (strcmp(dot, ".csv") == 0 || strcmp(dot, ".json") == 0))

@@ -191,6 +191,9 @@ int cli_mech_scene_open(const char *model_spec, const dyn_model *m, dyn_mech_sce
  * page's JSON; 0 or non-zero (out of memory, write error). */
 int cli_json_mech(cli_json *j, const dyn_mech_scene *sc, const cli_view *v);
 
+/* dynkit plot MODEL --phase-plane (phase_plot.c). */
+int cli_plot_phase_plane(int argc, char **argv);
+
 /* Subcommands. */
 int cli_cmd_animate(int argc, char **argv);
 int cli_cmd_plot(int argc, char **argv);

@@ -8,6 +8,7 @@
       const data = JSON.parse(document.getElementById('dynkit-data').textContent);
       if (data.kind === 'report') DK.buildReport(data);
       else if (data.kind === 'sweep') DK.buildSweep(data);
+      else if (data.kind === 'phase') DK.buildPhase(data);
       else DK.buildAnimate(data);
       document.body.dataset.ready = '1';
     } catch (e) {

@@ -14,7 +14,7 @@
  * - dynkit plot --phase-plane: an SVG with the nullclines, the field, the trajectories and
  *   the equilibria's legend; --html a page with the table; Lorenz's x, y plane at z = 1
  *   (examples/models/lorenz.ode) a saddle at the origin (det = sigma (2 - rho) < 0); bad
- *   input named. */
+ *   input named; the examples of `dynkit plot --help` run. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -292,6 +292,33 @@ static void test_cli_phase_plane(void **state)
     unlink(cli_path("fhn.html"));
 }
 
+/* The phase-plane examples of `dynkit plot --help` run (examples/ from the source tree). */
+static void test_help_examples(void **state)
+{
+    (void)state;
+    cli_result h = cli("plot --help");
+    CHECK(h.status == 0 && strstr(h.out, "--phase-plane"), "%s", h.err);
+    int ran = 0;
+    for (char *line = h.out; line && *line;) {
+        char *end = strchr(line, '\n');
+        if (end)
+            *end = '\0';
+        const char *cmd = strstr(line, "dynkit plot examples/");
+        if (cmd && strstr(cmd, "--phase-plane")) {
+            char args[1024];
+            const char *rest = cmd + strlen("dynkit plot ");
+            snprintf(args, sizeof args, "plot %s/%s", DYNKIT_SOURCE_DIR, rest);
+            cli_result r = cli_in_tmpdir("%s", args);
+            CHECK(r.status == 0, "%s: %s", args, r.err);
+            cli_free(&r);
+            ran++;
+        }
+        line = end ? end + 1 : NULL;
+    }
+    CHECK(ran == 2, "%d examples", ran);
+    cli_free(&h);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -299,6 +326,7 @@ int main(void)
         cmocka_unit_test(test_van_der_pol_lienard),
         cmocka_unit_test(test_types),
         cmocka_unit_test(test_cli_phase_plane),
+        cmocka_unit_test(test_help_examples),
     };
     return cmocka_run_group_tests(tests, cli_setup, cli_remove_tmpdir);
 }

@@ -14,7 +14,10 @@
  * - dynkit plot --phase-plane: an SVG with the nullclines, the field, the trajectories and
  *   the equilibria's legend; --html a page with the table; Lorenz's x, y plane at z = 1
  *   (examples/models/lorenz.ode) a saddle at the origin (det = sigma (2 - rho) < 0); bad
- *   input named; the examples of `dynkit plot --help` run. */
+ *   input named; the examples of `dynkit plot --help` run;
+ * - the maxima of a damped oscillator x'' + 2 zeta x' + x = 0 (run --section max:x): the
+ *   ratio of successive ones exp(-2 pi zeta / sqrt(1 - zeta^2)) to 1e-9; plot --return-map
+ *   draws one dot per pair of them and the diagonal. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -292,7 +295,8 @@ static void test_cli_phase_plane(void **state)
     unlink(cli_path("fhn.html"));
 }
 
-/* The phase-plane examples of `dynkit plot --help` run (examples/ from the source tree). */
+/* The phase-plane and section examples of `dynkit plot --help` run (examples/ from the
+ * source tree). */
 static void test_help_examples(void **state)
 {
     (void)state;
@@ -304,7 +308,7 @@ static void test_help_examples(void **state)
         if (end)
             *end = '\0';
         const char *cmd = strstr(line, "dynkit plot examples/");
-        if (cmd && strstr(cmd, "--phase-plane")) {
+        if (cmd && (strstr(cmd, "--phase-plane") || strstr(cmd, "--section"))) {
             char args[1024];
             const char *rest = cmd + strlen("dynkit plot ");
             snprintf(args, sizeof args, "plot %s/%s", DYNKIT_SOURCE_DIR, rest);
@@ -315,8 +319,50 @@ static void test_help_examples(void **state)
         }
         line = end ? end + 1 : NULL;
     }
-    CHECK(ran == 2, "%d examples", ran);
+    CHECK(ran == 4, "%d examples", ran);
     cli_free(&h);
+}
+
+static void test_return_map(void **state)
+{
+    (void)state;
+    const double zeta = 0.05;
+    cli_write_file("damped.ode", "x'=v\nv'=-2*zeta*v-x\npar zeta=0.05\ninit x=1,v=0\n"
+                                 "@ total=100\ndone\n");
+    cli_result r = cli_in_tmpdir("run damped.ode --section max:x --rtol 1e-12 --atol 1e-14");
+    CHECK(r.status == 0, "%s", r.err);
+    double x[64];
+    int n = 0;
+    for (char *line = strchr(r.out, '\n'); line && n < 64; line = strchr(line + 1, '\n')) {
+        double t, xv, vv;
+        if (sscanf(line + 1, "%lf,%lf,%lf", &t, &xv, &vv) == 3)
+            x[n++] = xv;
+    }
+    const double ratio = exp(-2 * DYN_PI * zeta / sqrt(1 - zeta * zeta));
+    double worst = 0;
+    for (int k = 0; k + 1 < n; k++)
+        worst = fmax(worst, fabs(x[k + 1] / x[k] - ratio));
+    print_message("damped oscillator: %d maxima, successive ratios within %.1e of %.12f\n", n,
+                  worst, ratio);
+    CHECK(n == 15 && worst < 1e-9, "%d maxima, %g", n, worst);
+    cli_free(&r);
+    r = cli_in_tmpdir("plot damped.ode --section max:x --y x --return-map -o map.svg");
+    CHECK(r.status == 0, "%s", r.err);
+    char *svg = cli_read_file(cli_path("map.svg"), NULL);
+    long dots = 0;
+    for (const char *p = svg; p && (p = strstr(p, "h0")) != NULL; p += 2)
+        dots++;
+    /* the dots of the crossings' pairs and three in the legend's sample */
+    CHECK(svg && strstr(svg, ">crossings<") && strstr(svg, ">diagonal<") &&
+              strstr(svg, ">x_n+1<") && dots == (n - 1) + 3,
+          "%ld dots for %d maxima", dots, n);
+    free(svg);
+    cli_free(&r);
+    r = cli_in_tmpdir("plot damped.ode --y x --return-map -o map.svg");
+    CHECK(r.status == 2 && strstr(r.err, "give --section SPEC"), "%s", r.err);
+    cli_free(&r);
+    unlink(cli_path("damped.ode"));
+    unlink(cli_path("map.svg"));
 }
 
 int main(void)
@@ -327,6 +373,7 @@ int main(void)
         cmocka_unit_test(test_types),
         cmocka_unit_test(test_cli_phase_plane),
         cmocka_unit_test(test_help_examples),
+        cmocka_unit_test(test_return_map),
     };
     return cmocka_run_group_tests(tests, cli_setup, cli_remove_tmpdir);
 }

@@ -175,6 +175,12 @@ int cli_cmd_animate(int argc, char **argv)
     cli_ani ani;
     memset(&ani, 0, sizeof ani);
     int rc = cli_view_parse("animate", n_args, args, extra, extra_values, &v);
+    /* the page plays the run: a Poincaré section is drawn by dynkit plot --section */
+    if (rc == CLI_OK && v.run.section_given && v.run.section.kind != DYN_POINCARE_NONE)
+        rc = cli_usage_error("animate", "--section is not accepted here: the page plays the "
+                                        "run (dynkit plot --section draws the crossings)");
+    if (rc == CLI_OK)
+        v.run.section.kind = DYN_POINCARE_NONE; /* a model file's @ poimap is run's */
     const int homework = rc == CLI_OK && cli_animate_homework_applies(&v, n_args, args);
     if (rc == CLI_OK && no_ani && extra_values[0])
         rc = cli_usage_error("animate", "--ani and --no-ani contradict each other");

@@ -3,6 +3,7 @@
  * states or outputs against t or another state. */
 #include <errno.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "util/out_file.h"
@@ -34,6 +35,12 @@ static void plot_help(void)
          "  dynkit plot vanderpol --y y1,y2 --output vdp.svg\n"
          "  dynkit plot vanderpol --x y1 --y y2 --compare euler --compare heun --output phase.svg\n"
          "  dynkit plot pendulum --tspan 0:10 --step 0.01 --method rk4 --y energy --output e.svg\n"
+         "\n"
+         "A Poincare section (--section SPEC, or a model file's @ poimap) draws its crossings\n"
+         "as dots; --return-map draws one --y NAME's crossings NAME_n against NAME_n+1 with\n"
+         "the diagonal (Lorenz's map of the successive maxima of z):\n"
+         "  dynkit plot examples/models/duffing.ode --section t=2pi/1.2 --tspan 0:1000 --x x --y v --output strobe.svg\n"
+         "  dynkit plot examples/models/lorenz.ode --section max:z --tspan 0:100 --y z --return-map --output lorenz-map.svg\n"
          "\n"
          "The phase plane of two states (the others held at the initial state):\n"
          "  dynkit plot MODEL --phase-plane [--x NAME --y NAME] [--start NAME=V,NAME=V]...\n"
@@ -140,7 +147,25 @@ int cli_cmd_plot(int argc, char **argv)
     static const char *const extra[] = {"y", "x", "title", NULL};
     const char *values[3];
     cli_view v;
-    int rc = cli_view_parse("plot", argc, argv, extra, values, &v);
+    /* --return-map: NAME_n against NAME_n+1 of a section's crossings */
+    int return_map = 0, n_args = 0;
+    char **args = calloc((size_t)argc + 1, sizeof *args);
+    if (!args) {
+        fprintf(stderr, "dynkit: error: out of memory\n");
+        return CLI_FAILED;
+    }
+    for (int i = 0; i < argc; i++)
+        if (i > 0 && cli_flag(argv[i], "return-map"))
+            return_map = 1;
+        else
+            args[n_args++] = argv[i];
+    int rc = cli_view_parse("plot", n_args, args, extra, values, &v);
+    free(args);
+    const int section = rc == CLI_OK && v.run.section.kind != DYN_POINCARE_NONE;
+    if (rc == CLI_OK && return_map && (!section || values[1]))
+        rc = cli_usage_error("plot", "--return-map draws a section's crossings NAME_n against "
+                                     "NAME_n+1: give --section SPEC (or a file with @ poimap) "
+                                     "and one --y NAME, without --x");
     const dyn_model *m = v.run.model;
     int ycols[MAX_Y], n_y = 0, xcol = 0, n_x = 1;
     char names[1024];
@@ -149,6 +174,8 @@ int cli_cmd_plot(int argc, char **argv)
                              cli_series_column_names(m, names, sizeof names));
     if (rc == CLI_OK)
         rc = parse_names("y", values[0], m, ycols, MAX_Y, &n_y);
+    if (rc == CLI_OK && return_map && n_y != 1)
+        rc = cli_usage_error("plot", "--return-map takes one --y NAME, not %d", n_y);
     if (rc == CLI_OK && values[1])
         rc = parse_names("x", values[1], m, &xcol, 1, &n_x);
     static const char *const svg[] = {".svg", NULL};
@@ -177,6 +204,56 @@ int cli_cmd_plot(int argc, char **argv)
             snprintf(title + strlen(title), sizeof title - strlen(title), " | %s",
                      v.series[k].label);
         axis_label(m, &xcol, 1, xlabel, sizeof xlabel);
+        if (section) {
+            const dyn_poincare *sec = &v.run.section;
+            snprintf(title + strlen(title), sizeof title - strlen(title), "; %s %s%s%s",
+                     sec->kind == DYN_POINCARE_EXTREMUM
+                         ? (sec->sign > 0 ? "maxima of" : sec->sign < 0 ? "minima of"
+                                                                        : "extrema of")
+                         : sec->kind == DYN_POINCARE_PERIOD ? "periods at" : "section",
+                     sec->var, sec->kind == DYN_POINCARE_EXTREMUM ? "" : " = ",
+                     sec->kind == DYN_POINCARE_EXTREMUM ? "" : CLI_NUM(sec->plane));
+        }
+        if (return_map) {
+            /* NAME_n against NAME_n+1: the same column, one row apart; and the diagonal */
+            static cli_svg_plot rm;
+            static char rx[256], ry[256];
+            static double diag[4];
+            memset(&rm, 0, sizeof rm);
+            const char *name = cli_series_column_name(m, ycols[0]);
+            snprintf(rx, sizeof rx, "%s_n", name);
+            snprintf(ry, sizeof ry, "%s_n+1", name);
+            rm.title = values[2] ? values[2] : title;
+            rm.xlabel = rx;
+            rm.ylabel = ry;
+            double lo = INFINITY, hi = -INFINITY;
+            for (int k = 0; k < v.n_series; k++) {
+                const cli_series *s = &v.series[k];
+                for (long r = 0; r < s->rows; r++) {
+                    const double val = s->data[r * s->cols + ycols[0]];
+                    if (isfinite(val)) {
+                        lo = fmin(lo, val);
+                        hi = fmax(hi, val);
+                    }
+                }
+                if (s->rows > 1 && rm.n_lines < CLI_SVG_MAX_LINES - 1)
+                    rm.lines[rm.n_lines++] =
+                        (cli_svg_line){v.n_series == 1 ? "crossings" : s->label,
+                                       s->data + ycols[0], s->data + s->cols + ycols[0],
+                                       s->rows - 1, s->cols, 1, NULL, NULL};
+            }
+            diag[0] = diag[1] = lo;
+            diag[2] = diag[3] = hi;
+            if (hi > lo)
+                rm.lines[rm.n_lines++] = (cli_svg_line){"diagonal", diag, diag + 1, 2, 2, 0,
+                                                        NULL, NULL};
+            rc = cli_svg_write(out, &rm);
+            int close_rc = cli_out_close(&outf, rc == CLI_OK);
+            if (rc == CLI_OK)
+                rc = close_rc != CLI_OK ? close_rc : run_rc;
+            cli_view_free(&v);
+            return rc;
+        }
         int done[MAX_Y] = {0};
         for (int first = 0; first < n_y; first++) {
             if (done[first])
@@ -209,7 +286,7 @@ int cli_cmd_plot(int argc, char **argv)
                                  cli_series_column_name(m, cols[i]), s->label);
                     p->lines[p->n_lines++] =
                         (cli_svg_line){label, s->data + xcol, s->data + cols[i], s->rows, s->cols,
-                                       dyn_method_is_map(s->method), NULL, NULL};
+                                       dyn_method_is_map(s->method) || section, NULL, NULL};
                 }
             /* the model's phase plane (xp, yp) in XPPAUT's window @ xlo, xhi, ylo, yhi */
             if (n_y == 1 && m->phase_x && m->phase_y && xcol == cli_series_column(m, m->phase_x) &&

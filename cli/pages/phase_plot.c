@@ -322,7 +322,11 @@ int cli_plot_phase_plane(int argc, char **argv)
         starts[k][1] = v.run.y0[iy];
         rc = parse_start(o.starts[k], m, ix, iy, starts[k]);
     }
-    /* the run from the initial state, then the window */
+    /* the run from the initial state, then the window; the trajectories are whole (a
+     * section of one of the plane's states is drawn as its line) */
+    const dyn_poincare section = v.run.section;
+    const int section_var = v.run.section_var;
+    v.run.section.kind = DYN_POINCARE_NONE;
     int run_rc = rc == CLI_OK ? cli_view_record(&v) : rc;
     if (rc == CLI_OK && (run_rc == CLI_USAGE || v.n_series == 0))
         rc = run_rc;
@@ -387,6 +391,16 @@ int cli_plot_phase_plane(int argc, char **argv)
         put(&lines[4], y0[ix], y0[iy]);
         cli_series_free(&s);
     }
+    polyline cut = {0};
+    if (section.kind == DYN_POINCARE_SECTION || section.kind == DYN_POINCARE_PERIOD) {
+        if (section_var == ix) {
+            put(&cut, section.plane, w[2]);
+            put(&cut, section.plane, w[3]);
+        } else if (section_var == iy) {
+            put(&cut, w[0], section.plane);
+            put(&cut, w[1], section.plane);
+        }
+    }
     for (int k = 0; k < 5; k++)
         if (lines[k].bad && rc == CLI_OK) {
             fprintf(stderr, "dynkit: error: out of memory\n");
@@ -422,6 +436,12 @@ int cli_plot_phase_plane(int argc, char **argv)
         p.lines[p.n_lines++] = as_line(labels[1], &lines[1], 0);
         p.lines[p.n_lines++] = as_line(labels[2], &lines[3], 0);
         p.lines[p.n_lines++] = as_line(labels[3], &lines[4], 1);
+        static char cut_label[160];
+        if (cut.n) {
+            snprintf(cut_label, sizeof cut_label, "section %s = %g",
+                     m->states[section_var].name, section.plane);
+            p.lines[p.n_lines++] = as_line(cut_label, &cut, 0);
+        }
         for (int t = 0; t < 7; t++) {
             typed[t].n = 0;
             for (int k = 0; k < n_pts; k++)
@@ -458,6 +478,7 @@ int cli_plot_phase_plane(int argc, char **argv)
     }
     for (int k = 0; k < 5; k++)
         free(lines[k].xy);
+    free(cut.xy);
     for (int t = 0; t < 7; t++) {
         free(typed[t].xy);
         typed[t] = (polyline){0};

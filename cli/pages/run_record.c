@@ -60,6 +60,8 @@ typedef struct recorder {
     int have_latest;
     const char *warned[8];
     int n_warned;
+    long crossings;     /* of the Poincaré section so far */
+    double last_cross;  /* the time of the last one */
 } recorder;
 
 static void warn_once(recorder *r, double t, const double *y)
@@ -105,10 +107,37 @@ static void halve(recorder *r)
     r->every *= 2;
 }
 
+/* A crossing of the run's Poincaré section (cli_run.section): a row, as dynkit run writes
+ * it (t = k*T for a section in t; for poimap=period the time since the crossing before),
+ * none before the model's transient. */
+static int on_crossing(int index, double t, const double *y, int direction, void *ctx)
+{
+    (void)direction;
+    recorder *r = ctx;
+    const cli_run *run = r->run;
+    if (index != run->n_events || t < run->model->t_trans)
+        return 0;
+    double row_t = cli_section_time(run, t);
+    if (run->section.kind == DYN_POINCARE_PERIOD) {
+        const double since = t - r->last_cross;
+        r->last_cross = t;
+        if (r->crossings++ == 0)
+            return 0;
+        row_t = since;
+    }
+    if (r->s->rows >= r->capacity - 2)
+        halve(r);
+    store(r, row_t, y);
+    r->seen++;
+    return 0;
+}
+
 static int on_sample(long k, double t, const double *y, void *ctx)
 {
     recorder *r = ctx;
     warn_once(r, t, y);
+    if (r->run->section.kind != DYN_POINCARE_NONE)
+        return 0; /* the rows are the section's crossings */
     r->seen++;
     if (k % r->every == 0) {
         if (r->grows && r->s->rows >= r->capacity - 2)
@@ -160,7 +189,7 @@ int cli_series_record(const cli_run *run, const dyn_tableau *method, double step
     label(run, method, step, s->label, sizeof s->label);
     recorder r = {.run = run, .s = s};
     long samples = -1; /* not known beforehand */
-    if (cli_run_at_steps(&one)) {
+    if (cli_run_at_steps(&one) || run->section.kind != DYN_POINCARE_NONE) {
         r.grows = 1;
         r.every = run->every > 1 ? run->every : 1;
         r.capacity = max_rows > 4 ? max_rows : 4;
@@ -203,7 +232,9 @@ int cli_series_record(const cli_run *run, const dyn_tableau *method, double step
     memcpy(par0, run->par, m->par_size);
     dyn_result res;
     memset(&res, 0, sizeof res);
-    if (cli_run_solve(&one, 1, on_sample, &r, NULL, NULL, NULL, NULL, y, &res) < 0) {
+    const int section = run->section.kind != DYN_POINCARE_NONE;
+    if (cli_run_solve(&one, 1, on_sample, &r, section ? on_crossing : NULL, section ? &r : NULL,
+                      NULL, NULL, y, &res) < 0) {
         res.status = DYN_ERR_ARG;
         snprintf(res.message, sizeof res.message, "out of memory for the solver's workspace");
     }
@@ -217,7 +248,8 @@ int cli_series_record(const cli_run *run, const dyn_tableau *method, double step
         snprintf(s->message, sizeof s->message, "%s: %s; the samples up to t = %s are shown",
                  s->label, res.message, CLI_NUM(res.t));
     /* the last sample is always kept (a grown series keeps a slot for it) */
-    if (r.have_latest && (s->rows == 0 || s->data[(s->rows - 1) * s->cols] < r.latest_t))
+    if (r.have_latest && !section &&
+        (s->rows == 0 || s->data[(s->rows - 1) * s->cols] < r.latest_t))
         store(&r, r.latest_t, r.latest);
     s->samples = s->samples > 0 ? s->samples : r.seen;
     memcpy(run->par, par0, m->par_size);

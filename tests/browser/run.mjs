@@ -130,6 +130,15 @@ if (!process.env.DYNKIT_BROWSER_ONLY || process.env.DYNKIT_BROWSER_ONLY.split(',
   }
 }
 
+// the phase plane as a page (dynkit plot MODEL --phase-plane --html): van der Pol's, with its
+// one equilibrium, an unstable focus, in the table
+const phasePages = [];
+if (!process.env.DYNKIT_BROWSER_ONLY || process.env.DYNKIT_BROWSER_ONLY.split(',').includes('phase')) {
+  const p = { name: 'phase-vanderpol', file: path.join(artifacts, 'phase-vanderpol.html') };
+  run(['plot', 'vanderpol', '--phase-plane', '--html', p.file]);
+  phasePages.push(p);
+}
+
 // ---- the browser ----
 const userDataDir = fs.mkdtempSync(path.join(os.tmpdir(), 'dynkit-chromium-'));
 const context = await chromium.launchPersistentContext(userDataDir, {
@@ -584,8 +593,46 @@ async function checkSweepPage(spec, vp) {
   await page.close();
 }
 
+// A phase plane's page: it builds without errors or requests, its SVG is drawn within the
+// screen's width (nullclines, field, trajectories), the table lists the equilibrium.
+async function checkPhasePage(spec, vp) {
+  current = `${spec.name} @${vp.width}`;
+  const page = await context.newPage();
+  await page.setViewportSize({ width: vp.width, height: vp.height });
+  const errors = [], requests = [], url = pathToFileURL(spec.file).href;
+  page.on('console', m => { if (m.type() === 'error') errors.push(m.text()); });
+  page.on('pageerror', e => errors.push(String(e)));
+  await page.route('**/*', route => { if (route.request().url() === url) return route.continue(); requests.push(route.request().url()); return route.abort(); });
+  await page.goto(url, { waitUntil: 'load' });
+  await page.waitForSelector('body[data-ready="1"]', { timeout: 10000 }).catch(() => {});
+  check(await page.evaluate(() => document.body.dataset.ready === '1'), 'the page builds');
+  const f = await page.evaluate(() => {
+    const svg = document.querySelector('[data-fig="phase"] svg'), r = svg ? svg.getBoundingClientRect() : null;
+    const rows = [...document.querySelectorAll('#equilibria tr')].map(tr => tr.textContent);
+    return { svg: !!svg, left: r ? r.left : -1, right: r ? r.right : 1e9, height: r ? r.height : 0,
+      lines: svg ? svg.querySelectorAll('polyline').length : 0, rows };
+  });
+  check(f.svg && f.left >= 0 && f.right <= vp.width && f.height > 100,
+    `the picture fits (${f.left.toFixed(0)}..${f.right.toFixed(0)} px of ${vp.width}, ${f.height.toFixed(0)} px high)`);
+  check(f.lines > 100, `nullclines, field and trajectories drawn (${f.lines} polylines)`);
+  check(f.rows.length === 2 && f.rows[1].includes('unstable focus'), `the equilibria's table: ${f.rows.join(' | ')}`);
+  const o = await overflow(page);
+  check(o.sw <= o.iw, `no sideways scrolling (${o.sw} px wide in ${o.iw})`);
+  await page.screenshot({ path: path.join(artifacts, `${spec.name}${vp.suffix}.png`), fullPage: true });
+  check(errors.length === 0, `no console errors${errors.length ? ': ' + errors.join(' | ') : ''}`);
+  check(requests.length === 0, `no network requests${requests.length ? ': ' + requests.join(', ') : ''}`);
+  await page.close();
+}
+
 try {
   for (const vp of viewports) {
+    for (const spec of phasePages) {
+      try {
+        await checkPhasePage(spec, vp);
+      } catch (e) {
+        check(false, `exception: ${e.stack || e}`);
+      }
+    }
     for (const spec of sweepPages) {
       try {
         await checkSweepPage(spec, vp);

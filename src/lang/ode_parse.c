@@ -509,9 +509,9 @@ static void set_method(lang_ctx *c, const char *v, lpos pos)
 static void option_not_used(lang_ctx *c, lpos pos, const char *name)
 {
     static const char *const auto_options[] = {
-        "ntst",     "nmax",     "npr",      "ncol",     "ds",     "dsmin",   "dsmax",
-        "parmin",   "parmax",   "normmin",  "normmax",  "epsl",   "epsu",    "epss",
-        "autoxmin", "autoxmax", "autoymin", "autoymax", "autovar"};
+        "ntst",     "nmax",     "npr",      "ncol",     "ds",      "dsmin",   "dsmax",
+        "parmin",   "parmax",   "par2min",  "par2max",  "autoxmin", "autoxmax", "autoymin",
+        "autoymax"};
     static const char *const window_options[] = {
         "zp",       "zplot",  "xmin",      "xmax",   "ymin",     "ymax",    "zmin",
         "zmax",     "axes",   "nplot",     "phi",    "theta",    "bell",    "back",

@@ -231,7 +231,7 @@ typedef struct dyn_delay_model {
  * into a shared object records the version it was built with (the symbol
  * dynkit_model_abi, added when dynkit compiles a model), and dynkit refuses a model built
  * for another version instead of misreading it. Raised whenever a layout changes. */
-#define DYN_MODEL_ABI 9
+#define DYN_MODEL_ABI 10
 
 /* The entry point of a model in a C file or a shared object: `dynkit run mymodel.c`
  * compiles the file and calls it. Define it in your file:

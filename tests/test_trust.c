@@ -3,7 +3,7 @@
  *
  * - an output file survives, byte for byte, any error found before the run produced a
  *   sample (bad options found late, a bad --events-output); --output and --events-output
- *   naming one file are refused; a missing directory, a directory, a full device give an
+ *   naming one file are refused, and so is an output naming a file the command reads; a missing directory, a directory, a full device give an
  *   error naming the file and exit 1; a failed write to standard output is exit 1 with a
  *   message, for every command; a closed pipe ends quietly; SIGINT and SIGTERM end a run
  *   after a complete row, with exit 130/143 and a valid file; plots and pages replace
@@ -112,6 +112,58 @@ static void test_late_errors_keep_the_output_file(void **state)
     assert_int_equal(stat(cli_path("p1.csv"), &st), 0);
     CHECK(r.status == 0 && (st.st_mode & 0777) == 0640 && leftovers() == 0,
           "success: exit %d, mode %o", r.status, (unsigned)(st.st_mode & 0777));
+    cli_free(&r);
+}
+
+/* 1 if files a and b of the temporary directory hold the same bytes. */
+static int same_bytes(const char *a, const char *b)
+{
+    size_t la, lb;
+    char *ta = cli_read_file(cli_path(a), &la);
+    char *tb = cli_read_file(cli_path(b), &lb);
+    const int same = la == lb && la > 0 && memcmp(ta, tb, la) == 0;
+    free(ta);
+    free(tb);
+    return same;
+}
+
+static void test_outputs_never_replace_inputs(void **state)
+{
+    (void)state;
+    char cmd[2048];
+    snprintf(cmd, sizeof cmd,
+             "cd '%s' && cp '%s/examples/mechanisms/double_pendulum.mech' dp.mech && "
+             "cp '%s/examples/mechanisms/cart.mech' cart.mech && "
+             "printf 't,Fx,Fy\n0,0,0\n1,1,0\n' > f.csv && printf '0\n0.5\n1\n' > t.csv && "
+             "ln -sf dp.mech link.mech && ln -f f.csv hard.csv && mkdir -p sub && "
+             "'%s' sweep pendulum --vary l=1:2:3 -o s.csv",
+             cli_tmpdir, DYNKIT_SOURCE_DIR, DYNKIT_SOURCE_DIR, DYNKIT_CLI);
+    assert_int_equal(system(cmd), 0);
+    static const struct {
+        const char *args, *input, *what;
+    } cases[] = {
+        {"derive dp.mech --c dp.mech", "dp.mech", "model file"},
+        {"derive dp.mech --c ./link.mech", "dp.mech", "model file"},
+        {"derive dp.mech --c sub/../dp.mech", "dp.mech", "model file"},
+        {"run cart.mech --forces f.csv -o f.csv", "f.csv", "--forces"},
+        {"run cart.mech --forces f.csv -o hard.csv", "f.csv", "--forces"},
+        {"run pendulum --times @t.csv -o t.csv", "t.csv", "--times"},
+        {"run pendulum --times @t.csv --event turn --events-output ./t.csv", "t.csv", "--times"},
+        {"sweep pendulum --from s.csv -o s.csv", "s.csv", "--from"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        snprintf(cmd, sizeof cmd, "cd '%s' && cp '%s' before", cli_tmpdir, cases[i].input);
+        assert_int_equal(system(cmd), 0);
+        cli_result r = cli_in_tmpdir("%s", cases[i].args);
+        CHECK(r.status == 2 && strstr(r.err, "would destroy") && strstr(r.err, cases[i].what) &&
+                  same_bytes("before", cases[i].input) && leftovers() == 0,
+              "%s: want exit 2, 'would destroy' naming the %s, %s unchanged; got %d: %s",
+              cases[i].args, cases[i].what, cases[i].input, r.status, r.err);
+        cli_free(&r);
+    }
+    /* another name is written as before */
+    cli_result r = cli_in_tmpdir("derive dp.mech --c dp.c");
+    CHECK(r.status == 0 && file_is("dp.c", "") == 0, "derive --c dp.c: %d %s", r.status, r.err);
     cli_free(&r);
 }
 
@@ -789,6 +841,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_late_errors_keep_the_output_file),
+        cmocka_unit_test(test_outputs_never_replace_inputs),
         cmocka_unit_test(test_failed_run_with_samples_keeps_them),
         cmocka_unit_test(test_pages_replace_their_file_in_one_rename),
         cmocka_unit_test(test_bad_output_paths_name_the_file),

@@ -231,10 +231,16 @@ int cli_cmd_animate(int argc, char **argv)
         if (rc == CLI_OK && run_rc != CLI_OK)
             rc = run_rc;
     }
-    if (out != stdout && fclose(out) != 0 && rc == CLI_OK) {
-        fprintf(stderr, "dynkit: error: writing %s failed: %s\n",
-                path ? path : default_path, strerror(errno));
-        rc = CLI_FAILED;
+    if (out != stdout) { /* MODEL.html: a cut page is removed, never announced */
+        errno = 0;
+        const int cut = ferror(out) != 0;
+        if ((fclose(out) != 0 || cut) && default_path[0]) {
+            cli_error("writing %s failed: %s; the file is removed", default_path,
+                      errno ? strerror(errno) : "a write failed");
+            remove(default_path);
+            default_path[0] = '\0';
+            rc = CLI_FAILED;
+        }
     }
     if (default_path[0] && (rc == CLI_OK || rc == CLI_FAILED))
         fprintf(stderr, "dynkit: wrote %s (open it in a browser; --output FILE names the file, "

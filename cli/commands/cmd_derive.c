@@ -7,6 +7,7 @@
 
 #include "cli.h"
 #include "dynkit/mbs.h"
+#include "util/out_file.h"
 
 static void derive_help(void)
 {
@@ -60,14 +61,13 @@ int cli_cmd_derive(int argc, char **argv)
         free(out);
         return CLI_OK;
     }
-    FILE *f = fopen(c_path, "w");
-    int bad = !f || fputs(out, f) < 0;
-    if (f && fclose(f) != 0)
-        bad = 1;
-    free(out);
-    if (bad) {
-        fprintf(stderr, "dynkit: error: cannot write '%s'\n", c_path);
-        return CLI_FAILED;
+    /* a temporary file renamed over FILE.c once written whole, as run's outputs are */
+    cli_out f;
+    int wrc = cli_out_open(&f, "--c", c_path);
+    if (wrc == CLI_OK) {
+        const int bad = fputs(out, f.f) < 0;
+        wrc = cli_out_close(&f, !bad);
     }
-    return CLI_OK;
+    free(out);
+    return wrc;
 }

@@ -172,9 +172,10 @@ int cli_cmd_inverse(int argc, char **argv)
         output_path = NULL;
     /* written beside the file and renamed when complete: a failure keeps the old file */
     cli_out outf;
-    if (cli_out_open(&outf, "--output", output_path) != CLI_OK) {
+    const int open_rc = cli_out_open(&outf, "--output", output_path);
+    if (open_rc != CLI_OK) {
         free(table);
-        return CLI_FAILED;
+        return open_rc;
     }
     FILE *out = outf.f;
     const char *names[3] = {"t", m->inputs[0].name, m->inputs[1].name};

@@ -2,6 +2,7 @@
 /* dynkit report: every answer of the homework, as text, JSON, or a self-contained HTML page
  * with the plots and animations behind the answers, and the three studies of many runs
  * (dynkit/report_studies.h: the sweep library on every core). */
+#define _POSIX_C_SOURCE 200809L /* open_memstream */
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
@@ -32,20 +33,20 @@ static void report_help(void)
          "                then absent from the text, the JSON and the page)");
 }
 
-/* What one writer of the library prints, as a NUL-terminated string (malloc'd) or NULL. */
+/* What one writer of the library prints, as a NUL-terminated string (malloc'd) or NULL
+ * (out of memory): kept in memory, so no temporary file can fail on a full disk. */
 static char *capture(int (*write)(const dyn_homework *, FILE *), const dyn_homework *hw,
                      size_t *len)
 {
-    FILE *f = tmpfile();
     char *text = NULL;
-    long size;
-    if (f && write(hw, f) == 0 && fflush(f) == 0 && (size = ftell(f)) >= 0 &&
-        fseek(f, 0, SEEK_SET) == 0 && (text = malloc((size_t)size + 1)) != NULL) {
-        *len = fread(text, 1, (size_t)size, f);
-        text[*len] = '\0';
+    FILE *f = open_memstream(&text, len);
+    if (!f)
+        return NULL;
+    const int bad = write(hw, f) != 0;
+    if (fclose(f) != 0 || bad) {
+        free(text);
+        return NULL;
     }
-    if (f)
-        fclose(f);
     return text;
 }
 
@@ -170,7 +171,7 @@ static int write_html(const dyn_homework *hw, const char *path)
         page.json = capture(dyn_homework_write_json, hw, &page.json_len);
         page.text = capture(dyn_homework_write_text, hw, &text_len);
         if (!page.json || !page.text) {
-            fprintf(stderr, "dynkit: error: formatting the report failed\n");
+            fprintf(stderr, "dynkit: error: formatting the report failed: out of memory\n");
             rc = CLI_FAILED;
         }
     }

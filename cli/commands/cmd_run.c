@@ -366,14 +366,15 @@ int cli_cmd_run(int argc, char **argv)
         return rc;
     }
     cli_out outf = {0}, evf = {0};
-    if (cli_out_open(&outf, "--output", run.output_path) != CLI_OK) {
+    if ((rc = cli_out_open(&outf, "--output", run.output_path)) != CLI_OK) {
         cli_run_free(&run);
-        return CLI_FAILED;
+        return rc;
     }
-    if (run.events_path && cli_out_open(&evf, "--events-output", run.events_path) != CLI_OK) {
+    if (run.events_path &&
+        (rc = cli_out_open(&evf, "--events-output", run.events_path)) != CLI_OK) {
         cli_out_close(&outf, 0);
         cli_run_free(&run);
-        return CLI_FAILED;
+        return rc;
     }
     FILE *out = outf.f, *evout = evf.f;
     int keep = 0; /* keep the output files (else the real names keep what they had) */
@@ -470,8 +471,13 @@ int cli_cmd_run(int argc, char **argv)
     /* the formats kept in memory (npz, mat) are written now, json's document closed */
     const int pipe_gone = !outf.path && sink.io_failed && sink.io_errno == EPIPE;
     if (!pipe_gone && cli_table_finish(table, ferr, sizeof ferr)) {
-        if (outf.path || errno != EPIPE)
+        const int finish_errno = errno;
+        if (outf.path)
+            cli_error("--output '%s': %s", outf.path, ferr);
+        else if (errno != EPIPE)
             fprintf(stderr, "dynkit: error: --output: %s\n", ferr);
+        errno = finish_errno;
+        outf.failure_told = outf.path != NULL;
         sink.io_failed = 1;
         sink.io_errno = errno;
     }
@@ -496,23 +502,26 @@ int cli_cmd_run(int argc, char **argv)
     errno = 0;
     if (fflush(out) != 0 || sink.io_failed || ferror(out)) {
         /* a cut file never replaces the real name; a closed pipe ends quietly */
-        if (outf.path)
-            fprintf(stderr, "dynkit: error: writing --output '%s' failed: %s%s\n", outf.path,
-                    errno ? strerror(errno) : "a write failed",
-                    outf.tmp ? "; the file was left as it was" : "");
-        else if (errno != EPIPE)
+        const int e = errno ? errno : sink.io_errno;
+        if (outf.path && !outf.failure_told)
+            cli_error("writing --output '%s' failed: %s%s", outf.path,
+                      e ? strerror(e) : "a write failed",
+                      outf.tmp ? "; the file was left as it was" : "");
+        else if (!outf.path && errno != EPIPE)
             fprintf(stderr, "dynkit: error: writing the output failed: %s\n",
                     errno ? strerror(errno) : "a write failed");
         if (!outf.path)
             clearerr(stdout); /* reported here, not again at exit */
+        outf.failure_told = 1;
         keep = 0;
         rc = CLI_FAILED;
     }
     errno = 0;
     if (evout && (fflush(evout) != 0 || es.io_failed || ferror(evout))) {
-        fprintf(stderr, "dynkit: error: writing --events-output '%s' failed: %s%s\n",
-                run.events_path, errno ? strerror(errno) : "a write failed",
-                evf.tmp ? "; the file was left as it was" : "");
+        cli_error("writing --events-output '%s' failed: %s%s", run.events_path,
+                  errno ? strerror(errno) : "a write failed",
+                  evf.tmp ? "; the file was left as it was" : "");
+        evf.failure_told = 1;
         keep = 0;
         rc = CLI_FAILED;
     }

@@ -292,6 +292,7 @@ static int read_from(const dyn_model *m, sweep_spec *sp)
     dyn_table t;
     char err[512];
     sweep_table st;
+    cli_input_note(sp->from, "the --from table");
     if (sweep_table_read(sp->from, &st, err, sizeof err) == 0) {
         const int rc = read_from_sweep(m, sp, &st);
         sweep_table_free(&st);
@@ -1059,20 +1060,17 @@ static int sweep_command(int argc, char **argv, int rank, int ranks)
     if (rc == CLI_OK) {
         /* a file is written beside its name and renamed when complete (out_file.h) */
         cli_out outf;
-        if (bands && sweep_bands_write(bands, &bd, &run, o.status, n_runs) != CLI_OK)
-            rc = CLI_FAILED;
+        if (bands)
+            rc = sweep_bands_write(bands, &bd, &run, o.status, n_runs);
         if (rc != CLI_OK) {
-        } else if (cli_out_open(&outf, "--output", out_path) != CLI_OK) {
-            rc = CLI_FAILED;
+        } else if ((rc = cli_out_open(&outf, "--output", out_path)) != CLI_OK) {
         } else {
             const int bad = format == CLI_FORMAT_CSV
                                 ? write_table(outf.f, &o)
                                 : write_data_file(outf.f, format, &o, &run);
-            if (bad && out_path && strcmp(out_path, "-") != 0)
-                fprintf(stderr, "dynkit: error: writing --output '%s' failed: %s\n", out_path,
-                        strerror(errno));
-            if (cli_out_close(&outf, !bad) != CLI_OK || bad)
-                rc = CLI_FAILED;
+            /* a failed write is reported by cli_out_close, or at exit for stdout */
+            const int close_rc = cli_out_close(&outf, !bad);
+            rc = close_rc != CLI_OK ? close_rc : bad ? CLI_FAILED : CLI_OK;
         }
     }
     if (rc == CLI_OK) {

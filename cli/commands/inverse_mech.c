@@ -185,8 +185,9 @@ static int write_table(const inv *v, const char *spec)
     const char *path = run->output_path && strcmp(run->output_path, "-") ? run->output_path
                                                                          : NULL;
     cli_out outf;
-    if (cli_out_open(&outf, "--output", path) != CLI_OK)
-        return CLI_FAILED;
+    const int open_rc = cli_out_open(&outf, "--output", path);
+    if (open_rc != CLI_OK)
+        return open_rc;
     const cli_table_info info = {.model = m->name,
                                  .method = run->method->name,
                                  .step = run->step,

@@ -92,7 +92,7 @@ int sweep_bands_write(const char *path, const sweep_bands *b, const cli_run *run
     double *v = malloc(((size_t)n_runs + 1) * sizeof *v);
     double *row = malloc((size_t)cols * sizeof *row);
     cli_out outf;
-    int bad = !names || !units || !text || !v || !row;
+    int bad = !names || !units || !text || !v || !row, open_rc = CLI_FAILED;
     if (!bad) {
         static const char *const prefix[N_STATS] = {"mean", "p5", "p50", "p95"};
         names[0] = "t";
@@ -104,7 +104,8 @@ int sweep_bands_write(const char *path, const sweep_bands *b, const cli_run *run
                 names[c] = text[c];
                 units[c] = m->states[j].unit;
             }
-        bad = cli_out_open(&outf, "--bands", path) != CLI_OK;
+        open_rc = cli_out_open(&outf, "--bands", path);
+        bad = open_rc != CLI_OK;
     }
     if (bad) {
         free(names);
@@ -112,7 +113,7 @@ int sweep_bands_write(const char *path, const sweep_bands *b, const cli_run *run
         free(text);
         free(v);
         free(row);
-        return CLI_FAILED;
+        return open_rc;
     }
     const int adaptive = dyn_method_is_adaptive(run->method);
     cli_table_info info = {

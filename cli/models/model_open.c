@@ -16,6 +16,7 @@
 #include "dynkit/lang.h"
 #include "dynkit/mbs.h"
 #include "util/escape.h"
+#include "util/out_file.h"
 
 enum { MODEL_FILE_MAX_BYTES = 16 << 20, MAX_LOADED = 16 };
 
@@ -92,6 +93,7 @@ char *cli_read_model_file(const char *path, size_t *len)
         fprintf(stderr, "dynkit: error: model file '%s' is a directory\n", path);
         return NULL;
     }
+    cli_input_note(path, "the model file");
     FILE *f = fopen(path, "rb");
     if (!f) {
         fprintf(stderr, "dynkit: error: cannot open model file '%s': %s\n", path, strerror(errno));
@@ -215,6 +217,7 @@ int cli_model_table_options(const char *command, int argc, char **argv)
             return cli_usage_error(command, "more than %d --table options", MAX_TABLE_FILES);
         snprintf(table_names[n_table_files], MAX_TABLE_NAME, "%.*s", (int)(eq - v), v);
         table_files[n_table_files] = (dyn_lang_table_file){table_names[n_table_files], eq + 1};
+        cli_input_note(eq + 1, "a --table file");
         n_table_files++;
     }
     return CLI_OK;
@@ -229,6 +232,7 @@ static int open_model_file(const char *spec, const dyn_model **model)
         return CLI_USAGE;
     }
     if (ends_with(spec, ".so")) {
+        cli_input_note(spec, "the model file");
         if (dyn_jit_load_shared(spec, &jm, err, sizeof err))
             return compile_failed("loading", spec, err);
         return keep_loaded(&jm, 0, spec, model);
@@ -242,6 +246,7 @@ static int open_model_file(const char *spec, const dyn_model **model)
                     found ? "is a directory" : strerror(errno));
             return CLI_USAGE;
         }
+        cli_input_note(spec, "the model file");
         rc = dyn_jit_load_c_file(spec, NULL, &jm, err, sizeof err);
     } else {
         size_t len = 0;

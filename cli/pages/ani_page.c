@@ -16,6 +16,7 @@
 
 #include "util/escape.h"
 #include "pages/pages.h"
+#include "util/out_file.h"
 
 enum { ANI_FILE_MAX_BYTES = 16 << 20 };
 
@@ -35,6 +36,7 @@ static int is_regular(const char *path)
 /* The whole file into a malloc'd buffer; NULL with a message printed. */
 static char *read_all(const char *what, const char *path, size_t *len)
 {
+    cli_input_note(path, what[0] == 'm' ? "the model file" : "the animation file");
     FILE *f = fopen(path, "rb");
     if (!f) {
         fprintf(stderr, "dynkit: error: cannot open %s '%s': %s\n", what, path, strerror(errno));

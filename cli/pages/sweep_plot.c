@@ -598,6 +598,7 @@ int cli_plot_sweep_table(int argc, char **argv)
     }
     sweep_table t;
     char err[512], names[2048];
+    cli_input_note(argv[0], "the table plotted");
     if (sweep_table_read(argv[0], &t, err, sizeof err)) {
         sweep_table_free(&t);
         return cli_usage_error("plot", "%s", err);

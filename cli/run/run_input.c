@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "run/run_parse.h"
+#include "util/out_file.h"
 
 /* --forces: read the table, check its columns against the model's inputs, attach it to
  * the parameters, and take the step and span from it unless they were given. */
@@ -27,6 +28,7 @@ int cli_load_input(const char *command, cli_run *run, unsigned given)
                                m->name, list[0] ? list : "none");
     }
     dyn_table table;
+    cli_input_note(path, "the --forces table");
     const int read_rc = dyn_table_read_file(path, DYN_TABLE_TIME_FIRST, &table, err, sizeof err);
     if (read_rc == DYN_ERR_CAPACITY) { /* out of memory: no usage error */
         fprintf(stderr, "dynkit: error: --forces: %s\n", err);

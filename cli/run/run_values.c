@@ -8,6 +8,7 @@
 
 #include "dynkit/lang.h"
 #include "run/run_parse.h"
+#include "util/out_file.h"
 
 /* Split "NAME=VALUE"; returns 0 and the parts, or -1. */
 static int split_assignment(const char *text, char *name, size_t size, double *value)
@@ -260,6 +261,7 @@ int cli_parse_times(const char *command, const char *text, cli_run *run)
     run->times = NULL;
     run->n_times = 0;
     if (text[0] == '@') {
+        cli_input_note(text + 1, "the --times file");
         FILE *f = fopen(text + 1, "r");
         if (!f)
             return cli_usage_error(command, "--times: cannot read '%s': %s", text + 1,

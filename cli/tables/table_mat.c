@@ -35,6 +35,7 @@ int cli_mat_write(FILE *out, const cli_table_info *info, const double *data, lon
 
 #include <dlfcn.h>
 #include <matio.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #ifndef DYNKIT_VERSION
@@ -212,6 +213,20 @@ int cli_mat_write(FILE *out, const cli_table_info *info, const double *data, lon
                  rows, cols);
         return -1;
     }
+    /* matio does not report every failed write (a full disk leaves a short file): the
+     * file, uncompressed, holds at least its 128-byte header and every number */
+    struct stat st;
+    const double least = 128.0 + 8.0 * (double)rows * (double)cols;
+    if (stat(path, &st) != 0 || (double)st.st_size < least) {
+        const double size = stat(path, &st) == 0 ? (double)st.st_size : 0.0;
+        unlink(path);
+        snprintf(err, errlen,
+                 "writing the mat file failed: matio's temporary file in %s holds %.0f bytes, "
+                 "fewer than the %.0f of its numbers (is %s full?)",
+                 dir && *dir ? dir : "/tmp", size, least, dir && *dir ? dir : "/tmp");
+        return -1;
+    }
+    errno = 0;
     int rc = copy_file(path, out);
     unlink(path);
     if (rc)

@@ -29,6 +29,41 @@ static void dir_of(const char *path, char *buf, size_t size)
         snprintf(buf, size, "%.*s", (int)(slash - path), path);
 }
 
+/* ---- the files the command reads, which no output may replace ---- */
+
+#define MAX_INPUTS 64
+static struct {
+    dev_t dev;
+    ino_t ino;
+    const char *what;
+} inputs[MAX_INPUTS];
+static int n_inputs;
+
+void cli_input_note(const char *path, const char *what)
+{
+    struct stat st;
+    if (!path || n_inputs == MAX_INPUTS || stat(path, &st) != 0 || !S_ISREG(st.st_mode))
+        return;
+    for (int i = 0; i < n_inputs; i++)
+        if (inputs[i].dev == st.st_dev && inputs[i].ino == st.st_ino)
+            return;
+    inputs[n_inputs].dev = st.st_dev;
+    inputs[n_inputs].ino = st.st_ino;
+    inputs[n_inputs].what = what;
+    n_inputs++;
+}
+
+const char *cli_input_named(const char *path)
+{
+    struct stat st;
+    if (!path || strcmp(path, "-") == 0 || stat(path, &st) != 0 || !S_ISREG(st.st_mode))
+        return NULL; /* a file not there yet is no input */
+    for (int i = 0; i < n_inputs; i++)
+        if (inputs[i].dev == st.st_dev && inputs[i].ino == st.st_ino)
+            return inputs[i].what;
+    return NULL;
+}
+
 int cli_is_stdout_name(const char *path)
 {
     return path && (strcmp(path, "/dev/stdout") == 0 || strcmp(path, "/dev/fd/1") == 0 ||
@@ -48,17 +83,20 @@ int cli_out_open(cli_out *o, const char *what, const char *path)
     char dir[PATH_MAX];
     struct stat st;
     if (path[0] == '\0') {
-        fprintf(stderr, "dynkit: error: %s: an empty file name\n", what);
+        cli_error("%s: an empty file name", what);
         return CLI_FAILED;
     }
+    const char *input = cli_input_named(path);
+    if (input)
+        return cli_out_refuse_input(NULL, what, path, input);
     if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) {
-        fprintf(stderr, "dynkit: error: %s '%s' is a directory\n", what, path);
+        cli_error("%s '%s' is a directory", what, path);
         return CLI_FAILED;
     }
     if (stat(path, &st) == 0 && !S_ISREG(st.st_mode)) {
         /* a device or a pipe (/dev/null, /dev/stdout, a FIFO): written in place */
         if (!(o->f = fopen(path, "w"))) {
-            fprintf(stderr, "dynkit: error: cannot open %s '%s' for writing: %s\n", what, path,
+            cli_error("cannot open %s '%s' for writing: %s", what, path,
                     strerror(errno));
             return CLI_FAILED;
         }
@@ -73,7 +111,7 @@ int cli_out_open(cli_out *o, const char *what, const char *path)
     dir_of(target, dir, sizeof dir);
     struct stat dst;
     if (stat(dir, &dst) != 0 || !S_ISDIR(dst.st_mode)) {
-        fprintf(stderr, "dynkit: error: cannot write %s '%s': the directory '%s' %s\n", what, path,
+        cli_error("cannot write %s '%s': the directory '%s' %s", what, path,
                 dir,
                 errno == ENOENT || stat(dir, &dst) != 0 ? "does not exist" : "is not a directory");
         return CLI_FAILED;
@@ -85,14 +123,14 @@ int cli_out_open(cli_out *o, const char *what, const char *path)
         free(o->tmp);
         free(o->target);
         o->tmp = o->target = NULL;
-        fprintf(stderr, "dynkit: error: out of memory\n");
+        cli_error("out of memory");
         return CLI_FAILED;
     }
     strcpy(o->target, target);
     snprintf(o->tmp, len, "%s.tmpXXXXXX", target);
     int fd = mkstemp(o->tmp);
     if (fd < 0) {
-        fprintf(stderr, "dynkit: error: cannot write %s '%s': %s\n", what, path, strerror(errno));
+        cli_error("cannot write %s '%s': %s", what, path, strerror(errno));
         free(o->tmp);
         free(o->target);
         o->tmp = o->target = NULL;
@@ -109,7 +147,7 @@ int cli_out_open(cli_out *o, const char *what, const char *path)
     }
     (void)fchmod(fd, mode);
     if (!(o->f = fdopen(fd, "w"))) {
-        fprintf(stderr, "dynkit: error: cannot write %s '%s': %s\n", what, path, strerror(errno));
+        cli_error("cannot write %s '%s': %s", what, path, strerror(errno));
         close(fd);
         unlink(o->tmp);
         free(o->tmp);
@@ -132,18 +170,35 @@ int cli_out_close(cli_out *o, int keep)
             rc = CLI_FAILED; /* reported at exit (cli_stdout_check) */
         return rc;
     }
-    int bad = ferror(o->f) != 0;
-    bad |= fclose(o->f) != 0;
+    /* a failed write is an error whether or not the file is kept: the command ends with
+     * exit 1 and a message naming the file (a full disk is never a silent loss) */
+    errno = 0;
+    int bad = fflush(o->f) != 0;
+    int err = errno;
+    bad |= ferror(o->f) != 0;
+    errno = 0;
+    if (fclose(o->f) != 0) {
+        bad = 1;
+        err = err ? err : errno;
+    }
     o->f = NULL;
-    if (bad && keep) {
-        fprintf(stderr, "dynkit: error: writing %s '%s' failed: %s\n", o->what, o->path,
-                strerror(errno));
+    if (bad && !o->failure_told)
+        cli_error("writing %s '%s' failed: %s%s", o->what, o->path,
+                  err ? strerror(err) : "a write failed",
+                  o->tmp ? "; the file was left as it was" : "");
+    if (bad) {
         rc = CLI_FAILED;
+        keep = 0;
+    }
+    const char *input = keep && o->tmp ? cli_input_named(o->target) : NULL;
+    if (input) { /* an input named after the output was opened */
+        cli_out_refuse_input(NULL, o->what, o->path, input);
+        rc = CLI_USAGE;
+        keep = 0;
     }
     if (o->tmp) {
         if (keep && rename(o->tmp, o->target) != 0) {
-            fprintf(stderr, "dynkit: error: cannot write %s '%s': %s\n", o->what, o->path,
-                    strerror(errno));
+            cli_error("cannot write %s '%s': %s", o->what, o->path, strerror(errno));
             rc = CLI_FAILED;
             keep = 0;
         }
@@ -205,6 +260,17 @@ int cli_same_file(const char *a, const char *b)
     return realpath(da, ra) && realpath(db, rb) && strcmp(ra, rb) == 0;
 }
 
+int cli_out_refuse_input(const char *command, const char *option, const char *path,
+                         const char *what)
+{
+    const char *fmt = "%s '%s' is %s that dynkit reads: writing it would destroy that input; "
+                      "name another file";
+    if (command)
+        return cli_usage_error(command, fmt, option, path, what);
+    cli_error(fmt, option, path, what);
+    return CLI_USAGE;
+}
+
 int cli_stdout_check(int rc)
 {
     errno = 0;
@@ -213,7 +279,7 @@ int cli_stdout_check(int rc)
     struct stat st;
     const int pipe_out = fstat(fileno(stdout), &st) == 0 && S_ISFIFO(st.st_mode);
     if (errno != EPIPE && !pipe_out) /* a closed pipe (| head) ends quietly */
-        fprintf(stderr, "dynkit: error: cannot write to standard output: %s\n",
+        cli_error("cannot write to standard output: %s",
                 errno ? strerror(errno) : "a write failed");
     return rc == CLI_OK ? CLI_FAILED : rc;
 }

@@ -38,6 +38,17 @@ void cli_error(const char *fmt, ...)
     __attribute__((format(printf, 1, 2)))
 #endif
     ;
+/* "dynkit: warning: <msg>" and "dynkit: note: <msg>", escaped as cli_error's. */
+void cli_warning(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
+void cli_note(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
 
 /* Parse a finite number: decimal, optionally times pi ("pi/2", "-0.5pi", "2*pi/3") or an
  * angle in degrees ("45deg", converted to rad).

@@ -10,7 +10,9 @@
  *   control sequences (ESC [, OSC ... BEL, the C1 CSI 0x9B), and the error messages of
  *   sweep --from and --resume quoting a file's column names and header, and the message of
  *   a failed run naming a model file, write those bytes as \xNN: nothing reaches the
- *   terminal raw; UTF-8 text (units in degrees) is kept;
+ *   terminal raw; UTF-8 text (units in degrees) is kept; so do a parse error's FILE:LINE:COL
+ *   and source line (DEL, C1 controls; the caret under the escaped text), derive's and
+ *   linearize's headers and --verbose's notes for a file so named;
  * - JSON writes negative zero as -0.0, which Python's json reads back as -0.0 (it reads
  *   "-0" as the integer 0);
  * - sweep --sample refuses, before any run, a distribution whose values can be infinite:
@@ -137,6 +139,74 @@ static void test_terminal_control_bytes_are_escaped(void **state)
     cli_free(&r);
 }
 
+/* A file name holding ESC [ 31 m, the C1 CSI as UTF-8 (0xC2 0x9B) and alone (0x9B), and a
+ * source line holding DEL and the C1 CSI: the FILE:LINE:COL of a parse error, its source
+ * excerpt, derive's and linearize's headers, info, and the notes of --verbose (compiled in
+ * or loaded from the cache) show them \xNN, and the caret stands under the escaped byte. */
+static void test_hostile_file_names_in_every_message(void **state)
+{
+    (void)state;
+#define HOSTILE "h\033[31m\xC2\x9B\x9B"
+#define SHOWN "h\\x1B[31m\\xC2\\x9B\\x9B"
+    char cmd[2048], mech[600], ode[600]; /* cli_path's buffer is static: copied */
+    snprintf(mech, sizeof mech, "%s", cli_path(HOSTILE ".mech"));
+    snprintf(ode, sizeof ode, "%s", cli_path(HOSTILE ".ode"));
+    snprintf(cmd, sizeof cmd, "cp '%s/examples/mechanisms/double_pendulum.mech' '%s' && "
+             "cp '%s/examples/models/pendulum.ode' '%s'", DYNKIT_SOURCE_DIR, mech,
+             DYNKIT_SOURCE_DIR, ode);
+    assert_int_equal(system(cmd), 0);
+    static const struct {
+        const char *args; /* %s: the file */
+        int mech, on_stdout, status;
+        const char *want;
+    } cases[] = {
+        {"derive '%s'", 1, 1, 0, SHOWN ": equations of motion by TMT"},
+        {"linearize '%s'", 0, 1, 0, SHOWN " at t = 0:"},
+        {"info '%s'", 0, 1, 0, SHOWN},
+        {"run '%s' --verbose --tspan 0:0.1", 0, 0, 0, SHOWN ".ode: "},
+        {"run '%s' --verbose --tspan 0:0.1", 1, 0, 0, SHOWN ".mech: "},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char args[1024];
+        snprintf(args, sizeof args, cases[i].args, cases[i].mech ? mech : ode);
+        cli_result r = cli("%s", args);
+        const char *text = cases[i].on_stdout ? r.out : r.err;
+        CHECK(r.status == cases[i].status && !has_control_bytes(r.out) &&
+                  !has_control_bytes(r.err) && strstr(text, cases[i].want),
+              "%s: exit %d, want '%s' and no control byte; stdout:\n%s\nstderr:\n%s", args,
+              r.status, cases[i].want, r.out, r.err);
+        cli_free(&r);
+    }
+    /* a parse error in such a file, at a line holding DEL, U+009B and a lone 0x9B */
+    write_text(HOSTILE "-bad.ode", "x'=-x + \x7F\xC2\x9B\x9B 1\ndone\n");
+    cli_result r = cli("run '%s'", cli_path(HOSTILE "-bad.ode"));
+    CHECK(r.status == 2 && !has_control_bytes(r.err) &&
+              strstr(r.err, SHOWN "-bad.ode:1:9: error: ") &&
+              strstr(r.err, "\n  x'=-x + \\x7F\\xC2\\x9B\\x9B 1\n          ^\n"),
+          "exit %d: %s", r.status, r.err);
+    cli_free(&r);
+    /* and in a mechanism file: a bad statement, its name escaped */
+    write_text(HOSTILE "-bad.mech", "coord q=0 [rad]\nbody b mass=1 \x7F at (q, 0, 0)\n");
+    r = cli("derive '%s'", cli_path(HOSTILE "-bad.mech"));
+    CHECK(r.status == 2 && !has_control_bytes(r.err) && strstr(r.err, SHOWN "-bad.mech:2:"),
+          "exit %d: %s", r.status, r.err);
+    cli_free(&r);
+    /* the library's formatter itself: the caret counts a UTF-8 character as one column and
+     * an escaped byte as four */
+    dyn_lang_diag d;
+    memset(&d, 0, sizeof d);
+    snprintf(d.path, sizeof d.path, "a\033b.ode");
+    snprintf(d.message, sizeof d.message, "m\033[2Jm");
+    snprintf(d.excerpt, sizeof d.excerpt, "\xC2\xB0\x01=?");
+    d.line = 3;
+    d.col = 4; /* the '=': after the 2 bytes of the degree sign and the byte 1 */
+    char buf[512];
+    assert_string_equal(dyn_lang_diag_format(&d, buf, sizeof buf),
+                        "a\\x1Bb.ode:3:4: error: m\\x1B[2Jm\n  \xC2\xB0\\x01=?\n       ^\n");
+#undef HOSTILE
+#undef SHOWN
+}
+
 static void test_negative_zero_reads_back_in_json(void **state)
 {
     (void)state;
@@ -193,6 +263,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_values_that_are_no_doubles_are_refused_at_their_place),
         cmocka_unit_test(test_terminal_control_bytes_are_escaped),
+        cmocka_unit_test(test_hostile_file_names_in_every_message),
         cmocka_unit_test(test_negative_zero_reads_back_in_json),
         cmocka_unit_test(test_samples_that_can_be_infinite_are_refused),
     };

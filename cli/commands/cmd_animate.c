@@ -159,7 +159,7 @@ int cli_cmd_animate(int argc, char **argv)
     /* --no-ani is a flag: taken out before the run options are read */
     char **args = calloc((size_t)argc + 1, sizeof *args);
     if (!args) {
-        fprintf(stderr, "dynkit: error: out of memory\n");
+        cli_error("out of memory");
         return CLI_FAILED;
     }
     int n_args = 0, no_ani = 0;

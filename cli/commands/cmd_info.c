@@ -330,7 +330,7 @@ int cli_cmd_info(int argc, char **argv)
     if (!par || !y0) {
         free(par);
         free(y0);
-        fprintf(stderr, "dynkit: error: out of memory\n");
+        cli_error("out of memory");
         return CLI_FAILED;
     }
     if (dyn_model_default_params(m, par, err, sizeof err) == 0)

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "util/escape.h"
 #include "commands/inverse_mech.h"
 #include "util/out_file.h"
 #include "tables/table_formats.h"
@@ -159,7 +160,7 @@ int cli_cmd_inverse(int argc, char **argv)
     const long N = (long)N_value;
     double *table = malloc((size_t)N * 3 * sizeof *table);
     if (!table) {
-        fprintf(stderr, "dynkit: error: out of memory\n");
+        cli_error("out of memory");
         return CLI_FAILED;
     }
     if (dyn_cart_force_table(&par, v0, f, N, Ts, table, err, sizeof err)) {
@@ -204,7 +205,7 @@ int cli_cmd_inverse(int argc, char **argv)
         clearerr(stdout); /* reported below, not again at exit */
     int rc = CLI_OK;
     if (bad) {
-        fprintf(stderr, "dynkit: error: writing the force table failed: %s\n",
+        cli_error("writing the force table failed: %s",
                 ferr[0] ? ferr : strerror(errno));
         rc = CLI_FAILED;
     } else if (!quiet) {
@@ -220,9 +221,10 @@ int cli_cmd_inverse(int argc, char **argv)
             fprintf(stderr, " --init %s=%s", m->states[i].name, CLI_NUM(y0[i]));
         fprintf(stderr, "\ndynkit: final forces at te = %s s: Fx = %s N, Fy = %s N\n",
                 CLI_NUM(last[0]), CLI_NUM(last[1]), CLI_NUM(last[2]));
+        char shown[4 * 4096 + 1];
         fprintf(stderr, "dynkit: forward run (problem 4c): dynkit run cart --forces %s "
                         "--method heun",
-                output_path ? output_path : "FILE");
+                output_path ? cli_terminal_text(output_path, 0, shown, sizeof shown) : "FILE");
         print_changed_params(stderr, m, &par);
         for (int i = 0; i < 6; i++)
             fprintf(stderr, " --init %s=%s", m->states[i].name, CLI_NUM(y0[i]));

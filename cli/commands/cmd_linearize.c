@@ -128,14 +128,13 @@ static int linearize_point(const dyn_model *m, double t, void *par, const lin_op
     const dyn_linearize_opts lo = {o->scheme, NULL};
     int rc = dyn_linearize(m, t, p->y, par, &lo, p->A, work, &p->info);
     if (rc) {
-        fprintf(stderr, "dynkit: error: linearize: %s\n", p->info.message);
+        cli_error("linearize: %s", p->info.message);
         return rc == DYN_ERR_ARG ? CLI_USAGE : CLI_FAILED;
     }
     rc = m->rhs(t, p->y, p->f, par);
     if (rc) {
-        fprintf(stderr,
-                "dynkit: error: the right-hand side of %s failed at the state "
-                "(status %d)\n",
+        cli_error("the right-hand side of %s failed at the state "
+                "(status %d)",
                 m->name, rc);
         return CLI_FAILED;
     }
@@ -156,7 +155,7 @@ static int linearize_point(const dyn_model *m, double t, void *par, const lin_op
         free(P);
         free(rw);
         if (rc) {
-            fprintf(stderr, "dynkit: error: linearize: the admissible directions: %s\n",
+            cli_error("linearize: the admissible directions: %s",
                     err[0] ? err : "their basis is singular");
             return CLI_FAILED;
         }
@@ -166,7 +165,7 @@ static int linearize_point(const dyn_model *m, double t, void *par, const lin_op
     const int k = p->k;
     memcpy(scratch, Ause, (size_t)k * (size_t)k * sizeof *scratch);
     if (k > 0 && solver->eigenvalues(k, scratch, p->re, p->im, err, sizeof err)) {
-        fprintf(stderr, "dynkit: error: eigenvalues: %s\n", err);
+        cli_error("eigenvalues: %s", err);
         return CLI_FAILED;
     }
     dyn_eig_sort(k, p->re, p->im);
@@ -534,9 +533,9 @@ int cli_cmd_linearize(int argc, char **argv)
     const char *vname = rc == CLI_OK && o.vary ? dyn_sweep_var_name(m, &var) : NULL;
     const dyn_eig_solver *solver = cli_eig_solver();
     if (rc == CLI_OK && !solver && (o.json || (o.output && !o.matrix))) {
-        fprintf(stderr, "dynkit: error: linearize: eigenvalues need LAPACK, and this dynkit "
+        cli_error("linearize: eigenvalues need LAPACK, and this dynkit "
                         "was built without it (install liblapack-dev and build again); "
-                        "--matrix prints A alone\n");
+                        "--matrix prints A alone");
         rc = CLI_FAILED;
     }
     const size_t N = (size_t)n;
@@ -546,7 +545,7 @@ int cli_cmd_linearize(int argc, char **argv)
     double *work =
         rc == CLI_OK ? malloc((dyn_equilibrium_work_size(n) + N * N) * sizeof *work) : NULL;
     if (rc == CLI_OK && (!pts || !par || !work)) {
-        fprintf(stderr, "dynkit: error: out of memory\n");
+        cli_error("out of memory");
         rc = CLI_FAILED;
     }
     for (long k = 0; k < n_pts && rc == CLI_OK; k++) {
@@ -558,7 +557,7 @@ int cli_cmd_linearize(int argc, char **argv)
         p->re = calloc(N, sizeof *p->re);
         p->im = calloc(N, sizeof *p->im);
         if (!p->y || !p->f || !p->A || !p->re || !p->im) {
-            fprintf(stderr, "dynkit: error: out of memory\n");
+            cli_error("out of memory");
             rc = CLI_FAILED;
             break;
         }
@@ -609,8 +608,8 @@ int cli_cmd_linearize(int argc, char **argv)
         }
     }
     if (rc == CLI_OK && !solver && !o.matrix) {
-        fprintf(stderr, "dynkit: error: linearize: eigenvalues need LAPACK, and this dynkit "
-                        "was built without it (install liblapack-dev and build again)\n");
+        cli_error("linearize: eigenvalues need LAPACK, and this dynkit "
+                        "was built without it (install liblapack-dev and build again)");
         rc = CLI_FAILED;
     }
     free_points(pts, n_pts);

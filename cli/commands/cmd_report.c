@@ -171,7 +171,7 @@ static int write_html(const dyn_homework *hw, const char *path)
         page.json = capture(dyn_homework_write_json, hw, &page.json_len);
         page.text = capture(dyn_homework_write_text, hw, &text_len);
         if (!page.json || !page.text) {
-            fprintf(stderr, "dynkit: error: formatting the report failed: out of memory\n");
+            cli_error("formatting the report failed: out of memory");
             rc = CLI_FAILED;
         }
     }
@@ -241,7 +241,7 @@ int cli_cmd_report(int argc, char **argv)
     }
     int bad = json ? dyn_homework_write_json(&hw, stdout) : dyn_homework_write_text(&hw, stdout);
     if (bad || fflush(stdout)) {
-        fprintf(stderr, "dynkit: error: writing the report failed\n");
+        cli_error("writing the report failed");
         return CLI_FAILED;
     }
     return CLI_OK;

@@ -382,7 +382,7 @@ int cli_cmd_run(int argc, char **argv)
     memset(&res, 0, sizeof res);
     double *buffers = calloc((size_t)(2 * n + m->n_outputs + 1), sizeof *buffers);
     if (!buffers) {
-        fprintf(stderr, "dynkit: error: out of memory\n");
+        cli_error("out of memory");
         rc = CLI_FAILED;
         goto done;
     }
@@ -395,7 +395,7 @@ int cli_cmd_run(int argc, char **argv)
     sink.section = run.section.kind != DYN_POINCARE_NONE;
     if (!(sink.table = table = cli_table_open_run(out, format, &run, run.header, ferr,
                                                   sizeof ferr))) {
-        fprintf(stderr, "dynkit: error: --output: %s\n", ferr);
+        cli_error("--output: %s", ferr);
         rc = CLI_FAILED;
         goto done;
     }
@@ -406,18 +406,16 @@ int cli_cmd_run(int argc, char **argv)
         fputc('\n', evout);
     }
     if (at_steps && m->samples != DYN_SAMPLES_STEPS && !run.quiet)
-        fprintf(stderr,
-                "dynkit: note: the model's step %g over %g:%g would give %.3g samples; writing "
-                "a sample at every accepted step instead (give --step or --times for a grid)\n",
+        cli_note("the model's step %g over %g:%g would give %.3g samples; writing "
+                "a sample at every accepted step instead (give --step or --times for a grid)",
                 run.step, run.t0, run.t1, (run.t1 - run.t0) / run.step + 1.0);
     for (int i = 0; i < m->n_events && !run.quiet; i++)
         if (m->events[i].direction == DYN_EVENT_JUMPS) {
             /* XPPAUT's global with sign 0: the one place its rule is not followed */
-            fprintf(stderr,
-                    "dynkit: note: event %s fires only when a reset takes its condition onto or "
+            cli_note("event %s fires only when a reset takes its condition onto or "
                     "across zero (XPPAUT's global with sign 0); XPPAUT 6.11 also fires it where "
                     "one of its own steps ends with the condition within 5e-16 of zero, at a "
-                    "time that is not the crossing's: dynkit does not\n",
+                    "time that is not the crossing's: dynkit does not",
                     m->events[i].name);
             break;
         }
@@ -445,7 +443,7 @@ int cli_cmd_run(int argc, char **argv)
     cli_signals_graceful(0);
     cli_progress_finish(&progress);
     if (solved < 0) {
-        fprintf(stderr, "dynkit: error: out of memory\n");
+        cli_error("out of memory");
         rc = CLI_FAILED;
         goto done;
     }
@@ -475,7 +473,7 @@ int cli_cmd_run(int argc, char **argv)
         if (outf.path)
             cli_error("--output '%s': %s", outf.path, ferr);
         else if (errno != EPIPE)
-            fprintf(stderr, "dynkit: error: --output: %s\n", ferr);
+            cli_error("--output: %s", ferr);
         errno = finish_errno;
         outf.failure_told = outf.path != NULL;
         sink.io_failed = 1;
@@ -486,10 +484,9 @@ int cli_cmd_run(int argc, char **argv)
     if (sink.table_full) {
         char full[200];
         cli_table_full(table, full, sizeof full);
-        fprintf(stderr,
-                "dynkit: error: --output: %s; the run stopped there and its rows are "
+        cli_error("--output: %s; the run stopped there and its rows are "
                 "written, the last at t = %s (CSV files, and NPY files that are not pipes, are "
-                "streamed, with no limit; --every K keeps fewer rows)\n",
+                "streamed, with no limit; --every K keeps fewer rows)",
                 full, CLI_NUM(sink.last_t));
         rc = CLI_FAILED;
     }
@@ -508,7 +505,7 @@ int cli_cmd_run(int argc, char **argv)
                       e ? strerror(e) : "a write failed",
                       outf.tmp ? "; the file was left as it was" : "");
         else if (!outf.path && errno != EPIPE)
-            fprintf(stderr, "dynkit: error: writing the output failed: %s\n",
+            cli_error("writing the output failed: %s",
                     errno ? strerror(errno) : "a write failed");
         if (!outf.path)
             clearerr(stdout); /* reported here, not again at exit */
@@ -526,8 +523,7 @@ int cli_cmd_run(int argc, char **argv)
         rc = CLI_FAILED;
     }
     if (res.stiff)
-        fprintf(stderr,
-                "dynkit: warning: %s; a method for stiff problems would need far fewer steps\n",
+        cli_warning("%s; a method for stiff problems would need far fewer steps",
                 res.stiff_message);
     if (res.stopped_by_event && !run.quiet)
         fprintf(stderr, "dynkit: the run stopped at %s%s, t = %s\n",

@@ -18,6 +18,7 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "util/escape.h"
 #include "dynkit/io.h"
 #include "dynkit/sweep.h"
 #include "util/out_file.h"
@@ -522,7 +523,7 @@ static int write_data_file(FILE *f, cli_format format, const sweep_out *o, const
         cli_table_free(tab);
     }
     if (bad)
-        fprintf(stderr, "dynkit: error: --output: %s\n", err);
+        cli_error("--output: %s", err);
     free(names);
     free(units);
     free(red_names);
@@ -563,8 +564,8 @@ static int read_resume(const char *path, sweep_out *o, unsigned char *skip, long
         if (!complete && lineno > 1 && len > 0 && feof(f)) {
             /* the last row cut mid-line, as a crash or a full disk leaves it: its run is
              * made again */
-            fprintf(stderr, "dynkit: note: --resume: %s:%ld: the last row is cut off (no line "
-                            "end); its run is made again\n",
+            cli_note("--resume: %s:%ld: the last row is cut off (no line "
+                            "end); its run is made again",
                     path, lineno);
             break;
         }
@@ -643,7 +644,7 @@ static int check_resumed(const dyn_sweep *s, const sweep_out *o, const unsigned 
     const size_t n_red = (size_t)o->n_red;
     double *mine = malloc((n_red + 1) * sizeof *mine);
     if (!mine) {
-        fprintf(stderr, "dynkit: error: out of memory\n");
+        cli_error("out of memory");
         return CLI_FAILED;
     }
     /* a sweep of that one row of the run table */
@@ -658,7 +659,7 @@ static int check_resumed(const dyn_sweep *s, const sweep_out *o, const unsigned 
     char err[512];
     const int src = dyn_sweep_run(&one, mine, &status, err, sizeof err);
     if (src != DYN_OK) {
-        fprintf(stderr, "dynkit: error: %s\n", err);
+        cli_error("%s", err);
         rc = src == DYN_ERR_ARG ? CLI_USAGE : CLI_FAILED;
     }
     const double *kept = o->results + (size_t)probe * n_red;
@@ -678,11 +679,10 @@ static int check_resumed(const dyn_sweep *s, const sweep_out *o, const unsigned 
             snprintf(got, sizeof got, "%s", status_word(status));
             snprintf(had, sizeof had, "%s", status_word(o->status[probe]));
         }
-        fprintf(stderr,
-                "dynkit: error: --resume: %s was made with other run options: its run %ld, run "
+        cli_error("--resume: %s was made with other run options: its run %ld, run "
                 "again with these, gives %s = %s where the file has %s.\nThe table does not "
                 "record the method, step, tspan, tolerances or --set: give those of the sweep "
-                "that wrote it (and the same dynkit)\n",
+                "that wrote it (and the same dynkit)",
                 path, probe, name, got, had);
         rc = CLI_USAGE;
     }
@@ -953,7 +953,7 @@ static int sweep_command(int argc, char **argv, int rank, int ranks)
     o.status = malloc(((size_t)n_runs + 1) * sizeof *o.status);
     unsigned char *skip = calloc((size_t)n_runs + 1, 1);
     if (!o.results || !o.status || !skip) {
-        fprintf(stderr, "dynkit: error: out of memory for %ld runs\n", n_runs);
+        cli_error("out of memory for %ld runs", n_runs);
         rc = CLI_FAILED;
     }
     for (long i = 0; i < n_runs && rc == CLI_OK; i++)
@@ -1043,7 +1043,7 @@ static int sweep_command(int argc, char **argv, int rank, int ranks)
         if (prog.shown)
             fputs("\r\033[K", stderr);
         if (src != DYN_OK && src != DYN_CANCELLED) {
-            fprintf(stderr, "dynkit: error: %s\n", err);
+            cli_error("%s", err);
             rc = src == DYN_ERR_ARG ? CLI_USAGE : CLI_FAILED;
         }
     }
@@ -1089,17 +1089,19 @@ static int sweep_command(int argc, char **argv, int rank, int ranks)
             for (long i = 0; i < n_runs && !seen; i++)
                 seen = o.status[i] == DYN_OK && !isnan(o.results[(size_t)i * (size_t)n_red + (size_t)r]);
             if (!seen && done > failed)
-                fprintf(stderr,
-                        "dynkit: note: event %s occurred in no run within %g:%g s (a longer "
-                        "--tspan?)\n",
+                cli_note("event %s occurred in no run within %g:%g s (a longer "
+                        "--tspan?)",
                         m->events[red[r].index].name, run.t0, run.t1);
         }
         if (src == DYN_CANCELLED) {
+            char shown[4 * 4096 + 1];
+            const char *named = out_path ? cli_terminal_text(out_path, 0, shown, sizeof shown)
+                                         : "standard output";
             fprintf(stderr,
                     "dynkit: interrupted: %ld of %ld runs done, written to %s.\n"
                     "dynkit: to run the others, give the same command with --resume %s\n",
-                    done, n_runs, out_path ? out_path : "standard output",
-                    out_path && strcmp(out_path, "-") != 0 ? out_path
+                    done, n_runs, named,
+                    out_path && strcmp(out_path, "-") != 0 ? named
                                                             : "FILE (the table saved to FILE)");
             rc = 128 + (int)sweep_signal;
         }
@@ -1133,7 +1135,7 @@ int cli_cmd_sweep(int argc, char **argv)
     if (job > 0) {
         int provided = 0, rank = 0, size = 1;
         if (MPI_Init_thread(NULL, NULL, MPI_THREAD_FUNNELED, &provided) != MPI_SUCCESS) {
-            fprintf(stderr, "dynkit: error: MPI_Init_thread failed\n");
+            cli_error("MPI_Init_thread failed");
             return CLI_FAILED;
         }
         MPI_Comm_rank(MPI_COMM_WORLD, &rank);

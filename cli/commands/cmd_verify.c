@@ -282,7 +282,7 @@ int cli_cmd_verify(int argc, char **argv)
         return cli_usage_error("verify", "%s", err);
     dyn_verify_row *rows = calloc(count > 0 ? (size_t)count : 1, sizeof *rows);
     if (!rows) {
-        fprintf(stderr, "dynkit: error: out of memory\n");
+        cli_error("out of memory");
         return CLI_FAILED;
     }
     const long limit = o.quick ? 20000L : 100000L;
@@ -296,7 +296,7 @@ int cli_cmd_verify(int argc, char **argv)
     int rc = dyn_verify_run(&o, rows, count, &n, err, sizeof err);
     const double seconds = wall_seconds() - start;
     if (rc != DYN_OK) {
-        fprintf(stderr, "dynkit: error: verify: %s\n", err);
+        cli_error("verify: %s", err);
         free(rows);
         return CLI_FAILED;
     }

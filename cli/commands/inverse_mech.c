@@ -151,7 +151,7 @@ static int add_prescribe(const char *text, char **extra, size_t *len)
     const size_t add = 2 * nl + strlen(eq + 1) + 32;
     char *e = realloc(*extra, *len + add);
     if (!e) {
-        fprintf(stderr, "dynkit: error: out of memory\n");
+        cli_error("out of memory");
         return CLI_FAILED;
     }
     *len += (size_t)snprintf(e + *len, add, "prescribe Q_%.*s: %.*s = %s\n", (int)nl, text,
@@ -216,7 +216,7 @@ static int write_table(const inv *v, const char *spec)
     else
         clearerr(stdout);
     if (bad) {
-        fprintf(stderr, "dynkit: error: writing the forces of %s failed%s%s\n", spec,
+        cli_error("writing the forces of %s failed%s%s", spec,
                 ferr[0] ? ": " : "", ferr);
         return CLI_FAILED;
     }
@@ -302,7 +302,7 @@ int cli_inverse_mech(int argc, char **argv)
         v.par2 = malloc(run.model->par_size);
         v.out = malloc((no + 2 * N) * sizeof *v.out);
         if (!v.par2 || !v.out) {
-            fprintf(stderr, "dynkit: error: out of memory\n");
+            cli_error("out of memory");
             rc = CLI_FAILED;
         } else {
             memcpy(v.par2, run.par, run.model->par_size);
@@ -318,10 +318,10 @@ int cli_inverse_mech(int argc, char **argv)
                          : -1;
         free(y);
         if (v.err[0]) {
-            fprintf(stderr, "dynkit: error: inverse %s: %s\n", spec, v.err);
+            cli_error("inverse %s: %s", spec, v.err);
             rc = CLI_FAILED;
         } else if (st != 0) {
-            fprintf(stderr, "dynkit: error: inverse %s: the prescribed run failed: %s\n", spec,
+            cli_error("inverse %s: the prescribed run failed: %s", spec,
                     st < 0 ? "out of memory" : res.message);
             rc = CLI_FAILED;
         }

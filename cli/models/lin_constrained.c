@@ -43,13 +43,13 @@ int cli_lin_constraints_open(const char *spec, const dyn_model *m, cli_lin_const
                              sizeof err);
     free(c_source);
     if (rc != 0) {
-        fprintf(stderr, "dynkit: error: compiling the constraints of %s: %s\n", spec, err);
+        cli_error("compiling the constraints of %s: %s", spec, err);
         return CLI_FAILED;
     }
     cc->loaded = 1;
     const dyn_model *cm = cc->jm.model;
     if (cm->n_states != m->n_states || cm->par_size != m->par_size || cm->n_states % 2) {
-        fprintf(stderr, "dynkit: error: the constraints of %s do not match its model\n", spec);
+        cli_error("the constraints of %s do not match its model", spec);
         return CLI_FAILED;
     }
     for (int i = 0; i < cm->n_outputs; i++) {

@@ -86,17 +86,17 @@ char *cli_read_model_file(const char *path, size_t *len)
 {
     struct stat st;
     if (stat(path, &st) != 0) {
-        fprintf(stderr, "dynkit: error: cannot open model file '%s': %s\n", path, strerror(errno));
+        cli_error("cannot open model file '%s': %s", path, strerror(errno));
         return NULL;
     }
     if (S_ISDIR(st.st_mode)) {
-        fprintf(stderr, "dynkit: error: model file '%s' is a directory\n", path);
+        cli_error("model file '%s' is a directory", path);
         return NULL;
     }
     cli_input_note(path, "the model file");
     FILE *f = fopen(path, "rb");
     if (!f) {
-        fprintf(stderr, "dynkit: error: cannot open model file '%s': %s\n", path, strerror(errno));
+        cli_error("cannot open model file '%s': %s", path, strerror(errno));
         return NULL;
     }
     char *buf = malloc(MODEL_FILE_MAX_BYTES + 1);
@@ -104,7 +104,7 @@ char *cli_read_model_file(const char *path, size_t *len)
     const int bad = !buf || ferror(f);
     fclose(f);
     if (bad || n > MODEL_FILE_MAX_BYTES) {
-        fprintf(stderr, "dynkit: error: cannot read model file '%s': %s\n", path,
+        cli_error("cannot read model file '%s': %s", path,
                 !buf                       ? "out of memory"
                 : n > MODEL_FILE_MAX_BYTES ? "larger than 16 MiB"
                                            : "read error");
@@ -117,7 +117,7 @@ char *cli_read_model_file(const char *path, size_t *len)
         char *all = realloc(buf, n + ne + 2);
         if (!all) {
             free(buf);
-            fprintf(stderr, "dynkit: error: out of memory\n");
+            cli_error("out of memory");
             return NULL;
         }
         buf = all;
@@ -140,17 +140,18 @@ static void print_note(const char *path, int line, const char *message, void *ct
     char where[1024], shown[4096]; /* control bytes of the file escaped */
     cli_terminal_text(path, 0, where, sizeof where);
     if (strncmp(message, DYN_LANG_WARNING, w) == 0)
-        fprintf(stderr, "dynkit: warning: %s:%d: %s\n", where, line,
+        cli_warning("%s:%d: %s", where, line,
                 cli_terminal_text(message + w, 0, shown, sizeof shown));
     else if (verbose)
-        fprintf(stderr, "dynkit: note: %s:%d: %s\n", where, line,
+        cli_note("%s:%d: %s", where, line,
                 cli_terminal_text(message, 0, shown, sizeof shown));
 }
 
 static int compile_failed(const char *what, const char *path, const char *err)
 {
-    fprintf(stderr, "dynkit: error: %s '%s' failed:\n%s%s", what, path, err,
-            err[0] && err[strlen(err) - 1] == '\n' ? "" : "\n");
+    const size_t n = strlen(err);
+    cli_error("%s '%s' failed:\n%.*s", what, path, (int)(n && err[n - 1] == '\n' ? n - 1 : n),
+              err);
     return CLI_USAGE;
 }
 
@@ -181,11 +182,11 @@ static int keep_loaded(const dyn_jit_model *jm, int algebraic, const char *path,
     loaded[n_loaded++] = *jm;
     *model = jm->model;
     if (jm->note[0]) /* libtcc instead of the compiler, a damaged cache entry replaced */
-        fprintf(stderr, "dynkit: note: %s: %s\n", path, jm->note);
+        cli_note("%s: %s", path, jm->note);
     if (verbose && jm->cached)
-        fprintf(stderr, "dynkit: note: %s: loaded from the cache (%s)\n", path, jm->so_path);
+        cli_note("%s: loaded from the cache (%s)", path, jm->so_path);
     else if (verbose)
-        fprintf(stderr, "dynkit: note: %s: compiled in %.3f s (%s)\n", path, jm->compile_seconds,
+        cli_note("%s: compiled in %.3f s (%s)", path, jm->compile_seconds,
                 jm->backend == DYN_JIT_TCC ? "libtcc, in memory" : jm->so_path);
     return CLI_OK;
 }
@@ -228,7 +229,7 @@ static int open_model_file(const char *spec, const dyn_model **model)
     dyn_jit_model jm;
     char err[8192];
     if (n_loaded >= MAX_LOADED) {
-        fprintf(stderr, "dynkit: error: more than %d model files in one command\n", MAX_LOADED);
+        cli_error("more than %d model files in one command", MAX_LOADED);
         return CLI_USAGE;
     }
     if (ends_with(spec, ".so")) {
@@ -242,7 +243,7 @@ static int open_model_file(const char *spec, const dyn_model **model)
         struct stat st;
         const int found = stat(spec, &st) == 0;
         if (!found || S_ISDIR(st.st_mode)) {
-            fprintf(stderr, "dynkit: error: cannot open model file '%s': %s\n", spec,
+            cli_error("cannot open model file '%s': %s", spec,
                     found ? "is a directory" : strerror(errno));
             return CLI_USAGE;
         }
@@ -339,7 +340,7 @@ static int open_brusselator(const char *command, const char *spec, const dyn_mod
     char err[256];
     dyn_model *m = dyn_brusselator_new((int)N, err, sizeof err);
     if (!m) {
-        fprintf(stderr, "dynkit: model %s: %s\n", spec, err);
+        cli_error("model %s: %s", spec, err);
         *rc = CLI_FAILED;
         return 1;
     }

@@ -39,7 +39,7 @@ static char *read_all(const char *what, const char *path, size_t *len)
     cli_input_note(path, what[0] == 'm' ? "the model file" : "the animation file");
     FILE *f = fopen(path, "rb");
     if (!f) {
-        fprintf(stderr, "dynkit: error: cannot open %s '%s': %s\n", what, path, strerror(errno));
+        cli_error("cannot open %s '%s': %s", what, path, strerror(errno));
         return NULL;
     }
     char *buf = malloc(ANI_FILE_MAX_BYTES + 1);
@@ -47,7 +47,7 @@ static char *read_all(const char *what, const char *path, size_t *len)
     const int bad = !buf || ferror(f);
     fclose(f);
     if (bad || n > ANI_FILE_MAX_BYTES) {
-        fprintf(stderr, "dynkit: error: cannot read %s '%s': %s\n", what, path,
+        cli_error("cannot read %s '%s': %s", what, path,
                 !buf ? "out of memory" : n > ANI_FILE_MAX_BYTES ? "larger than 16 MiB"
                                                                : "read error");
         free(buf);
@@ -63,7 +63,7 @@ static void print_note(const char *path, int line, const char *message, void *ct
     (void)ctx;
     char where[1024], shown[4096]; /* control bytes of the file escaped */
     if (cli_verbose())
-        fprintf(stderr, "dynkit: note: %s:%d: %s\n", cli_terminal_text(path, 0, where, sizeof where),
+        cli_note("%s:%d: %s", cli_terminal_text(path, 0, where, sizeof where),
                 line, cli_terminal_text(message, 0, shown, sizeof shown));
 }
 
@@ -102,9 +102,8 @@ int cli_ani_open(const char *command, const char *model_spec, const char *ani_pa
         memcpy(ode + n, ".ode", 5);
         if (!ends_with(model_spec, ".ode") && is_regular(ode)) {
             char a[1024], b[1024], c[1024];
-            fprintf(stderr,
-                    "dynkit: warning: %s belongs to %s, not to %s: the page plays no "
-                    "animation (--ani FILE.ani plays one)\n",
+            cli_warning("%s belongs to %s, not to %s: the page plays no "
+                    "animation (--ani FILE.ani plays one)",
                     cli_terminal_text(out->path, 0, a, sizeof a),
                     cli_terminal_text(ode, 0, b, sizeof b),
                     cli_terminal_text(model_spec, 0, c, sizeof c));
@@ -144,7 +143,7 @@ int cli_ani_open(const char *command, const char *model_spec, const char *ani_pa
         names = calloc((size_t)n + 1, sizeof *names);
         if (!names) {
             free(text);
-            fprintf(stderr, "dynkit: error: out of memory\n");
+            cli_error("out of memory");
             return CLI_FAILED;
         }
         for (int i = 0; i < m->n_states; i++)
@@ -170,9 +169,9 @@ int cli_ani_open(const char *command, const char *model_spec, const char *ani_pa
         if (implicit && rc != 1) {
             char a[1024];
             cli_terminal_text(out->path, 0, a, sizeof a);
-            fprintf(stderr, "dynkit: warning: %s, found beside the model, does not fit it; the "
+            cli_warning("%s, found beside the model, does not fit it; the "
                             "page plays no animation (--no-ani leaves it out without this "
-                            "warning):\n",
+                            "warning):",
                     a);
             fputs(dyn_lang_diag_format(&diag, shown, sizeof shown), stderr);
             out->path[0] = '\0';
@@ -186,8 +185,8 @@ int cli_ani_open(const char *command, const char *model_spec, const char *ani_pa
     const int fits = ns == m->n_states && no == m->n_outputs &&
                      (from_ode ? (size_t)np * sizeof(double) <= m->par_size : np == m->n_params);
     if (!fits) {
-        fprintf(stderr, "dynkit: error: %s: the model file '%s' changed while it was read (its "
-                        "quantities are not those of the model that was loaded)\n",
+        cli_error("%s: the model file '%s' changed while it was read (its "
+                        "quantities are not those of the model that was loaded)",
                 out->path, model_spec);
         cli_ani_free(out);
         return CLI_USAGE;

@@ -43,7 +43,7 @@ int cli_html_page_write(FILE *out, const char *title, const char *body_asset, cl
     const cli_web_asset *page = find_asset("page.html");
     const cli_web_asset *body = find_asset(body_asset);
     if (!page || !body) {
-        fprintf(stderr, "dynkit: error: the page template %s is missing from the build\n",
+        cli_error("the page template %s is missing from the build",
                 page ? body_asset : "page.html");
         return CLI_FAILED;
     }
@@ -77,7 +77,7 @@ int cli_html_page_write(FILE *out, const char *title, const char *body_asset, cl
         p = close + 3;
     }
     if (bad || fflush(out)) {
-        fprintf(stderr, "dynkit: error: writing the page failed\n");
+        cli_error("writing the page failed");
         return CLI_FAILED;
     }
     return CLI_OK;

@@ -42,8 +42,8 @@ int cli_mech_scene_open(const char *model_spec, const dyn_model *m, dyn_mech_sce
         return rc == 1 ? CLI_FAILED : CLI_USAGE;
     }
     if (dyn_mech_scene_n_params(*out) != m->n_params) {
-        fprintf(stderr, "dynkit: error: the mechanism file '%s' changed while it was read (its "
-                        "parameters are not those of the model that was loaded)\n",
+        cli_error("the mechanism file '%s' changed while it was read (its "
+                        "parameters are not those of the model that was loaded)",
                 model_spec);
         dyn_mech_scene_free(*out);
         *out = NULL;

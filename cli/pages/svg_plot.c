@@ -322,7 +322,7 @@ int cli_svg_write_panels(FILE *out, const cli_svg_plot *const *plots, int n)
     }
     bad |= fputs("</svg>\n", out) < 0;
     if (bad || fflush(out)) {
-        fprintf(stderr, "dynkit: error: writing the SVG failed\n");
+        cli_error("writing the SVG failed");
         return CLI_FAILED;
     }
     return CLI_OK;

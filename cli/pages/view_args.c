@@ -41,7 +41,7 @@ int cli_view_parse(const char *command, int argc, char **argv, const char *const
     memset(v, 0, sizeof *v);
     char **rest = calloc((size_t)argc + 1, sizeof *rest);
     if (!rest) {
-        fprintf(stderr, "dynkit: error: out of memory\n");
+        cli_error("out of memory");
         return CLI_FAILED;
     }
     int n_rest = 0, rc = CLI_OK;

@@ -31,7 +31,7 @@ int cli_load_input(const char *command, cli_run *run, unsigned given)
     cli_input_note(path, "the --forces table");
     const int read_rc = dyn_table_read_file(path, DYN_TABLE_TIME_FIRST, &table, err, sizeof err);
     if (read_rc == DYN_ERR_CAPACITY) { /* out of memory: no usage error */
-        fprintf(stderr, "dynkit: error: --forces: %s\n", err);
+        cli_error("--forces: %s", err);
         return CLI_FAILED;
     }
     if (read_rc)
@@ -59,7 +59,7 @@ int cli_load_input(const char *command, cli_run *run, unsigned given)
         rc = cli_usage_error(command, "--forces: in %s the first column must be t (needs %s)",
                              path, list);
     if (rc == CLI_OK && !(run->input = malloc((size_t)table.rows * (size_t)cols * sizeof(double)))) {
-        fprintf(stderr, "dynkit: error: out of memory\n");
+        cli_error("out of memory");
         rc = CLI_FAILED;
     }
     if (rc != CLI_OK) {

@@ -549,7 +549,7 @@ static void note_method(const cli_run *run, unsigned given)
     if (dyn_method_is_stiff(run->method)) {
         cli_linear lin;
         cli_linear_for_run(run, &lin);
-        fprintf(stderr, "dynkit: note: %s\n", lin.why);
+        cli_note("%s", lin.why);
     }
 }
 
@@ -572,9 +572,8 @@ static void tolerance_defaults(cli_run *run, unsigned given)
             raised = 1;
         }
     if (raised && dyn_method_is_adaptive(run->method))
-        fprintf(stderr,
-                "dynkit: warning: --rtol below rounding asks for more than doubles can give; "
-                "raised to %.3g (100 eps, as MATLAB)\n",
+        cli_warning("--rtol below rounding asks for more than doubles can give; "
+                "raised to %.3g (100 eps, as MATLAB)",
                 DYN_MIN_RTOL);
     if (!(given & GIVEN_MAX_STEPS) && dyn_method_is_adaptive(run->method) &&
         !cli_method_is_cvode(run->method))
@@ -640,7 +639,7 @@ int cli_run_parse_with(const char *command, int argc, char **argv, int other_ada
     assignment *as = calloc((size_t)argc, sizeof *as);
     if (!run->par || !run->y0 || !as) {
         free(as);
-        fprintf(stderr, "dynkit: error: out of memory\n");
+        cli_error("out of memory");
         return CLI_FAILED;
     }
     dyn_model_default_params(m, run->par, err, sizeof err);

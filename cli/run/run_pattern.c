@@ -43,7 +43,7 @@ int cli_run_jac_pattern(const char *command, cli_run *run)
                                m->name, m->jac_pattern.nnz > 0 ? "pattern" : "band");
     dyn_model *own = malloc(sizeof *own);
     if (!own) {
-        fprintf(stderr, "dynkit: error: out of memory\n");
+        cli_error("out of memory");
         return CLI_FAILED;
     }
     *own = *m;
@@ -58,7 +58,7 @@ int cli_run_jac_pattern(const char *command, cli_run *run)
         if (dyn_sparse_probe(&sys, run->t0, run->y0, PROBE_POINTS, PROBE_SEED,
                              &run->probed, err, sizeof err)) {
             free(own);
-            fprintf(stderr, "dynkit: error: --jac-pattern probe: %s\n", err);
+            cli_error("--jac-pattern probe: %s", err);
             return CLI_FAILED;
         }
         int lower = 0, upper = 0;
@@ -70,9 +70,8 @@ int cli_run_jac_pattern(const char *command, cli_run *run)
         }
         own->jac_pattern = run->probed;
         if (cli_verbose())
-            fprintf(stderr,
-                    "dynkit: note: --jac-pattern probe: %d of %d entries of the Jacobian are "
-                    "not zero at %d points near the initial state (%d calls of f)\n",
+            cli_note("--jac-pattern probe: %d of %d entries of the Jacobian are "
+                    "not zero at %d points near the initial state (%d calls of f)",
                     run->probed.nnz, m->n_states * m->n_states, PROBE_POINTS,
                     PROBE_POINTS * (m->n_states + 1));
     }

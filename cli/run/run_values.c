@@ -286,13 +286,13 @@ int cli_parse_times(const char *command, const char *text, cli_run *run)
                 rc = cli_usage_error(command, "--times: line %ld of %s ('%s') is not a time in s",
                                      lineno, text + 1, dyn_text_escaped(p, shown, sizeof shown));
             else if (push_time(&run->times, &run->n_times, &cap, t)) {
-                fprintf(stderr, "dynkit: error: --times %s: out of memory\n", text + 1);
+                cli_error("--times %s: out of memory", text + 1);
                 rc = CLI_FAILED;
             }
         }
         if (rc == CLI_OK && got < 0) {
             if (why && strcmp(why, "out of memory") == 0) {
-                fprintf(stderr, "dynkit: error: --times %s: out of memory\n", text + 1);
+                cli_error("--times %s: out of memory", text + 1);
                 rc = CLI_FAILED;
             } else {
                 rc = cli_usage_error(command, "--times: %s, line %ld: %s", text + 1, lineno + 1,

@@ -12,9 +12,9 @@
 #include "dynkit/lang.h"
 #include "util/escape.h"
 
-/* "dynkit: error: " and the message on stderr, its control bytes escaped (escape.h): a
+/* "dynkit: <kind>: " and the message on stderr, its control bytes escaped (escape.h): a
  * message quotes names, lines and values from files. */
-static void print_error(const char *fmt, va_list ap)
+static void print_message(const char *kind, const char *fmt, va_list ap)
 {
     va_list copy;
     va_copy(copy, ap);
@@ -24,7 +24,7 @@ static void print_error(const char *fmt, va_list ap)
     char *shown = msg ? malloc(4 * (size_t)len + 8) : NULL;
     if (shown) {
         vsnprintf(msg, (size_t)len + 1, fmt, ap);
-        fprintf(stderr, "dynkit: error: %s",
+        fprintf(stderr, "dynkit: %s: %s", kind,
                 cli_terminal_text(msg, 1, shown, 4 * (size_t)len + 8));
     } else {
         fputs("dynkit: error: out of memory\n", stderr);
@@ -37,7 +37,25 @@ void cli_error(const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    print_error(fmt, ap);
+    print_message("error", fmt, ap);
+    va_end(ap);
+    fputc('\n', stderr);
+}
+
+void cli_warning(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    print_message("warning", fmt, ap);
+    va_end(ap);
+    fputc('\n', stderr);
+}
+
+void cli_note(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    print_message("note", fmt, ap);
     va_end(ap);
     fputc('\n', stderr);
 }
@@ -46,7 +64,7 @@ int cli_usage_error(const char *command, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    print_error(fmt, ap);
+    print_message("error", fmt, ap);
     va_end(ap);
     fprintf(stderr, "\nTry 'dynkit %s%s--help'.\n", command ? command : "", command ? " " : "");
     return CLI_USAGE;

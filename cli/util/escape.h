@@ -12,8 +12,9 @@
  * Both take bytes in UTF-8: a byte that does not begin a well-formed sequence (RFC 3629: no
  * overlong forms, no surrogates, nothing above U+10FFFF), and in XML a character that XML
  * 1.0 does not allow (control characters other than tab and line ends, U+FFFE, U+FFFF),
- * become U+FFFD, so a document never fails to parse over a name. Only stdio: the benchmark's
- * diagrams use it too. Each returns non-zero when a write failed. */
+ * become U+FFFD, so a document never fails to parse over a name. Only stdio and the
+ * library's UTF-8 reader (dyn_utf8_next): the benchmark's diagrams use it too. Each
+ * returns non-zero when a write failed. */
 #ifndef DYNKIT_CLI_ESCAPE_H
 #define DYNKIT_CLI_ESCAPE_H
 
@@ -29,12 +30,9 @@ int cli_xml_escaped(FILE *out, const char *s);
  * JavaScript before ES2019). */
 int cli_json_escaped(FILE *out, const char *s);
 
-/* s for a terminal, into buf (size > 4): printable ASCII and well-formed UTF-8 are kept,
- * every other byte is written \xNN: control characters (ESC, BEL, and the C1 controls
- * U+0080..U+009F, which some terminals obey too), DEL, and bytes that are not UTF-8, so text
- * from a file cannot move the cursor, set a window title or change colours. Tab and line
- * feed are kept when lines is 1. Cut with "..." when buf is too small (4 times the length
- * of s, plus 1, always suffices). Returns buf. */
+/* s for a terminal, into buf (size > 4): dyn_terminal_text (dynkit/io.h), the one escaper
+ * of messages that quote outside text (control bytes, DEL, C1 controls and bytes that are
+ * not UTF-8 written \xNN; tab and line feed kept when lines is 1). Returns buf. */
 const char *cli_terminal_text(const char *s, int lines, char *buf, size_t size);
 
 #endif

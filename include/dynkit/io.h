@@ -120,9 +120,21 @@ int dyn_table_read_file(const char *path, unsigned flags, dyn_table *table, char
 int dyn_table_column(const dyn_table *table, const char *name);
 /* Release what dyn_table_read allocated and zero the struct; safe on a zeroed table. */
 void dyn_table_free(dyn_table *table);
-/* s with the bytes outside printable ASCII written as \xNN (so that a file's bytes never
- * reach a terminal raw), cut with "..." to fit size bytes of buf; returns buf. */
+/* s for a terminal, into buf (text_escape.c; the one escaper of every message that quotes
+ * outside text): printable ASCII and well-formed UTF-8 are kept, every other byte is
+ * written \xNN: control characters (ESC, BEL, and the C1 controls U+0080..U+009F, which
+ * some terminals obey too), DEL, and bytes that are not UTF-8, so text from a file cannot
+ * move the cursor, set a window title or change colours. Tab and line feed are kept when
+ * lines is 1. Cut with "..." when buf is too small (4 times the length of s, plus 1,
+ * always suffices; size >= 4). Returns buf. */
+const char *dyn_terminal_text(const char *s, int lines, char *buf, size_t size);
+/* dyn_terminal_text(s, 0, buf, size): one line. */
 const char *dyn_text_escaped(const char *s, char *buf, size_t size);
+/* The character that starts at *p, *p moved past it; DYN_UTF8_REPLACEMENT (U+FFFD) for a
+ * byte that does not begin a well-formed UTF-8 sequence (RFC 3629), that byte alone
+ * consumed. *p must not point at the terminating NUL. */
+#define DYN_UTF8_REPLACEMENT 0xFFFDL
+long dyn_utf8_next(const unsigned char **p);
 
 #ifdef __cplusplus
 }

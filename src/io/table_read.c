@@ -104,24 +104,6 @@ static int next_line(line_reader *r)
 /* Why next_line failed, as "SOURCE:LINE: ..." into err; returns the status. */
 static int line_error(const line_reader *r, const char *src, char *err, size_t errlen);
 
-const char *dyn_text_escaped(const char *s, char *buf, size_t size)
-{
-    size_t used = 0;
-    for (; *s && used + 5 < size; s++) {
-        const unsigned char c = (unsigned char)*s;
-        if (c >= 0x20 && c < 0x7f)
-            buf[used++] = (char)c;
-        else
-            used += (size_t)snprintf(buf + used, size - used, "\\x%02X", c);
-    }
-    if (*s && used + 4 <= size) {
-        memcpy(buf + used, "...", 3);
-        used += 3;
-    }
-    buf[used] = '\0';
-    return buf;
-}
-
 /* Trim blanks at both ends in place; returns the start. */
 static char *trim(char *s)
 {

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "dynkit/io.h"
 #include "lang/lang_internal.h"
 
 struct lang_block {
@@ -197,6 +198,20 @@ void lang_warn(lang_ctx *c, lpos p, const char *fmt, ...)
     c->note(c->path, p.line, msg, c->note_ctx);
 }
 
+/* The columns a terminal gives the first n bytes of excerpt once escaped (one per
+ * character: dyn_terminal_text keeps UTF-8 characters whole and writes other bytes as
+ * four). */
+static size_t shown_width(const char *excerpt, size_t n)
+{
+    char prefix[sizeof ((dyn_lang_diag *)0)->excerpt], shown[4 * sizeof prefix + 1];
+    copy_trunc(prefix, sizeof prefix, excerpt, n);
+    dyn_terminal_text(prefix, 1, shown, sizeof shown);
+    size_t width = 0;
+    for (const unsigned char *p = (const unsigned char *)shown; *p; p++)
+        width += (*p & 0xC0) != 0x80;
+    return width;
+}
+
 char *dyn_lang_diag_format(const dyn_lang_diag *d, char *buf, size_t size)
 {
     if (!buf || size == 0)
@@ -204,27 +219,36 @@ char *dyn_lang_diag_format(const dyn_lang_diag *d, char *buf, size_t size)
     buf[0] = '\0';
     if (!d)
         return buf;
+    /* the file's name, the message and the line quote outside text: escaped for a terminal
+     * by the one escaper (dyn_terminal_text), so no control byte of them reaches it raw */
+    char path[4 * sizeof d->path + 1], message[4 * sizeof d->message + 1];
+    char excerpt[4 * sizeof d->excerpt + 1];
+    dyn_terminal_text(d->path, 0, path, sizeof path);
+    dyn_terminal_text(d->message, 1, message, sizeof message);
+    dyn_terminal_text(d->excerpt, 1, excerpt, sizeof excerpt);
     size_t used = 0;
     int n;
     if (d->line > 0)
-        n = snprintf(buf, size, "%s:%d:%d: error: %s\n", d->path, d->line, d->col, d->message);
+        n = snprintf(buf, size, "%s:%d:%d: error: %s\n", path, d->line, d->col, message);
     else
-        n = snprintf(buf, size, "%s: error: %s\n", d->path, d->message);
+        n = snprintf(buf, size, "%s: error: %s\n", path, message);
     if (n < 0 || (size_t)n >= size)
         return buf;
     used = (size_t)n;
     if (d->line > 0 && d->excerpt[0]) {
-        n = snprintf(buf + used, size - used, "  %s\n", d->excerpt);
+        n = snprintf(buf + used, size - used, "  %s\n", excerpt);
         if (n < 0 || (size_t)n >= size - used)
             return buf;
         used += (size_t)n;
-        const int col = d->col > 0 ? d->col : 1;
+        const size_t col = d->col > 0 ? (size_t)d->col : 1;
         const size_t elen = strlen(d->excerpt);
-        if (used + (size_t)col + 4 < size) {
+        const size_t width = shown_width(d->excerpt, col - 1 < elen ? col - 1 : elen) +
+                             (col - 1 > elen ? col - 1 - elen : 0);
+        if (used + width + 4 < size) {
             buf[used++] = ' ';
             buf[used++] = ' ';
-            for (int i = 1; i < col; i++)
-                buf[used++] = (size_t)(i - 1) < elen && d->excerpt[i - 1] == '\t' ? '\t' : ' ';
+            for (size_t i = 0; i < width; i++)
+                buf[used++] = i < elen && d->excerpt[i] == '\t' ? '\t' : ' ';
             buf[used++] = '^';
             buf[used++] = '\n';
             buf[used] = '\0';

@@ -8,6 +8,7 @@
 #include <string.h>
 #include <strings.h>
 
+#include "dynkit/io.h"
 #include "lang/lang_internal.h"
 
 const char *lang_base_name(lang_ctx *c, const char *path, const char *ext)
@@ -18,7 +19,13 @@ const char *lang_base_name(lang_ctx *c, const char *path, const char *ext)
     const size_t k = strlen(ext);
     if (n > k && strncasecmp(b + n - k, ext, k) == 0)
         n -= k;
-    return n ? lang_strndup(c, b, n) : "model";
+    if (!n)
+        return "model";
+    /* the name is shown wherever the model is (headers, notes, tables): a control byte of
+     * the file's name is written \xNN by the one escaper (dynkit/io.h) */
+    char *raw = lang_strndup(c, b, n);
+    char *shown = lang_alloc(c, 4 * n + 1);
+    return dyn_terminal_text(raw, 0, shown, 4 * n + 1);
 }
 
 static void ode_front(lang_ctx *c)

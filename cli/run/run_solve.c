@@ -13,7 +13,7 @@
 static void warn_stderr(const char *message, void *ctx)
 {
     (void)ctx;
-    fprintf(stderr, "dynkit: warning: %s\n", message);
+    cli_warning("%s", message);
 }
 
 int cli_run_solve(const cli_run *run, long every, dyn_output_fn output, void *output_ctx,

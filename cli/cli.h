@@ -20,6 +20,9 @@ static inline const char *cli_num(double v, char *buf)
 /* 1 when path names standard output under another name (/dev/stdout, /dev/fd/1,
  * /proc/self/fd/1): written as "-" is, to the stream the shell gave (out_file.c). */
 int cli_is_stdout_name(const char *path);
+/* 1 for "-.EXT" ("-.json", "-.npy"): standard output in the format of extension EXT (a file
+ * of that name is written "./-.json"). cli_is_stdout_name is 1 for it too. */
+int cli_is_stdout_format(const char *path);
 
 /* Exit statuses of the contract. */
 enum { CLI_OK = 0, CLI_FAILED = 1, CLI_USAGE = 2 };
@@ -54,6 +57,12 @@ void cli_note(const char *fmt, ...)
  * angle in degrees ("45deg", converted to rad).
  * Returns 0 and *out, or -1 when text is not such a number. */
 int cli_parse_number(const char *text, double *out);
+/* A value of the command line (formula.c): a number as cli_parse_number reads it, else a
+ * formula of the parameters of the model given to cli_formula_params (their values in par
+ * when the formula is read), as a model file's `init` line takes it: 200-W*cos(0.3).
+ * Returns 0 and *out, or -1 with why it is neither (into why, size bytes). */
+int cli_parse_value(const char *text, double *out, char *why, size_t size);
+void cli_formula_params(const dyn_model *m, const void *par);
 /* Parse a count >= min (decimal or 1e6 style); 0 on success, -1 otherwise. */
 int cli_parse_count(const char *text, long min, long *out);
 

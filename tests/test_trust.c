@@ -12,6 +12,7 @@
  *   fixed-step run that fails with --every K keeps its last good sample. */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
+#include <math.h>
 #include <setjmp.h>
 #include <signal.h>
 #include <stdarg.h>
@@ -164,6 +165,113 @@ static void test_outputs_never_replace_inputs(void **state)
     /* another name is written as before */
     cli_result r = cli_in_tmpdir("derive dp.mech --c dp.c");
     CHECK(r.status == 0 && file_is("dp.c", "") == 0, "derive --c dp.c: %d %s", r.status, r.err);
+    cli_free(&r);
+}
+
+/* The value of column col in row row (0: the header) of a CSV text. */
+static double csv_value(const char *text, int row, int col)
+{
+    const char *p = text;
+    for (int r = 0; r < row && p; r++) {
+        p = strchr(p, '\n');
+        p = p ? p + 1 : NULL;
+    }
+    for (int c = 0; c < col && p; c++) {
+        p = strchr(p, ',');
+        p = p ? p + 1 : NULL;
+    }
+    return p ? strtod(p, NULL) : NAN;
+}
+
+/* --init, --set and --vary take formulas of the parameters, as a model file's init lines:
+ * each value as C computes it (pendulum: m = 1, l = g = 9.81 by default). */
+#define PI 3.14159265358979323846
+static void test_values_may_be_formulas_of_the_parameters(void **state)
+{
+    (void)state;
+    const char *step = "--method rk4 --step 1e-9 --tspan 0:1e-9";
+    cli_result r = cli("run pendulum --init 'dphi=200-g*cos(0.3)' %s", step);
+    CHECK(r.status == 0 && csv_value(r.out, 1, 2) == 200 - 9.81 * cos(0.3), "%d %s %s",
+          r.status, r.out, r.err);
+    cli_free(&r);
+    /* --init after every --set; a --set formula after the --set numbers */
+    r = cli("run pendulum --init dphi=g/l --set l=2 --set 'm=2*l^2' --set l=3 --outputs %s",
+            step);
+    const double dphi = 9.81 / 3, m = 2 * 3 * 3.0; /* energy = m l^2 dphi^2 / 2 */
+    CHECK(r.status == 0 && csv_value(r.out, 1, 2) == dphi &&
+              fabs(csv_value(r.out, 1, 3) - 0.5 * m * 9 * dphi * dphi) <= 1e-12 * m * 9 * dphi,
+          "%d %s %s", r.status, r.out, r.err);
+    cli_free(&r);
+    /* docs/cli.md's example, as printed */
+    r = cli("run pendulum --set l=2 --init 'dphi=2*g/l-cos(0.3)' %s", step);
+    CHECK(r.status == 0 && strstr(r.out, "\n0,0,8.854663510874394\n") &&
+              csv_value(r.out, 1, 2) == 2 * 9.81 / 2 - cos(0.3),
+          "%d %s %s", r.status, r.out, r.err);
+    cli_free(&r);
+    /* the conveniences stay: degrees, multiples of pi */
+    r = cli("run pendulum --init phi=45deg --init dphi=-pi/4 %s", step);
+    CHECK(r.status == 0 && csv_value(r.out, 1, 1) == PI / 4 && csv_value(r.out, 1, 2) == -PI / 4,
+          "%d %s %s", r.status, r.out, r.err);
+    cli_free(&r);
+    /* --vary's bounds and list items, max(a,b) one item */
+    r = cli("sweep pendulum --set l=2 --vary 'dphi=g/l:2*g/l:3' %s", step);
+    CHECK(r.status == 0 && csv_value(r.out, 1, 1) == 9.81 / 2 && csv_value(r.out, 3, 1) == 9.81,
+          "%d %s %s", r.status, r.out, r.err);
+    cli_free(&r);
+    r = cli("sweep pendulum --set l=2 --vary 'dphi=max(l,1),sqrt(g*l)' %s", step);
+    CHECK(r.status == 0 && csv_value(r.out, 1, 1) == 2 && csv_value(r.out, 2, 1) == sqrt(9.81 * 2),
+          "%d %s %s", r.status, r.out, r.err);
+    cli_free(&r);
+    /* what is no such formula is refused, saying why */
+    static const char *const bad[][2] = {
+        {"--init dphi=2*q", "'q' is no parameter"},
+        {"--init dphi=t", "time t"},
+        {"--init dphi=1/0*l", "not finite"},
+        {"--set 'l=2*'", "expected a number"},
+        {"--vary dphi=1:w:3", "two numbers"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        r = cli("%s pendulum %s %s", strstr(bad[i][0], "vary") ? "sweep" : "run", bad[i][0],
+                step);
+        CHECK(r.status == 2 && strstr(r.err, bad[i][1]), "%s: %d %s", bad[i][0], r.status, r.err);
+        cli_free(&r);
+    }
+}
+
+/* -o -.EXT is standard output in the format of EXT: the bytes of -o F.EXT, and no file
+ * named -.EXT; an extension the command does not write is refused naming -.EXT's form. */
+static void test_dash_with_a_format_is_standard_output(void **state)
+{
+    (void)state;
+    static const char *const cmds[][2] = {
+        {"run pendulum --method rk4 --step 0.1 --tspan 0:1 -o %s", "json"},
+        {"run pendulum --method rk4 --step 0.1 --tspan 0:1 -o %s", "npy"},
+        {"sweep pendulum --vary l=1:2:3 --method rk4 --step 0.1 --tspan 0:1 -o %s", "json"},
+        {"linearize pendulum -o %s", "json"},
+        {"plot pendulum --method rk4 --step 0.1 --tspan 0:1 --y phi -o %s", "svg"},
+    };
+    for (size_t i = 0; i < sizeof cmds / sizeof cmds[0]; i++) {
+        char dash[16], file[16], args[512];
+        snprintf(dash, sizeof dash, "-.%s", cmds[i][1]);
+        snprintf(file, sizeof file, "f.%s", cmds[i][1]);
+        snprintf(args, sizeof args, cmds[i][0], file);
+        cli_result r = cli_in_tmpdir("%s", args);
+        assert_int_equal(r.status, 0);
+        cli_free(&r);
+        size_t len;
+        char *want = cli_read_file(cli_path(file), &len);
+        snprintf(args, sizeof args, cmds[i][0], dash);
+        r = cli_in_tmpdir("%s", args);
+        struct stat st;
+        CHECK(r.status == 0 && r.out_len == len && len > 0 && memcmp(r.out, want, len) == 0 &&
+                  stat(cli_path(dash), &st) != 0,
+              "%s: exit %d, %zu bytes on stdout, %zu in %s, or a file %s made: %s", args,
+              r.status, r.out_len, len, file, dash, r.err);
+        free(want);
+        cli_free(&r);
+    }
+    cli_result r = cli_in_tmpdir("plot pendulum --y phi -o -.png");
+    CHECK(r.status == 2 && strstr(r.err, "'-.svg'"), "%d %s", r.status, r.err);
     cli_free(&r);
 }
 
@@ -842,6 +950,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_late_errors_keep_the_output_file),
         cmocka_unit_test(test_outputs_never_replace_inputs),
+        cmocka_unit_test(test_values_may_be_formulas_of_the_parameters),
+        cmocka_unit_test(test_dash_with_a_format_is_standard_output),
         cmocka_unit_test(test_failed_run_with_samples_keeps_them),
         cmocka_unit_test(test_pages_replace_their_file_in_one_rename),
         cmocka_unit_test(test_bad_output_paths_name_the_file),

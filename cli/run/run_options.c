@@ -652,10 +652,14 @@ int cli_run_parse_with(const char *command, int argc, char **argv, int other_ada
     unsigned given = 0;
     for (int i = 1; i < argc && rc == CLI_OK; i++)
         rc = parse_option(command, argc, argv, &i, run, as, &n_as, &method_name, &given);
-    /* parameters first: the default initial state may depend on them; then --init */
-    for (int k = 0; k < n_as && rc == CLI_OK; k++)
-        if (as[k].is_param)
-            rc = cli_apply_assignment(command, run, &as[k]);
+    /* parameters first: the default initial state may depend on them; then --init. The
+     * --set numbers before the --set formulas, each formula of the values set before it
+     * (docs/cli.md, "Numbers") */
+    cli_formula_params(m, run->par);
+    for (int pass = 0; pass < 2; pass++)
+        for (int k = 0; k < n_as && rc == CLI_OK; k++)
+            if (as[k].is_param && cli_assignment_is_number(&as[k]) == (pass == 0))
+                rc = cli_apply_assignment(command, run, &as[k]);
     if (m->seed_offset) { /* the tables' random numbers: drawn in prepare */
         double *sd = (double *)((char *)run->par + m->seed_offset);
         sd[0] = (double)(uint32_t)run->seed;

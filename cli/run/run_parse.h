@@ -37,6 +37,8 @@ typedef struct assignment {
 int cli_parse_tspan(const char *command, const char *text, double *t0, double *t1);
 /* One --set (parameter) or --init (state) assignment into run. */
 int cli_apply_assignment(const char *command, cli_run *run, const assignment *as);
+/* 1 when as's VALUE is a plain number (no formula of the parameters). */
+int cli_assignment_is_number(const assignment *as);
 /* A tolerance: one number >= 0 (*scalar), or one per state, comma-separated (*vec, owned). */
 int cli_parse_tolerance(const char *command, const char *opt, const char *text, int n,
                         double *scalar, double **vec);

@@ -10,15 +10,25 @@
 #include "run/run_parse.h"
 #include "util/out_file.h"
 
-/* Split "NAME=VALUE"; returns 0 and the parts, or -1. */
-static int split_assignment(const char *text, char *name, size_t size, double *value)
+/* Split "NAME=VALUE" and read VALUE (cli_parse_value: a number or a formula of the
+ * parameters); returns 0 and the parts, or -1 (why: what is wrong with VALUE, or ""). */
+static int split_assignment(const char *text, char *name, size_t size, double *value,
+                            char *why, size_t why_size)
 {
     const char *eq = strchr(text, '=');
+    why[0] = '\0';
     if (!eq || eq == text || (size_t)(eq - text) >= size)
         return -1;
     memcpy(name, text, (size_t)(eq - text));
     name[eq - text] = '\0';
-    return cli_parse_number(eq + 1, value);
+    return cli_parse_value(eq + 1, value, why, why_size);
+}
+
+int cli_assignment_is_number(const assignment *as)
+{
+    const char *eq = strchr(as->text, '=');
+    double v;
+    return eq && cli_parse_number(eq + 1, &v) == 0;
 }
 
 static void list_vars(char *buf, size_t size, const dyn_var *vars, int n)
@@ -96,10 +106,12 @@ int cli_apply_assignment(const char *command, cli_run *run, const assignment *as
     double value;
     const dyn_model *m = run->model;
     const char *opt = as->is_param ? "--set" : "--init";
-    if (split_assignment(as->text, name, sizeof name, &value))
+    char why[400];
+    if (split_assignment(as->text, name, sizeof name, &value, why, sizeof why))
         return cli_usage_error(command,
-                               "%s '%s' is not accepted: give NAME=VALUE with a finite number",
-                               opt, as->text);
+                               "%s '%s' is not accepted%s%s: give NAME=VALUE, VALUE a finite "
+                               "number or a formula of the parameters (200-W*cos(0.3))",
+                               opt, as->text, why[0] ? ": " : "", why);
     if (as->is_param) {
         int i = dyn_model_param_index(m, name);
         if (i < 0)

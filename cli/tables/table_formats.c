@@ -85,8 +85,8 @@ static int is_stream(const char *path)
 int cli_format_of_path(const char *path, cli_format *format, char *err, size_t errlen)
 {
     *format = CLI_FORMAT_CSV;
-    if (strcmp(path, "-") == 0 || cli_is_stdout_name(path))
-        return 0;
+    if (strcmp(path, "-") == 0 || (cli_is_stdout_name(path) && !cli_is_stdout_format(path)))
+        return 0; /* "-.json" is standard output as JSON: its extension read below */
     const char *slash = strrchr(path, '/');
     const char *base = slash ? slash + 1 : path;
     const char *dot = strrchr(base, '.');
@@ -98,7 +98,7 @@ int cli_format_of_path(const char *path, cli_format *format, char *err, size_t e
     if (!dot || dot == base) {
         snprintf(err, errlen,
                  "'%s' has no file extension to choose the format by (accepted: %s; '-' is "
-                 "standard output, CSV)",
+                 "standard output as CSV, '-.json' as JSON, ...)",
                  path, CLI_FORMAT_EXTENSIONS);
         return -1;
     }
@@ -116,7 +116,7 @@ int cli_format_of_path(const char *path, cli_format *format, char *err, size_t e
             return 0;
         }
     snprintf(err, errlen, "'%s': unknown file extension '%s' (accepted: %s; '-' is standard "
-                          "output, CSV)",
+                          "output as CSV, '-.json' as JSON, ...)",
              path, dot, CLI_FORMAT_EXTENSIONS);
     return -1;
 }

@@ -5,6 +5,7 @@
  * check that two options do not name the same file, and the check of standard output at
  * exit. */
 #define _XOPEN_SOURCE 700
+#include <ctype.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
@@ -64,10 +65,20 @@ const char *cli_input_named(const char *path)
     return NULL;
 }
 
+int cli_is_stdout_format(const char *path)
+{
+    if (!path || path[0] != '-' || path[1] != '.' || !path[2])
+        return 0;
+    for (const char *p = path + 2; *p; p++)
+        if (!isalnum((unsigned char)*p))
+            return 0;
+    return 1;
+}
+
 int cli_is_stdout_name(const char *path)
 {
     return path && (strcmp(path, "/dev/stdout") == 0 || strcmp(path, "/dev/fd/1") == 0 ||
-                    strcmp(path, "/proc/self/fd/1") == 0);
+                    strcmp(path, "/proc/self/fd/1") == 0 || cli_is_stdout_format(path));
 }
 
 int cli_out_open(cli_out *o, const char *what, const char *path)
@@ -232,11 +243,13 @@ int cli_out_check_extension(const char *command, const char *option, const char 
                  i ? (exts[i + 1] ? ", " : " or ") : "", exts[i]);
     }
     struct stat st;
-    if (cli_is_stdout_name(path) ||
+    if ((cli_is_stdout_name(path) && !cli_is_stdout_format(path)) ||
         (stat(path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode)))
         return CLI_OK; /* standard output, a device or a pipe */
-    return cli_usage_error(command, "%s '%s': %s writes %s ('-' is standard output)", option,
-                           path, command, accepted);
+    return cli_usage_error(command,
+                           "%s '%s': %s writes %s ('-' is standard output, '-%s' standard "
+                           "output in that format)",
+                           option, path, command, accepted, exts[0]);
 }
 
 int cli_same_file(const char *a, const char *b)

@@ -74,6 +74,15 @@ int dyn_ode_to_c_tables(const char *path, const char *text, size_t len,
  * there instead, so that an adaptive method tries a shorter step. */
 #define DYN_LANG_ALG_FAILED 3
 
+/* The value of text, one formula of numbers and of the names names[0..n) (their values in
+ * values), in the syntax and with the functions of a model file's `par` and `init` lines
+ * (XPPAUT's: + - * / ^ **, comparisons, sin, cos, exp, ln, sqrt, abs, heav, max, if ...,
+ * pi; names case-insensitive). Returns 0 with *value, 2 when the text is no such formula,
+ * a name is unknown or the value is not finite (1 out of memory), with the message and the
+ * column in diag (its path empty; NULL: not kept). */
+int dyn_lang_formula_value(const char *text, const char *const *names, const double *values,
+                           int n, double *value, dyn_lang_diag *diag);
+
 /* The name among names[0..n) nearest to word (Damerau–Levenshtein distance, case folded),
  * or NULL when none is close enough to be a likely typo (distance > max(1, len/3)). */
 const char *dyn_lang_nearest(const char *word, const char *const *names, int n);

@@ -41,8 +41,9 @@ int cli_parse_values(const char *command, const char *text, const char *v, long 
         }
         if (!ok)
             return cli_usage_error(command,
-                                   "--vary '%s': A:B:N needs two numbers (or formulas of the "
-                                   "parameters) and a count >= 1 (e.g. dphi=0.1:1.9:50)",
+                                   "--vary '%s': A:B:N needs two numbers and a count >= 1 "
+                                   "(e.g. dphi=0.1:1.9:50; A and B may be formulas of the "
+                                   "parameters)",
                                    text);
         if (n > max)
             return cli_usage_error(command, "--vary '%s': at most %ld values", text, max);

@@ -4,6 +4,7 @@
  * expr_parse.c, XPPAUT's functions and operators, evaluated by lang_eval), for the values
  * given on a command line (--init dpsi=200-W*cos(0.3)). */
 #include <ctype.h>
+#include <fenv.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -104,9 +105,15 @@ int dyn_lang_formula_value(const char *text, const char *const *names, const dou
     lang_expect_end(&lx, "the formula");
     const named v = {names, n};
     resolve(c, e, &v);
+    /* what is no double is refused, as a number on the command line is: a step that
+     * overflowed or underflowed (1e-300/1e300 would be 0) */
+    feclearexcept(FE_OVERFLOW | FE_UNDERFLOW);
     const double x = lang_eval(c, e, NULL, values);
     if (!isfinite(x))
         lang_fail(c, (lpos){1, 1}, "the value is not finite (%g)", x);
+    if (fetestexcept(FE_OVERFLOW | FE_UNDERFLOW))
+        lang_fail(c, (lpos){1, 1}, "a step of the formula is beyond the range of doubles "
+                  "(it overflowed or underflowed)");
     *value = x;
     lang_ctx_free(c, NULL);
     return 0;

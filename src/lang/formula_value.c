@@ -62,6 +62,39 @@ static void resolve(lang_ctx *c, node *e, const named *v)
     }
 }
 
+/* The formula's value, after the setjmp of its caller (which lang_fail jumps to): kept out of
+ * that function so that no value of it lives across the jump. */
+static double evaluate(lang_ctx *c, const char *text, size_t len, const char *const *names,
+                       int n, const double *values)
+{
+    /* the formula as one line of a file: each character at its column */
+    size_t *start = lang_alloc(c, sizeof *start); /* the context's, past a jump too */
+    *start = 0;
+    c->line_start = start;
+    c->nlines = 1;
+    lang_line line;
+    line.text = lang_strndup(c, text, len);
+    line.len = (int)len;
+    line.pos = lang_alloc(c, (len + 1) * sizeof *line.pos);
+    for (size_t i = 0; i <= len; i++)
+        line.pos[i] = (lpos){1, (int)i + 1};
+    lang_lexer lx = {c, &line, 0, (int)len};
+    node *e = lang_parse_expr(&lx);
+    lang_expect_end(&lx, "the formula");
+    const named v = {names, n};
+    resolve(c, e, &v);
+    /* what is no double is refused, as a number on the command line is: a step that
+     * overflowed or underflowed (1e-300/1e300 would be 0) */
+    feclearexcept(FE_OVERFLOW | FE_UNDERFLOW);
+    const double x = lang_eval(c, e, NULL, values);
+    if (!isfinite(x))
+        lang_fail(c, (lpos){1, 1}, "the value is not finite (%g)", x);
+    if (fetestexcept(FE_OVERFLOW | FE_UNDERFLOW))
+        lang_fail(c, (lpos){1, 1}, "a step of the formula is beyond the range of doubles "
+                  "(it overflowed or underflowed)");
+    return x;
+}
+
 int dyn_lang_formula_value(const char *text, const char *const *names, const double *values,
                            int n, double *value, dyn_lang_diag *diag)
 {
@@ -90,31 +123,7 @@ int dyn_lang_formula_value(const char *text, const char *const *names, const dou
         lang_ctx_free(c, NULL);
         return status;
     }
-    /* the formula as one line of a file: each character at its column */
-    size_t start = 0;
-    c->line_start = &start;
-    c->nlines = 1;
-    lang_line line;
-    line.text = lang_strndup(c, text, len);
-    line.len = (int)len;
-    line.pos = lang_alloc(c, (len + 1) * sizeof *line.pos);
-    for (size_t i = 0; i <= len; i++)
-        line.pos[i] = (lpos){1, (int)i + 1};
-    lang_lexer lx = {c, &line, 0, (int)len};
-    node *e = lang_parse_expr(&lx);
-    lang_expect_end(&lx, "the formula");
-    const named v = {names, n};
-    resolve(c, e, &v);
-    /* what is no double is refused, as a number on the command line is: a step that
-     * overflowed or underflowed (1e-300/1e300 would be 0) */
-    feclearexcept(FE_OVERFLOW | FE_UNDERFLOW);
-    const double x = lang_eval(c, e, NULL, values);
-    if (!isfinite(x))
-        lang_fail(c, (lpos){1, 1}, "the value is not finite (%g)", x);
-    if (fetestexcept(FE_OVERFLOW | FE_UNDERFLOW))
-        lang_fail(c, (lpos){1, 1}, "a step of the formula is beyond the range of doubles "
-                  "(it overflowed or underflowed)");
-    *value = x;
+    *value = evaluate(c, text, len, names, n, values);
     lang_ctx_free(c, NULL);
     return 0;
 }

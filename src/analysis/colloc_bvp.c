@@ -231,7 +231,8 @@ int dyn_bvp_solve(const dyn_model *m, const void *par, const double *y0, double 
     dyn_colloc_sol fine = {0};
     int st = !c.par || !c.work || !r->residuals ? DYN_COLLOC_ERR_NOMEM : 0;
     if (!st) {
-        memcpy(c.par, par, m->par_size);
+        if (m->par_size > 0) /* a model without parameters may pass par = NULL */
+            memcpy(c.par, par, m->par_size);
         st = dyn_colloc_sol_alloc(&r->sol, n, ntst, ncol, 0);
     }
     const dyn_colloc_problem p = {n, 0, n, 0, bvp_f, bvp_bc, &c};

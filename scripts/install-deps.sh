@@ -20,8 +20,9 @@ packages+=(libopenmpi-dev openmpi-bin) # backends/mpi: sweeps over MPI ranks (op
 # and Octave (tests/test_formats.c; octave installs in about 30 s); SymPy checks the derived
 # equations of mechanisms (tests/mbs/sympy_check.py)
 packages+=(libmatio-dev python3-numpy python3-scipy python3-sympy octave)
-# the Python package (bindings/python) and its tests (tests/python, pytest)
-packages+=(python3-dev python3-pytest)
+# the Python package (bindings/python) and its tests (tests/python, pytest); pandas for
+# the DataFrames of Run.to_dataframe and Table.to_dataframe
+packages+=(python3-dev python3-pytest python3-pandas)
 packages+=(liboctave-dev) # mkoctfile: the MEX functions for Octave (bindings/matlab)
 packages+=(man-db) # tests/test_manpage.c renders docs/dynkit.1
 packages+=(xppaut) # tests/xppaut: .ode files run by XPPAUT itself and compared

@@ -64,12 +64,55 @@ r = dynkit.run([src '/examples/models/lorenz.ode'], 'tspan', [0 1], 'set', struc
                'init', struct('x', 1));
 check(r.status == 0 && numel(r.t) > 10, 'a model file');
 
+% dynkit.sweep against dynkit sweep's CSV (this build's tool, beside the MEX file), bit for
+% bit, and the pendulum's energy: its highest point l^2 dphi0^2 / (2 g)
+exe = fullfile(fileparts(fileparts(which('dynkit_mex'))), 'dynkit');
+s = dynkit.sweep('pendulum', 'vary', struct('dphi', {{0.1, 1.9, 7}}, 'l', [1 2]), ...
+                 'reduce', {'event:turn', 'max:height', 'final'}, 'tspan', [0 5]);
+[st, out] = system([exe ' sweep pendulum --tspan 0:5 --vary dphi=0.1:1.9:7 --vary l=1,2 ' ...
+                    '--reduce event:turn,max:height,final']);
+lines = strsplit(strtrim(out), "\n");
+ref = cell2mat(cellfun(@(l) str2double(strsplit(l, ',')), lines(2:end)', 'UniformOutput', false));
+got = cell2mat(cellfun(@(n) s.(n), s.names, 'UniformOutput', false));
+check(st == 0 && isequal(s.names, strsplit(lines{1}, ',')) && isequal(got, ref), ...
+      'dynkit.sweep = dynkit sweep, bit for bit');
+check(strcmp(s.units{strcmp(s.names, 'max_height')}, 'm') && strcmp(s.method, 'dp45'), ...
+      'the sweep''s units and method');
+top = s.l .^ 2 .* s.dphi .^ 2 / (2 * 9.81);
+check(all(abs(s.max_height - top) <= 1e-3 * top), 'the sweep''s highest points from the energy');
+s = dynkit.sweep('vanderpol', 'vary', struct('mu', [-1 1e300]), 'tspan', [0 1]);
+check(s.status(1) == 0 && s.status(2) == 3 && isnan(s.final_y1(2)), ...
+      'a failed run: nan and its status');
+try
+  dynkit.sweep('vanderpol', 'vary', struct('nope', [1 2]));
+  check(false, 'a bad name in a sweep is refused');
+catch err
+  check(strcmp(err.identifier, 'dynkit:tool') && ~isempty(strfind(err.message, 'nope')), ...
+        'a bad name in a sweep is refused, named');
+end
+try
+  dynkit.sweep('vanderpol', 'tolerance', 1);
+  check(false, 'an unknown option of dynkit.sweep is refused');
+catch err
+  check(~isempty(strfind(err.message, 'unknown option ''tolerance''')), ...
+        'an unknown option of dynkit.sweep is refused');
+end
+
 % the README's lines (vanderpoldemo is the seed's, in tests/matlab)
 txt = fileread([src '/README.md']);
 blk = regexp(txt, '## MATLAB and GNU Octave.*?```\n(.*?)```', 'tokens', 'once');
 clear t y r;
 eval(blk{1});
 check(size(y, 1) == 1501 && r.status == 0 && numel(r.t) == 1501, 'the README''s lines run');
+
+% the octave snippets of docs/matlab.md
+txt = fileread([src '/docs/matlab.md']);
+blocks = regexp(txt, '```octave\n(.*?)```', 'tokens');
+for snippet = 1:numel(blocks)
+  clear r;
+  eval(blocks{snippet}{1});
+  check(true, sprintf('docs/matlab.md, octave snippet %d', snippet));
+end
 
 % bad input: errors with their identifiers, the odefun's own error again
 try

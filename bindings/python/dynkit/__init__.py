@@ -8,13 +8,16 @@
     print(run.t[-1], run["y1"][-1])
 
 solve_ivp follows scipy.integrate.solve_ivp (signature and result); Model runs any model
-through the library's one entry (dyn_run) as `dynkit run` does. docs/python.md has the whole
+through the library's one entry (dyn_run) as `dynkit run` does; Model.sweep, linearize,
+steady, continue_ and Mechanism.inverse run the dynkit tool's commands of those names. docs/python.md has the whole
 reference.
 """
 from ._core import DynkitError
+from ._cli import Table
 from ._ivp import OdeResult, OdeSolution, solve_ivp
 from ._model import Mechanism, Model, Run, models, report
 
-__all__ = ["solve_ivp", "OdeResult", "OdeSolution", "Model", "Mechanism", "Run", "models",
+__all__ = ["solve_ivp", "OdeResult", "OdeSolution", "Model", "Mechanism", "Run", "Table",
+           "models",
            "report",
            "DynkitError"]

@@ -9,6 +9,8 @@ from typing import Any, Dict, List, Optional, Sequence
 import numpy as np
 
 from . import _core
+from ._cli import Table, options, table_command
+from ._commands import Commands
 
 __all__ = ["Model", "Mechanism", "Run", "models", "report"]
 
@@ -63,22 +65,27 @@ class Run:
         return np.hstack(parts)
 
     def to_dataframe(self):
-        """A pandas DataFrame of the columns (pandas must be installed)."""
+        """A pandas DataFrame of the columns (pandas must be installed; Debian:
+        python3-pandas); its attrs["units"] maps each column to its unit."""
         import pandas as pd  # optional
-        return pd.DataFrame(self.table(), columns=self.names)
+        frame = pd.DataFrame(self.table(), columns=self.names)
+        frame.attrs["units"] = dict(zip(self.names, self.units))
+        return frame
 
     def __repr__(self) -> str:
         return (f"Run({len(self.t)} samples of {', '.join(self.names)}; "
                 f"status {self.status}{': ' + self.message if self.message else ''})")
 
 
-class Model:
+class Model(Commands):
     """A model by name (`dynkit models`: pendulum, vanderpol, plane, cart, ...) or path (an
     XPPAUT .ode file, a mechanism .mech, a C file defining dynkit_model()), compiled to
-    native code as `dynkit run` compiles it."""
+    native code as `dynkit run` compiles it. sweep, linearize, steady and continue_ run the
+    commands of the same names on it (dynkit._commands)."""
 
     def __init__(self, name_or_path: str):
-        self._core = _core.Model(str(name_or_path))
+        self.spec: str = str(name_or_path)
+        self._core = _core.Model(self.spec)
         self.info: Dict[str, Any] = self._core.info()
         self.name: str = self.info["name"]
         self.states: List[str] = [n for n, _, _ in self.info["states"]]
@@ -232,3 +239,21 @@ class Mechanism(Model):
         """The equations of motion as `dynkit derive FILE.mech` prints them: M q'' = F + D' lambda
         with the constraints, each term a formula SymPy parses; c=True: the generated C."""
         return _core.mech_text(self.path, bool(c))
+
+    def inverse(self, prescribe: Optional[Dict[str, str]] = None,
+                inputs: Optional[Sequence[str]] = None, method: Optional[str] = None,
+                tspan: Optional[Sequence[float]] = None, step: Optional[float] = None,
+                rtol: Optional[float] = None, atol: Optional[float] = None,
+                set: Optional[Dict[str, float]] = None,
+                init: Optional[Dict[str, float]] = None) -> Table:
+        """Inverse dynamics, as `dynkit inverse FILE.mech`: the forces of the prescribed
+        motions (the file's `prescribe` lines and prescribe={COORD: "formula of t"}), the
+        mechanism run from its initial state moved onto the constraints. Returns a Table:
+        t, the generalized forces that drive the prescribed coordinates (or, with
+        inputs=[A, B, ...], the values of these parameters that drive them, a table
+        `dynkit run FILE.mech --forces` reads), then the other constraints' forces, with
+        their units; its log has the command's notes (the initial state's changes, the
+        residual of the inputs)."""
+        return table_command(["inverse", self.path] + options(
+            prescribe=prescribe, inputs=inputs, method=method, tspan=tspan, step=step,
+            rtol=rtol, atol=atol, set=set, init=init))

@@ -7,7 +7,7 @@
 # backend installed (lapack, sweep-mpi, cvode). The programs print known numbers: the
 # pendulum's first turn (docs/sweeps.md, also on 2 MPI ranks), the closed-form solution of
 # a damped linear oscillator loaded from an .ode file (ode_user.c) and its eigenvalues
-# (lapack_user.c).
+# (lapack_user.c). The installed Python package runs the installed tool for Model.sweep.
 set -euo pipefail
 prefix="$1"
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -90,6 +90,18 @@ if [ -f "$libdir/dynkit-cvode.pc" ]; then
   methods=$("$prefix/bin/dynkit" methods)
   grep -q '^cvode ' <<<"$methods" || { echo "dynkit methods lacks cvode"; exit 1; }
   echo "install check: dynkit::cvode and dynkit-cvode.pc work"
+fi
+# the installed Python package finds the installed tool for its commands (Model.sweep),
+# with neither DYNKIT_CLI nor the build on the PATH
+pkg=$(ls -d "$prefix"/lib/python3*/site-packages/dynkit 2>/dev/null | head -n1 || true)
+if [ -n "$pkg" ] && [ -x /usr/bin/python3 ]; then
+  found=$(cd "$work" && env -u DYNKIT_CLI PATH=/usr/bin:/bin PYTHONPATH="$(dirname "$pkg")" \
+    /usr/bin/python3 -c "import dynkit, dynkit._cli as c
+t = dynkit.Model('pendulum').sweep(vary={'dphi': [1.0]}, tspan=(0, 1))
+print(c.tool(), t.columns[-1], len(t))")
+  [ "$found" = "$prefix/bin/dynkit final_dphi 1" ] || {
+    echo "the installed Python package's sweep: '$found'"; exit 1; }
+  echo "install check: the Python package runs the installed tool ($found)"
 fi
 echo "install check: find_package (dynkit::dynkit, dynkit::sweep, dynkit::lang, dynkit::jit)" \
   "and pkg-config (dynkit, dynkit-sweep, dynkit-lang, dynkit-jit) work"

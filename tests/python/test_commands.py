@@ -161,3 +161,17 @@ def test_dataframes():
     assert list(frame.columns) == table.columns and len(frame) == 4
     assert frame.to_numpy().tobytes() == table.data.tobytes()
     assert frame.attrs["units"]["final_phi"] == "rad"
+
+
+def test_analyses_bad_input():
+    pendulum = dynkit.Model("pendulum")
+    with pytest.raises(dynkit.DynkitError, match="--par 'nope': not a parameter of pendulum"):
+        pendulum.continue_("nope")
+    with pytest.raises(dynkit.DynkitError, match="no state or parameter 'nope'"):
+        pendulum.steady("nope")
+    with pytest.raises(dynkit.DynkitError, match="--jacobian"):
+        pendulum.linearize(jacobian="magic")
+    with pytest.raises(TypeError):
+        pendulum.linearize(step=0.1)
+    with pytest.raises(dynkit.DynkitError, match="'zz' is not a coordinate"):
+        dynkit.Mechanism(CART).inverse(prescribe={"zz": "t"})

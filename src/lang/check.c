@@ -1,126 +1,17 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* Names and order of an .ode model: the symbol table (names folded to one case, as XPPAUT
- * folds them: `A` and `a` are one name), the resolution of every name in every formula
+/* Names and order of an .ode model: the resolution of every name in every formula
  * with the nearest known name suggested for an unknown one, what each kind of formula may
  * use (derived parameters and initial values: parameters only; user functions: their
  * arguments, states, parameters and t), the dependency order of fixed temporaries and of
  * derived parameters (a circular definition is refused naming the cycle), recursion of
  * user functions refused, and the `#:` documentation lines attached to their names. */
-#include <ctype.h>
 #include <math.h>
-#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "dynkit/model.h" /* DYN_POINCARE_* */
 #include "dynkit/sde.h"
 #include "lang/lang_internal.h"
-
-void lang_fold(char *dst, const char *src, size_t size)
-{
-    size_t i = 0;
-    for (; src[i] && i + 1 < size; i++)
-        dst[i] = (char)tolower((unsigned char)src[i]);
-    dst[i] = '\0';
-}
-
-static uint32_t hash_folded(const char *s)
-{
-    uint32_t h = 2166136261u;
-    for (; *s; s++)
-        h = (h ^ (uint32_t)tolower((unsigned char)*s)) * 16777619u;
-    return h;
-}
-
-static int same_name(const char *a, const char *b)
-{
-    for (; *a && *b; a++, b++)
-        if (tolower((unsigned char)*a) != tolower((unsigned char)*b))
-            return 0;
-    return *a == *b;
-}
-
-lang_sym *lang_lookup(lang_ctx *c, const char *name)
-{
-    lang_model *m = &c->m;
-    if (!m->symcap)
-        return NULL;
-    uint32_t i = hash_folded(name) & (uint32_t)(m->symcap - 1);
-    while (m->syms[i].key) {
-        if (same_name(m->syms[i].key, name))
-            return &m->syms[i];
-        i = (i + 1) & (uint32_t)(m->symcap - 1);
-    }
-    return NULL;
-}
-
-const char *lang_sym_kind_name(sym_kind k)
-{
-    switch (k) {
-    case SYM_STATE: return "a state";
-    case SYM_PARAM: return "a parameter";
-    case SYM_NUMBER: return "a number";
-    case SYM_DERIVED: return "a derived parameter";
-    case SYM_FIX: return "a fixed quantity";
-    case SYM_AUX: return "an aux output";
-    case SYM_FUNC: return "a function";
-    case SYM_TABLE: return "a table";
-    case SYM_SPECIAL: return "a network sum";
-    case SYM_ALG: return "an algebraic variable";
-    case SYM_NOISE: return "a noise (wiener)";
-    case SYM_VOLT: return "an integral";
-    default: return "a name";
-    }
-}
-
-void lang_declare(lang_ctx *c, const char *name, lpos pos, sym_kind kind, int index)
-{
-    lang_model *m = &c->m;
-    lang_sym *old = lang_lookup(c, name);
-    /* XPPAUT's rule (measured with 6.11): an aux's name is a label of its output column and
-     * no formula reads it, so it may repeat the name of a state, a parameter, a number, a
-     * fixed quantity or a function, which the formulas then mean, in either order */
-    const int label = (kind == SYM_AUX) != (old && old->kind == SYM_AUX);
-    const sym_kind other = kind == SYM_AUX ? (old ? old->kind : SYM_NONE) : kind;
-    if (old && label &&
-        (other == SYM_STATE || other == SYM_PARAM || other == SYM_NUMBER || other == SYM_FIX ||
-         other == SYM_FUNC)) {
-        lang_note(c, pos, "aux '%s' shares its name with %s: it names an output column only, "
-                  "and formulas mean the %s, as in XPPAUT", name, lang_sym_kind_name(other),
-                  other == SYM_STATE ? "state" : other == SYM_FUNC ? "function"
-                  : other == SYM_FIX ? "fixed quantity" : other == SYM_PARAM ? "parameter"
-                                                                            : "number");
-        if (kind != SYM_AUX) { /* the later declaration takes the name */
-            old->kind = kind;
-            old->index = index;
-            old->pos = pos;
-        }
-        return;
-    }
-    if (old)
-        lang_fail(c, pos, "'%s' is already declared as %s on line %d (XPPAUT's names ignore "
-                  "case)", name, lang_sym_kind_name(old->kind), old->pos.line);
-    if (m->nsyms >= LANG_MAX_SYMBOLS)
-        lang_fail(c, pos, "too many names (more than %d)", LANG_MAX_SYMBOLS);
-    if (2 * (m->nsyms + 1) > m->symcap) {
-        const int cap = m->symcap ? 2 * m->symcap : 64;
-        lang_sym *t = lang_alloc(c, (size_t)cap * sizeof *t);
-        for (int k = 0; k < m->symcap; k++)
-            if (m->syms[k].key) {
-                uint32_t i = hash_folded(m->syms[k].key) & (uint32_t)(cap - 1);
-                while (t[i].key)
-                    i = (i + 1) & (uint32_t)(cap - 1);
-                t[i] = m->syms[k];
-            }
-        m->syms = t;
-        m->symcap = cap;
-    }
-    uint32_t i = hash_folded(name) & (uint32_t)(m->symcap - 1);
-    while (m->syms[i].key)
-        i = (i + 1) & (uint32_t)(m->symcap - 1);
-    m->syms[i] = (lang_sym){name, kind, index, pos};
-    m->nsyms++;
-}
 
 /* ---- resolution ---- */
 
@@ -174,7 +65,7 @@ static _Noreturn void unknown(lang_ctx *c, const node *e, const rctx *r, int fun
  * noise slot of its own, the call rewritten as m + s*slot or x*slot. 1 when e was one. */
 static int random_call(lang_ctx *c, node *e, const rctx *r)
 {
-    const int is_normal = same_name(e->name, "normal"), is_ran = same_name(e->name, "ran");
+    const int is_normal = lang_same_name(e->name, "normal"), is_ran = lang_same_name(e->name, "ran");
     if (!is_normal && !is_ran)
         return 0;
     const int want = is_normal ? 2 : 1;
@@ -230,7 +121,7 @@ static void resolve(lang_ctx *c, node *e, const rctx *r)
     lang_model *m = &c->m;
     if (e->kind == N_TIME && r->func)
         for (int k = 0; k < r->func->nargs; k++)
-            if (same_name("t", r->func->argnames[k])) {
+            if (lang_same_name("t", r->func->argnames[k])) {
                 /* f(t)=...: XPPAUT's t is then the argument */
                 e->kind = N_ARG;
                 e->index = k;
@@ -241,7 +132,7 @@ static void resolve(lang_ctx *c, node *e, const rctx *r)
     if (e->kind == N_NAME) {
         if (r->func)
             for (int k = 0; k < r->func->nargs; k++)
-                if (same_name(e->name, r->func->argnames[k])) {
+                if (lang_same_name(e->name, r->func->argnames[k])) {
                     e->kind = N_ARG;
                     e->index = k;
                     return;
@@ -495,7 +386,7 @@ static node *unroll(lang_ctx *c, node *e, int in_sum)
     for (int i = 0; i < e->nargs; i++)
         e->args[i] = unroll(c, e->args[i], in_sum);
     c->depth--;
-    if (e->kind == N_FUN && same_name(e->name, "shift")) {
+    if (e->kind == N_FUN && lang_same_name(e->name, "shift")) {
         if (e->nargs != 2 || e->args[0]->kind != N_NAME)
             lang_fail(c, e->pos, "shift(name, k) takes a declared name and a whole number");
         const long k = const_int(c, e->args[1], "the offset of shift");
@@ -941,7 +832,7 @@ static void warn_shared_parameters(lang_ctx *c)
 
 static const char *display_name(lang_ctx *c, const char *name, lpos pos, const char *option)
 {
-    if (same_name(name, "t"))
+    if (lang_same_name(name, "t"))
         return NULL;
     const lang_sym *s = lang_lookup(c, name);
     if (s && s->kind == SYM_STATE)
@@ -974,7 +865,7 @@ static void poincare_var(lang_ctx *c)
         return;
     }
     const lang_sym *s = lang_lookup(c, m->poivar);
-    if (same_name(m->poivar, "t")) {
+    if (lang_same_name(m->poivar, "t")) {
         if (m->poimap == DYN_POINCARE_EXTREMUM)
             lang_fail(c, m->poivar_pos, "poivar=t: the extrema of poimap=max are a state's");
         m->poivar = "t";
@@ -1201,7 +1092,7 @@ void lang_check(lang_ctx *c)
             resolve(c, a->value, &rhs);
         }
         for (int k = 0; k < i; k++)
-            if (same_name(LVEC_AT(m->events, lang_event, k).name, ev->name))
+            if (lang_same_name(LVEC_AT(m->events, lang_event, k).name, ev->name))
                 lang_fail(c, ev->pos, "event '%s' is declared twice", ev->name);
     }
     warn_shared_parameters(c);

@@ -438,11 +438,6 @@ static unsigned char *needed_by(lang_ctx *c, node *const *roots, int n)
     return needed;
 }
 
-void lang_emit_needed_fixes(lang_ctx *c, node *const *roots, int n)
-{
-    emit_fixes(c, needed_by(c, roots, n));
-}
-
 /* ---- differential-algebraic systems ----
  * The algebraic variables w solve the 0= equations r(t, y, w) = 0 (XPPAUT's solv and 0=)
  * at every evaluation of the right-hand side (so that the branch followed is tracked along
@@ -1721,7 +1716,7 @@ char *lang_emit_c(lang_ctx *c)
     emit_alg_functions(c, &jp);
     emit_rhs(c);
     emit_outputs(c);
-    lang_emit_jump(c, noise_offset(m));
+    lang_emit_jump(c, noise_offset(m), fixes_for);
     emit_table_files(c);
     emit_prepare(c);
     const int has_init = emit_initial(c, y0);

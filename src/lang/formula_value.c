@@ -3,7 +3,6 @@
  * model file's `init` and `par` lines take them (the .ode expression syntax of
  * expr_parse.c, XPPAUT's functions and operators, evaluated by lang_eval), for the values
  * given on a command line (--init dpsi=200-W*cos(0.3)). */
-#include <ctype.h>
 #include <fenv.h>
 #include <math.h>
 #include <stdlib.h>
@@ -11,15 +10,6 @@
 
 #include "dynkit/lang.h"
 #include "lang/lang_internal.h"
-
-/* 1 when a and b are the same name, case ignored (XPPAUT's names are). */
-static int same_name(const char *a, const char *b)
-{
-    for (; *a && *b; a++, b++)
-        if (tolower((unsigned char)*a) != tolower((unsigned char)*b))
-            return 0;
-    return *a == *b;
-}
 
 typedef struct named {
     const char *const *names;
@@ -42,7 +32,7 @@ static void resolve(lang_ctx *c, node *e, const named *v)
     case N_IF: return;
     case N_NAME:
         for (int k = 0; k < v->n; k++)
-            if (same_name(e->name, v->names[k])) {
+            if (lang_same_name(e->name, v->names[k])) {
                 e->kind = N_PARAM;
                 e->index = k;
                 return;

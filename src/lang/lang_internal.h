@@ -442,11 +442,14 @@ FILE *lang_open_table_file(lang_ctx *c, const char *table, const char *file, lpo
                            const char **shown);
 void lang_check_table_files(lang_ctx *c);
 
-/* names (check.c) */
+/* the symbol table (symbols.c) */
 void lang_fold(char *dst, const char *src, size_t size);
+int lang_same_name(const char *a, const char *b); /* 1: one name, case ignored */
 lang_sym *lang_lookup(lang_ctx *c, const char *name);
 void lang_declare(lang_ctx *c, const char *name, lpos pos, sym_kind kind, int index);
 const char *lang_sym_kind_name(sym_kind k);
+
+/* names (check.c; lang_is_reserved: expr_parse.c) */
 int lang_is_reserved(const char *name);
 void lang_check(lang_ctx *c);
 /* Flags in used (one per algebraic variable) for those e reads, directly or through fixed
@@ -515,16 +518,15 @@ const char *lang_noise_method(lang_ctx *c);
  * the line as a row); lang_markov_finish, once the file is read, makes the chains states
  * (after the equations', as XPPAUT orders them) with their noise slots; `special
  * NAME=gill(0, r1, ..., rm)` (the lexer after '('); lang_emit_jump writes dk_jump (noise:
- * the index in p of the first noise slot), lang_emit_gill the gill sum i into sp_I. */
+ * the index in p of the first noise slot; fixes: the emitter's writer of the fixed
+ * quantities and sums that the n roots need, as the locals v_K and sp_K of the function
+ * being written), lang_emit_gill the gill sum i into sp_I. */
 void lang_markov_parse(lang_ctx *c, lang_lexer *lx, lpos kpos);
 int lang_markov_row(lang_ctx *c, lang_lexer *lx);
 void lang_markov_finish(lang_ctx *c);
 void lang_gill_parse(lang_ctx *c, lang_lexer *lx, const char *name, lpos npos, lpos kpos);
-void lang_emit_jump(lang_ctx *c, int noise);
+void lang_emit_jump(lang_ctx *c, int noise, void (*fixes)(lang_ctx *, node *const *, int));
 void lang_emit_gill(lang_ctx *c, int i, const lang_special *sp, int noise);
-/* (emit_c.c) the fixed quantities and sums that the n roots need, as the locals v_K and
- * sp_K of the function being written */
-void lang_emit_needed_fixes(lang_ctx *c, node *const *roots, int n);
 
 /* derivatives and simplification (deriv.c) */
 typedef struct lang_dvar {

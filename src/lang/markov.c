@@ -222,7 +222,7 @@ void lang_gill_parse(lang_ctx *c, lang_lexer *lx, const char *name, lpos npos, l
 
 /* ---- C text ---- */
 
-void lang_emit_jump(lang_ctx *c, int noise)
+void lang_emit_jump(lang_ctx *c, int noise, void (*fixes)(lang_ctx *, node *const *, int))
 {
     const lang_model *m = &c->m;
     if (m->markovs.n == 0)
@@ -245,7 +245,7 @@ void lang_emit_jump(lang_ctx *c, int noise)
     }
     LANG_C_CODE(c, "static int dk_jump(double t, double h, double *y, void *par)\n{\n"
                    "    const double *p = (const double *)par;\n    (void)t;\n    (void)p;\n");
-    lang_emit_needed_fixes(c, roots, nroots);
+    fixes(c, roots, nroots);
     LANG_C_CODE(c, "    int bad = 0;\n");
     for (int k = 0; k < m->markovs.n; k++) {
         const lang_markov *mk = &LVEC_AT(m->markovs, lang_markov, k);

@@ -16,48 +16,7 @@
 #include "bench_clock.h"
 #include "dynkit/colloc.h"
 #include "dynkit/lapack.h"
-
-static int roessler(const double *x, double a, double *f, double *J, void *ctx)
-{
-    (void)ctx;
-    const double b = 0.2, c = 5.7;
-    f[0] = -x[1] - x[2];
-    f[1] = x[0] + a * x[1];
-    f[2] = b + x[2] * (x[0] - c);
-    if (J) {
-        const double j[9] = {0, -1, -1, 1, a, 0, x[2], 0, x[0] - c};
-        memcpy(J, j, sizeof j);
-    }
-    return 0;
-}
-
-/* the Hopf point of the equilibrium near the origin: a, the state, omega */
-static void hopf_point(double *a_h, double *x0, double *omega)
-{
-    const double b = 0.2, c = 5.7;
-    double lo = 0.001, hi = 0.02;
-    for (int it = 0; it < 80; it++) {
-        const double a = 0.5 * (lo + hi);
-        const double y = (-c + sqrt(c * c - 4 * a * b)) / (2 * a);
-        const double xe[3] = {-a * y, y, -y};
-        double f[3], J[9], re[3], im[3];
-        char err[64];
-        roessler(xe, a, f, J, NULL);
-        dyn_eig_solver_lapack.eigenvalues(3, J, re, im, err, sizeof err);
-        double best = -INFINITY;
-        for (int i = 0; i < 3; i++)
-            if (im[i] != 0 && re[i] > best) {
-                best = re[i];
-                *omega = fabs(im[i]);
-            }
-        if (best > 0)
-            hi = a;
-        else
-            lo = a;
-        memcpy(x0, xe, sizeof xe);
-    }
-    *a_h = 0.5 * (lo + hi);
-}
+#include "roessler_hopf.h"
 
 static void print_pds(const dyn_po_branch *b)
 {
@@ -74,7 +33,10 @@ int main(int argc, char **argv)
 {
     const int repeats = argc > 1 ? atoi(argv[1]) : 3;
     double a_h, x0[3], omega = 0;
-    hopf_point(&a_h, x0, &omega);
+    if (roessler_hopf_point(&a_h, x0, &omega)) {
+        fprintf(stderr, "bench_colloc: LAPACK's eigenvalues failed at the Hopf point\n");
+        return 1;
+    }
     dyn_po_system sys = {3, roessler, NULL};
     dyn_po_opts o;
     memset(&o, 0, sizeof o);

@@ -22,6 +22,7 @@
 #include "test_util.h"
 #ifdef DYNKIT_HAVE_LAPACK
 #include "dynkit/lapack.h"
+#include "roessler_hopf.h"
 #endif
 
 #define assert_close(a, b, tol) assert_close_at((a), (b), (tol), __FILE__, __LINE__)
@@ -194,48 +195,13 @@ static void test_brusselator_period_at_onset(void **state)
 }
 
 #ifdef DYNKIT_HAVE_LAPACK
-static int roessler(const double *x, double a, double *f, double *J, void *ctx)
-{
-    (void)ctx;
-    const double b = 0.2, c = 5.7;
-    f[0] = -x[1] - x[2];
-    f[1] = x[0] + a * x[1];
-    f[2] = b + x[2] * (x[0] - c);
-    if (J) {
-        const double j[9] = {0, -1, -1, 1, a, 0, x[2], 0, x[0] - c};
-        memcpy(J, j, sizeof j);
-    }
-    return 0;
-}
-
 static void test_roessler_period_doubling(void **state)
 {
     (void)state;
     /* the equilibrium near the origin and its Hopf point in a (b = 0.2, c = 5.7): found by
-     * bisection on the real part of the complex pair, trace of the 2 x 2 block criterion
-     * replaced by the eigenvalues from LAPACK */
-    const double b = 0.2, c = 5.7;
-    double lo = 0.001, hi = 0.02, x0[3] = {0}, omega = 0;
-    for (int it = 0; it < 80; it++) {
-        const double a = 0.5 * (lo + hi);
-        const double y = (-c + sqrt(c * c - 4 * a * b)) / (2 * a);
-        const double xe[3] = {-a * y, y, -y};
-        double f[3], J[9], re[3], im[3];
-        char err[64];
-        roessler(xe, a, f, J, NULL);
-        assert_int_equal(dyn_eig_solver_lapack.eigenvalues(3, J, re, im, err, sizeof err), 0);
-        double best = -INFINITY;
-        for (int i = 0; i < 3; i++)
-            if (im[i] != 0 && re[i] > best) {
-                best = re[i];
-                omega = fabs(im[i]);
-            }
-        if (best > 0)
-            hi = a;
-        else
-            lo = a;
-        memcpy(x0, xe, sizeof xe);
-    }
+     * bisection on the real part of the complex pair (roessler_hopf.h) */
+    double a_h, x0[3] = {0}, omega = 0;
+    assert_int_equal(roessler_hopf_point(&a_h, x0, &omega), 0);
     dyn_po_system sys = {3, roessler, NULL};
     dyn_po_opts o = {0};
     o.ntst = 50;
@@ -246,7 +212,7 @@ static void test_roessler_period_doubling(void **state)
     o.par_max = 0.13;
     o.eig = &dyn_eig_solver_lapack;
     dyn_po_branch br;
-    assert_int_equal(dyn_po_from_hopf(&sys, x0, 0.5 * (lo + hi), omega, &o, &br), 0);
+    assert_int_equal(dyn_po_from_hopf(&sys, x0, a_h, omega, &o, &br), 0);
     const dyn_po_point *pd = NULL;
     for (int k = 0; k < br.npoints && !pd; k++)
         if (strcmp(br.pts[k].label, "PD") == 0)

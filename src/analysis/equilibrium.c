@@ -14,7 +14,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "ode/cholesky.h"
+#include "analysis/lm_step.h"
 #include "dynkit/analysis.h"
 
 #define LM_LAMBDA_START 0.1 /* a cautious first step: the equilibrium near the guess */
@@ -25,22 +25,6 @@ size_t dyn_equilibrium_work_size(int n)
 {
     const size_t N = (size_t)n;
     return 2 * N * N + 5 * N + dyn_linearize_work_size(n);
-}
-
-static double norm_inf(int n, const double *v)
-{
-    double r = 0.0;
-    for (int i = 0; i < n; i++)
-        r = fmax(r, fabs(v[i]));
-    return r;
-}
-
-static double norm_2(int n, const double *v)
-{
-    double s = 0.0;
-    for (int i = 0; i < n; i++)
-        s += v[i] * v[i];
-    return sqrt(s);
 }
 
 /* f(t, y) into f; 0, or the rhs status, or -1 when a component is not finite. */
@@ -61,8 +45,8 @@ int dyn_equilibrium(const dyn_model *m, double t, double *y, void *par,
 {
     const int n = m->n_states;
     const size_t N = (size_t)n;
-    double *J = work, *H = J + N * N, *f = H + N * N, *g = f + N, *d = g + N, *yt = d + N,
-           *ft = yt + N, *lw = ft + N;
+    double *J = work, *H = J + N * N, *f = H + N * N, *minus_g = f + N, *d = minus_g + N,
+           *yt = d + N, *ft = yt + N, *lw = ft + N;
     const double rtol = opts && opts->tol > 0.0 ? opts->tol : DYN_EQUILIBRIUM_TOL;
     const int max_iter = opts && opts->max_iter > 0 ? opts->max_iter : 100;
     dyn_equilibrium_info local;
@@ -88,7 +72,7 @@ int dyn_equilibrium(const dyn_model *m, double t, double *y, void *par,
         info->rhs_calls = calls;
         return DYN_ERR_RHS;
     }
-    double fn = norm_2(n, f), lambda = LM_LAMBDA_START;
+    double fn = lm_norm_2(n, f), lambda = LM_LAMBDA_START;
     int status = DYN_ERR_MAX_STEPS;
     for (;;) {
         dyn_linearize_info li;
@@ -106,37 +90,24 @@ int dyn_equilibrium(const dyn_model *m, double t, double *y, void *par,
                 row += fabs(J[i * N + j]);
             jn = fmax(jn, row);
         }
-        info->tol = fmax(rtol * jn * fmax(norm_inf(n, y), 1.0), DBL_MIN);
-        if (norm_inf(n, f) <= info->tol) {
+        info->tol = fmax(rtol * jn * fmax(lm_norm_inf(n, y), 1.0), DBL_MIN);
+        if (lm_norm_inf(n, f) <= info->tol) {
             status = 0;
             break;
         }
         if (info->iterations >= max_iter) {
             snprintf(info->message, sizeof info->message,
                      "no equilibrium within %d iterations: |f|_inf = %.3g (tolerance %.3g)",
-                     max_iter, norm_inf(n, f), info->tol);
+                     max_iter, lm_norm_inf(n, f), info->tol);
             break;
         }
         info->iterations++;
-        /* g = J^T f, H = J^T J */
-        double hmax = 0.0;
-        for (size_t a = 0; a < N; a++) {
-            double s = 0.0;
-            for (size_t l = 0; l < N; l++)
-                s += J[l * N + a] * f[l];
-            g[a] = s;
-            for (size_t b = 0; b <= a; b++) {
-                double h = 0.0;
-                for (size_t l = 0; l < N; l++)
-                    h += J[l * N + a] * J[l * N + b];
-                H[a * N + b] = H[b * N + a] = h;
-            }
-            hmax = fmax(hmax, H[a * N + a]);
-        }
+        /* H = J^T J, minus_g = -J^T f */
+        const double hmax = lm_normal_equations(n, n, J, f, H, minus_g);
         if (!(hmax > 0.0)) {
             snprintf(info->message, sizeof info->message,
                      "f does not depend on the state here (J = 0): |f|_inf = %.3g stays",
-                     norm_inf(n, f));
+                     lm_norm_inf(n, f));
             status = DYN_ERR_STEP_SIZE;
             break;
         }
@@ -145,24 +116,20 @@ int dyn_equilibrium(const dyn_model *m, double t, double *y, void *par,
             /* (H + mu I) d = -g: H + mu I factored in J's place (J is formed again at the
              * next point) */
             memcpy(J, H, N * N * sizeof *J);
-            for (size_t a = 0; a < N; a++) {
-                J[a * N + a] += lambda * hmax;
-                d[a] = -g[a];
-            }
-            if (dyn_cholesky_factor(n, J)) {
+            memcpy(d, minus_g, N * sizeof *d);
+            if (lm_damped_solve(n, J, lambda, hmax, d)) {
                 lambda *= 10.0;
                 continue;
             }
-            dyn_cholesky_solve(n, J, d);
             /* no step longer than the state's size (at least 1): not a jump to a far
              * equilibrium */
-            if (norm_inf(n, d) > fmax(norm_inf(n, y), 1.0)) {
+            if (lm_norm_inf(n, d) > fmax(lm_norm_inf(n, y), 1.0)) {
                 lambda *= 10.0;
                 continue;
             }
             for (size_t a = 0; a < N; a++)
                 yt[a] = y[a] + d[a];
-            const double ftn = eval(m, t, yt, par, ft, &calls) ? INFINITY : norm_2(n, ft);
+            const double ftn = eval(m, t, yt, par, ft, &calls) ? INFINITY : lm_norm_2(n, ft);
             if (ftn < fn) {
                 memcpy(y, yt, N * sizeof *y);
                 memcpy(f, ft, N * sizeof *f);
@@ -173,7 +140,7 @@ int dyn_equilibrium(const dyn_model *m, double t, double *y, void *par,
                 lambda *= 10.0;
             }
         }
-        if (!accepted && norm_inf(n, f) <= DYN_EQUILIBRIUM_FLOOR * info->tol) {
+        if (!accepted && lm_norm_inf(n, f) <= DYN_EQUILIBRIUM_FLOOR * info->tol) {
             status = 0; /* f is at its rounding: no step can lower it */
             break;
         }
@@ -181,12 +148,12 @@ int dyn_equilibrium(const dyn_model *m, double t, double *y, void *par,
             snprintf(info->message, sizeof info->message,
                      "no step lowers |f| (a minimum of |f| that is not an equilibrium, or "
                      "none near the guess): |f|_inf = %.3g",
-                     norm_inf(n, f));
+                     lm_norm_inf(n, f));
             status = DYN_ERR_STEP_SIZE;
             break;
         }
     }
-    info->residual = norm_inf(n, f);
+    info->residual = lm_norm_inf(n, f);
     info->rhs_calls = calls;
     return status;
 }

@@ -14,7 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ode/cholesky.h"
+#include "analysis/lm_step.h"
 #include "dynkit/analysis.h"
 #include "dynkit/steady.h"
 
@@ -89,48 +89,14 @@ static int evaluate(steady_eval *e, const double *u, double *r)
     return 0;
 }
 
-static double norm_inf(int n, const double *v)
-{
-    double s = 0.0;
-    for (int i = 0; i < n; i++)
-        s = fmax(s, fabs(v[i]));
-    return s;
-}
-
-static double norm2(int n, const double *v)
-{
-    double s = 0.0;
-    for (int i = 0; i < n; i++)
-        s += v[i] * v[i];
-    return sqrt(s);
-}
-
 /* (J^T J + lambda max diag I) d = -J^T r; 0, or -1 when the factorization fails. */
 static int lm_step(int ne, int nu, const double *J, const double *r, double lambda, double *H,
                    double *d)
 {
-    double hmax = 0.0;
-    for (int a = 0; a < nu; a++) {
-        double g = 0.0;
-        for (int l = 0; l < ne; l++)
-            g += J[(size_t)l * (size_t)nu + (size_t)a] * r[l];
-        d[a] = -g;
-        for (int b = 0; b <= a; b++) {
-            double h = 0.0;
-            for (int l = 0; l < ne; l++)
-                h += J[(size_t)l * (size_t)nu + (size_t)a] * J[(size_t)l * (size_t)nu + (size_t)b];
-            H[(size_t)a * (size_t)nu + (size_t)b] = H[(size_t)b * (size_t)nu + (size_t)a] = h;
-        }
-        hmax = fmax(hmax, H[(size_t)a * (size_t)nu + (size_t)a]);
-    }
+    const double hmax = lm_normal_equations(ne, nu, J, r, H, d);
     if (!(hmax > 0.0))
         return -1;
-    for (int a = 0; a < nu; a++)
-        H[(size_t)a * (size_t)nu + (size_t)a] += lambda * hmax;
-    if (dyn_cholesky_factor(nu, H))
-        return -1;
-    dyn_cholesky_solve(nu, H, d);
-    return 0;
+    return lm_damped_solve(nu, H, lambda, hmax, d);
 }
 
 int dyn_steady_solve(const dyn_model *m, double t, double *y, void *par, const dyn_steady_opts *o,
@@ -165,8 +131,8 @@ int dyn_steady_solve(const dyn_model *m, double t, double *y, void *par, const d
     int rc = evaluate(&e, u, r);
     double lambda = 1e-3;
     while (!rc) {
-        info->tol = rtol * fmax(norm_inf(n, f), 1.0);
-        info->residual = norm_inf(ne, r);
+        info->tol = rtol * fmax(lm_norm_inf(n, f), 1.0);
+        info->residual = lm_norm_inf(ne, r);
         if (info->residual <= info->tol)
             break;
         if (info->iterations >= max_iter) {
@@ -194,7 +160,7 @@ int dyn_steady_solve(const dyn_model *m, double t, double *y, void *par, const d
         }
         if (rc)
             break;
-        const double rn = norm2(ne, r);
+        const double rn = lm_norm_2(ne, r);
         int accepted = 0;
         while (!accepted && lambda <= 1e12) {
             if (lm_step(ne, nu, J, r, lambda, H, d)) {
@@ -205,7 +171,7 @@ int dyn_steady_solve(const dyn_model *m, double t, double *y, void *par, const d
                 ut[j] = u[j] + d[j];
             memcpy(y, ybest, (size_t)n * sizeof *y);
             const int st = evaluate(&e, ut, rt);
-            if (!st && norm2(ne, rt) < rn) {
+            if (!st && lm_norm_2(ne, rt) < rn) {
                 memcpy(u, ut, NU * sizeof *u);
                 memcpy(r, rt, NE * sizeof *r);
                 lambda = fmax(lambda / 10.0, 1e-15);
@@ -217,18 +183,18 @@ int dyn_steady_solve(const dyn_model *m, double t, double *y, void *par, const d
         if (!accepted) {
             memcpy(y, ybest, (size_t)n * sizeof *y);
             rc = evaluate(&e, u, r);
-            if (!rc && norm_inf(ne, r) <= 1e4 * info->tol)
+            if (!rc && lm_norm_inf(ne, r) <= 1e4 * info->tol)
                 break; /* at its rounding */
             if (!rc) {
                 snprintf(info->message, sizeof info->message,
                          "no step lowers the residual (no steady motion near the guess): "
                          "%.3g",
-                         norm_inf(ne, r));
+                         lm_norm_inf(ne, r));
                 rc = DYN_ERR_STEP_SIZE;
             }
         }
     }
-    info->residual = norm_inf(ne, r);
+    info->residual = lm_norm_inf(ne, r);
     free(mem);
     return rc;
 }

@@ -18,7 +18,9 @@ by XPPAUT again (XPPAUT_RUNS times in all) and compared with the output most of 
 gave; the result then says how many distinct outputs XPPAUT wrote.
 
 Prints a summary (accepted, refused with the feature named, agreeing) and writes a JSON
-report with --json FILE. Exit status 0 unless --require lists files that must agree. When
+report with --json FILE. Exit status 0 unless --require lists files that must agree, fewer
+than --min-agree agree, or a document given with --doc states counts this run did not
+measure (the README's sentence, docs/model-files.md's table). When
 it fails, every file that did not agree keeps its inputs and both programs' outputs under
 the artifacts directory (artifacts_dir below), in a directory of its own for this run.
 """
@@ -400,6 +402,10 @@ def main():
                     help="base names of files that must be accepted and agree")
     ap.add_argument("--min-agree", type=int, default=0,
                     help="fail when fewer files agree over their whole run")
+    ap.add_argument("--doc", action="append", default=[],
+                    help="a document that states the counts of this run (the README's "
+                         "'N of M are accepted, K agree over the whole run', the table of "
+                         "docs/model-files.md): fail when a count differs")
     args = ap.parse_args()
     files = args.files or sorted(os.path.join(DEBIAN_EXAMPLES, f)
                                  for f in os.listdir(DEBIAN_EXAMPLES) if f.endswith(".ode"))
@@ -456,7 +462,45 @@ def verdict(args, results):
     if len(agree) < args.min_agree:
         print("%d files agree, fewer than the %d required" % (len(agree), args.min_agree))
         return 1
-    return 0
+    measured = {"files": n, "accepted": len(acc), "agree": len(agree), "refused": len(refused)}
+    stale = [m for doc in args.doc for m in doc_mismatches(doc, measured)]
+    for m in stale:
+        print(m)
+    return 1 if stale else 0
+
+
+# The counts as the documents state them: the README's sentence and the rows of the table
+# in docs/model-files.md, "Compatibility with XPPAUT".
+DOC_COUNTS = [
+    (r"compares them: (?P<accepted>\d+) of (?P<files>\d+) are accepted, "
+     r"(?P<agree>\d+) agree over the whole run", ("accepted", "files", "agree")),
+    (r"\| Debian's (?P<files>\d+) example files \|", ("files",)),
+    (r"\n\| accepted \| (?P<accepted>\d+) \|", ("accepted",)),
+    (r"\n\| — agree with XPPAUT over the whole run [^\n]*\| (?P<agree>\d+) \|", ("agree",)),
+    (r"\n\| refused, with the feature named \| (?P<refused>\d+) \|", ("refused",)),
+]
+
+
+def doc_mismatches(path, measured):
+    """Messages for each count of the file at path that is not the one measured; a document
+    that states none of them is a mismatch too (the sentence was reworded)."""
+    with open(path, encoding="utf-8") as f:
+        text = re.sub(r"\s*\n\s*", "\n", f.read())
+    flat = text.replace("\n", " ")
+    found, out = 0, []
+    for pattern, keys in DOC_COUNTS:
+        m = re.search(pattern, text if pattern.startswith(r"\n") else flat)
+        if not m:
+            continue
+        found += 1
+        for k in keys:
+            if int(m.group(k)) != measured[k]:
+                out.append("%s states %s %s, this run measured %d: update the document"
+                           % (path, m.group(k), k, measured[k]))
+    if not found:
+        out.append("%s states none of the counts of this run (%s)"
+                   % (path, ", ".join("%s %d" % kv for kv in measured.items())))
+    return out
 
 
 if __name__ == "__main__":

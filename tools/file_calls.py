@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Which source files of src/ call functions defined in which others.
 
 Reads the symbol tables of the objects a build made (nm: a file's defined

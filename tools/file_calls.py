@@ -21,6 +21,9 @@ import subprocess
 import sys
 
 
+SOURCE_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
 def objects(build):
     """Source path (src/...) -> one object built from it, among the targets of the
     top-level CMakeLists.txt (BUILD/CMakeFiles/TARGET.dir/src/...)."""
@@ -34,8 +37,10 @@ def objects(build):
             for name in sorted(files):
                 if name.endswith(".c.o"):
                     path = os.path.join(root, name)
-                    source = os.path.relpath(path, os.path.join(top, target))
-                    found.setdefault(source[: -len(".o")], path)
+                    source = os.path.relpath(path, os.path.join(top, target))[: -len(".o")]
+                    # an object left by a source file since removed or renamed is not read
+                    if os.path.exists(os.path.join(SOURCE_ROOT, source)):
+                        found.setdefault(source, path)
     return found
 
 

@@ -160,6 +160,18 @@ static void check_writers(const char *dir, const char *limit, const char *mount,
     }
 }
 
+/* 1 when a tmpfs can be mounted in a mount namespace of its own (root with CAP_SYS_ADMIN) */
+static int can_mount_tmpfs(void)
+{
+    int status;
+    char *out = shell("unshare --mount sh -c 'mount -t tmpfs -o size=256k tmpfs /mnt && "
+                      "umount /mnt' && echo yes",
+                      &status);
+    const int yes = strstr(out, "yes") != NULL;
+    free(out);
+    return yes;
+}
+
 static void test_file_size_limit(void **state)
 {
     (void)state;
@@ -170,13 +182,7 @@ static void test_file_size_limit(void **state)
 static void test_full_tmpfs(void **state)
 {
     (void)state;
-    int status;
-    char *out = shell("unshare --mount sh -c 'mount -t tmpfs -o size=256k tmpfs /mnt && "
-                      "umount /mnt' && echo yes",
-                      &status);
-    const int can_mount = strstr(out, "yes") != NULL;
-    free(out);
-    if (!can_mount) {
+    if (!can_mount_tmpfs()) {
         fprintf(stderr, "test_full_tmpfs skipped: no mount namespace with tmpfs here "
                         "(needs root with CAP_SYS_ADMIN and unshare); the file size limit "
                         "half ran\n");
@@ -200,11 +206,93 @@ static void test_full_tmpfs(void **state)
     check_writers(dir, "", mount, fill);
 }
 
+/* The cache of compiled models where no write succeeds: a model file never compiled before
+ * (its cache new, so its headers cannot be written either) runs, compiled by libtcc in
+ * memory, with a note saying why, and prints what libtcc's run on a normal disk prints;
+ * DYNKIT_JIT=cc (the system compiler alone) fails naming the cache and DYNKIT_CACHE_DIR; no
+ * temporary file is left in the cache. `prefix` makes the writes fail (shell lines), `cache`
+ * is the cache directory there. */
+static void check_cache_cannot_be_written(const char *prefix, const char *cache)
+{
+    cli_result ref = cli_in_tmpdir("run bouncing_ball.ode --tspan 0:3 --final");
+    char probe[700];
+    snprintf(probe, sizeof probe,
+             "DYNKIT_JIT=tcc '%s' run '%s/bouncing_ball.ode' --final "
+             "--tspan 0:3 2>&1",
+             DYNKIT_CLI, cli_tmpdir);
+    int status;
+    char *tcc = cli_capture(probe, &status);
+    const int have_tcc = status == 0;
+    CHECK(ref.status == 0, "the reference run: %s", ref.err);
+    char script[8192];
+    snprintf(script, sizeof script,
+             "%s\n"
+             "( trap '' XFSZ; DYNKIT_CACHE_DIR='%s' exec '%s' run '%s/bouncing_ball.ode' --final "
+             "--tspan 0:3 ) 2>&1\n"
+             "echo \"status=$?\"\n"
+             "( trap '' XFSZ; DYNKIT_JIT=cc DYNKIT_CACHE_DIR='%s' exec '%s' run "
+             "'%s/bouncing_ball.ode' --final --tspan 0:3 ) 2>&1\n"
+             "echo \"cc-status=$?\"\n"
+             "echo \"tmp=$(ls -A '%s' | grep -c '^tmp-')\"\n",
+             prefix, cache, DYNKIT_CLI, cli_tmpdir, cache, DYNKIT_CLI, cli_tmpdir, cache);
+    char *out = shell(script, &status);
+    if (have_tcc)
+        CHECK(strstr(out, "status=0\n") && strstr(out, tcc) &&
+                  strstr(out, "compiled with libtcc instead"),
+              "%s: want libtcc's run (%s) with a note; got\n%s", prefix, tcc, out);
+    CHECK(!strstr(out, "cc-status=0\n") && strstr(out, "cannot be written") &&
+              strstr(out, "DYNKIT_CACHE_DIR") && strstr(out, "tmp=0\n"),
+          "%s: want DYNKIT_JIT=cc to fail naming the cache, nothing left; got\n%s", prefix, out);
+    free(out);
+    free(tcc);
+    cli_free(&ref);
+}
+
+static void test_cache_on_a_full_disk(void **state)
+{
+    (void)state;
+    make_inputs(cli_tmpdir);
+    char prefix[8192], cache[700];
+    snprintf(cache, sizeof cache, "%s/size-limited-cache", cli_tmpdir);
+    snprintf(prefix, sizeof prefix, "ulimit -f 0");
+    check_cache_cannot_be_written(prefix, cache);
+    if (!can_mount_tmpfs()) {
+        fprintf(stderr, "test_cache_on_a_full_disk: the full tmpfs half skipped (needs root "
+                        "with CAP_SYS_ADMIN and unshare); the file size limit half ran\n");
+        return;
+    }
+    /* a full tmpfs: a new cache (256 KiB), and one whose headers were written before it
+     * filled (2 MiB: the headers take more than 256 KiB of a tmpfs' pages) */
+    char dir[600];
+    snprintf(dir, sizeof dir, "%s/fullcache", cli_tmpdir);
+    assert_int_equal(mkdir(dir, 0700), 0);
+    for (int headers = 0; headers < 2; headers++) {
+        snprintf(cache, sizeof cache, "%s/cache", dir);
+        snprintf(prefix, sizeof prefix,
+                 "[ -z \"$IN_NS\" ] && IN_NS=1 exec unshare --mount sh \"$0\"\n"
+                 "mount -t tmpfs -o size=256k tmpfs '%s' || exit 98\n"
+                 "dd if=/dev/zero of='%s/fill' bs=4096 2>/dev/null\n"
+                 "touch '%s/probe' && printf x >> '%s/probe' 2>/dev/null && exit 97\n",
+                 dir, dir, dir, dir);
+        if (headers) /* the headers directory written first, then the disk filled */
+            snprintf(prefix, sizeof prefix,
+                     "[ -z \"$IN_NS\" ] && IN_NS=1 exec unshare --mount sh \"$0\"\n"
+                     "mount -t tmpfs -o size=2m tmpfs '%s' || exit 98\n"
+                     "DYNKIT_JIT=tcc DYNKIT_CACHE_DIR='%s' '%s' run '%s/bouncing_ball.ode' "
+                     "--final >/dev/null 2>&1; ls -d '%s'/include-* >/dev/null || exit 96\n"
+                     "dd if=/dev/zero of='%s/fill' bs=4096 2>/dev/null\n"
+                     "touch '%s/probe' && printf x >> '%s/probe' 2>/dev/null && exit 97\n",
+                     dir, cache, DYNKIT_CLI, cli_tmpdir, cache, dir, dir, dir);
+        check_cache_cannot_be_written(prefix, cache);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_file_size_limit),
         cmocka_unit_test(test_full_tmpfs),
+        cmocka_unit_test(test_cache_on_a_full_disk),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

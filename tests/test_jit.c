@@ -6,8 +6,9 @@
  * compiler; concurrent first loads in several processes), compiler errors that
  * name the user's file and line, the model ABI check and the checks of the returned model, a
  * missing compiler (libtcc instead when none was named), a compiler stopped at its time limit
- * (libtcc instead, with a note), and a model calling the library's mech.h functions from this
- * program.
+ * (libtcc instead, with a note), a compiler that cannot write (libtcc instead, with a note),
+ * what is planted under an object's name (moved aside), and a model calling the library's
+ * mech.h functions from this program.
  * Each test has a cache directory of its own under /tmp (with a blank in its name).
  */
 #define _XOPEN_SOURCE 700 /* nftw */
@@ -678,6 +679,26 @@ static void test_missing_compiler(void **state)
     assert_non_null(strstr(err, "cannot open /nonexistent/model.c"));
 }
 
+/* With the automatic choice (when this dynkit has libtcc), opts's compiler failing: libtcc
+ * compiles van der Pol instead, the note says why, and the numbers are the built-in model's
+ * bit for bit. */
+static void libtcc_instead(dyn_jit_opts opts, const char *why)
+{
+    if (!dyn_jit_backend_available(DYN_JIT_TCC))
+        return;
+    dyn_jit_model jm;
+    opts.backend = DYN_JIT_AUTO;
+    load_ok(vdp_source, "vdp.c", &opts, &jm);
+    assert_int_equal(jm.backend, DYN_JIT_TCC);
+    assert_non_null(strstr(jm.note, why));
+    assert_non_null(strstr(jm.note, "compiled with libtcc instead"));
+    double ref[2], y[2];
+    rk4_run(&dyn_model_vanderpol, NULL, 0, 15.0, 0.01, ref);
+    rk4_run(jm.model, NULL, 0, 15.0, 0.01, y);
+    assert_true(same_bits(y[0], ref[0]) && same_bits(y[1], ref[1]));
+    dyn_jit_unload(&jm);
+}
+
 /* a compiler that never finishes (a script that sleeps 30 s) is stopped at the time limit,
  * 0.2 s: with the system compiler chosen the message names the bound, with the automatic
  * choice libtcc compiles the model instead, says so in the note, and gives van der Pol's
@@ -712,18 +733,81 @@ static void test_compiler_time_limit(void **state)
     assert_int_not_equal(hex_rc, 0);
     assert_non_null(strstr(err, "DYNKIT_CC_TIMEOUT=0x10 is not a number of seconds > 0 "
                                 "written in decimal"));
-    if (!dyn_jit_backend_available(DYN_JIT_TCC))
-        return;
-    opts.backend = DYN_JIT_AUTO;
-    load_ok(vdp_source, "vdp.c", &opts, &jm);
-    assert_int_equal(jm.backend, DYN_JIT_TCC);
-    assert_non_null(strstr(jm.note, "did not finish within 0.2 s"));
-    assert_non_null(strstr(jm.note, "compiled with libtcc instead"));
-    double ref[2], y[2];
-    rk4_run(&dyn_model_vanderpol, NULL, 0, 15.0, 0.01, ref);
-    rk4_run(jm.model, NULL, 0, 15.0, 0.01, y);
-    assert_true(same_bits(y[0], ref[0]) && same_bits(y[1], ref[1]));
+    libtcc_instead(opts, "did not finish within 0.2 s");
+}
+
+/* a directory (with a file in it), then a FIFO, planted under a compiled object's name: the
+ * model is compiled again, the directory moved aside with a note (it made every later
+ * compilation fail: an object cannot be renamed over a directory), the FIFO replaced without
+ * blocking; the next load comes from the cache without a note */
+static void test_what_is_planted_under_an_objects_name_is_moved_aside(void **state)
+{
+    fixture *f = *state;
+    dyn_jit_model jm;
+    load_ok(vdp_source, "vdp.c", &f->cc, &jm);
+    char so[sizeof jm.so_path], inside[sizeof so + 16];
+    snprintf(so, sizeof so, "%s", jm.so_path);
     dyn_jit_unload(&jm);
+    for (int kind = 0; kind < 2; kind++) {
+        assert_int_equal(unlink(so), 0);
+        if (kind == 0) {
+            assert_int_equal(mkdir(so, 0700), 0);
+            snprintf(inside, sizeof inside, "%s/file", so);
+            write_text(inside, "x");
+        } else {
+            assert_int_equal(mkfifo(so, 0600), 0);
+        }
+        load_ok(vdp_source, "vdp.c", &f->cc, &jm);
+        assert_int_equal(jm.cached, 0);
+        assert_non_null(strstr(jm.note, "is not a regular file"));
+        if (kind == 0)
+            assert_non_null(strstr(jm.note, "moved it aside to tmp-replaced-"));
+        assert_null(strchr(jm.note, '\n'));
+        double ref[2], y[2];
+        rk4_run(&dyn_model_vanderpol, NULL, 0, 15.0, 0.01, ref);
+        rk4_run(jm.model, NULL, 0, 15.0, 0.01, y);
+        assert_true(same_bits(y[0], ref[0]) && same_bits(y[1], ref[1]));
+        dyn_jit_unload(&jm);
+        struct stat st;
+        assert_int_equal(lstat(so, &st), 0);
+        assert_true(S_ISREG(st.st_mode));
+        load_ok(vdp_source, "vdp.c", &f->cc, &jm);
+        assert_int_equal(jm.cached, 1);
+        assert_string_equal(jm.note, "");
+        dyn_jit_unload(&jm);
+    }
+    /* nothing of the planted directory is left in the cache */
+    DIR *d = opendir(f->cache);
+    assert_non_null(d);
+    struct dirent *e;
+    while ((e = readdir(d)) != NULL)
+        assert_true(strncmp(e->d_name, "tmp-", 4) != 0);
+    closedir(d);
+}
+
+/* a compiler that cannot write its output for want of room (a script that says what cc
+ * says on a full disk, "No space left on device", and fails): with the system compiler named
+ * the message says the cache cannot be written and what to do; with the automatic choice
+ * libtcc compiles the model in memory instead, says why in the note, and gives van der Pol's
+ * numbers bit for bit */
+static void test_a_full_cache_falls_back_to_libtcc(void **state)
+{
+    fixture *f = *state;
+    char script[512], err[ERRLEN];
+    snprintf(script, sizeof script, "%s/full cc", f->dir);
+    write_text(script, "#!/bin/sh\necho \"/usr/bin/ld: final link failed: No space left on "
+                       "device\" >&2\nexit 1\n");
+    assert_int_equal(chmod(script, 0755), 0);
+    dyn_jit_opts opts = f->cc;
+    opts.cc = script;
+    dyn_jit_model jm;
+    assert_int_not_equal(
+        dyn_jit_load_source(vdp_source, strlen(vdp_source), "vdp.c", &opts, &jm, err, sizeof err),
+        0);
+    assert_non_null(strstr(err, "could not write its output (No space left on device)"));
+    assert_non_null(strstr(err, "the cache of compiled models cannot be written"));
+    assert_non_null(strstr(err, "DYNKIT_CACHE_DIR"));
+    libtcc_instead(opts, "could not write its output (No space left on device)");
 }
 
 /* the cache directory: the option, then DYNKIT_CACHE_DIR, XDG_CACHE_HOME, HOME */
@@ -775,6 +859,9 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_bad_models_refused, setup, teardown),
         cmocka_unit_test_setup_teardown(test_missing_compiler, setup, teardown),
         cmocka_unit_test_setup_teardown(test_compiler_time_limit, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_what_is_planted_under_an_objects_name_is_moved_aside,
+                                        setup, teardown),
+        cmocka_unit_test_setup_teardown(test_a_full_cache_falls_back_to_libtcc, setup, teardown),
         cmocka_unit_test(test_cache_dir),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

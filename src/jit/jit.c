@@ -60,10 +60,12 @@ static int tcc_instead(const char *source, size_t len, const char *source_name,
 {
     if (jit_tcc_load(source, len, source_name, opts, out, err, errlen) != 0)
         return 1;
-    char text[800];
+    char text[sizeof out->note];
     snprintf(text, sizeof text,
-             "%s: compiled with libtcc instead, whose code runs up to 3 times slower", why);
-    jit_note(out->note, sizeof out->note, text);
+             "%.600s: compiled with libtcc instead, whose code runs up to 3 times slower", why);
+    if (out->note[0]) /* why first, then what libtcc said */
+        jit_note(text, sizeof text, out->note);
+    snprintf(out->note, sizeof out->note, "%s", text);
     return 0;
 }
 
@@ -95,7 +97,8 @@ int dyn_jit_load_source(const char *source, size_t len, const char *source_name,
     int rc = jit_cc_load(source, len, source_name, opts, out, err, errlen);
     if (rc == 2 && fallback) /* no system compiler: libtcc */
         return jit_tcc_load(source, len, source_name, opts, out, err, errlen);
-    if (rc == 3 && automatic) { /* the compiler's time limit, named in out->note */
+    if ((rc == 3 || rc == JIT_UNWRITABLE) && automatic) {
+        /* the compiler's time limit, or a cache that cannot be written: named in out->note */
         snprintf(why, sizeof why, "%.500s", out->note);
         return tcc_instead(source, len, source_name, opts, why, out, err, errlen);
     }

@@ -31,9 +31,11 @@ static int make_dirs(const char *path, char *err, size_t errlen)
             continue;
         char c = buf[i];
         buf[i] = '\0';
-        if (mkdir(buf, 0700) != 0 && errno != EEXIST)
-            return jit_fail(err, errlen, "cannot create the cache directory %s: %s", buf,
-                            strerror(errno));
+        if (mkdir(buf, 0700) != 0 && errno != EEXIST) {
+            const int e = errno;
+            jit_fail(err, errlen, "cannot create the cache directory %s: %s", buf, strerror(e));
+            return jit_cannot_write(e) ? JIT_UNWRITABLE : 1;
+        }
         buf[i] = c;
     }
     return 0;
@@ -63,8 +65,9 @@ int jit_cache_dir(const dyn_jit_opts *opts, char *dir, size_t size, char *err, s
                         "no cache directory for compiled models: set DYNKIT_CACHE_DIR (or HOME)");
     char given[1024];
     snprintf(given, sizeof given, "%s", dir);
-    if (make_dirs(given, err, errlen) != 0)
-        return 1;
+    const int made = make_dirs(given, err, errlen);
+    if (made != 0)
+        return made;
     return jit_trust_cache_dir(given, dir, size, err, errlen);
 }
 
@@ -113,6 +116,20 @@ static void remove_tree(const char *path, int depth)
     rmdir(path);
 }
 
+int jit_cannot_write(int e)
+{
+    return e == ENOSPC || e == EDQUOT || e == EROFS || e == EACCES || e == EPERM || e == EFBIG;
+}
+
+int jit_move_aside(const char *cache, const char *path, char *moved, size_t size)
+{
+    jit_unique_path(cache, "tmp-replaced-", "", moved, size);
+    if (rename(path, moved) != 0)
+        return errno == ENOENT ? 0 : -1; /* gone already: another process moved it */
+    remove_tree(moved, 0);
+    return 0;
+}
+
 void jit_sweep_stale(const char *cache)
 {
     DIR *d = opendir(cache);
@@ -146,10 +163,11 @@ int jit_include_dir(const char *cache, char *dir, size_t size, char *note, size_
     if (rc == JIT_REFUSED)
         return 1;
     if (rc == JIT_STALE) { /* moved aside and removed, then written anew */
-        jit_unique_path(cache, "tmp-replaced-", "", tmp, sizeof tmp);
-        if (rename(dir, tmp) != 0 && errno != ENOENT)
-            return jit_fail(err, errlen, "cannot replace %s (%s): %s", dir, why, strerror(errno));
-        remove_tree(tmp, 0);
+        if (jit_move_aside(cache, dir, tmp, sizeof tmp) != 0) {
+            const int e = errno;
+            jit_fail(err, errlen, "cannot replace %s (%s): %s", dir, why, strerror(e));
+            return jit_cannot_write(e) ? JIT_UNWRITABLE : 1;
+        }
         char text[1600];
         snprintf(text, sizeof text, "replaced the headers in the cache: %s", why);
         jit_note(note, notelen, text);
@@ -160,15 +178,16 @@ int jit_include_dir(const char *cache, char *dir, size_t size, char *note, size_
     if (mkdir(tmp, 0755) != 0 || mkdir(path, 0755) != 0) {
         int e = errno;
         remove_tree(tmp, 0);
-        return jit_fail(err, errlen, "cannot write into the cache directory %s: %s", cache,
-                        strerror(e));
+        jit_fail(err, errlen, "cannot write into the cache directory %s: %s", cache, strerror(e));
+        return jit_cannot_write(e) ? JIT_UNWRITABLE : 1;
     }
     for (int i = 0; i < dyn_jit_header_count; i++) {
         snprintf(path, sizeof path, "%s/dynkit/%s", tmp, dyn_jit_headers[i].name);
         if (jit_write_new(path, dyn_jit_headers[i].data, dyn_jit_headers[i].size) != 0) {
             int e = errno;
             remove_tree(tmp, 0);
-            return jit_fail(err, errlen, "cannot write %s: %s", path, strerror(e));
+            jit_fail(err, errlen, "cannot write %s: %s", path, strerror(e));
+            return jit_cannot_write(e) ? JIT_UNWRITABLE : 1;
         }
     }
     if (rename(tmp, dir) != 0) {
@@ -177,7 +196,8 @@ int jit_include_dir(const char *cache, char *dir, size_t size, char *note, size_
         /* another process put the same directory in place first: use it */
         if (jit_include_check(dir, why, sizeof why, err, errlen) == JIT_OK)
             return 0;
-        return jit_fail(err, errlen, "cannot create %s: %s", dir, strerror(e));
+        jit_fail(err, errlen, "cannot create %s: %s", dir, strerror(e));
+        return jit_cannot_write(e) ? JIT_UNWRITABLE : 1;
     }
     return 0;
 }

@@ -308,13 +308,73 @@ static void stem_of(const char *name, char *stem, size_t size)
     stem[k] = '\0';
 }
 
+/* The cache cannot be written (the message in err): its first line into out->note, what to
+ * do appended to err, JIT_UNWRITABLE returned, so that dyn_jit_load_source may compile in
+ * memory with libtcc. */
+static int unwritable(dyn_jit_model *out, char *err, size_t errlen)
+{
+    if (!err || errlen == 0) {
+        snprintf(out->note, sizeof out->note, "the cache of compiled models cannot be written");
+        return JIT_UNWRITABLE;
+    }
+    snprintf(out->note, sizeof out->note, "%.*s", (int)strcspn(err, "\n"), err);
+    const size_t used = strlen(err);
+    snprintf(err + used, errlen - used,
+             "\n(the cache of compiled models cannot be written: free some space, or set "
+             "DYNKIT_CACHE_DIR to a directory that can be written%s)",
+             dyn_jit_backend_available(DYN_JIT_TCC) ? ", or compile in memory: DYNKIT_JIT=tcc"
+                                                    : "");
+    return JIT_UNWRITABLE;
+}
+
+/* The reason, when the compiler failed for want of room or of a writable disk (its output
+ * says so, or it was killed by SIGXFSZ, the file size limit), else NULL. */
+static const char *disk_failure(int status, const char *output)
+{
+    static const char *const reasons[] = {"No space left on device", "Disk quota exceeded",
+                                          "File too large", "Read-only file system"};
+#ifdef SIGXFSZ
+    if (status == 256 + SIGXFSZ)
+        return "File size limit exceeded";
+#endif
+    for (size_t i = 0; output && i < sizeof reasons / sizeof reasons[0]; i++)
+        if (strstr(output, reasons[i]))
+            return reasons[i];
+    return NULL;
+}
+
+/* An entry under an object's name that a compiled object cannot replace by rename(2) (a
+ * directory, or another file that is not a regular file nor a link) moved aside, said in
+ * note; 0, or non-zero with a message (JIT_UNWRITABLE as jit_cannot_write says). */
+static int clear_object_name(const char *cache, const char *so, char *note, size_t notelen,
+                             char *err, size_t errlen)
+{
+    struct stat st;
+    if (lstat(so, &st) != 0 || S_ISREG(st.st_mode) || S_ISLNK(st.st_mode))
+        return 0;
+    char moved[1200], text[1400];
+    if (jit_move_aside(cache, so, moved, sizeof moved) != 0) {
+        const int e = errno;
+        jit_fail(err, errlen,
+                 "%s in the cache is not a regular file and cannot be moved aside (%s): remove "
+                 "it (rm -rf '%s'; the cache is rebuilt as needed)",
+                 so, strerror(e), so);
+        return jit_cannot_write(e) ? JIT_UNWRITABLE : 1;
+    }
+    const char *base = strrchr(moved, '/');
+    snprintf(text, sizeof text, "moved it aside to %s", base ? base + 1 : moved);
+    jit_note(note, notelen, text);
+    return 0;
+}
+
 int jit_cc_load(const char *source, size_t len, const char *source_name, const dyn_jit_opts *opts,
                 dyn_jit_model *out, char *err, size_t errlen)
 {
     const char *where = source_name && source_name[0] ? source_name : "model.c";
     char cache[1024], inc[1100];
-    if (jit_cache_dir(opts, cache, sizeof cache, err, errlen) != 0)
-        return 1;
+    int made = jit_cache_dir(opts, cache, sizeof cache, err, errlen);
+    if (made != 0)
+        return made == JIT_UNWRITABLE ? unwritable(out, err, errlen) : 1;
     const char *cc = pick(opts ? opts->cc : NULL, "DYNKIT_CC", "CC", "cc");
     const char *cflags = pick(opts ? opts->cflags : NULL, "DYNKIT_CFLAGS", NULL,
                               len > JIT_CC_LARGE_SOURCE  ? HUGE_CFLAGS
@@ -378,12 +438,16 @@ int jit_cc_load(const char *source, size_t len, const char *source_name, const d
         char text[1600];
         snprintf(text, sizeof text, "compiled again: %s", why);
         jit_note(note, sizeof note, text);
+        if ((made = clear_object_name(cache, so, note, sizeof note, err, errlen)) != 0) {
+            free(argv);
+            return made == JIT_UNWRITABLE ? unwritable(out, err, errlen) : 1;
+        }
     }
 
     jit_sweep_stale(cache); /* rare: on a compilation only */
-    if (jit_include_dir(cache, inc, sizeof inc, note, sizeof note, err, errlen) != 0) {
+    if ((made = jit_include_dir(cache, inc, sizeof inc, note, sizeof note, err, errlen)) != 0) {
         free(argv);
-        return 1;
+        return made == JIT_UNWRITABLE ? unwritable(out, err, errlen) : 1;
     }
     char tmp_c[1200], tmp_so[1200];
     jit_unique_path(cache, "tmp-", ".c", tmp_c, sizeof tmp_c);
@@ -399,8 +463,8 @@ int jit_cc_load(const char *source, size_t len, const char *source_name, const d
         free(text);
         free(argv);
         unlink(tmp_c);
-        return jit_fail(err, errlen, "cannot write into the cache directory %s: %s", cache,
-                        strerror(e));
+        jit_fail(err, errlen, "cannot write into the cache directory %s: %s", cache, strerror(e));
+        return jit_cannot_write(e) ? unwritable(out, err, errlen) : 1;
     }
     free(text);
     if (add_word(argv, "-I", 2) || add_word(argv, inc, strlen(inc)) || add_word(argv, "-o", 2) ||
@@ -442,7 +506,12 @@ int jit_cc_load(const char *source, size_t len, const char *source_name, const d
         rc = 3;
     } else if (status != 0) {
         char head[600];
-        if (status > 255)
+        const char *disk = disk_failure(status, output.buf);
+        if (disk)
+            snprintf(head, sizeof head,
+                     "compiling %s: the C compiler '%s' could not write its output (%s):\n", where,
+                     argv->argv[0], disk);
+        else if (status > 255)
             snprintf(head, sizeof head, "compiling %s: the compiler '%s' was killed (signal %d)\n",
                      where, argv->argv[0], status - 256);
         else if (output.len == 0)
@@ -453,6 +522,13 @@ int jit_cc_load(const char *source, size_t len, const char *source_name, const d
             head[0] = '\0';
         report_output(err, errlen, head, output.buf);
         rc = 1;
+        if (disk) {
+            unwritable(out, err, errlen);
+            snprintf(out->note, sizeof out->note,
+                     "the C compiler '%.200s' could not write its output (%s)", argv->argv[0],
+                     disk);
+            rc = JIT_UNWRITABLE;
+        }
     }
     free(output.buf);
     free(argv);
@@ -461,14 +537,15 @@ int jit_cc_load(const char *source, size_t len, const char *source_name, const d
         return rc;
     }
     if (jit_object_seal(tmp_so, so, err, errlen) != 0) {
+        const int e = errno;
         unlink(tmp_so);
-        return 1;
+        return jit_cannot_write(e) ? unwritable(out, err, errlen) : 1;
     }
     if (rename(tmp_so, so) != 0) {
         int e = errno;
         unlink(tmp_so);
-        return jit_fail(err, errlen, "cannot put the compiled model in place (%s): %s", so,
-                        strerror(e));
+        jit_fail(err, errlen, "cannot put the compiled model in place (%s): %s", so, strerror(e));
+        return jit_cannot_write(e) ? unwritable(out, err, errlen) : 1;
     }
     state = jit_object_open(so, &fd, why, sizeof why, err, errlen);
     if (state == JIT_REFUSED)

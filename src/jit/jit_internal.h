@@ -43,12 +43,20 @@ int jit_fail(char *err, size_t errlen, const char *fmt, ...)
 #endif
     ;
 
+/* Returned with a message when the cache cannot be written: full (ENOSPC, EDQUOT), a file
+ * size limit (EFBIG), read-only (EROFS) or not permitted (EACCES, EPERM); jit_cannot_write(e)
+ * says whether errno e is one of these. A refusal of the trust rules is never this. */
+#define JIT_UNWRITABLE 4
+int jit_cannot_write(int e);
+
 /* The cache directory of opts (see jit.h), created (0700) with its missing parents, then
- * checked by jit_trust_cache_dir; its resolved path into dir. 0 or non-zero with a message. */
+ * checked by jit_trust_cache_dir; its resolved path into dir. 0 or non-zero with a message
+ * (JIT_UNWRITABLE when it cannot be created for one of the reasons above). */
 int jit_cache_dir(const dyn_jit_opts *opts, char *dir, size_t size, char *err, size_t errlen);
 /* <cache>/include-<version>-<hash>: the embedded headers under dynkit/, written once
  * (atomically: a whole directory renamed into place), checked by jit_include_check before
- * each use and replaced when it fails (why into note, appended). */
+ * each use and replaced when it fails (why into note, appended). 0, JIT_UNWRITABLE or another
+ * non-zero value, with a message. */
 int jit_include_dir(const char *cache, char *dir, size_t size, char *note, size_t notelen,
                     char *err, size_t errlen);
 
@@ -72,6 +80,11 @@ int jit_object_seal(const char *path, const char *final, char *err, size_t errle
 /* The headers directory: JIT_OK, JIT_ABSENT, JIT_STALE (why) or JIT_REFUSED (err), by the
  * same rules; it must hold exactly dynkit/ with the embedded headers, byte for byte. */
 int jit_include_check(const char *dir, char *why, size_t whylen, char *err, size_t errlen);
+/* Move path (an entry of cache that cannot be used as it is: a directory or other file that is
+ * not a regular file under an object's name, a damaged headers directory) aside to a unique
+ * tmp-replaced-* name (into moved) and remove what of it is this user's; what remains goes
+ * with jit_sweep_stale. 0 (also when path is gone), or -1 with errno. */
+int jit_move_aside(const char *cache, const char *path, char *moved, size_t size);
 /* Remove what interrupted compilations left in the cache (tmp-* entries older than an
  * hour, owned by this user). */
 void jit_sweep_stale(const char *cache);
@@ -112,12 +125,20 @@ void jit_so_unload(void *handle);
 
 /* Backends: compile and load; fill out (model, handle, backend, cached, compile_seconds,
  * so_path, note). 0, or non-zero with a message: jit_cc_load returns 2 when the compiler was
- * not found, 3 when it ran out of time (JIT_CC_TIMEOUT) and the caller may use libtcc. */
+ * not found, 3 when it ran out of time (JIT_CC_TIMEOUT), JIT_UNWRITABLE when the cache cannot
+ * be written (why in out->note); then the caller may use libtcc. jit_tcc_load needs no cache:
+ * when the headers cannot be written into it, they are put into the text in memory
+ * (jit_headers_inline). */
 int jit_cc_load(const char *source, size_t len, const char *source_name, const dyn_jit_opts *opts,
                 dyn_jit_model *out, char *err, size_t errlen);
 int jit_tcc_load(const char *source, size_t len, const char *source_name, const dyn_jit_opts *opts,
                  dyn_jit_model *out, char *err, size_t errlen);
 void jit_tcc_unload(void *handle);
+/* text (NUL-terminated) with each line `#include <dynkit/NAME>` or `#include "dynkit/NAME"`
+ * of an embedded header replaced by the header's text, recursively, between #line lines that
+ * keep the names and line numbers of diagnostics: what the compiler reads from the headers
+ * directory, without one. malloc'd; NULL when out of memory. */
+char *jit_headers_inline(const char *text);
 /* Write len bytes to fd (0), or -1 with errno; jit_write_new: to a new file path (O_EXCL,
  * 0644). */
 int jit_write_fd(int fd, const void *data, size_t len);

@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* The libtcc backend of the jit layer: the model's source compiled in process into memory
  * (nothing written to disk but the embedded headers, once, into the cache's include
- * directory), relocated, and its entry point called. libtcc is not re-entrant: one
+ * directory, or put into the text when the cache cannot be written: jit_inline.c), relocated,
+ * and its entry point called. libtcc is not re-entrant: one
  * compilation at a time (a mutex). Calls into dynkit from the model are resolved in the
  * running program (libtcc looks undefined symbols up with dlsym). */
 #define _POSIX_C_SOURCE 200809L
@@ -61,11 +62,24 @@ int jit_tcc_load(const char *source, size_t len, const char *source_name, const 
                  dyn_jit_model *out, char *err, size_t errlen)
 {
     const char *where = source_name && source_name[0] ? source_name : "model.c";
-    char cache[1024], inc[1100], note[sizeof out->note] = "";
-    if (jit_cache_dir(opts, cache, sizeof cache, err, errlen) != 0 ||
-        jit_include_dir(cache, inc, sizeof inc, note, sizeof note, err, errlen) != 0)
+    char cache[1024], inc[1100] = "", note[sizeof out->note] = "";
+    int rc = jit_cache_dir(opts, cache, sizeof cache, err, errlen);
+    if (rc == 0)
+        rc = jit_include_dir(cache, inc, sizeof inc, note, sizeof note, err, errlen);
+    if (rc == JIT_UNWRITABLE) { /* the headers in the text instead of a directory */
+        char why[sizeof out->note];
+        snprintf(why, sizeof why, "%s: the headers were given to libtcc in memory", err);
+        jit_note(note, sizeof note, why);
+        inc[0] = '\0';
+    } else if (rc != 0) {
         return 1;
+    }
     char *text = jit_source_with_line(source, len, where, NULL);
+    if (text && !inc[0]) {
+        char *whole = jit_headers_inline(text);
+        free(text);
+        text = whole;
+    }
     messages *msgs = calloc(1, sizeof *msgs);
     if (!text || !msgs) {
         free(text);
@@ -73,7 +87,7 @@ int jit_tcc_load(const char *source, size_t len, const char *source_name, const 
         return jit_fail(err, errlen, "out of memory");
     }
 
-    int rc = 0;
+    rc = 0;
     double t_start = jit_now();
     pthread_mutex_lock(&tcc_lock);
     TCCState *s = tcc_new();
@@ -84,7 +98,8 @@ int jit_tcc_load(const char *source, size_t len, const char *source_name, const 
     tcc_set_error_func(s, msgs, on_message);
     const char *lib_dir = getenv("DYNKIT_TCC_LIB_DIR");
     tcc_set_lib_path(s, lib_dir && lib_dir[0] ? lib_dir : DYNKIT_TCC_LIB_DIR);
-    tcc_add_include_path(s, inc);
+    if (inc[0])
+        tcc_add_include_path(s, inc);
     tcc_set_output_type(s, TCC_OUTPUT_MEMORY);
     if (tcc_compile_string(s, text) < 0) {
         rc = fail_with(err, errlen, "compiling", where, msgs);

@@ -250,9 +250,16 @@ int jit_object_seal(const char *path, const char *final, char *err, size_t errle
         trailer_of(final, data, len, trailer);
         bad = lseek(fd, 0, SEEK_END) < 0 || jit_write_fd(fd, trailer, TRAILER_LEN) != 0;
     }
+    int e = bad ? errno : 0;
     free(data);
-    if (close(fd) != 0 || bad)
-        return jit_fail(err, errlen, "cannot record the hash of the compiled model %s", path);
+    if (close(fd) != 0 && !bad)
+        e = errno, bad = 1;
+    if (bad) {
+        jit_fail(err, errlen, "cannot record the hash of the compiled model %s: %s", path,
+                 strerror(e));
+        errno = e; /* the caller tells a full disk from other failures */
+        return 1;
+    }
     return 0;
 }
 

@@ -52,6 +52,14 @@ void cli_note(const char *fmt, ...)
     __attribute__((format(printf, 1, 2)))
 #endif
     ;
+/* The message on stderr as it is formatted (no prefix, no line feed added), escaped as
+ * cli_error's: for the lines of the tool's reports that quote names, messages or lines of
+ * files (a run's events, its failure, its last good state). */
+void cli_stderr(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
 
 /* Parse a finite number: decimal, optionally times pi ("pi/2", "-0.5pi", "2*pi/3") or an
  * angle in degrees ("45deg", converted to rad).

@@ -165,6 +165,11 @@ static void test_hostile_file_names_in_every_message(void **state)
         {"info '%s'", 0, 1, 0, SHOWN},
         {"run '%s' --verbose --tspan 0:0.1", 0, 0, 0, SHOWN ".ode: "},
         {"run '%s' --verbose --tspan 0:0.1", 1, 0, 0, SHOWN ".mech: "},
+        /* the reports' own lines: --project-init's, a run that fails */
+        {"run '%s' --project-init --tspan 0:0.01", 1, 0, 0,
+         SHOWN ".mech has no constraints; nothing changed"},
+        {"run '%s' --method euler --step 1 --tspan 0:2 --set l=0", 0, 0, 1,
+         "of model " SHOWN " became NaN or Inf"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         char args[1024];
@@ -189,6 +194,13 @@ static void test_hostile_file_names_in_every_message(void **state)
     write_text(HOSTILE "-bad.mech", "coord q=0 [rad]\nbody b mass=1 \x7F at (q, 0, 0)\n");
     r = cli("derive '%s'", cli_path(HOSTILE "-bad.mech"));
     CHECK(r.status == 2 && !has_control_bytes(r.err) && strstr(r.err, SHOWN "-bad.mech:2:"),
+          "exit %d: %s", r.status, r.err);
+    cli_free(&r);
+    /* a model's boundary conditions, which run does not use: said with the model's name */
+    write_text(HOSTILE "-bvp.ode", "x'=y\ny'=-x\nbdry x\nbdry y-1\ndone\n");
+    r = cli("run '%s' --tspan 0:1 --final", cli_path(HOSTILE "-bvp.ode"));
+    CHECK(r.status == 0 && !has_control_bytes(r.err) &&
+              strstr(r.err, "note: " SHOWN "-bvp's boundary conditions are not used"),
           "exit %d: %s", r.status, r.err);
     cli_free(&r);
     /* the library's formatter itself: the caret counts a UTF-8 character as one column and

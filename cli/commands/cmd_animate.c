@@ -243,9 +243,9 @@ int cli_cmd_animate(int argc, char **argv)
         }
     }
     if (default_path[0] && (rc == CLI_OK || rc == CLI_FAILED))
-        fprintf(stderr, "dynkit: wrote %s (open it in a browser; --output FILE names the file, "
-                        "--output - writes to standard output)\n",
-                default_path);
+        cli_stderr("dynkit: wrote %s (open it in a browser; --output FILE names the file, "
+                   "--output - writes to standard output)\n",
+                   default_path);
     cli_ani_free(&ani);
     dyn_mech_scene_free(mech);
     cli_view_free(&v);

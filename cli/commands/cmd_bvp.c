@@ -225,13 +225,13 @@ int cli_cmd_bvp(int argc, char **argv)
         rc = cli_usage_error("bvp", "--step %g gives %ld rows (at most %ld)", step, rows,
                              BVP_MAX_ROWS);
     } else {
-        fprintf(stderr, "dynkit: bvp: %s on [%s, %s]: %d Newton iterations on %d intervals of "
-                        "%d Gauss points; error estimate %.3g\n",
-                m->name, CLI_NUM(r.t0), CLI_NUM(r.t1), r.iterations, r.sol.ntst, r.sol.ncol,
-                r.err_est);
+        cli_stderr("dynkit: bvp: %s on [%s, %s]: %d Newton iterations on %d intervals of "
+                   "%d Gauss points; error estimate %.3g\n",
+                   m->name, CLI_NUM(r.t0), CLI_NUM(r.t1), r.iterations, r.sol.ntst, r.sol.ncol,
+                   r.err_est);
         for (int k = 0; k < m->n_bdry; k++)
-            fprintf(stderr, "dynkit: bvp: condition (line %s) = %.3g\n", m->bdry_text[k],
-                    r.residuals[k]);
+            cli_stderr("dynkit: bvp: condition (line %s) = %.3g\n", m->bdry_text[k],
+                       r.residuals[k]);
         cli_out out;
         const char *path = o.output && strcmp(o.output, "-") != 0 ? o.output : NULL;
         rc = cli_out_open(&out, "--output", path);

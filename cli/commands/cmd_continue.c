@@ -274,7 +274,7 @@ int cli_cmd_continue(int argc, char **argv)
             cli_error("continue: %s", info.message);
             rc = CLI_FAILED;
         } else if (info.message[0]) {
-            fprintf(stderr, "dynkit: note: %s\n", info.message);
+            cli_stderr("dynkit: note: %s\n", info.message);
         }
     }
     if (rc == CLI_OK) {

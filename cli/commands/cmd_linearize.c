@@ -583,10 +583,10 @@ int cli_cmd_linearize(int argc, char **argv)
             p->have_eq = 1;
             int st = dyn_equilibrium(m, t, p->y, par, &eo, work, &p->eq);
             if (st) {
-                fprintf(stderr, "dynkit: error: linearize --equilibrium");
+                cli_stderr("dynkit: error: linearize --equilibrium");
                 if (vname)
-                    fprintf(stderr, " at %s = %.17g", vname, p->value);
-                fprintf(stderr, ": %s\n", p->eq.message);
+                    cli_stderr(" at %s = %.17g", vname, p->value);
+                cli_stderr(": %s\n", p->eq.message);
                 rc = st == DYN_ERR_ARG ? CLI_USAGE : CLI_FAILED;
                 break;
             }

@@ -164,7 +164,7 @@ static int write_html(const dyn_homework *hw, const char *path)
     size_t text_len = 0;
     int rc = CLI_OK;
     if (dyn_homework_series(hw, &series, err, sizeof err)) {
-        fprintf(stderr, "dynkit: report failed: %s\n", err);
+        cli_stderr("dynkit: report failed: %s\n", err);
         rc = CLI_FAILED;
     }
     if (rc == CLI_OK) {
@@ -231,7 +231,7 @@ int cli_cmd_report(int argc, char **argv)
     char err[256] = "";
     if (dyn_homework_compute(&hw, err, sizeof err) ||
         (studies && dyn_homework_studies(&hw, (int)threads, err, sizeof err))) {
-        fprintf(stderr, "dynkit: report failed: %s\n", err);
+        cli_stderr("dynkit: report failed: %s\n", err);
         return CLI_FAILED;
     }
     if (html) {

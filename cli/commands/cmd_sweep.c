@@ -1080,8 +1080,7 @@ static int sweep_command(int argc, char **argv, int rank, int ranks)
             failed += o.status[i] != DYN_SWEEP_NOT_RUN && o.status[i] != DYN_OK;
         }
         if (failed > 0)
-            fprintf(stderr, "dynkit: %ld of %ld runs failed (see the status column)\n", failed,
-                    done);
+            cli_stderr("dynkit: %ld of %ld runs failed (see the status column)\n", failed, done);
         for (int r = 0; r < n_red; r++) {
             if (red[r].op != DYN_REDUCE_EVENT)
                 continue;
@@ -1097,12 +1096,11 @@ static int sweep_command(int argc, char **argv, int rank, int ranks)
             char shown[4 * 4096 + 1];
             const char *named = out_path ? cli_terminal_text(out_path, 0, shown, sizeof shown)
                                          : "standard output";
-            fprintf(stderr,
-                    "dynkit: interrupted: %ld of %ld runs done, written to %s.\n"
-                    "dynkit: to run the others, give the same command with --resume %s\n",
-                    done, n_runs, named,
-                    out_path && strcmp(out_path, "-") != 0 ? named
-                                                            : "FILE (the table saved to FILE)");
+            cli_stderr("dynkit: interrupted: %ld of %ld runs done, written to %s.\n"
+                       "dynkit: to run the others, give the same command with --resume %s\n",
+                       done, n_runs, named,
+                       out_path && strcmp(out_path, "-") != 0 ? named
+                                                              : "FILE (the table saved to FILE)");
             rc = 128 + (int)sweep_signal;
         }
     }

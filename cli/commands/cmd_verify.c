@@ -317,8 +317,8 @@ int cli_cmd_verify(int argc, char **argv)
     }
     for (long k = 0; k < n; k++)
         if (!rows[k].ok)
-            fprintf(stderr, "dynkit: verify: %s with %s failed unexpectedly: %s\n",
-                    rows[k].problem->name, rows[k].method, rows[k].note);
+            cli_stderr("dynkit: verify: %s with %s failed unexpectedly: %s\n",
+                       rows[k].problem->name, rows[k].method, rows[k].note);
     int status = fflush(stdout) == 0 ? (bad ? CLI_FAILED : CLI_OK) : CLI_FAILED;
     free(rows);
     return status;

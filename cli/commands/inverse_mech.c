@@ -329,8 +329,9 @@ int cli_inverse_mech(int argc, char **argv)
     if (rc == CLI_OK)
         rc = write_table(&v, spec);
     if (rc == CLI_OK && !run.quiet && v.with_inputs)
-        fprintf(stderr, "dynkit: inverse %s: %ld samples; the inputs leave the prescribed "
-                "motions' forces within %s\n", spec, v.count, CLI_NUM(v.worst));
+        cli_stderr("dynkit: inverse %s: %ld samples; the inputs leave the prescribed "
+                   "motions' forces within %s\n",
+                   spec, v.count, CLI_NUM(v.worst));
     cli_lin_constraints_close(&cc);
     free(v.rows);
     free(v.out);

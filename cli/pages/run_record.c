@@ -73,7 +73,7 @@ static void warn_once(recorder *r, double t, const double *y)
     for (int i = 0; i < r->n_warned; i++)
         if (r->warned[i] == w)
             return;
-    fprintf(stderr, "dynkit: warning (%s) at t = %.6g s: %s\n", r->s->label, t, w);
+    cli_stderr("dynkit: warning (%s) at t = %.6g s: %s\n", r->s->label, t, w);
     if (r->n_warned < (int)(sizeof r->warned / sizeof r->warned[0]))
         r->warned[r->n_warned++] = w;
 }

@@ -134,8 +134,8 @@ int cli_view_record(cli_view *v)
             return r;
         if (r != CLI_OK) {
             char shown[4 * sizeof s->message + 8];
-            fprintf(stderr, "dynkit: run failed: %s\n",
-                    cli_terminal_text(s->message, 1, shown, sizeof shown));
+            cli_stderr("dynkit: run failed: %s\n",
+                       cli_terminal_text(s->message, 1, shown, sizeof shown));
             if (rc == CLI_OK)
                 rc = r;
         }

@@ -92,7 +92,7 @@ static int not_reached(const char *command, const char *spec, const dyn_model *c
                                                                                   y, n);
     if (!h || !hol || !from || !at) {
         free(h), free(hol), free(from), free(at);
-        fprintf(stderr, "dynkit: error: out of memory\n");
+        cli_stderr("dynkit: error: out of memory\n");
         return CLI_FAILED;
     }
     double *f = h + no, *G = f + no, *G0 = G + (size_t)no * n;
@@ -101,34 +101,36 @@ static int not_reached(const char *command, const char *spec, const dyn_model *c
     const int m0 = mg < 0 ? -1 : dyn_holonomic_gradient(cm, run->par, run->t0, run->y0, G0,
                                                         NULL);
     const double tol = dyn_constraint_tolerance(y, n);
-    fprintf(stderr, "dynkit: error: %s: --project-init did not bring %s onto its constraints: "
-            "from %s Gauss-Newton's projection stopped at %s, where\n", command, spec, from,
-            at);
+    cli_stderr("dynkit: error: %s: --project-init did not bring %s onto its constraints: "
+               "from %s Gauss-Newton's projection stopped at %s, where\n",
+               command, spec, from, at);
     for (int r = 0; r < m; r++)
         if (hol[r]) {
             const char *name = constraint_name(cm, r);
-            fprintf(stderr, "  constraint '%s' is %s%s\n", name, CLI_NUM(f[r]),
-                    fabs(f[r]) <= tol ? " (holds)" : " (does not hold)");
+            cli_stderr("  constraint '%s' is %s%s\n", name, CLI_NUM(f[r]),
+                       fabs(f[r]) <= tol ? " (holds)" : " (does not hold)");
         }
     for (int j = 0; j < n; j++) {
         const double q = fabs(y[j]), gap = nextafter(q, INFINITY) - q;
         if (gap > tol)
-            fprintf(stderr, "  (%s = %s: the doubles near it are %s apart, coarser than the "
-                    "tolerance)\n", run->model->states[j].name, CLI_NUM(y[j]), CLI_NUM(gap));
+            cli_stderr("  (%s = %s: the doubles near it are %s apart, coarser than the "
+                       "tolerance)\n",
+                       run->model->states[j].name, CLI_NUM(y[j]), CLI_NUM(gap));
     }
-    fprintf(stderr, "  (a constraint holds within %s); no result is computed from this "
-            "state: give --init values of", CLI_NUM(tol));
+    cli_stderr("  (a constraint holds within %s); no result is computed from this "
+               "state: give --init values of",
+               CLI_NUM(tol));
     int named = 0;
     for (int j = 0; j < n && m0 >= 0; j++) {
         int involved = 0;
         for (int r = 0; r < m && !involved; r++)
             involved = hol[r] && (G[r * n + j] != 0.0 || G0[r * n + j] != 0.0);
         if (involved)
-            fprintf(stderr, "%s %s", named++ ? "," : "", run->model->states[j].name);
+            cli_stderr("%s %s", named++ ? "," : "", run->model->states[j].name);
     }
-    fprintf(stderr, "%s nearer a state that holds the constraints (a sketch of the assembled "
-            "mechanism), or check that the constraints can hold together\n",
-            named ? "" : " the coordinates");
+    cli_stderr("%s nearer a state that holds the constraints (a sketch of the assembled "
+               "mechanism), or check that the constraints can hold together\n",
+               named ? "" : " the coordinates");
     free(h), free(hol), free(from), free(at);
     return CLI_FAILED;
 }
@@ -247,25 +249,24 @@ static void report_mode(const char *command, const dyn_model *cm, const cli_run 
     const int s1 = ok ? minor_sign(G, n, rows, cols, k, a) : 0;
     const int s0 = ok ? minor_sign(G0, n, rows, cols, k, a) : 0;
     if (ok && s1 && coupled && (!run->quiet || (s0 && s0 != s1))) {
-        fprintf(stderr, "dynkit: %s: --project-init: the constraints hold in the assembly mode "
-                "where det d(", command);
+        cli_stderr("dynkit: %s: --project-init: the constraints hold in the assembly mode "
+                   "where det d(",
+                   command);
         for (int i = 0; i < k; i++)
-            fprintf(stderr, "%s%s", i ? "," : "", constraint_name(cm, rows[i]));
-        fprintf(stderr, ")/d(");
+            cli_stderr("%s%s", i ? "," : "", constraint_name(cm, rows[i]));
+        cli_stderr(")/d(");
         for (int i = 0; i < k; i++)
-            fprintf(stderr, "%s%s", i ? "," : "", run->model->states[cols[i]].name);
-        fprintf(stderr, ") %s 0 (another mode has %s 0), at", s1 > 0 ? ">" : "<",
-                s1 > 0 ? "<" : ">");
+            cli_stderr("%s%s", i ? "," : "", run->model->states[cols[i]].name);
+        cli_stderr(") %s 0 (another mode has %s 0), at", s1 > 0 ? ">" : "<", s1 > 0 ? "<" : ">");
         for (int j = 0; j < n; j++)
-            fprintf(stderr, "%s %s=%s", j ? "," : "", run->model->states[j].name,
-                    CLI_NUM(y[j]));
+            cli_stderr("%s %s=%s", j ? "," : "", run->model->states[j].name, CLI_NUM(y[j]));
         if (s0 && s0 != s1)
-            fprintf(stderr, "; the start was in the other mode (%s 0): the projection went "
-                    "through a singular configuration, start nearer the mode wanted",
-                    s0 > 0 ? ">" : "<");
+            cli_stderr("; the start was in the other mode (%s 0): the projection went "
+                       "through a singular configuration, start nearer the mode wanted",
+                       s0 > 0 ? ">" : "<");
         else if (!s0)
-            fprintf(stderr, "; the start was at a singular configuration (det 0)");
-        fprintf(stderr, "\n");
+            cli_stderr("; the start was at a singular configuration (det 0)");
+        cli_stderr("\n");
     }
     free(G), free(idx);
 }
@@ -275,7 +276,7 @@ static int project(const char *command, const char *spec, const dyn_model *cm, c
     const int N = cm->n_states;
     double *y = malloc((size_t)N * sizeof *y);
     if (!y) {
-        fprintf(stderr, "dynkit: error: out of memory\n");
+        cli_stderr("dynkit: error: out of memory\n");
         return CLI_FAILED;
     }
     memcpy(y, run->y0, (size_t)N * sizeof *y);
@@ -292,7 +293,7 @@ static int project(const char *command, const char *spec, const dyn_model *cm, c
         else if (!(res[0] <= dyn_constraint_tolerance(y, N / 2)))
             rc = not_reached(command, spec, cm, run, y);
         else {
-            fprintf(stderr, "dynkit: error: %s: --project-init: %s\n", command, err);
+            cli_stderr("dynkit: error: %s: --project-init: %s\n", command, err);
             rc = CLI_FAILED;
         }
         free(y);
@@ -302,17 +303,18 @@ static int project(const char *command, const char *spec, const dyn_model *cm, c
         int changed = 0;
         for (int i = 0; i < N; i++)
             if (y[i] != run->y0[i]) {
-                fprintf(stderr, "%s %s %s -> ", changed ? "," : "dynkit: --project-init:",
-                        run->model->states[i].name, CLI_NUM(run->y0[i]));
-                fprintf(stderr, "%s", CLI_NUM(y[i]));
+                cli_stderr("%s %s %s -> ",
+                           changed ? "," : "dynkit: --project-init:", run->model->states[i].name,
+                           CLI_NUM(run->y0[i]));
+                cli_stderr("%s", CLI_NUM(y[i]));
                 changed = 1;
             }
         if (changed)
-            fprintf(stderr, " (the constraints hold within %s, their rates within %s)\n", CLI_NUM(res[0]),
-                    CLI_NUM(res[1]));
+            cli_stderr(" (the constraints hold within %s, their rates within %s)\n",
+                       CLI_NUM(res[0]), CLI_NUM(res[1]));
         else
-            fprintf(stderr, "dynkit: --project-init: the initial state holds the "
-                            "constraints; nothing changed\n");
+            cli_stderr("dynkit: --project-init: the initial state holds the "
+                       "constraints; nothing changed\n");
     }
     report_mode(command, cm, run, y);
     memcpy(run->y0, y, (size_t)N * sizeof *y);
@@ -329,8 +331,7 @@ int cli_mech_initial(const char *command, const char *spec, cli_run *run, int pr
     if (cc.loaded && cc.m > 0)
         rc = projected ? project(command, spec, cc.jm.model, run) : check(command, cc.jm.model, run);
     else if (cc.loaded && projected && !run->quiet)
-        fprintf(stderr, "dynkit: --project-init: %s has no constraints; nothing changed\n",
-                spec);
+        cli_stderr("dynkit: --project-init: %s has no constraints; nothing changed\n", spec);
     cli_lin_constraints_close(&cc);
     return rc;
 }

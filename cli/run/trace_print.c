@@ -8,9 +8,9 @@
 
 static void print_vector(const char *label, const double *v, int n)
 {
-    fprintf(stderr, "%s[", label);
+    cli_stderr("%s[", label);
     for (int i = 0; i < n; i++)
-        fprintf(stderr, "%s%s", i ? ", " : "", CLI_NUM(v[i]));
+        cli_stderr("%s%s", i ? ", " : "", CLI_NUM(v[i]));
     fputs("]\n", stderr);
 }
 
@@ -22,7 +22,7 @@ static void print_combination(const double *coef, int count)
     for (int j = 0; j < count; j++) {
         if (coef[j] == 0.0)
             continue;
-        fprintf(stderr, "%s%s*k%d", first ? "" : " + ", CLI_NUM(coef[j]), j + 1);
+        cli_stderr("%s%s*k%d", first ? "" : " + ", CLI_NUM(coef[j]), j + 1);
         first = 0;
     }
     fputs(")", stderr);
@@ -36,10 +36,10 @@ void cli_print_trace(const dyn_trace_stage *st, void *ctx)
     const int heun = strcmp(m->name, "heun") == 0;
     char label[160];
     if (i == 0) {
-        fprintf(stderr, "trace %s, step %ld: t_n = %s, h = %s\n  states (", m->name,
-                st->step + 1, CLI_NUM(st->t_n), CLI_NUM(st->h));
+        cli_stderr("trace %s, step %ld: t_n = %s, h = %s\n  states (", m->name, st->step + 1,
+                   CLI_NUM(st->t_n), CLI_NUM(st->h));
         for (int q = 0; q < st->n; q++)
-            fprintf(stderr, "%s%s", q ? ", " : "", run->model->states[q].name);
+            cli_stderr("%s%s", q ? ", " : "", run->model->states[q].name);
         fputs(")\n", stderr);
         print_vector("  y_n = ", st->y_n, st->n);
     }
@@ -47,12 +47,12 @@ void cli_print_trace(const dyn_trace_stage *st, void *ctx)
         if (i == 0)
             print_vector("  y_{n+1} = f(t_n, y_n) = ", st->k, st->n);
         else
-            fprintf(stderr, "  (t_{n+1} = %s)\n", CLI_NUM(st->t_stage));
+            cli_stderr("  (t_{n+1} = %s)\n", CLI_NUM(st->t_stage));
     } else if (i < s) {
         char stage_name[32];
         snprintf(stage_name, sizeof stage_name, heun ? "ytilde_{n+1}" : "Y%d", i + 1);
         if (i > 0) {
-            fprintf(stderr, "  %s%s = y_n + ", heun ? "predictor " : "", stage_name);
+            cli_stderr("  %s%s = y_n + ", heun ? "predictor " : "", stage_name);
             print_combination(m->a + (size_t)i * (size_t)s, i);
             print_vector("\n      = ", st->Y, st->n);
         }
@@ -60,9 +60,9 @@ void cli_print_trace(const dyn_trace_stage *st, void *ctx)
                  CLI_NUM(st->t_stage), i == 0 ? "y_n" : stage_name);
         print_vector(label, st->k, st->n);
     } else {
-        fprintf(stderr, "  %s = y_n + ", heun ? "corrector y_{n+1}" : "y_{n+1}");
+        cli_stderr("  %s = y_n + ", heun ? "corrector y_{n+1}" : "y_{n+1}");
         print_combination(m->b, s);
         print_vector("\n      = ", st->Y, st->n);
-        fprintf(stderr, "  (t_{n+1} = %s)\n", CLI_NUM(st->t_stage));
+        cli_stderr("  (t_{n+1} = %s)\n", CLI_NUM(st->t_stage));
     }
 }

@@ -12,8 +12,8 @@
 #include "dynkit/lang.h"
 #include "util/escape.h"
 
-/* "dynkit: <kind>: " and the message on stderr, its control bytes escaped (escape.h): a
- * message quotes names, lines and values from files. */
+/* "dynkit: <kind>: " (nothing when kind is NULL) and the message on stderr, its control
+ * bytes escaped (escape.h): a message quotes names, lines and values from files. */
 static void print_message(const char *kind, const char *fmt, va_list ap)
 {
     va_list copy;
@@ -24,8 +24,11 @@ static void print_message(const char *kind, const char *fmt, va_list ap)
     char *shown = msg ? malloc(4 * (size_t)len + 8) : NULL;
     if (shown) {
         vsnprintf(msg, (size_t)len + 1, fmt, ap);
-        fprintf(stderr, "dynkit: %s: %s", kind,
-                cli_terminal_text(msg, 1, shown, 4 * (size_t)len + 8));
+        const char *text = cli_terminal_text(msg, 1, shown, 4 * (size_t)len + 8);
+        if (kind)
+            fprintf(stderr, "dynkit: %s: %s", kind, text);
+        else
+            fputs(text, stderr);
     } else {
         fputs("dynkit: error: out of memory\n", stderr);
     }
@@ -58,6 +61,14 @@ void cli_note(const char *fmt, ...)
     print_message("note", fmt, ap);
     va_end(ap);
     fputc('\n', stderr);
+}
+
+void cli_stderr(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    print_message(NULL, fmt, ap);
+    va_end(ap);
 }
 
 int cli_usage_error(const char *command, const char *fmt, ...)

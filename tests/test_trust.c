@@ -455,11 +455,13 @@ static void test_signals_leave_complete_rows(void **state)
     static const int sigs[] = {SIGINT, SIGTERM};
     for (int s = 0; s < 2; s++) {
         for (int to_file = 0; to_file < 2; to_file++) {
-            const char *const args_file[] = {"run",      "pendulum", "--method", "rk4",
-                                             "--step",   "1e-7",     "--tspan",  "0:1000",
-                                             "--output", "sig.csv",  NULL};
-            const char *const args_out[] = {"run",  "pendulum", "--method", "rk4", "--step",
-                                            "1e-7", "--tspan",  "0:1000",   NULL};
+            /* 1e10 steps: ended by the signal (--max-steps lets such a grid run) */
+            const char *const args_file[] = {
+                "run",    "pendulum",    "--method", "rk4",      "--step",  "1e-7", "--tspan",
+                "0:1000", "--max-steps", "1e10",     "--output", "sig.csv", NULL};
+            const char *const args_out[] = {"run",         "pendulum", "--method", "rk4",
+                                            "--step",      "1e-7",     "--tspan",  "0:1000",
+                                            "--max-steps", "1e10",     NULL};
             unlink(cli_path("sig.csv"));
             pid_t pid = start(to_file ? "stdout.txt" : "sig.csv", to_file ? args_file : args_out);
             /* signal once rows are being written (the handler is in place by then) */
@@ -609,6 +611,45 @@ static void test_adaptive_runs_have_a_step_limit(void **state)
     cli_free(&r);
     r = cli("run pendulum --method dp45 --tspan 0:100 --max-steps 50 --final");
     CHECK(r.status == 1 && strstr(r.err, "limit of 50 steps"), "--max-steps 50: %d %s", r.status,
+          r.err);
+    cli_free(&r);
+}
+
+/* A fixed-step run has the same limit: its grid is counted before the first step, so a step
+ * of 1e-9 over 1000 s (1e12 steps, hours of rk4) is refused at once, with the number of
+ * steps and the option that raises the limit; a grid within the limit runs as before. */
+static void test_fixed_step_runs_have_a_step_limit(void **state)
+{
+    (void)state;
+    cli_result r = cli("run pendulum --method rk4 --step 1e-9 --tspan 0:1e3");
+    CHECK(r.status == 1 && strstr(r.err, "1000000000000 steps of h = 1e-09") &&
+              strstr(r.err, "limit of 10000000 steps") && strstr(r.err, "--max-steps") &&
+              strstr(r.err, "no step was taken") && strcmp(r.out, "t,phi,dphi\n") == 0,
+          "default limit: %d %s", r.status, r.err);
+    cli_free(&r);
+    /* 200 steps of 0.01: refused under --max-steps 199, run under --max-steps 200 */
+    r = cli("run pendulum --method rk4 --step 0.01 --tspan 0:2 --max-steps 199 --final");
+    CHECK(r.status == 1 && strstr(r.err, "200 steps of h = 0.01 from t = 0 to 2") &&
+              strstr(r.err, "limit of 199 steps"),
+          "--max-steps 199: %d %s", r.status, r.err);
+    cli_free(&r);
+    r = cli("run pendulum --method rk4 --step 0.01 --tspan 0:2 --max-steps 200 --stats");
+    long rows = 0;
+    for (const char *p = r.out; (p = strchr(p, '\n')) != NULL; p++)
+        rows++;
+    CHECK(r.status == 0 && rows == 202 && strstr(r.err, "steps=200"),
+          "--max-steps 200: %d, %ld lines, %s", r.status, rows, r.err);
+    cli_free(&r);
+    /* with an event (the general driver on the fixed grid), and a model with noise
+     * (Euler-Maruyama) */
+    r = cli("run pendulum --method rk4 --step 0.01 --tspan 0:2 --max-steps 100 --event bottom");
+    CHECK(r.status == 1 && strstr(r.err, "limit of 100 steps"), "with an event: %d %s", r.status,
+          r.err);
+    cli_free(&r);
+    r = cli(
+        "run %s/examples/models/ornstein_uhlenbeck.ode --method euler --step 1e-9 --tspan 0:100",
+        DYNKIT_SOURCE_DIR);
+    CHECK(r.status == 1 && strstr(r.err, "limit of 10000000 steps"), "noise: %d %s", r.status,
           r.err);
     cli_free(&r);
 }
@@ -963,6 +1004,7 @@ int main(void)
         cmocka_unit_test(test_tolerances_below_rounding_are_raised),
         cmocka_unit_test(test_step_size_underflow_near_zero),
         cmocka_unit_test(test_adaptive_runs_have_a_step_limit),
+        cmocka_unit_test(test_fixed_step_runs_have_a_step_limit),
         cmocka_unit_test(test_default_runs_are_accurate_for_any_span),
         cmocka_unit_test(test_robertson_stays_in_its_domain),
         cmocka_unit_test(test_info_numbers_events_columns),

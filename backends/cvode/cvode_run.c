@@ -15,8 +15,7 @@ int dyn_cvode_run(const dyn_model *m, void *par, const double *y0, const dyn_run
 {
     const dyn_system sys = {m->rhs, m->n_states, par};
     dyn_cvode_opts o = {0};
-    o.rtol = ro->rtol > 0.0 ? ro->rtol : dyn_run_default_rtol(m);
-    o.atol = ro->atol > 0.0 ? ro->atol : dyn_run_default_atol(m);
+    dyn_run_tolerances(m, ro, &o.rtol, &o.atol);
     o.rtolv = ro->rtolv;
     o.atolv = ro->atolv;
     o.jacobian = m->jacobian;

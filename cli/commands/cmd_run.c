@@ -56,7 +56,7 @@ static void warn_once(csv_sink *sink, double t, const char *w)
     for (int i = 0; i < sink->n_warned; i++)
         if (sink->warned[i] == w)
             return;
-    fprintf(stderr, "dynkit: warning at t = %.6g s: %s\n", t, w);
+    cli_stderr("dynkit: warning at t = %.6g s: %s\n", t, w);
     if (sink->n_warned < (int)(sizeof sink->warned / sizeof sink->warned[0]))
         sink->warned[sink->n_warned++] = w;
 }
@@ -179,10 +179,10 @@ static int on_event(int index, double t, const double *y, int direction, void *c
             dyn_csv_write_row(es->out, t, y, m->n_states, NULL, 0) != DYN_OK)
             es->io_failed = 1;
     } else {
-        fprintf(stderr, "dynkit: event %s (%s) at t = %s:", name,
-                direction > 0 ? "rising" : "falling", CLI_NUM(t));
+        cli_stderr("dynkit: event %s (%s) at t = %s:", name, direction > 0 ? "rising" : "falling",
+                   CLI_NUM(t));
         for (int i = 0; i < m->n_states; i++)
-            fprintf(stderr, " %s = %s", m->states[i].name, CLI_NUM(y[i]));
+            cli_stderr(" %s = %s", m->states[i].name, CLI_NUM(y[i]));
         fputc('\n', stderr);
     }
     return 0;
@@ -249,39 +249,39 @@ static void report_failure(const cli_run *run, const dyn_result *res, const doub
     cli_terminal_text(res->message, 1, message, sizeof message);
     if (res->status == DYN_ERR_NONFINITE && res->fail_index >= 0 &&
         dyn_method_is_adaptive(run->method))
-        fprintf(stderr,
-                "dynkit: run failed: state %s of model %s became NaN or Inf at t = %s "
-                "(method %s, rtol %g, atol %g; every smaller step failed too)\n",
-                state, model, CLI_NUM(res->fail_t), run->method->name,
-                run->rtol > 0 ? run->rtol : DYN_DEFAULT_RTOL,
-                run->atol > 0 ? run->atol : DYN_DEFAULT_ATOL);
+        cli_stderr("dynkit: run failed: state %s of model %s became NaN or Inf at t = %s "
+                   "(method %s, rtol %g, atol %g; every smaller step failed too)\n",
+                   state, model, CLI_NUM(res->fail_t), run->method->name,
+                   run->rtol > 0 ? run->rtol : DYN_DEFAULT_RTOL,
+                   run->atol > 0 ? run->atol : DYN_DEFAULT_ATOL);
     else if (res->status == DYN_ERR_NONFINITE && res->fail_index >= 0)
-        fprintf(stderr,
-                "dynkit: run failed: state %s of model %s became NaN or Inf at t = %s "
-                "(method %s, step %g)\n",
-                state, model, CLI_NUM(res->fail_t), run->method->name, run->step);
+        cli_stderr("dynkit: run failed: state %s of model %s became NaN or Inf at t = %s "
+                   "(method %s, step %g)\n",
+                   state, model, CLI_NUM(res->fail_t), run->method->name, run->step);
     else if (res->status == DYN_ERR_MAX_STEPS)
-        fprintf(stderr, "dynkit: run failed: %s (--max-steps N sets the limit, default 1e7)\n",
-                message);
+        cli_stderr("dynkit: run failed: %s (--max-steps N sets the limit, default 1e7)\n", message);
     else
-        fprintf(stderr, "dynkit: run failed: %s\n", message);
+        cli_stderr("dynkit: run failed: %s\n", message);
     /* a model file's algebraic equations: a right-hand side that is not finite is theirs
      * (alg_solver.c); a stiff method may fail on the step size before */
     if (cli_model_has_algebraic(m) && res->status != DYN_STOPPED && res->status != DYN_ERR_IO)
-        fprintf(stderr, "dynkit: the model's algebraic equations (0=...) %s\n",
-                res->status == DYN_ERR_NONFINITE ||
-                        (res->status == DYN_ERR_RHS && res->rhs_status == DYN_LANG_ALG_FAILED)
-                    ? "have no solution near the branch followed there: it ends at an "
-                      "impasse point (or the equations have no solution at all)"
-                    : "may have no solution past there: the branch followed may end at an "
-                      "impasse point");
-    fprintf(stderr, "dynkit: last good state at t = %s:", CLI_NUM(res->t));
+        cli_stderr("dynkit: the model's algebraic equations (0=...) %s\n",
+                   res->status == DYN_ERR_NONFINITE ||
+                           (res->status == DYN_ERR_RHS && res->rhs_status == DYN_LANG_ALG_FAILED)
+                       ? "have no solution near the branch followed there: it ends at an "
+                         "impasse point (or the equations have no solution at all)"
+                       : "may have no solution past there: the branch followed may end at an "
+                         "impasse point");
+    if (res->status == DYN_ERR_MAX_STEPS && res->stats.steps == 0) {
+        cli_stderr("dynkit: no step was taken: no sample was written\n"); /* a fixed grid */
+        return;
+    }
+    cli_stderr("dynkit: last good state at t = %s:", CLI_NUM(res->t));
     for (int i = 0; i < m->n_states; i++)
-        fprintf(stderr, " %s = %s", m->states[i].name, CLI_NUM(y_good[i]));
-    fprintf(stderr, "\ndynkit: %s\n",
-            sink->io_failed ? "the output could not be written"
-            : run->final_only ? "it was written as the final row"
-                              : "the samples up to it were written");
+        cli_stderr(" %s = %s", m->states[i].name, CLI_NUM(y_good[i]));
+    cli_stderr("\ndynkit: %s\n", sink->io_failed   ? "the output could not be written"
+                                 : run->final_only ? "it was written as the final row"
+                                                   : "the samples up to it were written");
 }
 
 int cli_cmd_run(int argc, char **argv)
@@ -420,11 +420,12 @@ int cli_cmd_run(int argc, char **argv)
             break;
         }
     if (m->n_bdry > 0 && !run.quiet) {
-        fprintf(stderr, "dynkit: note: %s's boundary conditions are not used by run, which "
-                        "integrates the initial-value problem from the initial state; "
-                        "'dynkit bvp' solves them. Ignored:", m->name);
+        cli_stderr("dynkit: note: %s's boundary conditions are not used by run, which "
+                   "integrates the initial-value problem from the initial state; "
+                   "'dynkit bvp' solves them. Ignored:",
+                   m->name);
         for (int k = 0; k < m->n_bdry; k++)
-            fprintf(stderr, "%s line %s", k ? ";" : "", m->bdry_text[k]);
+            cli_stderr("%s line %s", k ? ";" : "", m->bdry_text[k]);
         fputc('\n', stderr);
     }
     cli_progress progress;
@@ -526,16 +527,15 @@ int cli_cmd_run(int argc, char **argv)
         cli_warning("%s; a method for stiff problems would need far fewer steps",
                 res.stiff_message);
     if (res.stopped_by_event && !run.quiet)
-        fprintf(stderr, "dynkit: the run stopped at %s%s, t = %s\n",
-                res.event_index < run.n_events ? "event " : "the section's first crossing",
-                res.event_index < run.n_events ? run.events[res.event_index].name : "",
-                CLI_NUM(res.t));
+        cli_stderr("dynkit: the run stopped at %s%s, t = %s\n",
+                   res.event_index < run.n_events ? "event " : "the section's first crossing",
+                   res.event_index < run.n_events ? run.events[res.event_index].name : "",
+                   CLI_NUM(res.t));
     if (run.stats)
-        fprintf(stderr, "%s\n", cli_stats_line(&run, &res, line, sizeof line));
+        cli_stderr("%s\n", cli_stats_line(&run, &res, line, sizeof line));
     if (cli_stop_signal) {
-        fprintf(stderr,
-                "dynkit: %s: the run stopped at t = %s; the samples up to it were written\n",
-                cli_signal_name(), CLI_NUM(res.t));
+        cli_stderr("dynkit: %s: the run stopped at t = %s; the samples up to it were written\n",
+                   cli_signal_name(), CLI_NUM(res.t));
         rc = cli_signal_status();
     } else if (res.status != DYN_OK && !sink.table_full) {
         report_failure(&run, &res, buffers, &sink);

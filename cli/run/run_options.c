@@ -64,9 +64,10 @@ static void run_options_common(FILE *out)
           "                       the run ends at the last time\n"
           "  --max-step H         largest step size (default: the span)\n"
           "  --initial-step H     first step size (default: chosen from the problem)\n"
-          "  --max-steps N        stop after N steps (default: 1e7 steps; cvode: CVODE's limit\n"
-          "                       between two samples, default 100000; when cvode samples\n"
-          "                       every step, a limit on the whole run)\n"
+          "  --max-steps N        stop after N steps (default: 1e7 steps; a fixed-step run\n"
+          "                       whose grid has more is refused before its first step;\n"
+          "                       cvode: CVODE's limit between two samples, default 100000;\n"
+          "                       when cvode samples every step, a limit on the whole run)\n"
           "  --jac-pattern model|probe|none\n"
           "                       the entries of the Jacobian that stiff methods factor:\n"
           "                       model (default): the model's own (a model file's exact\n"
@@ -406,7 +407,9 @@ static int check_method_options(const char *command, cli_run *run, unsigned give
     for (size_t i = 0; i < sizeof adaptive_only / sizeof adaptive_only[0] && !adaptive &&
                        !other_adaptive;
          i++)
-        if ((given & adaptive_only[i].flag) && dyn_method_is_map(mt))
+        if (adaptive_only[i].flag == GIVEN_MAX_STEPS && !dyn_method_is_map(mt))
+            continue; /* a fixed-step run has the limit too */
+        else if ((given & adaptive_only[i].flag) && dyn_method_is_map(mt))
             return cli_usage_error(command, "%s applies to adaptive methods only: %s iterates "
                                    "a discrete map, which has no error to control",
                                    adaptive_only[i].name, mt->name);
@@ -531,20 +534,20 @@ static void note_method(const cli_run *run, unsigned given)
 {
     const dyn_model *m = run->model;
     char b[3][96];
-    fprintf(stderr, "dynkit: note: method %s (%s)", run->method->name,
-            given & GIVEN_METHOD ? "--method"
-                                 : cli_model_default_source(m, CLI_DEFAULT_METHOD, b[0], 96));
+    cli_stderr("dynkit: note: method %s (%s)", run->method->name,
+               given & GIVEN_METHOD ? "--method"
+                                    : cli_model_default_source(m, CLI_DEFAULT_METHOD, b[0], 96));
     if (dyn_method_is_adaptive(run->method) && !run->rtolv && !run->atolv)
-        fprintf(stderr, ", rtol %s (%s), atol %s (%s)", CLI_NUM(run->rtol),
-                given & GIVEN_RTOL ? "--rtol"
-                                   : cli_model_default_source(m, CLI_DEFAULT_RTOL, b[1], 96),
-                CLI_NUM(run->atol),
-                given & GIVEN_ATOL ? "--atol"
-                                   : cli_model_default_source(m, CLI_DEFAULT_ATOL, b[2], 96));
+        cli_stderr(", rtol %s (%s), atol %s (%s)", CLI_NUM(run->rtol),
+                   given & GIVEN_RTOL ? "--rtol"
+                                      : cli_model_default_source(m, CLI_DEFAULT_RTOL, b[1], 96),
+                   CLI_NUM(run->atol),
+                   given & GIVEN_ATOL ? "--atol"
+                                      : cli_model_default_source(m, CLI_DEFAULT_ATOL, b[2], 96));
     else if (dyn_method_is_adaptive(run->method))
-        fprintf(stderr, ", per-state tolerances (--rtol/--atol)");
+        cli_stderr(", per-state tolerances (--rtol/--atol)");
     else
-        fprintf(stderr, ", step %s", CLI_NUM(run->step));
+        cli_stderr(", step %s", CLI_NUM(run->step));
     fputc('\n', stderr);
     if (dyn_method_is_stiff(run->method)) {
         cli_linear lin;
@@ -575,7 +578,7 @@ static void tolerance_defaults(cli_run *run, unsigned given)
         cli_warning("--rtol below rounding asks for more than doubles can give; "
                 "raised to %.3g (100 eps, as MATLAB)",
                 DYN_MIN_RTOL);
-    if (!(given & GIVEN_MAX_STEPS) && dyn_method_is_adaptive(run->method) &&
+    if (!(given & GIVEN_MAX_STEPS) && !dyn_method_is_map(run->method) &&
         !cli_method_is_cvode(run->method))
         run->max_steps = CLI_DEFAULT_MAX_STEPS;
     if (cli_verbose())

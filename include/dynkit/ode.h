@@ -277,6 +277,10 @@ typedef struct dyn_grid {
  * (DYN_END_EXACT) or no step (DYN_END_GRID, as MATLAB's 0:2:1 is 0). */
 int dyn_grid_plan(double t0, double t1, double h, dyn_end_policy end, dyn_grid *grid,
                   char *err, size_t errlen);
+/* DYN_OK when the grid takes at most max_steps steps (or max_steps <= 0: no limit), else
+ * DYN_ERR_MAX_STEPS with a message in err naming the steps and the limit: a fixed-step run
+ * over the limit is refused before its first step. */
+int dyn_grid_check_steps(const dyn_grid *grid, long max_steps, char *err, size_t errlen);
 /* Time of sample k (0 <= k < samples): t0 + k*h, computed, never accumulated; the last
  * sample is t1 itself when ends_at_t1. */
 double dyn_grid_time(const dyn_grid *grid, long k);
@@ -327,6 +331,8 @@ typedef struct dyn_fixed_opts {
     dyn_progress_fn progress; /* may be NULL; called every progress_steps steps */
     void *progress_ctx;
     long progress_steps;     /* 0 = every 65536 steps */
+    long max_steps;          /* 0: no limit; a grid of more steps is refused before the first
+                              * (DYN_ERR_MAX_STEPS, dyn_grid_check_steps) */
 } dyn_fixed_opts;
 
 /* Result details of a solve: the status, where it failed, and the counters. */

@@ -79,7 +79,7 @@ typedef struct dyn_run_opts {
     long n_times;
     int at_steps;               /* 1: a sample at every accepted step instead of the grid */
     double max_step, initial_step; /* 0: automatic */
-    long max_steps;             /* 0: no limit */
+    long max_steps;                /* 0: no limit; fixed steps: a longer grid refused at once */
     /* the events to report, the model's by name with terminal flags as asked (the model's
      * resets run in any case); (n_events) or NULL */
     const dyn_event *events;
@@ -125,6 +125,9 @@ int dyn_run_sde_method(const dyn_tableau *m);
  * DYN_MODEL_ATOL, or 1e-3 and 1e-6 for a model with noise (rkmil's strong order 1). */
 double dyn_run_default_rtol(const dyn_model *m);
 double dyn_run_default_atol(const dyn_model *m);
+/* The scalar tolerances of a run: o's when > 0, else the defaults above. */
+void dyn_run_tolerances(const dyn_model *m, const struct dyn_run_opts *o, double *rtol,
+                        double *atol);
 
 /* The number of the model's events that reset the state (its globals). */
 int dyn_run_resets(const dyn_model *m);

@@ -164,7 +164,8 @@ typedef struct dyn_sde_opts {
     int fixed;             /* rkmil, sriw1: 1 takes fixed steps h (no error control) */
     double rtol, atol;     /* adaptive rkmil/sriw1 (0: 1e-3 and 1e-6) */
     double max_step;       /* adaptive: 0 = the span */
-    long max_steps;        /* adaptive: 0 = 10^7 */
+    long max_steps;        /* adaptive: 0 = 10^7; fixed steps: 0 = no limit, else a longer
+                            * grid is refused before the first step */
     double out_step;       /* adaptive: samples at t0 + k out_step (steps land on
                             * them); 0 = a sample at every accepted step */
     dyn_end_policy end;    /* fixed steps: as dyn_fixed_solve */

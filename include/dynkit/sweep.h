@@ -136,7 +136,7 @@ typedef struct dyn_sweep {
     double rtol, atol;        /* 0: the defaults (solve.h) */
     const double *rtolv, *atolv; /* (n_states) or NULL */
     double initial_step, max_step; /* 0: automatic */
-    long max_steps;           /* 0: no limit */
+    long max_steps;                /* 0: no limit; fixed steps: a longer grid refused at once */
     /* The reductions: one result column each. */
     int n_reduce;
     const dyn_reduce *reduce;

@@ -200,6 +200,9 @@ int dyn_fixed_solve(const dyn_tableau *m, const dyn_system *sys, double t0, doub
         return dyn_result_fail(res, DYN_ERR_NONFINITE, "initial state %d is not finite (%g)", bad,
                                y[bad]);
     }
+    if ((res->status = dyn_grid_check_steps(&grid, opts->max_steps, res->message,
+                                            sizeof res->message)) != DYN_OK)
+        return res->status;
     if (opts->output) {
         if (opts->output(0, t0, y, opts->output_ctx))
             return dyn_result_fail(res, DYN_STOPPED, "output stopped the run at t = %g", t0);

@@ -13,6 +13,7 @@
 #include <math.h>
 #include <stdio.h>
 
+#include "dynkit/io.h" /* dyn_shortest */
 #include "dynkit/ode.h"
 
 /* Largest number of steps: k*h stays exact in the index and fits a long everywhere. */
@@ -68,6 +69,19 @@ int dyn_grid_plan(double t0, double t1, double h, dyn_end_policy end, dyn_grid *
     }
     grid->samples = grid->whole_steps + grid->partial + 1;
     return DYN_OK;
+}
+
+int dyn_grid_check_steps(const dyn_grid *grid, long max_steps, char *err, size_t errlen)
+{
+    const long steps = grid->samples - 1;
+    if (max_steps <= 0 || steps <= max_steps)
+        return DYN_OK;
+    if (err && errlen)
+        snprintf(err, errlen,
+                 "%ld steps of h = %g from t = %s to %s are more than the limit of %ld steps: "
+                 "raise the limit, or take a longer step",
+                 steps, grid->h, dyn_shortest(grid->t0).s, dyn_shortest(grid->t1).s, max_steps);
+    return DYN_ERR_MAX_STEPS;
 }
 
 double dyn_grid_time(const dyn_grid *grid, long k)

@@ -352,6 +352,9 @@ static int solve_fixed(sde_run *r, dyn_sde_method method, double t0, double t1,
     dyn_grid grid;
     if (dyn_grid_plan(t0, t1, o->h, o->end, &grid, res->message, sizeof res->message))
         return res->status = DYN_ERR_ARG;
+    if ((res->status = dyn_grid_check_steps(&grid, o->max_steps, res->message,
+                                            sizeof res->message)) != DYN_OK)
+        return res->status;
     const int n = r->n, m = r->m;
     const dyn_sde *s = r->sde;
     const long steps = grid.samples - 1, every = o->every > 1 ? o->every : 1;

@@ -269,6 +269,9 @@ int dyn_solve_general(const dyn_tableau *m, const dyn_system *sys, double t0, do
         res->status = DYN_ERR_ARG;
         return DYN_ERR_ARG;
     }
+    if (fixed && (res->status = dyn_grid_check_steps(&steps, opts->max_steps, res->message,
+                                                     sizeof res->message)) != DYN_OK)
+        return res->status;
     dyn_tol tol;
     if (!fixed && check_tolerances(opts, n, &tol, res))
         return res->status;

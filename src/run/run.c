@@ -29,6 +29,26 @@ double dyn_run_default_atol(const dyn_model *m)
     return m->atol > 0.0 ? m->atol : m->n_noise > 0 ? RUN_NOISE_ATOL : DYN_MODEL_ATOL;
 }
 
+void dyn_run_tolerances(const dyn_model *m, const dyn_run_opts *o, double *rtol, double *atol)
+{
+    *rtol = o->rtol > 0.0 ? o->rtol : dyn_run_default_rtol(m);
+    *atol = o->atol > 0.0 ? o->atol : dyn_run_default_atol(m);
+}
+
+/* What the fixed-step driver and dyn_solve take alike from a run's options (dyn_fixed_opts
+ * and dyn_solve_opts name these fields the same): the end policy, the step limit (a fixed
+ * grid of more steps is refused at once), the tool's stage trace and its progress report. */
+#define RUN_SHARED_OPTS(opts, ro)                                                                  \
+    do {                                                                                           \
+        (opts).end = (ro)->end;                                                                    \
+        (opts).max_steps = (ro)->max_steps;                                                        \
+        (opts).trace = (ro)->trace_steps > 0 ? (ro)->trace : NULL;                                 \
+        (opts).trace_ctx = (ro)->trace_ctx;                                                        \
+        (opts).trace_steps = (ro)->trace_steps;                                                    \
+        (opts).progress = (ro)->progress;                                                          \
+        (opts).progress_ctx = (ro)->progress_ctx;                                                  \
+    } while (0)
+
 /* The events of a run, in the model's order (the resets of one instant, and a cascade of
  * them, go in that order, as XPPAUT fires its globals): the model's events that are asked
  * for or reset the state, then asked events the model does not have. asked maps an index of
@@ -139,8 +159,7 @@ static int solve_noise(const run_ctx *rc, dyn_output_fn output, void *output_ctx
     const dyn_sde_method method = (dyn_sde_method)dyn_run_sde_method(ro->method);
     const int adaptive = method == DYN_SDE_RKMIL || method == DYN_SDE_SRIW1;
     o.h = adaptive ? ro->initial_step : ro->step;
-    o.rtol = ro->rtol > 0.0 ? ro->rtol : dyn_run_default_rtol(m);
-    o.atol = ro->atol > 0.0 ? ro->atol : dyn_run_default_atol(m);
+    dyn_run_tolerances(m, ro, &o.rtol, &o.atol);
     o.max_step = ro->max_step;
     o.max_steps = ro->max_steps;
     o.out_step = adaptive && !ro->at_steps ? ro->step : 0.0;
@@ -186,15 +205,10 @@ static int solve_fixed(const run_ctx *rc, dyn_output_fn output, void *output_ctx
     if (!work)
         return -1;
     dyn_fixed_opts opts = {0};
-    opts.end = ro->end;
+    RUN_SHARED_OPTS(opts, ro);
     opts.every = ro->every;
     opts.output = output;
     opts.output_ctx = output_ctx;
-    opts.trace = ro->trace_steps > 0 ? ro->trace : NULL;
-    opts.trace_ctx = ro->trace_ctx;
-    opts.trace_steps = ro->trace_steps;
-    opts.progress = ro->progress;
-    opts.progress_ctx = ro->progress_ctx;
     const int status = dyn_fixed_solve(ro->method, &sys, ro->t0, ro->t1, ro->step, rc->y0, y,
                                        work, &opts, res);
     free(work);
@@ -243,15 +257,13 @@ static int solve_general(const run_ctx *rc, dyn_output_fn output, void *output_c
     const int n = m->n_states;
     const dyn_system sys = {m->rhs, n, rc->par};
     dyn_solve_opts opts = {0};
-    opts.rtol = ro->rtol > 0.0 ? ro->rtol : dyn_run_default_rtol(m);
-    opts.atol = ro->atol > 0.0 ? ro->atol : dyn_run_default_atol(m);
+    RUN_SHARED_OPTS(opts, ro);
+    dyn_run_tolerances(m, ro, &opts.rtol, &opts.atol);
     opts.rtolv = ro->rtolv;
     opts.atolv = ro->atolv;
-    opts.end = ro->end;
     if (dyn_method_is_adaptive(ro->method)) {
         opts.initial_step = ro->initial_step;
         opts.max_step = ro->max_step;
-        opts.max_steps = ro->max_steps;
         if (ro->times) {
             opts.out_times = ro->times;
             opts.n_out_times = ro->n_times;
@@ -278,11 +290,6 @@ static int solve_general(const run_ctx *rc, dyn_output_fn output, void *output_c
     dyn_sparse_solver sparse = {0};
     int *groups = NULL, sparse_open = 0;
     set_linear(rc, &opts, &sparse, &groups, &sparse_open);
-    opts.trace = ro->trace_steps > 0 ? ro->trace : NULL;
-    opts.trace_ctx = ro->trace_ctx;
-    opts.trace_steps = ro->trace_steps;
-    opts.progress = ro->progress;
-    opts.progress_ctx = ro->progress_ctx;
     run_delay cd;
     double *work = NULL;
     int *iwork = NULL, status = -1;

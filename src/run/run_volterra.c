@@ -60,6 +60,10 @@ int run_volterra(const run_ctx *rc, dyn_output_fn output, void *output_ctx, doub
                  h, ro->t0, ro->t1);
         return DYN_ERR_ARG;
     }
+    const dyn_grid grid = {ro->t0, ro->t1, h, steps, 0, steps + 1, 1};
+    if ((res->status = dyn_grid_check_steps(&grid, ro->max_steps, res->message,
+                                            sizeof res->message)) != DYN_OK)
+        return res->status;
     const long M = vm->max_points > 0 ? vm->max_points : DYN_VOLTERRA_MAX_POINTS_DEFAULT;
     double *ints = (double *)((char *)rc->par + vm->ints_offset);
     const dyn_volterra v = {n,      vm->is_int,   vm->n_int, vm->mu, vm->conv,

@@ -458,10 +458,10 @@ static int plan_make(plan *p, const dyn_sweep *s)
         o->rtolv = s->rtolv;
         o->atolv = s->atolv;
         o->end = s->end;
+        o->max_steps = s->max_steps; /* fixed steps: a grid of more is refused at once */
         if (adaptive) {
             o->initial_step = s->initial_step;
             o->max_step = s->max_step;
-            o->max_steps = s->max_steps;
             if (p->need_samples && s->step > 0)
                 o->out_step = s->step;
         } else {
@@ -507,6 +507,7 @@ static int plan_make(plan *p, const dyn_sweep *s)
     } else {
         dyn_fixed_opts *o = &p->fixed;
         o->end = s->end;
+        o->max_steps = s->max_steps;
         o->output = p->need_samples ? on_sample : NULL;
         o->progress = run_progress;
         o->progress_steps = every;

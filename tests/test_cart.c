@@ -918,6 +918,30 @@ static void test_cli_bad_input(void **state)
     cli_free(&r);
 }
 
+/* inverse cart --set takes formulas of the cart's parameters as run --set does, the numbers
+ * first: the tables equal those of the numbers the formulas make */
+static void test_inverse_set_takes_formulas(void **state)
+{
+    (void)state;
+    static const char *const pairs[][2] = {
+        {"--set 'v0=2*g' --set g=10 --set N=20", "--set v0=20 --set g=10 --set N=20"},
+        {"--set 'Ts=g/200' --set g=10 --set N=20", "--set Ts=0.05 --set g=10 --set N=20"},
+    };
+    for (size_t i = 0; i < sizeof pairs / sizeof pairs[0]; i++) {
+        cli_result a = cli_in_tmpdir("inverse cart %s --quiet", pairs[i][0]);
+        cli_result b = cli_in_tmpdir("inverse cart %s --quiet", pairs[i][1]);
+        CHECK(a.status == 0 && b.status == 0 && strlen(a.out) > 100 && strcmp(a.out, b.out) == 0,
+              "%s: %d %s\nagainst %s: %d", pairs[i][0], a.status, a.err, pairs[i][1], b.status);
+        cli_free(&a);
+        cli_free(&b);
+    }
+    cli_result r = cli_in_tmpdir("inverse cart --set 'v0=2*x'");
+    CHECK(r.status == 2 && strstr(r.err, "v0=2*x") && strstr(r.err, "'x'") &&
+              strstr(r.err, "formula of the cart's parameters") && r.out[0] == '\0',
+          "unknown name in a formula: %d %s", r.status, r.err);
+    cli_free(&r);
+}
+
 static void test_cli_info_and_help(void **state)
 {
     (void)state;
@@ -973,6 +997,7 @@ int main(void)
         cmocka_unit_test(test_table_read),
         cmocka_unit_test(test_cli_inverse_then_run),
         cmocka_unit_test(test_cli_bad_input),
+        cmocka_unit_test(test_inverse_set_takes_formulas),
         cmocka_unit_test(test_cli_info_and_help),
     };
     return cmocka_run_group_tests_name("cart", tests, setup, teardown);

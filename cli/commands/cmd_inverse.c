@@ -39,7 +39,8 @@ static void inverse_help(void)
          "at the front wheel that make the cart follow sX = -v0 t, theta = (pi/8) sin(2 pi f t)\n"
          "(sY follows from the no-slip constraint of the rear axle, with sY(0) = 0), at the N\n"
          "sample times t_k = k Ts. Writes the table as CSV (header t,Fx,Fy; each number the\n"
-         "shortest decimal that reads back to the same double) and prints on standard error the initial state of the motion as --init options, the\n"
+         "shortest decimal that reads back to the same double) and prints on standard error the "
+         "initial state of the motion as --init options, the\n"
          "final forces, and the command of the forward run (problem 4c).\n"
          "\n"
          "Options:\n"
@@ -48,7 +49,10 @@ static void inverse_help(void)
          "  --set N=COUNT        number of samples (default 500)\n"
          "  --set Ts=H           sample time in s (default 0.01)\n"
          "  --set NAME=VALUE     a cart parameter: m, length_cart, width_cart, ... (see\n"
-         "                       'dynkit info cart'); give the same --set to the forward run\n"
+         "                       'dynkit info cart'); give the same --set to the forward run.\n"
+         "                       Each VALUE is a number or a formula of the cart's\n"
+         "                       parameters, as run --set takes it (--set v0=2*g): the\n"
+         "                       numbers are set first, then the formulas in their order\n"
          "  -o, --output FILE    write the table to FILE instead of standard output ('-'), in\n"
          "                       the format of its extension: .csv, .json, .npy, .npz, .mat\n"
          "                       ('dynkit run --forces' reads CSV)\n"
@@ -74,6 +78,52 @@ static void print_changed_params(FILE *out, const dyn_model *m, const void *par)
     }
 }
 
+/* What the inverse dynamics of the cart take besides the cart's parameters. */
+typedef struct inverse_settings {
+    double v0, f, Ts, N;
+} inverse_settings;
+
+/* 1 when the VALUE of NAME=VALUE is a number (not a formula) */
+static int is_number_assignment(const char *text)
+{
+    const char *eq = strchr(text, '=');
+    double v;
+    return eq && cli_parse_number(eq + 1, &v) == 0;
+}
+
+/* One --set NAME=VALUE, VALUE a number or a formula of the cart's parameters. */
+static int apply_set(const char *text, const dyn_model *m, dyn_cart_par *par, inverse_settings *set)
+{
+    const char *eq = strchr(text, '=');
+    char name[64], why[400] = "";
+    double value;
+    if (!eq || eq == text || (size_t)(eq - text) >= sizeof name ||
+        cli_parse_value(eq + 1, &value, why, sizeof why))
+        return cli_usage_error("inverse",
+                               "--set '%s' is not accepted%s%s: give NAME=VALUE, VALUE a finite "
+                               "number or a formula of the cart's parameters (2*pi/3, v0=2*g)",
+                               text, why[0] ? ": " : "", why);
+    memcpy(name, text, (size_t)(eq - text));
+    name[eq - text] = '\0';
+    int k;
+    if (strcmp(name, "v0") == 0)
+        set->v0 = value;
+    else if (strcmp(name, "f") == 0)
+        set->f = value;
+    else if (strcmp(name, "Ts") == 0)
+        set->Ts = value;
+    else if (strcmp(name, "N") == 0)
+        set->N = value;
+    else if ((k = dyn_model_param_index(m, name)) >= 0)
+        dyn_model_set_param(m, par, k, value);
+    else
+        return cli_usage_error("inverse",
+                               "--set: unknown name '%s' (accepted: v0, f, N, Ts, m, "
+                               "length_cart, width_cart, Fx, Fy, mu, g)",
+                               name);
+    return CLI_OK;
+}
+
 int cli_cmd_inverse(int argc, char **argv)
 {
     const dyn_model *m = &dyn_model_cart;
@@ -93,53 +143,50 @@ int cli_cmd_inverse(int argc, char **argv)
                                "or a mechanism file NAME.mech)", argv[0]);
     dyn_cart_par par;
     dyn_model_default_params(m, &par, err, sizeof err);
-    double v0 = 20.0, f = 2.0, Ts = 0.01, N_value = 500.0;
+    inverse_settings set = {20.0, 2.0, 0.01, 500.0};
     const char *output_path = NULL;
-    int quiet = 0;
+    int quiet = 0, n_sets = 0;
+    const char **sets = malloc((size_t)argc * sizeof *sets);
+    if (!sets) {
+        cli_error("out of memory");
+        return CLI_FAILED;
+    }
     for (int i = 1; i < argc; i++) {
         const char *v = NULL;
         int r;
         if ((r = cli_option(argc, argv, &i, "set", &v)) != 0) {
-            if (r < 0)
+            if (r < 0) {
+                free(sets);
                 return cli_usage_error("inverse", "option --set needs a value");
-            const char *eq = strchr(v, '=');
-            char name[64];
-            double value;
-            if (!eq || eq == v || (size_t)(eq - v) >= sizeof name ||
-                cli_parse_number(eq + 1, &value))
-                return cli_usage_error("inverse",
-                                       "--set '%s' is not accepted: give NAME=VALUE with a "
-                                       "finite number",
-                                       v);
-            memcpy(name, v, (size_t)(eq - v));
-            name[eq - v] = '\0';
-            int k;
-            if (strcmp(name, "v0") == 0)
-                v0 = value;
-            else if (strcmp(name, "f") == 0)
-                f = value;
-            else if (strcmp(name, "Ts") == 0)
-                Ts = value;
-            else if (strcmp(name, "N") == 0)
-                N_value = value;
-            else if ((k = dyn_model_param_index(m, name)) >= 0)
-                dyn_model_set_param(m, &par, k, value);
-            else
-                return cli_usage_error("inverse",
-                                       "--set: unknown name '%s' (accepted: v0, f, N, Ts, m, "
-                                       "length_cart, width_cart, Fx, Fy, mu, g)",
-                                       name);
+            }
+            sets[n_sets++] = v;
         } else if ((r = cli_option(argc, argv, &i, "output", &v)) != 0) {
-            if (r < 0)
+            if (r < 0) {
+                free(sets);
                 return cli_usage_error("inverse", "option --output needs a value");
+            }
             output_path = v;
         } else if (cli_flag(argv[i], "quiet")) {
             quiet = 1;
         } else {
             static const char *const options[] = {"--set", "--output", "--quiet"};
+            free(sets);
             return cli_unknown_option("inverse", argv[i], options, 3);
         }
     }
+    /* the numbers first, then the formulas of the cart's parameters set so far, as run
+     * takes --set (docs/cli.md, "Numbers") */
+    cli_formula_params(m, &par);
+    int rc = CLI_OK;
+    for (int pass = 0; pass < 2; pass++)
+        for (int k = 0; k < n_sets && rc == CLI_OK; k++)
+            if (is_number_assignment(sets[k]) == (pass == 0))
+                rc = apply_set(sets[k], m, &par, &set);
+    cli_formula_params(NULL, NULL);
+    free(sets);
+    if (rc != CLI_OK)
+        return rc;
+    double v0 = set.v0, f = set.f, Ts = set.Ts, N_value = set.N;
     if (!(N_value >= 1.0 && N_value <= 1e8 && N_value == floor(N_value)))
         return cli_usage_error("inverse",
                                "--set N=%g is not accepted: give a whole number of samples "
@@ -203,31 +250,29 @@ int cli_cmd_inverse(int argc, char **argv)
         bad |= cli_out_close(&outf, !bad) != CLI_OK;
     else
         clearerr(stdout); /* reported below, not again at exit */
-    int rc = CLI_OK;
+    rc = CLI_OK;
     if (bad) {
         cli_error("writing the force table failed: %s",
                 ferr[0] ? ferr : strerror(errno));
         rc = CLI_FAILED;
     } else if (!quiet) {
         const double *last = table + 3 * (N - 1);
-        fprintf(stderr,
-                "dynkit: cart inverse dynamics: sX = -v0 t, theta = (pi/8) sin(2 pi f t), "
-                "v0 = %g m/s, f = %g Hz;\n"
-                "dynkit: %ld samples at Ts = %g s, te = (N-1) Ts = %s s\n",
-                v0, f, N, Ts, CLI_NUM(last[0]));
-        fprintf(stderr, "dynkit: initial state (dsY from the constraint, %s m/s):\n ",
-                CLI_NUM(y0[4]));
+        cli_stderr("dynkit: cart inverse dynamics: sX = -v0 t, theta = (pi/8) sin(2 pi f t), "
+                   "v0 = %g m/s, f = %g Hz;\n"
+                   "dynkit: %ld samples at Ts = %g s, te = (N-1) Ts = %s s\n",
+                   v0, f, N, Ts, CLI_NUM(last[0]));
+        cli_stderr("dynkit: initial state (dsY from the constraint, %s m/s):\n ", CLI_NUM(y0[4]));
         for (int i = 0; i < 6; i++)
-            fprintf(stderr, " --init %s=%s", m->states[i].name, CLI_NUM(y0[i]));
-        fprintf(stderr, "\ndynkit: final forces at te = %s s: Fx = %s N, Fy = %s N\n",
-                CLI_NUM(last[0]), CLI_NUM(last[1]), CLI_NUM(last[2]));
+            cli_stderr(" --init %s=%s", m->states[i].name, CLI_NUM(y0[i]));
+        cli_stderr("\ndynkit: final forces at te = %s s: Fx = %s N, Fy = %s N\n", CLI_NUM(last[0]),
+                   CLI_NUM(last[1]), CLI_NUM(last[2]));
         char shown[4 * 4096 + 1];
-        fprintf(stderr, "dynkit: forward run (problem 4c): dynkit run cart --forces %s "
-                        "--method heun",
-                output_path ? cli_terminal_text(output_path, 0, shown, sizeof shown) : "FILE");
+        cli_stderr("dynkit: forward run (problem 4c): dynkit run cart --forces %s "
+                   "--method heun",
+                   output_path ? cli_terminal_text(output_path, 0, shown, sizeof shown) : "FILE");
         print_changed_params(stderr, m, &par);
         for (int i = 0; i < 6; i++)
-            fprintf(stderr, " --init %s=%s", m->states[i].name, CLI_NUM(y0[i]));
+            cli_stderr(" --init %s=%s", m->states[i].name, CLI_NUM(y0[i]));
         fputc('\n', stderr);
     }
     free(table);

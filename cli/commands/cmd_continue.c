@@ -10,6 +10,7 @@
 
 #include "cli.h"
 #include "dynkit/colloc.h"
+#include "commands/cont_steady.h"
 #include "cont_output.h"
 #include "cont_settings.h"
 #include "util/out_file.h"
@@ -66,17 +67,20 @@ static void continue_help(void)
 }
 
 typedef struct cont_args {
-    const char *par, *par2, *at, *output, *svg, *ynam, *scheme_text;
+    const char *par, *par2, *at, *output, *svg, *ynam, *scheme_text, *unknown, *cyclic;
     int json;
     const char *opt[64];
     int n_opt;
+    const char *init[256]; /* the --init texts: a mechanism's held states */
+    int n_init;
 } cont_args;
 
 static int parse_args(int argc, char **argv, char **pass, int *n_pass, cont_args *a)
 {
-    static const char *const options[] = {"--init", "--set",    "--par",    "--par2",
-                                          "--at",   "--output", "--svg",    "--y",
-                                          "--opt",  "--json",   "--jacobian"};
+    static const char *const options[] = {"--init", "--set",    "--par",      "--par2",
+                                          "--at",   "--output", "--svg",      "--y",
+                                          "--opt",  "--json",   "--jacobian", "--unknown",
+                                          "--cyclic"};
     pass[(*n_pass)++] = argv[0];
     for (int i = 1; i < argc; i++) {
         const char *v = NULL;
@@ -88,12 +92,15 @@ static int parse_args(int argc, char **argv, char **pass, int *n_pass, cont_args
                     return cli_usage_error("continue", "option --%s needs a value", passed[k]);
                 pass[(*n_pass)++] = (char *)options[k];
                 pass[(*n_pass)++] = (char *)v;
+                if (k == 0 && a->n_init < 256)
+                    a->init[a->n_init++] = v;
                 done = 1;
             }
-        const char *own[] = {"par", "par2", "at", "output", "svg", "y", "opt", "jacobian"};
-        const char **dest[] = {&a->par, &a->par2, &a->at, &a->output, &a->svg, &a->ynam, NULL,
-                               &a->scheme_text};
-        for (int k = 0; k < 8 && !done; k++)
+        const char *own[] = {"par", "par2",     "at",      "output", "svg",
+                             "y",   "opt",      "jacobian", "unknown", "cyclic"};
+        const char **dest[] = {&a->par, &a->par2,        &a->at,      &a->output, &a->svg,
+                               &a->ynam, NULL, &a->scheme_text, &a->unknown, &a->cyclic};
+        for (int k = 0; k < 10 && !done; k++)
             if ((r = cli_option(argc, argv, &i, own[k], &v)) != 0) {
                 if (r < 0)
                     return cli_usage_error("continue", "option --%s needs a value", own[k]);
@@ -117,7 +124,7 @@ static int parse_args(int argc, char **argv, char **pass, int *n_pass, cont_args
         if (cli_flag(argv[i], "json"))
             a->json = 1;
         else
-            return cli_unknown_option("continue", argv[i], options, 11);
+            return cli_unknown_option("continue", argv[i], options, 13);
     }
     if (!a->par)
         return cli_usage_error("continue", "missing --par NAME (the parameter to continue in)");
@@ -268,7 +275,17 @@ int cli_cmd_continue(int argc, char **argv)
     memset(&d, 0, sizeof d);
     dyn_cont_info info;
     memset(&info, 0, sizeof info);
+    int steady = 0;
     if (rc == CLI_OK) {
+        const cont_steady_args sa = {a.unknown, a.cyclic, a.init, a.n_init};
+        rc = cont_steady_run(argv[0], &run, &sa, &s.opts, &d, &info, &steady);
+        if (rc == CLI_OK && steady && info.message[0])
+            fprintf(stderr, "dynkit: note: %s\n", info.message);
+    }
+    if (rc == CLI_OK && !steady && (a.unknown || a.cyclic))
+        rc = cli_usage_error("continue", "--unknown and --cyclic are for a mechanism file's "
+                                         "steady motions (FILE.mech)");
+    if (rc == CLI_OK && !steady) {
         const int st = dyn_continue(m, run.par, run.y0, &s.opts, &d, &info);
         if (st) {
             cli_error("continue: %s", info.message);

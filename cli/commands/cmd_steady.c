@@ -12,6 +12,7 @@
 
 #include "cli.h"
 #include "commands/analysis_args.h"
+#include "commands/steady_frame.h"
 #include "dynkit/analysis.h"
 #include "dynkit/equilibria.h"
 #include "dynkit/steady.h"
@@ -60,49 +61,6 @@ typedef struct st_args {
     int json;
 } st_args;
 
-/* The model's states kept (all, or a mechanism's minimal ones) and P. */
-typedef struct st_frame {
-    const cli_lin_constraints *cc;
-    int n, k, nd;
-    int *kept, *dep;
-    double *P;
-} st_frame;
-
-static int complete_dependent(void *ctx, double t, double *y, void *par, char *err, size_t errlen)
-{
-    const st_frame *fr = ctx;
-    return dyn_steady_dependent(fr->cc->jm.model, par, t, y, fr->nd, fr->dep, err, errlen);
-}
-
-/* kept, dep and P at (t, y) */
-static int frame_at(st_frame *fr, double t, const double *y, void *par)
-{
-    const int n = fr->n;
-    char err[256] = "";
-    if (fr->cc->m > 0) {
-        if (cli_lin_basis(fr->cc, t, y, par, fr->P, fr->kept, &fr->k, err, sizeof err)) {
-            cli_error("steady: the admissible directions: %s", err[0] ? err : "singular");
-            return CLI_FAILED;
-        }
-    } else {
-        fr->k = n;
-        memset(fr->P, 0, (size_t)n * (size_t)n * sizeof *fr->P);
-        for (int i = 0; i < n; i++) {
-            fr->kept[i] = i;
-            fr->P[(size_t)i * (size_t)n + (size_t)i] = 1.0;
-        }
-    }
-    fr->nd = 0;
-    for (int i = 0; i < n; i++) {
-        int is_kept = 0;
-        for (int j = 0; j < fr->k; j++)
-            is_kept |= fr->kept[j] == i;
-        if (!is_kept)
-            fr->dep[fr->nd++] = i;
-    }
-    return CLI_OK;
-}
-
 /* Look NAME up among the states and parameters. */
 static int find_name(const dyn_model *m, const char *name, dyn_steady_unknown *u)
 {
@@ -116,22 +74,6 @@ static int find_name(const dyn_model *m, const char *name, dyn_steady_unknown *u
         return CLI_OK;
     return cli_usage_error("steady", "--unknown %s: %s has no state or parameter '%s'", name,
                            m->name, name);
-}
-
-/* The list "a,b,c" into names (at most max), count returned or -1. */
-static int split_names(char *list, char **names, int max)
-{
-    int k = 0;
-    for (char *tok = list, *next = NULL; tok && *tok; tok = next) {
-        char *comma = strchr(tok, ',');
-        next = comma ? comma + 1 : NULL;
-        if (comma)
-            *comma = '\0';
-        if (k == max)
-            return -1;
-        names[k++] = tok;
-    }
-    return k;
 }
 
 typedef struct st_result {
@@ -148,7 +90,7 @@ typedef struct st_out {
     const dyn_model *m;
     const void *par;
     const double *y;
-    const st_frame *fr;
+    const steady_frame *fr;
     const st_result *r;
 } st_out;
 
@@ -159,7 +101,7 @@ static void print_result(FILE *f, const void *ctx)
     const dyn_model *m = o->m;
     const void *par = o->par;
     const double *y = o->y;
-    const st_frame *fr = o->fr;
+    const steady_frame *fr = o->fr;
     const st_result *r = o->r;
     const int n = m->n_states;
     if (a->json) {
@@ -239,7 +181,7 @@ static void print_result(FILE *f, const void *ctx)
 }
 
 /* A and its reduction at the solution, eigenvalues into r. */
-static int eigenvalues(const dyn_model *m, double t, const double *y, void *par, st_frame *fr,
+static int eigenvalues(const dyn_model *m, double t, const double *y, void *par, steady_frame *fr,
                        st_result *r)
 {
     const int n = m->n_states;
@@ -252,7 +194,7 @@ static int eigenvalues(const dyn_model *m, double t, const double *y, void *par,
     }
     double *A = malloc(N * N * sizeof *A), *Amin = malloc(N * N * sizeof *Amin),
            *w = malloc((dyn_linearize_work_size(n) + 2 * N * N + N) * sizeof *w);
-    int rc = A && Amin && w ? frame_at(fr, t, y, par) : CLI_FAILED;
+    int rc = A && Amin && w ? steady_frame_at("steady", fr, t, y, par) : CLI_FAILED;
     dyn_linearize_info li;
     if (rc == CLI_OK && dyn_linearize(m, t, y, par, NULL, A, w, &li)) {
         cli_error("steady: %s", li.message);
@@ -278,93 +220,6 @@ static int eigenvalues(const dyn_model *m, double t, const double *y, void *par,
     return rc;
 }
 
-/* AP (n x k): the linearization along the admissible directions P of fr at (t, y). */
-static int linearize_along(const dyn_model *m, double t, const double *y, void *par,
-                           const st_frame *fr, double *AP)
-{
-    const size_t N = (size_t)m->n_states, K = (size_t)fr->k;
-    double *A = malloc(N * N * sizeof *A),
-           *w = malloc(dyn_linearize_work_size(m->n_states) * sizeof *w);
-    dyn_linearize_info li;
-    int rc = A && w ? CLI_OK : CLI_FAILED;
-    if (rc == CLI_OK && dyn_linearize(m, t, y, par, NULL, A, w, &li)) {
-        cli_error("steady: %s", li.message);
-        rc = CLI_FAILED;
-    }
-    for (size_t i = 0; i < N && rc == CLI_OK; i++)
-        for (size_t j = 0; j < K; j++) {
-            double s = 0.0;
-            for (size_t l = 0; l < N; l++)
-                s += A[i * N + l] * fr->P[l * K + j];
-            AP[i * K + j] = s;
-        }
-    free(A);
-    free(w);
-    return rc;
-}
-
-/* The cyclic states: --cyclic, or those dyn_steady_cyclic finds at the guess. */
-static int find_cyclic(const dyn_model *m, double t, const double *y, void *par, const st_frame *fr,
-                       char *given, int *cyclic)
-{
-    const int n = m->n_states, k = fr->k;
-    const size_t N = (size_t)n;
-    if (given[0]) {
-        char *names[256];
-        const int c = split_names(given, names, 256);
-        memset(cyclic, 0, (size_t)k * sizeof *cyclic);
-        for (int i = 0; i < c; i++) {
-            const int s = dyn_model_state_index(m, names[i]);
-            int at = -1;
-            for (int j = 0; j < k; j++)
-                if (fr->kept[j] == s)
-                    at = j;
-            if (at < 0)
-                return cli_usage_error("steady", "--cyclic %s: not a state of %s%s", names[i],
-                                       m->name, s >= 0 ? " that its constraints leave free" : "");
-            cyclic[at] = 1;
-        }
-        return CLI_OK;
-    }
-    /* at the state and at a nearby one (each kept state moved by a tenth of max(|y|, 1)
-     * times a Halton number): a column that vanishes only at the state (a rate that is 0
-     * there) is not taken for a cyclic state's */
-    double *AP = malloc(N * N * sizeof *AP), *AP2 = malloc(N * N * sizeof *AP2),
-           *y2 = malloc(N * sizeof *y2);
-    st_frame fr2 = {fr->cc,
-                    n,
-                    n,
-                    0,
-                    malloc(N * sizeof(int)),
-                    malloc(N * sizeof(int)),
-                    malloc(N * N * sizeof(double))};
-    int rc = AP && AP2 && y2 && fr2.kept && fr2.dep && fr2.P ? CLI_OK : CLI_FAILED;
-    if (rc == CLI_OK)
-        rc = linearize_along(m, t, y, par, fr, AP);
-    if (rc == CLI_OK) {
-        memcpy(y2, y, N * sizeof *y2);
-        for (int j = 0; j < k; j++) {
-            const int s = fr->kept[j];
-            y2[s] += 0.1 * fmax(fabs(y[s]), 1.0) * dyn_halton(1 + j, 0);
-        }
-        char err[256];
-        int same = !(fr->nd && complete_dependent((void *)fr, t, y2, par, err, sizeof err)) &&
-                   frame_at(&fr2, t, y2, par) == CLI_OK && fr2.k == k &&
-                   memcmp(fr2.kept, fr->kept, (size_t)k * sizeof *fr->kept) == 0 &&
-                   linearize_along(m, t, y2, par, &fr2, AP2) == CLI_OK;
-        for (size_t e = 0; same && e < N * (size_t)k; e++)
-            AP[e] = fmax(fabs(AP[e]), fabs(AP2[e]));
-        dyn_steady_cyclic(n, k, fr->kept, AP, 1e-8, cyclic);
-    }
-    free(AP);
-    free(AP2);
-    free(y2);
-    free(fr2.kept);
-    free(fr2.dep);
-    free(fr2.P);
-    return rc;
-}
-
 static int solve(const char *spec, st_args *a, cli_run *run, double t)
 {
     const dyn_model *m = run->model;
@@ -374,13 +229,8 @@ static int solve(const char *spec, st_args *a, cli_run *run, double t)
     int rc = cli_lin_constraints_open(spec, m, &cc);
     if (rc != CLI_OK)
         return rc;
-    st_frame fr = {&cc,
-                   n,
-                   n,
-                   0,
-                   malloc(N * sizeof(int)),
-                   malloc(N * sizeof(int)),
-                   malloc(N * N * sizeof(double))};
+    steady_frame fr;
+    const int fr_bad = steady_frame_alloc(&fr, &cc, n);
     st_result r;
     memset(&r, 0, sizeof r);
     r.unknowns = malloc(N * sizeof *r.unknowns + (size_t)m->n_params * sizeof *r.unknowns);
@@ -388,23 +238,23 @@ static int solve(const char *spec, st_args *a, cli_run *run, double t)
     r.re = calloc(N, sizeof *r.re);
     r.im = calloc(N, sizeof *r.im);
     int *eqs = malloc(N * sizeof *eqs);
-    if (!fr.kept || !fr.dep || !fr.P || !r.unknowns || !r.cyclic || !r.re || !r.im || !eqs)
+    if (fr_bad || !r.unknowns || !r.cyclic || !r.re || !r.im || !eqs)
         rc = CLI_FAILED;
     char err[256] = "";
     if (rc == CLI_OK)
-        rc = frame_at(&fr, t, run->y0, run->par);
-    if (rc == CLI_OK && fr.nd && complete_dependent(&fr, t, run->y0, run->par, err, sizeof err)) {
+        rc = steady_frame_at("steady", &fr, t, run->y0, run->par);
+    if (rc == CLI_OK && fr.nd && steady_complete_dependent(&fr, t, run->y0, run->par, err, sizeof err)) {
         cli_error("steady: the initial state on the constraints: %s", err);
         rc = CLI_FAILED;
     }
     if (rc == CLI_OK)
-        rc = find_cyclic(m, t, run->y0, run->par, &fr, a->cyclic, r.cyclic);
+        rc = steady_find_cyclic("steady", m, t, run->y0, run->par, &fr, a->cyclic, r.cyclic);
     /* the equations: the kept states that are not cyclic */
     for (int j = 0; j < fr.k && rc == CLI_OK; j++)
         if (!r.cyclic[j])
             eqs[r.n_eq++] = fr.kept[j];
     char *names[256];
-    const int nu = rc == CLI_OK ? split_names(a->unknown, names, 256) : 0;
+    const int nu = rc == CLI_OK ? steady_split_names(a->unknown, names, 256) : 0;
     for (int u = 0; u < nu && rc == CLI_OK; u++) {
         rc = find_name(m, names[u], &r.unknowns[u]);
         if (rc == CLI_OK && !r.unknowns[u].is_param) {
@@ -422,7 +272,7 @@ static int solve(const char *spec, st_args *a, cli_run *run, double t)
     }
     if (rc == CLI_OK) {
         const dyn_steady_opts so = {
-            r.n_unknowns, r.unknowns, r.n_eq, eqs, fr.nd ? complete_dependent : NULL, &fr, 0.0, 0};
+            r.n_unknowns, r.unknowns, r.n_eq, eqs, fr.nd ? steady_complete_dependent : NULL, &fr, 0.0, 0};
         const int st = dyn_steady_solve(m, t, run->y0, run->par, &so, &r.info);
         if (st) {
             cli_error("steady: %s", r.info.message);
@@ -434,9 +284,8 @@ static int solve(const char *spec, st_args *a, cli_run *run, double t)
     const st_out out = {a, m, run->par, run->y0, &fr, &r};
     if (rc == CLI_OK)
         rc = cli_analysis_write(a->output, print_result, &out);
-    free(fr.kept);
-    free(fr.dep);
-    free(fr.P);
+    if (!fr_bad)
+        steady_frame_free(&fr);
     free(r.unknowns);
     free(r.cyclic);
     free(r.re);
@@ -450,7 +299,7 @@ static int solve(const char *spec, st_args *a, cli_run *run, double t)
 static int apply_init(const dyn_model *m, char *list, double *y)
 {
     char *items[256];
-    const int c = split_names(list, items, 256);
+    const int c = steady_split_names(list, items, 256);
     if (c < 0)
         return cli_usage_error("steady", "--init: too many values");
     for (int i = 0; i < c; i++) {

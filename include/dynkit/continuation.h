@@ -45,10 +45,11 @@ typedef enum dyn_branch_kind {
     DYN_BRANCH_EQUILIBRIUM = 0, /* equilibria in one parameter */
     DYN_BRANCH_PERIODIC = 1,    /* periodic orbits in one parameter */
     DYN_BRANCH_FOLD = 2,        /* folds of equilibria in two parameters */
-    DYN_BRANCH_HOPF = 3         /* Hopf points in two parameters */
+    DYN_BRANCH_HOPF = 3,        /* Hopf points in two parameters */
+    DYN_BRANCH_STEADY = 4       /* steady motions in one parameter (dynkit/steady.h) */
 } dyn_branch_kind;
 
-/* "equilibrium", "periodic", "fold", "hopf". */
+/* "equilibrium", "periodic", "fold", "hopf", "steady". */
 const char *dyn_branch_kind_name(dyn_branch_kind k);
 
 /* The scalars of one point of a branch. The vectors are in the branch's arrays, row k. */

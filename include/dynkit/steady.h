@@ -11,6 +11,7 @@
 
 #include <stddef.h>
 
+#include "dynkit/continuation.h"
 #include "dynkit/model.h"
 
 #ifdef __cplusplus
@@ -70,6 +71,49 @@ int dyn_steady_cyclic(int n, int k, const int *kept, const double *AP, double re
  * count does not match or they do not converge. */
 int dyn_steady_dependent(const dyn_model *cm, const void *par, double t, double *y, int nd,
                          const int *dep, char *err, size_t errlen);
+
+/* ---- a branch of steady motions in one parameter ---- */
+
+/* The admissible directions at (t, y) of a mechanism with constraints: P (n x k,
+ * row-major, n the states) and the k states kept (P's rows there are the identity);
+ * 0, or non-zero with a message in err. */
+typedef int (*dyn_steady_basis_fn)(void *ctx, double t, const double *y, const void *par,
+                                   double *P, int *kept, int *k, char *err, size_t errlen);
+
+/* A steady-motion problem: E, the states whose derivatives vanish (the kept states that
+ * are not cyclic), and U, the unknowns among them (states); the states of E not in U are
+ * held, as the family of steady motions they label (a bicycle's forward speed, a disk's
+ * spin). The state at parameter value p: the model's initial state at p
+ * (dyn_model_initial_state) for the states flagged in follow, the start's value for the
+ * others, the unknowns set, the dependent states completed. */
+typedef struct dyn_steady_problem {
+    int n_unknowns;
+    const int *unknowns;      /* U: state indices, each one of equations */
+    int n_equations;
+    const int *equations;     /* E: state indices */
+    const int *follow;        /* (n_states) 1: from the initial state at p; NULL: none */
+    dyn_steady_complete_fn complete; /* the dependent states (NULL: none) */
+    void *complete_ctx;
+    dyn_steady_basis_fn basis; /* NULL: every state kept, P = I */
+    void *basis_ctx;
+} dyn_steady_problem;
+
+/* The branch of steady motions through y0 (its unknowns a first guess, solved at the
+ * parameter value in par as dyn_steady_solve does) in parameter o->ip by pseudo-arclength
+ * continuation (the loop of dyn_continue) on the equations of U's size chosen among E's at
+ * the start (rows of full rank by complete pivoting; the others must keep holding, and a
+ * note says by how much they do not), appended to d as a DYN_BRANCH_STEADY branch whose
+ * points hold the whole state and the eigenvalues of the reduced linearization B
+ * (n_unknowns of them): A_min on E with the family's zero eigenvalues removed,
+ * B = A_UU + G_U^+ G_F A_FU, G = A_min's columns U and F = E \ U on E's rows. Labels: LP
+ * (the parameter's tangent component), BP (a real eigenvalue of B through zero: det B times
+ * the sign of that component changes sign), HB (a complex pair of B crosses the imaginary
+ * axis; l1 is not computed: NAN), UZ, EP. o->ip2, o->periodic and branch switching are not
+ * used. Returns 0, or DYN_ERR_ARG with a message (bad options, no steady motion near y0,
+ * unknowns that the equations do not determine). info may be NULL. */
+int dyn_steady_continue(const dyn_model *m, const void *par, const double *y0,
+                        const dyn_cont_opts *o, const dyn_steady_problem *sp, dyn_diagram *d,
+                        dyn_cont_info *info);
 
 #ifdef __cplusplus
 }

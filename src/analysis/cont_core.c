@@ -80,7 +80,7 @@ int cont_correct(const cont_system *s, cont_work *w, const double *z0, const dou
     const int N = s->N, M = N + 1;
     for (int it = 0; it < CONT_MAX_NEWTON; it++) {
         w->newton++;
-        if (s->residual(s->ctx, z, w->g) || bordered(s, w, z, t0))
+        if (s->residual(s->ctx, z, w->g))
             return -1;
         for (int i = 0; i < N; i++)
             w->r[i] = -w->g[i];
@@ -88,6 +88,14 @@ int cont_correct(const cont_system *s, cont_work *w, const double *z0, const dou
         for (int i = 0; i < M; i++)
             arc += t0[i] * (z[i] - z0[i]);
         w->r[N] = -arc;
+        if (s->gtol > 0.0 && norm_inf(w->g, N) <= s->gtol &&
+            fabs(arc) <= DYN_CONT_TOL * (1.0 + norm_inf(z, M))) {
+            if (iters)
+                *iters = it + 1;
+            return 0;
+        }
+        if (bordered(s, w, z, t0))
+            return -1;
         if (dyn_lu_factor(M, w->A, w->piv))
             return -1;
         dyn_lu_solve(M, w->A, w->piv, w->r);

@@ -31,6 +31,10 @@ typedef struct cont_system {
     /* store a computed point (label DYN_LABEL_NONE for a regular one): 0, or non-zero
      * when out of memory */
     int (*store)(void *ctx, const double *z, const double *t, dyn_cont_label label);
+    /* > 0: Newton's method also ends when ||G||_inf <= gtol and the arclength condition
+     * holds (a residual at its rounding: near a branch point the step would only amplify
+     * it); 0: not used */
+    double gtol;
 } cont_system;
 
 typedef struct cont_work {

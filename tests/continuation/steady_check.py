@@ -1,0 +1,205 @@
+#!/usr/bin/env python3
+"""dynkit continue on a mechanism's steady motions against published values and closed forms.
+
+- The benchmark bicycle (examples/mechanisms/bicycle.mech; Meijaard, Papadopoulos, Ruina and
+  Schwab 2007, Proc. R. Soc. A 463, 1955-1982): upright straight running continued in v from
+  3 to 10 m/s must give HB at the weave speed and BP at the capsize speed, within 1e-8 of the
+  paper's table 2 (4.292382536341, 6.024262015388 m/s) and of the same speeds computed here
+  from the paper's linearized matrices M, C1, K0, K2 (eq. 5.4) alone: the capsize speed from
+  det(g K0 + v^2 K2) = 0 (a quadratic in v^2), the weave speed by bisection on the real part
+  of the eigenvalues of the first-order form. `stable` must be 1 exactly between them (the
+  self-stable range), and the eigenvalues at --at v=2.5,5,8 those of the matrices (1e-9).
+- The rolling disk (examples/mechanisms/rolling_disk.mech, a thin uniform disk): upright
+  rolling continued in its spin W changes stability where W^2 = g/(3r) (docs/mechanisms.md:
+  (A + m r^2) theta'' = (m g r - W^2 C (C + m r^2)/A) theta with A = m r^2/4, C = m r^2/2):
+  BP there within 1e-8 for two radii and both choices of the unknowns, the lean's eigenvalues
+  +-sqrt((4 g - 12 W^2 r)/(5 r)) (real below, imaginary above) at --at values within 1e-8.
+- Bad input: an unknown that is not a steady equation's state, default unknowns that the
+  equations do not determine, --par2: refused with the reason and a non-zero status.
+
+Usage: steady_check.py DYNKIT SOURCE_DIR ARTIFACTS_DIR. Exit 77 without NumPy."""
+import csv
+import io
+import json
+import math
+import os
+import subprocess
+import sys
+
+try:
+    import numpy as np
+except ImportError:
+    sys.exit(77)
+
+DYNKIT, SOURCE, ARTIFACTS = sys.argv[1], sys.argv[2], sys.argv[3]
+BICYCLE = os.path.join(SOURCE, "examples", "mechanisms", "bicycle.mech")
+DISK = os.path.join(SOURCE, "examples", "mechanisms", "rolling_disk.mech")
+FAILED = []
+
+M = np.array([[80.81722, 2.31941332208709], [2.31941332208709, 0.29784188199686]])
+C1 = np.array([[0.0, 33.86641391492494], [-0.85035641456978, 1.68540397397560]])
+K0 = np.array([[-80.95, -2.59951685249872], [-2.59951685249872, -0.80329488458618]])
+K2 = np.array([[0.0, 76.59734589573222], [0.0, 2.65431523794604]])
+G = 9.81
+WEAVE_PAPER, CAPSIZE_PAPER = 4.292382536341, 6.024262015388
+
+
+def check(cond, what):
+    print(("ok    " if cond else "FAILED ") + what)
+    if not cond:
+        FAILED.append(what)
+
+
+def keep(name, text):
+    os.makedirs(ARTIFACTS, exist_ok=True)
+    with open(os.path.join(ARTIFACTS, name), "w") as f:
+        f.write(text)
+
+
+def run(args, name):
+    p = subprocess.run([DYNKIT, "continue"] + args, capture_output=True, text=True)
+    if p.returncode != 0:
+        keep("steady_continue_" + name + ".txt", " ".join(args) + "\n" + p.stdout + p.stderr)
+    return p
+
+
+def benchmark_eig(v):
+    Mi = np.linalg.inv(M)
+    A = np.block([[np.zeros((2, 2)), np.eye(2)], [-Mi @ (G * K0 + v * v * K2), -Mi @ (v * C1)]])
+    return np.linalg.eigvals(A)
+
+
+def benchmark_speeds():
+    """capsize: det(g K0 + v^2 K2) = a + b v^2 + c v^4 = 0 (K2's first column is zero, so
+    c = 0: one root); weave: the largest real part of a complex pair crosses zero"""
+    # det(g K0 + s K2) is linear in s = v^2 here: evaluate at two values of s
+    d0 = np.linalg.det(G * K0)
+    d1 = np.linalg.det(G * K0 + K2)
+    d2 = np.linalg.det(G * K0 + 2 * K2)
+    check(abs(d2 - 2 * d1 + d0) < 1e-9 * abs(d0), "det(g K0 + v^2 K2) is linear in v^2")
+    capsize = math.sqrt(-d0 / (d1 - d0))
+
+    def weave_re(v):
+        return max(z.real for z in benchmark_eig(v) if abs(z.imag) > 1e-9)
+
+    lo, hi = 3.0, 5.0
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if weave_re(mid) > 0:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi), capsize
+
+
+def points(p):
+    d = json.loads(p.stdout)
+    return [pt for b in d["branches"] for pt in b["points"]]
+
+
+def bicycle():
+    weave, capsize = benchmark_speeds()
+    check(abs(weave - WEAVE_PAPER) < 2e-12 and abs(capsize - CAPSIZE_PAPER) < 2e-12,
+          "the paper's matrices give its weave %.13f and capsize %.13f m/s" % (weave, capsize))
+    p = run([BICYCLE, "--par", "v", "--set", "v=3", "--opt", "parmax=10", "--at", "v=2.5,5,8",
+             "--json"], "bicycle")
+    check(p.returncode == 0, "bicycle: continue in v runs (status %d)" % p.returncode)
+    if p.returncode != 0:
+        return
+    pts = points(p)
+    hb = [pt["v"] for pt in pts if pt["label"] == "HB"]
+    bp = [pt["v"] for pt in pts if pt["label"] == "BP"]
+    check(len(hb) == 1 and abs(hb[0] - WEAVE_PAPER) < 1e-8 and abs(hb[0] - weave) < 1e-8,
+          "bicycle: HB at the weave speed %s (paper %.12f)" % (hb, WEAVE_PAPER))
+    check(len(bp) == 1 and abs(bp[0] - CAPSIZE_PAPER) < 1e-8 and abs(bp[0] - capsize) < 1e-8,
+          "bicycle: BP at the capsize speed %s (paper %.12f)" % (bp, CAPSIZE_PAPER))
+    hbp = [pt for pt in pts if pt["label"] == "HB"]
+    if hbp:
+        want = max(abs(z.imag) for z in benchmark_eig(hb[0]) if abs(z.real) < 1e-6)
+        check(abs(hbp[0]["omega"] - want) < 1e-8 * want,
+              "bicycle: the weave's frequency at HB %.12g rad/s (matrices: %.12g)"
+              % (hbp[0]["omega"], want))
+    wrong = [pt["v"] for pt in pts if pt["label"] in ("", "EP", "UZ")
+             and pt["stable"] != (weave < pt["v"] < capsize)]
+    check(not wrong, "bicycle: stable exactly between the weave and capsize speeds %s" % wrong)
+    uz = [pt for pt in pts if pt["label"] == "UZ"]
+    check(sorted(pt["v"] for pt in uz) == [5.0, 8.0], "bicycle: UZ at v = 5 and 8 (2.5 is "
+          "below the start's branch)")
+    worst = 0.0
+    for pt in uz:
+        got = sorted((complex(re, im) for re, im in pt["eigenvalues"]), key=lambda z: (z.real, z.imag))
+        want = sorted(benchmark_eig(pt["v"]), key=lambda z: (z.real, z.imag))
+        worst = max(worst, max(abs(a - b) for a, b in zip(got, want)) / max(abs(w) for w in want))
+    check(len(uz) == 2 and worst < 1e-9,
+          "bicycle: the four eigenvalues at UZ points are the matrices' (%.2g relative)" % worst)
+    # downwards from 5 m/s: the same weave speed
+    p = run([BICYCLE, "--par", "v", "--opt", "ds=-0.02", "--opt", "parmax=10",
+             "--opt", "parmin=3", "--output", "-"], "bicycle_down")
+    rows = list(csv.DictReader(io.StringIO(p.stdout))) if p.returncode == 0 else []
+    hb2 = [float(r["v"]) for r in rows if r["label"] == "HB"]
+    check(len(hb2) == 1 and abs(hb2[0] - WEAVE_PAPER) < 1e-8,
+          "bicycle: downwards from v = 5, HB at %s (CSV)" % hb2)
+    check(rows and rows[0]["kind"] == "steady" and "stable" in rows[0] and "dthR" in rows[0],
+          "bicycle: CSV columns branch, kind steady, label, v, the states, stable")
+
+
+def disk():
+    for r in (0.3, 0.5):
+        wc = math.sqrt(G / (3 * r))
+        for unknown in ("dpsi,dtheta", "theta,dtheta"):
+            at = "W=%r,%r" % (0.8 * wc, 1.5 * wc)
+            p = run([DISK, "--par", "W", "--set", "W=%r" % (0.5 * wc), "--set", "r=%r" % r,
+                     "--opt", "parmax=%r" % (2 * wc), "--unknown", unknown, "--at", at,
+                     "--json"], "disk_%g_%s" % (r, unknown.replace(",", "_")))
+            check(p.returncode == 0, "disk r=%g --unknown %s runs" % (r, unknown))
+            if p.returncode != 0:
+                continue
+            pts = points(p)
+            bp = [pt["W"] for pt in pts if pt["label"] == "BP"]
+            check(len(bp) == 1 and abs(bp[0] - wc) < 1e-8,
+                  "disk r=%g --unknown %s: BP at W = %s, sqrt(g/(3r)) = %.15g"
+                  % (r, unknown, bp, wc))
+            for pt in pts:
+                if pt["label"] != "UZ":
+                    continue
+                W = pt["W"]
+                lam2 = (4 * G - 12 * W * W * r) / (5 * r)
+                lean = [complex(a, b) for a, b in pt["eigenvalues"] if abs(complex(a, b)) > 1e-6]
+                want = math.sqrt(abs(lam2))
+                ok = len(lean) == 2 and all(
+                    abs(abs(z) - want) < 1e-8 * want and
+                    (abs(z.imag) < 1e-8 * want if lam2 > 0 else abs(z.real) < 1e-8 * want)
+                    for z in lean)
+                check(ok and pt["stable"] is False,
+                      "disk r=%g W=%.6g: the lean's eigenvalues %s, %s sqrt(|%.6g|), not "
+                      "asymptotically stable" % (r, W, lean, "+-" if lam2 > 0 else "+-i", lam2))
+
+
+def refusals():
+    p = run([DISK, "--par", "W", "--set", "W=2", "--opt", "parmax=6"], "disk_default")
+    check(p.returncode == 1 and "--unknown" in p.stderr and "determine" in p.stderr,
+          "disk with the default unknowns: refused, naming --unknown (status %d)" % p.returncode)
+    p = subprocess.run([DYNKIT, "continue", DISK, "--par", "W", "--set", "W=2", "--unknown", "x"],
+                       capture_output=True, text=True)
+    check(p.returncode == 2 and "accepted: theta, dpsi, dtheta, dphi" in p.stderr,
+          "--unknown x: refused with the accepted states (status %d)" % p.returncode)
+    p = subprocess.run([DYNKIT, "continue", BICYCLE, "--par", "v", "--par2", "g"],
+                       capture_output=True, text=True)
+    check(p.returncode == 2 and "--par2" in p.stderr, "--par2 on steady motions: refused")
+    p = subprocess.run([DYNKIT, "continue",
+                        os.path.join(SOURCE, "examples", "models", "brusselator.ode"),
+                        "--par", "b", "--unknown", "x"], capture_output=True, text=True)
+    check(p.returncode == 2 and ".mech" in p.stderr, "--unknown on an .ode file: refused")
+
+
+def main():
+    bicycle()
+    disk()
+    refusals()
+    if FAILED:
+        print("%d failed" % len(FAILED))
+        sys.exit(1)
+    print("all passed")
+
+
+main()

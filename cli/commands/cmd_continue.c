@@ -23,6 +23,7 @@ static void continue_help(void)
          "                       [--set NAME=VALUE]... [--at NAME=V1,V2,...]\n"
          "                       [--opt NAME=VALUE]... [--output FILE.csv|FILE.json]\n"
          "                       [--json] [--svg FILE.svg] [--y NAME]\n"
+         "                       [--unknown NAME,...] [--cyclic NAME,...]\n"
          "\n"
          "Follows the equilibria f(x, p) = 0 of MODEL in the parameter NAME by pseudo-\n"
          "arclength continuation from the model's initial state (with the --init values),\n"
@@ -33,6 +34,12 @@ static void continue_help(void)
          "the curves of folds and of Hopf points through each LP and HB are followed in the\n"
          "two parameters, with cusps (CP), Bogdanov-Takens (BT) and generalized Hopf (GH)\n"
          "points located.\n"
+         "\n"
+         "A mechanism file (.mech) with constraints or cyclic coordinates: a steady motion\n"
+         "(dynkit steady's equations) is followed instead, the state at each value the\n"
+         "file's initial state there with the unknowns solved; stability, HB and BP (a real\n"
+         "eigenvalue through zero where the branch does not fold) come from the reduced\n"
+         "linearization without the family's and the cyclic coordinates' zero eigenvalues.\n"
          "\n"
          "Settings (XPPAUT's AUTO names): a model file's @ lines give them (ntst, ncol, nmax,\n"
          "npr, ds, dsmin, dsmax, parmin, parmax, autoxmin, autoxmax, autoymin, autoymax),\n"
@@ -55,6 +62,10 @@ static void continue_help(void)
          "                       period, stable; .json: as --json; '-': CSV on stdout\n"
          "  --json               everything as JSON on standard output, with the\n"
          "                       eigenvalues (or Floquet multipliers) of each point\n"
+         "  --unknown NAME,...   a mechanism's steady motion: the states solved for\n"
+         "                       (default: the steady equations' states whose initial\n"
+         "                       value does not follow --par; the others are held)\n"
+         "  --cyclic NAME,...    a mechanism's cyclic states (default: found as by steady)\n"
          "  --svg FILE           the diagram: the parameter against a state (--y NAME;\n"
          "                       default the first state), stable solid, unstable dashed,\n"
          "                       the special points labelled; with --par2 a second panel\n"
@@ -62,8 +73,12 @@ static void continue_help(void)
          "\n"
          "Examples:\n"
          "  dynkit continue examples/models/lorenz.ode --par rho --init x=8.5 --init y=8.5 \\\n"
-         "      --init z=27 --set rho=28 --opt ds=-0.5 --opt parmin=1 --opt dsmax=1\n"
-         "  dynkit continue brusselator --par b --opt parmax=4 --output bru.csv");
+         "      --init z=27 --set rho=28 --opt ds=-0.5 --opt parmin=1 --opt dsmax=1 \\\n"
+         "      --opt parmax=40\n"
+         "  dynkit continue examples/models/brusselator.ode --par b --opt parmax=4 \\\n"
+         "      --output bru.csv\n"
+         "  dynkit continue examples/mechanisms/bicycle.mech --par v --set v=3 \\\n"
+         "      --opt parmax=10");
 }
 
 typedef struct cont_args {

@@ -16,6 +16,7 @@
   +-sqrt((4 g - 12 W^2 r)/(5 r)) (real below, imaginary above) at --at values within 1e-8.
 - Bad input: an unknown that is not a steady equation's state, default unknowns that the
   equations do not determine, --par2: refused with the reason and a non-zero status.
+- Every example that dynkit continue --help shows runs.
 
 Usage: steady_check.py DYNKIT SOURCE_DIR ARTIFACTS_DIR. Exit 77 without NumPy."""
 import csv
@@ -192,10 +193,20 @@ def refusals():
     check(p.returncode == 2 and ".mech" in p.stderr, "--unknown on an .ode file: refused")
 
 
+def help_examples():
+    """every example of dynkit continue --help runs (tests/analysis/analysis_common.py)"""
+    sys.path.insert(0, os.path.join(SOURCE, "tests", "analysis"))
+    from analysis_common import Checks
+    c = Checks(DYNKIT, "continue")
+    c.help_examples(SOURCE)
+    FAILED.extend(c.failed)
+
+
 def main():
     bicycle()
     disk()
     refusals()
+    help_examples()
     if FAILED:
         print("%d failed" % len(FAILED))
         sys.exit(1)

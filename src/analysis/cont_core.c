@@ -192,6 +192,47 @@ int cont_null_direction(const cont_system *s, cont_work *w, const double *z, con
 
 /* ---- the loop ---- */
 
+void cont_loop_from_opts(const dyn_cont_opts *o, cont_loop *L, dyn_cont_label start)
+{
+    memset(L, 0, sizeof *L);
+    L->ds = fabs(o->ds);
+    L->dsmin = o->dsmin;
+    L->dsmax = o->dsmax;
+    L->nmax = o->nmax;
+    L->pmin = o->parmin;
+    L->pmax = o->parmax;
+    L->p2min = L->p2max = 0.0;
+    L->at = o->at;
+    L->n_at = o->n_at;
+    L->start_label = start;
+}
+
+double cont_hopf_test(int n, const double *re, const double *im, double above, int *unstable,
+                      double *omega)
+{
+    double scale = 0.0;
+    for (int i = 0; i < n; i++)
+        scale = fmax(scale, hypot(re[i], im[i]));
+    const double small = 1e-8 * fmax(scale, DBL_MIN);
+    double best = 1.0, best_abs = INFINITY;
+    *unstable = 0;
+    if (omega)
+        *omega = NAN;
+    for (int i = 0; i < n; i++) {
+        if (!(fabs(im[i]) > small))
+            continue;
+        if (re[i] > above)
+            (*unstable)++;
+        if (fabs(re[i]) < best_abs) {
+            best_abs = fabs(re[i]);
+            best = re[i];
+            if (omega)
+                *omega = fabs(im[i]);
+        }
+    }
+    return best;
+}
+
 typedef struct special {
     double s;
     dyn_cont_label label;

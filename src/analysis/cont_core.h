@@ -72,6 +72,17 @@ typedef struct cont_loop {
     dyn_cont_label start_label; /* the first point's label (EP, BP, LP, HB) */
 } cont_loop;
 
+/* L from the options of dyn_continue: |ds|, dsmin, dsmax, nmax, the bounds of the first
+ * parameter, the UZ values, the first point's label; no bounds on a second parameter. */
+void cont_loop_from_opts(const dyn_cont_opts *o, cont_loop *L, dyn_cont_label start);
+
+/* The Hopf test on eigenvalues (re, im: n values): the real part of the complex eigenvalue
+ * nearest the imaginary axis (+1 when none is complex: |im| <= 1e-8 of the largest
+ * modulus), with *unstable the number of complex ones whose real part is above `above`
+ * and *omega (NULL: not wanted) the nearest one's |im| (NAN when none). */
+double cont_hopf_test(int n, const double *re, const double *im, double above, int *unstable,
+                      double *omega);
+
 /* Follow the branch from z (a point of it) along the unit tangent t for at most nmax
  * points, storing each (the first with start_label, the last with EP) with the special
  * points located between them. stop gets why it ended. Returns 0, -1 when storing

@@ -41,29 +41,6 @@ static int eq_jacobian(void *ctx, const double *z, double *J)
     return cont_model_fp(cm, z, z[n], NAN, 0, J + n, n + 1);
 }
 
-/* the complex eigenvalue nearest the imaginary axis: its real part (+1 with none) and the
- * number of complex eigenvalues with a positive real part */
-static double hopf_test(const cont_model *cm, int *unstable)
-{
-    double scale = 0.0;
-    for (int i = 0; i < cm->n; i++)
-        scale = fmax(scale, hypot(cm->re[i], cm->im[i]));
-    const double small = 1e-8 * fmax(scale, DBL_MIN);
-    double best = 1.0, best_abs = INFINITY;
-    *unstable = 0;
-    for (int i = 0; i < cm->n; i++) {
-        if (!(fabs(cm->im[i]) > small))
-            continue;
-        if (cm->re[i] > 0.0)
-            (*unstable)++;
-        if (fabs(cm->re[i]) < best_abs) {
-            best_abs = fabs(cm->re[i]);
-            best = cm->re[i];
-        }
-    }
-    return best;
-}
-
 static int eq_tests(void *ctx, const double *z, const double *t, double det, double *psi,
                     int *count)
 {
@@ -76,7 +53,7 @@ static int eq_tests(void *ctx, const double *z, const double *t, double det, dou
     count[0] = -1;
     psi[1] = det;
     count[1] = -1;
-    psi[2] = hopf_test(cm, &count[2]);
+    psi[2] = cont_hopf_test(cm->n, cm->re, cm->im, 0.0, &count[2], NULL);
     return 0;
 }
 
@@ -135,21 +112,6 @@ static void eq_system(cont_system *s, eq_ctx *e)
     s->store = eq_store;
 }
 
-static void loop_settings(const dyn_cont_opts *o, cont_loop *L, dyn_cont_label start)
-{
-    memset(L, 0, sizeof *L);
-    L->ds = fabs(o->ds);
-    L->dsmin = o->dsmin;
-    L->dsmax = o->dsmax;
-    L->nmax = o->nmax;
-    L->pmin = o->parmin;
-    L->pmax = o->parmax;
-    L->p2min = L->p2max = 0.0;
-    L->at = o->at;
-    L->n_at = o->n_at;
-    L->start_label = start;
-}
-
 /* one branch from z along t into a new branch of d */
 static int follow_branch(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, const double *z,
                          const double *t, dyn_cont_label start, int parent, long parent_point,
@@ -164,7 +126,7 @@ static int follow_branch(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d,
     cont_system s;
     eq_system(&s, &e);
     cont_loop L;
-    loop_settings(o, &L, start);
+    cont_loop_from_opts(o, &L, start);
     char stop[160];
     const int rc = cont_follow(&s, w, &L, z, t, stop, sizeof stop);
     snprintf(d->branches[e.bi].stop, sizeof d->branches[e.bi].stop, "%s", stop);

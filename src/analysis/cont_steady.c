@@ -218,30 +218,11 @@ static int reduce(sc_ctx *c)
     return 0;
 }
 
-/* the complex eigenvalue of B nearest the imaginary axis: its real part (+1 with none), the
- * number of complex ones with a real part above the stability tolerance (so that a
- * conservative pair's rounding is not taken for a crossing), and its imaginary part */
+/* the Hopf test on B's eigenvalues, counting the complex ones above the stability
+ * tolerance (so that a conservative pair's rounding is not taken for a crossing) */
 static double hopf_test(const sc_ctx *c, int *unstable, double *omega)
 {
-    double scale = 0.0;
-    for (int i = 0; i < c->nu; i++)
-        scale = fmax(scale, hypot(c->re[i], c->im[i]));
-    const double small = 1e-8 * fmax(scale, DBL_MIN);
-    double best = 1.0, best_abs = INFINITY;
-    *unstable = 0;
-    *omega = NAN;
-    for (int i = 0; i < c->nu; i++) {
-        if (!(fabs(c->im[i]) > small))
-            continue;
-        if (c->re[i] > c->tol_b)
-            (*unstable)++;
-        if (fabs(c->re[i]) < best_abs) {
-            best_abs = fabs(c->re[i]);
-            best = c->re[i];
-            *omega = fabs(c->im[i]);
-        }
-    }
-    return best;
+    return cont_hopf_test(c->nu, c->re, c->im, c->tol_b, unstable, omega);
 }
 
 static int sc_tests(void *ctx, const double *z, const double *t, double det, double *psi,
@@ -567,16 +548,7 @@ int dyn_steady_continue(const dyn_model *m, const void *par, const double *y0,
         } else {
             c.bi = d->count - 1;
             cont_loop L;
-            memset(&L, 0, sizeof L);
-            L.ds = fabs(o->ds);
-            L.dsmin = o->dsmin;
-            L.dsmax = o->dsmax;
-            L.nmax = o->nmax;
-            L.pmin = o->parmin;
-            L.pmax = o->parmax;
-            L.at = o->at;
-            L.n_at = o->n_at;
-            L.start_label = DYN_LABEL_EP;
+            cont_loop_from_opts(o, &L, DYN_LABEL_EP);
             char stop[160];
             const int fr = cont_follow(&s, &w, &L, z, t, stop, sizeof stop);
             snprintf(d->branches[c.bi].stop, sizeof d->branches[c.bi].stop, "%s", stop);

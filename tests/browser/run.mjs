@@ -310,7 +310,9 @@ async function checkPage(spec, vp) {
   check(auto1.playing && auto1.t > auto0.t && auto1.speed === 1, `plays when opened, at 1x (t ${auto0.t.toFixed(3)} -> ${auto1.t.toFixed(3)})`);
   // paused from the page: a click can take longer than a short run has left (the button is
   // checked below)
-  await page.evaluate(() => DK.players.forEach(p => p.pause()));
+  // and put at their start, so that the seek below always lands on another time (paused late
+  // on a loaded machine, a player could stop near 60% of its span)
+  await page.evaluate(() => DK.players.forEach(p => { p.pause(); p.seek(p.t0); }));
 
   if (spec.name === 'cart') {
     // the whole path at equal scales: the frame takes the path's shape, so that neither axis

@@ -45,7 +45,11 @@ static void continue_help(void)
          "npr, ds, dsmin, dsmax, parmin, parmax, autoxmin, autoxmax, autoymin, autoymax),\n"
          "--opt NAME=VALUE overrides them, and the rest are XPPAUT's defaults: ds=0.02\n"
          "(its sign is the direction), dsmin=0.001, dsmax=0.5, nmax=200, parmin=0, parmax=2;\n"
-         "par2min, par2max bound the second parameter (default: none).\n"
+         "par2min, par2max bound the second parameter (default: none). When neither the\n"
+         "file nor --opt gives parmin (parmax) and the start is below (above) it, it is\n"
+         "moved so that the start is the window's middle, at least the default width 2\n"
+         "away, and a note says so; a parmin or parmax given that excludes the start is an\n"
+         "error.\n"
          "\n"
          "Options:\n"
          "  --par NAME           the parameter continued (required)\n"
@@ -170,8 +174,8 @@ static int param_arg(const dyn_model *m, const char *opt, const char *name, int 
                            name, m->name, m->n_params ? list : "none: the model has none");
 }
 
-/* the settings: defaults, the file's @ lines, --opt */
-static int settings(const cont_args *a, const char *spec, const dyn_model *m, cont_settings *s)
+/* the settings: defaults, the file's @ lines, --opt; par holds the start of --par */
+static int settings(const cont_args *a, const void *par, const dyn_model *m, cont_settings *s)
 {
     char err[512];
     for (int k = 0; k < 4; k++)
@@ -187,7 +191,6 @@ static int settings(const cont_args *a, const char *spec, const dyn_model *m, co
         if (bad)
             return cli_usage_error("continue", "%s", err);
     }
-    (void)spec;
     for (int k = 0; k < a->n_opt; k++) {
         const char *eq = strchr(a->opt[k], '=');
         if (!eq || eq == a->opt[k])
@@ -197,6 +200,12 @@ static int settings(const cont_args *a, const char *spec, const dyn_model *m, co
         if (cont_settings_apply(s, name, eq + 1, "--opt", err, sizeof err))
             return cli_usage_error("continue", "%s", err);
     }
+    char note[512];
+    if (cont_settings_fit_start(s, dyn_model_get_param(m, par, s->opts.ip), a->par, note,
+                                sizeof note, err, sizeof err))
+        return cli_usage_error("continue", "%s", err);
+    if (note[0])
+        cli_note("%s", note);
     const dyn_cont_opts *o = &s->opts;
     if (!(o->dsmin <= o->dsmax))
         return cli_usage_error("continue", "dsmin = %g > dsmax = %g: give dsmin <= dsmax",
@@ -267,7 +276,7 @@ int cli_cmd_continue(int argc, char **argv)
         dyn_cont_opts_default(&s.opts, ip);
         s.opts.ip2 = ip2;
         s.opts.t = run.t0;
-        rc = settings(&a, argv[0], m, &s);
+        rc = settings(&a, run.par, m, &s);
     }
     if (rc == CLI_OK && a.scheme_text)
         rc = parse_scheme(a.scheme_text, &s.opts.jac);

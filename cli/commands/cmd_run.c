@@ -224,8 +224,9 @@ static void run_help(void)
          "  dynkit run pendulum --method euler --step 0.2 --tspan 0:0.2 --trace 1\n"
          "  dynkit run pendulum --set l=1 --init dphi=pi/4 --tspan 0:10 --outputs\n"
          "  dynkit run pendulum --init phi=45deg -m ode45 --outputs -o swing.mat\n"
-         "  dynkit inverse cart --output forces.csv   (prints the --init options for:)\n"
-         "  dynkit run cart --forces forces.csv --method heun --init dsX=-20 ...\n");
+         "  dynkit inverse cart --output forces.csv      # the forces, and the run's --init:\n"
+         "  dynkit run cart --forces forces.csv --method heun --init dsX=-20 \\\n"
+         "      --init dsY=4.934802200544679 --init omega=4.934802200544679\n");
     cli_run_options_help(stdout);
     puts("\nOutput files are written under a temporary name beside FILE and renamed when the\n"
          "run ends: a bad option or a run that fails before its first sample leaves an\n"

@@ -86,6 +86,42 @@ int cont_settings_apply(cont_settings *s, const char *name, const char *value, c
     return 0;
 }
 
+int cont_settings_fit_start(cont_settings *s, double p0, const char *par, char *note,
+                            size_t notelen, char *err, size_t errlen)
+{
+    dyn_cont_opts *o = &s->opts;
+    const char *from_min = s->from[7], *from_max = s->from[8];
+    if (note && notelen)
+        note[0] = 0;
+    if ((from_min && !(p0 >= o->parmin)) || (from_max && !(p0 <= o->parmax))) {
+        const int low = from_min && !(p0 >= o->parmin);
+        snprintf(err, errlen,
+                 "the start %s = %.17g is outside [parmin, parmax] = [%.17g, %.17g] (%s from "
+                 "%s): give a window that contains it, or another start (--set %s=VALUE)",
+                 par, p0, o->parmin, o->parmax, low ? "parmin" : "parmax",
+                 low ? from_min : from_max, par);
+        return -1;
+    }
+    dyn_cont_opts defaults;
+    dyn_cont_opts_default(&defaults, o->ip);
+    const double width = defaults.parmax - defaults.parmin;
+    const int below = !from_min && p0 < o->parmin, above = !from_max && p0 > o->parmax;
+    if (!below && !above)
+        return 0;
+    const double was = below ? o->parmin : o->parmax;
+    if (below)
+        o->parmin = p0 - fmax(o->parmax - p0, width);
+    else
+        o->parmax = p0 + fmax(p0 - o->parmin, width);
+    if (note && notelen)
+        snprintf(note, notelen,
+                 "the start %s = %.17g is outside the default window: %s = %.17g, not %.17g, so that "
+                 "[parmin, parmax] = [%.17g, %.17g] contains it (--opt %s=VALUE chooses)",
+                 par, p0, below ? "parmin" : "parmax", below ? o->parmin : o->parmax, was,
+                 o->parmin, o->parmax, below ? "parmin" : "parmax");
+    return 0;
+}
+
 /* the name=value pairs of one @ line (text after the @) */
 static int read_line(cont_settings *s, const char *line, size_t len, const char *where,
                      char *err, size_t errlen)

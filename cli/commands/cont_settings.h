@@ -28,4 +28,13 @@ int cont_settings_apply(cont_settings *s, const char *name, const char *value, c
 int cont_settings_read_file(cont_settings *s, const char *text, const char *path, char *err,
                             size_t errlen);
 
+/* The window [parmin, parmax] made to contain the start p0 of the parameter named par: a
+ * bound that neither the file's @ lines nor --opt gave (a default) and that excludes p0 is
+ * moved to p0 + (p0 - parmin), or p0 - (parmax - p0) (the start the window's middle; at
+ * least the default window's width away from p0), and note (when not NULL) says so, else
+ * note is "". Returns 0, or -1 with a message in err when a bound that was given excludes
+ * p0. */
+int cont_settings_fit_start(cont_settings *s, double p0, const char *par, char *note,
+                            size_t notelen, char *err, size_t errlen);
+
 #endif

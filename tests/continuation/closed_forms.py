@@ -7,7 +7,8 @@ Brusselator (HB at b = 1 + a^2, omega = a) and Lorenz's system (HB at
 rho = sigma (sigma + beta + 3) / (sigma - beta - 1), subcritical); in two parameters the
 normal forms of the cusp (folds on 27 a^2 = 4 b^3, CP at 0), of the Bogdanov-Takens point
 (folds on b1 = 0, Hopf points on b1 = -b2^2, BT at 0 on both) and of the generalized Hopf
-point (Hopf points on b1 = 0, GH at b2 = 0). Usage:
+point (Hopf points on b1 = 0, GH at b2 = 0); the default window widened to contain the
+start, and a window given that excludes it refused. Usage:
 closed_forms.py DYNKIT MODELS_DIR LORENZ_ODE BT_ODE"""
 import json
 import subprocess
@@ -92,6 +93,35 @@ for b, p in hb:
     check("lorenz: rho at HB", p["rho"], sigma * (sigma + beta + 3) / (sigma - beta - 1), 1e-10)
     if not p.get("l1", 0) > 0:
         failures.append(f"lorenz: l1 = {p.get('l1')} at the Hopf point, expected > 0 (subcritical)")
+
+# the default window widened to contain the start (lorenz.ode gives no parmin, parmax): from
+# rho = 28 with parmin = 1 given, parmax = 28 + (28 - 1) = 55, where the branch from C+
+# (down to the branch point at rho = 1, up again on C-) ends on x = y = -sqrt(beta (rho - 1))
+# = -12, z = rho - 1; from rho = -3 downwards (the origin,
+# the only equilibrium for rho < 1), parmin = -3 - (2 - (-3)) = -8
+d = run(lorenz, "--par", "rho", "--init", "x=8.5", "--init", "y=8.5", "--init", "z=27",
+        "--set", "rho=28", "--opt", "ds=-0.5", "--opt", "dsmax=1", "--opt", "parmin=1")
+if d:
+    check("lorenz from rho = 28: parmax", d["settings"]["parmax"], 55.0, 0.0)
+    ends = [p for b, p in points(d, "EP") if p["rho"] > 54.9 and p["state"]["x"] < -1]
+    if not ends:
+        failures.append("lorenz from rho = 28: no EP of C- at parmax = 55")
+    for p in ends:
+        check("lorenz: rho at parmax", p["rho"], 55.0, 1e-12)
+        check("lorenz: x of C- at rho = 55", p["state"]["x"], -(8.0 / 3.0 * 54.0) ** 0.5, 1e-9)
+        check("lorenz: z of C- at rho = 55", p["state"]["z"], 54.0, 1e-9)
+d = run(lorenz, "--par", "rho", "--init", "x=0", "--init", "y=0", "--init", "z=0",
+        "--set", "rho=-3", "--opt", "ds=-0.5", "--opt", "dsmax=1")
+if d:
+    check("lorenz from rho = -3: parmin", d["settings"]["parmin"], -8.0, 0.0)
+    low = [p["rho"] for b, p in points(d, "EP")]
+    check("lorenz from rho = -3: the lowest EP", min(low) if low else 0.0, -8.0, 1e-12)
+# a window given that excludes the start is a bad command line
+out = subprocess.run([dynkit, "continue", lorenz, "--par", "rho", "--set", "rho=28",
+                      "--opt", "parmax=20"], capture_output=True, text=True)
+if out.returncode != 2 or "parmax from --opt" not in out.stderr:
+    failures.append(f"lorenz, rho = 28 outside parmax = 20: exit {out.returncode}, "
+                    f"{out.stderr.strip()!r} (expected 2 and a message naming --opt)")
 
 # curves in two parameters
 d = run(f"{models}/cusp.ode", "--par", "a", "--par2", "b")

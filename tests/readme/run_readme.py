@@ -26,6 +26,14 @@ earlier one wrote), with the built dynkit first on PATH and `examples/`, `bench/
 Usage: run_readme.py DYNKIT DOC.md [PROJECT_ROOT [SECTION]]
 With SECTION, only the text under the headings that contain SECTION (each up to the next
 heading of its level or above) is read.
+
+Usage: run_readme.py DYNKIT --help PROJECT_ROOT
+reads the help texts instead: 'dynkit --help' and 'dynkit help CMD' for each command it
+lists (which must be 'dynkit CMD --help' too). Each line that starts with 'dynkit CMD'
+(CMD a listed command; `mpirun ... dynkit CMD`, skipped without MPI), continued by a
+trailing `\\`, is an example, unless it has a placeholder in capitals (MODEL, FILE.csv:
+a synopsis); each runs by bash, in the order shown, and must exit with status 0 and
+print no error message.
 """
 import os
 import re
@@ -49,6 +57,8 @@ def skip_reason(doc, cmd, methods):
         if doc == name and text in cmd:
             return why
     # an optional backend's method, when this dynkit was built without it
+    if cmd.startswith("mpirun ") and not shutil.which("mpirun"):
+        return "MPI is not installed (no mpirun)"
     m = re.search(r"--method (cvode)\b", cmd)
     if m and not re.search(r"^" + m.group(1) + r"\s", methods, re.M):
         return "dynkit was built without %s (dynkit methods)" % m.group(1)
@@ -192,19 +202,143 @@ def run(cmd, work, env):
     return p, time.monotonic() - start
 
 
+# an error message on standard error: dynkit's ("dynkit: error: ..."), a compiler's
+ERROR_LINE = re.compile(r"(^|: )error\b", re.I | re.M)
+# a synopsis, not an example: a placeholder in capitals (MODEL, FILE.csv, NAME=VALUE)
+PLACEHOLDER = re.compile(r"(?<![\w=.:-])[A-Z][A-Z0-9_]{2,}(?![a-z])")
+
+
+def help_text(dynkit, args, env):
+    p = subprocess.run([dynkit] + args, capture_output=True, text=True, env=env)
+    if p.returncode != 0:
+        raise RuntimeError("dynkit %s: exit %d\n%s" % (" ".join(args), p.returncode, p.stderr))
+    return p.stdout
+
+
+def help_examples(dynkit, env):
+    """(where, command) of every command line shown by 'dynkit --help' and by 'dynkit help
+    CMD' for each command it lists (Examples: sections and any other line that starts with
+    'dynkit ', continued by a trailing '\\'; synopses with placeholders are not examples),
+    and the commands whose 'dynkit CMD --help' differs from 'dynkit help CMD'."""
+    top = help_text(dynkit, ["--help"], env)
+    listed = top.split("Commands:\n", 1)[1].split("\n\n", 1)[0]
+    names = [n for n in re.findall(r"^  ([a-z]+)\b", listed, re.M) if n != "help"]
+    texts, differ = [("dynkit --help", top)], []
+    for name in names:
+        text = help_text(dynkit, ["help", name], env)
+        if help_text(dynkit, [name, "--help"], env) != text:
+            differ.append(name)
+        texts.append(("dynkit help " + name, text))
+    out = []
+    for where, text in texts:
+        lines = text.splitlines()
+        i = 0
+        while i < len(lines):
+            cmd = re.sub(r"^(Examples?:)?\s*", "", lines[i].strip())
+            while cmd.endswith("\\") and i + 1 < len(lines):
+                i += 1
+                cmd = cmd[:-1].rstrip() + " " + lines[i].strip()
+            i += 1
+            # a command line: 'dynkit CMD ...' (or under mpirun), CMD one of those listed
+            words = cmd.split()
+            if words[:1] == ["mpirun"]:
+                words = words[words.index("dynkit"):] if "dynkit" in words else []
+            if len(words) > 1 and words[0] == "dynkit" and words[1] in names + ["help"] \
+                    and not PLACEHOLDER.search(cmd):
+                out.append((where, cmd))
+    return names, out, differ
+
+
+def run_help(dynkit, work, env, methods):
+    """Each example of the --help texts is run; it must exit 0 and print no error."""
+    names, examples, differ = help_examples(dynkit, env)
+    failures = len(differ)
+    for name in differ:
+        print("FAIL: 'dynkit %s --help' is not 'dynkit help %s'" % (name, name))
+    ran = skipped = 0
+    for where, cmd in examples:
+        why = skip_reason("--help", cmd, methods)
+        if why:
+            skipped += 1
+            print("skip %s\n     (%s)" % (cmd, why))
+            continue
+        p, secs = run(cmd, work, env)
+        ran += 1
+        if p.returncode != 0 or ERROR_LINE.search(p.stderr):
+            failures += 1
+            print("FAIL (exit %d%s; %s): %s\n%s"
+                  % (p.returncode, ", an error on stderr" if p.returncode == 0 else "", where,
+                     cmd, p.stderr[-2000:]))
+        else:
+            print("ok   %5.1f s  %s" % (secs, cmd))
+    print("%d examples of the --help of %d commands run, %d failed, %d skipped"
+          % (ran, len(names), failures, skipped))
+    return 1 if failures else 0
+
+
+def run_doc(doc, text, work, env, methods):
+    name = os.path.basename(doc)
+    failures = ran = skipped = 0
+    for lang, block, tol in fenced_blocks(text):
+        if lang == "sh":
+            for cmd in sh_commands(block):
+                if "..." in cmd:
+                    continue
+                why = skip_reason(name, cmd, methods)
+                if why:
+                    skipped += 1
+                    print("skip %s\n     (%s)" % (cmd, why))
+                    continue
+                p, secs = run(cmd, work, env)
+                ran += 1
+                if p.returncode != 0:
+                    failures += 1
+                    print("FAIL (exit %d): %s\n%s" % (p.returncode, cmd, p.stderr[-2000:]))
+                else:
+                    print("ok   %5.1f s  %s" % (secs, cmd))
+        elif lang == "console":
+            for step in console_steps(block):
+                why = skip_reason(name, step["cmd"], methods)
+                if why:
+                    skipped += 1
+                    print("skip $ %s\n     (%s)" % (step["cmd"], why))
+                    continue
+                status, cmd = expected_status(step["cmd"])
+                p, secs = run(cmd, work, env)
+                ran += 1
+                want = "\n".join(step["out"]).rstrip("\n")
+                got = p.stdout.rstrip("\n")
+                # standard error before or after the output, as a terminal shows a
+                # note, a trace or a last message
+                shown = (got, (p.stderr + p.stdout).rstrip("\n"),
+                         (p.stdout + p.stderr).rstrip("\n"))
+                same = any(matches(want, g, tol) for g in shown)
+                if p.returncode != status or not same:
+                    failures += 1
+                    print("FAIL: $ %s\n--- %s shows:\n%s\n--- it printed (exit %d, "
+                          "shown %d):\n%s\n%s" % (step["cmd"], name, want, p.returncode,
+                                                  status, got, p.stderr[-1000:]))
+                else:
+                    print("ok   %5.1f s  $ %s" % (secs, step["cmd"]))
+    print("%d commands of %s run, %d failed, %d skipped (reasons above)"
+          % (ran, name, failures, skipped))
+    return 1 if failures else 0
+
+
 def main():
     dynkit, doc = os.path.abspath(sys.argv[1]), sys.argv[2]
-    name = os.path.basename(doc)
     # the project whose examples/ the commands read: the document's, or a third argument
     root = sys.argv[3] if len(sys.argv) > 3 else os.path.dirname(os.path.abspath(doc))
-    with open(doc) as f:
-        text = f.read()
-    if len(sys.argv) > 4:
-        text = sections(text, sys.argv[4])
-        if "```" not in text:
-            print("no commands under a heading with '%s' in %s" % (sys.argv[4], doc))
-            return 1
-    failures = ran = skipped = 0
+    text = None
+    if doc != "--help":
+        with open(doc) as f:
+            text = f.read()
+        if len(sys.argv) > 4:
+            text = sections(text, sys.argv[4])
+            if "```" not in text:
+                print("no commands under a heading with '%s' in %s" % (sys.argv[4], doc))
+                return 1
+    name = "help" if text is None else os.path.basename(doc)
     with tempfile.TemporaryDirectory(prefix="doc-" + name + "-") as work:
         bindir = os.path.join(work, "bin")
         os.makedirs(bindir)
@@ -216,50 +350,9 @@ def main():
         env["LC_ALL"] = "C"   # messages of other programs (a compiler's) in ASCII, as shown
         env.setdefault("DYNKIT_CACHE_DIR", os.path.join(work, "cache"))
         methods = subprocess.run([dynkit, "methods"], capture_output=True, text=True).stdout
-        for lang, block, tol in fenced_blocks(text):
-            if lang == "sh":
-                for cmd in sh_commands(block):
-                    if "..." in cmd:
-                        continue
-                    why = skip_reason(name, cmd, methods)
-                    if why:
-                        skipped += 1
-                        print("skip %s\n     (%s)" % (cmd, why))
-                        continue
-                    p, secs = run(cmd, work, env)
-                    ran += 1
-                    if p.returncode != 0:
-                        failures += 1
-                        print("FAIL (exit %d): %s\n%s" % (p.returncode, cmd, p.stderr[-2000:]))
-                    else:
-                        print("ok   %5.1f s  %s" % (secs, cmd))
-            elif lang == "console":
-                for step in console_steps(block):
-                    why = skip_reason(name, step["cmd"], methods)
-                    if why:
-                        skipped += 1
-                        print("skip $ %s\n     (%s)" % (step["cmd"], why))
-                        continue
-                    status, cmd = expected_status(step["cmd"])
-                    p, secs = run(cmd, work, env)
-                    ran += 1
-                    want = "\n".join(step["out"]).rstrip("\n")
-                    got = p.stdout.rstrip("\n")
-                    # standard error before or after the output, as a terminal shows a
-                    # note, a trace or a last message
-                    shown = (got, (p.stderr + p.stdout).rstrip("\n"),
-                             (p.stdout + p.stderr).rstrip("\n"))
-                    same = any(matches(want, g, tol) for g in shown)
-                    if p.returncode != status or not same:
-                        failures += 1
-                        print("FAIL: $ %s\n--- %s shows:\n%s\n--- it printed (exit %d, "
-                              "shown %d):\n%s\n%s" % (step["cmd"], name, want, p.returncode,
-                                                      status, got, p.stderr[-1000:]))
-                    else:
-                        print("ok   %5.1f s  $ %s" % (secs, step["cmd"]))
-    print("%d commands of %s run, %d failed, %d skipped (reasons above)"
-          % (ran, name, failures, skipped))
-    return 1 if failures else 0
+        if text is None:
+            return run_help(dynkit, work, env, methods)
+        return run_doc(doc, text, work, env, methods)
 
 
 if __name__ == "__main__":

@@ -113,6 +113,8 @@ int cli_model_is_file(const char *spec);
 char *cli_read_model_file(const char *path, size_t *len);
 /* 1 for a model loaded from a model file with algebraic equations (0=...). */
 int cli_model_has_algebraic(const dyn_model *m);
+/* The C a model file (.ode, .mech) was translated to, as compiled; NULL for other models. */
+const char *cli_model_c_source(const dyn_model *m);
 /* The file m was defined in (dyn_model.source, else the file cli_model_open loaded it
  * from, e.g. a C model that names no source), or NULL for a built-in model. */
 const char *cli_model_path(const dyn_model *m);

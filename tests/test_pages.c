@@ -431,6 +431,35 @@ static void test_animate_pages(void **state)
  * (#: t [ms]) is in info, the page, the plot's axis and the labels of runs; the phase plane of
  * mV against a unitless w has no equal scales (they would flatten the cycle into a line) but
  * XPPAUT's window @ xlo, xhi, ylo, yhi; a unitless quantity is labelled without "[]". */
+/* --live: the page of plot needs --output FILE.html and refuses sections; without the
+ * WebAssembly library (DYNKIT_WASM_DIR naming an empty place) the page is the static one, the
+ * status 0 and the warning names the packages (tests/browser/live.mjs runs the live pages). */
+static void test_live_options(void **state)
+{
+    (void)state;
+    cli_result r = cli("plot vanderpol --y y2 --live");
+    CHECK(r.status == 2 && strstr(r.err, "--output FILE.html"), "plot --live without --output: %d %s",
+          r.status, r.err);
+    cli_free(&r);
+    r = cli("plot vanderpol --y y2 --live --output '%s/p.svg'", cli_tmpdir);
+    CHECK(r.status == 2 && strstr(r.err, ".html"), "plot --live to .svg: %d %s", r.status, r.err);
+    cli_free(&r);
+    r = cli("plot vanderpol --y y2 --section t=1 --live --output '%s/p.html'", cli_tmpdir);
+    CHECK(r.status == 2 && strstr(r.err, "--live"), "plot --live --section: %d %s", r.status, r.err);
+    cli_free(&r);
+    setenv("DYNKIT_WASM_DIR", "/nonexistent-dynkit-wasm", 1);
+    r = cli("plot vanderpol --x y1 --y y2 --live --output '%s/p.html'", cli_tmpdir);
+    unsetenv("DYNKIT_WASM_DIR");
+    CHECK(r.status == 0 && strstr(r.err, "not live") && strstr(r.err, "wasi-libc"),
+          "plot --live without the library: %d %s", r.status, r.err);
+    cli_free(&r);
+    char *html = file_in_tmp("p.html");
+    CHECK(strstr(html, "\"plot\":{\"x\":\"y1\",\"y\":[\"y2\"]}") && !strstr(html, "\"live\":{") &&
+              !strstr(html, "'wasm-unsafe-eval'") && !strstr(html, "DK.startLive ="),
+          "the static page of plot --live");
+    free(html);
+}
+
 static void test_time_unit_and_phase_window(void **state)
 {
     (void)state;
@@ -514,6 +543,7 @@ int main(void)
         cmocka_unit_test(test_report_html_is_self_contained),
         cmocka_unit_test(test_animate_pages),
         cmocka_unit_test(test_time_unit_and_phase_window),
+        cmocka_unit_test(test_live_options),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -40,6 +40,14 @@ static void animate_help(void)
          "                       this option, when there is one (beside .mech or .c only when\n"
          "                       it fits that model and no NAME.ode is there: else a warning)\n"
          "  --no-ani             leave out the model file's NAME.ani\n"
+         "  --live               a live page: the model compiled to WebAssembly runs in the\n"
+         "                       page, with a slider and a box for every parameter and\n"
+         "                       initial value, the method, step, tolerances and span; it\n"
+         "                       reruns on every change, a click in a phase plane starts a\n"
+         "                       trajectory there, and it shows the command line of the run\n"
+         "                       and a CSV download (needs clang with wasm32-wasi at build\n"
+         "                       and page time: " "clang lld wasi-libc libclang-rt-14-dev-wasm32;\n"
+         "                       without them the page is static and says why)\n"
          "A long run is thinned to at most 2000 samples (first and last kept).\n"
          "Controls: play/pause, speed 0.1x-10x, time slider; keys: space play/pause,\n"
          "left/right one sample, shift+left/right 1 s, up/down speed, home/end.\n"
@@ -49,7 +57,8 @@ static void animate_help(void)
          "  dynkit animate cart --output cart.html\n"
          "  dynkit animate vanderpol --compare euler:0.05 --compare heun --output vdp.html\n"
          "  dynkit animate examples/models/double_pendulum.ode --output dp.html   # + .ani\n"
-         "  dynkit animate examples/mechanisms/top.mech --output top.html\n");
+         "  dynkit animate examples/mechanisms/top.mech --output top.html\n"
+         "  dynkit animate vanderpol --live --output vdp-live.html\n");
     cli_view_options_help(stdout);
 }
 
@@ -58,6 +67,8 @@ typedef struct animate_page {
     const cli_ani *ani;
     const dyn_mech_scene *mech;
     int homework; /* the homework's run (animate_homework.c) */
+    const cli_live *live; /* the model in WebAssembly (--live), or NULL */
+    const char *spec;     /* MODEL as given */
 } animate_page;
 
 /* What the run shows when the model has inputs and no --forces table was given: the inputs
@@ -124,6 +135,10 @@ static int page_data(cli_json *j, void *ctx)
         cli_json_key(j, "mech");
         bad = cli_json_mech(j, pg->mech, v);
     }
+    if (pg->live && pg->live->module && !bad) {
+        cli_json_key(j, "live");
+        bad = cli_json_live(j, pg->live, v, pg->spec);
+    }
     cli_json_end_object(j);
     return bad || j->bad;
 }
@@ -162,10 +177,12 @@ int cli_cmd_animate(int argc, char **argv)
         cli_error("out of memory");
         return CLI_FAILED;
     }
-    int n_args = 0, no_ani = 0;
+    int n_args = 0, no_ani = 0, live_asked = 0;
     for (int i = 0; i < argc; i++) {
         if (i > 0 && cli_flag(argv[i], "no-ani"))
             no_ani = 1;
+        else if (i > 0 && cli_flag(argv[i], "live"))
+            live_asked = 1;
         else
             args[n_args++] = argv[i];
     }
@@ -181,7 +198,9 @@ int cli_cmd_animate(int argc, char **argv)
                                         "run (dynkit plot --section draws the crossings)");
     if (rc == CLI_OK)
         v.run.section.kind = DYN_POINCARE_NONE; /* a model file's @ poimap is run's */
-    const int homework = rc == CLI_OK && cli_animate_homework_applies(&v, n_args, args);
+    /* a live page reruns the model with constant inputs: not the homework's table */
+    const int homework =
+        rc == CLI_OK && !live_asked && cli_animate_homework_applies(&v, n_args, args);
     if (rc == CLI_OK && no_ani && extra_values[0])
         rc = cli_usage_error("animate", "--ani and --no-ani contradict each other");
     /* the animation is read before the runs: an error in it writes nothing */
@@ -197,6 +216,10 @@ int cli_cmd_animate(int argc, char **argv)
     if (homework)
         rc = cli_animate_homework_setup(&v);
     int run_rc = rc == CLI_OK ? cli_view_record(&v) : rc;
+    cli_live live;
+    memset(&live, 0, sizeof live);
+    if (rc == CLI_OK && live_asked && cli_live_build(v.run.model, &live) != 0)
+        cli_warning("the page is not live, it shows the run it was written with: %s", live.why);
     if (homework && run_rc != CLI_USAGE && cli_animate_homework_finish(&v) != CLI_OK)
         rc = CLI_FAILED;
     if (rc == CLI_OK && (run_rc == CLI_USAGE || v.n_series == 0))
@@ -219,8 +242,10 @@ int cli_cmd_animate(int argc, char **argv)
     if (rc == CLI_OK) {
         char title[160];
         snprintf(title, sizeof title, "dynkit animate %s", v.run.model->name);
-        animate_page pg = {&v, &ani, mech, homework};
+        animate_page pg = {&v, &ani, mech, homework, &live, argv[0]};
+        cli_html_page_allow_wasm(live.module != NULL);
         rc = cli_html_page_write(out, title, "animate.html", page_data, &pg);
+        cli_html_page_allow_wasm(0);
         if (path) {
             /* the page of a run that failed part-way is kept: it shows what was computed */
             int close_rc = cli_out_close(&outf, rc == CLI_OK);
@@ -246,6 +271,7 @@ int cli_cmd_animate(int argc, char **argv)
         cli_stderr("dynkit: wrote %s (open it in a browser; --output FILE names the file, "
                    "--output - writes to standard output)\n",
                    default_path);
+    cli_live_free(&live);
     cli_ani_free(&ani);
     dyn_mech_scene_free(mech);
     cli_view_free(&v);

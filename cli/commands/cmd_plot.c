@@ -29,12 +29,18 @@ static void plot_help(void)
          "                       step), repeatable, e.g. --compare euler --compare rk4:0.001\n"
          "  --title TEXT         the title (default: the model and the runs)\n"
          "  -o, --output FILE    the SVG file (default: standard output)\n"
+         "  --live               a live page (--output FILE.html) instead of the SVG: the\n"
+         "                       --y columns against --x, rerun in the page as the sliders\n"
+         "                       of the parameters and initial values move (as animate\n"
+         "                       --live; static, with a warning, without the WebAssembly\n"
+         "                       library)\n"
          "A long run is thinned to at most 2000 samples per line (first and last kept).\n"
          "\n"
          "Examples:\n"
          "  dynkit plot vanderpol --y y1,y2 --output vdp.svg\n"
          "  dynkit plot vanderpol --x y1 --y y2 --compare euler --compare heun --output phase.svg\n"
          "  dynkit plot pendulum --tspan 0:10 --step 0.01 --method rk4 --y energy --output e.svg\n"
+         "  dynkit plot vanderpol --x y1 --y y2 --live --output vdp-live.html\n"
          "\n"
          "A Poincare section (--section SPEC, or a model file's @ poimap) draws its crossings\n"
          "as dots; --return-map draws one --y NAME's crossings NAME_n against NAME_n+1 with\n"
@@ -154,9 +160,12 @@ int cli_cmd_plot(int argc, char **argv)
         fprintf(stderr, "dynkit: error: out of memory\n");
         return CLI_FAILED;
     }
+    int live = 0;
     for (int i = 0; i < argc; i++)
         if (i > 0 && cli_flag(argv[i], "return-map"))
             return_map = 1;
+        else if (i > 0 && cli_flag(argv[i], "live"))
+            live = 1;
         else
             args[n_args++] = argv[i];
     int rc = cli_view_parse("plot", n_args, args, extra, values, &v);
@@ -178,12 +187,23 @@ int cli_cmd_plot(int argc, char **argv)
         rc = cli_usage_error("plot", "--return-map takes one --y NAME, not %d", n_y);
     if (rc == CLI_OK && values[1])
         rc = parse_names("x", values[1], m, &xcol, 1, &n_x);
-    static const char *const svg[] = {".svg", NULL};
+    if (rc == CLI_OK && live && (section || return_map))
+        rc = cli_usage_error("plot", "--live draws the run's samples: not with --section or "
+                                     "--return-map");
+    static const char *const svg[] = {".svg", NULL}, *const html[] = {".html", ".htm", NULL};
+    if (rc == CLI_OK && live && !v.run.output_path)
+        rc = cli_usage_error("plot", "--live writes a page: give --output FILE.html (or "
+                                     "--output - for standard output)");
     if (rc == CLI_OK)
-        rc = cli_out_check_extension("plot", "--output", v.run.output_path, svg);
+        rc = cli_out_check_extension("plot", "--output", v.run.output_path, live ? html : svg);
     int run_rc = rc == CLI_OK ? cli_view_record(&v) : rc;
     if (rc == CLI_OK && (run_rc == CLI_USAGE || v.n_series == 0))
         rc = run_rc;
+    if (live && rc == CLI_OK) {
+        rc = cli_live_plot_page("plot", argv[0], &v, xcol, ycols, n_y, run_rc);
+        cli_view_free(&v);
+        return rc;
+    }
     /* written to a temporary file renamed over --output at the end (out_file.h) */
     cli_out outf = {0};
     if (rc == CLI_OK)

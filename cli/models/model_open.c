@@ -26,6 +26,9 @@ static int n_loaded;
  * run: the C text defines the solver's constants */
 static unsigned char loaded_algebraic[MAX_LOADED];
 static char loaded_path[MAX_LOADED][1024]; /* the file each was loaded from */
+/* the C a model file was translated to (a live page compiles it again), NULL for C files */
+static char *loaded_c[MAX_LOADED];
+static char *pending_c; /* the translation of the model file being loaded */
 static int verbose;
 /* for the mechanism file opened next: the constraints need not hold at its initial state
  * (--project-init), and lines to read after the file's own (dynkit inverse --prescribe) */
@@ -41,8 +44,11 @@ int cli_verbose(void) { return verbose; }
 
 static void unload_all(void)
 {
-    while (n_loaded > 0)
+    while (n_loaded > 0) {
         dyn_jit_unload(&loaded[--n_loaded]);
+        free(loaded_c[n_loaded]);
+        loaded_c[n_loaded] = NULL;
+    }
 }
 
 /* Models built for a size the user chose (brusselator:N), freed at exit. */
@@ -179,6 +185,8 @@ static int keep_loaded(const dyn_jit_model *jm, int algebraic, const char *path,
         atexit(unload_all);
     loaded_algebraic[n_loaded] = (unsigned char)algebraic;
     snprintf(loaded_path[n_loaded], sizeof loaded_path[0], "%s", path);
+    loaded_c[n_loaded] = pending_c;
+    pending_c = NULL;
     loaded[n_loaded++] = *jm;
     *model = jm->model;
     if (jm->note[0]) /* libtcc instead of the compiler, a damaged cache entry replaced */
@@ -278,11 +286,23 @@ static int open_model_file(const char *spec, const dyn_model **model)
         rc = dyn_jit_load_source(c_source, c_len,
                                  spec, ends_with(spec, ".mech") ? cli_mech_jit_opts(c_len) : NULL,
                                  &jm, err, sizeof err);
-        free(c_source);
+        free(pending_c);
+        pending_c = c_source;
     }
-    if (rc != 0)
+    if (rc != 0) {
+        free(pending_c);
+        pending_c = NULL;
         return compile_failed("compiling model", spec, err);
+    }
     return keep_loaded(&jm, algebraic, spec, model);
+}
+
+const char *cli_model_c_source(const dyn_model *m)
+{
+    for (int i = 0; i < n_loaded; i++)
+        if (loaded[i].model == m)
+            return loaded_c[i];
+    return NULL;
 }
 
 int cli_model_has_algebraic(const dyn_model *m)

@@ -23,12 +23,18 @@ static int ends_with(const char *s, const char *suffix)
     return n >= m && strcmp(s + n - m, suffix) == 0;
 }
 
-/* Every asset whose name ends with suffix, in the build's order. */
+static int allow_wasm;
+
+void cli_html_page_allow_wasm(int on) { allow_wasm = on; }
+
+/* Every asset whose name ends with suffix, in the build's order; the script of live pages
+ * (js/live.js) only in them. */
 static int write_assets(FILE *out, const char *suffix)
 {
     int bad = 0;
     for (int i = 0; i < cli_web_asset_count; i++)
-        if (ends_with(cli_web_assets[i].name, suffix)) {
+        if (ends_with(cli_web_assets[i].name, suffix) &&
+            (allow_wasm || strcmp(cli_web_assets[i].name, "js/live.js") != 0)) {
             bad |= fprintf(out, "\n/* %s */\n", cli_web_assets[i].name) < 0;
             bad |= fwrite(cli_web_assets[i].data, 1, cli_web_assets[i].size, out) !=
                    cli_web_assets[i].size;
@@ -65,6 +71,9 @@ int cli_html_page_write(FILE *out, const char *title, const char *body_asset, cl
             bad |= write_assets(out, ".css");
         } else if (len == 6 && strncmp(name, "script", 6) == 0) {
             bad |= write_assets(out, ".js");
+        } else if (len == 4 && strncmp(name, "wasm", 4) == 0) {
+            if (allow_wasm)
+                bad |= fputs(" 'wasm-unsafe-eval'", out) < 0;
         } else if (len == 4 && strncmp(name, "body", 4) == 0) {
             bad |= fwrite(body->data, 1, body->size, out) != body->size;
         } else if (len == 4 && strncmp(name, "data", 4) == 0) {

@@ -126,6 +126,33 @@ void cli_json_model(cli_json *j, const dyn_model *m, const void *par);
  * column by column. */
 void cli_json_series(cli_json *j, const dyn_model *m, const cli_series *s);
 
+/* Let the next pages compile WebAssembly ('wasm-unsafe-eval' in their Content Security
+ * Policy: a live page's module; no other code is evaluated). */
+void cli_html_page_allow_wasm(int on);
+
+/* ---- live pages (live_page.c; docs/web.md, "Live pages") ---- */
+
+/* The model compiled to WebAssembly for a page, or why not. */
+typedef struct cli_live {
+    unsigned char *module; /* the .wasm (size bytes), NULL when the page cannot be live */
+    size_t size;
+    char why[1024];        /* when module is NULL: why, and what to install */
+} cli_live;
+/* Compile model m (its C, with the core library for wasm32) into out: 0, or -1 with
+ * out->why. Nothing is printed. */
+int cli_live_build(const dyn_model *m, cli_live *out);
+void cli_live_free(cli_live *live);
+/* The page's "live" object: the module (base64), the model as given on the command line
+ * (spec), the run's settings, the parameters and initial values with their defaults, the
+ * methods offered and the --compare runs. 0 or non-zero. */
+int cli_json_live(cli_json *j, const cli_live *live, const cli_view *v, const char *spec);
+/* dynkit plot MODEL --live: the animate page of v's runs with the plots of the columns
+ * ycols (n_y) against xcol (0: t; else an x-y picture), live when the model compiles
+ * (cli_live_build; else static, with a warning), written to v->run.output_path. run_rc:
+ * the status of the runs, returned when the page was written. */
+int cli_live_plot_page(const char *command, const char *spec, cli_view *v, int xcol,
+                       const int *ycols, int n_y, int run_rc);
+
 /* ---- standalone SVG plots (svg_plot.c) ---- */
 
 #define CLI_SVG_MAX_LINES 32

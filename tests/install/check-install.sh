@@ -103,5 +103,15 @@ print(c.tool(), t.columns[-1], len(t))")
     echo "the installed Python package's sweep: '$found'"; exit 1; }
   echo "install check: the Python package runs the installed tool ($found)"
 fi
+# live pages: the WebAssembly library installed beside the tool makes the page live
+for wasm in "$prefix"/lib*/dynkit/wasm32 "$prefix"/lib/*/dynkit/wasm32; do
+  [ -f "$wasm/libdynkit.a" ] || continue
+  (cd "$work" && "$prefix/bin/dynkit" animate vanderpol --live -o live.html 2>"$work/live.err")
+  if grep -q "not live" "$work/live.err" || ! grep -q '"module":"AGFzbQ' "$work/live.html"; then
+    echo "the installed dynkit wrote no live page: $(cat "$work/live.err")"; exit 1
+  fi
+  echo "install check: dynkit animate --live finds $wasm"
+  break
+done
 echo "install check: find_package (dynkit::dynkit, dynkit::sweep, dynkit::lang, dynkit::jit)" \
   "and pkg-config (dynkit, dynkit-sweep, dynkit-lang, dynkit-jit) work"

@@ -41,7 +41,10 @@
     const rate = unit === 's' && t1 - t0 <= 60 ? 1 : (t1 - t0) / 20;
     const player = new DK.Player(document.getElementById('player'), { t0, t1, times: runs[0].t, label: model.name, watch: document.querySelector('.stage'), unit, rate });
     const view = document.getElementById('view');
-    const kind = data.mech ? 'mech' : pictureOf(model, params);
+    /* dynkit plot --live: the columns asked for, against t or in an x-y picture */
+    const chosen = data.plot;
+    const xy = chosen && chosen.x !== 't' ? [chosen.x, chosen.y[0]] : null;
+    const kind = chosen ? (xy ? 'phase' : null) : data.mech ? 'mech' : pictureOf(model, params);
     /* an XPPAUT animation of the model file (NAME.ani): first, beside the model's other
      * picture on a wide screen, above it on a narrow one */
     const hasAni = !!(data.ani && data.ani.prims.length);
@@ -64,11 +67,11 @@
     else if (kind === 'phase') {
       /* the model's own phase plane (a model file's @ xp=, yp=), or van der Pol's; equal
        * scales only when both axes are lengths in the same unit (a path in space) */
-      const [xn, yn] = model.phase || ['y1', 'y2'];
+      const [xn, yn] = xy || model.phase || ['y1', 'y2'];
       const ux = DK.unit(runs[0].raw, xn);
       const same = ux === DK.unit(runs[0].raw, yn) && DK.isLength(ux) && xn !== 't' && yn !== 't';
       const o = same ? { equal: true } : {};
-      const w = model.phase_window; /* XPPAUT's @ xlo, xhi, ylo, yhi */
+      const w = xy ? null : model.phase_window; /* XPPAUT's @ xlo, xhi, ylo, yhi */
       if (w && w[0]) o.xrange = w[0];
       if (w && w[1]) o.yrange = w[1];
       DK.PhaseView(view, runs, xn, yn, player, o);
@@ -77,7 +80,7 @@
     document.body.classList.toggle('no-picture', !kind && !hasAni);
     document.getElementById('hint').textContent = 'keys: space play/pause · ←/→ one sample · shift+←/→ one second · ↑/↓ speed · home/end · click a plot to jump there';
     const plots = document.getElementById('plots');
-    const names = model.states.map(s => s.name).concat(model.outputs.map(s => s.name));
+    const names = chosen ? chosen.y : model.states.map(s => s.name).concat(model.outputs.map(s => s.name));
     for (const name of names) {
       const cell = DK.el('div', { class: 'plot-cell' });
       plots.appendChild(cell);

@@ -9,6 +9,7 @@
       if (data.kind === 'report') DK.buildReport(data);
       else if (data.kind === 'sweep') DK.buildSweep(data);
       else if (data.kind === 'phase') DK.buildPhase(data);
+      else if (data.live) DK.startLive(data);
       else DK.buildAnimate(data);
       document.body.dataset.ready = '1';
     } catch (e) {

@@ -302,6 +302,7 @@
 
     draw() {
       if (!this.w) return;
+      if (DK.heldDraws) { DK.heldDraws.add(this); return; } /* drawn once at DK.releaseDraws */
       const o = this.o;
       let xr = this.baseX, yr = this.baseY;
       if (o.viewport && this.t !== null) { const v = o.viewport(this.t); if (v) { xr = v[0]; yr = v[1]; } }
@@ -508,4 +509,13 @@
     return true;
   }
   DK.Plot = Plot;
+
+  /* Pages built again at once (a live page's rerun): each plot drawn once at the end, not at
+   * each step of its construction. */
+  DK.holdDraws = function () { DK.heldDraws = DK.heldDraws || new Set(); };
+  DK.releaseDraws = function () {
+    const held = DK.heldDraws;
+    DK.heldDraws = null;
+    if (held) for (const p of held) p.draw();
+  };
 })(window.DK);

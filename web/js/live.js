@@ -1,0 +1,355 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* dynkit page: live pages (`animate --live`) — the model compiled by the tool to
+ * WebAssembly (data.live.module, base64; its entry backends/wasm/live_run.c) runs in the
+ * page: a slider and a number box for every parameter and initial value, the method, step,
+ * tolerances and span; every change reruns the main run, the --compare runs and the
+ * trajectories started by a click in the phase plane, and redraws the animation page with
+ * them; the command line that reproduces the run and a CSV download of its samples. The
+ * hook window.dynkitLive (set, get, run) serves scripts and the browser tests.
+ * The module is compiled by the browser (the page's policy allows WebAssembly, no eval);
+ * every name and unit reaches the page as text only. docs/web.md, "Live pages". */
+'use strict';
+(function (DK) {
+  const MAX_ROWS = 2000;       /* samples a picture keeps (the tool's CLI_MAX_ROWS) */
+  const RUN_ROWS = 5000000;    /* samples a run may have at most */
+  const MAX_CLICKED = 6;       /* trajectories kept from clicks */
+  /* settings of dk_live_run (live_run.c's SET_*) */
+  const S = { t0: 0, t1: 1, step: 2, rtol: 3, atol: 4, end: 5, atSteps: 6, every: 7, maxRows: 8 };
+
+  function decode64(text) {
+    const bin = atob(text), out = new Uint8Array(bin.length);
+    for (let i = 0; i < bin.length; i++) out[i] = bin.charCodeAt(i);
+    return out;
+  }
+
+  /* The range of a slider around a value: [0, 2v] for a parameter v > 0 ([2v, 0] below 0),
+   * v +- max(|v|, 1) for an initial value, [-1, 1] around 0; widened to take a typed value. */
+  function rangeOf(v, isState) {
+    if (isState || v === 0) { const d = Math.max(Math.abs(v), 1); return [v - d, v + d]; }
+    return v > 0 ? [0, 2 * v] : [2 * v, 0];
+  }
+
+  /* A shell word: kept as it is when plain, else in single quotes. */
+  function shellWord(s) {
+    return /^[A-Za-z0-9_.,:=+\-/@%]+$/.test(s) ? s : "'" + s.replace(/'/g, "'\\''") + "'";
+  }
+
+  class Live {
+    constructor(data) {
+      this.data = data;
+      const L = this.L = data.live;
+      this.model = data.model;
+      this.params = L.params.map(p => ({ name: p.name, unit: p.unit, value: p.value, dflt: p.default }));
+      this.states = L.states.map(s => ({ name: s.name, unit: s.unit, value: s.value, dflt: s.default, given: s.value !== s.default }));
+      this.method = L.method;
+      this.adaptive = {};
+      this.methods = L.methods.map(m => m[0]);
+      for (const m of L.methods) this.adaptive[m[0]] = m[1];
+      this.t0 = L.t0; this.t1 = L.t1; this.step = L.step; this.rtol = L.rtol; this.atol = L.atol;
+      this.atSteps = !!L.at_steps;
+      this.clicked = [];
+      this.timing = {};
+      this.template = document.getElementById('animate').cloneNode(true); /* the body's own markup */
+      this.ready = this.instantiate();
+    }
+
+    async instantiate() {
+      /* a module linked by the tool for wasm32-wasi imports nothing; should one import the
+       * system interface, every call is refused (ENOSYS) */
+      const refuse = new Proxy({}, { get: () => () => 52 });
+      const { instance } = await WebAssembly.instantiate(decode64(this.L.module), { wasi_snapshot_preview1: refuse });
+      this.x = instance.exports;
+      if (this.x._initialize) this.x._initialize();
+      if (!this.x.dk_live_setup()) throw new Error('the model could not be set up (out of memory)');
+      this.cols = this.x.dk_live_cols();
+    }
+
+    /* One run of the module: {rows (Float64Array, cols per row), n, message, rhsCalls}. */
+    runOnce(method, step, inits) {
+      const x = this.x, mem = () => x.memory.buffer;
+      const set = new Float64Array(mem(), x.dk_live_settings(), 9);
+      set[S.t0] = this.t0; set[S.t1] = this.t1; set[S.step] = step;
+      set[S.rtol] = this.rtol; set[S.atol] = this.atol; set[S.end] = this.L.end === 'grid' ? 1 : 0;
+      set[S.atSteps] = this.atSteps && step === this.step ? 1 : 0; set[S.every] = this.L.every;
+      set[S.maxRows] = RUN_ROWS;
+      const name = new TextEncoder().encode(method);
+      const mbuf = new Uint8Array(mem(), x.dk_live_method(), 64);
+      mbuf.fill(0); mbuf.set(name.subarray(0, 63));
+      new Float64Array(mem(), x.dk_live_params(), Math.max(this.params.length, 1)).set(this.params.map(p => p.value).concat(this.params.length ? [] : [0]));
+      const iv = new Float64Array(mem(), x.dk_live_inits(), this.states.length);
+      const gv = new Float64Array(mem(), x.dk_live_given(), this.states.length);
+      this.states.forEach((s, i) => {
+        const own = inits && inits[s.name] !== undefined;
+        iv[i] = own ? inits[s.name] : s.value;
+        gv[i] = own || s.given ? 1 : 0;
+      });
+      const n = x.dk_live_run();
+      const rows = n > 0 ? new Float64Array(mem(), x.dk_live_rows(), n * this.cols).slice() : new Float64Array(0);
+      const mp = x.dk_live_message(), bytes = new Uint8Array(mem());
+      let e = mp; while (bytes[e]) e++;
+      return { rows, n: Math.max(n, 0), message: new TextDecoder().decode(bytes.subarray(mp, e)), rhsCalls: x.dk_live_rhs_calls() };
+    }
+
+    /* A run as the page's data (cli_json_series): its columns thinned to MAX_ROWS samples. */
+    asSeries(r, label, method, step) {
+      const m = this.model, cols = this.cols, n = r.n;
+      const names = ['t'].concat(m.states.map(s => s.name), m.outputs.map(s => s.name));
+      const units = [m.time_unit || 's'].concat(m.states.map(s => s.unit), m.outputs.map(s => s.unit));
+      const every = Math.max(1, Math.ceil(n / MAX_ROWS));
+      const keep = [];
+      for (let k = 0; k < n; k += every) keep.push(k);
+      if (n > 0 && keep[keep.length - 1] !== n - 1) keep.push(n - 1);
+      const data = names.map((_, c) => keep.map(k => r.rows[k * cols + c]));
+      return { label, method, method_title: '', map: false, step, samples: n, status: r.message ? 'stopped' : 'ok', message: r.message, columns: names, units, data };
+    }
+
+    label(method, step) {
+      const unit = this.model.time_unit || 's';
+      return this.adaptive[method] ? method + ', rtol ' + this.rtol + ', atol ' + this.atol : method + ', h = ' + step + ' ' + unit;
+    }
+
+    /* The main run, the --compare runs and the clicked trajectories; the page redrawn. */
+    rerun() {
+      const t0 = performance.now();
+      const main = this.runOnce(this.method, this.step);
+      this.last = main;
+      const runs = [this.asSeries(main, this.label(this.method, this.step), this.method, this.step)];
+      for (const c of this.L.compare) {
+        const step = c.step > 0 ? c.step : this.step;
+        runs.push(this.asSeries(this.runOnce(c.method, step), this.label(c.method, step), c.method, step));
+      }
+      const phase = this.phaseNames();
+      for (const p of this.clicked) {
+        const r = this.runOnce(this.method, this.step, p);
+        runs.push(this.asSeries(r, 'from ' + phase.map(nm => nm + ' = ' + DK.fmt(p[nm], 4)).join(', '), this.method, this.step));
+      }
+      const t1 = performance.now();
+      this.redraw(runs);
+      const t2 = performance.now();
+      this.timing = { run_ms: t1 - t0, draw_ms: t2 - t1, total_ms: t2 - t0, samples: main.n, rhs_calls: main.rhsCalls };
+      this.showStatus();
+      this.showCommand();
+      this.showStates();
+      return main;
+    }
+
+    /* The states of the phase plane, when both axes are states (else a click does nothing). */
+    phaseNames() {
+      const m = this.model, chosen = this.data.plot;
+      const names = chosen ? (chosen.x !== 't' ? [chosen.x, chosen.y[0]] : null) : m.phase || (m.name === 'vanderpol' ? ['y1', 'y2'] : null);
+      if (!names || !names.every(n => m.states.some(s => s.name === n))) return [];
+      return names;
+    }
+
+    redraw(runs) {
+      const old = this.player;
+      const t = old ? old.t : null, playing = old ? old.playing : true;
+      if (old) {
+        old.pause();
+        const i = DK.players.indexOf(old);
+        if (i >= 0) DK.players.splice(i, 1);
+      }
+      document.getElementById('animate').replaceWith(this.template.cloneNode(true));
+      /* the pictures the tool evaluated (a mechanism's scene, an .ani) belong to its run */
+      const data = Object.assign({}, this.data, { runs, span: [this.t0, this.t1], ani: null, mech: null, shows: this.data.mech || this.data.ani ? 'The mechanism\u2019s scene and the .ani animation show the run the page was written with; the live runs are drawn in the plots.' : this.data.shows });
+      DK.holdDraws();
+      try {
+        this.player = DK.buildAnimate(data);
+        if (t !== null) {
+          this.player.seek(Math.min(t, this.player.t1));
+          if (!playing) { this.player.touched = true; this.player.pause(); }
+        }
+      } finally {
+        DK.releaseDraws();
+      }
+      this.hookPhase();
+    }
+
+    /* A click in the phase plane starts a trajectory there (XPPAUT's initial conditions,
+     * mouse); the last MAX_CLICKED are kept. */
+    hookPhase() {
+      const names = this.phaseNames();
+      const canvas = document.querySelector('#view canvas.plot-canvas');
+      if (names.length !== 2 || !canvas || !canvas.dkPlot) return;
+      const plot = canvas.dkPlot;
+      canvas.style.cursor = 'crosshair';
+      canvas.title = 'click: a trajectory from there';
+      canvas.addEventListener('click', e => {
+        const r = canvas.getBoundingClientRect();
+        const px = e.clientX - r.left, py = e.clientY - r.top;
+        const pw = plot.w - plot.m.l - plot.m.r, ph = plot.h - plot.m.t - plot.m.b;
+        if (px < plot.m.l || px > plot.w - plot.m.r || py < plot.m.t || py > plot.h - plot.m.b) return;
+        const x = plot.xr[0] + (px - plot.m.l) / pw * (plot.xr[1] - plot.xr[0]);
+        const y = plot.yr[1] - (py - plot.m.t) / ph * (plot.yr[1] - plot.yr[0]);
+        this.clicked.push({ [names[0]]: x, [names[1]]: y });
+        if (this.clicked.length > MAX_CLICKED) this.clicked.shift();
+        this.clearButton.disabled = false;
+        this.rerun();
+      });
+    }
+
+    showStatus() {
+      const tm = this.timing;
+      this.status.textContent = 'live: ' + tm.samples + ' samples, ' + tm.rhs_calls + ' right-hand sides; run ' + tm.run_ms.toFixed(1) + ' ms, drawn in ' + tm.draw_ms.toFixed(1) + ' ms' + (this.last.message ? ' \u2014 ' + this.last.message : '');
+    }
+
+    /* The command line of the main run: the settings, the parameters that differ from the
+     * model's and the initial values given (dynkit run writes the same samples). */
+    command() {
+      const L = this.L, w = ['dynkit', 'run', shellWord(L.spec), '--method', this.method];
+      if (!(this.atSteps && this.step === L.step)) w.push('--step', String(this.step));
+      w.push('--tspan', String(this.t0) + ':' + String(this.t1));
+      if (this.adaptive[this.method]) w.push('--rtol', String(this.rtol), '--atol', String(this.atol));
+      if (L.end === 'grid') w.push('--end', 'grid');
+      if (L.every !== L.model_every) w.push('--every', String(L.every));
+      for (const p of this.params) if (!Object.is(p.value, p.dflt)) w.push('--set', shellWord(p.name + '=' + String(p.value)));
+      for (const s of this.states) if (s.given) w.push('--init', shellWord(s.name + '=' + String(s.value)));
+      w.push('-o', 'run.csv');
+      return w.join(' ');
+    }
+
+    showCommand() { this.commandText.textContent = this.command(); }
+
+    csv() {
+      const r = this.last, m = this.model, cols = 1 + m.states.length;
+      const lines = [['t'].concat(m.states.map(s => s.name)).join(',')];
+      for (let k = 0; k < r.n; k++) {
+        const row = [];
+        for (let c = 0; c < cols; c++) row.push(String(r.rows[k * this.cols + c]));
+        lines.push(row.join(','));
+      }
+      return lines.join('\n') + '\n';
+    }
+
+    /* A change from a control: rerun once per frame at most. */
+    changed() {
+      if (this.pending) return;
+      this.pending = true;
+      requestAnimationFrame(() => { this.pending = false; this.rerun(); });
+    }
+
+    /* One row: name [unit], a slider and a number box for a parameter or initial value. */
+    valueRow(item, isState) {
+      const E = DK.el;
+      let [lo, hi] = rangeOf(item.value, isState);
+      const slider = E('input', { type: 'range', min: lo, max: hi, step: 'any', value: item.value, 'aria-label': item.name });
+      const box = E('input', { type: 'number', step: 'any', value: String(item.value), 'aria-label': item.name + ' value' });
+      const apply = (v, from) => {
+        if (!isFinite(v)) return;
+        item.value = v;
+        if (isState) item.given = true;
+        if (v < lo || v > hi) { [lo, hi] = rangeOf(v, isState); slider.min = lo; slider.max = hi; }
+        if (from !== slider) slider.value = v;
+        if (from !== box) box.value = String(v);
+        this.changed();
+      };
+      slider.addEventListener('input', () => apply(Number(Number(slider.value).toPrecision(6)), slider));
+      box.addEventListener('change', () => apply(Number(box.value), box));
+      item.show = v => { slider.value = v; box.value = String(v); };
+      const label = E('span', { class: 'live-name', text: DK.label(item.name, item.unit === '1' ? '' : item.unit) });
+      return E('div', { class: 'live-row' }, [label, slider, box]);
+    }
+
+    buildControls() {
+      const E = DK.el;
+      const panel = E('section', { class: 'live', 'aria-label': 'live controls' });
+      panel.addEventListener('keydown', e => e.stopPropagation()); /* the player's keys stay outside */
+      const head = E('h2', { text: 'Live run' });
+      this.status = E('p', { class: 'muted live-status', text: 'live: starting\u2026' });
+      const select = E('select', { 'aria-label': 'method' });
+      for (const m of this.methods) select.appendChild(E('option', { value: m, text: m }));
+      select.value = this.method;
+      const num = (value, label, set) => {
+        const box = E('input', { type: 'number', step: 'any', value: String(value), 'aria-label': label });
+        box.addEventListener('change', () => { const v = Number(box.value); if (isFinite(v)) { set(v); this.changed(); } });
+        return E('label', { class: 'live-setting' }, [label + ' ', box]);
+      };
+      const tolerances = E('span', { class: 'live-tols' }, [
+        num(this.rtol, 'rtol', v => { this.rtol = v; }), num(this.atol, 'atol', v => { this.atol = v; })]);
+      const showTols = () => { tolerances.hidden = !this.adaptive[this.method]; };
+      select.addEventListener('change', () => { this.method = select.value; showTols(); this.changed(); });
+      showTols();
+      const settings = E('div', { class: 'live-settings' }, [
+        E('label', { class: 'live-setting' }, ['method ', select]),
+        num(this.step, 'step', v => { if (v > 0) this.step = v; }),
+        tolerances,
+        num(this.t0, 't0', v => { this.t0 = v; }),
+        num(this.t1, 't1', v => { this.t1 = v; })]);
+      const group = (title, items, isState) => E('div', { class: 'live-group' }, [E('h3', { text: title })].concat(items.map(it => this.valueRow(it, isState))));
+      this.commandText = E('code', { class: 'live-command' });
+      const copy = E('button', { type: 'button', text: 'copy', onclick: () => { if (navigator.clipboard) navigator.clipboard.writeText(this.command()).catch(() => {}); } });
+      const download = E('button', { type: 'button', text: 'CSV', title: 'the samples of the run (t and the states, as dynkit run writes them)', onclick: () => {
+        const url = URL.createObjectURL(new Blob([this.csv()], { type: 'text/csv' }));
+        const a = E('a', { href: url, download: (this.model.name || 'run').replace(/[^A-Za-z0-9_-]/g, '_') + '.csv' });
+        document.body.appendChild(a); a.click(); a.remove();
+        setTimeout(() => URL.revokeObjectURL(url), 1000);
+      } });
+      this.clearButton = E('button', { type: 'button', text: 'clear trajectories', disabled: 'disabled', onclick: () => { this.clicked = []; this.clearButton.disabled = true; this.rerun(); } });
+      const tools = E('div', { class: 'live-tools' }, [download].concat(this.phaseNames().length ? [this.clearButton] : []));
+      panel.appendChild(head);
+      panel.appendChild(this.status);
+      panel.appendChild(settings);
+      panel.appendChild(group('Parameters', this.params, false));
+      panel.appendChild(group('Initial values', this.states, true));
+      panel.appendChild(E('div', { class: 'live-cli' }, [this.commandText, copy]));
+      panel.appendChild(tools);
+      const main = document.getElementById('animate');
+      main.parentNode.insertBefore(panel, main);
+    }
+
+    /* The states that follow the parameters show their values at t0 after a run. */
+    showStates() {
+      const r = this.last;
+      if (!r || r.n < 1) return;
+      this.states.forEach((s, i) => { if (!s.given && s.show) { s.value = r.rows[1 + i]; s.show(s.value); } });
+    }
+  }
+
+  DK.startLive = function (data) {
+    const live = new Live(data);
+    live.player = DK.buildAnimate(data); /* the tool's run, until the module runs */
+    live.buildControls();
+    const find = name => live.params.find(p => p.name === name) || live.states.find(s => s.name === name);
+    window.dynkitLive = {
+      ready: live.ready,
+      /* a parameter or an initial value (as its slider does); else a setting: method, step,
+       * t0, t1, rtol, atol */
+      set(name, value) {
+        const it = find(name);
+        if (it) {
+          it.value = Number(value);
+          if (live.states.includes(it)) it.given = true;
+          if (it.show) it.show(it.value);
+        } else if (name === 'method') live.method = String(value);
+        else if (['step', 't0', 't1', 'rtol', 'atol'].includes(name)) live[name] = Number(value);
+        else throw new Error('no parameter, initial value or setting ' + name);
+      },
+      get(name) { const it = find(name); return it ? it.value : live[name]; },
+      /* rerun with the current settings and redraw: {names, t, y} of the main run */
+      async run() {
+        await live.ready;
+        const r = live.rerun();
+        const names = live.model.states.map(s => s.name), n = names.length, t = [], y = [];
+        for (let k = 0; k < r.n; k++) {
+          t.push(r.rows[k * live.cols]);
+          y.push(Array.from(r.rows.subarray(k * live.cols + 1, k * live.cols + 1 + n)));
+        }
+        return { names, t, y, message: r.message };
+      },
+      command: () => live.command(),
+      csv: () => live.csv(),
+      timing: () => Object.assign({}, live.timing),
+      clicked: () => live.clicked.map(p => Object.assign({}, p))
+    };
+    live.ready.then(() => {
+      live.rerun();
+      document.body.dataset.live = 'ready';
+    }).catch(e => {
+      live.status.textContent = 'This page could not run the model: ' + e;
+      live.status.className = 'error';
+      document.body.dataset.live = 'failed';
+      console.error(e);
+    });
+    return live.player;
+  };
+})(window.DK);

@@ -206,3 +206,19 @@ void cli_json_series(cli_json *j, const dyn_model *m, const cli_series *s)
     cli_json_end_array(j);
     cli_json_end_object(j);
 }
+
+void cli_json_animate_runs(cli_json *j, const cli_view *v)
+{
+    cli_json_key(j, "kind");
+    cli_json_string(j, "animate");
+    cli_json_key(j, "model");
+    cli_json_model(j, v->run.model, v->run.par);
+    cli_json_key(j, "span");
+    const double span[2] = {v->run.t0, v->run.t1};
+    cli_json_numbers(j, span, 2, 1);
+    cli_json_key(j, "runs");
+    cli_json_begin_array(j);
+    for (int k = 0; k < v->n_series; k++)
+        cli_json_series(j, v->run.model, &v->series[k]);
+    cli_json_end_array(j);
+}

@@ -23,18 +23,7 @@ static int page_data(cli_json *j, void *ctx)
     const cli_view *v = pg->v;
     const dyn_model *m = v->run.model;
     cli_json_begin_object(j);
-    cli_json_key(j, "kind");
-    cli_json_string(j, "animate");
-    cli_json_key(j, "model");
-    cli_json_model(j, m, v->run.par);
-    cli_json_key(j, "span");
-    const double span[2] = {v->run.t0, v->run.t1};
-    cli_json_numbers(j, span, 2, 1);
-    cli_json_key(j, "runs");
-    cli_json_begin_array(j);
-    for (int k = 0; k < v->n_series; k++)
-        cli_json_series(j, m, &v->series[k]);
-    cli_json_end_array(j);
+    cli_json_animate_runs(j, v);
     cli_json_key(j, "plot"); /* what the page draws: x, and the columns y */
     cli_json_begin_object(j);
     cli_json_key(j, "x");

@@ -153,6 +153,10 @@ int cli_json_live(cli_json *j, const cli_live *live, const cli_view *v, const ch
 int cli_live_plot_page(const char *command, const char *spec, cli_view *v, int xcol,
                        const int *ycols, int n_y, int run_rc);
 
+/* The members of an animate page's data that every such page has: its kind, the model, the
+ * span and the recorded runs of v (the caller opens and closes the object). */
+void cli_json_animate_runs(cli_json *j, const cli_view *v);
+
 /* ---- standalone SVG plots (svg_plot.c) ---- */
 
 #define CLI_SVG_MAX_LINES 32

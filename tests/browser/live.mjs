@@ -160,6 +160,28 @@ for (const p of pages.filter(q => !q.failed)) {
   }
   timings[p.name] = { page_bytes: size };
 
+  // a click in the phase plane (the page as it opened): a trajectory that starts there
+  if (p.phase) {
+    const box = await page.evaluate(() => {
+      const c = document.querySelector('#view canvas.plot-canvas'), r = c.getBoundingClientRect(), P = c.dkPlot;
+      return { x: r.left, y: r.top, l: P.m.l, t: P.m.t, w: P.w - P.m.l - P.m.r, h: P.h - P.m.t - P.m.b };
+    });
+    const cx = box.x + box.l + 0.3 * box.w, cy = box.y + box.t + 0.7 * box.h;
+    const nBefore = await page.evaluate(() => document.querySelector('#view canvas.plot-canvas').dkPlot.o.series.length);
+    await page.mouse.click(cx, cy);
+    await page.waitForTimeout(200);
+    const after = await page.evaluate(() => {
+      const c = document.querySelector('#view canvas.plot-canvas'), P = c.dkPlot, r = c.getBoundingClientRect();
+      const s = P.o.series[P.o.series.length - 1];
+      return { n: P.o.series.length, x0: r.left + P.px(s.x[0]), y0: r.top + P.py(s.y[0]), label: s.label, clicked: window.dynkitLive.clicked() };
+    });
+    check(after.n === nBefore + 1 && after.clicked.length === 1, `a click adds a trajectory (${nBefore} -> ${after.n} series: ${after.label})`);
+    check(Math.abs(after.x0 - cx) <= 1.5 && Math.abs(after.y0 - cy) <= 1.5, `it starts where the click was (${after.x0.toFixed(1)}, ${after.y0.toFixed(1)} against ${cx.toFixed(1)}, ${cy.toFixed(1)})`);
+    await page.getByRole('button', { name: 'clear trajectories' }).click();
+    await page.waitForTimeout(100);
+    check(await page.evaluate(() => document.querySelector('#view canvas.plot-canvas').dkPlot.o.series.length) === nBefore, 'clear removes it');
+  }
+
   // the numbers against dynkit run, with the page's own command line
   for (const [k, v] of Object.entries(p.set)) await page.evaluate(([k, v]) => window.dynkitLive.set(k, v), [k, v]);
   const out = await page.evaluate(async () => { const r = await window.dynkitLive.run(); return { r, cmd: window.dynkitLive.command() }; });
@@ -247,28 +269,6 @@ for (const p of pages.filter(q => !q.failed)) {
     const cmdAfter = await page.evaluate(() => window.dynkitLive.command());
     check(cmdAfter !== cmdBefore && new RegExp(`--set ${p.slider}=`).test(cmdAfter), `moving the ${p.slider} slider changes the command line: ${cmdAfter}`);
     check(inkAfter !== inkBefore, 'moving the slider changes the plotted curves');
-  }
-
-  // a click in the phase plane: a trajectory that starts there
-  if (p.phase) {
-    const box = await page.evaluate(() => {
-      const c = document.querySelector('#view canvas.plot-canvas'), r = c.getBoundingClientRect(), P = c.dkPlot;
-      return { x: r.left, y: r.top, l: P.m.l, t: P.m.t, w: P.w - P.m.l - P.m.r, h: P.h - P.m.t - P.m.b };
-    });
-    const cx = box.x + box.l + 0.3 * box.w, cy = box.y + box.t + 0.7 * box.h;
-    const nBefore = await page.evaluate(() => document.querySelector('#view canvas.plot-canvas').dkPlot.o.series.length);
-    await page.mouse.click(cx, cy);
-    await page.waitForTimeout(200);
-    const after = await page.evaluate(() => {
-      const c = document.querySelector('#view canvas.plot-canvas'), P = c.dkPlot, r = c.getBoundingClientRect();
-      const s = P.o.series[P.o.series.length - 1];
-      return { n: P.o.series.length, x0: r.left + P.px(s.x[0]), y0: r.top + P.py(s.y[0]), label: s.label, clicked: window.dynkitLive.clicked() };
-    });
-    check(after.n === nBefore + 1 && after.clicked.length === 1, `a click adds a trajectory (${nBefore} -> ${after.n} series: ${after.label})`);
-    check(Math.abs(after.x0 - cx) <= 1.5 && Math.abs(after.y0 - cy) <= 1.5, `it starts where the click was (${after.x0.toFixed(1)}, ${after.y0.toFixed(1)} against ${cx.toFixed(1)}, ${cy.toFixed(1)})`);
-    await page.getByRole('button', { name: 'clear trajectories' }).click();
-    await page.waitForTimeout(100);
-    check(await page.evaluate(() => document.querySelector('#view canvas.plot-canvas').dkPlot.o.series.length) === nBefore, 'clear removes it');
   }
 
   if (p.hostile) {

@@ -108,8 +108,10 @@
       return this.adaptive[method] ? method + ', rtol ' + this.rtol + ', atol ' + this.atol : method + ', h = ' + step + ' ' + unit;
     }
 
-    /* The main run, the --compare runs and the clicked trajectories; the page redrawn. */
-    rerun() {
+    /* The main run, the --compare runs and the clicked trajectories; the page redrawn
+     * (draw false: the first run, of the settings the tool's runs on the page were made
+     * with, which keeps its pictures: a mechanism's scene, an .ani animation). */
+    rerun(draw = true) {
       const t0 = performance.now();
       const main = this.runOnce(this.method, this.step);
       this.last = main;
@@ -124,7 +126,7 @@
         runs.push(this.asSeries(r, 'from ' + phase.map(nm => nm + ' = ' + DK.fmt(p[nm], 4)).join(', '), this.method, this.step));
       }
       const t1 = performance.now();
-      this.redraw(runs);
+      if (draw) this.redraw(runs);
       const t2 = performance.now();
       this.timing = { run_ms: t1 - t0, draw_ms: t2 - t1, total_ms: t2 - t0, samples: main.n, rhs_calls: main.rhsCalls };
       this.showStatus();
@@ -342,7 +344,8 @@
       clicked: () => live.clicked.map(p => Object.assign({}, p))
     };
     live.ready.then(() => {
-      live.rerun();
+      live.rerun(false);
+      live.hookPhase();
       document.body.dataset.live = 'ready';
     }).catch(e => {
       live.status.textContent = 'This page could not run the model: ' + e;

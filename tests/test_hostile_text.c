@@ -7,12 +7,13 @@
  *   escapes), nothing that ends a <script> element ("</script", "<!--"), and U+FFFD for
  *   bytes that are not UTF-8 or characters XML does not allow;
  * - every SVG written from hostile names (<script>, "><img onerror=...>, ]]>, </script>,
- *   control bytes, invalid UTF-8) parses as XML with no script element or event attribute,
- *   and the names come back intact as text (tests/markup/markup_check.py, Python's
- *   xml.etree);
- * - every page written from them has as many script elements as one written from plain
- *   names, no img element, and its data parses as JSON giving the names back (Python's
- *   html.parser, which splits script data where a browser does);
+ *   control bytes, invalid UTF-8; plots and a bifurcation diagram) parses as XML with no
+ *   script element or event attribute, and the names come back intact as text
+ *   (tests/markup/markup_check.py, Python's xml.etree);
+ * - every page written from them (animations, a bifurcation diagram) has as many script
+ *   elements as one written from plain names, no img element, and its data parses as JSON
+ *   giving the names back (Python's html.parser, which splits script data where a browser
+ *   does);
  * - the pages' scripts never parse a string as HTML. */
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
@@ -214,6 +215,25 @@ static void test_model_text_is_text_in_plots_and_pages(void **state)
     static const char *const page[] = {"dynkit animate q&x'", TITLE, UNIT, STATE_DOC, PAR_UNIT,
                                        ANI_TEXT, NULL};
     assert_int_equal(markup_check("model.html", page), scripts);
+
+    /* a bifurcation diagram with a periodic branch (the Hopf normal form), as SVG and page */
+    write_text("h&p'.ode", "#: title " TITLE "\n"
+                           "#: x [" UNIT "] " STATE_DOC "\n"
+                           "#: p [" PAR_UNIT "] ]]>\n"
+                           "par p=-0.5\ninit x=0, y=0\n"
+                           "x'=p*x-y-x*(x^2+y^2)\ny'=x+p*y-y*(x^2+y^2)\n"
+                           "@ parmin=-1, parmax=1\ndone\n");
+    r = cli_in_tmpdir("continue \"h&p'.ode\" --par p --output diagram.svg");
+    CHECK(r.status == 0, "%s", r.err);
+    cli_free(&r);
+    static const char *const diagram_svg[] = {"x [" UNIT "]", "p [" PAR_UNIT "]", "h&p'", NULL};
+    assert_int_equal(markup_check("diagram.svg", diagram_svg), 0);
+    r = cli_in_tmpdir("continue \"h&p'.ode\" --par p --output diagram.html");
+    CHECK(r.status == 0, "%s", r.err);
+    cli_free(&r);
+    static const char *const diagram_page[] = {"dynkit continue h&p': p", TITLE, UNIT, PAR_UNIT,
+                                               NULL};
+    assert_int_equal(markup_check("diagram.html", diagram_page), scripts);
 }
 
 /* The pages' scripts put text into the page only as text: none of them parses a string as

@@ -1,9 +1,11 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit continue MODEL --par NAME [--par2 NAME] [--init/--set ...] [--at NAME=V1,...]
- * [--opt NAME=VALUE] [--output FILE.csv] [--json] [--svg FILE]: the bifurcation diagram of a
- * model (dyn_continue, dynkit/continuation.h) with XPPAUT's AUTO settings from the model
- * file's @ lines, written as a summary of the special points, a CSV table of every point,
- * JSON, and an SVG picture (cont_output.c). docs/analysis.md, "Continuation". */
+ * [--opt NAME=VALUE] [--output FILE.csv|.json|.svg|.html] [--json] [--svg FILE]
+ * [--html FILE]: the bifurcation diagram of a model (dyn_continue, dynkit/continuation.h)
+ * with XPPAUT's AUTO settings from the model file's @ lines, written as a summary of the
+ * special points, a CSV table of every point, JSON, an SVG picture and a page that shows
+ * the periodic orbits (cont_output.c, cont_svg.c, cont_page.c). docs/analysis.md,
+ * "Continuation". */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,8 +23,8 @@ static void continue_help(void)
 {
     puts("Usage: dynkit continue MODEL --par NAME [--par2 NAME] [--init NAME=VALUE]...\n"
          "                       [--set NAME=VALUE]... [--at NAME=V1,V2,...]\n"
-         "                       [--opt NAME=VALUE]... [--output FILE.csv|FILE.json]\n"
-         "                       [--json] [--svg FILE.svg] [--y NAME]\n"
+         "                       [--opt NAME=VALUE]... [--output FILE]\n"
+         "                       [--json] [--svg FILE.svg] [--html FILE.html] [--y NAME]\n"
          "                       [--unknown NAME,...] [--cyclic NAME,...]\n"
          "\n"
          "Follows the equilibria f(x, p) = 0 of MODEL in the parameter NAME by pseudo-\n"
@@ -63,7 +65,10 @@ static void continue_help(void)
          "  -o, --output FILE    .csv: one row per point: branch, kind, label, the\n"
          "                       parameter(s), the states, min_ of each state (periodic\n"
          "                       orbits: maxima in the state's column, minima in min_),\n"
-         "                       period, stable; .json: as --json; '-': CSV on stdout\n"
+         "                       period, stable; .json: as --json; .svg: as --svg;\n"
+         "                       .html: as --html; '-': CSV on stdout ('-.json', '-.svg',\n"
+         "                       '-.html': that format). With a file, nothing is printed\n"
+         "                       on standard output\n"
          "  --json               everything as JSON on standard output, with the\n"
          "                       eigenvalues (or Floquet multipliers) of each point\n"
          "  --unknown NAME,...   a mechanism's steady motion: the states solved for\n"
@@ -72,8 +77,14 @@ static void continue_help(void)
          "  --cyclic NAME,...    a mechanism's cyclic states (default: found as by steady)\n"
          "  --svg FILE           the diagram: the parameter against a state (--y NAME;\n"
          "                       default the first state), stable solid, unstable dashed,\n"
-         "                       the special points labelled; with --par2 a second panel\n"
-         "                       shows the curves in the two parameters\n"
+         "                       periodic orbits by their maximum and minimum, the special\n"
+         "                       points labelled, axes with units; with --par2 a second\n"
+         "                       panel shows the curves in the two parameters\n"
+         "  --html FILE          the diagram as a self-contained page: clicking a dot of a\n"
+         "                       periodic branch shows that orbit over one period and in\n"
+         "                       the plane of two states\n"
+         "\n"
+         "Without --output, --json, --svg and --html the special points are printed.\n"
          "\n"
          "Examples:\n"
          "  dynkit continue examples/models/lorenz.ode --par rho --init x=8.5 --init y=8.5 \\\n"
@@ -81,12 +92,13 @@ static void continue_help(void)
          "      --opt parmax=40\n"
          "  dynkit continue examples/models/brusselator.ode --par b --opt parmax=4 \\\n"
          "      --output bru.csv\n"
+         "  dynkit continue examples/models/brusselator.ode --par b --output bru.html\n"
          "  dynkit continue examples/mechanisms/bicycle.mech --par v --set v=3 \\\n"
          "      --opt parmax=10");
 }
 
 typedef struct cont_args {
-    const char *par, *par2, *at, *output, *svg, *ynam, *scheme_text, *unknown, *cyclic;
+    const char *par, *par2, *at, *output, *svg, *html, *ynam, *scheme_text, *unknown, *cyclic;
     int json;
     const char *opt[64];
     int n_opt;
@@ -99,7 +111,7 @@ static int parse_args(int argc, char **argv, char **pass, int *n_pass, cont_args
     static const char *const options[] = {"--init", "--set",    "--par",      "--par2",
                                           "--at",   "--output", "--svg",      "--y",
                                           "--opt",  "--json",   "--jacobian", "--unknown",
-                                          "--cyclic"};
+                                          "--cyclic", "--html"};
     pass[(*n_pass)++] = argv[0];
     for (int i = 1; i < argc; i++) {
         const char *v = NULL;
@@ -116,10 +128,11 @@ static int parse_args(int argc, char **argv, char **pass, int *n_pass, cont_args
                 done = 1;
             }
         const char *own[] = {"par", "par2",     "at",      "output", "svg",
-                             "y",   "opt",      "jacobian", "unknown", "cyclic"};
+                             "y",   "opt",      "jacobian", "unknown", "cyclic", "html"};
         const char **dest[] = {&a->par, &a->par2,        &a->at,      &a->output, &a->svg,
-                               &a->ynam, NULL, &a->scheme_text, &a->unknown, &a->cyclic};
-        for (int k = 0; k < 10 && !done; k++)
+                               &a->ynam, NULL, &a->scheme_text, &a->unknown, &a->cyclic,
+                               &a->html};
+        for (int k = 0; k < 11 && !done; k++)
             if ((r = cli_option(argc, argv, &i, own[k], &v)) != 0) {
                 if (r < 0)
                     return cli_usage_error("continue", "option --%s needs a value", own[k]);
@@ -143,12 +156,12 @@ static int parse_args(int argc, char **argv, char **pass, int *n_pass, cont_args
         if (cli_flag(argv[i], "json"))
             a->json = 1;
         else
-            return cli_unknown_option("continue", argv[i], options, 13);
+            return cli_unknown_option("continue", argv[i], options, 14);
     }
     if (!a->par)
         return cli_usage_error("continue", "missing --par NAME (the parameter to continue in)");
     if (a->output && strcmp(a->output, "-") != 0) {
-        static const char *const exts[] = {".csv", ".json", NULL};
+        static const char *const exts[] = {".csv", ".json", ".svg", ".html", ".htm", NULL};
         if (cli_out_check_extension("continue", "--output", a->output, exts) != CLI_OK)
             return CLI_USAGE;
     }
@@ -157,7 +170,19 @@ static int parse_args(int argc, char **argv, char **pass, int *n_pass, cont_args
         if (cli_out_check_extension("continue", "--svg", a->svg, exts) != CLI_OK)
             return CLI_USAGE;
     }
+    if (a->html) {
+        static const char *const exts[] = {".html", ".htm", NULL};
+        if (cli_out_check_extension("continue", "--html", a->html, exts) != CLI_OK)
+            return CLI_USAGE;
+    }
     return CLI_OK;
+}
+
+/* 1 when a page is written: the periodic points then keep their orbits */
+static int wants_page(const cont_args *a)
+{
+    return a->html || (a->output && (cli_has_extension(a->output, ".html") ||
+                                     cli_has_extension(a->output, ".htm")));
 }
 
 static int param_arg(const dyn_model *m, const char *opt, const char *name, int *ip)
@@ -177,7 +202,7 @@ static int param_arg(const dyn_model *m, const char *opt, const char *name, int 
 /* the settings: defaults, the file's @ lines, --opt; par holds the start of --par */
 static int settings(const cont_args *a, const void *par, const dyn_model *m, cont_settings *s)
 {
-    char err[512];
+    char err[2048];
     for (int k = 0; k < 4; k++)
         s->window[k] = NAN;
     const char *path = cli_model_path(m);
@@ -186,7 +211,7 @@ static int settings(const cont_args *a, const void *par, const dyn_model *m, con
         char *text = cli_read_model_file(path, &len);
         if (!text)
             return CLI_USAGE;
-        const int bad = cont_settings_read_file(s, text, path, err, sizeof err);
+        const int bad = cont_settings_read_file(s, text, len, path, err, sizeof err);
         free(text);
         if (bad)
             return cli_usage_error("continue", "%s", err);
@@ -295,6 +320,7 @@ int cli_cmd_continue(int argc, char **argv)
     /* periodic orbits from the Hopf points, by collocation (dynkit/colloc.h) */
     s.opts.periodic = dyn_po_continue_hopf;
     s.opts.periodic_ctx = (void *)cli_eig_solver();
+    s.opts.orbits = wants_page(&a);
     dyn_diagram d;
     memset(&d, 0, sizeof d);
     dyn_cont_info info;
@@ -320,7 +346,7 @@ int cli_cmd_continue(int argc, char **argv)
     }
     if (rc == CLI_OK) {
         const cont_view v = {m, run.par, &d, &s, iy};
-        rc = cont_write_outputs(&v, a.output, a.json, a.svg);
+        rc = cont_write_outputs(&v, a.output, a.json, a.svg, a.html);
     }
     dyn_diagram_free(&d);
     free(at);

@@ -216,40 +216,58 @@ void cont_write_text(FILE *f, const cont_view *v)
     }
 }
 
+enum { OUT_CSV, OUT_JSON, OUT_SVG, OUT_HTML };
+
 static int write_to(const char *what, const char *path, const cont_view *v, int kind)
 {
     cli_out out;
-    const int to_stdout = !path || strcmp(path, "-") == 0;
-    int rc = cli_out_open(&out, what, to_stdout ? NULL : path);
+    int rc = cli_out_open(&out, what, path);
     if (rc != CLI_OK)
         return rc;
     int bad = 0;
-    if (kind == 0)
+    if (kind == OUT_CSV)
         cont_write_csv(out.f, v);
-    else if (kind == 1)
+    else if (kind == OUT_JSON)
         cont_write_json(out.f, v);
+    else if (kind == OUT_SVG)
+        bad = cont_write_svg(out.f, v, NULL);
     else
-        bad = cont_write_svg(out.f, v);
+        bad = cont_write_page(out.f, v) != CLI_OK;
     bad |= fflush(out.f) != 0 || ferror(out.f);
     if (out.f != stdout)
         return cli_out_close(&out, !bad);
     return bad ? CLI_FAILED : CLI_OK;
 }
 
-int cont_write_outputs(const cont_view *v, const char *output, int json, const char *svg)
+static int kind_of(const char *path)
+{
+    if (cli_has_extension(path, ".json"))
+        return OUT_JSON;
+    if (cli_has_extension(path, ".svg"))
+        return OUT_SVG;
+    if (cli_has_extension(path, ".html") || cli_has_extension(path, ".htm"))
+        return OUT_HTML;
+    return OUT_CSV;
+}
+
+int cont_write_outputs(const cont_view *v, const char *output, int json, const char *svg,
+                       const char *html)
 {
     int rc = CLI_OK;
-    const int out_stdout = output && strcmp(output, "-") == 0;
+    /* the summary only when nothing else is asked for, as the other commands print their
+     * table only without --output */
     if (json)
-        rc = write_to("--json", NULL, v, 1);
-    else if (!out_stdout) {
+        rc = write_to("--json", NULL, v, OUT_JSON);
+    else if (!output && !svg && !html) {
         cont_write_text(stdout, v);
         if (fflush(stdout))
             rc = CLI_FAILED;
     }
     if (rc == CLI_OK && output)
-        rc = write_to("--output", output, v, cli_has_extension(output, ".json") ? 1 : 0);
+        rc = write_to("--output", output, v, kind_of(output));
     if (rc == CLI_OK && svg)
-        rc = write_to("--svg", svg, v, 2);
+        rc = write_to("--svg", svg, v, OUT_SVG);
+    if (rc == CLI_OK && html)
+        rc = write_to("--html", html, v, OUT_HTML);
     return rc;
 }

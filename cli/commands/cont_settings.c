@@ -3,7 +3,8 @@
  * for dynkit continue (cont_settings.h). XPPAUT's manual, "AUTO" chapter, names them:
  * ntst, ncol (collocation mesh), nmax (points per branch), npr (print interval), ds,
  * dsmin, dsmax (arclength steps), parmin, parmax (the parameter's range), autoxmin..autoymax
- * (the diagram's window); names are case-insensitive, as XPPAUT reads them. */
+ * (the diagram's window); names are case-insensitive, as XPPAUT reads them. The file's
+ * @ lines are read by the model file's parser (dyn_ode_auto_options, dynkit/lang.h). */
 #include <ctype.h>
 #include <math.h>
 #include <stdio.h>
@@ -12,8 +13,9 @@
 
 #include "cli.h"
 #include "cont_settings.h"
+#include "dynkit/lang.h"
 
-const char *const cont_settings_names[] = {
+static const char *const cont_settings_names[] = {
     "ntst", "ncol", "nmax", "npr", "ds", "dsmin", "dsmax", "parmin", "parmax",
     "autoxmin", "autoxmax", "autoymin", "autoymax", "par2min", "par2max", NULL};
 
@@ -82,7 +84,7 @@ int cont_settings_apply(cont_settings *s, const char *name, const char *value, c
     } else {
         o->par2max = v;
     }
-    s->from[k] = where;
+    snprintf(s->from[k], sizeof s->from[k], "%s", where);
     return 0;
 }
 
@@ -90,7 +92,8 @@ int cont_settings_fit_start(cont_settings *s, double p0, const char *par, char *
                             size_t notelen, char *err, size_t errlen)
 {
     dyn_cont_opts *o = &s->opts;
-    const char *from_min = s->from[7], *from_max = s->from[8];
+    const char *from_min = s->from[7][0] ? s->from[7] : NULL;
+    const char *from_max = s->from[8][0] ? s->from[8] : NULL;
     if (note && notelen)
         note[0] = 0;
     if ((from_min && !(p0 >= o->parmin)) || (from_max && !(p0 <= o->parmax))) {
@@ -122,67 +125,34 @@ int cont_settings_fit_start(cont_settings *s, double p0, const char *par, char *
     return 0;
 }
 
-/* the name=value pairs of one @ line (text after the @) */
-static int read_line(cont_settings *s, const char *line, size_t len, const char *where,
-                     char *err, size_t errlen)
+typedef struct file_read {
+    cont_settings *s;
+    const char *path;
+    char *err;
+    size_t errlen;
+    int bad;
+} file_read;
+
+/* one setting of the file, as the model file's parser found it */
+static void from_file(const char *name, const char *value, int line, int col, void *ctx)
 {
-    char buf[1024];
-    size_t m = 0;
-    /* drop the blanks around '=' so that "ds = 0.01" reads as "ds=0.01" */
-    for (size_t i = 0; i < len && m + 1 < sizeof buf; i++) {
-        if (line[i] == ' ' || line[i] == '\t') {
-            size_t j = i;
-            while (j < len && (line[j] == ' ' || line[j] == '\t'))
-                j++;
-            if ((j < len && line[j] == '=') || (m > 0 && buf[m - 1] == '=')) {
-                i = j - 1;
-                continue;
-            }
-        }
-        buf[m++] = line[i];
-    }
-    buf[m] = 0;
-    for (char *tok = buf; *tok;) {
-        size_t l = strcspn(tok, ", \t\r");
-        const int last = tok[l] == 0;
-        tok[l] = 0;
-        char *eq = strchr(tok, '=');
-        if (eq) {
-            *eq = 0;
-            int known = 0;
-            for (int k = 0; cont_settings_names[k]; k++)
-                known |= same(cont_settings_names[k], tok);
-            if (known && cont_settings_apply(s, tok, eq + 1, where, err, errlen))
-                return -1;
-        }
-        tok += l + (last ? 0 : 1);
-    }
-    return 0;
+    file_read *r = ctx;
+    if (r->bad)
+        return;
+    char where[600];
+    snprintf(where, sizeof where, "%s:%d:%d", r->path, line, col);
+    r->bad = cont_settings_apply(r->s, name, value, where, r->err, r->errlen) != 0;
 }
 
-int cont_settings_read_file(cont_settings *s, const char *text, const char *path, char *err,
-                            size_t errlen)
+int cont_settings_read_file(cont_settings *s, const char *text, size_t len, const char *path,
+                            char *err, size_t errlen)
 {
-    long line = 0;
-    for (const char *p = text; *p;) {
-        const char *e = strchr(p, '\n');
-        const size_t len = e ? (size_t)(e - p) : strlen(p);
-        line++;
-        size_t i = 0;
-        while (i < len && (p[i] == ' ' || p[i] == '\t'))
-            i++;
-        if (i < len && p[i] == '@') {
-            /* the setting's origin lives as long as the settings: a static copy per line
-             * would not, so the file's name and the line are kept in a small pool */
-            static char where[16][300];
-            static int used = 0;
-            char *w = where[used % 16];
-            used++;
-            snprintf(w, sizeof where[0], "%s:%ld", path, line);
-            if (read_line(s, p + i + 1, len - i - 1, w, err, errlen))
-                return -1;
-        }
-        p += len + (e ? 1 : 0);
+    file_read r = {s, path, err, errlen, 0};
+    dyn_lang_diag diag;
+    if (dyn_ode_auto_options(path, text, len, from_file, &r, &diag)) {
+        char msg[2048];
+        snprintf(err, errlen, "%s", dyn_lang_diag_format(&diag, msg, sizeof msg));
+        return -1;
     }
-    return 0;
+    return r.bad ? -1 : 0;
 }

@@ -11,22 +11,20 @@
 typedef struct cont_settings {
     dyn_cont_opts opts;
     double window[4];     /* autoxmin, autoxmax, autoymin, autoymax (NAN: not given) */
-    const char *from[16]; /* where each setting came from, by cont_settings_names' order */
+    char from[16][320];   /* where each setting came from ("FILE:LINE:COL", "--opt"; "":
+                           * not given), by cont_settings.c's order of the names */
 } cont_settings;
 
-/* The names accepted, NULL-terminated. */
-extern const char *const cont_settings_names[];
-
-/* Apply NAME=VALUE (text) to s; where: "FILE:LINE" or "--opt" for messages. Returns 0, or
- * -1 with a message in err (unknown name, bad number). */
+/* Apply NAME=VALUE (text) to s; where: "FILE:LINE:COL" or "--opt" for messages. Returns
+ * 0, or -1 with a message in err (unknown name, bad number). */
 int cont_settings_apply(cont_settings *s, const char *name, const char *value, const char *where,
                         char *err, size_t errlen);
 
-/* Read the @ lines of the model file text (XPPAUT's options: NAME=VALUE separated by commas
- * or blanks) and apply the AUTO ones; other options are left to the model reader. path
- * names the file in messages. Returns 0, or -1 with "FILE:LINE: ..." in err. */
-int cont_settings_read_file(cont_settings *s, const char *text, const char *path, char *err,
-                            size_t errlen);
+/* The AUTO settings of the model file text (len bytes) applied to s, as the model file's
+ * parser reads its @ lines (dyn_ode_auto_options, dynkit/lang.h); path names the file in
+ * messages. Returns 0, or -1 with "FILE:LINE:COL: ..." in err. */
+int cont_settings_read_file(cont_settings *s, const char *text, size_t len, const char *path,
+                            char *err, size_t errlen);
 
 /* The window [parmin, parmax] made to contain the start p0 of the parameter named par: a
  * bound that neither the file's @ lines nor --opt gave (a default) and that excludes p0 is

@@ -2,9 +2,11 @@
 /* cont_svg.c — the bifurcation diagram of dynkit continue as SVG (cont_output.h): the
  * parameter against a state, each branch a polyline, solid where its points are stable and
  * dashed where not (periodic orbits by their maximum and minimum), the special points
- * marked and labelled (LP, HB, ...), within XPPAUT's autoxmin..autoymax window when the
- * file gives it; the curves of folds and Hopf points in the two parameters below. The
- * axes come from svg_axes.h. */
+ * marked and labelled (LP, HB, ...), axis names with their units, within XPPAUT's
+ * autoxmin..autoymax window when the file gives it; the curves of folds and Hopf points in
+ * the two parameters below. For the page (cont_page.c) the periodic points whose orbits it
+ * holds are dots that carry the orbit's number (data-orbit). The axes come from
+ * svg_axes.h. */
 #include <math.h>
 #include <string.h>
 
@@ -62,6 +64,30 @@ static int wanted(const dyn_branch *b, int curves)
     return curves ? b->n_par == 2 : b->n_par == 1;
 }
 
+/* "name [unit]", or the name alone without a unit */
+static const char *with_unit(const char *name, const char *unit, char *buf, size_t size)
+{
+    if (unit && *unit)
+        snprintf(buf, size, "%s [%s]", name, unit);
+    else
+        snprintf(buf, size, "%s", name);
+    return buf;
+}
+
+/* the line styles' key, left of the x axis's name */
+static int key(FILE *f)
+{
+    const double y = SH - 14, x = SL;
+    return fprintf(f, "<g font-size=\"11\" fill=\"#333\" stroke-width=\"1.6\">"
+                      "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#333\"/>"
+                      "<text x=\"%.1f\" y=\"%.1f\" stroke=\"none\">stable</text>"
+                      "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#333\" "
+                      "stroke-dasharray=\"5,4\"/>"
+                      "<text x=\"%.1f\" y=\"%.1f\" stroke=\"none\">unstable</text></g>\n",
+                   x, y - 4, x + 22, y - 4, x + 26, y, x + 70, y - 4, x + 92, y - 4, x + 96,
+                   y) < 0;
+}
+
 static int axes(FILE *f, const frame *r, const char *xl, const char *yl, const char *title)
 {
     int bad = svg_grid_begin(f);
@@ -86,7 +112,28 @@ static int axes(FILE *f, const frame *r, const char *xl, const char *yl, const c
     return bad;
 }
 
-static int panel(FILE *f, const cont_view *v, int curves)
+/* the dots of the periodic points whose orbits the page holds, at their maximum and minimum */
+static int orbit_dots(FILE *f, const cont_view *v, const frame *r, const cont_orbit_set *marks)
+{
+    int bad = fputs("<g class=\"dk-orbits\" fill-opacity=\"0.55\">\n", f) < 0;
+    for (long q = 0; q < marks->count; q++) {
+        const dyn_branch *b = &v->d->branches[marks->refs[q].branch];
+        const long k = marks->refs[q].point;
+        const double x = b->pts[k].par[0];
+        for (int lower = 0; lower < 2; lower++) {
+            const double y = yval(v, b, k, 0, lower);
+            if (!isfinite(x) || !isfinite(y) || x < r->xlo || x > r->xhi || y < r->ylo ||
+                y > r->yhi)
+                continue;
+            bad |= fprintf(f, "<circle class=\"dk-orbit\" data-orbit=\"%ld\" cx=\"%.2f\" "
+                              "cy=\"%.2f\" r=\"2.2\" fill=\"%s\"/>\n",
+                           q, px(r, x), py(r, y), colors[marks->refs[q].branch % 8]) < 0;
+        }
+    }
+    return bad | (fputs("</g>\n", f) < 0);
+}
+
+static int panel(FILE *f, const cont_view *v, int curves, const cont_orbit_set *marks)
 {
     const dyn_model *m = v->m;
     const dyn_cont_opts *o = &v->s->opts;
@@ -120,8 +167,14 @@ static int panel(FILE *f, const cont_view *v, int curves)
     char title[256];
     snprintf(title, sizeof title, curves ? "%s: folds and Hopf points" : "%s: bifurcation diagram",
              m->name);
-    int bad = axes(f, &r, m->params[o->ip].name,
-                   curves ? m->params[o->ip2].name : m->states[v->iy].name, title);
+    char xl[200], yl[200];
+    with_unit(m->params[o->ip].name, m->params[o->ip].unit, xl, sizeof xl);
+    if (curves)
+        with_unit(m->params[o->ip2].name, m->params[o->ip2].unit, yl, sizeof yl);
+    else
+        with_unit(m->states[v->iy].name, m->states[v->iy].unit, yl, sizeof yl);
+    int bad = axes(f, &r, xl, yl, title);
+    bad |= key(f);
     bad |= fprintf(f, "<defs><clipPath id=\"plot%d\"><rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" "
                       "height=\"%.1f\"/></clipPath></defs>\n<g clip-path=\"url(#plot%d)\" "
                       "fill=\"none\" stroke-width=\"1.6\">\n",
@@ -144,7 +197,10 @@ static int panel(FILE *f, const cont_view *v, int curves)
                                solid ? "" : " stroke-dasharray=\"5,4\"") < 0;
             }
     }
-    bad |= fputs("</g>\n<g font-size=\"11\">\n", f) < 0;
+    bad |= fputs("</g>\n", f) < 0;
+    if (!curves && marks)
+        bad |= orbit_dots(f, v, &r, marks);
+    bad |= fputs("<g font-size=\"11\">\n", f) < 0;
     for (int bi = 0; bi < v->d->count; bi++) {
         const dyn_branch *b = &v->d->branches[bi];
         if (!wanted(b, curves))
@@ -165,7 +221,7 @@ static int panel(FILE *f, const cont_view *v, int curves)
     return bad;
 }
 
-int cont_write_svg(FILE *f, const cont_view *v)
+int cont_write_svg(FILE *f, const cont_view *v, const cont_orbit_set *marks)
 {
     int curves = 0;
     for (int bi = 0; bi < v->d->count; bi++)
@@ -177,10 +233,10 @@ int cont_write_svg(FILE *f, const cont_view *v)
                       "viewBox=\"0 0 %.0f %.0f\" font-family=\"sans-serif\">\n"
                       "<rect width=\"100%%\" height=\"100%%\" fill=\"#fff\"/>\n",
                       SW, SH * panels, SW, SH * panels) < 0;
-    bad |= panel(f, v, 0);
+    bad |= panel(f, v, 0, marks);
     if (curves) {
         bad |= fprintf(f, "<g transform=\"translate(0,%.0f)\">\n", SH) < 0;
-        bad |= panel(f, v, 1);
+        bad |= panel(f, v, 1, NULL);
         bad |= fputs("</g>\n", f) < 0;
     }
     bad |= fputs("</svg>\n", f) < 0;

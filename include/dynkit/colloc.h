@@ -148,6 +148,8 @@ typedef struct dyn_po_opts {
     int adapt;               /* a new mesh every `adapt` points (0: 3, AUTO's IAD; < 0 never) */
     double tol;              /* Newton's tolerance (0: 1e-9) */
     const dyn_eig_solver *eig; /* Floquet multipliers; NULL: none, no LPC/PD/TR/stability */
+    int keep_orbits;         /* 1: every point keeps its orbit (else the labelled ones and
+                              * the first and last) */
 } dyn_po_opts;
 
 /* One point of a periodic branch. */
@@ -159,8 +161,9 @@ typedef struct dyn_po_point {
     int stable;       /* 1: the non-trivial multipliers inside the unit circle; 0: not;
                        * -1: unknown (no eigenvalue solver) */
     char label[4];    /* "", "LPC", "PD", "TR", "EP" (the branch's last point) */
-    dyn_colloc_sol orbit; /* kept for labelled points and the first and last (else empty):
-                           * u(t) on [0, 1], par[0] the period, par[1] the parameter */
+    dyn_colloc_sol orbit; /* kept for labelled points and the first and last (every point
+                           * with dyn_po_opts.keep_orbits; else empty): u(t) on [0, 1],
+                           * par[0] the period, par[1] the parameter */
 } dyn_po_point;
 
 typedef struct dyn_po_branch {
@@ -237,7 +240,8 @@ void dyn_bvp_result_free(dyn_bvp_result *r);
 /* dyn_cont_periodic_fn (dynkit/continuation.h) for dyn_cont_opts.periodic: from the Hopf
  * point `point` of branch `branch` of d, the periodic branch with o's ntst, ncol, ds, dsmin,
  * dsmax, nmax, parmin, parmax (each state's maximum in x, minimum in xmin, the Floquet
- * multipliers in eig, labels LPC, PD, TR, EP), then from its first period doubling the
+ * multipliers in eig, labels LPC, PD, TR, EP; with o->orbits each point's orbit at its
+ * collocation nodes in the branch's orbit array), then from its first period doubling the
  * doubled branch, and so on while d has fewer than o->max_branches branches. ctx: a
  * dyn_eig_solver for the multipliers, or NULL for dyn_eig_hqr. */
 int dyn_po_continue_hopf(const dyn_model *m, const void *par, const dyn_cont_opts *o,

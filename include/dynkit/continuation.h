@@ -84,6 +84,12 @@ typedef struct dyn_branch {
     double *x;          /* (count x n) */
     double *xmin;       /* (count x n), periodic orbits only, else NULL */
     double *eig;        /* (count x 2 n_eig) */
+    /* Periodic branches computed with dyn_cont_opts.orbits: each point's orbit at the
+     * orbit_nodes nodes of its collocation mesh, row k holding per node its time as a
+     * fraction of the period (0 to 1) and the n states, (count x orbit_nodes x (1 + n));
+     * a point without one holds NAN. Else orbit_nodes = 0 and orbit NULL. */
+    int orbit_nodes;
+    double *orbit;
     /* why the branch stopped, in words ("reached parmax = 2", "nmax = 200 points", ...) */
     char stop[160];
 } dyn_branch;
@@ -155,6 +161,7 @@ typedef struct dyn_cont_opts {
     double t;          /* the time at which f is evaluated (non-autonomous models) */
     dyn_cont_periodic_fn periodic; /* NULL: no periodic orbits from Hopf points */
     void *periodic_ctx;
+    int orbits;        /* 1: periodic branches keep each point's orbit (dyn_branch.orbit) */
 } dyn_cont_opts;
 
 /* o filled with the defaults above for parameter ip (ip2 = -1, parmin/parmax as defined,

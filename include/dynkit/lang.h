@@ -68,6 +68,17 @@ int dyn_ode_to_c_tables(const char *path, const char *text, size_t len,
                         const dyn_lang_table_file *tables, int n_tables, char **c_source,
                         dyn_lang_diag *diag, dyn_lang_note_fn note, void *note_ctx);
 
+/* AUTO's settings of a model file's @ lines (XPPAUT's ntst, ncol, nmax, npr, ds, dsmin,
+ * dsmax, parmin, parmax, par2min, par2max, autoxmin, autoxmax, autoymin, autoymax), as the
+ * parser of dyn_ode_to_c reads them: fn is called for each, in the file's order, with its
+ * name (lower case, as listed here), its value as written and the value's line and column.
+ * A run does not use them; `dynkit continue` does. Returns 0, or non-zero as dyn_ode_to_c
+ * does (2 an error in the file, 1 out of memory) with diag filled. */
+typedef void (*dyn_lang_setting_fn)(const char *name, const char *value, int line, int col,
+                                    void *ctx);
+int dyn_ode_auto_options(const char *path, const char *text, size_t len, dyn_lang_setting_fn fn,
+                         void *ctx, dyn_lang_diag *diag);
+
 /* The status the outputs and a global's reset of a translated model return when its
  * algebraic equations (0=...) have no solution near the branch followed, as at an impasse
  * point where the branch ends. Its right-hand side writes derivatives that are not finite

@@ -4,8 +4,9 @@
  * orbits by collocation (colloc_po.c) with the diagram's settings (ntst, ncol, ds, dsmin,
  * dsmax, nmax, parmin, parmax), stored as a DYN_BRANCH_PERIODIC branch (each state's
  * maximum and minimum over the orbit, the period, the Floquet multipliers, stability and
- * the labels LPC, PD, TR, EP); then from each period doubling the period-doubled branch,
- * and so on down the cascade while the diagram has room for branches. */
+ * the labels LPC, PD, TR, EP; on request each point's orbit at its collocation nodes);
+ * then from each period doubling the period-doubled branch, and so on down the cascade
+ * while the diagram has room for branches. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -27,8 +28,39 @@ static dyn_cont_label label_of(const char *s)
     return DYN_LABEL_NONE;
 }
 
-/* pb appended to d as a periodic branch; its id, or -1 when out of memory */
-static int store(dyn_diagram *d, const dyn_po_branch *pb, int ip, int parent, long parent_point)
+/* each point's orbit at its nodes (time over the period, then the states) into b->orbit;
+ * NAN for a point that kept none. 0, or -1 when out of memory. */
+static int keep_profiles(dyn_branch *b, const dyn_po_branch *pb)
+{
+    long nodes = 0;
+    for (int k = 0; k < pb->npoints; k++)
+        if (pb->pts[k].orbit.u)
+            nodes = dyn_colloc_nodes(&pb->pts[k].orbit);
+    if (nodes == 0)
+        return 0;
+    const size_t row = (size_t)nodes * (size_t)(1 + b->n);
+    b->orbit = malloc((size_t)pb->npoints * row * sizeof *b->orbit);
+    if (!b->orbit)
+        return -1;
+    b->orbit_nodes = (int)nodes;
+    for (int k = 0; k < pb->npoints; k++) {
+        const dyn_colloc_sol *s = &pb->pts[k].orbit;
+        double *out = b->orbit + (size_t)k * row;
+        const int have = s->u && dyn_colloc_nodes(s) == nodes;
+        for (long g = 0; g < nodes; g++) {
+            double *o = out + (size_t)g * (size_t)(1 + b->n);
+            o[0] = have ? dyn_colloc_node_time(s, g) : NAN;
+            for (int i = 0; i < b->n; i++)
+                o[1 + i] = have ? s->u[(size_t)g * (size_t)b->n + (size_t)i] : NAN;
+        }
+    }
+    return 0;
+}
+
+/* pb appended to d as a periodic branch (with its orbits when keep_orbits); its id, or -1
+ * when out of memory */
+static int store(dyn_diagram *d, const dyn_po_branch *pb, int ip, int parent, long parent_point,
+                 int keep_orbits)
 {
     dyn_branch *b = dyn_diagram_add(d, DYN_BRANCH_PERIODIC, pb->n, pb->n, ip, -1);
     if (!b)
@@ -50,6 +82,8 @@ static int store(dyn_diagram *d, const dyn_po_branch *pb, int ip, int parent, lo
             return -1;
     }
     snprintf(b->stop, sizeof b->stop, "%.150s", pb->message);
+    if (keep_orbits && pb->npoints > 0 && keep_profiles(b, pb))
+        return -1;
     return b->id;
 }
 
@@ -91,6 +125,7 @@ int dyn_po_continue_hopf(const dyn_model *m, const void *par, const dyn_cont_opt
     po.par_min = o->parmin;
     po.par_max = o->parmax;
     po.eig = ctx ? (const dyn_eig_solver *)ctx : &hqr;
+    po.keep_orbits = o->orbits;
     dyn_po_branch pb;
     st = dyn_po_from_hopf(&sys, x0, p0, omega, &po, &pb);
     free(x0);
@@ -101,7 +136,7 @@ int dyn_po_continue_hopf(const dyn_model *m, const void *par, const dyn_cont_opt
         return st;
     }
     const int max_branches = o->max_branches > 0 ? o->max_branches : 16;
-    int id = store(d, &pb, o->ip, branch, point);
+    int id = store(d, &pb, o->ip, branch, point, o->orbits);
     /* the cascade: each PD point's doubled branch, while there is room */
     while (id > 0 && d->count < max_branches) {
         int pd = -1;
@@ -116,7 +151,7 @@ int dyn_po_continue_hopf(const dyn_model *m, const void *par, const dyn_cont_opt
             break;
         }
         const int parent = id;
-        id = store(d, &next, o->ip, parent, pd);
+        id = store(d, &next, o->ip, parent, pd, o->orbits);
         dyn_po_branch_free(&pb);
         pb = next;
     }

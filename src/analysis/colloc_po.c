@@ -455,7 +455,8 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
         }
         const char *label = which == 0 ? "LPC" : which == 1 ? "PD" : which == 2 ? "TR"
                             : at_bound ? "EP" : "";
-        st = record(r, &xn, r->re, r->im, now.have_mult, label, which >= 0 || b->npoints == 0);
+        st = record(r, &xn, r->re, r->im, now.have_mult, label,
+                    which >= 0 || b->npoints == 0 || o->keep_orbits);
         if (st)
             break;
         dyn_colloc_sol_free(x);

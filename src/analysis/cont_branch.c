@@ -104,6 +104,7 @@ void dyn_diagram_free(dyn_diagram *d)
         free(d->branches[i].x);
         free(d->branches[i].xmin);
         free(d->branches[i].eig);
+        free(d->branches[i].orbit);
     }
     free(d->branches);
     memset(d, 0, sizeof *d);

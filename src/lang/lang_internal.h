@@ -364,7 +364,19 @@ typedef struct lang_model {
     long vmaxpts;
     /* XPPAUT's boundary conditions (bdry.c): lang_formula, name the condition as written */
     lvec bdrys;
+    /* AUTO's settings of the @ lines (ntst, ds, parmax, autoxmin, ...): lang_auto_option,
+     * in the file's order; a run does not use them, dynkit continue reads them
+     * (dyn_ode_auto_options) */
+    lvec auto_opts;
 } lang_model;
+
+/* one AUTO setting of an @ line: its name in lower case (ode_parse.c's list), the value as
+ * written, where the value is */
+typedef struct lang_auto_option {
+    const char *name;
+    const char *value;
+    lpos pos;
+} lang_auto_option;
 
 /* ---- one logical line: text and where each character came from ---- */
 typedef struct lang_line {

@@ -501,17 +501,35 @@ static void set_method(lang_ctx *c, const char *v, lpos pos)
         lang_note(c, pos, "meth=%s runs as dynkit's %s", v, methods[found].method);
 }
 
-/* An @ option a run does not use (XPPAUT's manual, "Options"): AUTO's settings are read by
- * `dynkit continue` (a note); the others get a warning, as nothing a file asks for is left
- * out without a word: XPPAUT's window and its colours and fonts, which dynkit does not
- * draw, and what dynkit does not do at all (range integrations, stochastic averages, a
- * torus's folding, ...). */
+/* AUTO's settings an @ line may give, as dyn_ode_auto_options names them (dynkit/lang.h) */
+static const char *const auto_names[] = {
+    "ntst",   "nmax",    "npr",      "ncol",     "ds",       "dsmin",    "dsmax", "parmin",
+    "parmax", "par2min", "par2max",  "autoxmin", "autoxmax", "autoymin", "autoymax", NULL};
+
+/* An @ option of AUTO (XPPAUT's manual, "AUTO"): kept with its place for dynkit continue
+ * (dyn_ode_auto_options); a run does not use it. 1 when name is one, else 0. */
+static int auto_option(lang_ctx *c, lpos pos, const char *name, const char *value)
+{
+    const size_t n = strlen(name);
+    for (int i = 0; auto_names[i]; i++)
+        if (ieqn(name, n, auto_names[i])) {
+            lang_auto_option *o = lvec_push(c, &c->m.auto_opts, sizeof *o);
+            o->name = auto_names[i];
+            o->value = value;
+            o->pos = pos;
+            lang_note(c, pos, "option '%s' is AUTO's: dynkit continue reads it; a run does not "
+                      "use it", name);
+            return 1;
+        }
+    return 0;
+}
+
+/* An @ option a run does not use (XPPAUT's manual, "Options"): a warning, as nothing a file
+ * asks for is left out without a word: XPPAUT's window and its colours and fonts, which
+ * dynkit does not draw, and what dynkit does not do at all (range integrations, stochastic
+ * averages, a torus's folding, ...). */
 static void option_not_used(lang_ctx *c, lpos pos, const char *name)
 {
-    static const char *const auto_options[] = {
-        "ntst",     "nmax",     "npr",      "ncol",     "ds",      "dsmin",   "dsmax",
-        "parmin",   "parmax",   "par2min",  "par2max",  "autoxmin", "autoxmax", "autoymin",
-        "autoymax"};
     static const char *const window_options[] = {
         "zp",       "zplot",  "xmin",      "xmax",   "ymin",     "ymax",    "zmin",
         "zmax",     "axes",   "nplot",     "phi",    "theta",    "bell",    "back",
@@ -519,12 +537,6 @@ static void option_not_used(lang_ctx *c, lpos pos, const char *name)
         "grads",    "xnc",    "ync",       "nmesh",  "ps_color", "ps_font", "ps_fsize",
         "ps_lw",    "height", "width",     "plotfmt", "autoeval"};
     const size_t n = strlen(name);
-    for (size_t i = 0; i < sizeof auto_options / sizeof auto_options[0]; i++)
-        if (ieqn(name, n, auto_options[i])) {
-            lang_note(c, pos, "option '%s' is AUTO's: dynkit continue reads it; a run does not "
-                      "use it", name);
-            return;
-        }
     int window = 0;
     for (size_t i = 0; i < sizeof window_options / sizeof window_options[0]; i++)
         window |= ieqn(name, n, window_options[i]);
@@ -679,7 +691,7 @@ static void parse_options(lang_ctx *c, lang_lexer *lx)
         } else if (ieqn(name, n, "maxstor")) {
             lang_note(c, pos, "option 'maxstor' is accepted and ignored (dynkit streams its "
                       "samples; nothing to store)");
-        } else {
+        } else if (!auto_option(c, vpos, name, v)) {
             option_not_used(c, pos, name);
         }
     }

@@ -12,7 +12,10 @@
 // (#t=..&speed=..) opens the page there and follows the player. On the report also: the
 // figures of the three studies of many runs are drawn and fit the width (the period curve,
 // the two histograms, the slip map with its cells, colour bar and boundary). And a sweep's
-// table as a page (`dynkit plot TABLE.json --html`): a heat map and lines.
+// table as a page (`dynkit plot TABLE.json --html`): a heat map and lines. A bifurcation
+// diagram's page (`dynkit continue --output FILE.html`): clicking a dot of its periodic
+// branch shows that orbit, whose period is the one `continue --json` gives, and which
+// `dynkit run` from its first point over one period brings back to that point.
 // Screenshots go to the artifacts directory (at 390 px wide with the suffix -390).
 //
 // Usage: node run.mjs DYNKIT_BINARY [ARTIFACTS_DIR]
@@ -137,6 +140,17 @@ if (!process.env.DYNKIT_BROWSER_ONLY || process.env.DYNKIT_BROWSER_ONLY.split(',
   const p = { name: 'phase-vanderpol', file: path.join(artifacts, 'phase-vanderpol.html') };
   run(['plot', 'vanderpol', '--phase-plane', '--html', p.file]);
   phasePages.push(p);
+}
+
+// the bifurcation diagram as a page (dynkit continue MODEL --par NAME --output FILE.html): the
+// Brusselator's Hopf point at b = 2 and its branch of periodic orbits, with --json beside it
+const diagramPages = [];
+if (!process.env.DYNKIT_BROWSER_ONLY || process.env.DYNKIT_BROWSER_ONLY.split(',').includes('diagram')) {
+  const model = path.join(here, '..', '..', 'examples', 'models', 'brusselator.ode');
+  const p = { name: 'diagram-brusselator', model, par: 'b', file: path.join(artifacts, 'diagram-brusselator.html') };
+  run(['continue', model, '--par', 'b', '--output', p.file]);
+  p.json = JSON.parse(execFileSync(dynkit, ['continue', model, '--par', 'b', '--json'], { encoding: 'utf8' }));
+  diagramPages.push(p);
 }
 
 // ---- the browser ----
@@ -626,8 +640,95 @@ async function checkPhasePage(spec, vp) {
   await page.close();
 }
 
+// A bifurcation diagram's page: it builds without errors or requests, its SVG fits the
+// screen, and clicking near a dot of the periodic branch shows that orbit: the period in
+// the panel and the end of its time axis are the period continue --json gives for that
+// point, and `dynkit run` from the orbit's first node over one period comes back to it.
+async function checkDiagramPage(spec, vp) {
+  current = `${spec.name} @${vp.width}`;
+  const page = await context.newPage();
+  await page.setViewportSize({ width: vp.width, height: vp.height });
+  const errors = [], requests = [], url = pathToFileURL(spec.file).href;
+  page.on('console', m => { if (m.type() === 'error') errors.push(m.text()); });
+  page.on('pageerror', e => errors.push(String(e)));
+  await page.route('**/*', route => { if (route.request().url() === url) return route.continue(); requests.push(route.request().url()); return route.abort(); });
+  await page.goto(url, { waitUntil: 'load' });
+  await page.waitForSelector('body[data-ready="1"]', { timeout: 10000 }).catch(() => {});
+  check(await page.evaluate(() => document.body.dataset.ready === '1'), 'the page builds');
+  const f = await page.evaluate(() => {
+    const svg = document.querySelector('[data-fig="diagram"] svg'), r = svg ? svg.getBoundingClientRect() : null;
+    return { svg: !!svg, left: r ? r.left : -1, right: r ? r.right : 1e9, height: r ? r.height : 0,
+      dashed: svg ? svg.querySelectorAll('line[stroke-dasharray]').length : 0,
+      labels: svg ? [...svg.querySelectorAll('text')].map(t => t.textContent) : [],
+      dots: svg ? svg.querySelectorAll('circle.dk-orbit').length : 0,
+      panel: document.getElementById('orbit').hidden };
+  });
+  check(f.svg && f.left >= 0 && f.right <= vp.width && f.height > 100,
+    `the picture fits (${f.left.toFixed(0)}..${f.right.toFixed(0)} px of ${vp.width}, ${f.height.toFixed(0)} px high)`);
+  check(f.dashed > 0 && f.labels.includes('HB') && f.labels.includes('b [1]') && f.labels.includes('x [1]'),
+    `unstable parts dashed (${f.dashed} segments), HB labelled, axes named with units`);
+  const periodic = spec.json.branches.filter(b => b.kind === 'periodic');
+  const computed = periodic.reduce((n, b) => n + b.points.length, 0);
+  check(f.dots > 0 && f.panel, `${f.dots} dots on the periodic branch (${computed} orbits computed), no orbit shown before a click`);
+  /* a click a few pixels beside a dot in the middle of the branch */
+  const dot = await page.evaluate(() => {
+    const d = [...document.querySelectorAll('circle.dk-orbit')], c = d[Math.floor(d.length / 2)];
+    c.scrollIntoView({ block: 'center' });
+    const r = c.getBoundingClientRect();
+    return { x: r.left + r.width / 2, y: r.top + r.height / 2, k: Number(c.dataset.orbit) };
+  });
+  const click = { x: dot.x + 3, y: dot.y + 2 };
+  await page.mouse.click(click.x, click.y);
+  await sleep(200);
+  /* the dot nearest the click on the screen (on a phone a neighbour may be nearer) */
+  dot.k = await page.evaluate(c => {
+    let best = -1, dist = Infinity;
+    for (const d of document.querySelectorAll('circle.dk-orbit')) {
+      const r = d.getBoundingClientRect(), e = Math.hypot(r.left + r.width / 2 - c.x, r.top + r.height / 2 - c.y);
+      if (e < dist) { dist = e; best = Number(d.dataset.orbit); }
+    }
+    return best;
+  }, click);
+  const o = await page.evaluate(() => {
+    const info = document.getElementById('orbit-info'), k = Number(info.dataset.orbit);
+    const data = JSON.parse(document.getElementById('dynkit-data').textContent), orbit = data.orbits[k];
+    const plots = [...document.querySelectorAll('#orbit-plots canvas.plot-canvas')].map(c => c.dkPlot);
+    const prof = plots.find(p => /over one period/.test(p.o.title));
+    return { shown: !document.getElementById('orbit').hidden, k, period: Number(info.dataset.period), text: info.textContent,
+      branch: orbit.branch, point: orbit.point, par: orbit.par, start: orbit.u.map(u => u[0]),
+      amp: Math.max(...orbit.u.map(u => Math.max(...u) - Math.min(...u))),
+      tEnd: prof ? prof.o.series[0].x[prof.o.series[0].x.length - 1] : NaN, plots: plots.length,
+      selected: document.querySelectorAll('circle.dk-orbit.selected').length };
+  });
+  check(o.shown && o.k === dot.k && o.selected >= 1, `the click shows the orbit of the dot nearest to it (orbit ${o.k}, ${o.plots} plots): ${o.text}`);
+  const ref = spec.json.branches.find(b => b.branch === o.branch).points[o.point - 1];
+  check(Math.abs(o.period - ref.period) <= 1e-12 * ref.period && Math.abs(o.par - ref[spec.par]) <= 1e-12 * Math.abs(ref[spec.par]),
+    `its period ${o.period} at ${spec.par} = ${o.par} is that of branch ${o.branch} point ${o.point} in --json (${ref.period})`);
+  check(Math.abs(o.tEnd - o.period) <= 1e-9 * o.period, `the profile's time axis ends at the period (${o.tEnd})`);
+  /* the orbit is periodic: a run from its first node over one period ends where it began */
+  const names = spec.json.branches[0].points[0].state ? Object.keys(spec.json.branches[0].points[0].state) : [];
+  const args = ['run', spec.model, '--set', `${spec.par}=${o.par}`, '--tspan', `0:${o.period}`, '--rtol', '1e-10', '--atol', '1e-12', '--final'];
+  names.forEach((n, i) => args.push('--init', `${n}=${o.start[i]}`));
+  const last = execFileSync(dynkit, args, { encoding: 'utf8' }).trim().split('\n').pop().split(',').map(Number).slice(1);
+  const gap = Math.max(...last.map((v, i) => Math.abs(v - o.start[i])));
+  check(names.length > 0 && gap <= 1e-3 * o.amp, `dynkit run over one period from the orbit's start returns within ${gap.toExponential(2)} (allowed 1e-3 of its size ${o.amp.toFixed(3)})`);
+  const ov = await overflow(page);
+  check(ov.sw <= ov.iw, `no sideways scrolling (${ov.sw} px wide in ${ov.iw})`);
+  await page.screenshot({ path: path.join(artifacts, `${spec.name}${vp.suffix}.png`), fullPage: true });
+  check(errors.length === 0, `no console errors${errors.length ? ': ' + errors.join(' | ') : ''}`);
+  check(requests.length === 0, `no network requests${requests.length ? ': ' + requests.join(', ') : ''}`);
+  await page.close();
+}
+
 try {
   for (const vp of viewports) {
+    for (const spec of diagramPages) {
+      try {
+        await checkDiagramPage(spec, vp);
+      } catch (e) {
+        check(false, `exception: ${e.stack || e}`);
+      }
+    }
     for (const spec of phasePages) {
       try {
         await checkPhasePage(spec, vp);

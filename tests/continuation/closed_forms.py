@@ -8,14 +8,19 @@ rho = sigma (sigma + beta + 3) / (sigma - beta - 1), subcritical); in two parame
 normal forms of the cusp (folds on 27 a^2 = 4 b^3, CP at 0), of the Bogdanov-Takens point
 (folds on b1 = 0, Hopf points on b1 = -b2^2, BT at 0 on both) and of the generalized Hopf
 point (Hopf points on b1 = 0, GH at b2 = 0); the default window widened to contain the
-start, and a window given that excludes it refused. Usage:
+start, and a window given that excludes it refused; and the orbits the diagram's page
+holds, on the Hopf normal form's circles x^2 + y^2 = p of period 2 pi / w. Usage:
 closed_forms.py DYNKIT MODELS_DIR LORENZ_ODE BT_ODE"""
 import json
+import math
+import shutil
 import subprocess
 import sys
+import tempfile
 
 dynkit, models, lorenz, bt_model = sys.argv[1:5]
 failures = []
+tmp = tempfile.mkdtemp(prefix="dynkit-continue-")
 
 
 def run(path, *args):
@@ -73,6 +78,38 @@ for s, w in ((-1.0, 2.0), (1.5, 2.0), (-0.25, 0.5)):
         check(f"hopf s={s}: p at HB", p["p"], 0.0, 1e-10)
         check(f"hopf s={s}: omega", p["omega"], w, 1e-10)
         check(f"hopf s={s}: l1", p["l1"], 2 * s / w, 1e-6)
+
+# the page's orbits (continue --output FILE.html): on the normal form's periodic branch
+# (s = -1, w = 2) each orbit is the circle x^2 + y^2 = p with period 2 pi / w; the page holds
+# every computed orbit (the branch is short), each at its collocation nodes (5 digits) from
+# s = 0 to 1, the period exact (17 digits), and the SVG a dot per orbit at its max and min
+page = f"{tmp}/hopf.html"
+out = subprocess.run([dynkit, "continue", f"{models}/hopf.ode", "--par", "p", "--output", page],
+                     capture_output=True, text=True)
+if out.returncode != 0 or out.stdout:
+    failures.append(f"hopf page: exit {out.returncode}, stdout {out.stdout[:80]!r}: {out.stderr}")
+else:
+    html = open(page, encoding="utf-8").read()
+    start = html.index('<script id="dynkit-data" type="application/json">')
+    data = json.loads(html[html.index(">", start) + 1:html.index("</script>", start)])
+    d = run(f"{models}/hopf.ode", "--par", "p")
+    periodic = [q for b in (d["branches"] if d else []) if b["kind"] == "periodic" for q in b["points"]]
+    if not periodic or len(data["orbits"]) != len(periodic) or data["orbits_computed"] != len(periodic):
+        failures.append(f"hopf page: {len(data['orbits'])} orbits on the page, "
+                        f"{data['orbits_computed']} computed, {len(periodic)} periodic points")
+    for o, q in zip(data["orbits"], periodic):
+        check(f"hopf page: period at p = {o['par']}", o["period"], math.pi, 1e-8)
+        check(f"hopf page: period against --json at p = {o['par']}", o["period"], q["period"], 1e-15)
+        x, y = o["u"]
+        worst = max(abs(a * a + b * b - o["par"]) for a, b in zip(x, y))
+        # 5 significant digits round each x^2 and y^2 by up to 1e-4 of itself
+        if not worst <= 2e-4 * max(o["par"], 1e-3):
+            failures.append(f"hopf page: orbit at p = {o['par']} off the circle by {worst:g}")
+        if o["s"][0] != 0 or o["s"][-1] != 1 or any(b <= a for a, b in zip(o["s"], o["s"][1:])):
+            failures.append(f"hopf page: the nodes of the orbit at p = {o['par']} do not rise from 0 to 1")
+    dots = data["svg"].count('class="dk-orbit"')
+    if dots != 2 * len(data["orbits"]):
+        failures.append(f"hopf page: {dots} dots in the picture for {len(data['orbits'])} orbits")
 
 for a in (1.0, 1.5, 0.5):
     d = run(f"{models}/brusselator.ode", "--par", "b", "--set", f"a={a}", "--init", f"x={a}",
@@ -163,6 +200,7 @@ for b, p in ghs:
     # l1 comes from second differences of the Jacobian (about 1e-8 accurate)
     check("bautin: b2 at GH", p["b2"], 0.0, 1e-6)
 
+shutil.rmtree(tmp, ignore_errors=True)
 for f in failures:
     print("FAIL:", f)
 print(f"closed forms: {len(failures)} failure(s)")

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* dynkit page: start — read the data the tool wrote into the page and build the report or
- * the animation; a failure is shown on the page as well as in the console. */
+/* dynkit page: start — read the data the tool wrote into the page and build the report,
+ * the animation, a sweep's table, a phase plane or a bifurcation diagram; a failure is
+ * shown on the page as well as in the console. */
 'use strict';
 (function (DK) {
   function start() {
@@ -9,6 +10,7 @@
       if (data.kind === 'report') DK.buildReport(data);
       else if (data.kind === 'sweep') DK.buildSweep(data);
       else if (data.kind === 'phase') DK.buildPhase(data);
+      else if (data.kind === 'diagram') DK.buildDiagram(data);
       else if (data.live) DK.startLive(data);
       else DK.buildAnimate(data);
       document.body.dataset.ready = '1';

@@ -174,7 +174,8 @@ static int panel(FILE *f, const cont_view *v, int curves, const cont_orbit_set *
     else
         with_unit(m->states[v->iy].name, m->states[v->iy].unit, yl, sizeof yl);
     int bad = axes(f, &r, xl, yl, title);
-    bad |= key(f);
+    if (!curves) /* the curves in two parameters have no stability */
+        bad |= key(f);
     bad |= fprintf(f, "<defs><clipPath id=\"plot%d\"><rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" "
                       "height=\"%.1f\"/></clipPath></defs>\n<g clip-path=\"url(#plot%d)\" "
                       "fill=\"none\" stroke-width=\"1.6\">\n",

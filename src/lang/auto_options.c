@@ -3,10 +3,15 @@
  * statements' parser (ode_parse.c) keeps them, handed to the caller in the file's order.
  * The one reader of those lines: dynkit continue takes its settings from here. XPPAUT's
  * manual, "AUTO", names the settings. */
-#include <stdlib.h>
 #include <string.h>
 
 #include "lang/lang_internal.h"
+
+/* where the settings go: carried by the context's note_ctx (no notes are asked for) */
+typedef struct setting_sink {
+    dyn_lang_setting_fn fn;
+    void *ctx;
+} setting_sink;
 
 static void parse_only(lang_ctx *c)
 {
@@ -14,37 +19,29 @@ static void parse_only(lang_ctx *c)
     lang_parse_model(c);
 }
 
+/* the back end: no text, every setting to the caller */
+static char *hand_over(lang_ctx *c)
+{
+    const setting_sink *sink = c->note_ctx;
+    for (int k = 0; k < c->m.auto_opts.n; k++) {
+        const lang_auto_option *o = &LVEC_AT(c->m.auto_opts, lang_auto_option, k);
+        sink->fn(o->name, o->value, o->pos.line, o->pos.col, sink->ctx);
+    }
+    return NULL;
+}
+
 int dyn_ode_auto_options(const char *path, const char *text, size_t len, dyn_lang_setting_fn fn,
                          void *ctx, dyn_lang_diag *diag)
 {
-    dyn_lang_diag scratch;
-    if (!diag)
-        diag = &scratch;
-    memset(diag, 0, sizeof *diag);
-    if (!path)
-        path = "<model>";
-    strncpy(diag->path, path, sizeof diag->path - 1);
-    if (!fn || (!text && len)) {
-        strcpy(diag->message, "no text or no function for the settings (a NULL argument)");
+    if (!fn) {
+        if (diag) {
+            memset(diag, 0, sizeof *diag);
+            strcpy(diag->message, "no function for the settings (a NULL argument)");
+        }
         return 2;
     }
-    lang_ctx *c = lang_ctx_new(path, text, len, NULL, 0, diag);
-    if (!c) {
-        strcpy(diag->message, "out of memory while reading the model");
-        return 1;
-    }
-    jmp_buf fail;
-    c->fail = &fail;
-    if (setjmp(fail)) {
-        const int status = c->status ? c->status : 2;
-        lang_ctx_free(c, NULL);
-        return status;
-    }
-    lang_run_front(c, parse_only);
-    for (int k = 0; k < c->m.auto_opts.n; k++) {
-        const lang_auto_option *o = &LVEC_AT(c->m.auto_opts, lang_auto_option, k);
-        fn(o->name, o->value, o->pos.line, o->pos.col, ctx);
-    }
-    lang_ctx_free(c, NULL);
-    return 0;
+    setting_sink sink = {fn, ctx};
+    char *none = NULL;
+    return lang_translate(path, text, len, NULL, 0, &none, diag, NULL, &sink, parse_only,
+                          hand_over);
 }

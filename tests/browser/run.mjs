@@ -579,9 +579,10 @@ async function checkPage(spec, vp) {
   await page.close();
 }
 
-// A sweep's page: it builds without errors or requests, its canvases draw, it fits the
-// screen, and the heat map has a cell per run (the lines a line per value of the other name).
-async function checkSweepPage(spec, vp) {
+// A page of the simpler kinds (a sweep's table, a phase plane, a bifurcation diagram) opened
+// for its checks: console errors and requests recorded (every request but the file itself
+// aborted), and built (body[data-ready]).
+async function openPage(spec, vp) {
   current = `${spec.name} @${vp.width}`;
   const page = await context.newPage();
   await page.setViewportSize({ width: vp.width, height: vp.height });
@@ -592,6 +593,24 @@ async function checkSweepPage(spec, vp) {
   await page.goto(url, { waitUntil: 'load' });
   await page.waitForSelector('body[data-ready="1"]', { timeout: 10000 }).catch(() => {});
   check(await page.evaluate(() => document.body.dataset.ready === '1'), 'the page builds');
+  return { page, errors, requests };
+}
+
+// ... and closed: no sideways scrolling, a screenshot (of the whole page with fullPage), no
+// console error and no request.
+async function closePage(spec, vp, { page, errors, requests }, fullPage) {
+  const o = await overflow(page);
+  check(o.sw <= o.iw, `no sideways scrolling (${o.sw} px wide in ${o.iw})`);
+  await page.screenshot({ path: path.join(artifacts, `${spec.name}${vp.suffix}.png`), fullPage });
+  check(errors.length === 0, `no console errors${errors.length ? ': ' + errors.join(' | ') : ''}`);
+  check(requests.length === 0, `no network requests${requests.length ? ': ' + requests.join(', ') : ''}`);
+  await page.close();
+}
+
+// A sweep's page: it builds without errors or requests, its canvases draw, it fits the
+// screen, and the heat map has a cell per run (the lines a line per value of the other name).
+async function checkSweepPage(spec, vp) {
+  const opened = await openPage(spec, vp), page = opened.page;
   const prints = await page.evaluate(canvasPrints);
   check(prints.length >= 1 && prints.every(p => p.ink > 0.002 * p.pixels), `every canvas draws something (${prints.length})`);
   const f = await page.evaluate(() => {
@@ -601,27 +620,13 @@ async function checkSweepPage(spec, vp) {
   check(f.left >= 0 && f.right <= vp.width, `the picture fits (${f.left.toFixed(0)}..${f.right.toFixed(0)} px of ${vp.width})`);
   if (spec.heat) check(f.cells === spec.runs && f.bar, `a heat map of ${f.cells} cells with a colour bar`);
   if (spec.lines) check(f.lines === spec.lines, `${f.lines} lines, one per value of the other name`);
-  const o = await overflow(page);
-  check(o.sw <= o.iw, `no sideways scrolling (${o.sw} px wide in ${o.iw})`);
-  await page.screenshot({ path: path.join(artifacts, `${spec.name}${vp.suffix}.png`) });
-  check(errors.length === 0, `no console errors${errors.length ? ': ' + errors.join(' | ') : ''}`);
-  check(requests.length === 0, `no network requests${requests.length ? ': ' + requests.join(', ') : ''}`);
-  await page.close();
+  await closePage(spec, vp, opened, false);
 }
 
 // A phase plane's page: it builds without errors or requests, its SVG is drawn within the
 // screen's width (nullclines, field, trajectories), the table lists the equilibrium.
 async function checkPhasePage(spec, vp) {
-  current = `${spec.name} @${vp.width}`;
-  const page = await context.newPage();
-  await page.setViewportSize({ width: vp.width, height: vp.height });
-  const errors = [], requests = [], url = pathToFileURL(spec.file).href;
-  page.on('console', m => { if (m.type() === 'error') errors.push(m.text()); });
-  page.on('pageerror', e => errors.push(String(e)));
-  await page.route('**/*', route => { if (route.request().url() === url) return route.continue(); requests.push(route.request().url()); return route.abort(); });
-  await page.goto(url, { waitUntil: 'load' });
-  await page.waitForSelector('body[data-ready="1"]', { timeout: 10000 }).catch(() => {});
-  check(await page.evaluate(() => document.body.dataset.ready === '1'), 'the page builds');
+  const opened = await openPage(spec, vp), page = opened.page;
   const f = await page.evaluate(() => {
     const svg = document.querySelector('[data-fig="phase"] svg'), r = svg ? svg.getBoundingClientRect() : null;
     const rows = [...document.querySelectorAll('#equilibria tr')].map(tr => tr.textContent);
@@ -632,12 +637,7 @@ async function checkPhasePage(spec, vp) {
     `the picture fits (${f.left.toFixed(0)}..${f.right.toFixed(0)} px of ${vp.width}, ${f.height.toFixed(0)} px high)`);
   check(f.lines > 100, `nullclines, field and trajectories drawn (${f.lines} polylines)`);
   check(f.rows.length === 2 && f.rows[1].includes('unstable focus'), `the equilibria's table: ${f.rows.join(' | ')}`);
-  const o = await overflow(page);
-  check(o.sw <= o.iw, `no sideways scrolling (${o.sw} px wide in ${o.iw})`);
-  await page.screenshot({ path: path.join(artifacts, `${spec.name}${vp.suffix}.png`), fullPage: true });
-  check(errors.length === 0, `no console errors${errors.length ? ': ' + errors.join(' | ') : ''}`);
-  check(requests.length === 0, `no network requests${requests.length ? ': ' + requests.join(', ') : ''}`);
-  await page.close();
+  await closePage(spec, vp, opened, true);
 }
 
 // A bifurcation diagram's page: it builds without errors or requests, its SVG fits the
@@ -645,16 +645,7 @@ async function checkPhasePage(spec, vp) {
 // the panel and the end of its time axis are the period continue --json gives for that
 // point, and `dynkit run` from the orbit's first node over one period comes back to it.
 async function checkDiagramPage(spec, vp) {
-  current = `${spec.name} @${vp.width}`;
-  const page = await context.newPage();
-  await page.setViewportSize({ width: vp.width, height: vp.height });
-  const errors = [], requests = [], url = pathToFileURL(spec.file).href;
-  page.on('console', m => { if (m.type() === 'error') errors.push(m.text()); });
-  page.on('pageerror', e => errors.push(String(e)));
-  await page.route('**/*', route => { if (route.request().url() === url) return route.continue(); requests.push(route.request().url()); return route.abort(); });
-  await page.goto(url, { waitUntil: 'load' });
-  await page.waitForSelector('body[data-ready="1"]', { timeout: 10000 }).catch(() => {});
-  check(await page.evaluate(() => document.body.dataset.ready === '1'), 'the page builds');
+  const opened = await openPage(spec, vp), page = opened.page;
   const f = await page.evaluate(() => {
     const svg = document.querySelector('[data-fig="diagram"] svg'), r = svg ? svg.getBoundingClientRect() : null;
     return { svg: !!svg, left: r ? r.left : -1, right: r ? r.right : 1e9, height: r ? r.height : 0,
@@ -712,12 +703,7 @@ async function checkDiagramPage(spec, vp) {
   const last = execFileSync(dynkit, args, { encoding: 'utf8' }).trim().split('\n').pop().split(',').map(Number).slice(1);
   const gap = Math.max(...last.map((v, i) => Math.abs(v - o.start[i])));
   check(names.length > 0 && gap <= 1e-3 * o.amp, `dynkit run over one period from the orbit's start returns within ${gap.toExponential(2)} (allowed 1e-3 of its size ${o.amp.toFixed(3)})`);
-  const ov = await overflow(page);
-  check(ov.sw <= ov.iw, `no sideways scrolling (${ov.sw} px wide in ${ov.iw})`);
-  await page.screenshot({ path: path.join(artifacts, `${spec.name}${vp.suffix}.png`), fullPage: true });
-  check(errors.length === 0, `no console errors${errors.length ? ': ' + errors.join(' | ') : ''}`);
-  check(requests.length === 0, `no network requests${requests.length ? ': ' + requests.join(', ') : ''}`);
-  await page.close();
+  await closePage(spec, vp, opened, true);
 }
 
 try {

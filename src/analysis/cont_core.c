@@ -321,12 +321,37 @@ static int cmp_special(const void *x, const void *y)
     return (a->s > b->s) - (a->s < b->s);
 }
 
+/* Whether the step from za to zb passes the start z0 again, after the curve went more than
+ * 2 dsmax away from it (*far: the largest distance so far): within a tenth of the chord's
+ * length of the chord (which misses its arc by about kappa |zb - za|^2 / 8) */
+static int back_at_start(const double *za, const double *zb, const double *z0, int M,
+                         double scale, double *far, double dsmax)
+{
+    double dd = 0.0, dy = 0.0, d0 = 0.0;
+    for (int i = 0; i < M; i++) {
+        dd += (zb[i] - za[i]) * (zb[i] - za[i]);
+        dy += (z0[i] - za[i]) * (zb[i] - za[i]);
+        d0 += (zb[i] - z0[i]) * (zb[i] - z0[i]);
+    }
+    const int was_far = *far > 2.0 * dsmax;
+    *far = fmax(*far, sqrt(d0));
+    if (!was_far)
+        return 0;
+    const double u = dd > 0.0 ? fmin(1.0, fmax(0.0, dy / dd)) : 0.0;
+    double dist = 0.0;
+    for (int i = 0; i < M; i++) {
+        const double r = z0[i] - (za[i] + u * (zb[i] - za[i]));
+        dist += r * r;
+    }
+    return sqrt(dist) <= 0.1 * sqrt(dd) + 1e-9 * scale;
+}
+
 int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const double *z_start,
                 const double *t_start, char *stop, size_t stoplen)
 {
     const int M = s->N + 1;
     const int n_spec = CONT_MAX_TESTS + 2 + L->n_at;
-    const size_t need = (size_t)M * (6 + 2 * (size_t)n_spec);
+    const size_t need = (size_t)M * (7 + 2 * (size_t)n_spec);
     double *buf = malloc(need * sizeof *buf);
     special *sp = malloc((size_t)n_spec * sizeof *sp);
     if (!buf || !sp) {
@@ -367,6 +392,11 @@ int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const do
     double ds = fmin(fabs(L->ds), L->dsmax);
     long points = 1;
     int pending = 0; /* z is computed but not stored yet */
+    double *z0 = tl + M + 2 * (size_t)n_spec * (size_t)M; /* the start, for a closed curve */
+    memcpy(z0, z_start, (size_t)M * sizeof *z0);
+    double z0_scale = 1.0, far = 0.0;
+    for (int i = 0; i < M; i++)
+        z0_scale = fmax(z0_scale, fabs(z0[i]));
     snprintf(stop, stoplen, "nmax = %ld points", L->nmax);
     while (points < L->nmax) {
         int iters = 0;
@@ -387,6 +417,21 @@ int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const do
             }
             ds = fmax(0.5 * ds, L->dsmin);
             continue;
+        }
+        /* back at the start: a closed curve, ended there */
+        if (L->stop_closed && back_at_start(z, z1, z0, M, z0_scale, &far, L->dsmax)) {
+            if (pending && s->store(s->ctx, z, t, DYN_LABEL_NONE)) {
+                rc = -1;
+                break;
+            }
+            pending = 0;
+            if (s->store(s->ctx, z0, t_start, DYN_LABEL_EP)) {
+                rc = -1;
+                break;
+            }
+            snprintf(stop, stoplen, "closed: back at its first point");
+            rc = 1;
+            break;
         }
         /* special points between z and z1 */
         int ns = 0, end_here = 0;

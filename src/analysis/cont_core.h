@@ -70,6 +70,7 @@ typedef struct cont_loop {
     const double *at;         /* UZ values of z[ip] */
     int n_at;
     dyn_cont_label start_label; /* the first point's label (EP, BP, LP, HB) */
+    int stop_closed;          /* non-zero: end a curve that comes back to its start */
 } cont_loop;
 
 /* L from the options of dyn_continue: |ds|, dsmin, dsmax, nmax, the bounds of the first
@@ -86,7 +87,9 @@ double cont_hopf_test(int n, const double *re, const double *im, double above, i
 /* Follow the branch from z (a point of it) along the unit tangent t for at most nmax
  * points, storing each (the first with start_label, the last with EP) with the special
  * points located between them. stop gets why it ended. Returns 0, -1 when storing
- * failed (out of memory), -2 when f failed at the first point (nothing stored). */
+ * failed (out of memory), -2 when f failed at the first point (nothing stored), 1 when
+ * (with L->stop_closed) the curve came back to its start: a closed curve, whose last point
+ * is its first again. */
 int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const double *z,
                 const double *t, char *stop, size_t stoplen);
 

@@ -237,6 +237,51 @@ static int null_of(int n, const double *A, double *work, int *piv, double *v)
     return 0;
 }
 
+/* coordinate i of point k of a curve: its states, p1, p2, and on a Hopf curve omega^2 */
+static double curve_coord(const dyn_branch *b, long k, int i)
+{
+    const int n = b->n;
+    return i < n ? b->x[(size_t)k * (size_t)n + (size_t)i]
+                 : i == n ? b->pts[k].par[0] : i == n + 1 ? b->pts[k].par[1] : b->pts[k].omega;
+}
+
+/* Whether the start y (dim = n + 2 + hopf coordinates as curve_coord's) lies on a curve of
+ * the same kind computed already: within a tenth of a chord's length of that chord (a chord
+ * of length L misses its arc by about kappa L^2 / 8, kappa the curvature), or within 1e-9
+ * of a point. A fold or Hopf curve through two points of the equilibrium branches (the
+ * cusp's fold curve through both folds) is then followed once. */
+static int on_computed_curve(const dyn_diagram *d, int hopf, const double *y, int n)
+{
+    const dyn_branch_kind kind = hopf ? DYN_BRANCH_HOPF : DYN_BRANCH_FOLD;
+    const int dim = n + 2 + hopf;
+    double scale = 1.0;
+    for (int i = 0; i < dim; i++)
+        scale = fmax(scale, fabs(y[i]));
+    for (int bi = 0; bi < d->count; bi++) {
+        const dyn_branch *b = &d->branches[bi];
+        if (b->kind != kind || b->n != n)
+            continue;
+        for (long k = 0; k + 1 < b->count; k++) {
+            double dd = 0.0, dy = 0.0;
+            for (int i = 0; i < dim; i++) {
+                const double c0 = curve_coord(b, k, i), c1 = curve_coord(b, k + 1, i);
+                dd += (c1 - c0) * (c1 - c0);
+                dy += (y[i] - c0) * (c1 - c0);
+            }
+            const double u = dd > 0.0 ? fmin(1.0, fmax(0.0, dy / dd)) : 0.0;
+            double dist = 0.0;
+            for (int i = 0; i < dim; i++) {
+                const double c0 = curve_coord(b, k, i), c1 = curve_coord(b, k + 1, i);
+                const double r = y[i] - (c0 + u * (c1 - c0));
+                dist += r * r;
+            }
+            if (sqrt(dist) <= 0.1 * sqrt(dd) + 1e-9 * scale)
+                return 1;
+        }
+    }
+    return 0;
+}
+
 int cont_curves_from(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int branch,
                      long point, dyn_cont_info *info)
 {
@@ -246,6 +291,19 @@ int cont_curves_from(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int
     const double omega = b->pts[point].omega;
     if (hopf && !(omega > 0.0))
         return 0;
+    {
+        double *y = malloc(((size_t)n + 3) * sizeof *y);
+        if (!y)
+            return -1;
+        memcpy(y, b->x + (size_t)point * (size_t)n, (size_t)n * sizeof *y);
+        y[n] = b->pts[point].par[0];
+        y[n + 1] = cm->p2_base;
+        y[n + 2] = omega * omega;
+        const int seen = on_computed_curve(d, hopf, y, n);
+        free(y);
+        if (seen)
+            return 0;
+    }
     curve_ctx c;
     memset(&c, 0, sizeof c);
     c.cm = cm;
@@ -376,11 +434,14 @@ int cont_curves_from(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int
         L.p2min = o->par2min;
         L.p2max = o->par2max;
         L.start_label = hopf ? DYN_LABEL_HB : DYN_LABEL_LP;
+        L.stop_closed = 1;
         char stop[160];
         const int st = cont_follow(&s, &w, &L, z, t, stop, sizeof stop);
         snprintf(d->branches[c.bi].stop, sizeof d->branches[c.bi].stop, "%s", stop);
         if (st == -1)
             rc = -1;
+        if (st == 1) /* a closed curve: the other direction is the same curve */
+            break;
     }
     if (rc == -2 && info && !info->message[0])
         snprintf(info->message, sizeof info->message,

@@ -7,9 +7,10 @@ Brusselator (HB at b = 1 + a^2, omega = a) and Lorenz's system (HB at
 rho = sigma (sigma + beta + 3) / (sigma - beta - 1), subcritical); in two parameters the
 normal forms of the cusp (folds on 27 a^2 = 4 b^3, CP at 0), of the Bogdanov-Takens point
 (folds on b1 = 0, Hopf points on b1 = -b2^2, BT at 0 on both) and of the generalized Hopf
-point (Hopf points on b1 = 0, GH at b2 = 0); the default window widened to contain the
-start, and a window given that excludes it refused; and the orbits the diagram's page
-holds, on the Hopf normal form's circles x^2 + y^2 = p of period 2 pi / w. Usage:
+point (Hopf points on b1 = 0 with l1 = 2 b2, GH at b2 = 0), also moved off the origin; the
+default window widened to contain the start, and a window given that excludes it refused;
+and the orbits the diagram's page holds, on the Hopf normal form's circles x^2 + y^2 = p of
+period 2 pi / w. Usage:
 closed_forms.py DYNKIT MODELS_DIR LORENZ_ODE BT_ODE"""
 import json
 import math
@@ -77,7 +78,7 @@ for s, w in ((-1.0, 2.0), (1.5, 2.0), (-0.25, 0.5)):
     if p:
         check(f"hopf s={s}: p at HB", p["p"], 0.0, 1e-10)
         check(f"hopf s={s}: omega", p["omega"], w, 1e-10)
-        check(f"hopf s={s}: l1", p["l1"], 2 * s / w, 1e-6)
+        check(f"hopf s={s}: l1", p["l1"], 2 * s / w, 1e-9)
 
 # the page's orbits (continue --output FILE.html): on the normal form's periodic branch
 # (s = -1, w = 2) each orbit is the circle x^2 + y^2 = p with period 2 pi / w; the page holds
@@ -191,14 +192,60 @@ for b in (d["branches"] if d else []):
             check("bogdanov-takens: b1 + b2^2 on the Hopf curve", p["b1"] + p["b2"] ** 2, 0.0,
                   1e-9)
 
-d = run(f"{models}/bautin.ode", "--par", "b1", "--par2", "b2")
-ghs = points(d, "GH") if d else []
-if not ghs:
-    failures.append("bautin: no GH")
-for b, p in ghs:
-    check("bautin: b1 at GH", p["b1"], 0.0, 1e-10)
-    # l1 comes from second differences of the Jacobian (about 1e-8 accurate)
-    check("bautin: b2 at GH", p["b2"], 0.0, 1e-6)
+# the generalized Hopf point, at the origin and moved off it (bautin_shifted.ode: the
+# equilibrium at (1, -2), GH at b2 = 0.25); l1 = 2 (b2 - b2_GH) / omega along the Hopf curve
+for name, x0, b2_gh in (("bautin", (0.0, 0.0), 0.0), ("bautin_shifted", (1.0, -2.0), 0.25)):
+    d = run(f"{models}/{name}.ode", "--par", "b1", "--par2", "b2")
+    ghs = points(d, "GH") if d else []
+    if len(ghs) != 1:
+        failures.append(f"{name}: expected one GH, found {len(ghs)}")
+    for b, p in ghs:
+        check(f"{name}: b1 at GH", p["b1"], 0.0, 1e-10)
+        check(f"{name}: b2 at GH", p["b2"], b2_gh, 1e-10)
+        check(f"{name}: x at GH", p["state"]["x"], x0[0], 1e-10)
+        check(f"{name}: y at GH", p["state"]["y"], x0[1], 1e-10)
+    for b in (d["branches"] if d else []):
+        if b["kind"] != "hopf":
+            continue
+        for p in b["points"]:
+            if p.get("l1") is not None:
+                check(f"{name}: l1 at b2 = {p['b2']}", p["l1"], 2 * (p["b2"] - b2_gh), 1e-9)
+
+# each curve in two parameters computed once: the cusp's fold curve goes through both folds
+# of the branch in a (one curve, followed both ways from the first fold); the
+# Bogdanov-Takens normal form has one fold curve and one Hopf curve; hopf_circle.ode's two
+# Hopf points lie on one closed curve p^2 + q^2 = 1, followed once around and ended there
+def kinds(d):
+    out = {}
+    for b in (d["branches"] if d else []):
+        out[b["kind"]] = out.get(b["kind"], 0) + 1
+    return out
+
+
+for path, args, want in ((f"{models}/cusp.ode", ("--par", "a", "--par2", "b"), {"fold": 2}),
+                         (bt_model, ("--par", "b1", "--par2", "b2"), {"fold": 2, "hopf": 2}),
+                         (f"{models}/hopf_circle.ode", ("--par", "p", "--par2", "q"),
+                          {"hopf": 1})):
+    d = run(path, *args)
+    got = kinds(d)
+    for kind, count in want.items():
+        if got.get(kind, 0) != count:
+            failures.append(f"{path}: {got.get(kind, 0)} {kind} curves, expected {count}")
+    if path.endswith("hopf_circle.ode"):
+        for b in (d["branches"] if d else []):
+            if b["kind"] != "hopf":
+                continue
+            if not b["stop"].startswith("closed"):
+                failures.append(f"hopf_circle: the Hopf curve stopped: {b['stop']}")
+            qs = [p["q"] for p in b["points"]]
+            if not (min(qs) < -0.99 and max(qs) > 0.99):
+                failures.append(f"hopf_circle: q spans [{min(qs)}, {max(qs)}], not the circle")
+            for p in b["points"]:
+                check("hopf_circle: p^2 + q^2 on the Hopf curve", p["p"] ** 2 + p["q"] ** 2,
+                      1.0, 1e-9)
+            first, last = b["points"][0], b["points"][-1]
+            check("hopf_circle: the curve closed (p)", last["p"], first["p"], 1e-12)
+            check("hopf_circle: the curve closed (q)", last["q"], first["q"], 1e-12)
 
 shutil.rmtree(tmp, ignore_errors=True)
 for f in failures:

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* dynkit bvp FILE [--set/--init ...] [--ntst N] [--ncol K] [--step H] [--json]
- * [--output FILE]: a model file's boundary-value problem (XPPAUT's bdry lines) on
+/* dynkit bvp FILE [--set/--init ...] [--tspan A:B] [--free NAME [--section NAME[=V]]]
+ * [--ntst N] [--ncol K] [--step H] [--json] [--output FILE]: a model file's boundary-value
+ * problem (XPPAUT's bdry lines) on
  * [t0, t0 + total] by orthogonal collocation (dyn_bvp_solve, dynkit/colloc.h): the solution
  * on the model's grid of dt (or --step) as a CSV table or JSON, the conditions' residuals
  * and the error estimate on standard error. docs/analysis.md, "Boundary-value problems". */
@@ -17,8 +18,9 @@
 
 static void bvp_help(void)
 {
-    puts("Usage: dynkit bvp FILE [--set NAME=VALUE]... [--init NAME=VALUE]... [--ntst N]\n"
-         "                  [--ncol K] [--step H] [--json] [-o FILE.csv|FILE.json]\n"
+    puts("Usage: dynkit bvp FILE [--set NAME=VALUE]... [--init NAME=VALUE]... [--tspan A:B]\n"
+         "                  [--free NAME [--section NAME[=VALUE]]] [--ntst N] [--ncol K]\n"
+         "                  [--step H] [--json] [-o FILE.csv|FILE.json]\n"
          "\n"
          "Solves the boundary-value problem of a model file with bdry lines (XPPAUT's\n"
          "'bdry EXPR': EXPR = 0, with NAME the state at t0 and NAME' the state at the end\n"
@@ -33,6 +35,12 @@ static void bvp_help(void)
          "Options:\n"
          "  --set NAME=VALUE     a parameter's value (repeatable)\n"
          "  --init NAME=VALUE    a state's value in the first guess (repeatable)\n"
+         "  --tspan A:B          the interval [t0, t1] (default: the file's t0 and total)\n"
+         "  --free NAME          a parameter solved for too (XPPAUT's periodic option: a\n"
+         "                       frequency or period), fixed by the section condition\n"
+         "  --section NAME[=V]   with --free: the condition NAME(t0) = V (default V: its\n"
+         "                       initial value; default NAME: the state moving fastest at\n"
+         "                       the initial state)\n"
          "  --ntst N             mesh intervals (default 40)\n"
          "  --ncol K             Gauss points per interval, 2 to 7 (default 4)\n"
          "  --step H             the output grid's spacing (default: the file's dt)\n"
@@ -42,25 +50,30 @@ static void bvp_help(void)
          "\n"
          "Examples:\n"
          "  dynkit bvp examples/models/cable.ode\n"
-         "  dynkit bvp examples/models/cable.ode --set a=0 --set b=1 --json");
+         "  dynkit bvp examples/models/cable.ode --set a=0 --set b=1 --json\n"
+         "  dynkit bvp examples/models/vdp_bvp.ode --free om");
 }
 
 typedef struct bvp_opts {
     const char *output;
+    const char *free_name, *section; /* --free NAME, --section NAME[=VALUE] */
     int json, ntst, ncol;
 } bvp_opts;
 
+#define BVP_N_OPTIONS 10
+
 static int parse_args(int argc, char **argv, char **pass, int *n_pass, bvp_opts *o)
 {
-    static const char *const options[] = {"--init", "--set", "--ntst", "--ncol",
-                                          "--step", "--json", "--output"};
+    static const char *const options[BVP_N_OPTIONS] = {
+        "--init", "--set", "--ntst", "--ncol", "--step", "--json", "--output", "--tspan",
+        "--free", "--section"};
     pass[(*n_pass)++] = argv[0];
     for (int i = 1; i < argc; i++) {
         const char *v = NULL;
         int r = 0, done = 0;
-        const char *passed[] = {"init", "set", "step"};
-        const int pass_index[] = {0, 1, 4};
-        for (int k = 0; k < 3 && !done; k++)
+        const char *passed[] = {"init", "set", "step", "tspan"};
+        const int pass_index[] = {0, 1, 4, 7};
+        for (int k = 0; k < 4 && !done; k++)
             if ((r = cli_option(argc, argv, &i, passed[k], &v)) != 0) {
                 if (r < 0)
                     return cli_usage_error("bvp", "option --%s needs a value", passed[k]);
@@ -85,7 +98,15 @@ static int parse_args(int argc, char **argv, char **pass, int *n_pass, bvp_opts 
             }
         if (done)
             continue;
-        if ((r = cli_option(argc, argv, &i, "output", &v)) != 0) {
+        if ((r = cli_option(argc, argv, &i, "free", &v)) != 0) {
+            if (r < 0)
+                return cli_usage_error("bvp", "option --free needs a parameter's name");
+            o->free_name = v;
+        } else if ((r = cli_option(argc, argv, &i, "section", &v)) != 0) {
+            if (r < 0)
+                return cli_usage_error("bvp", "option --section needs NAME or NAME=VALUE");
+            o->section = v;
+        } else if ((r = cli_option(argc, argv, &i, "output", &v)) != 0) {
             if (r < 0)
                 return cli_usage_error("bvp", "option --output needs a value");
             o->output = v;
@@ -94,9 +115,12 @@ static int parse_args(int argc, char **argv, char **pass, int *n_pass, bvp_opts 
         } else if (cli_flag(argv[i], "json")) {
             o->json = 1;
         } else {
-            return cli_unknown_option("bvp", argv[i], options, 7);
+            return cli_unknown_option("bvp", argv[i], options, BVP_N_OPTIONS);
         }
     }
+    if (o->section && !o->free_name)
+        return cli_usage_error("bvp", "--section goes with --free NAME (the free parameter's "
+                               "one more condition)");
     if (o->output && strcmp(o->output, "-") != 0) {
         static const char *const both[] = {".csv", ".json", NULL};
         if (cli_out_check_extension("bvp", "--output", o->output, both) != CLI_OK)
@@ -124,7 +148,7 @@ static void json_string(FILE *f, const char *s)
 }
 
 static void write_result(FILE *f, const dyn_model *m, const dyn_bvp_result *r, double step,
-                         long rows, const bvp_opts *o)
+                         long rows, const bvp_opts *o, int ifree)
 {
     const int n = m->n_states;
     double *u = malloc((size_t)n * sizeof *u);
@@ -143,7 +167,15 @@ static void write_result(FILE *f, const dyn_model *m, const dyn_bvp_result *r, d
             json_string(f, m->bdry_text[k]);
             fprintf(f, ", \"residual\": %s}", CLI_NUM(r->residuals[k]));
         }
-        fputs("], \"t\": [", f);
+        fputc(']', f);
+        if (ifree >= 0 && r->section >= 0) {
+            fputs(", \"free\": {", f);
+            json_string(f, m->params[ifree].name);
+            fprintf(f, ": %s}, \"section\": {\"state\": ", CLI_NUM(r->sol.par[0]));
+            json_string(f, m->states[r->section].name);
+            fprintf(f, ", \"value\": %s}", CLI_NUM(r->section_value));
+        }
+        fputs(", \"t\": [", f);
         for (long k = 0; k < rows; k++)
             fprintf(f, "%s%s", k ? ", " : "", CLI_NUM(k == rows - 1 ? r->t1 : r->t0 + k * step));
         fputs("], \"states\": {", f);
@@ -174,6 +206,39 @@ static void write_result(FILE *f, const dyn_model *m, const dyn_bvp_result *r, d
         }
     }
     free(u);
+}
+
+/* --free NAME and --section NAME[=VALUE] into bo: the parameter's and state's indices */
+static int resolve_free(const char *file, const dyn_model *m, const cli_run *run,
+                        const bvp_opts *o, dyn_bvp_opts *bo)
+{
+    const int ip = dyn_model_param_index(m, o->free_name);
+    if (ip < 0)
+        return cli_usage_error("bvp", "--free '%s': %s has no parameter of that name (%d "
+                               "parameters%s%s)", o->free_name, file, m->n_params,
+                               m->n_params ? ", the first " : "",
+                               m->n_params ? m->params[0].name : "");
+    bo->free_par = ip + 1;
+    if (!o->section)
+        return CLI_OK;
+    const char *eq = strchr(o->section, '=');
+    const size_t len = eq ? (size_t)(eq - o->section) : strlen(o->section);
+    int is = -1;
+    for (int i = 0; i < m->n_states; i++)
+        if (strlen(m->states[i].name) == len && strncmp(m->states[i].name, o->section, len) == 0)
+            is = i;
+    if (is < 0)
+        return cli_usage_error("bvp", "--section '%s': give NAME or NAME=VALUE with NAME one "
+                               "of the states of %s", o->section, file);
+    bo->section = is + 1;
+    bo->section_value = run->y0[is];
+    if (eq) {
+        char why[160];
+        cli_formula_params(m, run->par);
+        if (cli_parse_value(eq + 1, &bo->section_value, why, sizeof why))
+            return cli_usage_error("bvp", "--section '%s': the value: %s", o->section, why);
+    }
+    return CLI_OK;
 }
 
 int cli_cmd_bvp(int argc, char **argv)
@@ -208,11 +273,18 @@ int cli_cmd_bvp(int argc, char **argv)
         cli_run_free(&run);
         return rc;
     }
-    dyn_bvp_opts bo = {o.ntst, o.ncol, 0.0};
+    dyn_bvp_opts bo = {o.ntst, o.ncol, 0.0, 0, 0, 0.0};
+    if (o.free_name && resolve_free(argv[0], m, &run, &o, &bo) != CLI_OK) {
+        cli_run_free(&run);
+        return CLI_USAGE;
+    }
     dyn_bvp_result r;
     const int st = dyn_bvp_solve(m, run.par, run.y0, run.t0, run.t1, &bo, &r);
     if (st) {
         cli_error("bvp: %s: %s", argv[0], r.message);
+        if (!o.free_name && (st == DYN_COLLOC_ERR_NEWTON || st == DYN_COLLOC_ERR_SINGULAR))
+            cli_note("bvp: a periodic solution at an unknown frequency or period needs that "
+                     "parameter freed: --free NAME (docs/analysis.md)");
         dyn_bvp_result_free(&r);
         cli_run_free(&run);
         return st == DYN_COLLOC_ERR_ARG ? CLI_USAGE : CLI_FAILED;
@@ -232,11 +304,15 @@ int cli_cmd_bvp(int argc, char **argv)
         for (int k = 0; k < m->n_bdry; k++)
             cli_stderr("dynkit: bvp: condition (line %s) = %.3g\n", m->bdry_text[k],
                        r.residuals[k]);
+        if (r.section >= 0)
+            cli_stderr("dynkit: bvp: free parameter %s = %s with the section %s(%s) = %s\n",
+                       m->params[bo.free_par - 1].name, CLI_NUM(r.sol.par[0]),
+                       m->states[r.section].name, CLI_NUM(r.t0), CLI_NUM(r.section_value));
         cli_out out;
         const char *path = o.output && strcmp(o.output, "-") != 0 ? o.output : NULL;
         rc = cli_out_open(&out, "--output", path);
         if (rc == CLI_OK) {
-            write_result(out.f, m, &r, step, rows, &o);
+            write_result(out.f, m, &r, step, rows, &o, bo.free_par - 1);
             const int bad = fflush(out.f) != 0 || ferror(out.f);
             if (out.f != stdout)
                 rc = cli_out_close(&out, !bad);

@@ -212,6 +212,13 @@ void dyn_po_model_free(dyn_po_model *pm);
 typedef struct dyn_bvp_opts {
     int ntst, ncol; /* 0: 40 intervals, 4 Gauss points */
     double tol;     /* Newton's tolerance (0: 1e-10) */
+    /* a free parameter (XPPAUT's periodic option: a frequency or period), 1 + its index
+     * (0: none), solved for with the states; its one more unknown is fixed by the section
+     * condition u_i(t0) = section_value on the state i = section - 1 (section 0: the state
+     * that moves fastest at y0, |f_i(t0, y0)| largest, at its value y0[i]) */
+    int free_par;
+    int section;
+    double section_value;
 } dyn_bvp_opts;
 
 typedef struct dyn_bvp_result {
@@ -222,6 +229,8 @@ typedef struct dyn_bvp_result {
     double err_est;      /* max over the nodes of |u_ntst - u_2ntst|, the solution against
                           * one on a mesh of twice as many intervals (NAN: that solve
                           * failed) */
+    int section;         /* with a free parameter: the section's state (its index) and */
+    double section_value; /* value; the parameter's value is sol.par[0] (-1: none) */
     char message[256];
 } dyn_bvp_result;
 
@@ -229,7 +238,7 @@ typedef struct dyn_bvp_result {
  * prepared parameters par: the initial-value problem from y0 (classical Runge-Kutta, 8
  * steps per node) is the first guess, Newton's method on the collocation equations on a
  * uniform mesh, then on a mesh adapted to that solution, and once more on twice as many
- * intervals for the error estimate. Returns 0 or DYN_COLLOC_* (message says why); r is
+ * intervals for the error estimate (of the states and the free parameter). Returns 0 or DYN_COLLOC_* (message says why); r is
  * released with dyn_bvp_result_free either way. */
 int dyn_bvp_solve(const dyn_model *m, const void *par, const double *y0, double t0, double t1,
                   const dyn_bvp_opts *o, dyn_bvp_result *r);

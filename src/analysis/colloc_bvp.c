@@ -6,7 +6,9 @@
  * when Newton's method fails from it, the conditions are reached by a homotopy from the
  * initial-value problem's condition u(t0) = y0, (1 - h) (u(t0) - y0) + h g = 0, h from 0 to 1;
  * the mesh is then adapted to the solution (colloc_mesh.c) and the error estimated against
- * a solve on twice as many intervals. */
+ * a solve on twice as many intervals. A free parameter (XPPAUT's periodic boundary-value
+ * option, its manual's "BVP solver": a frequency parameter and a section x(t0) = x0) is one
+ * free scalar of the collocation with the section as one more condition. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -22,12 +24,33 @@ typedef struct bvp_ctx {
     /* the homotopy from the initial-value problem: (1 - h) (u(0) - y0) + h g = 0 */
     double h;
     const double *y0;
+    /* the free parameter (index, -1: none), its value in par, the section u_sec(0) = value */
+    int ifree;
+    double free_set;
+    int sec;
+    double sec_value;
 } bvp_ctx;
+
+/* the free scalar (when there is one and it is given) into the model's parameters */
+static int use_free(bvp_ctx *c, const double *par)
+{
+    if (c->ifree < 0 || !par || par[0] == c->free_set)
+        return 0;
+    if (!isfinite(par[0]))
+        return 1;
+    dyn_model_set_param(c->m, c->par, c->ifree, par[0]);
+    c->free_set = NAN;
+    if (c->m->prepare && c->m->prepare(c->par, NULL, 0))
+        return 1;
+    c->free_set = par[0];
+    return 0;
+}
 
 static int bvp_f(double s, const double *u, const double *par, double *f, double *fu, void *ctx)
 {
-    (void)par;
     bvp_ctx *c = ctx;
+    if (use_free(c, par))
+        return 1;
     const dyn_model *m = c->m;
     const int n = m->n_states;
     const double t = c->t0 + c->len * s;
@@ -63,13 +86,14 @@ static int bvp_f(double s, const double *u, const double *par, double *f, double
 
 static int bvp_bc(const double *u0, const double *u1, const double *par, double *g, void *ctx)
 {
-    (void)par;
-    const bvp_ctx *c = ctx;
-    if (c->m->bdry(u0, u1, c->par, g))
+    bvp_ctx *c = ctx;
+    if (use_free(c, par) || c->m->bdry(u0, u1, c->par, g))
         return 1;
     if (c->h < 1.0)
         for (int i = 0; i < c->m->n_states; i++)
             g[i] = (1.0 - c->h) * (u0[i] - c->y0[i]) + c->h * g[i];
+    if (c->ifree >= 0) /* the section, which the homotopy keeps */
+        g[c->m->n_states] = u0[c->sec] - c->sec_value;
     return 0;
 }
 
@@ -119,6 +143,15 @@ static void first_guess(bvp_ctx *c, const double *y0, dyn_colloc_sol *x)
     free(y);
 }
 
+/* the free scalars of from into to, and into the model's parameters */
+static void restore_par(bvp_ctx *c, dyn_colloc_sol *to, const dyn_colloc_sol *from)
+{
+    if (to->npar > 0) {
+        memcpy(to->par, from->par, (size_t)to->npar * sizeof(double));
+        (void)use_free(c, to->par);
+    }
+}
+
 /* Newton from the guess x; when it fails, from the initial-value problem started again
  * where x ends; then the homotopy from the initial-value problem (whose solution x is at
  * h = 0) to the conditions (h = 1) in steps of h, halved on a failure (to 1e-4) and
@@ -148,6 +181,7 @@ static int solve_homotopy(const dyn_colloc_problem *p, bvp_ctx *c, dyn_colloc_so
             return DYN_COLLOC_ERR_NOMEM;
         }
         memcpy(y1, end, (size_t)x->n * sizeof(double));
+        restore_par(c, x, &keep);
         first_guess(c, y1, x);
         free(y1);
         st = dyn_colloc_solve(p, x, NULL, NULL, no, inf);
@@ -157,16 +191,19 @@ static int solve_homotopy(const dyn_colloc_problem *p, bvp_ctx *c, dyn_colloc_so
         }
     }
     memcpy(x->u, keep.u, (size_t)N * sizeof(double));
+    restore_par(c, x, &keep);
     double h = 0.0, dh = 0.125;
     while (h < 1.0) {
         const double next = fmin(1.0, h + dh);
         c->h = next;
         memcpy(keep.u, x->u, (size_t)N * sizeof(double));
+        restore_par(c, &keep, x);
         st = dyn_colloc_solve(p, x, NULL, NULL, no, inf);
         if (st == DYN_COLLOC_ERR_NOMEM)
             break;
         if (st) {
             memcpy(x->u, keep.u, (size_t)N * sizeof(double));
+            restore_par(c, x, &keep);
             dh *= 0.5;
             if (dh < 1e-4)
                 break;
@@ -223,19 +260,44 @@ int dyn_bvp_solve(const dyn_model *m, const void *par, const double *y0, double 
         snprintf(r->message, sizeof r->message, "the interval [%g, %g] is empty", t0, t1);
         return DYN_COLLOC_ERR_ARG;
     }
+    const int ifree = o ? o->free_par - 1 : -1;
+    if (ifree >= m->n_params || ifree < -1 || (ifree >= 0 && o->section > n) ||
+        (ifree >= 0 && o->section < 0)) {
+        snprintf(r->message, sizeof r->message, "the free parameter %d or the section's state "
+                 "%d is not one of the model's", ifree + 1, o->section);
+        return DYN_COLLOC_ERR_ARG;
+    }
+    const int nfree = ifree >= 0;
     const int ntst = o && o->ntst > 0 ? o->ntst : 40;
     const int ncol = o && o->ncol > 0 ? o->ncol : 4;
     bvp_ctx c = {m, malloc(m->par_size ? m->par_size : 1), t0, t1 - t0,
-                 malloc(3 * (size_t)n * sizeof(double)), 1.0, y0};
+                 malloc(3 * (size_t)n * sizeof(double)), 1.0, y0, ifree, NAN, 0, 0.0};
     r->residuals = calloc((size_t)n, sizeof(double));
+    r->section = -1;
     dyn_colloc_sol fine = {0};
     int st = !c.par || !c.work || !r->residuals ? DYN_COLLOC_ERR_NOMEM : 0;
     if (!st) {
         if (m->par_size > 0) /* a model without parameters may pass par = NULL */
             memcpy(c.par, par, m->par_size);
-        st = dyn_colloc_sol_alloc(&r->sol, n, ntst, ncol, 0);
+        st = dyn_colloc_sol_alloc(&r->sol, n, ntst, ncol, nfree);
     }
-    const dyn_colloc_problem p = {n, 0, n, 0, bvp_f, bvp_bc, &c};
+    if (!st && nfree) {
+        r->sol.par[0] = c.free_set = dyn_model_get_param(m, c.par, ifree);
+        if (o->section > 0) {
+            c.sec = o->section - 1;
+            c.sec_value = o->section_value;
+        } else { /* the state moving fastest at y0, at its value there */
+            if (m->rhs(t0, y0, c.work, c.par))
+                st = DYN_COLLOC_ERR_FN;
+            for (int i = 1; i < n && !st; i++)
+                if (fabs(c.work[i]) > fabs(c.work[c.sec]))
+                    c.sec = i;
+            c.sec_value = y0[c.sec];
+        }
+        r->section = c.sec;
+        r->section_value = c.sec_value;
+    }
+    const dyn_colloc_problem p = {n, nfree, n + nfree, 0, bvp_f, bvp_bc, &c};
     const dyn_colloc_opts no = {o && o->tol > 0 ? o->tol : 1e-10, 40};
     dyn_colloc_info inf = {0, 0, 0};
     if (!st) {
@@ -271,12 +333,14 @@ int dyn_bvp_solve(const dyn_model *m, const void *par, const double *y0, double 
                 for (int i = 0; i < n; i++)
                     e = fmax(e, fabs(r->sol.u[(size_t)g * n + i] - uf[i]));
             }
+            if (nfree)
+                e = fmax(e, fabs(r->sol.par[0] - fine.par[0]));
             r->err_est = e;
         }
     }
     if (!st) {
         const double *ul = r->sol.u + (size_t)(dyn_colloc_nodes(&r->sol) - 1) * n;
-        if (m->bdry(r->sol.u, ul, c.par, r->residuals))
+        if (use_free(&c, r->sol.par) || m->bdry(r->sol.u, ul, c.par, r->residuals))
             st = DYN_COLLOC_ERR_FN;
     }
     if (st)

@@ -7,9 +7,13 @@ lines: gberg.ode (a spiral wave's boundary-value problem with a free frequency) 
 scipy.integrate.solve_bvp, lecar.ode (periodic conditions over 30 time units: the
 equilibrium) against the right-hand side's zero, cable.ode over XPPAUT's default total 20;
 tstheti.ode and tsthomi.ode (hom_bcs) refused with exit status 2, vdp.ode and lamomeg.ode
-(periodic conditions that only an equilibrium meets for their frequency) ending with exit
-status 1 and the reason; run of a bdry file notes the lines it ignores; --json and the
-output files; every command of docs/analysis.md's boundary-value section runs. XPPAUT's
+(periodic conditions at a free frequency): without --free exit status 1 naming --free, with
+--free om lamomeg's om = pi (the closed form: 4 q om = 2 pi k turns in its total 4) on the
+unit circle, vdp's om = the period of van der Pol's cycle (vdp.ode over [0, 1] and
+examples/models/vdp_bvp.ode) against SciPy's solve_ivp (the time between crossings), SciPy's
+solve_bvp with om free and dynkit run's own section period, and converging at the
+collocation's order; run of a bdry file notes the lines it ignores; --json and the output
+files; every command of docs/analysis.md's boundary-value section runs. XPPAUT's
 -silent mode does not solve boundary-value problems (it integrates the initial-value
 problem), so it is no oracle here. Exit 0 when all hold, 1 when not, 77 (skipped) without
 NumPy/SciPy. What failed is kept under build/tests/artifacts/bvp_check/.
@@ -27,7 +31,7 @@ import tempfile
 
 try:
     import numpy as np
-    from scipy.integrate import solve_bvp
+    from scipy.integrate import solve_bvp, solve_ivp
 except ImportError:
     print("SKIP: NumPy or SciPy is missing (python3-numpy, python3-scipy)")
     sys.exit(77)
@@ -70,6 +74,65 @@ def cable_closed(x, a, b, v0, lam2):
     L = 1.0 / l  # x in units of the length constant
     K = (a * math.cosh(L) + b * math.sinh(L) / l) / (a * math.sinh(L) + b * math.cosh(L) / l)
     return v0 * (np.cosh(x / l) - K * np.sinh(x / l))
+
+
+def vdp_reference():
+    """the period of van der Pol's limit cycle (mu = 1) and its state at y = 0, x > 0: by
+    SciPy's solve_ivp (DOP853, rtol 1e-13) as the time between two upward crossings of
+    x = 0 after a transient, and by solve_bvp with the period free"""
+    f = lambda t, u: [u[1], (1 - u[0] ** 2) * u[1] - u[0]]
+    up = lambda t, u: u[0]
+    up.direction = 1
+    s = solve_ivp(f, (0, 80), [2.0, 0.0], method="DOP853", rtol=1e-13, atol=1e-13,
+                  events=up)
+    crossings = s.t_events[0]
+    t_ivp = float(crossings[-1] - crossings[-2])
+
+    def g(t, u, p):
+        return p[0] * np.vstack([u[1], (1 - u[0] ** 2) * u[1] - u[0]])
+
+    def bc(ua, ub, p):
+        return np.array([ua[0] - ub[0], ua[1] - ub[1], ua[1]])
+
+    t = np.linspace(0, 1, 400)
+    guess = np.vstack([2 * np.cos(2 * np.pi * t), -2 * np.sin(2 * np.pi * t)])
+    b = solve_bvp(g, bc, t, guess, p=[6.6], tol=1e-10, max_nodes=200000)
+    return t_ivp, (float(b.p[0]) if b.status == 0 else math.nan), b
+
+
+def vdp_period(path, xs, ys, extra):
+    """dynkit bvp PATH --free om: om is the period, at the collocation's order"""
+    t_ivp, t_bvp, b = vdp_reference()
+    p = run("run", os.path.join(SOURCE, "examples", "models", "vanderpol.ode"), "--section",
+            "period:y1=0:+", "--tspan", "0:100", "--method", "dop853", "--rtol", "1e-13",
+            "--atol", "1e-13")
+    t_run = table(p.stdout)["t"][-1] if p.returncode == 0 else math.nan
+    name = os.path.basename(path)
+    check(abs(t_ivp - t_bvp) < 1e-9 and abs(t_ivp - t_run) < 1e-10,
+          f"van der Pol's period: solve_ivp {t_ivp:.13f}, solve_bvp {t_bvp:.13f}, dynkit run "
+          f"--section period {t_run:.13f}")
+    errs = []
+    for ntst in ("40", "80", "160"):
+        p = run("bvp", path, "--free", "om", "--ntst", ntst, "--json", *extra)
+        if p.returncode:
+            return
+        d = json.loads(p.stdout)
+        om = d["free"]["om"]
+        errs.append(abs(om - t_ivp))
+        check(errs[-1] < 1e-9 and errs[-1] < 10 * d["error_estimate"] + 1e-12 and
+              d["section"]["state"] == ys and d["section"]["value"] == 0,
+              f"{name} --free om, {ntst} intervals: om = {om:.13f}, |om - T| = "
+              f"{errs[-1]:.1e}, error estimate {d['error_estimate']:.1e}, section "
+              f"{ys}(0) = 0", p.stdout)
+        if ntst == "160":  # the orbit against solve_bvp's, its phase fixed the same way
+            ref = b.sol(np.array(d["t"]))
+            diff = max(float(np.max(np.abs(np.array(d["states"][xs]) - ref[0]))),
+                       float(np.max(np.abs(np.array(d["states"][ys]) - ref[1]))))
+            check(diff < 1e-7, f"{name}: the orbit within {diff:.1e} of solve_bvp's")
+    if len(errs) == 3 and errs[1] > 0:
+        order = math.log2(errs[0] / errs[1])
+        check(order > 6, f"{name}: the period's error falls by 2^{order:.1f} from 40 to 80 "
+              "intervals (superconvergence: 2^8 at 4 Gauss points)")
 
 
 def main():
@@ -167,13 +230,37 @@ def main():
                       f"form| = {err:.1e}, error estimate {est:.1e}")
         for name in ("tstheti", "tsthomi"):
             p = run("bvp", os.path.join(DEBIAN, name + ".ode"), status=2)
-            check("hom_bcs" in p.stderr and ":" in p.stderr.split("error")[0],
-                  f"{name}.ode: hom_bcs refused at its line")
+            check("hom_bcs" in p.stderr and ":" in p.stderr.split("error")[0] and
+                  "NAME'" in p.stderr and "--free" in p.stderr,
+                  f"{name}.ode: hom_bcs refused at its line, saying what a condition can be")
         for name in ("vdp", "lamomeg"):
             p = run("bvp", os.path.join(DEBIAN, name + ".ode"), status=1)
-            check("Newton" in p.stderr, f"{name}.ode: no solution found, and why")
+            check("Newton" in p.stderr and "--free" in p.stderr,
+                  f"{name}.ode without --free: no solution found, why, and --free named")
+        # lamomeg: x' = (x (1 - r^2) + q r^2 y) om, ... : on r = 1 the angle turns at -q om,
+        # so 4 units of time make k turns for om = k pi / (2 q) = pi (k = 4, q = 2)
+        p = run("bvp", os.path.join(DEBIAN, "lamomeg.ode"), "--free", "om", "--ntst", "80",
+                "--json")
+        if p.returncode == 0:
+            d = json.loads(p.stdout)
+            om = d["free"]["om"]
+            r = np.hypot(d["states"]["x"], d["states"]["y"])
+            rerr = float(np.max(np.abs(r - 1)))
+            check(abs(om - math.pi) < 1e-10 and rerr < 1e-8 and
+                  max(abs(om - math.pi), rerr) < 10 * d["error_estimate"] + 1e-13,
+                  f"lamomeg.ode --free om: om - pi = {om - math.pi:.1e}, max |r - 1| = "
+                  f"{rerr:.1e}, error estimate "
+                  f"{d['error_estimate']:.1e}, section {d['section']}", p.stdout)
+        vdp_period(os.path.join(DEBIAN, "vdp.ode"), "x", "xp", ("--tspan", "0:1"))
     else:
         print(f"note: {DEBIAN} is missing (Debian's xppaut): its examples are not checked")
+    vdp_period(os.path.join(SOURCE, "examples", "models", "vdp_bvp.ode"), "x", "y", ())
+    p = run("bvp", CABLE, "--free", "nosuch", status=2)
+    check("nosuch" in p.stderr and "parameter" in p.stderr, "--free nosuch refused, naming it")
+    p = run("bvp", CABLE, "--section", "v=1", status=2)
+    check("--free" in p.stderr, "--section without --free refused")
+    p = run("bvp", CABLE, "--free", "a", "--section", "zz=1", status=2)
+    check("zz" in p.stderr and "states" in p.stderr, "--section zz=1 refused: not a state")
 
     # every command of docs/analysis.md's boundary-value section
     with open(os.path.join(SOURCE, "docs", "analysis.md")) as f:

@@ -77,9 +77,9 @@ static const struct {
     {"besseli", "Bessel functions ('besseli')"},
     {"lgamma", "the log-gamma function ('lgamma')"},
     {"ishift", "indirect addressing ('ishift')"},
-    {"hom_bcs", "homoclinic boundary conditions ('hom_bcs', XPPAUT's projections onto an "
-                "equilibrium's subspaces; dynkit bvp takes conditions on the states at the two "
-                "ends)"},
+    {"hom_bcs", "homoclinic boundary conditions ('hom_bcs', XPPAUT's projections of the "
+                "ends onto the unstable and stable subspaces of equilibria held in states, "
+                "which its (H)omoclinic dialog sets up)"},
 };
 
 /* The feature's name when name is a reserved word of XPPAUT that is not supported. */
@@ -364,6 +364,11 @@ static node *parse_primary(lang_lexer *lx)
     if (t.kind != T_NAME)
         unexpected(lx, &t, "expected a number, a name or '('");
     const char *feature = unsupported_feature(s, n);
+    if (feature && ieq(s, n, "hom_bcs"))
+        lang_fail(lx->c, p, "%s are not supported: a bdry condition is written on the states "
+                            "at t0 (NAME) and at the end (NAME'), with parameters and numbers "
+                            "(one per state; dynkit bvp --free NAME solves for a parameter "
+                            "too)", feature);
     if (feature)
         lang_fail(lx->c, p, "%s %s not supported", feature,
                   strstr(feature, "s (") || strstr(feature, "ions") ? "are" : "is");

@@ -12,6 +12,9 @@
  * - -o FILE.html (and --html): a page holding the orbits, a dot per orbit at its maximum
  *   and minimum; orbits beyond the page's budget are thinned, the labelled ones kept;
  *   extensions that are not accepted are refused with the accepted ones;
+ * - the summary's words at a Hopf point: the normal form's is supercritical (l1 = -1 < 0),
+ *   a linear centre's (l1 = 0 exactly) degenerate; both points are marginal, not unstable
+ *   (their eigenvalues +-i lie on the axis);
  * - every example of continue --help runs. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
@@ -104,6 +107,22 @@ static void test_output_file_keeps_stdout_empty(void **state)
     cli_free(&r);
     r = cli_in_tmpdir("continue hopf.ode --par p --svg d2.svg");
     CHECK(r.status == 0 && r.out[0] == 0, "exit %d, stdout '%.100s'", r.status, r.out);
+    cli_free(&r);
+}
+
+static void test_summary_words_at_a_hopf_point(void **state)
+{
+    (void)state;
+    cli_result r = cli_in_tmpdir("continue hopf.ode --par p");
+    const char *hb = strstr(r.out, "HB  p = ");
+    CHECK(r.status == 0 && hb && strstr(hb, "(supercritical)  marginal\n"), "%s%s", r.out, r.err);
+    cli_free(&r);
+    CHECK(cli_write_file("centre.ode", "par p=-0.5\ninit x=0, y=0\nx'=p*x-y\ny'=x+p*y\n"
+                                       "@ parmin=-1, parmax=1\ndone\n") == 0, "centre.ode");
+    r = cli_in_tmpdir("continue centre.ode --par p");
+    hb = strstr(r.out, "HB  p = ");
+    CHECK(r.status == 0 && hb && strstr(hb, "l1 = 0 (degenerate") && strstr(hb, "marginal\n"),
+          "%s%s", r.out, r.err);
     cli_free(&r);
 }
 
@@ -240,6 +259,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_settings_from_the_files_at_lines),
         cmocka_unit_test(test_output_file_keeps_stdout_empty),
+        cmocka_unit_test(test_summary_words_at_a_hopf_point),
         cmocka_unit_test(test_svg_of_the_diagram),
         cmocka_unit_test(test_page_of_the_diagram),
         cmocka_unit_test(test_page_thins_its_orbits),

@@ -178,6 +178,38 @@ void cont_write_json(FILE *f, const cont_view *v)
     fputc('\n', f);
 }
 
+/* The Hopf point's kind by the sign of l1; an l1 of zero to its accuracy (the Richardson
+ * differences give it to about 1e-13) leaves the kind to higher-order terms, as van der
+ * Pol's centre at mu = 0 does. */
+static const char *hopf_kind(double l1)
+{
+    if (fabs(l1) <= 1e-10)
+        return "degenerate: l1 is zero to its accuracy";
+    return l1 < 0.0 ? "supercritical" : "subcritical";
+}
+
+/* "stable", "unstable", or "marginal" for an equilibrium or steady motion that is not
+ * asymptotically stable only because its rightmost eigenvalues lie on the imaginary axis
+ * (within 1e-8 of the largest modulus, as `linearize` allows 1e-8 of the matrix's norm): a Hopf point, a
+ * fold, a conservative system's centre. The CSV's `stable` column stays 0 there. */
+static const char *stability_word(const dyn_branch *b, long k)
+{
+    const dyn_branch_point *p = &b->pts[k];
+    if (p->stable)
+        return "stable";
+    if ((b->kind != DYN_BRANCH_EQUILIBRIUM && b->kind != DYN_BRANCH_STEADY) || b->n_eig <= 0)
+        return "unstable";
+    const double *e = b->eig + (size_t)k * 2u * (size_t)b->n_eig;
+    double re_max = -INFINITY, mod_max = 0.0;
+    for (int i = 0; i < b->n_eig; i++) {
+        if (!isfinite(e[2 * i]) || !isfinite(e[2 * i + 1]))
+            return "unstable";
+        re_max = fmax(re_max, e[2 * i]);
+        mod_max = fmax(mod_max, hypot(e[2 * i], e[2 * i + 1]));
+    }
+    return re_max <= 1e-8 * mod_max ? "marginal" : "unstable";
+}
+
 void cont_write_text(FILE *f, const cont_view *v)
 {
     const dyn_model *m = v->m;
@@ -206,11 +238,10 @@ void cont_write_text(FILE *f, const cont_view *v)
             if (p->label == DYN_LABEL_HB && (b->kind == DYN_BRANCH_EQUILIBRIUM || b->kind == DYN_BRANCH_STEADY)) {
                 fprintf(f, "  omega = %s", CLI_NUM(p->omega));
                 if (isfinite(p->l1))
-                    fprintf(f, ", l1 = %s (%s)", CLI_NUM(p->l1),
-                            p->l1 < 0.0 ? "supercritical" : "subcritical");
+                    fprintf(f, ", l1 = %s (%s)", CLI_NUM(p->l1), hopf_kind(p->l1));
             }
             if (p->stable >= 0)
-                fprintf(f, "  %s", p->stable ? "stable" : "unstable");
+                fprintf(f, "  %s", stability_word(b, k));
             fputc('\n', f);
         }
     }

@@ -26,34 +26,18 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
+import { loadChromium, skip } from './harness.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
-const SKIP = 77;
 const dynkit = process.argv[2] && path.resolve(process.argv[2]);
 const source = path.resolve(process.argv[3] || path.join(here, '..', '..'));
 const artifacts = path.resolve(process.argv[4] || path.join(source, 'build', 'tests', 'artifacts'));
-const chromiumPath = process.env.DYNKIT_CHROMIUM || '/usr/bin/chromium';
 
-function skip(why) {
-  if (process.env.DYNKIT_REQUIRE_BROWSER === '1') {
-    console.log(`FAIL: ${why} (DYNKIT_REQUIRE_BROWSER=1)`);
-    process.exit(1);
-  }
-  console.log(`SKIP: ${why}`);
-  process.exit(SKIP);
-}
 if (!dynkit || !fs.existsSync(dynkit)) {
   console.error(`usage: node live.mjs DYNKIT_BINARY SOURCE_DIR [ARTIFACTS_DIR] (got '${dynkit}')`);
   process.exit(2);
 }
-if (!fs.existsSync(chromiumPath))
-  skip(`Chromium not found at ${chromiumPath} (apt-get install chromium, or scripts/install-deps.sh)`);
-let chromium;
-try {
-  ({ chromium } = await import(pathToFileURL(path.join(here, 'node_modules', 'playwright-core', 'index.mjs')).href));
-} catch (e) {
-  skip(`playwright-core is not installed in ${here}/node_modules (run 'npm ci' there)`);
-}
+const { chromium, chromiumPath } = await loadChromium(here);
 const dir = path.join(artifacts, 'live');
 fs.mkdirSync(dir, { recursive: true });
 

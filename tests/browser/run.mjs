@@ -27,35 +27,17 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
+import { loadChromium } from './harness.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
-const SKIP = 77;
 const dynkit = process.argv[2];
 const artifacts = path.resolve(process.argv[3] || path.join(here, '..', '..', 'build', 'tests', 'artifacts'));
-const chromiumPath = process.env.DYNKIT_CHROMIUM || '/usr/bin/chromium';
-
-// DYNKIT_REQUIRE_BROWSER=1 (CI) turns a skip into a failure.
-function skip(why) {
-  if (process.env.DYNKIT_REQUIRE_BROWSER === '1') {
-    console.log(`FAIL: ${why} (DYNKIT_REQUIRE_BROWSER=1)`);
-    process.exit(1);
-  }
-  console.log(`SKIP: ${why}`);
-  process.exit(SKIP);
-}
 
 if (!dynkit || !fs.existsSync(dynkit)) {
   console.error(`usage: node run.mjs DYNKIT_BINARY [ARTIFACTS_DIR] (got '${dynkit}')`);
   process.exit(2);
 }
-if (!fs.existsSync(chromiumPath))
-  skip(`Chromium not found at ${chromiumPath} (install it with 'apt-get install chromium', or run scripts/install-deps.sh)`);
-let chromium;
-try {
-  ({ chromium } = await import(pathToFileURL(path.join(here, 'node_modules', 'playwright-core', 'index.mjs')).href));
-} catch (e) {
-  skip(`playwright-core is not installed in ${here}/node_modules (run 'npm ci' there, or scripts/install-deps.sh)`);
-}
+const { chromium, chromiumPath } = await loadChromium(here);
 
 fs.mkdirSync(artifacts, { recursive: true });
 const results = [];

@@ -240,19 +240,9 @@ static int solve(const char *spec, st_args *a, cli_run *run, double t)
     int *eqs = malloc(N * sizeof *eqs);
     if (fr_bad || !r.unknowns || !r.cyclic || !r.re || !r.im || !eqs)
         rc = CLI_FAILED;
-    char err[256] = "";
     if (rc == CLI_OK)
-        rc = steady_frame_at("steady", &fr, t, run->y0, run->par);
-    if (rc == CLI_OK && fr.nd && steady_complete_dependent(&fr, t, run->y0, run->par, err, sizeof err)) {
-        cli_error("steady: the initial state on the constraints: %s", err);
-        rc = CLI_FAILED;
-    }
-    if (rc == CLI_OK)
-        rc = steady_find_cyclic("steady", m, t, run->y0, run->par, &fr, a->cyclic, r.cyclic);
-    /* the equations: the kept states that are not cyclic */
-    for (int j = 0; j < fr.k && rc == CLI_OK; j++)
-        if (!r.cyclic[j])
-            eqs[r.n_eq++] = fr.kept[j];
+        rc = steady_frame_prepare("steady", &fr, m, t, run->y0, run->par, a->cyclic, r.cyclic,
+                                  eqs, &r.n_eq);
     char *names[256];
     const int nu = rc == CLI_OK ? steady_split_names(a->unknown, names, 256) : 0;
     for (int u = 0; u < nu && rc == CLI_OK; u++) {

@@ -78,32 +78,21 @@ int cont_steady_run(const char *spec, const cli_run *run, const cont_steady_args
     const int fr_bad = steady_frame_alloc(&fr, &cc, n);
     int *ints = malloc(5 * N * sizeof *ints);
     double *y = malloc(N * sizeof *y);
-    char cyclic_list[1024], unknown_list[1024], err[256] = "";
+    char cyclic_list[1024], unknown_list[1024];
     snprintf(cyclic_list, sizeof cyclic_list, "%s", a->cyclic ? a->cyclic : "");
     snprintf(unknown_list, sizeof unknown_list, "%s", a->unknown ? a->unknown : "");
     if (fr_bad || !ints || !y)
         rc = CLI_FAILED;
     int *cyclic = ints, *follows = ints + N, *eqs = ints + 2 * N, *unk = ints + 3 * N,
         *held = ints + 4 * N;
+    int ne = 0, nu = 0, nh = 0;
     if (rc == CLI_OK) {
         memcpy(y, run->y0, N * sizeof *y);
-        rc = steady_frame_at("continue", &fr, run->t0, y, run->par);
+        rc = steady_frame_prepare("continue", &fr, m, run->t0, y, run->par, cyclic_list, cyclic,
+                                  eqs, &ne);
     }
-    if (rc == CLI_OK && fr.nd &&
-        steady_complete_dependent(&fr, run->t0, y, run->par, err, sizeof err)) {
-        cli_error("continue: the initial state on the constraints: %s", err);
-        rc = CLI_FAILED;
-    }
-    if (rc == CLI_OK)
-        rc = steady_find_cyclic("continue", m, run->t0, y, run->par, &fr, cyclic_list, cyclic);
-    int n_cyclic = 0, ne = 0, nu = 0, nh = 0;
-    for (int j = 0; j < fr.k && rc == CLI_OK; j++) {
-        if (cyclic[j])
-            n_cyclic++;
-        else
-            eqs[ne++] = fr.kept[j];
-    }
-    if (rc == CLI_OK && n_cyclic == 0 && cc.m == 0 && !a->unknown) {
+    /* no cyclic state: every kept state is an equation */
+    if (rc == CLI_OK && ne == fr.k && cc.m == 0 && !a->unknown) {
         /* an equilibrium problem: dyn_continue as for any model */
         free(ints);
         free(y);

@@ -171,3 +171,21 @@ int steady_find_cyclic(const char *cmd, const dyn_model *m, double t, const doub
         steady_frame_free(&fr2);
     return rc;
 }
+
+int steady_frame_prepare(const char *cmd, steady_frame *fr, const dyn_model *m, double t,
+                         double *y, void *par, char *given, int *cyclic, int *eqs, int *n_eq)
+{
+    *n_eq = 0;
+    int rc = steady_frame_at(cmd, fr, t, y, par);
+    char err[256] = "";
+    if (rc == CLI_OK && fr->nd && steady_complete_dependent(fr, t, y, par, err, sizeof err)) {
+        cli_error("%s: the initial state on the constraints: %s", cmd, err);
+        rc = CLI_FAILED;
+    }
+    if (rc == CLI_OK)
+        rc = steady_find_cyclic(cmd, m, t, y, par, fr, given, cyclic);
+    for (int j = 0; j < fr->k && rc == CLI_OK; j++)
+        if (!cyclic[j])
+            eqs[(*n_eq)++] = fr->kept[j];
+    return rc;
+}

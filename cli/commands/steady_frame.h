@@ -35,4 +35,12 @@ int steady_split_names(char *list, char **names, int max);
 int steady_find_cyclic(const char *cmd, const dyn_model *m, double t, const double *y, void *par,
                        const steady_frame *fr, char *given, int *cyclic);
 
+/* Everything a steady motion's equations need at (t, y), as steady and continue both ask:
+ * steady_frame_at, the dependent states of y solved from the constraints (y changed in
+ * place), steady_find_cyclic (given, cyclic as there) and the equations: the kept states
+ * that are not cyclic (eqs, *n_eq of them). CLI_OK or a CLI status after a message
+ * prefixed by cmd. */
+int steady_frame_prepare(const char *cmd, steady_frame *fr, const dyn_model *m, double t,
+                         double *y, void *par, char *given, int *cyclic, int *eqs, int *n_eq);
+
 #endif

@@ -133,6 +133,52 @@ static int orbit_dots(FILE *f, const cont_view *v, const frame *r, const cont_or
     return bad | (fputs("</g>\n", f) < 0);
 }
 
+/* The labels already drawn on a panel, as boxes in SVG units (11 px text: about 7 px a
+ * character, 11 px high), so that a label does not cover another: a periodic branch's first
+ * point (EP) sits on the Hopf point (HB) it starts from. */
+#define LABEL_MAX 512
+typedef struct {
+    double x0[LABEL_MAX], y0[LABEL_MAX], x1[LABEL_MAX], y1[LABEL_MAX];
+    int count;
+} label_boxes;
+
+static int label_free(const label_boxes *b, double x0, double y0, double x1, double y1)
+{
+    if (x0 < 0 || x1 > SW || y0 < 0)
+        return 0;
+    for (int i = 0; i < b->count; i++)
+        if (x0 < b->x1[i] && b->x0[i] < x1 && y0 < b->y1[i] && b->y0[i] < y1)
+            return 0;
+    return 1;
+}
+
+/* The baseline start (*tx, *ty) of a label of n characters for the mark at (x, y): above
+ * right, else below right, above left, below left, else stacked further up; recorded. */
+static void place_label(label_boxes *b, double x, double y, size_t n, double *tx, double *ty)
+{
+    const double w = 7.0 * (double)n, h = 11.0;
+    const double dx[4] = {4, 4, -4 - w, -4 - w}, dy[4] = {-4, 4 + h, -4, 4 + h};
+    int k = 0;
+    while (k < 4 && !label_free(b, x + dx[k], y + dy[k] - h, x + dx[k] + w, y + dy[k]))
+        k++;
+    if (k < 4) {
+        *tx = x + dx[k];
+        *ty = y + dy[k];
+    } else {
+        *tx = x + dx[0];
+        *ty = y + dy[0];
+        while (*ty - h > h && !label_free(b, *tx, *ty - h, *tx + w, *ty))
+            *ty -= h;
+    }
+    if (b->count < LABEL_MAX) {
+        b->x0[b->count] = *tx;
+        b->y0[b->count] = *ty - h;
+        b->x1[b->count] = *tx + w;
+        b->y1[b->count] = *ty;
+        b->count++;
+    }
+}
+
 static int panel(FILE *f, const cont_view *v, int curves, const cont_orbit_set *marks)
 {
     const dyn_model *m = v->m;
@@ -202,6 +248,7 @@ static int panel(FILE *f, const cont_view *v, int curves, const cont_orbit_set *
     if (!curves && marks)
         bad |= orbit_dots(f, v, &r, marks);
     bad |= fputs("<g font-size=\"11\">\n", f) < 0;
+    label_boxes placed = {0};
     for (int bi = 0; bi < v->d->count; bi++) {
         const dyn_branch *b = &v->d->branches[bi];
         if (!wanted(b, curves))
@@ -212,10 +259,12 @@ static int panel(FILE *f, const cont_view *v, int curves, const cont_orbit_set *
             if (l == DYN_LABEL_NONE || !isfinite(x) || !isfinite(y) || x < r.xlo || x > r.xhi ||
                 y < r.ylo || y > r.yhi)
                 continue;
+            const char *name = dyn_cont_label_name(l);
+            double tx, ty;
+            place_label(&placed, px(&r, x), py(&r, y), strlen(name), &tx, &ty);
             bad |= fprintf(f, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"3\" fill=\"#000\"/>"
                               "<text x=\"%.2f\" y=\"%.2f\">%s</text>\n",
-                           px(&r, x), py(&r, y), px(&r, x) + 4, py(&r, y) - 4,
-                           dyn_cont_label_name(l)) < 0;
+                           px(&r, x), py(&r, y), tx, ty, name) < 0;
         }
     }
     bad |= fputs("</g>\n", f) < 0;

@@ -229,8 +229,12 @@ int cli_live_build(const dyn_model *m, cli_live *out)
     if (rc == 0) {
         char cc[512];
         snprintf(cc, sizeof cc, "%s", wasm_cc());
+        /* wasi-libc's printf family without long double reports that lack on stderr, which
+         * brings in its stdio and three imports of the system interface; the family with long
+         * double (formatted in software) needs none, and the module imports nothing */
         char *argv[] = {cc, "--target=wasm32-wasi", "-O2", "-ffp-contract=off",
-                        "-mexec-model=reactor", "-w", inc, c_path, obj, lib, "-lm",
+                        "-mexec-model=reactor", "-w", inc, c_path, obj, lib,
+                        "-lc-printscan-long-double", "-lm",
                         "-Wl,--strip-debug", "-o", wasm_path, NULL};
         rc = run_compiler(argv, log_path);
         if (rc != 0) {

@@ -143,6 +143,16 @@ for (const p of pages.filter(q => !q.failed)) {
     continue;
   }
   timings[p.name] = { page_bytes: size };
+  // the module needs nothing from the page: no import (no system interface)
+  const imports = await page.evaluate(() => {
+    const text = JSON.parse(document.getElementById('dynkit-data').textContent).live.module;
+    const bin = atob(text), bytes = new Uint8Array(bin.length);
+    for (let i = 0; i < bin.length; i++) bytes[i] = bin.charCodeAt(i);
+    const m = new WebAssembly.Module(bytes);
+    return { imports: WebAssembly.Module.imports(m).map(i => i.module + '.' + i.name), bytes: bytes.length };
+  });
+  timings[p.name].module_bytes = imports.bytes;
+  check(imports.imports.length === 0, `the module (${(imports.bytes / 1024).toFixed(0)} KiB) imports nothing${imports.imports.length ? ': ' + imports.imports.join(', ') : ''}`);
 
   // a click in the phase plane (the page as it opened): a trajectory that starts there
   if (p.phase) {

@@ -54,10 +54,8 @@
     }
 
     async instantiate() {
-      /* a module linked by the tool for wasm32-wasi imports nothing; should one import the
-       * system interface, every call is refused (ENOSYS) */
-      const refuse = new Proxy({}, { get: () => () => 52 });
-      const { instance } = await WebAssembly.instantiate(decode64(this.L.module), { wasi_snapshot_preview1: refuse });
+      /* the module the tool links imports nothing (cli/pages/live_page.c) */
+      const { instance } = await WebAssembly.instantiate(decode64(this.L.module), {});
       this.x = instance.exports;
       if (this.x._initialize) this.x._initialize();
       if (!this.x.dk_live_setup()) throw new Error('the model could not be set up (out of memory)');

@@ -24,22 +24,35 @@
     return null;
   }
 
+  /* The lines above the pictures: the runs and their sample counts, the notes, the runs'
+   * messages (written again at a live page's rerun). */
+  function describe(data, runs) {
+    document.getElementById('subtitle').textContent = runs.map(r => r.label + ' (' + r.raw.samples + ' samples' + (r.raw.samples > r.t.length ? ', ' + r.t.length + ' shown' : '') + ')').join(' · ');
+    const messages = document.getElementById('messages');
+    messages.replaceChildren();
+    if (data.shows) messages.appendChild(DK.el('p', { class: 'note', text: data.shows }));
+    for (const r of data.runs) if (r.message) messages.appendChild(DK.el('p', { class: 'warning', text: r.message }));
+  }
+
+  /* The player's span: from the data's start to the end of the longest run; 1x plays one
+   * second per second when that fits a watchable minute, else the whole run in 20 s (a
+   * neuron's 400 ms, van der Pol's 1000 s), in the model's time unit. */
+  function spanOf(data, runs) {
+    const t0 = data.span[0];
+    const t1 = Math.max(...runs.map(r => r.t[r.t.length - 1]));
+    const unit = data.model.time_unit || 's';
+    return { t0, t1, unit, rate: unit === 's' && t1 - t0 <= 60 ? 1 : (t1 - t0) / 20 };
+  }
+
   DK.buildAnimate = function (data) {
     const model = data.model, params = model.params;
     const runs = DK.prepareRuns(data.runs);
     document.getElementById('title').textContent = model.name + ' — ' + model.title;
-    document.getElementById('subtitle').textContent = runs.map(r => r.label + ' (' + r.raw.samples + ' samples' + (r.raw.samples > r.t.length ? ', ' + r.t.length + ' shown' : '') + ')').join(' · ');
-    const messages = document.getElementById('messages');
-    if (data.shows) messages.appendChild(DK.el('p', { class: 'note', text: data.shows }));
-    for (const r of data.runs) if (r.message) messages.appendChild(DK.el('p', { class: 'warning', text: r.message }));
-    const t0 = data.span[0];
-    const t1 = Math.max(...runs.map(r => r.t[r.t.length - 1]));
-    /* the model's time unit; 1x plays one second per second when that fits a watchable
-     * minute, else the whole run in 20 s (a neuron's 400 ms, van der Pol's 1000 s) */
-    const unit = model.time_unit || 's';
+    describe(data, runs);
+    const { t0, t1, unit, rate } = spanOf(data, runs);
     DK.timeUnit = unit;
-    const rate = unit === 's' && t1 - t0 <= 60 ? 1 : (t1 - t0) / 20;
     const player = new DK.Player(document.getElementById('player'), { t0, t1, times: runs[0].t, label: model.name, watch: document.querySelector('.stage'), unit, rate });
+    const views = player.views = []; /* what DK.updateAnimate draws again */
     const view = document.getElementById('view');
     /* dynkit plot --live: the columns asked for, against t or in an x-y picture */
     const chosen = data.plot;
@@ -58,12 +71,12 @@
       } else {
         view.parentNode.insertBefore(box, view);
       }
-      DK.AniView(box, runs, data.ani, player);
+      views.push(DK.AniView(box, runs, data.ani, player));
     }
-    if (kind === 'mech') DK.MechView(view, runs, data.mech, player);
-    else if (kind === 'plane') DK.PlaneView(view, runs, params, player);
-    else if (kind === 'cart') DK.CartView(view, runs, params, player);
-    else if (kind === 'pendulum') DK.PendulumView(view, runs, params.l, player);
+    if (kind === 'mech') views.push(DK.MechView(view, runs, data.mech, player));
+    else if (kind === 'plane') views.push(DK.PlaneView(view, runs, params, player));
+    else if (kind === 'cart') views.push(DK.CartView(view, runs, params, player));
+    else if (kind === 'pendulum') views.push(DK.PendulumView(view, runs, params.l, player));
     else if (kind === 'phase') {
       /* the model's own phase plane (a model file's @ xp=, yp=), or van der Pol's; equal
        * scales only when both axes are lengths in the same unit (a path in space) */
@@ -74,7 +87,7 @@
       const w = xy ? null : model.phase_window; /* XPPAUT's @ xlo, xhi, ylo, yhi */
       if (w && w[0]) o.xrange = w[0];
       if (w && w[1]) o.yrange = w[1];
-      DK.PhaseView(view, runs, xn, yn, player, o);
+      views.push(DK.PhaseView(view, runs, xn, yn, player, o));
     }
     else view.remove();
     document.body.classList.toggle('no-picture', !kind && !hasAni);
@@ -84,9 +97,29 @@
     for (const name of names) {
       const cell = DK.el('div', { class: 'plot-cell' });
       plots.appendChild(cell);
-      DK.timePlot(cell, runs, name, player, { height: kind || hasAni ? 240 : 330 });
+      views.push(DK.timePlot(cell, runs, name, player, { height: kind || hasAni ? 240 : 330 }));
     }
     player.activate();
     return player;
+  };
+
+  /* The page of buildAnimate drawn again with new runs of the same model and settings (a
+   * live page's rerun): every view keeps its canvas and replaces its data, the player keeps
+   * its time, speed and playing, and each canvas is drawn once. False, and nothing changed,
+   * when a view of the page cannot take new runs (the page is then built again). */
+  DK.updateAnimate = function (player, data) {
+    const views = player && player.views;
+    if (!views || !views.every(v => v && typeof v.update === 'function')) return false;
+    const runs = DK.prepareRuns(data.runs);
+    DK.holdDraws();
+    try {
+      describe(data, runs);
+      for (const v of views) v.update(runs);
+      const s = spanOf(data, runs);
+      player.setSpan(s.t0, s.t1, runs[0].t, s.rate);
+    } finally {
+      DK.releaseDraws();
+    }
+    return true;
   };
 })(window.DK);

@@ -141,8 +141,14 @@
       return names;
     }
 
+    /* The page drawn with the new runs: in place (every plot keeps its canvas and takes the
+     * new samples, DK.updateAnimate), else built again (the pictures the tool evaluated, a
+     * mechanism's scene or an .ani, give way to those the live runs can draw). */
     redraw(runs) {
       const old = this.player;
+      /* the pictures the tool evaluated (a mechanism's scene, an .ani) belong to its run */
+      const data = Object.assign({}, this.data, { runs, span: [this.t0, this.t1], ani: null, mech: null, shows: this.data.mech || this.data.ani ? 'The mechanism\u2019s scene and the .ani animation show the run the page was written with; the live runs are drawn in the plots.' : this.data.shows });
+      if (DK.updateAnimate(old, data)) return;
       const t = old ? old.t : null, playing = old ? old.playing : true;
       if (old) {
         old.pause();
@@ -150,8 +156,6 @@
         if (i >= 0) DK.players.splice(i, 1);
       }
       document.getElementById('animate').replaceWith(this.template.cloneNode(true));
-      /* the pictures the tool evaluated (a mechanism's scene, an .ani) belong to its run */
-      const data = Object.assign({}, this.data, { runs, span: [this.t0, this.t1], ani: null, mech: null, shows: this.data.mech || this.data.ani ? 'The mechanism\u2019s scene and the .ani animation show the run the page was written with; the live runs are drawn in the plots.' : this.data.shows });
       DK.holdDraws();
       try {
         this.player = DK.buildAnimate(data);
@@ -170,7 +174,8 @@
     hookPhase() {
       const names = this.phaseNames();
       const canvas = document.querySelector('#view canvas.plot-canvas');
-      if (names.length !== 2 || !canvas || !canvas.dkPlot) return;
+      if (names.length !== 2 || !canvas || !canvas.dkPlot || canvas.dkLiveClicks) return;
+      canvas.dkLiveClicks = true; /* a canvas redrawn in place keeps its listener */
       const plot = canvas.dkPlot;
       canvas.style.cursor = 'crosshair';
       canvas.title = 'click: a trajectory from there';

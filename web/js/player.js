@@ -144,6 +144,19 @@
       this.saveFragment();
     }
 
+    /* A new span and samples (a live page's rerun): the time kept inside it, the speed and
+     * the playing kept. */
+    setSpan(t0, t1, times, rate) {
+      this.t0 = t0;
+      this.t1 = t1 > t0 ? t1 : t0 + 1;
+      this.times = times || [];
+      if (rate > 0) this.rate = rate;
+      this.slider.min = this.t0;
+      this.slider.max = this.t1;
+      this.t = DK.clamp(this.t, this.t0, this.t1);
+      this.update();
+    }
+
     seek(t) { this.touched = true; this.t = DK.clamp(t, this.t0, this.t1); this.update(); }
 
     /* One sample forwards (+1) or backwards (-1). */

@@ -104,8 +104,14 @@
     }
 
     /* Size the canvas to its box; true when the size changed. */
-    layout() {
-      let w = Math.max(200, Math.floor(this.wrap.clientWidth || 480));
+    layout() { return this.fit(Math.max(200, Math.floor(this.wrap.clientWidth || 480)), false); }
+
+    /* Size the canvas for a box boxW CSS pixels wide and place the legend (again when force:
+     * new data); true when something changed. The canvas is reallocated only when its size
+     * changes. */
+    fit(boxW, force) {
+      this.boxW = boxW;
+      let w = boxW;
       const aspect = this.o.aspect || 0.58;
       let h = Math.floor(this.o.height || DK.clamp(w * (w < 480 ? Math.max(aspect, 0.8) : aspect), 180, 560)); /* taller on a phone */
       if (this.o.equal && this.o.fitData) {
@@ -117,19 +123,30 @@
           w = Math.min(w, Math.max(200, Math.floor((h - 72) / a + 78)));
         }
       }
-      if (w === this.w && h === this.h0) return false;
+      if (!force && w === this.w && h === this.h0) return false;
       this.w = w; this.h = this.h0 = h;
       this.m0 = { l: 64, r: 14, t: this.o.title ? 28 : 12, b: 44 };
       this.placeLegend(this.baseX, this.baseY);
       this.dpr = window.devicePixelRatio || 1;
-      for (const c of [this.canvas, this.cache]) {
-        c.width = Math.round(w * this.dpr);
-        c.height = Math.round(this.h * this.dpr);
+      const cw = Math.round(w * this.dpr), ch = Math.round(this.h * this.dpr);
+      if (this.canvas.width !== cw || this.canvas.height !== ch) {
+        for (const c of [this.canvas, this.cache]) { c.width = cw; c.height = ch; }
+        this.canvas.style.width = w + 'px';
+        this.canvas.style.height = this.h + 'px';
       }
-      this.canvas.style.width = w + 'px';
-      this.canvas.style.height = this.h + 'px';
       this.cacheKey = null;
       return true;
+    }
+
+    /* New data for the same plot (a live page's rerun): the series (and the options given,
+     * e.g. fixed ranges) replaced, the ranges and the legend's place found again for the box
+     * the plot has, and the plot drawn; its canvas, cursor and time stay. */
+    setSeries(series, o) {
+      Object.assign(this.o, o || {}, { series });
+      for (const s of series) { if (!s.t) s.t = s.x; }
+      this.dataRange();
+      this.fit(this.boxW, true);
+      this.draw();
     }
 
     /* Fit the ranges to the plot area's shape for equal scales on both axes. */

@@ -159,12 +159,17 @@
   DK.SceneView = function (container, runs, player, o) {
     const canvas = DK.el('canvas', { class: 'scene-canvas' });
     const wrap = DK.el('div', { class: 'dk-scene' }, [canvas]);
-    container.appendChild(DK.el('div', { class: 'dk-legend' }, runs.map(r => DK.el('span', {}, [DK.el('i', { style: 'background:' + r.color }), r.label]))));
+    const legendOf = rs => rs.map(r => DK.el('span', {}, [DK.el('i', { style: 'background:' + r.color }), r.label]));
+    const legend = DK.el('div', { class: 'dk-legend' }, legendOf(runs));
+    container.appendChild(legend);
     container.appendChild(wrap);
     container.appendChild(DK.el('p', { class: 'hint', text: 'drag: rotate · wheel: zoom · shift+drag: move · double-click: reset view' }));
-    const keys = o.keys;
-    const lo = [0, 1, 2].map(i => Math.min(...keys.map(p => p[i]))), hi = [0, 1, 2].map(i => Math.max(...keys.map(p => p[i])));
-    const centre = [0, 1, 2].map(i => (lo[i] + hi[i]) / 2);
+    let keys = o.keys;
+    const centreOf = ks => {
+      const lo = [0, 1, 2].map(i => Math.min(...ks.map(p => p[i]))), hi = [0, 1, 2].map(i => Math.max(...ks.map(p => p[i])));
+      return [0, 1, 2].map(i => (lo[i] + hi[i]) / 2);
+    };
+    const centre = centreOf(keys);
     const state = { t: player.t };
     const scene = new Scene3D(canvas, Object.assign({ target: centre, distance: 10 }, o.home), () => draw());
     let w = 0, h = 0, dpr = 1;
@@ -209,7 +214,10 @@
       canvas.dataset.scalePx = len;
       if (o.afterScale) o.afterScale(ctx, { ppm, L, w, h });
     }
-    function draw() {
+    /* drawn once at DK.releaseDraws when draws are held (a live page's rerun) */
+    const held = { draw: () => paint() };
+    function draw() { if (DK.heldDraws) DK.heldDraws.add(held); else paint(); }
+    function paint() {
       size();
       const ctx = canvas.getContext('2d'), t = state.t;
       ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
@@ -230,6 +238,19 @@
     fit();
     if (window.ResizeObserver) new ResizeObserver(() => draw()).observe(wrap);
     player.onTime(t => { state.t = t; draw(); });
-    return { canvas, scene, draw };
+    /* new runs (a live page's rerun): the legend, and the camera fitted to the new key
+     * points when the reader has not moved it */
+    const camera = () => JSON.stringify([scene.target, scene.distance, scene.azimuth, scene.elevation]);
+    const refit = (rs, ks) => {
+      legend.replaceChildren(...legendOf(rs));
+      keys = ks;
+      const untouched = camera() === JSON.stringify([scene.home.target, scene.home.distance, scene.home.azimuth, scene.home.elevation]);
+      const kept = JSON.parse(camera());
+      scene.home.target = centreOf(keys);
+      fit();
+      if (!untouched) [scene.target, scene.distance, scene.azimuth, scene.elevation] = kept;
+      draw();
+    };
+    return { canvas, scene, draw, refit };
   };
 })(window.DK);

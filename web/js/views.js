@@ -40,39 +40,51 @@
 
   /* ---- time series: one plot per quantity, every run overlaid ---- */
 
+  /* Every view returns an object with update(runs): the same view drawn with new runs of
+   * the same model (a live page's rerun), its canvas and settings kept. */
   DK.timePlot = function (container, runs, name, player, o) {
     const unit = o && o.unit !== undefined ? o.unit : DK.unit(runs[0].raw || runs[0], name);
-    const series = runs.filter(r => r.cols[name]).map(r => Object.assign({ label: r.label, x: r.t, y: r.cols[name], color: r.color, dash: r.dash, unit: o && o.unit !== undefined ? o.unit : DK.unit(r.raw || r, name) }, r.map ? { width: 0, markers: 1.8 } : {}));
+    const seriesOf = rs => rs.filter(r => r.cols[name]).map(r => Object.assign({ label: r.label, x: r.t, y: r.cols[name], color: r.color, dash: r.dash, unit: o && o.unit !== undefined ? o.unit : DK.unit(r.raw || r, name) }, r.map ? { width: 0, markers: 1.8 } : {}));
+    const series = seriesOf(runs);
+    const legend = n => (o && o.legend) || (n > 1 ? 'tr' : 'none');
     const plot = new DK.Plot(container, Object.assign({
       title: (o && o.title) || name, xlabel: 't [' + (DK.timeUnit || 's') + ']', ylabel: DK.label(name, unit), unitY: unit === '1' ? '' : unit,
-      series, onSeek: t => player.seek(t), legend: series.length > 1 ? 'tr' : 'none'
-    }, o || {}));
+      series, onSeek: t => player.seek(t)
+    }, o || {}, { legend: legend(series.length) }));
     player.onTime(t => plot.setTime(t));
+    plot.update = rs => { const ss = seriesOf(rs); plot.setSeries(ss, { legend: legend(ss.length) }); };
     return plot;
   };
 
   /* ---- pendulum: pivot at the origin, phi from the downward vertical ---- */
 
   DK.PendulumView = function (container, runs, l, player, o) {
-    const series = runs.map(r => {
-      const phi = r.cols.phi;
-      return { label: r.label, color: r.color, t: r.t, x: phi.map(p => l * Math.sin(p)), y: phi.map(p => -l * Math.cos(p)), trail: true, width: 1.2 };
-    });
-    /* the view fits what is drawn: the pivot and the paths of the masses, with room for the
-     * mass (drawn 10 px) and the pivot's hatching; at least a quarter of l either side */
-    const xs = [0], ys = [0];
-    for (const s of series) for (let k = 0; k < s.x.length; k++) if (isFinite(s.x[k]) && isFinite(s.y[k])) { xs.push(s.x[k]); ys.push(s.y[k]); }
-    const m = 0.15 * l, half = Math.max(0.25 * l, ...xs.map(Math.abs)) + m;
-    const xr = [-half, half], yr = [Math.min(...ys) - m, Math.max(...ys) + 0.1 * l];
+    /* the paths of the masses, and a view that fits what is drawn: the pivot and the paths,
+     * with room for the mass (drawn 10 px) and the pivot's hatching; at least a quarter of l
+     * either side */
+    const paths = rs => {
+      const series = rs.map(r => {
+        const phi = r.cols.phi, n = phi.length, x = new Array(n), y = new Array(n);
+        for (let k = 0; k < n; k++) { x[k] = l * Math.sin(phi[k]); y[k] = -l * Math.cos(phi[k]); }
+        return { label: r.label, color: r.color, t: r.t, x, y, trail: true, width: 1.2 };
+      });
+      let ax = 0, ylo = 0, yhi = 0;
+      for (const s of series) for (let k = 0; k < s.x.length; k++) if (isFinite(s.x[k]) && isFinite(s.y[k])) {
+        ax = Math.max(ax, Math.abs(s.x[k])); ylo = Math.min(ylo, s.y[k]); yhi = Math.max(yhi, s.y[k]);
+      }
+      const m = 0.15 * l, half = Math.max(0.25 * l, ax) + m;
+      return { series, xrange: [-half, half], yrange: [ylo - m, yhi + 0.1 * l] };
+    };
+    const first = paths(runs);
     const plot = new DK.Plot(container, Object.assign({
-      title: 'pendulum', xlabel: 'x [m]', ylabel: 'y [m]', equal: true, fitData: true, xrange: xr, yrange: yr,
-      series, cursor: 'none', legend: 'tr', legendValues: false, aspect: 0.8, keepClear: [[0, 0]],
+      title: 'pendulum', xlabel: 'x [m]', ylabel: 'y [m]', equal: true, fitData: true, xrange: first.xrange, yrange: first.yrange,
+      series: first.series, cursor: 'none', legend: 'tr', legendValues: false, aspect: 0.8, keepClear: [[0, 0]],
       overlay: (ctx, p, t) => {
         const ox = p.px(0), oy = p.py(0);
         ctx.strokeStyle = '#555'; ctx.lineWidth = 1;
         for (let k = -3; k <= 3; k++) { ctx.beginPath(); ctx.moveTo(ox + k * 6, oy); ctx.lineTo(ox + k * 6 + 5, oy - 6); ctx.stroke(); }
         ctx.beginPath(); ctx.moveTo(ox - 22, oy); ctx.lineTo(ox + 22, oy); ctx.stroke();
-        for (const s of series) {
+        for (const s of p.o.series) {
           const v = p.valueAt(s, t) || { x: s.x[s.x.length - 1], y: s.y[s.y.length - 1] };
           if (!isFinite(v.x) || !isFinite(v.y)) continue;
           ctx.strokeStyle = s.color; ctx.lineWidth = 3;
@@ -84,19 +96,22 @@
       }
     }, o || {}));
     player.onTime(t => plot.setTime(t));
+    plot.update = rs => { const p = paths(rs); plot.setSeries(p.series, { xrange: p.xrange, yrange: p.yrange }); };
     return plot;
   };
 
   /* ---- phase plane: x against y of every run, drawn up to the current time ---- */
 
   DK.PhaseView = function (container, runs, xname, yname, player, o) {
-    const series = runs.map(r => Object.assign({ label: r.label, color: r.color, t: r.t, x: r.cols[xname], y: r.cols[yname], trail: true, width: 1.5 }, r.map ? { width: 0, markers: 1.8 } : {}));
+    const seriesOf = rs => rs.map(r => Object.assign({ label: r.label, color: r.color, t: r.t, x: r.cols[xname], y: r.cols[yname], trail: true, width: 1.5 }, r.map ? { width: 0, markers: 1.8 } : {}));
+    const series = seriesOf(runs);
     const ux = DK.unit(runs[0].raw || runs[0], xname), uy = DK.unit(runs[0].raw || runs[0], yname);
     const plot = new DK.Plot(container, Object.assign({
       title: 'phase plane', xlabel: DK.label(xname, ux), ylabel: DK.label(yname, uy),
       series, cursor: 'points', legend: 'tr', legendValues: false, aspect: 0.8
     }, o || {}));
     player.onTime(t => plot.setTime(t));
+    plot.update = rs => plot.setSeries(seriesOf(rs));
     return plot;
   };
 
@@ -151,16 +166,20 @@
   DK.PlaneView = function (container, runs, par, player, o) {
     o = o || {};
     const shape = planeShape(par);
-    const mean = ['sX', 'sY', 'sZ'].map(k => runs[0].cols[k].reduce((a, v) => a + v, 0) / runs[0].cols[k].length);
     /* what must be seen: A and the centre of mass with the plane's reach around it */
     const reach = 0.5 * Math.max(par.wingspan, par.length_plane);
-    const keys = [[0, 0, 0]];
-    for (const r of runs) for (let k = 0; k < r.t.length; k += Math.max(1, Math.floor(r.t.length / 60))) {
-      const c = [r.cols.sX[k], r.cols.sY[k], r.cols.sZ[k]];
-      if (!c.every(isFinite)) continue;
-      for (let i = 0; i < 3; i++) for (const sgn of [-1, 1]) { const p = c.slice(); p[i] += sgn * reach; keys.push(D(p)); }
-    }
-    const trails = runs.map(r => r.t.map((_, k) => D([r.cols.sX[k], r.cols.sY[k], r.cols.sZ[k]])));
+    let mean, keys, trails;
+    const measure = rs => {
+      mean = ['sX', 'sY', 'sZ'].map(k => rs[0].cols[k].reduce((a, v) => a + v, 0) / rs[0].cols[k].length);
+      keys = [[0, 0, 0]];
+      for (const r of rs) for (let k = 0; k < r.t.length; k += Math.max(1, Math.floor(r.t.length / 60))) {
+        const c = [r.cols.sX[k], r.cols.sY[k], r.cols.sZ[k]];
+        if (!c.every(isFinite)) continue;
+        for (let i = 0; i < 3; i++) for (const sgn of [-1, 1]) { const p = c.slice(); p[i] += sgn * reach; keys.push(D(p)); }
+      }
+      trails = rs.map(r => r.t.map((_, k) => D([r.cols.sX[k], r.cols.sY[k], r.cols.sZ[k]])));
+    };
+    measure(runs);
     function world(scene, t) {
       /* the ceiling (Z = 0) around A, and the axes of N at A */
       const C = Math.max(1, Math.ceil(2 * (Math.hypot(mean[0], mean[1]) + 0.4 * par.wingspan)) / 2);
@@ -188,7 +207,9 @@
         scene.point(D(st.s), { color: r.color, radius: 3, ring: '#fff' });
       });
     }
-    return DK.SceneView(container, runs, player, { keys, world, home: { azimuth: -1.05, elevation: 0.32 }, height: o.height, scaleNote: 'at the plane', scaleAt: t => D(planeAt(runs[0], t).s) });
+    const view = DK.SceneView(container, runs, player, { keys, world, home: { azimuth: -1.05, elevation: 0.32 }, height: o.height, scaleNote: 'at the plane', scaleAt: t => D(planeAt(runs[0], t).s) });
+    view.update = rs => { runs = rs; measure(rs); view.refit(rs, keys); };
+    return view;
   };
 
   /* The axes of N at the origin (display frame by D), X, Y, Z labelled; zlabel for Z. */
@@ -210,20 +231,37 @@
     /* body points in B: rear corners (wheels A, B), the front wheel C, back to the start */
     const bodyB = [[-l / 2, -d / 2], [-l / 2, d / 2], [l / 2, 0], [-l / 2, -d / 2]];
     const toN = (sX, sY, th, p) => [sX + Math.cos(th) * p[0] - Math.sin(th) * p[1], sY + Math.sin(th) * p[0] + Math.cos(th) * p[1]];
-    const series = [];
-    runs.forEach(r => {
-      const c = r.cols;
-      const wheel = j => ({ x: r.t.map((_, k) => toN(c.sX[k], c.sY[k], c.theta[k], bodyB[j])[0]), y: r.t.map((_, k) => toN(c.sX[k], c.sY[k], c.theta[k], bodyB[j])[1]) });
-      const a = wheel(0), b = wheel(1), f = wheel(2);
-      series.push({ label: r.label, color: r.color, t: r.t, x: a.x, y: a.y, trail: true, width: 1.4 });
-      series.push({ label: r.label + ' B', noLegend: true, color: r.color, t: r.t, x: b.x, y: b.y, trail: true, width: 1.4 });
-      series.push({ label: r.label + ' C', noLegend: true, color: r.color, t: r.t, x: f.x, y: f.y, trail: true, width: 1, dash: [3, 3] });
-    });
+    /* the paths of the wheels A, B (rear) and C (front) of every run */
+    const paths = rs => {
+      const series = [];
+      for (const r of rs) {
+        const c = r.cols, n = r.t.length, w = [0, 1, 2].map(() => ({ x: new Array(n), y: new Array(n) }));
+        for (let k = 0; k < n; k++) {
+          const sX = c.sX[k], sY = c.sY[k], co = Math.cos(c.theta[k]), si = Math.sin(c.theta[k]);
+          for (let j = 0; j < 3; j++) {
+            const p = bodyB[j];
+            w[j].x[k] = sX + co * p[0] - si * p[1];
+            w[j].y[k] = sY + si * p[0] + co * p[1];
+          }
+        }
+        series.push({ label: r.label, color: r.color, t: r.t, x: w[0].x, y: w[0].y, trail: true, width: 1.4 });
+        series.push({ label: r.label + ' B', noLegend: true, color: r.color, t: r.t, x: w[1].x, y: w[1].y, trail: true, width: 1.4 });
+        series.push({ label: r.label + ' C', noLegend: true, color: r.color, t: r.t, x: w[2].x, y: w[2].y, trail: true, width: 1, dash: [3, 3] });
+      }
+      return series;
+    };
+    const series = paths(runs);
     const ext = [DK.extent(series.map(s => s.x)), DK.extent(series.map(s => s.y))];
     const big = Math.max(ext[0][1] - ext[0][0], ext[1][1] - ext[1][0]) > (o.followAbove || 30);
     const select = DK.el('select', { class: 'view-mode', 'aria-label': 'view' });
-    select.appendChild(DK.el('option', { value: '-1', text: 'whole path' }));
-    runs.forEach((r, i) => select.appendChild(DK.el('option', { value: String(i), text: 'follow ' + r.label })));
+    /* the views: the whole path, or following a run (kept at a rerun while that run is there) */
+    const options = rs => {
+      const was = select.value;
+      select.replaceChildren(DK.el('option', { value: '-1', text: 'whole path' }));
+      rs.forEach((r, i) => select.appendChild(DK.el('option', { value: String(i), text: 'follow ' + r.label })));
+      if (was && Number(was) < rs.length) select.value = was;
+    };
+    options(runs);
     select.value = big ? String(o.follow || 0) : '-1';
     container.appendChild(DK.el('div', { class: 'view-controls' }, [DK.el('label', {}, ['view: ', select])]));
     const win = o.window || 16;
@@ -262,6 +300,7 @@
     }, o.plot || {}));
     select.addEventListener('change', () => plot.draw());
     player.onTime(t => plot.setTime(t));
+    plot.update = rs => { runs = rs; options(rs); plot.setSeries(paths(rs)); };
     return plot;
   };
 })(window.DK);

@@ -191,15 +191,26 @@ static const char *hopf_kind(double l1)
 /* "stable", "unstable", or "marginal" for an equilibrium or steady motion that is not
  * asymptotically stable only because its rightmost eigenvalues lie on the imaginary axis
  * (within 1e-8 of the largest modulus, as `linearize` allows 1e-8 of the matrix's norm): a Hopf point, a
- * fold, a conservative system's centre. The CSV's `stable` column stays 0 there. */
+ * fold, a conservative system's centre; for a periodic orbit, because its largest
+ * non-trivial Floquet multiplier lies on the unit circle within 1e-8 (a fold or period
+ * doubling of cycles, an orbit of a linear centre's family). The CSV's `stable` column
+ * stays 0 there. */
 static const char *stability_word(const dyn_branch *b, long k)
 {
     const dyn_branch_point *p = &b->pts[k];
     if (p->stable)
         return "stable";
-    if ((b->kind != DYN_BRANCH_EQUILIBRIUM && b->kind != DYN_BRANCH_STEADY) || b->n_eig <= 0)
+    if (b->n_eig <= 0)
         return "unstable";
     const double *e = b->eig + (size_t)k * 2u * (size_t)b->n_eig;
+    if (b->kind == DYN_BRANCH_PERIODIC) { /* the trivial multiplier first (colloc_po.c) */
+        double mod_max = 0.0;
+        for (int i = 1; i < b->n_eig; i++)
+            mod_max = fmax(mod_max, hypot(e[2 * i], e[2 * i + 1]));
+        return isfinite(mod_max) && mod_max <= 1.0 + 1e-8 ? "marginal" : "unstable";
+    }
+    if (b->kind != DYN_BRANCH_EQUILIBRIUM && b->kind != DYN_BRANCH_STEADY)
+        return "unstable";
     double re_max = -INFINITY, mod_max = 0.0;
     for (int i = 0; i < b->n_eig; i++) {
         if (!isfinite(e[2 * i]) || !isfinite(e[2 * i + 1]))
@@ -208,6 +219,19 @@ static const char *stability_word(const dyn_branch *b, long k)
         mod_max = fmax(mod_max, hypot(e[2 * i], e[2 * i + 1]));
     }
     return re_max <= 1e-8 * mod_max ? "marginal" : "unstable";
+}
+
+/* a periodic branch of several points along which the parameter does not move (within
+ * 1e-9 relative): the branch is vertical, its folds are not labelled (DYN_CONT_FOLD_NOISE) */
+static int branch_is_vertical(const dyn_branch *b)
+{
+    if (b->kind != DYN_BRANCH_PERIODIC || b->count < 3)
+        return 0;
+    const double p0 = b->pts[0].par[0];
+    for (long k = 1; k < b->count; k++)
+        if (!(fabs(b->pts[k].par[0] - p0) <= 1e-9 * fmax(1.0, fabs(p0))))
+            return 0;
+    return 1;
 }
 
 void cont_write_text(FILE *f, const cont_view *v)
@@ -220,6 +244,10 @@ void cont_write_text(FILE *f, const cont_view *v)
         if (b->parent > 0)
             fprintf(f, " from point %ld of branch %d", b->parent_point + 1, b->parent);
         fprintf(f, ", %ld points; stopped: %s\n", b->count, b->stop);
+        if (branch_is_vertical(b))
+            fprintf(f, "  note: %s stays at %s along this branch (within 1e-9): a family of "
+                    "solutions at one parameter value, as from a linear centre's Hopf point\n",
+                    m->params[o->ip].name, CLI_NUM(b->pts[0].par[0]));
         for (long k = 0; k < b->count; k++) {
             const dyn_branch_point *p = &b->pts[k];
             if (p->label == DYN_LABEL_NONE)

@@ -130,6 +130,10 @@ void dyn_diagram_free(dyn_diagram *d);
  * points are located until the parameter moves less than DYN_CONT_TOL_LOCATE relative. */
 #define DYN_CONT_TOL 1e-11
 #define DYN_CONT_TOL_LOCATE 1e-12
+/* A fold's test function, the unit tangent's parameter component, changing sign while at
+ * most DYN_CONT_FOLD_NOISE on both sides is rounding on a vertical branch (a family of
+ * solutions at one parameter value, as from a linear centre's Hopf point): no LP or LPC. */
+#define DYN_CONT_FOLD_NOISE 1e-9
 
 struct dyn_cont_opts;
 

@@ -405,7 +405,8 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
         }
         int which = -1;
         if (have_prev) {
-            if ((now.lpc > 0) != (prev_tests.lpc > 0))
+            if ((now.lpc > 0) != (prev_tests.lpc > 0) &&
+                fmax(fabs(now.lpc), fabs(prev_tests.lpc)) > DYN_CONT_FOLD_NOISE)
                 which = 0;
             else if (now.have_mult && (now.pd > 0) != (prev_tests.pd > 0))
                 which = 1;

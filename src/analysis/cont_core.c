@@ -441,6 +441,9 @@ int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const do
                 continue;
             if (cnt[k] >= 0 && cnt[k] == cnt1[k])
                 continue;
+            if (s->test_label[k] == DYN_LABEL_LP &&
+                fmax(fabs(psi[k]), fabs(psi1[k])) <= DYN_CONT_FOLD_NOISE)
+                continue;
             if (points == 1 && at_start_special && s->test_label[k] == L->start_label)
                 continue; /* the start itself */
             const target g = {k, 0, 0.0};

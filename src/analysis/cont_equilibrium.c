@@ -256,12 +256,21 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
     /* the start: Newton's method at the fixed parameter (the arclength row is e_p) */
     for (int i = 0; i < M; i++)
         e[i] = i == n ? 1.0 : 0.0;
-    /* Levenberg-Marquardt from the guess (dyn_equilibrium), then Newton's method */
+    /* Levenberg-Marquardt from the guess (dyn_equilibrium), then Newton's method; where
+     * Levenberg-Marquardt stalls at a minimum of |f| that is not a zero (van der Pol from
+     * its initial state (2, 0)), Newton's method alone from the guess */
     dyn_equilibrium_info ei;
     const dyn_equilibrium_opts eo = {{o->jac, NULL}, 0.0, 0};
     double *ework = malloc(dyn_equilibrium_work_size(n) * sizeof *ework);
-    const int eq_rc = ework ? dyn_equilibrium(m, o->t, z, cm.par, &eo, ework, &ei) : -1;
+    const int have_work = ework != NULL;
+    int eq_rc = have_work ? dyn_equilibrium(m, o->t, z, cm.par, &eo, ework, &ei) : -1;
     free(ework);
+    if (eq_rc && have_work) {
+        memcpy(z, x0, (size_t)n * sizeof *z);
+        z[n] = cm.p_set[0];
+        if (cont_correct(&s, &w, z, e, 0.0, z, NULL) == 0)
+            eq_rc = 0;
+    }
     if (eq_rc || cont_correct(&s, &w, z, e, 0.0, z, NULL)) {
         snprintf(info->message, sizeof info->message,
                  "no equilibrium found near the start at %.40s = %.17g: %.120s",

@@ -14,6 +14,7 @@ period 2 pi / w. Usage:
 closed_forms.py DYNKIT MODELS_DIR LORENZ_ODE BT_ODE"""
 import json
 import math
+import os
 import shutil
 import subprocess
 import sys
@@ -246,6 +247,24 @@ for path, args, want in ((f"{models}/cusp.ode", ("--par", "a", "--par2", "b"), {
             first, last = b["points"][0], b["points"][-1]
             check("hopf_circle: the curve closed (p)", last["p"], first["p"], 1e-12)
             check("hopf_circle: the curve closed (q)", last["q"], first["q"], 1e-12)
+
+# van der Pol's linear centre: from the file's initial state (2, 0), not an equilibrium,
+# the start is found (the origin) and the branch followed down through the Hopf point at
+# mu = 0, where every circle y1^2 + y2^2 = r^2 is an orbit of period 2 pi: the periodic
+# branch stays at mu = 0 with that period, and rounding on it makes no fold (LPC)
+vdp = os.path.join(os.path.dirname(lorenz), "vanderpol.ode")
+d = run(vdp, "--par", "mu", "--opt", "ds=-0.02", "--opt", "parmin=-1", "--opt", "nmax=60")
+p = only(d, "HB", "van der Pol")
+if p:
+    check("van der Pol: mu at HB", p["mu"], 0.0, 1e-10)
+for b in (d["branches"] if d else []):
+    if b["kind"] != "periodic":
+        continue
+    if any(q["label"] == "LPC" for q in b["points"]):
+        failures.append("van der Pol: an LPC on the linear centre's vertical branch")
+    for q in b["points"]:
+        check("van der Pol: mu on the periodic branch", q["mu"], 0.0, 1e-9)
+        check("van der Pol: the period on the periodic branch", q["period"], 2 * math.pi, 1e-9)
 
 shutil.rmtree(tmp, ignore_errors=True)
 for f in failures:

@@ -637,6 +637,7 @@ async function checkDiagramPage(spec, vp) {
       dashed: svg ? svg.querySelectorAll('line[stroke-dasharray]').length : 0,
       labels: svg ? [...svg.querySelectorAll('text')].map(t => t.textContent) : [],
       dots: svg ? svg.querySelectorAll('circle.dk-orbit').length : 0,
+      dotPx: svg ? Math.min(...[...svg.querySelectorAll('circle.dk-orbit')].map(c => c.getBoundingClientRect().width)) : 0,
       panel: document.getElementById('orbit').hidden };
   });
   check(f.svg && f.left >= 0 && f.right <= vp.width && f.height > 100,
@@ -646,6 +647,7 @@ async function checkDiagramPage(spec, vp) {
   const periodic = spec.json.branches.filter(b => b.kind === 'periodic');
   const computed = periodic.reduce((n, b) => n + b.points.length, 0);
   check(f.dots > 0 && f.panel, `${f.dots} dots on the periodic branch (${computed} orbits computed), no orbit shown before a click`);
+  check(f.dotPx >= 6.9, `each dot at least 7 px across on the screen (${f.dotPx.toFixed(1)} px)`);
   /* a click a few pixels beside a dot in the middle of the branch */
   const dot = await page.evaluate(() => {
     const d = [...document.querySelectorAll('circle.dk-orbit')], c = d[Math.floor(d.length / 2)];

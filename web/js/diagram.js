@@ -25,6 +25,16 @@
     svg.setAttribute('style', 'width:100%;height:auto;display:block');
     document.querySelector('[data-fig="diagram"]').appendChild(svg);
     const dots = [...svg.querySelectorAll('circle.dk-orbit')];
+    /* dots at least DOT px across on the screen, however narrow the page (a phone's
+       390 px shows the drawing at about half its size) */
+    const DOT = 3.5;
+    function sizeDots() {
+      const box = svg.viewBox.baseVal, scale = box && box.width > 0 ? svg.getBoundingClientRect().width / box.width : 0;
+      if (!(scale > 0)) return;
+      for (const d of dots) d.setAttribute('r', Math.max(2.2, DOT / scale).toFixed(2));
+    }
+    if (window.ResizeObserver) new ResizeObserver(sizeDots).observe(svg);
+    else window.addEventListener('resize', sizeDots);
     document.getElementById('diagram-hint').textContent = orbits.length
       ? 'Click or tap a dot of a periodic branch (drawn by its maximum and minimum) to see that orbit below.'
       : 'No periodic orbit in this diagram: it has no Hopf point, or its periodic branches were not computed.';

@@ -30,6 +30,11 @@ int dyn_mech_to_c(const char *path, const char *text, size_t len,
  * constraints hold at the file's initial state (the caller projects the state onto them
  * before a run; the checks of the mass matrix and the constraints' rows stay). */
 #define DYN_MECH_UNCHECKED_INIT 1u
+/* DYN_MECH_SCENE_INPUTS adds, after the model's outputs, one output per number the frames of
+ * its scene are computed from (dyn_mech_scene_n_inputs, in their order, named scene:K; see
+ * dyn_mech_scene_plan below): a program that runs the model's C can draw its scene without
+ * reading the file (dynkit's live pages, docs/web.md). */
+#define DYN_MECH_SCENE_INPUTS 2u
 int dyn_mech_to_c_flags(const char *path, const char *text, size_t len,
                         const dyn_lang_table_file *tables, int n_tables, unsigned flags,
                         char **c_source, dyn_lang_diag *diag, dyn_lang_note_fn note,
@@ -123,6 +128,50 @@ double dyn_mech_scene_mass(const dyn_mech_scene *s);
  * Re-entrant. */
 int dyn_mech_scene_eval(const dyn_mech_scene *s, double t, const double *y,
                         const double *params, double *pose, double *values);
+
+/* ---- the plan of a frame, for a program that evaluates frames itself ----
+ * A frame is computed from the scene's inputs (the numbers of the file's formulas at t, the
+ * states and the parameters: the outputs scene:K of DYN_MECH_SCENE_INPUTS) by the steps of
+ * dyn_mech_scene_eval. Every field below that names an input is its index K, or -1 when
+ * the file gives none (its default then: 0, or NaN for a size the page chooses). */
+#define DYN_MECH_MAX_ROT 12
+
+typedef struct dyn_mech_body_plan {
+    int frame;                    /* 1: R from the rotations or quat; 0: the identity */
+    int quat[4];                  /* Euler parameters (w, x, y, z), or quat[0] = -1 */
+    int nrot;                     /* elementary rotations R = E_nrot ... E_1 */
+    int axis[DYN_MECH_MAX_ROT];   /* 0 x, 1 y, 2 z, 3 the joint's axis axisv */
+    int angle[DYN_MECH_MAX_ROT];  /* inputs */
+    int joint;                    /* 0: placed at `at`; else x = x_P + R_P'(jp + shift +
+                                     n slide) - R'(pivot) (R' pivot: pivot when no frame) */
+    int parent;                   /* -1: the ground */
+    int at[3], jp[3], shift[3], pivot[3], axisv[3]; /* inputs */
+    int slide, slide_axis;        /* a prismatic joint's input and axis (0-2, 3: axisv) */
+    int mass;                     /* input */
+} dyn_mech_body_plan;
+
+typedef struct dyn_mech_shape_plan {
+    int body, p[3];       /* point a: its body (-1: the ground) and offset (inputs) */
+    int body_b, p_b[3];   /* a rod's or spring's end b */
+    int v[3];             /* inputs: sizes, an arrow's direction, the ground's normal */
+    int size;             /* input: a frame's or the ground's size */
+    int axis;             /* a cylinder's axis 0..2 in its body (-1: avec) */
+    int avec[3];          /* inputs: a cylinder's axis as a vector of its body */
+    int in_body;          /* an arrow's direction is in its body's frame */
+    int wheel;            /* a wheel's disk or contact arrow (index of the wheels), or -1 */
+} dyn_mech_shape_plan;
+
+typedef struct dyn_mech_wheel_plan {
+    int body, radius, axis[3], at[3]; /* inputs; axis and centre in the body's frame */
+} dyn_mech_wheel_plan;
+
+int dyn_mech_scene_n_inputs(const dyn_mech_scene *s);
+int dyn_mech_scene_n_wheels(const dyn_mech_scene *s);
+/* 0, or -1 for an index out of range */
+int dyn_mech_scene_body_plan(const dyn_mech_scene *s, int body, dyn_mech_body_plan *out);
+int dyn_mech_scene_shape_plan(const dyn_mech_scene *s, int i, dyn_mech_shape_plan *out);
+int dyn_mech_scene_wheel_plan(const dyn_mech_scene *s, int w, dyn_mech_wheel_plan *out);
+void dyn_mech_scene_gravity_inputs(const dyn_mech_scene *s, int g[3]);
 
 #ifdef __cplusplus
 }

@@ -16,6 +16,7 @@
 #include "mbs/mbs_internal.h"
 
 enum { ON_STACK = 512 };
+_Static_assert(DYN_MECH_MAX_ROT == MBS_MAX_ROT, "the plan holds every rotation of a body");
 
 typedef struct item {
     dyn_mech_shape pub;
@@ -249,6 +250,71 @@ void dyn_mech_scene_gravity(const dyn_mech_scene *s, double g[3])
 {
     for (int k = 0; k < 3; k++)
         g[k] = s ? s->gravity[k] : 0.0;
+}
+
+/* ---- the plan of a frame (dynkit/mbs.h) ---- */
+
+int dyn_mech_scene_n_inputs(const dyn_mech_scene *s) { return s ? s->c->m.fixes.n : 0; }
+int dyn_mech_scene_n_wheels(const dyn_mech_scene *s) { return s ? s->mb->wheels.n : 0; }
+
+int dyn_mech_scene_body_plan(const dyn_mech_scene *s, int body, dyn_mech_body_plan *out)
+{
+    if (!s || body < 0 || body >= s->mb->bodies.n || !out)
+        return -1;
+    const mbs_body *b = &LVEC_AT(s->mb->bodies, mbs_body, body);
+    memset(out, 0, sizeof *out);
+    out->frame = b->frame;
+    memcpy(out->quat, b->quat, sizeof out->quat);
+    out->nrot = b->nrot;
+    memcpy(out->axis, b->axis, sizeof out->axis);
+    memcpy(out->angle, b->angle, sizeof out->angle);
+    out->joint = b->joint != MBS_NO_JOINT;
+    out->parent = b->parent;
+    memcpy(out->at, b->at, sizeof out->at);
+    memcpy(out->jp, b->jp, sizeof out->jp);
+    memcpy(out->shift, b->shift, sizeof out->shift);
+    memcpy(out->pivot, b->pivot, sizeof out->pivot);
+    memcpy(out->axisv, b->axisv, sizeof out->axisv);
+    out->slide = b->slide;
+    out->slide_axis = b->slide_axis;
+    out->mass = b->mass;
+    return 0;
+}
+
+int dyn_mech_scene_shape_plan(const dyn_mech_scene *s, int i, dyn_mech_shape_plan *out)
+{
+    if (!s || i < 0 || i >= s->n_items || !out)
+        return -1;
+    const mbs_shape *sh = &s->items[i].s;
+    out->body = sh->a.body;
+    memcpy(out->p, sh->a.p, sizeof out->p);
+    out->body_b = sh->b.body;
+    memcpy(out->p_b, sh->b.p, sizeof out->p_b);
+    memcpy(out->v, sh->v, sizeof out->v);
+    out->size = sh->size;
+    out->axis = sh->axis;
+    memcpy(out->avec, sh->avec, sizeof out->avec);
+    out->in_body = sh->in_body;
+    out->wheel = sh->wheel;
+    return 0;
+}
+
+int dyn_mech_scene_wheel_plan(const dyn_mech_scene *s, int w, dyn_mech_wheel_plan *out)
+{
+    if (!s || w < 0 || w >= s->mb->wheels.n || !out)
+        return -1;
+    const mbs_wheel *wh = &LVEC_AT(s->mb->wheels, mbs_wheel, w);
+    out->body = wh->body;
+    out->radius = wh->radius;
+    memcpy(out->axis, wh->axis, sizeof out->axis);
+    memcpy(out->at, wh->at, sizeof out->at);
+    return 0;
+}
+
+void dyn_mech_scene_gravity_inputs(const dyn_mech_scene *s, int g[3])
+{
+    for (int k = 0; k < 3; k++)
+        g[k] = s ? s->mb->gravity[k] : -1;
 }
 
 /* ---- one frame ---- */

@@ -38,8 +38,27 @@ static void front(lang_ctx *c, int symbolic, int values, int unchecked)
     mbs_derive(c, mb);
 }
 
+/* the model, then an output scene:K per fixed quantity K of the file as read (the inputs of
+ * the scene's frames, dyn_mech_scene_plan: its reading gives them the same numbers) */
+static void scene_front(lang_ctx *c, int unchecked)
+{
+    mbs_model *mb = mbs_read(c);
+    const int n_inputs = c->m.fixes.n;
+    mb->unchecked = unchecked;
+    mbs_derive(c, mb);
+    for (int k = 0; k < n_inputs; k++) {
+        lang_formula *f = lvec_push(c, &c->m.auxs, sizeof *f);
+        memset(f, 0, sizeof *f);
+        f->name = lang_printf(c, "scene:%d", k);
+        f->expr = lang_node(c, N_FIX, (lpos){0, 0});
+        f->expr->index = k;
+    }
+}
+
 static void mech_front(lang_ctx *c) { front(c, 0, 0, 0); }
 static void unchecked_front(lang_ctx *c) { front(c, 0, 0, 1); }
+static void scene_checked_front(lang_ctx *c) { scene_front(c, 0); }
+static void scene_unchecked_front(lang_ctx *c) { scene_front(c, 1); }
 static void values_front(lang_ctx *c) { front(c, 0, 1, 1); }
 static void derive_front(lang_ctx *c) { front(c, 1, 0, 1); }
 static char *derive_back(lang_ctx *c) { return mbs_text(c, c->hook_ctx); }
@@ -57,9 +76,12 @@ int dyn_mech_to_c_flags(const char *path, const char *text, size_t len,
                         char **c_source, dyn_lang_diag *diag, dyn_lang_note_fn note,
                         void *note_ctx)
 {
+    const int unchecked = (flags & DYN_MECH_UNCHECKED_INIT) != 0;
+    void (*fr)(lang_ctx *) = unchecked ? unchecked_front : mech_front;
+    if (flags & DYN_MECH_SCENE_INPUTS)
+        fr = unchecked ? scene_unchecked_front : scene_checked_front;
     return lang_translate(path, text, len, tables, n_tables, c_source, diag, note, note_ctx,
-                          (flags & DYN_MECH_UNCHECKED_INIT) ? unchecked_front : mech_front,
-                          NULL);
+                          fr, NULL);
 }
 
 int dyn_mech_derive_text(const char *path, const char *text, size_t len, char **out,

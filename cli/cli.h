@@ -115,6 +115,10 @@ char *cli_read_model_file(const char *path, size_t *len);
 int cli_model_has_algebraic(const dyn_model *m);
 /* The C a model file (.ode, .mech) was translated to, as compiled; NULL for other models. */
 const char *cli_model_c_source(const dyn_model *m);
+/* The mechanism file's C as it was loaded (its tables, flags and extra lines) with the
+ * outputs of its scene's inputs after the model's (DYN_MECH_SCENE_INPUTS): malloc'd, or NULL
+ * (not a .mech file, or it cannot be read again). */
+char *cli_model_mech_scene_source(const char *path);
 /* The file m was defined in (dyn_model.source, else the file cli_model_open loaded it
  * from, e.g. a C model that names no source), or NULL for a built-in model. */
 const char *cli_model_path(const dyn_model *m);

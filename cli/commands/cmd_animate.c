@@ -124,6 +124,10 @@ static int page_data(cli_json *j, void *ctx)
         cli_json_key(j, "mech");
         bad = cli_json_mech(j, pg->mech, v);
     }
+    if (pg->mech && pg->live && pg->live->module && pg->live->scene_inputs && !bad) {
+        cli_json_key(j, "mech_plan");
+        cli_json_mech_plan(j, pg->mech);
+    }
     if (pg->live && pg->live->module && !bad) {
         cli_json_key(j, "live");
         bad = cli_json_live(j, pg->live, v, pg->spec);

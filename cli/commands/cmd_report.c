@@ -15,7 +15,7 @@
 
 static void report_help(void)
 {
-    puts("Usage: dynkit report [--json] [--html FILE] [--threads N] [--no-studies]\n\n"
+    puts("Usage: dynkit report [--json] [--html FILE [--live]] [--threads N] [--no-studies]\n\n"
          "Answer every question of the homework (TU Delft Advanced Dynamics, homework 8,\n"
          "problems 1 to 4), computed now: each value with its unit, how it was computed, and\n"
          "the judgements with the numbers behind them; and three studies of many runs\n"
@@ -27,6 +27,10 @@ static void report_help(void)
          "                the answers beside the plots and animations that explain them\n"
          "                (FILE '-' is standard output); nothing else is printed unless\n"
          "                --json is given too\n"
+         "  --live        with --html: a live part at the end of the page, where the\n"
+         "                homework's models (pendulum, van der Pol, plane, cart) run in\n"
+         "                the page, compiled to WebAssembly, with a slider for every\n"
+         "                parameter and initial value (docs/web.md, \"Live pages\")\n"
          "  --threads N   run the studies on N threads (default: every core); the numbers\n"
          "                are the same bits for any N\n"
          "  --no-studies  the answers only, without the three studies (their values are\n"
@@ -50,12 +54,61 @@ static char *capture(int (*write)(const dyn_homework *, FILE *), const dyn_homew
     return text;
 }
 
+/* The homework's models that `report --html --live` runs in the page (docs/web.md). */
+static const char *const live_models[] = {"pendulum", "vanderpol", "plane", "cart"};
+enum { N_LIVE_MODELS = sizeof live_models / sizeof live_models[0] };
+
 typedef struct report_page {
     const dyn_homework *hw;
     const dyn_hw_series *series;
     char *json, *text;
     size_t json_len;
+    const cli_live *live;  /* the module of every built-in model, or NULL */
+    cli_view *views;       /* each live model's default run (N_LIVE_MODELS) */
 } report_page;
+
+/* The page's live part: the module once, then per model the data of its live page
+ * (`dynkit animate MODEL --live`: the model, its default run, the settings) and the index
+ * the module's instance runs it by. */
+static int live_data(cli_json *j, const report_page *r)
+{
+    cli_json_key(j, "live_module");
+    cli_json_live_module(j, r->live);
+    cli_json_key(j, "live_models");
+    cli_json_begin_object(j);
+    const cli_live shared = {0}; /* the module is the page's */
+    int bad = 0;
+    for (int k = 0; k < N_LIVE_MODELS && !bad; k++) {
+        const cli_view *v = &r->views[k];
+        cli_json_key(j, live_models[k]);
+        cli_json_begin_object(j);
+        cli_json_animate_runs(j, v);
+        int index = -1;
+        for (int i = 0; i < dyn_model_count(); i++)
+            if (dyn_model_at(i) == v->run.model)
+                index = i;
+        cli_json_key(j, "choose");
+        cli_json_number(j, index);
+        cli_json_key(j, "live");
+        bad = cli_json_live(j, &shared, v, live_models[k]);
+        cli_json_end_object(j);
+    }
+    cli_json_end_object(j);
+    return bad;
+}
+
+/* Each live model's default run, as `dynkit animate MODEL --live` records it. */
+static int record_live_views(cli_view *views)
+{
+    int rc = CLI_OK;
+    for (int k = 0; k < N_LIVE_MODELS && rc == CLI_OK; k++) {
+        char *args[] = {(char *)live_models[k], NULL};
+        rc = cli_view_parse("report", 1, args, NULL, NULL, &views[k]);
+        if (rc == CLI_OK)
+            rc = cli_view_record(&views[k]);
+    }
+    return rc;
+}
 
 static void table_json(cli_json *j, const dyn_hw_table *t)
 {
@@ -152,17 +205,28 @@ static int page_data(cli_json *j, void *ctx)
         free(par);
     }
     cli_json_end_object(j);
+    int bad = r->live ? live_data(j, r) : 0;
     cli_json_end_object(j);
-    return j->bad;
+    return bad || j->bad;
 }
 
-static int write_html(const dyn_homework *hw, const char *path)
+static int write_html(const dyn_homework *hw, const char *path, int live_asked)
 {
     static dyn_hw_series series;
     char err[256] = "";
-    report_page page = {hw, &series, NULL, NULL, 0};
+    report_page page = {hw, &series, NULL, NULL, 0, NULL, NULL};
     size_t text_len = 0;
     int rc = CLI_OK;
+    cli_live live;
+    memset(&live, 0, sizeof live);
+    static cli_view views[N_LIVE_MODELS];
+    if (live_asked && cli_live_build_builtins(&live) != 0)
+        cli_warning("the page is not live, it shows the homework's runs: %s", live.why);
+    if (live.module) {
+        rc = record_live_views(views);
+        page.live = &live;
+        page.views = views;
+    }
     if (dyn_homework_series(hw, &series, err, sizeof err)) {
         cli_stderr("dynkit: report failed: %s\n", err);
         rc = CLI_FAILED;
@@ -181,8 +245,10 @@ static int write_html(const dyn_homework *hw, const char *path)
     if (rc == CLI_OK)
         rc = cli_out_open(&out, "--html", path);
     if (rc == CLI_OK) {
+        cli_html_page_allow_wasm(live.module != NULL);
         rc = cli_html_page_write(out.f, "dynkit report: homework 8, Advanced Dynamics",
                                  "report.html", page_data, &page);
+        cli_html_page_allow_wasm(0);
         int close_rc = cli_out_close(&out, rc == CLI_OK);
         if (rc == CLI_OK)
             rc = close_rc;
@@ -190,12 +256,16 @@ static int write_html(const dyn_homework *hw, const char *path)
     free(page.json);
     free(page.text);
     dyn_hw_series_free(&series);
+    if (page.views)
+        for (int k = 0; k < N_LIVE_MODELS; k++)
+            cli_view_free(&views[k]);
+    cli_live_free(&live);
     return rc;
 }
 
 int cli_cmd_report(int argc, char **argv)
 {
-    int json = 0, studies = 1;
+    int json = 0, studies = 1, live = 0;
     const char *html = NULL, *threads_text = NULL;
     for (int i = 0; i < argc; i++) {
         const char *value = NULL;
@@ -207,6 +277,8 @@ int cli_cmd_report(int argc, char **argv)
             json = 1;
         } else if (cli_flag(argv[i], "no-studies")) {
             studies = 0;
+        } else if (cli_flag(argv[i], "live")) {
+            live = 1;
         } else if ((r = cli_option(argc, argv, &i, "html", &value)) != 0) {
             if (r < 0)
                 return cli_usage_error("report", "option --html needs a value (a file name)");
@@ -219,10 +291,13 @@ int cli_cmd_report(int argc, char **argv)
         } else {
             return cli_usage_error("report",
                                    "unknown option '%s' (accepted: --json, --html FILE, "
-                                   "--threads N, --no-studies)",
+                                   "--live, --threads N, --no-studies)",
                                    argv[i]);
         }
     }
+    if (live && !html)
+        return cli_usage_error("report", "--live makes the page of --html FILE live: give "
+                                         "--html FILE too");
     long threads = 0;
     if (threads_text && (cli_parse_count(threads_text, 1, &threads) || threads > 4096))
         return cli_usage_error("report", "--threads '%s': give a whole number from 1 to 4096",
@@ -235,7 +310,7 @@ int cli_cmd_report(int argc, char **argv)
         return CLI_FAILED;
     }
     if (html) {
-        int rc = write_html(&hw, html);
+        int rc = write_html(&hw, html, live);
         if (rc != CLI_OK || !json)
             return rc;
     }

@@ -305,6 +305,25 @@ const char *cli_model_c_source(const dyn_model *m)
     return NULL;
 }
 
+char *cli_model_mech_scene_source(const char *path)
+{
+    if (!ends_with(path, ".mech"))
+        return NULL;
+    size_t len = 0;
+    char *text = cli_read_model_file(path, &len);
+    if (!text)
+        return NULL;
+    char *c_source = NULL;
+    dyn_lang_diag diag;
+    const unsigned flags =
+        DYN_MECH_SCENE_INPUTS | (mech_unchecked ? DYN_MECH_UNCHECKED_INIT : 0u);
+    if (dyn_mech_to_c_flags(path, text, len, table_files, n_table_files, flags, &c_source,
+                            &diag, NULL, NULL) != 0)
+        c_source = NULL;
+    free(text);
+    return c_source;
+}
+
 int cli_model_has_algebraic(const dyn_model *m)
 {
     for (int i = 0; i < n_loaded; i++)

@@ -27,14 +27,14 @@ static int allow_wasm;
 
 void cli_html_page_allow_wasm(int on) { allow_wasm = on; }
 
-/* Every asset whose name ends with suffix, in the build's order; the script of live pages
- * (js/live.js) only in them. */
+/* Every asset whose name ends with suffix, in the build's order; the scripts of live pages
+ * (js/live*.js) only in them. */
 static int write_assets(FILE *out, const char *suffix)
 {
     int bad = 0;
     for (int i = 0; i < cli_web_asset_count; i++)
         if (ends_with(cli_web_assets[i].name, suffix) &&
-            (allow_wasm || strcmp(cli_web_assets[i].name, "js/live.js") != 0)) {
+            (allow_wasm || strncmp(cli_web_assets[i].name, "js/live", 7) != 0)) {
             bad |= fprintf(out, "\n/* %s */\n", cli_web_assets[i].name) < 0;
             bad |= fwrite(cli_web_assets[i].data, 1, cli_web_assets[i].size, out) !=
                    cli_web_assets[i].size;

@@ -84,12 +84,17 @@ static const char *wasm_cc(void)
 
 /* The model's C: its file's translation, a C model's file, or a function returning the
  * built-in model; malloc'd, or NULL with the reason in why. */
-static char *model_source(const dyn_model *m, char *why, size_t size)
+static char *model_source(const dyn_model *m, char *why, size_t size, int *scene_inputs)
 {
+    const char *path = cli_model_path(m);
+    char *scene = path ? cli_model_mech_scene_source(path) : NULL;
+    if (scene) { /* a mechanism: its scene's inputs too, to draw the page's runs */
+        *scene_inputs = 1;
+        return scene;
+    }
     const char *c = cli_model_c_source(m);
     if (c)
         return strdup(c);
-    const char *path = cli_model_path(m);
     if (path) {
         const size_t n = strlen(path);
         if (n < 2 || strcmp(path + n - 2, ".c") != 0) {
@@ -185,9 +190,11 @@ static void remove_dir(const char *dir)
     rmdir(dir);
 }
 
-int cli_live_build(const dyn_model *m, cli_live *out)
+static void json_base64(cli_json *j, const unsigned char *p, size_t n);
+
+/* The C source (taken and freed) compiled with the library for wasm32 into out. */
+static int build_source(char *source, cli_live *out)
 {
-    memset(out, 0, sizeof *out);
     char dir[1024];
     if (find_wasm_dir(dir, sizeof dir - 32) != 0) {
         const char *env = getenv("DYNKIT_WASM_DIR");
@@ -201,11 +208,9 @@ int cli_live_build(const dyn_model *m, cli_live *out)
                      "dynkit was built without the WebAssembly library (install %s and build "
                      "dynkit again)",
                      LIVE_PACKAGES);
+        free(source);
         return -1;
     }
-    char *source = model_source(m, out->why, sizeof out->why);
-    if (!source)
-        return -1;
     const char *tmp = getenv("TMPDIR");
     char work[1024];
     if ((size_t)snprintf(work, sizeof work, "%s/dynkit-live-XXXXXX", tmp && tmp[0] ? tmp : "/tmp") >=
@@ -264,6 +269,36 @@ int cli_live_build(const dyn_model *m, cli_live *out)
     }
     remove_dir(work);
     return out->module ? 0 : -1;
+}
+
+int cli_live_build(const dyn_model *m, cli_live *out)
+{
+    memset(out, 0, sizeof *out);
+    char *source = model_source(m, out->why, sizeof out->why, &out->scene_inputs);
+    return source ? build_source(source, out) : -1;
+}
+
+int cli_live_build_builtins(cli_live *out)
+{
+    memset(out, 0, sizeof *out);
+    /* every built-in model is in the library: an instance runs the one it is told to */
+    static const char text[] =
+        "#include <dynkit/model.h>\n"
+        "static int chosen;\n"
+        "__attribute__((export_name(\"dk_live_choose\"))) void dk_live_choose(int i) "
+        "{ chosen = i; }\n"
+        "const dyn_model *dynkit_model(void) { return dyn_model_at(chosen); }\n";
+    char *source = strdup(text);
+    if (!source) {
+        snprintf(out->why, sizeof out->why, "out of memory");
+        return -1;
+    }
+    return build_source(source, out);
+}
+
+void cli_json_live_module(cli_json *j, const cli_live *live)
+{
+    json_base64(j, live->module, live->size);
 }
 
 void cli_live_free(cli_live *live)
@@ -349,8 +384,10 @@ int cli_json_live(cli_json *j, const cli_live *live, const cli_view *v, const ch
     dyn_model_default_params(m, dpar, err, sizeof err);
     dyn_model_initial_state(m, run->par, dy0);
     cli_json_begin_object(j);
-    cli_json_key(j, "module");
-    json_base64(j, live->module, live->size);
+    if (live->module) { /* else the page's shared module (report --html --live) */
+        cli_json_key(j, "module");
+        json_base64(j, live->module, live->size);
+    }
     cli_json_key(j, "spec");
     cli_json_string(j, spec);
     cli_json_key(j, "method");
@@ -386,6 +423,8 @@ int cli_json_live(cli_json *j, const cli_live *live, const cli_view *v, const ch
     for (int i = 0; i < m->n_states; i++)
         json_values(j, m->states[i].name, m->states[i].unit, run->y0[i], dy0[i]);
     cli_json_end_array(j);
+    cli_json_key(j, "scene_inputs"); /* the column after t, the states and the outputs */
+    cli_json_bool(j, live->scene_inputs);
     cli_json_key(j, "compare");
     cli_json_begin_array(j);
     for (int k = 0; k < v->n_compare; k++) {

@@ -189,3 +189,90 @@ int cli_json_mech(cli_json *j, const dyn_mech_scene *sc, const cli_view *v)
     cli_json_end_object(j);
     return rc || j->bad;
 }
+
+static void json_ints(cli_json *j, const int *v, int n)
+{
+    cli_json_begin_array(j);
+    for (int k = 0; k < n; k++)
+        cli_json_number(j, v[k]);
+    cli_json_end_array(j);
+}
+
+static void json_int(cli_json *j, const char *key, int v)
+{
+    cli_json_key(j, key);
+    cli_json_number(j, v);
+}
+
+static void json_int3(cli_json *j, const char *key, const int v[3])
+{
+    cli_json_key(j, key);
+    json_ints(j, v, 3);
+}
+
+void cli_json_mech_plan(cli_json *j, const dyn_mech_scene *sc)
+{
+    cli_json_begin_object(j);
+    json_int(j, "inputs", dyn_mech_scene_n_inputs(sc));
+    int g[3];
+    dyn_mech_scene_gravity_inputs(sc, g);
+    json_int3(j, "gravity", g);
+    cli_json_key(j, "bodies");
+    cli_json_begin_array(j);
+    for (int b = 0; b < dyn_mech_scene_n_bodies(sc); b++) {
+        dyn_mech_body_plan p;
+        dyn_mech_scene_body_plan(sc, b, &p);
+        cli_json_begin_object(j);
+        json_int(j, "frame", p.frame);
+        cli_json_key(j, "quat");
+        json_ints(j, p.quat, 4);
+        cli_json_key(j, "axis");
+        json_ints(j, p.axis, p.nrot);
+        cli_json_key(j, "angle");
+        json_ints(j, p.angle, p.nrot);
+        json_int(j, "joint", p.joint);
+        json_int(j, "parent", p.parent);
+        json_int3(j, "at", p.at);
+        json_int3(j, "jp", p.jp);
+        json_int3(j, "shift", p.shift);
+        json_int3(j, "pivot", p.pivot);
+        json_int3(j, "axisv", p.axisv);
+        json_int(j, "slide", p.slide);
+        json_int(j, "slide_axis", p.slide_axis);
+        cli_json_end_object(j);
+    }
+    cli_json_end_array(j);
+    cli_json_key(j, "shapes");
+    cli_json_begin_array(j);
+    for (int i = 0; i < dyn_mech_scene_n_shapes(sc); i++) {
+        dyn_mech_shape_plan p;
+        dyn_mech_scene_shape_plan(sc, i, &p);
+        cli_json_begin_object(j);
+        json_int(j, "body", p.body);
+        json_int3(j, "p", p.p);
+        json_int(j, "body_b", p.body_b);
+        json_int3(j, "p_b", p.p_b);
+        json_int3(j, "v", p.v);
+        json_int(j, "size", p.size);
+        json_int(j, "axis", p.axis);
+        json_int3(j, "avec", p.avec);
+        json_int(j, "in_body", p.in_body);
+        json_int(j, "wheel", p.wheel);
+        cli_json_end_object(j);
+    }
+    cli_json_end_array(j);
+    cli_json_key(j, "wheels");
+    cli_json_begin_array(j);
+    for (int w = 0; w < dyn_mech_scene_n_wheels(sc); w++) {
+        dyn_mech_wheel_plan p;
+        dyn_mech_scene_wheel_plan(sc, w, &p);
+        cli_json_begin_object(j);
+        json_int(j, "body", p.body);
+        json_int(j, "radius", p.radius);
+        json_int3(j, "axis", p.axis);
+        json_int3(j, "at", p.at);
+        cli_json_end_object(j);
+    }
+    cli_json_end_array(j);
+    cli_json_end_object(j);
+}

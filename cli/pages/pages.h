@@ -137,14 +137,22 @@ typedef struct cli_live {
     unsigned char *module; /* the .wasm (size bytes), NULL when the page cannot be live */
     size_t size;
     char why[1024];        /* when module is NULL: why, and what to install */
+    int scene_inputs;      /* 1: a mechanism's outputs end with its scene's inputs
+                              (DYN_MECH_SCENE_INPUTS), from which the page draws its runs */
 } cli_live;
 /* Compile model m (its C, with the core library for wasm32) into out: 0, or -1 with
  * out->why. Nothing is printed. */
 int cli_live_build(const dyn_model *m, cli_live *out);
+/* One module for every built-in model (report --html --live): an instance runs model
+ * dyn_model_at(i) once its export dk_live_choose(i) was called. 0, or -1 with out->why. */
+int cli_live_build_builtins(cli_live *out);
+/* The module as a JSON string (base64). */
+void cli_json_live_module(cli_json *j, const cli_live *live);
 void cli_live_free(cli_live *live);
 /* The page's "live" object: the module (base64), the model as given on the command line
  * (spec), the run's settings, the parameters and initial values with their defaults, the
- * methods offered and the --compare runs. 0 or non-zero. */
+ * methods offered and the --compare runs (without the module when live->module is NULL:
+ * a page whose models share one). 0 or non-zero. */
 int cli_json_live(cli_json *j, const cli_live *live, const cli_view *v, const char *spec);
 /* dynkit plot MODEL --live: the animate page of v's runs with the plots of the columns
  * ycols (n_y) against xcol (0: t; else an x-y picture), live when the model compiles
@@ -221,6 +229,9 @@ int cli_mech_scene_open(const char *model_spec, const dyn_model *m, dyn_mech_sce
 /* The bodies' poses and the shapes' numbers at every sample of every run of v, as the
  * page's JSON; 0 or non-zero (out of memory, write error). */
 int cli_json_mech(cli_json *j, const dyn_mech_scene *sc, const cli_view *v);
+/* The plan of the scene's frames (the dyn_mech_*_plan of dynkit/mbs.h) as an object, for a
+ * live page that draws its own runs (web/js/live_scene.js). */
+void cli_json_mech_plan(cli_json *j, const dyn_mech_scene *sc);
 
 /* dynkit plot MODEL --phase-plane (phase_plot.c). */
 int cli_plot_phase_plane(int argc, char **argv);

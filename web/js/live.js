@@ -58,6 +58,8 @@
       const { instance } = await WebAssembly.instantiate(decode64(this.L.module), {});
       this.x = instance.exports;
       if (this.x._initialize) this.x._initialize();
+      /* a module of every built-in model (report --html --live): the one of this page */
+      if (this.data.choose !== undefined && this.x.dk_live_choose) this.x.dk_live_choose(this.data.choose);
       if (!this.x.dk_live_setup()) throw new Error('the model could not be set up (out of memory)');
       this.cols = this.x.dk_live_cols();
     }
@@ -97,6 +99,7 @@
       const keep = [];
       for (let k = 0; k < n; k += every) keep.push(k);
       if (n > 0 && keep[keep.length - 1] !== n - 1) keep.push(n - 1);
+      if (this.kept) this.kept.push({ rows: r.rows, keep }); /* for the mechanism's scene */
       const data = names.map((_, c) => keep.map(k => r.rows[k * cols + c]));
       return { label, method, method_title: '', map: false, step, samples: n, status: r.message ? 'stopped' : 'ok', message: r.message, columns: names, units, data };
     }
@@ -111,6 +114,7 @@
      * with, which keeps its pictures: a mechanism's scene, an .ani animation). */
     rerun(draw = true) {
       const t0 = performance.now();
+      this.kept = [];
       const main = this.runOnce(this.method, this.step);
       this.last = main;
       const runs = [this.asSeries(main, this.label(this.method, this.step), this.method, this.step)];
@@ -142,12 +146,16 @@
     }
 
     /* The page drawn with the new runs: in place (every plot keeps its canvas and takes the
-     * new samples, DK.updateAnimate), else built again (the pictures the tool evaluated, a
-     * mechanism's scene or an .ani, give way to those the live runs can draw). */
+     * new samples, DK.updateAnimate), else built again (a mechanism's scene drawn from the
+     * live runs; an .ani the tool evaluated gives way to the pictures the runs can draw). */
     redraw(runs) {
+      if (this.stopped) return; /* replaced by another model's (report --live) */
       const old = this.player;
-      /* the pictures the tool evaluated (a mechanism's scene, an .ani) belong to its run */
-      const data = Object.assign({}, this.data, { runs, span: [this.t0, this.t1], ani: null, mech: null, shows: this.data.mech || this.data.ani ? 'The mechanism\u2019s scene and the .ani animation show the run the page was written with; the live runs are drawn in the plots.' : this.data.shows });
+      /* a mechanism's scene from the runs' scene inputs (live_scene.js); an .ani animation
+       * evaluated by the tool belongs to its run */
+      const mech = this.sceneOf(runs);
+      const stale = (this.data.mech && !mech) || this.data.ani;
+      const data = Object.assign({}, this.data, { runs, span: [this.t0, this.t1], ani: null, mech, shows: stale ? (this.data.ani ? 'The .ani animation shows' : 'The mechanism\u2019s scene shows') + ' the run the page was written with; the live runs are drawn in the plots.' : this.data.shows });
       if (DK.updateAnimate(old, data)) return;
       const t = old ? old.t : null, playing = old ? old.playing : true;
       if (old) {
@@ -167,6 +175,17 @@
         DK.releaseDraws();
       }
       this.hookPhase();
+    }
+
+    /* The mechanism's scene of the runs (data.mech with their frames), or null when the
+     * page has none or its module does not write the scene's inputs. */
+    sceneOf(runs) {
+      const plan = this.data.mech_plan, mech = this.data.mech;
+      if (!mech || !plan || !this.L.scene_inputs || this.kept.length !== runs.length) return null;
+      const base = 1 + this.model.states.length + this.model.outputs.length;
+      if (base + plan.inputs > this.cols) return null;
+      this.sceneRuns = this.kept.map(k => DK.liveMechRun(plan, mech.shapes, k.rows, this.cols, base, k.keep));
+      return Object.assign({}, mech, { runs: this.sceneRuns });
     }
 
     /* A click in the phase plane starts a trajectory there (XPPAUT's initial conditions,
@@ -312,6 +331,7 @@
 
   DK.startLive = function (data) {
     const live = new Live(data);
+    DK.lastLive = live;
     live.player = DK.buildAnimate(data); /* the tool's run, until the module runs */
     live.buildControls();
     const find = name => live.params.find(p => p.name === name) || live.states.find(s => s.name === name);
@@ -344,7 +364,10 @@
       command: () => live.command(),
       csv: () => live.csv(),
       timing: () => Object.assign({}, live.timing),
-      clicked: () => live.clicked.map(p => Object.assign({}, p))
+      clicked: () => live.clicked.map(p => Object.assign({}, p)),
+      /* the mechanism's scene drawn for the main run: its times, each body's pose (x, then
+       * R row-major, 12 arrays) and each shape's numbers, or null */
+      scene: () => (live.sceneRuns ? { poses: live.sceneRuns[0].poses, values: live.sceneRuns[0].values } : null)
     };
     live.ready.then(() => {
       live.rerun(false);

@@ -251,6 +251,7 @@
     for (const build of [pendulum, vanderpol, plane, cart]) {
       try { build(data); } catch (e) { console.error(e); }
     }
+    if (data.live_models && DK.startReportLive) DK.startReportLive(data); /* report --live */
     /* #p3&t=1.5: the browser knows no element "p3&t=1.5"; go to problem 3 */
     const f = DK.readFragment(), target = f.key && document.getElementById(f.key);
     if (target && (f.t !== undefined || f.speed !== undefined)) target.scrollIntoView();

@@ -1,0 +1,249 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+// Checks of the pictures of dynkit's live pages in headless Chromium (playwright-core, as
+// tests/browser/live.mjs), with the network off (every request but the page's file is
+// aborted and counted):
+// - a mechanism's scene (examples/mechanisms/double_pendulum.mech, 2D; fourbar.mech, with
+//   constraint-force arrows; top.mech, 3D; rolling_disk.mech, a wheel): after dynkitLive.set and run, the poses of
+//   the bodies and the numbers of the shapes the page draws (dynkitLive.scene()) differ from
+//   those of the run the page was written with and equal those the tool computes for a
+//   static page of `dynkit animate` with the page's command line (same run settings):
+//   positions within 1e-8 of the mechanism's size and rotations within 1e-6 (the static
+//   page writes 9 and 6 significant digits); the constraint-force arrows follow the live
+//   run's multipliers;
+// - `dynkit report --html FILE --live`: each of the homework's models chosen in the live
+//   section runs in the page, and a change of a parameter gives `dynkit run`'s numbers with
+//   the command line the page shows (within 1e-12 of each column's magnitude);
+// - a mechanism file with hostile names (body, shape, colour words) runs no script;
+// - at 390 px wide nothing scrolls sideways; no console error.
+// What failed is kept under ARTIFACTS/live-scene/.
+//
+// Usage: node live_scene.mjs DYNKIT_BINARY SOURCE_DIR [ARTIFACTS_DIR]; exit 0, 1 (a check
+// failed), 77 (skipped: no Chromium, no node_modules, or dynkit without the WebAssembly
+// library).
+import { execFileSync, spawnSync } from 'node:child_process';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { fileURLToPath, pathToFileURL } from 'node:url';
+import { loadChromium, skip } from './harness.mjs';
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const dynkit = process.argv[2] && path.resolve(process.argv[2]);
+const source = path.resolve(process.argv[3] || path.join(here, '..', '..'));
+const artifacts = path.resolve(process.argv[4] || path.join(source, 'build', 'tests', 'artifacts'));
+if (!dynkit || !fs.existsSync(dynkit)) {
+  console.error(`usage: node live_scene.mjs DYNKIT_BINARY SOURCE_DIR [ARTIFACTS_DIR] (got '${dynkit}')`);
+  process.exit(2);
+}
+const { chromium, chromiumPath } = await loadChromium(here);
+const dir = path.join(artifacts, 'live-scene');
+fs.mkdirSync(dir, { recursive: true });
+
+const results = [];
+let current = '';
+function check(ok, what) {
+  results.push({ ok: !!ok, what: `${current}: ${what}` });
+  console.log(`${ok ? 'ok  ' : 'FAIL'} ${current}: ${what}`);
+  return ok;
+}
+
+function pageData(file) {
+  const html = fs.readFileSync(file, 'utf8');
+  const m = /<script[^>]*id="dynkit-data"[^>]*>([\s\S]*?)<\/script>/.exec(html);
+  return JSON.parse(m[1]);
+}
+
+// the command line of a page with the tool's path for 'dynkit'
+const shellLine = cmd => cmd.replace(/^dynkit /, "'" + dynkit.replace(/'/g, "'\\''") + "' ");
+
+// `dynkit run` with the page's command line: {names, rows}
+function runCommand(cmd) {
+  const text = execFileSync('sh', ['-c', shellLine(cmd).replace(/ -o run\.csv$/, ' -o -')], { encoding: 'utf8', maxBuffer: 1 << 28 });
+  const rows = text.trim().split('\n');
+  return { names: rows[0].split(','), rows: rows.slice(1).map(l => l.split(',').map(Number)) };
+}
+
+// every sample of a column of the page's data (a number: the same in all)
+const samples = (x, n) => (typeof x === 'number' || x === null ? new Array(n).fill(x === null ? NaN : x) : x);
+
+// The largest difference between two scenes {poses, values} over n samples: positions
+// (pose columns 0-2, point coordinates) relative to size, rotations absolute.
+function sceneDiff(a, b, n, size) {
+  let pos = 0, rot = 0;
+  a.poses.forEach((p, i) => p.forEach((col, q) => {
+    const x = samples(col, n), y = samples(b.poses[i][q], n);
+    for (let k = 0; k < n; k++) {
+      const d = Math.abs(x[k] - y[k]);
+      if (q < 3) pos = Math.max(pos, d / size); else rot = Math.max(rot, d);
+    }
+  }));
+  a.values.forEach((v, i) => v.forEach((col, q) => {
+    const x = samples(col, n), y = samples(b.values[i][q], n);
+    for (let k = 0; k < n; k++) {
+      if (Number.isNaN(x[k]) && Number.isNaN(y[k])) continue;
+      pos = Math.max(pos, Math.abs(x[k] - y[k]) / size);
+    }
+  }));
+  return { pos, rot };
+}
+
+function scaleOf(scene, n) {
+  let s = 0;
+  for (const p of scene.poses) for (let q = 0; q < 3; q++) for (const x of samples(p[q], n)) if (isFinite(x)) s = Math.max(s, Math.abs(x));
+  return s || 1;
+}
+
+const hostileDir = fs.mkdtempSync(path.join(os.tmpdir(), 'dynkit-live-scene-'));
+const hostile = path.join(hostileDir, 'hostile.mech');
+fs.writeFileSync(hostile, fs.readFileSync(path.join(source, 'examples/mechanisms/double_pendulum.mech'), 'utf8')
+  .replace(/^#: title .*$/m, '#: title </script><script>window.pwned=1</script><img src=x onerror="window.pwned=2">'));
+
+const ex = p => path.join(source, p);
+const mechs = [
+  { name: 'double-pendulum', file: ex('examples/mechanisms/double_pendulum.mech'), set: { m2: 1.5 } },
+  { name: 'fourbar', file: ex('examples/mechanisms/fourbar.mech'), set: { g: 25 }, arrows: true },
+  { name: 'top', file: ex('examples/mechanisms/top.mech'), set: {}, setFirstState: 1.3 },
+  { name: 'rolling-disk', file: ex('examples/mechanisms/rolling_disk.mech'), set: { W: 6 } },
+  { name: 'hostile', file: hostile, set: { m2: 1.5 }, hostile: true },
+];
+for (const p of mechs) {
+  p.page = path.join(dir, p.name + '.html');
+  const r = spawnSync(dynkit, ['animate', p.file, '--live', '-o', p.page], { encoding: 'utf8' });
+  if (r.status !== 0 || /not live/.test(r.stderr)) {
+    if (/built without the WebAssembly library/.test(r.stderr))
+      skip(`dynkit was built without the WebAssembly library: ${r.stderr.trim()}`);
+    current = p.name;
+    check(false, `dynkit animate --live: exit ${r.status}: ${r.stderr.trim()}`);
+    p.failed = true;
+  }
+}
+
+const userDataDir = fs.mkdtempSync(path.join(os.tmpdir(), 'dynkit-chromium-'));
+const context = await chromium.launchPersistentContext(userDataDir, {
+  executablePath: chromiumPath, headless: true, viewport: { width: 1280, height: 900 },
+  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+    '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+});
+
+// A page opened offline: {page, errors, requests}, or null when its module did not start.
+async function open(file) {
+  const page = await context.newPage();
+  const errors = [], requests = [];
+  const url = pathToFileURL(file).href;
+  page.on('console', m => { if (m.type() === 'error') errors.push(m.text()); });
+  page.on('pageerror', e => errors.push(String(e)));
+  await page.route('**/*', route => {
+    if (route.request().url() === url) return route.continue();
+    requests.push(route.request().url());
+    return route.abort();
+  });
+  await page.goto(url, { waitUntil: 'load' });
+  await page.waitForSelector('body[data-live]', { timeout: 120000 }).catch(() => {});
+  const state = await page.evaluate(() => document.body.dataset.live);
+  if (!check(state === 'ready', `the module runs in the page (${(fs.statSync(file).size / 1024).toFixed(0)} KiB)`)) {
+    console.log(errors.join('\n'));
+    await page.close();
+    return null;
+  }
+  return { page, errors, requests };
+}
+
+async function finish(o, name) {
+  const { page, errors, requests } = o;
+  await page.setViewportSize({ width: 390, height: 844 });
+  await page.evaluate(() => window.dynkitLive.run());
+  await page.waitForTimeout(150);
+  const fit = await page.evaluate(() => ({ sw: document.documentElement.scrollWidth, w: innerWidth }));
+  check(fit.sw <= fit.w, `at 390 px wide nothing scrolls sideways (${fit.sw} <= ${fit.w})`);
+  await page.screenshot({ path: path.join(dir, name + '-390.png'), fullPage: true });
+  await page.setViewportSize({ width: 1280, height: 900 });
+  await page.screenshot({ path: path.join(dir, name + '.png'), fullPage: true });
+  check(requests.length === 0, `no request but the page itself (${requests.length}: ${requests.slice(0, 3).join(' ')})`);
+  check(errors.length === 0, `no console error${errors.length ? ': ' + errors.slice(0, 3).join(' | ') : ''}`);
+  await page.close();
+}
+
+// ---- mechanisms ----
+for (const p of mechs.filter(q => !q.failed)) {
+  current = p.name;
+  const o = await open(p.page);
+  if (!o) continue;
+  const { page } = o;
+  const written = pageData(p.page);
+  check(!!written.mech_plan && written.live.scene_inputs === true, 'the page carries the plan of its scene and the module writes its inputs');
+  // a change: the parameters given, or the first initial value
+  const set = Object.assign({}, p.set);
+  if (p.setFirstState !== undefined) set[written.model.states[0].name] = p.setFirstState;
+  const arrowsBefore = await page.evaluate(() => { const v = document.querySelector('#view'); return v && v.dataset.mechArrows; });
+  for (const [k, v] of Object.entries(set)) await page.evaluate(([k, v]) => window.dynkitLive.set(k, v), [k, v]);
+  const out = await page.evaluate(async () => {
+    const r = await window.dynkitLive.run();
+    const view = document.querySelector('#view');
+    return { n: r.t.length, cmd: window.dynkitLive.command(), scene: window.dynkitLive.scene(), note: document.getElementById('messages').textContent, arrows: view && view.dataset.mechArrows };
+  });
+  if (!check(out.scene && out.scene.poses.length === written.mech.bodies.length, `the live run has a scene (${out.scene ? out.scene.poses.length : 0} bodies)`)) { await finish(o, p.name); continue; }
+  check(!/scene shows the run the page was written with/.test(out.note), `the page does not say its scene is the original run's (${out.note || 'no note'})`);
+  const n0 = written.runs[0].data[0].length, size = scaleOf(written.mech.runs[0], n0);
+  const n = out.scene.poses[0][0].length;
+  // the tool's scene of the same settings: a static page of the command line
+  const ref = path.join(dir, p.name + '-tool.html');
+  const line = shellLine(out.cmd).replace(/^('[^']*') run /, '$1 animate ').replace(/ -o run\.csv$/, ` -o '${ref}'`);
+  let tool = null;
+  try { execFileSync('sh', ['-c', line], { encoding: 'utf8' }); tool = pageData(ref); } catch (e) { check(false, `dynkit animate with the page's settings failed: ${e.message}`); }
+  if (tool) {
+    const nt = tool.runs[0].data[0].length;
+    check(nt === n, `as many frames as the tool's page of the same run (${n}, ${nt})`);
+    const d = sceneDiff(out.scene, tool.mech.runs[0], Math.min(n, nt), size);
+    const okd = check(d.pos <= 1e-8 && d.rot <= 1e-6, `the scene equals the tool's for the new settings (positions ${d.pos.toExponential(2)} of the size ${size.toPrecision(3)} m, rotations ${d.rot.toExponential(2)})`);
+    const moved = sceneDiff(out.scene, written.mech.runs[0], Math.min(n, n0), size);
+    check(moved.pos > 1e-3, `and differs from the run the page was written with (${moved.pos.toExponential(2)} of the size)`);
+    if (!okd) fs.writeFileSync(path.join(dir, p.name + '-scene.json'), JSON.stringify({ page: out.scene, tool: tool.mech.runs[0] }));
+  }
+  if (p.arrows) {
+    // the arrows are the multipliers of the live run: their scale follows the largest force
+    check(/arrows: 1 m = /.test(out.arrows || '') && out.arrows !== arrowsBefore, `the constraint forces are drawn from the live run: their scale follows its multipliers (${arrowsBefore} -> ${out.arrows})`);
+  }
+  if (p.hostile) check(await page.evaluate(() => window.pwned === undefined), 'hostile text in the mechanism file runs no script');
+  await finish(o, p.name);
+}
+
+// ---- the report ----
+current = 'report';
+{
+  const file = path.join(dir, 'report.html');
+  const r = spawnSync(dynkit, ['report', '--no-studies', '--html', file, '--live'], { encoding: 'utf8' });
+  check(r.status === 0 && !/not live/.test(r.stderr), `dynkit report --html --live: exit ${r.status} ${r.stderr.trim()}`);
+  const o = r.status === 0 ? await open(file) : null;
+  if (o) {
+    const { page } = o;
+    const models = await page.evaluate(() => window.dynkitReportLive.models);
+    check(JSON.stringify(models) === JSON.stringify(['pendulum', 'vanderpol', 'plane', 'cart']), `the live section offers the homework's models (${models.join(', ')})`);
+    const changes = { pendulum: { l: 1.3 }, vanderpol: { mu: 1.7 }, plane: { k: 25 }, cart: { Fx: -40 } };
+    for (const name of models) {
+      const ready = await page.evaluate(async nm => { await window.dynkitReportLive.choose(nm); return document.body.dataset.live; }, name);
+      check(ready === 'ready', `${name}: its module instance runs`);
+      for (const [k, v] of Object.entries(changes[name] || {})) await page.evaluate(([k, v]) => window.dynkitLive.set(k, v), [k, v]);
+      const out = await page.evaluate(async () => { const r = await window.dynkitLive.run(); return { r, cmd: window.dynkitLive.command(), title: document.getElementById('title').textContent }; });
+      check(out.title.startsWith(name + ' '), `${name}: the section shows it (${out.title})`);
+      let ref;
+      try { ref = runCommand(out.cmd); } catch (e) { check(false, `${name}: dynkit run failed: ${e.message}`); }
+      if (!ref) continue;
+      const n = out.r.names.length, scale = new Array(n + 1).fill(0);
+      ref.rows.forEach(row => row.forEach((v, c) => { scale[c] = Math.max(scale[c], Math.abs(v)); }));
+      let worst = ref.rows.length === out.r.t.length ? 0 : Infinity;
+      for (let k = 0; k < Math.min(ref.rows.length, out.r.t.length); k++) {
+        const mine = [out.r.t[k], ...out.r.y[k]];
+        for (let c = 0; c <= n; c++) if (!Object.is(mine[c], ref.rows[k][c])) worst = Math.max(worst, Math.abs(mine[c] - ref.rows[k][c]) / (scale[c] || 1));
+      }
+      check(worst <= 1e-12, `${name}: ${out.r.t.length} samples equal to dynkit run's with the page's command (${out.cmd}) within 1e-12 (largest ${worst.toExponential(2)})`);
+    }
+    await finish(o, 'report');
+  }
+}
+
+await context.close();
+fs.rmSync(userDataDir, { recursive: true, force: true });
+fs.rmSync(hostileDir, { recursive: true, force: true });
+const failed = results.filter(r => !r.ok);
+console.log(`\n${results.length - failed.length}/${results.length} checks passed`);
+process.exit(failed.length ? 1 : 0);

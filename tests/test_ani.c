@@ -372,6 +372,110 @@ static void test_evaluator_matches_the_compiled_model(void **state)
     dyn_jit_unload(&jm);
 }
 
+/* ---- the animation's numbers as outputs of the model's C (dyn_ani_ode_to_c) ---- */
+
+/* The model of ode with the animation's numbers as outputs, compiled, against the evaluator
+ * of a (read from the same files) at the model's initial state and at a state moved from it,
+ * at t = 0.3: the outputs after the model's are the frame's numbers (a colour clamped to
+ * [0, 1] as dyn_ani_eval does). 1 when compared (the values counted in *same and *total), 0
+ * when the translation refuses the animation (diag in d). */
+static int frames_as_outputs(const char *op, const char *ot, size_t olen, const char *ap,
+                             const char *at, size_t alen, const dyn_ani *a, int *same,
+                             int *total, dyn_lang_diag *d)
+{
+    char *c_src = NULL;
+    if (dyn_ani_ode_to_c(op, ot, olen, NULL, 0, ap, at, alen, &c_src, d) != 0)
+        return 0;
+    dyn_jit_opts opts;
+    memset(&opts, 0, sizeof opts);
+    opts.cache_dir = "ani-jit-cache";
+    dyn_jit_model jm;
+    char err[4096];
+    CHECK(dyn_jit_load_source(c_src, strlen(c_src), op, &opts, &jm, err, sizeof err) == 0,
+          "%s: %s", ap, err);
+    free(c_src);
+    const dyn_model *m = jm.model;
+    int ns, no, np;
+    dyn_ani_sizes(a, &ns, &no, &np);
+    const int nv = dyn_ani_n_values(a);
+    CHECK(m->n_states == ns && m->n_outputs == no + nv, "%s: %d states, %d outputs; the .ani "
+          "reads %d states, %d outputs and has %d numbers", ap, m->n_states, m->n_outputs, ns,
+          no, nv);
+    void *par = calloc(1, m->par_size + 1);
+    double *y = calloc((size_t)ns + 1, sizeof *y), *out = calloc((size_t)no + nv + 1, 8);
+    double *v = calloc((size_t)nv + 1, sizeof *v);
+    assert_true(par && y && out && v);
+    CHECK(dyn_model_default_params(m, par, err, sizeof err) == 0, "%s", err);
+    assert_true((size_t)np * sizeof(double) <= m->par_size);
+    for (int pass = 0; pass < 2; pass++) {
+        for (int i = 0; i < ns; i++)
+            y[i] = m->y0[i] + (pass ? 0.1 * (i + 1) : 0.0);
+        assert_int_equal(m->compute_outputs(0.3, y, par, out), 0);
+        const dyn_ani_frame fr = {0.3, y, out, par};
+        assert_int_equal(dyn_ani_eval(a, &fr, v), 0);
+        for (int i = 0; i < dyn_ani_count(a); i++) {
+            const dyn_ani_prim *pr = dyn_ani_at(a, i);
+            for (int k = 0; k < pr->n_values; k++) {
+                const int K = pr->offset + k;
+                double c = out[no + K];
+                if (pr->color < 0 && k == pr->n_values - 1)
+                    c = c > 1.0 ? 1.0 : c < 0.0 ? 0.0 : c;
+                CHECK((isnan(c) && isnan(v[K])) || fabs(c - v[K]) <= 1e-13 * fmax(1.0, fabs(c)),
+                      "%s:%d, number %d: compiled %.17g, evaluated %.17g", ap, pr->line, k, c,
+                      v[K]);
+                *same += same_bits(c, v[K]) || (isnan(c) && isnan(v[K]));
+                (*total)++;
+            }
+        }
+    }
+    free(par);
+    free(y);
+    free(out);
+    free(v);
+    dyn_jit_unload(&jm);
+    return 1;
+}
+
+/* Every kind of name (state, parameter, number, derived parameter, fixed quantity, function,
+ * aux output, t), a colour formula beyond [0, 1], and a vtext; a function that reads a fixed
+ * quantity refused at its place in the .ani. */
+static void test_frames_as_outputs_of_the_model(void **state)
+{
+    (void)state;
+    const char *ani = "line x;v;w+f(x);e+d2*c;x*4\n"
+                      "fcircle g(v);t;.1;x/4+2\n"
+                      "vtext .1;.2;x = ;x+c\n"
+                      "settext 2;roman;$RED\n"
+                      "rect 0;0;k;a;$BLUE\n";
+    dyn_ani *a = NULL;
+    dyn_lang_diag d;
+    char buf[4096];
+    CHECK(parse(MODEL, ani, &a, &d) == 0, "%s", dyn_lang_diag_format(&d, buf, sizeof buf));
+    int same = 0, total = 0;
+    CHECK(frames_as_outputs("m.ode", MODEL, strlen(MODEL), "a.ani", ani, strlen(ani), a, &same,
+                            &total, &d),
+          "refused: %s", dyn_lang_diag_format(&d, buf, sizeof buf));
+    assert_int_equal(total, 2 * 16);
+    CHECK(same == total, "%d of %d numbers have the evaluator's bits", same, total);
+    dyn_ani_free(a);
+    /* h reads the fixed quantity w, which the translator passes to h as an argument: refused
+     * at the call, by the reader of the animation (it takes 2 arguments) or here */
+    static const char *const with_h = "# h reads w\nx'=v\nv'=-x\nw=x*x+v\nh(u)=u*w\n"
+                                      "init x=1, v=0\ndone\n";
+    const char *bad = "line 0;0;x;v\nline 0;0;h(x);v\n";
+    char *c_src = (char *)1;
+    CHECK(dyn_ani_ode_to_c("h.ode", with_h, strlen(with_h), NULL, 0, "h.ani", bad, strlen(bad),
+                           &c_src, &d) == 2 && c_src == NULL,
+          "accepted: %s", bad);
+    CHECK(strcmp(d.path, "h.ani") == 0 && d.line == 2 && d.col == 10 && strstr(d.message, "'h'"),
+          "%s", dyn_lang_diag_format(&d, buf, sizeof buf));
+    /* an error of the animation itself, at its place */
+    CHECK(dyn_ani_ode_to_c("m.ode", MODEL, strlen(MODEL), NULL, 0, "a.ani", "line 0;0;zz;1\n",
+                           14, &c_src, &d) == 2 &&
+              strcmp(d.path, "a.ani") == 0 && d.line == 1 && d.col == 10,
+          "%s", dyn_lang_diag_format(&d, buf, sizeof buf));
+}
+
 /* An error: its line, column and a part of its message. */
 static void expect_error(const char *text, int line, int col, const char *part)
 {
@@ -646,7 +750,7 @@ static void test_debian_examples(void **state)
         {"wcstim.ani", "wcstim.ode", "nullclines in animations ('xnull', 'ynull') are not "
                                      "supported", 0},
     };
-    int read = 0, refused = 0, model_refused = 0;
+    int read = 0, refused = 0, model_refused = 0, compiled = 0, same = 0, total = 0;
     for (size_t i = 0; i < sizeof ex / sizeof ex[0]; i++) {
         char ap[256], op[256], buf[4096];
         snprintf(ap, sizeof ap, XPP_DIR "%s", ex[i].ani);
@@ -697,13 +801,27 @@ static void test_debian_examples(void **state)
             free(o);
             free(p);
             free(v);
+            /* its numbers as outputs of the model's C (a live page's module) */
+            if (mrc == 0) {
+                dyn_lang_diag od;
+                if (frames_as_outputs(op, ot, olen, ap, at, alen, a, &same, &total, &od)) {
+                    compiled++;
+                } else {
+                    printf("%-17s not compiled: %s\n", ex[i].ani,
+                           dyn_lang_diag_format(&od, buf, sizeof buf));
+                    CHECK(strstr(od.message, "reads fixed quantities"), "%s: %s", ex[i].ani,
+                          buf);
+                }
+            }
             dyn_ani_free(a);
         }
         free(at);
         free(ot);
     }
-    printf("Debian's .ani files: %d read, %d refused, %d refused for their model\n", read,
-           refused, model_refused);
+    printf("Debian's .ani files: %d read, %d refused, %d refused for their model; %d compiled "
+           "as outputs of their model (%d of %d numbers with the evaluator's bits)\n", read,
+           refused, model_refused, compiled, same, total);
+    assert_true(compiled >= 20);
     assert_int_equal(read + refused + model_refused, 30);
     assert_true(read >= 22);
     assert_true(refused >= 2);
@@ -883,6 +1001,7 @@ int main(void)
         cmocka_unit_test(test_array_lines_and_blocks),
         cmocka_unit_test(test_evaluator_known_values),
         cmocka_unit_test(test_evaluator_matches_the_compiled_model),
+        cmocka_unit_test(test_frames_as_outputs_of_the_model),
         cmocka_unit_test(test_errors_name_their_place),
         cmocka_unit_test(test_window_speed_grab_and_notes),
         cmocka_unit_test(test_c_model_names),

@@ -211,7 +211,9 @@ int cli_cmd_animate(int argc, char **argv)
     int run_rc = rc == CLI_OK ? cli_view_record(&v) : rc;
     cli_live live;
     memset(&live, 0, sizeof live);
-    if (rc == CLI_OK && live_asked && cli_live_build(v.run.model, &live) != 0)
+    if (rc == CLI_OK && live_asked &&
+        (ani.ani && ani.from_ode ? cli_live_build_ani(v.run.model, ani.path, &live)
+                                 : cli_live_build(v.run.model, &live)) != 0)
         cli_warning("the page is not live, it shows the run it was written with: %s", live.why);
     if (homework && run_rc != CLI_USAGE && cli_animate_homework_finish(&v) != CLI_OK)
         rc = CLI_FAILED;

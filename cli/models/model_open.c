@@ -11,6 +11,7 @@
 #include <sys/stat.h>
 
 #include "cli.h"
+#include "dynkit/ani.h"
 #include "dynkit/brusselator.h"
 #include "dynkit/jit.h"
 #include "dynkit/lang.h"
@@ -321,6 +322,23 @@ char *cli_model_mech_scene_source(const char *path)
                             &diag, NULL, NULL) != 0)
         c_source = NULL;
     free(text);
+    return c_source;
+}
+
+char *cli_model_ani_source(const char *ode_path, const char *ani_path)
+{
+    if (!ends_with(ode_path, ".ode"))
+        return NULL;
+    size_t len = 0, ani_len = 0;
+    char *text = cli_read_model_file(ode_path, &len);
+    char *ani = text ? cli_read_model_file(ani_path, &ani_len) : NULL;
+    char *c_source = NULL;
+    dyn_lang_diag diag;
+    if (ani && dyn_ani_ode_to_c(ode_path, text, len, table_files, n_table_files, ani_path, ani,
+                                ani_len, &c_source, &diag) != 0)
+        c_source = NULL;
+    free(text);
+    free(ani);
     return c_source;
 }
 

@@ -275,10 +275,10 @@ int cli_json_ani(cli_json *j, const cli_ani *a, const cli_view *v)
             cli_json_number(j, p->comet_type);
             cli_json_key(j, "length");
             cli_json_number(j, p->comet_length);
-        } else if (p->kind == DYN_ANI_TEXT) {
-            cli_json_key(j, "text");
+        } else if (p->kind == DYN_ANI_TEXT || p->kind == DYN_ANI_VTEXT) {
+            cli_json_key(j, "text"); /* a vtext's: before its value (a live page's) */
             cli_json_string(j, p->text);
-        } else if (p->kind != DYN_ANI_VTEXT) {
+        } else {
             cli_json_key(j, "thickness");
             cli_json_number(j, p->thickness);
         }

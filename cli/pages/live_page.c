@@ -278,6 +278,21 @@ int cli_live_build(const dyn_model *m, cli_live *out)
     return source ? build_source(source, out) : -1;
 }
 
+int cli_live_build_ani(const dyn_model *m, const char *ani_path, cli_live *out)
+{
+    const char *path = cli_model_path(m);
+    char *source = path && ani_path ? cli_model_ani_source(path, ani_path) : NULL;
+    if (source) {
+        memset(out, 0, sizeof *out);
+        if (build_source(source, out) == 0) {
+            out->ani_outputs = 1;
+            return 0;
+        }
+        cli_live_free(out);
+    }
+    return cli_live_build(m, out); /* the page's animation then shows its first run */
+}
+
 int cli_live_build_builtins(cli_live *out)
 {
     memset(out, 0, sizeof *out);
@@ -425,6 +440,8 @@ int cli_json_live(cli_json *j, const cli_live *live, const cli_view *v, const ch
     cli_json_end_array(j);
     cli_json_key(j, "scene_inputs"); /* the column after t, the states and the outputs */
     cli_json_bool(j, live->scene_inputs);
+    cli_json_key(j, "ani_outputs"); /* there too: the animation's numbers */
+    cli_json_bool(j, live->ani_outputs);
     cli_json_key(j, "compare");
     cli_json_begin_array(j);
     for (int k = 0; k < v->n_compare; k++) {

@@ -139,6 +139,8 @@ typedef struct cli_live {
     char why[1024];        /* when module is NULL: why, and what to install */
     int scene_inputs;      /* 1: a mechanism's outputs end with its scene's inputs
                               (DYN_MECH_SCENE_INPUTS), from which the page draws its runs */
+    int ani_outputs;       /* 1: an .ode model's outputs end with its animation's numbers
+                              (dyn_ani_ode_to_c) */
 } cli_live;
 /* Compile model m (its C, with the core library for wasm32) into out: 0, or -1 with
  * out->why. Nothing is printed. */
@@ -146,6 +148,10 @@ int cli_live_build(const dyn_model *m, cli_live *out);
 /* One module for every built-in model (report --html --live): an instance runs model
  * dyn_model_at(i) once its export dk_live_choose(i) was called. 0, or -1 with out->why. */
 int cli_live_build_builtins(cli_live *out);
+/* cli_live_build for an .ode model with the XPPAUT animation ani_path: the module's outputs
+ * end with the animation's numbers (out->ani_outputs), from which the page draws its runs;
+ * else (another model, or the animation cannot be compiled so) as cli_live_build. */
+int cli_live_build_ani(const dyn_model *m, const char *ani_path, cli_live *out);
 /* The module as a JSON string (base64). */
 void cli_json_live_module(cli_json *j, const cli_live *live);
 void cli_live_free(cli_live *live);

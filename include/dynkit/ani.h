@@ -120,6 +120,18 @@ typedef struct dyn_ani_frame {
  * may be evaluated on several threads at once. */
 int dyn_ani_eval(const dyn_ani *ani, const dyn_ani_frame *frame, double *values);
 
+/* The C text of the .ode model (as dyn_ode_to_c_tables translates it) whose outputs end
+ * with the numbers of the animation's frames: one output ani:K per number K of a frame of
+ * dyn_ani_eval (the primitives' numbers in their order; a colour not clamped), so that a
+ * program running the model's C gets every frame with its sample (dynkit's live pages,
+ * docs/web.md). Returns 0, or non-zero as dyn_ode_to_c with *diag: an error of either file,
+ * and a formula of the animation calling a function of the model that reads its fixed
+ * quantities (the animation's evaluator computes it; the model's C does not take it). */
+int dyn_ani_ode_to_c(const char *ode_path, const char *ode_text, size_t ode_len,
+                     const dyn_lang_table_file *tables, int n_tables, const char *ani_path,
+                     const char *ani_text, size_t ani_len, char **c_source,
+                     dyn_lang_diag *diag);
+
 /* The text XPPAUT shows for a vtext: the string followed by the value as printf's "%g". */
 char *dyn_ani_vtext(const char *text, double value, char *buf, size_t size);
 

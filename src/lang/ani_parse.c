@@ -663,6 +663,8 @@ static int on_line(lang_ctx *c, const lang_line *l, void *ctx)
 
 /* ---- the public interface ---- */
 
+static void parse_lines(dyn_ani *a, const char *path, const char *text, size_t len);
+
 static void parse(dyn_ani *a, const char *path, const char *text, size_t len,
                   const dyn_ani_model *model)
 {
@@ -688,6 +690,13 @@ static void parse(dyn_ani *a, const char *path, const char *text, size_t len,
         a->n_outputs = model->n_outputs;
         a->n_params = model->n_params;
     }
+    parse_lines(a, path, text, len);
+}
+
+/* The animation's own lines, with the names of the model read before */
+static void parse_lines(dyn_ani *a, const char *path, const char *text, size_t len)
+{
+    lang_ctx *c = a->c;
     set_text(c, path, text, len);
     pstate ps;
     memset(&ps, 0, sizeof ps);
@@ -800,4 +809,83 @@ int dyn_ani_value_is_constant(const dyn_ani *ani, int i, int k)
     if (!ani || i < 0 || i >= ani->n_items || k < 0 || k >= ani->items[i].p.n_values)
         return 1;
     return !ani_varies(ani, ani->items[i].expr[k]);
+}
+
+/* ---- an animation's numbers as outputs of the model's C (dyn_ani_ode_to_c) ---- */
+
+typedef struct ani_source {
+    const char *path, *text;
+    size_t len;
+} ani_source;
+
+/* A formula of the animation as one of the model's: an aux output (N_ARG k here) replaced
+ * by its formula. A call of a function of the file that reads fixed quantities is refused:
+ * the translator has rewritten such functions (lang_check), not this call. */
+static void as_model_formula(lang_ctx *c, node **e)
+{
+    node *n = *e;
+    if (n->kind == N_ARG) {
+        *e = LVEC_AT(c->m.auxs, lang_formula, n->index).expr;
+        return;
+    }
+    if (n->kind == N_UFUN && LVEC_AT(c->m.funcs, lang_func, n->index).uses_fix)
+        lang_fail(c, n->pos, "'%s' reads fixed quantities of the model: its value is "
+                  "computed by the animation's evaluator only, not as an output of the "
+                  "model's C", n->name ? n->name : "the function");
+    for (int i = 0; i < n->nargs; i++)
+        as_model_formula(c, &n->args[i]);
+}
+
+/* The .ode front end, then the animation read with its names, each of its formulas
+ * appended to the model's outputs as ani:K (K its place in a frame) */
+static void ani_ode_front(lang_ctx *c)
+{
+    const ani_source *src = c->hook_ctx;
+    lang_ode_front(c);
+    const char *ode_path = c->path, *ode_text = c->text;
+    const size_t ode_len = c->len;
+    dyn_ani a;
+    memset(&a, 0, sizeof a);
+    a.c = c;
+    a.from_ode = 1;
+    a.n_states = c->m.states.n;
+    a.n_outputs = c->m.auxs.n;
+    a.n_params = c->m.params.n + c->m.derived.n;
+    a.window[2] = a.window[3] = 1.0;
+    a.speed = 10;
+    dyn_lang_note_fn note = c->note;
+    c->note = NULL; /* the reader of the animation has said these already */
+    parse_lines(&a, src->path, src->text, src->len);
+    c->note = note;
+    for (int i = 0; i < a.n_items; i++) {
+        ani_item *it = &a.items[i];
+        for (int k = 0; k < it->p.n_values; k++) {
+            as_model_formula(c, &it->expr[k]);
+            lang_formula *f = lvec_push(c, &c->m.auxs, sizeof *f);
+            memset(f, 0, sizeof *f);
+            f->name = lang_printf(c, "ani:%d", it->p.offset + k);
+            f->expr = it->expr[k];
+        }
+    }
+    set_text(c, ode_path, ode_text, ode_len); /* the model's text again */
+}
+
+int dyn_ani_ode_to_c(const char *ode_path, const char *ode_text, size_t ode_len,
+                     const dyn_lang_table_file *tables, int n_tables, const char *ani_path,
+                     const char *ani_text, size_t ani_len, char **c_source,
+                     dyn_lang_diag *diag)
+{
+    if (!ani_text && ani_len) {
+        if (c_source)
+            *c_source = NULL;
+        if (diag) {
+            memset(diag, 0, sizeof *diag);
+            strcpy(diag->message, "no text for the animation (a NULL argument)");
+        }
+        return 2;
+    }
+    const ani_source src = {ani_path ? ani_path : "<animation>", ani_text ? ani_text : "",
+                            ani_len};
+    return lang_translate_with(ode_path, ode_text, ode_len, tables, n_tables, c_source, diag,
+                               NULL, NULL, ani_ode_front, NULL, (void *)&src);
 }

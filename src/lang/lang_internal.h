@@ -588,6 +588,15 @@ int lang_translate(const char *path, const char *text, size_t len,
                    const dyn_lang_table_file *tables, int n_tables, char **c_source,
                    dyn_lang_diag *diag, dyn_lang_note_fn note, void *note_ctx,
                    void (*front)(lang_ctx *c), char *(*back)(lang_ctx *c));
+/* lang_translate with c->hook_ctx = front_ctx when front runs */
+int lang_translate_with(const char *path, const char *text, size_t len,
+                        const dyn_lang_table_file *tables, int n_tables, char **c_source,
+                        dyn_lang_diag *diag, dyn_lang_note_fn note, void *note_ctx,
+                        void (*front)(lang_ctx *c), char *(*back)(lang_ctx *c),
+                        void *front_ctx);
+/* The .ode front end: the model's name from its path, lang_parse_model, the table files
+ * checked, lang_check (translate.c) */
+void lang_ode_front(lang_ctx *c);
 /* The default name of a model from its path: the file name without the extension ext. */
 const char *lang_base_name(lang_ctx *c, const char *path, const char *ext);
 /* A context for the text of a file (calloc'd; NULL when out of memory): release with

@@ -28,7 +28,7 @@ const char *lang_base_name(lang_ctx *c, const char *path, const char *ext)
     return dyn_terminal_text(raw, 0, shown, 4 * n + 1);
 }
 
-static void ode_front(lang_ctx *c)
+void lang_ode_front(lang_ctx *c)
 {
     c->m.name = lang_base_name(c, c->path, ".ode");
     lang_parse_model(c);
@@ -78,7 +78,7 @@ int dyn_ode_to_c_tables(const char *path, const char *text, size_t len,
                         dyn_lang_diag *diag, dyn_lang_note_fn note, void *note_ctx)
 {
     return lang_translate(path, text, len, tables, n_tables, c_source, diag, note, note_ctx,
-                          ode_front, NULL);
+                          lang_ode_front, NULL);
 }
 
 lang_ctx *lang_ctx_new(const char *path, const char *text, size_t len,
@@ -109,6 +109,16 @@ int lang_translate(const char *path, const char *text, size_t len,
                    dyn_lang_diag *diag, dyn_lang_note_fn note, void *note_ctx,
                    void (*front)(lang_ctx *c), char *(*back)(lang_ctx *c))
 {
+    return lang_translate_with(path, text, len, tables, n_tables, c_source, diag, note,
+                               note_ctx, front, back, NULL);
+}
+
+int lang_translate_with(const char *path, const char *text, size_t len,
+                        const dyn_lang_table_file *tables, int n_tables, char **c_source,
+                        dyn_lang_diag *diag, dyn_lang_note_fn note, void *note_ctx,
+                        void (*front)(lang_ctx *c), char *(*back)(lang_ctx *c),
+                        void *front_ctx)
+{
     dyn_lang_diag scratch;
     if (!diag)
         diag = &scratch;
@@ -134,6 +144,7 @@ int lang_translate(const char *path, const char *text, size_t len,
     }
     c->note = note;
     c->note_ctx = note_ctx;
+    c->hook_ctx = front_ctx;
     jmp_buf fail;
     c->fail = &fail;
     if (setjmp(fail)) {

@@ -10,10 +10,14 @@
 //   positions within 1e-8 of the mechanism's size and rotations within 1e-6 (the static
 //   page writes 9 and 6 significant digits); the constraint-force arrows follow the live
 //   run's multipliers;
+// - an XPPAUT animation (examples/models/pendulum.ode and double_pendulum.ode with their
+//   .ani): after a change the numbers of every primitive (dynkitLive.ani()) equal those of
+//   the static page of the same settings (within 1e-5 of the window: its 6 digits) and its
+//   vtext strings are the same, and differ from the first run's;
 // - `dynkit report --html FILE --live`: each of the homework's models chosen in the live
 //   section runs in the page, and a change of a parameter gives `dynkit run`'s numbers with
 //   the command line the page shows (within 1e-12 of each column's magnitude);
-// - a mechanism file with hostile names (body, shape, colour words) runs no script;
+// - a mechanism file with a hostile title and an animation with hostile text run no script;
 // - at 390 px wide nothing scrolls sideways; no console error.
 // What failed is kept under ARTIFACTS/live-scene/.
 //
@@ -206,6 +210,75 @@ for (const p of mechs.filter(q => !q.failed)) {
   if (p.hostile) check(await page.evaluate(() => window.pwned === undefined), 'hostile text in the mechanism file runs no script');
   await finish(o, p.name);
 }
+
+// ---- .ani animations ----
+// the tool's numbers (6 significant digits) against the page's, relative to the window's size
+function aniDiff(a, b, n, size) {
+  let d = 0, strings = 0;
+  a.forEach((p, i) => {
+    p.v.forEach((col, k) => {
+      const x = samples(col, n), y = samples(b[i].v[k], n);
+      for (let q = 0; q < n; q++) {
+        if (Number.isNaN(x[q]) && Number.isNaN(y[q])) continue;
+        d = Math.max(d, Math.abs(x[q] - y[q]) / size);
+      }
+    });
+    if (p.s !== undefined) {
+      const x = typeof p.s === 'string' ? new Array(n).fill(p.s) : p.s, y = typeof b[i].s === 'string' ? new Array(n).fill(b[i].s) : b[i].s;
+      for (let q = 0; q < n; q++) strings += x[q] !== y[q];
+    }
+  });
+  return { d, strings };
+}
+
+const aniDir = fs.mkdtempSync(path.join(os.tmpdir(), 'dynkit-live-ani-'));
+const hostileOde = path.join(aniDir, 'hostile.ode');
+fs.copyFileSync(ex('examples/models/pendulum.ode'), hostileOde);
+fs.writeFileSync(path.join(aniDir, 'hostile.ani'), fs.readFileSync(ex('examples/models/pendulum.ani'), 'utf8')
+  .replace(/^end$/m, 'text .1;.1;</script><script>window.pwned=1</script><img src=x onerror=window.pwned=2>\nend'));
+// (the double pendulum over 4 s: later its chaos makes the last bits of libm, the page's
+// musl against the tool's glibc, visible in the picture)
+const anis = [
+  { name: 'pendulum-ani', file: ex('examples/models/pendulum.ode'), set: { l: 5 } },
+  { name: 'double-pendulum-ani', file: ex('examples/models/double_pendulum.ode'), set: { l1: 1.6, m2: 3, t1: 4 } },
+  { name: 'hostile-ani', file: hostileOde, set: { l: 5 }, hostile: true },
+];
+for (const p of anis) {
+  current = p.name;
+  p.page = path.join(dir, p.name + '.html');
+  const r = spawnSync(dynkit, ['animate', p.file, '--live', '-o', p.page], { encoding: 'utf8' });
+  if (!check(r.status === 0 && !/not live/.test(r.stderr), `dynkit animate --live: exit ${r.status} ${r.stderr.trim()}`)) continue;
+  const o = await open(p.page);
+  if (!o) continue;
+  const { page } = o;
+  const written = pageData(p.page);
+  check(!!written.ani && written.live.ani_outputs === true, 'the page carries its animation and the module writes its numbers');
+  for (const [k, v] of Object.entries(p.set)) await page.evaluate(([k, v]) => window.dynkitLive.set(k, v), [k, v]);
+  const out = await page.evaluate(async () => {
+    await window.dynkitLive.run();
+    return { cmd: window.dynkitLive.command(), ani: window.dynkitLive.ani(), note: document.getElementById('messages').textContent };
+  });
+  if (!check(out.ani && out.ani.length === written.ani.prims.length, `the live run has the animation's ${out.ani ? out.ani.length : 0} primitives`)) { await finish(o, p.name); continue; }
+  check(!/animation shows the run the page was written with/.test(out.note), `the page does not say its animation is the original run's (${out.note || 'no note'})`);
+  const w = written.ani.window, size = Math.max(w[2] - w[0], w[3] - w[1]);
+  const ref = path.join(dir, p.name + '-tool.html');
+  const line = shellLine(out.cmd).replace(/^('[^']*') run /, '$1 animate ').replace(/ -o run\.csv$/, ` -o '${ref}'`);
+  let tool = null;
+  try { execFileSync('sh', ['-c', line], { encoding: 'utf8' }); tool = pageData(ref); } catch (e) { check(false, `dynkit animate with the page's settings failed: ${e.message}`); }
+  if (tool) {
+    const n = tool.runs[0].data[0].length;
+    const firstLen = out.ani.map(q => q.v.find(x => typeof x !== 'number')).find(x => x);
+    check(firstLen && firstLen.length === n, `as many frames as the tool's page of the same run (${firstLen && firstLen.length}, ${n})`);
+    const d = aniDiff(out.ani, tool.ani.runs[0], n, size);
+    const okd = check(d.d <= 1e-5 && d.strings === 0, `the animation equals the tool's for the new settings (numbers within ${d.d.toExponential(2)} of the window's ${size}, ${d.strings} texts differ)`);
+    const moved = aniDiff(out.ani, written.ani.runs[0], Math.min(n, written.runs[0].data[0].length), size);
+    check(moved.d > 1e-3, `and differs from the run the page was written with (${moved.d.toExponential(2)} of the window)`);
+    if (!okd) fs.writeFileSync(path.join(dir, p.name + '-ani.json'), JSON.stringify({ page: out.ani, tool: tool.ani.runs[0] }));
+  }
+  if (p.hostile) check(await page.evaluate(() => window.pwned === undefined), 'hostile text in the animation runs no script');
+  await finish(o, p.name);
+}
+fs.rmSync(aniDir, { recursive: true, force: true });
 
 // ---- the report ----
 current = 'report';

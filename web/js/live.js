@@ -99,7 +99,7 @@
       const keep = [];
       for (let k = 0; k < n; k += every) keep.push(k);
       if (n > 0 && keep[keep.length - 1] !== n - 1) keep.push(n - 1);
-      if (this.kept) this.kept.push({ rows: r.rows, keep }); /* for the mechanism's scene */
+      if (this.kept) this.kept.push({ rows: r.rows, keep }); /* for the scene, the .ani */
       const data = names.map((_, c) => keep.map(k => r.rows[k * cols + c]));
       return { label, method, method_title: '', map: false, step, samples: n, status: r.message ? 'stopped' : 'ok', message: r.message, columns: names, units, data };
     }
@@ -146,16 +146,16 @@
     }
 
     /* The page drawn with the new runs: in place (every plot keeps its canvas and takes the
-     * new samples, DK.updateAnimate), else built again (a mechanism's scene drawn from the
-     * live runs; an .ani the tool evaluated gives way to the pictures the runs can draw). */
+     * new samples, DK.updateAnimate), else built again (a mechanism's scene and an .ani
+     * animation drawn from the live runs when their module gives their numbers). */
     redraw(runs) {
       if (this.stopped) return; /* replaced by another model's (report --live) */
       const old = this.player;
-      /* a mechanism's scene from the runs' scene inputs (live_scene.js); an .ani animation
-       * evaluated by the tool belongs to its run */
-      const mech = this.sceneOf(runs);
-      const stale = (this.data.mech && !mech) || this.data.ani;
-      const data = Object.assign({}, this.data, { runs, span: [this.t0, this.t1], ani: null, mech, shows: stale ? (this.data.ani ? 'The .ani animation shows' : 'The mechanism\u2019s scene shows') + ' the run the page was written with; the live runs are drawn in the plots.' : this.data.shows });
+      /* a mechanism's scene from the runs' scene inputs (live_scene.js), an .ani animation
+       * from its frames' numbers (live_ani.js); else they belong to the tool's run */
+      const mech = this.sceneOf(runs), ani = this.aniOf(runs);
+      const staleAni = this.data.ani && !ani, stale = (this.data.mech && !mech) || staleAni;
+      const data = Object.assign({}, this.data, { runs, span: [this.t0, this.t1], ani, mech, shows: stale ? (staleAni ? 'The .ani animation shows' : 'The mechanism\u2019s scene shows') + ' the run the page was written with; the live runs are drawn in the plots.' : this.data.shows });
       if (DK.updateAnimate(old, data)) return;
       const t = old ? old.t : null, playing = old ? old.playing : true;
       if (old) {
@@ -186,6 +186,18 @@
       if (base + plan.inputs > this.cols) return null;
       this.sceneRuns = this.kept.map(k => DK.liveMechRun(plan, mech.shapes, k.rows, this.cols, base, k.keep));
       return Object.assign({}, mech, { runs: this.sceneRuns });
+    }
+
+    /* The .ani animation of the runs (data.ani with their frames), or null when the page
+     * has none or its module does not write the frames' numbers. */
+    aniOf(runs) {
+      const ani = this.data.ani;
+      if (!ani || !this.L.ani_outputs || this.kept.length !== runs.length) return null;
+      const counts = ani.runs[0].map(p => p.v.length), n = counts.reduce((a, b) => a + b, 0);
+      const base = 1 + this.model.states.length + this.model.outputs.length;
+      if (base + n > this.cols) return null;
+      this.aniRuns = this.kept.map(k => DK.liveAniRun(ani, counts, k.rows, this.cols, base, k.keep));
+      return Object.assign({}, ani, { runs: this.aniRuns });
     }
 
     /* A click in the phase plane starts a trajectory there (XPPAUT's initial conditions,
@@ -367,7 +379,9 @@
       clicked: () => live.clicked.map(p => Object.assign({}, p)),
       /* the mechanism's scene drawn for the main run: its times, each body's pose (x, then
        * R row-major, 12 arrays) and each shape's numbers, or null */
-      scene: () => (live.sceneRuns ? { poses: live.sceneRuns[0].poses, values: live.sceneRuns[0].values } : null)
+      scene: () => (live.sceneRuns ? { poses: live.sceneRuns[0].poses, values: live.sceneRuns[0].values } : null),
+      /* the .ani animation's numbers drawn for the main run (data.ani.runs[0]), or null */
+      ani: () => (live.aniRuns ? live.aniRuns[0] : null)
     };
     live.ready.then(() => {
       live.rerun(false);

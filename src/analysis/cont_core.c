@@ -96,8 +96,16 @@ int cont_correct(const cont_system *s, cont_work *w, const double *z0, const dou
         }
         if (bordered(s, w, z, t0))
             return -1;
-        if (dyn_lu_factor(M, w->A, w->piv))
+        if (dyn_lu_factor(M, w->A, w->piv)) {
+            /* exactly singular (a branch point hit exactly): converged if it already
+             * solves the equations */
+            if (norm_inf(w->r, M) <= DYN_CONT_TOL * (1.0 + norm_inf(z, M))) {
+                if (iters)
+                    *iters = it + 1;
+                return 0;
+            }
             return -1;
+        }
         dyn_lu_solve(M, w->A, w->piv, w->r);
         for (int i = 0; i < M; i++)
             z[i] += w->r[i];
@@ -114,12 +122,19 @@ int cont_correct(const cont_system *s, cont_work *w, const double *z0, const dou
 }
 
 /* det of the LU factors in w->A (n x n) divided by the product of the rows' norms of the
- * matrix before factoring (rownorm) */
+ * matrix before factoring (rownorm), each at least 1e-3 of the largest: a row that
+ * vanishes at the branch point (a state whose equation decouples on a trivial branch, as
+ * u' = (p - p0) u) would make the quotient a step from -1 to 1, which the secant steps
+ * do not converge on */
 static double scaled_det(int n, const double *LU, const int *piv, const double *rownorm)
 {
+    double big = 0.0;
+    for (int i = 0; i < n; i++)
+        big = fmax(big, rownorm[i]);
+    const double floor_norm = big > 0.0 ? 1e-3 * big : 1.0;
     double d = 1.0;
     for (int i = 0; i < n; i++) {
-        d *= LU[(size_t)i * (size_t)n + (size_t)i] / (rownorm[i] > 0.0 ? rownorm[i] : 1.0);
+        d *= LU[(size_t)i * (size_t)n + (size_t)i] / fmax(rownorm[i], floor_norm);
         if (piv[i] != i)
             d = -d;
     }
@@ -135,7 +150,7 @@ int cont_tangent(const cont_system *s, cont_work *w, const double *z, const doub
     for (int i = 0; i < M; i++)
         w->dz[i] = sqrt(dot(w->A + (size_t)i * (size_t)M, w->A + (size_t)i * (size_t)M, M));
     if (dyn_lu_factor(M, w->A, w->piv))
-        return -1;
+        return 1; /* exactly singular: a branch point itself */
     if (det)
         *det = scaled_det(M, w->A, w->piv, w->dz);
     for (int i = 0; i < M; i++)
@@ -250,8 +265,15 @@ static int psi_at(const cont_system *s, cont_work *w, const target *g, const dou
                   const double *t_old, double *t, double *psi)
 {
     double det;
-    if (cont_tangent(s, w, z, t_old, t, &det))
+    const int tangent = cont_tangent(s, w, z, t_old, t, &det);
+    if (tangent < 0)
         return -1;
+    if (tangent > 0) {
+        /* the bordered matrix is exactly singular: a secant step landed on the branch
+         * point itself, where the determinant is 0 and the tangent is not defined */
+        det = 0.0;
+        memcpy(t, t_old, (size_t)(s->N + 1) * sizeof *t);
+    }
     if (g->test < 0) {
         *psi = z[g->index] - g->value;
         return 0;

@@ -53,7 +53,8 @@ void cont_work_free(cont_work *w);
 int cont_correct(const cont_system *s, cont_work *w, const double *z0, const double *t0,
                  double ds, double *z, int *iters);
 /* The unit tangent t at z: DG t = 0, t . t_old > 0 (t_old a unit vector); *det_sign the sign
- * of det [DG; t_old^T] (+1 or -1). 0, or non-zero when the matrix is singular. */
+ * of det [DG; t_old^T] scaled by its rows. 0; 1 when the matrix is exactly singular (a
+ * branch point); -1 when DG failed or is not finite. */
 int cont_tangent(const cont_system *s, cont_work *w, const double *z, const double *t_old,
                  double *t, double *det_sign);
 /* A unit null vector of [DG(z); t^T] by inverse iteration (at a branch point: the direction

@@ -33,6 +33,22 @@ PROBLEMS = {
     "cubic": dict(
         pars=[("p", -2.0), ("q", 1.0)], states=[("x", -2.35530139760812)],
         rhs=["p+q*x-x**3/3"], icp="p", ds=0.05, dsmax=0.1, range=(-2.0, 2.0)),
+    # AUTO-07p's demo pp2 (predator-prey with harvesting) on its trivial branch u2 = 0: a
+    # transcritical branch point at p1 = 0.6 where u2's equation u2' = (p4 u1 - 1) u2
+    # decouples from the rest
+    "pp2": dict(
+        pars=[("p1", 0.0), ("p2", 3.0), ("p3", 5.0), ("p4", 3.0)],
+        states=[("u1", 0.0), ("u2", 0.0)],
+        rhs=["p2*u1*(1-u1)-u1*u2-p1*(1-exp(-p3*u1))", "-u2+p4*u1*u2"], icp="p1", ds=0.02,
+        dsmax=0.06, range=(0.0, 1.0)),
+    # AUTO-07p's demo tor (Freire, Rodriguez-Luis, Gamero, Ponce) on x = y = z = 0: a Hopf
+    # point and a pitchfork at rn = -0.5
+    "tor": dict(
+        pars=[("rn", -0.9), ("be", 0.5), ("ga", -0.6), ("r", 0.6), ("a3", 0.328578),
+              ("b3", 0.933578)],
+        states=[("x", 0.0), ("y", 0.0), ("z", 0.0)],
+        rhs=["(-(be+rn)*x+be*y-a3*x**3+b3*(y-x)**3)/r", "be*x-(be+ga)*y-z-b3*(y-x)**3", "y"],
+        icp="rn", ds=0.001, dsmax=0.01, range=(-0.9, -0.4)),
 }
 
 

@@ -150,6 +150,8 @@ typedef struct dyn_po_opts {
     const dyn_eig_solver *eig; /* Floquet multipliers; NULL: none, no LPC/PD/TR/stability */
     int keep_orbits;         /* 1: every point keeps its orbit (else the labelled ones and
                               * the first and last) */
+    const double *at;        /* parameter values where a point labelled UZ is computed */
+    int n_at;
 } dyn_po_opts;
 
 /* One point of a periodic branch. */
@@ -160,7 +162,8 @@ typedef struct dyn_po_point {
     double *mult_re, *mult_im; /* n each: the Floquet multipliers, the trivial one first */
     int stable;       /* 1: the non-trivial multipliers inside the unit circle; 0: not;
                        * -1: unknown (no eigenvalue solver) */
-    char label[4];    /* "", "LPC", "PD", "TR", "EP" (the branch's last point) */
+    char label[4];    /* "", "LPC", "PD", "TR", "UZ" (a value of dyn_po_opts.at), "EP" (the
+                       * branch's last point) */
     dyn_colloc_sol orbit; /* kept for labelled points and the first and last (every point
                            * with dyn_po_opts.keep_orbits; else empty): u(t) on [0, 1],
                            * par[0] the period, par[1] the parameter */

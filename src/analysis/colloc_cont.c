@@ -4,7 +4,7 @@
  * orbits by collocation (colloc_po.c) with the diagram's settings (ntst, ncol, ds, dsmin,
  * dsmax, nmax, parmin, parmax), stored as a DYN_BRANCH_PERIODIC branch (each state's
  * maximum and minimum over the orbit, the period, the Floquet multipliers, stability and
- * the labels LPC, PD, TR, EP; on request each point's orbit at its collocation nodes);
+ * the labels LPC, PD, TR, UZ, EP; on request each point's orbit at its collocation nodes);
  * then from each period doubling the period-doubled branch, and so on down the cascade
  * while the diagram has room for branches. */
 #include <math.h>
@@ -25,6 +25,8 @@ static dyn_cont_label label_of(const char *s)
         return DYN_LABEL_TR;
     if (strcmp(s, "EP") == 0)
         return DYN_LABEL_EP;
+    if (strcmp(s, "UZ") == 0)
+        return DYN_LABEL_UZ;
     return DYN_LABEL_NONE;
 }
 
@@ -126,6 +128,8 @@ int dyn_po_continue_hopf(const dyn_model *m, const void *par, const dyn_cont_opt
     po.par_max = o->parmax;
     po.eig = ctx ? (const dyn_eig_solver *)ctx : &hqr;
     po.keep_orbits = o->orbits;
+    po.at = o->at;
+    po.n_at = o->n_at;
     dyn_po_branch pb;
     st = dyn_po_from_hopf(&sys, x0, p0, omega, &po, &pb);
     free(x0);

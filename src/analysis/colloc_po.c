@@ -292,9 +292,10 @@ static int point_tests(po_run *r, const dyn_colloc_sol *x, const dyn_colloc_sol 
 
 /* the arclength in (0, ds) where test `which` (0 LPC, 1 PD, 2 TR, 3 the parameter minus
  * r->bound) is zero, by the Illinois
- * variant of regula falsi; the point and its tangent into x, t */
+ * variant of regula falsi; the point and its tangent into x, t, its arclength into *s_at */
 static int locate(po_run *r, const dyn_colloc_sol *x0, const dyn_colloc_sol *t0, double ds,
-                  double psi0, double psi1, int which, dyn_colloc_sol *x, dyn_colloc_sol *t)
+                  double psi0, double psi1, int which, dyn_colloc_sol *x, dyn_colloc_sol *t,
+                  double *s_at)
 {
     double sa = 0.0, sb = ds, fa = psi0, fb = psi1;
     int side = 0, st = DYN_COLLOC_ERR_NEWTON;
@@ -322,6 +323,7 @@ static int locate(po_run *r, const dyn_colloc_sol *x0, const dyn_colloc_sol *t0,
             dyn_colloc_sol_free(t);
         *x = xs;
         *t = ts;
+        *s_at = s;
         if (fabs(sb - sa) < 1e-12 * fabs(ds) || fs == 0.0 ||
             fabs(s - sa) < 1e-11 * fabs(ds) || fabs(s - sb) < 1e-11 * fabs(ds))
             break;
@@ -359,6 +361,23 @@ static int amplitude_small(const dyn_colloc_sol *x)
         size = fmax(size, fmax(fabs(lo), fabs(hi)));
     }
     return amp < 1e-7 * (1.0 + size);
+}
+
+/* the value of o->at that the parameter crosses from p0 to p1 nearest p0, or -1; a value
+ * p0 sits on (a UZ point just computed) is not crossed again */
+static int at_crossed(const dyn_po_opts *o, double p0, double p1)
+{
+    int best = -1;
+    for (int u = 0; u < o->n_at; u++) {
+        const double v = o->at[u], a = p0 - v, b = p1 - v;
+        if (fabs(a) <= 1e-9 * fmax(1.0, fabs(v)))
+            continue;
+        if (!((a < 0 && b >= 0) || (a > 0 && b <= 0)))
+            continue;
+        if (best < 0 || fabs(a) < fabs(p0 - o->at[best]))
+            best = u;
+    }
+    return best;
 }
 
 /* continue from x (a solution or the Hopf point) along t; x and t are consumed */
@@ -403,6 +422,27 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
             snprintf(b->message, sizeof b->message, "the Floquet multipliers failed");
             break;
         }
+        /* a value of o->at crossed: the step ends there (a UZ point) unless a label
+         * comes before it */
+        double s_end = ds;
+        int uz = at_crossed(o, x->par[1], xn.par[1]);
+        if (uz >= 0) {
+            dyn_colloc_sol xu = {0}, tu = {0};
+            r->bound = o->at[uz];
+            if (!locate(r, x, t, ds, x->par[1] - r->bound, xn.par[1] - r->bound, 3, &xu, &tu,
+                        &s_end)) {
+                dyn_colloc_sol_free(&xn);
+                dyn_colloc_sol_free(&tn);
+                xn = xu;
+                tn = tu;
+                st = point_tests(r, &xn, &tn, &now);
+                if (st)
+                    break;
+            } else {
+                s_end = ds;
+                uz = -1;
+            }
+        }
         int which = -1;
         if (have_prev) {
             if ((now.lpc > 0) != (prev_tests.lpc > 0) &&
@@ -418,11 +458,14 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
                                                                        : prev_tests.tr;
             const double p1 = which == 0 ? now.lpc : which == 1 ? now.pd : now.tr;
             dyn_colloc_sol xl = {0}, tl = {0};
-            if (!locate(r, x, t, ds, p0, p1, which, &xl, &tl)) {
+            double s_l;
+            if (!locate(r, x, t, s_end, p0, p1, which, &xl, &tl, &s_l)) {
                 dyn_colloc_sol_free(&xn);
                 dyn_colloc_sol_free(&tn);
                 xn = xl;
                 tn = tl;
+                s_end = s_l;
+                uz = -1; /* the label comes first: the UZ point is found on the next step */
                 st = point_tests(r, &xn, &tn, &now);
                 if (st)
                     break;
@@ -443,7 +486,9 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
         if (which < 0 && bounded && (pn < o->par_min || pn > o->par_max)) {
             r->bound = pn > o->par_max ? o->par_max : o->par_min;
             dyn_colloc_sol xl = {0}, tl = {0};
-            if (!locate(r, x, t, ds, x->par[1] - r->bound, pn - r->bound, 3, &xl, &tl)) {
+            double s_b;
+            if (!locate(r, x, t, s_end, x->par[1] - r->bound, pn - r->bound, 3, &xl, &tl,
+                        &s_b)) {
                 dyn_colloc_sol_free(&xn);
                 dyn_colloc_sol_free(&tn);
                 xn = xl;
@@ -454,10 +499,12 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
                 at_bound = 1;
             }
         }
+        if (at_bound)
+            uz = -1;
         const char *label = which == 0 ? "LPC" : which == 1 ? "PD" : which == 2 ? "TR"
-                            : at_bound ? "EP" : "";
+                            : at_bound ? "EP" : uz >= 0 ? "UZ" : "";
         st = record(r, &xn, r->re, r->im, now.have_mult, label,
-                    which >= 0 || b->npoints == 0 || o->keep_orbits);
+                    which >= 0 || uz >= 0 || b->npoints == 0 || o->keep_orbits);
         if (st)
             break;
         dyn_colloc_sol_free(x);

@@ -10,7 +10,8 @@ normal forms of the cusp (folds on 27 a^2 = 4 b^3, CP at 0), of the Bogdanov-Tak
 point (Hopf points on b1 = 0 with l1 = 2 b2, GH at b2 = 0), also moved off the origin; the
 default window widened to contain the start, and a window given that excludes it refused;
 and the orbits the diagram's page holds, on the Hopf normal form's circles x^2 + y^2 = p of
-period 2 pi / w. Usage:
+period 2 pi / w; the subcritical Hopf point of bautin.ode at b2 = 1 (LPC at b1 = -1/4,
+UZ on the periodic branch on both sides of the fold, radius and period 2 pi exact). Usage:
 closed_forms.py DYNKIT MODELS_DIR LORENZ_ODE BT_ODE"""
 import json
 import math
@@ -80,6 +81,31 @@ for s, w in ((-1.0, 2.0), (1.5, 2.0), (-0.25, 0.5)):
         check(f"hopf s={s}: p at HB", p["p"], 0.0, 1e-10)
         check(f"hopf s={s}: omega", p["omega"], w, 1e-10)
         check(f"hopf s={s}: l1", p["l1"], 2 * s / w, 1e-9)
+
+# the subcritical Hopf point with a fold of cycles (bautin.ode at b2 = 1: r' = b1 r + r^3 -
+# r^5, period 2 pi): LPC at b1 = -1/4 on r^2 = 1/2, and --at on the periodic branch: at
+# b1 = -0.2 one orbit on each side of the fold, r^2 = (1 -+ sqrt(1 + 4 b1)) / 2, at b1 = 0.5
+# the outer one
+d = run(f"{models}/bautin.ode", "--par", "b1", "--set", "b2=1", "--at", "b1=-0.2,0.5")
+cycles = [p for b in (d["branches"] if d else []) if b["kind"] == "periodic"
+          for p in b["points"]]
+lpc = [p for p in cycles if p["label"] == "LPC"]
+if len(lpc) != 1:
+    failures.append(f"subcritical hopf: expected one LPC, found {len(lpc)}")
+for p in lpc:
+    check("subcritical hopf: b1 at LPC", p["b1"], -0.25, 1e-9)
+    check("subcritical hopf: radius at LPC", p["max"]["x"], 0.5 ** 0.5, 1e-6)
+uz = sorted((round(p["b1"], 9), p["max"]["x"]) for p in cycles if p["label"] == "UZ")
+want = sorted([(-0.2, ((1 - 0.2 ** 0.5) / 2) ** 0.5), (-0.2, ((1 + 0.2 ** 0.5) / 2) ** 0.5),
+               (0.5, ((1 + 3 ** 0.5) / 2) ** 0.5)])
+if len(uz) != len(want):
+    failures.append(f"subcritical hopf: UZ on the periodic branch at {uz}, expected {want}")
+else:
+    for (b1, r), (b1_want, r_want) in zip(uz, want):
+        check("subcritical hopf: b1 at UZ", b1, b1_want, 1e-12)
+        check(f"subcritical hopf: radius at UZ b1 = {b1_want}", r, r_want, 1e-6)
+for p in cycles:
+    check(f"subcritical hopf: period at b1 = {p['b1']}", p["period"], 2 * math.pi, 1e-9)
 
 # the page's orbits (continue --output FILE.html): on the normal form's periodic branch
 # (s = -1, w = 2) each orbit is the circle x^2 + y^2 = p with period 2 pi / w; the page holds

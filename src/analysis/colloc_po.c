@@ -9,8 +9,10 @@
  * Floquet multipliers are the eigenvalues of the collocation system's monodromy matrix
  * (colloc_newton.c). Folds of cycles (LPC: d lambda/ds changes sign), period doublings (PD:
  * prod (mu_i + 1) over the non-trivial multipliers changes sign) and torus bifurcations (TR:
- * a complex pair crosses the unit circle, prod (mu_i mu_j - 1) changes sign) are located by
- * secant steps in the arclength from the last point before the change. */
+ * a complex pair crosses the unit circle, prod (mu_i mu_j - 1) changes sign with as many
+ * pairs on both sides) are located by secant steps in the arclength from the last point
+ * before the change; a branch that reaches another Hopf point (the orbit's oscillation
+ * reverses) ends there. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -102,6 +104,7 @@ int dyn_po_multipliers(const dyn_po_system *sys, const dyn_colloc_sol *orbit,
 typedef struct po_tests {
     double lpc, pd, tr;
     int tr_complex; /* the multiplier nearest the unit circle is complex */
+    int tr_pairs;   /* the number of complex pairs in tr's product */
     int have_mult;
 } po_tests;
 
@@ -111,7 +114,7 @@ static void tests_of(const double *re, const double *im, int n, double dlambda, 
     t->lpc = dlambda;
     t->have_mult = have;
     t->pd = t->tr = 1.0;
-    t->tr_complex = 0;
+    t->tr_complex = t->tr_pairs = 0;
     if (!have)
         return;
     double pr = 1.0, pi = 0.0;
@@ -130,6 +133,7 @@ static void tests_of(const double *re, const double *im, int n, double dlambda, 
             if (fabs(re[i] - re[j]) > 1e-9 * (1 + fabs(re[i])))
                 continue;
             tr *= re[i] * re[i] + im[i] * im[i] - 1.0;
+            t->tr_pairs++;
         }
         const double d = fabs(hypot(re[i], im[i]) - 1.0);
         if (d < best) {
@@ -147,7 +151,7 @@ typedef struct po_run {
     dyn_colloc_problem p;
     dyn_colloc_opts nopts;
     dyn_po_branch *b;
-    double *re, *im, *scratch;
+    double *re, *im, *scratch; /* n, n and 3 n doubles */
     double bound; /* the parameter's bound crossed (locate's test 3) */
 } po_run;
 
@@ -277,6 +281,48 @@ static int step(po_run *r, const dyn_colloc_sol *x0, const dyn_colloc_sol *t0, d
     return st;
 }
 
+/* the mean over [0, 1] of the states of x into mean (n doubles), by the trapezoidal rule
+ * over the nodes */
+static void orbit_mean(const dyn_colloc_sol *x, double *mean)
+{
+    const int n = x->n;
+    const long nodes = dyn_colloc_nodes(x);
+    for (int i = 0; i < n; i++)
+        mean[i] = 0.0;
+    for (long g = 0; g + 1 < nodes; g++) {
+        const double h = dyn_colloc_node_time(x, g + 1) - dyn_colloc_node_time(x, g);
+        for (int i = 0; i < n; i++)
+            mean[i] += 0.5 * h * (x->u[(size_t)g * n + i] + x->u[(size_t)(g + 1) * n + i]);
+    }
+}
+
+/* the integral over [0, 1] of (u - mean u) . (v - mean v): how much the oscillation of u is
+ * that of v. Two orbits on either side of a Hopf point that the step went through give a
+ * negative value: there the amplitude passes through zero and the orbit comes back on
+ * itself shifted by half a period (the phase condition aligns it so), while the
+ * parameter turns as at a fold. Trapezoidal rule over u's nodes, v evaluated there; w:
+ * 3 n doubles of scratch. */
+static double oscillation_dot(const dyn_colloc_sol *u, const dyn_colloc_sol *v, double *w)
+{
+    const int n = u->n;
+    double *mu = w, *mv = w + n, *vg = w + 2 * n;
+    orbit_mean(u, mu);
+    orbit_mean(v, mv);
+    const long nodes = dyn_colloc_nodes(u);
+    double sum = 0.0, prev = 0.0;
+    for (long g = 0; g < nodes; g++) {
+        const double tg = dyn_colloc_node_time(u, g);
+        dyn_colloc_eval(v, tg, vg);
+        double d = 0.0;
+        for (int i = 0; i < n; i++)
+            d += (u->u[(size_t)g * n + i] - mu[i]) * (vg[i] - mv[i]);
+        if (g > 0)
+            sum += 0.5 * (tg - dyn_colloc_node_time(u, g - 1)) * (d + prev);
+        prev = d;
+    }
+    return sum;
+}
+
 static int point_tests(po_run *r, const dyn_colloc_sol *x, const dyn_colloc_sol *t, po_tests *pt)
 {
     int have = 0;
@@ -291,7 +337,7 @@ static int point_tests(po_run *r, const dyn_colloc_sol *x, const dyn_colloc_sol 
 }
 
 /* the arclength in (0, ds) where test `which` (0 LPC, 1 PD, 2 TR, 3 the parameter minus
- * r->bound) is zero, by the Illinois
+ * r->bound, 4 the oscillation's product with x0's: a Hopf point) is zero, by the Illinois
  * variant of regula falsi; the point and its tangent into x, t, its arclength into *s_at */
 static int locate(po_run *r, const dyn_colloc_sol *x0, const dyn_colloc_sol *t0, double ds,
                   double psi0, double psi1, int which, dyn_colloc_sol *x, dyn_colloc_sol *t,
@@ -316,7 +362,8 @@ static int locate(po_run *r, const dyn_colloc_sol *x0, const dyn_colloc_sol *t0,
         const double fs = which == 0   ? pt.lpc
                           : which == 1 ? pt.pd
                           : which == 2 ? pt.tr
-                                       : xs.par[1] - r->bound;
+                          : which == 3 ? xs.par[1] - r->bound
+                                       : oscillation_dot(&xs, x0, r->scratch);
         if (x->u)
             dyn_colloc_sol_free(x);
         if (t->u)
@@ -346,11 +393,13 @@ static int locate(po_run *r, const dyn_colloc_sol *x0, const dyn_colloc_sol *t0,
     return 0;
 }
 
-static int amplitude_small(const dyn_colloc_sol *x)
+/* the orbit's amplitude (the largest max - min of a state over the nodes); its size (the
+ * largest |u|) into *size */
+static double orbit_amplitude(const dyn_colloc_sol *x, double *size)
 {
     const int n = x->n;
     const long nodes = dyn_colloc_nodes(x);
-    double amp = 0.0, size = 0.0;
+    double amp = 0.0, big = 0.0;
     for (int i = 0; i < n; i++) {
         double lo = INFINITY, hi = -INFINITY;
         for (long g = 0; g < nodes; g++) {
@@ -358,8 +407,17 @@ static int amplitude_small(const dyn_colloc_sol *x)
             hi = fmax(hi, x->u[(size_t)g * n + i]);
         }
         amp = fmax(amp, hi - lo);
-        size = fmax(size, fmax(fabs(lo), fabs(hi)));
+        big = fmax(big, fmax(fabs(lo), fabs(hi)));
     }
+    if (size)
+        *size = big;
+    return amp;
+}
+
+static int amplitude_small(const dyn_colloc_sol *x)
+{
+    double size;
+    const double amp = orbit_amplitude(x, &size);
     return amp < 1e-7 * (1.0 + size);
 }
 
@@ -394,7 +452,7 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
     const int adapt = o->adapt == 0 ? 3 : o->adapt;
     const int ntst = x->ntst;
     const int bounded = o->par_max > o->par_min;
-    po_tests prev_tests = {0, 0, 0, 0, 0};
+    po_tests prev_tests = {0, 0, 0, 0, 0, 0};
     int have_prev = 0, st = 0, since_adapt = 0;
     snprintf(b->message, sizeof b->message, "%d points (nmax)", nmax);
     while (b->npoints < nmax) {
@@ -422,10 +480,35 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
             snprintf(b->message, sizeof b->message, "the Floquet multipliers failed");
             break;
         }
+        /* through a Hopf point (the parameter turned and the oscillation reversed): the
+         * branch ends there, on the point located where the oscillation vanishes, or on x
+         * when it is not found */
+        int hopf_end = 0;
+        const double osc0 = oscillation_dot(x, x, r->scratch);
+        const double osc1 = oscillation_dot(&xn, x, r->scratch);
+        if (have_prev && (now.lpc > 0) != (prev_tests.lpc > 0) &&
+            osc1 < -0.5 * sqrt(osc0 * oscillation_dot(&xn, &xn, r->scratch))) {
+            dyn_colloc_sol xh = {0}, th = {0};
+            double s_h;
+            dyn_colloc_sol_free(&xn);
+            dyn_colloc_sol_free(&tn);
+            if (locate(r, x, t, ds, osc0, osc1, 4, &xh, &th, &s_h) ||
+                point_tests(r, &xh, &th, &now)) {
+                dyn_colloc_sol_free(&xh);
+                dyn_colloc_sol_free(&th);
+                snprintf(b->message, sizeof b->message,
+                         "the orbit shrank to an equilibrium: a Hopf point past parameter "
+                         "%.10g", x->par[1]);
+                break;
+            }
+            xn = xh;
+            tn = th;
+            hopf_end = 1;
+        }
         /* a value of o->at crossed: the step ends there (a UZ point) unless a label
          * comes before it */
         double s_end = ds;
-        int uz = at_crossed(o, x->par[1], xn.par[1]);
+        int uz = hopf_end ? -1 : at_crossed(o, x->par[1], xn.par[1]);
         if (uz >= 0) {
             dyn_colloc_sol xu = {0}, tu = {0};
             r->bound = o->at[uz];
@@ -444,13 +527,16 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
             }
         }
         int which = -1;
-        if (have_prev) {
+        if (have_prev && !hopf_end) {
             if ((now.lpc > 0) != (prev_tests.lpc > 0) &&
                 fmax(fabs(now.lpc), fabs(prev_tests.lpc)) > DYN_CONT_FOLD_NOISE)
                 which = 0;
             else if (now.have_mult && (now.pd > 0) != (prev_tests.pd > 0))
                 which = 1;
-            else if (now.have_mult && (now.tr > 0) != (prev_tests.tr > 0) && now.tr_complex)
+            /* a pair's modulus through 1, not two real multipliers meeting as a pair (the
+             * product then gains a factor |mu|^2 - 1 wherever the pair lies) */
+            else if (now.have_mult && (now.tr > 0) != (prev_tests.tr > 0) && now.tr_complex &&
+                     now.tr_pairs == prev_tests.tr_pairs)
                 which = 2;
         }
         if (which >= 0) {
@@ -483,7 +569,7 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
         /* past a bound of the parameter: the point on the bound ends the branch */
         const double pn = xn.par[1];
         int at_bound = 0;
-        if (which < 0 && bounded && (pn < o->par_min || pn > o->par_max)) {
+        if (which < 0 && !hopf_end && bounded && (pn < o->par_min || pn > o->par_max)) {
             r->bound = pn > o->par_max ? o->par_max : o->par_min;
             dyn_colloc_sol xl = {0}, tl = {0};
             double s_b;
@@ -501,8 +587,8 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
         }
         if (at_bound)
             uz = -1;
-        const char *label = which == 0 ? "LPC" : which == 1 ? "PD" : which == 2 ? "TR"
-                            : at_bound ? "EP" : uz >= 0 ? "UZ" : "";
+        const char *label = hopf_end ? "EP" : which == 0 ? "LPC" : which == 1 ? "PD"
+                            : which == 2 ? "TR" : at_bound ? "EP" : uz >= 0 ? "UZ" : "";
         st = record(r, &xn, r->re, r->im, now.have_mult, label,
                     which >= 0 || uz >= 0 || b->npoints == 0 || o->keep_orbits);
         if (st)
@@ -527,6 +613,12 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
                     *t = t2;
                 }
             }
+        }
+        if (hopf_end) {
+            snprintf(b->message, sizeof b->message,
+                     "the orbit shrank to an equilibrium: a Hopf point at parameter %.10g",
+                     x->par[1]);
+            break;
         }
         if (at_bound || (bounded && (x->par[1] < o->par_min || x->par[1] > o->par_max))) {
             snprintf(b->message, sizeof b->message, "reached %s = %g",
@@ -567,7 +659,7 @@ static int run_init(po_run *r, const dyn_po_system *sys, const dyn_po_opts *o, d
     r->o = o;
     r->c.sys = sys;
     const size_t n = (size_t)sys->n;
-    r->c.J = malloc((n * n + 3 * n) * sizeof(double));
+    r->c.J = malloc((n * n + 5 * n) * sizeof(double));
     if (!r->c.J)
         return DYN_COLLOC_ERR_NOMEM;
     r->re = r->c.J + n * n;

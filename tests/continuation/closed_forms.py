@@ -11,7 +11,9 @@ point (Hopf points on b1 = 0 with l1 = 2 b2, GH at b2 = 0), also moved off the o
 default window widened to contain the start, and a window given that excludes it refused;
 and the orbits the diagram's page holds, on the Hopf normal form's circles x^2 + y^2 = p of
 period 2 pi / w; the subcritical Hopf point of bautin.ode at b2 = 1 (LPC at b1 = -1/4,
-UZ on the periodic branch on both sides of the fold, radius and period 2 pi exact). Usage:
+UZ on the periodic branch on both sides of the fold, radius and period 2 pi exact); the
+cycles of hopf_pair.ode from one Hopf point to the other, ended there; the multipliers at
+TR and PD on Roessler's cycles in c (no TR where a real pair turns complex). Usage:
 closed_forms.py DYNKIT MODELS_DIR LORENZ_ODE BT_ODE"""
 import json
 import math
@@ -106,6 +108,52 @@ else:
         check(f"subcritical hopf: radius at UZ b1 = {b1_want}", r, r_want, 1e-6)
 for p in cycles:
     check(f"subcritical hopf: period at b1 = {p['b1']}", p["period"], 2 * math.pi, 1e-9)
+
+# a family of cycles from one Hopf point to another (hopf_pair.ode: mu = p (1 - p), Hopf
+# points at p = 0 and 1, cycles x^2 + y^2 = p (1 - p)): each periodic branch ends where it
+# reaches the other Hopf point, the amplitude passing through zero, without a fold of
+# cycles there and without coming back along itself
+d = run(f"{models}/hopf_pair.ode", "--par", "p")
+periodic = [b for b in (d["branches"] if d else []) if b["kind"] == "periodic"]
+if len(periodic) != 2:
+    failures.append(f"hopf_pair: {len(periodic)} periodic branches, expected 2")
+for b in periodic:
+    pts = b["points"]
+    start, end = pts[0]["p"], pts[-1]["p"]
+    other = 1.0 if start < 0.5 else 0.0
+    if "Hopf point" not in b["stop"] or pts[-1]["label"] != "EP":
+        failures.append(f"hopf_pair: branch {b['branch']} stopped with {b['stop']!r}, "
+                        f"label {pts[-1]['label']!r}, expected at the Hopf point p = {other}")
+    check(f"hopf_pair: branch {b['branch']}'s end at the Hopf point", end, other, 1e-3)
+    labels = [q["label"] for q in pts[1:-1] if q["label"]]
+    if labels:
+        failures.append(f"hopf_pair: branch {b['branch']} has labels {labels} between its ends")
+    ps = [q["p"] for q in pts]
+    if any((q1 - q0) * (other - start) <= 0 for q0, q1 in zip(ps, ps[1:])):
+        failures.append(f"hopf_pair: branch {b['branch']} turns back in p: {ps}")
+    for q in pts[1:-1]:
+        check(f"hopf_pair: radius at p = {q['p']}", q["max"]["x"] ** 2, q["p"] * (1 - q["p"]),
+              1e-6)
+        check(f"hopf_pair: period at p = {q['p']}", q["period"], 2 * math.pi, 1e-9)
+
+# a torus bifurcation is a complex pair of multipliers on the unit circle, a period doubling
+# a multiplier -1: on Roessler's cycles in c (roessler_c.ode) two real multipliers meet at
+# c = 1.48 and go on as a complex pair of modulus 0.036, which is no TR
+d = run(f"{models}/roessler_c.ode", "--par", "c")
+cycles = [q for b in (d["branches"] if d else []) if b["kind"] == "periodic" and b["parent"] == 1
+          for q in b["points"]]
+if not any(abs(m[1]) > 1e-3 and math.hypot(*m) < 0.1 for q in cycles for m in q["multipliers"]):
+    failures.append("roessler_c: no complex pair of multipliers inside the unit circle")
+for q in cycles:
+    ms = q["multipliers"][1:]
+    if q["label"] == "TR" and not any(abs(m[1]) > 1e-6 and abs(math.hypot(*m) - 1) < 1e-4
+                                      for m in ms):
+        failures.append(f"roessler_c: TR at c = {q['c']} with multipliers {ms}")
+    if q["label"] == "PD" and not any(abs(m[0] + 1) < 1e-6 and m[1] == 0 for m in ms):
+        failures.append(f"roessler_c: PD at c = {q['c']} with multipliers {ms}")
+if [q["label"] for q in cycles if q["label"] not in ("", "EP")] != ["PD"]:
+    failures.append(f"roessler_c: labels {[q['label'] for q in cycles if q['label']]}, "
+                    "expected one PD between the ends")
 
 # the page's orbits (continue --output FILE.html): on the normal form's periodic branch
 # (s = -1, w = 2) each orbit is the circle x^2 + y^2 = p with period 2 pi / w; the page holds

@@ -69,6 +69,17 @@ static double hopf_omega(const cont_model *cm)
     return best;
 }
 
+/* a real eigenvalue zero beside the pair +-i omega (a fold-Hopf point, as where Roessler's
+ * equilibria meet): Kuznetsov's l1 solves with the Jacobian, singular there, and is not
+ * defined */
+static int hopf_with_zero(const cont_model *cm, double omega)
+{
+    for (int i = 0; i < cm->n; i++)
+        if (cm->im[i] == 0.0 && fabs(cm->re[i]) <= 1e-6 * omega)
+            return 1;
+    return 0;
+}
+
 static int eq_store(void *ctx, const double *z, const double *t, dyn_cont_label label)
 {
     (void)t;
@@ -82,7 +93,7 @@ static int eq_store(void *ctx, const double *z, const double *t, dyn_cont_label 
     if (label == DYN_LABEL_HB) {
         omega = hopf_omega(cm);
         char err[256];
-        if (isfinite(omega) &&
+        if (isfinite(omega) && !hopf_with_zero(cm, omega) &&
             dyn_first_lyapunov(cm->m, cm->t, z, cm->par, cm->jac, cm->J, omega, &l1, err,
                                sizeof err))
             l1 = NAN;

@@ -140,6 +140,17 @@ for b in periodic:
 # a multiplier -1: on Roessler's cycles in c (roessler_c.ode) two real multipliers meet at
 # c = 1.48 and go on as a complex pair of modulus 0.036, which is no TR
 d = run(f"{models}/roessler_c.ode", "--par", "c")
+# where the equilibria meet (c = 0.4) the Jacobian has the eigenvalues 0 and +-1.4 i: the
+# HB there carries omega = 1.4 and no l1 (Kuznetsov's formula solves with the singular
+# Jacobian: 5e10 was given)
+zh = points(d, "HB") if d else []
+if len(zh) != 1:
+    failures.append(f"roessler_c: {len(zh)} HB, expected the fold-Hopf point alone")
+for b, p in zh:
+    check("roessler_c: c at the fold-Hopf point", p["c"], 0.4, 1e-10)
+    check("roessler_c: omega at the fold-Hopf point", p["omega"], 1.4, 1e-10)
+    if "l1" in p:
+        failures.append(f"roessler_c: l1 = {p['l1']} at the fold-Hopf point, where it is not defined")
 cycles = [q for b in (d["branches"] if d else []) if b["kind"] == "periodic" and b["parent"] == 1
           for q in b["points"]]
 if not any(abs(m[1]) > 1e-3 and math.hypot(*m) < 0.1 for q in cycles for m in q["multipliers"]):

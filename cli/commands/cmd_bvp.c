@@ -4,7 +4,9 @@
  * problem (XPPAUT's bdry lines) on
  * [t0, t0 + total] by orthogonal collocation (dyn_bvp_solve, dynkit/colloc.h): the solution
  * on the model's grid of dt (or --step) as a CSV table or JSON, the conditions' residuals
- * and the error estimate on standard error. docs/analysis.md, "Boundary-value problems". */
+ * and the error estimate on standard error; XPPAUT's hom_bcs (homoclinic and heteroclinic
+ * orbits) on [t0, t0 + 1] by default, as AUTO takes them. docs/analysis.md, "Boundary-value
+ * problems". */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -32,10 +34,19 @@ static void bvp_help(void)
          "error estimate (the largest difference at the mesh points from a solve on twice\n"
          "as many intervals).\n"
          "\n"
+         "XPPAUT's 'bdry hom_bcs(K)' lines (a homoclinic or heteroclinic orbit on a\n"
+         "truncated interval) are the projections of the ends onto the unstable subspace\n"
+         "of the left equilibrium and the stable subspace of the right one, held in the\n"
+         "states with x'=0 that the other conditions use; such a file has one condition\n"
+         "fewer than states, AUTO's integral phase condition against the first guess\n"
+         "being the last, and its interval is [t0, t0 + 1] (time scaled by a parameter, as\n"
+         "AUTO takes it) unless --tspan gives one.\n"
+         "\n"
          "Options:\n"
          "  --set NAME=VALUE     a parameter's value (repeatable)\n"
          "  --init NAME=VALUE    a state's value in the first guess (repeatable)\n"
-         "  --tspan A:B          the interval [t0, t1] (default: the file's t0 and total)\n"
+         "  --tspan A:B          the interval [t0, t1] (default: the file's t0 and total;\n"
+         "                       with hom_bcs t0 + 1)\n"
          "  --free NAME          a parameter solved for too (XPPAUT's periodic option: a\n"
          "                       frequency or period), fixed by the section condition\n"
          "  --section NAME[=V]   with --free: the condition NAME(t0) = V (default V: its\n"
@@ -51,13 +62,15 @@ static void bvp_help(void)
          "Examples:\n"
          "  dynkit bvp examples/models/cable.ode\n"
          "  dynkit bvp examples/models/cable.ode --set a=0 --set b=1 --json\n"
-         "  dynkit bvp examples/models/vdp_bvp.ode --free om");
+         "  dynkit bvp examples/models/vdp_bvp.ode --free om\n"
+         "  dynkit bvp examples/models/homoclinic.ode --set per=30");
 }
 
 typedef struct bvp_opts {
     const char *output;
     const char *free_name, *section; /* --free NAME, --section NAME[=VALUE] */
     int json, ntst, ncol;
+    int tspan; /* --tspan given */
 } bvp_opts;
 
 #define BVP_N_OPTIONS 10
@@ -79,6 +92,7 @@ static int parse_args(int argc, char **argv, char **pass, int *n_pass, bvp_opts 
                     return cli_usage_error("bvp", "option --%s needs a value", passed[k]);
                 pass[(*n_pass)++] = (char *)options[pass_index[k]];
                 pass[(*n_pass)++] = (char *)v;
+                o->tspan |= k == 3;
                 done = 1;
             }
         if (done)
@@ -175,6 +189,11 @@ static void write_result(FILE *f, const dyn_model *m, const dyn_bvp_result *r, d
             json_string(f, m->states[r->section].name);
             fprintf(f, ", \"value\": %s}", CLI_NUM(r->section_value));
         }
+        if (m->hom)
+            fprintf(f, ", \"projections\": {\"left\": {\"state\": \"%s\", \"conditions\": %d}, "
+                       "\"right\": {\"state\": \"%s\", \"conditions\": %d}}",
+                    m->states[m->hom->left].name, r->hom_left, m->states[m->hom->right].name,
+                    r->hom_right);
         fputs(", \"t\": [", f);
         for (long k = 0; k < rows; k++)
             fprintf(f, "%s%s", k ? ", " : "", CLI_NUM(k == rows - 1 ? r->t1 : r->t0 + k * step));
@@ -278,11 +297,14 @@ int cli_cmd_bvp(int argc, char **argv)
         cli_run_free(&run);
         return CLI_USAGE;
     }
+    if (m->hom && !o.tspan) /* AUTO's interval; the file's total is for integrating it */
+        run.t1 = run.t0 + 1.0;
     dyn_bvp_result r;
     const int st = dyn_bvp_solve(m, run.par, run.y0, run.t0, run.t1, &bo, &r);
     if (st) {
         cli_error("bvp: %s: %s", argv[0], r.message);
-        if (!o.free_name && (st == DYN_COLLOC_ERR_NEWTON || st == DYN_COLLOC_ERR_SINGULAR))
+        if (!o.free_name && !m->hom &&
+            (st == DYN_COLLOC_ERR_NEWTON || st == DYN_COLLOC_ERR_SINGULAR))
             cli_note("bvp: a periodic solution at an unknown frequency or period needs that "
                      "parameter freed: --free NAME (docs/analysis.md)");
         dyn_bvp_result_free(&r);
@@ -304,6 +326,13 @@ int cli_cmd_bvp(int argc, char **argv)
         for (int k = 0; k < m->n_bdry; k++)
             cli_stderr("dynkit: bvp: condition (line %s) = %.3g\n", m->bdry_text[k],
                        r.residuals[k]);
+        if (m->hom)
+            cli_stderr("dynkit: bvp: hom_bcs on [%s, %s]%s: %d projection condition%s at the "
+                       "left end (equilibrium in %s..), %d at the right (in %s..), and the "
+                       "integral phase condition against the first guess\n",
+                       CLI_NUM(r.t0), CLI_NUM(r.t1), o.tspan ? "" : " (AUTO's interval)",
+                       r.hom_left, r.hom_left == 1 ? "" : "s", m->states[m->hom->left].name,
+                       r.hom_right, m->states[m->hom->right].name);
         if (r.section >= 0)
             cli_stderr("dynkit: bvp: free parameter %s = %s with the section %s(%s) = %s\n",
                        m->params[bo.free_par - 1].name, CLI_NUM(r.sol.par[0]),

@@ -42,7 +42,8 @@ typedef struct dyn_colloc_problem {
     int n;        /* states */
     int npar;     /* free scalars solved for with the states (a period, a parameter) */
     int nbc;      /* boundary conditions */
-    int phase;    /* 1: the integral phase condition int_0^1 u . ref' dt = 0 */
+    int phase;    /* 1: the integral phase condition int_0^1 u . ref' dt = 0; 2: AUTO's for
+                   * a connecting orbit, int_0^1 (u - ref) . ref' dt = 0 (ref satisfies it) */
     dyn_colloc_fn f;
     dyn_colloc_bc_fn bc;
     void *ctx;
@@ -234,10 +235,14 @@ typedef struct dyn_bvp_result {
                           * failed) */
     int section;         /* with a free parameter: the section's state (its index) and */
     double section_value; /* value; the parameter's value is sol.par[0] (-1: none) */
+    int hom_left, hom_right; /* hom_bcs: the projection conditions at each end (the left
+                              * equilibrium's stable dimension, the right one's unstable) */
     char message[256];
 } dyn_bvp_result;
 
-/* The model's boundary conditions (m->bdry, m->n_bdry == n_states) on [t0, t1] with the
+/* The model's boundary conditions (m->bdry, m->n_bdry == n_states; with XPPAUT's hom_bcs
+ * (m->hom) n_states - 1 and AUTO's integral phase condition against the first guess, the
+ * projections computed as in src/analysis/colloc_hom.c) on [t0, t1] with the
  * prepared parameters par: the initial-value problem from y0 (classical Runge-Kutta, 8
  * steps per node) is the first guess, Newton's method on the collocation equations on a
  * uniform mesh, then on a mesh adapted to that solution, and once more on twice as many

@@ -205,7 +205,22 @@ typedef struct dyn_model {
     int xppaut_globals;
     /* The Poincaré map of a default run (kind DYN_POINCARE_NONE: none). */
     dyn_poincare poincare;
+    /* XPPAUT's hom_bcs(k) among the boundary conditions (projections onto an equilibrium's
+     * eigen-subspaces for homoclinic and heteroclinic orbits; dynkit/colloc.h): NULL for a
+     * model without them. */
+    const struct dyn_hom_bcs *hom;
 } dyn_model;
+
+/* The projection conditions of a model file's bdry lines (XPPAUT's hom_bcs(k), its
+ * (H)omoclinic dialog's settings read from the file): index[j] (n_bdry values) is k for the
+ * condition hom_bcs(k), whose row of bdry writes 0 and the solver the projection, or -1 for
+ * any other condition; the flow is the first dim states; the left end's equilibrium is held
+ * in the states left .. left + dim - 1, the right end's in right .. right + dim - 1 (the
+ * same for a homoclinic orbit); -1: not found in the file. */
+typedef struct dyn_hom_bcs {
+    const int *index;
+    int dim, left, right;
+} dyn_hom_bcs;
 
 /* A model whose right-hand side reads its own past (dynkit/delay.h): its parameter struct
  * holds a pointer to the run's dyn_history, which the runner attaches before the solve and
@@ -231,7 +246,7 @@ typedef struct dyn_delay_model {
  * into a shared object records the version it was built with (the symbol
  * dynkit_model_abi, added when dynkit compiles a model), and dynkit refuses a model built
  * for another version instead of misreading it. Raised whenever a layout changes. */
-#define DYN_MODEL_ABI 10
+#define DYN_MODEL_ABI 11
 
 /* The entry point of a model in a C file or a shared object: `dynkit run mymodel.c`
  * compiles the file and calls it. Define it in your file:

@@ -8,12 +8,17 @@
  * the mesh is then adapted to the solution (colloc_mesh.c) and the error estimated against
  * a solve on twice as many intervals. A free parameter (XPPAUT's periodic boundary-value
  * option, its manual's "BVP solver": a frequency parameter and a section x(t0) = x0) is one
- * free scalar of the collocation with the section as one more condition. */
+ * free scalar of the collocation with the section as one more condition. XPPAUT's
+ * hom_bcs(k) conditions (a homoclinic or heteroclinic orbit, colloc_hom.c) come with one
+ * condition fewer than states: the last is AUTO's integral phase condition
+ * int (u - u0) . u0' dt = 0 against the first guess u0, which fixes the orbit's shift in
+ * time. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "analysis/colloc_hom.h"
 #include "dynkit/colloc.h"
 
 typedef struct bvp_ctx {
@@ -29,6 +34,9 @@ typedef struct bvp_ctx {
     double free_set;
     int sec;
     double sec_value;
+    /* hom_bcs: the projections (hom.m NULL: none) and the phase condition's reference */
+    bvp_hom hom;
+    dyn_colloc_sol *ref;
 } bvp_ctx;
 
 /* the free scalar (when there is one and it is given) into the model's parameters */
@@ -84,16 +92,24 @@ static int bvp_f(double s, const double *u, const double *par, double *f, double
     return 0;
 }
 
+/* the model's conditions at the ends, the projections among them */
+static int conditions(bvp_ctx *c, const double *u0, const double *u1, double *g)
+{
+    if (c->m->bdry(u0, u1, c->par, g))
+        return 1;
+    return c->hom.m && bvp_hom_rows(&c->hom, u0, u1, g);
+}
+
 static int bvp_bc(const double *u0, const double *u1, const double *par, double *g, void *ctx)
 {
     bvp_ctx *c = ctx;
-    if (use_free(c, par) || c->m->bdry(u0, u1, c->par, g))
+    if (use_free(c, par) || conditions(c, u0, u1, g))
         return 1;
     if (c->h < 1.0)
-        for (int i = 0; i < c->m->n_states; i++)
+        for (int i = 0; i < c->m->n_bdry; i++)
             g[i] = (1.0 - c->h) * (u0[i] - c->y0[i]) + c->h * g[i];
     if (c->ifree >= 0) /* the section, which the homotopy keeps */
-        g[c->m->n_states] = u0[c->sec] - c->sec_value;
+        g[c->m->n_bdry] = u0[c->sec] - c->sec_value;
     return 0;
 }
 
@@ -164,7 +180,7 @@ static int solve_homotopy(const dyn_colloc_problem *p, bvp_ctx *c, dyn_colloc_so
     if (st)
         return st;
     c->h = 1.0;
-    st = dyn_colloc_solve(p, x, NULL, NULL, no, inf);
+    st = dyn_colloc_solve(p, x, c->ref, NULL, no, inf);
     if (st != DYN_COLLOC_ERR_NEWTON && st != DYN_COLLOC_ERR_SINGULAR &&
         st != DYN_COLLOC_ERR_FN) {
         dyn_colloc_sol_free(&keep);
@@ -184,7 +200,7 @@ static int solve_homotopy(const dyn_colloc_problem *p, bvp_ctx *c, dyn_colloc_so
         restore_par(c, x, &keep);
         first_guess(c, y1, x);
         free(y1);
-        st = dyn_colloc_solve(p, x, NULL, NULL, no, inf);
+        st = dyn_colloc_solve(p, x, c->ref, NULL, no, inf);
         if (!st) {
             dyn_colloc_sol_free(&keep);
             return 0;
@@ -198,7 +214,7 @@ static int solve_homotopy(const dyn_colloc_problem *p, bvp_ctx *c, dyn_colloc_so
         c->h = next;
         memcpy(keep.u, x->u, (size_t)N * sizeof(double));
         restore_par(c, &keep, x);
-        st = dyn_colloc_solve(p, x, NULL, NULL, no, inf);
+        st = dyn_colloc_solve(p, x, c->ref, NULL, no, inf);
         if (st == DYN_COLLOC_ERR_NOMEM)
             break;
         if (st) {
@@ -250,10 +266,12 @@ int dyn_bvp_solve(const dyn_model *m, const void *par, const double *y0, double 
     r->t0 = t0;
     r->t1 = t1;
     const int n = m->n_states;
-    if (!m->bdry || m->n_bdry != n) {
+    const int nphase = m->hom ? 1 : 0; /* hom_bcs: the phase condition completes them */
+    if (!m->bdry || m->n_bdry + nphase != n) {
         snprintf(r->message, sizeof r->message,
-                 "%s has %d boundary conditions for %d states (one per state is needed)",
-                 m->name, m->n_bdry, n);
+                 "%s has %d boundary conditions for %d states (%s)", m->name, m->n_bdry, n,
+                 nphase ? "with hom_bcs, one fewer than states is needed"
+                        : "one per state is needed");
         return DYN_COLLOC_ERR_ARG;
     }
     if (!(t1 > t0)) {
@@ -271,7 +289,9 @@ int dyn_bvp_solve(const dyn_model *m, const void *par, const double *y0, double 
     const int ntst = o && o->ntst > 0 ? o->ntst : 40;
     const int ncol = o && o->ncol > 0 ? o->ncol : 4;
     bvp_ctx c = {m, malloc(m->par_size ? m->par_size : 1), t0, t1 - t0,
-                 malloc(3 * (size_t)n * sizeof(double)), 1.0, y0, ifree, NAN, 0, 0.0};
+                 malloc(3 * (size_t)n * sizeof(double)), 1.0, y0, ifree, NAN, 0, 0.0,
+                 {0}, NULL};
+    dyn_colloc_sol ref = {0}, fine_ref = {0};
     r->residuals = calloc((size_t)n, sizeof(double));
     r->section = -1;
     dyn_colloc_sol fine = {0};
@@ -297,17 +317,28 @@ int dyn_bvp_solve(const dyn_model *m, const void *par, const double *y0, double 
         r->section = c.sec;
         r->section_value = c.sec_value;
     }
-    const dyn_colloc_problem p = {n, nfree, n + nfree, 0, bvp_f, bvp_bc, &c};
+    if (!st && m->hom) {
+        if (bvp_hom_init(&c.hom, m, c.par, t0, y0, r->message, sizeof r->message))
+            st = DYN_COLLOC_ERR_ARG;
+        r->hom_left = c.hom.n_left;
+        r->hom_right = c.hom.n_right;
+    }
+    const dyn_colloc_problem p = {n, nfree, m->n_bdry + nfree, 2 * nphase, bvp_f, bvp_bc,
+                                  &c};
     const dyn_colloc_opts no = {o && o->tol > 0 ? o->tol : 1e-10, 40};
     dyn_colloc_info inf = {0, 0, 0};
     if (!st) {
         first_guess(&c, y0, &r->sol);
-        st = solve_homotopy(&p, &c, &r->sol, &no, &inf);
-    }
-    if (!st) { /* a mesh adapted to the solution */
-        st = dyn_colloc_adapt(&r->sol, ntst, 0, NULL, 0);
+        if (nphase && !(st = dyn_colloc_sol_copy(&ref, &r->sol)))
+            c.ref = &ref;
         if (!st)
-            st = dyn_colloc_solve(&p, &r->sol, NULL, NULL, &no, &inf);
+            st = solve_homotopy(&p, &c, &r->sol, &no, &inf);
+    }
+    if (!st) { /* a mesh adapted to the solution (the reference interpolated onto it) */
+        dyn_colloc_sol *extra[1] = {&ref};
+        st = dyn_colloc_adapt(&r->sol, ntst, 0, extra, nphase);
+        if (!st)
+            st = dyn_colloc_solve(&p, &r->sol, c.ref, NULL, &no, &inf);
     }
     r->iterations = inf.iterations;
     if (!st && !(st = dyn_colloc_sol_copy(&fine, &r->sol))) {
@@ -321,9 +352,12 @@ int dyn_bvp_solve(const dyn_model *m, const void *par, const double *y0, double 
             }
             mesh[2 * ntst] = 1.0;
             st = dyn_colloc_remesh(&fine, 2 * ntst, mesh);
+            if (!st && nphase && !(st = dyn_colloc_sol_copy(&fine_ref, &ref)))
+                st = dyn_colloc_remesh(&fine_ref, 2 * ntst, mesh);
             free(mesh);
         }
-        if (!st && dyn_colloc_solve(&p, &fine, NULL, NULL, &no, NULL)) {
+        c.ref = nphase ? &fine_ref : NULL;
+        if (!st && dyn_colloc_solve(&p, &fine, c.ref, NULL, &no, NULL)) {
             r->err_est = NAN; /* no estimate; the solution stands */
         } else if (!st) { /* at every node of the solution, not only the mesh points */
             double e = 0.0, *uf = c.work;
@@ -340,12 +374,15 @@ int dyn_bvp_solve(const dyn_model *m, const void *par, const double *y0, double 
     }
     if (!st) {
         const double *ul = r->sol.u + (size_t)(dyn_colloc_nodes(&r->sol) - 1) * n;
-        if (use_free(&c, r->sol.par) || m->bdry(r->sol.u, ul, c.par, r->residuals))
+        if (use_free(&c, r->sol.par) || conditions(&c, r->sol.u, ul, r->residuals))
             st = DYN_COLLOC_ERR_FN;
     }
-    if (st)
+    if (st && !r->message[0])
         snprintf(r->message, sizeof r->message, "%s", why(st));
     dyn_colloc_sol_free(&fine);
+    dyn_colloc_sol_free(&ref);
+    dyn_colloc_sol_free(&fine_ref);
+    bvp_hom_free(&c.hom);
     free(c.par);
     free(c.work);
     return st;

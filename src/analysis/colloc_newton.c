@@ -228,7 +228,7 @@ static int assemble_border(colloc_sys *s, const dyn_colloc_sol *x, const dyn_col
             return DYN_COLLOC_ERR_FN;
         bi = p->nbc;
     }
-    if (p->phase) { /* int_0^1 u . ref' dt = 0 */
+    if (p->phase) { /* int_0^1 u . ref' dt = 0, or int_0^1 (u - ref) . ref' dt = 0 */
         double *br = s->brow + (size_t)bi * stride;
         double val = 0.0;
         for (int j = 0; j < s->ntst; j++) {
@@ -242,7 +242,8 @@ static int assemble_border(colloc_sys *s, const dyn_colloc_sol *x, const dyn_col
                         dr += s->b.Dn[l][q] * R[(size_t)q * n + i];
                     const double c = s->b.w[l] * dr; /* h w_l times ref'(node) = dr / h */
                     br[g + i] += c;
-                    val += c * x->u[g + i];
+                    const double r0 = p->phase == 2 ? R[(size_t)l * n + i] : 0.0;
+                    val += c * (x->u[g + i] - r0);
                 }
             }
             (void)h;

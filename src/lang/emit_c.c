@@ -1911,6 +1911,8 @@ char *lang_emit_c(lang_ctx *c)
     if (m->bdrys.n)
         LANG_C_CODEF(c, ",\n    .n_bdry = %d,\n    .bdry = dk_bdry,\n    .bdry_text = dk_bdry_text",
                      m->bdrys.n);
+    if (lang_bdry_has_hom(m))
+        LANG_C_CODE(c, ",\n    .hom = &dk_hom");
     if (m->events.n)
         LANG_C_CODE(c, ",\n    .xppaut_globals = 1");
     if (m->n_table_draws)

@@ -365,10 +365,9 @@ static node *parse_primary(lang_lexer *lx)
         unexpected(lx, &t, "expected a number, a name or '('");
     const char *feature = unsupported_feature(s, n);
     if (feature && ieq(s, n, "hom_bcs"))
-        lang_fail(lx->c, p, "%s are not supported: a bdry condition is written on the states "
-                            "at t0 (NAME) and at the end (NAME'), with parameters and numbers "
-                            "(one per state; dynkit bvp --free NAME solves for a parameter "
-                            "too)", feature);
+        lang_fail(lx->c, p, "hom_bcs(K) is a whole boundary condition, 'bdry hom_bcs(K)' "
+                            "(XPPAUT's K-th projection condition of a homoclinic orbit), not "
+                            "a value inside a formula");
     if (feature)
         lang_fail(lx->c, p, "%s %s not supported", feature,
                   strstr(feature, "s (") || strstr(feature, "ions") ? "are" : "is");

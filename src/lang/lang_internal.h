@@ -362,8 +362,11 @@ typedef struct lang_model {
     /* Volterra integrals (integrals.c): lang_volt, and @ vmaxpts (0: not given) */
     lvec volts;
     long vmaxpts;
-    /* XPPAUT's boundary conditions (bdry.c): lang_formula, name the condition as written */
+    /* XPPAUT's boundary conditions (bdry.c): lang_formula, name the condition as written;
+     * bdry_hom: int per condition, k for XPPAUT's hom_bcs(k) (its expression the number 0,
+     * the projection written by the solver), -1 for any other condition */
     lvec bdrys;
+    lvec bdry_hom;
     /* AUTO's settings of the @ lines (ntst, ds, parmax, autoxmin, ...): lang_auto_option,
      * in the file's order; a run does not use them, dynkit continue reads them
      * (dyn_ode_auto_options) */
@@ -651,6 +654,7 @@ void lang_emit_volterra(lang_ctx *c, int offset, void (*expr)(lang_ctx *, const 
 void lang_bdry_parse(lang_ctx *c, lang_lexer *lx, lpos wpos);
 void lang_bdry_resolved(lang_ctx *c, lang_formula *f);
 void lang_emit_bdry(lang_ctx *c, void (*expr)(lang_ctx *, const node *));
+int lang_bdry_has_hom(const lang_model *m); /* a hom_bcs condition among them: dk_hom */
 void lang_emit_delay_helper(lang_ctx *c, int offset);
 void lang_emit_delay_guard(lang_ctx *c);
 void lang_emit_delay_prepare(lang_ctx *c, void (*expr)(lang_ctx *, const node *));

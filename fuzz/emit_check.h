@@ -59,7 +59,8 @@ static const char *const emit_check_idents[] = {
     /* Markov states and gill (dynkit/sde.h, src/lang/markov.c) */
     "jump", "dk_jump", "dyn_markov_step", "dyn_gillespie_step", "bad", "h",
     /* boundary conditions (src/lang/bdry.c) */
-    "n_bdry", "bdry", "bdry_text", "dk_bdry", "dk_bdry_text", "yl", "yr",
+    "n_bdry", "bdry", "bdry_text", "dk_bdry", "dk_bdry_text", "yl", "yr", "hom",
+    "dyn_hom_bcs", "dk_bdry_hom", "dk_hom",
     /* the translator's own names */
     "t", "y", "p", "par", "dydt", "out", "J", "err", "errlen", "names", "k", "i", "j", "s",
     "x", "u", "n", "m", "q", "v", "z", "type", "period", "w", "r", "rb", "lo", "dx", "dk_model",

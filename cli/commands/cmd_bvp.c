@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "commands/bvp_guess.h"
 #include "dynkit/colloc.h"
 #include "pages/pages.h"
 #include "util/out_file.h"
@@ -47,6 +48,9 @@ static void bvp_help(void)
          "  --init NAME=VALUE    a state's value in the first guess (repeatable)\n"
          "  --tspan A:B          the interval [t0, t1] (default: the file's t0 and total;\n"
          "                       with hom_bcs t0 + 1)\n"
+         "  --guess FILE         the first guess: a CSV table of t and the states (dynkit\n"
+         "                       bvp's output at parameters near these), its first to last t\n"
+         "                       onto the interval; Newton's method from it, no homotopy\n"
          "  --free NAME          a parameter solved for too (XPPAUT's periodic option: a\n"
          "                       frequency or period), fixed by the section condition\n"
          "  --section NAME[=V]   with --free: the condition NAME(t0) = V (default V: its\n"
@@ -70,7 +74,8 @@ typedef struct bvp_opts {
     const char *output;
     const char *free_name, *section; /* --free NAME, --section NAME[=VALUE] */
     int json, ntst, ncol;
-    int tspan; /* --tspan given */
+    int tspan;         /* --tspan given */
+    const char *guess; /* --guess FILE */
 } bvp_opts;
 
 #define BVP_N_OPTIONS 10
@@ -112,7 +117,12 @@ static int parse_args(int argc, char **argv, char **pass, int *n_pass, bvp_opts 
             }
         if (done)
             continue;
-        if ((r = cli_option(argc, argv, &i, "free", &v)) != 0) {
+        if ((r = cli_option(argc, argv, &i, "guess", &v)) != 0) {
+            if (r < 0)
+                return cli_usage_error("bvp", "option --guess needs a CSV file (t and the "
+                                       "states, dynkit bvp's output)");
+            o->guess = v;
+        } else if ((r = cli_option(argc, argv, &i, "free", &v)) != 0) {
             if (r < 0)
                 return cli_usage_error("bvp", "option --free needs a parameter's name");
             o->free_name = v;
@@ -292,18 +302,31 @@ int cli_cmd_bvp(int argc, char **argv)
         cli_run_free(&run);
         return rc;
     }
-    dyn_bvp_opts bo = {o.ntst, o.ncol, 0.0, 0, 0, 0.0};
+    dyn_bvp_opts bo = {o.ntst, o.ncol, 0.0, 0, 0, 0.0, NULL, NULL, 0};
     if (o.free_name && resolve_free(argv[0], m, &run, &o, &bo) != CLI_OK) {
         cli_run_free(&run);
         return CLI_USAGE;
     }
     if (m->hom && !o.tspan) /* AUTO's interval; the file's total is for integrating it */
         run.t1 = run.t0 + 1.0;
+    double *guess_t = NULL, *guess_u = NULL;
+    if (o.guess) {
+        char err[512];
+        if (bvp_guess_read(o.guess, m, &guess_t, &guess_u, &bo.guess_rows, err, sizeof err)) {
+            rc = cli_usage_error("bvp", "--guess %s", err);
+            cli_run_free(&run);
+            return rc;
+        }
+        bo.guess_t = guess_t;
+        bo.guess_u = guess_u;
+    }
     dyn_bvp_result r;
     const int st = dyn_bvp_solve(m, run.par, run.y0, run.t0, run.t1, &bo, &r);
+    free(guess_t);
+    free(guess_u);
     if (st) {
         cli_error("bvp: %s: %s", argv[0], r.message);
-        if (!o.free_name && !m->hom &&
+        if (!o.free_name && !m->hom && !o.guess &&
             (st == DYN_COLLOC_ERR_NEWTON || st == DYN_COLLOC_ERR_SINGULAR))
             cli_note("bvp: a periodic solution at an unknown frequency or period needs that "
                      "parameter freed: --free NAME (docs/analysis.md)");

@@ -223,6 +223,12 @@ typedef struct dyn_bvp_opts {
     int free_par;
     int section;
     double section_value;
+    /* a first guess instead of the initial-value problem (guess_rows 0: none): guess_rows
+     * rows of times guess_t (increasing) and states guess_u (guess_rows x n), its first to
+     * last time mapped onto [t0, t1], linear between rows; Newton's method from it, which
+     * is also the phase condition's reference with hom_bcs (AUTO's continuation step) */
+    const double *guess_t, *guess_u;
+    long guess_rows;
 } dyn_bvp_opts;
 
 typedef struct dyn_bvp_result {

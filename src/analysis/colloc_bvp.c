@@ -159,6 +159,25 @@ static void first_guess(bvp_ctx *c, const double *y0, dyn_colloc_sol *x)
     free(y);
 }
 
+/* the table of o (guess_t, guess_u) at the nodes, its first to last time onto [0, 1] */
+static void table_guess(const dyn_bvp_opts *o, dyn_colloc_sol *x)
+{
+    const int n = x->n;
+    const long rows = o->guess_rows, nodes = dyn_colloc_nodes(x);
+    const double a = o->guess_t[0], span = o->guess_t[rows - 1] - a;
+    long k = 0;
+    for (long g = 0; g < nodes; g++) {
+        const double t = a + span * dyn_colloc_node_time(x, g);
+        while (k < rows - 2 && o->guess_t[k + 1] <= t)
+            k++;
+        const double dt = o->guess_t[k + 1] - o->guess_t[k];
+        const double w = dt > 0 ? fmin(fmax((t - o->guess_t[k]) / dt, 0.0), 1.0) : 0.0;
+        for (int i = 0; i < n; i++)
+            x->u[(size_t)g * n + i] = (1 - w) * o->guess_u[(size_t)k * n + i] +
+                                      w * o->guess_u[(size_t)(k + 1) * n + i];
+    }
+}
+
 /* the free scalars of from into to, and into the model's parameters */
 static void restore_par(bvp_ctx *c, dyn_colloc_sol *to, const dyn_colloc_sol *from)
 {
@@ -317,8 +336,26 @@ int dyn_bvp_solve(const dyn_model *m, const void *par, const double *y0, double 
         r->section = c.sec;
         r->section_value = c.sec_value;
     }
-    if (!st && m->hom) {
-        if (bvp_hom_init(&c.hom, m, c.par, t0, y0, r->message, sizeof r->message))
+    const int table = o && o->guess_rows > 0;
+    if (!st && table) {
+        int ok = o->guess_rows >= 2 && o->guess_t && o->guess_u &&
+                 o->guess_t[o->guess_rows - 1] > o->guess_t[0];
+        for (long k = 1; ok && k < o->guess_rows; k++)
+            ok = o->guess_t[k] >= o->guess_t[k - 1];
+        if (!ok) {
+            snprintf(r->message, sizeof r->message, "the first guess needs at least two rows "
+                     "with increasing times");
+            st = DYN_COLLOC_ERR_ARG;
+        }
+    }
+    if (!st) {
+        if (table)
+            table_guess(o, &r->sol);
+        else
+            first_guess(&c, y0, &r->sol);
+    }
+    if (!st && m->hom) { /* the equilibria as the first guess holds them */
+        if (bvp_hom_init(&c.hom, m, c.par, t0, r->sol.u, r->message, sizeof r->message))
             st = DYN_COLLOC_ERR_ARG;
         r->hom_left = c.hom.n_left;
         r->hom_right = c.hom.n_right;
@@ -328,11 +365,16 @@ int dyn_bvp_solve(const dyn_model *m, const void *par, const double *y0, double 
     const dyn_colloc_opts no = {o && o->tol > 0 ? o->tol : 1e-10, 40};
     dyn_colloc_info inf = {0, 0, 0};
     if (!st) {
-        first_guess(&c, y0, &r->sol);
         if (nphase && !(st = dyn_colloc_sol_copy(&ref, &r->sol)))
             c.ref = &ref;
-        if (!st)
+        if (!st && table) /* Newton's method from the guess, no homotopy */
+            st = dyn_colloc_solve(&p, &r->sol, c.ref, NULL, &no, &inf);
+        else if (!st)
             st = solve_homotopy(&p, &c, &r->sol, &no, &inf);
+        if (table && st == DYN_COLLOC_ERR_NEWTON)
+            snprintf(r->message, sizeof r->message, "Newton's method did not converge from "
+                     "the first guess given (a solution nearer this problem's, at parameters "
+                     "nearer these, or a finer mesh with --ntst)");
     }
     if (!st) { /* a mesh adapted to the solution (the reference interpolated onto it) */
         dyn_colloc_sol *extra[1] = {&ref};

@@ -15,6 +15,8 @@ closed forms and SciPy.
 - Debian's tsthomi.ode (as written: per = 8.1 on [0, 1]) gives the pulse within its
   truncation error; tstheti.ode gives the front with c = 0 at a = 0.5 and, over 40 time
   units, c = (1 - 2a)/sqrt 2 at a = 0.3 and 0.5.
+- --guess FILE: from one solution to the next, tstheti.ode to 40 time units and a = 0.3
+  (c against its closed form), homoclinic.ode from a = 0 to 0.2; bad tables refused.
 - dynkit run of such a file integrates the initial-value problem with a note; bad hom_bcs
   lines and unusable layouts are refused with their line; every bvp command of the docs
   runs (tests/analysis/bvp_check.py runs the section's commands).
@@ -278,6 +280,56 @@ def debian():
                   f"(1 - 2a)/sqrt 2 = {exact:.10f}")
 
 
+def continuation(tmp):
+    """--guess FILE: each solution the next one's first guess (AUTO's continuation, by hand)
+    where the initial-value problem is too far: tstheti.ode from per = 6.67 to 40 time
+    units at a = 0.4, then to a = 0.3, against the closed form c = (1 - 2a)/sqrt 2;
+    homoclinic.ode from a = 0 to 0.2 against the solve started at Melnikov's sig"""
+    def step(path, out, guess, *sets):
+        args = [x for kv in sets for x in ("--set", kv)]
+        if guess:
+            args += ["--guess", guess]
+        p = run("bvp", path, *args, "--step", "0.005", "-o", out)
+        return not p.returncode
+
+    tstheti = os.path.join(DEBIAN, "tstheti.ode")
+    if os.path.exists(tstheti):
+        prev, ok = None, True
+        for k, (a, per) in enumerate([(0.4, 6.67), (0.4, 10), (0.4, 15), (0.4, 20), (0.4, 30),
+                                      (0.4, 40), (0.35, 40), (0.3, 40)]):
+            out = os.path.join(tmp, f"het{k}.csv")
+            ok = ok and step(tstheti, out, prev, f"a={a}", f"per={per}")
+            prev = out
+            if ok and per == 40 and a in (0.4, 0.3):
+                c = float(np.loadtxt(out, delimiter=",", skiprows=1)[0, -1])
+                exact = (1 - 2 * a) / math.sqrt(2)
+                check(abs(c - exact) < 1e-9,
+                      f"tstheti.ode continued to per = 40, a = {a} (--guess): c = {c:.12f}, "
+                      f"closed form {exact:.12f}")
+        check(ok, "tstheti.ode: every step of the continuation converges")
+    prev, ok = None, True
+    for a in (0.0, 0.1, 0.2):
+        out = os.path.join(tmp, f"hom{a}.csv")
+        ok = ok and step(HOM, out, prev, f"a={a}")
+        prev = out
+    direct = solve(HOM, "--set", "a=0.2", "--init", "sig=0.2333")
+    if ok and direct:
+        sig = float(np.loadtxt(prev, delimiter=",", skiprows=1)[0, -1])
+        check(abs(sig - direct[1]["sig"][0]) < 1e-9,
+              f"homoclinic.ode continued from a = 0 to 0.2 (--guess): sig = {sig:.10f}, from "
+              f"Melnikov's first guess {direct[1]['sig'][0]:.10f}")
+    check(ok, "homoclinic.ode: every step of the continuation converges")
+    bad = os.path.join(tmp, "bad.csv")
+    for text, words in (("t,x\n0,1\n1,2\n", "no column for the state y"),
+                        ("t,x,y,xe,ye,sig\n1,0,0,0,0,0\n0,0,0,0,0,0\n", ":3: t goes back"),
+                        ("t,x,y,xe,ye,sig\n0,0,0,0,0,0\n1,0,zz,0,0,0\n", "'zz' is not a "
+                         "number")):
+        with open(bad, "w") as f:
+            f.write(text)
+        p = run("bvp", HOM, "--guess", bad, status=2)
+        check(words in p.stderr, f"--guess refused: {p.stderr.strip()[:120]}")
+
+
 def messages():
     p = run("run", HOM, "--tspan", "0:1")
     check("hom_bcs" in p.stderr and "bvp" in p.stderr,
@@ -311,6 +363,8 @@ def main():
     else:
         print(f"note: {DEBIAN} is missing (Debian's xppaut): its examples are not checked")
     messages()
+    with tempfile.TemporaryDirectory() as tmp:
+        continuation(tmp)
     if FAILED and ARTIFACTS:
         d = os.path.join(ARTIFACTS, "hom_check")
         shutil.rmtree(d, ignore_errors=True)

@@ -28,10 +28,12 @@ without NumPy/SciPy/SymPy. What failed is kept under build/tests/artifacts/hom_c
 import json
 import math
 import os
-import shutil
 import subprocess
 import sys
 import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from analysis_common import Checks  # noqa: E402
 
 try:
     import numpy as np
@@ -47,30 +49,13 @@ SOURCE = os.path.abspath(sys.argv[2] if len(sys.argv) > 2 else ".")
 ARTIFACTS = sys.argv[3] if len(sys.argv) > 3 else None
 DEBIAN = "/usr/share/doc/xppaut/examples/ode"
 HOM = os.path.join(SOURCE, "examples", "models", "homoclinic.ode")
-FAILED = []
-KEPT = {}
-
-
-def run(*args, status=0):
-    p = subprocess.run([DYNKIT, *args], capture_output=True, text=True)
-    if p.returncode != status:
-        FAILED.append(f"{' '.join(args)}: exit {p.returncode}, expected {status}: "
-                      f"{p.stderr.strip()[:300]}")
-        KEPT[" ".join(args)] = p.stdout + "\n--- stderr ---\n" + p.stderr
-    return p
-
-
-def check(cond, what, detail=""):
-    print(("ok    " if cond else "FAIL  ") + what)
-    if not cond:
-        FAILED.append(what)
-        if detail:
-            KEPT[what] = detail
+CHECKS = Checks(DYNKIT, "bvp")
+check = CHECKS.check
 
 
 def solve(path, *extra):
     """dynkit bvp PATH --json: (t, states dict, the whole answer) or None"""
-    p = run("bvp", path, "--json", *extra)
+    p = CHECKS.run(path, "--json", *extra)
     if p.returncode:
         return None
     d = json.loads(p.stdout)
@@ -289,7 +274,7 @@ def continuation(tmp):
         args = [x for kv in sets for x in ("--set", kv)]
         if guess:
             args += ["--guess", guess]
-        p = run("bvp", path, *args, "--step", "0.005", "-o", out)
+        p = CHECKS.run(path, *args, "--step", "0.005", "-o", out)
         return not p.returncode
 
     tstheti = os.path.join(DEBIAN, "tstheti.ode")
@@ -326,12 +311,12 @@ def continuation(tmp):
                          "number")):
         with open(bad, "w") as f:
             f.write(text)
-        p = run("bvp", HOM, "--guess", bad, status=2)
+        p = CHECKS.run(HOM, "--guess", bad, status=2)
         check(words in p.stderr, f"--guess refused: {p.stderr.strip()[:120]}")
 
 
 def messages():
-    p = run("run", HOM, "--tspan", "0:1")
+    p = subprocess.run([DYNKIT, "run", HOM, "--tspan", "0:1"], capture_output=True, text=True)
     check("hom_bcs" in p.stderr and "bvp" in p.stderr,
           "run of homoclinic.ode integrates the initial-value problem with a note")
     with tempfile.TemporaryDirectory() as tmp:
@@ -349,7 +334,7 @@ def messages():
             path = os.path.join(tmp, name)
             with open(path, "w") as f:
                 f.write(text)
-            p = run("bvp", path, status=status)
+            p = CHECKS.run(path, status=status)
             check(words in p.stderr and (status == 1 or f"{name}:" in p.stderr),
                   f"{name}: refused with status {status}: {p.stderr.strip()[:150]}")
 
@@ -365,17 +350,8 @@ def main():
     messages()
     with tempfile.TemporaryDirectory() as tmp:
         continuation(tmp)
-    if FAILED and ARTIFACTS:
-        d = os.path.join(ARTIFACTS, "hom_check")
-        shutil.rmtree(d, ignore_errors=True)
-        os.makedirs(d)
-        for k, (what, text) in enumerate(KEPT.items()):
-            with open(os.path.join(d, f"failed-{k}.txt"), "w") as f:
-                f.write(what + "\n" + text)
-        print(f"kept in {d}")
-    for f in FAILED:
-        print("FAILED:", f)
-    return 1 if FAILED else 0
+    CHECKS.keep(ARTIFACTS, "hom_check")
+    return CHECKS.finish()
 
 
 if __name__ == "__main__":

@@ -5,8 +5,10 @@
  * default initial state of those parameters, then the initial values given) and run by the
  * library's dyn_run with the options `dynkit run` passes (cli/run/run_solve.c). The page's
  * script writes the settings into the buffers these functions return and reads the samples
- * back (t, the states, the extra outputs per row). Compiled for wasm32-wasi only
- * (backends/wasm/CMakeLists.txt); docs/web.md, "Live pages". */
+ * back (t, the states, the extra outputs per row). Every PROGRESS_ROWS samples the run tells
+ * the page how many rows it has (the module's one import, dynkit.progress), so that a long
+ * run is drawn as it computes. Compiled for wasm32-wasi only (backends/wasm/CMakeLists.txt);
+ * docs/web.md, "Live pages". */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,6 +19,12 @@
 #define LIVE_EXPORT(name) __attribute__((export_name(name)))
 
 const dyn_model *dynkit_model(void);
+
+/* The page's function that reads the rows written so far (their count); it may copy them
+ * but not change them. */
+__attribute__((import_module("dynkit"), import_name("progress"))) void dk_live_progress(double n);
+
+#define PROGRESS_ROWS 1024
 
 /* The settings of a run, written by the page before dk_live_run. */
 enum {
@@ -101,6 +109,8 @@ static int on_sample(long k, double t, const double *y, void *ctx)
         for (int i = 0; i < m->n_outputs; i++)
             row[1 + m->n_states + i] = __builtin_nan("");
     n_rows++;
+    if (n_rows % PROGRESS_ROWS == 0)
+        dk_live_progress((double)n_rows);
     return 0;
 }
 

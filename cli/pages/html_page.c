@@ -72,8 +72,8 @@ int cli_html_page_write(FILE *out, const char *title, const char *body_asset, cl
         } else if (len == 6 && strncmp(name, "script", 6) == 0) {
             bad |= write_assets(out, ".js");
         } else if (len == 4 && strncmp(name, "wasm", 4) == 0) {
-            if (allow_wasm)
-                bad |= fputs(" 'wasm-unsafe-eval'", out) < 0;
+            if (allow_wasm) /* compiling the module; its runs in a worker of the page's script */
+                bad |= fputs(" 'wasm-unsafe-eval'; worker-src blob:", out) < 0;
         } else if (len == 4 && strncmp(name, "body", 4) == 0) {
             bad |= fwrite(body->data, 1, body->size, out) != body->size;
         } else if (len == 4 && strncmp(name, "data", 4) == 0) {

@@ -13,6 +13,7 @@
 // - moving a slider (keyboard on the range input) changes the plotted curve and the command;
 // - `dynkit plot vanderpol --x y1 --y y2 --live`: the same, on the page of a plot;
 // - a click in the phase plane adds a trajectory that starts there;
+// - a long run is drawn as it computes, and a newer change cancels it;
 // - at 390 px wide nothing scrolls sideways; no console error; hostile text in a model file
 //   (title, units) stays text;
 // - without the WebAssembly library the page is static and the tool names the packages.
@@ -73,7 +74,7 @@ fs.writeFileSync(hostile, [
 const ex = p => path.join(source, p);
 // set: what dynkitLive.set changes before the compared run; exact: bit for bit required
 const pages = [
-  { name: 'vanderpol', args: ['vanderpol'], set: { mu: 1.7 }, exact: true, phase: true, slider: 'mu', timing: true },
+  { name: 'vanderpol', args: ['vanderpol'], set: { mu: 1.7 }, exact: true, phase: true, slider: 'mu', timing: true, progressive: true },
   { name: 'pendulum', args: ['pendulum'], set: { l: 1.3, phi: 0.9 }, timing: true },
   { name: 'plane', args: ['plane'], set: { k: 25, dsX: 1.5 }, timing: true },
   { name: 'cart', args: ['cart'], set: { Fx: -40 }, timing: true },
@@ -143,7 +144,8 @@ for (const p of pages.filter(q => !q.failed)) {
     continue;
   }
   timings[p.name] = { page_bytes: size };
-  // the module needs nothing from the page: no import (no system interface)
+  // the module needs nothing from the page but the function it tells its progress to (no
+  // system interface)
   const imports = await page.evaluate(() => {
     const text = JSON.parse(document.getElementById('dynkit-data').textContent).live.module;
     const bin = atob(text), bytes = new Uint8Array(bin.length);
@@ -152,7 +154,7 @@ for (const p of pages.filter(q => !q.failed)) {
     return { imports: WebAssembly.Module.imports(m).map(i => i.module + '.' + i.name), bytes: bytes.length };
   });
   timings[p.name].module_bytes = imports.bytes;
-  check(imports.imports.length === 0, `the module (${(imports.bytes / 1024).toFixed(0)} KiB) imports nothing${imports.imports.length ? ': ' + imports.imports.join(', ') : ''}`);
+  check(imports.imports.join() === 'dynkit.progress', `the module (${(imports.bytes / 1024).toFixed(0)} KiB) imports dynkit.progress only (${imports.imports.join(', ')})`);
 
   // a click in the phase plane (the page as it opened): a trajectory that starts there
   if (p.phase) {
@@ -163,7 +165,7 @@ for (const p of pages.filter(q => !q.failed)) {
     const cx = box.x + box.l + 0.3 * box.w, cy = box.y + box.t + 0.7 * box.h;
     const nBefore = await page.evaluate(() => document.querySelector('#view canvas.plot-canvas').dkPlot.o.series.length);
     await page.mouse.click(cx, cy);
-    await page.waitForTimeout(200);
+    await page.waitForFunction(n => document.querySelector('#view canvas.plot-canvas').dkPlot.o.series.length !== n, nBefore, { timeout: 20000 }).catch(() => {});
     const after = await page.evaluate(() => {
       const c = document.querySelector('#view canvas.plot-canvas'), P = c.dkPlot, r = c.getBoundingClientRect();
       const s = P.o.series[P.o.series.length - 1];
@@ -172,7 +174,7 @@ for (const p of pages.filter(q => !q.failed)) {
     check(after.n === nBefore + 1 && after.clicked.length === 1, `a click adds a trajectory (${nBefore} -> ${after.n} series: ${after.label})`);
     check(Math.abs(after.x0 - cx) <= 1.5 && Math.abs(after.y0 - cy) <= 1.5, `it starts where the click was (${after.x0.toFixed(1)}, ${after.y0.toFixed(1)} against ${cx.toFixed(1)}, ${cy.toFixed(1)})`);
     await page.getByRole('button', { name: 'clear trajectories' }).click();
-    await page.waitForTimeout(100);
+    await page.waitForFunction(n => document.querySelector('#view canvas.plot-canvas').dkPlot.o.series.length === n, nBefore, { timeout: 20000 }).catch(() => {});
     check(await page.evaluate(() => document.querySelector('#view canvas.plot-canvas').dkPlot.o.series.length) === nBefore, 'clear removes it');
   }
 
@@ -262,6 +264,36 @@ for (const p of pages.filter(q => !q.failed)) {
     timings[p.name].rhs_us_native = 1000 * Math.max(nat.ms - base.ms, 0) / nativeRhs;
     timings[p.name].rhs_calls_long = [long.best.rhs_calls, nativeRhs];
     console.log(`     ${p.name}: a right-hand side (with its share of the step) ${timings[p.name].rhs_us_page.toFixed(3)} us in the page, ${timings[p.name].rhs_us_native.toFixed(3)} us in the tool`);
+  }
+
+  // a long run (a span 2000 times the default, 3 million samples) is drawn as it computes,
+  // and a newer change ends it: the page then shows the newer run, which run() gives to
+  // both callers, and equals a run of its own
+  if (p.progressive) {
+    const r = await page.evaluate(async () => {
+      const L = window.dynkitLive, t0 = L.get('t0'), t1 = L.get('t1'), before = L.timing();
+      const plot = () => document.querySelector('#plots canvas.plot-canvas').dkPlot;
+      L.set('t1', t0 + 2000 * (t1 - t0));
+      const first = L.run();
+      let ended = false;
+      first.then(() => { ended = true; });
+      while (!ended && L.timing().partial_draws === before.partial_draws) await new Promise(res => requestAnimationFrame(res));
+      const drawnT = plot().o.series[0].x, drawnEnd = drawnT[drawnT.length - 1];
+      L.set('t1', t1);
+      L.set('mu', 1.25);
+      const second = await L.run(), firstGave = await first;
+      const after = L.timing(), shown = plot().o.series[0].x;
+      const alone = await L.run();
+      return {
+        partial: after.partial_draws - before.partial_draws, cancelled: after.cancelled - before.cancelled,
+        drawnEnd, longEnd: t0 + 2000 * (t1 - t0), t1, shownEnd: shown[shown.length - 1],
+        same: JSON.stringify(second) === JSON.stringify(firstGave), alone: JSON.stringify(second) === JSON.stringify(alone), n: second.t.length
+      };
+    });
+    check(r.partial >= 1 && r.drawnEnd > r.t1 && r.drawnEnd < r.longEnd, `a long run is drawn as it computes (${r.partial} drawings before the change, one up to t = ${r.drawnEnd.toFixed(1)} of ${r.longEnd})`);
+    check(r.cancelled === 1, `a newer change cancels it (${r.cancelled} run cancelled)`);
+    check(r.same && r.alone && r.shownEnd === r.t1, `the page shows the newer run (to t = ${r.shownEnd}, ${r.n} samples), given to both callers, equal to a run of its own`);
+    await page.evaluate(() => { window.dynkitLive.set('mu', 1.7); return window.dynkitLive.run(); });
   }
 
   // a slider moved with the keyboard changes the curve and the command line

@@ -5,6 +5,8 @@
  * tolerances and span; every change reruns the main run, the --compare runs and the
  * trajectories started by a click in the phase plane, and redraws the animation page with
  * them; the command line that reproduces the run and a CSV download of its samples. The
+ * module runs in a worker: the page stays responsive, a long run is drawn as it computes
+ * and a newer change cancels an older run. The
  * hook window.dynkitLive (set, get, run) serves scripts and the browser tests.
  * The module is compiled by the browser (the page's policy allows WebAssembly, no eval);
  * every name and unit reaches the page as text only. docs/web.md, "Live pages". */
@@ -34,6 +36,151 @@
     return /^[A-Za-z0-9_.,:=+\-/@%]+$/.test(s) ? s : "'" + s.replace(/'/g, "'\\''") + "'";
   }
 
+  const CHUNK_MS = 40;          /* a long run's samples reach the page this often */
+
+  /* The worker's script (its text is the worker's source: it uses nothing from outside):
+   * the module instantiated from the compiled module it is sent, then batches of runs, each
+   * run's settings written into the module's buffers, its rows sent back as they come
+   * (every CHUNK_MS at most, at the module's dynkit.progress) and at its end. */
+  function liveWorker(chunkMs) {
+    'use strict';
+    let x = null, cols = 0, sent = 0, lastPost = 0, batch = 0, job = 0;
+    /* the rows [sent, n) copied out of the module's memory */
+    const take = n => {
+      const rows = new Float64Array(x.memory.buffer, x.dk_live_rows() + sent * cols * 8, (n - sent) * cols).slice();
+      sent = n;
+      lastPost = performance.now();
+      return rows;
+    };
+    const progress = n => {
+      if (performance.now() - lastPost < chunkMs) return;
+      const rows = take(n);
+      postMessage({ batch, job, rows, n }, [rows.buffer]);
+    };
+    const runOne = j => {
+      const mem = () => x.memory.buffer;
+      new Float64Array(mem(), x.dk_live_settings(), j.settings.length).set(j.settings);
+      const mbuf = new Uint8Array(mem(), x.dk_live_method(), 64);
+      mbuf.fill(0); mbuf.set(new TextEncoder().encode(j.method).subarray(0, 63));
+      new Float64Array(mem(), x.dk_live_params(), j.params.length).set(j.params);
+      new Float64Array(mem(), x.dk_live_inits(), j.inits.length).set(j.inits);
+      new Float64Array(mem(), x.dk_live_given(), j.given.length).set(j.given);
+      sent = 0;
+      lastPost = performance.now();
+      const t0 = performance.now();
+      const n = Math.max(x.dk_live_run(), 0);
+      const ms = performance.now() - t0;
+      const rows = take(n);
+      const bytes = new Uint8Array(mem()), mp = x.dk_live_message();
+      let e = mp; while (bytes[e]) e++;
+      return { rows, n, ms, message: new TextDecoder().decode(bytes.subarray(mp, e)), rhsCalls: x.dk_live_rhs_calls() };
+    };
+    onmessage = async e => {
+      const m = e.data;
+      try {
+        if (m.module) {
+          const instance = await WebAssembly.instantiate(m.module, { dynkit: { progress } });
+          x = instance.exports;
+          if (x._initialize) x._initialize();
+          if (m.choose !== undefined && x.dk_live_choose) x.dk_live_choose(m.choose);
+          if (!x.dk_live_setup()) throw new Error('the model could not be set up (out of memory)');
+          cols = x.dk_live_cols();
+          postMessage({ cols });
+          return;
+        }
+        batch = m.batch;
+        for (job = 0; job < m.jobs.length; job++) {
+          const r = runOne(m.jobs[job]);
+          postMessage(Object.assign({ batch, job, done: true }, r), [r.rows.buffer]);
+        }
+      } catch (err) {
+        postMessage({ batch, error: String(err && err.message || err) });
+      }
+    };
+  }
+
+  /* The module's runs in a worker. run(jobs, onRows) gives the runs' {rows, n, message,
+   * rhsCalls, ms} once all are done, and calls onRows([{rows, n}] of the runs begun) as a
+   * long one computes; a run asked for while another is under way ends that one (its worker is
+   * stopped and another started: its promise is rejected with Runner.cancelled). */
+  class Runner {
+    constructor(module, choose) {
+      this.module = module;
+      this.choose = choose; /* a module of every built-in model: the one to run */
+      this.url = URL.createObjectURL(new Blob(['(' + liveWorker.toString() + ')(' + CHUNK_MS + ');'], { type: 'text/javascript' }));
+      this.batch = 0;
+      this.cancels = 0;
+      this.start();
+    }
+
+    start() {
+      const w = this.worker = new Worker(this.url);
+      this.ready = new Promise((resolve, reject) => {
+        w.onmessage = e => {
+          if (e.data.error) reject(new Error(e.data.error));
+          else { this.cols = e.data.cols; w.onmessage = m => this.received(m.data); resolve(); }
+        };
+        w.onerror = e => { e.preventDefault(); reject(new Error(e.message || 'the worker failed')); };
+      });
+      this.ready.catch(() => {}); /* reported by the run that awaits it */
+      w.postMessage({ module: this.module, choose: this.choose });
+    }
+
+    /* A message of the batch under way: rows of a run, a run's end, or an error. */
+    received(m) {
+      const b = this.pending;
+      if (!b || m.batch !== b.batch) return;
+      if (m.error) { this.pending = null; this.restart(); b.reject(new Error(m.error)); return; }
+      if (m.done && !b.acc[m.job]) b.acc[m.job] = { rows: m.rows, n: m.n }; /* a run in one piece */
+      else this.append(b, m);
+      if (!m.done) { if (b.onRows) b.onRows(b.acc); return; }
+      const acc = b.acc[m.job];
+      b.results[m.job] = { rows: acc.rows.subarray(0, acc.n * this.cols), n: acc.n, message: m.message, rhsCalls: m.rhsCalls, ms: m.ms };
+      if (m.job === b.jobs.length - 1) { this.pending = null; b.resolve(b.results); }
+    }
+
+    /* The rows of a message after those of its run received before (a buffer that grows). */
+    append(b, m) {
+      const acc = b.acc[m.job] || (b.acc[m.job] = { rows: new Float64Array(Math.max(m.n, 1024) * this.cols), n: 0 });
+      const need = m.n * this.cols;
+      if (need > acc.rows.length) {
+        const grown = new Float64Array(Math.max(need, 2 * acc.rows.length));
+        grown.set(acc.rows.subarray(0, acc.n * this.cols));
+        acc.rows = grown;
+      }
+      acc.rows.set(m.rows, acc.n * this.cols);
+      acc.n = m.n;
+    }
+
+    restart() { this.worker.terminate(); this.start(); }
+
+    /* The worker stopped for good (a page that shows another model's runs). */
+    close() { this.pending = null; this.worker.terminate(); }
+
+    async run(jobs, onRows) {
+      if (this.pending) { /* a newer change: the older run stops */
+        const old = this.pending;
+        this.pending = null;
+        this.cancels++;
+        this.restart();
+        old.reject(Runner.cancelled);
+      }
+      const b = { batch: ++this.batch, jobs, onRows, acc: [], results: [] };
+      const done = new Promise((resolve, reject) => { b.resolve = resolve; b.reject = reject; });
+      done.catch(() => {}); /* handled by whoever awaits it; none when cancelled early */
+      this.pending = b;
+      try {
+        await this.ready;
+      } catch (e) {
+        if (this.pending === b) this.pending = null;
+        throw e;
+      }
+      if (this.pending === b) this.worker.postMessage({ batch: b.batch, jobs });
+      return done;
+    }
+  }
+  Runner.cancelled = { cancelled: true };
+
   class Live {
     constructor(data) {
       this.data = data;
@@ -49,45 +196,35 @@
       this.atSteps = !!L.at_steps;
       this.clicked = [];
       this.timing = {};
+      this.partialDraws = 0; /* drawings of a run being computed */
       this.template = document.getElementById('animate').cloneNode(true); /* the body's own markup */
       this.ready = this.instantiate();
     }
 
     async instantiate() {
-      /* the module the tool links imports nothing (cli/pages/live_page.c) */
-      const { instance } = await WebAssembly.instantiate(decode64(this.L.module), {});
-      this.x = instance.exports;
-      if (this.x._initialize) this.x._initialize();
-      /* a module of every built-in model (report --html --live): the one of this page */
-      if (this.data.choose !== undefined && this.x.dk_live_choose) this.x.dk_live_choose(this.data.choose);
-      if (!this.x.dk_live_setup()) throw new Error('the model could not be set up (out of memory)');
-      this.cols = this.x.dk_live_cols();
+      /* the module the tool links imports one function, dynkit.progress (live_run.c); a
+       * module of every built-in model (report --html --live) runs the one of this page */
+      this.runner = new Runner(await WebAssembly.compile(decode64(this.L.module)), this.data.choose);
+      await this.runner.ready;
+      this.cols = this.runner.cols;
     }
 
-    /* One run of the module: {rows (Float64Array, cols per row), n, message, rhsCalls}. */
-    runOnce(method, step, inits) {
-      const x = this.x, mem = () => x.memory.buffer;
-      const set = new Float64Array(mem(), x.dk_live_settings(), 9);
+    /* One run's settings for the worker (live_run.c's buffers): the method, the step, the
+     * span and tolerances, the parameters, the initial values and which are given. */
+    job(method, step, inits) {
+      const set = new Array(9).fill(0);
       set[S.t0] = this.t0; set[S.t1] = this.t1; set[S.step] = step;
       set[S.rtol] = this.rtol; set[S.atol] = this.atol; set[S.end] = this.L.end === 'grid' ? 1 : 0;
       set[S.atSteps] = this.atSteps && step === this.step ? 1 : 0; set[S.every] = this.L.every;
       set[S.maxRows] = RUN_ROWS;
-      const name = new TextEncoder().encode(method);
-      const mbuf = new Uint8Array(mem(), x.dk_live_method(), 64);
-      mbuf.fill(0); mbuf.set(name.subarray(0, 63));
-      new Float64Array(mem(), x.dk_live_params(), Math.max(this.params.length, 1)).set(this.params.map(p => p.value).concat(this.params.length ? [] : [0]));
-      const iv = new Float64Array(mem(), x.dk_live_inits(), this.states.length);
-      const gv = new Float64Array(mem(), x.dk_live_given(), this.states.length);
-      this.states.forEach((s, i) => {
+      const params = this.params.length ? this.params.map(p => p.value) : [0];
+      const iv = [], gv = [];
+      this.states.forEach(s => {
         const own = inits && inits[s.name] !== undefined;
-        iv[i] = own ? inits[s.name] : s.value;
-        gv[i] = own || s.given ? 1 : 0;
+        iv.push(own ? inits[s.name] : s.value);
+        gv.push(own || s.given ? 1 : 0);
       });
-      const n = x.dk_live_run();
-      const rows = n > 0 ? new Float64Array(mem(), x.dk_live_rows(), n * this.cols).slice() : new Float64Array(0);
-      const mp = x.dk_live_message(), bytes = new Uint8Array(mem());
-      let e = mp; while (bytes[e]) e++;
-      return { rows, n: Math.max(n, 0), message: new TextDecoder().decode(bytes.subarray(mp, e)), rhsCalls: x.dk_live_rhs_calls() };
+      return { method, step, settings: set, params, inits: iv, given: gv };
     }
 
     /* A run as the page's data (cli_json_series): its columns thinned to MAX_ROWS samples. */
@@ -109,32 +246,60 @@
       return this.adaptive[method] ? method + ', rtol ' + this.rtol + ', atol ' + this.atol : method + ', h = ' + step + ' ' + unit;
     }
 
-    /* The main run, the --compare runs and the clicked trajectories; the page redrawn
-     * (draw false: the first run, of the settings the tool's runs on the page were made
-     * with, which keeps its pictures: a mechanism's scene, an .ani animation). */
+    /* The main run, the --compare runs and the clicked trajectories, run by the worker; the
+     * page drawn as a long run computes (once a frame at most) and at the end (draw false:
+     * the first run, of the settings the tool's runs on the page were made with, which
+     * keeps its pictures: a mechanism's scene, an .ani animation). A promise of the main
+     * run; a newer rerun ends this one, whose promise then gives the newer one's. */
     rerun(draw = true) {
-      const t0 = performance.now();
-      this.kept = [];
-      const main = this.runOnce(this.method, this.step);
-      this.last = main;
-      const runs = [this.asSeries(main, this.label(this.method, this.step), this.method, this.step)];
+      const start = performance.now();
+      const phase = this.phaseNames();
+      const runs = [{ job: this.job(this.method, this.step), label: this.label(this.method, this.step), method: this.method, step: this.step }];
       for (const c of this.L.compare) {
         const step = c.step > 0 ? c.step : this.step;
-        runs.push(this.asSeries(this.runOnce(c.method, step), this.label(c.method, step), c.method, step));
+        runs.push({ job: this.job(c.method, step), label: this.label(c.method, step), method: c.method, step });
       }
-      const phase = this.phaseNames();
-      for (const p of this.clicked) {
-        const r = this.runOnce(this.method, this.step, p);
-        runs.push(this.asSeries(r, 'from ' + phase.map(nm => nm + ' = ' + DK.fmt(p[nm], 4)).join(', '), this.method, this.step));
-      }
-      const t1 = performance.now();
-      if (draw) this.redraw(runs);
-      const t2 = performance.now();
-      this.timing = { run_ms: t1 - t0, draw_ms: t2 - t1, total_ms: t2 - t0, samples: main.n, rhs_calls: main.rhsCalls };
-      this.showStatus();
-      this.showCommand();
-      this.showStates();
-      return main;
+      for (const p of this.clicked)
+        runs.push({ job: this.job(this.method, this.step, p), label: 'from ' + phase.map(nm => nm + ' = ' + DK.fmt(p[nm], 4)).join(', '), method: this.method, step: this.step });
+      /* the runs as the page's data: those begun (2 samples at least) */
+      const series = results => {
+        this.kept = []; /* the rows of the runs drawn, for the scene, the .ani */
+        return runs.map((r, i) => results[i] && results[i].n > 1 ? this.asSeries(results[i], r.label, r.method, r.step) : null).filter(Boolean);
+      };
+      let partial = null;
+      const onRows = draw ? acc => {
+        partial = acc;
+        if (this.frame) return;
+        this.frame = requestAnimationFrame(() => {
+          this.frame = 0;
+          if (this.current !== promise || !partial || !partial[0] || partial[0].n < 2) return;
+          this.redraw(series(partial.map(a => a && { rows: a.rows, n: a.n, message: '' })), true);
+          this.partialDraws++;
+        });
+      } : null;
+      const promise = this.current = this.runner.run(runs.map(r => r.job), onRows).then(results => {
+        const main = this.last = results[0];
+        const t1 = performance.now();
+        if (draw) this.redraw(series(results));
+        const t2 = performance.now();
+        this.timing = { run_ms: results.reduce((a, r) => a + r.ms, 0), draw_ms: t2 - t1, total_ms: t2 - start, samples: main.n, rhs_calls: main.rhsCalls };
+        this.showStatus();
+        this.showCommand();
+        this.showStates();
+        return main;
+      }, e => {
+        if (e === Runner.cancelled) return this.current;
+        throw e;
+      });
+      return promise;
+    }
+
+    /* A rerun from a control or a click: an error shown in the panel. */
+    rerunShown() {
+      this.rerun().catch(e => {
+        this.status.textContent = 'The run failed: ' + (e && e.message || e);
+        console.error(e);
+      });
     }
 
     /* The states of the phase plane, when both axes are states (else a click does nothing). */
@@ -147,8 +312,9 @@
 
     /* The page drawn with the new runs: in place (every plot keeps its canvas and takes the
      * new samples, DK.updateAnimate), else built again (a mechanism's scene and an .ani
-     * animation drawn from the live runs when their module gives their numbers). */
-    redraw(runs) {
+     * animation drawn from the live runs when their module gives their numbers); a run being
+     * computed (partial) is drawn only in place. */
+    redraw(runs, partial) {
       if (this.stopped) return; /* replaced by another model's (report --live) */
       const old = this.player;
       /* a mechanism's scene from the runs' scene inputs (live_scene.js), an .ani animation
@@ -156,7 +322,7 @@
       const mech = this.sceneOf(runs), ani = this.aniOf(runs);
       const staleAni = this.data.ani && !ani, stale = (this.data.mech && !mech) || staleAni;
       const data = Object.assign({}, this.data, { runs, span: [this.t0, this.t1], ani, mech, shows: stale ? (staleAni ? 'The .ani animation shows' : 'The mechanism\u2019s scene shows') + ' the run the page was written with; the live runs are drawn in the plots.' : this.data.shows });
-      if (DK.updateAnimate(old, data)) return;
+      if (DK.updateAnimate(old, data) || partial) return;
       const t = old ? old.t : null, playing = old ? old.playing : true;
       if (old) {
         old.pause();
@@ -220,7 +386,7 @@
         this.clicked.push({ [names[0]]: x, [names[1]]: y });
         if (this.clicked.length > MAX_CLICKED) this.clicked.shift();
         this.clearButton.disabled = false;
-        this.rerun();
+        this.rerunShown();
       });
     }
 
@@ -261,7 +427,7 @@
     changed() {
       if (this.pending) return;
       this.pending = true;
-      requestAnimationFrame(() => { this.pending = false; this.rerun(); });
+      requestAnimationFrame(() => { this.pending = false; this.rerunShown(); });
     }
 
     /* One row: name [unit], a slider and a number box for a parameter or initial value. */
@@ -320,7 +486,7 @@
         document.body.appendChild(a); a.click(); a.remove();
         setTimeout(() => URL.revokeObjectURL(url), 1000);
       } });
-      this.clearButton = E('button', { type: 'button', text: 'clear trajectories', disabled: 'disabled', onclick: () => { this.clicked = []; this.clearButton.disabled = true; this.rerun(); } });
+      this.clearButton = E('button', { type: 'button', text: 'clear trajectories', disabled: 'disabled', onclick: () => { this.clicked = []; this.clearButton.disabled = true; this.rerunShown(); } });
       const tools = E('div', { class: 'live-tools' }, [download].concat(this.phaseNames().length ? [this.clearButton] : []));
       panel.appendChild(head);
       panel.appendChild(this.status);
@@ -362,10 +528,11 @@
         else throw new Error('no parameter, initial value or setting ' + name);
       },
       get(name) { const it = find(name); return it ? it.value : live[name]; },
-      /* rerun with the current settings and redraw: {names, t, y} of the main run */
+      /* rerun with the current settings and redraw: {names, t, y} of the main run (of a
+       * newer run when a change comes before this one ends) */
       async run() {
         await live.ready;
-        const r = live.rerun();
+        const r = await live.rerun();
         const names = live.model.states.map(s => s.name), n = names.length, t = [], y = [];
         for (let k = 0; k < r.n; k++) {
           t.push(r.rows[k * live.cols]);
@@ -375,7 +542,8 @@
       },
       command: () => live.command(),
       csv: () => live.csv(),
-      timing: () => Object.assign({}, live.timing),
+      /* the last rerun's times, and how often a run was drawn as it computed and cancelled */
+      timing: () => Object.assign({ partial_draws: live.partialDraws, cancelled: live.runner ? live.runner.cancels : 0 }, live.timing),
       clicked: () => live.clicked.map(p => Object.assign({}, p)),
       /* the mechanism's scene drawn for the main run: its times, each body's pose (x, then
        * R row-major, 12 arrays) and each shape's numbers, or null */
@@ -383,8 +551,7 @@
       /* the .ani animation's numbers drawn for the main run (data.ani.runs[0]), or null */
       ani: () => (live.aniRuns ? live.aniRuns[0] : null)
     };
-    live.ready.then(() => {
-      live.rerun(false);
+    live.ready.then(() => live.rerun(false)).then(() => {
       live.hookPhase();
       document.body.dataset.live = 'ready';
     }).catch(e => {

@@ -42,6 +42,7 @@
         if (i >= 0) DK.players.splice(i, 1);
       }
       live.stopped = true;
+      if (live.runner) live.runner.close();
       DK.lastLive = null;
     }
     function choose(name) {

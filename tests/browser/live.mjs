@@ -14,6 +14,7 @@
 // - `dynkit plot vanderpol --x y1 --y y2 --live`: the same, on the page of a plot;
 // - a click in the phase plane adds a trajectory that starts there;
 // - a long run is drawn as it computes, and a newer change cancels it;
+// - the sliders of the initial values on a model file's phase-plane axes span its window;
 // - at 390 px wide nothing scrolls sideways; no console error; hostile text in a model file
 //   (title, units) stays text;
 // - without the WebAssembly library the page is static and the tool names the packages.
@@ -79,7 +80,9 @@ const pages = [
   { name: 'plane', args: ['plane'], set: { k: 25, dsX: 1.5 }, timing: true },
   { name: 'cart', args: ['cart'], set: { Fx: -40 }, timing: true },
   { name: 'lorenz', args: [ex('examples/models/lorenz.ode')], set: { rho: 24, x: 2 }, exact: true, phase: true },
-  { name: 'morris-lecar', args: [ex('tests/browser/morris_lecar.ode')], set: {} },
+  // ranges: the sliders' [min, max]: the file's phase window (@ xp=v, yp=w, xlo..yhi) for
+  // the initial values on its axes, the rule around the default for a parameter (i = 100)
+  { name: 'morris-lecar', args: [ex('tests/browser/morris_lecar.ode')], set: {}, ranges: { v: [-75, 45], w: [0, 0.6], i: [0, 200] } },
   { name: 'double-pendulum-mech', args: [ex('examples/mechanisms/double_pendulum.mech')], set: { m2: 1.5 } },
   { name: 'hostile', args: [hostile], set: { k: 3 }, hostile: true },
   { name: 'plot-vanderpol', command: 'plot', args: ['vanderpol'], extra: ['--x', 'y1', '--y', 'y2'], set: { mu: 0.5, y1: 1 }, exact: true, phase: true, slider: 'mu' },
@@ -294,6 +297,16 @@ for (const p of pages.filter(q => !q.failed)) {
     check(r.cancelled === 1, `a newer change cancels it (${r.cancelled} run cancelled)`);
     check(r.same && r.alone && r.shownEnd === r.t1, `the page shows the newer run (to t = ${r.shownEnd}, ${r.n} samples), given to both callers, equal to a run of its own`);
     await page.evaluate(() => { window.dynkitLive.set('mu', 1.7); return window.dynkitLive.run(); });
+  }
+
+  if (p.ranges) {
+    for (const [name, want] of Object.entries(p.ranges)) {
+      const got = await page.evaluate(n => {
+        const s = [...document.querySelectorAll('.live input[type=range]')].find(e => e.getAttribute('aria-label') === n);
+        return s ? [Number(s.min), Number(s.max)] : null;
+      }, name);
+      check(got && got[0] === want[0] && got[1] === want[1], `the slider of ${name} spans [${want}] (${got})`);
+    }
   }
 
   // a slider moved with the keyboard changes the curve and the command line

@@ -24,9 +24,11 @@
     return out;
   }
 
-  /* The range of a slider around a value: [0, 2v] for a parameter v > 0 ([2v, 0] below 0),
-   * v +- max(|v|, 1) for an initial value, [-1, 1] around 0; widened to take a typed value. */
-  function rangeOf(v, isState) {
+  /* The range of a slider: the range the model file declares (declared: [lo, hi], lo < hi),
+   * else around the value: [0, 2v] for a parameter v > 0 ([2v, 0] below 0), v +- max(|v|, 1)
+   * for an initial value, [-1, 1] around 0; widened to take a typed value. */
+  function rangeOf(v, isState, declared) {
+    if (declared) return [Math.min(declared[0], v), Math.max(declared[1], v)];
     if (isState || v === 0) { const d = Math.max(Math.abs(v), 1); return [v - d, v + d]; }
     return v > 0 ? [0, 2 * v] : [2 * v, 0];
   }
@@ -430,17 +432,27 @@
       requestAnimationFrame(() => { this.pending = false; this.rerunShown(); });
     }
 
+    /* The range a model file declares for a slider: XPPAUT's window of the phase plane
+     * (@ xlo, xhi, ylo, yhi) for the initial value of the state on its axis (@ xp, yp), where
+     * a click starts a trajectory; else null (no model kind declares a parameter's range). */
+    declaredRange(item, isState) {
+      const m = this.model, axes = m.phase, w = m.phase_window;
+      if (!isState || !axes || !w) return null;
+      const a = axes.indexOf(item.name), r = a >= 0 ? w[a] : null;
+      return r && r[0] < r[1] ? r : null;
+    }
+
     /* One row: name [unit], a slider and a number box for a parameter or initial value. */
     valueRow(item, isState) {
-      const E = DK.el;
-      let [lo, hi] = rangeOf(item.value, isState);
+      const E = DK.el, declared = this.declaredRange(item, isState);
+      let [lo, hi] = rangeOf(item.value, isState, declared);
       const slider = E('input', { type: 'range', min: lo, max: hi, step: 'any', value: item.value, 'aria-label': item.name });
       const box = E('input', { type: 'number', step: 'any', value: String(item.value), 'aria-label': item.name + ' value' });
       const apply = (v, from) => {
         if (!isFinite(v)) return;
         item.value = v;
         if (isState) item.given = true;
-        if (v < lo || v > hi) { [lo, hi] = rangeOf(v, isState); slider.min = lo; slider.max = hi; }
+        if (v < lo || v > hi) { [lo, hi] = declared ? [Math.min(lo, v), Math.max(hi, v)] : rangeOf(v, isState); slider.min = lo; slider.max = hi; }
         if (from !== slider) slider.value = v;
         if (from !== box) box.value = String(v);
         this.changed();

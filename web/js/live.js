@@ -525,8 +525,13 @@
     live.player = DK.buildAnimate(data); /* the tool's run, until the module runs */
     live.buildControls();
     const find = name => live.params.find(p => p.name === name) || live.states.find(s => s.name === name);
+    /* the module set up in its worker and its first run done */
+    const started = live.ready.then(() => live.rerun(false)).then(() => {
+      live.hookPhase();
+      document.body.dataset.live = 'ready';
+    });
     window.dynkitLive = {
-      ready: live.ready,
+      ready: started,
       /* a parameter or an initial value (as its slider does); else a setting: method, step,
        * t0, t1, rtol, atol */
       set(name, value) {
@@ -563,10 +568,7 @@
       /* the .ani animation's numbers drawn for the main run (data.ani.runs[0]), or null */
       ani: () => (live.aniRuns ? live.aniRuns[0] : null)
     };
-    live.ready.then(() => live.rerun(false)).then(() => {
-      live.hookPhase();
-      document.body.dataset.live = 'ready';
-    }).catch(e => {
+    started.catch(e => {
       live.status.textContent = 'This page could not run the model: ' + e;
       live.status.className = 'error';
       document.body.dataset.live = 'failed';

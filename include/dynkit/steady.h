@@ -108,8 +108,11 @@ typedef struct dyn_steady_problem {
  * B = A_UU + G_U^+ G_F A_FU, G = A_min's columns U and F = E \ U on E's rows. Labels: LP
  * (the parameter's tangent component), BP (a real eigenvalue of B through zero: det B times
  * the sign of that component changes sign), HB (a complex pair of B crosses the imaginary
- * axis; l1 is not computed: NAN), UZ, EP. o->ip2, o->periodic and branch switching are not
- * used. Returns 0, or DYN_ERR_ARG with a message (bad options, no steady motion near y0,
+ * axis; l1 is not computed: NAN), UZ, EP. At a BP where the continuation's equations are
+ * singular (another family of steady motions crosses) the other branch is followed both
+ * ways and appended as branches of their own (parent, parent_point set) unless
+ * o->no_switch, while d has fewer than o->max_branches; a BP where they are regular gets a
+ * note in info->message. o->ip2 and o->periodic are not used. Returns 0, or DYN_ERR_ARG with a message (bad options, no steady motion near y0,
  * unknowns that the equations do not determine). info may be NULL. */
 int dyn_steady_continue(const dyn_model *m, const void *par, const double *y0,
                         const dyn_cont_opts *o, const dyn_steady_problem *sp, dyn_diagram *d,

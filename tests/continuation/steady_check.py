@@ -14,6 +14,8 @@
   (A + m r^2) theta'' = (m g r - W^2 C (C + m r^2)/A) theta with A = m r^2/4, C = m r^2/2):
   BP there within 1e-8 for two radii and both choices of the unknowns, the lean's eigenvalues
   +-sqrt((4 g - 12 W^2 r)/(5 r)) (real below, imaginary above) at --at values within 1e-8.
+- The bicycle's steady turns, switched from the capsize BP: two mirror-image branches
+  leaving along the null vector of the paper's g K0 + v^2 K2, with its yaw kinematics.
 - Bad input: an unknown that is not a steady equation's state, default unknowns that the
   equations do not determine, --par2: refused with the reason and a non-zero status.
 - Every example that dynkit continue --help shows runs.
@@ -93,9 +95,51 @@ def benchmark_speeds():
     return 0.5 * (lo + hi), capsize
 
 
-def points(p):
+def points(p, first_only=True):
+    """the points of the first branch (of every branch with first_only False)"""
     d = json.loads(p.stdout)
-    return [pt for b in d["branches"] for pt in b["points"]]
+    return [pt for b in d["branches"] if not first_only or b["parent"] is None
+            for pt in b["points"]]
+
+
+def steady_turns(d, capsize):
+    """the two branches switched from at the capsize BP: the bicycle's steady turns. At the
+    pitchfork the lean phi and steer delta leave along the null vector of g K0 + v^2 K2
+    (the paper's delta is the file's -delta: its z axis points down), v - v_c = O(phi^2),
+    the yaw rate obeys the benchmark's kinematics psi' = v delta cos(lam) / w (eq. 5.2)
+    to O(phi^2), and the two branches are mirror images (phi, delta, psi' -> -phi, -delta,
+    -psi' at the same v)."""
+    turns = [b for b in d["branches"] if b["parent"] == 1]
+    check(len(turns) == 2 and all(b["points"][0]["label"] == "BP" for b in turns),
+          "bicycle: two steady-turn branches switched from the capsize BP (%d)" % len(turns))
+    if len(turns) != 2:
+        return
+    Kc = G * K0 + capsize * capsize * K2
+    ratio = Kc[0, 0] / Kc[0, 1]  # the file's delta/phi: minus the paper's -Kc00/Kc01
+    kin = math.cos(math.pi / 10) / 1.02
+    a, b = turns[0]["points"][1:4], turns[1]["points"][1:4]
+    mirror = max(max(abs(p["v"] - q["v"]), abs(p["state"]["phi"] + q["state"]["phi"]),
+                     abs(p["state"]["delta"] + q["state"]["delta"]),
+                     abs(p["state"]["dpsi"] + q["state"]["dpsi"])) for p, q in zip(a, b))
+    check(len(a) == 3 and len(b) == 3 and mirror < 1e-9,
+          "bicycle: the two steady-turn branches are mirror images (%.2g)" % mirror)
+    # Richardson in phi^2 on the two points nearest the BP: the limits at phi = 0
+    p1, p2 = a[0]["state"], a[1]["state"]
+    f1, f2 = p1["phi"] ** 2, p2["phi"] ** 2
+
+    def limit(g1, g2):
+        return (g1 * f2 - g2 * f1) / (f2 - f1)
+
+    r = limit(p1["delta"] / p1["phi"], p2["delta"] / p2["phi"])
+    k = limit(p1["dpsi"] / (a[0]["v"] * p1["delta"]), p2["dpsi"] / (a[1]["v"] * p2["delta"]))
+    c1, c2 = ((pt["v"] - capsize) / pt["state"]["phi"] ** 2 for pt in a[:2])
+    check(abs(p1["phi"]) < 0.05 and abs(r - ratio) < 1e-5 * abs(ratio),
+          "bicycle: the steady turns leave along g K0 + v^2 K2's null vector: delta/phi -> "
+          "%.9f (matrices: %.9f)" % (r, ratio))
+    check(abs(k - kin) < 1e-5 * kin,
+          "bicycle: their yaw rate psi'/(v delta) -> %.9f = cos(lam)/w %.9f" % (k, kin))
+    check(abs(c1 - c2) < 0.02 * abs(c1), "bicycle: a pitchfork, v - v_c = c phi^2 (c = %.4g "
+          "and %.4g at the first two points)" % (c1, c2))
 
 
 def bicycle():
@@ -108,6 +152,7 @@ def bicycle():
     if p.returncode != 0:
         return
     pts = points(p)
+    steady_turns(json.loads(p.stdout), capsize)
     hb = [pt["v"] for pt in pts if pt["label"] == "HB"]
     bp = [pt["v"] for pt in pts if pt["label"] == "BP"]
     check(len(hb) == 1 and abs(hb[0] - WEAVE_PAPER) < 1e-8 and abs(hb[0] - weave) < 1e-8,
@@ -156,6 +201,9 @@ def disk():
             if p.returncode != 0:
                 continue
             pts = points(p)
+            check(len(json.loads(p.stdout)["branches"]) == 1 and "no other branch" in p.stderr,
+                  "disk r=%g --unknown %s: its BP has no other branch of steady motions "
+                  "(the equations are regular there), and a note says so" % (r, unknown))
             bp = [pt["W"] for pt in pts if pt["label"] == "BP"]
             check(len(bp) == 1 and abs(bp[0] - wc) < 1e-8,
                   "disk r=%g --unknown %s: BP at W = %s, sqrt(g/(3r)) = %.15g"

@@ -263,7 +263,8 @@ void cont_write_text(FILE *f, const cont_view *v)
                 fputs(", ...", f);
             if (isfinite(p->period))
                 fprintf(f, "  period = %s", CLI_NUM(p->period));
-            if (p->label == DYN_LABEL_HB && (b->kind == DYN_BRANCH_EQUILIBRIUM || b->kind == DYN_BRANCH_STEADY)) {
+            if ((p->label == DYN_LABEL_HB || p->label == DYN_LABEL_HH) &&
+                (b->kind == DYN_BRANCH_EQUILIBRIUM || b->kind == DYN_BRANCH_STEADY)) {
                 fprintf(f, "  omega = %s", CLI_NUM(p->omega));
                 if (isfinite(p->l1))
                     fprintf(f, ", l1 = %s (%s)", CLI_NUM(p->l1), hopf_kind(p->l1));

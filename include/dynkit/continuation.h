@@ -34,6 +34,8 @@ typedef enum dyn_cont_label {
     DYN_LABEL_GH,  /* generalized Hopf (first Lyapunov coefficient zero on a Hopf curve) */
     DYN_LABEL_EP,  /* end point: a branch's first and last point */
     DYN_LABEL_UZ,  /* a user point: a parameter value asked for (dyn_cont_opts.at) */
+    DYN_LABEL_HH,  /* Hamiltonian Hopf: two imaginary pairs collide and leave the axis (a
+                    * conservative steady motion's loss of stability) */
     DYN_LABEL_COUNT
 } dyn_cont_label;
 
@@ -60,7 +62,7 @@ typedef struct dyn_branch_point {
     int stable;     /* 1 asymptotically stable, 0 not, -1 not known (curves, failures) */
     /* HB: the first Lyapunov coefficient l1 (< 0 supercritical, > 0 subcritical) and the
      * frequency omega; on a Hopf curve omega^2 for every point (negative past a BT: a
-     * neutral saddle); NAN where not defined */
+     * neutral saddle); HH: the frequency where the two pairs meet; NAN where not defined */
     double l1;
     double omega;
 } dyn_branch_point;

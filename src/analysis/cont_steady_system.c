@@ -219,6 +219,10 @@ static int sc_tests(void *ctx, const double *z, const double *t, double det, dou
     count[1] = -1;
     double omega;
     psi[2] = hopf_test(c, &count[2], &omega);
+    /* a conservative spectrum leaves the axis only in collisions: no Hopf crossing */
+    psi[3] = sc_krein_test(nu, c->re, c->im, c->tol_b, &count[3], NULL);
+    if (count[3] != -2)
+        psi[2] = -1.0;
     return 0;
 }
 
@@ -245,7 +249,10 @@ static int sc_store(void *ctx, const double *z, const double *t, dyn_cont_label 
     double omega;
     hopf_test(c, &unstable, &omega);
     pt.omega = label == DYN_LABEL_HB ? omega : NAN;
-    const int critical = label == DYN_LABEL_LP || label == DYN_LABEL_BP || label == DYN_LABEL_HB;
+    if (label == DYN_LABEL_HH)
+        sc_krein_test(c->nu, c->re, c->im, c->tol_b, &unstable, &pt.omega);
+    const int critical = label == DYN_LABEL_LP || label == DYN_LABEL_BP ||
+                         label == DYN_LABEL_HB || label == DYN_LABEL_HH;
     pt.stable = !critical && dyn_classify(c->nu, c->re, c->tol_b) == DYN_STABLE;
     if (dyn_branch_append(&c->d->branches[c->bi], &pt, c->y, NULL, c->re, c->im) < 0) {
         snprintf(c->message, sizeof c->message, "out of memory");
@@ -262,10 +269,11 @@ void sc_system(cont_system *s, sc_ctx *c)
     s->ctx = c;
     s->residual = sc_residual;
     s->jacobian = sc_jacobian;
-    s->n_tests = 3;
+    s->n_tests = 4;
     s->test_label[0] = DYN_LABEL_LP;
     s->test_label[1] = DYN_LABEL_BP;
     s->test_label[2] = DYN_LABEL_HB;
+    s->test_label[3] = DYN_LABEL_HH;
     s->tests = sc_tests;
     s->store = sc_store;
 }

@@ -34,7 +34,16 @@ int sc_state_at(sc_ctx *c, const double *z);
 /* B and its sorted eigenvalues (c->B, c->re, c->im) at the state of the last sc_state_at:
  * 0 or non-zero with c->message */
 int sc_reduce(sc_ctx *c);
-/* s: the system of c (residual, Jacobian, tests LP, BP, HB, store) */
+/* The Hamiltonian Hopf test on the eigenvalues (re, im: n values) of a steady motion
+ * (cont_steady_krein.c): where the spectrum is symmetric under lambda -> -lambda (within
+ * 1e-6 of the largest modulus), the discriminant of the mu = lambda^2 (one per pair), each
+ * factor scaled to order one: it changes sign where two imaginary pairs collide and leave
+ * the axis; *off_axis the eigenvalues whose |real part| is above tol, *omega (NULL: not
+ * wanted) the mean |im| of the two nearest mu's eigenvalues. Elsewhere 1, *off_axis -2,
+ * *omega NAN. */
+double sc_krein_test(int n, const double *re, const double *im, double tol, int *off_axis,
+                     double *omega);
+/* s: the system of c (residual, Jacobian, tests LP, BP, HB, HH, store) */
 void sc_system(cont_system *s, sc_ctx *c);
 /* One branch from z along the unit tangent t, appended to c->d as a DYN_BRANCH_STEADY branch
  * (start: the label of z; parent, parent_point: where it was switched from, 0 and -1 for

@@ -16,6 +16,9 @@
   +-sqrt((4 g - 12 W^2 r)/(5 r)) (real below, imaginary above) at --at values within 1e-8.
 - The bicycle's steady turns, switched from the capsize BP: two mirror-image branches
   leaving along the null vector of the paper's g K0 + v^2 K2, with its yaw kinematics.
+- The sleeping top (examples/mechanisms/sleeping_top.mech) continued upright in g, C and L:
+  HH (two imaginary pairs collide and leave the axis) at C^2 W^2 = 4 (A + m L^2) m g L
+  within 1e-10, its frequency and the eigenvalues either side the closed form's.
 - Bad input: an unknown that is not a steady equation's state, default unknowns that the
   equations do not determine, --par2: refused with the reason and a non-zero status.
 - Every example that dynkit continue --help shows runs.
@@ -224,6 +227,71 @@ def disk():
                       "asymptotically stable" % (r, W, lean, "+-" if lam2 > 0 else "+-i", lam2))
 
 
+def sleeping_top():
+    """The sleeping top (examples/mechanisms/sleeping_top.mech: upright, spin W = dphi, mass m,
+    mass centre at L from the tip, inertias A about the mass centre and C about the axis):
+    linearized, A' lambda^2 - i C W lambda - m g L = 0 in alpha + i beta, A' = A + m L^2, so
+    its two imaginary pairs i (C W +- sqrt(C^2 W^2 - 4 A' m g L)) / (2 A') meet at
+    C^2 W^2 = 4 A' m g L (Maievski's limit) with frequency C W / (2 A') and leave the axis
+    as +-sqrt(4 A' m g L - C^2 W^2) / (2 A') + i C W / (2 A'): HH there, in g for two spins,
+    in C, and in L (a cubic), within 1e-10; at --at values the eigenvalues are these."""
+    top = os.path.join(SOURCE, "examples", "mechanisms", "sleeping_top.mech")
+    m, A, C, L, g = 1.0, 0.002, 0.004, 0.1, G
+    cubic = [r.real for r in np.roots([4 * m * m * g, 0, 4 * A * m * g, -(C * 60) ** 2])
+             if abs(r.imag) < 1e-12 and r.real > 0]
+    cases = [("g", 60, C * C * 3600 / (4 * (A + m * L * L) * m * L), ["--set", "g=5",
+                                                                     "--opt", "parmax=20"]),
+             ("g", 80, C * C * 6400 / (4 * (A + m * L * L) * m * L), ["--set", "g=5",
+                                                                     "--opt", "parmax=30"]),
+             ("C", 60, math.sqrt(4 * (A + m * L * L) * m * g * L) / 60,
+              ["--opt", "ds=-0.0001", "--opt", "dsmin=1e-6", "--opt", "dsmax=0.0002",
+               "--opt", "parmin=0.002"]),
+             ("L", 60, cubic[0], ["--opt", "ds=0.002", "--opt", "dsmax=0.01",
+                                  "--opt", "parmax=0.2"])]
+    for par, W, crit, extra in cases:
+        at = "%s=%r,%r" % (par, 0.95 * crit, 1.1 * crit)
+        p = run([top, "--par", par, "--init", "dphi=%d" % W, "--unknown",
+                 "alpha,beta,dalpha,dbeta", "--at", at, "--json"] + extra,
+                "top_%s_%d" % (par, W))
+        what = "sleeping top in %s, W = %d" % (par, W)
+        check(p.returncode == 0, what + ": runs (status %d)" % p.returncode)
+        if p.returncode != 0:
+            continue
+        pts = points(p)
+        hh = [pt for pt in pts if pt["label"] == "HH"]
+        other = [pt["label"] for pt in pts if pt["label"] in ("HB", "BP", "LP")]
+        check(len(hh) == 1 and abs(hh[0][par] - crit) < 1e-10 * crit and not other,
+              what + ": HH at %s (closed form %.15g), no HB, BP, LP %s"
+              % ([pt[par] for pt in hh], crit, other))
+        if len(hh) != 1:
+            continue
+
+        def parts(pt):
+            q = dict(m=m, A=A, C=C, L=L, g=g)
+            q[par] = pt[par]
+            Ap = q["A"] + q["m"] * q["L"] ** 2
+            return Ap, q["C"] * W, 4 * Ap * q["m"] * q["g"] * q["L"]
+
+        Ap, CW, _ = parts(hh[0])
+        check(abs(hh[0]["omega"] - CW / (2 * Ap)) < 1e-8 * CW / (2 * Ap),
+              what + ": omega at HH %.12g, C W / (2 A') = %.12g" % (hh[0]["omega"], CW / (2 * Ap)))
+        worst, count = 0.0, 0
+        for pt in pts:
+            if pt["label"] != "UZ":
+                continue
+            Ap, CW, D = parts(pt)
+            s = complex(CW * CW - D) ** 0.5
+            roots = [1j * (CW + s) / (2 * Ap), 1j * (CW - s) / (2 * Ap)]
+            want = sorted(roots + [z.conjugate() for z in roots], key=lambda z: (z.real, z.imag))
+            got = sorted((complex(a, b) for a, b in pt["eigenvalues"]),
+                         key=lambda z: (z.real, z.imag))
+            worst = max(worst, max(abs(a - b) for a, b in zip(got, want)) / abs(want[0]))
+            count += 1
+        check(count == 2 and worst < 1e-8,
+              what + ": the eigenvalues at 0.95 and 1.1 times the limit are the closed form's "
+              "(%.2g relative)" % worst)
+
+
 def refusals():
     p = run([DISK, "--par", "W", "--set", "W=2", "--opt", "parmax=6"], "disk_default")
     check(p.returncode == 1 and "--unknown" in p.stderr and "determine" in p.stderr,
@@ -253,6 +321,7 @@ def help_examples():
 def main():
     bicycle()
     disk()
+    sleeping_top()
     refusals()
     help_examples()
     if FAILED:

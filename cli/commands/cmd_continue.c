@@ -46,6 +46,7 @@ static void continue_help(void)
          "turns at its capsize speed), that branch is followed both ways. HH (Hamiltonian\n"
          "Hopf): two imaginary pairs of a conservative steady motion collide and leave the\n"
          "axis (the sleeping top below its critical spin), with the frequency there.\n"
+         "With --par2, the curves of its folds and Hopf points in the two parameters.\n"
          "\n"
          "Settings (XPPAUT's AUTO names): a model file's @ lines give them (ntst, ncol, nmax,\n"
          "npr, ds, dsmin, dsmax, parmin, parmax, autoxmin, autoxmax, autoymin, autoymax),\n"

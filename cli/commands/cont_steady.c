@@ -101,11 +101,14 @@ int cont_steady_run(const char *spec, const cli_run *run, const cont_steady_args
         return CLI_OK;
     }
     *used = 1;
-    if (rc == CLI_OK && o->ip2 >= 0)
-        rc = cli_usage_error("continue", "--par2: curves of steady motions in two parameters "
-                                         "are not computed; give --par alone");
     if (rc == CLI_OK)
         rc = following(m, run->par, o->ip, follows);
+    /* the states that follow the second parameter too (held's space, filled later) */
+    if (rc == CLI_OK && o->ip2 >= 0) {
+        rc = following(m, run->par, o->ip2, held);
+        for (int i = 0; i < n && rc == CLI_OK; i++)
+            follows[i] |= held[i];
+    }
     /* a state given by --init is held at that value */
     for (int g = 0; g < a->n_init && rc == CLI_OK; g++) {
         const char *eq = strchr(a->init[g], '=');

@@ -112,7 +112,9 @@ typedef struct dyn_steady_problem {
  * singular (another family of steady motions crosses) the other branch is followed both
  * ways and appended as branches of their own (parent, parent_point set) unless
  * o->no_switch, while d has fewer than o->max_branches; a BP where they are regular gets a
- * note in info->message. o->ip2 and o->periodic are not used. Returns 0, or DYN_ERR_ARG with a message (bad options, no steady motion near y0,
+ * note in info->message. With o->ip2 >= 0 the curves of folds and of Hopf
+ * points through each LP and HB in the two parameters follow (DYN_BRANCH_FOLD and
+ * DYN_BRANCH_HOPF branches: no points located on them). o->periodic is not used. Returns 0, or DYN_ERR_ARG with a message (bad options, no steady motion near y0,
  * unknowns that the equations do not determine). info may be NULL. */
 int dyn_steady_continue(const dyn_model *m, const void *par, const double *y0,
                         const dyn_cont_opts *o, const dyn_steady_problem *sp, dyn_diagram *d,

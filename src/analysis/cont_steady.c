@@ -172,6 +172,8 @@ int dyn_steady_continue(const dyn_model *m, const void *par, const double *y0,
         return fail(info, "a NULL argument");
     if (o->ip < 0 || o->ip >= m->n_params)
         return fail(info, "the parameter's index is out of range");
+    if (o->ip2 >= m->n_params || o->ip2 == o->ip)
+        return fail(info, "the second parameter must be another one");
     if (!(o->ds != 0.0) || !(o->dsmin > 0.0) || !(o->dsmax >= o->dsmin) ||
         !(fabs(o->ds) >= o->dsmin) || !isfinite(o->dsmax))
         return fail(info, "the steps must satisfy 0 < dsmin <= |ds| <= dsmax (finite)");
@@ -182,7 +184,6 @@ int dyn_steady_continue(const dyn_model *m, const void *par, const double *y0,
         return fail(info, "give at least one unknown, and no more than the steady equations");
     cont_model cm;
     dyn_cont_opts oc = *o;
-    oc.ip2 = -1;
     if (cont_model_init(&cm, m, par, &oc))
         return fail(info, "out of memory");
     const size_t N = (size_t)n, NU = (size_t)nu, NE = (size_t)ne;
@@ -195,6 +196,7 @@ int dyn_steady_continue(const dyn_model *m, const void *par, const double *y0,
     c.nu = nu;
     c.ne = ne;
     c.d = d;
+    c.p2 = NAN;
     int *ints = malloc((3 * N + 3 * NE + NU) * sizeof *ints);
     const size_t nd = 4 * N + 5 * N * N + dyn_linearize_work_size(n) + NE * NE + NU * NE +
                       3 * NU * NU + 6 * NU + 4;
@@ -273,6 +275,9 @@ int dyn_steady_continue(const dyn_model *m, const void *par, const double *y0,
     /* the other branches at the branch points */
     char note[256] = "";
     if (rc == 0 && !o->no_switch && sc_switch_all(&c, &s, &w, o, first, note, sizeof note))
+        rc = fail(info, c.message[0] ? c.message : "out of memory");
+    /* the curves of folds and Hopf points in two parameters */
+    if (rc == 0 && o->ip2 >= 0 && sc_curves_all(&c, &s, o, first, note, sizeof note))
         rc = fail(info, c.message[0] ? c.message : "out of memory");
     if (rc == 0 && c.dropped > 1e-8)
         snprintf(info->message, sizeof info->message,

@@ -23,7 +23,7 @@ int sc_state_at(sc_ctx *c, const double *z)
 {
     cont_model *cm = c->cm;
     const dyn_steady_problem *sp = c->sp;
-    if (cont_model_set(cm, z[c->nu], NAN))
+    if (cont_model_set(cm, z[c->nu], c->p2))
         return -1;
     dyn_model_initial_state(cm->m, cm->par, c->y);
     for (int i = 0; i < c->n; i++)
@@ -214,15 +214,20 @@ static int sc_tests(void *ctx, const double *z, const double *t, double det, dou
         return -1;
     psi[0] = t[nu];
     count[0] = -1;
-    memcpy(c->Bc, c->B, (size_t)nu * (size_t)nu * sizeof *c->B);
-    psi[1] = scaled_det(nu, c->Bc) * (t[nu] < 0.0 ? -1.0 : 1.0);
-    count[1] = -1;
     double omega;
     psi[2] = hopf_test(c, &count[2], &omega);
     /* a conservative spectrum leaves the axis only in collisions: no Hopf crossing */
     psi[3] = sc_krein_test(nu, c->re, c->im, c->tol_b, &count[3], NULL);
-    if (count[3] != -2)
+    const int conservative = count[3] != -2;
+    if (conservative)
         psi[2] = -1.0;
+    /* det B times the sign of the parameter's tangent component, so that a fold, where
+     * det B changes sign with it, is LP alone; a conservative spectrum's det B, the product
+     * of the -lambda^2 of its pairs, only touches zero at a fold (a pair through 0 and
+     * back to the axis) and changes sign where a real pair crosses 0: det B itself */
+    memcpy(c->Bc, c->B, (size_t)nu * (size_t)nu * sizeof *c->B);
+    psi[1] = scaled_det(nu, c->Bc) * (t[nu] < 0.0 && !conservative ? -1.0 : 1.0);
+    count[1] = -1;
     return 0;
 }
 

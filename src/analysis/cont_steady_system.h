@@ -23,12 +23,13 @@ typedef struct sc_ctx {
     double *y, *f, *A, *P, *Amin, *lwork, *rwork, *AE, *S, *H, *B, *Bc, *re, *im;
     double tol_b;       /* dyn_stability_tol of B at the last reduction */
     double dropped;     /* the largest |f| of the equations left out, relative */
+    double p2;          /* the second parameter's value (NAN: its value in par, or none) */
     dyn_diagram *d;
     int bi;
     char message[256];
 } sc_ctx;
 
-/* c->y and c->f for z = (u, p): the parameter prepared, the base state, the unknowns, the
+/* c->y and c->f for z = (u, p) (and c->p2): the parameters prepared, the base state, the unknowns, the
  * dependent states completed; 0 or non-zero (c->message set when the completion failed) */
 int sc_state_at(sc_ctx *c, const double *z);
 /* B and its sorted eigenvalues (c->B, c->re, c->im) at the state of the last sc_state_at:
@@ -52,5 +53,13 @@ void sc_system(cont_system *s, sc_ctx *c);
 int sc_follow(sc_ctx *c, const cont_system *s, cont_work *w, const dyn_cont_opts *o,
               const double *z_bp, const double *z, const double *t, dyn_cont_label start,
               int parent, long parent_point);
+
+/* With o->ip2 >= 0: from every LP and HB of the branches of c->d from index first on, the
+ * curve of folds or of Hopf points in (o->ip, o->ip2) followed both ways
+ * (cont_steady_curves.c), appended as DYN_BRANCH_FOLD or DYN_BRANCH_HOPF branches (parent
+ * and parent_point set) while c->d has fewer than o->max_branches; s1 the branch's system.
+ * A curve that cannot be started gets a sentence appended to note. 0, or -1 (c->message). */
+int sc_curves_all(sc_ctx *c, const cont_system *s1, const dyn_cont_opts *o, int first,
+                  char *note, size_t notelen);
 
 #endif /* DYN_ANALYSIS_CONT_STEADY_SYSTEM_H */

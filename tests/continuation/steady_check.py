@@ -20,7 +20,11 @@
   HH (two imaginary pairs collide and leave the axis) at C^2 W^2 = 4 (A + m L^2) m g L
   within 1e-10, its frequency and the eigenvalues either side the closed form's.
 - Bad input: an unknown that is not a steady equation's state, default unknowns that the
-  equations do not determine, --par2: refused with the reason and a non-zero status.
+  equations do not determine, --par2 the same as --par: refused with the reason and a
+  non-zero status.
+- --par2: the heavy top's fold of steady precessions (top.mech, theta = 30 deg held) in
+  (g, L) on the closed form C^2 phi'^2 = 4 (A + m L^2 - C) cos(theta) m g L; the bicycle's
+  weave speed as its trail c changes, at the curve's points the HB of one-parameter runs.
 - Every example that dynkit continue --help shows runs.
 
 Usage: steady_check.py DYNKIT SOURCE_DIR ARTIFACTS_DIR. Exit 77 without NumPy."""
@@ -292,6 +296,68 @@ def sleeping_top():
               "(%.2g relative)" % worst)
 
 
+def par2_fold():
+    """the top's two steady precession rates at a fixed lean, the roots of
+    (I1 - C) cos(theta) psi'^2 - C phi' psi' + m g L = 0 (I1 = A + m L^2 about the tip), meet
+    where C^2 phi'^2 = 4 (I1 - C) cos(theta) m g L: the fold curve in (g, L)"""
+    top = os.path.join(SOURCE, "examples", "mechanisms", "top.mech")
+    p = run([top, "--par", "g", "--par2", "L", "--unknown", "dpsi,dtheta", "--init",
+             "dpsi=2.5", "--opt", "parmax=200", "--opt", "par2min=0.05", "--opt",
+             "par2max=0.3", "--opt", "ds=0.5", "--opt", "dsmax=5", "--json"], "top_par2")
+    check(p.returncode == 0, "top --par g --par2 L runs (status %d)" % p.returncode)
+    if p.returncode != 0:
+        return
+    d = json.loads(p.stdout)
+    folds = [b for b in d["branches"] if b["kind"] == "fold"]
+    m, A, C, W, th = 1.0, 0.002, 0.004, 100.0, math.radians(30)
+    worst, n, Ls = 0.0, 0, []
+    for b in folds:
+        for pt in b["points"]:
+            g, L = pt["g"], pt["L"]
+            want = C * C * W * W / (4 * (A + m * L * L - C) * math.cos(th) * m * L)
+            worst = max(worst, abs(g - want) / want)
+            n += 1
+            Ls.append(L)
+    lp = [pt["g"] for pt in points(p) if pt["label"] == "LP"]
+    want = C * C * W * W / (4 * (A + m * 0.01 - C) * math.cos(th) * m * 0.1)
+    check(len(lp) == 1 and abs(lp[0] - want) < 1e-10 * want,
+          "top: the fold of the precessions at g = %s, LP (closed form %.15g)" % (lp, want))
+    check(len(folds) == 2 and n > 20 and min(Ls) < 0.097 and max(Ls) > 0.16 and worst < 1e-8,
+          "top: the fold curve in (g, L), %d points on L from %.3g to %.3g, on the closed "
+          "form within %.2g relative" % (n, min(Ls or [0]), max(Ls or [0]), worst))
+
+
+def par2_weave():
+    """the bicycle's weave speed as its trail c changes: the Hopf curve in (v, c) (3.75 to
+    4.70 m/s), and at three of its points a one-parameter run at that trail finds HB at
+    that speed; up to 5.5 m/s, below the capsize speed"""
+    p = run([BICYCLE, "--par", "v", "--par2", "c", "--set", "v=3", "--opt", "parmax=5.5",
+             "--opt", "par2min=0.04", "--opt", "par2max=0.12", "--opt", "dsmax=0.2",
+             "--json"], "bicycle_par2")
+    check(p.returncode == 0, "bicycle --par v --par2 c runs (status %d)" % p.returncode)
+    if p.returncode != 0:
+        return
+    d = json.loads(p.stdout)
+    hopf = [pt for b in d["branches"] if b["kind"] == "hopf" and b["parent"] == 1
+            for pt in b["points"]]
+    cs = sorted(pt["c"] for pt in hopf)
+    check(len(hopf) > 5 and cs[0] < 0.041 and cs[-1] > 0.119,
+          "bicycle: the weave's Hopf curve spans c from %.3g to %.3g (%d points)"
+          % (cs[0] if cs else 0, cs[-1] if cs else 0, len(hopf)))
+    if len(hopf) <= 5:
+        return
+    picks = [min(hopf, key=lambda pt: pt["c"]), max(hopf, key=lambda pt: pt["c"]),
+             hopf[len(hopf) // 3]]
+    worst = 0.0
+    for pt in picks:
+        q = run([BICYCLE, "--par", "v", "--set", "v=3", "--set", "c=%r" % pt["c"], "--opt",
+                 "parmax=5.5", "--json"], "bicycle_c")
+        hb = [x["v"] for x in points(q) if x["label"] == "HB"] if q.returncode == 0 else []
+        worst = max(worst, abs(hb[0] - pt["v"]) if len(hb) == 1 else math.inf)
+    check(worst < 1e-8, "bicycle: at c = %s the one-parameter runs' HB within %.2g m/s of "
+          "the curve's speeds" % (", ".join("%.4g" % pt["c"] for pt in picks), worst))
+
+
 def refusals():
     p = run([DISK, "--par", "W", "--set", "W=2", "--opt", "parmax=6"], "disk_default")
     check(p.returncode == 1 and "--unknown" in p.stderr and "determine" in p.stderr,
@@ -300,9 +366,9 @@ def refusals():
                        capture_output=True, text=True)
     check(p.returncode == 2 and "accepted: theta, dpsi, dtheta, dphi" in p.stderr,
           "--unknown x: refused with the accepted states (status %d)" % p.returncode)
-    p = subprocess.run([DYNKIT, "continue", BICYCLE, "--par", "v", "--par2", "g"],
+    p = subprocess.run([DYNKIT, "continue", BICYCLE, "--par", "v", "--par2", "v"],
                        capture_output=True, text=True)
-    check(p.returncode == 2 and "--par2" in p.stderr, "--par2 on steady motions: refused")
+    check(p.returncode == 2 and "--par2" in p.stderr, "--par2 the same as --par: refused")
     p = subprocess.run([DYNKIT, "continue",
                         os.path.join(SOURCE, "examples", "models", "brusselator.ode"),
                         "--par", "b", "--unknown", "x"], capture_output=True, text=True)
@@ -322,6 +388,8 @@ def main():
     bicycle()
     disk()
     sleeping_top()
+    par2_fold()
+    par2_weave()
     refusals()
     help_examples()
     if FAILED:

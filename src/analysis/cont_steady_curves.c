@@ -1,0 +1,289 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* cont_steady_curves.c — curves of folds and of Hopf points of steady motions in two
+ * parameters (private; cont_steady_system.h): from each LP and HB of the branches, the
+ * steady equations G(u, p1, p2) = 0 with one test function of the point's kind as one
+ * more equation (a minimally extended system; Govaerts, "Numerical Methods for Bifurcations
+ * of Dynamical Equilibria", 2000, sec. 4.2 and 4.4), followed by the pseudo-arclength loop
+ * of cont_core.c in z = (u, p1, p2):
+ *   folds:  G = 0, det G_u / s0 = 0     (s0: |det G_u|'s row-norm scale at the start)
+ *   Hopf:   G = 0, Re lambda = 0        (lambda: B's complex eigenvalue nearest the axis)
+ * the Jacobian by central differences of this residual. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cont_steady_system.h"
+
+typedef struct curve_ctx {
+    sc_ctx *c;
+    const cont_system *s1; /* the branch's system: G and G_z in (u, p1) at c->p2 */
+    int hopf;
+    double scale;          /* folds: the normalization of det G_u */
+    double *J, *Gu, *zt, *gp, *gm;
+    int bi;
+} curve_ctx;
+
+/* det of the n x n matrix a (overwritten): Gaussian elimination with partial pivoting */
+static double det_lu(int n, double *a)
+{
+    double det = 1.0;
+    for (int col = 0; col < n; col++) {
+        int p = col;
+        for (int i = col + 1; i < n; i++)
+            if (fabs(a[i * n + col]) > fabs(a[p * n + col]))
+                p = i;
+        if (a[p * n + col] == 0.0)
+            return 0.0;
+        if (p != col) {
+            for (int j = 0; j < n; j++) {
+                const double x = a[p * n + j];
+                a[p * n + j] = a[col * n + j];
+                a[col * n + j] = x;
+            }
+            det = -det;
+        }
+        det *= a[col * n + col];
+        for (int i = col + 1; i < n; i++) {
+            const double l = a[i * n + col] / a[col * n + col];
+            for (int j = col; j < n; j++)
+                a[i * n + j] -= l * a[col * n + j];
+        }
+    }
+    return det;
+}
+
+/* det G_u at z = (u, p1) with c->p2 set, and the product of G_u's row norms */
+static int det_gu(curve_ctx *k, const double *z, double *det, double *rows)
+{
+    const int nu = k->c->nu;
+    if (k->s1->jacobian(k->c, z, k->J))
+        return -1;
+    *rows = 1.0;
+    for (int i = 0; i < nu; i++) {
+        double r = 0.0;
+        for (int j = 0; j < nu; j++) {
+            k->Gu[i * nu + j] = k->J[(size_t)i * (size_t)(nu + 1) + (size_t)j];
+            r = fmax(r, fabs(k->Gu[i * nu + j]));
+        }
+        *rows *= r > 0.0 ? r : 1.0;
+    }
+    *det = det_lu(nu, k->Gu);
+    return 0;
+}
+
+static int curve_residual(void *ctx, const double *z, double *g)
+{
+    curve_ctx *k = ctx;
+    sc_ctx *c = k->c;
+    const int nu = c->nu;
+    c->p2 = z[nu + 1];
+    if (k->s1->residual(c, z, g))
+        return -1;
+    if (k->hopf) {
+        int unstable;
+        if (sc_state_at(c, z) || sc_reduce(c))
+            return -1;
+        g[nu] = cont_hopf_test(nu, c->re, c->im, c->tol_b, &unstable, NULL);
+        return 0;
+    }
+    double det, rows;
+    if (det_gu(k, z, &det, &rows))
+        return -1;
+    g[nu] = det / k->scale;
+    return 0;
+}
+
+/* central differences of the residual, steps 2^-20 max(|z_j|, 1) */
+static int curve_jacobian(void *ctx, const double *z, double *J)
+{
+    curve_ctx *k = ctx;
+    const int N = k->c->nu + 1, M = N + 1;
+    memcpy(k->zt, z, (size_t)M * sizeof *z);
+    for (int j = 0; j < M; j++) {
+        int ex;
+        frexp(fmax(fabs(z[j]), 1.0), &ex);
+        const double h = ldexp(1.0, ex - 21);
+        k->zt[j] = z[j] + h;
+        const int a = curve_residual(k, k->zt, k->gp);
+        k->zt[j] = z[j] - h;
+        const int b = a ? a : curve_residual(k, k->zt, k->gm);
+        k->zt[j] = z[j];
+        if (a || b)
+            return -1;
+        for (int i = 0; i < N; i++)
+            J[(size_t)i * (size_t)M + (size_t)j] = (k->gp[i] - k->gm[i]) / (2.0 * h);
+    }
+    return 0;
+}
+
+/* no points are located on the curves */
+static int curve_tests(void *ctx, const double *z, const double *t, double det, double *psi,
+                       int *count)
+{
+    (void)ctx;
+    (void)z;
+    (void)t;
+    (void)det;
+    (void)psi;
+    (void)count;
+    return 0;
+}
+
+static int curve_store(void *ctx, const double *z, const double *t, dyn_cont_label label)
+{
+    (void)t;
+    curve_ctx *k = ctx;
+    sc_ctx *c = k->c;
+    const int nu = c->nu;
+    c->p2 = z[nu + 1];
+    if (sc_state_at(c, z) || sc_reduce(c))
+        return -1;
+    dyn_branch_point pt;
+    pt.label = label;
+    pt.par[0] = z[nu];
+    pt.par[1] = z[nu + 1];
+    pt.period = NAN;
+    pt.l1 = NAN;
+    pt.stable = -1;
+    pt.omega = NAN;
+    if (k->hopf) {
+        int unstable;
+        double omega;
+        cont_hopf_test(nu, c->re, c->im, c->tol_b, &unstable, &omega);
+        pt.omega = omega * omega;
+    }
+    if (dyn_branch_append(&c->d->branches[k->bi], &pt, c->y, NULL, c->re, c->im) < 0) {
+        snprintf(c->message, sizeof c->message, "out of memory");
+        return -1;
+    }
+    return 0;
+}
+
+/* the curve through point pk of branch bi (an LP or HB), both ways: 0, -1 (out of memory
+ * or the model failed: c->message), -2 when it could not be started */
+static int one_curve(curve_ctx *k, cont_work *w, const dyn_cont_opts *o, int bi, long pk,
+                     int max_branches)
+{
+    sc_ctx *c = k->c;
+    const int nu = c->nu, M = nu + 2;
+    const dyn_branch *b = &c->d->branches[bi];
+    double *z = malloc(3 * (size_t)M * sizeof *z);
+    if (!z) {
+        snprintf(c->message, sizeof c->message, "out of memory");
+        return -1;
+    }
+    double *e = z + M, *t = e + M;
+    for (int j = 0; j < nu; j++)
+        z[j] = b->x[(size_t)pk * (size_t)b->n + (size_t)c->sp->unknowns[j]];
+    z[nu] = b->pts[pk].par[0];
+    z[nu + 1] = c->cm->p2_base;
+    c->p2 = z[nu + 1];
+    k->scale = 1.0;
+    if (!k->hopf) {
+        double det, rows;
+        if (det_gu(k, z, &det, &rows)) {
+            free(z);
+            return -2;
+        }
+        k->scale = rows;
+    }
+    cont_system s;
+    memset(&s, 0, sizeof s);
+    s.N = nu + 1;
+    s.ip = nu;
+    s.ip2 = nu + 1;
+    s.ctx = k;
+    s.residual = curve_residual;
+    s.jacobian = curve_jacobian;
+    s.tests = curve_tests;
+    s.store = curve_store;
+    /* Newton's method at the fixed second parameter, then both directions */
+    for (int i = 0; i < M; i++)
+        e[i] = i == nu + 1 ? 1.0 : 0.0;
+    int rc = cont_correct(&s, w, z, e, 0.0, z, NULL) ? -2 : 0;
+    for (int dir = 1; rc == 0 && dir >= -1 && c->d->count < max_branches; dir -= 2) {
+        for (int i = 0; i < M; i++)
+            e[i] = i == nu + 1 ? dir : 0.0;
+        double det;
+        if (cont_tangent(&s, w, z, e, t, &det)) {
+            rc = -2;
+            break;
+        }
+        dyn_branch *nb = dyn_diagram_add(c->d, k->hopf ? DYN_BRANCH_HOPF : DYN_BRANCH_FOLD, c->n,
+                                         nu, o->ip, o->ip2);
+        if (!nb) {
+            snprintf(c->message, sizeof c->message, "out of memory");
+            rc = -1;
+            break;
+        }
+        nb->parent = c->d->branches[bi].id;
+        nb->parent_point = pk;
+        k->bi = c->d->count - 1;
+        cont_loop L;
+        cont_loop_from_opts(o, &L, k->hopf ? DYN_LABEL_HB : DYN_LABEL_LP);
+        L.p2min = o->par2min;
+        L.p2max = o->par2max;
+        L.stop_closed = 1;
+        char stop[160];
+        const int st = cont_follow(&s, w, &L, z, t, stop, sizeof stop);
+        dyn_branch *cb = &c->d->branches[k->bi];
+        snprintf(cb->stop, sizeof cb->stop, "%s", stop);
+        if (st == -1)
+            rc = -1;
+        if (st == 1) /* a closed curve: the other direction is the same curve */
+            break;
+    }
+    c->p2 = NAN;
+    free(z);
+    return rc;
+}
+
+int sc_curves_all(sc_ctx *c, const cont_system *s1, const dyn_cont_opts *o, int first,
+                  char *note, size_t notelen)
+{
+    const int nu = c->nu, M = nu + 2;
+    const int max_branches = o->max_branches > 0 ? o->max_branches : 16;
+    curve_ctx k;
+    memset(&k, 0, sizeof k);
+    k.c = c;
+    k.s1 = s1;
+    double *buf = malloc(((size_t)(nu + 1) * (size_t)(nu + 1) + (size_t)nu * (size_t)nu +
+                          3 * (size_t)M) * sizeof *buf);
+    cont_work w;
+    const int w_bad = cont_work_init(&w, nu + 1);
+    if (!buf || w_bad) {
+        free(buf);
+        if (!w_bad)
+            cont_work_free(&w);
+        snprintf(c->message, sizeof c->message, "out of memory");
+        return -1;
+    }
+    k.J = buf;
+    k.Gu = k.J + (size_t)(nu + 1) * (size_t)(nu + 1);
+    k.zt = k.Gu + (size_t)nu * (size_t)nu;
+    k.gp = k.zt + M;
+    k.gm = k.gp + M;
+    const int last = c->d->count;
+    int rc = 0;
+    for (int bi = first; rc != -1 && bi < last; bi++)
+        for (long pk = 0; rc != -1 && pk < c->d->branches[bi].count; pk++) {
+            const dyn_cont_label l = c->d->branches[bi].pts[pk].label;
+            if ((l != DYN_LABEL_LP && l != DYN_LABEL_HB) || c->d->count >= max_branches)
+                continue;
+            k.hopf = l == DYN_LABEL_HB;
+            rc = one_curve(&k, &w, o, bi, pk, max_branches);
+            if (rc == -2) {
+                const size_t used = strlen(note);
+                if (used + 2 < notelen)
+                    snprintf(note + used, notelen - used,
+                             "%sthe %s curve through point %ld of branch %d could not be "
+                             "started",
+                             used ? "; " : "", k.hopf ? "Hopf" : "fold", pk + 1,
+                             c->d->branches[bi].id);
+            }
+        }
+    cont_work_free(&w);
+    free(buf);
+    return rc == -1 ? -1 : 0;
+}

@@ -24,35 +24,6 @@ typedef struct curve_ctx {
     int bi;
 } curve_ctx;
 
-/* det of the n x n matrix a (overwritten): Gaussian elimination with partial pivoting */
-static double det_lu(int n, double *a)
-{
-    double det = 1.0;
-    for (int col = 0; col < n; col++) {
-        int p = col;
-        for (int i = col + 1; i < n; i++)
-            if (fabs(a[i * n + col]) > fabs(a[p * n + col]))
-                p = i;
-        if (a[p * n + col] == 0.0)
-            return 0.0;
-        if (p != col) {
-            for (int j = 0; j < n; j++) {
-                const double x = a[p * n + j];
-                a[p * n + j] = a[col * n + j];
-                a[col * n + j] = x;
-            }
-            det = -det;
-        }
-        det *= a[col * n + col];
-        for (int i = col + 1; i < n; i++) {
-            const double l = a[i * n + col] / a[col * n + col];
-            for (int j = col; j < n; j++)
-                a[i * n + j] -= l * a[col * n + j];
-        }
-    }
-    return det;
-}
-
 /* det G_u at z = (u, p1) with c->p2 set, and the product of G_u's row norms */
 static int det_gu(curve_ctx *k, const double *z, double *det, double *rows)
 {
@@ -68,7 +39,7 @@ static int det_gu(curve_ctx *k, const double *z, double *det, double *rows)
         }
         *rows *= r > 0.0 ? r : 1.0;
     }
-    *det = det_lu(nu, k->Gu);
+    *det = sc_det_lu(nu, k->Gu);
     return 0;
 }
 

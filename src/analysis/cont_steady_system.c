@@ -71,20 +71,9 @@ static int sc_jacobian(void *ctx, const double *z, double *J)
     return 0;
 }
 
-/* det of the nu x nu matrix a (overwritten), each row scaled to unit max norm first:
- * Gaussian elimination with partial pivoting */
-static double scaled_det(int n, double *a)
+double sc_det_lu(int n, double *a)
 {
     double det = 1.0;
-    for (int i = 0; i < n; i++) {
-        double s = 0.0;
-        for (int j = 0; j < n; j++)
-            s = fmax(s, fabs(a[i * n + j]));
-        if (!(s > 0.0))
-            return 0.0;
-        for (int j = 0; j < n; j++)
-            a[i * n + j] /= s;
-    }
     for (int col = 0; col < n; col++) {
         int p = col;
         for (int i = col + 1; i < n; i++)
@@ -108,6 +97,21 @@ static double scaled_det(int n, double *a)
         }
     }
     return det;
+}
+
+/* det of the nu x nu matrix a (overwritten), each row scaled to unit max norm first */
+static double scaled_det(int n, double *a)
+{
+    for (int i = 0; i < n; i++) {
+        double s = 0.0;
+        for (int j = 0; j < n; j++)
+            s = fmax(s, fabs(a[i * n + j]));
+        if (!(s > 0.0))
+            return 0.0;
+        for (int j = 0; j < n; j++)
+            a[i * n + j] /= s;
+    }
+    return sc_det_lu(n, a);
 }
 
 /* B and its eigenvalues at z (after state_at) */

@@ -35,6 +35,9 @@ int sc_state_at(sc_ctx *c, const double *z);
 /* B and its sorted eigenvalues (c->B, c->re, c->im) at the state of the last sc_state_at:
  * 0 or non-zero with c->message */
 int sc_reduce(sc_ctx *c);
+/* det of the n x n matrix a (overwritten, row-major): Gaussian elimination with partial
+ * pivoting */
+double sc_det_lu(int n, double *a);
 /* The Hamiltonian Hopf test on the eigenvalues (re, im: n values) of a steady motion
  * (cont_steady_krein.c): where the spectrum is symmetric under lambda -> -lambda (within
  * 1e-6 of the largest modulus), the discriminant of the mu = lambda^2 (one per pair), each

@@ -75,7 +75,9 @@
     /* Play once the pictures show (not with reduced motion, nor after the reader took over). */
     autoplay(watch) {
       if (DK.reducedMotion()) return;
-      const start = () => { if (!this.touched && !this.started) { this.started = true; this.play(); } };
+      /* autoStart: the time it started from (read by the browser tests, which on a loaded
+         machine may first look after a short run has played to its end) */
+      const start = () => { if (!this.touched && !this.started) { this.started = true; this.autoStart = this.t; this.play(); } };
       if (!window.IntersectionObserver) { start(); return; }
       const io = new IntersectionObserver(es => {
         if (es.some(e => e.isIntersecting)) { io.disconnect(); start(); }

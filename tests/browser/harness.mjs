@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// harness.mjs — what the browser tests (run.mjs, live.mjs) share: the skip rule (exit 77,
-// a failure under DYNKIT_REQUIRE_BROWSER=1, as CI sets) and headless Chromium through
-// playwright-core from this folder's node_modules (scripts/install-deps.sh installs both).
+// harness.mjs — what the browser tests (run.mjs, live.mjs, live_scene.mjs) share: the
+// skip rule (exit 77, a failure under DYNKIT_REQUIRE_BROWSER=1, as CI sets), headless
+// Chromium through playwright-core from this folder's node_modules (scripts/install-deps.sh
+// installs both), and the checks' record.
 import fs from 'node:fs';
 import path from 'node:path';
 import { pathToFileURL } from 'node:url';
@@ -29,4 +30,13 @@ export async function loadChromium(here) {
   } catch (e) {
     skip(`playwright-core is not installed in ${here}/node_modules (run 'npm ci' there, or scripts/install-deps.sh)`);
   }
+}
+
+// Every check's verdict, printed as it is made and named by the page or case being checked
+// (checks.current).
+export const checks = { current: '', results: [] };
+export function check(ok, what) {
+  checks.results.push({ ok: !!ok, what: `${checks.current}: ${what}` });
+  console.log(`${ok ? 'ok  ' : 'FAIL'} ${checks.current}: ${what}`);
+  return ok;
 }

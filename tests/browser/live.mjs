@@ -28,7 +28,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
-import { loadChromium, skip } from './harness.mjs';
+import { check, checks, loadChromium, skip } from './harness.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const dynkit = process.argv[2] && path.resolve(process.argv[2]);
@@ -43,16 +43,10 @@ const { chromium, chromiumPath } = await loadChromium(here);
 const dir = path.join(artifacts, 'live');
 fs.mkdirSync(dir, { recursive: true });
 
-const results = [];
-let current = '';
-function check(ok, what) {
-  results.push({ ok: !!ok, what: `${current}: ${what}` });
-  console.log(`${ok ? 'ok  ' : 'FAIL'} ${current}: ${what}`);
-  return ok;
-}
+const results = checks.results;
 
 // ---- the fallback: no library, a static page and the packages named ----
-current = 'fallback';
+checks.current = 'fallback';
 {
   const file = path.join(dir, 'fallback.html');
   const r = spawnSync(dynkit, ['animate', 'vanderpol', '--live', '-o', file],
@@ -93,7 +87,7 @@ for (const p of pages) {
   if (r.status !== 0 || /not live/.test(r.stderr)) {
     if (/built without the WebAssembly library/.test(r.stderr))
       skip(`dynkit was built without the WebAssembly library: ${r.stderr.trim()}`);
-    current = p.name;
+    checks.current = p.name;
     check(false, `dynkit animate --live: exit ${r.status}: ${r.stderr.trim()}`);
     p.failed = true;
   }
@@ -126,7 +120,7 @@ function canvasInk() {
 
 const timings = {};
 for (const p of pages.filter(q => !q.failed)) {
-  current = p.name;
+  checks.current = p.name;
   const page = await context.newPage();
   const errors = [], requests = [];
   const url = pathToFileURL(p.file).href;

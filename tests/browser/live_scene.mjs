@@ -29,7 +29,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
-import { loadChromium, skip } from './harness.mjs';
+import { check, checks, loadChromium, skip } from './harness.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const dynkit = process.argv[2] && path.resolve(process.argv[2]);
@@ -43,13 +43,7 @@ const { chromium, chromiumPath } = await loadChromium(here);
 const dir = path.join(artifacts, 'live-scene');
 fs.mkdirSync(dir, { recursive: true });
 
-const results = [];
-let current = '';
-function check(ok, what) {
-  results.push({ ok: !!ok, what: `${current}: ${what}` });
-  console.log(`${ok ? 'ok  ' : 'FAIL'} ${current}: ${what}`);
-  return ok;
-}
+const results = checks.results;
 
 function pageData(file) {
   const html = fs.readFileSync(file, 'utf8');
@@ -116,7 +110,7 @@ for (const p of mechs) {
   if (r.status !== 0 || /not live/.test(r.stderr)) {
     if (/built without the WebAssembly library/.test(r.stderr))
       skip(`dynkit was built without the WebAssembly library: ${r.stderr.trim()}`);
-    current = p.name;
+    checks.current = p.name;
     check(false, `dynkit animate --live: exit ${r.status}: ${r.stderr.trim()}`);
     p.failed = true;
   }
@@ -169,7 +163,7 @@ async function finish(o, name) {
 
 // ---- mechanisms ----
 for (const p of mechs.filter(q => !q.failed)) {
-  current = p.name;
+  checks.current = p.name;
   const o = await open(p.page);
   if (!o) continue;
   const { page } = o;
@@ -244,7 +238,7 @@ const anis = [
   { name: 'hostile-ani', file: hostileOde, set: { l: 5 }, hostile: true },
 ];
 for (const p of anis) {
-  current = p.name;
+  checks.current = p.name;
   p.page = path.join(dir, p.name + '.html');
   const r = spawnSync(dynkit, ['animate', p.file, '--live', '-o', p.page], { encoding: 'utf8' });
   if (!check(r.status === 0 && !/not live/.test(r.stderr), `dynkit animate --live: exit ${r.status} ${r.stderr.trim()}`)) continue;
@@ -281,7 +275,7 @@ for (const p of anis) {
 fs.rmSync(aniDir, { recursive: true, force: true });
 
 // ---- the report ----
-current = 'report';
+checks.current = 'report';
 {
   const file = path.join(dir, 'report.html');
   const r = spawnSync(dynkit, ['report', '--no-studies', '--html', file, '--live'], { encoding: 'utf8' });

@@ -27,7 +27,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
-import { loadChromium } from './harness.mjs';
+import { check, checks, loadChromium } from './harness.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const dynkit = process.argv[2];
@@ -40,13 +40,7 @@ if (!dynkit || !fs.existsSync(dynkit)) {
 const { chromium, chromiumPath } = await loadChromium(here);
 
 fs.mkdirSync(artifacts, { recursive: true });
-const results = [];
-let current = '';
-function check(ok, what) {
-  results.push({ ok: !!ok, what: `${current}: ${what}` });
-  console.log(`${ok ? 'ok  ' : 'FAIL'} ${current}: ${what}`);
-  return ok;
-}
+const results = checks.results;
 const sleep = ms => new Promise(r => setTimeout(r, ms));
 
 // ---- the pages ----
@@ -276,7 +270,7 @@ async function checkConventions(page, spec, vp, url, span) {
 }
 
 async function checkPage(spec, vp) {
-  current = `${spec.name} @${vp.width}`;
+  checks.current = `${spec.name} @${vp.width}`;
   const shot = name => path.join(artifacts, `${spec.name}${vp.suffix}-${name}.png`);
   const page = await context.newPage();
   await page.setViewportSize({ width: vp.width, height: vp.height });
@@ -580,7 +574,7 @@ async function checkPage(spec, vp) {
 // for its checks: console errors and requests recorded (every request but the file itself
 // aborted), and built (body[data-ready]).
 async function openPage(spec, vp) {
-  current = `${spec.name} @${vp.width}`;
+  checks.current = `${spec.name} @${vp.width}`;
   const page = await context.newPage();
   await page.setViewportSize({ width: vp.width, height: vp.height });
   const errors = [], requests = [], url = pathToFileURL(spec.file).href;

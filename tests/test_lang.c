@@ -83,6 +83,9 @@ static void test_refused_features_name_line_and_feature(void **state)
         {"x'=1\nbdry 1+hom_bcs(0)\n", 2, 8, "hom_bcs(K) is a whole boundary condition"},
         {"x'=1\nbdry hom_bcs(0)\n", 2, 1, "one condition fewer than states"},
         {"x'=y\ny'=x\nc'=0\nbdry c\nbdry hom_bcs(-1)\n", 5, 14, "a whole number K from 0"},
+        /* two flow states, one x'=0 state used: no equilibrium of the flow's size */
+        {"x'=y\ny'=x\nxe'=0\nye'=0\nbdry xe\nbdry hom_bcs(0)\nbdry hom_bcs(1)\n", 6, 1,
+         "the equilibria are not in the file's layout"},
         {"x'=y\ny'=-x\nbdry x\n", 3, 1, "1 boundary condition for 2 states"},
         {"par a=1\nx'=1\nbdry a'\n", 3, 6, "only a state's name takes a prime"},
         {"x'=w\nw=x*2\nbdry w\n", 3, 6, "a value along the run"},

@@ -236,7 +236,8 @@ static int build_source(char *source, cli_live *out)
         snprintf(cc, sizeof cc, "%s", wasm_cc());
         /* wasi-libc's printf family without long double reports that lack on stderr, which
          * brings in its stdio and three imports of the system interface; the family with long
-         * double (formatted in software) needs none, and the module imports nothing */
+         * double (formatted in software) needs none: the module's one import is the
+         * page's dynkit.progress (backends/wasm/live_run.c) */
         char *argv[] = {cc, "--target=wasm32-wasi", "-O2", "-ffp-contract=off",
                         "-mexec-model=reactor", "-w", inc, c_path, obj, lib,
                         "-lc-printscan-long-double", "-lm",

@@ -108,7 +108,9 @@ typedef struct dyn_steady_problem {
  * B = A_UU + G_U^+ G_F A_FU, G = A_min's columns U and F = E \ U on E's rows. Labels: LP
  * (the parameter's tangent component), BP (a real eigenvalue of B through zero: det B times
  * the sign of that component changes sign), HB (a complex pair of B crosses the imaginary
- * axis; l1 is not computed: NAN), UZ, EP. At a BP where the continuation's equations are
+ * axis; l1 is not computed: NAN), HH (on a spectrum symmetric under lambda -> -lambda, a
+ * conservative steady motion's: two imaginary pairs collide and leave the axis; there the
+ * HB test is off and BP's is det B alone), UZ, EP. At a BP where the continuation's equations are
  * singular (another family of steady motions crosses) the other branch is followed both
  * ways and appended as branches of their own (parent, parent_point set) unless
  * o->no_switch, while d has fewer than o->max_branches; a BP where they are regular gets a

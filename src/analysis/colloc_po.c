@@ -519,8 +519,11 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
                 xn = xu;
                 tn = tu;
                 st = point_tests(r, &xn, &tn, &now);
-                if (st)
+                if (st) {
+                    dyn_colloc_sol_free(&xn);
+                    dyn_colloc_sol_free(&tn);
                     break;
+                }
             } else {
                 s_end = ds;
                 uz = -1;
@@ -553,8 +556,11 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
                 s_end = s_l;
                 uz = -1; /* the label comes first: the UZ point is found on the next step */
                 st = point_tests(r, &xn, &tn, &now);
-                if (st)
+                if (st) {
+                    dyn_colloc_sol_free(&xn);
+                    dyn_colloc_sol_free(&tn);
                     break;
+                }
                 /* beyond the located point the test has the far side's sign */
                 if (which == 0)
                     now.lpc = p1;
@@ -580,8 +586,11 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
                 xn = xl;
                 tn = tl;
                 st = point_tests(r, &xn, &tn, &now);
-                if (st)
+                if (st) {
+                    dyn_colloc_sol_free(&xn);
+                    dyn_colloc_sol_free(&tn);
                     break;
+                }
                 at_bound = 1;
             }
         }
@@ -591,8 +600,11 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
                             : which == 2 ? "TR" : at_bound ? "EP" : uz >= 0 ? "UZ" : "";
         st = record(r, &xn, r->re, r->im, now.have_mult, label,
                     which >= 0 || uz >= 0 || b->npoints == 0 || o->keep_orbits);
-        if (st)
+        if (st) {
+            dyn_colloc_sol_free(&xn);
+            dyn_colloc_sol_free(&tn);
             break;
+        }
         dyn_colloc_sol_free(x);
         dyn_colloc_sol_free(t);
         *x = xn;

@@ -198,7 +198,7 @@ int dyn_steady_continue(const dyn_model *m, const void *par, const double *y0,
     c.d = d;
     c.p2 = NAN;
     int *ints = malloc((3 * N + 3 * NE + NU) * sizeof *ints);
-    const size_t nd = 4 * N + 5 * N * N + dyn_linearize_work_size(n) + NE * NE + NU * NE +
+    const size_t nd = 4 * N + 1 + 5 * N * N + dyn_linearize_work_size(n) + NE * NE + NU * NE +
                       3 * NU * NU + 6 * NU + 4;
     double *mem = malloc(nd * sizeof *mem);
     cont_work w;
@@ -219,8 +219,8 @@ int dyn_steady_continue(const dyn_model *m, const void *par, const double *y0,
     c.epos = c.fpos + NE;
     c.y = mem;
     c.f = c.y + N;
-    double *z = c.f + N; /* (N values: at most nu + 1 used) */
-    c.A = z + N;
+    double *z = c.f + N; /* (N + 1 values: nu + 1 used, nu <= n) */
+    c.A = z + N + 1;
     c.P = c.A + N * N;
     c.Amin = c.P + N * N;
     c.rwork = c.Amin + N * N; /* dyn_linear_reduce's n k + k k + k */

@@ -8,8 +8,9 @@
  * B = A_UU - S A_FU carries the other eigenvalues; Golub & Van Loan, Matrix Computations,
  * 4th ed., sec. 7.1.4, deflation by a similarity), the test functions as AUTO-07p's
  * (Doedel et al., AUTO-07p manual, ch. 5: LP the parameter's tangent component, BP det B
- * times its sign, HB the real part of B's complex eigenvalue nearest the imaginary axis) and
- * the points stored. */
+ * times its sign, HB the real part of B's complex eigenvalue nearest the imaginary axis; on a
+ * spectrum symmetric under lambda -> -lambda, HH, cont_steady_krein.c, with BP det B alone
+ * and no HB) and the points stored. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -18,13 +19,22 @@
 #include "cont_steady_system.h"
 #include "ode/cholesky.h"
 
+/* -1, with the model's reason (set by cont_model_set or cont_model_f) as the branch's
+ * message where none is there yet */
+static int sc_model_failed(sc_ctx *c)
+{
+    if (!c->message[0] && c->cm->message[0])
+        snprintf(c->message, sizeof c->message, "%s", c->cm->message);
+    return -1;
+}
+
 /* y for z = (u, p): the parameter prepared, the base state, the unknowns, the completion */
 int sc_state_at(sc_ctx *c, const double *z)
 {
     cont_model *cm = c->cm;
     const dyn_steady_problem *sp = c->sp;
     if (cont_model_set(cm, z[c->nu], c->p2))
-        return -1;
+        return sc_model_failed(c);
     dyn_model_initial_state(cm->m, cm->par, c->y);
     for (int i = 0; i < c->n; i++)
         if (!sp->follow || !sp->follow[i])
@@ -34,7 +44,7 @@ int sc_state_at(sc_ctx *c, const double *z)
     if (sp->complete &&
         sp->complete(sp->complete_ctx, cm->t, c->y, cm->par, c->message, sizeof c->message))
         return -1;
-    return cont_model_f(cm, c->y, c->f);
+    return cont_model_f(cm, c->y, c->f) ? sc_model_failed(c) : 0;
 }
 
 static int sc_residual(void *ctx, const double *z, double *g)

@@ -194,6 +194,17 @@ void lang_emit_bdry(lang_ctx *c, void (*expr)(lang_ctx *, const node *))
         return;
     int hs[3];
     hom_layout(c, hs);
+    if (hs[0] < 0 || hs[1] < 0) {
+        int k = 0;
+        while (LVEC_AT(m->bdry_hom, int, k) < 0)
+            k++;
+        lang_fail(c, LVEC_AT(m->bdrys, lang_formula, k).pos,
+                  "hom_bcs: the equilibria are not in the file's layout: the flow is the "
+                  "states before the first one with x'=0, and the other conditions must use "
+                  "as many x'=0 states (the equilibrium of both ends, homoclinic) or twice as "
+                  "many (the left end's, then the right end's, heteroclinic), each group in a "
+                  "row");
+    }
     LANG_C_CODE(c, "static const int dk_bdry_hom[] = {");
     for (int k = 0; k < m->bdrys.n; k++) {
         if (k)

@@ -209,7 +209,10 @@ for (const p of pages.filter(q => !q.failed)) {
   // rasterized, which reading a pixel of each forces): the least and the median of 15, the
   // least being the cost of the work itself on a machine other builds share
   if (p.timing) {
-    const t = await page.evaluate(async () => {
+    // the same reruns with every run in the worker (local_ms 0) and as the page chooses (a
+    // short run on its own thread), one after the other in this run
+    const rerunTimes = localMs => page.evaluate(async localMs => {
+      window.dynkitLive.set('local_ms', localMs);
       const all = [];
       for (let i = 0; i < 16; i++) {
         await new Promise(r => requestAnimationFrame(() => setTimeout(r, 0)));
@@ -222,13 +225,17 @@ for (const p of pages.filter(q => !q.failed)) {
       }
       all.shift();
       const sorted = key => all.map(a => a[key]).sort((a, b) => a - b);
-      const out = { samples: all[0].samples, rhs_calls: all[0].rhs_calls };
+      const out = { samples: all[0].samples, rhs_calls: all[0].rhs_calls, thread: [...new Set(all.map(a => a.thread))].join(',') };
       for (const key of ['run_ms', 'draw_ms', 'total_ms', 'flushed_ms']) out[key] = { least: sorted(key)[0], median: sorted(key)[7] };
       return out;
-    });
-    Object.assign(timings[p.name], t);
+    }, localMs);
     const f = x => `${x.least.toFixed(1)} (median ${x.median.toFixed(1)})`;
-    console.log(`     ${p.name}: rerun ${f(t.total_ms)} ms, with the browser's share ${f(t.flushed_ms)} ms (run ${f(t.run_ms)}, drawn ${f(t.draw_ms)}), ${t.samples} samples, ${t.rhs_calls} right-hand sides`);
+    const inWorker = await rerunTimes(0);
+    const t = await rerunTimes(null);
+    await page.evaluate(() => window.dynkitLive.set('local_ms', undefined));
+    Object.assign(timings[p.name], t, { in_worker: inWorker });
+    for (const [how, x] of [['every run in the worker', inWorker], ['as the page chooses', t]])
+      console.log(`     ${p.name} (${how}: ${x.thread}): rerun ${f(x.total_ms)} ms, with the browser's share ${f(x.flushed_ms)} ms (run ${f(x.run_ms)}, drawn ${f(x.draw_ms)}), ${x.samples} samples, ${x.rhs_calls} right-hand sides`);
     // a right-hand side in the page against the native tool: a span 50 times as long, the
     // best of 3 runs in each (the tool's less its start-up, `dynkit info` of the model), each
     // divided by its own count of calls (the plane's long run nears the singularity of its

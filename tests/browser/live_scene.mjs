@@ -98,9 +98,9 @@ fs.writeFileSync(hostile, fs.readFileSync(path.join(source, 'examples/mechanisms
 
 const ex = p => path.join(source, p);
 const mechs = [
-  { name: 'double-pendulum', file: ex('examples/mechanisms/double_pendulum.mech'), set: { m2: 1.5 } },
+  { name: 'double-pendulum', file: ex('examples/mechanisms/double_pendulum.mech'), set: { m2: 1.5 }, inPlace: 100 },
   { name: 'fourbar', file: ex('examples/mechanisms/fourbar.mech'), set: { g: 25 }, arrows: true },
-  { name: 'top', file: ex('examples/mechanisms/top.mech'), set: {}, setFirstState: 1.3 },
+  { name: 'top', file: ex('examples/mechanisms/top.mech'), set: {}, setFirstState: 1.3, inPlace: 100 },
   { name: 'rolling-disk', file: ex('examples/mechanisms/rolling_disk.mech'), set: { W: 6 } },
   { name: 'hostile', file: hostile, set: { m2: 1.5 }, hostile: true },
 ];
@@ -161,6 +161,51 @@ async function finish(o, name) {
   await page.close();
 }
 
+// The picture of selector's canvas at the fraction f of the player's span, the player paused
+// there (a data URL of its pixels); the canvas marked to tell whether it is kept.
+async function drawnAt(page, selector, f) {
+  return page.evaluate(async ([sel, f]) => {
+    const c = document.querySelector(sel), player = window.DK.lastLive.player;
+    if (!c) return null;
+    c.dkKept = c.dkKept || 'the same canvas';
+    player.pause();
+    player.seek(player.t0 + f * (player.t1 - player.t0));
+    await new Promise(r => requestAnimationFrame(() => setTimeout(r, 0)));
+    return { url: c.toDataURL(), t: player.t };
+  }, [selector, f]);
+}
+
+// A long run (a span `times` the page's) drawn as it computes, in place: at its first drawing
+// before its end, the player's span has grown past the old span but not to the run's end,
+// the picture's canvas is the one marked (drawnAt), and what() of the hook has frames; the
+// span set back after it (the run ended).
+async function longRunInPlace(page, selector, times, what) {
+  return page.evaluate(async ([sel, times, what]) => {
+    const L = window.dynkitLive, live = window.DK.lastLive, t0 = L.get('t0'), t1 = L.get('t1'), before = L.timing();
+    L.set('t1', t0 + times * (t1 - t0));
+    const run = L.run();
+    let ended = false, seen = null;
+    run.then(() => { ended = true; });
+    while (!ended && !seen) {
+      await new Promise(r => requestAnimationFrame(r));
+      if (L.timing().partial_draws > before.partial_draws) {
+        const x = L[what](), frames = x ? (what === 'scene' ? x.poses[0][0].length : x.map(q => q.v.find(c => typeof c !== 'number')).find(Boolean).length) : 0;
+        seen = { span: live.player.t1, kept: document.querySelector(sel).dkKept === 'the same canvas', frames };
+      }
+    }
+    await run;
+    const end = live.player.t1;
+    L.set('t1', t1);
+    await L.run();
+    return { seen, end, t1, longEnd: t0 + times * (t1 - t0), partial: L.timing().partial_draws - before.partial_draws };
+  }, [selector, times, what]);
+}
+
+function checkLongRun(r) {
+  check(r.seen && r.seen.span > r.t1 && r.seen.span < r.longEnd && r.seen.kept && r.seen.frames > 1,
+    `a long run is drawn in place as it computes (${r.partial} drawings before its end; the first up to t = ${r.seen && r.seen.span.toFixed(2)} of ${r.longEnd}, ${r.seen && r.seen.frames} frames, the same canvas: ${r.seen && r.seen.kept}); at its end the span is ${r.end}`);
+}
+
 // ---- mechanisms ----
 for (const p of mechs.filter(q => !q.failed)) {
   checks.current = p.name;
@@ -173,6 +218,8 @@ for (const p of mechs.filter(q => !q.failed)) {
   const set = Object.assign({}, p.set);
   if (p.setFirstState !== undefined) set[written.model.states[0].name] = p.setFirstState;
   const arrowsBefore = await page.evaluate(() => { const v = document.querySelector('#view'); return v && v.dataset.mechArrows; });
+  const sceneCanvas = '#view canvas';
+  const drawnBefore = await drawnAt(page, sceneCanvas, 0.5);
   for (const [k, v] of Object.entries(set)) await page.evaluate(([k, v]) => window.dynkitLive.set(k, v), [k, v]);
   const out = await page.evaluate(async () => {
     const r = await window.dynkitLive.run();
@@ -181,6 +228,12 @@ for (const p of mechs.filter(q => !q.failed)) {
   });
   if (!check(out.scene && out.scene.poses.length === written.mech.bodies.length, `the live run has a scene (${out.scene ? out.scene.poses.length : 0} bodies)`)) { await finish(o, p.name); continue; }
   check(!/scene shows the run the page was written with/.test(out.note), `the page does not say its scene is the original run's (${out.note || 'no note'})`);
+  if (p.inPlace) {
+    const drawnAfter = await drawnAt(page, sceneCanvas, 0.5);
+    const kept = await page.evaluate(sel => document.querySelector(sel).dkKept, sceneCanvas);
+    check(kept === 'the same canvas' && drawnBefore && drawnAfter && drawnAfter.url !== drawnBefore.url,
+      `the change redraws the scene in place: the same canvas (${kept || 'a new one'}), another pose drawn at t = ${drawnAfter && drawnAfter.t.toFixed(3)}`);
+  }
   const n0 = written.runs[0].data[0].length, size = scaleOf(written.mech.runs[0], n0);
   const n = out.scene.poses[0][0].length;
   // the tool's scene of the same settings: a static page of the command line
@@ -202,6 +255,7 @@ for (const p of mechs.filter(q => !q.failed)) {
     check(/arrows: 1 m = /.test(out.arrows || '') && out.arrows !== arrowsBefore, `the constraint forces are drawn from the live run: their scale follows its multipliers (${arrowsBefore} -> ${out.arrows})`);
   }
   if (p.hostile) check(await page.evaluate(() => window.pwned === undefined), 'hostile text in the mechanism file runs no script');
+  if (p.inPlace) checkLongRun(await longRunInPlace(page, sceneCanvas, p.inPlace, 'scene'));
   await finish(o, p.name);
 }
 
@@ -233,7 +287,7 @@ fs.writeFileSync(path.join(aniDir, 'hostile.ani'), fs.readFileSync(ex('examples/
 // (the double pendulum over 4 s: later its chaos makes the last bits of libm, the page's
 // musl against the tool's glibc, visible in the picture)
 const anis = [
-  { name: 'pendulum-ani', file: ex('examples/models/pendulum.ode'), set: { l: 5 } },
+  { name: 'pendulum-ani', file: ex('examples/models/pendulum.ode'), set: { l: 5 }, inPlace: 1000 },
   { name: 'double-pendulum-ani', file: ex('examples/models/double_pendulum.ode'), set: { l1: 1.6, m2: 3, t1: 4 } },
   { name: 'hostile-ani', file: hostileOde, set: { l: 5 }, hostile: true },
 ];
@@ -247,11 +301,19 @@ for (const p of anis) {
   const { page } = o;
   const written = pageData(p.page);
   check(!!written.ani && written.live.ani_outputs === true, 'the page carries its animation and the module writes its numbers');
+  const aniCanvas = '#ani canvas.ani-canvas';
+  const drawnBefore = await drawnAt(page, aniCanvas, 0.3);
   for (const [k, v] of Object.entries(p.set)) await page.evaluate(([k, v]) => window.dynkitLive.set(k, v), [k, v]);
   const out = await page.evaluate(async () => {
     await window.dynkitLive.run();
     return { cmd: window.dynkitLive.command(), ani: window.dynkitLive.ani(), note: document.getElementById('messages').textContent };
   });
+  if (p.inPlace) {
+    const drawnAfter = await drawnAt(page, aniCanvas, 0.3);
+    const kept = await page.evaluate(sel => document.querySelector(sel) && document.querySelector(sel).dkKept, aniCanvas);
+    check(kept === 'the same canvas' && drawnBefore && drawnAfter && drawnAfter.url !== drawnBefore.url,
+      `the change redraws the animation in place: the same canvas (${kept || 'a new one'}), another frame drawn at t = ${drawnAfter && drawnAfter.t.toFixed(3)}`);
+  }
   if (!check(out.ani && out.ani.length === written.ani.prims.length, `the live run has the animation's ${out.ani ? out.ani.length : 0} primitives`)) { await finish(o, p.name); continue; }
   check(!/animation shows the run the page was written with/.test(out.note), `the page does not say its animation is the original run's (${out.note || 'no note'})`);
   const w = written.ani.window, size = Math.max(w[2] - w[0], w[3] - w[1]);
@@ -270,6 +332,7 @@ for (const p of anis) {
     if (!okd) fs.writeFileSync(path.join(dir, p.name + '-ani.json'), JSON.stringify({ page: out.ani, tool: tool.ani.runs[0] }));
   }
   if (p.hostile) check(await page.evaluate(() => window.pwned === undefined), 'hostile text in the animation runs no script');
+  if (p.inPlace) checkLongRun(await longRunInPlace(page, aniCanvas, p.inPlace, 'ani'));
   await finish(o, p.name);
 }
 fs.rmSync(aniDir, { recursive: true, force: true });
@@ -304,6 +367,19 @@ checks.current = 'report';
       }
       check(worst <= 1e-12, `${name}: ${out.r.t.length} samples equal to dynkit run's with the page's command (${out.cmd}) within 1e-12 (largest ${worst.toExponential(2)})`);
     }
+    // a model switched away from before its module ran leaves no worker behind: one
+    // worker runs the model shown (the page's own thread runs no worker)
+    const switched = await page.evaluate(async () => {
+      const R = window.dynkitReportLive;
+      const early = [R.choose('pendulum'), R.choose('plane')];
+      await R.choose('vanderpol');
+      await Promise.allSettled(early);
+      await new Promise(r => setTimeout(r, 300));
+      return document.getElementById('title').textContent;
+    });
+    await page.waitForTimeout(300);
+    const workers = page.workers().length;
+    check(workers === 1 && switched.startsWith('vanderpol '), `after switching models before their modules ran, ${workers} worker runs (the model shown: ${switched})`);
     await finish(o, 'report');
   }
 }

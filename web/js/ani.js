@@ -42,12 +42,17 @@
     const [xlo, ylo, xhi, yhi] = ani.window;
     const canvas = DK.el('canvas', { class: 'ani-canvas', 'aria-label': 'animation ' + ani.file });
     const wrap = DK.el('div', { class: 'dk-scene dk-ani' }, [canvas]);
-    let select = null;
-    if (runs.length > 1) {
-      select = DK.el('select', { class: 'view-mode', 'aria-label': 'run' });
-      runs.forEach((r, i) => select.appendChild(DK.el('option', { value: String(i), text: r.label })));
-      container.appendChild(DK.el('div', { class: 'view-controls' }, [DK.el('label', {}, ['run: ', select])]));
-    }
+    /* the menu of the runs, shown when there are several (kept choice while it exists) */
+    const select = DK.el('select', { class: 'view-mode', 'aria-label': 'run' });
+    const controls = DK.el('div', { class: 'view-controls' }, [DK.el('label', {}, ['run: ', select])]);
+    const options = rs => {
+      const was = select.value;
+      select.replaceChildren(...rs.map((r, i) => DK.el('option', { value: String(i), text: r.label })));
+      if (was && Number(was) < rs.length) select.value = was;
+      controls.hidden = rs.length < 2;
+    };
+    options(runs);
+    container.appendChild(controls);
     container.appendChild(wrap);
     container.appendChild(DK.el('p', { class: 'hint', text: 'XPPAUT animation ' + ani.file + ' (' + ani.prims.length + ' commands; window [' + DK.fmt(xlo) + ', ' + DK.fmt(xhi) + '] × [' + DK.fmt(ylo) + ', ' + DK.fmt(yhi) + '])' }));
     const state = { t: player.t };
@@ -65,13 +70,13 @@
       canvas.style.width = w + 'px'; canvas.style.height = h + 'px';
       canvas.style.margin = '0 auto';
     }
-    function draw() {
+    function paint() {
       size();
       const ctx = canvas.getContext('2d');
       ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
       ctx.fillStyle = '#ffffff';
       ctx.fillRect(0, 0, w, h);
-      const ri = select ? parseInt(select.value, 10) : 0;
+      const ri = parseInt(select.value, 10) || 0;
       const run = runs[ri], vals = ani.runs[ri];
       if (!run || !vals) return;
       const s = w / (xhi - xlo);
@@ -175,10 +180,17 @@
         }
       });
     }
+    /* drawn once at DK.releaseDraws when draws are held (a live page's rerun) */
+    const held = { draw: () => paint() };
+    function draw() { if (DK.heldDraws) DK.heldDraws.add(held); else paint(); }
     size();
-    if (select) select.addEventListener('change', () => draw());
+    select.addEventListener('change', () => draw());
     if (window.ResizeObserver) new ResizeObserver(() => draw()).observe(wrap);
     player.onTime(t => { state.t = t; draw(); });
-    return { canvas, draw };
+    /* new runs with their frames (a live page's rerun, data.ani of the same file): the
+     * canvas and the run chosen kept */
+    const accepts = (rs, data) => !!data.ani && data.ani.prims.length === ani.prims.length && data.ani.runs.length === rs.length;
+    const update = (rs, data) => { runs = rs; ani = data.ani; options(rs); draw(); };
+    return { canvas, draw, accepts, update };
   };
 })(window.DK);

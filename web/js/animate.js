@@ -111,10 +111,13 @@
     const views = player && player.views;
     if (!views || !views.every(v => v && typeof v.update === 'function')) return false;
     const runs = DK.prepareRuns(data.runs);
+    /* a mechanism's scene or an .ani animation takes the runs' own frames (data.mech,
+     * data.ani), when there are some of the same kind */
+    if (!views.every(v => !v.accepts || v.accepts(runs, data))) return false;
     DK.holdDraws();
     try {
       describe(data, runs);
-      for (const v of views) v.update(runs);
+      for (const v of views) v.update(runs, data);
       const s = spanOf(data, runs);
       player.setSpan(s.t0, s.t1, runs[0].t, s.rate);
     } finally {

@@ -4,10 +4,10 @@
  * page: a slider and a number box for every parameter and initial value, the method, step,
  * tolerances and span; every change reruns the main run, the --compare runs and the
  * trajectories started by a click in the phase plane, and redraws the animation page with
- * them; the command line that reproduces the run and a CSV download of its samples. The
- * module runs in a worker: the page stays responsive, a long run is drawn as it computes
- * and a newer change cancels an older run. The
- * hook window.dynkitLive (set, get, run) serves scripts and the browser tests.
+ * them; the command line that reproduces the run and a CSV download of its samples. A
+ * long run runs in a worker (web/js/live_runner.js): the page stays responsive, the run is
+ * drawn as it computes and a newer change cancels it; a short one on the page's thread.
+ * The hook window.dynkitLive (set, get, run) serves scripts and the browser tests.
  * The module is compiled by the browser (the page's policy allows WebAssembly, no eval);
  * every name and unit reaches the page as text only. docs/web.md, "Live pages". */
 'use strict';
@@ -17,12 +17,6 @@
   const MAX_CLICKED = 6;       /* trajectories kept from clicks */
   /* settings of dk_live_run (live_run.c's SET_*) */
   const S = { t0: 0, t1: 1, step: 2, rtol: 3, atol: 4, end: 5, atSteps: 6, every: 7, maxRows: 8 };
-
-  function decode64(text) {
-    const bin = atob(text), out = new Uint8Array(bin.length);
-    for (let i = 0; i < bin.length; i++) out[i] = bin.charCodeAt(i);
-    return out;
-  }
 
   /* The range of a slider: the range the model file declares (declared: [lo, hi], lo < hi),
    * else around the value: [0, 2v] for a parameter v > 0 ([2v, 0] below 0), v +- max(|v|, 1)
@@ -38,153 +32,11 @@
     return /^[A-Za-z0-9_.,:=+\-/@%]+$/.test(s) ? s : "'" + s.replace(/'/g, "'\\''") + "'";
   }
 
-  const CHUNK_MS = 40;          /* a long run's samples reach the page this often */
-
-  /* The worker's script (its text is the worker's source: it uses nothing from outside):
-   * the module instantiated from the compiled module it is sent, then batches of runs, each
-   * run's settings written into the module's buffers, its rows sent back as they come
-   * (every CHUNK_MS at most, at the module's dynkit.progress) and at its end. */
-  function liveWorker(chunkMs) {
-    'use strict';
-    let x = null, cols = 0, sent = 0, lastPost = 0, batch = 0, job = 0;
-    /* the rows [sent, n) copied out of the module's memory */
-    const take = n => {
-      const rows = new Float64Array(x.memory.buffer, x.dk_live_rows() + sent * cols * 8, (n - sent) * cols).slice();
-      sent = n;
-      lastPost = performance.now();
-      return rows;
-    };
-    const progress = n => {
-      if (performance.now() - lastPost < chunkMs) return;
-      const rows = take(n);
-      postMessage({ batch, job, rows, n }, [rows.buffer]);
-    };
-    const runOne = j => {
-      const mem = () => x.memory.buffer;
-      new Float64Array(mem(), x.dk_live_settings(), j.settings.length).set(j.settings);
-      const mbuf = new Uint8Array(mem(), x.dk_live_method(), 64);
-      mbuf.fill(0); mbuf.set(new TextEncoder().encode(j.method).subarray(0, 63));
-      new Float64Array(mem(), x.dk_live_params(), j.params.length).set(j.params);
-      new Float64Array(mem(), x.dk_live_inits(), j.inits.length).set(j.inits);
-      new Float64Array(mem(), x.dk_live_given(), j.given.length).set(j.given);
-      sent = 0;
-      lastPost = performance.now();
-      const t0 = performance.now();
-      const n = Math.max(x.dk_live_run(), 0);
-      const ms = performance.now() - t0;
-      const rows = take(n);
-      const bytes = new Uint8Array(mem()), mp = x.dk_live_message();
-      let e = mp; while (bytes[e]) e++;
-      return { rows, n, ms, message: new TextDecoder().decode(bytes.subarray(mp, e)), rhsCalls: x.dk_live_rhs_calls() };
-    };
-    onmessage = async e => {
-      const m = e.data;
-      try {
-        if (m.module) {
-          const instance = await WebAssembly.instantiate(m.module, { dynkit: { progress } });
-          x = instance.exports;
-          if (x._initialize) x._initialize();
-          if (m.choose !== undefined && x.dk_live_choose) x.dk_live_choose(m.choose);
-          if (!x.dk_live_setup()) throw new Error('the model could not be set up (out of memory)');
-          cols = x.dk_live_cols();
-          postMessage({ cols });
-          return;
-        }
-        batch = m.batch;
-        for (job = 0; job < m.jobs.length; job++) {
-          const r = runOne(m.jobs[job]);
-          postMessage(Object.assign({ batch, job, done: true }, r), [r.rows.buffer]);
-        }
-      } catch (err) {
-        postMessage({ batch, error: String(err && err.message || err) });
-      }
-    };
-  }
-
-  /* The module's runs in a worker. run(jobs, onRows) gives the runs' {rows, n, message,
-   * rhsCalls, ms} once all are done, and calls onRows([{rows, n}] of the runs begun) as a
-   * long one computes; a run asked for while another is under way ends that one (its worker is
-   * stopped and another started: its promise is rejected with Runner.cancelled). */
-  class Runner {
-    constructor(module, choose) {
-      this.module = module;
-      this.choose = choose; /* a module of every built-in model: the one to run */
-      this.url = URL.createObjectURL(new Blob(['(' + liveWorker.toString() + ')(' + CHUNK_MS + ');'], { type: 'text/javascript' }));
-      this.batch = 0;
-      this.cancels = 0;
-      this.start();
-    }
-
-    start() {
-      const w = this.worker = new Worker(this.url);
-      this.ready = new Promise((resolve, reject) => {
-        w.onmessage = e => {
-          if (e.data.error) reject(new Error(e.data.error));
-          else { this.cols = e.data.cols; w.onmessage = m => this.received(m.data); resolve(); }
-        };
-        w.onerror = e => { e.preventDefault(); reject(new Error(e.message || 'the worker failed')); };
-      });
-      this.ready.catch(() => {}); /* reported by the run that awaits it */
-      w.postMessage({ module: this.module, choose: this.choose });
-    }
-
-    /* A message of the batch under way: rows of a run, a run's end, or an error. */
-    received(m) {
-      const b = this.pending;
-      if (!b || m.batch !== b.batch) return;
-      if (m.error) { this.pending = null; this.restart(); b.reject(new Error(m.error)); return; }
-      if (m.done && !b.acc[m.job]) b.acc[m.job] = { rows: m.rows, n: m.n }; /* a run in one piece */
-      else this.append(b, m);
-      if (!m.done) { if (b.onRows) b.onRows(b.acc); return; }
-      const acc = b.acc[m.job];
-      b.results[m.job] = { rows: acc.rows.subarray(0, acc.n * this.cols), n: acc.n, message: m.message, rhsCalls: m.rhsCalls, ms: m.ms };
-      if (m.job === b.jobs.length - 1) { this.pending = null; b.resolve(b.results); }
-    }
-
-    /* The rows of a message after those of its run received before (a buffer that grows). */
-    append(b, m) {
-      const acc = b.acc[m.job] || (b.acc[m.job] = { rows: new Float64Array(Math.max(m.n, 1024) * this.cols), n: 0 });
-      const need = m.n * this.cols;
-      if (need > acc.rows.length) {
-        const grown = new Float64Array(Math.max(need, 2 * acc.rows.length));
-        grown.set(acc.rows.subarray(0, acc.n * this.cols));
-        acc.rows = grown;
-      }
-      acc.rows.set(m.rows, acc.n * this.cols);
-      acc.n = m.n;
-    }
-
-    restart() { this.worker.terminate(); this.start(); }
-
-    /* The worker stopped for good (a page that shows another model's runs). */
-    close() { this.pending = null; this.worker.terminate(); }
-
-    async run(jobs, onRows) {
-      if (this.pending) { /* a newer change: the older run stops */
-        const old = this.pending;
-        this.pending = null;
-        this.cancels++;
-        this.restart();
-        old.reject(Runner.cancelled);
-      }
-      const b = { batch: ++this.batch, jobs, onRows, acc: [], results: [] };
-      const done = new Promise((resolve, reject) => { b.resolve = resolve; b.reject = reject; });
-      done.catch(() => {}); /* handled by whoever awaits it; none when cancelled early */
-      this.pending = b;
-      try {
-        await this.ready;
-      } catch (e) {
-        if (this.pending === b) this.pending = null;
-        throw e;
-      }
-      if (this.pending === b) this.worker.postMessage({ batch: b.batch, jobs });
-      return done;
-    }
-  }
-  Runner.cancelled = { cancelled: true };
+  const Runner = DK.LiveRunner;
 
   class Live {
     constructor(data) {
+      this.localMs = undefined; /* the runner's default: how long a run on the page's thread may take */
       this.data = data;
       const L = this.L = data.live;
       this.model = data.model;
@@ -206,7 +58,9 @@
     async instantiate() {
       /* the module the tool links imports one function, dynkit.progress (live_run.c); a
        * module of every built-in model (report --html --live) runs the one of this page */
-      this.runner = new Runner(await WebAssembly.compile(decode64(this.L.module)), this.data.choose);
+      const module = await DK.liveModule(this.L.module);
+      if (this.stopped) throw Live.stopped; /* another model chosen meanwhile: no worker */
+      this.runner = new Runner(module, this.data.choose);
       await this.runner.ready;
       this.cols = this.runner.cols;
     }
@@ -227,6 +81,13 @@
         gv.push(own || s.given ? 1 : 0);
       });
       return { method, step, settings: set, params, inits: iv, given: gv };
+    }
+
+    /* The samples a run of that step writes on the span (Infinity when it writes one at each
+     * of its steps, which an adaptive method chooses). */
+    expected(step, atSteps) {
+      if (atSteps) return Infinity;
+      return Math.floor(Math.abs(this.t1 - this.t0) / step / Math.max(1, this.L.every)) + 2;
     }
 
     /* A run as the page's data (cli_json_series): its columns thinned to MAX_ROWS samples. */
@@ -279,12 +140,13 @@
           this.partialDraws++;
         });
       } : null;
-      const promise = this.current = this.runner.run(runs.map(r => r.job), onRows).then(results => {
+      const samples = runs.reduce((a, r) => a + this.expected(r.step, r.job.settings[S.atSteps] && this.adaptive[r.method]), 0);
+      const promise = this.current = this.runner.run(runs.map(r => r.job), onRows, { samples, localMs: this.localMs }).then(results => {
         const main = this.last = results[0];
         const t1 = performance.now();
         if (draw) this.redraw(series(results));
         const t2 = performance.now();
-        this.timing = { run_ms: results.reduce((a, r) => a + r.ms, 0), draw_ms: t2 - t1, total_ms: t2 - start, samples: main.n, rhs_calls: main.rhsCalls };
+        this.timing = { run_ms: results.reduce((a, r) => a + r.ms, 0), draw_ms: t2 - t1, total_ms: t2 - start, samples: main.n, rhs_calls: main.rhsCalls, thread: this.runner.where };
         this.showStatus();
         this.showCommand();
         this.showStates();
@@ -312,9 +174,10 @@
       return names;
     }
 
-    /* The page drawn with the new runs: in place (every plot keeps its canvas and takes the
-     * new samples, DK.updateAnimate), else built again (a mechanism's scene and an .ani
-     * animation drawn from the live runs when their module gives their numbers); a run being
+    /* The page drawn with the new runs: in place (every view keeps its canvas and takes the
+     * new samples, DK.updateAnimate; a mechanism's scene and an .ani animation with the
+     * frames of the live runs when their module gives their numbers), else built again (a
+     * scene or an animation that shows the tool's run, at the first rerun); a run being
      * computed (partial) is drawn only in place. */
     redraw(runs, partial) {
       if (this.stopped) return; /* replaced by another model's (report --live) */
@@ -519,6 +382,8 @@
     }
   }
 
+  Live.stopped = { stopped: true }; /* the end of a page replaced before its module ran */
+
   DK.startLive = function (data) {
     const live = new Live(data);
     DK.lastLive = live;
@@ -542,6 +407,7 @@
           if (it.show) it.show(it.value);
         } else if (name === 'method') live.method = String(value);
         else if (['step', 't0', 't1', 'rtol', 'atol'].includes(name)) live[name] = Number(value);
+        else if (name === 'local_ms') live.localMs = value === null || value === undefined ? undefined : Number(value); /* 0: every run in the worker; null: the default */
         else throw new Error('no parameter, initial value or setting ' + name);
       },
       get(name) { const it = find(name); return it ? it.value : live[name]; },
@@ -569,6 +435,7 @@
       ani: () => (live.aniRuns ? live.aniRuns[0] : null)
     };
     started.catch(e => {
+      if (live.stopped) return; /* another model of the report chosen meanwhile */
       live.status.textContent = 'This page could not run the model: ' + e;
       live.status.className = 'error';
       document.body.dataset.live = 'failed';

@@ -57,7 +57,10 @@
       return window.dynkitLive.ready;
     }
     select.addEventListener('change', () => { choose(select.value); });
-    window.dynkitReportLive = { models: names.slice(), choose: async name => { await choose(name); } };
+    /* choose(NAME): resolved once its model ran its first run, or once another model chosen
+     * before that replaced it */
+    const replaced = e => e && e.stopped === true;
+    window.dynkitReportLive = { models: names.slice(), choose: async name => { await choose(name).catch(e => { if (!replaced(e)) throw e; }); } };
     choose(names[0]);
   };
 })(window.DK);

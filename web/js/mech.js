@@ -80,7 +80,10 @@
     return { points: top.concat(bot), faces };
   }
 
-  DK.MechView = function (container, runs, mech, player) {
+  /* What a scene's drawing needs from its runs: the mechanism's extent (lo, hi, its size L,
+   * mid), whether the camera follows the first body (a disk rolling away), the arrows' scale
+   * and legend, and the plane it moves in (axis, or -1 in 3D). */
+  function measure(runs, mech, axis) {
     const n0 = runs[0].t.length;
     /* the size of the mechanism: the spread of every point over the first run */
     const pts = [];
@@ -118,9 +121,6 @@
     const follow = S > 0 && L0 > 6 * S && mech.bodies.length > 0;
     const L = follow ? 3 * S : L0;
     const mid = [0, 1, 2].map(i => (lo[i] + hi[i]) / 2);
-    /* the followed point: the first body's mass centre in the first run */
-    const centreAt = t => pose(mr0, 0, DK.locate(runs[0].t, t)).x;
-    const auto = { sphere: 0.04 * L, frame: 0.2 * L, ground: 0.7 * L };
     /* the arrows: |lambda| at most a quarter of the size, at a round scale. A force below
      * ARROW_WEIGHT of the weight m |g| (rounding left of a zero force) or below
      * ARROW_FRACTION of the largest force drawn (shorter than a pixel) is not drawn */
@@ -133,21 +133,35 @@
     const fmin = Math.max(ARROW_FRACTION * fmax, ARROW_WEIGHT * weight); /* drawn from it on */
     const perM = fmax > 0 ? DK.niceStep(fmax / (0.25 * L), 1) : 1; /* force units per metre of arrow */
     const funit = forces.length ? DK.unit(runs[0].raw, forces[0]) : '';
-    const axis = planarAxis(mech, runs);
+    const fu = funit ? ' ' + funit : '';
+    const legendText = !forces.length ? ''
+      : fmax > 0 ? 'arrows: 1 m = ' + DK.fmt(perM, 3) + fu + (fmin > 0 ? ', none below ' + DK.fmt(fmin, 2) + fu : '')
+      : 'arrows: none, all below ' + DK.fmt(fmin, 2) + fu + ' (1e-9 m g)';
+    return { runs, mech, lo, hi, L, mid, follow, fmin, perM, legendText, axis: axis !== undefined ? axis : planarAxis(mech, runs),
+      auto: { sphere: 0.04 * L, frame: 0.2 * L, ground: 0.7 * L } };
+  }
+
+  /* The view of a mechanism; update(runs, data) draws it again with new runs and their
+   * scene (a live page's rerun: the canvas, the player's time and a moved camera kept),
+   * accepts(runs, data) says whether it can (the scene moves in the same plane, or in 3D). */
+  DK.MechView = function (container, runs, mech, player) {
+    let o = measure(runs, mech); /* replaced at every update: the closures below read it */
+    /* the followed point: the first body's mass centre in the first run */
+    const centreAt = t => pose(o.mech.runs[0], 0, DK.locate(o.runs[0].t, t)).x;
     /* the readouts of the multipliers */
     const read = DK.el('div', { class: 'mech-readouts' });
     function readouts(t) {
       if (!mech.constraints.length) return;
       read.textContent = '';
-      for (const r of runs) {
+      for (const r of o.runs) {
         const pos = DK.locate(r.t, t);
         const items = mech.constraints.map(c => c + ' = ' + DK.fmt(r.cols[c] ? DK.at(r.cols[c], pos) : NaN, 4) + (DK.unit(r.raw, c) ? ' ' + DK.unit(r.raw, c) : ''));
-        read.appendChild(DK.el('p', { class: 'hint' }, [DK.el('i', { class: 'swatch', style: 'background:' + r.color }), (runs.length > 1 ? r.label + ': ' : 'constraint forces: ') + items.join(' · ')]));
+        read.appendChild(DK.el('p', { class: 'hint' }, [DK.el('i', { class: 'swatch', style: 'background:' + r.color }), (o.runs.length > 1 ? r.label + ': ' : 'constraint forces: ') + items.join(' · ')]));
       }
     }
     /* every shape of run i at time t as primitives in N: {poly}, {line}, {ball}, {arrow} */
     function prims(i, t, out) {
-      const r = runs[i], mr = mech.runs[i], pos = DK.locate(r.t, t), color = r.color;
+      const r = o.runs[i], mr = o.mech.runs[i], pos = DK.locate(r.t, t), color = r.color, auto = o.auto;
       mech.shapes.forEach((s, k) => {
         const xs = mr.values[k], v = xs.map(x => val(x, pos));
         const R = s.body >= 0 ? pose(mr, s.body, pos).R : [1, 0, 0, 0, 1, 0, 0, 0, 1];
@@ -163,8 +177,8 @@
           case 'rod': out.push({ kind: 'line', ps: [v.slice(0, 3), v.slice(3, 6)], color: s.color || color, width: 4 }); break;
           case 'spring': out.push({ kind: 'spring', a: v.slice(0, 3), b: v.slice(3, 6), color: '#555' }); break;
           case 'frame': {
-            const o = v.slice(0, 3), len = isFinite(v[3]) ? v[3] : auto.frame;
-            ['#c0392b', '#27ae60', '#2c6fbb'].forEach((c, a) => out.push({ kind: 'line', ps: [o, add(o, axisN(R, a), len)], color: c, width: 2 }));
+            const c0 = v.slice(0, 3), len = isFinite(v[3]) ? v[3] : auto.frame;
+            ['#c0392b', '#27ae60', '#2c6fbb'].forEach((c, a) => out.push({ kind: 'line', ps: [c0, add(c0, axisN(R, a), len)], color: c, width: 2 }));
             break;
           }
           case 'ground': {
@@ -173,7 +187,7 @@
             let e = [1, 0, 0]; if (Math.abs(nrm[0]) > 0.9) e = [0, 1, 0];
             const u = unit(cross(nrm, e)), w = cross(nrm, u);
             /* centred on the mechanism's middle, within the plane */
-            const m = follow ? centreAt(t).map(x => Math.round(x / (h / 4)) * (h / 4)) : mid;
+            const m = o.follow ? centreAt(t).map(x => Math.round(x / (h / 4)) * (h / 4)) : o.mid;
             const d = [0, 1, 2].reduce((a, q) => a + (m[q] - p[q]) * nrm[q], 0), c = add(m, nrm, -d);
             out.push({ kind: 'ground', c, u, w, h, normal: nrm, color: s.color });
             break;
@@ -184,51 +198,66 @@
             for (let m = 0; m <= pos.i; m++) path.push([xs3[0][m], xs3[1][m], xs3[2][m]]);
             path.push(v.slice(0, 3));
             out.push({ kind: 'line', ps: path, color: s.color || color, width: 1.3, alpha: 0.7, trail: true });
-            out.push({ kind: 'ball', p: v.slice(0, 3), r: 0.012 * L, fill: s.color || color, edge: '#fff' });
+            out.push({ kind: 'ball', p: v.slice(0, 3), r: 0.012 * o.L, fill: s.color || color, edge: '#fff' });
             break;
           }
           case 'arrow': {
             const f = r.cols[s.force] ? DK.at(r.cols[s.force], pos) : NaN;
-            if (!isFinite(f) || f === 0 || Math.abs(f) < fmin) break;
-            const a = v.slice(0, 3), b = add(a, v.slice(3, 6), f / perM);
+            if (!isFinite(f) || f === 0 || Math.abs(f) < o.fmin) break;
+            const a = v.slice(0, 3), b = add(a, v.slice(3, 6), f / o.perM);
             out.push({ kind: 'arrow', a, b, color: s.color || '#c2185b', label: s.force });
             break;
           }
         }
       });
     }
-    const fu = funit ? ' ' + funit : '';
-    const legendText = !forces.length ? ''
-      : fmax > 0 ? 'arrows: 1 m = ' + DK.fmt(perM, 3) + fu + (fmin > 0 ? ', none below ' + DK.fmt(fmin, 2) + fu : '')
-      : 'arrows: none, all below ' + DK.fmt(fmin, 2) + fu + ' (1e-9 m g)';
-    let view;
-    if (axis >= 0) view = view2d(container, runs, mech, player, axis, prims, { lo, hi, L, legendText });
-    else view = view3d(container, runs, mech, player, prims, { lo, hi, L, mid, legendText, follow, centreAt });
+    const shown = () => {
+      container.dataset.mechView = o.axis >= 0 ? '2d' : '3d';
+      container.dataset.mechArrows = o.legendText;
+    };
+    const st = () => o;
+    const view = o.axis >= 0 ? view2d(container, mech, player, o.axis, prims, st) : view3d(container, mech, player, prims, st, centreAt);
     container.appendChild(read);
     readouts(player.t);
     player.onTime(readouts);
-    container.dataset.mechView = axis >= 0 ? '2d' : '3d';
-    container.dataset.mechArrows = legendText;
+    shown();
+    let checked = null; /* the plane of the scene accepts saw last */
+    view.accepts = (rs, data) => {
+      if (!data.mech || data.mech.runs.length !== rs.length) return false;
+      checked = { mech: data.mech, axis: planarAxis(data.mech, rs) };
+      return checked.axis === o.axis;
+    };
+    view.update = (rs, data) => {
+      o = measure(rs, data.mech, checked && checked.mech === data.mech ? checked.axis : undefined);
+      view.refresh();
+      readouts(player.t);
+      shown();
+    };
     return view;
   };
 
-  function view3d(container, runs, mech, player, prims, o) {
+  /* The scene in 3D; st() gives the measures of the runs drawn (measure). */
+  function view3d(container, mech, player, prims, st, centreAt) {
     const D = displayFrame(mech.gravity);
-    const keys = [D([0, 0, 0])];
-    if (o.follow) { /* a box of the mechanism's size around where the run starts */
-      const c = o.centreAt(runs[0].t[0]), h = o.L;
-      keys.length = 0;
-      for (const a of [-h, h]) for (const b of [-h, h]) for (const e of [-h, h]) keys.push(D([c[0] + a, c[1] + b, c[2] + e]));
-    } else {
-      for (const a of [o.lo[0], o.hi[0]]) for (const b of [o.lo[1], o.hi[1]]) for (const c of [o.lo[2], o.hi[2]]) keys.push(D([a, b, c]));
-    }
+    const keysOf = o => {
+      const keys = [D([0, 0, 0])];
+      if (o.follow) { /* a box of the mechanism's size around where the run starts */
+        const c = centreAt(o.runs[0].t[0]), h = o.L;
+        keys.length = 0;
+        for (const a of [-h, h]) for (const b of [-h, h]) for (const e of [-h, h]) keys.push(D([c[0] + a, c[1] + b, c[2] + e]));
+      } else {
+        for (const a of [o.lo[0], o.hi[0]]) for (const b of [o.lo[1], o.hi[1]]) for (const c of [o.lo[2], o.hi[2]]) keys.push(D([a, b, c]));
+      }
+      return keys;
+    };
     let view = null;
     function world(scene, t) {
+      const o = st();
       if (o.follow && view) { /* the camera keeps the first body in the middle */
-        const c = D(o.centreAt(t));
+        const c = D(centreAt(t));
         if (c.every(isFinite)) scene.target = c;
       }
-      for (let i = 0; i < runs.length; i++) {
+      for (let i = 0; i < o.runs.length; i++) {
         const out = [];
         prims(i, t, out);
         for (const p of out) {
@@ -255,14 +284,16 @@
       }
       DK.axesN(scene, D, 0.12 * o.L, 'Z');
     }
-    const mr0 = mech.runs[0];
-    const scaleAt = t => D(mech.bodies.length ? pose(mr0, 0, DK.locate(runs[0].t, t)).x : [0, 0, 0]);
-    const afterScale = o.legendText ? (ctx, s) => {
+    const scaleAt = t => D(mech.bodies.length ? pose(st().mech.runs[0], 0, DK.locate(st().runs[0].t, t)).x : [0, 0, 0]);
+    const afterScale = (ctx, s) => {
+      const text = st().legendText;
+      if (!text) return;
       ctx.fillStyle = '#c2185b'; ctx.textAlign = 'right'; ctx.textBaseline = 'alphabetic';
-      ctx.fillText(o.legendText, s.w - 16, s.h - 34);
+      ctx.fillText(text, s.w - 16, s.h - 34);
       ctx.textAlign = 'left';
-    } : null;
-    view = DK.SceneView(container, runs, player, { keys, world, home: { azimuth: -1.05, elevation: 0.35 }, scaleNote: 'at ' + (mech.bodies[0] ? mech.bodies[0].name : 'the origin'), scaleAt, afterScale });
+    };
+    view = DK.SceneView(container, st().runs, player, { keys: keysOf(st()), world, home: { azimuth: -1.05, elevation: 0.35 }, scaleNote: 'at ' + (mech.bodies[0] ? mech.bodies[0].name : 'the origin'), scaleAt, afterScale });
+    view.refresh = () => view.refit(st().runs, keysOf(st()));
     return view;
   }
 
@@ -277,21 +308,27 @@
     return lower.slice(0, -1).concat(upper.slice(0, -1));
   }
 
-  function view2d(container, runs, mech, player, k, prims, o) {
+  /* The scene in the plane across axis k of N, on equal scales; st() as view3d's. */
+  function view2d(container, mech, player, k, prims, st) {
     /* the plane's two axes, the one against gravity vertical when there is one */
     let i = (k + 1) % 3, j = (k + 2) % 3;
     const g = mech.gravity;
     if (Math.abs(g[i]) > Math.abs(g[j])) [i, j] = [j, i];
     const names = ['X', 'Y', 'Z'];
     const P = p => [p[i], p[j]];
-    const pad = 0.12 * o.L;
-    const series = runs.map(r => ({ label: r.label, color: r.color, t: r.t, x: [o.lo[i] - pad, o.hi[i] + pad], y: [o.lo[j] - pad, o.hi[j] + pad], width: 0 }));
+    /* a series per run spanning the mechanism's extent: the frame the plot fits */
+    const seriesOf = o => {
+      const pad = 0.12 * o.L;
+      return o.runs.map(r => ({ label: r.label, color: r.color, t: r.t, x: [o.lo[i] - pad, o.hi[i] + pad], y: [o.lo[j] - pad, o.hi[j] + pad], width: 0 }));
+    };
+    const legendOf = o => (o.runs.length > 1 ? 'tr' : 'none');
     const plot = new DK.Plot(container, {
-      title: 'the mechanism in its plane', xlabel: names[i] + ' [m]', ylabel: names[j] + ' [m]', equal: true, fitData: true, series, cursor: 'none', legend: runs.length > 1 ? 'tr' : 'none', legendValues: false, aspect: 0.8,
+      title: 'the mechanism in its plane', xlabel: names[i] + ' [m]', ylabel: names[j] + ' [m]', equal: true, fitData: true, series: seriesOf(st()), cursor: 'none', legend: legendOf(st()), legendValues: false, aspect: 0.8,
       overlay: (ctx, p, t) => {
+        const o = st();
         const px = q => [p.px(q[0]), p.py(q[1])];
         const scale = Math.abs(p.px(1) - p.px(0));
-        for (let r = 0; r < runs.length; r++) {
+        for (let r = 0; r < o.runs.length; r++) {
           const out = [];
           prims(r, t, out);
           for (const q of out) {
@@ -346,6 +383,7 @@
       }
     });
     player.onTime(t => plot.setTime(t));
+    plot.refresh = () => plot.setSeries(seriesOf(st()), { legend: legendOf(st()) });
     return plot;
   }
 })(window.DK);

@@ -68,8 +68,8 @@ typedef struct report_page {
 } report_page;
 
 /* The page's live part: the module once, then per model the data of its live page
- * (`dynkit animate MODEL --live`: the model, its default run, the settings) and the index
- * the module's instance runs it by. */
+ * (`dynkit animate MODEL --live`: the model, the settings of its default run, which the
+ * page computes, no run of the tool's) and the index the module's instance runs it by. */
 static int live_data(cli_json *j, const report_page *r)
 {
     cli_json_key(j, "live_module");
@@ -82,7 +82,7 @@ static int live_data(cli_json *j, const report_page *r)
         const cli_view *v = &r->views[k];
         cli_json_key(j, live_models[k]);
         cli_json_begin_object(j);
-        cli_json_animate_runs(j, v);
+        cli_json_animate_runs(j, v); /* no run: the section draws the module's first */
         int index = -1;
         for (int i = 0; i < dyn_model_count(); i++)
             if (dyn_model_at(i) == v->run.model)
@@ -97,15 +97,14 @@ static int live_data(cli_json *j, const report_page *r)
     return bad;
 }
 
-/* Each live model's default run, as `dynkit animate MODEL --live` records it. */
-static int record_live_views(cli_view *views)
+/* Each live model's default run's settings, as `dynkit animate MODEL --live` reads them
+ * (the page computes the run itself). */
+static int parse_live_views(cli_view *views)
 {
     int rc = CLI_OK;
     for (int k = 0; k < N_LIVE_MODELS && rc == CLI_OK; k++) {
         char *args[] = {(char *)live_models[k], NULL};
         rc = cli_view_parse("report", 1, args, NULL, NULL, &views[k]);
-        if (rc == CLI_OK)
-            rc = cli_view_record(&views[k]);
     }
     return rc;
 }
@@ -223,7 +222,7 @@ static int write_html(const dyn_homework *hw, const char *path, int live_asked)
     if (live_asked && cli_live_build_builtins(&live) != 0)
         cli_warning("the page is not live, it shows the homework's runs: %s", live.why);
     if (live.module) {
-        rc = record_live_views(views);
+        rc = parse_live_views(views);
         page.live = &live;
         page.views = views;
     }

@@ -40,6 +40,12 @@ void cli_json_raw(cli_json *j, const char *text, size_t len);
 /* An array of n numbers v[0], v[stride], v[2 stride], ... */
 void cli_json_numbers(cli_json *j, const double *v, long n, long stride);
 
+/* ---- zlib streams (zlib_write.c) ---- */
+
+/* data[0..n) as a zlib stream (RFC 1950) of one fixed-Huffman DEFLATE block: a new buffer
+ * (free it) of *out_n bytes, or NULL when out of memory. */
+unsigned char *cli_zlib_compress(const unsigned char *data, size_t n, size_t *out_n);
+
 /* ---- recorded runs (run_record.c) ---- */
 
 /* One run of a model kept in memory for a picture: t, the states and the extra outputs. */

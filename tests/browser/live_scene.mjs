@@ -138,7 +138,9 @@ async function open(file) {
   await page.goto(url, { waitUntil: 'load' });
   await page.waitForSelector('body[data-live]', { timeout: 120000 }).catch(() => {});
   const state = await page.evaluate(() => document.body.dataset.live);
-  if (!check(state === 'ready', `the module runs in the page (${(fs.statSync(file).size / 1024).toFixed(0)} KiB)`)) {
+  const size = fs.statSync(file).size;
+  check(size < 1e6, `the page is under 1 MB (${size} bytes)`);
+  if (!check(state === 'ready', `the module runs in the page (${(size / 1024).toFixed(0)} KiB)`)) {
     console.log(errors.join('\n'));
     await page.close();
     return null;

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* dynkit page: live pages (`animate --live`) — the model compiled by the tool to
- * WebAssembly (data.live.module, base64; its entry backends/wasm/live_run.c) runs in the
+ * WebAssembly (data.live.module, a zlib stream in base64; its entry
+ * backends/wasm/live_run.c) runs in the
  * page: a slider and a number box for every parameter and initial value, the method, step,
  * tolerances and span; every change reruns the main run, the --compare runs and the
  * trajectories started by a click in the phase plane, and redraws the animation page with
@@ -387,11 +388,14 @@
   DK.startLive = function (data) {
     const live = new Live(data);
     DK.lastLive = live;
-    live.player = DK.buildAnimate(data); /* the tool's run, until the module runs */
+    /* the tool's run until the module runs; the report's live part has none: the module's
+     * first run is drawn */
+    const fromTool = data.runs.length > 0;
+    if (fromTool) live.player = DK.buildAnimate(data);
     live.buildControls();
     const find = name => live.params.find(p => p.name === name) || live.states.find(s => s.name === name);
     /* the module set up in its worker and its first run done */
-    const started = live.ready.then(() => live.rerun(false)).then(() => {
+    const started = live.ready.then(() => live.rerun(!fromTool)).then(() => {
       live.hookPhase();
       document.body.dataset.live = 'ready';
     });

@@ -3,8 +3,8 @@
  * where the homework's models run in the page: one module holds every built-in model
  * (data.live_module; an instance runs the one chosen, live_page.c), and the model chosen
  * gets the live page of `dynkit animate MODEL --live` (its controls, picture, time series,
- * command line and CSV; web/js/live.js) in the section, from its default run
- * (data.live_models). Choosing another model replaces it. window.dynkitReportLive.choose
+ * command line and CSV; web/js/live.js) in the section, from its default run (the settings
+ * in data.live_models, the run computed by the module). Choosing another model replaces it. window.dynkitReportLive.choose
  * serves scripts and the browser tests. docs/web.md, "Live pages". */
 'use strict';
 (function (DK) {

@@ -95,10 +95,14 @@
     return out;
   }
 
-  /* The module of base64 text compiled, once per text (the report's models share one). */
+  /* The module of a zlib stream (cli/pages/zlib_write.c) in base64 text: inflated by the
+   * browser and compiled, once per text (the report's models share one). */
   let compiled = null;
   DK.liveModule = function (text) {
-    if (!compiled || compiled.text !== text) compiled = { text, module: WebAssembly.compile(decode64(text)) };
+    if (!compiled || compiled.text !== text) {
+      const inflated = new Blob([decode64(text)]).stream().pipeThrough(new DecompressionStream('deflate'));
+      compiled = { text, module: new Response(inflated).arrayBuffer().then(bytes => WebAssembly.compile(bytes)) };
+    }
     return compiled.module;
   };
 

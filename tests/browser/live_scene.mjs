@@ -164,17 +164,19 @@ async function finish(o, name) {
 }
 
 // The picture of selector's canvas at the fraction f of the player's span, the player paused
-// there (a data URL of its pixels); the canvas marked to tell whether it is kept.
-async function drawnAt(page, selector, f) {
-  return page.evaluate(async ([sel, f]) => {
+// there (a data URL of its pixels), and whether the canvas is the one marked before; mark:
+// the canvas marked, to tell later whether it is kept.
+async function drawnAt(page, selector, f, mark) {
+  return page.evaluate(async ([sel, f, mark]) => {
     const c = document.querySelector(sel), player = window.DK.lastLive.player;
     if (!c) return null;
-    c.dkKept = c.dkKept || 'the same canvas';
+    const kept = c.dkKept;
+    if (mark) c.dkKept = 'the same canvas';
     player.pause();
     player.seek(player.t0 + f * (player.t1 - player.t0));
     await new Promise(r => requestAnimationFrame(() => setTimeout(r, 0)));
-    return { url: c.toDataURL(), t: player.t };
-  }, [selector, f]);
+    return { url: c.toDataURL(), t: player.t, kept };
+  }, [selector, f, !!mark]);
 }
 
 // A long run (a span `times` the page's) drawn as it computes, in place: at its first drawing
@@ -221,7 +223,8 @@ for (const p of mechs.filter(q => !q.failed)) {
   if (p.setFirstState !== undefined) set[written.model.states[0].name] = p.setFirstState;
   const arrowsBefore = await page.evaluate(() => { const v = document.querySelector('#view'); return v && v.dataset.mechArrows; });
   const sceneCanvas = '#view canvas';
-  const drawnBefore = await drawnAt(page, sceneCanvas, 0.5);
+  const drawnBefore = await drawnAt(page, sceneCanvas, 0.5, true);
+  const aniBefore = written.ani ? await drawnAt(page, '#ani canvas.ani-canvas', 0.5, true) : null;
   for (const [k, v] of Object.entries(set)) await page.evaluate(([k, v]) => window.dynkitLive.set(k, v), [k, v]);
   const out = await page.evaluate(async () => {
     const r = await window.dynkitLive.run();
@@ -232,9 +235,16 @@ for (const p of mechs.filter(q => !q.failed)) {
   check(!/scene shows the run the page was written with/.test(out.note), `the page does not say its scene is the original run's (${out.note || 'no note'})`);
   if (p.inPlace) {
     const drawnAfter = await drawnAt(page, sceneCanvas, 0.5);
-    const kept = await page.evaluate(sel => document.querySelector(sel).dkKept, sceneCanvas);
-    check(kept === 'the same canvas' && drawnBefore && drawnAfter && drawnAfter.url !== drawnBefore.url,
+    const kept = drawnAfter && drawnAfter.kept;
+    check(kept === 'the same canvas' && drawnBefore && drawnAfter.url !== drawnBefore.url,
       `the change redraws the scene in place: the same canvas (${kept || 'a new one'}), another pose drawn at t = ${drawnAfter && drawnAfter.t.toFixed(3)}`);
+  }
+  if (aniBefore && !written.live.ani_outputs) {
+    // an .ani beside the .mech, which the module does not compute: it stays, showing the
+    // run the page was written with (the same pixels at the same time), and the page says so
+    const aniAfter = await drawnAt(page, '#ani canvas.ani-canvas', 0.5);
+    check(aniAfter && aniAfter.kept === 'the same canvas' && aniAfter.url === aniBefore.url && /animation shows the run the page was written with/.test(out.note),
+      `the .ani beside the mechanism stays, with the run the page was written with (${aniAfter ? aniAfter.kept || 'a new canvas' : 'gone'}; ${out.note})`);
   }
   const n0 = written.runs[0].data[0].length, size = scaleOf(written.mech.runs[0], n0);
   const n = out.scene.poses[0][0].length;
@@ -304,7 +314,7 @@ for (const p of anis) {
   const written = pageData(p.page);
   check(!!written.ani && written.live.ani_outputs === true, 'the page carries its animation and the module writes its numbers');
   const aniCanvas = '#ani canvas.ani-canvas';
-  const drawnBefore = await drawnAt(page, aniCanvas, 0.3);
+  const drawnBefore = await drawnAt(page, aniCanvas, 0.3, true);
   for (const [k, v] of Object.entries(p.set)) await page.evaluate(([k, v]) => window.dynkitLive.set(k, v), [k, v]);
   const out = await page.evaluate(async () => {
     await window.dynkitLive.run();
@@ -312,8 +322,8 @@ for (const p of anis) {
   });
   if (p.inPlace) {
     const drawnAfter = await drawnAt(page, aniCanvas, 0.3);
-    const kept = await page.evaluate(sel => document.querySelector(sel) && document.querySelector(sel).dkKept, aniCanvas);
-    check(kept === 'the same canvas' && drawnBefore && drawnAfter && drawnAfter.url !== drawnBefore.url,
+    const kept = drawnAfter && drawnAfter.kept;
+    check(kept === 'the same canvas' && drawnBefore && drawnAfter.url !== drawnBefore.url,
       `the change redraws the animation in place: the same canvas (${kept || 'a new one'}), another frame drawn at t = ${drawnAfter && drawnAfter.t.toFixed(3)}`);
   }
   if (!check(out.ani && out.ani.length === written.ani.prims.length, `the live run has the animation's ${out.ani ? out.ani.length : 0} primitives`)) { await finish(o, p.name); continue; }

@@ -188,9 +188,13 @@
     if (window.ResizeObserver) new ResizeObserver(() => draw()).observe(wrap);
     player.onTime(t => { state.t = t; draw(); });
     /* new runs with their frames (a live page's rerun, data.ani of the same file): the
-     * canvas and the run chosen kept */
-    const accepts = (rs, data) => !!data.ani && data.ani.prims.length === ani.prims.length && data.ani.runs.length === rs.length;
-    const update = (rs, data) => { runs = rs; ani = data.ani; options(rs); draw(); };
+     * canvas and the run chosen kept; data.ani_stale: the animation keeps the runs it has
+     * (the tool's: the page's module does not compute its frames) */
+    const accepts = (rs, data) => !!data.ani_stale || (!!data.ani && data.ani.prims.length === ani.prims.length && data.ani.runs.length === rs.length);
+    const update = (rs, data) => {
+      if (!data.ani_stale) { runs = rs; ani = data.ani; options(rs); }
+      draw();
+    };
     return { canvas, draw, accepts, update };
   };
 })(window.DK);

@@ -186,8 +186,9 @@
       /* a mechanism's scene from the runs' scene inputs (live_scene.js), an .ani animation
        * from its frames' numbers (live_ani.js); else they belong to the tool's run */
       const mech = this.sceneOf(runs), ani = this.aniOf(runs);
-      const staleAni = this.data.ani && !ani, stale = (this.data.mech && !mech) || staleAni;
-      const data = Object.assign({}, this.data, { runs, span: [this.t0, this.t1], ani, mech, shows: stale ? (staleAni ? 'The .ani animation shows' : 'The mechanism\u2019s scene shows') + ' the run the page was written with; the live runs are drawn in the plots.' : this.data.shows });
+      const staleAni = !!this.data.ani && !ani, staleMech = !!this.data.mech && !mech, stale = staleMech || staleAni;
+      /* (a scene or an animation of the tool's run keeps it in place: ani_stale, mech_stale) */
+      const data = Object.assign({}, this.data, { runs, span: [this.t0, this.t1], ani, mech, ani_stale: staleAni, mech_stale: staleMech, shows: stale ? (staleAni ? 'The .ani animation shows' : 'The mechanism\u2019s scene shows') + ' the run the page was written with; the live runs are drawn in the plots.' : this.data.shows });
       if (DK.updateAnimate(old, data) || partial) return;
       const t = old ? old.t : null, playing = old ? old.playing : true;
       if (old) {

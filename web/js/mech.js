@@ -222,12 +222,16 @@
     player.onTime(readouts);
     shown();
     let checked = null; /* the plane of the scene accepts saw last */
+    /* data.mech_stale: the scene keeps the runs it has (the tool's: the page's module does
+     * not compute its frames) */
     view.accepts = (rs, data) => {
+      if (data.mech_stale) return true;
       if (!data.mech || data.mech.runs.length !== rs.length) return false;
       checked = { mech: data.mech, axis: planarAxis(data.mech, rs) };
       return checked.axis === o.axis;
     };
     view.update = (rs, data) => {
+      if (data.mech_stale) { readouts(player.t); return; }
       o = measure(rs, data.mech, checked && checked.mech === data.mech ? checked.axis : undefined);
       view.refresh();
       readouts(player.t);

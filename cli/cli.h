@@ -120,8 +120,9 @@ const char *cli_model_c_source(const dyn_model *m);
  * (not a .mech file, or it cannot be read again). */
 char *cli_model_mech_scene_source(const char *path);
 /* The .ode file's C as it was loaded (its tables) with the numbers of the animation
- * ani_path's frames as outputs after the model's (dyn_ani_ode_to_c): malloc'd, or NULL (not
- * an .ode file, or either file cannot be read or translated so). */
+ * ani_path's frames as outputs after the model's (dyn_ani_ode_to_c), or a .mech file's with
+ * its scene's inputs, then those numbers (dyn_mech_ani_to_c): malloc'd, or NULL (neither, or
+ * either file cannot be read or translated so). */
 char *cli_model_ani_source(const char *ode_path, const char *ani_path);
 /* The file m was defined in (dyn_model.source, else the file cli_model_open loaded it
  * from, e.g. a C model that names no source), or NULL for a built-in model. */

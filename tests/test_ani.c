@@ -24,6 +24,7 @@
 #include "dynkit/dynkit.h"
 #include "dynkit/jit.h"
 #include "dynkit/lang.h"
+#include "dynkit/mbs.h"
 #include "test_util.h"
 
 /* A model with one of each kind of name: states x, v; parameters k, a; a number c; a
@@ -887,6 +888,94 @@ static int animate(const char *args, char *err, size_t size)
     return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
 }
 
+/* examples/mechanisms/double_pendulum.mech with its .ani (dyn_mech_ani_to_c): compiled, its
+ * outputs after the model's and the scene's inputs (scene:K) are the frame's numbers the
+ * evaluator gives for the animation read with the model's names (a C model's way, as
+ * `dynkit animate` reads it beside a mechanism), at the initial state and a state moved from
+ * it; an error of the animation is reported at its place */
+static void test_mechanism_animation(void **state)
+{
+    (void)state;
+    char mp[1024], ap[1024], err[4096], buf[2048];
+    snprintf(mp, sizeof mp, "%s/examples/mechanisms/double_pendulum.mech", DYNKIT_SOURCE_DIR);
+    snprintf(ap, sizeof ap, "%s/examples/mechanisms/double_pendulum.ani", DYNKIT_SOURCE_DIR);
+    size_t mlen = 0, alen = 0;
+    char *mt = read_file(mp, &mlen), *at = read_file(ap, &alen), *c_src = NULL;
+    assert_true(mt && at);
+    dyn_lang_diag d;
+    CHECK(dyn_mech_ani_to_c(mp, mt, mlen, NULL, 0, 0, ap, at, alen, &c_src, &d) == 0, "%s",
+          dyn_lang_diag_format(&d, buf, sizeof buf));
+    dyn_jit_opts opts;
+    memset(&opts, 0, sizeof opts);
+    opts.cache_dir = "ani-jit-cache";
+    dyn_jit_model jm;
+    CHECK(dyn_jit_load_source(c_src, strlen(c_src), mp, &opts, &jm, err, sizeof err) == 0, "%s",
+          err);
+    free(c_src);
+    const dyn_model *m = jm.model;
+    int no = 0, nscene = 0, nani = 0; /* the model's outputs, then scene:K, then ani:K */
+    for (int i = 0; i < m->n_outputs; i++) {
+        const char *name = m->outputs[i].name;
+        if (strncmp(name, "scene:", 6) == 0)
+            nscene++;
+        else if (strncmp(name, "ani:", 4) == 0)
+            CHECK(atoi(name + 4) == nani++, "output %d is %s", i, name);
+        else
+            CHECK(nscene == 0 && nani == 0 && i == no++, "output %d is %s", i, name);
+    }
+    const char *sn[16], *on[16], *pn[32];
+    assert_true(m->n_states <= 16 && no <= 16 && m->n_params <= 32);
+    for (int i = 0; i < m->n_states; i++)
+        sn[i] = m->states[i].name;
+    for (int i = 0; i < no; i++)
+        on[i] = m->outputs[i].name;
+    for (int i = 0; i < m->n_params; i++)
+        pn[i] = m->params[i].name;
+    const dyn_ani_model names = {mp, NULL, 0, m->n_states, no, m->n_params, sn, on, pn};
+    dyn_ani *a = NULL;
+    CHECK(dyn_ani_parse(ap, at, alen, &names, &a, &d, NULL, NULL) == 0, "%s",
+          dyn_lang_diag_format(&d, buf, sizeof buf));
+    const int nv = dyn_ani_n_values(a);
+    CHECK(nv == nani && nscene > 0, "%d numbers in a frame, %d ani outputs, %d scene inputs", nv,
+          nani, nscene);
+    void *par = calloc(1, m->par_size + 1);
+    double *y = calloc((size_t)m->n_states + 1, sizeof *y), *p = calloc(32, sizeof *p);
+    double *out = calloc((size_t)m->n_outputs + 1, sizeof *out), *v = calloc((size_t)nv + 1, 8);
+    assert_true(par && y && p && out && v);
+    CHECK(dyn_model_default_params(m, par, err, sizeof err) == 0, "%s", err);
+    for (int i = 0; i < m->n_params; i++)
+        p[i] = dyn_model_get_param(m, par, i);
+    int same = 0;
+    for (int pass = 0; pass < 2; pass++) {
+        for (int i = 0; i < m->n_states; i++)
+            y[i] = m->y0[i] + (pass ? 0.1 * (i + 1) : 0.0);
+        assert_int_equal(m->compute_outputs(0.3, y, par, out), 0);
+        const dyn_ani_frame fr = {0.3, y, out, p};
+        assert_int_equal(dyn_ani_eval(a, &fr, v), 0);
+        for (int K = 0; K < nv; K++) {
+            const double c = out[no + nscene + K];
+            CHECK(fabs(c - v[K]) <= 1e-13 * fmax(1.0, fabs(c)),
+                  "number %d: compiled %.17g, evaluated %.17g", K, c, v[K]);
+            same += same_bits(c, v[K]);
+        }
+    }
+    CHECK(same > 0, "no number of %d has the evaluator's bits", 2 * nv);
+    dyn_ani_free(a);
+    free(par);
+    free(y);
+    free(p);
+    free(out);
+    free(v);
+    dyn_jit_unload(&jm);
+    c_src = (char *)1;
+    CHECK(dyn_mech_ani_to_c(mp, mt, mlen, NULL, 0, 0, "a.ani", "line 0;0;zz;1\n", 14, &c_src,
+                            &d) == 2 &&
+              c_src == NULL && strcmp(d.path, "a.ani") == 0 && d.line == 1 && d.col == 10,
+          "%s", dyn_lang_diag_format(&d, buf, sizeof buf));
+    free(mt);
+    free(at);
+}
+
 static void test_command_line(void **state)
 {
     (void)state;
@@ -1008,6 +1097,7 @@ int main(void)
         cmocka_unit_test(test_limits_and_damaged_input),
         cmocka_unit_test(test_debian_examples),
         cmocka_unit_test(test_shipped_examples),
+        cmocka_unit_test(test_mechanism_animation),
         cmocka_unit_test(test_command_line),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

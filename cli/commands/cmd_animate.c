@@ -212,8 +212,8 @@ int cli_cmd_animate(int argc, char **argv)
     cli_live live;
     memset(&live, 0, sizeof live);
     if (rc == CLI_OK && live_asked &&
-        (ani.ani && ani.from_ode ? cli_live_build_ani(v.run.model, ani.path, &live)
-                                 : cli_live_build(v.run.model, &live)) != 0)
+        (ani.ani ? cli_live_build_ani(v.run.model, ani.path, &live) /* an .ode's or a .mech's */
+                 : cli_live_build(v.run.model, &live)) != 0)
         cli_warning("the page is not live, it shows the run it was written with: %s", live.why);
     if (homework && run_rc != CLI_USAGE && cli_animate_homework_finish(&v) != CLI_OK)
         rc = CLI_FAILED;

@@ -327,15 +327,19 @@ char *cli_model_mech_scene_source(const char *path)
 
 char *cli_model_ani_source(const char *ode_path, const char *ani_path)
 {
-    if (!ends_with(ode_path, ".ode"))
+    const int mech = ends_with(ode_path, ".mech");
+    if (!ends_with(ode_path, ".ode") && !mech)
         return NULL;
     size_t len = 0, ani_len = 0;
     char *text = cli_read_model_file(ode_path, &len);
     char *ani = text ? cli_read_model_file(ani_path, &ani_len) : NULL;
     char *c_source = NULL;
     dyn_lang_diag diag;
-    if (ani && dyn_ani_ode_to_c(ode_path, text, len, table_files, n_table_files, ani_path, ani,
-                                ani_len, &c_source, &diag) != 0)
+    const unsigned flags = mech_unchecked ? DYN_MECH_UNCHECKED_INIT : 0u;
+    if (ani && (mech ? dyn_mech_ani_to_c(ode_path, text, len, table_files, n_table_files, flags,
+                                         ani_path, ani, ani_len, &c_source, &diag)
+                     : dyn_ani_ode_to_c(ode_path, text, len, table_files, n_table_files,
+                                        ani_path, ani, ani_len, &c_source, &diag)) != 0)
         c_source = NULL;
     free(text);
     free(ani);

@@ -288,6 +288,9 @@ int cli_live_build_ani(const dyn_model *m, const char *ani_path, cli_live *out)
         memset(out, 0, sizeof *out);
         if (build_source(source, out) == 0) {
             out->ani_outputs = 1;
+            /* a mechanism's: after its scene's inputs (dyn_mech_ani_to_c) */
+            const size_t n = strlen(path);
+            out->scene_inputs = n > 5 && strcmp(path + n - 5, ".mech") == 0;
             return 0;
         }
         cli_live_free(out);

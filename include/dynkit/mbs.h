@@ -40,6 +40,17 @@ int dyn_mech_to_c_flags(const char *path, const char *text, size_t len,
                         char **c_source, dyn_lang_diag *diag, dyn_lang_note_fn note,
                         void *note_ctx);
 
+/* dyn_mech_to_c_flags with DYN_MECH_SCENE_INPUTS (and flags' DYN_MECH_UNCHECKED_INIT), then,
+ * after the scene's inputs, one output per number of a frame of the XPPAUT animation
+ * ani_text (ani_len bytes; ani_path names it in messages) read with the mechanism's names,
+ * named ani:K, as dyn_ani_ode_to_c does for an .ode file (dynkit/ani.h): a program that runs
+ * the model's C gets every frame of the animation with its sample (dynkit's live pages).
+ * 0, or non-zero as dyn_mech_to_c with *diag (an error of either file). */
+int dyn_mech_ani_to_c(const char *path, const char *text, size_t len,
+                      const dyn_lang_table_file *tables, int n_tables, unsigned flags,
+                      const char *ani_path, const char *ani_text, size_t ani_len,
+                      char **c_source, dyn_lang_diag *diag);
+
 /* What was derived, as readable formulas in the file's names (dynkit derive): the mass
  * matrix M (lower triangle), the forces F, and each constraint's row D and convective term
  * c, with M q'' = F + D' lambda and D q'' + c = 0; then the fixed quantities they use.

@@ -36,4 +36,10 @@ struct dyn_ani {
  * quantity, directly or through a function). */
 int ani_varies(const dyn_ani *a, const node *e);
 
+/* The animation's text (ani_path names it in messages) read with the names of the model c
+ * has read (an .ode file's, a mechanism's), each of its formulas appended to the model's
+ * outputs as ani:K, K its place in a frame (an output named in a formula replaced by its
+ * formula). An error fails c (lang_fail) at the animation's line. */
+void ani_append_outputs(lang_ctx *c, const char *ani_path, const char *ani_text, size_t ani_len);
+
 #endif /* DYNKIT_ANI_INTERNAL_H */

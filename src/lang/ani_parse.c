@@ -836,12 +836,8 @@ static void as_model_formula(lang_ctx *c, node **e)
         as_model_formula(c, &n->args[i]);
 }
 
-/* The .ode front end, then the animation read with its names, each of its formulas
- * appended to the model's outputs as ani:K (K its place in a frame) */
-static void ani_ode_front(lang_ctx *c)
+void ani_append_outputs(lang_ctx *c, const char *ani_path, const char *ani_text, size_t ani_len)
 {
-    const ani_source *src = c->hook_ctx;
-    lang_ode_front(c);
     const char *ode_path = c->path, *ode_text = c->text;
     const size_t ode_len = c->len;
     dyn_ani a;
@@ -855,7 +851,7 @@ static void ani_ode_front(lang_ctx *c)
     a.speed = 10;
     dyn_lang_note_fn note = c->note;
     c->note = NULL; /* the reader of the animation has said these already */
-    parse_lines(&a, src->path, src->text, src->len);
+    parse_lines(&a, ani_path, ani_text, ani_len);
     c->note = note;
     for (int i = 0; i < a.n_items; i++) {
         ani_item *it = &a.items[i];
@@ -868,6 +864,14 @@ static void ani_ode_front(lang_ctx *c)
         }
     }
     set_text(c, ode_path, ode_text, ode_len); /* the model's text again */
+}
+
+/* The .ode front end, then the animation's formulas as outputs */
+static void ani_ode_front(lang_ctx *c)
+{
+    const ani_source *src = c->hook_ctx;
+    lang_ode_front(c);
+    ani_append_outputs(c, src->path, src->text, src->len);
 }
 
 int dyn_ani_ode_to_c(const char *ode_path, const char *ode_text, size_t ode_len,

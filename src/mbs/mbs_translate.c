@@ -1,10 +1,12 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* dyn_mech_to_c (dynkit/mbs.h): a mechanism file to the C text of a dyn_model — its
  * statements (mbs_parse.c, inside src/lang's reading of the lines), src/lang's checks, the
- * equations of motion by TMT (mbs_derive.c), then src/lang's C text. */
+ * equations of motion by TMT (mbs_derive.c), then src/lang's C text; with its scene's inputs
+ * and an XPPAUT animation's formulas as outputs for live pages (dyn_mech_ani_to_c). */
 #include "dynkit/mbs.h"
 #include <string.h>
 
+#include "lang/ani_internal.h"
 #include "mbs/mbs_internal.h"
 
 mbs_model *mbs_read(lang_ctx *c)
@@ -55,6 +57,20 @@ static void scene_front(lang_ctx *c, int unchecked)
     }
 }
 
+/* the model with its scene's inputs, then an animation's formulas as outputs ani:K */
+typedef struct scene_ani {
+    const char *path, *text;
+    size_t len;
+    int unchecked;
+} scene_ani;
+
+static void scene_ani_front(lang_ctx *c)
+{
+    const scene_ani *a = c->hook_ctx; /* (mbs_read takes hook_ctx for itself) */
+    scene_front(c, a->unchecked);
+    ani_append_outputs(c, a->path, a->text, a->len);
+}
+
 static void mech_front(lang_ctx *c) { front(c, 0, 0, 0); }
 static void unchecked_front(lang_ctx *c) { front(c, 0, 0, 1); }
 static void scene_checked_front(lang_ctx *c) { scene_front(c, 0); }
@@ -82,6 +98,17 @@ int dyn_mech_to_c_flags(const char *path, const char *text, size_t len,
         fr = unchecked ? scene_unchecked_front : scene_checked_front;
     return lang_translate(path, text, len, tables, n_tables, c_source, diag, note, note_ctx,
                           fr, NULL);
+}
+
+int dyn_mech_ani_to_c(const char *path, const char *text, size_t len,
+                      const dyn_lang_table_file *tables, int n_tables, unsigned flags,
+                      const char *ani_path, const char *ani_text, size_t ani_len,
+                      char **c_source, dyn_lang_diag *diag)
+{
+    const scene_ani a = {ani_path ? ani_path : "<animation>", ani_text ? ani_text : "",
+                         ani_text ? ani_len : 0, (flags & DYN_MECH_UNCHECKED_INIT) != 0};
+    return lang_translate_with(path, text, len, tables, n_tables, c_source, diag, NULL, NULL,
+                               scene_ani_front, NULL, (void *)&a);
 }
 
 int dyn_mech_derive_text(const char *path, const char *text, size_t len, char **out,

@@ -10,13 +10,18 @@
 //   positions within 1e-8 of the mechanism's size and rotations within 1e-6 (the static
 //   page writes 9 and 6 significant digits); the constraint-force arrows follow the live
 //   run's multipliers;
-// - an XPPAUT animation (examples/models/pendulum.ode and double_pendulum.ode with their
-//   .ani): after a change the numbers of every primitive (dynkitLive.ani()) equal those of
-//   the static page of the same settings (within 1e-5 of the window: its 6 digits) and its
-//   vtext strings are the same, and differ from the first run's;
+// - an XPPAUT animation (examples/models/pendulum.ode, double_pendulum.ode and
+//   examples/mechanisms/double_pendulum.mech with their .ani): after a change the numbers of
+//   every primitive (dynkitLive.ani()) equal those of the static page of the same settings
+//   (within 1e-5 of the window: its 6 digits) and its vtext strings are the same, and differ
+//   from the first run's; an .ani beside a C model (spring_mass.c), which the module does not
+//   compute, keeps its canvas and pixels and the page says it shows the original run;
+// - a change redraws a mechanism's scene (2D, 3D) and an animation in place (the same canvas,
+//   other pixels), and a long run is drawn in place as it computes;
 // - `dynkit report --html FILE --live`: each of the homework's models chosen in the live
 //   section runs in the page, and a change of a parameter gives `dynkit run`'s numbers with
-//   the command line the page shows (within 1e-12 of each column's magnitude);
+//   the command line the page shows (within 1e-12 of each column's magnitude), and models
+//   switched away from before their modules ran leave one worker running;
 // - a mechanism file with a hostile title and an animation with hostile text run no script;
 // - at 390 px wide nothing scrolls sideways; no console error.
 // What failed is kept under ARTIFACTS/live-scene/.
@@ -224,7 +229,6 @@ for (const p of mechs.filter(q => !q.failed)) {
   const arrowsBefore = await page.evaluate(() => { const v = document.querySelector('#view'); return v && v.dataset.mechArrows; });
   const sceneCanvas = '#view canvas';
   const drawnBefore = await drawnAt(page, sceneCanvas, 0.5, true);
-  const aniBefore = written.ani ? await drawnAt(page, '#ani canvas.ani-canvas', 0.5, true) : null;
   for (const [k, v] of Object.entries(set)) await page.evaluate(([k, v]) => window.dynkitLive.set(k, v), [k, v]);
   const out = await page.evaluate(async () => {
     const r = await window.dynkitLive.run();
@@ -239,13 +243,7 @@ for (const p of mechs.filter(q => !q.failed)) {
     check(kept === 'the same canvas' && drawnBefore && drawnAfter.url !== drawnBefore.url,
       `the change redraws the scene in place: the same canvas (${kept || 'a new one'}), another pose drawn at t = ${drawnAfter && drawnAfter.t.toFixed(3)}`);
   }
-  if (aniBefore && !written.live.ani_outputs) {
-    // an .ani beside the .mech, which the module does not compute: it stays, showing the
-    // run the page was written with (the same pixels at the same time), and the page says so
-    const aniAfter = await drawnAt(page, '#ani canvas.ani-canvas', 0.5);
-    check(aniAfter && aniAfter.kept === 'the same canvas' && aniAfter.url === aniBefore.url && /animation shows the run the page was written with/.test(out.note),
-      `the .ani beside the mechanism stays, with the run the page was written with (${aniAfter ? aniAfter.kept || 'a new canvas' : 'gone'}; ${out.note})`);
-  }
+
   const n0 = written.runs[0].data[0].length, size = scaleOf(written.mech.runs[0], n0);
   const n = out.scene.poses[0][0].length;
   // the tool's scene of the same settings: a static page of the command line
@@ -269,6 +267,36 @@ for (const p of mechs.filter(q => !q.failed)) {
   if (p.hostile) check(await page.evaluate(() => window.pwned === undefined), 'hostile text in the mechanism file runs no script');
   if (p.inPlace) checkLongRun(await longRunInPlace(page, sceneCanvas, p.inPlace, 'scene'));
   await finish(o, p.name);
+}
+
+// ---- an .ani the module does not compute (beside a C model) ----
+// it stays, showing the run the page was written with (the same canvas and pixels at the
+// same time of the player), and the page says so; the plots follow the live run
+checks.current = 'c-model-ani';
+{
+  const cDir = fs.mkdtempSync(path.join(os.tmpdir(), 'dynkit-live-c-'));
+  fs.copyFileSync(ex('examples/models/spring_mass.c'), path.join(cDir, 'spring_mass.c'));
+  fs.writeFileSync(path.join(cDir, 'spring_mass.ani'), 'dimension -0.2;-0.1;0.2;0.1\nline 0;0;x;0;$BLACK;2\nfcircle x;0;0.02;$RED\nend\n');
+  const file = path.join(dir, 'c-model-ani.html');
+  const r = spawnSync(dynkit, ['animate', path.join(cDir, 'spring_mass.c'), '--live', '-o', file], { encoding: 'utf8' });
+  const o = check(r.status === 0 && !/not live/.test(r.stderr), `dynkit animate spring_mass.c --live: exit ${r.status} ${r.stderr.trim()}`) ? await open(file) : null;
+  if (o) {
+    const { page } = o, written = pageData(file), sel = '#ani canvas.ani-canvas';
+    check(!!written.ani && written.live.ani_outputs === false, 'the page carries the animation, which its module does not compute');
+    const before = await drawnAt(page, sel, 0.5, true);
+    const plotBefore = await drawnAt(page, '#plots canvas', 0.5, true);
+    const out = await page.evaluate(async () => {
+      window.dynkitLive.set('k', 4);
+      await window.dynkitLive.run();
+      return { note: document.getElementById('messages').textContent, ani: window.dynkitLive.ani() };
+    });
+    const after = await drawnAt(page, sel, 0.5), plotAfter = await drawnAt(page, '#plots canvas', 0.5);
+    check(after && after.kept === 'the same canvas' && after.url === before.url && out.ani === null && /animation shows the run the page was written with/.test(out.note),
+      `the .ani stays, with the run the page was written with (${after ? after.kept || 'a new canvas' : 'gone'}; ${out.note})`);
+    check(plotAfter && plotAfter.kept === 'the same canvas' && plotAfter.url !== plotBefore.url, 'the plots follow the live run, in place');
+    await finish(o, 'c-model-ani');
+  }
+  fs.rmSync(cDir, { recursive: true, force: true });
 }
 
 // ---- .ani animations ----
@@ -301,6 +329,7 @@ fs.writeFileSync(path.join(aniDir, 'hostile.ani'), fs.readFileSync(ex('examples/
 const anis = [
   { name: 'pendulum-ani', file: ex('examples/models/pendulum.ode'), set: { l: 5 }, inPlace: 1000 },
   { name: 'double-pendulum-ani', file: ex('examples/models/double_pendulum.ode'), set: { l1: 1.6, m2: 3, t1: 4 } },
+  { name: 'double-pendulum-mech-ani', file: ex('examples/mechanisms/double_pendulum.mech'), set: { l1: 1.6, m2: 3, t1: 4 } },
   { name: 'hostile-ani', file: hostileOde, set: { l: 5 }, hostile: true },
 ];
 for (const p of anis) {

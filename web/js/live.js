@@ -227,7 +227,9 @@
       const ani = this.data.ani;
       if (!ani || !this.L.ani_outputs || this.kept.length !== runs.length) return null;
       const counts = ani.runs[0].map(p => p.v.length), n = counts.reduce((a, b) => a + b, 0);
-      const base = 1 + this.model.states.length + this.model.outputs.length;
+      /* after the model's outputs, and a mechanism's scene's inputs (dyn_mech_ani_to_c) */
+      const scene = this.L.scene_inputs && this.data.mech_plan ? this.data.mech_plan.inputs : 0;
+      const base = 1 + this.model.states.length + this.model.outputs.length + scene;
       if (base + n > this.cols) return null;
       this.aniRuns = this.kept.map(k => DK.liveAniRun(ani, counts, k.rows, this.cols, base, k.keep));
       return Object.assign({}, ani, { runs: this.aniRuns });

@@ -10,7 +10,7 @@
 (function (DK) {
   const CHUNK_MS = 40;          /* a long run's samples reach the page this often */
   /* a run runs on the page's thread when predicted to take at most LOCAL_MS (the worker's
-   * round trip costs 3 to 18 ms on a loaded machine, a frame 16 ms) and has at most
+   * round trip costs up to 40 ms on a loaded machine, a frame 16 ms) and has at most
    * LOCAL_SAMPLES samples */
   const LOCAL_MS = 8;
   const RATES = 5;              /* the runs whose median time per sample predicts the next */

@@ -286,20 +286,46 @@ static int psi_at(const cont_system *s, cont_work *w, const target *g, const dou
     return 0;
 }
 
+/* The guess for the trial point at arclength c of the plane ta . (z - za) = c: from the
+ * bracket's end nearer to c (zn, tangent tn, at arclength sn) along its tangent onto the
+ * plane. Near a branch point the plane meets both branches and the corrector's matrix is
+ * nearly singular: Newton's method converges there only from a guess this close. */
+static void trial_guess(int M, const double *ta, double c, const double *zn, const double *tn,
+                        double sn, double *z)
+{
+    const double along = dot(ta, tn, M);
+    const double h = fabs(along) > 0.1 ? (c - sn) / along : c - sn;
+    for (int i = 0; i < M; i++)
+        z[i] = zn[i] + h * tn[i];
+}
+
 /* Locate psi = 0 for s in (0, sb) along (za, ta) where psi(0) = fa and psi(sb) = fb have
- * opposite signs: z, t the point found. 0 or non-zero. */
+ * opposite signs (zb, tb the point and tangent at sb): z, t the point found. A trial point
+ * whose correction fails (near a branch point the corrector's matrix is nearly singular and
+ * Newton's method converges only from close by) is moved halfway to the bracket's nearer
+ * end. When no trial point inside the bracket can be corrected any more and the bracket is
+ * narrower than 1e-8 of the step, its end of the smaller |psi| is the point. 0 or
+ * non-zero. */
 static int locate(const cont_system *s, cont_work *w, const target *g, const double *za,
                   const double *ta, double fa, double sb, double fb, const double *zb,
-                  double *z, double *t, double *s_found)
+                  const double *tb, double *z, double *t, double *s_found)
 {
     const int M = s->N + 1;
     double a = 0.0, b = sb;
-    double *zt = malloc(2 * (size_t)M * sizeof *zt);
+    double *zt = malloc(8 * (size_t)M * sizeof *zt);
     if (!zt)
         return -1;
-    double *tt = zt + M;
+    /* the trial point and its tangent; the points and tangents at a and b; the guess and
+     * the coordinate row of the correction */
+    double *tt = zt + M, *pa = tt + M, *qa = pa + M, *pb = qa + M, *qb = pb + M, *zg = qb + M;
+    double *ei = zg + M;
+    memcpy(pa, za, (size_t)M * sizeof *pa);
+    memcpy(qa, ta, (size_t)M * sizeof *qa);
+    memcpy(pb, zb, (size_t)M * sizeof *pb);
+    memcpy(qb, tb, (size_t)M * sizeof *qb);
     memcpy(z, zb, (size_t)M * sizeof *z);
     double c = b, c_prev = a;
+    double abs_fa = fabs(fa), abs_fb = fabs(fb); /* |psi| at the ends (fa is scaled) */
     int ok = -1;
     for (int it = 0; it < 80; it++) {
         c = fb != fa ? (a * fb - b * fa) / (fb - fa) : 0.5 * (a + b);
@@ -307,10 +333,64 @@ static int locate(const cont_system *s, cont_work *w, const target *g, const dou
         const double lo = fmin(a, b), hi = fmax(a, b);
         if (!(c > lo && c < hi))
             c = 0.5 * (a + b);
-        for (int i = 0; i < M; i++)
-            zt[i] = za[i] + c * ta[i];
-        double fc;
-        if (cont_correct(s, w, za, ta, c, zt, NULL) || psi_at(s, w, g, zt, ta, tt, &fc))
+        if (it > 0 && fmin(fabs(c - a), fabs(c - b)) <= 1e-12 * fabs(sb)) {
+            /* converged on an end of the bracket: b is the last trial point, in z */
+            if (fabs(c - a) < fabs(c - b) && a != 0.0) {
+                memcpy(z, pa, (size_t)M * sizeof *z);
+                memcpy(t, qa, (size_t)M * sizeof *t);
+                *s_found = a;
+            }
+            ok = 0;
+            break;
+        }
+        double fc = 0.0;
+        int failed = 1;
+        for (int tries = 0; tries < 9 && failed; tries++) {
+            const int near_a = fabs(c - a) < fabs(c - b);
+            const double h = fabs(c - (near_a ? a : b));
+            const double *tn = near_a ? qa : qb;
+            /* the guess from the bracket's nearer end */
+            trial_guess(M, ta, c, near_a ? pa : pb, tn, near_a ? a : b, zg);
+            double cc = c;
+            if (tries == 0) {
+                /* first the point of the plane ta . (z - za) = c from za + c ta */
+                for (int i = 0; i < M; i++)
+                    zt[i] = za[i] + c * ta[i];
+                failed = cont_correct(s, w, za, ta, c, zt, NULL);
+            } else {
+                /* then corrected in the coordinate the branch moves most in (ta's: the
+                 * tangents of trial points near a branch point are ill-conditioned), not
+                 * in the plane normal to it: at a branch point where the other branch
+                 * crosses at right angles that plane contains the other branch's tangent,
+                 * and Newton's method in it wanders between the two */
+                memcpy(zt, zg, (size_t)M * sizeof *zt);
+                int big = 0;
+                for (int i = 1; i < M; i++)
+                    if (fabs(ta[i]) > fabs(ta[big]))
+                        big = i;
+                for (int i = 0; i < M; i++)
+                    ei[i] = i == big ? 1.0 : 0.0;
+                failed = cont_correct(s, w, zg, ei, 0.0, zt, NULL);
+                /* the point's arclength along (za, ta), which must stay inside the bracket */
+                cc = failed ? c : dot(ta, zt, M) - dot(ta, za, M);
+                if (!failed && !(cc > lo && cc < hi))
+                    failed = 1;
+            }
+            /* a point farther than half the step from the guess is on another branch
+             * (near a branch point the plane of the arclength meets both) */
+            double moved = 0.0;
+            for (int i = 0; i < M && !failed; i++)
+                moved += (zt[i] - zg[i]) * (zt[i] - zg[i]);
+            if (!failed && sqrt(moved) > 0.5 * h + 1e-12 * fabs(sb))
+                failed = 1;
+            if (!failed)
+                failed = psi_at(s, w, g, zt, ta, tt, &fc);
+            if (failed && tries > 0)
+                c = 0.5 * (c + (near_a ? a : b));
+            else if (!failed)
+                c = cc;
+        }
+        if (failed)
             break;
         memcpy(z, zt, (size_t)M * sizeof *z);
         memcpy(t, tt, (size_t)M * sizeof *t);
@@ -323,15 +403,27 @@ static int locate(const cont_system *s, cont_work *w, const target *g, const dou
         if ((fc < 0.0) != (fb < 0.0)) {
             a = b;
             fa = fb;
+            abs_fa = abs_fb;
+            memcpy(pa, pb, 2 * (size_t)M * sizeof *pa); /* pa, qa from pb, qb */
         } else {
             fa *= 0.5;
         }
         b = c;
         fb = fc;
+        abs_fb = fabs(fc);
+        memcpy(pb, zt, (size_t)M * sizeof *pb);
+        memcpy(qb, tt, (size_t)M * sizeof *qb);
         if (fabs(b - a) <= 1e-14 * fabs(sb)) {
             ok = 0;
             break;
         }
+    }
+    if (ok && a != 0.0 && fabs(b - a) <= 1e-8 * fabs(sb)) {
+        const int end_a = abs_fa < abs_fb;
+        memcpy(z, end_a ? pa : pb, (size_t)M * sizeof *z);
+        memcpy(t, end_a ? qa : qb, (size_t)M * sizeof *t);
+        *s_found = end_a ? a : b;
+        ok = 0;
     }
     free(zt);
     return ok;
@@ -343,29 +435,49 @@ static int cmp_special(const void *x, const void *y)
     return (a->s > b->s) - (a->s < b->s);
 }
 
-/* Whether the step from za to zb passes the start z0 again, after the curve went more than
- * 2 dsmax away from it (*far: the largest distance so far): within a tenth of the chord's
- * length of the chord (which misses its arc by about kappa |zb - za|^2 / 8) */
-static int back_at_start(const double *za, const double *zb, const double *z0, int M,
-                         double scale, double *far, double dsmax)
+int cont_passes_point(int M, const double *za, const double *zb, const double *zp,
+                      const double *tp, double scale, double away, double *far)
 {
-    double dd = 0.0, dy = 0.0, d0 = 0.0;
+    double dd = 0.0, dy = 0.0, d0 = 0.0, along = 0.0;
     for (int i = 0; i < M; i++) {
         dd += (zb[i] - za[i]) * (zb[i] - za[i]);
-        dy += (z0[i] - za[i]) * (zb[i] - za[i]);
-        d0 += (zb[i] - z0[i]) * (zb[i] - z0[i]);
+        dy += (zp[i] - za[i]) * (zb[i] - za[i]);
+        d0 += (zb[i] - zp[i]) * (zb[i] - zp[i]);
+        along += tp[i] * (zb[i] - za[i]);
     }
-    const int was_far = *far > 2.0 * dsmax;
+    const int was_far = *far > away;
     *far = fmax(*far, sqrt(d0));
-    if (!was_far)
+    if (!was_far || !(along > 0.0))
         return 0;
+    /* the chord misses its arc by about kappa |zb - za|^2 / 8 */
     const double u = dd > 0.0 ? fmin(1.0, fmax(0.0, dy / dd)) : 0.0;
     double dist = 0.0;
     for (int i = 0; i < M; i++) {
-        const double r = z0[i] - (za[i] + u * (zb[i] - za[i]));
+        const double r = zp[i] - (za[i] + u * (zb[i] - za[i]));
         dist += r * r;
     }
     return sqrt(dist) <= 0.1 * sqrt(dd) + 1e-9 * scale;
+}
+
+/* The points a closed curve can come back to: its start and its labelled points. */
+#define CONT_MAX_MARKS 16
+
+typedef struct mark {
+    double *z, *t;
+    double far;
+    dyn_cont_label label;
+} mark;
+
+static void add_mark(mark *mk, int *n, int M, const double *z, const double *t,
+                     dyn_cont_label label)
+{
+    if (*n >= CONT_MAX_MARKS)
+        return;
+    memcpy(mk[*n].z, z, (size_t)M * sizeof *z);
+    memcpy(mk[*n].t, t, (size_t)M * sizeof *t);
+    mk[*n].far = 0.0;
+    mk[*n].label = label;
+    (*n)++;
 }
 
 int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const double *z_start,
@@ -373,7 +485,7 @@ int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const do
 {
     const int M = s->N + 1;
     const int n_spec = CONT_MAX_TESTS + 2 + L->n_at;
-    const size_t need = (size_t)M * (7 + 2 * (size_t)n_spec);
+    const size_t need = (size_t)M * (6 + 2 * (size_t)n_spec + 2 * CONT_MAX_MARKS);
     double *buf = malloc(need * sizeof *buf);
     special *sp = malloc((size_t)n_spec * sizeof *sp);
     if (!buf || !sp) {
@@ -387,13 +499,21 @@ int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const do
         sp[k].z = tl + M + 2 * (size_t)k * (size_t)M;
         sp[k].t = sp[k].z + M;
     }
+    mark mk[CONT_MAX_MARKS];
+    int n_marks = 0;
+    for (int k = 0; k < CONT_MAX_MARKS; k++) {
+        mk[k].z = tl + M + 2 * ((size_t)n_spec + (size_t)k) * (size_t)M;
+        mk[k].t = mk[k].z + M;
+    }
     memcpy(z, z_start, (size_t)M * sizeof *z);
     memcpy(t, t_start, (size_t)M * sizeof *t);
     double psi[CONT_MAX_TESTS], psi1[CONT_MAX_TESTS], det;
     int cnt[CONT_MAX_TESTS], cnt1[CONT_MAX_TESTS];
     int rc = 0;
-    /* at a branch point the tangent is not defined: the direction given is kept */
-    if (cont_tangent(s, w, z, t, t1, &det)) {
+    /* at a branch point the tangent is not defined: the direction given is kept (the
+     * bordered matrix [DG; t^T] is singular there, and its solution in rounding would be
+     * the other branch's tangent) */
+    if (L->start_label == DYN_LABEL_BP || cont_tangent(s, w, z, t, t1, &det)) {
         memcpy(t1, t, (size_t)M * sizeof *t);
         det = 0.0;
     }
@@ -414,11 +534,7 @@ int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const do
     double ds = fmin(fabs(L->ds), L->dsmax);
     long points = 1;
     int pending = 0; /* z is computed but not stored yet */
-    double *z0 = tl + M + 2 * (size_t)n_spec * (size_t)M; /* the start, for a closed curve */
-    memcpy(z0, z_start, (size_t)M * sizeof *z0);
-    double z0_scale = 1.0, far = 0.0;
-    for (int i = 0; i < M; i++)
-        z0_scale = fmax(z0_scale, fabs(z0[i]));
+    add_mark(mk, &n_marks, M, z, t, L->start_label);
     snprintf(stop, stoplen, "nmax = %ld points", L->nmax);
     while (points < L->nmax) {
         int iters = 0;
@@ -440,18 +556,28 @@ int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const do
             ds = fmax(0.5 * ds, L->dsmin);
             continue;
         }
-        /* back at the start: a closed curve, ended there */
-        if (L->stop_closed && back_at_start(z, z1, z0, M, z0_scale, &far, L->dsmax)) {
-            if (pending && s->store(s->ctx, z, t, DYN_LABEL_NONE)) {
+        /* back at the start or at a labelled point: a closed curve, ended there */
+        int back = -1;
+        for (int k = 0; k < n_marks && L->stop_closed && back < 0; k++) {
+            double scale = 1.0;
+            for (int i = 0; i < M; i++)
+                scale = fmax(scale, fabs(mk[k].z[i]));
+            if (cont_passes_point(M, z, z1, mk[k].z, mk[k].t, scale, 2.0 * L->dsmax,
+                                  &mk[k].far))
+                back = k;
+        }
+        if (back >= 0) {
+            if ((pending && s->store(s->ctx, z, t, DYN_LABEL_NONE)) ||
+                s->store(s->ctx, mk[back].z, mk[back].t, DYN_LABEL_EP)) {
                 rc = -1;
                 break;
             }
             pending = 0;
-            if (s->store(s->ctx, z0, t_start, DYN_LABEL_EP)) {
-                rc = -1;
-                break;
-            }
-            snprintf(stop, stoplen, "closed: back at its first point");
+            if (back == 0)
+                snprintf(stop, stoplen, "closed: back at its first point");
+            else
+                snprintf(stop, stoplen, "closed: back at its %s point",
+                         dyn_cont_label_name(mk[back].label));
             rc = 1;
             break;
         }
@@ -469,7 +595,7 @@ int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const do
             if (points == 1 && at_start_special && s->test_label[k] == L->start_label)
                 continue; /* the start itself */
             const target g = {k, 0, 0.0};
-            if (locate(s, w, &g, z, t, psi[k], ds, psi1[k], z1, sp[ns].z, sp[ns].t,
+            if (locate(s, w, &g, z, t, psi[k], ds, psi1[k], z1, t1, sp[ns].z, sp[ns].t,
                        &sp[ns].s) == 0) {
                 sp[ns].label = s->test_label[k];
                 ns++;
@@ -490,7 +616,7 @@ int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const do
             if ((a < 0.0) == (b < 0.0) || a == 0.0)
                 continue;
             const target g = {-1, s->ip, L->at[u]};
-            if (locate(s, w, &g, z, t, a, ds, b, z1, sp[ns].z, sp[ns].t, &sp[ns].s) == 0) {
+            if (locate(s, w, &g, z, t, a, ds, b, z1, t1, sp[ns].z, sp[ns].t, &sp[ns].s) == 0) {
                 sp[ns].label = DYN_LABEL_UZ;
                 ns++;
             }
@@ -505,7 +631,7 @@ int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const do
             if (isnan(bound))
                 continue;
             const target g = {-1, ix, bound};
-            if (locate(s, w, &g, z, t, z[ix] - bound, ds, z1[ix] - bound, z1, sp[ns].z,
+            if (locate(s, w, &g, z, t, z[ix] - bound, ds, z1[ix] - bound, z1, t1, sp[ns].z,
                        sp[ns].t, &sp[ns].s) == 0) {
                 sp[ns].label = DYN_LABEL_EP;
                 ns++;
@@ -529,6 +655,8 @@ int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const do
             }
             points++;
             stored_end = sp[k].label == DYN_LABEL_EP;
+            if (!stored_end)
+                add_mark(mk, &n_marks, M, sp[k].z, sp[k].t, sp[k].label);
         }
         if (rc || end_here)
             break;

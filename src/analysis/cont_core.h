@@ -62,6 +62,21 @@ int cont_tangent(const cont_system *s, cont_work *w, const double *z, const doub
 int cont_null_direction(const cont_system *s, cont_work *w, const double *z, const double *t,
                         double *v);
 
+/* The unit direction v of the other branch at a simple branch point z of G(z) = 0, t an
+ * approximation of the known branch's unit tangent there, by the algebraic branching
+ * equation (cont_branching.c). Returns 0; 1 when the equation is degenerate there and v is
+ * the direction orthogonal to t in the null space of DG instead; -1 when DG failed. */
+int cont_branch_direction(const cont_system *s, const double *z, const double *t, double *v);
+
+/* Whether the step from za to zb of a curve in R^M passes the point zp (computed on the
+ * same curve, tangent tp there) again going the same way (tp . (zb - za) > 0): within a
+ * tenth of the chord's length of the chord, after the curve went more than `away` from zp
+ * (*far: the largest distance from zp so far, 0 at first, updated here). A curve that does
+ * is closed. `scale` (at least |zp|_inf) sets the absolute part of the tolerance, 1e-9
+ * scale. Periodic branches can call it on their own vectors. */
+int cont_passes_point(int M, const double *za, const double *zb, const double *zp,
+                      const double *tp, double scale, double away, double *far);
+
 /* The settings of one run of the loop. */
 typedef struct cont_loop {
     double ds, dsmin, dsmax;  /* ds > 0: the direction is the starting tangent's */
@@ -71,7 +86,8 @@ typedef struct cont_loop {
     const double *at;         /* UZ values of z[ip] */
     int n_at;
     dyn_cont_label start_label; /* the first point's label (EP, BP, LP, HB) */
-    int stop_closed;          /* non-zero: end a curve that comes back to its start */
+    int stop_closed;          /* non-zero: end a curve that comes back to its start or to
+                               * one of its labelled points */
 } cont_loop;
 
 /* L from the options of dyn_continue: |ds|, dsmin, dsmax, nmax, the bounds of the first
@@ -89,8 +105,9 @@ double cont_hopf_test(int n, const double *re, const double *im, double above, i
  * points, storing each (the first with start_label, the last with EP) with the special
  * points located between them. stop gets why it ended. Returns 0, -1 when storing
  * failed (out of memory), -2 when f failed at the first point (nothing stored), 1 when
- * (with L->stop_closed) the curve came back to its start: a closed curve, whose last point
- * is its first again. */
+ * (with L->stop_closed) the curve came back to its start or to one of its labelled points
+ * going the same way: a closed curve, whose last point (labelled EP) is that point again.
+ * A start labelled BP keeps the direction t given (the tangent is not defined there). */
 int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const double *z,
                 const double *t, char *stop, size_t stoplen);
 

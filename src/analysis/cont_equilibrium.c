@@ -138,6 +138,7 @@ static int follow_branch(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d,
     eq_system(&s, &e);
     cont_loop L;
     cont_loop_from_opts(o, &L, start);
+    L.stop_closed = 1;
     char stop[160];
     const int rc = cont_follow(&s, w, &L, z, t, stop, sizeof stop);
     snprintf(d->branches[e.bi].stop, sizeof d->branches[e.bi].stop, "%s", stop);
@@ -150,7 +151,7 @@ static int follow_branch(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d,
         d->count--;
         return parent ? 0 : -1;
     }
-    return rc == -1 ? -1 : 0;
+    return rc == -1 ? -1 : rc == 1 ? 1 : 0;
 }
 
 static double dist_inf(const double *a, const double *b, int n)
@@ -161,48 +162,122 @@ static double dist_inf(const double *a, const double *b, int n)
     return m;
 }
 
-/* Switch at the BP `k` of branch bi: both directions of the other branch. */
+/* point k of branch b as z = (x, p) */
+static void branch_point(const dyn_branch *b, long k, double *z)
+{
+    const size_t n = (size_t)b->n;
+    memcpy(z, b->x + (size_t)k * n, n * sizeof *z);
+    z[n] = b->pts[k].par[0];
+}
+
+/* Whether a branch of d other than bi passes through z (a point of it, or within a tenth
+ * of a chord's length of the chord between two of its points): both branches through the
+ * BP z are computed then (the one switched to from there, or one that crossed it), and it
+ * is not switched at again. za, zb: workspace of n + 1. */
+static int passed_elsewhere(const dyn_diagram *d, int bi, const double *z, double *za, double *zb)
+{
+    for (int j = 0; j < d->count; j++) {
+        const dyn_branch *b = &d->branches[j];
+        if (j == bi || b->kind != DYN_BRANCH_EQUILIBRIUM)
+            continue;
+        const int M = b->n + 1;
+        double scale = 1.0;
+        for (int i = 0; i < M; i++)
+            scale = fmax(scale, fabs(z[i]));
+        for (long k = 0; k < b->count; k++) {
+            branch_point(b, k, zb);
+            if (dist_inf(zb, z, M) < 1e-6)
+                return 1;
+            if (k == 0)
+                continue;
+            branch_point(b, k - 1, za);
+            double dd = 0.0, dy = 0.0;
+            for (int i = 0; i < M; i++) {
+                dd += (zb[i] - za[i]) * (zb[i] - za[i]);
+                dy += (z[i] - za[i]) * (zb[i] - za[i]);
+            }
+            const double u = dd > 0.0 ? fmin(1.0, fmax(0.0, dy / dd)) : 0.0;
+            double dist = 0.0;
+            for (int i = 0; i < M; i++) {
+                const double r = z[i] - (za[i] + u * (zb[i] - za[i]));
+                dist += r * r;
+            }
+            if (u > 0.0 && u < 1.0 && sqrt(dist) <= 0.1 * sqrt(dd) + 1e-9 * scale)
+                return 1;
+        }
+    }
+    return 0;
+}
+
+/* The unit tangent of branch b at its point k from the point and its neighbours: the
+ * derivative of the quadratic through the three in the arclength (second order), or the
+ * secant of two at an end. 0 or non-zero. */
+static int branch_tangent(const dyn_branch *b, long k, double *t, double *za, double *zb)
+{
+    const int M = b->n + 1;
+    double *zk = t;
+    const long ka = k > 0 ? k - 1 : k, kb = k + 1 < b->count ? k + 1 : k;
+    if (ka == kb)
+        return -1;
+    branch_point(b, ka, za);
+    branch_point(b, kb, zb);
+    if (ka == k || kb == k) {
+        for (int i = 0; i < M; i++)
+            t[i] = zb[i] - za[i];
+    } else {
+        double ha = 0.0, hb = 0.0;
+        branch_point(b, k, zk);
+        for (int i = 0; i < M; i++) {
+            ha += (zk[i] - za[i]) * (zk[i] - za[i]);
+            hb += (zb[i] - zk[i]) * (zb[i] - zk[i]);
+        }
+        ha = sqrt(ha);
+        hb = sqrt(hb);
+        if (!(ha > 0.0) || !(hb > 0.0))
+            return -1;
+        for (int i = 0; i < M; i++)
+            t[i] = hb / (ha * (ha + hb)) * (zk[i] - za[i]) + ha / (hb * (ha + hb)) * (zb[i] - zk[i]);
+    }
+    double nt = 0.0;
+    for (int i = 0; i < M; i++)
+        nt += t[i] * t[i];
+    nt = sqrt(nt);
+    if (!(nt > 0.0) || !isfinite(nt))
+        return -1;
+    for (int i = 0; i < M; i++)
+        t[i] /= nt;
+    return 0;
+}
+
+/* Switch at the BP `k` of branch bi: the other branch's direction by the algebraic
+ * branching equation, followed both ways (one way when it comes back: a closed branch). */
 static int switch_at(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int bi, long k,
-                     cont_work *w, double *seen, int *n_seen, int max_seen)
+                     cont_work *w, dyn_cont_info *info)
 {
     const int n = cm->n, M = n + 1;
-    double *buf = malloc(4 * (size_t)M * sizeof *buf);
+    double *buf = malloc(5 * (size_t)M * sizeof *buf);
     if (!buf)
         return -1;
-    double *z = buf, *t = z + M, *v = t + M, *z2 = v + M;
+    double *z = buf, *t = z + M, *v = t + M, *z2 = v + M, *z3 = z2 + M;
     const dyn_branch *b = &d->branches[bi];
-    memcpy(z, b->x + (size_t)k * (size_t)n, (size_t)n * sizeof *z);
-    z[n] = b->pts[k].par[0];
-    for (int j = 0; j < *n_seen; j++)
-        if (dist_inf(seen + (size_t)j * (size_t)M, z, M) < 1e-6) {
-            free(buf);
-            return 0;
-        }
-    if (*n_seen < max_seen)
-        memcpy(seen + (size_t)(*n_seen)++ * (size_t)M, z, (size_t)M * sizeof *z);
-    /* the branch's direction at the BP: the secant through its neighbours */
-    const long ka = k > 0 ? k - 1 : k, kb = k + 1 < b->count ? k + 1 : k;
-    double nt = 0.0;
-    for (int i = 0; i < M; i++) {
-        const double za = i < n ? b->x[(size_t)ka * (size_t)n + (size_t)i] : b->pts[ka].par[0];
-        const double zb = i < n ? b->x[(size_t)kb * (size_t)n + (size_t)i] : b->pts[kb].par[0];
-        t[i] = zb - za;
-        nt += t[i] * t[i];
-    }
-    nt = sqrt(nt);
-    if (!(nt > 0.0)) {
+    branch_point(b, k, z);
+    if (passed_elsewhere(d, bi, z, z2, z3) || branch_tangent(b, k, t, z2, z3)) {
         free(buf);
         return 0;
     }
-    for (int i = 0; i < M; i++)
-        t[i] /= nt;
     eq_ctx e = {cm, d, bi, 0};
     cont_system s;
     eq_system(&s, &e);
-    if (cont_null_direction(&s, w, z, t, v)) {
+    const int how = cont_branch_direction(&s, z, t, v);
+    if (how < 0) {
         free(buf);
         return 0; /* no second direction: not switched */
     }
+    if (how == 1 && !info->message[0])
+        snprintf(info->message, sizeof info->message,
+                 "at the BP %.40s = %.12g of branch %d the branching equation is degenerate: "
+                 "the other branch is followed from the direction orthogonal to the branch",
+                 cm->m->params[o->ip].name, z[n], b->id);
     int rc = 0;
     const int parent = b->id;
     for (int dir = 1; dir >= -1 && rc == 0 && d->count < o->max_branches; dir -= 2) {
@@ -211,7 +286,7 @@ static int switch_at(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int
         rc = follow_branch(cm, o, d, z, z2, DYN_LABEL_BP, parent, k, w);
     }
     free(buf);
-    return rc;
+    return rc == 1 ? 0 : rc;
 }
 
 static int fail(dyn_cont_info *info, int status, const char *fmt, const char *what)
@@ -248,13 +323,10 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
     const int n = m->n_states, M = n + 1;
     cont_work w;
     double *z = malloc(3 * (size_t)M * sizeof *z);
-    const int max_seen = 64;
-    double *seen = malloc((size_t)max_seen * (size_t)M * sizeof *seen);
-    if (cont_work_init(&w, n) || !z || !seen) {
+    if (cont_work_init(&w, n) || !z) {
         cont_model_free(&cm);
         cont_work_free(&w);
         free(z);
-        free(seen);
         return fail(info, DYN_ERR_ARG, "%s", "out of memory");
     }
     double *t = z + M, *e = t + M;
@@ -304,17 +376,16 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
             rc = DYN_ERR_ARG;
         }
     }
-    if (rc == 0 && follow_branch(&cm, o, d, z, t, DYN_LABEL_EP, 0, -1, &w))
+    if (rc == 0 && follow_branch(&cm, o, d, z, t, DYN_LABEL_EP, 0, -1, &w) < 0)
         rc = DYN_ERR_ARG;
     /* branch switching at the BPs, breadth first over the branches found */
-    int n_seen = 0;
     for (int bi = 0; rc == 0 && !o->no_switch && bi < d->count; bi++) {
         if (d->branches[bi].kind != DYN_BRANCH_EQUILIBRIUM)
             continue;
         for (long k = 0; rc == 0 && k < d->branches[bi].count; k++) {
             if (d->branches[bi].pts[k].label != DYN_LABEL_BP || d->count >= o->max_branches)
                 continue;
-            if (switch_at(&cm, o, d, bi, k, &w, seen, &n_seen, max_seen))
+            if (switch_at(&cm, o, d, bi, k, &w, info))
                 rc = DYN_ERR_ARG;
         }
     }
@@ -345,6 +416,5 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
     cont_model_free(&cm);
     cont_work_free(&w);
     free(z);
-    free(seen);
     return rc;
 }

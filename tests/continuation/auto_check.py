@@ -102,6 +102,105 @@ def ode(pb):
     return "\n".join(lines)
 
 
+# AUTO-07p's demo enz with the demo's constants (c.enz: EPSS = 1e-5, DSMIN = 0.01, its
+# switching on, MXBF = -1: the branch from each BP one way) but NMX = 400 and no STOP: the
+# symmetric branch s1 = s2 with its two pitchforks, and the asymmetric loop through both.
+# (With EPSS = 1e-7 and DSMIN = 0.001 AUTO-07p's first branch passes the second pitchfork
+# without a BP and its second jumps back to the symmetric branch.)
+ENZ = dict(
+    pars=[("s0", 0.0), ("mu", 0.0), ("rho", 100.0), ("kappa", 1.0)],
+    states=[("s1", 0.0), ("s2", 0.0)],
+    rhs=["(s0-s1)+(s2-s1)-rho*s1/(1+s1+kappa*s1**2)",
+         "(s0+mu-s2)+(s1-s2)-rho*s2/(1+s2+kappa*s2**2)"])
+ENZ_CONSTANTS = """parnames = {1: 's0', 2: 'mu', 3: 'rho', 4: 'kappa'}
+unames = {1: 's1', 2: 's2'}
+NDIM=2, IPS=1, IRS=0, ILP=1
+ICP=['s0']
+NTST=15, NCOL=4, IAD=3, ISP=1, ISW=1, IPLT=0, NBC=0, NINT=0
+NMX=400, NPR=1000, MXBF=-1, IID=0, ITMX=8, ITNW=5, NWTN=3, JAC=0
+EPSL=1e-7, EPSU=1e-7, EPSS=1e-5
+DS=0.1, DSMIN=0.01, DSMAX=0.25, IADS=1
+THL={}, THU={}
+"""
+RUN_ENZ = """r = run(e='pb', c='pb')
+for b in r:
+    for p in b:
+        if p['TY'] in ('LP', 'BP'):
+            print('LABEL', b['BR'], p['TY'], repr(p['s0']), repr(p['s1']), repr(p['s2']))
+"""
+
+
+def enz_check(dynkit, artifacts):
+    """AUTO-07p's branches 1 (symmetric) and 2 (asymmetric, from the first BP) against
+    dynkit's: the same BP and LP values within 1e-6; dynkit's switched branch asymmetric,
+    closed (ended where it started) and computed once"""
+    work = tempfile.mkdtemp(prefix="auto-enz-")
+    models = os.path.join(os.path.dirname(os.path.abspath(__file__)), "models")
+    shutil.copy(os.path.join(models, "enz.ode"), work)
+    for fname, text in (("pb.f90", fortran(ENZ)), ("c.pb", ENZ_CONSTANTS),
+                        ("run.auto", RUN_ENZ)):
+        with open(os.path.join(work, fname), "w") as f:
+            f.write(text)
+    problems = []
+    a = subprocess.run(["auto-07p", "run.auto"], cwd=work, capture_output=True, text=True,
+                       timeout=600)
+    with open(os.path.join(work, "auto.out"), "w") as f:
+        f.write(a.stdout + a.stderr)
+    auto = [l.split()[1:] for l in a.stdout.splitlines() if l.startswith("LABEL ")]
+    d = subprocess.run([dynkit, "continue", "enz.ode", "--par", "s0", "--json"], cwd=work,
+                       capture_output=True, text=True)
+    with open(os.path.join(work, "dynkit.json"), "w") as f:
+        f.write(d.stdout + d.stderr)
+
+    def near(v, w):
+        return abs(v - w) <= 1e-6 * max(1.0, abs(w))
+
+    if d.returncode != 0 or a.returncode != 0:
+        problems.append(f"exit statuses: dynkit {d.returncode}, auto-07p {a.returncode}")
+    else:
+        branches = json.loads(d.stdout)["branches"]
+        first = branches[0]
+        # branch 1: both pitchforks and the two folds of the symmetric branch
+        ours = sorted((p["label"], p["s0"]) for p in first["points"] if p["label"] in ("LP", "BP"))
+        theirs = sorted((l, float(v)) for br, l, v, _, _ in auto if br == "1")
+        if [l for l, _ in ours] != [l for l, _ in theirs] or not all(
+                near(v, w) for (_, v), (_, w) in zip(ours, theirs)):
+            problems.append(f"branch 1: dynkit {ours}, AUTO-07p {theirs}")
+        # the branch switched to at the first pitchfork: the asymmetric loop
+        switched = [b for b in branches if b["parent"] == first["branch"]]
+        if len(switched) != 1:
+            problems.append(f"{len(switched)} branches switched to, expected one (the loop "
+                            "once, not again from the second pitchfork nor the other way)")
+        else:
+            loop = switched[0]
+            asym = max(abs(p["state"]["s1"] - p["state"]["s2"]) for p in loop["points"])
+            if not asym > 1.0:
+                problems.append(f"the switched branch is not the asymmetric one (max |s1 - s2| "
+                                f"= {asym})")
+            if not loop["stop"].startswith("closed") or not (
+                    near(loop["points"][-1]["s0"], loop["points"][0]["s0"])):
+                problems.append(f"the loop is not ended where it started: {loop['stop']}")
+            # its folds off the symmetric branch (AUTO-07p's LPs at the pitchforks aside),
+            # each value twice (s1 > s2 and s1 < s2) in both programs
+            mine = sorted(p["s0"] for p in loop["points"] if p["label"] == "LP"
+                          and abs(p["state"]["s1"] - p["state"]["s2"]) > 1e-3)
+            theirs2 = sorted(float(v) for br, l, v, s1, s2 in auto if br == "2" and l == "LP"
+                             and abs(float(s1) - float(s2)) > 1e-3)
+            if len(mine) != 4 or len(mine) != len(theirs2) or not all(
+                    near(v, w) for v, w in zip(mine, theirs2)):
+                problems.append(f"the loop's folds: dynkit {mine}, AUTO-07p {theirs2}")
+    if problems:
+        dest = os.path.join(artifacts, "continuation-auto-enz")
+        shutil.rmtree(dest, ignore_errors=True)
+        os.makedirs(artifacts, exist_ok=True)
+        shutil.copytree(work, dest)
+        problems = [f"enz: {p} (kept in {dest})" for p in problems]
+    else:
+        print("enz: the pitchforks, the folds and the asymmetric loop agree")
+    shutil.rmtree(work, ignore_errors=True)
+    return problems
+
+
 RUN_AUTO = """r = run(e='pb', c='pb')
 for lab in ('HB', 'LP', 'BP'):
     for p in r(lab):
@@ -164,6 +263,7 @@ def main():
             print(f"{name}: {auto} agree")
         shutil.rmtree(work, ignore_errors=True)
 
+    failures += enz_check(dynkit, artifacts)
     for f in failures:
         print("FAIL:", f)
     sys.exit(1 if failures else 0)

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """dynkit continue against closed forms (docs/analysis.md, "Continuation"): the normal forms
 of the fold (LP at p = 0), the transcritical and pitchfork bifurcations (BP at p = 0, the
-other branch x = p or x^2 = p followed), the Hopf bifurcation (HB at p = 0 with frequency w
+other branch x = p or x^2 = p followed), two branches crossing at a small angle (x = p and
+x = b p, the other one followed from the BP), the Hopf bifurcation (HB at p = 0 with frequency w
 and first Lyapunov coefficient 2 s / w, Kuznetsov's formula with <q, q> = 1), the
 Brusselator (HB at b = 1 + a^2, omega = a) and Lorenz's system (HB at
 rho = sigma (sigma + beta + 3) / (sigma - beta - 1), subcritical); in two parameters the
@@ -75,6 +76,32 @@ for name, residual in (("transcritical", lambda x, p: x - p), ("pitchfork", lamb
                 if not abs(residual(x, pv)) <= 1e-8:
                     failures.append(f"{name}: branch {b['branch']} point x = {x} at p = {pv}")
                     break
+
+# two branches crossing at a small angle (small_angle.ode: x = p and x = b p, about 0.046
+# rad apart at b = 1.1, 0.005 rad at b = 1.01): one BP at p = 0; switched both ways onto x = b p
+# (every point within 1e-8, the first step from the BP at most dsmax = 0.1 long), the first
+# branch on x = p
+for bval in (1.1, 1.01):
+    d = run(f"{models}/small_angle.ode", "--par", "p", "--set", f"b={bval}")
+    p = only(d, "BP", f"small angle b={bval}")
+    if p:
+        check(f"small angle b={bval}: p at BP", p["p"], 0.0, 1e-10)
+        first = d["branches"][0]
+        if any(abs(q["state"]["x"] - q["p"]) > 1e-8 for q in first["points"]):
+            failures.append(f"small angle b={bval}: the first branch leaves x = p")
+        switched = [b for b in d["branches"] if b["parent"] is not None]
+        if len(switched) != 2:
+            failures.append(f"small angle b={bval}: expected two switched branches, found "
+                            f"{len(switched)}")
+        for b in switched:
+            pts = b["points"]
+            off = max(abs(q["state"]["x"] - bval * q["p"]) for q in pts)
+            first_step = math.hypot(pts[1]["p"] - pts[0]["p"],
+                                    pts[1]["state"]["x"] - pts[0]["state"]["x"])
+            if not (off <= 1e-8 and first_step <= 0.1 + 1e-12 and
+                    max(abs(q["p"]) for q in pts) > 0.99):
+                failures.append(f"small angle b={bval}: branch {b['branch']} off x = b p by "
+                                f"{off:g}, first step {first_step:g}")
 
 for s, w in ((-1.0, 2.0), (1.5, 2.0), (-0.25, 0.5)):
     d = run(f"{models}/hopf.ode", "--par", "p", "--set", f"s={s}", "--set", f"w={w}")

@@ -5,9 +5,10 @@
  * the parameter's component of the unit tangent changes sign at a fold (LP); the scaled
  * det [f_x f_p; t^T] at a branch point (BP); the real part of the complex eigenvalue nearest
  * the imaginary axis at a Hopf point (HB), counted only when the number of complex
- * eigenvalues in the right half-plane changes. At a BP the other branch leaves along the null
- * vector of [f_x f_p; t^T] (the direction orthogonal to the branch in the two-dimensional
- * null space of [f_x f_p]: Keller 1977, AUTO's default switching). */
+ * eigenvalues in the right half-plane changes. At a BP the other branch leaves along the root
+ * of the algebraic branching equation (cont_branching.c; Keller 1977) and is followed both
+ * ways; a branch that comes back to its start or a labelled point (a closed loop, as the
+ * asymmetric equilibria of AUTO-07p's demo enz) ends there. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>

@@ -78,22 +78,13 @@ static int curve_residual(void *ctx, const double *z, double *g)
 static int curve_jacobian(void *ctx, const double *z, double *Jout)
 {
     curve_ctx *c = ctx;
-    const int N = c->N, M = N + 1;
-    memcpy(c->zz, z, (size_t)M * sizeof *z);
-    for (int j = 0; j < M; j++) {
-        const double h0 = cbrt(DBL_EPSILON) * fmax(1.0, fabs(z[j]));
-        const double zp = z[j] + h0, zm = z[j] - h0;
-        c->zz[j] = zp;
-        if (curve_residual(c, c->zz, c->g0))
-            return -1;
-        c->zz[j] = zm;
-        if (curve_residual(c, c->zz, c->g1))
-            return -1;
-        c->zz[j] = z[j];
-        for (int i = 0; i < N; i++)
-            Jout[(size_t)i * (size_t)M + (size_t)j] = (c->g0[i] - c->g1[i]) / (zp - zm);
-    }
-    return 0;
+    cont_system r;
+    memset(&r, 0, sizeof r);
+    r.N = c->N;
+    r.ctx = c;
+    r.residual = curve_residual;
+    /* g0, g1 and zz follow each other: 3 (N + 1) values */
+    return cont_central_jacobian(&r, CONT_STEPS_CBRT, z, Jout, c->g0);
 }
 
 /* the left null vector w of J (cm->J) bordered by v and w_prev: [[J^T, v], [w_prev^T, 0]]

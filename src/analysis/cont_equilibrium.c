@@ -145,11 +145,7 @@ static int follow_branch(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d,
     snprintf(d->branches[e.bi].stop, sizeof d->branches[e.bi].stop, "%s", stop);
     if (rc == -2 && d->branches[e.bi].count == 0) {
         /* nothing to keep: the branch is dropped */
-        free(d->branches[e.bi].pts);
-        free(d->branches[e.bi].x);
-        free(d->branches[e.bi].xmin);
-        free(d->branches[e.bi].eig);
-        d->count--;
+        cont_diagram_drop_last(d);
         return parent ? 0 : -1;
     }
     return rc == -1 ? -1 : rc == 1 ? 1 : 0;

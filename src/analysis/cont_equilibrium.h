@@ -42,6 +42,9 @@ int cont_model_eig(cont_model *cm, const double *J);
 int cont_model_store(cont_model *cm, dyn_branch *b, const double *x, double p, double p2,
                      int eig, dyn_cont_label label, double l1, double omega);
 
+/* The last branch of d removed and freed (one that got no point) */
+void cont_diagram_drop_last(dyn_diagram *d);
+
 /* The curves of folds (from an LP) or Hopf points (from an HB) through point `point` of
  * the branch with index `branch` of d, both directions, appended to d (cont_curves.c).
  * Returns 0 (a curve that cannot start is noted in info->message), or -1 when out of

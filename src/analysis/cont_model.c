@@ -148,3 +148,14 @@ int cont_model_store(cont_model *cm, dyn_branch *b, const double *x, double p, d
     }
     return dyn_branch_append(b, &pt, x, NULL, eig ? cm->re : NULL, eig ? cm->im : NULL) < 0;
 }
+
+void cont_diagram_drop_last(dyn_diagram *d)
+{
+    dyn_branch *b = &d->branches[d->count - 1];
+    free(b->pts);
+    free(b->x);
+    free(b->xmin);
+    free(b->eig);
+    free(b->orbit);
+    d->count--;
+}

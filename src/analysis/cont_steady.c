@@ -197,7 +197,7 @@ int dyn_steady_continue(const dyn_model *m, const void *par, const double *y0,
     c.ne = ne;
     c.d = d;
     c.p2 = NAN;
-    int *ints = malloc((3 * N + 3 * NE + NU) * sizeof *ints);
+    int *ints = malloc((4 * N + 3 * NE + NU) * sizeof *ints);
     const size_t nd = 4 * N + 1 + 5 * N * N + dyn_linearize_work_size(n) + NE * NE + NU * NE +
                       3 * NU * NU + 6 * NU + 4;
     double *mem = malloc(nd * sizeof *mem);
@@ -217,6 +217,7 @@ int dyn_steady_continue(const dyn_model *m, const void *par, const double *y0,
     c.upos = c.sel + NU;
     c.fpos = c.upos + NE;
     c.epos = c.fpos + NE;
+    c.piv = c.epos + NE;
     c.y = mem;
     c.f = c.y + N;
     double *z = c.f + N; /* (N + 1 values: nu + 1 used, nu <= n) */

@@ -7,7 +7,9 @@
  * of cont_core.c in z = (u, p1, p2):
  *   folds:  G = 0, det G_u / s0 = 0     (s0: |det G_u|'s row-norm scale at the start)
  *   Hopf:   G = 0, Re lambda = 0        (lambda: B's complex eigenvalue nearest the axis)
- * the Jacobian by central differences of this residual. */
+ * the Jacobian by central differences of this residual. A curve that runs where the model
+ * or the reduction fails ends at its last computed point (EP), its stop saying where and
+ * why; the rest of the diagram is kept. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -22,7 +24,22 @@ typedef struct curve_ctx {
     double scale;          /* folds: the normalization of det G_u */
     double *J, *Gu, *zt, *gp, *gm;
     int bi;
+    int failed;            /* a point could not be stored: the curve ends before it */
+    int ended;             /* a curve of this start ended at a failure (its stop says why) */
+    char why[140];         /* the last failure's reason, with where */
 } curve_ctx;
+
+/* remember why the model or the reduction failed at z (the curve's stop and note say it) */
+static void failed_at(curve_ctx *k, const double *z)
+{
+    sc_ctx *c = k->c;
+    const dyn_model *m = c->cm->m;
+    const int nu = c->nu;
+    snprintf(k->why, sizeof k->why, "at %.16s = %.8g, %.16s = %.8g: %.60s",
+             m->params[c->cm->ip].name, z[nu], m->params[c->cm->ip2].name, z[nu + 1],
+             c->message[0] ? c->message : "the right-hand side failed");
+    c->message[0] = '\0';
+}
 
 /* det G_u at z = (u, p1) with c->p2 set, and the product of G_u's row norms */
 static int det_gu(curve_ctx *k, const double *z, double *det, double *rows)
@@ -48,19 +65,27 @@ static int curve_residual(void *ctx, const double *z, double *g)
     curve_ctx *k = ctx;
     sc_ctx *c = k->c;
     const int nu = c->nu;
+    if (k->failed)
+        return -1; /* the curve ends at the point that could not be stored */
     c->p2 = z[nu + 1];
-    if (k->s1->residual(c, z, g))
+    if (k->s1->residual(c, z, g)) {
+        failed_at(k, z);
         return -1;
+    }
     if (k->hopf) {
         int unstable;
-        if (sc_state_at(c, z) || sc_reduce(c))
+        if (sc_state_at(c, z) || sc_reduce(c)) {
+            failed_at(k, z);
             return -1;
+        }
         g[nu] = cont_hopf_test(nu, c->re, c->im, c->tol_b, &unstable, NULL);
         return 0;
     }
     double det, rows;
-    if (det_gu(k, z, &det, &rows))
+    if (det_gu(k, z, &det, &rows)) {
+        failed_at(k, z);
         return -1;
+    }
     g[nu] = det / k->scale;
     return 0;
 }
@@ -69,23 +94,12 @@ static int curve_residual(void *ctx, const double *z, double *g)
 static int curve_jacobian(void *ctx, const double *z, double *J)
 {
     curve_ctx *k = ctx;
-    const int N = k->c->nu + 1, M = N + 1;
-    memcpy(k->zt, z, (size_t)M * sizeof *z);
-    for (int j = 0; j < M; j++) {
-        int ex;
-        frexp(fmax(fabs(z[j]), 1.0), &ex);
-        const double h = ldexp(1.0, ex - 21);
-        k->zt[j] = z[j] + h;
-        const int a = curve_residual(k, k->zt, k->gp);
-        k->zt[j] = z[j] - h;
-        const int b = a ? a : curve_residual(k, k->zt, k->gm);
-        k->zt[j] = z[j];
-        if (a || b)
-            return -1;
-        for (int i = 0; i < N; i++)
-            J[(size_t)i * (size_t)M + (size_t)j] = (k->gp[i] - k->gm[i]) / (2.0 * h);
-    }
-    return 0;
+    cont_system r;
+    memset(&r, 0, sizeof r);
+    r.N = k->c->nu + 1;
+    r.ctx = k;
+    r.residual = curve_residual;
+    return cont_central_jacobian(&r, CONT_STEPS_POW2, z, J, k->zt); /* zt, gp, gm */
 }
 
 /* no points are located on the curves */
@@ -107,9 +121,15 @@ static int curve_store(void *ctx, const double *z, const double *t, dyn_cont_lab
     curve_ctx *k = ctx;
     sc_ctx *c = k->c;
     const int nu = c->nu;
+    if (k->failed)
+        return 0;
     c->p2 = z[nu + 1];
-    if (sc_state_at(c, z) || sc_reduce(c))
-        return -1;
+    if (sc_state_at(c, z) || sc_reduce(c)) {
+        /* the curve ends here, what is computed kept (one_curve says why) */
+        failed_at(k, z);
+        k->failed = 1;
+        return 0;
+    }
     dyn_branch_point pt;
     pt.label = label;
     pt.par[0] = z[nu];
@@ -197,11 +217,28 @@ static int one_curve(curve_ctx *k, cont_work *w, const dyn_cont_opts *o, int bi,
         L.p2max = o->par2max;
         L.stop_closed = 1;
         char stop[160];
+        k->failed = 0;
+        k->why[0] = '\0';
         const int st = cont_follow(&s, w, &L, z, t, stop, sizeof stop);
-        dyn_branch *cb = &c->d->branches[k->bi];
-        snprintf(cb->stop, sizeof cb->stop, "%s", stop);
-        if (st == -1)
+        if (st == -1) {
             rc = -1;
+            break;
+        }
+        if (st == -2 || c->d->branches[k->bi].count == 0) {
+            cont_diagram_drop_last(c->d);
+            rc = -2;
+            break;
+        }
+        /* a point that could not be stored, or steps that failed to the smallest: the
+         * curve ends, with the reason */
+        dyn_branch *cb = &c->d->branches[k->bi];
+        if (k->failed || (k->why[0] && strncmp(stop, "no convergence", 14) == 0)) {
+            snprintf(cb->stop, sizeof cb->stop, "failed %.140s", k->why);
+            cb->pts[cb->count - 1].label = DYN_LABEL_EP;
+            k->ended = 1;
+        } else {
+            snprintf(cb->stop, sizeof cb->stop, "%s", stop);
+        }
         if (st == 1) /* a closed curve: the other direction is the same curve */
             break;
     }
@@ -243,7 +280,17 @@ int sc_curves_all(sc_ctx *c, const cont_system *s1, const dyn_cont_opts *o, int 
             if ((l != DYN_LABEL_LP && l != DYN_LABEL_HB) || c->d->count >= max_branches)
                 continue;
             k.hopf = l == DYN_LABEL_HB;
+            k.ended = 0;
             rc = one_curve(&k, &w, o, bi, pk, max_branches);
+            if (k.ended) {
+                const size_t used = strlen(note);
+                if (used + 2 < notelen)
+                    snprintf(note + used, notelen - used,
+                             "%sthe %s curve through point %ld of branch %d ends where the "
+                             "model or the reduction fails (its stop says where)",
+                             used ? "; " : "", k.hopf ? "Hopf" : "fold", pk + 1,
+                             c->d->branches[bi].id);
+            }
             if (rc == -2) {
                 const size_t used = strlen(note);
                 if (used + 2 < notelen)

@@ -11,6 +11,7 @@
  * times its sign, HB the real part of B's complex eigenvalue nearest the imaginary axis; on a
  * spectrum symmetric under lambda -> -lambda, HH, cont_steady_krein.c, with BP det B alone
  * and no HB) and the points stored. */
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -18,6 +19,7 @@
 
 #include "cont_steady_system.h"
 #include "ode/cholesky.h"
+#include "ode/linalg.h"
 
 /* -1, with the model's reason (set by cont_model_set or cont_model_f) as the branch's
  * message where none is there yet */
@@ -61,24 +63,12 @@ static int sc_residual(void *ctx, const double *z, double *g)
 static int sc_jacobian(void *ctx, const double *z, double *J)
 {
     sc_ctx *c = ctx;
-    const int N = c->nu, M = N + 1;
-    double *zt = c->H, *gp = zt + M, *gm = gp + N;
-    memcpy(zt, z, (size_t)M * sizeof *zt);
-    for (int j = 0; j < M; j++) {
-        int ex;
-        frexp(fmax(fabs(z[j]), 1.0), &ex);
-        const double h = ldexp(1.0, ex - 21);
-        zt[j] = z[j] + h;
-        const int a = sc_residual(c, zt, gp);
-        zt[j] = z[j] - h;
-        const int b = a ? a : sc_residual(c, zt, gm);
-        zt[j] = z[j];
-        if (a || b)
-            return -1;
-        for (int i = 0; i < N; i++)
-            J[(size_t)i * (size_t)M + (size_t)j] = (gp[i] - gm[i]) / (2.0 * h);
-    }
-    return 0;
+    cont_system r;
+    memset(&r, 0, sizeof r);
+    r.N = c->nu;
+    r.ctx = c;
+    r.residual = sc_residual;
+    return cont_central_jacobian(&r, CONT_STEPS_POW2, z, J, c->H);
 }
 
 double sc_det_lu(int n, double *a)
@@ -124,6 +114,43 @@ static double scaled_det(int n, double *a)
     return sc_det_lu(n, a);
 }
 
+/* The basis P (n x k) of the admissible directions turned into the one whose rows at the
+ * start's kept states are the identity: P R^-1, R = P's rows there (the same directions,
+ * so the same A_min as if the constraints had kept those states). Their complete pivoting
+ * keeps the states of the largest entries, which can change along a branch (the bicycle's
+ * wheel rates as its steer grows) without the start's choice becoming singular. 0, or -1
+ * (c->message) when the constraints keep another number of states or R is singular within
+ * 1e-10 of its largest entry. */
+static int keep_start_states(sc_ctx *c, int k)
+{
+    const size_t K = (size_t)k;
+    double *R = c->Amin; /* scratch: A_min is formed after */
+    if (k != c->k0) {
+        snprintf(c->message, sizeof c->message,
+                 "the constraints keep %d states here, %d at the start", k, c->k0);
+        return -1;
+    }
+    /* R^T, so that each row p of P solves R^T x = p^T for its row x of P R^-1 */
+    double big = 0.0;
+    for (size_t a = 0; a < K; a++)
+        for (size_t j = 0; j < K; j++) {
+            R[j * K + a] = c->P[(size_t)c->kept0[a] * K + j];
+            big = fmax(big, fabs(R[j * K + a]));
+        }
+    int singular = dyn_lu_factor(k, R, c->piv) != 0;
+    for (size_t a = 0; a < K && !singular; a++)
+        singular = !(fabs(R[a * K + a]) > 1e-10 * big);
+    if (singular) {
+        snprintf(c->message, sizeof c->message,
+                 "the constraints no longer determine the states they determined at the start");
+        return -1;
+    }
+    for (int i = 0; i < c->n; i++)
+        dyn_lu_solve(k, R, c->piv, c->P + (size_t)i * K);
+    memcpy(c->kept, c->kept0, K * sizeof *c->kept);
+    return 0;
+}
+
 /* B and its eigenvalues at z (after state_at) */
 int sc_reduce(sc_ctx *c)
 {
@@ -142,11 +169,9 @@ int sc_reduce(sc_ctx *c)
         if (sp->basis(sp->basis_ctx, cm->t, c->y, cm->par, c->P, c->kept, &k, c->message,
                       sizeof c->message))
             return -1;
-        if (k != c->k0 || memcmp(c->kept, c->kept0, (size_t)k * sizeof *c->kept) != 0) {
-            snprintf(c->message, sizeof c->message,
-                     "the constraints keep other states than at the start");
+        if ((k != c->k0 || memcmp(c->kept, c->kept0, (size_t)k * sizeof *c->kept) != 0) &&
+            keep_start_states(c, k))
             return -1;
-        }
     } else {
         memset(c->P, 0, (size_t)n * (size_t)n * sizeof *c->P);
         for (int i = 0; i < n; i++)
@@ -230,11 +255,14 @@ static int sc_tests(void *ctx, const double *z, const double *t, double det, dou
     count[0] = -1;
     double omega;
     psi[2] = hopf_test(c, &count[2], &omega);
-    /* a conservative spectrum leaves the axis only in collisions: no Hopf crossing */
+    /* a conservative spectrum leaves the axis only in collisions: no Hopf crossing between
+     * two such points (their counts are the same), while psi stays the real part, so that
+     * a crossing through a point where the spectrum is conservative alone (the bicycle's
+     * weave pair at v = 0) is located where that real part vanishes */
     psi[3] = sc_krein_test(nu, c->re, c->im, c->tol_b, &count[3], NULL);
     const int conservative = count[3] != -2;
     if (conservative)
-        psi[2] = -1.0;
+        count[2] = INT_MAX;
     /* det B times the sign of the parameter's tangent component, so that a fold, where
      * det B changes sign with it, is LP alone; a conservative spectrum's det B, the product
      * of the -lambda^2 of its pairs, only touches zero at a fold (a pair through 0 and
@@ -318,11 +346,7 @@ int sc_follow(sc_ctx *c, const cont_system *s, cont_work *w, const dyn_cont_opts
     dyn_branch *nb = &c->d->branches[c->bi];
     snprintf(nb->stop, sizeof nb->stop, "%s", stop);
     if (rc == -2 && nb->count == 0) {
-        free(nb->pts);
-        free(nb->x);
-        free(nb->xmin);
-        free(nb->eig);
-        c->d->count--;
+        cont_diagram_drop_last(c->d);
         return -2;
     }
     return rc == -1 ? -1 : 0;

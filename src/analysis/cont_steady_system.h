@@ -20,6 +20,7 @@ typedef struct sc_ctx {
     int *upos, *fpos;   /* positions in E of the unknowns (nu) and the held states (nf) */
     int *epos;          /* positions in the kept states of E's states (ne) */
     int *kept, *kept0, k0;
+    int *piv;           /* n pivots */
     double *y, *f, *A, *P, *Amin, *lwork, *rwork, *AE, *S, *H, *B, *Bc, *re, *im;
     double tol_b;       /* dyn_stability_tol of B at the last reduction */
     double dropped;     /* the largest |f| of the equations left out, relative */
@@ -61,7 +62,9 @@ int sc_follow(sc_ctx *c, const cont_system *s, cont_work *w, const dyn_cont_opts
  * curve of folds or of Hopf points in (o->ip, o->ip2) followed both ways
  * (cont_steady_curves.c), appended as DYN_BRANCH_FOLD or DYN_BRANCH_HOPF branches (parent
  * and parent_point set) while c->d has fewer than o->max_branches; s1 the branch's system.
- * A curve that cannot be started gets a sentence appended to note. 0, or -1 (c->message). */
+ * A curve that cannot be started, or that ends where the model or the reduction fails (at
+ * its last computed point, its stop saying where and why), gets a sentence appended to
+ * note. 0, or -1 (out of memory: c->message). */
 int sc_curves_all(sc_ctx *c, const cont_system *s1, const dyn_cont_opts *o, int first,
                   char *note, size_t notelen);
 

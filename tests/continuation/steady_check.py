@@ -149,6 +149,38 @@ def steady_turns(d, capsize):
           "and %.4g at the first two points)" % (c1, c2))
 
 
+def slow_turns(d):
+    """the steady turns go on below 2.5 m/s, where the constraints' pivoting would keep the
+    front wheel's rate instead of the rear's (the start's choice is kept), down to v = 0:
+    a turn at about 1.6 m/s integrated by dynkit run for 1 s keeps its lean, steer and yaw
+    rate; at v = 0 (at rest, a conservative spectrum) the weave pair crosses the axis: HB"""
+    turns = [b for b in d["branches"] if b["parent"] == 1]
+    for b in turns:
+        check(b["stop"] == "reached parmin = 0" and min(pt["v"] for pt in b["points"]) < 1e-9,
+              "bicycle: a steady-turn branch goes down to v = 0 (%s)" % b["stop"])
+    if not turns:
+        return
+    pt = min(turns[0]["points"], key=lambda q: abs(q["v"] - 1.6))
+    args = [DYNKIT, "run", BICYCLE, "--set", "v=%r" % pt["v"], "--tspan", "0:1", "-o", "-"]
+    for name, value in pt["state"].items():
+        args += ["--init", "%s=%r" % (name, value)]
+    p = subprocess.run(args, capture_output=True, text=True)
+    rows = list(csv.DictReader(io.StringIO(p.stdout))) if p.returncode == 0 else []
+    drift = max((abs(float(r[k]) - pt["state"][k]) for r in rows for k in ("phi", "delta", "dpsi")),
+                default=math.inf)
+    if drift > 1e-9:
+        keep("steady_turn_run.txt", " ".join(args) + "\n" + p.stdout[-2000:] + p.stderr)
+    check(len(rows) > 10 and drift < 1e-9 and pt["v"] < 2.0,
+          "bicycle: the steady turn at v = %.4g, integrated for 1 s, keeps its lean, steer and "
+          "yaw rate within %.2g" % (pt["v"], drift))
+    hb = [q for q in turns[0]["points"] if q["label"] == "HB"]
+    eig = [complex(a, b) for a, b in hb[0]["eigenvalues"]] if hb else []
+    sym = max((min(abs(z + w) for w in eig) for z in eig), default=math.inf)
+    check(len(hb) == 1 and abs(hb[0]["v"]) < 1e-12 and sym < 1e-9 * max(abs(z) for z in eig),
+          "bicycle: on the turns HB at v = %s, where the spectrum is symmetric (%.2g)"
+          % ([q["v"] for q in hb], sym))
+
+
 def bicycle():
     weave, capsize = benchmark_speeds()
     check(abs(weave - WEAVE_PAPER) < 2e-12 and abs(capsize - CAPSIZE_PAPER) < 2e-12,
@@ -160,6 +192,7 @@ def bicycle():
         return
     pts = points(p)
     steady_turns(json.loads(p.stdout), capsize)
+    slow_turns(json.loads(p.stdout))
     hb = [pt["v"] for pt in pts if pt["label"] == "HB"]
     bp = [pt["v"] for pt in pts if pt["label"] == "BP"]
     check(len(hb) == 1 and abs(hb[0] - WEAVE_PAPER) < 1e-8 and abs(hb[0] - weave) < 1e-8,
@@ -358,6 +391,50 @@ def par2_weave():
           "the curve's speeds" % (", ".join("%.4g" % pt["c"] for pt in picks), worst))
 
 
+def par2_failure():
+    """a pendulum hinged at a from the axis of a freely turning arm
+    (tests/continuation/models/arm_pendulum.mech): its folds of steady motions,
+    g sin(theta) = W^2 (a + L sin(theta)) cos(theta) and that expression's theta-derivative
+    zero, followed in (W, a) through the cusp at a = 0; with amax = 0.06 the model fails
+    beyond a = 0.06: that curve ends there with its points kept, a note and its reason"""
+    arm = os.path.join(SOURCE, "tests", "continuation", "models", "arm_pendulum.mech")
+    g, L = G, 1.0
+    for amax in (1.0, 0.06):
+        p = run([arm, "--par", "W", "--par2", "a", "--init", "theta=-0.3", "--set", "W=3.5",
+                 "--set", "amax=%r" % amax, "--opt", "parmin=2", "--opt", "parmax=5", "--opt",
+                 "par2min=-0.1", "--opt", "par2max=0.1", "--opt", "ds=-0.01", "--opt",
+                 "dsmax=0.05", "--json"], "arm_%g" % amax)
+        check(p.returncode == 0, "arm pendulum amax=%g: --par2 runs (status %d)"
+              % (amax, p.returncode))
+        if p.returncode != 0:
+            continue
+        folds = [b for b in json.loads(p.stdout)["branches"] if b["kind"] == "fold"]
+        worst, n = 0.0, 0
+        for b in folds:
+            for pt in b["points"]:
+                W, a, th = pt["W"], pt["a"], pt["state"]["theta"]
+                f = g * math.sin(th) - W * W * (a + L * math.sin(th)) * math.cos(th)
+                fth = g * math.cos(th) - W * W * (L * math.cos(2 * th) - a * math.sin(th))
+                worst = max(worst, abs(f) / g, abs(fth) / g)
+                n += 1
+        a_all = [pt["a"] for b in folds for pt in b["points"]]
+        up = [b for b in folds if b["points"][-1]["a"] > 0.02]
+        if amax == 1.0:
+            check(len(folds) == 2 and n > 20 and worst < 1e-9 and min(a_all) < -0.099
+                  and max(a_all) > 0.099,
+                  "arm pendulum: the fold curve in (W, a) from a = %.3g to %.3g through the "
+                  "cusp, on the closed form within %.2g" % (min(a_all), max(a_all), worst))
+            continue
+        ok = (len(up) == 1 and up[0]["stop"].startswith("failed at W = ")
+              and "not finite" in up[0]["stop"] and 0.05 < up[0]["points"][-1]["a"] < 0.06
+              and up[0]["points"][-1]["label"] == "EP" and len(up[0]["points"]) > 5)
+        check(ok and worst < 1e-9 and "ends where the model or the reduction fails" in p.stderr,
+              "arm pendulum amax=0.06: the fold curve ends at a = %s, its %d points kept "
+              "(on the closed form within %.2g), stop '%s', a note"
+              % ([b["points"][-1]["a"] for b in up], len(up[0]["points"]) if up else 0, worst,
+                 up[0]["stop"] if up else ""))
+
+
 def refusals():
     p = run([DISK, "--par", "W", "--set", "W=2", "--opt", "parmax=6"], "disk_default")
     check(p.returncode == 1 and "--unknown" in p.stderr and "determine" in p.stderr,
@@ -390,6 +467,7 @@ def main():
     sleeping_top()
     par2_fold()
     par2_weave()
+    par2_failure()
     refusals()
     help_examples()
     if FAILED:

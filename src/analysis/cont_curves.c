@@ -78,13 +78,8 @@ static int curve_residual(void *ctx, const double *z, double *g)
 static int curve_jacobian(void *ctx, const double *z, double *Jout)
 {
     curve_ctx *c = ctx;
-    cont_system r;
-    memset(&r, 0, sizeof r);
-    r.N = c->N;
-    r.ctx = c;
-    r.residual = curve_residual;
     /* g0, g1 and zz follow each other: 3 (N + 1) values */
-    return cont_central_jacobian(&r, CONT_STEPS_CBRT, z, Jout, c->g0);
+    return cont_central_jacobian(curve_residual, c, c->N, CONT_STEPS_CBRT, z, Jout, c->g0);
 }
 
 /* the left null vector w of J (cm->J) bordered by v and w_prev: [[J^T, v], [w_prev^T, 0]]

@@ -11,10 +11,10 @@
 
 #include "cont_core.h"
 
-int cont_central_jacobian(const cont_system *s, int steps, const double *z, double *J,
-                          double *work)
+int cont_central_jacobian(int (*residual)(void *ctx, const double *z, double *g), void *ctx,
+                          int N, int steps, const double *z, double *J, double *work)
 {
-    const int N = s->N, M = N + 1;
+    const int M = N + 1;
     double *zt = work, *gp = zt + M, *gm = gp + N;
     memcpy(zt, z, (size_t)M * sizeof *zt);
     for (int j = 0; j < M; j++) {
@@ -29,10 +29,10 @@ int cont_central_jacobian(const cont_system *s, int steps, const double *z, doub
         const double zp = z[j] + h, zm = z[j] - h;
         den = steps == CONT_STEPS_POW2 ? 2.0 * h : zp - zm;
         zt[j] = zp;
-        if (s->residual(s->ctx, zt, gp))
+        if (residual(ctx, zt, gp))
             return -1;
         zt[j] = zm;
-        if (s->residual(s->ctx, zt, gm))
+        if (residual(ctx, zt, gm))
             return -1;
         zt[j] = z[j];
         for (int i = 0; i < N; i++)

@@ -94,12 +94,8 @@ static int curve_residual(void *ctx, const double *z, double *g)
 static int curve_jacobian(void *ctx, const double *z, double *J)
 {
     curve_ctx *k = ctx;
-    cont_system r;
-    memset(&r, 0, sizeof r);
-    r.N = k->c->nu + 1;
-    r.ctx = k;
-    r.residual = curve_residual;
-    return cont_central_jacobian(&r, CONT_STEPS_POW2, z, J, k->zt); /* zt, gp, gm */
+    return cont_central_jacobian(curve_residual, k, k->c->nu + 1, CONT_STEPS_POW2, z, J,
+                                 k->zt); /* zt, gp, gm */
 }
 
 /* no points are located on the curves */
@@ -282,24 +278,12 @@ int sc_curves_all(sc_ctx *c, const cont_system *s1, const dyn_cont_opts *o, int 
             k.hopf = l == DYN_LABEL_HB;
             k.ended = 0;
             rc = one_curve(&k, &w, o, bi, pk, max_branches);
-            if (k.ended) {
-                const size_t used = strlen(note);
-                if (used + 2 < notelen)
-                    snprintf(note + used, notelen - used,
-                             "%sthe %s curve through point %ld of branch %d ends where the "
-                             "model or the reduction fails (its stop says where)",
-                             used ? "; " : "", k.hopf ? "Hopf" : "fold", pk + 1,
-                             c->d->branches[bi].id);
-            }
-            if (rc == -2) {
-                const size_t used = strlen(note);
-                if (used + 2 < notelen)
-                    snprintf(note + used, notelen - used,
-                             "%sthe %s curve through point %ld of branch %d could not be "
-                             "started",
-                             used ? "; " : "", k.hopf ? "Hopf" : "fold", pk + 1,
-                             c->d->branches[bi].id);
-            }
+            const size_t used = strlen(note);
+            if ((k.ended || rc == -2) && used + 2 < notelen)
+                snprintf(note + used, notelen - used, "%sthe %s curve through point %ld of "
+                         "branch %d %s", used ? "; " : "", k.hopf ? "Hopf" : "fold", pk + 1,
+                         c->d->branches[bi].id, rc == -2 ? "could not be started"
+                         : "ends where the model or the reduction fails (its stop says where)");
         }
     cont_work_free(&w);
     free(buf);

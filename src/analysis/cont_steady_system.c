@@ -63,12 +63,7 @@ static int sc_residual(void *ctx, const double *z, double *g)
 static int sc_jacobian(void *ctx, const double *z, double *J)
 {
     sc_ctx *c = ctx;
-    cont_system r;
-    memset(&r, 0, sizeof r);
-    r.N = c->nu;
-    r.ctx = c;
-    r.residual = sc_residual;
-    return cont_central_jacobian(&r, CONT_STEPS_POW2, z, J, c->H);
+    return cont_central_jacobian(sc_residual, c, c->nu, CONT_STEPS_POW2, z, J, c->H);
 }
 
 double sc_det_lu(int n, double *a)

@@ -79,10 +79,9 @@ int cont_passes_point(int M, const double *za, const double *zb, const double *z
 
 /* DG(z) into J (N x (N + 1), row-major) by central differences of residual (N values at
  * z, N + 1 unknowns; a cont_system's), column j with the step h_j: CONT_STEPS_POW2, 2^-20
- * max(|z_j|, 1) rounded
- * down to a power of two, divided by 2 h_j; CONT_STEPS_CBRT, eps^(1/3) max(|z_j|, 1), divided
- * by the difference of the two arguments as rounded. work: 3 N + 1 doubles. 0, or -1 when
- * the residual failed (cont_jacobian.c). */
+ * max(|z_j|, 1) rounded down to a power of two, divided by 2 h_j; CONT_STEPS_CBRT,
+ * eps^(1/3) max(|z_j|, 1), divided by the difference of the two arguments as rounded.
+ * work: 3 N + 1 doubles. 0, or -1 when the residual failed (cont_jacobian.c). */
 #define CONT_STEPS_POW2 0
 #define CONT_STEPS_CBRT 1
 int cont_central_jacobian(int (*residual)(void *ctx, const double *z, double *g), void *ctx,

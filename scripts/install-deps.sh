@@ -28,6 +28,7 @@ packages+=(man-db) # tests/test_manpage.c renders docs/dynkit.1
 packages+=(xppaut) # tests/xppaut: .ode files run by XPPAUT itself and compared
 packages+=(auto-07p gfortran) # tests/continuation, bench/colloc_auto.py: AUTO-07p as the oracle
 packages+=(lld wasi-libc libclang-rt-14-dev-wasm32) # backends/wasm: live pages (clang for wasm32-wasi)
+packages+=(zlib1g-dev) # live pages: the module compressed (cli/pages/zlib_write.c; optional)
 packages+=(libclang-rt-dev) # fuzz/: libFuzzer and the sanitizers' runtime for clang (CI)
 # node and npm may come from elsewhere (e.g. a newer nodejs that bundles npm): keep those
 command -v node >/dev/null 2>&1 || packages+=(nodejs)

@@ -1,10 +1,12 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* The zlib streams live pages carry their module in (cli/pages/zlib_write.c) inflate, with
  * Python's zlib (an independent inflater that checks the stream's Adler-32), to the bytes
- * they were made of: nothing, one byte, every byte value, pseudo-random bytes (no match),
- * long runs of one byte (matches of 258 at distance 1), a block repeated beyond the 32 KiB
- * window (no match may reach it) and within it, text, and WebAssembly code of the build
- * when there is some, which shrinks at least 1.8 times. Skipped without Python. */
+ * they were made of: nothing, one byte, every byte value, pseudo-random bytes, long runs of
+ * one byte, a block repeated beyond DEFLATE's 32 KiB window and within it, text, and
+ * WebAssembly code of the build when there is some. Built with zlib, the repeats within
+ * the window, the runs and the text shrink, and the code at least 2.2 times; without it,
+ * the stream holds the bytes in stored blocks: 6 bytes and 5 a block of 65535 more.
+ * Skipped without Python. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -20,6 +22,12 @@
 #include "pages/pages.h"
 
 #define PYTHON "/usr/bin/python3"
+
+#ifdef DYNKIT_HAVE_ZLIB
+enum { COMPRESSED = 1 };
+#else
+enum { COMPRESSED = 0 };
+#endif
 
 static int write_bytes(const char *path, const unsigned char *p, size_t n)
 {
@@ -37,6 +45,8 @@ static size_t round_trip(const unsigned char *data, size_t n)
     unsigned char *z = cli_zlib_compress(data, n, &zn);
     assert_non_null(z);
     assert_true(zn <= n + n / 8 + 16);
+    if (!COMPRESSED)
+        assert_int_equal(zn, n + 6 + 5 * (n ? (n + 65534) / 65535 : 1));
     char raw[] = "/tmp/dynkit-zlib-raw-XXXXXX", packed[] = "/tmp/dynkit-zlib-z-XXXXXX";
     const int fr = mkstemp(raw), fz = mkstemp(packed);
     assert_true(fr >= 0 && fz >= 0);
@@ -92,9 +102,11 @@ static void test_random_and_runs(void **state)
     assert_non_null(p);
     random_bytes(p, n, 12345u);
     const size_t zn = round_trip(p, n);
-    assert_true(zn > n); /* nothing to find: 9 bits for half the bytes */
+    assert_true(zn > n); /* nothing to find */
     memset(p, 'x', n);
-    assert_true(round_trip(p, n) < n / 50); /* matches of 258 bytes */
+    const size_t runs = round_trip(p, n);
+    if (COMPRESSED)
+        assert_true(runs < n / 50);
     free(p);
 }
 
@@ -110,7 +122,7 @@ static void test_window(void **state)
         const size_t zn = round_trip(p, 2 * block);
         if (block > 32768)
             assert_true(zn > 2 * block);
-        else
+        else if (COMPRESSED)
             assert_true(zn < block + block / 8 + 100);
         free(p);
     }
@@ -124,7 +136,9 @@ static void test_text(void **state)
     for (int k = 0; n + 80 < sizeof text; k++)
         n += (size_t)snprintf(text + n, sizeof text - n, "sample %d: y = %.6g, y' = %.6g\n", k,
                               k * 0.37, 1.0 / (k + 1));
-    assert_true(round_trip((const unsigned char *)text, n) < n / 2);
+    const size_t zn = round_trip((const unsigned char *)text, n);
+    if (COMPRESSED)
+        assert_true(zn < n / 2);
 }
 
 /* WebAssembly code of the build (the wasm32 object of src/ode/fixed_driver.c), when dynkit
@@ -142,7 +156,8 @@ static void test_wasm(void **state)
     fclose(f);
     assert_true(n > 8 && memcmp(buf, "\0asm", 4) == 0);
     const size_t zn = round_trip(buf, n);
-    assert_true(1.8 * (double)zn < (double)n);
+    if (COMPRESSED)
+        assert_true(2.2 * (double)zn < (double)n);
     free(buf);
 }
 

@@ -42,8 +42,8 @@ void cli_json_numbers(cli_json *j, const double *v, long n, long stride);
 
 /* ---- zlib streams (zlib_write.c) ---- */
 
-/* data[0..n) as a zlib stream (RFC 1950) of one fixed-Huffman DEFLATE block: a new buffer
- * (free it) of *out_n bytes, or NULL when out of memory. */
+/* data[0..n) as a zlib stream (RFC 1950): compressed by zlib when the tool is built with it,
+ * else stored blocks; a new buffer (free it) of *out_n bytes, or NULL when out of memory. */
 unsigned char *cli_zlib_compress(const unsigned char *data, size_t n, size_t *out_n);
 
 /* ---- recorded runs (run_record.c) ---- */

@@ -13,6 +13,7 @@
 
 #include "cli.h"
 #include "cont_settings.h"
+#include "dynkit/io.h"
 #include "dynkit/lang.h"
 
 static const char *const cont_settings_names[] = {
@@ -99,9 +100,10 @@ int cont_settings_fit_start(cont_settings *s, double p0, const char *par, char *
     if ((from_min && !(p0 >= o->parmin)) || (from_max && !(p0 <= o->parmax))) {
         const int low = from_min && !(p0 >= o->parmin);
         snprintf(err, errlen,
-                 "the start %s = %.17g is outside [parmin, parmax] = [%.17g, %.17g] (%s from "
+                 "the start %s = %s is outside [parmin, parmax] = [%s, %s] (%s from "
                  "%s): give a window that contains it, or another start (--set %s=VALUE)",
-                 par, p0, o->parmin, o->parmax, low ? "parmin" : "parmax",
+                 par, dyn_shortest(p0).s, dyn_shortest(o->parmin).s, dyn_shortest(o->parmax).s,
+                 low ? "parmin" : "parmax",
                  low ? from_min : from_max, par);
         return -1;
     }
@@ -118,10 +120,12 @@ int cont_settings_fit_start(cont_settings *s, double p0, const char *par, char *
         o->parmax = p0 + fmax(p0 - o->parmin, width);
     if (note && notelen)
         snprintf(note, notelen,
-                 "the start %s = %.17g is outside the default window: %s = %.17g, not %.17g, so that "
-                 "[parmin, parmax] = [%.17g, %.17g] contains it (--opt %s=VALUE chooses)",
-                 par, p0, below ? "parmin" : "parmax", below ? o->parmin : o->parmax, was,
-                 o->parmin, o->parmax, below ? "parmin" : "parmax");
+                 "the start %s = %s is outside the default window: %s = %s, not %s, so that "
+                 "[parmin, parmax] = [%s, %s] contains it (--opt %s=VALUE chooses)",
+                 par, dyn_shortest(p0).s, below ? "parmin" : "parmax",
+                 dyn_shortest(below ? o->parmin : o->parmax).s, dyn_shortest(was).s,
+                 dyn_shortest(o->parmin).s, dyn_shortest(o->parmax).s,
+                 below ? "parmin" : "parmax");
     return 0;
 }
 

@@ -18,6 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "dynkit/io.h"
 #include "analysis/colloc_internal.h"
 #include "ode/linalg.h"
 
@@ -633,9 +634,10 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
             break;
         }
         if (at_bound || (bounded && (x->par[1] < o->par_min || x->par[1] > o->par_max))) {
-            snprintf(b->message, sizeof b->message, "reached %s = %g",
+            snprintf(b->message, sizeof b->message, "reached %s = %s",
                      x->par[1] >= 0.5 * (o->par_min + o->par_max) ? "parmax" : "parmin",
-                     x->par[1] >= 0.5 * (o->par_min + o->par_max) ? o->par_max : o->par_min);
+                     dyn_shortest(x->par[1] >= 0.5 * (o->par_min + o->par_max) ? o->par_max
+                                                                               : o->par_min).s);
             break;
         }
         if (o->period_max > 0 && x->par[0] > o->period_max) {

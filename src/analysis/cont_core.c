@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "dynkit/io.h"
 #include "cont_core.h"
 #include "ode/linalg.h"
 
@@ -636,9 +637,10 @@ int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const do
                 sp[ns].label = DYN_LABEL_EP;
                 ns++;
             }
-            snprintf(stop, stoplen, "reached %s = %.17g", q == 0 ? (bound == hi ? "parmax" : "parmin")
-                                                              : (bound == hi ? "par2max" : "par2min"),
-                     bound);
+            snprintf(stop, stoplen, "reached %s = %s",
+                     q == 0 ? (bound == hi ? "parmax" : "parmin")
+                            : (bound == hi ? "par2max" : "par2min"),
+                     dyn_shortest(bound).s);
             end_here = 1;
         }
         qsort(sp, (size_t)ns, sizeof *sp, cmp_special);

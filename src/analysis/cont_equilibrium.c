@@ -15,6 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "dynkit/io.h"
 #include "cont_equilibrium.h"
 
 
@@ -353,15 +354,16 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
     }
     if (eq_rc || cont_correct(&s, &w, z, e, 0.0, z, NULL)) {
         snprintf(info->message, sizeof info->message,
-                 "no equilibrium found near the start at %.40s = %.17g: %.120s",
-                 m->params[o->ip].name, cm.p_set[0],
+                 "no equilibrium found near the start at %.40s = %s: %.120s",
+                 m->params[o->ip].name, dyn_shortest(cm.p_set[0]).s,
                  eq_rc ? ei.message : cm.message[0] ? cm.message : "Newton's method diverged");
         rc = DYN_ERR_ARG;
     }
     if (rc == 0 && !(z[n] >= o->parmin && z[n] <= o->parmax)) {
         snprintf(info->message, sizeof info->message,
-                 "the start %.40s = %.17g is outside [parmin, parmax] = [%.17g, %.17g]",
-                 m->params[o->ip].name, z[n], o->parmin, o->parmax);
+                 "the start %.40s = %s is outside [parmin, parmax] = [%s, %s]",
+                 m->params[o->ip].name, dyn_shortest(z[n]).s, dyn_shortest(o->parmin).s,
+                 dyn_shortest(o->parmax).s);
         rc = DYN_ERR_ARG;
     }
     if (rc == 0) {

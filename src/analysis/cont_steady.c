@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "dynkit/io.h"
 #include "cont_steady_switch.h"
 #include "cont_steady_system.h"
 
@@ -95,8 +96,8 @@ static int start(sc_ctx *c, const dyn_model *m, const dyn_cont_opts *o, double *
     free(un);
     if (st) {
         snprintf(info->message, sizeof info->message,
-                 "no steady motion found near the start at %.40s = %.17g: %.120s",
-                 m->params[o->ip].name, cm->p_set[0], si.message);
+                 "no steady motion found near the start at %.40s = %s: %.120s",
+                 m->params[o->ip].name, dyn_shortest(cm->p_set[0]).s, si.message);
         return DYN_ERR_ARG;
     }
     for (int j = 0; j < nu; j++)
@@ -236,8 +237,9 @@ int dyn_steady_continue(const dyn_model *m, const void *par, const double *y0,
     int rc = start(&c, m, &oc, z, info);
     if (rc == 0 && !(z[nu] >= o->parmin && z[nu] <= o->parmax)) {
         snprintf(info->message, sizeof info->message,
-                 "the start %.40s = %.17g is outside [parmin, parmax] = [%.17g, %.17g]",
-                 m->params[o->ip].name, z[nu], o->parmin, o->parmax);
+                 "the start %.40s = %s is outside [parmin, parmax] = [%s, %s]",
+                 m->params[o->ip].name, dyn_shortest(z[nu]).s, dyn_shortest(o->parmin).s,
+                 dyn_shortest(o->parmax).s);
         rc = DYN_ERR_ARG;
     }
     cont_system s;

@@ -174,6 +174,7 @@ typedef struct dyn_po_branch {
     int n, npoints, cap;
     dyn_po_point *pts;
     int status;        /* 0: ended normally (nmax, a bound); else DYN_COLLOC_* */
+    int hopf_end;      /* 1: it ended where its orbits shrank to an equilibrium */
     char message[200]; /* why the branch ended */
 } dyn_po_branch;
 

@@ -77,6 +77,11 @@ typedef struct dyn_branch {
     dyn_branch_kind kind;
     int parent;         /* the id of the branch it was started from (a BP, HB, LP), 0: none */
     long parent_point;  /* the index of that point on the parent, -1: none */
+    /* periodic branches: the Hopf point where the orbits shrank to an equilibrium again (the
+     * id of its branch and its index there; the cycles from that point are these, and are
+     * not computed again), 0 and -1: none */
+    int end_branch;
+    long end_point;
     int n;              /* states */
     int n_eig;          /* eigenvalues or multipliers per point (n, or 0 when not stored) */
     int n_par;          /* 1 or 2 */

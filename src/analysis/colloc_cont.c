@@ -6,7 +6,9 @@
  * maximum and minimum over the orbit, the period, the Floquet multipliers, stability and
  * the labels LPC, PD, TR, UZ, EP; on request each point's orbit at its collocation nodes);
  * then from each period doubling the period-doubled branch, and so on down the cascade
- * while the diagram has room for branches. */
+ * while the diagram has room for branches. A branch that ends on another Hopf point
+ * records it (end_branch, end_point), and that point starts no branch: its cycles are
+ * these. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -59,6 +61,45 @@ static int keep_profiles(dyn_branch *b, const dyn_po_branch *pb)
     return 0;
 }
 
+/* the Hopf point of an equilibrium branch of d where branch pb ended, its orbits shrunk
+ * onto an equilibrium: of the HB points other than (parent, parent_point) whose state lies
+ * within the last orbit's range of each state widened by that range, and whose parameter
+ * is within twice the last step's change of the parameter from the end (the end is located
+ * where the oscillation vanishes, to about a step), the nearest in the parameter. Its
+ * branch's id into *eb and index into *ep; 0, or -1 when none. */
+static int hopf_at_end(const dyn_diagram *d, const dyn_po_branch *pb, int parent,
+                       long parent_point, int *eb, long *ep)
+{
+    if (!pb->hopf_end || pb->npoints < 2)
+        return -1;
+    const dyn_po_point *e = &pb->pts[pb->npoints - 1], *q = &pb->pts[pb->npoints - 2];
+    const double reach = 2.0 * fabs(e->par - q->par) + 1e-9 * (1.0 + fabs(e->par));
+    double best = INFINITY;
+    for (int bi = 0; bi < d->count; bi++) {
+        const dyn_branch *b = &d->branches[bi];
+        if (b->kind != DYN_BRANCH_EQUILIBRIUM || b->n != pb->n)
+            continue;
+        for (long k = 0; k < b->count; k++) {
+            const double dp = fabs(b->pts[k].par[0] - e->par);
+            if (b->pts[k].label != DYN_LABEL_HB || (b->id == parent && k == parent_point) ||
+                !(dp <= reach) || !(dp < best))
+                continue;
+            int inside = 1;
+            for (int i = 0; i < b->n && inside; i++) {
+                const double x = b->x[(size_t)k * (size_t)b->n + (size_t)i];
+                const double w = e->xmax[i] - e->xmin[i] + 1e-9 * (1.0 + fabs(x));
+                inside = x >= e->xmin[i] - w && x <= e->xmax[i] + w;
+            }
+            if (inside) {
+                best = dp;
+                *eb = b->id;
+                *ep = k;
+            }
+        }
+    }
+    return isfinite(best) ? 0 : -1;
+}
+
 /* pb appended to d as a periodic branch (with its orbits when keep_orbits); its id, or -1
  * when out of memory */
 static int store(dyn_diagram *d, const dyn_po_branch *pb, int ip, int parent, long parent_point,
@@ -84,6 +125,21 @@ static int store(dyn_diagram *d, const dyn_po_branch *pb, int ip, int parent, lo
             return -1;
     }
     snprintf(b->stop, sizeof b->stop, "%.150s", pb->message);
+    int eb = 0;
+    long ep = -1;
+    if (parent > 0 && d->branches[parent - 1].kind == DYN_BRANCH_EQUILIBRIUM &&
+        hopf_at_end(d, pb, parent, parent_point, &eb, &ep) == 0) {
+        b->end_branch = eb;
+        b->end_point = ep;
+        const dyn_branch *pa = &d->branches[parent - 1];
+        const double p_end = d->branches[eb - 1].pts[ep].par[0];
+        char msg[320];
+        snprintf(msg, sizeof msg,
+                 "the orbit shrank to the HB at %.10g (point %ld of branch %d): the cycles "
+                 "from HB at %.10g are those from HB at %.10g", p_end, ep + 1, eb, p_end,
+                 pa->pts[parent_point].par[0]);
+        snprintf(b->stop, sizeof b->stop, "%.159s", msg);
+    }
     if (keep_orbits && pb->npoints > 0 && keep_profiles(b, pb))
         return -1;
     return b->id;
@@ -99,6 +155,11 @@ int dyn_po_continue_hopf(const dyn_model *m, const void *par, const dyn_cont_opt
                          size_t errlen)
 {
     static const dyn_eig_solver hqr = {"hqr", hqr_eig};
+    /* the cycles from this Hopf point are already there when a branch ended on it */
+    for (int j = 0; j < d->count; j++)
+        if (d->branches[j].kind == DYN_BRANCH_PERIODIC && d->branches[j].end_branch == branch &&
+            d->branches[j].end_point == point)
+            return 0;
     const dyn_branch *eb = &d->branches[branch - 1];
     const int n = m->n_states;
     double *x0 = malloc((size_t)n * sizeof *x0);

@@ -11,8 +11,9 @@
  * prod (mu_i + 1) over the non-trivial multipliers changes sign) and torus bifurcations (TR:
  * a complex pair crosses the unit circle, prod (mu_i mu_j - 1) changes sign with as many
  * pairs on both sides) are located by secant steps in the arclength from the last point
- * before the change; a branch that reaches another Hopf point (the orbit's oscillation
- * reverses) ends there. */
+ * before the change (when several change in one step, the first along it); a branch that
+ * reaches another Hopf point (the orbit's oscillation reverses) ends there, and one that
+ * comes back onto its own orbits (a closed loop of cycles) ends where it does. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -143,6 +144,39 @@ static void tests_of(const double *re, const double *im, int n, double dlambda, 
         }
     }
     t->tr = tr;
+}
+
+/* the value of test `which` (0 LPC, 1 PD, 2 TR) */
+static double test_value(const po_tests *t, int which)
+{
+    return which == 0 ? t->lpc : which == 1 ? t->pd : t->tr;
+}
+
+static void set_test_value(po_tests *t, int which, double v)
+{
+    if (which == 0)
+        t->lpc = v;
+    else if (which == 1)
+        t->pd = v;
+    else
+        t->tr = v;
+}
+
+/* the first of the tests LPC, PD, TR (other than `skip`) that changed sign from a to b, or
+ * -1. LPC: |d lambda/ds| above the rounding of a vertical branch on one side at least; TR:
+ * a pair's modulus through 1, not two real multipliers meeting as a pair (the product then
+ * gains a factor |mu|^2 - 1 wherever the pair lies) */
+static int first_change(const po_tests *a, const po_tests *b, int skip)
+{
+    if (skip != 0 && (b->lpc > 0) != (a->lpc > 0) &&
+        fmax(fabs(b->lpc), fabs(a->lpc)) > DYN_CONT_FOLD_NOISE)
+        return 0;
+    if (skip != 1 && b->have_mult && a->have_mult && (b->pd > 0) != (a->pd > 0))
+        return 1;
+    if (skip != 2 && b->have_mult && a->have_mult && (b->tr > 0) != (a->tr > 0) &&
+        b->tr_complex && b->tr_pairs == a->tr_pairs)
+        return 2;
+    return -1;
 }
 
 typedef struct po_run {
@@ -439,6 +473,59 @@ static int at_crossed(const dyn_po_opts *o, double p0, double p1)
     return best;
 }
 
+/* the distance between points a and b of a branch in what does not depend on the orbits'
+ * phase: the parameter, the period, each state's maximum and minimum */
+static double point_distance(const dyn_po_point *a, const dyn_po_point *b, int n)
+{
+    double s = (a->par - b->par) * (a->par - b->par) +
+               (a->period - b->period) * (a->period - b->period);
+    for (int i = 0; i < n; i++)
+        s += (a->xmax[i] - b->xmax[i]) * (a->xmax[i] - b->xmax[i]) +
+             (a->xmin[i] - b->xmin[i]) * (a->xmin[i] - b->xmin[i]);
+    return sqrt(s);
+}
+
+/* the distance from point p to the chord from a to c (the same coordinates) */
+static double chord_distance(const dyn_po_point *p, const dyn_po_point *a,
+                             const dyn_po_point *c, int n)
+{
+    const double ac = point_distance(a, c, n), ap = point_distance(a, p, n);
+    if (!(ac > 0))
+        return ap;
+    const double cp = point_distance(c, p, n);
+    /* the foot of the perpendicular, from the three sides (law of cosines) */
+    const double f = (ap * ap - cp * cp + ac * ac) / (2.0 * ac);
+    if (f <= 0)
+        return ap;
+    if (f >= ac)
+        return cp;
+    return sqrt(fmax(0.0, ap * ap - f * f));
+}
+
+/* whether the branch's last point came back onto a chord of the branch computed before it:
+ * within a tenth of that chord's length (or of the last step's, the larger), the branch
+ * having gone more than ten times as far from that chord in between (a closed loop of
+ * cycles, as the period-doubled cycles that meet their own primary branch at both ends,
+ * followed round again). The chord's first point, or -1. */
+static int back_on_branch(const dyn_po_branch *b)
+{
+    const int last = b->npoints - 1, n = b->n;
+    if (last < 4)
+        return -1;
+    const dyn_po_point *p = &b->pts[last];
+    const double step = point_distance(p, &b->pts[last - 1], n);
+    for (int k = 0; k + 1 < last - 2; k++) {
+        const dyn_po_point *a = &b->pts[k], *c = &b->pts[k + 1];
+        const double tol = 0.1 * fmax(point_distance(a, c, n), step);
+        if (!(chord_distance(p, a, c, n) <= tol))
+            continue;
+        for (int j = k + 2; j < last; j++)
+            if (chord_distance(&b->pts[j], a, c, n) > 10.0 * tol)
+                return k;
+    }
+    return -1;
+}
+
 /* continue from x (a solution or the Hopf point) along t; x and t are consumed */
 static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
 {
@@ -500,6 +587,7 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
                 snprintf(b->message, sizeof b->message,
                          "the orbit shrank to an equilibrium: a Hopf point past parameter "
                          "%.10g", x->par[1]);
+                b->hopf_end = 1;
                 break;
             }
             xn = xh;
@@ -530,48 +618,53 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
                 uz = -1;
             }
         }
-        int which = -1;
-        if (have_prev && !hopf_end) {
-            if ((now.lpc > 0) != (prev_tests.lpc > 0) &&
-                fmax(fabs(now.lpc), fabs(prev_tests.lpc)) > DYN_CONT_FOLD_NOISE)
-                which = 0;
-            else if (now.have_mult && (now.pd > 0) != (prev_tests.pd > 0))
-                which = 1;
-            /* a pair's modulus through 1, not two real multipliers meeting as a pair (the
-             * product then gains a factor |mu|^2 - 1 wherever the pair lies) */
-            else if (now.have_mult && (now.tr > 0) != (prev_tests.tr > 0) && now.tr_complex &&
-                     now.tr_pairs == prev_tests.tr_pairs)
-                which = 2;
-        }
-        if (which >= 0) {
-            const double p0 = which == 0 ? prev_tests.lpc : which == 1 ? prev_tests.pd
-                                                                       : prev_tests.tr;
-            const double p1 = which == 0 ? now.lpc : which == 1 ? now.pd : now.tr;
+        /* a test that changed sign in the step is located; when another one changed between
+         * the step's start and the located point, that one comes first along the branch and
+         * is located instead (a PD just before a fold of cycles is not lost to the LPC) */
+        int which = have_prev && !hopf_end ? first_change(&prev_tests, &now, -1) : -1;
+        double s_far = s_end;
+        po_tests far = now;
+        for (int round = 0; which >= 0; round++) {
+            const double p0 = test_value(&prev_tests, which), p1 = test_value(&far, which);
             dyn_colloc_sol xl = {0}, tl = {0};
             double s_l;
-            if (!locate(r, x, t, s_end, p0, p1, which, &xl, &tl, &s_l)) {
-                dyn_colloc_sol_free(&xn);
-                dyn_colloc_sol_free(&tn);
-                xn = xl;
-                tn = tl;
-                s_end = s_l;
-                uz = -1; /* the label comes first: the UZ point is found on the next step */
+            po_tests at;
+            if (locate(r, x, t, s_far, p0, p1, which, &xl, &tl, &s_l)) {
+                dyn_colloc_sol_free(&xl);
+                dyn_colloc_sol_free(&tl);
+                which = -1; /* the whole step, its multipliers again (locate's were last) */
                 st = point_tests(r, &xn, &tn, &now);
-                if (st) {
-                    dyn_colloc_sol_free(&xn);
-                    dyn_colloc_sol_free(&tn);
-                    break;
-                }
-                /* beyond the located point the test has the far side's sign */
-                if (which == 0)
-                    now.lpc = p1;
-                else if (which == 1)
-                    now.pd = p1;
-                else
-                    now.tr = p1;
-            } else {
-                which = -1;
+                break;
             }
+            st = point_tests(r, &xl, &tl, &at);
+            if (st) {
+                dyn_colloc_sol_free(&xl);
+                dyn_colloc_sol_free(&tl);
+                break;
+            }
+            const int before = round < 3 ? first_change(&prev_tests, &at, which) : -1;
+            if (before >= 0) {
+                dyn_colloc_sol_free(&xl);
+                dyn_colloc_sol_free(&tl);
+                s_far = s_l;
+                far = at;
+                which = before;
+                continue;
+            }
+            dyn_colloc_sol_free(&xn);
+            dyn_colloc_sol_free(&tn);
+            xn = xl;
+            tn = tl;
+            s_end = s_l;
+            uz = -1; /* the label comes first: the UZ point is found on the next step */
+            now = at;
+            set_test_value(&now, which, p1); /* beyond the point the far side's sign */
+            break;
+        }
+        if (st) {
+            dyn_colloc_sol_free(&xn);
+            dyn_colloc_sol_free(&tn);
+            break;
         }
         /* past a bound of the parameter: the point on the bound ends the branch */
         const double pn = xn.par[1];
@@ -631,6 +724,7 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
             snprintf(b->message, sizeof b->message,
                      "the orbit shrank to an equilibrium: a Hopf point at parameter %.10g",
                      x->par[1]);
+            b->hopf_end = 1;
             break;
         }
         if (at_bound || (bounded && (x->par[1] < o->par_min || x->par[1] > o->par_max))) {
@@ -648,6 +742,14 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
         }
         if (amplitude_small(x)) {
             snprintf(b->message, sizeof b->message, "the orbit shrank to an equilibrium");
+            b->hopf_end = 1;
+            break;
+        }
+        const int back = back_on_branch(b);
+        if (back >= 0) {
+            snprintf(b->message, sizeof b->message,
+                     "closed: back on the orbits between its points %d and %d", back + 1,
+                     back + 2);
             break;
         }
     }

@@ -43,6 +43,7 @@ dyn_branch *dyn_diagram_add(dyn_diagram *d, dyn_branch_kind kind, int n, int n_e
     b->id = d->count + 1;
     b->kind = kind;
     b->parent_point = -1;
+    b->end_point = -1;
     b->n = n;
     b->n_eig = n_eig;
     b->n_par = ip2 >= 0 ? 2 : 1;

@@ -305,8 +305,26 @@ static void trial_guess(int M, const double *ta, double c, const double *zn, con
  * whose correction fails (near a branch point the corrector's matrix is nearly singular and
  * Newton's method converges only from close by) is moved halfway to the bracket's nearer
  * end. When no trial point inside the bracket can be corrected any more and the bracket is
- * narrower than 1e-8 of the step, its end of the smaller |psi| is the point. 0 or
+ * narrower than 1e-8 of the step, its end of the smaller |psi| is the point. An end of a
+ * bracket is taken only where psi is near zero there (below LOCATE_ZERO of its larger value
+ * at the step's ends) or the branch is continuous across the bracket (its ends' points
+ * apart by about the bracket's length, as for a test that is a sign): else psi jumped
+ * because the corrector went over to another branch, and nothing is located. 0 or
  * non-zero. */
+#define LOCATE_ZERO 1e-4
+
+/* Whether the points pa at arclength a and pb at b are on one piece of the branch: no
+ * farther apart than 10 |b - a| (they are about |b - a| apart along it). */
+static int one_piece(int M, const double *pa, const double *pb, double a, double b)
+{
+    double d = 0.0, scale = 1.0;
+    for (int i = 0; i < M; i++) {
+        d += (pb[i] - pa[i]) * (pb[i] - pa[i]);
+        scale = fmax(scale, fabs(pa[i]));
+    }
+    return sqrt(d) <= 10.0 * fabs(b - a) + 1e-12 * scale;
+}
+
 static int locate(const cont_system *s, cont_work *w, const target *g, const double *za,
                   const double *ta, double fa, double sb, double fb, const double *zb,
                   const double *tb, double *z, double *t, double *s_found)
@@ -327,6 +345,7 @@ static int locate(const cont_system *s, cont_work *w, const target *g, const dou
     memcpy(z, zb, (size_t)M * sizeof *z);
     double c = b, c_prev = a;
     double abs_fa = fabs(fa), abs_fb = fabs(fb); /* |psi| at the ends (fa is scaled) */
+    const double zero = LOCATE_ZERO * fmax(abs_fa, abs_fb);
     int ok = -1;
     for (int it = 0; it < 80; it++) {
         c = fb != fa ? (a * fb - b * fa) / (fb - fa) : 0.5 * (a + b);
@@ -336,12 +355,13 @@ static int locate(const cont_system *s, cont_work *w, const target *g, const dou
             c = 0.5 * (a + b);
         if (it > 0 && fmin(fabs(c - a), fabs(c - b)) <= 1e-12 * fabs(sb)) {
             /* converged on an end of the bracket: b is the last trial point, in z */
-            if (fabs(c - a) < fabs(c - b) && a != 0.0) {
+            const int end_a = fabs(c - a) < fabs(c - b) && a != 0.0;
+            if (end_a) {
                 memcpy(z, pa, (size_t)M * sizeof *z);
                 memcpy(t, qa, (size_t)M * sizeof *t);
                 *s_found = a;
             }
-            ok = 0;
+            ok = (end_a ? abs_fa : abs_fb) <= zero || one_piece(M, pa, pb, a, b) ? 0 : -1;
             break;
         }
         double fc = 0.0;
@@ -415,11 +435,12 @@ static int locate(const cont_system *s, cont_work *w, const target *g, const dou
         memcpy(pb, zt, (size_t)M * sizeof *pb);
         memcpy(qb, tt, (size_t)M * sizeof *qb);
         if (fabs(b - a) <= 1e-14 * fabs(sb)) {
-            ok = 0;
+            ok = abs_fb <= zero || one_piece(M, pa, pb, a, b) ? 0 : -1;
             break;
         }
     }
-    if (ok && a != 0.0 && fabs(b - a) <= 1e-8 * fabs(sb)) {
+    if (ok && a != 0.0 && fabs(b - a) <= 1e-8 * fabs(sb) &&
+        (fmin(abs_fa, abs_fb) <= zero || one_piece(M, pa, pb, a, b))) {
         const int end_a = abs_fa < abs_fb;
         memcpy(z, end_a ? pa : pb, (size_t)M * sizeof *z);
         memcpy(t, end_a ? qa : qb, (size_t)M * sizeof *t);
@@ -439,16 +460,17 @@ static int cmp_special(const void *x, const void *y)
 int cont_passes_point(int M, const double *za, const double *zb, const double *zp,
                       const double *tp, double scale, double away, double *far)
 {
-    double dd = 0.0, dy = 0.0, d0 = 0.0, along = 0.0;
+    double dd = 0.0, dy = 0.0, d0 = 0.0, along = 0.0, tt = 0.0;
     for (int i = 0; i < M; i++) {
         dd += (zb[i] - za[i]) * (zb[i] - za[i]);
         dy += (zp[i] - za[i]) * (zb[i] - za[i]);
         d0 += (zb[i] - zp[i]) * (zb[i] - zp[i]);
         along += tp[i] * (zb[i] - za[i]);
+        tt += tp[i] * tp[i];
     }
     const int was_far = *far > away;
     *far = fmax(*far, sqrt(d0));
-    if (!was_far || !(along > 0.0))
+    if (!was_far || !(along > 0.95 * sqrt(dd * tt)))
         return 0;
     /* the chord misses its arc by about kappa |zb - za|^2 / 8 */
     const double u = dd > 0.0 ? fmin(1.0, fmax(0.0, dy / dd)) : 0.0;

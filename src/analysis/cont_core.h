@@ -69,7 +69,8 @@ int cont_null_direction(const cont_system *s, cont_work *w, const double *z, con
 int cont_branch_direction(const cont_system *s, const double *z, const double *t, double *v);
 
 /* Whether the step from za to zb of a curve in R^M passes the point zp (computed on the
- * same curve, tangent tp there) again going the same way (tp . (zb - za) > 0): within a
+ * same curve, tangent tp there) again going the same way (the chord within about 18 degrees
+ * of tp: a curve that crosses itself at a branch point passes it another way): within a
  * tenth of the chord's length of the chord, after the curve went more than `away` from zp
  * (*far: the largest distance from zp so far, 0 at first, updated here). A curve that does
  * is closed. `scale` (at least |zp|_inf) sets the absolute part of the tolerance, 1e-9

@@ -10,6 +10,7 @@
  * ways; a branch that comes back to its start or a labelled point (a closed loop, as the
  * asymmetric equilibria of AUTO-07p's demo enz) ends there. */
 #include <float.h>
+#include <stdarg.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -168,21 +169,26 @@ static void branch_point(const dyn_branch *b, long k, double *z)
     z[n] = b->pts[k].par[0];
 }
 
-/* Whether a branch of d other than bi passes through z (a point of it, or within a tenth
- * of a chord's length of the chord between two of its points): both branches through the
- * BP z are computed then (the one switched to from there, or one that crossed it), and it
- * is not switched at again. za, zb: workspace of n + 1. */
-static int passed_elsewhere(const dyn_diagram *d, int bi, const double *z, double *za, double *zb)
+/* Whether a branch of d other than bi, or bi away from its point kb, passes through z (a
+ * point of it, or within a tenth of a chord's length of the chord between two of its
+ * points): both branches through the BP z are computed then (the one switched to from
+ * there, one that crossed it, or bi itself crossing there again, as a figure eight does),
+ * and it is not switched at again. za, zb: workspace of n + 1. */
+static int passed_elsewhere(const dyn_diagram *d, int bi, long kb, const double *z, double *za,
+                            double *zb)
 {
     for (int j = 0; j < d->count; j++) {
         const dyn_branch *b = &d->branches[j];
-        if (j == bi || b->kind != DYN_BRANCH_EQUILIBRIUM)
+        if (b->kind != DYN_BRANCH_EQUILIBRIUM)
             continue;
         const int M = b->n + 1;
         double scale = 1.0;
         for (int i = 0; i < M; i++)
             scale = fmax(scale, fabs(z[i]));
         for (long k = 0; k < b->count; k++) {
+            /* the branch's own steps next to the BP are where it is, not where it passes */
+            if (j == bi && k >= kb - 1 && k <= kb + 2)
+                continue;
             branch_point(b, k, zb);
             if (dist_inf(zb, z, M) < 1e-6)
                 return 1;
@@ -247,10 +253,24 @@ static int branch_tangent(const dyn_branch *b, long k, double *t, double *za, do
     return 0;
 }
 
+/* A note appended to note[0..len), after a "; " when it holds one already. */
+static void add_note(char *note, size_t len, const char *fmt, ...)
+{
+    const size_t used = strlen(note);
+    if (used + 3 >= len)
+        return;
+    if (used)
+        memcpy(note + used, "; ", 3);
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(note + strlen(note), len - strlen(note), fmt, ap);
+    va_end(ap);
+}
+
 /* Switch at the BP `k` of branch bi: the other branch's direction by the algebraic
  * branching equation, followed both ways (one way when it comes back: a closed branch). */
 static int switch_at(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int bi, long k,
-                     cont_work *w, dyn_cont_info *info)
+                     cont_work *w, char *note, size_t note_len)
 {
     const int n = cm->n, M = n + 1;
     double *buf = malloc(5 * (size_t)M * sizeof *buf);
@@ -259,7 +279,7 @@ static int switch_at(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int
     double *z = buf, *t = z + M, *v = t + M, *z2 = v + M, *z3 = z2 + M;
     const dyn_branch *b = &d->branches[bi];
     branch_point(b, k, z);
-    if (passed_elsewhere(d, bi, z, z2, z3) || branch_tangent(b, k, t, z2, z3)) {
+    if (passed_elsewhere(d, bi, k, z, z2, z3) || branch_tangent(b, k, t, z2, z3)) {
         free(buf);
         return 0;
     }
@@ -271,8 +291,8 @@ static int switch_at(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int
         free(buf);
         return 0; /* no second direction: not switched */
     }
-    if (how == 1 && !info->message[0])
-        snprintf(info->message, sizeof info->message,
+    if (how == 1)
+        add_note(note, note_len,
                  "at the BP %.40s = %.12g of branch %d the branching equation is degenerate: "
                  "the other branch is followed from the direction orthogonal to the branch",
                  cm->m->params[o->ip].name, z[n], b->id);
@@ -377,6 +397,7 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
     }
     if (rc == 0 && follow_branch(&cm, o, d, z, t, DYN_LABEL_EP, 0, -1, &w) < 0)
         rc = DYN_ERR_ARG;
+    char note[sizeof info->message] = "";
     /* branch switching at the BPs, breadth first over the branches found */
     for (int bi = 0; rc == 0 && !o->no_switch && bi < d->count; bi++) {
         if (d->branches[bi].kind != DYN_BRANCH_EQUILIBRIUM)
@@ -384,7 +405,7 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
         for (long k = 0; rc == 0 && k < d->branches[bi].count; k++) {
             if (d->branches[bi].pts[k].label != DYN_LABEL_BP || d->count >= o->max_branches)
                 continue;
-            if (switch_at(&cm, o, d, bi, k, &w, info))
+            if (switch_at(&cm, o, d, bi, k, &w, note, sizeof note))
                 rc = DYN_ERR_ARG;
         }
     }
@@ -397,7 +418,7 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
                 char err[256] = "";
                 if (o->periodic(m, par, o, d, d->branches[bi].id, k, o->periodic_ctx, err,
                                 sizeof err))
-                    snprintf(info->message, sizeof info->message,
+                    add_note(note, sizeof note,
                              "periodic orbits from the Hopf point of branch %d: %.180s", bi + 1,
                              err);
             }
@@ -408,6 +429,8 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
     if (rc && !info->message[0])
         snprintf(info->message, sizeof info->message, "%s",
                  cm.message[0] ? cm.message : "out of memory");
+    else if (rc == 0 && note[0]) /* the notes of switching and periodic orbits, after others */
+        add_note(info->message, sizeof info->message, "%s", note);
     for (int bi = 0; bi < d->count; bi++)
         info->points += d->branches[bi].count;
     info->newton_steps = w.newton;

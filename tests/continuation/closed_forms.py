@@ -104,6 +104,36 @@ for bval in (1.1, 1.01):
                 failures.append(f"small angle b={bval}: branch {b['branch']} off x = b p by "
                                 f"{off:g}, first step {first_step:g}")
 
+# branches that touch (tangent_branches.ode): no BP where a step lands on the other branch
+# x = -p^2, and the branch followed reaches x = 1 at p = 1 on x = p^2
+d = run(f"{models}/tangent_branches.ode", "--par", "p")
+if d:
+    if points(d, "BP") or len(d["branches"]) != 1:
+        failures.append(f"tangent branches: {len(points(d, 'BP'))} BP, {len(d['branches'])} "
+                        f"branches (expected none and one)")
+    end = d["branches"][0]["points"][-1]
+    check("tangent branches: x at the end", end["state"]["x"], 1.0, 1e-9)
+    check("tangent branches: p at the end", end["p"], 1.0, 1e-9)
+
+# a figure eight (figure_eight.ode): one branch round both loops back to its start, the
+# crossing at the origin a BP (within 1e-9) with no second branch, both folds at p = -1, 1
+d = run(f"{models}/figure_eight.ode", "--par", "p")
+if d:
+    b = d["branches"]
+    if len(b) != 1 or not b[0]["stop"].startswith("closed: back at its first point"):
+        failures.append(f"figure eight: {len(b)} branches, the first stopped "
+                        f"'{b[0]['stop'] if b else ''}' (expected one, closed at its start)")
+    p = only(d, "BP", "figure eight")
+    if p:
+        check("figure eight: p at BP", p["p"], 0.0, 1e-9)
+        check("figure eight: x at BP", p["state"]["x"], 0.0, 1e-9)
+    folds = sorted(q["p"] for _, q in points(d, "LP"))
+    if len(folds) != 2:
+        failures.append(f"figure eight: folds at {folds} (expected p = -1 and 1)")
+    else:
+        check("figure eight: fold at p = -1", folds[0], -1.0, 1e-10)
+        check("figure eight: fold at p = 1", folds[1], 1.0, 1e-10)
+
 for s, w in ((-1.0, 2.0), (1.5, 2.0), (-0.25, 0.5)):
     d = run(f"{models}/hopf.ode", "--par", "p", "--set", f"s={s}", "--set", f"w={w}")
     p = only(d, "HB", f"hopf s={s}")

@@ -153,7 +153,7 @@
         this.showStates();
         return main;
       }, e => {
-        if (e === Runner.cancelled) return this.current;
+        if (e === Runner.cancelled || e === Runner.stopped) return this.current;
         throw e;
       });
       return promise;

@@ -131,6 +131,7 @@
     start() {
       const w = this.worker = new Worker(this.url);
       this.ready = new Promise((resolve, reject) => {
+        this.rejectReady = reject;
         w.onmessage = e => {
           if (e.data.error) reject(new Error(e.data.error));
           else { this.cols = e.data.cols; w.onmessage = m => this.received(m.data); resolve(); }
@@ -186,8 +187,17 @@
 
     restart() { this.worker.terminate(); this.start(); }
 
-    /* The worker stopped for good (a page that shows another model's runs). */
-    close() { this.closed = true; this.pending = null; this.local = null; this.worker.terminate(); }
+    /* The worker stopped for good (a page that shows another model's runs): the batch under
+     * way and a start not yet done end with Runner.stopped. */
+    close() {
+      const b = this.pending;
+      this.closed = true;
+      this.pending = null;
+      this.local = null;
+      this.worker.terminate();
+      this.rejectReady(Runner.stopped);
+      if (b) b.reject(Runner.stopped);
+    }
 
     async run(jobs, onRows, o) {
       if (this.closed) return new Promise(() => {}); /* the page shows another model */
@@ -226,6 +236,7 @@
     }
   }
   Runner.cancelled = { cancelled: true };
+  Runner.stopped = { stopped: true }; /* the page went on to another model (close) */
   Runner.LOCAL_MS = LOCAL_MS;
   DK.LiveRunner = Runner;
 })(window.DK);

@@ -130,6 +130,19 @@ for b in r:
 """
 
 
+def run_auto(work, files):
+    """AUTO-07p's batch run of work/run.auto after writing files ((name, text) pairs) into
+    work; its output kept in work/auto.out"""
+    for fname, text in files:
+        with open(os.path.join(work, fname), "w") as f:
+            f.write(text)
+    a = subprocess.run(["auto-07p", "run.auto"], cwd=work, capture_output=True, text=True,
+                       timeout=600)
+    with open(os.path.join(work, "auto.out"), "w") as f:
+        f.write(a.stdout + a.stderr)
+    return a
+
+
 def enz_check(dynkit, artifacts):
     """AUTO-07p's branches 1 (symmetric) and 2 (asymmetric, from the first BP) against
     dynkit's: the same BP and LP values within 1e-6; dynkit's switched branch asymmetric,
@@ -137,15 +150,9 @@ def enz_check(dynkit, artifacts):
     work = tempfile.mkdtemp(prefix="auto-enz-")
     models = os.path.join(os.path.dirname(os.path.abspath(__file__)), "models")
     shutil.copy(os.path.join(models, "enz.ode"), work)
-    for fname, text in (("pb.f90", fortran(ENZ)), ("c.pb", ENZ_CONSTANTS),
-                        ("run.auto", RUN_ENZ)):
-        with open(os.path.join(work, fname), "w") as f:
-            f.write(text)
+    a = run_auto(work, (("pb.f90", fortran(ENZ)), ("c.pb", ENZ_CONSTANTS),
+                        ("run.auto", RUN_ENZ)))
     problems = []
-    a = subprocess.run(["auto-07p", "run.auto"], cwd=work, capture_output=True, text=True,
-                       timeout=600)
-    with open(os.path.join(work, "auto.out"), "w") as f:
-        f.write(a.stdout + a.stderr)
     auto = [l.split()[1:] for l in a.stdout.splitlines() if l.startswith("LABEL ")]
     d = subprocess.run([dynkit, "continue", "enz.ode", "--par", "s0", "--json"], cwd=work,
                        capture_output=True, text=True)
@@ -215,15 +222,9 @@ def main():
     failures = []
     for name, pb in PROBLEMS.items():
         work = tempfile.mkdtemp(prefix=f"auto-{name}-")
-        for fname, text in (("pb.f90", fortran(pb)), ("c.pb", constants(pb)),
-                            ("run.auto", RUN_AUTO % pb["icp"]), (f"{name}.ode", ode(pb))):
-            with open(os.path.join(work, fname), "w") as f:
-                f.write(text)
+        a = run_auto(work, (("pb.f90", fortran(pb)), ("c.pb", constants(pb)),
+                            ("run.auto", RUN_AUTO % pb["icp"]), (f"{name}.ode", ode(pb))))
         problems = []
-        a = subprocess.run(["auto-07p", "run.auto"], cwd=work, capture_output=True, text=True,
-                           timeout=600)
-        with open(os.path.join(work, "auto.out"), "w") as f:
-            f.write(a.stdout + a.stderr)
         auto = sorted((l.split()[1], float(l.split()[2])) for l in a.stdout.splitlines()
                       if l.startswith("LABEL "))
         d = subprocess.run([dynkit, "continue", f"{name}.ode", "--par", pb["icp"], "--json",

@@ -26,6 +26,7 @@ typedef struct curve_ctx {
     int bi;
     int failed;            /* a point could not be stored: the curve ends before it */
     int ended;             /* a curve of this start ended at a failure (its stop says why) */
+    int kept;              /* directions of this start's curve kept */
     char why[140];         /* the last failure's reason, with where */
 } curve_ctx;
 
@@ -225,6 +226,7 @@ static int one_curve(curve_ctx *k, cont_work *w, const dyn_cont_opts *o, int bi,
             rc = -2;
             break;
         }
+        k->kept++;
         /* a point that could not be stored, or steps that failed to the smallest: the
          * curve ends, with the reason */
         dyn_branch *cb = &c->d->branches[k->bi];
@@ -277,13 +279,16 @@ int sc_curves_all(sc_ctx *c, const cont_system *s1, const dyn_cont_opts *o, int 
                 continue;
             k.hopf = l == DYN_LABEL_HB;
             k.ended = 0;
+            k.kept = 0;
             rc = one_curve(&k, &w, o, bi, pk, max_branches);
             const size_t used = strlen(note);
             if ((k.ended || rc == -2) && used + 2 < notelen)
                 snprintf(note + used, notelen - used, "%sthe %s curve through point %ld of "
                          "branch %d %s", used ? "; " : "", k.hopf ? "Hopf" : "fold", pk + 1,
-                         c->d->branches[bi].id, rc == -2 ? "could not be started"
-                         : "ends where the model or the reduction fails (its stop says where)");
+                         c->d->branches[bi].id,
+                         rc != -2  ? "ends where the model or the reduction fails (its stop says where)"
+                         : k.kept ? "was followed one way only: the other could not be started"
+                                  : "could not be started");
         }
     cont_work_free(&w);
     free(buf);

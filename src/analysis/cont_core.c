@@ -300,23 +300,20 @@ static void trial_guess(int M, const double *ta, double c, const double *zn, con
         z[i] = zn[i] + h * tn[i];
 }
 
-/* Locate psi = 0 for s in (0, sb) along (za, ta) where psi(0) = fa and psi(sb) = fb have
- * opposite signs (zb, tb the point and tangent at sb): z, t the point found. A trial point
- * whose correction fails (near a branch point the corrector's matrix is nearly singular and
- * Newton's method converges only from close by) is moved halfway to the bracket's nearer
- * end. When no trial point inside the bracket can be corrected any more and the bracket is
- * narrower than 1e-8 of the step, its end of the smaller |psi| is the point. An end of a
- * bracket is taken only where psi is near zero there (below LOCATE_ZERO of its larger value
- * at the step's ends) or the branch is continuous across the bracket (its ends' points
- * apart by about the bracket's length, as for a test that is a sign): else psi jumped
- * because the corrector went over to another branch, and nothing is located. 0 or
- * non-zero. */
+/* How near zero |psi| must be at an end of a bracket taken as the point, relative to the
+ * larger |psi| at the step's ends (locate) */
 #define LOCATE_ZERO 1e-4
 
-/* Whether the points pa at arclength a and pb at b are on one piece of the branch: no
- * farther apart than 10 |b - a| (they are about |b - a| apart along it). */
-static int one_piece(int M, const double *pa, const double *pb, double a, double b)
+/* Whether an end of the bracket [a, b] (pa, pb the points at its ends) with |psi| = abs_f
+ * there is the zero sought: psi is near zero there (abs_f <= zero), or the branch is one
+ * piece across the bracket, its ends' points no farther apart than 10 |b - a| (about
+ * |b - a| along it), as for a test that is a sign. Else psi jumped because the corrector
+ * went over to another branch. */
+static int end_is_zero(int M, double abs_f, double zero, const double *pa, const double *pb,
+                       double a, double b)
 {
+    if (abs_f <= zero)
+        return 1;
     double d = 0.0, scale = 1.0;
     for (int i = 0; i < M; i++) {
         d += (pb[i] - pa[i]) * (pb[i] - pa[i]);
@@ -325,6 +322,14 @@ static int one_piece(int M, const double *pa, const double *pb, double a, double
     return sqrt(d) <= 10.0 * fabs(b - a) + 1e-12 * scale;
 }
 
+/* Locate psi = 0 for s in (0, sb) along (za, ta) where psi(0) = fa and psi(sb) = fb have
+ * opposite signs (zb, tb the point and tangent at sb): z, t the point found. A trial point
+ * whose correction fails (near a branch point the corrector's matrix is nearly singular and
+ * Newton's method converges only from close by) is moved halfway to the bracket's nearer
+ * end. When no trial point inside the bracket can be corrected any more and the bracket is
+ * narrower than 1e-8 of the step, its end of the smaller |psi| is the point. An end of a
+ * bracket is taken only where end_is_zero says so; else nothing is located. 0 or
+ * non-zero. */
 static int locate(const cont_system *s, cont_work *w, const target *g, const double *za,
                   const double *ta, double fa, double sb, double fb, const double *zb,
                   const double *tb, double *z, double *t, double *s_found)
@@ -361,7 +366,7 @@ static int locate(const cont_system *s, cont_work *w, const target *g, const dou
                 memcpy(t, qa, (size_t)M * sizeof *t);
                 *s_found = a;
             }
-            ok = (end_a ? abs_fa : abs_fb) <= zero || one_piece(M, pa, pb, a, b) ? 0 : -1;
+            ok = end_is_zero(M, end_a ? abs_fa : abs_fb, zero, pa, pb, a, b) ? 0 : -1;
             break;
         }
         double fc = 0.0;
@@ -435,12 +440,12 @@ static int locate(const cont_system *s, cont_work *w, const target *g, const dou
         memcpy(pb, zt, (size_t)M * sizeof *pb);
         memcpy(qb, tt, (size_t)M * sizeof *qb);
         if (fabs(b - a) <= 1e-14 * fabs(sb)) {
-            ok = abs_fb <= zero || one_piece(M, pa, pb, a, b) ? 0 : -1;
+            ok = end_is_zero(M, abs_fb, zero, pa, pb, a, b) ? 0 : -1;
             break;
         }
     }
     if (ok && a != 0.0 && fabs(b - a) <= 1e-8 * fabs(sb) &&
-        (fmin(abs_fa, abs_fb) <= zero || one_piece(M, pa, pb, a, b))) {
+        end_is_zero(M, fmin(abs_fa, abs_fb), zero, pa, pb, a, b)) {
         const int end_a = abs_fa < abs_fb;
         memcpy(z, end_a ? pa : pb, (size_t)M * sizeof *z);
         memcpy(t, end_a ? qa : qb, (size_t)M * sizeof *t);
@@ -457,13 +462,30 @@ static int cmp_special(const void *x, const void *y)
     return (a->s > b->s) - (a->s < b->s);
 }
 
-int cont_passes_point(int M, const double *za, const double *zb, const double *zp,
-                      const double *tp, double scale, double away, double *far)
+double cont_chord_distance(int M, const double *za, const double *zb, const double *zp,
+                           double *u, double *length)
 {
-    double dd = 0.0, dy = 0.0, d0 = 0.0, along = 0.0, tt = 0.0;
+    double dd = 0.0, dy = 0.0;
     for (int i = 0; i < M; i++) {
         dd += (zb[i] - za[i]) * (zb[i] - za[i]);
         dy += (zp[i] - za[i]) * (zb[i] - za[i]);
+    }
+    *u = dd > 0.0 ? fmin(1.0, fmax(0.0, dy / dd)) : 0.0;
+    *length = sqrt(dd);
+    double dist = 0.0;
+    for (int i = 0; i < M; i++) {
+        const double r = zp[i] - (za[i] + *u * (zb[i] - za[i]));
+        dist += r * r;
+    }
+    return sqrt(dist);
+}
+
+int cont_passes_point(int M, const double *za, const double *zb, const double *zp,
+                      const double *tp, double scale, double away, double *far)
+{
+    double dd = 0.0, d0 = 0.0, along = 0.0, tt = 0.0;
+    for (int i = 0; i < M; i++) {
+        dd += (zb[i] - za[i]) * (zb[i] - za[i]);
         d0 += (zb[i] - zp[i]) * (zb[i] - zp[i]);
         along += tp[i] * (zb[i] - za[i]);
         tt += tp[i] * tp[i];
@@ -473,13 +495,8 @@ int cont_passes_point(int M, const double *za, const double *zb, const double *z
     if (!was_far || !(along > 0.95 * sqrt(dd * tt)))
         return 0;
     /* the chord misses its arc by about kappa |zb - za|^2 / 8 */
-    const double u = dd > 0.0 ? fmin(1.0, fmax(0.0, dy / dd)) : 0.0;
-    double dist = 0.0;
-    for (int i = 0; i < M; i++) {
-        const double r = zp[i] - (za[i] + u * (zb[i] - za[i]));
-        dist += r * r;
-    }
-    return sqrt(dist) <= 0.1 * sqrt(dd) + 1e-9 * scale;
+    double u, length;
+    return cont_chord_distance(M, za, zb, zp, &u, &length) <= 0.1 * length + 1e-9 * scale;
 }
 
 /* The points a closed curve can come back to: its start and its labelled points. */
@@ -487,6 +504,7 @@ int cont_passes_point(int M, const double *za, const double *zb, const double *z
 
 typedef struct mark {
     double *z, *t;
+    double scale; /* max(1, |z|_inf) */
     double far;
     dyn_cont_label label;
 } mark;
@@ -498,6 +516,9 @@ static void add_mark(mark *mk, int *n, int M, const double *z, const double *t,
         return;
     memcpy(mk[*n].z, z, (size_t)M * sizeof *z);
     memcpy(mk[*n].t, t, (size_t)M * sizeof *t);
+    mk[*n].scale = 1.0;
+    for (int i = 0; i < M; i++)
+        mk[*n].scale = fmax(mk[*n].scale, fabs(z[i]));
     mk[*n].far = 0.0;
     mk[*n].label = label;
     (*n)++;
@@ -581,14 +602,10 @@ int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const do
         }
         /* back at the start or at a labelled point: a closed curve, ended there */
         int back = -1;
-        for (int k = 0; k < n_marks && L->stop_closed && back < 0; k++) {
-            double scale = 1.0;
-            for (int i = 0; i < M; i++)
-                scale = fmax(scale, fabs(mk[k].z[i]));
-            if (cont_passes_point(M, z, z1, mk[k].z, mk[k].t, scale, 2.0 * L->dsmax,
+        for (int k = 0; k < n_marks && L->stop_closed && back < 0; k++)
+            if (cont_passes_point(M, z, z1, mk[k].z, mk[k].t, mk[k].scale, 2.0 * L->dsmax,
                                   &mk[k].far))
                 back = k;
-        }
         if (back >= 0) {
             if ((pending && s->store(s->ctx, z, t, DYN_LABEL_NONE)) ||
                 s->store(s->ctx, mk[back].z, mk[back].t, DYN_LABEL_EP)) {

@@ -68,6 +68,11 @@ int cont_null_direction(const cont_system *s, cont_work *w, const double *z, con
  * the direction orthogonal to t in the null space of DG instead; -1 when DG failed. */
 int cont_branch_direction(const cont_system *s, const double *z, const double *t, double *v);
 
+/* The distance from zp to the chord from za to zb in R^M; *u in [0, 1] the place of the
+ * chord's point nearest to zp, za + u (zb - za), *length the chord's length. */
+double cont_chord_distance(int M, const double *za, const double *zb, const double *zp,
+                           double *u, double *length);
+
 /* Whether the step from za to zb of a curve in R^M passes the point zp (computed on the
  * same curve, tangent tp there) again going the same way (the chord within about 18 degrees
  * of tp: a curve that crosses itself at a branch point passes it another way): within a

@@ -10,8 +10,8 @@
  * ways; a branch that comes back to its start or a labelled point (a closed loop, as the
  * asymmetric equilibria of AUTO-07p's demo enz) ends there. */
 #include <float.h>
-#include <stdarg.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -195,18 +195,9 @@ static int passed_elsewhere(const dyn_diagram *d, int bi, long kb, const double 
             if (k == 0)
                 continue;
             branch_point(b, k - 1, za);
-            double dd = 0.0, dy = 0.0;
-            for (int i = 0; i < M; i++) {
-                dd += (zb[i] - za[i]) * (zb[i] - za[i]);
-                dy += (z[i] - za[i]) * (zb[i] - za[i]);
-            }
-            const double u = dd > 0.0 ? fmin(1.0, fmax(0.0, dy / dd)) : 0.0;
-            double dist = 0.0;
-            for (int i = 0; i < M; i++) {
-                const double r = z[i] - (za[i] + u * (zb[i] - za[i]));
-                dist += r * r;
-            }
-            if (u > 0.0 && u < 1.0 && sqrt(dist) <= 0.1 * sqrt(dd) + 1e-9 * scale)
+            double u, length;
+            const double dist = cont_chord_distance(M, za, zb, z, &u, &length);
+            if (u > 0.0 && u < 1.0 && dist <= 0.1 * length + 1e-9 * scale)
                 return 1;
         }
     }

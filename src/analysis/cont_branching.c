@@ -39,9 +39,7 @@ static int normalize(double *v, int n)
     return 0;
 }
 
-/* G = A^T A (right: A's columns, m x m) or A A^T (left: A's rows, r x r) for A (r x m)
- * with a ridge, factored by Cholesky. 0 or non-zero. */
-static int normal_factor(const double *A, int r, int m, int left, double *G)
+int cont_normal_factor(const double *A, int r, int m, int left, double *G)
 {
     const int k = left ? r : m, len = left ? m : r;
     double big = 0.0;
@@ -61,15 +59,13 @@ static int normal_factor(const double *A, int r, int m, int left, double *G)
     return isfinite(big) ? dyn_cholesky_factor(k, G) : -1;
 }
 
-/* q vectors (1 or 2, rows of V, each k long) of the smallest eigenvalues of the factored
- * G by inverse iteration, orthonormalized after each solve. 0 or non-zero. */
-static int inverse_iteration(const double *G, int k, int q, double *V)
+int cont_inverse_iteration(const double *G, int k, int q, int iterations, double *V)
 {
     for (int j = 0; j < q; j++)
         for (int i = 0; i < k; i++)
             V[(size_t)j * (size_t)k + (size_t)i] =
                 (j ? (i % 3) - 1.0 : 1.0 / (1.0 + i) * (i % 2 ? -1.0 : 1.0) + 0.1);
-    for (int it = 0; it < 6; it++)
+    for (int it = 0; it < iterations; it++)
         for (int j = 0; j < q; j++) {
             double *v = V + (size_t)j * (size_t)k;
             dyn_cholesky_solve(k, G, v);
@@ -128,7 +124,7 @@ int cont_branch_direction(const cont_system *s, const double *z, const double *t
     if (s->jacobian(s->ctx, z, J))
         goto done;
     /* the null space of DG: phi1, phi2 orthonormal */
-    if (normal_factor(J, N, M, 0, G) || inverse_iteration(G, M, 2, phi))
+    if (cont_normal_factor(J, N, M, 0, G) || cont_inverse_iteration(G, M, 2, 6, phi))
         goto done;
     const double *phi1 = phi, *phi2 = phi + MM;
     /* the direction orthogonal to t in that plane: the fallback */
@@ -140,7 +136,7 @@ int cont_branch_direction(const cont_system *s, const double *z, const double *t
     memcpy(v, orth, MM * sizeof *v);
     rc = 1;
     /* the left null vector psi of DG */
-    if (N > 0 && (normal_factor(J, N, M, 1, G) || inverse_iteration(G, N, 1, psi)))
+    if (N > 0 && (cont_normal_factor(J, N, M, 1, G) || cont_inverse_iteration(G, N, 1, 6, psi)))
         goto done;
     double zmax = 1.0;
     for (int i = 0; i < M; i++)

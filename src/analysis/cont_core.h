@@ -62,6 +62,16 @@ int cont_tangent(const cont_system *s, cont_work *w, const double *z, const doub
 int cont_null_direction(const cont_system *s, cont_work *w, const double *z, const double *t,
                         double *v);
 
+/* G = A^T A (right: A's columns, m x m) or A A^T (left: A's rows, r x r) for A (r x m,
+ * row-major) with a ridge of 1e-13 of its largest diagonal entry (1 when that is 0),
+ * factored by Cholesky (ode/cholesky.h) into G. 0 or non-zero (not finite, not factored). */
+int cont_normal_factor(const double *A, int r, int m, int left, double *G);
+
+/* q vectors (1 or 2, rows of V, each k long) of the smallest eigenvalues of the factored G
+ * by `iterations` steps of inverse iteration from fixed starts, orthonormalized after each
+ * solve: null vectors of A when G is cont_normal_factor's. 0 or non-zero. */
+int cont_inverse_iteration(const double *G, int k, int q, int iterations, double *V);
+
 /* The unit direction v of the other branch at a simple branch point z of G(z) = 0, t an
  * approximation of the known branch's unit tangent there, by the algebraic branching
  * equation (cont_branching.c). Returns 0; 1 when the equation is degenerate there and v is

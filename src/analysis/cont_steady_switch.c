@@ -15,12 +15,11 @@
 
 #include "cont_steady_system.h"
 #include "cont_steady_switch.h"
-#include "ode/cholesky.h"
 
 #define MAX_SEEN 64
 
-/* A unit null vector v of K = [G_z; t^T] ((N + 1) x (N + 1)) by inverse iteration on K^T K
- * (Cholesky, a ridge of 1e-13 of its largest diagonal entry), and *rel = ||K v||_inf over
+/* A unit null vector v of K = [G_z; t^T] ((N + 1) x (N + 1)) by 4 steps of inverse
+ * iteration on K^T K (cont_normal_factor, cont_inverse_iteration), and *rel = ||K v||_inf over
  * K's largest entry: near 0 at a branch point, of order 1 where the equations are regular.
  * K^T K rather than K: a mechanism's G_z is nilpotent in part (q' = dq), so K's eigenvalues
  * nearest zero come in pairs +-sqrt(delta) and inverse iteration on K would not converge to
@@ -33,35 +32,12 @@ static int null_vector(const cont_system *s, const double *z, const double *t, d
     if (s->jacobian(s->ctx, z, J))
         return -1;
     memcpy(J + (size_t)N * MM, t, MM * sizeof *t); /* K: J's N rows and t */
-    double big = 0.0, gmax = 0.0;
+    double big = 0.0;
     for (size_t i = 0; i < MM * MM; i++)
         big = fmax(big, fabs(J[i]));
-    for (int a = 0; a < M; a++)
-        for (int b = 0; b <= a; b++) {
-            double g = 0.0;
-            for (int r = 0; r < M; r++)
-                g += J[(size_t)r * MM + (size_t)a] * J[(size_t)r * MM + (size_t)b];
-            G[(size_t)a * MM + (size_t)b] = G[(size_t)b * MM + (size_t)a] = g;
-        }
-    for (int a = 0; a < M; a++)
-        gmax = fmax(gmax, G[(size_t)a * MM + (size_t)a]);
-    for (int a = 0; a < M; a++)
-        G[(size_t)a * MM + (size_t)a] += 1e-13 * gmax;
-    if (!(gmax > 0.0) || dyn_cholesky_factor(M, G))
+    /* K's last row is the unit t: K^T K is not zero */
+    if (cont_normal_factor(J, M, M, 0, G) || cont_inverse_iteration(G, M, 1, 4, v))
         return -1;
-    for (int i = 0; i < M; i++)
-        v[i] = 1.0 / (1.0 + i) * (i % 2 ? -1.0 : 1.0) + 0.1;
-    for (int it = 0; it < 4; it++) {
-        dyn_cholesky_solve(M, G, v);
-        double nv = 0.0;
-        for (int i = 0; i < M; i++)
-            nv += v[i] * v[i];
-        nv = sqrt(nv);
-        if (!(nv > 0.0) || !isfinite(nv))
-            return -1;
-        for (int i = 0; i < M; i++)
-            v[i] /= nv;
-    }
     double worst = 0.0;
     for (int r = 0; r < M; r++) {
         double kv = 0.0;

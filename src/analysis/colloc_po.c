@@ -543,8 +543,10 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
     po_tests prev_tests = {0, 0, 0, 0, 0, 0};
     int have_prev = 0, st = 0, since_adapt = 0;
     snprintf(b->message, sizeof b->message, "%d points (nmax)", nmax);
+    /* the new point and its tangent: moved into x, t when it is stored, else freed after
+     * the loop (empty ones free nothing) */
+    dyn_colloc_sol xn = {0}, tn = {0};
     while (b->npoints < nmax) {
-        dyn_colloc_sol xn, tn;
         dyn_colloc_info inf;
         st = step(r, x, t, ds, &xn, &tn, &inf);
         if (st) {
@@ -563,8 +565,6 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
         po_tests now;
         st = point_tests(r, &xn, &tn, &now);
         if (st) {
-            dyn_colloc_sol_free(&xn);
-            dyn_colloc_sol_free(&tn);
             snprintf(b->message, sizeof b->message, "the Floquet multipliers failed");
             break;
         }
@@ -608,11 +608,8 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
                 xn = xu;
                 tn = tu;
                 st = point_tests(r, &xn, &tn, &now);
-                if (st) {
-                    dyn_colloc_sol_free(&xn);
-                    dyn_colloc_sol_free(&tn);
+                if (st)
                     break;
-                }
             } else {
                 s_end = ds;
                 uz = -1;
@@ -661,11 +658,8 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
             set_test_value(&now, which, p1); /* beyond the point the far side's sign */
             break;
         }
-        if (st) {
-            dyn_colloc_sol_free(&xn);
-            dyn_colloc_sol_free(&tn);
+        if (st)
             break;
-        }
         /* past a bound of the parameter: the point on the bound ends the branch */
         const double pn = xn.par[1];
         int at_bound = 0;
@@ -680,11 +674,8 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
                 xn = xl;
                 tn = tl;
                 st = point_tests(r, &xn, &tn, &now);
-                if (st) {
-                    dyn_colloc_sol_free(&xn);
-                    dyn_colloc_sol_free(&tn);
+                if (st)
                     break;
-                }
                 at_bound = 1;
             }
         }
@@ -694,15 +685,14 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
                             : which == 2 ? "TR" : at_bound ? "EP" : uz >= 0 ? "UZ" : "";
         st = record(r, &xn, r->re, r->im, now.have_mult, label,
                     which >= 0 || uz >= 0 || b->npoints == 0 || o->keep_orbits);
-        if (st) {
-            dyn_colloc_sol_free(&xn);
-            dyn_colloc_sol_free(&tn);
+        if (st)
             break;
-        }
         dyn_colloc_sol_free(x);
         dyn_colloc_sol_free(t);
         *x = xn;
         *t = tn;
+        memset(&xn, 0, sizeof xn);
+        memset(&tn, 0, sizeof tn);
         prev_tests = now;
         have_prev = 1;
         if (inf.iterations <= 3)
@@ -753,6 +743,8 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
             break;
         }
     }
+    dyn_colloc_sol_free(&xn);
+    dyn_colloc_sol_free(&tn);
     if (b->npoints > 0) {
         dyn_po_point *last = &b->pts[b->npoints - 1];
         if (!last->label[0])

@@ -39,6 +39,13 @@ static void continue_help(void)
          "two parameters, with cusps (CP), Bogdanov-Takens (BT) and generalized Hopf (GH)\n"
          "points located.\n"
          "\n"
+         "A discrete map (an .ode file with x(t+1)= lines: XPPAUT's meth=discrete): its\n"
+         "fixed points F(y, p) = y are followed instead, stable when every multiplier\n"
+         "(eigenvalue of dF/dy) has |mu| < 1, with LP (mu = 1), BP (switched as above), PD\n"
+         "(a real multiplier through -1) and TR (a complex pair through the unit circle:\n"
+         "Neimark-Sacker, AUTO-07p's label for maps; its angle arg mu is printed); the\n"
+         "JSON gives \"map\": true and each point's \"multipliers\". --par2 is refused.\n"
+         "\n"
          "A mechanism file (.mech) with constraints or cyclic coordinates: a steady motion\n"
          "(dynkit steady's equations) is followed instead, the state at each value the\n"
          "file's initial state there with the unknowns solved; stability, HB and BP (a real\n"
@@ -100,6 +107,8 @@ static void continue_help(void)
          "  dynkit continue examples/models/brusselator.ode --par b --opt parmax=4 \\\n"
          "      --output bru.csv\n"
          "  dynkit continue examples/models/brusselator.ode --par b --output bru.html\n"
+         "  dynkit continue examples/models/henon.ode --par a --opt ds=-0.02 \\\n"
+         "      --opt parmin=-0.5 --opt nmax=40\n"
          "  dynkit continue examples/mechanisms/bicycle.mech --par v --set v=3 \\\n"
          "      --opt parmax=10");
 }
@@ -300,6 +309,11 @@ int cli_cmd_continue(int argc, char **argv)
         rc = param_arg(m, "--par2", a.par2, &ip2);
     if (rc == CLI_OK && ip2 == ip)
         rc = cli_usage_error("continue", "--par2 %s: give another parameter than --par", a.par2);
+    if (rc == CLI_OK && ip2 >= 0 && dyn_method_is_map(run.method))
+        rc = cli_usage_error("continue", "--par2 %s: %s is a discrete map, whose fixed points "
+                             "are continued in one parameter only (--par); curves of folds, "
+                             "flips and Neimark-Sacker points in two are not supported", a.par2,
+                             m->name);
     if (rc == CLI_OK && (cli_param_is_size(m, a.par) || (a.par2 && cli_param_is_size(m, a.par2))))
         rc = cli_usage_error("continue", "the size of %s cannot be continued in", m->name);
     if (rc == CLI_OK && a.ynam && (iy = dyn_model_state_index(m, a.ynam)) < 0)
@@ -308,6 +322,7 @@ int cli_cmd_continue(int argc, char **argv)
         dyn_cont_opts_default(&s.opts, ip);
         s.opts.ip2 = ip2;
         s.opts.t = run.t0;
+        s.opts.map = dyn_method_is_map(run.method);
         rc = settings(&a, run.par, m, &s);
     }
     if (rc == CLI_OK && a.scheme_text)

@@ -84,6 +84,8 @@ void cont_write_json(FILE *f, const cont_view *v)
     cli_json_begin_object(&j);
     cli_json_key(&j, "model");
     cli_json_string(&j, m->name);
+    cli_json_key(&j, "map"); /* true: fixed points of a map, with their multipliers */
+    cli_json_bool(&j, o->map);
     cli_json_key(&j, "parameters");
     cli_json_begin_array(&j);
     cli_json_string(&j, m->params[o->ip].name);
@@ -154,7 +156,8 @@ void cont_write_json(FILE *f, const cont_view *v)
                 cli_json_null(&j);
             else
                 cli_json_bool(&j, p->stable);
-            cli_json_key(&j, b->kind == DYN_BRANCH_PERIODIC ? "multipliers" : "eigenvalues");
+            cli_json_key(&j, b->kind == DYN_BRANCH_PERIODIC || o->map ? "multipliers"
+                                                                       : "eigenvalues");
             cli_json_begin_array(&j);
             const double *e = b->eig + (size_t)k * 2 * (size_t)b->n_eig;
             for (int i = 0; i < b->n_eig; i++)
@@ -165,7 +168,9 @@ void cont_write_json(FILE *f, const cont_view *v)
                 cli_json_number(&j, p->l1);
             }
             if (isfinite(p->omega)) {
-                cli_json_key(&j, b->kind == DYN_BRANCH_HOPF ? "omega2" : "omega");
+                cli_json_key(&j, b->kind == DYN_BRANCH_HOPF ? "omega2"
+                                 : o->map                  ? "angle"
+                                                           : "omega");
                 cli_json_number(&j, p->omega);
             }
             cli_json_end_object(&j);
@@ -195,7 +200,7 @@ static const char *hopf_kind(double l1)
  * non-trivial Floquet multiplier lies on the unit circle within 1e-8 (a fold or period
  * doubling of cycles, an orbit of a linear centre's family). The CSV's `stable` column
  * stays 0 there. */
-static const char *stability_word(const dyn_branch *b, long k)
+static const char *stability_word(const dyn_branch *b, long k, int map)
 {
     const dyn_branch_point *p = &b->pts[k];
     if (p->stable)
@@ -203,6 +208,12 @@ static const char *stability_word(const dyn_branch *b, long k)
     if (b->n_eig <= 0)
         return "unstable";
     const double *e = b->eig + (size_t)k * 2u * (size_t)b->n_eig;
+    if (map) { /* a map's fixed point: its multipliers */
+        double mod_max = 0.0;
+        for (int i = 0; i < b->n_eig; i++)
+            mod_max = fmax(mod_max, hypot(e[2 * i], e[2 * i + 1]));
+        return isfinite(mod_max) && mod_max <= 1.0 + 1e-8 ? "marginal" : "unstable";
+    }
     if (b->kind == DYN_BRANCH_PERIODIC) { /* the trivial multiplier first (colloc_po.c) */
         double mod_max = 0.0;
         for (int i = 1; i < b->n_eig; i++)
@@ -269,8 +280,10 @@ void cont_write_text(FILE *f, const cont_view *v)
                 if (isfinite(p->l1))
                     fprintf(f, ", l1 = %s (%s)", CLI_NUM(p->l1), hopf_kind(p->l1));
             }
+            if (p->label == DYN_LABEL_TR && o->map && isfinite(p->omega))
+                fprintf(f, "  angle = %s (Neimark-Sacker)", CLI_NUM(p->omega));
             if (p->stable >= 0)
-                fprintf(f, "  %s", stability_word(b, k));
+                fprintf(f, "  %s", stability_word(b, k, o->map));
             fputc('\n', f);
         }
     }

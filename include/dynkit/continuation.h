@@ -173,6 +173,12 @@ typedef struct dyn_cont_opts {
     dyn_cont_periodic_fn periodic; /* NULL: no periodic orbits from Hopf points */
     void *periodic_ctx;
     int orbits;        /* 1: periodic branches keep each point's orbit (dyn_branch.orbit) */
+    /* 1: m is a discrete map y_{k+1} = F(t, y_k): the branches are of fixed points
+     * F(y, p) = y, eig holds the multipliers (the eigenvalues of dF/dy), stable when every
+     * |mu| < 1; labels LP (mu = 1), BP, PD (mu = -1) and TR (a complex pair crosses the
+     * unit circle: Neimark-Sacker, AUTO-07p's name for maps, with omega the pair's angle
+     * arg mu in (0, pi)). No periodic orbits; ip2 must be -1 (cont_map.c) */
+    int map;
 } dyn_cont_opts;
 
 /* o filled with the defaults above for parameter ip (ip2 = -1, parmin/parmax as defined,

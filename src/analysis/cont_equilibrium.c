@@ -56,7 +56,10 @@ static int eq_tests(void *ctx, const double *z, const double *t, double det, dou
     count[0] = -1;
     psi[1] = det;
     count[1] = -1;
-    psi[2] = cont_hopf_test(cm->n, cm->re, cm->im, 0.0, &count[2], NULL);
+    if (cm->map)
+        cont_map_tests(cm, psi + 2, count + 2); /* PD and TR (cont_map.c) */
+    else
+        psi[2] = cont_hopf_test(cm->n, cm->re, cm->im, 0.0, &count[2], NULL);
     return 0;
 }
 
@@ -93,6 +96,8 @@ static int eq_store(void *ctx, const double *z, const double *t, dyn_cont_label 
         cont_model_eig(cm, cm->J))
         return -1;
     double l1 = NAN, omega = NAN;
+    if (label == DYN_LABEL_TR && cm->map)
+        omega = cont_map_angle(cm);
     if (label == DYN_LABEL_HB) {
         omega = hopf_omega(cm);
         char err[256];
@@ -118,10 +123,11 @@ static void eq_system(cont_system *s, eq_ctx *e)
     s->ctx = e;
     s->residual = eq_residual;
     s->jacobian = eq_jacobian;
-    s->n_tests = 3;
+    s->n_tests = e->cm->map ? 4 : 3;
     s->test_label[0] = DYN_LABEL_LP;
     s->test_label[1] = DYN_LABEL_BP;
-    s->test_label[2] = DYN_LABEL_HB;
+    s->test_label[2] = e->cm->map ? DYN_LABEL_PD : DYN_LABEL_HB;
+    s->test_label[3] = DYN_LABEL_TR;
     s->tests = eq_tests;
     s->store = eq_store;
 }
@@ -318,6 +324,10 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
         return fail(info, DYN_ERR_ARG, "%s", "the parameter's index is out of range");
     if (o->ip2 >= m->n_params || o->ip2 == o->ip)
         return fail(info, DYN_ERR_ARG, "%s", "the second parameter must be another one");
+    if (o->map && o->ip2 >= 0)
+        return fail(info, DYN_ERR_ARG, "%s",
+                    "a discrete map's fixed points are continued in one parameter: curves "
+                    "in two (of folds, flips, Neimark-Sacker points) are not supported");
     if (!(o->ds != 0.0) || !(o->dsmin > 0.0) || !(o->dsmax >= o->dsmin) ||
         !(fabs(o->ds) >= o->dsmin) || !isfinite(o->dsmax))
         return fail(info, DYN_ERR_ARG, "%s",
@@ -355,8 +365,11 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
     const dyn_equilibrium_opts eo = {{o->jac, NULL}, 0.0, 0};
     double *ework = malloc(dyn_equilibrium_work_size(n) * sizeof *ework);
     const int have_work = ework != NULL;
-    int eq_rc = have_work ? dyn_equilibrium(m, o->t, z, cm.par, &eo, ework, &ei) : -1;
+    /* a map's start: Newton's method on F(y) - y alone */
+    int eq_rc = have_work && !o->map ? dyn_equilibrium(m, o->t, z, cm.par, &eo, ework, &ei) : -1;
     free(ework);
+    if (o->map)
+        snprintf(ei.message, sizeof ei.message, "Newton's method on F(y) - y diverged");
     if (eq_rc && have_work) {
         memcpy(z, x0, (size_t)n * sizeof *z);
         z[n] = cm.p_set[0];

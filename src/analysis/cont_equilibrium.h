@@ -15,6 +15,8 @@ typedef struct cont_model {
     double t;
     dyn_jac_scheme jac;
     int ip, ip2;          /* the parameters (ip2 -1: one) */
+    int map;              /* 1: a discrete map: f is F(x) - x, J is dF/dx - I, and the
+                           * eigenvalues are the multipliers (of dF/dx) */
     void *par;            /* (par_size bytes) the working copy */
     double p_set[2];      /* the values par is prepared for */
     double p2_base;       /* ip2's value in the caller's par (NAN p2: this one) */
@@ -35,12 +37,21 @@ int cont_model_jx(cont_model *cm, const double *x, double *J, int ld);
  * differences; par is left prepared for (p, p2). 0 or non-zero */
 int cont_model_fp(cont_model *cm, const double *x, double p, double p2, int q, double *col,
                   int ld);
-/* The eigenvalues of J (n x n) into cm->re, cm->im, sorted (dyn_eig_sort): 0 or non-zero */
+/* The eigenvalues of J (n x n) into cm->re, cm->im, sorted (dyn_eig_sort); a map's
+ * multipliers, those of J + I: 0 or non-zero */
 int cont_model_eig(cont_model *cm, const double *J);
 /* A point's record appended to branch b: x, the parameters, stability from cm->re (when
  * eig is non-zero, after cont_model_eig), label, l1 and omega */
 int cont_model_store(cont_model *cm, dyn_branch *b, const double *x, double p, double p2,
                      int eig, dyn_cont_label label, double l1, double omega);
+
+/* A map's branches (cont_map.c): the test functions of a period doubling (psi[0], count[0])
+ * and of a Neimark-Sacker point (psi[1], count[1]) from the multipliers in cm->re, cm->im;
+ * whether they make a fixed point asymptotically stable (every |mu| < 1 - tol); the angle
+ * arg mu in (0, pi) of the complex pair nearest the unit circle (NAN when none). */
+void cont_map_tests(const cont_model *cm, double *psi, int *count);
+int cont_map_stable(const cont_model *cm, double tol);
+double cont_map_angle(const cont_model *cm);
 
 /* The last branch of d removed and freed (one that got no point) */
 void cont_diagram_drop_last(dyn_diagram *d);

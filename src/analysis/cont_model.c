@@ -4,7 +4,8 @@
  * (the model's exact Jacobian when it has one), df/dp by central differences with the step
  * eps^(1/3) max(1, |p|) taken as the representable difference (an error of about 1e-10
  * relative, which slows Newton's convergence but does not move the solution), and the
- * eigenvalues of the Jacobian by dyn_eig_hqr. */
+ * eigenvalues of the Jacobian by dyn_eig_hqr. A discrete map's fixed points are the zeros
+ * of F(x) - x, judged by the multipliers, the eigenvalues of dF/dx. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -22,6 +23,7 @@ int cont_model_init(cont_model *cm, const dyn_model *m, const void *par, const d
     cm->jac = o->jac;
     cm->ip = o->ip;
     cm->ip2 = o->ip2;
+    cm->map = o->map;
     const size_t n = (size_t)cm->n;
     cm->par = malloc(m->par_size ? m->par_size : 1);
     cm->f = malloc((5 * n + 2 * n * n + dyn_linearize_work_size(cm->n)) * sizeof *cm->f);
@@ -77,12 +79,15 @@ int cont_model_f(cont_model *cm, const double *x, double *f)
         snprintf(cm->message, sizeof cm->message, "the right-hand side failed");
         return -1;
     }
-    for (int i = 0; i < cm->n; i++)
+    for (int i = 0; i < cm->n; i++) {
+        if (cm->map)
+            f[i] -= x[i];
         if (!isfinite(f[i])) {
             snprintf(cm->message, sizeof cm->message, "f of state '%s' is not finite",
                      cm->m->states[i].name);
             return -1;
         }
+    }
     return 0;
 }
 
@@ -100,6 +105,8 @@ int cont_model_jx(cont_model *cm, const double *x, double *J, int ld)
     if (A != J)
         for (int i = 0; i < n; i++)
             memcpy(J + (size_t)i * (size_t)ld, A + (size_t)i * (size_t)n, (size_t)n * sizeof *J);
+    for (int i = 0; i < n && cm->map; i++)
+        J[(size_t)i * (size_t)ld + (size_t)i] -= 1.0;
     return 0;
 }
 
@@ -122,6 +129,8 @@ int cont_model_eig(cont_model *cm, const double *J)
 {
     const size_t n = (size_t)cm->n;
     memcpy(cm->eig_a, J, n * n * sizeof *J);
+    for (size_t i = 0; i < n && cm->map; i++)
+        cm->eig_a[i * n + i] += 1.0;
     if (dyn_eig_hqr(cm->n, cm->eig_a, cm->re, cm->im, cm->message, sizeof cm->message))
         return -1;
     dyn_eig_sort(cm->n, cm->re, cm->im);
@@ -141,10 +150,13 @@ int cont_model_store(cont_model *cm, dyn_branch *b, const double *x, double p, d
     pt.stable = -1;
     if (eig) {
         const double tol = dyn_stability_tol(cm->n, cm->J, 0.0);
-        /* a fold, a branch point and a Hopf point have an eigenvalue on the axis */
+        /* a fold, a branch point and a Hopf point have an eigenvalue on the axis (a map's
+         * period doubling and Neimark-Sacker point a multiplier on the unit circle) */
         const int critical = label == DYN_LABEL_LP || label == DYN_LABEL_BP ||
-                             label == DYN_LABEL_HB || label == DYN_LABEL_BT;
-        pt.stable = !critical && dyn_classify(cm->n, cm->re, tol) == DYN_STABLE;
+                             label == DYN_LABEL_HB || label == DYN_LABEL_BT ||
+                             label == DYN_LABEL_PD || label == DYN_LABEL_TR;
+        pt.stable = !critical && (cm->map ? cont_map_stable(cm, tol)
+                                          : dyn_classify(cm->n, cm->re, tol) == DYN_STABLE);
     }
     return dyn_branch_append(b, &pt, x, NULL, eig ? cm->re : NULL, eig ? cm->im : NULL) < 0;
 }

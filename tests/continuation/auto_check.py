@@ -3,7 +3,8 @@
 file and constants file written here from the same formulas as the .ode file), the labels
 LP, HB and BP of the equilibrium branch compared, and their parameter values within AUTO's
 own accuracy (EPSS = 1e-7 here: 1e-6 relative). Everything of a failed problem is kept
-under ARTIFACTS/<problem>/. Exit 77 (skipped) when auto-07p or gfortran is missing.
+under ARTIFACTS/<problem>/. Discrete maps (IPS = -1): auto_maps.py. Exit 77 (skipped)
+when auto-07p or gfortran is missing.
 Usage: auto_check.py DYNKIT ARTIFACTS"""
 import json
 import os
@@ -11,6 +12,8 @@ import shutil
 import subprocess
 import sys
 import tempfile
+
+import auto_maps
 
 
 # name: parameters (name, start value), states (name, start value), right-hand sides as
@@ -265,6 +268,7 @@ def main():
         shutil.rmtree(work, ignore_errors=True)
 
     failures += enz_check(dynkit, artifacts)
+    failures += auto_maps.check(dynkit, artifacts, run_auto, fortran)  # discrete maps
     for f in failures:
         print("FAIL:", f)
     sys.exit(1 if failures else 0)

@@ -1,0 +1,134 @@
+#!/usr/bin/env python3
+"""dynkit continue on discrete maps against closed forms (docs/analysis.md, "Continuation",
+"Maps"): the fixed points of F(y) - y = 0 and their multipliers, the eigenvalues of dF/dy.
+The logistic map x -> r x (1 - x): every point on x = 1 - 1/r with multiplier 2 - r, stable
+for 1 < r < 3, the period doubling PD at r = 3 (x = 2/3, multiplier -1); the branch point BP
+at r = 1, x = 0 and the branch x = 0 switched to, with multiplier r, stable for r < 1. Henon's
+map (1 - a x^2 + y, b x): the fold LP at a = -(1 - b)^2/4 and PD at a = 3 (1 - b)^2/4 for two
+values of b. The delayed logistic map (r x (1 - y), x): the Neimark-Sacker point, labelled
+TR, at r = 2 with the multipliers exp(+-i pi/3) there. A second parameter on a map is
+refused with a message. Usage: maps_check.py DYNKIT MODELS_DIR"""
+import cmath
+import json
+import math
+import subprocess
+import sys
+
+dynkit, models = sys.argv[1:3]
+failures = []
+
+
+def run(name, *args):
+    cmd = [dynkit, "continue", f"{models}/{name}", "--json", *args]
+    out = subprocess.run(cmd, capture_output=True, text=True)
+    if out.returncode != 0:
+        failures.append(f"{' '.join(cmd)}: exit {out.returncode}: {out.stderr.strip()}")
+        return None
+    d = json.loads(out.stdout)
+    if d.get("map") is not True:
+        failures.append(f"{' '.join(cmd)}: the JSON does not say \"map\": true")
+    return d
+
+
+def check(what, got, want, tol):
+    if not abs(got - want) <= tol * max(1.0, abs(want)):
+        failures.append(f"{what}: {got!r}, expected {want!r} (tolerance {tol:g} relative)")
+
+
+def labelled(d, label):
+    return [(b, p) for b in d["branches"] for p in b["points"] if p["label"] == label]
+
+
+def one(d, label, what):
+    pts = labelled(d, label) if d else []
+    if len({round(p["state"][next(iter(p["state"]))], 8) for _, p in pts}) != 1:
+        failures.append(f"{what}: expected one {label}, found {len(pts)}")
+        return None
+    return pts[0][1]
+
+
+def multipliers(p):
+    return [complex(re, im) for re, im in p["multipliers"]]
+
+
+# ---- the logistic map: x = 1 - 1/r from r = 2.5 up (a flow's x' = F(x) would give x = 1)
+d = run("logistic_map.ode", "--par", "r", "--opt", "parmin=0.5", "--opt", "parmax=4")
+if d:
+    first = d["branches"][0]["points"]
+    check("logistic: the start", first[0]["state"]["x"], 0.6, 1e-12)
+    for p in first:
+        r, x = p["r"], p["state"]["x"]
+        check(f"logistic: x at r = {r}", x, 1.0 - 1.0 / r, 1e-9)
+        check(f"logistic: multiplier at r = {r}", multipliers(p)[0].real, 2.0 - r, 1e-7)
+        if p["label"] not in ("PD",) and p["stable"] != (1.0 < r < 3.0):
+            failures.append(f"logistic: stable = {p['stable']} at r = {r}")
+    p = one(d, "PD", "logistic PD")
+    if p:
+        check("logistic: r at PD", p["r"], 3.0, 1e-10)
+        check("logistic: x at PD", p["state"]["x"], 2.0 / 3.0, 1e-9)
+        check("logistic: multiplier at PD", multipliers(p)[0].real, -1.0, 1e-8)
+
+d = run("logistic_map.ode", "--par", "r", "--opt", "ds=-0.02", "--opt", "parmin=0.5",
+        "--opt", "parmax=4")
+p = one(d, "BP", "logistic BP")
+if p:
+    check("logistic: r at BP", p["r"], 1.0, 1e-10)
+    check("logistic: x at BP", p["state"]["x"], 0.0, 1e-8)
+    switched = [b for b in d["branches"] if b["parent"] is not None]
+    if len(switched) != 2:
+        failures.append(f"logistic: expected two branches from the BP, found {len(switched)}")
+    for b in switched:
+        for q in b["points"]:
+            r, x = q["r"], q["state"]["x"]
+            check(f"logistic: x on the switched branch at r = {r}", x, 0.0, 1e-9)
+            check(f"logistic: multiplier of x = 0 at r = {r}", multipliers(q)[0].real, r, 1e-7)
+            if q["label"] != "BP" and q["stable"] != (r < 1.0):
+                failures.append(f"logistic: x = 0 stable = {q['stable']} at r = {r}")
+
+# ---- Henon's map: the fold and the period doubling of its fixed points
+for b in (0.3, -0.4):
+    sets = ["--set", f"b={b}"]
+    d = run("henon_map.ode", "--par", "a", *sets, "--opt", "ds=-0.02", "--opt", "parmin=-1",
+            "--opt", "parmax=2", "--opt", "nmax=60")
+    p = one(d, "LP", f"Henon b = {b}: LP")
+    if p:
+        check(f"Henon b = {b}: a at LP", p["a"], -(1 - b) ** 2 / 4, 1e-10)
+        check(f"Henon b = {b}: x at LP", p["state"]["x"], 2.0 / (1 - b), 1e-7)
+        check(f"Henon b = {b}: largest multiplier at LP", max(m.real for m in multipliers(p)),
+              1.0, 1e-7)
+    d = run("henon_map.ode", "--par", "a", *sets, "--opt", "parmin=-1", "--opt", "parmax=2")
+    p = one(d, "PD", f"Henon b = {b}: PD")
+    if p:
+        check(f"Henon b = {b}: a at PD", p["a"], 3 * (1 - b) ** 2 / 4, 1e-10)
+        check(f"Henon b = {b}: smallest multiplier at PD", min(m.real for m in multipliers(p)),
+              -1.0, 1e-7)
+
+# ---- the delayed logistic map: a Neimark-Sacker point at r = 2
+d = run("delayed_logistic.ode", "--par", "r", "--opt", "parmin=1.1", "--opt", "parmax=2.5")
+p = one(d, "TR", "delayed logistic TR")
+if p:
+    check("delayed logistic: r at TR", p["r"], 2.0, 1e-10)
+    check("delayed logistic: x at TR", p["state"]["x"], 0.5, 1e-9)
+    check("delayed logistic: the angle at TR", p.get("angle", math.nan), math.pi / 3, 1e-8)
+    for m in multipliers(p):
+        check("delayed logistic: |mu| at TR", abs(m), 1.0, 1e-8)
+if d:
+    for q in d["branches"][0]["points"]:
+        if q["label"] != "TR" and q["stable"] != (q["r"] < 2.0):
+            failures.append(f"delayed logistic: stable = {q['stable']} at r = {q['r']}")
+        want = (1 + cmath.sqrt(1 - 4 * (q["r"] - 1))) / 2
+        check(f"delayed logistic: |mu| at r = {q['r']}", max(abs(m) for m in multipliers(q)),
+              abs(want), 1e-8)
+
+# ---- a second parameter on a map: refused, not a flow's answer
+out = subprocess.run([dynkit, "continue", f"{models}/henon_map.ode", "--par", "a", "--par2",
+                      "b"], capture_output=True, text=True)
+if out.returncode == 0 or "discrete map" not in out.stderr or "--par2" not in out.stderr:
+    failures.append(f"--par2 on a map: exit {out.returncode}, {out.stderr.strip()!r}")
+
+for f in failures:
+    print("FAIL:", f)
+if not failures:
+    print("maps: logistic (BP r = 1, PD r = 3), Henon (LP, PD), delayed logistic (TR r = 2) "
+          "agree with their closed forms")
+sys.exit(1 if failures else 0)

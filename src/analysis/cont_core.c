@@ -456,6 +456,31 @@ static int locate(const cont_system *s, cont_work *w, const target *g, const dou
     return ok;
 }
 
+/* Where the secant method cannot approach a branch point along the branch (the branch turns
+ * in its parameter there: a pitchfork seen from its bifurcating branch, where the plane of
+ * the arclength meets both branches), the branch point solved for directly from the
+ * located trial point bp (a guess on input): 0 when it lies within the step from z to z1
+ * (tangent t at z), bp and *s_found (its arclength along t) then set; non-zero when not. */
+static int branch_point_in_step(const cont_system *s, const double *z, const double *t,
+                                const double *z1, double *bp, double *s_found)
+{
+    const int M = s->N + 1;
+    double *zr = malloc((size_t)M * sizeof *zr);
+    if (!zr || cont_refine_branch_point(s, bp, zr)) {
+        free(zr);
+        return -1;
+    }
+    double u, length;
+    const double off = cont_chord_distance(M, z, z1, zr, &u, &length);
+    const int inside = u > 0.0 && u < 1.0 && off <= 0.5 * length;
+    if (inside) {
+        memcpy(bp, zr, (size_t)M * sizeof *bp);
+        *s_found = dot(t, zr, M) - dot(t, z, M);
+    }
+    free(zr);
+    return inside ? 0 : -1;
+}
+
 static int cmp_special(const void *x, const void *y)
 {
     const special *a = x, *b = y;
@@ -636,7 +661,9 @@ int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const do
                 continue; /* the start itself */
             const target g = {k, 0, 0.0};
             if (locate(s, w, &g, z, t, psi[k], ds, psi1[k], z1, t1, sp[ns].z, sp[ns].t,
-                       &sp[ns].s) == 0) {
+                       &sp[ns].s) == 0 ||
+                (s->test_label[k] == DYN_LABEL_BP &&
+                 branch_point_in_step(s, z, t, z1, sp[ns].z, &sp[ns].s) == 0)) {
                 sp[ns].label = s->test_label[k];
                 ns++;
             }

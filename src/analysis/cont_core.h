@@ -78,6 +78,11 @@ int cont_inverse_iteration(const double *G, int k, int q, int iterations, double
  * the direction orthogonal to t in the null space of DG instead; -1 when DG failed. */
 int cont_branch_direction(const cont_system *s, const double *z, const double *t, double *v);
 
+/* A simple branch point z of G(z) = 0 near `guess`, solved for by Newton's method on Moore's
+ * extended system (cont_bp_refine.c): 0; 1 when it converged to a branch point of an
+ * unfolded problem (G != 0 there); -1 when it did not converge or DG failed. */
+int cont_refine_branch_point(const cont_system *s, const double *guess, double *z);
+
 /* The distance from zp to the chord from za to zb in R^M; *u in [0, 1] the place of the
  * chord's point nearest to zp, za + u (zb - za), *length the chord's length. */
 double cont_chord_distance(int M, const double *za, const double *zb, const double *zp,

@@ -199,6 +199,18 @@ def enz_check(dynkit, artifacts):
             if len(mine) != 4 or len(mine) != len(theirs2) or not all(
                     near(v, w) for v, w in zip(mine, theirs2)):
                 problems.append(f"the loop's folds: dynkit {mine}, AUTO-07p {theirs2}")
+            # where the loop turns at the second pitchfork it meets the symmetric branch: a
+            # BP there (the bordered matrix is singular: located from Moore's system), at
+            # the first branch's BP within 1e-10 and at AUTO-07p's second branch's BP
+            second = [v for l, v in ours if l == "BP" and v < 30.0]
+            turn = [p["s0"] for p in loop["points"][1:-1] if p["label"] == "BP"]
+            theirs_bp = [float(v) for br, l, v, _, _ in auto if br == "2" and l == "BP"
+                         and float(v) < 30.0]
+            if (len(turn) != 1 or len(second) != 1 or not theirs_bp or
+                    abs(turn[0] - second[0]) > 1e-10 * second[0] or
+                    not near(turn[0], theirs_bp[0])):
+                problems.append(f"the loop's BP at the second pitchfork: dynkit {turn}, the "
+                                f"first branch's {second}, AUTO-07p {theirs_bp}")
     if problems:
         dest = os.path.join(artifacts, "continuation-auto-enz")
         shutil.rmtree(dest, ignore_errors=True)

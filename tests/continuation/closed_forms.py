@@ -116,7 +116,8 @@ if d:
     check("tangent branches: p at the end", end["p"], 1.0, 1e-9)
 
 # a figure eight (figure_eight.ode): one branch round both loops back to its start, the
-# crossing at the origin a BP (within 1e-9) with no second branch, both folds at p = -1, 1
+# crossing at the origin a BP (within 1e-9) each of the two times the branch passes it, with
+# no second branch, both folds at p = -1, 1
 d = run(f"{models}/figure_eight.ode", "--par", "p")
 if d:
     b = d["branches"]
@@ -124,6 +125,8 @@ if d:
         failures.append(f"figure eight: {len(b)} branches, the first stopped "
                         f"'{b[0]['stop'] if b else ''}' (expected one, closed at its start)")
     p = only(d, "BP", "figure eight")
+    if len(points(d, "BP")) != 2:
+        failures.append(f"figure eight: {len(points(d, 'BP'))} BP (expected the crossing twice)")
     if p:
         check("figure eight: p at BP", p["p"], 0.0, 1e-9)
         check("figure eight: x at BP", p["state"]["x"], 0.0, 1e-9)

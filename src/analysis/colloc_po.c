@@ -108,7 +108,12 @@ typedef struct po_tests {
     int tr_complex; /* the multiplier nearest the unit circle is complex */
     int tr_pairs;   /* the number of complex pairs in tr's product */
     int have_mult;
+    int pd_tr;      /* PD and TR can be told: 3 states or more and the multipliers accurate */
 } po_tests;
+
+/* the trivial multiplier's largest distance from 1 at which the others are trusted for PD
+ * and TR (AUTO-07p's FNSPBV: detection stops beyond 5e-2) */
+#define PO_TRIVIAL_TOL 5e-2
 
 static void tests_of(const double *re, const double *im, int n, double dlambda, int have,
                      po_tests *t)
@@ -117,6 +122,10 @@ static void tests_of(const double *re, const double *im, int n, double dlambda, 
     t->have_mult = have;
     t->pd = t->tr = 1.0;
     t->tr_complex = t->tr_pairs = 0;
+    /* a planar flow has no PD or TR: its one non-trivial multiplier is exp(int div f) > 0;
+     * a trivial multiplier far from 1 says the others are rounding (an orbit near a
+     * homoclinic one, its multipliers ~1e6 and more, on too coarse a mesh) */
+    t->pd_tr = have && n >= 3 && hypot(re[0] - 1.0, im[0]) <= PO_TRIVIAL_TOL;
     if (!have)
         return;
     double pr = 1.0, pi = 0.0;
@@ -171,9 +180,9 @@ static int first_change(const po_tests *a, const po_tests *b, int skip)
     if (skip != 0 && (b->lpc > 0) != (a->lpc > 0) &&
         fmax(fabs(b->lpc), fabs(a->lpc)) > DYN_CONT_FOLD_NOISE)
         return 0;
-    if (skip != 1 && b->have_mult && a->have_mult && (b->pd > 0) != (a->pd > 0))
+    if (skip != 1 && b->pd_tr && a->pd_tr && (b->pd > 0) != (a->pd > 0))
         return 1;
-    if (skip != 2 && b->have_mult && a->have_mult && (b->tr > 0) != (a->tr > 0) &&
+    if (skip != 2 && b->pd_tr && a->pd_tr && (b->tr > 0) != (a->tr > 0) &&
         b->tr_complex && b->tr_pairs == a->tr_pairs)
         return 2;
     return -1;
@@ -540,7 +549,7 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
     const int adapt = o->adapt == 0 ? 3 : o->adapt;
     const int ntst = x->ntst;
     const int bounded = o->par_max > o->par_min;
-    po_tests prev_tests = {0, 0, 0, 0, 0, 0};
+    po_tests prev_tests = {0, 0, 0, 0, 0, 0, 0};
     int have_prev = 0, st = 0, since_adapt = 0;
     snprintf(b->message, sizeof b->message, "%d points (nmax)", nmax);
     /* the new point and its tangent: moved into x, t when it is stored, else freed after
@@ -619,6 +628,7 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
          * the step's start and the located point, that one comes first along the branch and
          * is located instead (a PD just before a fold of cycles is not lost to the LPC) */
         int which = have_prev && !hopf_end ? first_change(&prev_tests, &now, -1) : -1;
+        const double lambda_end = xn.par[1];
         double s_far = s_end;
         po_tests far = now;
         for (int round = 0; which >= 0; round++) {
@@ -660,6 +670,12 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
         }
         if (st)
             break;
+        /* a fold whose parameter stays within rounding of both ends of its step is the
+         * jitter of a vertical branch (cycles near a homoclinic orbit, the parameter settled
+         * to 1e-11 while the period grows), not a fold: no label */
+        if (which == 0 && fmax(fabs(xn.par[1] - x->par[1]), fabs(xn.par[1] - lambda_end)) <=
+                              DYN_CONT_FOLD_NOISE * fmax(1.0, fabs(xn.par[1])))
+            which = -1;
         /* past a bound of the parameter: the point on the bound ends the branch */
         const double pn = xn.par[1];
         int at_bound = 0;

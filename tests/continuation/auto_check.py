@@ -3,8 +3,9 @@
 file and constants file written here from the same formulas as the .ode file), the labels
 LP, HB and BP of the equilibrium branch compared, and their parameter values within AUTO's
 own accuracy (EPSS = 1e-7 here: 1e-6 relative). Everything of a failed problem is kept
-under ARTIFACTS/<problem>/. Discrete maps (IPS = -1): auto_maps.py. Exit 77 (skipped)
-when auto-07p or gfortran is missing.
+under ARTIFACTS/<problem>/. Discrete maps (IPS = -1): auto_maps.py; curves of folds and Hopf
+points in two parameters: auto_curves.py. Exit 77 (skipped) when auto-07p or gfortran is
+missing.
 Usage: auto_check.py DYNKIT ARTIFACTS"""
 import json
 import os
@@ -13,6 +14,7 @@ import subprocess
 import sys
 import tempfile
 
+import auto_curves
 import auto_maps
 
 
@@ -281,6 +283,7 @@ def main():
 
     failures += enz_check(dynkit, artifacts)
     failures += auto_maps.check(dynkit, artifacts, run_auto, fortran)  # discrete maps
+    failures += auto_curves.check(dynkit, artifacts, run_auto, fortran)  # two parameters
     for f in failures:
         print("FAIL:", f)
     sys.exit(1 if failures else 0)

@@ -14,7 +14,8 @@ and the orbits the diagram's page holds, on the Hopf normal form's circles x^2 +
 period 2 pi / w; the subcritical Hopf point of bautin.ode at b2 = 1 (LPC at b1 = -1/4,
 UZ on the periodic branch on both sides of the fold, radius and period 2 pi exact); the
 cycles of hopf_pair.ode from one Hopf point to the other, ended there and computed once; the
-multipliers at TR and PD on Roessler's cycles in c (no TR where a real pair turns complex). Usage:
+multipliers at TR and PD on Roessler's cycles in c (no TR where a real pair turns complex); no
+PD, TR or fold of cycles on the CSTR's cycles (a planar flow, cstr.ode). Usage:
 closed_forms.py DYNKIT MODELS_DIR LORENZ_ODE BT_ODE"""
 import json
 import math
@@ -229,6 +230,26 @@ for q in cycles:
 if [q["label"] for q in cycles if q["label"] not in ("", "EP")] != ["PD"]:
     failures.append(f"roessler_c: labels {[q['label'] for q in cycles if q['label']]}, "
                     "expected one PD between the ends")
+
+# a planar flow has no period doubling and no torus bifurcation (its one non-trivial
+# multiplier is exp(int div f dt) > 0): on the CSTR's cycles (cstr.ode, NTST 15) rounding
+# of the multipliers near the homoclinic orbit (~1e6 and more) made PD labels; the cycles
+# from the first, subcritical Hopf point grow to a homoclinic orbit to a saddle, which in
+# the plane they approach monotonically in the parameter (Andronov-Leontovich): no fold of
+# cycles either, where the parameter settles to 1e-11 while the period grows
+d = run(f"{models}/cstr.ode", "--par", "d")
+cycles = [b for b in (d["branches"] if d else []) if b["kind"] == "periodic"]
+if len(cycles) != 2:
+    failures.append(f"cstr: {len(cycles)} periodic branches, expected 2 (one per Hopf point)")
+for b in cycles:
+    bad = [(q["label"], q["d"]) for q in b["points"] if q["label"] in ("PD", "TR")]
+    if bad:
+        failures.append(f"cstr: {bad} on the cycles of a planar flow")
+    if b["parent_point"] == min(c["parent_point"] for c in cycles):
+        folds = [q["d"] for q in b["points"] if q["label"] == "LPC"]
+        if folds or max(q["period"] for q in b["points"]) < 50:
+            failures.append(f"cstr: folds {folds[:5]} on the cycles towards the homoclinic "
+                            f"orbit, longest period {max(q['period'] for q in b['points'])}")
 
 # the page's orbits (continue --output FILE.html): on the normal form's periodic branch
 # (s = -1, w = 2) each orbit is the circle x^2 + y^2 = p with period 2 pi / w; the page holds

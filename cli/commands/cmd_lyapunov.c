@@ -161,6 +161,28 @@ static void print_result(FILE *f, const void *ctx)
         fprintf(f, "sum: %.12g\n", sum);
 }
 
+/* A note when the largest exponent's error estimate is over 5% of its value (and not a
+ * rounding-level zero against the largest |exponent|): the averaging time that would bring
+ * it to about 2%, the error falling like 1/sqrt(T), at most 100 times the one used. */
+static void note_wide_error(const cli_run *run, const dyn_lyapunov_opts *lo, const double *ex,
+                            const double *err, const dyn_lyapunov_info *info)
+{
+    double biggest = 0.0;
+    for (int k = 0; k < lo->k; k++)
+        biggest = fmax(biggest, fabs(ex[k]));
+    const double rel = err[0] / fabs(ex[0]);
+    if (!(rel > 0.05) || !(err[0] > 1e-3 * biggest))
+        return;
+    /* the whole span scaled: with the default transient (a tenth of it) the averaging
+     * time scales the same */
+    const double factor = fmin(100.0, ceil((rel / 0.02) * (rel / 0.02)));
+    cli_note("lyapunov: the largest exponent's error estimate is %.2g%% of its value; the "
+             "error falls like 1/sqrt(T): averaging %.3g times longer (--tspan %.6g:%.6g) "
+             "brings it to about %.2g%%",
+             100.0 * rel, factor, run->t0, run->t0 + factor * (info->t_end - run->t0),
+             100.0 * rel / sqrt(factor));
+}
+
 int cli_cmd_lyapunov(int argc, char **argv)
 {
     ly_args a;
@@ -205,6 +227,8 @@ int cli_cmd_lyapunov(int argc, char **argv)
         } else {
             const ly_out out = {&a, &run, &lo, ex, err, &info};
             rc = cli_analysis_write(a.output, print_result, &out);
+            if (rc == CLI_OK)
+                note_wide_error(&run, &lo, ex, err, &info);
         }
     }
     free(ex);

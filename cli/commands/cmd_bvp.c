@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "commands/analysis_kinds.h"
 #include "commands/bvp_guess.h"
 #include "dynkit/colloc.h"
 #include "pages/pages.h"
@@ -42,6 +43,9 @@ static void bvp_help(void)
          "fewer than states, AUTO's integral phase condition against the first guess\n"
          "being the last, and its interval is [t0, t0 + 1] (time scaled by a parameter, as\n"
          "AUTO takes it) unless --tspan gives one.\n"
+         "\n"
+         "A discrete map, a delay or a Volterra model is refused; noise is taken as 0 and\n"
+         "Markov states are held, with a note.\n"
          "\n"
          "Options:\n"
          "  --set NAME=VALUE     a parameter's value (repeatable)\n"
@@ -302,6 +306,21 @@ int cli_cmd_bvp(int argc, char **argv)
         cli_run_free(&run);
         return rc;
     }
+    /* collocation reads f at its nodes: a map's next state is not a derivative, a delayed
+     * or integrated state needs the past of a run */
+    if (dyn_method_is_map(run.method))
+        rc = cli_usage_error("bvp", "%s is a discrete map: bvp solves differential equations "
+                             "by collocation, not maps' boundary conditions; not supported "
+                             "('dynkit run' iterates it)", m->name);
+    if (rc == CLI_OK)
+        rc = cli_kinds_refuse_history("bvp", m, "collocation",
+                                      "'dynkit run' integrates its initial-value problem");
+    if (rc != CLI_OK) {
+        cli_run_free(&run);
+        return rc;
+    }
+    cli_kinds_noise_note("bvp", m, NULL);
+    cli_kinds_markov_note("bvp", m);
     dyn_bvp_opts bo = {o.ntst, o.ncol, 0.0, 0, 0, 0.0, NULL, NULL, 0};
     if (o.free_name && resolve_free(argv[0], m, &run, &o, &bo) != CLI_OK) {
         cli_run_free(&run);

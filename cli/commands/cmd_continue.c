@@ -12,6 +12,7 @@
 
 #include "cli.h"
 #include "dynkit/colloc.h"
+#include "commands/analysis_kinds.h"
 #include "commands/cont_steady.h"
 #include "cont_output.h"
 #include "cont_settings.h"
@@ -357,7 +358,10 @@ int cli_cmd_continue(int argc, char **argv)
     if (rc == CLI_OK && !steady && (a.unknown || a.cyclic))
         rc = cli_usage_error("continue", "--unknown and --cyclic are for a mechanism file's "
                                          "steady motions (FILE.mech)");
+    if (rc == CLI_OK && !steady)
+        rc = cli_kinds_refuse_markov("continue", m, "a branch of its equilibria");
     if (rc == CLI_OK && !steady) {
+        cli_kinds_noise_note("continue", m, NULL);
         const int st = dyn_continue(m, run.par, run.y0, &s.opts, &d, &info);
         if (st) {
             cli_error("continue: %s", info.message);

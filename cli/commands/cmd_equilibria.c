@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "commands/analysis_kinds.h"
 #include "commands/analysis_args.h"
 #include "dynkit/equilibria.h"
 #include "models/lin_constrained.h"
@@ -374,6 +375,10 @@ int cli_cmd_equilibria(int argc, char **argv)
     double t = 0.0;
     if (rc == CLI_OK)
         rc = check_own(&a, &eo, &t, &run);
+    if (rc == CLI_OK)
+        rc = cli_kinds_refuse_markov("equilibria", run.model, "its equilibria");
+    if (rc == CLI_OK)
+        cli_kinds_noise_note("equilibria", run.model, NULL);
     if (rc != CLI_OK) {
         cli_run_free(&run);
         return rc;

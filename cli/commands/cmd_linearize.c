@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "commands/analysis_kinds.h"
 #include "dynkit/analysis.h"
 #include "dynkit/sweep.h"
 #include "models/lin_constrained.h"
@@ -35,6 +36,10 @@ static void linearize_help(void)
          "coordinates and speeds: the eigenvalues are those of A_min = P^+ A P on the\n"
          "directions that keep the constraints (the states kept are printed); a steady\n"
          "motion such as rolling at a speed is given by --init or --set (docs/analysis.md).\n"
+         "\n"
+         "A discrete map is refused (dynkit equilibria gives its fixed points and their\n"
+         "multipliers; --matrix prints dF/dy); noise is taken as 0 and Markov states are\n"
+         "held, with a note (--equilibrium refuses Markov states).\n"
          "\n"
          "Options:\n"
          "  --init NAME=VALUE    a state's value (repeatable; as in dynkit run)\n"
@@ -523,8 +528,22 @@ int cli_cmd_linearize(int argc, char **argv)
     const dyn_model *m = run.model;
     const int n = m->n_states;
     const double t = o.t_given ? o.t : run.t0;
+    if (dyn_method_is_map(run.method) && !o.matrix)
+        rc = cli_usage_error("linearize", "%s is a discrete map: its eigenvalues here would be "
+                             "judged as a flow's; its fixed points and their multipliers are "
+                             "found by dynkit equilibria (dynkit continue follows them, dynkit "
+                             "lyapunov gives its exponents); --matrix prints dF/dy alone",
+                             m->name);
+    if (rc == CLI_OK && o.equilibrium)
+        rc = cli_kinds_refuse_markov("linearize", m, "--equilibrium");
+    if (rc == CLI_OK) {
+        cli_kinds_noise_note("linearize", m, NULL);
+        cli_kinds_markov_note("linearize", m);
+    }
     cli_lin_constraints cc;
-    rc = cli_lin_constraints_open(argv[0], m, &cc);
+    memset(&cc, 0, sizeof cc);
+    if (rc == CLI_OK)
+        rc = cli_lin_constraints_open(argv[0], m, &cc);
     dyn_sweep_var var = {DYN_SWEEP_PARAM, -1};
     double *values = NULL;
     long n_pts = 0;

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "commands/analysis_kinds.h"
 #include "commands/analysis_args.h"
 #include "commands/steady_frame.h"
 #include "dynkit/analysis.h"
@@ -350,7 +351,11 @@ int cli_cmd_steady(int argc, char **argv)
                              "dynkit equilibria",
                              run.model->name);
     if (rc == CLI_OK)
+        rc = cli_kinds_refuse_markov("steady", run.model, "a steady motion");
+    if (rc == CLI_OK) {
+        cli_kinds_noise_note("steady", run.model, NULL);
         rc = solve(argv[0], &a, &run, t);
+    }
     cli_run_free(&run);
     return rc;
 }

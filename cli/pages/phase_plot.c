@@ -13,6 +13,7 @@
 #include "dynkit/phase_plane.h"
 #include "util/out_file.h"
 #include "pages/pages.h"
+#include "commands/analysis_kinds.h"
 
 #define MAX_STARTS 16
 #define MAX_POINTS 64
@@ -305,6 +306,17 @@ int cli_plot_phase_plane(int argc, char **argv)
     if (rc == CLI_OK && dyn_method_is_map(v.run.method))
         rc = cli_usage_error("plot", "--phase-plane: %s is a discrete map, which has no "
                                      "nullclines or direction field", m->name);
+    if (rc == CLI_OK)
+        rc = cli_kinds_refuse_history("plot", m, "--phase-plane (its nullclines, direction "
+                                      "field and equilibria)", "dynkit plot MODEL --x NAME "
+                                      "--y NAME draws its trajectory in a plane");
+    if (rc == CLI_OK) {
+        cli_kinds_noise_note("plot --phase-plane", m,
+                             "the nullclines, direction field and equilibria are those of its "
+                             "deterministic part, every noise term taken as 0; the "
+                             "trajectories carry the noise");
+        cli_kinds_markov_note("plot --phase-plane", m);
+    }
     if (rc == CLI_OK && o.html && output)
         rc = cli_usage_error("plot", "give --html FILE or --output FILE, not both");
     static const char *const svg_html[] = {".svg", ".html", ".htm", NULL},

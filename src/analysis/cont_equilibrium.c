@@ -311,6 +311,74 @@ static int fail(dyn_cont_info *info, int status, const char *fmt, const char *wh
     return status;
 }
 
+/* The names of the states whose components of the unit vector v (n) are at least a tenth
+ * of the largest, comma-separated into out. */
+static void large_components(const dyn_model *m, const double *v, int n, char *out, size_t len)
+{
+    double vmax = 0.0;
+    for (int i = 0; i < n; i++)
+        vmax = fmax(vmax, fabs(v[i]));
+    size_t used = 0;
+    out[0] = '\0';
+    for (int i = 0; i < n; i++) {
+        if (!(fabs(v[i]) >= 0.1 * vmax))
+            continue;
+        const char *name = m->states[i].name;
+        if (used + strlen(name) + 6 >= len) {
+            snprintf(out + used, len - used, "%s...", used ? ", " : "");
+            return;
+        }
+        used += (size_t)snprintf(out + used, len - used, "%s%s", used ? ", " : "", name);
+    }
+}
+
+/* Why the start z is singular ([f_x f_p] of rank below n): when f_x is singular to rounding
+ * there, the states along its null vector and the states whose rates' rows are dependent
+ * (its left null vector: a conserved combination), by inverse iteration on f_x^T f_x and
+ * f_x f_x^T. There the equilibria are not isolated (a state conserved or absent from f:
+ * every parameter value has a family of them), or the start is a fold or branch point. */
+static void singular_start_message(const cont_system *s, const dyn_model *m, const double *z,
+                                   char *msg, size_t len)
+{
+    const int n = s->N, M = n + 1;
+    const size_t nn = (size_t)n * (size_t)n;
+    snprintf(msg, len, "the start is singular (a fold or a branch point): start elsewhere");
+    double *J = malloc(((size_t)n * (size_t)M + 2 * nn + 2 * (size_t)n) * sizeof *J);
+    if (!J)
+        return;
+    double *fx = J + (size_t)n * (size_t)M, *G = fx + nn, *v = G + nn, *u = v + n;
+    double big = 0.0, res = INFINITY;
+    if (s->jacobian(s->ctx, z, J) == 0) {
+        for (int r = 0; r < n; r++)
+            for (int c = 0; c < n; c++) {
+                fx[(size_t)r * (size_t)n + (size_t)c] = J[(size_t)r * (size_t)M + (size_t)c];
+                big = fmax(big, fabs(fx[(size_t)r * (size_t)n + (size_t)c]));
+            }
+        if (cont_normal_factor(fx, n, n, 0, G) == 0 && cont_inverse_iteration(G, n, 1, 8, v) == 0 &&
+            cont_normal_factor(fx, n, n, 1, G) == 0 && cont_inverse_iteration(G, n, 1, 8, u) == 0) {
+            /* |f_x v|: singular to rounding? */
+            res = 0.0;
+            for (int r = 0; r < n; r++) {
+                double a = 0.0;
+                for (int c = 0; c < n; c++)
+                    a += fx[(size_t)r * (size_t)n + (size_t)c] * v[c];
+                res = fmax(res, fabs(a));
+            }
+        }
+    }
+    if (res <= 1e-10 * fmax(big, 1e-300)) {
+        char along[40], rows[40];
+        large_components(m, v, n, along, sizeof along);
+        large_components(m, u, n, rows, sizeof rows);
+        snprintf(msg, len,
+                 "the start is singular: f_x is singular (null vector along %s; rows of %s "
+                 "dependent): a family of equilibria (a conserved quantity, a state not "
+                 "in f) or a fold or BP; start elsewhere",
+                 along, rows);
+    }
+    free(J);
+}
+
 int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dyn_cont_opts *o,
                  dyn_diagram *d, dyn_cont_info *info)
 {
@@ -394,8 +462,7 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
         e[n] = o->ds > 0.0 ? 1.0 : -1.0;
         double det;
         if (cont_tangent(&s, &w, z, e, t, &det)) {
-            snprintf(info->message, sizeof info->message,
-                     "the start is singular (a fold or a branch point): start elsewhere");
+            singular_start_message(&s, m, z, info->message, sizeof info->message);
             rc = DYN_ERR_ARG;
         }
     }

@@ -332,6 +332,16 @@ if out.returncode != 2 or "parmax from --opt" not in out.stderr:
     failures.append(f"lorenz, rho = 28 outside parmax = 20: exit {out.returncode}, "
                     f"{out.stderr.strip()!r} (expected 2 and a message naming --opt)")
 
+# a start where the equilibria form a family (w does not enter f: every w is an equilibrium
+# with z = p; f_x = [[-1, 0], [1, 0]], null vector e_w): refused, the message naming w
+family = os.path.join(tmp, "family.ode")
+with open(family, "w") as f:
+    f.write("par p=1\ninit z=1, w=0\nz'=p-z\nw'=z-1\ndone\n")
+out = subprocess.run([dynkit, "continue", family, "--par", "p"], capture_output=True, text=True)
+if out.returncode == 0 or "null vector along w;" not in out.stderr:
+    failures.append(f"a family of equilibria along w: exit {out.returncode}, "
+                    f"{out.stderr.strip()!r} (expected a failure naming w)")
+
 # curves in two parameters
 d = run(f"{models}/cusp.ode", "--par", "a", "--par2", "b")
 cps = points(d, "CP") if d else []

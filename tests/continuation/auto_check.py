@@ -4,9 +4,10 @@ file and constants file written here from the same formulas as the .ode file), t
 LP, HB and BP of the equilibrium branch compared, and their parameter values within AUTO's
 own accuracy (EPSS = 1e-7 here: 1e-6 relative). Everything of a failed problem is kept
 under ARTIFACTS/<problem>/. Discrete maps (IPS = -1): auto_maps.py; curves of folds and Hopf
-points in two parameters: auto_curves.py. Exit 77 (skipped) when auto-07p or gfortran is
+points in two parameters: auto_curves.py; period doublings and torus bifurcations:
+auto_cycles.py. Exit 77 (skipped) when auto-07p or gfortran is
 missing.
-Usage: auto_check.py DYNKIT ARTIFACTS"""
+Usage: auto_check.py DYNKIT ARTIFACTS [equilibria|orbits]"""
 import json
 import os
 import shutil
@@ -15,6 +16,7 @@ import sys
 import tempfile
 
 import auto_curves
+import auto_cycles
 import auto_maps
 
 
@@ -236,8 +238,11 @@ def main():
     if not shutil.which("auto-07p") or not shutil.which("gfortran"):
         print("skipped: auto-07p or gfortran is not installed (scripts/install-deps.sh)")
         sys.exit(77)
+    # PART: "equilibria" (the problems here, enz, the maps), "orbits" (the curves in two
+    # parameters and the periodic orbits' PD and TR), or both when not given
+    part = sys.argv[3] if len(sys.argv) > 3 else "all"
     failures = []
-    for name, pb in PROBLEMS.items():
+    for name, pb in (PROBLEMS.items() if part != "orbits" else ()):
         work = tempfile.mkdtemp(prefix=f"auto-{name}-")
         a = run_auto(work, (("pb.f90", fortran(pb)), ("c.pb", constants(pb)),
                             ("run.auto", RUN_AUTO % pb["icp"]), (f"{name}.ode", ode(pb))))
@@ -281,9 +286,12 @@ def main():
             print(f"{name}: {auto} agree")
         shutil.rmtree(work, ignore_errors=True)
 
-    failures += enz_check(dynkit, artifacts)
-    failures += auto_maps.check(dynkit, artifacts, run_auto, fortran)  # discrete maps
-    failures += auto_curves.check(dynkit, artifacts, run_auto, fortran)  # two parameters
+    if part != "orbits":
+        failures += enz_check(dynkit, artifacts)
+        failures += auto_maps.check(dynkit, artifacts, run_auto, fortran)  # discrete maps
+    if part != "equilibria":
+        failures += auto_curves.check(dynkit, artifacts, run_auto, fortran)  # two parameters
+        failures += auto_cycles.check(dynkit, artifacts, run_auto, fortran)  # PD, TR
     for f in failures:
         print("FAIL:", f)
     sys.exit(1 if failures else 0)

@@ -18,67 +18,78 @@ import tempfile
 
 MODELS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "models")
 
-# name: the .ode file and dynkit's arguments, the same model for AUTO-07p (parameters and
-# start as in the file or the --set/--init arguments), the two parameters and their
-# windows, AUTO's steps on the curves, the special points expected with a guess for the
-# 30-digit solve (x, y, p1, p2; the first parameter of the pair as continued)
+# name: the .ode file, the same model for AUTO-07p (parameters and start as in the file),
+# the two parameters (in this order everywhere) and their windows, the special points
+# expected with a guess for the 30-digit solve (x, y, p1, p2), and the runs: dynkit's
+# arguments, the parameter continued first (0 or 1), AUTO-07p's changes to the start and
+# the windows (as --set, --init and --opt change them) and its steps on the curves
 CASES = {
     "cstr": dict(
-        ode="cstr.ode", args=["--par", "d", "--par2", "b"],
-        pars=[("d", 0.0), ("b", 20.0), ("beta", 3.0)], states=[("u1", 0.0), ("u2", 0.0)],
+        ode="cstr.ode", pars=[("d", 0.0), ("b", 20.0), ("beta", 3.0)],
+        states=[("u1", 0.0), ("u2", 0.0)],
         rhs=["-u1+d*(1-u1)*exp(u2)", "-u2+d*b*(1-u1)*exp(u2)-beta*u2"],
-        p=("d", "b"), win=((0.0, 0.5), (0.0, 40.0)), ds=0.01, dsmax=0.05, nmx=1000,
+        p=("d", "b"), win=((0.0, 0.5), (0.0, 40.0)),
         expect={"BT": [(0.25, 1.333, 0.0879, 21.33)], "CP": [(0.5, 2.0, 0.135, 16.0)],
-                "GH": [(0.578, 1.593, 0.279, 11.0)]}),
+                "GH": [(0.578, 1.593, 0.279, 11.0)]},
+        runs=[dict(args=["--par", "d", "--par2", "b"], first=0, ds=0.01, dsmax=0.05,
+                   nmx=1000)]),
     "bazykin": dict(
-        ode="bazykin.ode", args=["--par", "alpha", "--par2", "delta"],
-        pars=[("alpha", 0.3), ("delta", 0.2), ("eps", 0.01), ("gamma", 1.0)],
+        ode="bazykin.ode", pars=[("alpha", 0.3), ("delta", 0.2), ("eps", 0.01), ("gamma", 1.0)],
         states=[("x", 2.1980329113406416), ("y", 1.6229354982507762)],
         rhs=["x-x*y/(1+alpha*x)-eps*x**2", "-gamma*y+x*y/(1+alpha*x)-delta*y**2"],
-        p=("alpha", "delta"), win=((0.0, 1.0), (0.0, 1.0)), ds=0.01, dsmax=0.02, nmx=3000,
+        p=("alpha", "delta"), win=((0.0, 1.0), (0.0, 1.0)),
         expect={"BT": [(6.27, 3.60, 0.4536, 0.1751), (42.69, 21.63, 0.8607, 0.00606)],
                 "CP": [(32.59, 20.47, 0.9012, 0.003568)],
-                "GH": [(48.29, 24.40, 0.9566, 0.00095)]}),
-    # the same model from alpha = 0.95 in delta: its Hopf point's curve reaches the GH point
-    # one way (AUTO-07p stops a Hopf curve at a BT point), the second BT point the other
-    "bazykin_gh": dict(
-        ode="bazykin.ode",
-        args=["--par", "delta", "--par2", "alpha", "--set", "alpha=0.95", "--set", "delta=0",
-              "--init", "x=20", "--init", "y=16", "--opt", "parmax=0.02", "--opt", "dsmax=0.5",
-              "--opt", "nmax=200"],
-        pars=[("delta", 0.0), ("alpha", 0.95), ("eps", 0.01), ("gamma", 1.0)],
-        states=[("x", 20.0), ("y", 16.0)],
-        rhs=["x-x*y/(1+alpha*x)-eps*x**2", "-gamma*y+x*y/(1+alpha*x)-delta*y**2"],
-        p=("delta", "alpha"), win=((0.0, 0.02), (0.0, 1.0)), ds=0.01, dsmax=0.5, nmx=200,
-        expect={"BT": [(42.69, 21.63, 0.00606, 0.8607)], "GH": [(48.29, 24.40, 0.00095, 0.9566)]}),
+                "GH": [(48.29, 24.40, 0.9566, 0.00095)]},
+        runs=[dict(args=["--par", "alpha", "--par2", "delta"], first=0, ds=0.01, dsmax=0.02,
+                   nmx=3000),
+              # from alpha = 0.95 in delta: the Hopf point's curve reaches the GH point one
+              # way (AUTO-07p stops a Hopf curve at a BT point), the second BT point the other
+              dict(args=["--par", "delta", "--par2", "alpha", "--set", "alpha=0.95", "--set",
+                         "delta=0", "--init", "x=20", "--init", "y=16", "--opt", "parmax=0.02",
+                         "--opt", "dsmax=0.5", "--opt", "nmax=200"],
+                   first=1, start="PAR={'alpha': 0.95, 'delta': 0.0}, U={'x': 20.0, 'y': 16.0}",
+                   win=((0.0, 1.0), (0.0, 0.02)), ds=0.01, dsmax=0.5, nmx=200)]),
 }
 
-RUN_AUTO = """r = run(e='pb', c='pb')
+# each run: the first branch in the parameter continued first, then from each of its LP and
+# HB points the curve both ways
+RUN_AUTO = """r = run(e='pb', c='pb', ICP=['%(q1)s'], DS=%(ds)r, DSMAX=%(dsmax)r, NMX=%(nmx)d,
+        UZSTOP={'%(p1)s': %(w1)r, '%(p2)s': %(w2)r}%(start)s)
 for lab in ('LP', 'HB'):
     for s in r(lab):
         for sgn in (1, -1):
-            c = run(s, ISW=2, ICP=['%(p1)s', '%(p2)s'], DS=sgn*%(ds)r, DSMAX=%(dsmax)r, NMX=%(nmx)d)
+            c = run(s, ISW=2, ICP=['%(q1)s', '%(q2)s'], DS=sgn*%(ds)r)
             for p in c():
                 if p['TY'] in ('BT', 'CP', 'GH', 'UZ'):
-                    print('CURVE', lab, p['TY'], repr(p['%(p1)s']), repr(p['%(p2)s']))
+                    print('CURVE', %(k)d, p['TY'], repr(p['%(p1)s']), repr(p['%(p2)s']))
 """
 
 
 def constants(cs):
     pn = ", ".join(f"{i + 1}: '{n}'" for i, (n, _) in enumerate(cs["pars"]))
     un = ", ".join(f"{i + 1}: '{n}'" for i, (n, _) in enumerate(cs["states"]))
-    (lo, hi), (lo2, hi2) = cs["win"]
-    p1, p2 = cs["p"]
     # ITNW = 12, NWTN = 5: with AUTO's usual 7 and 3 its fold curves of bazykin stop (MX)
     # at their second point
     return "\n".join([
         f"parnames = {{{pn}}}", f"unames = {{{un}}}",
-        f"NDIM={len(cs['states'])}, IPS=1, IRS=0, ILP=1", f"ICP=['{p1}']",
+        f"NDIM={len(cs['states'])}, IPS=1, IRS=0, ILP=1", f"ICP=['{cs['p'][0]}']",
         "NTST=15, NCOL=4, IAD=3, ISP=2, ISW=1, IPLT=0, NBC=0, NINT=0",
-        f"NMX={cs['nmx']}, NPR=100000, MXBF=0, IID=0, ITMX=12, ITNW=12, NWTN=5, JAC=0",
+        "NMX=1000, NPR=100000, MXBF=0, IID=0, ITMX=12, ITNW=12, NWTN=5, JAC=0",
         "EPSL=1e-9, EPSU=1e-9, EPSS=1e-7",
-        f"DS={cs['ds']}, DSMIN=1e-5, DSMAX={cs['dsmax']}, IADS=1", "THL={}, THU={}",
-        f"UZSTOP={{'{p1}': [{lo}, {hi}], '{p2}': [{lo2}, {hi2}]}}", ""])
+        "DS=0.01, DSMIN=1e-5, DSMAX=0.05, IADS=1", "THL={}, THU={}", ""])
+
+
+def auto_script(cs):
+    runs = []
+    for k, rn in enumerate(cs["runs"]):
+        q = cs["p"] if rn["first"] == 0 else cs["p"][::-1]
+        w1, w2 = rn.get("win", cs["win"])
+        runs.append(RUN_AUTO % dict(q1=q[0], q2=q[1], p1=cs["p"][0], p2=cs["p"][1],
+                                    w1=list(w1), w2=list(w2), ds=rn["ds"], dsmax=rn["dsmax"],
+                                    nmx=rn["nmx"], k=k,
+                                    start=", " + rn["start"] if "start" in rn else ""))
+    return "".join(runs)
 
 
 def reference(cs):
@@ -154,20 +165,37 @@ def check_case(dynkit, name, cs, run_auto, fortran):
     shutil.copy(os.path.join(MODELS, cs["ode"]), work)
     p1, p2 = cs["p"]
     a = run_auto(work, (("pb.f90", fortran(cs)), ("c.pb", constants(cs)),
-                        ("run.auto", RUN_AUTO % dict(p1=p1, p2=p2, ds=cs["ds"],
-                                                      dsmax=cs["dsmax"], nmx=cs["nmx"]))))
-    auto = [(l.split()[2], float(l.split()[3]), float(l.split()[4]))
+                        ("run.auto", auto_script(cs))))
+    auto = [(int(l.split()[1]), l.split()[2], float(l.split()[3]), float(l.split()[4]))
             for l in a.stdout.splitlines() if l.startswith("CURVE ")]
-    d = subprocess.run([dynkit, "continue", cs["ode"], "--json", *cs["args"]], cwd=work,
-                       capture_output=True, text=True)
-    with open(os.path.join(work, "dynkit.json"), "w") as f:
-        f.write(d.stdout + d.stderr)
-    problems = []
-    if d.returncode != 0 or a.returncode != 0:
-        return work, [f"exit statuses: dynkit {d.returncode}, auto-07p {a.returncode}"]
-    curves = [b for b in json.loads(d.stdout)["branches"] if b["kind"] in ("fold", "hopf")]
-    ours = [(p["label"], p[p1], p[p2]) for b in curves for p in b["points"]
-            if p["label"] in ("BT", "CP", "GH")]
+    if a.returncode != 0:
+        return work, [f"auto-07p's exit status {a.returncode}"]
+    problems, ours, ends = [], [], 0
+    for k, rn in enumerate(cs["runs"]):
+        d = subprocess.run([dynkit, "continue", cs["ode"], "--json", *rn["args"]], cwd=work,
+                           capture_output=True, text=True)
+        with open(os.path.join(work, f"dynkit{k}.json"), "w") as f:
+            f.write(d.stdout + d.stderr)
+        if d.returncode != 0:
+            problems.append(f"dynkit {' '.join(rn['args'])}: exit status {d.returncode}")
+            continue
+        curves = [b for b in json.loads(d.stdout)["branches"] if b["kind"] in ("fold", "hopf")]
+        ours += [(p["label"], p[p1], p[p2]) for b in curves for p in b["points"]
+                 if p["label"] in ("BT", "CP", "GH")]
+        # where a curve ends on a bound of a parameter, AUTO-07p's curve ends there too (a
+        # Hopf curve only before any BT point: AUTO-07p ends it there, dynkit goes on as
+        # neutral saddles and, past a second BT point, as Hopf points again)
+        (lo1, hi1), (lo2, hi2) = rn.get("win", cs["win"])
+        bounds = [(p1, lo1), (p1, hi1), (p2, lo2), (p2, hi2)]
+        for b in curves:
+            e = b["points"][-1]
+            if e["label"] != "EP" or not any(abs(e[n] - v) < 1e-9 for n, v in bounds) or (
+                    b["kind"] == "hopf" and any(p["label"] == "BT" for p in b["points"])):
+                continue
+            ends += 1
+            theirs = [(v, w) for j, l, v, w in auto if j == k and l == "UZ"]
+            if not any(near(t, (e[p1], e[p2]), 1e-6) for t in theirs):
+                problems.append(f"the curve's end at {(e[p1], e[p2])}: AUTO-07p's {theirs}")
     ref = reference(cs)
     # every special point dynkit finds is one of the 30-digit ones, and each of those found
     for lab, v, w in ours:
@@ -179,7 +207,7 @@ def check_case(dynkit, name, cs, run_auto, fortran):
                 problems.append(f"{lab} at {r} (30 digits) not found")
     # AUTO-07p's BT and CP within 1e-6 of dynkit's, and dynkit's each found by AUTO-07p
     for lab in ("BT", "CP"):
-        theirs = [(v, w) for l, v, w in auto if l == lab]
+        theirs = [(v, w) for _, l, v, w in auto if l == lab]
         mine = [(v, w) for l, v, w in ours if l == lab]
         for t in theirs:
             if not any(near(t, m, 1e-6) for m in mine):
@@ -187,23 +215,11 @@ def check_case(dynkit, name, cs, run_auto, fortran):
         for m in mine:
             if not any(near(m, t, 1e-6) for t in theirs):
                 problems.append(f"dynkit's {lab} at {m} is none of AUTO-07p's {theirs}")
-    # where a curve ends on a bound of a parameter, AUTO-07p's curve ends there too (a Hopf
-    # curve only before any BT point: AUTO-07p ends it there, dynkit goes on as neutral
-    # saddles and, past a second BT point, as Hopf points again)
-    bounds = [(p1, v) for v in cs["win"][0]] + [(p2, v) for v in cs["win"][1]]
-    ends = [(b["points"][-1][p1], b["points"][-1][p2]) for b in curves
-            if b["points"][-1]["label"] == "EP"
-            and any(abs(b["points"][-1][n] - v) < 1e-9 for n, v in bounds)
-            and not (b["kind"] == "hopf" and any(p["label"] == "BT" for p in b["points"]))]
-    for e in ends:
-        if not any(near((v, w), e, 1e-6) for l, v, w in auto if l == "UZ"):
-            problems.append(f"the curve's end at {e}: AUTO-07p's ends "
-                            f"{[(v, w) for l, v, w in auto if l == 'UZ']}")
-    gh = [(v, w) for l, v, w in auto if l == "GH"]
+    gh = [(v, w) for _, l, v, w in auto if l == "GH"]
     print(f"{name}: BT {sorted(set((round(v, 12), round(w, 12)) for l, v, w in ours if l == 'BT'))}"
           f", CP {[(v, w) for l, v, w in ours if l == 'CP'][:1]}, GH "
           f"{[(v, w) for l, v, w in ours if l == 'GH']} (AUTO-07p's GH {gh}), "
-          f"{len(ends)} curve ends compared")
+          f"{ends} curve ends compared")
     return work, problems
 
 

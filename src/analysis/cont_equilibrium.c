@@ -304,6 +304,50 @@ static int switch_at(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int
     return rc == 1 ? 0 : rc;
 }
 
+/* Switch at the PD `k` of branch bi of a map (points of period cm->period): the points of
+ * twice the period leave the branch along the eigenvector of the multiplier -1 (Kuznetsov,
+ * Elements, sec. 4.4), followed one way, as AUTO-07p's ISW = -1 does (the other way is the
+ * other point of the same cycles); their first point is labelled PD. */
+static int switch_pd(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int bi, long k,
+                     cont_work *w, char *note, size_t note_len)
+{
+    const int n = cm->n, M = n + 1, period = cm->period;
+    const dyn_branch *b = &d->branches[bi];
+    if (2 * period > CONT_MAP_MAX_PERIOD) {
+        add_note(note, note_len, "the points of period %d from the PD at %.40s = %.12g are not "
+                 "followed (at most period %d)", 2 * period, cm->m->params[o->ip].name,
+                 b->pts[k].par[0], CONT_MAP_MAX_PERIOD);
+        return 0;
+    }
+    double *buf = malloc((2 * (size_t)M + 2 * (size_t)n * (size_t)n) * sizeof *buf);
+    if (!buf)
+        return -1;
+    double *z = buf, *v = z + M, *J = v + M, *G = J + (size_t)n * (size_t)n;
+    branch_point(b, k, z);
+    const int parent = b->id;
+    /* the null vector of dF^k/dy + I = (dF^k/dy - I) + 2 I */
+    int rc = cont_model_set(cm, z[n], NAN) || cont_model_jx(cm, z, J, n);
+    for (int i = 0; i < n && !rc; i++)
+        J[(size_t)i * (size_t)n + (size_t)i] += 2.0;
+    if (!rc)
+        rc = cont_normal_factor(J, n, n, 0, G) || cont_inverse_iteration(G, n, 1, 4, v);
+    if (rc) {
+        add_note(note, note_len, "no branch of period %d from the PD at %.40s = %.12g: its "
+                 "eigenvector was not found", 2 * period, cm->m->params[o->ip].name, z[n]);
+        free(buf);
+        return 0;
+    }
+    v[n] = 0.0;
+    cm->period = 2 * period;
+    const int first = d->count;
+    rc = follow_branch(cm, o, d, z, v, DYN_LABEL_BP, parent, k, w);
+    if (d->count > first && d->branches[first].count > 0)
+        d->branches[first].pts[0].label = DYN_LABEL_PD;
+    cm->period = period;
+    free(buf);
+    return rc == 1 ? 0 : rc;
+}
+
 static int fail(dyn_cont_info *info, int status, const char *fmt, const char *what)
 {
     if (info)
@@ -473,13 +517,21 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
     for (int bi = 0; rc == 0 && !o->no_switch && bi < d->count; bi++) {
         if (d->branches[bi].kind != DYN_BRANCH_EQUILIBRIUM)
             continue;
+        if (o->map && d->branches[bi].count > 0) /* a map's branch: its points' period */
+            cm.period = (int)d->branches[bi].pts[0].period;
         for (long k = 0; rc == 0 && k < d->branches[bi].count; k++) {
-            if (d->branches[bi].pts[k].label != DYN_LABEL_BP || d->count >= o->max_branches)
+            const dyn_cont_label l = d->branches[bi].pts[k].label;
+            /* a branch's first point labelled PD is where it was born */
+            if ((l != DYN_LABEL_BP && (l != DYN_LABEL_PD || !o->map ||
+                                       (k == 0 && d->branches[bi].parent > 0))) ||
+                d->count >= o->max_branches)
                 continue;
-            if (switch_at(&cm, o, d, bi, k, &w, note, sizeof note))
+            if (l == DYN_LABEL_BP ? switch_at(&cm, o, d, bi, k, &w, note, sizeof note)
+                                  : switch_pd(&cm, o, d, bi, k, &w, note, sizeof note))
                 rc = DYN_ERR_ARG;
         }
     }
+    cm.period = 1;
     /* periodic orbits from the Hopf points, then the curves in two parameters */
     const int n_eq = d->count;
     for (int bi = 0; rc == 0 && bi < n_eq; bi++)

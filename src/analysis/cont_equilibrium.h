@@ -9,14 +9,19 @@
 
 #include "cont_core.h"
 
+/* a map's cycles born at period doublings are followed up to this period */
+#define CONT_MAP_MAX_PERIOD 16
+
 typedef struct cont_model {
     const dyn_model *m;
     int n;
     double t;
     dyn_jac_scheme jac;
     int ip, ip2;          /* the parameters (ip2 -1: one) */
-    int map;              /* 1: a discrete map: f is F(x) - x, J is dF/dx - I, and the
-                           * eigenvalues are the multipliers (of dF/dx) */
+    int map;              /* 1: a discrete map: f is F^period(x) - x, J is its Jacobian
+                           * and the eigenvalues are the multipliers (of dF^period/dx) */
+    int period;           /* a map's iterations: 1 (fixed points), 2, 4, ... (cycles) */
+    double *map_work;     /* a map's iterates and Jacobians (cont_map.c) */
     void *par;            /* (par_size bytes) the working copy */
     double p_set[2];      /* the values par is prepared for */
     double p2_base;       /* ip2's value in the caller's par (NAN p2: this one) */
@@ -50,6 +55,10 @@ int cont_model_store(cont_model *cm, dyn_branch *b, const double *x, double p, d
  * whether they make a fixed point asymptotically stable (every |mu| < 1 - tol); the angle
  * arg mu in (0, pi) of the complex pair nearest the unit circle (NAN when none). */
 void cont_map_tests(const cont_model *cm, double *psi, int *count);
+/* F^period(x) into y (cm->period > 1), the right-hand side counted: 0 or non-zero */
+int cont_map_iterate(cont_model *cm, const double *x, double *y);
+/* dF^period/dx at x into A (n x n) by the chain rule over the iterates: 0 or non-zero */
+int cont_map_jacobian(cont_model *cm, const double *x, double *A);
 int cont_map_stable(const cont_model *cm, double tol);
 double cont_map_angle(const cont_model *cm);
 

@@ -8,9 +8,13 @@
  * crosses -1, psi = det(I + dF/dy) = prod (1 + mu), with the number of real multipliers
  * below -1; a Neimark-Sacker point (labelled TR, as AUTO-07p labels it for maps) where a
  * complex pair crosses the unit circle, psi = |mu| - 1 of the complex pair nearest the
- * circle, with the number of complex multipliers outside it. */
+ * circle, with the number of complex multipliers outside it. The points of period k born at
+ * period doublings are the fixed points of F^k, its Jacobian the product of dF/dy along the
+ * orbit. */
 #include <float.h>
 #include <math.h>
+#include <stdio.h>
+#include <string.h>
 
 #include "cont_equilibrium.h"
 
@@ -58,6 +62,59 @@ void cont_map_tests(const cont_model *cm, double *psi, int *count)
             best = d;
     }
     psi[1] = best;
+}
+
+int cont_map_iterate(cont_model *cm, const double *x, double *y)
+{
+    const size_t n = (size_t)cm->n;
+    const double *from = x;
+    for (int j = 0; j < cm->period; j++) {
+        double *to = j == cm->period - 1 ? y : cm->map_work + (size_t)(j % 2) * n;
+        cm->rhs_calls++;
+        if (cm->m->rhs(cm->t, from, to, cm->par)) {
+            snprintf(cm->message, sizeof cm->message, "the right-hand side failed");
+            return -1;
+        }
+        from = to;
+    }
+    return 0;
+}
+
+int cont_map_jacobian(cont_model *cm, const double *x, double *A)
+{
+    const int n = cm->n;
+    const size_t N = (size_t)n;
+    double *y = cm->map_work, *P = y + 2 * N, *B = P + N * N, *T = B + N * N;
+    const dyn_linearize_opts lo = {cm->jac, NULL};
+    dyn_linearize_info info;
+    memcpy(y, x, N * sizeof *y);
+    for (int j = 0; j < cm->period; j++) {
+        if (dyn_linearize(cm->m, cm->t, y, cm->par, &lo, j ? B : P, cm->lin_work, &info)) {
+            snprintf(cm->message, sizeof cm->message, "%s", info.message);
+            return -1;
+        }
+        cm->rhs_calls += info.rhs_calls;
+        if (j) { /* P <- dF(y_j) P */
+            for (size_t r = 0; r < N; r++)
+                for (size_t c = 0; c < N; c++) {
+                    double sum = 0.0;
+                    for (size_t q = 0; q < N; q++)
+                        sum += B[r * N + q] * P[q * N + c];
+                    T[r * N + c] = sum;
+                }
+            memcpy(P, T, N * N * sizeof *P);
+        }
+        if (j + 1 < cm->period) { /* the next iterate, in place through y + N */
+            cm->rhs_calls++;
+            if (cm->m->rhs(cm->t, y, y + N, cm->par)) {
+                snprintf(cm->message, sizeof cm->message, "the right-hand side failed");
+                return -1;
+            }
+            memcpy(y, y + N, N * sizeof *y);
+        }
+    }
+    memcpy(A, P, N * N * sizeof *A);
+    return 0;
 }
 
 int cont_map_stable(const cont_model *cm, double tol)

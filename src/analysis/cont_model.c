@@ -24,7 +24,10 @@ int cont_model_init(cont_model *cm, const dyn_model *m, const void *par, const d
     cm->ip = o->ip;
     cm->ip2 = o->ip2;
     cm->map = o->map;
+    cm->period = 1;
     const size_t n = (size_t)cm->n;
+    if (o->map && !(cm->map_work = malloc((2 * n + 3 * n * n) * sizeof *cm->map_work)))
+        return -1;
     cm->par = malloc(m->par_size ? m->par_size : 1);
     cm->f = malloc((5 * n + 2 * n * n + dyn_linearize_work_size(cm->n)) * sizeof *cm->f);
     if (!cm->par || !cm->f) {
@@ -49,8 +52,10 @@ void cont_model_free(cont_model *cm)
 {
     free(cm->par);
     free(cm->f);
+    free(cm->map_work);
     cm->par = NULL;
     cm->f = NULL;
+    cm->map_work = NULL;
 }
 
 int cont_model_set(cont_model *cm, double p, double p2)
@@ -74,8 +79,10 @@ int cont_model_set(cont_model *cm, double p, double p2)
 
 int cont_model_f(cont_model *cm, const double *x, double *f)
 {
-    cm->rhs_calls++;
-    if (cm->m->rhs(cm->t, x, f, cm->par)) {
+    if (cm->map && cm->period > 1) {
+        if (cont_map_iterate(cm, x, f))
+            return -1;
+    } else if (cm->rhs_calls++, cm->m->rhs(cm->t, x, f, cm->par)) {
         snprintf(cm->message, sizeof cm->message, "the right-hand side failed");
         return -1;
     }
@@ -97,7 +104,11 @@ int cont_model_jx(cont_model *cm, const double *x, double *J, int ld)
     dyn_linearize_info info;
     const int n = cm->n;
     double *A = ld == n ? J : cm->eig_a;
-    if (dyn_linearize(cm->m, cm->t, x, cm->par, &lo, A, cm->lin_work, &info)) {
+    if (cm->map && cm->period > 1) {
+        if (cont_map_jacobian(cm, x, A))
+            return -1;
+        info.rhs_calls = 0;
+    } else if (dyn_linearize(cm->m, cm->t, x, cm->par, &lo, A, cm->lin_work, &info)) {
         snprintf(cm->message, sizeof cm->message, "%s", info.message);
         return -1;
     }
@@ -144,7 +155,7 @@ int cont_model_store(cont_model *cm, dyn_branch *b, const double *x, double p, d
     pt.label = label;
     pt.par[0] = p;
     pt.par[1] = b->n_par == 2 ? p2 : NAN;
-    pt.period = NAN;
+    pt.period = cm->map ? cm->period : NAN; /* a map's: its points' period in iterations */
     pt.l1 = l1;
     pt.omega = omega;
     pt.stable = -1;

@@ -2,7 +2,9 @@
 .ode file with x(t+1)= lines and @ meth=discrete): the labels BP, LP, PD and TR of the first
 branch compared, their parameter values within 1e-6 relative (EPSS = 1e-7 here). Called by
 auto_check.py, whose run_auto and fortran it uses; everything of a failed problem is kept
-under ARTIFACTS/continuation-auto-map-<problem>/."""
+under ARTIFACTS/continuation-auto-map-<problem>/. The logistic map's cascade: the first
+four PDs of the cycles of period 1, 2, 4, 8, each switched to at the PD before, as AUTO-07p's
+demo log does."""
 import json
 import os
 import shutil
@@ -72,8 +74,56 @@ def near(v, w):
     return abs(v - w) <= 1e-6 * max(1.0, abs(w))
 
 
+# the logistic map's period-doubling cascade: AUTO-07p's demo log switches at each PD to the
+# cycles of twice the period (ISW = -1), four times here; dynkit follows every PD the same
+# way: the first PD of the branches of period 1, 2, 4, 8 compared
+CASCADE = dict(pars=[("mu", 2.5)], states=[("x", 0.6)], rhs=["mu*x*(1-x)"], icp="mu",
+               ds=0.001, dsmax=0.02, range=(2.0, 3.6))
+RUN_CASCADE = """r = run(e='pb', c='pb', DSMIN=0.0001)
+for i in range(4):
+    p = r('PD1')
+    print('LABEL', 'PD', repr(p['mu']))
+    r = run(p, ISW=-1, SP=['BP0'])
+"""
+
+
+def cascade(dynkit, artifacts, run_auto, fortran):
+    work = tempfile.mkdtemp(prefix="auto-map-cascade-")
+    pb = CASCADE
+    a = run_auto(work, (("pb.f90", fortran(pb)), ("c.pb", constants(pb)),
+                        ("run.auto", RUN_CASCADE), ("cascade.ode", ode(pb))))
+    auto = [float(l.split()[2]) for l in a.stdout.splitlines() if l.startswith("LABEL ")]
+    d = subprocess.run([dynkit, "continue", "cascade.ode", "--par", "mu", "--json"], cwd=work,
+                       capture_output=True, text=True)
+    with open(os.path.join(work, "dynkit.json"), "w") as f:
+        f.write(d.stdout + d.stderr)
+    problems = []
+    if d.returncode != 0 or a.returncode != 0 or len(auto) != 4:
+        problems.append(f"exit statuses: dynkit {d.returncode}, auto-07p {a.returncode}; "
+                        f"AUTO-07p's PDs {auto}")
+    else:
+        ours = []
+        for period in (1, 2, 4, 8):
+            pds = [p["mu"] for b in json.loads(d.stdout)["branches"] for k, p in
+                   enumerate(b["points"]) if p["label"] == "PD" and p["period"] == period
+                   and k > 0]
+            ours.append(pds[0] if pds else None)
+        if not all(v is not None and near(v, w) for v, w in zip(ours, auto)):
+            problems.append(f"the cascade's PDs: dynkit {ours}, AUTO-07p {auto}")
+    if problems:
+        dest = os.path.join(artifacts, "continuation-auto-map-cascade")
+        shutil.rmtree(dest, ignore_errors=True)
+        os.makedirs(artifacts, exist_ok=True)
+        shutil.copytree(work, dest)
+        problems = [f"map cascade: {p} (kept in {dest})" for p in problems]
+    else:
+        print(f"map cascade: {auto} agree")
+    shutil.rmtree(work, ignore_errors=True)
+    return problems
+
+
 def check(dynkit, artifacts, run_auto, fortran):
-    failures = []
+    failures = cascade(dynkit, artifacts, run_auto, fortran)
     for name, pb in MAPS.items():
         work = tempfile.mkdtemp(prefix=f"auto-map-{name}-")
         a = run_auto(work, (("pb.f90", fortran(pb)), ("c.pb", constants(pb)),

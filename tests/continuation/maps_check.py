@@ -5,9 +5,10 @@ The logistic map x -> r x (1 - x): every point on x = 1 - 1/r with multiplier 2 
 for 1 < r < 3, the period doubling PD at r = 3 (x = 2/3, multiplier -1); the branch point BP
 at r = 1, x = 0 and the branch x = 0 switched to, with multiplier r, stable for r < 1. Henon's
 map (1 - a x^2 + y, b x): the fold LP at a = -(1 - b)^2/4 and PD at a = 3 (1 - b)^2/4 for two
-values of b. The delayed logistic map (r x (1 - y), x): the Neimark-Sacker point, labelled
-TR, at r = 2 with the multipliers exp(+-i pi/3) there. A second parameter on a map is
-refused with a message. Usage: maps_check.py DYNKIT MODELS_DIR"""
+values of b, its 2-cycle's PD at a = 73/80 for b = 0.3. The delayed logistic map (r x (1 - y), x): the Neimark-Sacker point, labelled
+TR, at r = 2 with the multipliers exp(+-i pi/3) there. The logistic map's cycles born at
+each PD (period 2 on its closed form, doubling at 1 + sqrt(6); periods 4, 8, 16 doubling at
+the cascade's known values). A second parameter on a map is refused with a message. Usage: maps_check.py DYNKIT MODELS_DIR"""
 import cmath
 import json
 import math
@@ -36,7 +37,9 @@ def check(what, got, want, tol):
 
 
 def labelled(d, label):
-    return [(b, p) for b in d["branches"] for p in b["points"] if p["label"] == label]
+    """the points labelled so among the fixed points (period 1)"""
+    return [(b, p) for b in d["branches"] for p in b["points"]
+            if p["label"] == label and p["period"] == 1]
 
 
 def one(d, label, what):
@@ -85,6 +88,40 @@ if p:
             if q["label"] != "BP" and q["stable"] != (r < 1.0):
                 failures.append(f"logistic: x = 0 stable = {q['stable']} at r = {r}")
 
+# ---- the logistic map's cascade: the points of period 2 born at r = 3, on
+# x = ((r + 1) +- sqrt((r + 1)(r - 3))) / (2 r) with multiplier 4 + 2 r - r^2 (of F o F),
+# doubling again at 1 + sqrt(6); then the periods 4, 8, 16 doubling at Feigenbaum's values
+# of the cascade (r3 = 3.5440903595519..., r4 = 3.5644072660954..., r5 = 3.5687594195...)
+d = run("logistic_map.ode", "--par", "r", "--opt", "parmin=0.5", "--opt", "parmax=3.6")
+if d:
+    by_period = {}
+    for b in d["branches"]:
+        by_period.setdefault(b["points"][0]["period"], []).append(b)
+    if sorted(by_period) != [1, 2, 4, 8, 16] or any(len(v) != 1 for v in by_period.values()):
+        failures.append(f"logistic cascade: branches of periods "
+                        f"{[(k, len(v)) for k, v in sorted(by_period.items())]}, expected one "
+                        "each of 1, 2, 4, 8, 16")
+    for q in by_period.get(2, [{}])[0].get("points", []):
+        r, x = q["r"], q["state"]["x"]
+        root = math.sqrt(max((r + 1) * (r - 3), 0.0))
+        want = min(((r + 1) + root) / (2 * r), ((r + 1) - root) / (2 * r),
+                   key=lambda w: abs(w - x))
+        check(f"logistic period 2: x at r = {r}", x, want, 1e-8)
+        if q["label"] == "":
+            check(f"logistic period 2: multiplier at r = {r}", multipliers(q)[0].real,
+                  4 + 2 * r - r * r, 1e-6)
+            if q["stable"] != (3 < r < 1 + math.sqrt(6)):
+                failures.append(f"logistic period 2: stable = {q['stable']} at r = {r}")
+    for period, want in ((2, 1 + math.sqrt(6)), (4, 3.5440903595519), (8, 3.5644072660954),
+                         (16, 3.5687594195)):
+        pds = [p["r"] for b in by_period.get(period, []) for k, p in enumerate(b["points"])
+               if p["label"] == "PD" and k > 0]
+        if len(pds) != 1:
+            failures.append(f"logistic period {period}: PDs {pds}, expected one")
+        else:
+            check(f"logistic period {period}: r at PD", pds[0], want,
+                  1e-10 if period < 16 else 1e-9)
+
 # ---- Henon's map: the fold and the period doubling of its fixed points
 for b in (0.3, -0.4):
     sets = ["--set", f"b={b}"]
@@ -97,6 +134,14 @@ for b in (0.3, -0.4):
         check(f"Henon b = {b}: largest multiplier at LP", max(m.real for m in multipliers(p)),
               1.0, 1e-7)
     d = run("henon_map.ode", "--par", "a", *sets, "--opt", "parmin=-1", "--opt", "parmax=2")
+    if d and b == 0.3:
+        # the 2-cycle's PD: 1 + tr(dF(x2) dF(x1)) + b^2 = 0 on the cycle, a = 73/80 (SymPy)
+        pds = [p["a"] for br in d["branches"] for k, p in enumerate(br["points"])
+               if p["label"] == "PD" and p["period"] == 2 and k > 0]
+        if len(pds) != 1:
+            failures.append(f"Henon b = 0.3: the 2-cycle's PDs {pds}, expected one")
+        else:
+            check("Henon b = 0.3: a at the 2-cycle's PD", pds[0], 73 / 80, 1e-10)
     p = one(d, "PD", f"Henon b = {b}: PD")
     if p:
         check(f"Henon b = {b}: a at PD", p["a"], 3 * (1 - b) ** 2 / 4, 1e-10)

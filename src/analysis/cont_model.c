@@ -79,12 +79,15 @@ int cont_model_set(cont_model *cm, double p, double p2)
 
 int cont_model_f(cont_model *cm, const double *x, double *f)
 {
-    if (cm->map && cm->period > 1) {
+    if (cm->map && cm->period > 1) { /* a map's cycles: F^period (cont_map.c) */
         if (cont_map_iterate(cm, x, f))
             return -1;
-    } else if (cm->rhs_calls++, cm->m->rhs(cm->t, x, f, cm->par)) {
-        snprintf(cm->message, sizeof cm->message, "the right-hand side failed");
-        return -1;
+    } else {
+        cm->rhs_calls++;
+        if (cm->m->rhs(cm->t, x, f, cm->par)) {
+            snprintf(cm->message, sizeof cm->message, "the right-hand side failed");
+            return -1;
+        }
     }
     for (int i = 0; i < cm->n; i++) {
         if (cm->map)

@@ -115,6 +115,9 @@ typedef struct po_tests {
  * and TR (AUTO-07p's FNSPBV: detection stops beyond 5e-2) */
 #define PO_TRIVIAL_TOL 5e-2
 
+/* the largest correction of a step, in steps (see the loop) */
+#define PO_JUMP 2.0
+
 static void tests_of(const double *re, const double *im, int n, double dlambda, int have,
                      po_tests *t)
 {
@@ -323,6 +326,24 @@ static int step(po_run *r, const dyn_colloc_sol *x0, const dyn_colloc_sol *t0, d
     if (st)
         dyn_colloc_sol_free(x);
     return st;
+}
+
+/* the corrector's distance from the predictor x0 + ds t0 to x (the collocation norm with
+ * the period and parameter), or -1 without memory */
+static double correction(const dyn_colloc_sol *x0, const dyn_colloc_sol *t0, double ds,
+                         const dyn_colloc_sol *x)
+{
+    dyn_colloc_sol d;
+    if (dyn_colloc_sol_copy(&d, x))
+        return -1.0;
+    const long N = dyn_colloc_nodes(x0) * x0->n;
+    for (long i = 0; i < N; i++)
+        d.u[i] -= x0->u[i] + ds * t0->u[i];
+    for (int k = 0; k < x0->npar; k++)
+        d.par[k] -= x0->par[k] + ds * t0->par[k];
+    const double c = sqrt(dyn_colloc_dot(&d, &d));
+    dyn_colloc_sol_free(&d);
+    return c;
 }
 
 /* the mean over [0, 1] of the states of x into mean (n doubles), by the trapezoidal rule
@@ -558,6 +579,14 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
     while (b->npoints < nmax) {
         dyn_colloc_info inf;
         st = step(r, x, t, ds, &xn, &tn, &inf);
+        /* a corrector that went farther from the predictor than twice the step went over
+         * to other orbits (Morris-Lecar's small cycles near their Hopf point jumped onto the
+         * large ones): the step is halved as after a failure */
+        if (!st && correction(x, t, ds, &xn) > PO_JUMP * fabs(ds)) {
+            dyn_colloc_sol_free(&xn);
+            dyn_colloc_sol_free(&tn);
+            st = DYN_COLLOC_ERR_NEWTON;
+        }
         if (st) {
             if (st == DYN_COLLOC_ERR_NOMEM)
                 break;

@@ -1,5 +1,8 @@
 #!/usr/bin/env python3
-"""Periodic orbits of dynkit continue against AUTO-07p: the torus bifurcation (TR) on the
+"""Periodic orbits of dynkit continue against AUTO-07p: Morris-Lecar's classes II and I and
+Sel'kov's glycolysis (their Hopf points, folds of cycles, and the cycles from the first
+Hopf point ended at the second where there is one; Sel'kov's Hopf points in closed form);
+the torus bifurcation (TR) on the
 cycles of Langford's system (tests/continuation/models/langford.ode), where with eta = 0
 it has a closed form, and with eta = 0.1 (Aizawa's attractor) where it has none; the
 period doublings of Chua's circuit (chua.ode, AUTO-07p's demo chu from an outer
@@ -38,6 +41,34 @@ CASES = {
                                    "TR": (A - B * B) * (1 + E * B) / E - A * B + B ** 3 / 3},
                    period=2 * math.pi / 3.5),
               dict(args=["--set", "eta=0.1"], start="PAR={'eta': 0.1}")]),
+    # Morris-Lecar's classes II and I (PAR(11) is AUTO-07p's period: the parameters after
+    # the tenth move up by three); AUTO-07p's cycles go on through the second Hopf point (a
+    # BP there) and back, dynkit's end there
+    "morris_lecar": dict(
+        ode="morris_lecar.ode", icp="i", range=(-100.0, 300.0), ntst=60, nmx=300, nmx1=300,
+        eq_ds=0.1, ds=0.5, dsmax=2.0, upto_bp=True,
+        pars=[("i", 0.0), ("cm", 20.0), ("gca", 4.4), ("gk", 8.0), ("gl", 2.0),
+              ("vca", 120.0), ("vk", -84.0), ("vl", -60.0), ("v1", -1.2), ("v2", 18.0),
+              ("unused11", 0.0), ("unused12", 0.0), ("unused13", 0.0), ("v3", 2.0),
+              ("v4", 30.0), ("phi", 0.04)],
+        states=[("v", -60.85538223230949), ("w", 0.014915024953999372)],
+        rhs=["(i-gl*(v-vl)-gca*0.5d0*(1+tanh((v-v1)/v2))*(v-vca)-gk*w*(v-vk))/cm",
+             "phi*(0.5d0*(1+tanh((v-v3)/v4))-w)*cosh((v-v3)/(2*v4))"],
+        runs=[dict(args=[], hopf_end=True),
+              dict(args=["--set", "gca=4", "--set", "v3=12", "--set", "v4=17.4", "--set",
+                         "phi=0.0666666666666667", "--init", "v=-59.47399786678871", "--init",
+                         "w=0.00027038262491296935"],
+                   start="PAR={'gca': 4.0, 'v3': 12.0, 'v4': 17.4, 'phi': 0.0666666666666667}, "
+                         "U={'v': -59.47399786678871, 'w': 0.00027038262491296935}",
+                   nmx1=60)]),
+    "selkov": dict(
+        ode="selkov.ode", icp="b", range=(0.1, 1.2), ntst=40, nmx=300, nmx1=300, eq_ds=0.01,
+        ds=0.01, dsmax=0.1, upto_bp=True, pars=[("b", 0.1), ("a", 0.08)],
+        states=[("x", 0.1), ("y", 1.1111111111111112)],
+        rhs=["-x+a*y+x**2*y", "b-a*y-x**2*y"],
+        runs=[dict(args=[], hopf_end=True,
+                   exact={"HB": [math.sqrt((1 - 0.16 - math.sqrt(1 - 0.64)) / 2),
+                                 math.sqrt((1 - 0.16 + math.sqrt(1 - 0.64)) / 2)]})]),
     # the first periodic run of AUTO-07p to its PD only (point 30 of 35), the doubled
     # branch to its second fold (point 55 of 60)
     "chua": dict(
@@ -53,7 +84,7 @@ for p in r('HB'):
     print('LABEL', %(k)d, 'EQ HB', repr(p['%(icp)s']), 0)
 ps = run(r('HB')[0], IPS=2, ICP=['%(icp)s', 11], NMX=%(nmx1)d, DS=%(ds)r, DSMAX=%(dsmax)r)
 for p in ps():
-    if p['TY'] in ('LP', 'PD', 'TR'):
+    if p['TY'] in ('LP', 'PD', 'TR', 'BP'):
         print('LABEL', %(k)d, 'PO', p['TY'], repr(p['%(icp)s']), repr(p['PAR(11)']))
 if %(switch)r:
     d = run(ps('PD')[0], ISW=-1, NMX=%(nmx)d, DS=%(ds)r, DSMAX=%(dsmax)r)
@@ -64,7 +95,8 @@ if %(switch)r:
 
 
 def constants(cs):
-    pn = ", ".join(f"{i + 1}: '{n}'" for i, (n, _) in enumerate(cs["pars"]))
+    pn = ", ".join(f"{i + 1}: '{n}'" for i, (n, _) in enumerate(cs["pars"])
+                   if not n.startswith("unused"))
     un = ", ".join(f"{i + 1}: '{n}'" for i, (n, _) in enumerate(cs["states"]))
     lo, hi = cs["range"]
     return "\n".join([
@@ -91,7 +123,8 @@ def check_case(dynkit, name, cs, run_auto, fortran):
     work = tempfile.mkdtemp(prefix=f"auto-cycles-{name}-")
     shutil.copy(os.path.join(MODELS, cs["ode"]), work)
     icp = cs["icp"]
-    script = "".join(RUN_AUTO % dict(icp=icp, nmx=cs["nmx"], nmx1=cs["nmx1"], ds=cs["ds"],
+    script = "".join(RUN_AUTO % dict(icp=icp, nmx=cs["nmx"], nmx1=rn.get("nmx1", cs["nmx1"]),
+                                     ds=cs["ds"],
                                      dsmax=cs["dsmax"], switch=cs.get("switch", False), k=k,
                                      start=", " + rn["start"] if "start" in rn else "")
                      for k, rn in enumerate(cs["runs"]))
@@ -126,10 +159,24 @@ def compare(cs, rn, branches, auto, summary):
     cycles = next(b for b in branches if b["kind"] == "periodic" and b["parent"] == 1)
     po = [(p["label"], p[icp], p["period"]) for p in cycles["points"]
           if p["label"] in ("LPC", "PD", "TR")]
-    same("the cycles from the Hopf point", po, auto.get("PO", []), problems)
+    theirs = auto.get("PO", [])
+    if cs.get("upto_bp"):
+        # AUTO-07p's cycles go on through the second Hopf point (a BP) and back along the
+        # same family: its labels up to the first that repeats one (the BP aside)
+        once = []
+        for x in theirs:
+            if x[0] != "BP" and any(y[0] == x[0] and near(x[1], y[1]) for y in once):
+                break
+            once += [x] if x[0] != "BP" else []
+        theirs = once
+    same("the cycles from the Hopf point", po, theirs, problems)
+    if rn.get("hopf_end") and not cycles["stop"].startswith("the orbit shrank to the HB at"):
+        problems.append(f"the cycles from the first Hopf point stopped: {cycles['stop']}, "
+                        "not at the second")
     for lab, want in rn.get("exact", {}).items():
         got = [v for l, v, _ in hb + po if l == lab]
-        if len(got) != 1 or not near(got[0], want, 1e-9):
+        want = want if isinstance(want, list) else [want]
+        if len(got) != len(want) or not all(near(g, x, 1e-9) for g, x in zip(got, want)):
             problems.append(f"{lab} at {got}, exactly {want!r}")
     if "period" in rn and not all(near(p["period"], rn["period"], 1e-9)
                                   for p in cycles["points"]):

@@ -10,7 +10,8 @@
  * differences of the residual (its f_x the model's exact Jacobian). Test functions: on a
  * fold curve w . v (BT: the zero eigenvalue becomes double; w the left null vector from a
  * bordered system) and w . B(v, v) (CP: the fold's quadratic coefficient vanishes); on a
- * Hopf curve kappa (BT) and the first Lyapunov coefficient (GH). */
+ * Hopf curve kappa (BT) and the first Lyapunov coefficient times the sign of det J (GH;
+ * the sign keeps a fold-Hopf point, where l1 has a pole, from passing for one). */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -117,6 +118,19 @@ static double norm2(const double *v, int n)
     return sqrt(s);
 }
 
+/* the sign of det J (n x n; copied into work): 1, -1, or 0 when a pivot vanishes */
+static int det_sign(int n, const double *J, double *work, int *piv)
+{
+    memcpy(work, J, (size_t)n * (size_t)n * sizeof *work);
+    if (dyn_lu_factor(n, work, piv))
+        return 0;
+    int s = 1;
+    for (int k = 0; k < n; k++)
+        if ((piv[k] != k) != (work[(size_t)k * (size_t)n + (size_t)k] < 0.0))
+            s = -s;
+    return s;
+}
+
 static int curve_tests(void *ctx, const double *z, const double *t, double det, double *psi,
                        int *count)
 {
@@ -132,12 +146,16 @@ static int curve_tests(void *ctx, const double *z, const double *t, double det, 
         const double kappa = z[2 * n];
         psi[0] = kappa;
         psi[1] = NAN;
-        if (kappa > 0.0) {
+        /* l1 times the sign of det J: where a real eigenvalue passes through zero (a
+         * fold-Hopf point, AUTO-07p's ZH) l1 changes sign through a pole (its formula solves
+         * with J), det J through zero, and the product keeps its sign; it changes at GH */
+        const int sd = det_sign(n, cm->J, c->J2, c->piv);
+        if (kappa > 0.0 && sd != 0) {
             double l1;
             char err[128];
             if (dyn_first_lyapunov(cm->m, cm->t, z, cm->par, cm->jac, cm->J, sqrt(kappa), &l1,
                                    err, sizeof err) == 0)
-                psi[1] = l1;
+                psi[1] = sd * l1;
         }
         return 0;
     }

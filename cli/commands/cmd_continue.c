@@ -47,7 +47,8 @@ static void continue_help(void)
          "Neimark-Sacker, AUTO-07p's label for maps; its angle arg mu is printed); the\n"
          "JSON gives \"map\": true and each point's \"multipliers\". From each PD the\n"
          "points of twice the period (fixed points of F o F) are followed, up to period\n"
-         "16; the period column gives the points' period. --par2 is refused.\n"
+         "16; the period column gives the points' period. With --par2, the curves of\n"
+         "its folds and flips (kind flip) in the two parameters (no Neimark-Sacker curves).\n"
          "\n"
          "A mechanism file (.mech) with constraints or cyclic coordinates: a steady motion\n"
          "(dynkit steady's equations) is followed instead, the state at each value the\n"
@@ -312,11 +313,6 @@ int cli_cmd_continue(int argc, char **argv)
         rc = param_arg(m, "--par2", a.par2, &ip2);
     if (rc == CLI_OK && ip2 == ip)
         rc = cli_usage_error("continue", "--par2 %s: give another parameter than --par", a.par2);
-    if (rc == CLI_OK && ip2 >= 0 && dyn_method_is_map(run.method))
-        rc = cli_usage_error("continue", "--par2 %s: %s is a discrete map, whose fixed points "
-                             "are continued in one parameter only (--par); curves of folds, "
-                             "flips and Neimark-Sacker points in two are not supported", a.par2,
-                             m->name);
     if (rc == CLI_OK && (cli_param_is_size(m, a.par) || (a.par2 && cli_param_is_size(m, a.par2))))
         rc = cli_usage_error("continue", "the size of %s cannot be continued in", m->name);
     if (rc == CLI_OK && a.ynam && (iy = dyn_model_state_index(m, a.ynam)) < 0)

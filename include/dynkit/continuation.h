@@ -48,10 +48,11 @@ typedef enum dyn_branch_kind {
     DYN_BRANCH_PERIODIC = 1,    /* periodic orbits in one parameter */
     DYN_BRANCH_FOLD = 2,        /* folds of equilibria in two parameters */
     DYN_BRANCH_HOPF = 3,        /* Hopf points in two parameters */
-    DYN_BRANCH_STEADY = 4       /* steady motions in one parameter (dynkit/steady.h) */
+    DYN_BRANCH_STEADY = 4,      /* steady motions in one parameter (dynkit/steady.h) */
+    DYN_BRANCH_FLIP = 5         /* a map's period doublings (flips) in two parameters */
 } dyn_branch_kind;
 
-/* "equilibrium", "periodic", "fold", "hopf", "steady". */
+/* "equilibrium", "periodic", "fold", "hopf", "steady", "flip". */
 const char *dyn_branch_kind_name(dyn_branch_kind k);
 
 /* The scalars of one point of a branch. The vectors are in the branch's arrays, row k. */
@@ -177,7 +178,10 @@ typedef struct dyn_cont_opts {
      * F(y, p) = y, eig holds the multipliers (the eigenvalues of dF/dy), stable when every
      * |mu| < 1; labels LP (mu = 1), BP, PD (mu = -1) and TR (a complex pair crosses the
      * unit circle: Neimark-Sacker, AUTO-07p's name for maps, with omega the pair's angle
-     * arg mu in (0, pi)). No periodic orbits; ip2 must be -1 (cont_map.c) */
+     * arg mu in (0, pi)); from each PD the points of twice the period (fixed points of
+     * F o F), up to period 16 (dyn_branch_point.period: the points' period). With ip2 >= 0
+     * the curves of folds and flips (DYN_BRANCH_FLIP) in two parameters, without
+     * codimension-two points; no Neimark-Sacker curves (cont_map.c) */
     int map;
 } dyn_cont_opts;
 

@@ -23,6 +23,7 @@ const char *dyn_branch_kind_name(dyn_branch_kind k)
     case DYN_BRANCH_FOLD: return "fold";
     case DYN_BRANCH_HOPF: return "hopf";
     case DYN_BRANCH_STEADY: return "steady";
+    case DYN_BRANCH_FLIP: return "flip";
     }
     return "";
 }

@@ -11,7 +11,10 @@
  * fold curve w . v (BT: the zero eigenvalue becomes double; w the left null vector from a
  * bordered system) and w . B(v, v) (CP: the fold's quadratic coefficient vanishes); on a
  * Hopf curve kappa (BT) and the first Lyapunov coefficient times the sign of det J (GH;
- * the sign keeps a fold-Hopf point, where l1 has a pole, from passing for one). */
+ * the sign keeps a fold-Hopf point, where l1 has a pole, from passing for one). A map's
+ * folds are those of F(x) - x, and its flips (period doublings, a multiplier -1) the same
+ * system with J + 2 I (Kuznetsov, "Elements", sec. 10.3); on a map's curves BT would be a
+ * 1:1 resonance and the cusp test a fold's, so only the cusp of its fold curves is located. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -26,6 +29,7 @@ typedef struct curve_ctx {
     dyn_diagram *d;
     int bi;
     int hopf;        /* 0: folds, 1: Hopf points */
+    double shift;    /* a map's flips: 2 (J + 2 I singular); else 0 */
     int N;           /* equations */
     double *c1, *c2; /* the normalizations (n each) */
     double *w_prev;  /* the left null vector's border (folds) */
@@ -52,7 +56,7 @@ static int curve_residual(void *ctx, const double *z, double *g)
         double s = 0.0;
         for (int j = 0; j < n; j++)
             s += cm->J[(size_t)i * (size_t)n + (size_t)j] * v[j];
-        c->Jv[i] = s;
+        c->Jv[i] = s + c->shift * v[i];
     }
     if (!c->hopf) {
         memcpy(g + n, c->Jv, (size_t)n * sizeof *g);
@@ -92,7 +96,7 @@ static int left_null(curve_ctx *c, const double *v, double *w)
         for (int j = 0; j < K; j++) {
             double a;
             if (i < n && j < n)
-                a = c->cm->J[(size_t)j * (size_t)n + (size_t)i];
+                a = c->cm->J[(size_t)j * (size_t)n + (size_t)i] + (i == j ? c->shift : 0.0);
             else if (i < n)
                 a = v[i];
             else if (j < n)
@@ -185,6 +189,11 @@ static int curve_tests(void *ctx, const double *z, const double *t, double det, 
         }
     }
     psi[1] = wb / (nw * nv * nv);
+    if (cm->map) { /* no BT (a 1:1 resonance) on a map's curves, no cusp on its flips */
+        psi[0] = 1.0;
+        if (c->shift > 0.0)
+            psi[1] = 1.0;
+    }
     memcpy(c->w_prev, w, (size_t)n * sizeof *w);
     const double nwp = norm2(c->w_prev, n);
     for (int i = 0; i < n; i++)
@@ -254,9 +263,9 @@ static double curve_coord(const dyn_branch *b, long k, int i)
  * of length L misses its arc by about kappa L^2 / 8, kappa the curvature), or within 1e-9
  * of a point. A fold or Hopf curve through two points of the equilibrium branches (the
  * cusp's fold curve through both folds) is then followed once. */
-static int on_computed_curve(const dyn_diagram *d, int hopf, const double *y, int n)
+static int on_computed_curve(const dyn_diagram *d, dyn_branch_kind kind, const double *y, int n)
 {
-    const dyn_branch_kind kind = hopf ? DYN_BRANCH_HOPF : DYN_BRANCH_FOLD;
+    const int hopf = kind == DYN_BRANCH_HOPF;
     const int dim = n + 2 + hopf;
     double scale = 1.0;
     for (int i = 0; i < dim; i++)
@@ -292,6 +301,8 @@ int cont_curves_from(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int
     const int n = cm->n;
     const dyn_branch *b = &d->branches[branch];
     const int hopf = b->pts[point].label == DYN_LABEL_HB;
+    const int flip = b->pts[point].label == DYN_LABEL_PD && cm->map;
+    const dyn_branch_kind kind = hopf ? DYN_BRANCH_HOPF : flip ? DYN_BRANCH_FLIP : DYN_BRANCH_FOLD;
     const double omega = b->pts[point].omega;
     if (hopf && !(omega > 0.0))
         return 0;
@@ -303,7 +314,7 @@ int cont_curves_from(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int
         y[n] = b->pts[point].par[0];
         y[n + 1] = cm->p2_base;
         y[n + 2] = omega * omega;
-        const int seen = on_computed_curve(d, hopf, y, n);
+        const int seen = on_computed_curve(d, kind, y, n);
         free(y);
         if (seen)
             return 0;
@@ -313,6 +324,7 @@ int cont_curves_from(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int
     c.cm = cm;
     c.d = d;
     c.hopf = hopf;
+    c.shift = flip ? 2.0 : 0.0;
     c.N = 2 * n + 1 + hopf;
     const int N = c.N, M = N + 1;
     const size_t nn = (size_t)n * (size_t)n;
@@ -346,7 +358,10 @@ int cont_curves_from(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int
     if (cont_model_set(cm, p1, p2) || cont_model_jx(cm, z, cm->J, n))
         rc = -1;
     if (rc == 0 && !hopf) {
-        if (null_of(n, cm->J, c.J2, c.piv, v))
+        memcpy(c.J2, cm->J, nn * sizeof *c.J2);
+        for (int i = 0; i < n; i++)
+            c.J2[(size_t)i * (size_t)n + (size_t)i] += c.shift;
+        if (null_of(n, c.J2, c.J2 + nn, c.piv, v))
             rc = -1;
         if (rc == 0) {
             memcpy(z + n, v, (size_t)n * sizeof *v);
@@ -354,7 +369,8 @@ int cont_curves_from(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int
             /* the left null vector's first border */
             for (int i = 0; i < n; i++)
                 for (int j = 0; j < n; j++)
-                    c.J2[(size_t)i * (size_t)n + (size_t)j] = cm->J[(size_t)j * (size_t)n + (size_t)i];
+                    c.J2[(size_t)i * (size_t)n + (size_t)j] =
+                        cm->J[(size_t)j * (size_t)n + (size_t)i] + (i == j ? c.shift : 0.0);
             if (null_of(n, c.J2, c.J2 + nn, c.piv, c.w_prev))
                 rc = -1;
         }
@@ -418,8 +434,7 @@ int cont_curves_from(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int
             rc = -2;
             break;
         }
-        dyn_branch *nb = dyn_diagram_add(d, hopf ? DYN_BRANCH_HOPF : DYN_BRANCH_FOLD, n, n,
-                                         o->ip, o->ip2);
+        dyn_branch *nb = dyn_diagram_add(d, kind, n, n, o->ip, o->ip2);
         if (!nb) {
             rc = -1;
             break;
@@ -437,7 +452,7 @@ int cont_curves_from(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int
         L.pmax = o->parmax;
         L.p2min = o->par2min;
         L.p2max = o->par2max;
-        L.start_label = hopf ? DYN_LABEL_HB : DYN_LABEL_LP;
+        L.start_label = hopf ? DYN_LABEL_HB : flip ? DYN_LABEL_PD : DYN_LABEL_LP;
         L.stop_closed = 1;
         char stop[160];
         const int st = cont_follow(&s, &w, &L, z, t, stop, sizeof stop);
@@ -450,7 +465,7 @@ int cont_curves_from(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int
     if (rc == -2 && info && !info->message[0])
         snprintf(info->message, sizeof info->message,
                  "the %s curve through point %ld of branch %d could not be started",
-                 hopf ? "Hopf" : "fold", point + 1, parent);
+                 hopf ? "Hopf" : dyn_branch_kind_name(kind), point + 1, parent);
     info->newton_steps += w.newton;
     cont_work_free(&w);
     free(buf);

@@ -436,10 +436,6 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
         return fail(info, DYN_ERR_ARG, "%s", "the parameter's index is out of range");
     if (o->ip2 >= m->n_params || o->ip2 == o->ip)
         return fail(info, DYN_ERR_ARG, "%s", "the second parameter must be another one");
-    if (o->map && o->ip2 >= 0)
-        return fail(info, DYN_ERR_ARG, "%s",
-                    "a discrete map's fixed points are continued in one parameter: curves "
-                    "in two (of folds, flips, Neimark-Sacker points) are not supported");
     if (!(o->ds != 0.0) || !(o->dsmin > 0.0) || !(o->dsmax >= o->dsmin) ||
         !(fabs(o->ds) >= o->dsmin) || !isfinite(o->dsmax))
         return fail(info, DYN_ERR_ARG, "%s",
@@ -534,9 +530,16 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
     cm.period = 1;
     /* periodic orbits from the Hopf points, then the curves in two parameters */
     const int n_eq = d->count;
-    for (int bi = 0; rc == 0 && bi < n_eq; bi++)
+    int tr_seen = 0;
+    for (int bi = 0; rc == 0 && bi < n_eq; bi++) {
+        if (o->map && d->branches[bi].count > 0) /* a map's branch: its points' period */
+            cm.period = (int)d->branches[bi].pts[0].period;
         for (long k = 0; rc == 0 && k < d->branches[bi].count; k++) {
             const dyn_cont_label l = d->branches[bi].pts[k].label;
+            /* a map's flips in two parameters, not where a branch of cycles was born */
+            const int flip = o->map && l == DYN_LABEL_PD &&
+                             !(k == 0 && d->branches[bi].parent > 0);
+            tr_seen |= o->map && l == DYN_LABEL_TR;
             if (l == DYN_LABEL_HB && o->periodic) {
                 char err[256] = "";
                 if (o->periodic(m, par, o, d, d->branches[bi].id, k, o->periodic_ctx, err,
@@ -545,10 +548,15 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
                              "periodic orbits from the Hopf point of branch %d: %.180s", bi + 1,
                              err);
             }
-            if ((l == DYN_LABEL_HB || l == DYN_LABEL_LP) && o->ip2 >= 0 &&
+            if ((l == DYN_LABEL_HB || l == DYN_LABEL_LP || flip) && o->ip2 >= 0 &&
                 cont_curves_from(&cm, o, d, bi, k, info))
                 rc = DYN_ERR_ARG;
         }
+    }
+    cm.period = 1;
+    if (tr_seen && o->ip2 >= 0)
+        add_note(note, sizeof note, "the curves of Neimark-Sacker points (TR) in two "
+                 "parameters are not computed");
     if (rc && !info->message[0])
         snprintf(info->message, sizeof info->message, "%s",
                  cm.message[0] ? cm.message : "out of memory");

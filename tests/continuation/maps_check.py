@@ -8,7 +8,8 @@ map (1 - a x^2 + y, b x): the fold LP at a = -(1 - b)^2/4 and PD at a = 3 (1 - b
 values of b, its 2-cycle's PD at a = 73/80 for b = 0.3. The delayed logistic map (r x (1 - y), x): the Neimark-Sacker point, labelled
 TR, at r = 2 with the multipliers exp(+-i pi/3) there. The logistic map's cycles born at
 each PD (period 2 on its closed form, doubling at 1 + sqrt(6); periods 4, 8, 16 doubling at
-the cascade's known values). A second parameter on a map is refused with a message. Usage: maps_check.py DYNKIT MODELS_DIR"""
+the cascade's known values). In two parameters Henon's curves of folds and of flips of its
+fixed points and of its 2-cycles (the cycle checked by iterating the map here). Usage: maps_check.py DYNKIT MODELS_DIR"""
 import cmath
 import json
 import math
@@ -165,11 +166,48 @@ if d:
         check(f"delayed logistic: |mu| at r = {q['r']}", max(abs(m) for m in multipliers(q)),
               abs(want), 1e-8)
 
-# ---- a second parameter on a map: refused, not a flow's answer
-out = subprocess.run([dynkit, "continue", f"{models}/henon_map.ode", "--par", "a", "--par2",
-                      "b"], capture_output=True, text=True)
-if out.returncode == 0 or "discrete map" not in out.stderr or "--par2" not in out.stderr:
-    failures.append(f"--par2 on a map: exit {out.returncode}, {out.stderr.strip()!r}")
+# ---- Henon's curves in (a, b): folds on a = -(1 - b)^2/4, flips of the fixed points on
+# a = 3 (1 - b)^2/4, and the 2-cycles' flips where the cycle (x1, x2 = F(x1)) has
+# 1 + tr(dF(x2) dF(x1)) + b^2 = 0 (its multipliers' product is b^2): checked on the stored
+# point of the cycle by iterating F here
+def henon(a, b, x, y):
+    return 1 - a * x * x + y, b * x
+
+
+d = run("henon_map.ode", "--par", "a", "--par2", "b", "--opt", "ds=-0.02", "--opt",
+        "parmin=-1", "--opt", "parmax=0.5", "--opt", "par2min=-0.9", "--opt", "par2max=0.9",
+        "--opt", "nmax=60")
+folds = [b for b in d["branches"] if b["kind"] == "fold"] if d else []
+if len(folds) != 2:
+    failures.append(f"Henon: {len(folds)} fold curves, expected 2 (both ways from the LP)")
+for b in folds:
+    for q in b["points"]:
+        check(f"Henon fold curve at b = {q['b']}", q["a"], -(1 - q["b"]) ** 2 / 4, 1e-9)
+d = run("henon_map.ode", "--par", "a", "--par2", "b", "--opt", "parmin=-1", "--opt",
+        "parmax=1", "--opt", "par2min=-0.9", "--opt", "par2max=0.9", "--opt", "nmax=60")
+flips = {}
+for b in (d["branches"] if d else []):
+    if b["kind"] == "flip":
+        parent = next(p for p in d["branches"] if p["branch"] == b["parent"])
+        flips.setdefault(parent["points"][0]["period"], []).append(b)
+if sorted(flips) != [1, 2] or any(len(v) != 2 for v in flips.values()):
+    failures.append(f"Henon: flip curves of periods "
+                    f"{[(k, len(v)) for k, v in sorted(flips.items())]}, expected two each "
+                    "of 1 and 2")
+for b in flips.get(1, []):
+    for q in b["points"]:
+        check(f"Henon flip curve at b = {q['b']}", q["a"], 3 * (1 - q["b"]) ** 2 / 4, 1e-9)
+for b in flips.get(2, []):
+    for q in b["points"]:
+        a_, b_, x1 = q["a"], q["b"], (q["state"]["x"], q["state"]["y"])
+        x2 = henon(a_, b_, *x1)
+        back = henon(a_, b_, *x2)
+        tr = 4 * a_ * a_ * x1[0] * x2[0] + 2 * b_  # tr of [[-2a x2, 1], [b, 0]] [[-2a x1, 1], [b, 0]]
+        if not (abs(back[0] - x1[0]) + abs(back[1] - x1[1]) <= 1e-9 and
+                abs(1 + tr + b_ * b_) <= 1e-8):
+            failures.append(f"Henon 2-cycle flip curve at (a, b) = ({a_}, {b_}): F(F(x)) - x = "
+                            f"{back[0] - x1[0]:.3g}, 1 + tr + b^2 = {1 + tr + b_ * b_:.3g}")
+            break
 
 for f in failures:
     print("FAIL:", f)

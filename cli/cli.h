@@ -305,10 +305,14 @@ typedef struct cli_progress {
     int enabled;
     double start;     /* monotonic seconds */
     int shown;
+    double last;      /* when the last line was shown */
 } cli_progress;
 void cli_progress_start(cli_progress *p, int quiet);
 int cli_progress_update(double t, double fraction, void *ctx);
 void cli_progress_finish(cli_progress *p);
+/* The line `text` with the time elapsed, after the first second, at most ten times a
+ * second (computations whose progress is not a fraction of a span). */
+void cli_progress_text(cli_progress *p, const char *text);
 
 /* Subcommands. */
 int cli_cmd_run(int argc, char **argv);

@@ -276,6 +276,25 @@ static int parse_scheme(const char *text, dyn_jac_scheme *s)
                            "--jacobian '%s': accepted: auto, analytic, central, richardson", text);
 }
 
+typedef struct continue_progress_ctx {
+    const dyn_model *m;
+    cli_progress *progress;
+} continue_progress_ctx;
+
+/* "branch 3 (periodic): 120 points, a = 1.0964" on a terminal's stderr */
+static void continue_progress(const dyn_branch *b, void *ctx)
+{
+    const continue_progress_ctx *c = ctx;
+    if (!c->progress->enabled || b->count < 1)
+        return;
+    const dyn_branch_point *p = &b->pts[b->count - 1];
+    char text[160];
+    snprintf(text, sizeof text, "branch %d (%s): %ld points, %.40s = %.6g", b->id,
+             dyn_branch_kind_name(b->kind), b->count, c->m->params[b->par_index[0]].name,
+             p->par[0]);
+    cli_progress_text(c->progress, text);
+}
+
 int cli_cmd_continue(int argc, char **argv)
 {
     for (int i = 0; i < argc; i++)
@@ -344,6 +363,11 @@ int cli_cmd_continue(int argc, char **argv)
     s.opts.orbits = wants_page(&a);
     dyn_diagram d;
     memset(&d, 0, sizeof d);
+    cli_progress progress;
+    cli_progress_start(&progress, 0);
+    const continue_progress_ctx pc = {m, &progress};
+    d.progress = continue_progress;
+    d.progress_ctx = (void *)&pc;
     dyn_cont_info info;
     memset(&info, 0, sizeof info);
     int steady = 0;
@@ -368,6 +392,7 @@ int cli_cmd_continue(int argc, char **argv)
             cli_stderr("dynkit: note: %s\n", info.message);
         }
     }
+    cli_progress_finish(&progress);
     if (rc == CLI_OK) {
         const cont_view v = {m, run.par, &d, &s, iy};
         rc = cont_write_outputs(&v, a.output, a.json, a.svg, a.html);

@@ -19,6 +19,7 @@ void cli_progress_start(cli_progress *p, int quiet)
     p->enabled = !quiet && isatty(fileno(stderr));
     p->start = now_seconds();
     p->shown = 0;
+    p->last = 0.0;
 }
 
 int cli_progress_update(double t, double fraction, void *ctx)
@@ -32,6 +33,18 @@ int cli_progress_update(double t, double fraction, void *ctx)
             100.0 * fraction, t, elapsed, remaining);
     p->shown = 1;
     return 0;
+}
+
+void cli_progress_text(cli_progress *p, const char *text)
+{
+    if (!p->enabled)
+        return;
+    const double t = now_seconds(), elapsed = t - p->start;
+    if (elapsed < 1.0 || t - p->last < 0.1)
+        return;
+    p->last = t;
+    fprintf(stderr, "\r\033[K  %s  elapsed %.1f s", text, elapsed);
+    p->shown = 1;
 }
 
 void cli_progress_finish(cli_progress *p)

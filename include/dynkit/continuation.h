@@ -100,12 +100,19 @@ typedef struct dyn_branch {
     double *orbit;
     /* why the branch stopped, in words ("reached parmax = 2", "nmax = 200 points", ...) */
     char stop[160];
+    /* the diagram's progress callback and its context (set by dyn_diagram_add) */
+    void (*progress)(const struct dyn_branch *b, void *ctx);
+    void *progress_ctx;
 } dyn_branch;
 
 /* A diagram: the branches of one computation. */
 typedef struct dyn_diagram {
     int count, capacity;
     dyn_branch *branches; /* (count) */
+    /* NULL, or called after each point appended to any branch (progress on long runs: the
+     * branch with its new last point); set before the computation */
+    void (*progress)(const dyn_branch *b, void *ctx);
+    void *progress_ctx;
 } dyn_diagram;
 
 /* A new, empty branch appended to d (id = its position + 1): kind, n states, n_eig
@@ -119,7 +126,7 @@ dyn_branch *dyn_diagram_add(dyn_diagram *d, dyn_branch_kind kind, int n, int n_e
  * or -1 when out of memory. */
 long dyn_branch_append(dyn_branch *b, const dyn_branch_point *p, const double *x,
                        const double *xmin, const double *eig_re, const double *eig_im);
-/* Free every branch of d and reset it to empty. */
+/* Free every branch of d and reset it to empty (its progress callback kept). */
 void dyn_diagram_free(dyn_diagram *d);
 
 /* ---- settings (AUTO-07p's constants, XPPAUT's @ names) ---- */

@@ -50,6 +50,8 @@ dyn_branch *dyn_diagram_add(dyn_diagram *d, dyn_branch_kind kind, int n, int n_e
     b->n_par = ip2 >= 0 ? 2 : 1;
     b->par_index[0] = ip;
     b->par_index[1] = ip2;
+    b->progress = d->progress;
+    b->progress_ctx = d->progress_ctx;
     d->count++;
     return b;
 }
@@ -96,6 +98,8 @@ long dyn_branch_append(dyn_branch *b, const dyn_branch_point *p, const double *x
         e[2 * i] = eig_re ? eig_re[i] : NAN;
         e[2 * i + 1] = eig_im ? eig_im[i] : NAN;
     }
+    if (b->progress)
+        b->progress(b, b->progress_ctx);
     return k;
 }
 
@@ -109,7 +113,8 @@ void dyn_diagram_free(dyn_diagram *d)
         free(d->branches[i].orbit);
     }
     free(d->branches);
-    memset(d, 0, sizeof *d);
+    d->branches = NULL;
+    d->count = d->capacity = 0;
 }
 
 void dyn_cont_opts_default(dyn_cont_opts *o, int ip)

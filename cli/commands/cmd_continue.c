@@ -30,7 +30,8 @@ static void continue_help(void)
          "\n"
          "Follows the equilibria f(x, p) = 0 of MODEL in the parameter NAME by pseudo-\n"
          "arclength continuation from the model's initial state (with the --init values),\n"
-         "made an equilibrium by Newton's method first. Folds (LP), Hopf points (HB, with the\n"
+         "made an equilibrium by Newton's method first (when none is near it, the end of a\n"
+         "run over the model's span is, with a note). Folds (LP), Hopf points (HB, with the\n"
          "first Lyapunov coefficient l1: supercritical when l1 < 0, subcritical when l1 > 0),\n"
          "branch points (BP; the other branch, its direction from the algebraic branching\n"
          "equation, is followed both ways) are located to 1e-10 in the parameter; the\n"
@@ -276,6 +277,52 @@ static int parse_scheme(const char *text, dyn_jac_scheme *s)
                            "--jacobian '%s': accepted: auto, analytic, central, richardson", text);
 }
 
+static int ignore_sample(long k, double t, const double *y, void *ctx)
+{
+    (void)k;
+    (void)t;
+    (void)y;
+    (void)ctx;
+    return 0;
+}
+
+/* No equilibrium near the initial state: as XPPAUT users do (integrate to rest, then start
+ * AUTO), the model is run over its span from that state and the branch started from where
+ * the run ends, with a note; when that fails too, the first failure stays in info with a
+ * note on the second. The library's status. */
+static int start_from_run(const cli_run *run, const dyn_cont_opts *o, dyn_diagram *d,
+                          dyn_cont_info *info)
+{
+    const dyn_model *m = run->model;
+    char first[sizeof info->message];
+    snprintf(first, sizeof first, "%s", info->message);
+    double *y = malloc((size_t)m->n_states * sizeof *y);
+    dyn_result res;
+    memset(&res, 0, sizeof res);
+    int ok = y && cli_run_solve(run, 1, ignore_sample, NULL, NULL, NULL, NULL, NULL, y, &res) == 0;
+    for (int i = 0; ok && i < m->n_states; i++)
+        ok = isfinite(y[i]);
+    if (!ok) {
+        free(y);
+        return DYN_ERR_ARG;
+    }
+    dyn_diagram_free(d);
+    memset(info, 0, sizeof *info);
+    const int st = dyn_continue(m, run->par, y, o, d, info);
+    free(y);
+    if (st == 0) {
+        cli_stderr("dynkit: note: continue: %s; the branch starts from the end of a run from "
+                   "the initial state (t = %s)\n",
+                   first, dyn_shortest(run->t1).s);
+    } else {
+        cli_stderr("dynkit: note: continue: the end of a run from the initial state "
+                   "(t = %s) is no better: %s\n",
+                   dyn_shortest(run->t1).s, info->message);
+        snprintf(info->message, sizeof info->message, "%s", first);
+    }
+    return st;
+}
+
 typedef struct continue_progress_ctx {
     const dyn_model *m;
     cli_progress *progress;
@@ -384,7 +431,9 @@ int cli_cmd_continue(int argc, char **argv)
         rc = cli_kinds_refuse_markov("continue", m, "a branch of its equilibria");
     if (rc == CLI_OK && !steady) {
         cli_kinds_noise_note("continue", m, NULL);
-        const int st = dyn_continue(m, run.par, run.y0, &s.opts, &d, &info);
+        int st = dyn_continue(m, run.par, run.y0, &s.opts, &d, &info);
+        if (st && info.start_failed)
+            st = start_from_run(&run, &s.opts, &d, &info);
         if (st) {
             cli_error("continue: %s", info.message);
             rc = CLI_FAILED;

@@ -489,6 +489,7 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
                  "no equilibrium found near the start at %.40s = %s: %.120s",
                  m->params[o->ip].name, dyn_shortest(cm.p_set[0]).s,
                  eq_rc ? ei.message : cm.message[0] ? cm.message : "Newton's method diverged");
+        info->start_failed = 1;
         rc = DYN_ERR_ARG;
     }
     if (rc == 0 && !(z[n] >= o->parmin && z[n] <= o->parmax)) {

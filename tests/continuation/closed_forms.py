@@ -342,6 +342,25 @@ if out.returncode == 0 or "null vector along w;" not in out.stderr:
     failures.append(f"a family of equilibria along w: exit {out.returncode}, "
                     f"{out.stderr.strip()!r} (expected a failure naming w)")
 
+# no equilibrium near the initial state (x' = -(x^3 - 3x + p) from x = 1.5: Newton's step
+# lands on f' = 0 at x = 1, where |f| has a minimum 1): the branch starts from the end of a
+# run over the file's span, at the real root of x^3 - 3x + 3, with a note saying so
+stall = os.path.join(tmp, "stall.ode")
+with open(stall, "w") as f:
+    f.write("par p=3\ninit x=1.5\nx'=-(x^3-3*x+p)\n@ total=20, parmax=6\ndone\n")
+out = subprocess.run([dynkit, "continue", stall, "--par", "p", "--json"], capture_output=True,
+                     text=True)
+lo, hi = -3.0, -2.0  # x^3 - 3x + 3: -15 at -3, 1 at -2, its one real root between
+for _ in range(200):
+    mid = 0.5 * (lo + hi)
+    lo, hi = (mid, hi) if mid ** 3 - 3 * mid + 3 < 0 else (lo, mid)
+root = 0.5 * (lo + hi)
+if out.returncode != 0 or "end of a run" not in out.stderr:
+    failures.append(f"start from a run: exit {out.returncode}, {out.stderr.strip()!r}")
+else:
+    check("start from a run: x at p = 3",
+          json.loads(out.stdout)["branches"][0]["points"][0]["state"]["x"], root, 1e-10)
+
 # curves in two parameters
 d = run(f"{models}/cusp.ode", "--par", "a", "--par2", "b")
 cps = points(d, "CP") if d else []

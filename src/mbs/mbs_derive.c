@@ -229,7 +229,8 @@ static void fix_vec(dctx *d, const char *role, node **v, int count)
 
 static void elementary(dctx *d, int axis, node *angle, node *E[9])
 {
-    node *cs = lang_fun1(d->c, F_COS, angle), *sn = lang_fun1(d->c, F_SIN, angle);
+    node *cs, *sn;
+    mbs_cos_sin(d->c, angle, &cs, &sn);
     for (int i = 0; i < 9; i++)
         E[i] = num(d, 0.0);
     const int a = (axis + 1) % 3, b = (axis + 2) % 3;
@@ -326,7 +327,8 @@ static void factor(dctx *d, const mbs_body *b, int axis, node *angle, node *E[9]
         elementary(d, axis, angle, E);
         return;
     }
-    node *n[3], *cs = lang_fun1(d->c, F_COS, angle), *sn = lang_fun1(d->c, F_SIN, angle);
+    node *n[3], *cs, *sn;
+    mbs_cos_sin(d->c, angle, &cs, &sn);
     unit_axis(d, b, n);
     node *vc = sub(d, num(d, 1.0), cs);
     for (int r = 0; r < 3; r++)

@@ -200,6 +200,9 @@ int mbs_unit_error(lang_ctx *c, const char *text, int *offset, const char **why)
 void mbs_check_units(lang_ctx *c, mbs_model *mb);
 /* the equations of motion, after lang_check (mbs_derive.c) */
 void mbs_derive(lang_ctx *c, mbs_model *mb);
+/* cos and sin of a rotation's angle, whole quarter turns (pi - a) taken out exactly
+ * (mbs_angle.c) */
+void mbs_cos_sin(lang_ctx *c, node *angle, node **cs, node **sn);
 /* every subtree repeated among the derived quantities (fixed quantities from nfix0 on)
  * made a fixed quantity of its own, computed once (mbs_cse.c) */
 void mbs_cse(lang_ctx *c, mbs_model *mb, int nfix0);

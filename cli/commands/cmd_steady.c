@@ -162,10 +162,13 @@ static void print_result(FILE *f, const void *ctx)
     fprintf(f, "%s: a steady motion (%d iterations, residual %.3g)\n", m->name, r->info.iterations,
             r->info.residual);
     fputs("cyclic (moving at constant rates):", f);
+    int n_cyclic = 0;
     for (int c = 0; c < fr->k; c++)
-        if (r->cyclic[c])
+        if (r->cyclic[c]) {
             fprintf(f, " %s", m->states[fr->kept[c]].name);
-    fputc('\n', f);
+            n_cyclic++;
+        }
+    fputs(n_cyclic ? "\n" : " none\n", f);
     for (int u = 0; u < r->n_unknowns; u++) {
         const dyn_steady_unknown *x = &r->unknowns[u];
         fprintf(f, "  %-10s = %.15g   (unknown)\n",

@@ -679,8 +679,11 @@ int cli_run_parse_with(const char *command, int argc, char **argv, int other_ada
     if (rc == CLI_OK)
         rc = check_initial_state(command, run);
     /* a mechanism's constraints at the state the options made (the file's own initial
-     * state was checked when it was read) */
-    if (rc == CLI_OK && cli_has_extension(argv[0], ".mech") && (run->project_init || n_as > 0))
+     * state was checked when it was read); `continue` solves the states the constraints
+     * determine from the others at every point, as `steady` does, so its --init values
+     * need not hold them */
+    if (rc == CLI_OK && cli_has_extension(argv[0], ".mech") && (run->project_init || n_as > 0) &&
+        strcmp(command, "continue") != 0)
         rc = cli_mech_initial(command, argv[0], run, run->project_init);
     if (rc != CLI_OK)
         return rc;

@@ -89,11 +89,37 @@ int cont_correct(const cont_system *s, cont_work *w, const double *z0, const dou
         for (int i = 0; i < M; i++)
             arc += t0[i] * (z[i] - z0[i]);
         w->r[N] = -arc;
-        if (s->gtol > 0.0 && norm_inf(w->g, N) <= s->gtol &&
-            fabs(arc) <= DYN_CONT_TOL * (1.0 + norm_inf(z, M))) {
-            if (iters)
-                *iters = it + 1;
-            return 0;
+        const double gnorm = norm_inf(w->g, N);
+        const int at_rounding =
+            s->gtol > 0.0 && gnorm <= s->gtol && fabs(arc) <= DYN_CONT_TOL * (1.0 + norm_inf(z, M));
+        if (at_rounding) {
+            /* G is as small as its rounding allows at the scale of the whole right-hand
+             * side; a Newton step is still taken while it halves G (near a pitchfork G
+             * is far smaller than that scale, and stopping there would leave the point
+             * off the branch by gtol^(1/3)), but not where it would only amplify the
+             * rounding (at a branch point the step is nearly singular) */
+            if (bordered(s, w, z, t0) || dyn_lu_factor(M, w->A, w->piv) || gnorm == 0.0) {
+                if (iters)
+                    *iters = it + 1;
+                return 0;
+            }
+            dyn_lu_solve(M, w->A, w->piv, w->r);
+            for (int i = 0; i < M; i++)
+                w->zp[i] = z[i] + w->r[i];
+            if (s->residual(s->ctx, w->zp, w->g) || !(norm_inf(w->g, N) <= 0.5 * gnorm)) {
+                if (s->residual(s->ctx, z, w->g)) /* the context back at z */
+                    return -1;
+                if (iters)
+                    *iters = it + 1;
+                return 0;
+            }
+            memcpy(z, w->zp, (size_t)M * sizeof *z);
+            if (norm_inf(w->r, M) <= DYN_CONT_TOL * (1.0 + norm_inf(z, M))) {
+                if (iters)
+                    *iters = it + 1;
+                return 0;
+            }
+            continue;
         }
         if (bordered(s, w, z, t0))
             return -1;
@@ -659,6 +685,10 @@ int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const do
                 continue;
             if (points == 1 && at_start_special && s->test_label[k] == L->start_label)
                 continue; /* the start itself */
+            if (points == 1 && L->start_label == DYN_LABEL_BP &&
+                s->test_label[k] == DYN_LABEL_LP && fabs(psi[k]) <= 1e-6)
+                continue; /* a pitchfork's branch leaves its BP with the parameter's
+                           * tangent 0 in exact arithmetic: its sign there is rounding */
             const target g = {k, 0, 0.0};
             if (locate(s, w, &g, z, t, psi[k], ds, psi1[k], z1, t1, sp[ns].z, sp[ns].t,
                        &sp[ns].s) == 0 ||
@@ -677,6 +707,14 @@ int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const do
                     sp[a] = sp[--ns];
                     a = -1;
                     break;
+                }
+        /* two tests of one label located at one point (a branch point seen by det B and
+         * by the continuation's own equations) are one point */
+        for (int a = 0; a < ns; a++)
+            for (int b = a + 1; b < ns; b++)
+                if (sp[a].label == sp[b].label && fabs(sp[a].s - sp[b].s) <= 1e-6 * ds) {
+                    sp[b] = sp[--ns];
+                    b = a;
                 }
         for (int u = 0; u < L->n_at; u++) {
             const double a = z[s->ip] - L->at[u], b = z1[s->ip] - L->at[u];

@@ -10,7 +10,7 @@
 
 #include "dynkit/continuation.h"
 
-#define CONT_MAX_TESTS 4
+#define CONT_MAX_TESTS 5
 
 typedef struct cont_system {
     int N;          /* equations; z has N + 1 unknowns */

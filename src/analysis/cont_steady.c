@@ -15,10 +15,30 @@
 #include "cont_steady_system.h"
 
 /* The nu equations among E's ne whose rows of G_U (ne x nu, row-major) are independent:
- * Gaussian elimination with complete pivoting, pivots below 1e-10 of the largest entry
- * refused. Positions into sel; 0, or -1 when G_U's rank is below nu. */
+ * Gaussian elimination with complete pivoting on the rows scaled to a largest entry of 1
+ * (those below 1e-8 of the largest entry of all by that entry), pivots below 1e-10 of the
+ * largest entry refused. Of pivots equal within 1e-9 the earlier
+ * equation's is taken: a mechanism's coordinates come before its speeds, and their
+ * equations q' = u keep their rows whatever the state, where a speed's equation that
+ * holds with them at the start can lose its row along the branch (a body's turning
+ * rate psi'' = -(dI/dtheta / I) psi' theta', whose row vanishes where the cone closes,
+ * theta = 0: chosen, it makes the branch's equations singular there and a pitchfork
+ * a fold). Positions into sel; 0, or -1 when G_U's rank is below nu. */
 static int select_equations(int ne, int nu, double *G, int *sel)
 {
+    double big0 = 0.0;
+    for (int i = 0; i < ne * nu; i++)
+        big0 = fmax(big0, fabs(G[i]));
+    for (int i = 0; i < ne; i++) {
+        double s = 0.0;
+        for (int j = 0; j < nu; j++)
+            s = fmax(s, fabs(G[i * nu + j]));
+        if (!(s > 1e-8 * big0))
+            s = big0; /* a row of differencing noise (an equation that holds by itself)
+                       * is not raised to the others' size */
+        for (int j = 0; j < nu && s > 0.0; j++)
+            G[i * nu + j] /= s;
+    }
     double big = 0.0;
     for (int i = 0; i < ne * nu; i++)
         big = fmax(big, fabs(G[i]));
@@ -29,7 +49,7 @@ static int select_equations(int ne, int nu, double *G, int *sel)
         double best = 0.0;
         for (int i = 0; i < ne; i++)
             for (int j = 0; j < nu; j++)
-                if (!row_used[i] && !col_used[j] && fabs(G[i * nu + j]) > best) {
+                if (!row_used[i] && !col_used[j] && fabs(G[i * nu + j]) > best * (1.0 + 1e-9)) {
                     best = fabs(G[i * nu + j]);
                     bi = i;
                     bj = j;

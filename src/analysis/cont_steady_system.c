@@ -49,11 +49,21 @@ int sc_state_at(sc_ctx *c, const double *z)
     return cont_model_f(cm, c->y, c->f) ? sc_model_failed(c) : 0;
 }
 
+/* -1, remembering why the model or the reduction failed at z (c->why: a branch that
+ * stops on failed steps says it; c->message is kept for the curves, which clear it) */
+static int sc_failed_at(sc_ctx *c, const double *z)
+{
+    snprintf(c->why, sizeof c->why, "at %.24s = %.10g: %.100s",
+             c->cm->m->params[c->cm->ip].name, z[c->nu],
+             c->message[0] ? c->message : "the right-hand side failed");
+    return -1;
+}
+
 static int sc_residual(void *ctx, const double *z, double *g)
 {
     sc_ctx *c = ctx;
     if (sc_state_at(c, z))
-        return -1;
+        return sc_failed_at(c, z);
     for (int i = 0; i < c->nu; i++)
         g[i] = c->f[c->sp->equations[c->sel[i]]];
     return 0;
@@ -241,11 +251,10 @@ static double hopf_test(const sc_ctx *c, int *unstable, double *omega)
 static int sc_tests(void *ctx, const double *z, const double *t, double det, double *psi,
                     int *count)
 {
-    (void)det;
     sc_ctx *c = ctx;
     const int nu = c->nu;
     if (sc_state_at(c, z) || sc_reduce(c))
-        return -1;
+        return sc_failed_at(c, z);
     psi[0] = t[nu];
     count[0] = -1;
     double omega;
@@ -265,6 +274,12 @@ static int sc_tests(void *ctx, const double *z, const double *t, double det, dou
     memcpy(c->Bc, c->B, (size_t)nu * (size_t)nu * sizeof *c->B);
     psi[1] = scaled_det(nu, c->Bc) * (t[nu] < 0.0 && !conservative ? -1.0 : 1.0);
     count[1] = -1;
+    /* det [G_z; t^T], the continuation's own equations (Keller's test, as for equilibria):
+     * its sign changes where another family of steady motions crosses, also where det B
+     * does not (a conservative pitchfork crossed along its curved branch, where det B only
+     * touches zero and the tangent turns: not a fold) */
+    psi[4] = det;
+    count[4] = -1;
     return 0;
 }
 
@@ -311,11 +326,12 @@ void sc_system(cont_system *s, sc_ctx *c)
     s->ctx = c;
     s->residual = sc_residual;
     s->jacobian = sc_jacobian;
-    s->n_tests = 4;
+    s->n_tests = 5;
     s->test_label[0] = DYN_LABEL_LP;
     s->test_label[1] = DYN_LABEL_BP;
     s->test_label[2] = DYN_LABEL_HB;
     s->test_label[3] = DYN_LABEL_HH;
+    s->test_label[4] = DYN_LABEL_BP;
     s->tests = sc_tests;
     s->store = sc_store;
 }
@@ -337,9 +353,16 @@ int sc_follow(sc_ctx *c, const cont_system *s, cont_work *w, const dyn_cont_opts
     cont_loop L;
     cont_loop_from_opts(o, &L, start);
     char stop[160];
+    c->why[0] = '\0';
+    c->message[0] = '\0';
     const int rc = cont_follow(s, w, &L, z, t, stop, sizeof stop);
     dyn_branch *nb = &c->d->branches[c->bi];
-    snprintf(nb->stop, sizeof nb->stop, "%s", stop);
+    if (c->why[0] && strncmp(stop, "no convergence", 14) == 0)
+        /* the steps failed down to the smallest where the model or the reduction fails:
+         * that is why the branch ends */
+        snprintf(nb->stop, sizeof nb->stop, "failed %.151s", c->why);
+    else
+        snprintf(nb->stop, sizeof nb->stop, "%s", stop);
     if (rc == -2 && nb->count == 0) {
         cont_diagram_drop_last(c->d);
         return -2;

@@ -28,6 +28,7 @@ typedef struct sc_ctx {
     dyn_diagram *d;
     int bi;
     char message[256];
+    char why[152];      /* the last failure of the model or the reduction, with where */
 } sc_ctx;
 
 /* c->y and c->f for z = (u, p) (and c->p2): the parameters prepared, the base state, the unknowns, the

@@ -254,7 +254,7 @@ def main():
         check(word in p.stderr, f"refused: {' '.join(args)} ({p.stderr.strip()[:70]})")
 
     # every command of docs/analysis.md and of the examples of --help, in a scratch
-    # directory with examples/ linked in
+    # directory with examples/ and tests/ linked in
     with open(os.path.join(SOURCE, "docs", "analysis.md")) as f:
         doc = f.read()
     blocks = [b.replace("\\\n", " ") for b in re.findall(r"```sh\n(.*?)```", doc, re.S)]
@@ -265,7 +265,8 @@ def main():
     lines += [l.split("#")[0].strip() for l in shown.splitlines() if l.strip()]
     check(len(lines) >= 11, "--help shows five examples")
     with tempfile.TemporaryDirectory() as tmp:
-        os.symlink(os.path.join(os.path.abspath(SOURCE), "examples"), os.path.join(tmp, "examples"))
+        for sub in ("examples", "tests"):
+            os.symlink(os.path.join(os.path.abspath(SOURCE), sub), os.path.join(tmp, sub))
         for line in lines:
             args = shlex.split(line)[1:]
             p = subprocess.run([os.path.abspath(DYNKIT), *args], capture_output=True, text=True,

@@ -238,6 +238,9 @@ def governor():
         im = imag_parts(d["eigenvalues"])
         check(len(im) == 1 and rel(im[0], omega) < 1e-9,
               "governor: the arms swing at %s against %.15g" % (im, omega))
+        lin = linearize_imag("governor", d["state"], {})
+        check(lin is not None and len(lin) == 1 and rel(lin[0], omega) < 1e-9,
+              "governor: linearize there (minimal coordinates) gives %s" % lin)
     d = cont("governor", ["--par", "W", "--set", "W=6", "--init", "al=%r" % al, "--opt",
                           "ds=-0.02", "--opt", "parmin=4", "--opt", "parmax=8"])
     wc = math.sqrt((m + ms) * G / (m * L))

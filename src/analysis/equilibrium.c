@@ -8,7 +8,9 @@
  * search stays near the guess. The Jacobian is dyn_linearize's, formed again at every
  * accepted point. Converged when ||f||_inf is within the tolerance, or within
  * DYN_EQUILIBRIUM_FLOOR times it when no step lowers ||f|| any more (f has reached its
- * rounding). */
+ * rounding). Where these steps fail (they can follow a valley in which |f| falls towards
+ * infinity, as van der Pol's from (2, 0) does, where Newton's first step lands on the
+ * origin), Gauss-Newton steps from the guess are tried, taken only when they converge. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -24,7 +26,7 @@
 size_t dyn_equilibrium_work_size(int n)
 {
     const size_t N = (size_t)n;
-    return 2 * N * N + 5 * N + dyn_linearize_work_size(n);
+    return 2 * N * N + 6 * N + dyn_linearize_work_size(n);
 }
 
 /* f(t, y) into f; 0, or the rhs status, or -1 when a component is not finite. */
@@ -40,13 +42,64 @@ static int eval(const dyn_model *m, double t, const double *y, void *par, double
     return 0;
 }
 
+/* At most this many Gauss-Newton steps after Levenberg-Marquardt's failed */
+#define GN_ITERATIONS 30
+
+/* Gauss-Newton steps from y (overwritten): (J^T J + 1e-15 max diag I) d = -J^T f, until
+ * |f|_inf is within the tolerance (info->tol set as the main loop's). J, H, minus_g, d, lw:
+ * the main loop's work. 0 when it converged,
+ * f then f(y); non-zero when a step or the Jacobian failed or it did not converge. */
+static int gauss_newton(const dyn_model *m, double t, double *y, void *par,
+                        const dyn_equilibrium_opts *opts, double rtol, double *J, double *H,
+                        double *f, double *minus_g, double *d, double *lw, long *calls,
+                        dyn_equilibrium_info *info)
+{
+    const int n = m->n_states;
+    const size_t N = (size_t)n;
+    if (eval(m, t, y, par, f, calls))
+        return -1;
+    for (int it = 0; it <= GN_ITERATIONS; it++) {
+        dyn_linearize_info li;
+        if (dyn_linearize(m, t, y, par, opts ? &opts->jac : NULL, J, lw, &li))
+            return -1;
+        *calls += li.rhs_calls;
+        double jn = 0.0;
+        for (size_t i = 0; i < N; i++) {
+            double row = 0.0;
+            for (size_t j = 0; j < N; j++)
+                row += fabs(J[i * N + j]);
+            jn = fmax(jn, row);
+        }
+        const double tol = fmax(rtol * jn * fmax(lm_norm_inf(n, y), 1.0), DBL_MIN);
+        if (lm_norm_inf(n, f) <= tol) {
+            info->tol = tol;
+            return 0;
+        }
+        if (it == GN_ITERATIONS)
+            break;
+        info->iterations++;
+        const double hmax = lm_normal_equations(n, n, J, f, H, minus_g);
+        if (!(hmax > 0.0))
+            return -1;
+        memcpy(J, H, N * N * sizeof *J);
+        memcpy(d, minus_g, N * sizeof *d);
+        if (lm_damped_solve(n, J, LM_LAMBDA_MIN, hmax, d))
+            return -1;
+        for (size_t a = 0; a < N; a++)
+            y[a] += d[a];
+        if (eval(m, t, y, par, f, calls))
+            return -1;
+    }
+    return -1;
+}
+
 int dyn_equilibrium(const dyn_model *m, double t, double *y, void *par,
                     const dyn_equilibrium_opts *opts, double *work, dyn_equilibrium_info *info)
 {
     const int n = m->n_states;
     const size_t N = (size_t)n;
     double *J = work, *H = J + N * N, *f = H + N * N, *minus_g = f + N, *d = minus_g + N,
-           *yt = d + N, *ft = yt + N, *lw = ft + N;
+           *yt = d + N, *ft = yt + N, *guess = ft + N, *lw = guess + N;
     const double rtol = opts && opts->tol > 0.0 ? opts->tol : DYN_EQUILIBRIUM_TOL;
     const int max_iter = opts && opts->max_iter > 0 ? opts->max_iter : 100;
     dyn_equilibrium_info local;
@@ -72,6 +125,7 @@ int dyn_equilibrium(const dyn_model *m, double t, double *y, void *par,
         info->rhs_calls = calls;
         return DYN_ERR_RHS;
     }
+    memcpy(guess, y, N * sizeof *guess);
     double fn = lm_norm_2(n, f), lambda = LM_LAMBDA_START;
     int status = DYN_ERR_MAX_STEPS;
     for (;;) {
@@ -152,6 +206,11 @@ int dyn_equilibrium(const dyn_model *m, double t, double *y, void *par,
             status = DYN_ERR_STEP_SIZE;
             break;
         }
+    }
+    if (status && gauss_newton(m, t, guess, par, opts, rtol, J, H, f, minus_g, d, lw, &calls, info) == 0) {
+        memcpy(y, guess, N * sizeof *y);
+        info->message[0] = '\0';
+        status = 0;
     }
     info->residual = lm_norm_inf(n, f);
     info->rhs_calls = calls;

@@ -132,6 +132,16 @@ def main():
         stab = "asymptotically stable" if r < 24.74 else "unstable"
         check(err < 1e-12 * 30 and q["stability"] == stab and q["equilibrium"]["iterations"] <= 6,
               f"--equilibrium, rho = {r}: C+ to {err:.1e}, {stab}")
+    # van der Pol with omega = 6.6 from (2, 0): Levenberg-Marquardt follows a valley of |f|
+    # towards x = infinity; the Gauss-Newton steps from the guess find the origin, whose
+    # eigenvalues are omega (mu/2 +- i sqrt(1 - mu^2/4)) = 3.3 +- 5.7158i
+    vdp = os.path.join(SOURCE, "examples", "models", "vdp_bvp.ode")
+    p = run(vdp, "--equilibrium", "--json")
+    pt = json.loads(p.stdout)["points"][0] if p.returncode == 0 else {"y": [1], "re": [], "im": []}
+    ev = [complex(a, b) for a, b in zip(pt["re"], pt["im"])]
+    w = 6.6 * math.sqrt(0.75)
+    check(max(abs(v) for v in pt["y"]) < 1e-12 and close(ev, [3.3 + 1j * w, 3.3 - 1j * w], 1e-12 * 30),
+          f"--equilibrium, van der Pol (omega 6.6) from (2, 0): the origin ({pt['y']}), {ev}")
     with tempfile.TemporaryDirectory() as tmp:
         path = os.path.join(tmp, "push.ode")
         with open(path, "w") as f:

@@ -290,21 +290,32 @@ static int ignore_sample(long k, double t, const double *y, void *ctx)
 
 /* No equilibrium near the initial state: as XPPAUT users do (integrate to rest, then start
  * AUTO), the model is run over its span from that state and the branch started from where
- * the run ends, with a note; when that fails too, the first failure stays in info with a
- * note on the second. The library's status. */
+ * the run ends, with a note; when that fails too (the run itself, or the branch from its
+ * end), the first failure stays in info with a note on the second. The progress line, if
+ * one is shown, is cleared before a note. The library's status. */
 static int start_from_run(const cli_run *run, const dyn_cont_opts *o, dyn_diagram *d,
-                          dyn_cont_info *info)
+                          dyn_cont_info *info, cli_progress *progress)
 {
     const dyn_model *m = run->model;
     char first[sizeof info->message];
     snprintf(first, sizeof first, "%s", info->message);
     double *y = malloc((size_t)m->n_states * sizeof *y);
+    if (!y)
+        return DYN_ERR_ARG;
     dyn_result res;
     memset(&res, 0, sizeof res);
-    int ok = y && cli_run_solve(run, 1, ignore_sample, NULL, NULL, NULL, NULL, NULL, y, &res) == 0;
+    int ok = cli_run_solve(run, 1, ignore_sample, NULL, NULL, NULL, NULL, NULL, y, &res) == 0;
+    int bad = -1; /* a state not finite at the run's end */
     for (int i = 0; ok && i < m->n_states; i++)
-        ok = isfinite(y[i]);
+        if (!isfinite(y[i])) {
+            ok = 0;
+            bad = i;
+        }
     if (!ok) {
+        cli_stderr("dynkit: note: continue: a run from the initial state gives no start "
+                   "either: %s\n",
+                   bad >= 0 ? "a state is not finite at its end"
+                   : res.message[0] ? res.message : "the run failed");
         free(y);
         return DYN_ERR_ARG;
     }
@@ -312,14 +323,15 @@ static int start_from_run(const cli_run *run, const dyn_cont_opts *o, dyn_diagra
     memset(info, 0, sizeof *info);
     const int st = dyn_continue(m, run->par, y, o, d, info);
     free(y);
+    cli_progress_finish(progress);
     if (st == 0) {
         cli_stderr("dynkit: note: continue: %s; the branch starts from the end of a run from "
                    "the initial state (t = %s)\n",
-                   first, dyn_shortest(run->t1).s);
+                   first, dyn_shortest(res.t).s);
     } else {
         cli_stderr("dynkit: note: continue: the end of a run from the initial state "
                    "(t = %s) is no better: %s\n",
-                   dyn_shortest(run->t1).s, info->message);
+                   dyn_shortest(res.t).s, info->message);
         snprintf(info->message, sizeof info->message, "%s", first);
     }
     return st;
@@ -435,7 +447,8 @@ int cli_cmd_continue(int argc, char **argv)
         cli_kinds_noise_note("continue", m, NULL);
         int st = dyn_continue(m, run.par, run.y0, &s.opts, &d, &info);
         if (st && info.start_failed)
-            st = start_from_run(&run, &s.opts, &d, &info);
+            st = start_from_run(&run, &s.opts, &d, &info, &progress);
+        cli_progress_finish(&progress); /* the line cleared before the messages */
         if (st) {
             cli_error("continue: %s", info.message);
             rc = CLI_FAILED;

@@ -51,4 +51,5 @@ void cli_progress_finish(cli_progress *p)
 {
     if (p->shown)
         fputs("\r\033[K", stderr);
+    p->shown = 0;
 }

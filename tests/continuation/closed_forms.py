@@ -361,6 +361,18 @@ else:
     check("start from a run: x at p = 3",
           json.loads(out.stdout)["branches"][0]["points"][0]["state"]["x"], root, 1e-10)
 
+# no equilibrium at all (x' = x^2 + 1 + p^2 > 0) and a run that blows up at
+# t = (pi/2 - atan(1.5/sqrt(10)))/sqrt(10) = 0.3567: a failure, with a note that the run
+# gave no start either
+blowup = os.path.join(tmp, "blowup.ode")
+with open(blowup, "w") as f:
+    f.write("par p=3\ninit x=1.5\nx'=x^2+1+p^2\n@ total=20, parmax=6\ndone\n")
+out = subprocess.run([dynkit, "continue", blowup, "--par", "p"], capture_output=True, text=True)
+if (out.returncode == 0 or "no equilibrium found near the start" not in out.stderr
+        or "a run from the initial state gives no start either" not in out.stderr):
+    failures.append(f"no equilibrium, a run that blows up: exit {out.returncode}, "
+                    f"{out.stderr.strip()!r} (expected a failure with a note on the run)")
+
 # curves in two parameters
 d = run(f"{models}/cusp.ode", "--par", "a", "--par2", "b")
 cps = points(d, "CP") if d else []

@@ -109,8 +109,9 @@ typedef struct dyn_branch {
 typedef struct dyn_diagram {
     int count, capacity;
     dyn_branch *branches; /* (count) */
-    /* NULL, or called after each point appended to any branch (progress on long runs: the
-     * branch with its new last point); set before the computation */
+    /* NULL, or called after each point appended to a branch (progress on long runs: the
+     * branch with its new last point; a periodic branch, computed apart, once when it is
+     * stored whole); set before the computation */
     void (*progress)(const dyn_branch *b, void *ctx);
     void *progress_ctx;
 } dyn_diagram;

@@ -110,6 +110,10 @@ static int store(dyn_diagram *d, const dyn_po_branch *pb, int ip, int parent, lo
         return -1;
     b->parent = parent;
     b->parent_point = parent_point;
+    /* the diagram's progress callback once, with the whole branch, rather than at each
+     * point of a burst of appends (a rate-limited display would show its first) */
+    void (*progress)(const dyn_branch *, void *) = b->progress;
+    b->progress = NULL;
     for (int k = 0; k < pb->npoints; k++) {
         const dyn_po_point *q = &pb->pts[k];
         dyn_branch_point p;
@@ -121,9 +125,14 @@ static int store(dyn_diagram *d, const dyn_po_branch *pb, int ip, int parent, lo
         p.stable = q->stable;
         p.l1 = NAN;
         p.omega = NAN;
-        if (dyn_branch_append(b, &p, q->xmax, q->xmin, q->mult_re, q->mult_im) < 0)
+        if (dyn_branch_append(b, &p, q->xmax, q->xmin, q->mult_re, q->mult_im) < 0) {
+            b->progress = progress;
             return -1;
+        }
     }
+    b->progress = progress;
+    if (progress && b->count > 0)
+        progress(b, b->progress_ctx);
     snprintf(b->stop, sizeof b->stop, "%.150s", pb->message);
     int eb = 0;
     long ep = -1;

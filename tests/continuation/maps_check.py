@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""dynkit continue on discrete maps against closed forms (docs/analysis.md, "Continuation",
-"Maps"): the fixed points of F(y) - y = 0 and their multipliers, the eigenvalues of dF/dy.
+"""dynkit continue on discrete maps against closed forms (docs/analysis.md, "Discrete
+maps"): the fixed points of F(y) - y = 0 and their multipliers, the eigenvalues of dF/dy.
 The logistic map x -> r x (1 - x): every point on x = 1 - 1/r with multiplier 2 - r, stable
 for 1 < r < 3, the period doubling PD at r = 3 (x = 2/3, multiplier -1); the branch point BP
 at r = 1, x = 0 and the branch x = 0 switched to, with multiplier r, stable for r < 1. Henon's

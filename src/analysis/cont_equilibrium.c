@@ -380,9 +380,10 @@ static void large_components(const dyn_model *m, const double *v, int n, char *o
  * there, the states along its null vector and the states whose rates' rows are dependent
  * (its left null vector: a conserved combination), by inverse iteration on f_x^T f_x and
  * f_x f_x^T. There the equilibria are not isolated (a state conserved or absent from f:
- * every parameter value has a family of them), or the start is a fold or branch point. */
-static void singular_start_message(const cont_system *s, const dyn_model *m, const double *z,
-                                   char *msg, size_t len)
+ * every parameter value has a family of them), or the start is a fold or branch point. A
+ * map's (map 1) are said of dF/dy - I and its fixed points. */
+static void singular_start_message(const cont_system *s, const dyn_model *m, int map,
+                                   const double *z, char *msg, size_t len)
 {
     const int n = s->N, M = n + 1;
     const size_t nn = (size_t)n * (size_t)n;
@@ -411,14 +412,15 @@ static void singular_start_message(const cont_system *s, const dyn_model *m, con
         }
     }
     if (res <= 1e-10 * fmax(big, 1e-300)) {
-        char along[40], rows[40];
+        char along[32], rows[32]; /* the message within info.message's 256 bytes */
         large_components(m, v, n, along, sizeof along);
         large_components(m, u, n, rows, sizeof rows);
         snprintf(msg, len,
-                 "the start is singular: f_x is singular (null vector along %s; rows of %s "
-                 "dependent): a family of equilibria (a conserved quantity, a state not "
-                 "in f) or a fold or BP; start elsewhere",
-                 along, rows);
+                 "the start is singular: %s is singular (null vector along %s; rows of %s "
+                 "dependent): a family of %s (a conserved quantity, a state not in %s) or a "
+                 "fold or BP; start elsewhere",
+                 map ? "dF/dy - I" : "f_x", along, rows, map ? "fixed points" : "equilibria",
+                 map ? "F" : "f");
     }
     free(J);
 }
@@ -503,7 +505,7 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
         e[n] = o->ds > 0.0 ? 1.0 : -1.0;
         double det;
         if (cont_tangent(&s, &w, z, e, t, &det)) {
-            singular_start_message(&s, m, z, info->message, sizeof info->message);
+            singular_start_message(&s, m, o->map, z, info->message, sizeof info->message);
             rc = DYN_ERR_ARG;
         }
     }

@@ -209,6 +209,15 @@ for b in flips.get(2, []):
                             f"{back[0] - x1[0]:.3g}, 1 + tr + b^2 = {1 + tr + b_ * b_:.3g}")
             break
 
+# a start on the logistic map's BP (r = 1, x = 0: dF/dx - 1 = r - 1 = 0) is refused with the
+# map's words: dF/dy - I singular along x, fixed points
+cmd = [dynkit, "continue", f"{models}/logistic_map.ode", "--par", "r", "--set", "r=1",
+       "--init", "x=0"]
+out = subprocess.run(cmd, capture_output=True, text=True)
+if (out.returncode == 0 or "dF/dy - I is singular (null vector along x;" not in out.stderr
+        or "a family of fixed points" not in out.stderr):
+    failures.append(f"a singular start of a map: exit {out.returncode}, {out.stderr.strip()!r}")
+
 for f in failures:
     print("FAIL:", f)
 if not failures:

@@ -42,6 +42,20 @@ static int eval(const dyn_model *m, double t, const double *y, void *par, double
     return 0;
 }
 
+/* The tolerance on |f|_inf at y: rtol ||J||_inf max(|y|_inf, 1) */
+static double f_tolerance(int n, const double *J, const double *y, double rtol)
+{
+    const size_t N = (size_t)n;
+    double jn = 0.0;
+    for (size_t i = 0; i < N; i++) {
+        double row = 0.0;
+        for (size_t j = 0; j < N; j++)
+            row += fabs(J[i * N + j]);
+        jn = fmax(jn, row);
+    }
+    return fmax(rtol * jn * fmax(lm_norm_inf(n, y), 1.0), DBL_MIN);
+}
+
 /* At most this many Gauss-Newton steps after Levenberg-Marquardt's failed */
 #define GN_ITERATIONS 30
 
@@ -63,14 +77,7 @@ static int gauss_newton(const dyn_model *m, double t, double *y, void *par,
         if (dyn_linearize(m, t, y, par, opts ? &opts->jac : NULL, J, lw, &li))
             return -1;
         *calls += li.rhs_calls;
-        double jn = 0.0;
-        for (size_t i = 0; i < N; i++) {
-            double row = 0.0;
-            for (size_t j = 0; j < N; j++)
-                row += fabs(J[i * N + j]);
-            jn = fmax(jn, row);
-        }
-        const double tol = fmax(rtol * jn * fmax(lm_norm_inf(n, y), 1.0), DBL_MIN);
+        const double tol = f_tolerance(n, J, y, rtol);
         if (lm_norm_inf(n, f) <= tol) {
             info->tol = tol;
             return 0;
@@ -137,14 +144,7 @@ int dyn_equilibrium(const dyn_model *m, double t, double *y, void *par,
             status = rc;
             break;
         }
-        double jn = 0.0;
-        for (size_t i = 0; i < N; i++) {
-            double row = 0.0;
-            for (size_t j = 0; j < N; j++)
-                row += fabs(J[i * N + j]);
-            jn = fmax(jn, row);
-        }
-        info->tol = fmax(rtol * jn * fmax(lm_norm_inf(n, y), 1.0), DBL_MIN);
+        info->tol = f_tolerance(n, J, y, rtol);
         if (lm_norm_inf(n, f) <= info->tol) {
             status = 0;
             break;

@@ -18,6 +18,7 @@ import tempfile
 import auto_curves
 import auto_cycles
 import auto_maps
+import keep
 
 
 # name: parameters (name, start value), states (name, start value), right-hand sides as
@@ -215,16 +216,8 @@ def enz_check(dynkit, artifacts):
                     not near(turn[0], theirs_bp[0])):
                 problems.append(f"the loop's BP at the second pitchfork: dynkit {turn}, the "
                                 f"first branch's {second}, AUTO-07p {theirs_bp}")
-    if problems:
-        dest = os.path.join(artifacts, "continuation-auto-enz")
-        shutil.rmtree(dest, ignore_errors=True)
-        os.makedirs(artifacts, exist_ok=True)
-        shutil.copytree(work, dest)
-        problems = [f"enz: {p} (kept in {dest})" for p in problems]
-    else:
-        print("enz: the pitchforks, the folds and the asymmetric loop agree")
-    shutil.rmtree(work, ignore_errors=True)
-    return problems
+    return keep.settle(work, artifacts, "continuation-auto-enz", "enz", problems,
+                       "enz: the pitchforks, the folds and the asymmetric loop agree")
 
 
 RUN_AUTO = """r = run(e='pb', c='pb')
@@ -276,15 +269,8 @@ def main():
                         problems.append(f"{l}: dynkit {v!r}, AUTO-07p {w!r}")
             if not auto:
                 problems.append("AUTO-07p found no special point: the comparison would be empty")
-        if problems:
-            dest = os.path.join(artifacts, f"continuation-auto-{name}")
-            shutil.rmtree(dest, ignore_errors=True)
-            os.makedirs(artifacts, exist_ok=True)
-            shutil.copytree(work, dest)
-            failures += [f"{name}: {p} (kept in {dest})" for p in problems]
-        else:
-            print(f"{name}: {auto} agree")
-        shutil.rmtree(work, ignore_errors=True)
+        failures += keep.settle(work, artifacts, f"continuation-auto-{name}", name, problems,
+                                f"{name}: {auto} agree")
 
     if part != "orbits":
         failures += enz_check(dynkit, artifacts)

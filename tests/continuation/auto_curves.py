@@ -16,6 +16,8 @@ import shutil
 import subprocess
 import tempfile
 
+import keep
+
 MODELS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "models")
 
 # name: the .ode file, the same model for AUTO-07p (parameters and start as in the file),
@@ -233,11 +235,6 @@ def check(dynkit, artifacts, run_auto, fortran):
         return failures
     for name, cs in CASES.items():
         work, problems = check_case(dynkit, name, cs, run_auto, fortran)
-        if problems:
-            dest = os.path.join(artifacts, f"continuation-auto-curves-{name}")
-            shutil.rmtree(dest, ignore_errors=True)
-            os.makedirs(artifacts, exist_ok=True)
-            shutil.copytree(work, dest)
-            failures += [f"{name}: {p} (kept in {dest})" for p in problems]
-        shutil.rmtree(work, ignore_errors=True)
+        failures += keep.settle(work, artifacts, f"continuation-auto-curves-{name}", name,
+                                problems)
     return failures

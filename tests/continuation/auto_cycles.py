@@ -20,6 +20,8 @@ import shutil
 import subprocess
 import tempfile
 
+import keep
+
 MODELS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "models")
 A, B, E = 0.95, 0.7, 0.25  # langford.ode's a, b, e
 # |s| smoothed as 2 s atan(k s)/pi, as in chua.ode
@@ -203,13 +205,6 @@ def check(dynkit, artifacts, run_auto, fortran):
     failures = []
     for name, cs in CASES.items():
         work, problems, summary = check_case(dynkit, name, cs, run_auto, fortran)
-        if problems:
-            dest = os.path.join(artifacts, f"continuation-auto-cycles-{name}")
-            shutil.rmtree(dest, ignore_errors=True)
-            os.makedirs(artifacts, exist_ok=True)
-            shutil.copytree(work, dest)
-            failures += [f"{name}: {p} (kept in {dest})" for p in problems]
-        else:
-            print(summary, "agree")
-        shutil.rmtree(work, ignore_errors=True)
+        failures += keep.settle(work, artifacts, f"continuation-auto-cycles-{name}", name,
+                                problems, f"{summary} agree")
     return failures

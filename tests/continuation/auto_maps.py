@@ -7,9 +7,10 @@ four PDs of the cycles of period 1, 2, 4, 8, each switched to at the PD before, 
 demo log does."""
 import json
 import os
-import shutil
 import subprocess
 import tempfile
+
+import keep
 
 # name: parameters, states (name, start), the map's formulas (Fortran and .ode), the
 # continued parameter, the first step, the range
@@ -110,16 +111,8 @@ def cascade(dynkit, artifacts, run_auto, fortran):
             ours.append(pds[0] if pds else None)
         if not all(v is not None and near(v, w) for v, w in zip(ours, auto)):
             problems.append(f"the cascade's PDs: dynkit {ours}, AUTO-07p {auto}")
-    if problems:
-        dest = os.path.join(artifacts, "continuation-auto-map-cascade")
-        shutil.rmtree(dest, ignore_errors=True)
-        os.makedirs(artifacts, exist_ok=True)
-        shutil.copytree(work, dest)
-        problems = [f"map cascade: {p} (kept in {dest})" for p in problems]
-    else:
-        print(f"map cascade: {auto} agree")
-    shutil.rmtree(work, ignore_errors=True)
-    return problems
+    return keep.settle(work, artifacts, "continuation-auto-map-cascade", "map cascade",
+                       problems, f"map cascade: {auto} agree")
 
 
 def check(dynkit, artifacts, run_auto, fortran):
@@ -156,13 +149,6 @@ def check(dynkit, artifacts, run_auto, fortran):
                 problems.append(f"labels: dynkit {ours}, AUTO-07p {auto}")
             if not auto:
                 problems.append("AUTO-07p found no special point: the comparison would be empty")
-        if problems:
-            dest = os.path.join(artifacts, f"continuation-auto-map-{name}")
-            shutil.rmtree(dest, ignore_errors=True)
-            os.makedirs(artifacts, exist_ok=True)
-            shutil.copytree(work, dest)
-            failures += [f"map {name}: {p} (kept in {dest})" for p in problems]
-        else:
-            print(f"map {name}: {auto} agree")
-        shutil.rmtree(work, ignore_errors=True)
+        failures += keep.settle(work, artifacts, f"continuation-auto-map-{name}", f"map {name}",
+                                problems, f"map {name}: {auto} agree")
     return failures

@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "analysis/lm_step.h"
 #include "cont_core.h"
 #include "ode/linalg.h"
 
@@ -21,14 +22,6 @@
  * ends them */
 #define BP_REFINE_ITERATIONS 12
 #define BP_REFINE_TOL 1e-13
-
-static double inf_norm(const double *v, int n)
-{
-    double m = 0.0;
-    for (int i = 0; i < n; i++)
-        m = fmax(m, fabs(v[i]));
-    return m;
-}
 
 /* H (M x M, row-major) with H[i][j] = psi . d(DG e_i)/dz_j: column j from central
  * differences of DG^T psi along e_j. J (N x M), zh (M), d (M): work. */
@@ -118,9 +111,10 @@ int cont_refine_branch_point(const cont_system *s, const double *guess, double *
         dyn_lu_solve(K, A, piv, r);
         for (int i = 0; i < K; i++)
             u[i] += r[i];
-        if (!isfinite(inf_norm(u, K)))
-            goto done;
-        if (inf_norm(r, M) <= BP_REFINE_TOL * fmax(1.0, inf_norm(u, M))) {
+        for (int i = 0; i < K; i++)
+            if (!isfinite(u[i]))
+                goto done;
+        if (lm_norm_inf(M, r) <= BP_REFINE_TOL * fmax(1.0, lm_norm_inf(M, u))) {
             rc = 0;
             break;
         }
@@ -130,8 +124,8 @@ int cont_refine_branch_point(const cont_system *s, const double *guess, double *
          * at rounding level against DG's size */
         if (s->jacobian(s->ctx, u, J))
             rc = -1;
-        else if (!(fabs(u[K - 1]) <= 1e-10 * fmax(1.0, inf_norm(J, N * M)) *
-                                          fmax(1.0, inf_norm(u, M))))
+        else if (!(fabs(u[K - 1]) <= 1e-10 * fmax(1.0, lm_norm_inf(N * M, J)) *
+                                          fmax(1.0, lm_norm_inf(M, u))))
             rc = 1;
     }
     if (rc == 0)

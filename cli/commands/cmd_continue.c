@@ -14,6 +14,8 @@
 #include "dynkit/colloc.h"
 #include "commands/analysis_kinds.h"
 #include "commands/cont_steady.h"
+#include "commands/eq_box.h"
+#include "dynkit/equilibria.h"
 #include "cont_output.h"
 #include "cont_settings.h"
 #include "util/out_file.h"
@@ -31,8 +33,10 @@ static void continue_help(void)
          "Follows the equilibria f(x, p) = 0 of MODEL in the parameter NAME by pseudo-\n"
          "arclength continuation from the model's initial state (with the --init values),\n"
          "made an equilibrium by Newton's method first (when none is near it, the end of a\n"
-         "run over the model's span is, with a note). Folds (LP), Hopf points (HB, with the\n"
-         "first Lyapunov coefficient l1: supercritical when l1 < 0, subcritical when l1 > 0),\n"
+         "run over the model's span is, else the equilibrium nearest the initial state that\n"
+         "dynkit equilibria finds in its default box, with a note). Folds (LP), Hopf points\n"
+         "(HB, with the first Lyapunov coefficient l1: supercritical when l1 < 0,\n"
+         "subcritical when l1 > 0),\n"
          "branch points (BP; the other branch, its direction from the algebraic branching\n"
          "equation, is followed both ways) are located to 1e-10 in the parameter; the\n"
          "branch's ends are EP, the values of --at are UZ; a branch that comes back to its\n"
@@ -337,6 +341,92 @@ static int start_from_run(const cli_run *run, const dyn_cont_opts *o, dyn_diagra
     return st;
 }
 
+/* Neither the initial state nor the end of a run is near an equilibrium (a model that
+ * bursts or spikes there): the equilibria in the default box of dynkit equilibria are
+ * found, and the branch starts from the one nearest the initial state (distances scaled by
+ * the box's widths), with a note naming it. The library's status; on failure info keeps
+ * the first message. */
+static int start_from_equilibria(const cli_run *run, const dyn_cont_opts *o, dyn_diagram *d,
+                                 dyn_cont_info *info, cli_progress *progress)
+{
+    const dyn_model *m = run->model;
+    const int n = m->n_states;
+    char first[sizeof info->message];
+    snprintf(first, sizeof first, "%s", info->message);
+    double *lo = malloc((size_t)n * sizeof *lo), *hi = malloc((size_t)n * sizeof *hi);
+    int *from_file = malloc((size_t)n * sizeof *from_file);
+    dyn_equilibria e;
+    memset(&e, 0, sizeof e);
+    int st = DYN_ERR_ARG;
+    if (lo && hi && from_file) {
+        cli_eq_default_box(run, lo, hi, from_file);
+        dyn_equilibria_opts eo;
+        memset(&eo, 0, sizeof eo);
+        eo.lo = lo;
+        eo.hi = hi;
+        eo.guess = run->y0;
+        eo.map = o->map;
+        eo.scheme = o->jac;
+        st = dyn_equilibria_find(m, o->t, run->par, &eo, &e);
+    }
+    int best = -1;
+    double best_dist = INFINITY;
+    for (int k = 0; st == 0 && k < e.count; k++) {
+        double dist = 0.0;
+        for (int i = 0; i < n; i++) {
+            const double w = hi[i] > lo[i] ? hi[i] - lo[i] : 1.0;
+            const double r = (e.y[(size_t)k * n + i] - run->y0[i]) / w;
+            dist += r * r;
+        }
+        if (dist < best_dist) {
+            best_dist = dist;
+            best = k;
+        }
+    }
+    if (best < 0) {
+        cli_progress_finish(progress);
+        cli_stderr("dynkit: note: continue: the search of dynkit equilibria in its default "
+                   "box finds none at %s = %s either (--init NAME=VALUE gives a start near "
+                   "one; dynkit equilibria --box NAME=A:B searches a box)\n",
+                   m->params[o->ip].name, dyn_shortest(dyn_model_get_param(m, run->par, o->ip)).s);
+        snprintf(info->message, sizeof info->message, "%s", first);
+        st = st ? st : DYN_ERR_ARG;
+    } else {
+        const double *y = e.y + (size_t)best * n;
+        dyn_diagram_free(d);
+        memset(info, 0, sizeof *info);
+        st = dyn_continue(m, run->par, y, o, d, info);
+        cli_progress_finish(progress);
+        char where[400] = "";
+        size_t len = 0;
+        for (int i = 0; i < n && len < sizeof where - 1; i++) {
+            const int more = i == 6 && n > 7;
+            len += (size_t)snprintf(where + len, sizeof where - len, "%s%s", i ? ", " : "",
+                                    more ? "..." : "");
+            if (more)
+                break;
+            if (len < sizeof where - 1)
+                len += (size_t)snprintf(where + len, sizeof where - len, "%.40s = %s",
+                                        m->states[i].name, dyn_shortest(y[i]).s);
+        }
+        if (st == 0)
+            cli_stderr("dynkit: note: continue: the branch starts from the equilibrium nearest the initial state of the %d that "
+                       "dynkit equilibria finds in its default box: %s\n",
+                       e.count, where);
+        else {
+            cli_stderr("dynkit: note: continue: the equilibrium nearest the initial state "
+                       "found by dynkit equilibria (%s) is no better: %s\n",
+                       where, info->message);
+            snprintf(info->message, sizeof info->message, "%s", first);
+        }
+    }
+    dyn_equilibria_free(&e);
+    free(lo);
+    free(hi);
+    free(from_file);
+    return st;
+}
+
 typedef struct continue_progress_ctx {
     const dyn_model *m;
     cli_progress *progress;
@@ -448,6 +538,8 @@ int cli_cmd_continue(int argc, char **argv)
         int st = dyn_continue(m, run.par, run.y0, &s.opts, &d, &info);
         if (st && info.start_failed)
             st = start_from_run(&run, &s.opts, &d, &info, &progress);
+        if (st && info.start_failed)
+            st = start_from_equilibria(&run, &s.opts, &d, &info, &progress);
         cli_progress_finish(&progress); /* the line cleared before the messages */
         if (st) {
             cli_error("continue: %s", info.message);

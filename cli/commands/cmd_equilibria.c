@@ -13,6 +13,7 @@
 #include "cli.h"
 #include "commands/analysis_kinds.h"
 #include "commands/analysis_args.h"
+#include "commands/eq_box.h"
 #include "dynkit/equilibria.h"
 #include "models/lin_constrained.h"
 #include "pages/pages.h"
@@ -70,58 +71,6 @@ typedef struct eq_args {
 } eq_args;
 
 /* ---- the box ---- */
-
-typedef struct range_ctx {
-    int n;
-    double *lo, *hi;
-    long samples;
-} range_ctx;
-
-static int track_range(long k, double t, const double *y, void *ctx)
-{
-    (void)k;
-    (void)t;
-    range_ctx *r = ctx;
-    for (int i = 0; i < r->n; i++)
-        if (isfinite(y[i])) {
-            r->lo[i] = fmin(r->lo[i], y[i]);
-            r->hi[i] = fmax(r->hi[i], y[i]);
-        }
-    r->samples++;
-    return 0;
-}
-
-/* The default box: the range of the default run, widened (the phase window's axes win). */
-static void default_box(const cli_run *run, double *lo, double *hi, int *from_file)
-{
-    const dyn_model *m = run->model;
-    const int n = m->n_states;
-    range_ctx r = {n, lo, hi, 0};
-    for (int i = 0; i < n; i++)
-        lo[i] = hi[i] = run->y0[i];
-    double *y = malloc((size_t)n * sizeof *y);
-    dyn_result res;
-    memset(&res, 0, sizeof res);
-    if (y)
-        cli_run_solve(run, 1, track_range, &r, NULL, NULL, NULL, NULL, y, &res);
-    free(y);
-    for (int i = 0; i < n; i++) {
-        const double margin = fmax(0.5 * (hi[i] - lo[i]), 1.0);
-        lo[i] -= margin;
-        hi[i] += margin;
-        from_file[i] = 0;
-    }
-    const char *axis[2] = {m->phase_x, m->phase_y};
-    for (int a = 0; a < 2; a++) {
-        const int i = axis[a] ? dyn_model_state_index(m, axis[a]) : -1;
-        const double wlo = m->phase_window[2 * a], whi = m->phase_window[2 * a + 1];
-        if (i >= 0 && wlo < whi) {
-            lo[i] = wlo;
-            hi[i] = whi;
-            from_file[i] = 1;
-        }
-    }
-}
 
 /* --box NAME=A:B,... over the default. */
 static int parse_box(const dyn_model *m, const char *text, double *lo, double *hi, int *given)
@@ -392,7 +341,7 @@ int cli_cmd_equilibria(int argc, char **argv)
     if (!lo || !hi || !given)
         rc = CLI_FAILED;
     if (rc == CLI_OK) {
-        default_box(&run, lo, hi, given);
+        cli_eq_default_box(&run, lo, hi, given);
         if (a.box[0])
             rc = parse_box(m, a.box, lo, hi, given);
     }

@@ -373,6 +373,27 @@ if (out.returncode == 0 or "no equilibrium found near the start" not in out.stde
     failures.append(f"no equilibrium, a run that blows up: exit {out.returncode}, "
                     f"{out.stderr.strip()!r} (expected a failure with a note on the run)")
 
+# neither the initial state nor the end of a run is near an equilibrium (x' = -(x^3 - 3x + p)
+# from x = 1, where f' = 0 and |f| has a minimum 1, over a span of 0.001 that leaves x
+# there): the branch starts from the equilibrium that the search of dynkit equilibria finds
+# in the file's window x = [-4, 4], the real root of x^3 - 3x + 3, with a note; without the
+# window the default box [0, 2] holds none, and the failure says so and what to give
+for window, name in ((", xp=x, xlo=-4, xhi=4", "ghost_window.ode"), ("", "ghost.ode")):
+    path = os.path.join(tmp, name)
+    with open(path, "w") as f:
+        f.write(f"par p=3\ninit x=1\nx'=-(x^3-3*x+p)\n@ total=0.001, parmax=6{window}\ndone\n")
+    out = subprocess.run([dynkit, "continue", path, "--par", "p", "--json"],
+                         capture_output=True, text=True)
+    if window and (out.returncode != 0 or "dynkit equilibria finds" not in out.stderr):
+        failures.append(f"start from the equilibria in the window: exit {out.returncode}, "
+                        f"{out.stderr.strip()!r}")
+    elif window:
+        check("start from the equilibria in the window: x at p = 3",
+              json.loads(out.stdout)["branches"][0]["points"][0]["state"]["x"], root, 1e-10)
+    elif out.returncode == 0 or "finds none at p = 3 either (--init NAME=VALUE" not in out.stderr:
+        failures.append(f"no equilibrium in the default box: exit {out.returncode}, "
+                        f"{out.stderr.strip()!r} (expected a failure naming --init)")
+
 # curves in two parameters
 d = run(f"{models}/cusp.ode", "--par", "a", "--par2", "b")
 cps = points(d, "CP") if d else []

@@ -50,7 +50,9 @@ static void continue_help(void)
          "(eigenvalue of dF/dy) has |mu| < 1, with LP (mu = 1), BP (switched as above), PD\n"
          "(a real multiplier through -1) and TR (a complex pair through the unit circle:\n"
          "Neimark-Sacker, AUTO-07p's label for maps; its angle arg mu is printed); the\n"
-         "JSON gives \"map\": true and each point's \"multipliers\". From each PD the\n"
+         "JSON gives \"map\": true and each point's \"multipliers\". The file's @ njmp=k\n"
+         "(XPPAUT's period of a map for AUTO) makes them the points of period k (fixed\n"
+         "points of F^k). From each PD the\n"
          "points of twice the period (fixed points of F o F) are followed, up to period\n"
          "16; the period column gives the points' period. With --par2, the curves of\n"
          "its folds and flips (kind flip) in the two parameters (no Neimark-Sacker curves).\n"
@@ -492,6 +494,7 @@ int cli_cmd_continue(int argc, char **argv)
         s.opts.ip2 = ip2;
         s.opts.t = run.t0;
         s.opts.map = dyn_method_is_map(run.method);
+        s.opts.map_period = s.opts.map && run.every > 1 ? (int)fmin(run.every, 1e6) : 1;
         rc = settings(&a, run.par, m, &s);
     }
     if (rc == CLI_OK && a.scheme_text)
@@ -538,7 +541,7 @@ int cli_cmd_continue(int argc, char **argv)
         int st = dyn_continue(m, run.par, run.y0, &s.opts, &d, &info);
         if (st && info.start_failed)
             st = start_from_run(&run, &s.opts, &d, &info, &progress);
-        if (st && info.start_failed)
+        if (st && info.start_failed && s.opts.map_period <= 1)
             st = start_from_equilibria(&run, &s.opts, &d, &info, &progress);
         cli_progress_finish(&progress); /* the line cleared before the messages */
         if (st) {

@@ -191,6 +191,9 @@ typedef struct dyn_cont_opts {
      * the curves of folds and flips (DYN_BRANCH_FLIP) in two parameters, without
      * codimension-two points; no Neimark-Sacker curves (cont_map.c) */
     int map;
+    /* a map's first branch: 0 or 1 its fixed points, k > 1 its points of period k (the
+     * fixed points of F^k, multipliers those of F^k: XPPAUT's NJMP for AUTO) */
+    int map_period;
 } dyn_cont_opts;
 
 /* o filled with the defaults above for parameter ip (ip2 = -1, parmin/parmax as defined,

@@ -24,7 +24,7 @@ int cont_model_init(cont_model *cm, const dyn_model *m, const void *par, const d
     cm->ip = o->ip;
     cm->ip2 = o->ip2;
     cm->map = o->map;
-    cm->period = 1;
+    cm->period = o->map && o->map_period > 1 ? o->map_period : 1;
     const size_t n = (size_t)cm->n;
     if (o->map && !(cm->map_work = malloc((2 * n + 3 * n * n) * sizeof *cm->map_work)))
         return -1;

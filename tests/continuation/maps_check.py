@@ -13,8 +13,10 @@ fixed points and of its 2-cycles (the cycle checked by iterating the map here). 
 import cmath
 import json
 import math
+import os
 import subprocess
 import sys
+import tempfile
 
 dynkit, models = sys.argv[1:3]
 failures = []
@@ -217,6 +219,40 @@ out = subprocess.run(cmd, capture_output=True, text=True)
 if (out.returncode == 0 or "dF/dy - I is singular (null vector along x;" not in out.stderr
         or "a family of fixed points" not in out.stderr):
     failures.append(f"a singular start of a map: exit {out.returncode}, {out.stderr.strip()!r}")
+
+# XPPAUT's NJMP is the period of a map's points for AUTO: the delayed logistic map with
+# @ njmp=7 from r = 2.177 (Debian's XPPAUT example del_log.ode) follows its points of period
+# 7, the 1:7 resonance on the invariant circle born at r = 2; each LP is a fold of F^7
+# (F^7(y) = y, det(dF^7/dy - I) = 0, both computed here along the orbit), the cycle is no
+# fixed point of F, and the two edges of the resonance lie in (2.17, 2.21)
+njmp = os.path.join(tempfile.mkdtemp(), "delayed_logistic_7.ode")
+with open(njmp, "w") as f:
+    f.write("x(t+1)=r*x*(1-y)\ny(t+1)=x\npar r=2.177\ninit x=.11, y=.21\n"
+            "@ meth=discrete, total=100, njmp=7\n@ parmin=2, parmax=2.5, dsmax=.025\ndone\n")
+d = run(os.path.relpath(njmp, models), "--par", "r")
+edges = set()
+for b in (d["branches"] if d else []):
+    for q in b["points"]:
+        if q["period"] != 7:
+            failures.append(f"njmp=7: a point of period {q['period']}")
+            break
+        if q["label"] != "LP":
+            continue
+        r, x, y = q["r"], q["state"]["x"], q["state"]["y"]
+        J = [[1.0, 0.0], [0.0, 1.0]]  # d(x, y) of F^7, the product along the orbit
+        x1, y1 = x, y
+        for _ in range(7):
+            A = [[r * (1 - y1), -r * x1], [1.0, 0.0]]
+            J = [[A[i][0] * J[0][j] + A[i][1] * J[1][j] for j in range(2)] for i in range(2)]
+            x1, y1 = r * x1 * (1 - y1), x1
+        det = (J[0][0] - 1) * (J[1][1] - 1) - J[0][1] * J[1][0]
+        if not (abs(x1 - x) + abs(y1 - y) <= 1e-12 and abs(det) <= 1e-9
+                and abs(r * x * (1 - y) - x) + abs(x - y) > 1e-2 and 2.17 < r < 2.21):
+            failures.append(f"njmp=7: LP at r = {r}: F^7 - y = {x1 - x:.3g}, {y1 - y:.3g}, "
+                            f"det(dF^7 - I) = {det:.3g}")
+        edges.add(round(r, 9))
+if len(edges) != 2:
+    failures.append(f"njmp=7: the 1:7 resonance's edges at r = {sorted(edges)}, expected two")
 
 for f in failures:
     print("FAIL:", f)

@@ -2,7 +2,8 @@
 /* test_continue_cli.c — dynkit continue's command line (docs/analysis.md, "Continuation"):
  * - the AUTO settings of a model file's @ lines are read by the model file's parser: a line
  *   continued with '\', blanks around '=', names in upper case, and not a commented line;
- *   a bad value is refused at its FILE:LINE:COL with what is accepted (exit 2);
+ *   a bad value is refused at its FILE:LINE:COL with what is accepted (exit 2); AUTOVAR
+ *   names the state on the diagram's y axis;
  * - -o FILE writes the file and nothing on standard output, as run and equilibria do; '-'
  *   is CSV on standard output and '-.json' JSON, without the summary; no output option
  *   prints the summary;
@@ -79,6 +80,27 @@ static void test_settings_from_the_files_at_lines(void **state)
     cli_write_file("bad.ode", "par p=-0.5\nx'=p*x\n@ NMAX=0\ndone\n");
     r = cli_in_tmpdir("continue bad.ode --par p");
     CHECK(r.status == 2 && strstr(r.err, "bad.ode:3:8: nmax=0: give a whole number from 1"),
+          "exit %d: %s", r.status, r.err);
+    cli_free(&r);
+
+    /* AUTOVAR names the state on the diagram's y axis (--y wins); a name that is no
+     * state is refused at its place */
+    cli_write_file("var.ode", "par p=-0.5\ninit x=0, y=0\nx'=p*x-y\ny'=x+p*y\n"
+                              "@ total=10, parmax=1, autovar=y\ndone\n");
+    r = cli_in_tmpdir("continue var.ode --par p -o var.svg");
+    CHECK(r.status == 0, "%s", r.err);
+    cli_free(&r);
+    char *svg = cli_read_file(cli_path("var.svg"), NULL);
+    CHECK(svg && strstr(svg, ">y</text>") && !strstr(svg, ">x</text>"), "%.400s", svg);
+    free(svg);
+    r = cli_in_tmpdir("continue var.ode --par p --y x -o var.svg");
+    cli_free(&r);
+    svg = cli_read_file(cli_path("var.svg"), NULL);
+    CHECK(svg && strstr(svg, ">x</text>") && !strstr(svg, ">y</text>"), "%.400s", svg);
+    free(svg);
+    cli_write_file("bad.ode", "par p=-0.5\nx'=p*x\n@ autovar=v\ndone\n");
+    r = cli_in_tmpdir("continue bad.ode --par p");
+    CHECK(r.status == 2 && strstr(r.err, "bad.ode:3:11: autovar=v: not a state of bad"),
           "exit %d: %s", r.status, r.err);
     cli_free(&r);
 }

@@ -69,7 +69,8 @@ static void continue_help(void)
          "With --par2, the curves of its folds and Hopf points in the two parameters.\n"
          "\n"
          "Settings (XPPAUT's AUTO names): a model file's @ lines give them (ntst, ncol, nmax,\n"
-         "npr, ds, dsmin, dsmax, parmin, parmax, autoxmin, autoxmax, autoymin, autoymax),\n"
+         "npr, ds, dsmin, dsmax, parmin, parmax, autoxmin, autoxmax, autoymin, autoymax;\n"
+         "autovar: the state on the diagram's y axis unless --y names one),\n"
          "--opt NAME=VALUE overrides them, and the rest are XPPAUT's defaults: ds=0.02\n"
          "(its sign is the direction), dsmin=0.001, dsmax=0.5, nmax=200, parmin=0, parmax=2;\n"
          "par2min, par2max bound the second parameter (default: none). When neither the\n"
@@ -497,6 +498,11 @@ int cli_cmd_continue(int argc, char **argv)
         s.opts.map_period = s.opts.map && run.every > 1 ? (int)fmin(run.every, 1e6) : 1;
         rc = settings(&a, run.par, m, &s);
     }
+    if (rc == CLI_OK && !a.ynam && s.autovar[0] &&
+        (iy = dyn_model_state_index(m, s.autovar)) < 0)
+        rc = cli_usage_error("continue", "%s: autovar=%s: not a state of %s (AUTOVAR names the "
+                             "state on the diagram's y axis)", s.autovar_from, s.autovar,
+                             m->name);
     if (rc == CLI_OK && a.scheme_text)
         rc = parse_scheme(a.scheme_text, &s.opts.jac);
     double *at = NULL;

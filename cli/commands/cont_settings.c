@@ -3,7 +3,7 @@
  * for dynkit continue (cont_settings.h). XPPAUT's manual, "AUTO" chapter, names them:
  * ntst, ncol (collocation mesh), nmax (points per branch), npr (print interval), ds,
  * dsmin, dsmax (arclength steps), parmin, parmax (the parameter's range), autoxmin..autoymax
- * (the diagram's window); names are case-insensitive, as XPPAUT reads them. The file's
+ * (the diagram's window), autovar (the state on its y axis); names are case-insensitive, as XPPAUT reads them. The file's
  * @ lines are read by the model file's parser (dyn_ode_auto_options, dynkit/lang.h). */
 #include <ctype.h>
 #include <math.h>
@@ -31,13 +31,19 @@ static int same(const char *a, const char *b)
 int cont_settings_apply(cont_settings *s, const char *name, const char *value, const char *where,
                         char *err, size_t errlen)
 {
+    if (same(name, "autovar")) { /* a state's name, checked by the caller */
+        snprintf(s->autovar, sizeof s->autovar, "%s", value);
+        snprintf(s->autovar_from, sizeof s->autovar_from, "%s", where);
+        return 0;
+    }
     int k = 0;
     while (cont_settings_names[k] && !same(cont_settings_names[k], name))
         k++;
     if (!cont_settings_names[k]) {
         snprintf(err, errlen,
                  "%s: unknown setting '%s' (accepted: ntst, ncol, nmax, npr, ds, dsmin, dsmax, "
-                 "parmin, parmax, par2min, par2max, autoxmin, autoxmax, autoymin, autoymax)",
+                 "parmin, parmax, par2min, par2max, autoxmin, autoxmax, autoymin, autoymax, "
+                 "autovar)",
                  where, name);
         return -1;
     }

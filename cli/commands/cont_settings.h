@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* cont_settings.h — the settings of dynkit continue: XPPAUT's AUTO options read from a
  * model file's @ lines (ntst, ncol, nmax, npr, ds, dsmin, dsmax, parmin, parmax, autoxmin,
- * autoxmax, autoymin, autoymax), then --opt NAME=VALUE on the command line, over the
+ * autoxmax, autoymin, autoymax, autovar), then --opt NAME=VALUE on the command line, over the
  * defaults of dynkit/continuation.h (cont_settings.c). */
 #ifndef DYNKIT_CLI_CONT_SETTINGS_H
 #define DYNKIT_CLI_CONT_SETTINGS_H
@@ -13,6 +13,8 @@ typedef struct cont_settings {
     double window[4];     /* autoxmin, autoxmax, autoymin, autoymax (NAN: not given) */
     char from[16][320];   /* where each setting came from ("FILE:LINE:COL", "--opt"; "":
                            * not given), by cont_settings.c's order of the names */
+    char autovar[64];     /* AUTOVAR, the state on the diagram's y axis ("": not given) */
+    char autovar_from[320];
 } cont_settings;
 
 /* Apply NAME=VALUE (text) to s; where: "FILE:LINE:COL" or "--opt" for messages. Returns

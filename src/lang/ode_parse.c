@@ -504,7 +504,8 @@ static void set_method(lang_ctx *c, const char *v, lpos pos)
 /* AUTO's settings an @ line may give, as dyn_ode_auto_options names them (dynkit/lang.h) */
 static const char *const auto_names[] = {
     "ntst",   "nmax",    "npr",      "ncol",     "ds",       "dsmin",    "dsmax", "parmin",
-    "parmax", "par2min", "par2max",  "autoxmin", "autoxmax", "autoymin", "autoymax", NULL};
+    "parmax", "par2min", "par2max",  "autoxmin", "autoxmax", "autoymin", "autoymax",
+    "autovar", NULL};
 
 /* An @ option of AUTO (XPPAUT's manual, "AUTO"): kept with its place for dynkit continue
  * (dyn_ode_auto_options); a run does not use it. 1 when name is one, else 0. */

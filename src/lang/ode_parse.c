@@ -257,7 +257,12 @@ static void name_value_list(lang_ctx *c, lang_lexer *lx, int kind, const char *k
             ch = lang_skip_blanks(lx);
         }
         if (ch == ',') {
+            const lpos comma = lang_here(lx);
             lx->i++;
+            if (!lang_skip_blanks(lx)) { /* `par ka1=0.1,`: XPPAUT 6.11 reads the line */
+                lang_note(c, comma, "a ',' ends the %s list: nothing follows it", keyword);
+                return;
+            }
             continue;
         }
         if (!ch)

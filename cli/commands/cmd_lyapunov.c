@@ -163,15 +163,24 @@ static void print_result(FILE *f, const void *ctx)
 
 /* A note when the largest exponent's error estimate is over 5% of its value (and not a
  * rounding-level zero against the largest |exponent|): the averaging time that would bring
- * it to about 2%, the error falling like 1/sqrt(T), at most 100 times the one used. */
+ * it to about 2%, the error falling like 1/sqrt(T), at most 100 times the one used; when
+ * the value is within its error of 0, that it is 0 within it. */
 static void note_wide_error(const cli_run *run, const dyn_lyapunov_opts *lo, const double *ex,
                             const double *err, const dyn_lyapunov_info *info)
 {
     double biggest = 0.0;
     for (int k = 0; k < lo->k; k++)
         biggest = fmax(biggest, fabs(ex[k]));
+    if (!(err[0] > 1e-3 * biggest))
+        return;
+    if (!(fabs(ex[0]) > err[0])) {
+        /* no relative error of a value that may be 0 */
+        cli_note("lyapunov: the largest exponent is 0 within its error estimate %.2g (as on a "
+                 "periodic or quasi-periodic motion); a longer --tspan narrows it", err[0]);
+        return;
+    }
     const double rel = err[0] / fabs(ex[0]);
-    if (!(rel > 0.05) || !(err[0] > 1e-3 * biggest))
+    if (!(rel > 0.05))
         return;
     /* the whole span scaled: with the default transient (a tenth of it) the averaging
      * time scales the same */

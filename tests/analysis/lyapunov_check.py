@@ -7,7 +7,8 @@ linear system x' = A x (the exponents are the real parts of A's eigenvalues, her
 and -2, numpy.linalg.eigvals); the logistic map at r = 4 (ln 2); the Henon map at a = 1.4,
 b = 0.3 (0.41922, Sprott's table; the sum ln b exactly, the Jacobian's determinant being
 -b); a model without an exact Jacobian (the built-in pendulum: both exponents 0 on a
-periodic orbit, their sum 0); the JSON contract; bad input refused with exit status 2.
+periodic orbit, their sum 0; van der Pol's limit cycle over a short span, 0 within its
+error and a note that says so); the JSON contract; bad input refused with exit status 2.
 The estimates must agree within four times their own error estimate plus 0.005 (the
 table's rounding and the bias of a finite average). Exit 0 when all hold, 1 when not, 77
 (skipped) without NumPy.
@@ -68,6 +69,14 @@ def main():
         check("note" not in p.stderr and d1["errors"][0] < 0.035 * d1["exponents"][0] and
               agree(d1["exponents"][0], d1["errors"][0], 0.9056),
               f"Lorenz over {span}: {d1['exponents']} +- {d1['errors']} = 0.9056, no note")
+    # van der Pol's limit cycle over a short span: the largest exponent (0) within its
+    # error of 0: the note says so, with no relative error of a value that may be 0
+    p = run("vanderpol", "--tspan", "0:20", "--json")
+    d1 = json.loads(p.stdout) if p.returncode == 0 else {"exponents": [1], "errors": [0]}
+    check(abs(d1["exponents"][0]) <= d1["errors"][0] and "0 within its error" in p.stderr and
+          "%" not in p.stderr,
+          f"van der Pol over 0:20: {d1['exponents']} +- {d1['errors']}, note "
+          f"{p.stderr.strip()[:100]!r}")
     # the largest alone (another step sequence: another chaotic trajectory, the same value)
     d1 = exps(os.path.join(EX, "lorenz.ode"), "--tspan", "0:2000")
     check(len(d1["exponents"]) == 1 and agree(d1["exponents"][0], d1["errors"][0], 0.9056),

@@ -205,7 +205,7 @@ typedef struct dyn_cont_info {
     long points;        /* points computed over all branches */
     long newton_steps;  /* Newton iterations (each one Jacobian and one LU) */
     long rhs_calls;     /* evaluations of f (the Jacobians' differences included) */
-    char message[256];  /* why it failed, when it did; else notes ("a branch stopped...") */
+    char message[512];  /* why it failed, when it did; else notes ("a branch stopped...") */
     int start_failed;   /* 1: it failed because no equilibrium was found near x0 */
 } dyn_cont_info;
 

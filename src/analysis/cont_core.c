@@ -234,6 +234,20 @@ int cont_null_direction(const cont_system *s, cont_work *w, const double *z, con
 
 /* ---- the loop ---- */
 
+void cont_missed_text(const cont_missed *m, const char *par, char *buf, size_t len)
+{
+    if (m->count == 0) {
+        if (len > 0)
+            buf[0] = '\0';
+        return;
+    }
+    snprintf(buf, len,
+             "%d special point%s detected but not located, not in the output (the first: %s "
+             "between %.40s = %.10g and %.10g); smaller steps (dsmax, dsmin) may locate %s",
+             m->count, m->count > 1 ? "s" : "", dyn_cont_label_name(m->label), par, m->p0,
+             m->p1, m->count > 1 ? "them" : "it");
+}
+
 void cont_loop_from_opts(const dyn_cont_opts *o, cont_loop *L, dyn_cont_label start)
 {
     memset(L, 0, sizeof *L);
@@ -448,7 +462,10 @@ static int locate(const cont_system *s, cont_work *w, const target *g, const dou
         memcpy(t, tt, (size_t)M * sizeof *t);
         *s_found = c;
         if (fc == 0.0 || (it > 0 && fabs(c - c_prev) <= 1e-12 * fabs(sb))) {
-            ok = 0;
+            /* the secant method also settles where psi jumps (the corrector went over to
+             * another branch there): a point only where psi is near zero or the branch is
+             * one piece across the bracket */
+            ok = fc == 0.0 || end_is_zero(M, fabs(fc), zero, pa, pb, a, b) ? 0 : -1;
             break;
         }
         c_prev = c;
@@ -673,7 +690,7 @@ int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const do
             break;
         }
         /* special points between z and z1 */
-        int ns = 0, end_here = 0;
+        int ns = 0, end_here = 0, unlocated = -1;
         for (int k = 0; k < s->n_tests; k++) {
             if (isnan(psi[k]) || isnan(psi1[k]) || !((psi[k] < 0.0) != (psi1[k] < 0.0)) ||
                 psi[k] == 0.0)
@@ -696,7 +713,8 @@ int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const do
                  branch_point_in_step(s, z, t, z1, sp[ns].z, &sp[ns].s) == 0)) {
                 sp[ns].label = s->test_label[k];
                 ns++;
-            }
+            } else if (unlocated < 0)
+                unlocated = k;
         }
         /* a fold located at a branch point is that branch point (the pitchfork's branch
          * x^2 = p turns in p where it meets x = 0): AUTO-07p reports the BP alone */
@@ -716,6 +734,19 @@ int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const do
                     sp[b] = sp[--ns];
                     b = a;
                 }
+        /* a test changed sign and nothing could be located: a step that jumped onto
+         * another branch, or one too long for the secant method; shorter, or noted */
+        if (ns == 0 && unlocated >= 0 && ds > L->dsmin) {
+            ds = fmax(0.5 * ds, L->dsmin);
+            continue;
+        }
+        if (ns == 0 && unlocated >= 0 && L->missed) {
+            if (L->missed->count++ == 0) {
+                L->missed->label = s->test_label[unlocated];
+                L->missed->p0 = z[s->ip];
+                L->missed->p1 = z1[s->ip];
+            }
+        }
         for (int u = 0; u < L->n_at; u++) {
             const double a = z[s->ip] - L->at[u], b = z1[s->ip] - L->at[u];
             if ((a < 0.0) == (b < 0.0) || a == 0.0)

@@ -119,7 +119,21 @@ typedef struct cont_loop {
     dyn_cont_label start_label; /* the first point's label (EP, BP, LP, HB) */
     int stop_closed;          /* non-zero: end a curve that comes back to its start or to
                                * one of its labelled points */
+    struct cont_missed *missed; /* NULL, or where the loop counts its unlocated points */
 } cont_loop;
+
+/* The special points whose test function changed sign over a step where none could be
+ * located (the secant method did not converge) and no other special point was: they are
+ * not stored, and the caller says so. */
+typedef struct cont_missed {
+    int count;
+    dyn_cont_label label;     /* the first one's label */
+    double p0, p1;            /* the parameter at the ends of its step */
+} cont_missed;
+
+/* What m holds, in words for a note ("2 special points detected but not located ..."), the
+ * parameter named `par`, into buf (len bytes); "" when m counts none. */
+void cont_missed_text(const cont_missed *m, const char *par, char *buf, size_t len);
 
 /* L from the options of dyn_continue: |ds|, dsmin, dsmax, nmax, the bounds of the first
  * parameter, the UZ values, the first point's label; no bounds on a second parameter. */

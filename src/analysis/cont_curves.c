@@ -454,6 +454,7 @@ int cont_curves_from(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int
         L.p2max = o->par2max;
         L.start_label = hopf ? DYN_LABEL_HB : flip ? DYN_LABEL_PD : DYN_LABEL_LP;
         L.stop_closed = 1;
+        L.missed = &cm->missed;
         char stop[160];
         const int st = cont_follow(&s, &w, &L, z, t, stop, sizeof stop);
         snprintf(d->branches[c.bi].stop, sizeof d->branches[c.bi].stop, "%s", stop);

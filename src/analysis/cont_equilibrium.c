@@ -148,6 +148,7 @@ static int follow_branch(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d,
     cont_loop L;
     cont_loop_from_opts(o, &L, start);
     L.stop_closed = 1;
+    L.missed = &cm->missed;
     char stop[160];
     const int rc = cont_follow(&s, w, &L, z, t, stop, sizeof stop);
     snprintf(d->branches[e.bi].stop, sizeof d->branches[e.bi].stop, "%s", stop);
@@ -557,6 +558,11 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
         }
     }
     cm.period = 1;
+    if (cm.missed.count > 0) {
+        char missed[sizeof note];
+        cont_missed_text(&cm.missed, m->params[o->ip].name, missed, sizeof missed);
+        add_note(note, sizeof note, "%s", missed);
+    }
     if (tr_seen && o->ip2 >= 0)
         add_note(note, sizeof note, "the curves of Neimark-Sacker points (TR) in two "
                  "parameters are not computed");

@@ -27,6 +27,7 @@ typedef struct cont_model {
     double p2_base;       /* ip2's value in the caller's par (NAN p2: this one) */
     double *f, *fp, *fm, *J, *lin_work, *eig_a, *re, *im; /* workspace */
     long rhs_calls;
+    cont_missed missed;   /* special points detected but not located, on every branch */
     char message[256];
 } cont_model;
 

@@ -296,15 +296,22 @@ int dyn_steady_continue(const dyn_model *m, const void *par, const double *y0,
     if (rc == 0 && sc_follow(&c, &s, &w, o, NULL, z, t, DYN_LABEL_EP, 0, -1))
         rc = fail(info, c.message[0] ? c.message : "the right-hand side failed at the start");
     /* the other branches at the branch points */
-    char note[256] = "";
+    char note[sizeof info->message] = "";
     if (rc == 0 && !o->no_switch && sc_switch_all(&c, &s, &w, o, first, note, sizeof note))
         rc = fail(info, c.message[0] ? c.message : "out of memory");
     /* the curves of folds and Hopf points in two parameters */
     if (rc == 0 && o->ip2 >= 0 && sc_curves_all(&c, &s, o, first, note, sizeof note))
         rc = fail(info, c.message[0] ? c.message : "out of memory");
+    if (rc == 0 && cm.missed.count > 0) {
+        const size_t used = strlen(note);
+        if (used > 0 && used + 2 < sizeof note)
+            memcpy(note + used, "; ", 3);
+        cont_missed_text(&cm.missed, m->params[o->ip].name, note + strlen(note),
+                         sizeof note - strlen(note));
+    }
     if (rc == 0 && c.dropped > 1e-8)
         snprintf(info->message, sizeof info->message,
-                 "the steady equations not used hold only to %.3g relative%s%.160s", c.dropped,
+                 "the steady equations not used hold only to %.3g relative%s%.400s", c.dropped,
                  note[0] ? "; " : "", note);
     else if (rc == 0)
         snprintf(info->message, sizeof info->message, "%s", note);

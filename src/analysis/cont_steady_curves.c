@@ -213,6 +213,7 @@ static int one_curve(curve_ctx *k, cont_work *w, const dyn_cont_opts *o, int bi,
         L.p2min = o->par2min;
         L.p2max = o->par2max;
         L.stop_closed = 1;
+        L.missed = &c->cm->missed;
         char stop[160];
         k->failed = 0;
         k->why[0] = '\0';

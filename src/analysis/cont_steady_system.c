@@ -352,6 +352,7 @@ int sc_follow(sc_ctx *c, const cont_system *s, cont_work *w, const dyn_cont_opts
         return -1;
     cont_loop L;
     cont_loop_from_opts(o, &L, start);
+    L.missed = &c->cm->missed;
     char stop[160];
     c->why[0] = '\0';
     c->message[0] = '\0';

@@ -125,6 +125,20 @@ if d:
             check(f"logistic period {period}: r at PD", pds[0], want,
                   1e-10 if period < 16 else 1e-9)
 
+# ---- the cascade's cycles followed on into the chaotic range (the default window, r up to
+# 5): there the cycles of period 16 lie close together with multipliers of order 1e5 and a
+# step of the continuation can land on another one; a test function that jumps there is no
+# special point: every PD has a multiplier -1 (1e-6), every BP one +1 (and the PD where a
+# doubled cycle's branch starts, as a cycle of twice the period, +1)
+d = run("logistic_map.ode", "--par", "r")
+if d:
+    for b in d["branches"]:
+        for k, p in enumerate(b["points"]):
+            want = {"PD": 1.0 if k == 0 else -1.0, "BP": 1.0}.get(p["label"])
+            if want is not None and not any(abs(m - want) <= 1e-6 for m in multipliers(p)):
+                failures.append(f"logistic to r = 5: {p['label']} at r = {p['r']} (period "
+                                f"{p['period']}) has the multipliers {multipliers(p)}")
+
 # ---- Henon's map: the fold and the period doubling of its fixed points
 for b in (0.3, -0.4):
     sets = ["--set", f"b={b}"]

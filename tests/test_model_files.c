@@ -453,22 +453,26 @@ static void test_model_defaults_one_rule(void **state)
 static void test_ignored_options_noted(void **state)
 {
     (void)state;
-    write_file("opts.ode", "x'=-x\ninit x=1\n@ ntst=20, total=1\n@ axes=2, range=1\ndone\n");
+    write_file("opts.ode",
+               "x'=-x\ninit x=1\n@ ntst=20, total=1\n@ axes=2, range=1, fold=x, fold=y\ndone\n");
     cli_result r = cli_in_tmpdir("run opts.ode --final --verbose");
     CHECK(r.status == 0, "%s", r.err);
     CHECK(strstr(r.err, "opts.ode:3: option 'ntst' is AUTO's: dynkit continue reads it") != NULL,
           "%s", r.err);
-    CHECK(strstr(r.err, "warning: opts.ode:4: option 'axes' sets XPPAUT's window") != NULL,
+    CHECK(strstr(r.err, "warning: opts.ode:4: option 'axes=2' sets XPPAUT's window") != NULL,
           "%s", r.err);
-    CHECK(strstr(r.err, "warning: opts.ode:4: option 'range' is read and ignored") != NULL,
+    CHECK(strstr(r.err, "warning: opts.ode:4: option 'range=1' is read and ignored") != NULL,
+          "%s", r.err);
+    /* two options of one name are two warnings, each with its value */
+    CHECK(strstr(r.err, "option 'fold=x' is read") && strstr(r.err, "option 'fold=y' is read"),
           "%s", r.err);
     double t = NAN, x = NAN;
     CHECK(sscanf(strchr(r.out, '\n') + 1, "%lf,%lf", &t, &x) == 2 && t == 1.0, "%s", r.out);
     CHECK(fabs(x - exp(-1.0)) < 1e-5, "x(1) = %.17g", x);
     cli_free(&r);
     r = cli_in_tmpdir("run opts.ode --final");
-    CHECK(r.status == 0 && strstr(r.err, "ntst") == NULL && strstr(r.err, "'axes'") &&
-              strstr(r.err, "'range'"),
+    CHECK(r.status == 0 && strstr(r.err, "ntst") == NULL && strstr(r.err, "'axes=2'") &&
+              strstr(r.err, "'range=1'"),
           "notes only with --verbose, warnings always: %s", r.err);
     cli_free(&r);
     unlink(cli_path("opts.ode"));

@@ -530,11 +530,12 @@ static int auto_option(lang_ctx *c, lpos pos, const char *name, const char *valu
     return 0;
 }
 
-/* An @ option a run does not use (XPPAUT's manual, "Options"): a warning, as nothing a file
+/* An @ option a run does not use (XPPAUT's manual, "Options"), named with its value (two
+ * `fold=` options are two warnings that differ): a warning, as nothing a file
  * asks for is left out without a word: XPPAUT's window and its colours and fonts, which
  * dynkit does not draw, and what dynkit does not do at all (range integrations, stochastic
  * averages, a torus's folding, ...). */
-static void option_not_used(lang_ctx *c, lpos pos, const char *name)
+static void option_not_used(lang_ctx *c, lpos pos, const char *name, const char *value)
 {
     static const char *const window_options[] = {
         "zp",       "zplot",  "xmin",      "xmax",   "ymin",     "ymax",    "zmin",
@@ -551,11 +552,11 @@ static void option_not_used(lang_ctx *c, lpos pos, const char *name)
         isdigit((unsigned char)name[2]))
         window = 1;
     if (window)
-        lang_warn(c, pos, "option '%s' sets XPPAUT's window, which dynkit does not draw "
-                  "(dynkit plot draws xp, yp in xlo..xhi, ylo..yhi): ignored", name);
+        lang_warn(c, pos, "option '%s=%.40s' sets XPPAUT's window, which dynkit does not draw "
+                  "(dynkit plot draws xp, yp in xlo..xhi, ylo..yhi): ignored", name, value);
     else
-        lang_warn(c, pos, "option '%s' is read and ignored: dynkit does not do what it asks "
-                  "(docs/model-files.md, \"Options\")", name);
+        lang_warn(c, pos, "option '%s=%.40s' is read and ignored: dynkit does not do what it "
+                  "asks (docs/model-files.md, \"Options\")", name, value);
 }
 
 static void parse_options(lang_ctx *c, lang_lexer *lx)
@@ -698,7 +699,7 @@ static void parse_options(lang_ctx *c, lang_lexer *lx)
             lang_note(c, pos, "option 'maxstor' is accepted and ignored (dynkit streams its "
                       "samples; nothing to store)");
         } else if (!auto_option(c, vpos, name, v)) {
-            option_not_used(c, pos, name);
+            option_not_used(c, pos, name, v);
         }
     }
 }

@@ -211,7 +211,10 @@ static int panel(FILE *f, const cont_view *v, int curves, const cont_orbit_set *
         r.yhi = w[3];
     }
     char title[256];
-    snprintf(title, sizeof title, curves ? "%s: folds and Hopf points" : "%s: bifurcation diagram",
+    snprintf(title, sizeof title,
+             !curves  ? "%s: bifurcation diagram"
+             : o->map ? "%s: folds, flips and Neimark-Sacker points"
+                      : "%s: folds and Hopf points",
              m->name);
     char xl[200], yl[200];
     with_unit(m->params[o->ip].name, m->params[o->ip].unit, xl, sizeof xl);

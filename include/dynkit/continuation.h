@@ -49,10 +49,11 @@ typedef enum dyn_branch_kind {
     DYN_BRANCH_FOLD = 2,        /* folds of equilibria in two parameters */
     DYN_BRANCH_HOPF = 3,        /* Hopf points in two parameters */
     DYN_BRANCH_STEADY = 4,      /* steady motions in one parameter (dynkit/steady.h) */
-    DYN_BRANCH_FLIP = 5         /* a map's period doublings (flips) in two parameters */
+    DYN_BRANCH_FLIP = 5,        /* a map's period doublings (flips) in two parameters */
+    DYN_BRANCH_NEIMARK_SACKER = 6 /* a map's Neimark-Sacker points (TR) in two parameters */
 } dyn_branch_kind;
 
-/* "equilibrium", "periodic", "fold", "hopf", "steady", "flip". */
+/* "equilibrium", "periodic", "fold", "hopf", "steady", "flip", "neimark-sacker". */
 const char *dyn_branch_kind_name(dyn_branch_kind k);
 
 /* The scalars of one point of a branch. The vectors are in the branch's arrays, row k. */
@@ -188,8 +189,9 @@ typedef struct dyn_cont_opts {
      * unit circle: Neimark-Sacker, AUTO-07p's name for maps, with omega the pair's angle
      * arg mu in (0, pi)); from each PD the points of twice the period (fixed points of
      * F o F), up to period 16 (dyn_branch_point.period: the points' period). With ip2 >= 0
-     * the curves of folds and flips (DYN_BRANCH_FLIP) in two parameters, without
-     * codimension-two points; no Neimark-Sacker curves (cont_map.c) */
+     * the curves of folds, flips (DYN_BRANCH_FLIP) and Neimark-Sacker points
+     * (DYN_BRANCH_NEIMARK_SACKER, omega the angle) in two parameters, with the cusp points
+     * of the fold curves only (cont_map.c, cont_curves.c) */
     int map;
     /* a map's first branch: 0 or 1 its fixed points, k > 1 its points of period k (the
      * fixed points of F^k, multipliers those of F^k: XPPAUT's NJMP for AUTO) */

@@ -24,6 +24,7 @@ const char *dyn_branch_kind_name(dyn_branch_kind k)
     case DYN_BRANCH_HOPF: return "hopf";
     case DYN_BRANCH_STEADY: return "steady";
     case DYN_BRANCH_FLIP: return "flip";
+    case DYN_BRANCH_NEIMARK_SACKER: return "neimark-sacker";
     }
     return "";
 }

@@ -14,7 +14,10 @@
  * the sign keeps a fold-Hopf point, where l1 has a pole, from passing for one). A map's
  * folds are those of F(x) - x, and its flips (period doublings, a multiplier -1) the same
  * system with J + 2 I (Kuznetsov, "Elements", sec. 10.3); on a map's curves BT would be a
- * 1:1 resonance and the cusp test a fold's, so only the cusp of its fold curves is located. */
+ * 1:1 resonance and the cusp test a fold's, so only the cusp of its fold curves is located.
+ * A map's Neimark-Sacker points (multipliers exp(+-i theta) of A = J + I, J the Jacobian of
+ * F(x) - x) are the Hopf system with A^2 - 2 cos(theta) A + I = J^2 + kappa (J + I),
+ * kappa = 2 - 2 cos(theta) (Kuznetsov, "Elements", sec. 10.3.3), without tests. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -28,7 +31,8 @@ typedef struct curve_ctx {
     cont_model *cm;
     dyn_diagram *d;
     int bi;
-    int hopf;        /* 0: folds, 1: Hopf points */
+    int hopf;        /* 0: folds, 1: Hopf points or a map's Neimark-Sacker points */
+    int ns;          /* 1: a map's Neimark-Sacker points */
     double shift;    /* a map's flips: 2 (J + 2 I singular); else 0 */
     int N;           /* equations */
     double *c1, *c2; /* the normalizations (n each) */
@@ -65,7 +69,7 @@ static int curve_residual(void *ctx, const double *z, double *g)
             double s = 0.0;
             for (int j = 0; j < n; j++)
                 s += cm->J[(size_t)i * (size_t)n + (size_t)j] * c->Jv[j];
-            g[n + i] = s + z[2 * n] * v[i];
+            g[n + i] = s + z[2 * n] * (v[i] + (c->ns ? c->Jv[i] : 0.0));
         }
     }
     double a = -1.0, b = 0.0;
@@ -146,6 +150,10 @@ static int curve_tests(void *ctx, const double *z, const double *t, double det, 
     if (cont_model_set(cm, z[k], z[k + 1]) || cont_model_jx(cm, z, cm->J, n))
         return -1;
     count[0] = count[1] = -1;
+    if (c->ns) { /* no tests: strong resonances and Chenciner points are not located */
+        psi[0] = psi[1] = NAN;
+        return 0;
+    }
     if (c->hopf) {
         const double kappa = z[2 * n];
         psi[0] = kappa;
@@ -211,7 +219,9 @@ static int curve_store(void *ctx, const double *z, const double *t, dyn_cont_lab
         cont_model_eig(cm, cm->J))
         return -1;
     double l1 = NAN, omega = NAN;
-    if (c->hopf) {
+    if (c->ns) {
+        omega = acos(fmax(-1.0, fmin(1.0, 1.0 - 0.5 * z[2 * n]))); /* the angle theta */
+    } else if (c->hopf) {
         omega = z[2 * n];
         char err[128];
         if (omega > 0.0 && dyn_first_lyapunov(cm->m, cm->t, z, cm->par, cm->jac, cm->J,
@@ -300,12 +310,18 @@ int cont_curves_from(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int
 {
     const int n = cm->n;
     const dyn_branch *b = &d->branches[branch];
-    const int hopf = b->pts[point].label == DYN_LABEL_HB;
+    const int ns = b->pts[point].label == DYN_LABEL_TR && cm->map;
+    const int hopf = b->pts[point].label == DYN_LABEL_HB || ns;
     const int flip = b->pts[point].label == DYN_LABEL_PD && cm->map;
-    const dyn_branch_kind kind = hopf ? DYN_BRANCH_HOPF : flip ? DYN_BRANCH_FLIP : DYN_BRANCH_FOLD;
-    const double omega = b->pts[point].omega;
+    const dyn_branch_kind kind = ns     ? DYN_BRANCH_NEIMARK_SACKER
+                                 : hopf ? DYN_BRANCH_HOPF
+                                 : flip ? DYN_BRANCH_FLIP
+                                        : DYN_BRANCH_FOLD;
+    const double omega = b->pts[point].omega; /* a map's Neimark-Sacker point: its angle */
     if (hopf && !(omega > 0.0))
         return 0;
+    /* the Hopf system's kappa: omega^2, or for a map 2 - 2 cos(theta) */
+    const double kappa = ns ? 2.0 - 2.0 * cos(omega) : omega * omega;
     {
         double *y = malloc(((size_t)n + 3) * sizeof *y);
         if (!y)
@@ -313,7 +329,7 @@ int cont_curves_from(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int
         memcpy(y, b->x + (size_t)point * (size_t)n, (size_t)n * sizeof *y);
         y[n] = b->pts[point].par[0];
         y[n + 1] = cm->p2_base;
-        y[n + 2] = omega * omega;
+        y[n + 2] = kappa;
         const int seen = on_computed_curve(d, kind, y, n);
         free(y);
         if (seen)
@@ -324,6 +340,7 @@ int cont_curves_from(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int
     c.cm = cm;
     c.d = d;
     c.hopf = hopf;
+    c.ns = ns;
     c.shift = flip ? 2.0 : 0.0;
     c.N = 2 * n + 1 + hopf;
     const int N = c.N, M = N + 1;
@@ -375,10 +392,13 @@ int cont_curves_from(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int
                 rc = -1;
         }
     } else if (rc == 0) {
-        /* J^2 + omega^2 I: its null space is spanned by Re q and Im q */
+        /* J^2 + omega^2 I, or a map's J^2 + kappa (J + I): its null space is spanned by
+         * Re q and Im q */
         for (int i = 0; i < n; i++)
             for (int j = 0; j < n; j++) {
-                double s = i == j ? omega * omega : 0.0;
+                double s = i == j ? kappa : 0.0;
+                if (ns)
+                    s += kappa * cm->J[(size_t)i * (size_t)n + (size_t)j];
                 for (int k = 0; k < n; k++)
                     s += cm->J[(size_t)i * (size_t)n + (size_t)k] * cm->J[(size_t)k * (size_t)n + (size_t)j];
                 c.J2[(size_t)i * (size_t)n + (size_t)j] = s;
@@ -386,7 +406,8 @@ int cont_curves_from(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int
         if (null_of(n, c.J2, c.J2 + nn, c.piv, v))
             rc = -1;
         if (rc == 0) {
-            /* the other direction of the null space: J v / omega, made orthogonal to v */
+            /* the other direction of the null space (invariant under J): J v / omega, made
+             * orthogonal to v */
             double *u = c.c2;
             for (int i = 0; i < n; i++) {
                 double s = 0.0;
@@ -401,7 +422,7 @@ int cont_curves_from(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int
                 u[i] -= uv * v[i];
             memcpy(c.c1, v, (size_t)n * sizeof *v);
             memcpy(z + n, v, (size_t)n * sizeof *v);
-            z[2 * n] = omega * omega;
+            z[2 * n] = kappa;
         }
     }
     const int k1 = 2 * n + hopf;
@@ -416,7 +437,7 @@ int cont_curves_from(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int
     s.residual = curve_residual;
     s.jacobian = curve_jacobian;
     s.n_tests = 2;
-    s.test_label[0] = DYN_LABEL_BT;
+    s.test_label[0] = DYN_LABEL_BT; /* none on a map's Neimark-Sacker curves (curve_tests) */
     s.test_label[1] = hopf ? DYN_LABEL_GH : DYN_LABEL_CP;
     s.tests = curve_tests;
     s.store = curve_store;
@@ -452,7 +473,10 @@ int cont_curves_from(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int
         L.pmax = o->parmax;
         L.p2min = o->par2min;
         L.p2max = o->par2max;
-        L.start_label = hopf ? DYN_LABEL_HB : flip ? DYN_LABEL_PD : DYN_LABEL_LP;
+        L.start_label = ns     ? DYN_LABEL_TR
+                        : hopf ? DYN_LABEL_HB
+                        : flip ? DYN_LABEL_PD
+                               : DYN_LABEL_LP;
         L.stop_closed = 1;
         L.missed = &cm->missed;
         char stop[160];

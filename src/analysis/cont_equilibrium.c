@@ -534,7 +534,6 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
     cm.period = 1;
     /* periodic orbits from the Hopf points, then the curves in two parameters */
     const int n_eq = d->count;
-    int tr_seen = 0;
     for (int bi = 0; rc == 0 && bi < n_eq; bi++) {
         if (o->map && d->branches[bi].count > 0) /* a map's branch: its points' period */
             cm.period = (int)d->branches[bi].pts[0].period;
@@ -543,7 +542,6 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
             /* a map's flips in two parameters, not where a branch of cycles was born */
             const int flip = o->map && l == DYN_LABEL_PD &&
                              !(k == 0 && d->branches[bi].parent > 0);
-            tr_seen |= o->map && l == DYN_LABEL_TR;
             if (l == DYN_LABEL_HB && o->periodic) {
                 char err[256] = "";
                 if (o->periodic(m, par, o, d, d->branches[bi].id, k, o->periodic_ctx, err,
@@ -552,7 +550,8 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
                              "periodic orbits from the Hopf point of branch %d: %.180s", bi + 1,
                              err);
             }
-            if ((l == DYN_LABEL_HB || l == DYN_LABEL_LP || flip) && o->ip2 >= 0 &&
+            const int ns = o->map && l == DYN_LABEL_TR;
+            if ((l == DYN_LABEL_HB || l == DYN_LABEL_LP || flip || ns) && o->ip2 >= 0 &&
                 cont_curves_from(&cm, o, d, bi, k, info))
                 rc = DYN_ERR_ARG;
         }
@@ -563,9 +562,6 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
         cont_missed_text(&cm.missed, m->params[o->ip].name, missed, sizeof missed);
         add_note(note, sizeof note, "%s", missed);
     }
-    if (tr_seen && o->ip2 >= 0)
-        add_note(note, sizeof note, "the curves of Neimark-Sacker points (TR) in two "
-                 "parameters are not computed");
     if (rc && !info->message[0])
         snprintf(info->message, sizeof info->message, "%s",
                  cm.message[0] ? cm.message : "out of memory");

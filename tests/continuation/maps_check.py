@@ -9,7 +9,10 @@ values of b, its 2-cycle's PD at a = 73/80 for b = 0.3. The delayed logistic map
 TR, at r = 2 with the multipliers exp(+-i pi/3) there. The logistic map's cycles born at
 each PD (period 2 on its closed form, doubling at 1 + sqrt(6); periods 4, 8, 16 doubling at
 the cascade's known values). In two parameters Henon's curves of folds and of flips of its
-fixed points and of its 2-cycles (the cycle checked by iterating the map here). Usage: maps_check.py DYNKIT MODELS_DIR"""
+fixed points and of its 2-cycles (the cycle checked by iterating the map here); the
+Neimark-Sacker curves of the delayed logistic map with a second parameter (r + a = 2,
+cos(theta) = (1 + a)/2) and of Henon's map (b = -1, cos(theta) = -a x). Usage:
+maps_check.py DYNKIT MODELS_DIR"""
 import cmath
 import json
 import math
@@ -224,6 +227,40 @@ for b in flips.get(2, []):
             failures.append(f"Henon 2-cycle flip curve at (a, b) = ({a_}, {b_}): F(F(x)) - x = "
                             f"{back[0] - x1[0]:.3g}, 1 + tr + b^2 = {1 + tr + b_ * b_:.3g}")
             break
+
+# ---- Neimark-Sacker curves: the delayed logistic map with a second parameter a,
+# (x, y) -> (r x (1 - y) + a (x - y), x), has its fixed point's multipliers on the unit circle
+# on the line r + a = 2 with cos(theta) = (1 + a)/2; Henon's map (multipliers' product -b) on
+# the line b = -1 with cos(theta) = -a x. Both ways from the TR point, every point on them
+d = run("delayed_logistic_ns.ode", "--par", "r", "--par2", "a", "--opt", "parmin=1.1",
+        "--opt", "parmax=4", "--opt", "par2min=-2.5", "--opt", "par2max=0.8")
+curves = [b for b in d["branches"] if b["kind"] == "neimark-sacker"] if d else []
+if len(curves) != 2 or any(b["points"][0]["label"] != "TR" for b in curves):
+    failures.append(f"delayed logistic: {len(curves)} Neimark-Sacker curves, expected 2 from "
+                    "the TR point")
+for b in curves:
+    for q in b["points"]:
+        r, a = q["r"], q["a"]
+        check(f"delayed logistic NS curve at a = {a}: r", r, 2 - a, 1e-9)
+        check(f"delayed logistic NS curve at a = {a}: angle", q["angle"],
+              math.acos((1 + a) / 2), 1e-9)
+        check(f"delayed logistic NS curve at a = {a}: x", q["state"]["x"], 1 - 1 / r, 1e-9)
+        check(f"delayed logistic NS curve at a = {a}: |mu|",
+              max(abs(m) for m in multipliers(q)), 1.0, 1e-9)
+    if len(b["points"]) < 5:
+        failures.append(f"delayed logistic: a Neimark-Sacker curve of {len(b['points'])} points")
+d = run("henon_map.ode", "--par", "b", "--par2", "a", "--set", "a=0.2", "--set", "b=-0.5",
+        "--init", "x=1", "--opt", "ds=-0.02", "--opt", "parmin=-1.5", "--opt", "parmax=0",
+        "--opt", "par2min=0.1", "--opt", "par2max=2")
+curves = [b for b in d["branches"] if b["kind"] == "neimark-sacker"] if d else []
+if len(curves) != 2:
+    failures.append(f"Henon: {len(curves)} Neimark-Sacker curves, expected 2")
+for b in curves:
+    for q in b["points"]:
+        a, x = q["a"], q["state"]["x"]
+        check(f"Henon NS curve at a = {a}: b", q["b"], -1.0, 1e-9)
+        check(f"Henon NS curve at a = {a}: x", 1 - a * x * x + q["b"] * x - x, 0.0, 1e-9)
+        check(f"Henon NS curve at a = {a}: angle", math.cos(q["angle"]), -a * x, 1e-9)
 
 # a start on the logistic map's BP (r = 1, x = 0: dF/dx - 1 = r - 1 = 0) is refused with the
 # map's words: dF/dy - I singular along x, fixed points

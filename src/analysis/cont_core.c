@@ -295,6 +295,15 @@ typedef struct special {
     double *z, *t;
 } special;
 
+/* Drop sp[k] of the *ns points of a step: swapped with the last, whose place it takes with
+ * its buffers (each entry owns its z and t for the whole branch). */
+static void drop_special(special *sp, int *ns, int k)
+{
+    const special tmp = sp[k];
+    sp[k] = sp[--*ns];
+    sp[*ns] = tmp;
+}
+
 /* what a located function is: test k, or z[index] - target */
 typedef struct target {
     int test;     /* >= 0: the test function's index */
@@ -722,7 +731,7 @@ int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const do
             for (int b = 0; b < ns; b++)
                 if (sp[a].label == DYN_LABEL_LP && sp[b].label == DYN_LABEL_BP &&
                     fabs(sp[a].s - sp[b].s) <= 1e-6 * ds) {
-                    sp[a] = sp[--ns];
+                    drop_special(sp, &ns, a);
                     a = -1;
                     break;
                 }
@@ -731,7 +740,7 @@ int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const do
         for (int a = 0; a < ns; a++)
             for (int b = a + 1; b < ns; b++)
                 if (sp[a].label == sp[b].label && fabs(sp[a].s - sp[b].s) <= 1e-6 * ds) {
-                    sp[b] = sp[--ns];
+                    drop_special(sp, &ns, b);
                     b = a;
                 }
         /* a test changed sign and nothing could be located: a step that jumped onto
@@ -777,6 +786,18 @@ int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const do
                             : (bound == hi ? "par2max" : "par2min"),
                      dyn_shortest(bound).s);
             end_here = 1;
+        }
+        /* on the step that leaves the window, no special point beyond its bounds (kept
+         * where the bound itself could not be located) */
+        for (int a = 0; end_here && a < ns; a++) {
+            const int out =
+                sp[a].z[s->ip] < L->pmin - 1e-12 * fabs(L->pmin) ||
+                sp[a].z[s->ip] > L->pmax + 1e-12 * fabs(L->pmax) ||
+                (s->ip2 >= 0 && L->p2min < L->p2max &&
+                 (sp[a].z[s->ip2] < L->p2min - 1e-12 * fabs(L->p2min) ||
+                  sp[a].z[s->ip2] > L->p2max + 1e-12 * fabs(L->p2max)));
+            if (out && sp[a].label != DYN_LABEL_EP)
+                drop_special(sp, &ns, a--);
         }
         qsort(sp, (size_t)ns, sizeof *sp, cmp_special);
         if (pending && s->store(s->ctx, z, t, DYN_LABEL_NONE)) {

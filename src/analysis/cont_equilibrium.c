@@ -377,6 +377,30 @@ static void large_components(const dyn_model *m, const double *v, int n, char *o
     }
 }
 
+/* Newton's method alone from the guess x0 "converged" far away (its step is judged relative
+ * to |z|, which grows without bound along a valley where f saturates: a published islet
+ * model went from G6P = 196 to -8.5e18, where |f| = 4e-3): no start, with the reason in
+ * ei. Far: |z - x0|_inf > 1e8 max(|x0|_inf, 1). */
+static int start_ran_away(const dyn_model *m, const double *z, const double *x0, int n,
+                          dyn_equilibrium_info *ei)
+{
+    double scale = 1.0, dist = 0.0;
+    int far = 0;
+    for (int i = 0; i < n; i++) {
+        scale = fmax(scale, fabs(x0[i]));
+        if (fabs(z[i] - x0[i]) > dist) {
+            dist = fabs(z[i] - x0[i]);
+            far = i;
+        }
+    }
+    if (!(dist > 1e8 * scale))
+        return 0;
+    snprintf(ei->message, sizeof ei->message,
+             "Newton's method ran away from the guess (%.40s to %.3g)",
+             far < m->n_states ? m->states[far].name : "a state", z[far]);
+    return 1;
+}
+
 /* Why the start z is singular ([f_x f_p] of rank below n): when f_x is singular to rounding
  * there, the states along its null vector and the states whose rates' rows are dependent
  * (its left null vector: a conserved combination), by inverse iteration on f_x^T f_x and
@@ -484,7 +508,7 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
     if (eq_rc && have_work) {
         memcpy(z, x0, (size_t)n * sizeof *z);
         z[n] = cm.p_set[0];
-        if (cont_correct(&s, &w, z, e, 0.0, z, NULL) == 0)
+        if (cont_correct(&s, &w, z, e, 0.0, z, NULL) == 0 && !start_ran_away(m, z, x0, n, &ei))
             eq_rc = 0;
     }
     if (eq_rc || cont_correct(&s, &w, z, e, 0.0, z, NULL)) {

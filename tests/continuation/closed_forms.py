@@ -404,6 +404,17 @@ for window, name in ((", xp=x, xlo=-4, xhi=4", "ghost_window.ode"), ("", "ghost.
         failures.append(f"no equilibrium in the default box: exit {out.returncode}, "
                         f"{out.stderr.strip()!r} (expected a failure naming --init)")
 
+# x' = sin(x) - p has no equilibrium for p = 2; from x = 1.57079632679 (cos x = 2e-11)
+# Newton's first step lands at x = 2e11, where its next step is below 1e-11 |x|: such a
+# start, 1e8 times farther than the guess's scale, is no equilibrium and none is reported
+path = os.path.join(tmp, "runaway.ode")
+with open(path, "w") as f:
+    f.write("par p=2\ninit x=1.57079632679\nx'=sin(x)-p\n@ total=1\ndone\n")
+out = subprocess.run([dynkit, "continue", path, "--par", "p"], capture_output=True, text=True)
+if out.returncode == 0 or "ran away from the guess (x to" not in out.stderr or out.stdout:
+    failures.append(f"sin(x) - 2: exit {out.returncode}, {out.stdout.strip()!r} "
+                    f"{out.stderr.strip()!r} (expected a failure: Newton's method ran away)")
+
 # curves in two parameters
 d = run(f"{models}/cusp.ode", "--par", "a", "--par2", "b")
 cps = points(d, "CP") if d else []

@@ -163,11 +163,12 @@ typedef struct dyn_po_point {
     double *mult_re, *mult_im; /* n each: the Floquet multipliers, the trivial one first */
     int stable;       /* 1: the non-trivial multipliers inside the unit circle; 0: not;
                        * -1: unknown (no eigenvalue solver) */
-    char label[4];    /* "", "LPC", "PD", "TR", "UZ" (a value of dyn_po_opts.at), "EP" (the
-                       * branch's last point) */
+    char label[4];    /* "", "LPC", "PD", "TR", "BP" (a branch point of cycles), "UZ" (a
+                       * value of dyn_po_opts.at), "EP" (the branch's last point) */
     dyn_colloc_sol orbit; /* kept for labelled points and the first and last (every point
                            * with dyn_po_opts.keep_orbits; else empty): u(t) on [0, 1],
                            * par[0] the period, par[1] the parameter */
+    dyn_colloc_sol tangent; /* a BP point's tangent of the branch (else empty) */
 } dyn_po_point;
 
 typedef struct dyn_po_branch {
@@ -192,6 +193,13 @@ int dyn_po_from_hopf(const dyn_po_system *sys, const double *x0, double p0, doub
  * traversed twice plus a step along the eigenfunction of the multiplier -1. */
 int dyn_po_from_pd(const dyn_po_system *sys, const dyn_po_point *pd, const dyn_po_opts *o,
                    dyn_po_branch *b);
+
+/* The other branch at a BP point of a branch (its kept orbit and tangent): a step along
+ * the null vector of the collocation system's Jacobian bordered by the tangent, the
+ * direction orthogonal to the branch in the two-dimensional null space (AUTO-07p's
+ * ISW = -1), taken with its sign (direction > 0) or the opposite one (direction < 0). */
+int dyn_po_from_bp(const dyn_po_system *sys, const dyn_po_point *bp, int direction,
+                   const dyn_po_opts *o, dyn_po_branch *b);
 
 /* The Floquet multipliers of an orbit (par[0] the period, par[1] the parameter) into re,
  * im (n each), the one nearest 1 first; 0 or DYN_COLLOC_*. */

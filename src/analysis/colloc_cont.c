@@ -5,7 +5,8 @@
  * dsmax, nmax, parmin, parmax), stored as a DYN_BRANCH_PERIODIC branch (each state's
  * maximum and minimum over the orbit, the period, the Floquet multipliers, stability and
  * the labels LPC, PD, TR, UZ, EP; on request each point's orbit at its collocation nodes);
- * then from each period doubling the period-doubled branch, and so on down the cascade
+ * then from each period doubling the period-doubled branch, and so on down the cascade,
+ * and from each branch point of cycles (BP) not met before the other family both ways,
  * while the diagram has room for branches. A branch that ends on another Hopf point
  * records it (end_branch, end_point), and that point starts no branch: its cycles are
  * these. */
@@ -25,6 +26,8 @@ static dyn_cont_label label_of(const char *s)
         return DYN_LABEL_PD;
     if (strcmp(s, "TR") == 0)
         return DYN_LABEL_TR;
+    if (strcmp(s, "BP") == 0)
+        return DYN_LABEL_BP;
     if (strcmp(s, "EP") == 0)
         return DYN_LABEL_EP;
     if (strcmp(s, "UZ") == 0)
@@ -154,6 +157,67 @@ static int store(dyn_diagram *d, const dyn_po_branch *pb, int ip, int parent, lo
     return b->id;
 }
 
+/* whether a BP at parameter par and period T is a BP point of a periodic branch of d
+ * other than point self_point of branch self (within 1e-6 relative in both) */
+static int bp_known(const dyn_diagram *d, int self, long self_point, double par, double T)
+{
+    for (int bi = 0; bi < d->count; bi++) {
+        const dyn_branch *b = &d->branches[bi];
+        if (b->kind != DYN_BRANCH_PERIODIC)
+            continue;
+        for (long k = 0; k < b->count; k++)
+            if (b->pts[k].label == DYN_LABEL_BP && !(b->id == self && k == self_point) &&
+                fabs(b->pts[k].par[0] - par) <= 1e-6 * (1.0 + fabs(par)) &&
+                fabs(b->pts[k].period - T) <= 1e-6 * (1.0 + fabs(T)))
+                return 1;
+    }
+    return 0;
+}
+
+typedef struct po_follow {
+    const dyn_po_system *sys;
+    const dyn_po_opts *po;
+    const dyn_cont_opts *o;
+    dyn_diagram *d;
+    int max_branches;
+} po_follow;
+
+/* the branches switched to from pb (stored in d as branch id), depth first: at its first
+ * PD the period-doubled branch, at each BP that no other branch of d has the other family
+ * (its direction's sign, then the opposite), each followed in turn, while d has fewer
+ * than max_branches branches; a switch that fails is left out. id, or -1 when out of
+ * memory. */
+static int follow(po_follow *f, const dyn_po_branch *pb, int id)
+{
+    int pd = -1;
+    for (int k = 0; k < pb->npoints && pd < 0; k++)
+        if (strcmp(pb->pts[k].label, "PD") == 0)
+            pd = k;
+    for (int k = 0; k < pb->npoints && id > 0; k++) {
+        const int is_pd = k == pd, is_bp = strcmp(pb->pts[k].label, "BP") == 0;
+        if (!is_pd && !(is_bp && !bp_known(f->d, id, k, pb->pts[k].par, pb->pts[k].period)))
+            continue;
+        for (int dir = 1; dir >= (is_pd ? 1 : -1) && id > 0; dir -= 2) {
+            if (f->d->count >= f->max_branches)
+                return id;
+            dyn_po_branch next;
+            const int st = is_pd ? dyn_po_from_pd(f->sys, &pb->pts[k], f->po, &next)
+                                 : dyn_po_from_bp(f->sys, &pb->pts[k], dir, f->po, &next);
+            if (st) {
+                dyn_po_branch_free(&next);
+                if (is_pd)
+                    return id; /* the cascade stops there */
+                continue;
+            }
+            const int nid = store(f->d, &next, f->o->ip, id, k, f->o->orbits);
+            if (nid < 0 || follow(f, &next, nid) < 0)
+                id = -1;
+            dyn_po_branch_free(&next);
+        }
+    }
+    return id;
+}
+
 static int hqr_eig(int n, double *a, double *re, double *im, char *err, size_t errlen)
 {
     return dyn_eig_hqr(n, a, re, im, err, errlen);
@@ -209,26 +273,10 @@ int dyn_po_continue_hopf(const dyn_model *m, const void *par, const dyn_cont_opt
         dyn_po_model_free(&pm);
         return st;
     }
-    const int max_branches = o->max_branches > 0 ? o->max_branches : 16;
+    po_follow f = {&sys, &po, o, d, o->max_branches > 0 ? o->max_branches : 16};
     int id = store(d, &pb, o->ip, branch, point, o->orbits);
-    /* the cascade: each PD point's doubled branch, while there is room */
-    while (id > 0 && d->count < max_branches) {
-        int pd = -1;
-        for (int k = 0; k < pb.npoints && pd < 0; k++)
-            if (strcmp(pb.pts[k].label, "PD") == 0)
-                pd = k;
-        if (pd < 0)
-            break;
-        dyn_po_branch next;
-        if (dyn_po_from_pd(&sys, &pb.pts[pd], &po, &next)) {
-            dyn_po_branch_free(&next);
-            break;
-        }
-        const int parent = id;
-        id = store(d, &next, o->ip, parent, pd, o->orbits);
-        dyn_po_branch_free(&pb);
-        pb = next;
-    }
+    if (id > 0)
+        id = follow(&f, &pb, id);
     dyn_po_branch_free(&pb);
     dyn_po_model_free(&pm);
     if (id < 0) {

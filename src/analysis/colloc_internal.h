@@ -26,4 +26,32 @@ void colloc_lagrange(int ncol, double z, double *L);
 /* the interval of t and its local coordinate z in [0, 1] */
 int colloc_locate(const dyn_colloc_sol *s, double t, double *z);
 
+/* The collocation Jacobian at x (phase condition against ref) bordered by the arclength row
+ * of t, [G_X; t^T]: the sign of its determinant into *det_sign and log |det| into *det_log
+ * (up to a sign that depends only on the sizes: compare points of one mesh size); with rhs
+ * (the collocation rows interval by interval, then the boundary, phase and arclength rows,
+ * as many as unknowns) the solution into sol (the nodes' states, then the free scalars).
+ * colloc_newton.c; 0 or DYN_COLLOC_*. */
+int dyn_colloc_bordered(const dyn_colloc_problem *p, const dyn_colloc_sol *x,
+                        const dyn_colloc_sol *ref, const dyn_colloc_sol *t, const double *rhs,
+                        double *sol, int *det_sign, double *det_log);
+
+/* Branch points of periodic orbits (colloc_bp.c). Keller's test at the point x of a branch
+ * with tangent t: the sign of det [G_X; t^T] and its log |det|; 0 or DYN_COLLOC_*. */
+int colloc_bp_test(const dyn_colloc_problem *p, const dyn_colloc_sol *x,
+                   const dyn_colloc_sol *t, int *sign, double *logabs);
+/* A point at arclength s along a step (a corrector's solution, allocated into y) and its
+ * branch-point test's value into g (relative to the step's start); 0 or DYN_COLLOC_*. */
+typedef int (*colloc_bp_eval)(void *ctx, double s, dyn_colloc_sol *y, double *g);
+/* The branch point between the step's start x0 (arclength 0, test psi0) and ds (psi1, of
+ * the other sign), from eval's points: the point into x (allocated like x0), its arclength
+ * into *s_at; 0 or DYN_COLLOC_* (no point found beyond it). */
+int colloc_bp_locate(colloc_bp_eval eval, void *ctx, const dyn_colloc_sol *x0, double ds,
+                     double psi0, double psi1, dyn_colloc_sol *x, double *s_at);
+/* At a branch point x with the known branch's tangent t: the direction of the other branch,
+ * the null vector of [G_X; t^T] (orthogonal to t in the collocation inner product, of unit
+ * length, its largest state component positive) into v (allocated like x). */
+int colloc_bp_direction(const dyn_colloc_problem *p, const dyn_colloc_sol *x,
+                        const dyn_colloc_sol *t, dyn_colloc_sol *v);
+
 #endif /* DYN_COLLOC_INTERNAL_H */

@@ -27,6 +27,8 @@ typedef struct colloc_sys {
     double *brow;   /* nb x (Nx + 1) */
     double *work;   /* n f, n f2, n x, n*n fu, 3 n scratch */
     double *pwork;  /* npar */
+    int det_sign;   /* the sign of the whole matrix's determinant and */
+    double det_log; /* log |det|, from the pivots (up to a sign fixed by the sizes) */
 } colloc_sys;
 
 /* the global column of interval j's local column c */
@@ -72,6 +74,7 @@ static int sys_init(colloc_sys *s, const dyn_colloc_problem *p, const dyn_colloc
     s->Nu = s->nnodes * x->n;
     s->Nx = s->Nu + x->npar;
     s->nb = x->n + x->npar;
+    s->det_sign = 1;
     s->blk = malloc((size_t)s->ntst * s->rows * s->W * sizeof(double));
     s->brow = malloc((size_t)s->nb * (s->Nx + 1) * sizeof(double));
     const size_t n = (size_t)x->n;
@@ -142,6 +145,14 @@ static int assemble_interval(colloc_sys *s, const dyn_colloc_sol *x, int j)
     return 0;
 }
 
+/* a pivot of the factorization into the determinant (swapped: after a row interchange) */
+static void det_factor(colloc_sys *s, double pivot, int swapped)
+{
+    if ((pivot < 0) != (swapped != 0))
+        s->det_sign = -s->det_sign;
+    s->det_log += log(fabs(pivot));
+}
+
 /* Gaussian elimination with row pivoting over interval j's interior columns */
 static int condense_interval(colloc_sys *s, int j)
 {
@@ -154,6 +165,7 @@ static int condense_interval(colloc_sys *s, int j)
                 piv = r;
         if (A[(size_t)piv * W + c] == 0.0)
             return DYN_COLLOC_ERR_SINGULAR;
+        det_factor(s, A[(size_t)piv * W + c], piv != c);
         if (piv != c)
             for (int q = c; q < W; q++) {
                 const double tmp = A[(size_t)c * W + q];
@@ -281,6 +293,8 @@ static int reduced_solve(colloc_sys *s, double *dx)
 {
     const int n = s->n, ntst = s->ntst, W = s->W, m = s->m, npar = s->npar;
     const int nx = ntst * n, ny = n + npar;
+    if (n < 1 || ntst < 1 || npar < 0)
+        return DYN_COLLOC_ERR_ARG;
     const int lower = 2 * n - 1, upper = n - 1, ldab = 2 * lower + upper + 1;
     const size_t nxs = (size_t)nx, nys = (size_t)ny;
     double *ab = calloc(nxs * ldab, sizeof(double));
@@ -331,6 +345,8 @@ static int reduced_solve(colloc_sys *s, double *dx)
         st = DYN_COLLOC_ERR_SINGULAR;
         goto done;
     }
+    for (int j = 0; j < nx; j++)
+        det_factor(s, ab[(size_t)j * ldab + lower + upper], piv[j] != j);
     for (int c = 0; c <= ny; c++)
         dyn_band_lu_solve(nx, lower, upper, ab, ldab, piv, E + (size_t)c * nxs);
     /* S = G - F Z and s = rhs_y - F z, in G (ny x (ny + 1)) */
@@ -360,6 +376,8 @@ static int reduced_solve(colloc_sys *s, double *dx)
         st = DYN_COLLOC_ERR_SINGULAR;
         goto done;
     }
+    for (int r = 0; r < ny; r++)
+        det_factor(s, S[(size_t)r * nys + r], piv[nxs + r] != r);
     dyn_lu_solve(ny, S, piv + nxs, y);
     /* mesh points and free scalars */
     for (int q = 0; q < n; q++)
@@ -480,6 +498,47 @@ int dyn_colloc_solve(const dyn_colloc_problem *p, dyn_colloc_sol *x, const dyn_c
     return st;
 }
 
+/* the Jacobian at x bordered by the arclength row of t, solved for the right-hand side rhs
+ * (the collocation rows interval by interval, then the border rows; NULL: the arclength
+ * row's 1, zero elsewhere) into dx (s->Nx, allocated here); s is initialised here and freed
+ * by the caller when s->blk is set */
+static int bordered_solve(colloc_sys *s, const dyn_colloc_problem *p, const dyn_colloc_sol *x,
+                          const dyn_colloc_sol *ref, const dyn_colloc_sol *t,
+                          const double *rhs, double **dx)
+{
+    *dx = NULL;
+    int st = sys_init(s, p, x, 1);
+    if (st) {
+        memset(s, 0, sizeof *s); /* freed, or never allocated */
+        return st;
+    }
+    *dx = malloc((size_t)s->Nx * sizeof(double));
+    if (!*dx)
+        return DYN_COLLOC_ERR_NOMEM;
+    /* the arclength row <x - x, t> - (-1): its coefficients are t's; the right-hand side
+     * replaces every residual */
+    dyn_colloc_arc arc = {x, t, -1.0};
+    st = assemble_border(s, x, ref, &arc);
+    for (int j = 0; j < s->ntst && !st; j++)
+        st = assemble_interval(s, x, j);
+    if (st)
+        return st;
+    const long nrows = (long)s->ntst * s->rows;
+    for (int j = 0; j < s->ntst; j++)
+        for (int i = 0; i < s->rows; i++) {
+            const long e = (long)j * s->rows + i;
+            s->blk[(size_t)e * s->W + s->W - 1] = rhs ? rhs[e] : 0.0;
+        }
+    for (int bi = 0; bi < s->nb; bi++)
+        s->brow[(size_t)bi * (s->Nx + 1) + s->Nx] =
+            rhs ? rhs[nrows + bi] : bi == s->nb - 1 ? 1.0 : 0.0;
+    for (int j = 0; j < s->ntst && !st; j++)
+        st = condense_interval(s, j);
+    if (!st)
+        st = reduced_solve(s, *dx);
+    return st;
+}
+
 int dyn_colloc_tangent(const dyn_colloc_problem *p, const dyn_colloc_sol *x,
                        const dyn_colloc_sol *ref, const dyn_colloc_sol *told,
                        dyn_colloc_sol *t)
@@ -494,36 +553,10 @@ int dyn_colloc_tangent(const dyn_colloc_problem *p, const dyn_colloc_sol *x,
     } else if (x->npar > 0) {
         t->par[x->npar - 1] = 1.0;
     }
-    dyn_colloc_sol zero;
-    st = dyn_colloc_sol_copy(&zero, x);
-    if (st) {
-        dyn_colloc_sol_free(t);
-        return st;
-    }
-    /* the arclength row <x - x, t_old> - (-1) = 0: its residual is -1, the rows of F zero
-     * at... the linear system J dx = -(F(x), -1)^T is solved with F's residual removed */
-    dyn_colloc_arc arc = {&zero, t, -1.0};
+    /* J t = 0 with <t, t_old> = 1 */
     colloc_sys s;
-    st = sys_init(&s, p, x, 1);
-    double *dx = st ? NULL : malloc((size_t)s.Nx * sizeof(double));
-    if (!st && !dx)
-        st = DYN_COLLOC_ERR_NOMEM;
-    if (!st) {
-        st = assemble_border(&s, x, ref, &arc);
-        for (int j = 0; j < s.ntst && !st; j++)
-            st = assemble_interval(&s, x, j);
-        if (!st) { /* right-hand side: 0 except the arclength row's 1 */
-            for (int j = 0; j < s.ntst; j++)
-                for (int i = 0; i < s.rows; i++)
-                    s.blk[((size_t)j * s.rows + i) * s.W + s.W - 1] = 0.0;
-            for (int bi = 0; bi < s.nb; bi++)
-                s.brow[(size_t)bi * (s.Nx + 1) + s.Nx] = bi == s.nb - 1 ? 1.0 : 0.0;
-            for (int j = 0; j < s.ntst && !st; j++)
-                st = condense_interval(&s, j);
-            if (!st)
-                st = reduced_solve(&s, dx);
-        }
-    }
+    double *dx;
+    st = bordered_solve(&s, p, x, ref, t, NULL, &dx);
     if (!st) {
         memcpy(t->u, dx, (size_t)s.Nu * sizeof(double));
         memcpy(t->par, dx + s.Nu, (size_t)s.npar * sizeof(double));
@@ -540,9 +573,27 @@ int dyn_colloc_tangent(const dyn_colloc_problem *p, const dyn_colloc_sol *x,
     free(dx);
     if (s.blk)
         sys_free(&s);
-    dyn_colloc_sol_free(&zero);
     if (st)
         dyn_colloc_sol_free(t);
+    return st;
+}
+
+int dyn_colloc_bordered(const dyn_colloc_problem *p, const dyn_colloc_sol *x,
+                        const dyn_colloc_sol *ref, const dyn_colloc_sol *t, const double *rhs,
+                        double *sol, int *det_sign, double *det_log)
+{
+    colloc_sys s;
+    double *dx;
+    int st = bordered_solve(&s, p, x, ref, t, rhs, &dx);
+    if (!st) {
+        if (sol)
+            memcpy(sol, dx, (size_t)s.Nx * sizeof(double));
+        *det_sign = s.det_sign;
+        *det_log = s.det_log;
+    }
+    free(dx);
+    if (s.blk)
+        sys_free(&s);
     return st;
 }
 

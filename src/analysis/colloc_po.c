@@ -57,6 +57,7 @@ void dyn_po_branch_free(dyn_po_branch *b)
     for (int k = 0; k < b->npoints; k++) {
         free(b->pts[k].xmax);
         dyn_colloc_sol_free(&b->pts[k].orbit);
+        dyn_colloc_sol_free(&b->pts[k].tangent);
     }
     free(b->pts);
     memset(b, 0, sizeof *b);
@@ -109,6 +110,9 @@ typedef struct po_tests {
     int tr_pairs;   /* the number of complex pairs in tr's product */
     int have_mult;
     int pd_tr;      /* PD and TR can be told: 3 states or more and the multipliers accurate */
+    int bp_ok;      /* Keller's determinant computed (and the multipliers accurate) */
+    int bp_sign;    /* its sign and */
+    double bp_log;  /* log |det| (colloc_bp.c) */
 } po_tests;
 
 /* the trivial multiplier's largest distance from 1 at which the others are trusted for PD
@@ -158,10 +162,17 @@ static void tests_of(const double *re, const double *im, int n, double dlambda, 
     t->tr = tr;
 }
 
-/* the value of test `which` (0 LPC, 1 PD, 2 TR) */
-static double test_value(const po_tests *t, int which)
+/* the branch-point test's value, its determinant relative to exp(ref) (a continuous
+ * function for the secant steps) */
+static double bp_value(const po_tests *t, double ref)
 {
-    return which == 0 ? t->lpc : which == 1 ? t->pd : t->tr;
+    return t->bp_sign * exp(fmin(fmax(t->bp_log - ref, -700.0), 700.0));
+}
+
+/* the value of test `which` (0 LPC, 1 PD, 2 TR, 5 BP relative to exp(ref)) */
+static double test_value(const po_tests *t, int which, double ref)
+{
+    return which == 0 ? t->lpc : which == 1 ? t->pd : which == 2 ? t->tr : bp_value(t, ref);
 }
 
 static void set_test_value(po_tests *t, int which, double v)
@@ -170,19 +181,23 @@ static void set_test_value(po_tests *t, int which, double v)
         t->lpc = v;
     else if (which == 1)
         t->pd = v;
-    else
+    else if (which == 2)
         t->tr = v;
+    else
+        t->bp_sign = v > 0 ? 1 : -1;
 }
 
-/* the first of the tests LPC, PD, TR (other than `skip`) that changed sign from a to b, or
- * -1. LPC: |d lambda/ds| above the rounding of a vertical branch on one side at least; TR:
- * a pair's modulus through 1, not two real multipliers meeting as a pair (the product then
- * gains a factor |mu|^2 - 1 wherever the pair lies) */
+/* the first of the tests LPC, BP, PD, TR (other than `skip`; 0, 5, 1, 2) that changed sign
+ * from a to b, or -1. LPC: |d lambda/ds| above the rounding of a vertical branch on one
+ * side at least; TR: a pair's modulus through 1, not two real multipliers meeting as a
+ * pair (the product then gains a factor |mu|^2 - 1 wherever the pair lies) */
 static int first_change(const po_tests *a, const po_tests *b, int skip)
 {
     if (skip != 0 && (b->lpc > 0) != (a->lpc > 0) &&
         fmax(fabs(b->lpc), fabs(a->lpc)) > DYN_CONT_FOLD_NOISE)
         return 0;
+    if (skip != 5 && b->bp_ok && a->bp_ok && b->bp_sign != a->bp_sign)
+        return 5;
     if (skip != 1 && b->pd_tr && a->pd_tr && (b->pd > 0) != (a->pd > 0))
         return 1;
     if (skip != 2 && b->pd_tr && a->pd_tr && (b->tr > 0) != (a->tr > 0) &&
@@ -200,6 +215,7 @@ typedef struct po_run {
     dyn_po_branch *b;
     double *re, *im, *scratch; /* n, n and 3 n doubles */
     double bound; /* the parameter's bound crossed (locate's test 3) */
+    double bp_ref; /* log |det| of the branch-point test at the step's start (test 5) */
 } po_run;
 
 /* the extreme of state i near node g (sign 1: a maximum, -1: a minimum) of the orbit's
@@ -388,6 +404,17 @@ static double oscillation_dot(const dyn_colloc_sol *u, const dyn_colloc_sol *v, 
     return sum;
 }
 
+/* whether a multiplier other than the trivial one (re[0], im[0]) lies near 1: within
+ * PO_TRIVIAL_TOL (two multipliers at 1 form a Jordan block, each accurate to about the
+ * square root of the rounding) */
+static int second_unit_multiplier(const double *re, const double *im, int n)
+{
+    for (int i = 1; i < n; i++)
+        if (hypot(re[i] - 1.0, im[i]) <= PO_TRIVIAL_TOL)
+            return 1;
+    return 0;
+}
+
 static int point_tests(po_run *r, const dyn_colloc_sol *x, const dyn_colloc_sol *t, po_tests *pt)
 {
     int have = 0;
@@ -398,6 +425,12 @@ static int point_tests(po_run *r, const dyn_colloc_sol *x, const dyn_colloc_sol 
         have = 1;
     }
     tests_of(r->re, r->im, x->n, t->par[1], have, pt);
+    /* Keller's test, trusted where the multipliers are (the trivial one near 1) */
+    pt->bp_sign = 1;
+    pt->bp_log = 0.0;
+    pt->bp_ok = !colloc_bp_test(&r->p, x, t, &pt->bp_sign, &pt->bp_log) &&
+                isfinite(pt->bp_log) &&
+                (!have || hypot(r->re[0] - 1.0, r->im[0]) <= PO_TRIVIAL_TOL);
     return 0;
 }
 
@@ -456,6 +489,46 @@ static int locate(po_run *r, const dyn_colloc_sol *x0, const dyn_colloc_sol *t0,
             break;
     }
     return 0;
+}
+
+/* the step of arclength s from x0 along t0 (a bp_step) and its branch-point test into *y,
+ * *g: colloc_bp_locate's points */
+typedef struct bp_step {
+    po_run *r;
+    const dyn_colloc_sol *x0, *t0;
+} bp_step;
+
+static int bp_point(void *ctx, double s, dyn_colloc_sol *y, double *g)
+{
+    const bp_step *c = ctx;
+    dyn_colloc_info inf;
+    dyn_colloc_sol ts;
+    int st = step(c->r, c->x0, c->t0, s, y, &ts, &inf);
+    if (st)
+        return st;
+    po_tests pt;
+    st = point_tests(c->r, y, &ts, &pt);
+    dyn_colloc_sol_free(&ts);
+    if (st)
+        dyn_colloc_sol_free(y);
+    else
+        *g = bp_value(&pt, c->r->bp_ref);
+    return st;
+}
+
+/* locate for the branch-point test (its value psi0 at x0, psi1 at ds; colloc_bp.c). t: x0's
+ * tangent t0 (at the branch point the bordered system that gives the tangent is singular,
+ * any mix of the two branches' directions solving it: the branch goes on, and the other
+ * leaves orthogonally to it, along t0) */
+static int locate_bp(po_run *r, const dyn_colloc_sol *x0, const dyn_colloc_sol *t0, double ds,
+                     double psi0, double psi1, dyn_colloc_sol *x, dyn_colloc_sol *t,
+                     double *s_at)
+{
+    bp_step c = {r, x0, t0};
+    int st = colloc_bp_locate(bp_point, &c, x0, ds, psi0, psi1, x, s_at);
+    if (!st && (st = dyn_colloc_sol_copy(t, t0)))
+        dyn_colloc_sol_free(x);
+    return st;
 }
 
 /* the orbit's amplitude (the largest max - min of a state over the nodes); its size (the
@@ -570,7 +643,7 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
     const int adapt = o->adapt == 0 ? 3 : o->adapt;
     const int ntst = x->ntst;
     const int bounded = o->par_max > o->par_min;
-    po_tests prev_tests = {0, 0, 0, 0, 0, 0, 0};
+    po_tests prev_tests = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0.0};
     int have_prev = 0, st = 0, since_adapt = 0;
     snprintf(b->message, sizeof b->message, "%d points (nmax)", nmax);
     /* the new point and its tangent: moved into x, t when it is stored, else freed after
@@ -661,11 +734,14 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
         double s_far = s_end;
         po_tests far = now;
         for (int round = 0; which >= 0; round++) {
-            const double p0 = test_value(&prev_tests, which), p1 = test_value(&far, which);
+            r->bp_ref = prev_tests.bp_log;
+            const double p0 = test_value(&prev_tests, which, r->bp_ref),
+                         p1 = test_value(&far, which, r->bp_ref);
             dyn_colloc_sol xl = {0}, tl = {0};
             double s_l;
             po_tests at;
-            if (locate(r, x, t, s_far, p0, p1, which, &xl, &tl, &s_l)) {
+            if (which == 5 ? locate_bp(r, x, t, s_far, p0, p1, &xl, &tl, &s_l)
+                           : locate(r, x, t, s_far, p0, p1, which, &xl, &tl, &s_l)) {
                 dyn_colloc_sol_free(&xl);
                 dyn_colloc_sol_free(&tl);
                 which = -1; /* the whole step, its multipliers again (locate's were last) */
@@ -705,6 +781,10 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
         if (which == 0 && fmax(fabs(xn.par[1] - x->par[1]), fabs(xn.par[1] - lambda_end)) <=
                               DYN_CONT_FOLD_NOISE * fmax(1.0, fabs(xn.par[1])))
             which = -1;
+        /* a branch point has a second multiplier at 1 (the determinant's sign changed
+         * otherwise only by rounding: no label) */
+        if (which == 5 && now.have_mult && !second_unit_multiplier(r->re, r->im, xn.n))
+            which = -1;
         /* past a bound of the parameter: the point on the bound ends the branch */
         const double pn = xn.par[1];
         int at_bound = 0;
@@ -727,9 +807,13 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
         if (at_bound)
             uz = -1;
         const char *label = hopf_end ? "EP" : which == 0 ? "LPC" : which == 1 ? "PD"
-                            : which == 2 ? "TR" : at_bound ? "EP" : uz >= 0 ? "UZ" : "";
+                            : which == 2 ? "TR" : which == 5 ? "BP" : at_bound ? "EP"
+                            : uz >= 0 ? "UZ" : "";
         st = record(r, &xn, r->re, r->im, now.have_mult, label,
                     which >= 0 || uz >= 0 || b->npoints == 0 || o->keep_orbits);
+        /* a branch point keeps its tangent: the other branch leaves orthogonally to it */
+        if (!st && which == 5 && dyn_colloc_sol_copy(&b->pts[b->npoints - 1].tangent, &tn))
+            st = DYN_COLLOC_ERR_NOMEM;
         if (st)
             break;
         dyn_colloc_sol_free(x);
@@ -1062,5 +1146,38 @@ done:
     dyn_colloc_sol_free(&t);
     free(r.c.J);
     b->status = st;
+    return st;
+}
+
+int dyn_po_from_bp(const dyn_po_system *sys, const dyn_po_point *bp, int direction,
+                   const dyn_po_opts *o, dyn_po_branch *b)
+{
+    po_run r;
+    int st = run_init(&r, sys, o, b);
+    if (st)
+        return st;
+    dyn_colloc_sol x = {0}, v = {0};
+    if (!bp->orbit.u || !bp->tangent.u || bp->orbit.n != sys->n) {
+        st = DYN_COLLOC_ERR_ARG;
+        snprintf(b->message, sizeof b->message, "the BP point keeps no orbit and tangent");
+    } else if ((st = colloc_bp_direction(&r.p, &bp->orbit, &bp->tangent, &v))) {
+        snprintf(b->message, sizeof b->message, "no second null vector at the BP (%d)", st);
+    } else if ((st = dyn_colloc_sol_copy(&x, &bp->orbit))) {
+        snprintf(b->message, sizeof b->message, "out of memory");
+    }
+    if (st) {
+        dyn_colloc_sol_free(&v);
+        free(r.c.J);
+        b->status = st;
+        return st;
+    }
+    if (direction < 0) {
+        for (long i = 0; i < dyn_colloc_nodes(&v) * v.n; i++)
+            v.u[i] = -v.u[i];
+        for (int k = 0; k < v.npar; k++)
+            v.par[k] = -v.par[k];
+    }
+    st = po_continue(&r, &x, &v);
+    free(r.c.J);
     return st;
 }

@@ -504,20 +504,41 @@ for path, args, want in ((f"{models}/cusp.ode", ("--par", "a", "--par2", "b"), {
 # van der Pol's linear centre: from the file's initial state (2, 0), not an equilibrium,
 # the start is found (the origin) and the branch followed down through the Hopf point at
 # mu = 0, where every circle y1^2 + y2^2 = r^2 is an orbit of period 2 pi: the periodic
-# branch stays at mu = 0 with that period, and rounding on it makes no fold (LPC)
+# branch from it stays at mu = 0 with that period, and rounding on it makes no fold (LPC).
+# The family of van der Pol's limit cycles crosses it at the circle r = 2 (averaging: the
+# limit cycle tends to it as mu -> 0): one BP there, and the two branches switched to are
+# those limit cycles, their period at mu = -1 van der Pol's at mu = 1 (time reversed),
+# 6.6632868593231 (SciPy, docs/analysis.md "Boundary-value problems"), within 1e-6
 vdp = os.path.join(os.path.dirname(lorenz), "vanderpol.ode")
 d = run(vdp, "--par", "mu", "--opt", "ds=-0.02", "--opt", "parmin=-1", "--opt", "nmax=60")
 p = only(d, "HB", "van der Pol")
 if p:
     check("van der Pol: mu at HB", p["mu"], 0.0, 1e-10)
-for b in (d["branches"] if d else []):
-    if b["kind"] != "periodic":
-        continue
+circles = [b for b in (d["branches"] if d else []) if b["kind"] == "periodic" and
+           b["parent"] == 1]
+for b in circles:
     if any(q["label"] == "LPC" for q in b["points"]):
         failures.append("van der Pol: an LPC on the linear centre's vertical branch")
     for q in b["points"]:
         check("van der Pol: mu on the periodic branch", q["mu"], 0.0, 1e-9)
         check("van der Pol: the period on the periodic branch", q["period"], 2 * math.pi, 1e-9)
+    bps = [k for k, q in enumerate(b["points"]) if q["label"] == "BP"]
+    if len(bps) != 1:
+        failures.append(f"van der Pol: {len(bps)} BP on the circles, one expected (r = 2)")
+        continue
+    check("van der Pol: the BP's radius", b["points"][bps[0]]["max"]["y1"], 2.0, 1e-6)
+    limit = [c for c in d["branches"] if c["parent"] == b["branch"] and
+             c["parent_point"] == bps[0]]
+    ends = sorted(c["points"][-1]["mu"] for c in limit)
+    if len(limit) != 2 or not (abs(ends[0] + 1.0) <= 1e-12 and ends[1] > 0):
+        failures.append(f"van der Pol: the branches switched to at the BP end at {ends}, "
+                        "one at mu = -1 and one at mu > 0 expected")
+    for c in limit:
+        if abs(c["points"][-1]["mu"] + 1.0) <= 1e-12:
+            check("van der Pol: the limit cycle's period at mu = -1",
+                  c["points"][-1]["period"], 6.6632868593231, 1e-6)
+if len(circles) != 1:
+    failures.append(f"van der Pol: {len(circles)} branches of cycles from the Hopf point")
 
 shutil.rmtree(tmp, ignore_errors=True)
 for f in failures:

@@ -19,6 +19,7 @@
 #include <string.h>
 
 #include "dynkit/colloc.h"
+#include "dynkit/continuation.h"
 #include "test_util.h"
 #ifdef DYNKIT_HAVE_LAPACK
 #include "dynkit/lapack.h"
@@ -194,6 +195,74 @@ static void test_brusselator_period_at_onset(void **state)
     dyn_po_branch_free(&b);
 }
 
+/* a pitchfork of cycles: r' = r (mu - r^2), theta' = 1, z' = (mu - c) z - z^3 (c = 0.5) */
+static int cycle_pitchfork(const double *x, double mu, double *f, double *J, void *ctx)
+{
+    (void)ctx;
+    const double c = 0.5, g = mu - x[0] * x[0] - x[1] * x[1];
+    f[0] = x[0] * g - x[1];
+    f[1] = x[1] * g + x[0];
+    f[2] = (mu - c) * x[2] - x[2] * x[2] * x[2];
+    if (J) {
+        const double j[9] = {g - 2 * x[0] * x[0], -1 - 2 * x[0] * x[1], 0,
+                             1 - 2 * x[0] * x[1], g - 2 * x[1] * x[1], 0,
+                             0, 0, mu - c - 3 * x[2] * x[2]};
+        memcpy(J, j, sizeof j);
+    }
+    return 0;
+}
+
+static int hqr(int n, double *a, double *re, double *im, char *err, size_t errlen)
+{
+    return dyn_eig_hqr(n, a, re, im, err, errlen);
+}
+
+static void test_cycle_pitchfork_switching(void **state)
+{
+    (void)state;
+    static const dyn_eig_solver eig = {"hqr", hqr};
+    dyn_po_system sys = {3, cycle_pitchfork, NULL};
+    const double x0[3] = {0, 0, 0};
+    dyn_po_opts o = {0};
+    o.ntst = 20;
+    o.ds = 0.02;
+    o.dsmax = 0.1;
+    o.par_min = -0.5;
+    o.par_max = 1.0;
+    o.eig = &eig;
+    dyn_po_branch b;
+    assert_int_equal(dyn_po_from_hopf(&sys, x0, 0.0, 1.0, &o, &b), 0);
+    const dyn_po_point *bp = NULL;
+    for (int k = 0; k < b.npoints; k++) {
+        assert_true(strcmp(b.pts[k].label, "LPC") != 0);
+        if (strcmp(b.pts[k].label, "BP") == 0) {
+            assert_null(bp);
+            bp = &b.pts[k];
+        }
+    }
+    assert_non_null(bp);
+    /* the multiplier exp(2 pi (mu - c)) passes through 1 at mu = c */
+    assert_close(bp->par, 0.5, 1e-8);
+    assert_non_null(bp->tangent.u);
+    for (int dir = -1; dir <= 1; dir += 2) {
+        dyn_po_branch s;
+        assert_int_equal(dyn_po_from_bp(&sys, bp, dir, &o, &s), 0);
+        assert_true(s.npoints > 5);
+        /* the other family: z^2 = mu - c, r = sqrt(mu), period 2 pi; one z sign each way */
+        for (int k = 0; k < s.npoints; k++) {
+            const dyn_po_point *p = &s.pts[k];
+            const double z = sqrt(fmax(p->par - 0.5, 0.0));
+            assert_close(fabs(p->xmax[2]), z, 1e-8);
+            assert_close(p->xmax[2], p->xmin[2], 1e-8);
+            assert_close(p->xmax[0], sqrt(p->par), 1e-8);
+            assert_close(p->period, 2 * DYN_PI, 1e-8);
+        }
+        assert_true(s.pts[s.npoints - 1].xmax[2] * dir > 0);
+        dyn_po_branch_free(&s);
+    }
+    dyn_po_branch_free(&b);
+}
+
 #ifdef DYNKIT_HAVE_LAPACK
 static void test_roessler_period_doubling(void **state)
 {
@@ -286,6 +355,7 @@ int main(void)
         cmocka_unit_test(test_branch_from_hopf_normal_form),
         cmocka_unit_test(test_brusselator_period_at_onset),
         cmocka_unit_test(test_linear_bvp_closed_form),
+        cmocka_unit_test(test_cycle_pitchfork_switching),
 #ifdef DYNKIT_HAVE_LAPACK
         cmocka_unit_test(test_roessler_period_doubling),
 #endif

@@ -10,6 +10,7 @@
 
 #include "cli.h"
 #include "commands/analysis_args.h"
+#include "commands/analysis_kinds.h"
 #include "dynkit/lyapunov.h"
 #include "pages/pages.h"
 #include "util/out_file.h"
@@ -229,6 +230,7 @@ int cli_cmd_lyapunov(int argc, char **argv)
         if (lo.map)
             lo.tau = run.step;
         dyn_lyapunov_info info;
+        cli_kinds_noise_note("lyapunov", run.model, NULL);
         const int st = dyn_lyapunov(run.model, run.par, run.t0, run.y0, &lo, ex, err, &info);
         if (st) {
             cli_error("lyapunov: %s", info.message);

@@ -46,7 +46,8 @@ typedef struct dyn_lyapunov_info {
 /* The k largest Lyapunov exponents of model m (prepared parameters par) from (t0, y0) into
  * exponents (k values, largest first) and an error estimate of each into err (k values or
  * NULL): the standard deviation of the block means over sqrt(blocks). Returns 0;
- * DYN_ERR_ARG (bad options, a delay, Volterra or noise model) or the integrator's status
+ * DYN_ERR_ARG (bad options, a delay, Volterra or Markov model; a model's other noise
+ * terms are 0, as its parameter struct holds them outside a solve) or the integrator's status
  * when the trajectory fails, with the message in info (may be NULL). */
 int dyn_lyapunov(const dyn_model *m, void *par, double t0, const double *y0,
                  const dyn_lyapunov_opts *opts, double *exponents, double *err,

@@ -92,7 +92,7 @@ static int refuse(const dyn_model *m, const dyn_lyapunov_opts *o, int k, dyn_lya
 {
     const char *why = m->delay      ? "a delay equation (delay(x, tau))"
                       : m->volterra ? "Volterra integrals (int{...}, volt)"
-                      : m->n_noise  ? "noise (wiener, normal(), ran() or Markov states)"
+                      : m->jump     ? "Markov states (markov lines)"
                                     : NULL;
     if (why) {
         snprintf(info->message, sizeof info->message,

@@ -147,7 +147,15 @@ if out:
 noted("noise: bvp", ["bvp", "noise.ode", "-o", "n.csv"], "noise")
 noted("noise: phase plane", ["plot", "noise.ode", "--phase-plane", "-o", "n.svg"], "noise",
       "trajectories carry the noise")
-refused("noise: lyapunov", ["lyapunov", "noise.ode"], "noise")
+# the exponents of van der Pol's cycle (the deterministic part): the largest 0, along the
+# flow, within its error estimate
+out = noted("noise: lyapunov", ["lyapunov", "noise.ode", "--json", "--tspan", "0:400"],
+            "noise")
+if out:
+    ly = json.loads(out)
+    if not abs(ly["exponents"][0]) <= 3 * ly["errors"][0] + 1e-3:
+        failures.append(f"noise: lyapunov: the cycle's largest exponent {ly['exponents'][0]} "
+                        f"+- {ly['errors'][0]}, expected 0")
 
 # ---- a Markov state: refused where it would be solved for, held with a note elsewhere
 for args in (["equilibria", "markov.ode"], ["steady", "markov.ode", "--unknown", "x"],

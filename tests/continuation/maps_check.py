@@ -6,7 +6,8 @@ for 1 < r < 3, the period doubling PD at r = 3 (x = 2/3, multiplier -1); the bra
 at r = 1, x = 0 and the branch x = 0 switched to, with multiplier r, stable for r < 1. Henon's
 map (1 - a x^2 + y, b x): the fold LP at a = -(1 - b)^2/4 and PD at a = 3 (1 - b)^2/4 for two
 values of b, its 2-cycle's PD at a = 73/80 for b = 0.3. The delayed logistic map (r x (1 - y), x): the Neimark-Sacker point, labelled
-TR, at r = 2 with the multipliers exp(+-i pi/3) there. The logistic map's cycles born at
+TR, at r = 2 with the multipliers exp(+-i pi/3) there; with @ njmp=7 (XPPAUT's period of a
+map for AUTO) its points of period 7, each fold a fold of F^7 computed here. The logistic map's cycles born at
 each PD (period 2 on its closed form, doubling at 1 + sqrt(6); periods 4, 8, 16 doubling at
 the cascade's known values). In two parameters Henon's curves of folds and of flips of its
 fixed points and of its 2-cycles (the cycle checked by iterating the map here); the

@@ -36,6 +36,8 @@ typedef enum dyn_cont_label {
     DYN_LABEL_UZ,  /* a user point: a parameter value asked for (dyn_cont_opts.at) */
     DYN_LABEL_HH,  /* Hamiltonian Hopf: two imaginary pairs collide and leave the axis (a
                     * conservative steady motion's loss of stability) */
+    DYN_LABEL_ZH,  /* zero-Hopf (fold-Hopf): eigenvalues 0 and +-i omega (on a curve of folds
+                    * or of Hopf points) */
     DYN_LABEL_COUNT
 } dyn_cont_label;
 

@@ -11,7 +11,8 @@
 const char *dyn_cont_label_name(dyn_cont_label l)
 {
     static const char *const names[DYN_LABEL_COUNT] = {"",   "LP", "HB", "BP", "LPC", "PD", "TR",
-                                                       "CP", "BT", "GH", "EP", "UZ",  "HH"};
+                                                       "CP", "BT", "GH", "EP", "UZ",  "HH",
+                                                       "ZH"};
     return (int)l >= 0 && l < DYN_LABEL_COUNT ? names[l] : "";
 }
 

@@ -126,17 +126,18 @@ static double norm2(const double *v, int n)
     return sqrt(s);
 }
 
-/* the sign of det J (n x n; copied into work): 1, -1, or 0 when a pivot vanishes */
-static int det_sign(int n, const double *J, double *work, int *piv)
+/* det J / (the product of J's rows' norms), n x n (copied into work): 0 when a pivot
+ * vanishes */
+static double det_scaled(int n, const double *J, double *work, int *piv)
 {
     memcpy(work, J, (size_t)n * (size_t)n * sizeof *work);
     if (dyn_lu_factor(n, work, piv))
-        return 0;
-    int s = 1;
+        return 0.0;
+    double det = 1.0;
     for (int k = 0; k < n; k++)
-        if ((piv[k] != k) != (work[(size_t)k * (size_t)n + (size_t)k] < 0.0))
-            s = -s;
-    return s;
+        det *= (piv[k] != k ? -1.0 : 1.0) * work[(size_t)k * (size_t)n + (size_t)k] /
+               fmax(norm2(J + (size_t)k * (size_t)n, n), DBL_MIN);
+    return det;
 }
 
 static int curve_tests(void *ctx, const double *z, const double *t, double det, double *psi,
@@ -149,7 +150,8 @@ static int curve_tests(void *ctx, const double *z, const double *t, double det, 
     const int n = cm->n, k = ip1(c);
     if (cont_model_set(cm, z[k], z[k + 1]) || cont_model_jx(cm, z, cm->J, n))
         return -1;
-    count[0] = count[1] = -1;
+    count[0] = count[1] = count[2] = -1;
+    psi[2] = NAN;
     if (c->ns) { /* no tests: strong resonances and Chenciner points are not located */
         psi[0] = psi[1] = NAN;
         return 0;
@@ -158,10 +160,16 @@ static int curve_tests(void *ctx, const double *z, const double *t, double det, 
         const double kappa = z[2 * n];
         psi[0] = kappa;
         psi[1] = NAN;
-        /* l1 times the sign of det J: where a real eigenvalue passes through zero (a
-         * fold-Hopf point, AUTO-07p's ZH) l1 changes sign through a pole (its formula solves
-         * with J), det J through zero, and the product keeps its sign; it changes at GH */
-        const int sd = det_sign(n, cm->J, c->J2, c->piv);
+        /* ZH: det J = kappa times the product of the other eigenvalues, so det J / kappa
+         * changes sign where one of them passes through 0 (and not at BT, where kappa
+         * does); where kappa > 0 only, the neutral saddles having no zero-Hopf point */
+        const double ds = det_scaled(n, cm->J, c->J2, c->piv);
+        if (kappa > 0.0)
+            psi[2] = ds / kappa;
+        /* l1 times the sign of det J: where a real eigenvalue passes through zero (the
+         * fold-Hopf point ZH) l1 changes sign through a pole (its formula solves with J),
+         * det J through zero, and the product keeps its sign; it changes at GH */
+        const int sd = ds > 0.0 ? 1 : ds < 0.0 ? -1 : 0;
         if (kappa > 0.0 && sd != 0) {
             double l1;
             char err[128];
@@ -201,6 +209,12 @@ static int curve_tests(void *ctx, const double *z, const double *t, double det, 
         psi[0] = 1.0;
         if (c->shift > 0.0)
             psi[1] = 1.0;
+    } else {
+        /* ZH: a complex pair of the other eigenvalues crosses the axis (the equilibria's
+         * Hopf test; the zero eigenvalue is real, so it does not enter) */
+        if (cont_model_eig(cm, cm->J))
+            return -1;
+        psi[2] = cont_hopf_test(n, cm->re, cm->im, 0.0, &count[2], NULL);
     }
     memcpy(c->w_prev, w, (size_t)n * sizeof *w);
     const double nwp = norm2(c->w_prev, n);
@@ -224,7 +238,8 @@ static int curve_store(void *ctx, const double *z, const double *t, dyn_cont_lab
     } else if (c->hopf) {
         omega = z[2 * n];
         char err[128];
-        if (omega > 0.0 && dyn_first_lyapunov(cm->m, cm->t, z, cm->par, cm->jac, cm->J,
+        if (omega > 0.0 && label != DYN_LABEL_ZH &&
+            dyn_first_lyapunov(cm->m, cm->t, z, cm->par, cm->jac, cm->J,
                                               sqrt(omega), &l1, err, sizeof err))
             l1 = NAN;
     }
@@ -436,9 +451,10 @@ int cont_curves_from(cont_model *cm, const dyn_cont_opts *o, dyn_diagram *d, int
     s.ctx = &c;
     s.residual = curve_residual;
     s.jacobian = curve_jacobian;
-    s.n_tests = 2;
+    s.n_tests = 3;
     s.test_label[0] = DYN_LABEL_BT; /* none on a map's Neimark-Sacker curves (curve_tests) */
     s.test_label[1] = hopf ? DYN_LABEL_GH : DYN_LABEL_CP;
+    s.test_label[2] = DYN_LABEL_ZH;
     s.tests = curve_tests;
     s.store = curve_store;
     /* Newton's method at the fixed second parameter, then both directions */

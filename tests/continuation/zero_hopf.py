@@ -3,7 +3,8 @@
 fold-Hopf point, where a real eigenvalue passes through zero while a pair stays on the
 imaginary axis: the first Lyapunov coefficient has a pole there (its formula solves with
 the Jacobian) and changes sign through it, which is no generalized Hopf point. dynkit
-reports no GH on the curve; the fold-Hopf point, solved to 30 digits (f = 0, tr J = 0,
+reports no GH on the curve, and ZH at the fold-Hopf point on the Hopf and fold curves
+within 1e-9 of it; the fold-Hopf point, solved to 30 digits (f = 0, tr J = 0,
 det J = 0) by mpmath on SymPy's derivatives, lies between two consecutive points of the
 curve where the real eigenvalue changes sign; and l1 at the curve's points near it agrees
 within 1e-8 with Kuznetsov's formula 3.20 evaluated to 30 digits at the same (g, f)
@@ -95,6 +96,15 @@ for b in hopf:
                     failures.append(f"l1 at g = {r['g']}: {r['l1']!r}, 30 digits {want}")
 if not crossed:
     failures.append("no Hopf curve passes the fold-Hopf point")
+# the fold-Hopf point labelled ZH on the Hopf curves and the fold curves that pass it, there
+# alone (1e-9)
+branches = json.loads(out.stdout)["branches"]
+for kind in ("hopf", "fold"):
+    zhs = [(p["g"], p["f"]) for b in branches if b["kind"] == kind for p in b["points"]
+           if p["label"] == "ZH"]
+    if not zhs or any(abs(a - zg) > 1e-9 or abs(b - zf) > 1e-9 for a, b in zhs):
+        failures.append(f"ZH on the {kind} curves at {zhs}, the fold-Hopf point is at "
+                        f"({zg!r}, {zf!r})")
 for f in failures:
     print("FAIL:", f)
 if compared < 4:

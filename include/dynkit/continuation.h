@@ -178,7 +178,7 @@ typedef struct dyn_cont_opts {
     int ntst, ncol;    /* collocation: mesh intervals and points (0: defaults) */
     const double *at;  /* values of ip where a point labelled UZ is computed (n_at) */
     int n_at;
-    int no_switch;     /* 1: do not follow the other branch at a BP */
+    int no_switch;     /* 1: do not follow the other branch at a BP (of cycles too) */
     int max_branches;  /* branches of the diagram at most (0: 16) */
     dyn_jac_scheme jac; /* the Jacobian in the states (dynkit/analysis.h) */
     double t;          /* the time at which f is evaluated (non-autonomous models) */

@@ -184,7 +184,7 @@ typedef struct po_follow {
 
 /* the branches switched to from pb (stored in d as branch id), depth first: at its first
  * PD the period-doubled branch, at each BP that no other branch of d has the other family
- * (its direction's sign, then the opposite), each followed in turn, while d has fewer
+ * (its direction's sign, then the opposite; none with o->no_switch), each followed in turn, while d has fewer
  * than max_branches branches; a switch that fails is left out. id, or -1 when out of
  * memory. */
 static int follow(po_follow *f, const dyn_po_branch *pb, int id)
@@ -195,7 +195,8 @@ static int follow(po_follow *f, const dyn_po_branch *pb, int id)
             pd = k;
     for (int k = 0; k < pb->npoints && id > 0; k++) {
         const int is_pd = k == pd, is_bp = strcmp(pb->pts[k].label, "BP") == 0;
-        if (!is_pd && !(is_bp && !bp_known(f->d, id, k, pb->pts[k].par, pb->pts[k].period)))
+        if (!is_pd && !(is_bp && !f->o->no_switch &&
+                        !bp_known(f->d, id, k, pb->pts[k].par, pb->pts[k].period)))
             continue;
         for (int dir = 1; dir >= (is_pd ? 1 : -1) && id > 0; dir -= 2) {
             if (f->d->count >= f->max_branches)

@@ -187,6 +187,13 @@ static void set_test_value(po_tests *t, int which, double v)
         t->bp_sign = v > 0 ? 1 : -1;
 }
 
+/* A cycle's parameter is computed to the collocation's discretization error, which moves
+ * with the mesh as it adapts: along a branch that has settled at a homoclinic orbit's
+ * parameter, the period growing, it wanders by a few 1e-8 (a published pituitary cell
+ * model, 37 such "folds" within 7e-8 at periods 940 to 1180). A fold whose parameter is
+ * within this of both ends of its step is that wandering. */
+#define PO_FOLD_NOISE 1e-7
+
 /* the first of the tests LPC, BP, PD, TR (other than `skip`; 0, 5, 1, 2) that changed sign
  * from a to b, or -1. LPC: |d lambda/ds| above the rounding of a vertical branch on one
  * side at least; TR: a pair's modulus through 1, not two real multipliers meeting as a
@@ -775,11 +782,11 @@ static int po_continue(po_run *r, dyn_colloc_sol *x, dyn_colloc_sol *t)
         }
         if (st)
             break;
-        /* a fold whose parameter stays within rounding of both ends of its step is the
-         * jitter of a vertical branch (cycles near a homoclinic orbit, the parameter settled
-         * to 1e-11 while the period grows), not a fold: no label */
+        /* a fold whose parameter stays within PO_FOLD_NOISE of both ends of its step is
+         * the jitter of a vertical branch (cycles near a homoclinic orbit, the parameter
+         * settled while the period grows), not a fold: no label */
         if (which == 0 && fmax(fabs(xn.par[1] - x->par[1]), fabs(xn.par[1] - lambda_end)) <=
-                              DYN_CONT_FOLD_NOISE * fmax(1.0, fabs(xn.par[1])))
+                              PO_FOLD_NOISE * fmax(1.0, fabs(xn.par[1])))
             which = -1;
         /* a branch point has a second multiplier at 1 (the determinant's sign changed
          * otherwise only by rounding: no label) */

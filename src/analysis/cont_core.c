@@ -787,8 +787,9 @@ int cont_follow(const cont_system *s, cont_work *w, const cont_loop *L, const do
                      dyn_shortest(bound).s);
             end_here = 1;
         }
-        /* on the step that leaves the window, no special point beyond its bounds (kept
-         * where the bound itself could not be located) */
+        /* on the step that leaves the window, the special points beyond its bounds are
+         * dropped (they would follow the bound's EP, or stand in its place where the bound
+         * could not be located) */
         for (int a = 0; end_here && a < ns; a++) {
             const int out =
                 sp[a].z[s->ip] < L->pmin - 1e-12 * fabs(L->pmin) ||

@@ -487,6 +487,12 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
     memcpy(z, x0, (size_t)n * sizeof *z);
     z[n] = cm.p_set[0];
     int rc = 0;
+    if (cont_time_dependent(&cm, z, info->message, sizeof info->message) == 1) {
+        cont_model_free(&cm);
+        cont_work_free(&w);
+        free(z);
+        return DYN_ERR_ARG;
+    }
     eq_ctx ec = {&cm, d, -1, 0};
     cont_system s;
     eq_system(&s, &ec);

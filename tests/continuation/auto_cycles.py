@@ -79,6 +79,13 @@ CASES = {
         pars=[("alpha", 5.0), ("beta", 14.3), ("k", 10.0), ("a0", -1 / 7), ("a1", 2 / 7)],
         states=[("x", 1.4994022335769977), ("y", 0.0), ("z", -1.4994022335769977)],
         rhs=[f"alpha*(y-({CHUA_H}))", "x-y+z", "-beta*y"], runs=[dict(args=[])]),
+    # the cycles from a subcritical Hopf point of a small frequency (period 148): started
+    # with the file's dsmin = 0.001, their period at k = 0.05825 (UZ)
+    "gray_scott": dict(
+        ode="gray_scott.ode", icp="k", range=(0.0, 0.2), ntst=40, nmx=100, nmx1=100,
+        eq_ds=0.002, ds=0.002, dsmax=0.005, at=[0.05825], pars=[("k", 0.05), ("ff", 0.04)],
+        states=[("x", 0.2820550528229663), ("y", 0.3190866431897928)],
+        rhs=["ff*(1-x)-x*y**2", "x*y**2-(ff+k)*y"], runs=[dict(args=[])]),
 }
 
 RUN_AUTO = """r = run(e='pb', c='pb'%(start)s)
@@ -86,7 +93,7 @@ for p in r('HB'):
     print('LABEL', %(k)d, 'EQ HB', repr(p['%(icp)s']), 0)
 ps = run(r('HB')[0], IPS=2, ICP=['%(icp)s', 11], NMX=%(nmx1)d, DS=%(ds)r, DSMAX=%(dsmax)r)
 for p in ps():
-    if p['TY'] in ('LP', 'PD', 'TR', 'BP'):
+    if p['TY'] in ('LP', 'PD', 'TR', 'BP') or (p['TY'] == 'UZ' and %(at)r):
         print('LABEL', %(k)d, 'PO', p['TY'], repr(p['%(icp)s']), repr(p['PAR(11)']))
 if %(switch)r:
     d = run(ps('PD')[0], ISW=-1, NMX=%(nmx)d, DS=%(ds)r, DSMAX=%(dsmax)r)
@@ -107,7 +114,9 @@ def constants(cs):
         f"NTST={cs['ntst']}, NCOL=4, IAD=3, ISP=2, ISW=1, IPLT=0, NBC=0, NINT=0",
         "NMX=400, NPR=100000, MXBF=0, IID=0, ITMX=8, ITNW=7, NWTN=3, JAC=0",
         "EPSL=1e-9, EPSU=1e-9, EPSS=1e-7",
-        f"DS={cs['eq_ds']}, DSMIN=1e-4, DSMAX={cs['dsmax']}, IADS=1", "THL={}, THU={}", f"UZSTOP={{'{cs['icp']}': [{lo}, {hi}]}}", ""])
+        f"DS={cs['eq_ds']}, DSMIN=1e-4, DSMAX={cs['dsmax']}, IADS=1", "THL={}, THU={}",
+        f"UZSTOP={{'{cs['icp']}': [{lo}, {hi}]}}",
+        f"UZR={{'{cs['icp']}': {cs['at']}}}" if cs.get("at") else "UZR={}", ""])
 
 
 def near(v, w, tol=1e-6):
@@ -126,7 +135,7 @@ def check_case(dynkit, name, cs, run_auto, fortran):
     shutil.copy(os.path.join(MODELS, cs["ode"]), work)
     icp = cs["icp"]
     script = "".join(RUN_AUTO % dict(icp=icp, nmx=cs["nmx"], nmx1=rn.get("nmx1", cs["nmx1"]),
-                                     ds=cs["ds"],
+                                     ds=cs["ds"], at=bool(cs.get("at")),
                                      dsmax=cs["dsmax"], switch=cs.get("switch", False), k=k,
                                      start=", " + rn["start"] if "start" in rn else "")
                      for k, rn in enumerate(cs["runs"]))
@@ -142,8 +151,9 @@ def check_case(dynkit, name, cs, run_auto, fortran):
                 where, lab, v, t = l.split()[2:]
                 auto.setdefault(where, []).append(("LPC" if lab == "LP" else lab, float(v),
                                                    float(t)))
+        at = ["--at", f"{icp}=" + ",".join(map(repr, cs["at"]))] if cs.get("at") else []
         d = subprocess.run([dynkit, "continue", cs["ode"], "--par", icp, "--json",
-                            *rn["args"]], cwd=work, capture_output=True, text=True)
+                            *rn["args"], *at], cwd=work, capture_output=True, text=True)
         with open(os.path.join(work, f"dynkit{k}.json"), "w") as f:
             f.write(d.stdout + d.stderr)
         if d.returncode != 0:
@@ -158,9 +168,11 @@ def compare(cs, rn, branches, auto, summary):
     icp, problems = cs["icp"], []
     hb = [(p["label"], p[icp], 0.0) for p in branches[0]["points"] if p["label"] == "HB"]
     same("HB", hb, auto.get("EQ", []), problems)
-    cycles = next(b for b in branches if b["kind"] == "periodic" and b["parent"] == 1)
+    cycles = next((b for b in branches if b["kind"] == "periodic" and b["parent"] == 1), None)
+    if cycles is None:
+        return problems + ["no periodic branch from the first Hopf point"]
     po = [(p["label"], p[icp], p["period"]) for p in cycles["points"]
-          if p["label"] in ("LPC", "PD", "TR")]
+          if p["label"] in ("LPC", "PD", "TR") or (p["label"] == "UZ" and cs.get("at"))]
     theirs = auto.get("PO", [])
     if cs.get("upto_bp"):
         # AUTO-07p's cycles go on through the second Hopf point (a BP) and back along the

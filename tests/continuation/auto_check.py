@@ -7,7 +7,7 @@ under ARTIFACTS/<problem>/. Discrete maps (IPS = -1): auto_maps.py; curves of fo
 points in two parameters: auto_curves.py; period doublings and torus bifurcations:
 auto_cycles.py. Exit 77 (skipped) when auto-07p or gfortran is
 missing.
-Usage: auto_check.py DYNKIT ARTIFACTS [equilibria|orbits]"""
+Usage: auto_check.py DYNKIT ARTIFACTS [equilibria|models_a|models_b|orbits]"""
 import json
 import os
 import shutil
@@ -57,7 +57,125 @@ PROBLEMS = {
         states=[("x", 0.0), ("y", 0.0), ("z", 0.0)],
         rhs=["(-(be+rn)*x+be*y-a3*x**3+b3*(y-x)**3)/r", "be*x-(be+ga)*y-z-b3*(y-x)**3", "y"],
         icp="rn", ds=0.001, dsmax=0.01, range=(-0.9, -0.4)),
+    # AUTO-07p's demos pp3 and ppp (two predators, one harvested) from the prey alone,
+    # u = (1, 0, 0): the branch point where u2's rate -p2 + p4 - p1 p6 vanishes
+    "pp3": dict(
+        part="models_a",
+        pars=[("p1", 0.0), ("p2", 0.25), ("p3", 0.5), ("p4", 4.0), ("p5", 3.0), ("p6", 5.0)],
+        states=[("u1", 1.0), ("u2", 0.0), ("u3", 0.0)],
+        rhs=["u1*(1-u1)-p4*u1*u2", "-p2*u2+p4*u1*u2-p5*u2*u3-p1*(1-exp(-p6*u2))",
+             "-p3*u3+p5*u2*u3"], icp="p1", ds=0.01, dsmax=0.02, range=(0.0, 1.0),
+        exact={"BP": [(4.0 - 0.25) / 5.0]}),
+    "ppp": dict(
+        part="models_a",
+        pars=[("p1", 0.0), ("p2", 0.25), ("p3", 0.5), ("p4", 3.0), ("p5", 3.0), ("p6", 5.0)],
+        states=[("u1", 1.0), ("u2", 0.0), ("u3", 0.0)],
+        rhs=["u1*(1-u1)-p4*u1*u2", "-p2*u2+p4*u1*u2-p5*u2*u3-p1*(1-exp(-p6*u2))",
+             "-p3*u3+p5*u2*u3"], icp="p1", ds=0.01, dsmax=0.02, range=(0.0, 0.6),
+        exact={"BP": [(3.0 - 0.25) / 5.0]}),
+    # AUTO-07p's demo plp (an enzyme with substrate inhibition, in rho): two Hopf points
+    "plp": dict(
+        part="models_a",
+        pars=[("s0", 110.0), ("a0", 500.0), ("al", 0.2), ("rh", 2.021628), ("rk", 0.1)],
+        states=[("s", 45.559739051380326), ("a", 177.79869525690165)],
+        rhs=["(s0-s)-rh*s*a/(1+s+rk*s**2)", "al*(a0-a)-rh*s*a/(1+s+rk*s**2)"], icp="rh",
+        ds=0.1, dsmax=1.0, range=(0.0, 6.0)),
+    # AUTO-07p's demo tfc (a tritrophic food chain, prey and predator in logarithms) without
+    # the top predator z: Rosenzweig-MacArthur's Hopf point where the prey X = 1/3 sits at
+    # the top of its isocline (1 - X)(1 + b1 X)/a1, d1 = a1 X/(1 + b1 X) = 5/6
+    "tfc": dict(
+        part="models_a",
+        pars=[("a1", 5.0), ("b1", 3.0), ("d1", 1.1083), ("a2", 0.1), ("b2", 2.0), ("d2", 0.01)],
+        states=[("x", -0.41304879168158637), ("y", -1.5995370877568378), ("z", 0.0)],
+        rhs=["(1-exp(x))-a1*exp(y)/(1+b1*exp(x))",
+             "a1*exp(x)/(1+b1*exp(x))-d1-a2*z/(1+b2*exp(y))", "z*(a2*exp(y)/(1+b2*exp(y))-d2)"],
+        icp="d1", ds=-0.01, dsmax=0.1, range=(0.1, 2.0), exact={"HB": [5.0 / 6.0]}),
+    # Rosenzweig-MacArthur x' = x(1 - x/k) - xy/(1 + x), y' = e xy/(1 + x) - m y: the Hopf
+    # point where the prey's isocline peaks at the predator's x = m/(e - m), k = 2x + 1, and
+    # (downwards) the transcritical point k = m/(e - m) where the predator dies out
+    "rosenzweig_macarthur": dict(
+        part="models_a",
+        pars=[("k", 1.5), ("e", 0.5), ("m", 0.2)], states=[("x", 2 / 3), ("y", 25 / 27)],
+        rhs=["x*(1-x/k)-x*y/(1+x)", "e*x*y/(1+x)-m*y"], icp="k", ds=0.02, dsmax=0.1,
+        range=(0.5, 4.0), exact={"HB": [7.0 / 3.0]}),
+    "rosenzweig_macarthur_down": dict(
+        part="models_a",
+        pars=[("k", 1.5), ("e", 0.5), ("m", 0.2)], states=[("x", 2 / 3), ("y", 25 / 27)],
+        rhs=["x*(1-x/k)-x*y/(1+x)", "e*x*y/(1+x)-m*y"], icp="k", ds=-0.02, dsmax=0.1,
+        range=(0.5, 4.0), exact={"BP": [2.0 / 3.0]}),
+    # Lengyel-Epstein (the CIMA reaction), a = 10: Hopf point at b = 3a/5 - 25/a
+    "lengyel_epstein": dict(
+        part="models_b",
+        pars=[("b", 1.0), ("a", 10.0)], states=[("x", 2.0), ("y", 5.0)],
+        rhs=["a-x-4*x*y/(1+x**2)", "b*(x-x*y/(1+x**2))"], icp="b", ds=0.05, dsmax=0.2,
+        range=(0.5, 6.0), exact={"HB": [3.0 * 10 / 5 - 25.0 / 10]}),
+    # Schnakenberg, a = 0.1: tr J = 0 where s = a + b solves s^3 - s + 2a = 0
+    "schnakenberg": dict(
+        part="models_b",
+        pars=[("b", 0.05), ("a", 0.1)], states=[("x", 0.15), ("y", 0.05 / 0.15 ** 2)],
+        rhs=["a-x+x**2*y", "b-x**2*y"], icp="b", ds=0.01, dsmax=0.05, range=(0.01, 2.0),
+        exact={"HB": "schnakenberg"}),
+    # the Brusselator in a (b = 3): Hopf point at a = sqrt(b - 1)
+    "brusselator_a": dict(
+        part="models_b",
+        pars=[("a", 2.5), ("b", 3.0)], states=[("x", 2.5), ("y", 1.2)],
+        rhs=["a-(b+1)*x+x**2*y", "b*x-x**2*y"], icp="a", ds=-0.02, dsmax=0.1,
+        range=(0.5, 3.0), exact={"HB": [2.0 ** 0.5]}),
+    # Goodwin's oscillator with equal rates b and Hill exponent n = 10: the secant condition
+    # n z^n/(1 + z^n) = 8 gives z^n = 8/(n - 8) = 4 and b^3 = 1/(z (1 + z^n))
+    "goodwin": dict(
+        part="models_b",
+        pars=[("b", 0.2), ("n", 10.0)],
+        states=[("x", 0.06197203663361557), ("y", 0.30986018316807784), ("z", 1.549300915840389)],
+        rhs=["1/(1+z**n)-b*x", "x-b*y", "y-b*z"], icp="b", ds=0.01, dsmax=0.05,
+        range=(0.1, 1.0), exact={"HB": [(5.0 * 4.0 ** 0.1) ** (-1.0 / 3.0)]}),
+    # the Gray-Scott autocatalator (feed 0.04) in k: the fold where feed = 4 (feed + k)^2,
+    # the Hopf point where tr J = k - v^2 = 0 on (feed + k) v^2 - feed v + feed (feed + k) = 0
+    "gray_scott": dict(
+        part="models_b",
+        pars=[("k", 0.05), ("feed", 0.04)], states=[("x", 0.2820550528229663),
+                                                   ("y", 0.3190866431897928)],
+        rhs=["feed*(1-x)-x*y**2", "x*y**2-(feed+k)*y"], icp="k", ds=0.002, dsmax=0.005,
+        range=(0.0, 0.2), exact={"LP": [0.1 - 0.04], "HB": "gray_scott"}),
+    # Hindmarsh-Rose (r = 0.01, s = 4, xr = -1.6) in the current i: two Hopf points
+    "hindmarsh_rose": dict(
+        part="models_b",
+        pars=[("i", 0.0), ("a", 1.0), ("b", 3.0), ("c", 1.0), ("d", 5.0), ("r", 0.01),
+              ("s", 4.0), ("xr", -1.6)],
+        states=[("x", -1.6045345328021474), ("y", -11.872655334773027),
+                ("z", -0.018138131208589498)],
+        rhs=["y-a*x**3+b*x**2-z+i", "c-d*x**2-y", "r*(s*(x-xr)-z)"], icp="i", ds=0.05,
+        dsmax=0.2, range=(-2.0, 6.0)),
+    # Roessler's system in a (b = 2, c = 4) from the equilibrium near the origin
+    "roessler_a": dict(
+        part="models_b",
+        pars=[("a", 0.1), ("b", 2.0), ("c", 4.0)],
+        states=[("x", 0.05064113103820722), ("y", -0.5064113103820722),
+                ("z", 0.5064113103820722)],
+        rhs=["-y-z", "x+a*y", "b+z*(x-c)"], icp="a", ds=0.01, dsmax=0.05, range=(0.0, 1.0)),
 }
+
+
+def bisect(g, lo, hi):
+    """the root of g in [lo, hi] (a sign change) to rounding"""
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if (g(lo) > 0) == (g(mid) > 0):
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+def exact_values(name):
+    """the closed forms that are roots of a scalar equation"""
+    if name == "schnakenberg":  # b = s - a, s^3 - s + 2a = 0 (a = 0.1), its two positive roots
+        g = lambda s: s ** 3 - s + 0.2
+        return [bisect(g, 0.15, 0.5) - 0.1, bisect(g, 0.5, 1.0) - 0.1]
+    if name == "gray_scott":  # v = sqrt(k) on the upper equilibrium (feed = 0.04)
+        g = lambda k: (0.04 + k) * k - 0.04 * k ** 0.5 + 0.04 * (0.04 + k)
+        return [bisect(g, 0.05, 0.0599)]
+    raise KeyError(name)
 
 
 def fortran(pb):
@@ -231,11 +349,14 @@ def main():
     if not shutil.which("auto-07p") or not shutil.which("gfortran"):
         print("skipped: auto-07p or gfortran is not installed (scripts/install-deps.sh)")
         sys.exit(77)
-    # PART: "equilibria" (the problems here, enz, the maps), "orbits" (the curves in two
-    # parameters and the periodic orbits' PD and TR), or both when not given
+    # PART: "equilibria" (the first problems here, enz, the maps), "models_a" and "models_b"
+    # (the models from outside marked so: two parts to keep each run short), "orbits" (the
+    # curves in two parameters and the periodic orbits' PD and TR), or all when not given
     part = sys.argv[3] if len(sys.argv) > 3 else "all"
     failures = []
-    for name, pb in (PROBLEMS.items() if part != "orbits" else ()):
+    for name, pb in PROBLEMS.items():
+        if part != "all" and pb.get("part", "equilibria") != part:
+            continue
         work = tempfile.mkdtemp(prefix=f"auto-{name}-")
         a = run_auto(work, (("pb.f90", fortran(pb)), ("c.pb", constants(pb)),
                             ("run.auto", RUN_AUTO % pb["icp"]), (f"{name}.ode", ode(pb))))
@@ -269,13 +390,20 @@ def main():
                         problems.append(f"{l}: dynkit {v!r}, AUTO-07p {w!r}")
             if not auto:
                 problems.append("AUTO-07p found no special point: the comparison would be empty")
+            # the closed forms: dynkit's labels within 1e-9 (AUTO-07p's within its 1e-6 above)
+            for lab, want in pb.get("exact", {}).items():
+                want = exact_values(want) if isinstance(want, str) else want
+                got = [v for l, v in ours if l == lab]
+                if len(got) != len(want) or not all(
+                        abs(g - w) <= 1e-9 * max(1.0, abs(w)) for g, w in zip(got, want)):
+                    problems.append(f"{lab} at {got}, the closed form {want!r}")
         failures += keep.settle(work, artifacts, f"continuation-auto-{name}", name, problems,
                                 f"{name}: {auto} agree")
 
-    if part != "orbits":
+    if part in ("all", "equilibria"):
         failures += enz_check(dynkit, artifacts)
         failures += auto_maps.check(dynkit, artifacts, run_auto, fortran)  # discrete maps
-    if part != "equilibria":
+    if part in ("all", "orbits"):
         failures += auto_curves.check(dynkit, artifacts, run_auto, fortran)  # two parameters
         failures += auto_cycles.check(dynkit, artifacts, run_auto, fortran)  # PD, TR
     for f in failures:

@@ -52,6 +52,17 @@ CASES = {
                          "--opt", "dsmax=0.5", "--opt", "nmax=200"],
                    first=1, start="PAR={'alpha': 0.95, 'delta': 0.0}, U={'x': 20.0, 'y': 16.0}",
                    win=((0.0, 1.0), (0.0, 0.02)), ds=0.01, dsmax=0.5, nmx=200)]),
+    # the Gray-Scott autocatalator (gray_scott.ode) in (k, feed): BT at k = feed = 1/16,
+    # where both curves turn in k: AUTO-07p labels the point LP on each (bt_as_lp)
+    "gray_scott": dict(
+        ode="gray_scott.ode", pars=[("k", 0.05), ("feed", 0.04)],
+        states=[("x", 0.2820550528229663), ("y", 0.3190866431897928)],
+        rhs=["feed*(1-x)-x*y**2", "x*y**2-(feed+k)*y"],
+        p=("k", "feed"), win=((0.0, 0.2), (0.001, 0.3)), bt_as_lp=True,
+        expect={"BT": [(0.5, 0.25, 0.0625, 0.0625)], "GH": [(0.25, 0.19, 0.035, 0.0117)]},
+        runs=[dict(args=["--par", "k", "--par2", "feed", "--opt", "nmax=300", "--opt",
+                         "par2min=0.001", "--opt", "par2max=0.3"], first=0,
+                   ds=0.002, dsmax=0.005, nmx=300)]),
 }
 
 # each run: the first branch in the parameter continued first, then from each of its LP and
@@ -63,7 +74,7 @@ for lab in ('LP', 'HB'):
         for sgn in (1, -1):
             c = run(s, ISW=2, ICP=['%(q1)s', '%(q2)s'], DS=sgn*%(ds)r)
             for p in c():
-                if p['TY'] in ('BT', 'CP', 'GH', 'UZ'):
+                if p['TY'] in ('BT', 'CP', 'GH', 'UZ', 'LP'):
                     print('CURVE', %(k)d, p['TY'], repr(p['%(p1)s']), repr(p['%(p2)s']))
 """
 
@@ -170,6 +181,10 @@ def check_case(dynkit, name, cs, run_auto, fortran):
                         ("run.auto", auto_script(cs))))
     auto = [(int(l.split()[1]), l.split()[2], float(l.split()[3]), float(l.split()[4]))
             for l in a.stdout.splitlines() if l.startswith("CURVE ")]
+    # a curve's LP (where it turns in the first parameter) is AUTO-07p's label of a BT
+    # point where both curves turn there; elsewhere it is no special point of the curve
+    auto = [(j, "BT" if l == "LP" else l, v, w) for j, l, v, w in auto
+            if l != "LP" or cs.get("bt_as_lp")]
     if a.returncode != 0:
         return work, [f"auto-07p's exit status {a.returncode}"]
     problems, ours, ends = [], [], 0

@@ -197,9 +197,9 @@ static const char *hopf_kind(double l1)
  * asymptotically stable only because its rightmost eigenvalues lie on the imaginary axis
  * (within 1e-8 of the largest modulus, as `linearize` allows 1e-8 of the matrix's norm): a Hopf point, a
  * fold, a conservative system's centre; for a periodic orbit, because its largest
- * non-trivial Floquet multiplier lies on the unit circle within 1e-8 (a fold or period
- * doubling of cycles, an orbit of a linear centre's family). The CSV's `stable` column
- * stays 0 there. */
+ * non-trivial Floquet multiplier lies on the unit circle within 1e-8 (an orbit of a linear
+ * centre's family) or it is a located LPC, PD or TR (whose computed multiplier is on the
+ * circle only to its accuracy). The CSV's `stable` column stays 0 there. */
 static const char *stability_word(const dyn_branch *b, long k, int map)
 {
     const dyn_branch_point *p = &b->pts[k];
@@ -215,6 +215,8 @@ static const char *stability_word(const dyn_branch *b, long k, int map)
         return isfinite(mod_max) && mod_max <= 1.0 + 1e-8 ? "marginal" : "unstable";
     }
     if (b->kind == DYN_BRANCH_PERIODIC) { /* the trivial multiplier first (colloc_po.c) */
+        if (p->label == DYN_LABEL_LPC || p->label == DYN_LABEL_PD || p->label == DYN_LABEL_TR)
+            return "marginal"; /* located there: a multiplier on the circle to its accuracy */
         double mod_max = 0.0;
         for (int i = 1; i < b->n_eig; i++)
             mod_max = fmax(mod_max, hypot(e[2 * i], e[2 * i + 1]));

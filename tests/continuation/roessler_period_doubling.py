@@ -7,7 +7,8 @@ orbit (from the diagram's page) is solved again here by single shooting with Sci
 (solve_ivp, DOP853, rtol 1e-11, the variational equations with the Jacobian written out)
 at dynkit's parameter: a real multiplier is -1 within 1e-6 and the period agrees within
 1e-7; at 2e-4 in a on either side a real multiplier lies on either side of -1
-(prod (mu + 1) changes sign). Failures keep the page under ARTIFACTS.
+(prod (mu + 1) changes sign). No PD, LPC or TR of the page is called stable. Failures
+keep the page under ARTIFACTS.
 Usage: roessler_period_doubling.py DYNKIT MODEL ARTIFACTS"""
 import json
 import os
@@ -73,6 +74,12 @@ else:
     print("dynkit's labels on the cycles:", labels)
     if [l for l, _ in labels[:3]] != ["PD", "PD", "LPC"]:
         failures.append(f"the cycles' first labels {labels}: expected PD, PD, LPC")
+    # a located PD or LPC has a multiplier on the unit circle: never asymptotically stable
+    # (the second PD's computed multiplier is -0.9999999999994)
+    called_stable = [(o["label"], o["par"]) for o in data["orbits"]
+                     if o["label"] in ("PD", "LPC", "TR") and o["stable"]]
+    if called_stable:
+        failures.append(f"located points called stable: {called_stable}")
     for o in [o for o in orbits if o["label"] == "PD"][:2]:
         a = o["par"]
         x0 = np.array([u[0] for u in o["u"]])

@@ -21,6 +21,9 @@
  *   nothing on standard output), also from a = 0 when a is the parameter continued (the
  *   forcing grows along the branch); with a = 0 fixed it is continued in d (x = v = 0);
  *   a map whose F depends on the iteration t is refused the same way;
+ * - a start on a fold (x' = p - x^2 from p = 0, x = 0: f_x is singular, [f_x f_p] is not)
+ *   is continued, along x > 0 with ds > 0 (the stable half x = sqrt(p) up to parmax) and
+ *   along x < 0 with ds < 0 (the unstable half);
  * - every example of continue --help runs. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
@@ -182,6 +185,21 @@ static void test_forced_model_is_refused(void **state)
     cli_free(&r);
 }
 
+static void test_start_on_a_fold(void **state)
+{
+    (void)state;
+    CHECK(cli_write_file("fold0.ode", "par p=0\ninit x=0\nx'=p-x^2\n@ parmin=-1, parmax=1\n"
+                                      "done\n") == 0, "fold0.ode");
+    cli_result r = cli_in_tmpdir("continue fold0.ode --par p");
+    CHECK(r.status == 0 && strstr(r.out, "stopped: reached parmax = 1") &&
+              strstr(r.out, "EP  p = 1  x = 1  stable"), "exit %d: %s%s", r.status, r.out, r.err);
+    cli_free(&r);
+    r = cli_in_tmpdir("continue fold0.ode --par p --opt ds=-0.02");
+    CHECK(r.status == 0 && strstr(r.out, "EP  p = 1  x = -1  unstable"), "exit %d: %s%s",
+          r.status, r.out, r.err);
+    cli_free(&r);
+}
+
 static void test_svg_of_the_diagram(void **state)
 {
     (void)state;
@@ -317,6 +335,7 @@ int main(void)
         cmocka_unit_test(test_output_file_keeps_stdout_empty),
         cmocka_unit_test(test_summary_words_at_a_hopf_point),
         cmocka_unit_test(test_forced_model_is_refused),
+        cmocka_unit_test(test_start_on_a_fold),
         cmocka_unit_test(test_svg_of_the_diagram),
         cmocka_unit_test(test_page_of_the_diagram),
         cmocka_unit_test(test_page_thins_its_orbits),

@@ -443,7 +443,7 @@ static void singular_start_message(const cont_system *s, const dyn_model *m, int
         snprintf(msg, len,
                  "the start is singular: %s is singular (null vector along %s; rows of %s "
                  "dependent): a family of %s (a conserved quantity, a state not in %s) or a "
-                 "fold or BP; start elsewhere",
+                 "branch point; start elsewhere",
                  map ? "dF/dy - I" : "f_x", along, rows, map ? "fixed points" : "equilibria",
                  map ? "F" : "f");
     }
@@ -535,7 +535,20 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
     if (rc == 0) {
         e[n] = o->ds > 0.0 ? 1.0 : -1.0;
         double det;
-        if (cont_tangent(&s, &w, z, e, t, &det)) {
+        int tst = cont_tangent(&s, &w, z, e, t, &det);
+        /* at a fold f_x is singular but [f_x f_p] is not (x' = p - x^2 from p = 0): the
+         * tangent bordered by a state's unit vector instead, as AUTO-07p starts there */
+        for (int i = 0; tst == 1 && i < n; i++) {
+            for (int k = 0; k < M; k++)
+                e[k] = k == i ? 1.0 : 0.0;
+            tst = cont_tangent(&s, &w, z, e, t, &det);
+            /* the way of ds in the parameter, or in that state where the branch turns */
+            const double lead = fabs(t[n]) > 1e-8 ? t[n] : t[i];
+            if (tst == 0 && lead * o->ds < 0.0)
+                for (int k = 0; k < M; k++)
+                    t[k] = -t[k];
+        }
+        if (tst) {
             singular_start_message(&s, m, o->map, z, info->message, sizeof info->message);
             rc = DYN_ERR_ARG;
         }

@@ -1,13 +1,15 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* cont_autonomous.c — whether a model's right-hand side depends on the time t, checked
  * before a branch of equilibria (or a map's fixed points) is started: an equilibrium is a
- * zero of f(x, p) for every t, which a forced model (x'' + x = a cos(w t)) has not, and
- * solving f(t0, x, p) = 0 at one frozen time would give points that are no solutions of
- * the model. f is evaluated at the start's state at t0 and at three later times, at the
- * start's parameter and at a second value of it (a forcing whose amplitude is the
- * parameter, zero at the start, still makes the branch time-dependent). (AUTO-07p's demo
- * frc writes the forcing as an autonomous oscillator's states and continues the responses
- * as periodic orbits from a known one; periodic branches here start at Hopf points only.) */
+ * zero of f(x, p) for every t, which a forced model (x'' + x = a cos(w t)) has not; the
+ * points solved at one frozen time t0 are those of the model without its forcing's
+ * motion (a stimulus that starts later: the rest state), no solutions of the forced model,
+ * and the note made here says so. f is evaluated at the start's state at t0 and at three
+ * later times, at the start's parameter and at a second value of it (a forcing whose
+ * amplitude is the parameter, zero at the start, still makes the branch time-dependent).
+ * (AUTO-07p's demo frc writes the forcing as an autonomous oscillator's states and
+ * continues the responses as periodic orbits from a known one; periodic branches here
+ * start at Hopf points only.) */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -59,11 +61,11 @@ int cont_time_dependent(cont_model *cm, const double *x, char *msg, size_t len)
         return 0;
     const char *name = cm->m->params[cm->ip].name;
     snprintf(msg, len,
-             "%s depends on the time t (%.24s%s at %.24s = %s differs at t = %s and %s): "
-             "%s are of autonomous models; a periodic forcing's response is seen on its "
+             "%s depends on the time t (%.24s%s at %.24s = %s differs at t = %s and %s): these "
+             "are the %s of the model frozen at t = %s, not of the forced model; see its "
              "stroboscopic map (run --section t=PERIOD)",
              cm->map ? "F" : "f", cm->m->states[found].name, cm->map ? "(t+1)" : "'", name,
              dyn_shortest(at_p).s, dyn_shortest(t0).s, dyn_shortest(at_t).s,
-             cm->map ? "fixed points" : "equilibria");
+             cm->map ? "fixed points" : "equilibria", dyn_shortest(t0).s);
     return 1;
 }

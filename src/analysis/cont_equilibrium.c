@@ -487,12 +487,9 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
     memcpy(z, x0, (size_t)n * sizeof *z);
     z[n] = cm.p_set[0];
     int rc = 0;
-    if (cont_time_dependent(&cm, z, info->message, sizeof info->message) == 1) {
-        cont_model_free(&cm);
-        cont_work_free(&w);
-        free(z);
-        return DYN_ERR_ARG;
-    }
+    /* a forced model: its branch is that of the model frozen at o->t, with a note */
+    char time_note[sizeof info->message] = "";
+    const int forced = cont_time_dependent(&cm, z, time_note, sizeof time_note) == 1;
     eq_ctx ec = {&cm, d, -1, 0};
     cont_system s;
     eq_system(&s, &ec);
@@ -610,6 +607,11 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
                  cm.message[0] ? cm.message : "out of memory");
     else if (rc == 0 && note[0]) /* the notes of switching and periodic orbits, after others */
         add_note(info->message, sizeof info->message, "%s", note);
+    if (rc == 0 && forced) { /* first: the other notes may fill the message */
+        if (info->message[0])
+            add_note(time_note, sizeof time_note, "%s", info->message);
+        memcpy(info->message, time_note, sizeof time_note);
+    }
     for (int bi = 0; bi < d->count; bi++)
         info->points += d->branches[bi].count;
     info->newton_steps = w.newton;

@@ -43,7 +43,7 @@ int cont_model_jx(cont_model *cm, const double *x, double *J, int ld);
  * differences; par is left prepared for (p, p2). 0 or non-zero */
 int cont_model_fp(cont_model *cm, const double *x, double p, double p2, int q, double *col,
                   int ld);
-/* 1 (message in msg) when f at x differs between cm->t and later times, at the prepared
+/* 1 (a note in msg) when f at x differs between cm->t and later times, at the prepared
  * parameter or at a second value of ip (cont_autonomous.c); 0 when not; -1 when the model
  * cannot be prepared again. par is left prepared for the parameter it had */
 int cont_time_dependent(cont_model *cm, const double *x, char *msg, size_t len);

@@ -450,6 +450,25 @@ static void singular_start_message(const cont_system *s, const dyn_model *m, int
     free(J);
 }
 
+/* 1 when a step h along t from the start z, corrected, has moved the parameter: z is a
+ * fold, where p changes at second order, and not a family of equilibria at one parameter
+ * value, along which t also lies where [f_x f_p] has full rank (z' = p - z, w' = z - 1 at
+ * p = 1: every w) */
+static int fold_start(const cont_system *s, cont_work *w, const double *z, const double *t,
+                      double h, int n)
+{
+    const int M = n + 1;
+    double *zp = malloc((size_t)M * sizeof *zp);
+    if (!zp)
+        return 0;
+    for (int k = 0; k < M; k++)
+        zp[k] = z[k] + h * t[k];
+    const int moved = cont_correct(s, w, z, t, h, zp, NULL) == 0 &&
+                      fabs(zp[n] - z[n]) > 1e-8 * h * h * (1.0 + fabs(z[n]));
+    free(zp);
+    return moved;
+}
+
 int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dyn_cont_opts *o,
                  dyn_diagram *d, dyn_cont_info *info)
 {
@@ -544,6 +563,8 @@ int dyn_continue(const dyn_model *m, const void *par, const double *x0, const dy
             if (tst == 0 && lead * o->ds < 0.0)
                 for (int k = 0; k < M; k++)
                     t[k] = -t[k];
+            if (tst == 0 && !fold_start(&s, &w, z, t, fabs(o->ds), n))
+                tst = 1;
         }
         if (tst) {
             singular_start_message(&s, m, o->map, z, info->message, sizeof info->message);

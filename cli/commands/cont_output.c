@@ -198,7 +198,7 @@ static const char *hopf_kind(double l1)
  * (within 1e-8 of the largest modulus, as `linearize` allows 1e-8 of the matrix's norm): a Hopf point, a
  * fold, a conservative system's centre; for a periodic orbit, because its largest
  * non-trivial Floquet multiplier lies on the unit circle within 1e-8 (an orbit of a linear
- * centre's family) or it is a located LPC, PD or TR (whose computed multiplier is on the
+ * centre's family) or it is a located LPC, PD, TR or BP (whose computed multiplier is on the
  * circle only to its accuracy). The CSV's `stable` column stays 0 there. */
 static const char *stability_word(const dyn_branch *b, long k, int map)
 {
@@ -215,7 +215,8 @@ static const char *stability_word(const dyn_branch *b, long k, int map)
         return isfinite(mod_max) && mod_max <= 1.0 + 1e-8 ? "marginal" : "unstable";
     }
     if (b->kind == DYN_BRANCH_PERIODIC) { /* the trivial multiplier first (colloc_po.c) */
-        if (p->label == DYN_LABEL_LPC || p->label == DYN_LABEL_PD || p->label == DYN_LABEL_TR)
+        if (p->label == DYN_LABEL_LPC || p->label == DYN_LABEL_PD || p->label == DYN_LABEL_TR ||
+            p->label == DYN_LABEL_BP)
             return "marginal"; /* located there: a multiplier on the circle to its accuracy */
         double mod_max = 0.0;
         for (int i = 1; i < b->n_eig; i++)

@@ -313,9 +313,11 @@ static int record(po_run *r, const dyn_colloc_sol *x, const double *re, const do
         for (int i = 1; i < n; i++)
             if (!(hypot(re[i], im[i]) < 1.0))
                 pt->stable = 0;
-        /* a located fold, flip or torus point has a multiplier on the unit circle, whatever
-         * side of it the computed one fell (Roessler's PD at a = 0.8478: -0.9999999999994) */
-        if (!strcmp(label, "LPC") || !strcmp(label, "PD") || !strcmp(label, "TR"))
+        /* a located fold, flip, torus or branch point has a multiplier on the unit circle,
+         * whatever side of it the computed one fell (Roessler's PD at a = 0.8478:
+         * -0.9999999999994) */
+        if (!strcmp(label, "LPC") || !strcmp(label, "PD") || !strcmp(label, "TR") ||
+            !strcmp(label, "BP"))
             pt->stable = 0;
     }
     snprintf(pt->label, sizeof pt->label, "%s", label);

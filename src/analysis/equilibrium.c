@@ -11,7 +11,6 @@
  * rounding). Where these steps fail (they can follow a valley in which |f| falls towards
  * infinity, as van der Pol's from (2, 0) does, where Newton's first step lands on the
  * origin), Gauss-Newton steps from the guess are tried, taken only when they converge. */
-#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -42,18 +41,11 @@ static int eval(const dyn_model *m, double t, const double *y, void *par, double
     return 0;
 }
 
-/* The tolerance on |f|_inf at y: rtol ||J||_inf max(|y|_inf, 1) */
+/* The tolerance on |f|_inf at y: rtol ||J||_inf max(|y|_inf, 1) (rtol > 0; rtol ||J||_inf
+ * is dyn_stability_tol's, at least DBL_MIN) */
 static double f_tolerance(int n, const double *J, const double *y, double rtol)
 {
-    const size_t N = (size_t)n;
-    double jn = 0.0;
-    for (size_t i = 0; i < N; i++) {
-        double row = 0.0;
-        for (size_t j = 0; j < N; j++)
-            row += fabs(J[i * N + j]);
-        jn = fmax(jn, row);
-    }
-    return fmax(rtol * jn * fmax(lm_norm_inf(n, y), 1.0), DBL_MIN);
+    return dyn_stability_tol(n, J, rtol) * fmax(lm_norm_inf(n, y), 1.0);
 }
 
 /* At most this many Gauss-Newton steps after Levenberg-Marquardt's failed */
